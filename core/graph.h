@@ -1,0 +1,151 @@
+/* graph.h - the compiled render graph: pure data produced by pg_graph_compile().
+ *
+ * Compile phases, run in this order (core/graph_compile.c):
+ *   1. declare    ask each pass type what its slots are (pure); unknown type -> error
+ *   2. validate   slot counts, kinds (image/buffer), format class vs access, known resources
+ *   3. order      dependency edges (reader after writer, write chains, "after"), stable
+ *                 topological sort (ties keep declaration order); cycles reported with their path
+ *   4. cull       walk back from the outputs and side-effect passes; every culled pass and
+ *                 resource gets a reason
+ *   5. lifetimes  first/last executed pass of each resource; outputs live to the end
+ *   6. alias      transient resources of the same kind with disjoint lifetimes share a memory
+ *                 block, only if their first access fully overwrites them
+ *   7. barriers   synchronization2 barriers for RAW, WAR, WAW and layout changes, including the
+ *                 first use of an aliased resource (from UNDEFINED, after the previous occupant),
+ *                 the frame-to-frame wrap of persistent resources, and the final transition of the
+ *                 outputs for readback
+ * The plan makes no Vulkan calls; it only uses Vulkan's enum values so the executor can copy them.
+ */
+#ifndef PG_GRAPH_H
+#define PG_GRAPH_H
+
+#include "pass_api.h"
+#include "pg_common.h"
+#include "pipeline.h"
+#include "scene_features.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Synchronization facts for one access (core/graph_sync.c). */
+typedef struct pg_sync_info {
+    uint64_t stages;   /* VkPipelineStageFlags2 */
+    uint64_t access;   /* VkAccessFlags2 */
+    uint32_t layout;   /* VkImageLayout (images only) */
+    uint32_t usage;    /* VkImageUsageFlags or VkBufferUsageFlags */
+    bool reads, writes;
+    bool full_write;   /* overwrites every texel/byte without reading: safe first use after alias */
+} pg_sync_info;
+
+pg_sync_info pg_access_sync(pg_access access, uint32_t shader_stages, pg_res_kind kind,
+                            pg_format format);
+const char *pg_access_name(pg_access access);
+
+typedef struct pg_barrier {
+    int resource;          /* index into plan->resources */
+    bool is_image;
+    uint64_t src_stages, src_access, dst_stages, dst_access;
+    uint32_t old_layout, new_layout;
+    int alias_prev;        /* >= 0: first use after this resource occupied the same memory */
+    bool wrap;             /* persistent resource: src is the end of the previous frame */
+    char why[48];          /* "RAW", "WAR", "WAW", "layout", "alias first use", "output" ... */
+} pg_barrier;
+
+typedef struct pg_plan_slot {
+    int resource;          /* index into plan->resources */
+    bool is_write;
+    pg_slot_decl decl;
+    pg_sync_info sync;
+} pg_plan_slot;
+
+typedef struct pg_plan_pass {
+    char name[PG_NAME_MAX];
+    const pg_pass_type *type;
+    int desc_index;             /* index in pipeline->passes */
+    bool culled;
+    char cull_reason[PG_EXPLAIN_MAX];
+    pg_pass_decl decl;
+    uint32_t n_slots;           /* reads first, then writes */
+    pg_plan_slot slots[2 * PG_MAX_SLOTS];
+    uint32_t n_barriers;        /* placed before the pass */
+    pg_barrier barriers[PG_MAX_BARRIERS_PER_PASS];
+} pg_plan_pass;
+
+typedef struct pg_plan_resource {
+    char name[PG_NAME_MAX];
+    pg_res_kind kind;
+    pg_lifetime_kind lifetime;
+    pg_format format;
+    uint32_t width, height;      /* images, resolved against the output size */
+    uint64_t size_bytes;         /* images: estimate width*height*bpp; buffers: exact */
+    uint32_t usage;              /* union of Vk*UsageFlags over surviving accesses */
+    bool is_output;              /* output or hdr_output: lives to the end, read back */
+    bool culled;
+    char cull_reason[PG_EXPLAIN_MAX];
+    int first_pass, last_pass;   /* positions in plan->order; -1 when unused; outputs'
+                                  * last_pass is n_order (read back after the last pass) */
+    int block;                   /* memory block (transients), -1 otherwise */
+    uint64_t block_offset;       /* always 0 today: a block holds one resource at a time */
+    int desc_index;              /* index in pipeline->resources */
+} pg_plan_resource;
+
+typedef struct pg_plan_block {
+    pg_res_kind kind;
+    uint64_t size_bytes;         /* max of its members' sizes */
+    uint32_t n_members;
+    int members[PG_MAX_RESOURCES]; /* in lifetime order */
+} pg_plan_block;
+
+typedef struct pg_compile_desc {
+    const pg_pipeline *pipeline;
+    const pg_pass_registry *registry;
+    pg_scene_features features;      /* light_count is used for "lights" buffer counts */
+    uint32_t output_width, output_height;
+    bool disable_aliasing;           /* debugging switch: every transient gets its own memory */
+    uint32_t output_layout;          /* VkImageLayout the outputs end in; 0 -> TRANSFER_SRC */
+} pg_compile_desc;
+
+typedef struct pg_graph_plan {
+    uint32_t n_passes;                 /* all declared passes (culled included) */
+    pg_plan_pass passes[PG_MAX_PASSES];/* same order as pipeline->passes */
+    uint32_t n_order;                  /* executed passes */
+    int order[PG_MAX_PASSES];          /* indices into passes[], execution order */
+    uint32_t n_resources;
+    pg_plan_resource resources[PG_MAX_RESOURCES]; /* same order as pipeline->resources */
+    uint32_t n_blocks;
+    pg_plan_block blocks[PG_MAX_RESOURCES];
+    uint32_t n_final_barriers;         /* after the last pass: outputs -> output_layout */
+    pg_barrier final_barriers[PG_MAX_RESOURCES];
+    uint64_t transient_bytes_unaliased; /* sum of transient sizes */
+    uint64_t transient_bytes_aliased;   /* sum of block sizes */
+    int output, hdr_output;            /* resource indices (hdr_output -1 if none) */
+    uint32_t n_explain;                /* what was left out and why (culls, omitted, features) */
+    char explain[PG_MAX_EXPLAIN][PG_EXPLAIN_MAX];
+    bool aliasing_disabled;
+} pg_graph_plan;
+
+/* Compiles; on success *out is a heap plan to free with pg_graph_plan_free(). */
+pg_result pg_graph_compile(const pg_compile_desc *desc, pg_graph_plan **out, pg_error *err);
+void pg_graph_plan_free(pg_graph_plan *plan);
+
+/* Human-readable report (order, culls, lifetimes, blocks, barriers, totals). */
+void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline, void *FILE_ptr);
+
+/* ---- short names for reports and dumps (core/graph_report.c) ---- */
+/* VkImageLayout -> "undefined", "general", "color_attachment", "shader_read_only", ...;
+ * "?" for a value it does not know. The string is static. */
+const char *pg_layout_name(uint32_t vk_image_layout);
+/* VkPipelineStageFlags2 -> "color_output|fragment_shader"; "none" for 0; unknown bits as hex.
+ * Always NUL-terminates buf (truncates when too small). */
+void pg_stage_names(uint64_t stages, char *buf, size_t buf_size);
+/* VkAccessFlags2 -> "color_attachment_write|shader_sampled_read"; "none" for 0. */
+void pg_access_mask_names(uint64_t access, char *buf, size_t buf_size);
+/* "image" / "buffer"; "transient" / "persistent" / "imported". */
+const char *pg_res_kind_name(pg_res_kind kind);
+const char *pg_lifetime_name(pg_lifetime_kind lifetime);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,548 @@
+/* graph_execute.c - physical resources, pass instances, recording and submission of a plan. */
+#include "graph_execute.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <cjson/cJSON.h>
+
+struct pg_runtime {
+    pg_gpu *gpu;
+    const pg_graph_plan *plan;
+    const pg_pipeline *pipeline;
+    const pg_scene_gpu *scene;
+    uint32_t width, height;
+    uint64_t signature;
+    bool built;
+    pg_phys_resource res[PG_MAX_RESOURCES];
+    bool persistent_initialized[PG_MAX_RESOURCES];
+    VkDeviceMemory block_memory[PG_MAX_RESOURCES];
+    void *pass_state[PG_MAX_PASSES]; /* indexed like plan->passes */
+    /* frame constants */
+    VkDescriptorSetLayout frame_layout;
+    VkDescriptorPool frame_pool;
+    VkDescriptorSet frame_set;
+    pg_buffer frame_ubo;
+    pg_frame_uniforms frame;
+    VkCommandBuffer cmd;
+    VkFence fence;
+    VkQueryPool queries;
+    uint32_t n_queries;
+    pg_buffer readback[2];
+    bool readback_valid[2];
+    pg_runtime_stats stats;
+};
+
+static uint64_t fnv(uint64_t h, const void *data, size_t n)
+{
+    const uint8_t *p = data;
+    for (size_t i = 0; i < n; i++) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
+/* Everything that decides which Vulkan objects exist. Options are hashed as printed JSON. */
+static uint64_t plan_signature(const pg_graph_plan *plan, const pg_pipeline *pl, const pg_scene_gpu *scene,
+                               uint32_t w, uint32_t h)
+{
+    uint64_t s = 1469598103934665603ull;
+    s = fnv(s, &w, sizeof w);
+    s = fnv(s, &h, sizeof h);
+    s = fnv(s, &scene, sizeof scene);
+    for (uint32_t i = 0; i < plan->n_resources; i++) {
+        const pg_plan_resource *r = &plan->resources[i];
+        s = fnv(s, r->name, strlen(r->name));
+        s = fnv(s, &r->kind, sizeof r->kind);
+        s = fnv(s, &r->format, sizeof r->format);
+        s = fnv(s, &r->width, sizeof r->width);
+        s = fnv(s, &r->height, sizeof r->height);
+        s = fnv(s, &r->size_bytes, sizeof r->size_bytes);
+        s = fnv(s, &r->usage, sizeof r->usage);
+        s = fnv(s, &r->culled, sizeof r->culled);
+        s = fnv(s, &r->block, sizeof r->block);
+        s = fnv(s, &r->lifetime, sizeof r->lifetime);
+    }
+    for (uint32_t i = 0; i < plan->n_order; i++) {
+        const pg_plan_pass *p = &plan->passes[plan->order[i]];
+        s = fnv(s, p->name, strlen(p->name));
+        s = fnv(s, p->type->name, strlen(p->type->name));
+        for (uint32_t d = 0; d < p->decl.n_defines; d++) s = fnv(s, p->decl.defines[d], strlen(p->decl.defines[d]));
+        const pg_pass_desc *desc = &pl->passes[p->desc_index];
+        char *txt = desc->options ? cJSON_PrintUnformatted(desc->options) : NULL;
+        if (txt) {
+            s = fnv(s, txt, strlen(txt));
+            cJSON_free(txt);
+        }
+        for (uint32_t k = 0; k < p->n_slots; k++) s = fnv(s, &p->slots[k].resource, sizeof(int));
+    }
+    return s;
+}
+
+static void destroy_built(pg_runtime *rt)
+{
+    pg_gpu *gpu = rt->gpu;
+    if (!rt->built && !rt->plan) return;
+    vkDeviceWaitIdle(gpu->device);
+    if (rt->plan) {
+        for (uint32_t i = 0; i < rt->plan->n_passes; i++) {
+            if (rt->pass_state[i]) {
+                rt->plan->passes[i].type->destroy(rt->pass_state[i], gpu);
+                free(rt->pass_state[i]);
+                rt->pass_state[i] = NULL;
+            }
+        }
+    }
+    for (uint32_t i = 0; i < PG_MAX_RESOURCES; i++) {
+        pg_phys_resource *r = &rt->res[i];
+        if (r->view) vkDestroyImageView(gpu->device, r->view, NULL);
+        if (r->image) vkDestroyImage(gpu->device, r->image, NULL);
+        if (r->buffer) vkDestroyBuffer(gpu->device, r->buffer, NULL);
+        if (r->own_memory) vkFreeMemory(gpu->device, r->own_memory, NULL);
+        memset(r, 0, sizeof *r);
+        if (rt->block_memory[i]) vkFreeMemory(gpu->device, rt->block_memory[i], NULL);
+        rt->block_memory[i] = VK_NULL_HANDLE;
+        rt->persistent_initialized[i] = false;
+    }
+    for (int i = 0; i < 2; i++) {
+        pg_buffer_destroy(gpu, &rt->readback[i]);
+        rt->readback_valid[i] = false;
+    }
+    if (rt->queries) vkDestroyQueryPool(gpu->device, rt->queries, NULL);
+    rt->queries = VK_NULL_HANDLE;
+    rt->built = false;
+}
+
+pg_result pg_runtime_create(pg_gpu *gpu, pg_runtime **out, pg_error *err)
+{
+    *out = NULL;
+    pg_runtime *rt = calloc(1, sizeof *rt);
+    if (!rt) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    rt->gpu = gpu;
+    pg_result r;
+    if ((r = pg_buffer_create(gpu, sizeof(pg_frame_uniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true,
+                              "frame.uniforms", &rt->frame_ubo, err)))
+        goto fail;
+    VkDescriptorSetLayoutBinding b = {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+                                      VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
+                                          VK_SHADER_STAGE_COMPUTE_BIT,
+                                      NULL};
+    VkDescriptorSetLayoutCreateInfo lci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                           .bindingCount = 1, .pBindings = &b};
+    VkResult vr = vkCreateDescriptorSetLayout(gpu->device, &lci, NULL, &rt->frame_layout);
+    if (vr) goto vkfail;
+    VkDescriptorPoolSize ps = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+    VkDescriptorPoolCreateInfo pci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                      .maxSets = 1, .poolSizeCount = 1, .pPoolSizes = &ps};
+    vr = vkCreateDescriptorPool(gpu->device, &pci, NULL, &rt->frame_pool);
+    if (vr) goto vkfail;
+    VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                      .descriptorPool = rt->frame_pool, .descriptorSetCount = 1,
+                                      .pSetLayouts = &rt->frame_layout};
+    vr = vkAllocateDescriptorSets(gpu->device, &ai, &rt->frame_set);
+    if (vr) goto vkfail;
+    VkDescriptorBufferInfo bi = {rt->frame_ubo.buffer, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet w = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = rt->frame_set,
+                              .dstBinding = 0, .descriptorCount = 1,
+                              .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &bi};
+    vkUpdateDescriptorSets(gpu->device, 1, &w, 0, NULL);
+    VkCommandBufferAllocateInfo cai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                       .commandPool = gpu->cmd_pool,
+                                       .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                       .commandBufferCount = 1};
+    vr = vkAllocateCommandBuffers(gpu->device, &cai, &rt->cmd);
+    if (vr) goto vkfail;
+    VkFenceCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    vr = vkCreateFence(gpu->device, &fci, NULL, &rt->fence);
+    if (vr) goto vkfail;
+    *out = rt;
+    return PG_OK;
+vkfail:
+    r = pg_fail(err, PG_ERR_VULKAN, "runtime set-up failed: %s", pg_vk_result_name(vr));
+fail:
+    pg_runtime_destroy(rt);
+    return r;
+}
+
+void pg_runtime_destroy(pg_runtime *rt)
+{
+    if (!rt) return;
+    pg_gpu *gpu = rt->gpu;
+    destroy_built(rt);
+    if (rt->fence) vkDestroyFence(gpu->device, rt->fence, NULL);
+    if (rt->cmd) vkFreeCommandBuffers(gpu->device, gpu->cmd_pool, 1, &rt->cmd);
+    if (rt->frame_pool) vkDestroyDescriptorPool(gpu->device, rt->frame_pool, NULL);
+    if (rt->frame_layout) vkDestroyDescriptorSetLayout(gpu->device, rt->frame_layout, NULL);
+    pg_buffer_destroy(gpu, &rt->frame_ubo);
+    free(rt);
+}
+
+static pg_result create_unbound(pg_runtime *rt, int i, pg_error *err)
+{
+    pg_gpu *gpu = rt->gpu;
+    const pg_plan_resource *pr = &rt->plan->resources[i];
+    pg_phys_resource *r = &rt->res[i];
+    r->kind = pr->kind;
+    if (pr->kind == PG_RES_IMAGE) {
+        const pg_format_info *fi = pg_format_get(pr->format);
+        r->format = (VkFormat)fi->vk_format;
+        r->pg_fmt = pr->format;
+        r->width = pr->width;
+        r->height = pr->height;
+        VkImageCreateInfo ici = {
+            .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+            .imageType = VK_IMAGE_TYPE_2D,
+            .format = r->format,
+            .extent = {pr->width, pr->height, 1},
+            .mipLevels = 1,
+            .arrayLayers = 1,
+            .samples = VK_SAMPLE_COUNT_1_BIT,
+            .tiling = VK_IMAGE_TILING_OPTIMAL,
+            .usage = pr->usage ? pr->usage : VK_IMAGE_USAGE_SAMPLED_BIT,
+            .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+        };
+        VkImageFormatProperties ifp;
+        VkResult fr = vkGetPhysicalDeviceImageFormatProperties(gpu->phys, ici.format, ici.imageType, ici.tiling,
+                                                               ici.usage, 0, &ifp);
+        if (fr != VK_SUCCESS)
+            return pg_fail(err, PG_ERR_FORMAT, "resource '%s': format %s does not support its usage (0x%x) on %s",
+                           pr->name, fi->name, ici.usage, gpu->props.deviceName);
+        if (pr->width > ifp.maxExtent.width || pr->height > ifp.maxExtent.height)
+            return pg_fail(err, PG_ERR_LIMIT, "resource '%s': %ux%u exceeds the device limit %ux%u", pr->name,
+                           pr->width, pr->height, ifp.maxExtent.width, ifp.maxExtent.height);
+        PG_VK_TRY(err, vkCreateImage(gpu->device, &ici, NULL, &r->image));
+        pg_gpu_name(gpu, VK_OBJECT_TYPE_IMAGE, (uint64_t)r->image, "%s", pr->name);
+    } else {
+        r->size = pr->size_bytes;
+        VkBufferCreateInfo bci = {
+            .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+            .size = pr->size_bytes,
+            .usage = (pr->usage ? pr->usage : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
+            .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+        };
+        PG_VK_TRY(err, vkCreateBuffer(gpu->device, &bci, NULL, &r->buffer));
+        pg_gpu_name(gpu, VK_OBJECT_TYPE_BUFFER, (uint64_t)r->buffer, "%s", pr->name);
+    }
+    return PG_OK;
+}
+
+static VkMemoryRequirements requirements(pg_runtime *rt, int i)
+{
+    VkMemoryRequirements req = {0};
+    if (rt->res[i].image) vkGetImageMemoryRequirements(rt->gpu->device, rt->res[i].image, &req);
+    else vkGetBufferMemoryRequirements(rt->gpu->device, rt->res[i].buffer, &req);
+    return req;
+}
+
+static pg_result bind(pg_runtime *rt, int i, VkDeviceMemory mem, pg_error *err)
+{
+    pg_phys_resource *r = &rt->res[i];
+    if (r->image) {
+        PG_VK_TRY(err, vkBindImageMemory(rt->gpu->device, r->image, mem, 0));
+        VkImageViewCreateInfo vci = {
+            .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+            .image = r->image,
+            .viewType = VK_IMAGE_VIEW_TYPE_2D,
+            .format = r->format,
+            .subresourceRange = {pg_vk_aspect(r->format), 0, 1, 0, 1},
+        };
+        PG_VK_TRY(err, vkCreateImageView(rt->gpu->device, &vci, NULL, &r->view));
+        pg_gpu_name(rt->gpu, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)r->view, "%s.view",
+                    rt->plan->resources[i].name);
+    } else {
+        PG_VK_TRY(err, vkBindBufferMemory(rt->gpu->device, r->buffer, mem, 0));
+    }
+    return PG_OK;
+}
+
+static pg_result alloc(pg_runtime *rt, VkDeviceSize size, uint32_t bits, const char *name, VkDeviceMemory *out,
+                       pg_error *err)
+{
+    uint32_t type = pg_gpu_memory_type(rt->gpu, bits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (type == UINT32_MAX) type = pg_gpu_memory_type(rt->gpu, bits, 0);
+    if (type == UINT32_MAX) return pg_fail(err, PG_ERR_VULKAN, "%s: no memory type fits", name);
+    VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                .allocationSize = size, .memoryTypeIndex = type};
+    VkResult vr = vkAllocateMemory(rt->gpu->device, &mai, NULL, out);
+    if (vr != VK_SUCCESS)
+        return pg_fail(err, PG_ERR_VULKAN, "%s: vkAllocateMemory(%llu bytes) failed: %s", name,
+                       (unsigned long long)size, pg_vk_result_name(vr));
+    pg_gpu_name(rt->gpu, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)*out, "%s", name);
+    return PG_OK;
+}
+
+static pg_result build(pg_runtime *rt, pg_error *err)
+{
+    const pg_graph_plan *plan = rt->plan;
+    pg_gpu *gpu = rt->gpu;
+    pg_result r;
+    rt->stats.resource_creations++;
+    rt->stats.memory_bytes_transient = 0;
+    rt->stats.memory_bytes_unaliased = 0;
+    for (uint32_t i = 0; i < plan->n_resources; i++) {
+        if (plan->resources[i].culled) continue;
+        if ((r = create_unbound(rt, (int)i, err))) return r;
+    }
+    /* shared blocks */
+    bool bound[PG_MAX_RESOURCES] = {0};
+    for (uint32_t b = 0; b < plan->n_blocks; b++) {
+        const pg_plan_block *blk = &plan->blocks[b];
+        VkDeviceSize size = 0;
+        uint32_t bits = ~0u;
+        for (uint32_t m = 0; m < blk->n_members; m++) {
+            VkMemoryRequirements req = requirements(rt, blk->members[m]);
+            if (req.size > size) size = req.size;
+            bits &= req.memoryTypeBits;
+            rt->stats.memory_bytes_unaliased += req.size;
+        }
+        if (!blk->n_members) continue;
+        if (bits == 0) {
+            rt->stats.blocks_fallback++;
+            continue; /* members get their own memory below */
+        }
+        char name[64];
+        snprintf(name, sizeof name, "block%u", b);
+        if ((r = alloc(rt, size, bits, name, &rt->block_memory[b], err))) return r;
+        rt->stats.memory_bytes_transient += size;
+        for (uint32_t m = 0; m < blk->n_members; m++) {
+            if ((r = bind(rt, blk->members[m], rt->block_memory[b], err))) return r;
+            bound[blk->members[m]] = true;
+        }
+    }
+    for (uint32_t i = 0; i < plan->n_resources; i++) {
+        if (plan->resources[i].culled || bound[i]) continue;
+        VkMemoryRequirements req = requirements(rt, (int)i);
+        if ((r = alloc(rt, req.size, req.memoryTypeBits, plan->resources[i].name, &rt->res[i].own_memory, err)))
+            return r;
+        if (plan->resources[i].lifetime == PG_LIFETIME_TRANSIENT) rt->stats.memory_bytes_transient += req.size;
+        if ((r = bind(rt, (int)i, rt->res[i].own_memory, err))) return r;
+    }
+    /* readback buffers */
+    int outs[2] = {plan->output, plan->hdr_output};
+    for (int k = 0; k < 2; k++) {
+        if (outs[k] < 0) continue;
+        const pg_plan_resource *pr = &plan->resources[outs[k]];
+        VkDeviceSize bytes = (VkDeviceSize)pr->width * pr->height * pg_format_get(pr->format)->bytes_per_pixel;
+        if ((r = pg_buffer_create(gpu, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true,
+                                  k ? "readback.hdr" : "readback.output", &rt->readback[k], err)))
+            return r;
+    }
+    rt->n_queries = plan->n_order + 1;
+    if (gpu->timestamp_valid_bits) {
+        VkQueryPoolCreateInfo qci = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+                                     .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = rt->n_queries};
+        PG_VK_TRY(err, vkCreateQueryPool(gpu->device, &qci, NULL, &rt->queries));
+    }
+    /* pass instances */
+    for (uint32_t o = 0; o < plan->n_order; o++) {
+        int pi = plan->order[o];
+        const pg_plan_pass *pass = &plan->passes[pi];
+        pg_pass_create_ctx ctx = {
+            .gpu = gpu,
+            .plan = plan,
+            .pass = pass,
+            .desc = &rt->pipeline->passes[pass->desc_index],
+            .pipeline = rt->pipeline,
+            .scene = rt->scene,
+            .frame_layout = rt->frame_layout,
+            .width = rt->width,
+            .height = rt->height,
+        };
+        for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->res[pass->slots[s].resource];
+        rt->pass_state[pi] = calloc(1, pass->type->instance_size ? pass->type->instance_size : 1);
+        if (!rt->pass_state[pi]) return pg_fail(err, PG_ERR_OOM, "out of memory");
+        if ((r = pass->type->create(rt->pass_state[pi], &ctx, err)))
+            return pg_error_prefix(err, "pass '%s' (%s)", pass->name, pass->type->name);
+    }
+    rt->built = true;
+    return PG_OK;
+}
+
+pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
+                              const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err)
+{
+    uint64_t sig = plan_signature(plan, pipeline, scene, width, height);
+    if (rt->built && sig == rt->signature) {
+        /* same physical layout: keep every object, adopt the new (identical) plan */
+        rt->plan = plan;
+        rt->pipeline = pipeline;
+        rt->scene = scene;
+        return PG_OK;
+    }
+    destroy_built(rt);
+    rt->plan = plan;
+    rt->pipeline = pipeline;
+    rt->scene = scene;
+    rt->width = width;
+    rt->height = height;
+    rt->signature = sig;
+    pg_result r = build(rt, err);
+    if (r) {
+        destroy_built(rt);
+        rt->plan = NULL;
+    }
+    return r;
+}
+
+static void emit_barriers(pg_runtime *rt, VkCommandBuffer cmd, uint32_t n, const pg_barrier *bars)
+{
+    VkImageMemoryBarrier2 ib[PG_MAX_RESOURCES];
+    VkBufferMemoryBarrier2 bb[PG_MAX_RESOURCES];
+    uint32_t ni = 0, nb = 0;
+    for (uint32_t i = 0; i < n && i < PG_MAX_RESOURCES; i++) {
+        const pg_barrier *b = &bars[i];
+        const pg_phys_resource *r = &rt->res[b->resource];
+        uint64_t src_stages = b->src_stages, src_access = b->src_access;
+        uint32_t old_layout = b->old_layout;
+        if (b->wrap && !rt->persistent_initialized[b->resource]) {
+            /* very first frame: nothing to wait for, contents undefined */
+            src_stages = VK_PIPELINE_STAGE_2_NONE;
+            src_access = 0;
+            old_layout = VK_IMAGE_LAYOUT_UNDEFINED;
+        }
+        if (b->is_image) {
+            ib[ni++] = pg_image_barrier(r->image, pg_vk_aspect(r->format), src_stages, src_access, b->dst_stages,
+                                        b->dst_access, (VkImageLayout)old_layout, (VkImageLayout)b->new_layout);
+        } else {
+            bb[nb++] = (VkBufferMemoryBarrier2){
+                .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
+                .srcStageMask = src_stages,
+                .srcAccessMask = src_access,
+                .dstStageMask = b->dst_stages,
+                .dstAccessMask = b->dst_access,
+                .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                .buffer = r->buffer,
+                .size = VK_WHOLE_SIZE,
+            };
+        }
+    }
+    pg_cmd_barriers(cmd, ni, ib, nb, bb);
+}
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool readback, pg_frame_stats *stats,
+                            pg_error *err)
+{
+    if (!rt->built) return pg_fail(err, PG_ERR_INVALID_ARG, "pg_runtime_render: no plan set");
+    pg_gpu *gpu = rt->gpu;
+    const pg_graph_plan *plan = rt->plan;
+    double t0 = now_ms();
+    pg_frame_info fi = *info;
+    fi.width = rt->width;
+    fi.height = rt->height;
+    pg_frame_uniforms_fill(&fi, &rt->frame);
+    memcpy(rt->frame_ubo.mapped, &rt->frame, sizeof rt->frame);
+
+    VkCommandBuffer cmd = rt->cmd;
+    PG_VK_TRY(err, vkResetCommandBuffer(cmd, 0));
+    VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                   .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    PG_VK_TRY(err, vkBeginCommandBuffer(cmd, &bi));
+    if (rt->queries) {
+        vkCmdResetQueryPool(cmd, rt->queries, 0, rt->n_queries);
+        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, rt->queries, 0);
+    }
+    for (uint32_t o = 0; o < plan->n_order; o++) {
+        int pi = plan->order[o];
+        const pg_plan_pass *pass = &plan->passes[pi];
+        if (gpu->cmd_begin_label) {
+            VkDebugUtilsLabelEXT label = {.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, .pLabelName = pass->name};
+            gpu->cmd_begin_label(cmd, &label);
+        }
+        emit_barriers(rt, cmd, pass->n_barriers, pass->barriers);
+        pg_pass_record_ctx ctx = {
+            .gpu = gpu,
+            .cmd = cmd,
+            .pass = pass,
+            .scene = rt->scene,
+            .frame_set = rt->frame_set,
+            .frame = &rt->frame,
+            .width = rt->width,
+            .height = rt->height,
+        };
+        for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->res[pass->slots[s].resource];
+        pass->type->record(rt->pass_state[pi], &ctx);
+        if (gpu->cmd_end_label) gpu->cmd_end_label(cmd);
+        if (rt->queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, rt->queries, o + 1);
+    }
+    emit_barriers(rt, cmd, plan->n_final_barriers, plan->final_barriers);
+    int outs[2] = {plan->output, plan->hdr_output};
+    for (int k = 0; k < 2; k++) {
+        rt->readback_valid[k] = false;
+        if (!readback || outs[k] < 0 || !rt->readback[k].buffer) continue;
+        const pg_phys_resource *r = &rt->res[outs[k]];
+        VkBufferImageCopy c = {.imageSubresource = {pg_vk_aspect(r->format), 0, 0, 1},
+                               .imageExtent = {r->width, r->height, 1}};
+        vkCmdCopyImageToBuffer(cmd, r->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, rt->readback[k].buffer, 1, &c);
+        VkBufferMemoryBarrier2 hb = {
+            .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
+            .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+            .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+            .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
+            .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
+            .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+            .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+            .buffer = rt->readback[k].buffer,
+            .size = VK_WHOLE_SIZE,
+        };
+        pg_cmd_barriers(cmd, 0, NULL, 1, &hb);
+        rt->readback_valid[k] = true;
+    }
+    PG_VK_TRY(err, vkEndCommandBuffer(cmd));
+    VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
+    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
+                        .pCommandBufferInfos = &cbi};
+    PG_VK_TRY(err, vkResetFences(gpu->device, 1, &rt->fence));
+    PG_VK_TRY(err, vkQueueSubmit2(gpu->queue, 1, &si, rt->fence));
+    PG_VK_TRY(err, vkWaitForFences(gpu->device, 1, &rt->fence, VK_TRUE, UINT64_MAX));
+    for (uint32_t i = 0; i < plan->n_resources; i++)
+        if (!plan->resources[i].culled && plan->resources[i].lifetime != PG_LIFETIME_TRANSIENT)
+            rt->persistent_initialized[i] = true;
+
+    if (stats) {
+        memset(stats, 0, sizeof *stats);
+        stats->n_passes = plan->n_order;
+        for (uint32_t o = 0; o < plan->n_order; o++)
+            pg_strlcpy(stats->pass_names[o], plan->passes[plan->order[o]].name, PG_NAME_MAX);
+        if (rt->queries) {
+            uint64_t ts[PG_MAX_PASSES + 1];
+            VkResult qr = vkGetQueryPoolResults(gpu->device, rt->queries, 0, rt->n_queries,
+                                                sizeof(uint64_t) * rt->n_queries, ts, sizeof(uint64_t),
+                                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+            if (qr == VK_SUCCESS) {
+                uint64_t mask = gpu->timestamp_valid_bits >= 64 ? ~0ull : ((1ull << gpu->timestamp_valid_bits) - 1);
+                for (uint32_t o = 0; o < plan->n_order; o++) {
+                    uint64_t d = (ts[o + 1] - ts[o]) & mask;
+                    stats->pass_ms[o] = d * (double)gpu->timestamp_period_ns * 1e-6;
+                }
+                stats->gpu_total_ms = ((ts[plan->n_order] - ts[0]) & mask) * (double)gpu->timestamp_period_ns * 1e-6;
+                stats->timestamps_valid = true;
+            }
+        }
+        stats->cpu_ms = now_ms() - t0;
+    }
+    return PG_OK;
+}
+
+const void *pg_runtime_output(const pg_runtime *rt, int which, uint32_t *w, uint32_t *h, pg_format *fmt)
+{
+    if (which < 0 || which > 1 || !rt->plan || !rt->readback_valid[which]) return NULL;
+    int idx = which ? rt->plan->hdr_output : rt->plan->output;
+    if (idx < 0) return NULL;
+    const pg_plan_resource *pr = &rt->plan->resources[idx];
+    if (w) *w = pr->width;
+    if (h) *h = pr->height;
+    if (fmt) *fmt = pr->format;
+    return rt->readback[which].mapped;
+}
+
+pg_runtime_stats pg_runtime_get_stats(const pg_runtime *rt)
+{
+    return rt->stats;
+}

@@ -1,0 +1,90 @@
+/* graph_execute.h - runs a compiled plan on a pg_gpu.
+ *
+ * pg_runtime_set_plan() creates the physical resources (transients of one memory block share one
+ * VkDeviceMemory) and one instance of every executed pass. They are kept across frames and
+ * re-created only when the plan's physical signature (sizes, formats, usages, blocks, pass
+ * variants) changes. pg_runtime_render() records one command buffer: for each pass in order the
+ * plan's barriers, a debug label, the pass's commands and a timestamp; then the final output
+ * transitions and, if asked, copies of the outputs to host-visible buffers.
+ */
+#ifndef PG_GRAPH_EXECUTE_H
+#define PG_GRAPH_EXECUTE_H
+
+#include "frame.h"
+#include "graph.h"
+#include "scene_gpu.h"
+#include "vk_context.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pg_phys_resource {
+    pg_res_kind kind;
+    VkImage image;
+    VkImageView view;
+    VkFormat format;
+    pg_format pg_fmt;
+    uint32_t width, height;
+    VkBuffer buffer;
+    VkDeviceSize size;
+    VkDeviceMemory own_memory; /* non-null when not in a shared block */
+} pg_phys_resource;
+
+typedef struct pg_pass_create_ctx {
+    pg_gpu *gpu;
+    const pg_graph_plan *plan;
+    const pg_plan_pass *pass;
+    const pg_pass_desc *desc;         /* options etc. */
+    const pg_pipeline *pipeline;
+    const pg_scene_gpu *scene;
+    VkDescriptorSetLayout frame_layout; /* set 0: FrameUniforms */
+    const pg_phys_resource *slots[2 * PG_MAX_SLOTS]; /* same order as pass->slots */
+    uint32_t width, height;           /* output size */
+} pg_pass_create_ctx;
+
+typedef struct pg_pass_record_ctx {
+    pg_gpu *gpu;
+    VkCommandBuffer cmd;
+    const pg_plan_pass *pass;
+    const pg_phys_resource *slots[2 * PG_MAX_SLOTS];
+    const pg_scene_gpu *scene;
+    VkDescriptorSet frame_set;
+    const pg_frame_uniforms *frame;   /* CPU copy of what set 0 holds */
+    uint32_t width, height;
+} pg_pass_record_ctx;
+
+typedef struct pg_frame_stats {
+    uint32_t n_passes;
+    char pass_names[PG_MAX_PASSES][PG_NAME_MAX];
+    double pass_ms[PG_MAX_PASSES];    /* GPU time from timestamps (includes the pass's barriers) */
+    double gpu_total_ms;
+    double cpu_ms;                    /* record + submit + wait */
+    bool timestamps_valid;
+} pg_frame_stats;
+
+typedef struct pg_runtime_stats {
+    uint32_t resource_creations;      /* times physical resources were (re)built */
+    uint64_t memory_bytes_transient;  /* actual VkDeviceMemory for transient blocks */
+    uint64_t memory_bytes_unaliased;  /* sum of transient resources' memory requirements */
+    uint32_t blocks_fallback;         /* blocks split because members had no common memory type */
+} pg_runtime_stats;
+
+typedef struct pg_runtime pg_runtime;
+
+pg_result pg_runtime_create(pg_gpu *gpu, pg_runtime **out, pg_error *err);
+void pg_runtime_destroy(pg_runtime *rt);
+/* plan, pipeline and scene are borrowed and must stay alive until the next set_plan/destroy. */
+pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
+                              const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err);
+/* Renders one frame and waits for it. readback: copy the outputs for pg_runtime_output(). */
+pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool readback,
+                            pg_frame_stats *stats, pg_error *err);
+/* Pixels of the last read-back frame: which = 0 the output, 1 the hdr_output (NULL if none). */
+const void *pg_runtime_output(const pg_runtime *rt, int which, uint32_t *w, uint32_t *h, pg_format *fmt);
+pg_runtime_stats pg_runtime_get_stats(const pg_runtime *rt);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

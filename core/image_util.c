@@ -1,0 +1,89 @@
+#include "image_util.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <stb_image_write.h>
+
+float pg_half_to_float(uint16_t h)
+{
+    uint32_t sign = (uint32_t)(h >> 15) << 31;
+    uint32_t exp = (h >> 10) & 0x1f;
+    uint32_t mant = h & 0x3ff;
+    uint32_t bits;
+    if (exp == 0) {
+        if (mant == 0) {
+            bits = sign;
+        } else { /* subnormal */
+            float f = ldexpf((float)mant, -24);
+            return sign ? -f : f;
+        }
+    } else if (exp == 31) {
+        bits = sign | 0x7f800000u | (mant << 13);
+    } else {
+        bits = sign | ((exp + 112) << 23) | (mant << 13);
+    }
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+pg_result pg_hdr_to_float(const void *pixels, pg_format fmt, uint32_t w, uint32_t h, float *out, pg_error *err)
+{
+    size_t n = (size_t)w * h * 4;
+    if (fmt == PG_FMT_RGBA32F) {
+        memcpy(out, pixels, n * sizeof(float));
+    } else if (fmt == PG_FMT_RGBA16F) {
+        const uint16_t *p = pixels;
+        for (size_t i = 0; i < n; i++) out[i] = pg_half_to_float(p[i]);
+    } else {
+        return pg_fail(err, PG_ERR_FORMAT, "HDR read-back supports rgba16f and rgba32f, not %s",
+                       pg_format_get(fmt)->name);
+    }
+    return PG_OK;
+}
+
+uint64_t pg_count_nonfinite(const float *rgba, uint32_t w, uint32_t h)
+{
+    uint64_t bad = 0;
+    for (size_t i = 0; i < (size_t)w * h; i++)
+        if (!isfinite(rgba[i * 4]) || !isfinite(rgba[i * 4 + 1]) || !isfinite(rgba[i * 4 + 2])) bad++;
+    return bad;
+}
+
+pg_result pg_write_png(const char *path, const uint8_t *rgba, uint32_t w, uint32_t h, pg_error *err)
+{
+    if (!stbi_write_png(path, (int)w, (int)h, 4, rgba, (int)(w * 4)))
+        return pg_fail(err, PG_ERR_IO, "%s: cannot write PNG", path);
+    return PG_OK;
+}
+
+pg_image_stats pg_rgba8_stats(const uint8_t *rgba, uint32_t w, uint32_t h)
+{
+    pg_image_stats s = {0};
+    double sum = 0;
+    uint64_t lit = 0;
+    for (size_t i = 0; i < (size_t)w * h; i++) {
+        const uint8_t *p = rgba + i * 4;
+        double l = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+        sum += l;
+        if (l > 8.0) lit++;
+    }
+    size_t n = (size_t)w * h;
+    s.mean_luma = n ? sum / n : 0;
+    s.lit_fraction = n ? (double)lit / n : 0;
+    uint32_t seen[4096];
+    uint32_t n_seen = 0;
+    for (uint32_t y = 0; y < 64; y++)
+        for (uint32_t x = 0; x < 64; x++) {
+            uint32_t px = (uint32_t)((x + 0.5) * w / 64), py = (uint32_t)((y + 0.5) * h / 64);
+            const uint8_t *p = rgba + ((size_t)py * w + px) * 4;
+            uint32_t c = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
+            bool found = false;
+            for (uint32_t k = 0; k < n_seen && !found; k++) found = seen[k] == c;
+            if (!found && n_seen < 4096) seen[n_seen++] = c;
+        }
+    s.distinct_colors_sampled = n_seen;
+    return s;
+}

@@ -1,0 +1,138 @@
+/* pass_api.h - the contract between the graph core and a pass type.
+ *
+ * Each pass type lives in its own file under passes/ and exports one const pg_pass_type.
+ * The core never includes a specific pass; passes/pass_list.c lists the built-in ones.
+ *
+ *   declare  pure: from the options and the scene features, say what each read/write slot is
+ *            (access, shader stages, format classes), which shader variant is needed, and what
+ *            was left out and why. No Vulkan. Called by pg_graph_compile().
+ *   create   build Vulkan objects (pipelines, samplers, descriptor layouts) for a compiled graph.
+ *   record   record commands for one frame; the graph already placed every barrier.
+ *   destroy  free what create made. Must accept a partially created instance.
+ */
+#ifndef PG_PASS_API_H
+#define PG_PASS_API_H
+
+#include "pg_common.h"
+#include "pipeline.h"
+#include "scene_features.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct cJSON;
+
+/* How a pass touches one resource. The graph derives stages, access masks, layouts and usage
+ * flags from it (core/graph_sync.c). */
+typedef enum pg_access {
+    PG_ACCESS_COLOR_WRITE = 0,  /* colour attachment, cleared or fully overwritten */
+    PG_ACCESS_COLOR_RMW,        /* colour attachment, loaded then written (blending) */
+    PG_ACCESS_DEPTH_WRITE,      /* depth attachment, cleared then tested and written */
+    PG_ACCESS_DEPTH_RMW,        /* depth attachment, loaded, tested and written */
+    PG_ACCESS_DEPTH_READ,       /* depth attachment, test only (read-only layout) */
+    PG_ACCESS_SAMPLED,          /* sampled image (texture()) in the slot's stages */
+    PG_ACCESS_STORAGE_READ,     /* storage image / storage buffer, read */
+    PG_ACCESS_STORAGE_WRITE,    /* storage image / buffer, every element written */
+    PG_ACCESS_STORAGE_RW,       /* storage image / buffer, read and written */
+    PG_ACCESS_UNIFORM,          /* uniform buffer */
+    PG_ACCESS_TRANSFER_SRC,
+    PG_ACCESS_TRANSFER_DST,     /* fully overwritten by a copy/clear */
+    PG_ACCESS_INDIRECT,         /* indirect draw/dispatch arguments */
+    PG_ACCESS_COUNT
+} pg_access;
+
+enum {
+    PG_STAGE_VERTEX = 1u << 0,
+    PG_STAGE_FRAGMENT = 1u << 1,
+    PG_STAGE_COMPUTE = 1u << 2,
+};
+
+typedef struct pg_slot_decl {
+    char name[PG_NAME_MAX];   /* "color", "depth", "lights", ... (for messages and dumps) */
+    pg_res_kind kind;         /* image or buffer expected */
+    pg_access access;
+    uint32_t stages;          /* PG_STAGE_* for shader accesses; ignored for attachments/transfer */
+    uint32_t formats;         /* pg_format_class mask accepted (images) */
+} pg_slot_decl;
+
+#define PG_MAX_DEFINES 16
+typedef struct pg_pass_decl {
+    uint32_t n_reads, n_writes;
+    pg_slot_decl reads[PG_MAX_SLOTS];  /* same order as pg_pass_desc.reads */
+    pg_slot_decl writes[PG_MAX_SLOTS];
+    bool side_effects;                 /* keep even if nothing reads its writes */
+    /* shader variant: NAME or NAME=VALUE defines the pass will compile with */
+    uint32_t n_defines;
+    char defines[PG_MAX_DEFINES][PG_NAME_MAX];
+    /* what the pass left out for this scene and why ("no alpha-mask materials: no discard") */
+    uint32_t n_explain;
+    char explain[8][PG_EXPLAIN_MAX];
+} pg_pass_decl;
+
+typedef struct pg_declare_in {
+    const pg_pass_desc *desc;          /* name, options (cJSON object), bound reads/writes */
+    const pg_pipeline *pipeline;       /* resource formats etc. */
+    pg_scene_features features;
+} pg_declare_in;
+
+/* Runtime types (defined in core/vk_context.h, core/graph_execute.h, core/scene_gpu.h). */
+struct pg_gpu;
+struct pg_pass_create_ctx;
+struct pg_pass_record_ctx;
+
+typedef struct pg_pass_type {
+    const char *name;        /* the "type" string in pipeline JSON */
+    const char *summary;     /* one line for --help / dumps */
+    const char *read_slots;  /* human-readable slot list, e.g. "lights" */
+    const char *write_slots; /* e.g. "color, depth" */
+    size_t instance_size;    /* bytes of per-instance state handed to create/record/destroy */
+    pg_result (*declare)(const pg_declare_in *in, pg_pass_decl *out, pg_error *err);
+    pg_result (*create)(void *self, const struct pg_pass_create_ctx *ctx, pg_error *err);
+    void (*record)(void *self, const struct pg_pass_record_ctx *ctx);
+    void (*destroy)(void *self, struct pg_gpu *gpu);
+} pg_pass_type;
+
+typedef struct pg_pass_registry {
+    uint32_t count;
+    const pg_pass_type *types[64];
+} pg_pass_registry;
+
+const pg_pass_type *pg_registry_find(const pg_pass_registry *reg, const char *name);
+/* Adds a type (tests register fake ones). Returns PG_ERR_LIMIT when full. */
+pg_result pg_registry_add(pg_pass_registry *reg, const pg_pass_type *type, pg_error *err);
+
+/* ---- helpers for declare() implementations (core/pass_options.c) ---- */
+/* Adds a slot; kind, access, stages and format classes as above. */
+void pg_decl_read(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
+                  uint32_t stages, uint32_t formats);
+void pg_decl_write(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
+                   uint32_t stages, uint32_t formats);
+void pg_decl_define(pg_pass_decl *d, const char *define);
+void pg_decl_explain(pg_pass_decl *d, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* Checks that the bound counts match the type's slots; error names desc->file/json_path. */
+pg_result pg_decl_check_counts(const pg_pass_desc *desc, const pg_pass_decl *d,
+                               const pg_pass_type *type, pg_error *err);
+
+/* Option readers: missing key -> default; wrong type or out of range -> PG_ERR_SCHEMA naming
+ * "FILE: passes[i].options.KEY: cause". Unknown keys are reported by pg_opt_check_known(). */
+pg_result pg_opt_float(const pg_pass_desc *desc, const char *key, double def, double min,
+                       double max, double *out, pg_error *err);
+pg_result pg_opt_int(const pg_pass_desc *desc, const char *key, int64_t def, int64_t min,
+                     int64_t max, int64_t *out, pg_error *err);
+pg_result pg_opt_bool(const pg_pass_desc *desc, const char *key, bool def, bool *out,
+                      pg_error *err);
+/* choices is a NULL-terminated list; *out gets the index of the chosen value. */
+pg_result pg_opt_enum(const pg_pass_desc *desc, const char *key, const char *const *choices,
+                      int def, int *out, pg_error *err);
+/* known is a NULL-terminated list of accepted option keys. */
+pg_result pg_opt_check_known(const pg_pass_desc *desc, const char *const *known, pg_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,49 @@
+/* render_session.h - the whole path from a pipeline file to pixels, shared by the tools and
+ * the tests: load the pipeline (with --set overrides), compile it against a scene's features
+ * and the light count, and run it. Re-compiles (and the runtime re-creates resources) only when
+ * the light count, the size or the pipeline changes. */
+#ifndef PG_RENDER_SESSION_H
+#define PG_RENDER_SESSION_H
+
+#include "graph.h"
+#include "graph_execute.h"
+#include "pipeline.h"
+#include "scene_gpu.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pg_session_desc {
+    const char *pipeline_path;
+    const pg_param_override *overrides;
+    uint32_t n_overrides;
+    const pg_pass_registry *registry;
+    bool disable_aliasing;
+} pg_session_desc;
+
+typedef struct pg_session {
+    pg_gpu *gpu;                  /* borrowed */
+    const pg_scene_gpu *scene;    /* borrowed */
+    pg_session_desc desc;
+    pg_pipeline *pipeline;
+    pg_graph_plan *plan;
+    pg_runtime *runtime;
+    uint32_t width, height, light_count;
+    uint32_t compiles;            /* how many times the plan was compiled */
+} pg_session;
+
+pg_result pg_session_create(pg_gpu *gpu, const pg_scene_gpu *scene, const pg_session_desc *desc,
+                            pg_session **out, pg_error *err);
+/* Compiles for (lights, width, height) if they changed, then renders one frame. */
+pg_result pg_session_render(pg_session *s, const pg_frame_info *info, bool readback,
+                            pg_frame_stats *stats, pg_error *err);
+/* Compiles without rendering (for --explain and dumps). */
+pg_result pg_session_compile(pg_session *s, uint32_t light_count, uint32_t width, uint32_t height,
+                             pg_error *err);
+void pg_session_destroy(pg_session *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,143 @@
+/* scene.h - CPU-side scene: one vertex/index soup with node transforms baked in, materials,
+ * decoded textures with their mip chains, bounds, and features. Loaded from glTF 2.0
+ * (core/scene_gltf.cpp, a thin C++ shim over tinygltf) or generated (core/scene_default.c).
+ *
+ * Ownership: a pg_scene owns all its arrays; free with pg_scene_free().
+ */
+#ifndef PG_SCENE_H
+#define PG_SCENE_H
+
+#include "pg_common.h"
+#include "scene_features.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pg_vertex {
+    float position[3];
+    float normal[3];
+    float uv[2];
+    float tangent[4]; /* xyz, w = handedness (+-1); zero when the primitive has none */
+} pg_vertex;          /* 48 bytes, the GPU vertex layout */
+
+typedef enum pg_alpha_mode { PG_ALPHA_OPAQUE = 0, PG_ALPHA_MASK = 1, PG_ALPHA_BLEND = 2 } pg_alpha_mode;
+
+typedef struct pg_material {
+    char name[PG_NAME_MAX];
+    float base_color[4];     /* factor, linear */
+    int base_color_tex;      /* index into scene->textures, -1 if none */
+    int normal_tex;          /* -1 if none */
+    float normal_scale;
+    pg_alpha_mode alpha_mode;/* BLEND is drawn as opaque (documented) */
+    float alpha_cutoff;      /* MASK: discard below (default 0.5) */
+    float specular;          /* Blinn-Phong specular strength (from roughness/metallic), 0..1 */
+    float shininess;         /* Blinn-Phong exponent */
+    bool double_sided;
+} pg_material;
+
+typedef struct pg_mip {
+    uint32_t width, height;
+    uint8_t *rgba;            /* width*height*4 bytes, points into pg_texture.data */
+} pg_mip;
+
+#define PG_MAX_MIPS 16
+typedef struct pg_texture {
+    char name[PG_NAME_MAX];
+    bool srgb;                /* base colour: sRGB; normal maps: linear */
+    uint32_t n_mips;          /* full chain down to 1x1 */
+    pg_mip mips[PG_MAX_MIPS];
+    uint8_t *data;            /* one allocation holding all mips */
+    size_t data_size;
+} pg_texture;
+
+typedef struct pg_primitive {
+    uint32_t first_index;
+    uint32_t index_count;
+    int32_t vertex_offset;    /* added to each index */
+    uint32_t material;        /* index into scene->materials */
+    float bounds_min[3], bounds_max[3];
+} pg_primitive;
+
+typedef struct pg_scene {
+    char name[PG_NAME_MAX];
+    char path[PG_PATH_MAX];   /* "default" for the generated scene */
+    pg_vertex *vertices;
+    uint32_t n_vertices;
+    uint32_t *indices;        /* 16-bit glTF indices are widened */
+    uint32_t n_indices;
+    pg_primitive *primitives;
+    uint32_t n_primitives;
+    pg_material *materials;
+    uint32_t n_materials;
+    pg_texture *textures;
+    uint32_t n_textures;
+    float bounds_min[3], bounds_max[3];
+    pg_scene_features features; /* light_count left 0 here */
+} pg_scene;
+
+typedef struct pg_camera {
+    float position[3];
+    float target[3];
+    float up[3];
+    float fov_y_deg;
+    float near_z, far_z;
+    float aspect;             /* width / height */
+} pg_camera;
+
+/* Loads a .gltf (JSON + external/embedded buffers and images) or .glb. Errors name the file and
+ * the glTF object, e.g. "x.gltf: accessors[4]: count 100 exceeds bufferView 2 (48 bytes)". */
+pg_result pg_scene_load_gltf(const char *path, pg_scene **out, pg_error *err);
+/* The built-in atrium (columns, arches, several procedural materials, tens of thousands of
+ * triangles). Deterministic. */
+pg_result pg_scene_create_default(pg_scene **out, pg_error *err);
+/* "default" -> generated scene, else glTF. */
+pg_result pg_scene_load(const char *path_or_default, pg_scene **out, pg_error *err);
+void pg_scene_free(pg_scene *scene);
+
+/* Builds a full mip chain (box filter; sRGB textures are filtered in linear space) from an
+ * RGBA8 image it copies. */
+pg_result pg_texture_init(pg_texture *tex, const char *name, const uint8_t *rgba, uint32_t w,
+                          uint32_t h, bool srgb, pg_error *err);
+void pg_texture_release(pg_texture *tex);
+
+/* ---- helpers shared by the loaders (glTF shim, default scene); usable by tools ----
+ * Indices are local to verts (0..n_verts-1); out-of-range triangles are skipped. */
+/* Area-weighted smooth vertex normals over the triangles that share each vertex; a vertex no
+ * triangle gives a normal gets (0,1,0). */
+void pg_mesh_compute_normals(pg_vertex *verts, uint32_t n_verts, const uint32_t *indices,
+                             uint32_t n_indices);
+/* Tangents from positions, normals and UVs in the glTF convention: tangent.xyz = direction of
+ * increasing u, bitangent = cross(N, T.xyz) * w = direction of DEcreasing v (up in the image, as
+ * glTF's UV origin is the top-left). Per-triangle dP/du, dP/dv accumulated per vertex weighted by
+ * triangle area, then Gram-Schmidt against the normal; w = +-1 from the handedness of the
+ * accumulated bitangent. Normals must be set (unit length) first. */
+void pg_mesh_compute_tangents(pg_vertex *verts, uint32_t n_verts, const uint32_t *indices,
+                              uint32_t n_indices);
+/* Recomputes each primitive's bounds (from the vertices its indices reach), the scene bounds and
+ * the features (from the materials the primitives with triangles actually use). */
+void pg_scene_finalize(pg_scene *scene);
+
+/* A sensible view of the whole scene from its bounds: position (min.x + 0.1*size.x,
+ * min.y + 0.3*size.y, center.z), looking along +X at (max.x, same height, center.z), up +Y,
+ * fov_y 60 deg, near = max(0.01, 0.001*diagonal), far = 2*diagonal. For the atrium-like scenes
+ * this stands inside the nave looking down its length. */
+pg_camera pg_camera_default_for_scene(const pg_scene *scene, float aspect);
+
+/* Column-major 4x4 matrices (element row r, column c at m[c*4 + r]; p' = M * p).
+ * pg_camera_view: right-handed look-at; camera space +X right, +Y up, looking down -Z.
+ * pg_camera_proj: perspective to Vulkan clip space: y_ndc = -1 is the TOP of the image (view +Y
+ * is negated so the image is upright with a positive-height viewport), z_ndc = 0 at near_z and 1
+ * at far_z (standard depth, not reversed), w_clip = -z_view.
+ * pg_mat4_mul: out = a * b (out may alias a or b).
+ * pg_mat4_invert: general inverse (double precision cofactors); returns false and leaves out
+ * untouched when m is singular (|det| <= 1e-12 * max|m_ij|^4) or not finite. */
+void pg_camera_view(const pg_camera *cam, float out_view[16]);
+void pg_camera_proj(const pg_camera *cam, float out_proj[16]);
+void pg_mat4_mul(const float a[16], const float b[16], float out[16]);
+bool pg_mat4_invert(const float m[16], float out[16]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

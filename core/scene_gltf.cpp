@@ -1,0 +1,1271 @@
+/* scene_gltf.cpp - pg_scene_load_gltf: a thin C++17 shim over tinygltf (Debian libtinygltf, whose
+ * implementation lives in libtinygltf.so; images are decoded with stb_image from libstb.so).
+ *
+ * Load order:
+ *   1. read the file (missing/unreadable: PG_ERR_IO); .glb is recognised by its magic bytes and
+ *      its container header is checked here (PG_ERR_PARSE);
+ *   2. parse the JSON with nlohmann::json (syntax errors: PG_ERR_PARSE) and PRE-VALIDATE it:
+ *      root object, asset.version 2.x, no extensionsRequired, every cross-reference in range,
+ *      buffers present with exactly byteLength bytes, bufferViews inside their buffers, image
+ *      files present. tinygltf 2.7 does not check all of these (and reads an image bufferView's
+ *      bytes without a range check), so they must hold before tinygltf sees the file;
+ *   3. tinygltf builds the Model; images go through our stb callback (RGBA8; sides > 16384 are
+ *      refused before decoding);
+ *   4. walk the node hierarchy of `scene` (else scenes[0], else every root node) with cycle
+ *      detection, validate every accessor a primitive uses (type, range within its bufferView,
+ *      byteStride, index range, finite values), bake transforms, build materials and textures.
+ * Every glTF-content error is PG_ERR_GLTF with "PATH: object: cause".
+ *
+ * Primitive modes: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN are drawn (strips/fans become
+ * lists); POINTS/LINES/LINE_LOOP/LINE_STRIP are skipped with one warning line on stderr; any other
+ * mode value is an error. A scene left with no triangles is an error.
+ * TEXCOORD_0 is used for every texture (a texCoord other than 0 is read from TEXCOORD_0).
+ * Non-finite POSITION / NORMAL / TEXCOORD_0 / TANGENT values are errors.
+ *
+ * Material mapping (glTF metallic-roughness -> passgraph Blinn-Phong):
+ *   specular  = 0.04 + 0.5 * (1 - roughness) * (1 - metallic)      (0.04 .. 0.54)
+ *   shininess = clamp(2 / (roughness^4 + 1e-4) - 2, 1, 512)         (Beckmann-like roughness
+ *                                                                    to Blinn-Phong exponent)
+ * baseColorTexture -> sRGB texture, normalTexture -> linear texture; an image used both ways gets
+ * two pg_texture entries. Primitives without a material use an appended white "default"
+ * material (glTF's default: metallic 1, roughness 1).
+ *
+ * Exceptions never leave this file: internal failures are thrown as LoadFail and turned into a
+ * pg_result at the C boundary; everything is owned by RAII objects until the scene is handed out.
+ */
+#include "scene.h"
+
+#include <nlohmann/json.hpp>
+#include <stb_image.h>
+#include <tiny_gltf.h>
+
+#include <sys/stat.h>
+
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <new>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using json = nlohmann::json;
+
+constexpr int kMaxImageSide = 16384;
+constexpr int kMaxNodeDepth = 1024;
+constexpr size_t kMaxNodeVisits = size_t(1) << 20;
+
+struct LoadFail {
+    pg_result code;
+    std::string msg;
+};
+
+std::string strf(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+std::string strf(const char *fmt, ...)
+{
+    char buf[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    return buf;
+}
+
+[[noreturn]] void fail(pg_result code, std::string msg) { throw LoadFail{code, std::move(msg)}; }
+[[noreturn]] void gfail(std::string msg) { fail(PG_ERR_GLTF, std::move(msg)); }
+
+/* A short, printable form of a uri for messages (data URIs are not quoted whole). */
+std::string uri_desc(const std::string &uri)
+{
+    if (uri.compare(0, 5, "data:") == 0) return "data URI";
+    std::string s = uri.size() > 200 ? uri.substr(0, 200) + "..." : uri;
+    return "'" + s + "'";
+}
+
+/* tinygltf decodes external uris with dlib::urldecode ('+' -> ' ', %XX); do the same. */
+std::string url_decode(const std::string &s)
+{
+    auto hex = [](unsigned char c) -> unsigned {
+        if (c >= '0' && c <= '9') return c - '0';
+        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+        return 0;
+    };
+    std::string r;
+    for (size_t i = 0; i < s.size(); i++) {
+        if (s[i] == '+') {
+            r += ' ';
+        } else if (s[i] == '%' && s.size() > i + 2) {
+            r += char((hex((unsigned char)s[i + 1]) << 4) | hex((unsigned char)s[i + 2]));
+            i += 2;
+        } else {
+            r += s[i];
+        }
+    }
+    return r;
+}
+
+std::string join_path(const std::string &dir, const std::string &file)
+{
+    if (dir.empty()) return file;
+    if (dir.back() == '/') return dir + file;
+    return dir + "/" + file;
+}
+
+struct Ctx {
+    std::string path;     /* as given (prefix of every message) */
+    std::string base_dir; /* directory of the file ("." when none) */
+    std::string dir_prefix;
+    bool is_glb = false;
+    size_t glb_bin_size = 0;
+    bool glb_has_bin = false;
+    json j;
+    tinygltf::Model model;
+    std::string image_err; /* set by the image callback */
+    unsigned skipped_prims = 0;
+};
+
+/* ------------------------------------------------------------------------------------------ */
+/* step 1: GLB container                                                                        */
+
+uint32_t rd_u32(const unsigned char *p)
+{
+    return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+
+/* Returns the JSON chunk text. */
+std::string glb_json(Ctx &c, const unsigned char *b, size_t n)
+{
+    if (n < 20) fail(PG_ERR_PARSE, strf("GLB: file too short (%zu bytes) for a header", n));
+    uint32_t version = rd_u32(b + 4), length = rd_u32(b + 8);
+    if (version != 2) fail(PG_ERR_PARSE, strf("GLB: container version %u (need 2)", version));
+    if (length > n)
+        fail(PG_ERR_PARSE, strf("GLB: header length %u exceeds the file size (%zu bytes)",
+                                length, n));
+    uint32_t clen = rd_u32(b + 12), ctype = rd_u32(b + 16);
+    if (ctype != 0x4E4F534Au) fail(PG_ERR_PARSE, "GLB: first chunk is not JSON");
+    if (clen < 1 || 20ull + clen > length)
+        fail(PG_ERR_PARSE, strf("GLB: JSON chunk length %u exceeds the container (%u bytes)",
+                                clen, length));
+    uint64_t off = 20ull + clen;
+    if (off < length) {
+        if (off + 8 > length) fail(PG_ERR_PARSE, "GLB: truncated BIN chunk header");
+        uint32_t blen = rd_u32(b + off), btype = rd_u32(b + off + 4);
+        if (btype != 0x004E4942u) fail(PG_ERR_PARSE, "GLB: second chunk is not BIN");
+        if (off + 8 + blen > length)
+            fail(PG_ERR_PARSE, strf("GLB: BIN chunk length %u exceeds the container", blen));
+        if (blen < 4 || blen % 4)
+            fail(PG_ERR_PARSE, strf("GLB: BIN chunk length %u is not a positive multiple of 4",
+                                    blen));
+        c.glb_has_bin = true;
+        c.glb_bin_size = blen;
+    }
+    return std::string(reinterpret_cast<const char *>(b + 20), clen);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* step 2: JSON pre-validation                                                                  */
+
+const json *opt_array(const json &o, const char *key, const std::string &where)
+{
+    auto it = o.find(key);
+    if (it == o.end()) return nullptr;
+    if (!it->is_array())
+        gfail(where.empty() ? strf("%s: expected an array", key)
+                            : strf("%s.%s: expected an array", where.c_str(), key));
+    return &*it;
+}
+
+const json *opt_object(const json &o, const char *key, const std::string &where)
+{
+    auto it = o.find(key);
+    if (it == o.end()) return nullptr;
+    if (!it->is_object()) gfail(strf("%s.%s: expected an object", where.c_str(), key));
+    return &*it;
+}
+
+size_t arr_size(const json *a) { return a ? a->size() : 0; }
+
+/* An index into an array of n objects called `plural`; -1 when absent and optional. */
+long long ref(const json &o, const char *key, size_t n, const char *plural,
+              const std::string &where_, bool required)
+{
+    /* messages read "WHERE.KEY: ..." (or "KEY: ..." at the root) */
+    const std::string where = where_.empty() ? std::string() : where_;
+    if (where.empty()) {
+        auto it = o.find(key);
+        if (it == o.end()) {
+            if (required) gfail(strf("%s: missing (required)", key));
+            return -1;
+        }
+        if (!it->is_number_unsigned() || it->get<uint64_t>() >= n)
+            gfail(strf("%s: %s is not a valid index (%zu %s)", key, it->dump().c_str(), n, plural));
+        return (long long)it->get<uint64_t>();
+    }
+    auto it = o.find(key);
+    if (it == o.end()) {
+        if (required) gfail(strf("%s.%s: missing (required)", where.c_str(), key));
+        return -1;
+    }
+    if (!it->is_number_integer())
+        gfail(strf("%s.%s: expected an index (a non-negative integer)", where.c_str(), key));
+    if (it->is_number_unsigned()) {
+        uint64_t u = it->get<uint64_t>();
+        if (u >= n)
+            gfail(strf("%s.%s: %s index %llu out of range (%zu %s)", where.c_str(), key, plural,
+                       (unsigned long long)u, n, plural));
+        return (long long)u;
+    }
+    long long v = it->get<long long>();
+    gfail(strf("%s.%s: %s index %lld is negative", where.c_str(), key, plural, v));
+}
+
+/* A non-negative integer field (byteLength, byteOffset, count...); `def` when absent. */
+uint64_t uint_field(const json &o, const char *key, const std::string &where, bool required,
+                    uint64_t def = 0)
+{
+    auto it = o.find(key);
+    if (it == o.end()) {
+        if (required) gfail(strf("%s.%s: missing (required)", where.c_str(), key));
+        return def;
+    }
+    if (!it->is_number_unsigned())
+        gfail(strf("%s.%s: expected a non-negative integer", where.c_str(), key));
+    return it->get<uint64_t>();
+}
+
+bool is_regular_file(const std::string &p, uint64_t *size)
+{
+    struct stat st;
+    if (stat(p.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
+    if (size) *size = (uint64_t)st.st_size;
+    return true;
+}
+
+void prevalidate(Ctx &c)
+{
+    const json &j = c.j;
+    if (!j.is_object()) gfail("root: expected a JSON object");
+
+    auto ait = j.find("asset");
+    if (ait == j.end() || !ait->is_object()) gfail("asset: missing (required)");
+    auto vit = ait->find("version");
+    if (vit == ait->end() || !vit->is_string()) gfail("asset.version: missing (required)");
+    std::string ver = vit->get<std::string>();
+    if (ver.compare(0, 2, "2.") != 0)
+        gfail(strf("asset.version: '%s' is not supported (glTF 2.x only)", ver.c_str()));
+    auto mvit = ait->find("minVersion");
+    if (mvit != ait->end() && mvit->is_string() && mvit->get<std::string>() != "2.0")
+        gfail(strf("asset.minVersion: '%s' is not supported",
+                   mvit->get<std::string>().c_str()));
+
+    if (const json *req = opt_array(j, "extensionsRequired", "")) {
+        if (!req->empty()) {
+            std::string e = (*req)[0].is_string() ? (*req)[0].get<std::string>() : "?";
+            gfail(strf("extensionsRequired: '%s' is not supported", e.c_str()));
+        }
+    }
+
+    const json *buffers = opt_array(j, "buffers", "");
+    const json *views = opt_array(j, "bufferViews", "");
+    const json *accessors = opt_array(j, "accessors", "");
+    const json *meshes = opt_array(j, "meshes", "");
+    const json *nodes = opt_array(j, "nodes", "");
+    const json *scenes = opt_array(j, "scenes", "");
+    const json *materials = opt_array(j, "materials", "");
+    const json *textures = opt_array(j, "textures", "");
+    const json *images = opt_array(j, "images", "");
+    const json *samplers = opt_array(j, "samplers", "");
+
+    auto each_object = [](const json *a, const char *name, auto fn) {
+        if (!a) return;
+        for (size_t i = 0; i < a->size(); i++) {
+            const json &o = (*a)[i];
+            std::string where = strf("%s[%zu]", name, i);
+            if (!o.is_object()) gfail(where + ": expected an object");
+            fn(o, where, i);
+        }
+    };
+
+    /* buffers: present with exactly byteLength bytes */
+    std::vector<uint64_t> buf_len;
+    each_object(buffers, "buffers", [&](const json &o, const std::string &w, size_t) {
+        uint64_t len = uint_field(o, "byteLength", w, true);
+        buf_len.push_back(len);
+        auto uit = o.find("uri");
+        if (uit == o.end()) {
+            if (!c.is_glb) gfail(w + ".uri: missing (required outside .glb files)");
+            if (!c.glb_has_bin) gfail(w + ": refers to the GLB BIN chunk, but there is none");
+            if (len > c.glb_bin_size)
+                gfail(strf("%s: byteLength %llu exceeds the GLB BIN chunk (%zu bytes)", w.c_str(),
+                           (unsigned long long)len, c.glb_bin_size));
+            return;
+        }
+        if (!uit->is_string()) gfail(w + ".uri: expected a string");
+        std::string uri = uit->get<std::string>();
+        if (uri.compare(0, 5, "data:") == 0) {
+            if (!tinygltf::IsDataURI(uri))
+                gfail(w + ".uri: unsupported data URI (need ;base64 and a known media type)");
+            std::vector<unsigned char> tmp;
+            std::string mime;
+            if (!tinygltf::DecodeDataURI(&tmp, mime, uri, 0, false))
+                gfail(w + ".uri: data URI holds no data");
+            if (tmp.size() != len)
+                gfail(strf("%s: data URI holds %zu bytes but byteLength is %llu", w.c_str(),
+                           tmp.size(), (unsigned long long)len));
+            return;
+        }
+        if (uri.empty()) gfail(w + ".uri: empty");
+        std::string file = join_path(c.base_dir, url_decode(uri));
+        uint64_t fsize = 0;
+        if (!is_regular_file(file, &fsize))
+            gfail(strf("%s: cannot open '%s' (%s)", w.c_str(), uri.c_str(), file.c_str()));
+        if (fsize != len)
+            gfail(strf("%s: '%s' has %llu bytes but byteLength is %llu", w.c_str(), uri.c_str(),
+                       (unsigned long long)fsize, (unsigned long long)len));
+    });
+
+    /* bufferViews inside their buffers */
+    each_object(views, "bufferViews", [&](const json &o, const std::string &w, size_t) {
+        long long b = ref(o, "buffer", arr_size(buffers), "buffers", w, true);
+        uint64_t off = uint_field(o, "byteOffset", w, false, 0);
+        uint64_t len = uint_field(o, "byteLength", w, true);
+        if (off > buf_len[(size_t)b] || len > buf_len[(size_t)b] - off)
+            gfail(strf("%s: byteOffset %llu + byteLength %llu exceeds buffers[%lld] (%llu bytes)",
+                       w.c_str(), (unsigned long long)off, (unsigned long long)len, b,
+                       (unsigned long long)buf_len[(size_t)b]));
+        if (o.contains("byteStride")) {
+            uint64_t s = uint_field(o, "byteStride", w, false, 0);
+            if (s < 4 || s > 252 || s % 4)
+                gfail(strf("%s.byteStride: %llu is not a multiple of 4 in 4..252", w.c_str(),
+                           (unsigned long long)s));
+        }
+    });
+
+    each_object(accessors, "accessors", [&](const json &o, const std::string &w, size_t) {
+        ref(o, "bufferView", arr_size(views), "bufferViews", w, false);
+        uint_field(o, "byteOffset", w, false, 0);
+        uint_field(o, "count", w, true);
+        uint64_t ct = uint_field(o, "componentType", w, true);
+        if (!(ct == 5120 || ct == 5121 || ct == 5122 || ct == 5123 || ct == 5125 || ct == 5126))
+            gfail(strf("%s.componentType: %llu is not a glTF component type", w.c_str(),
+                       (unsigned long long)ct));
+        auto t = o.find("type");
+        static const char *types[] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
+        bool ok = false;
+        if (t != o.end() && t->is_string())
+            for (const char *ty : types) ok = ok || t->get<std::string>() == ty;
+        if (!ok) gfail(w + ".type: missing or not SCALAR/VEC2/VEC3/VEC4/MAT2/MAT3/MAT4");
+        if (const json *sp = opt_object(o, "sparse", w)) {
+            (void)sp;
+            /* checked when a primitive uses the accessor ("sparse accessors not supported") */
+        }
+    });
+
+    each_object(images, "images", [&](const json &o, const std::string &w, size_t) {
+        long long bv = ref(o, "bufferView", arr_size(views), "bufferViews", w, false);
+        auto uit = o.find("uri");
+        if (bv >= 0 && uit != o.end()) gfail(w + ": has both uri and bufferView");
+        if (bv < 0 && uit == o.end()) gfail(w + ": has neither uri nor bufferView");
+        if (uit == o.end()) return;
+        if (!uit->is_string()) gfail(w + ".uri: expected a string");
+        std::string uri = uit->get<std::string>();
+        if (uri.compare(0, 5, "data:") == 0) {
+            if (!tinygltf::IsDataURI(uri)) gfail(w + ".uri: unsupported data URI media type");
+            return;
+        }
+        if (uri.empty()) gfail(w + ".uri: empty");
+        std::string file = join_path(c.base_dir, url_decode(uri));
+        uint64_t fsize = 0;
+        if (!is_regular_file(file, &fsize))
+            gfail(strf("%s: cannot open '%s' (%s)", w.c_str(), uri.c_str(), file.c_str()));
+        if (fsize == 0) gfail(strf("%s: '%s' is empty", w.c_str(), uri.c_str()));
+    });
+
+    each_object(samplers, "samplers", [&](const json &, const std::string &, size_t) {});
+
+    each_object(textures, "textures", [&](const json &o, const std::string &w, size_t) {
+        ref(o, "source", arr_size(images), "images", w, false);
+        ref(o, "sampler", arr_size(samplers), "samplers", w, false);
+    });
+
+    each_object(materials, "materials", [&](const json &o, const std::string &w, size_t) {
+        if (const json *pbr = opt_object(o, "pbrMetallicRoughness", w)) {
+            std::string pw = w + ".pbrMetallicRoughness";
+            if (const json *ti = opt_object(*pbr, "baseColorTexture", pw))
+                ref(*ti, "index", arr_size(textures), "textures", pw + ".baseColorTexture", true);
+            if (const json *ti = opt_object(*pbr, "metallicRoughnessTexture", pw))
+                ref(*ti, "index", arr_size(textures), "textures",
+                    pw + ".metallicRoughnessTexture", true);
+        }
+        if (const json *ti = opt_object(o, "normalTexture", w))
+            ref(*ti, "index", arr_size(textures), "textures", w + ".normalTexture", true);
+        if (const json *ti = opt_object(o, "occlusionTexture", w))
+            ref(*ti, "index", arr_size(textures), "textures", w + ".occlusionTexture", true);
+        if (const json *ti = opt_object(o, "emissiveTexture", w))
+            ref(*ti, "index", arr_size(textures), "textures", w + ".emissiveTexture", true);
+        auto am = o.find("alphaMode");
+        if (am != o.end()) {
+            std::string s = am->is_string() ? am->get<std::string>() : "";
+            if (s != "OPAQUE" && s != "MASK" && s != "BLEND")
+                gfail(w + ".alphaMode: expected \"OPAQUE\", \"MASK\" or \"BLEND\"");
+        }
+    });
+
+    each_object(meshes, "meshes", [&](const json &o, const std::string &w, size_t) {
+        const json *prims = opt_array(o, "primitives", w);
+        if (!prims) gfail(w + ".primitives: missing (required)");
+        for (size_t p = 0; p < prims->size(); p++) {
+            const json &pr = (*prims)[p];
+            std::string pw = strf("%s.primitives[%zu]", w.c_str(), p);
+            if (!pr.is_object()) gfail(pw + ": expected an object");
+            const json *attrs = opt_object(pr, "attributes", pw);
+            if (!attrs) gfail(pw + ".attributes: missing (required)");
+            for (auto it = attrs->begin(); it != attrs->end(); ++it)
+                ref(*attrs, it.key().c_str(), arr_size(accessors), "accessors",
+                    pw + ".attributes", true);
+            ref(pr, "indices", arr_size(accessors), "accessors", pw, false);
+            ref(pr, "material", arr_size(materials), "materials", pw, false);
+            auto mit = pr.find("mode");
+            if (mit != pr.end() && (!mit->is_number_unsigned() || mit->get<uint64_t>() > 6))
+                gfail(pw + ".mode: " + mit->dump() + " is not a glTF primitive mode (0..6)");
+            if (const json *targets = opt_array(pr, "targets", pw)) {
+                for (size_t t = 0; t < targets->size(); t++) {
+                    const json &tg = (*targets)[t];
+                    std::string tw = strf("%s.targets[%zu]", pw.c_str(), t);
+                    if (!tg.is_object()) gfail(tw + ": expected an object");
+                    for (auto it = tg.begin(); it != tg.end(); ++it)
+                        ref(tg, it.key().c_str(), arr_size(accessors), "accessors", tw, true);
+                }
+            }
+        }
+    });
+
+    each_object(nodes, "nodes", [&](const json &o, const std::string &w, size_t) {
+        ref(o, "mesh", arr_size(meshes), "meshes", w, false);
+        if (const json *ch = opt_array(o, "children", w)) {
+            for (size_t k = 0; k < ch->size(); k++) {
+                const json &v = (*ch)[k];
+                if (!v.is_number_unsigned() || v.get<uint64_t>() >= arr_size(nodes))
+                    gfail(strf("%s.children[%zu]: not a valid node index (%zu nodes)", w.c_str(),
+                               k, arr_size(nodes)));
+            }
+        }
+        static const struct {
+            const char *key;
+            size_t n;
+        } tf[] = {{"matrix", 16}, {"translation", 3}, {"rotation", 4}, {"scale", 3}};
+        for (const auto &f : tf) {
+            auto it = o.find(f.key);
+            if (it == o.end()) continue;
+            bool ok = it->is_array() && it->size() == f.n;
+            if (ok)
+                for (const auto &x : *it) ok = ok && x.is_number() && std::isfinite(x.get<double>());
+            if (!ok) gfail(strf("%s.%s: expected %zu finite numbers", w.c_str(), f.key, f.n));
+        }
+    });
+
+    each_object(scenes, "scenes", [&](const json &o, const std::string &w, size_t) {
+        if (const json *ns = opt_array(o, "nodes", w)) {
+            for (size_t k = 0; k < ns->size(); k++) {
+                const json &v = (*ns)[k];
+                if (!v.is_number_unsigned() || v.get<uint64_t>() >= arr_size(nodes))
+                    gfail(strf("%s.nodes[%zu]: not a valid node index (%zu nodes)", w.c_str(), k,
+                               arr_size(nodes)));
+            }
+        }
+    });
+    ref(j, "scene", arr_size(scenes), "scenes", "", false);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* step 3: tinygltf with our image decoder and a file system confined to the asset's directory   */
+
+bool fs_file_exists(const std::string &abs, void *user)
+{
+    const Ctx *c = static_cast<const Ctx *>(user);
+    if (abs.compare(0, c->dir_prefix.size(), c->dir_prefix) != 0) return false;
+    return is_regular_file(abs, nullptr);
+}
+
+std::string image_desc(const Ctx &c, int idx)
+{
+    std::string d = strf("images[%d]", idx);
+    const json *images = c.j.is_object() && c.j.contains("images") ? &c.j["images"] : nullptr;
+    if (images && images->is_array() && idx >= 0 && size_t(idx) < images->size()) {
+        const json &im = (*images)[size_t(idx)];
+        auto u = im.find("uri");
+        if (u != im.end() && u->is_string()) return d + " (" + uri_desc(u->get<std::string>()) + ")";
+        auto bv = im.find("bufferView");
+        if (bv != im.end() && bv->is_number_integer())
+            return d + strf(" (bufferView %lld)", bv->get<long long>());
+    }
+    return d;
+}
+
+struct StbFree {
+    void operator()(unsigned char *p) const { stbi_image_free(p); }
+};
+
+bool load_image_cb(tinygltf::Image *image, const int idx, std::string *, std::string *, int, int,
+                   const unsigned char *bytes, int size, void *user)
+{
+    Ctx *c = static_cast<Ctx *>(user);
+    try {
+        std::string where = image_desc(*c, idx);
+        if (!bytes || size <= 0) {
+            c->image_err = where + ": no image data";
+            return false;
+        }
+        int w = 0, h = 0, comp = 0;
+        if (!stbi_info_from_memory(bytes, size, &w, &h, &comp)) {
+            const char *why = stbi_failure_reason();
+            c->image_err = where + ": cannot decode (" + (why ? why : "unknown format") + ")";
+            return false;
+        }
+        if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide) {
+            c->image_err = where + strf(": size %dx%d is outside 1..%d on a side", w, h,
+                                        kMaxImageSide);
+            return false;
+        }
+        std::unique_ptr<unsigned char, StbFree> px(
+            stbi_load_from_memory(bytes, size, &w, &h, &comp, 4));
+        if (!px) {
+            const char *why = stbi_failure_reason();
+            c->image_err = where + ": cannot decode (" + (why ? why : "unknown format") + ")";
+            return false;
+        }
+        image->width = w;
+        image->height = h;
+        image->component = 4;
+        image->bits = 8;
+        image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+        image->image.assign(px.get(), px.get() + size_t(w) * size_t(h) * 4);
+        return true;
+    } catch (...) {
+        c->image_err = strf("images[%d]: out of memory decoding", idx);
+        return false;
+    }
+}
+
+std::string first_lines(const std::string &s)
+{
+    std::string r;
+    for (char ch : s) r += (ch == '\n' || ch == '\r') ? ' ' : ch;
+    while (!r.empty() && r.back() == ' ') r.pop_back();
+    if (r.size() > 400) r = r.substr(0, 400) + "...";
+    return r;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* step 4: accessors, nodes, primitives                                                         */
+
+const char *type_name(int t)
+{
+    switch (t) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return "?";
+    }
+}
+int type_comps(int t)
+{
+    switch (t) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT2: return 4;
+    case TINYGLTF_TYPE_MAT3: return 9;
+    case TINYGLTF_TYPE_MAT4: return 16;
+    default: return 0;
+    }
+}
+const char *ctype_name(int ct)
+{
+    switch (ct) {
+    case 5120: return "BYTE";
+    case 5121: return "UNSIGNED_BYTE";
+    case 5122: return "SHORT";
+    case 5123: return "UNSIGNED_SHORT";
+    case 5125: return "UNSIGNED_INT";
+    case 5126: return "FLOAT";
+    default: return "?";
+    }
+}
+size_t ctype_size(int ct)
+{
+    switch (ct) {
+    case 5120:
+    case 5121: return 1;
+    case 5122:
+    case 5123: return 2;
+    case 5125:
+    case 5126: return 4;
+    default: return 0;
+    }
+}
+
+
+struct View {
+    int index = -1;
+    const unsigned char *base = nullptr;
+    size_t stride = 0, count = 0;
+    int type = 0, ctype = 0, ncomp = 0;
+    bool normalized = false;
+};
+
+View get_view(const Ctx &c, int ai)
+{
+    const tinygltf::Model &m = c.model;
+    if (ai < 0 || size_t(ai) >= m.accessors.size())
+        gfail(strf("accessors[%d]: out of range (%zu accessors)", ai, m.accessors.size()));
+    const tinygltf::Accessor &a = m.accessors[size_t(ai)];
+    View v;
+    v.index = ai;
+    v.type = a.type;
+    v.ctype = a.componentType;
+    v.ncomp = type_comps(a.type);
+    v.count = a.count;
+    v.normalized = a.normalized;
+    if (a.sparse.isSparse && a.sparse.count > 0)
+        gfail(strf("accessors[%d]: sparse accessors not supported", ai));
+    size_t csize = ctype_size(a.componentType);
+    if (!csize || !v.ncomp)
+        gfail(strf("accessors[%d]: invalid componentType %d or type", ai, a.componentType));
+    if (a.bufferView < 0)
+        gfail(strf("accessors[%d]: has no bufferView (zero-filled accessors are not supported)",
+                   ai));
+    if (size_t(a.bufferView) >= m.bufferViews.size())
+        gfail(strf("accessors[%d]: bufferView %d out of range", ai, a.bufferView));
+    const tinygltf::BufferView &bv = m.bufferViews[size_t(a.bufferView)];
+    if (bv.buffer < 0 || size_t(bv.buffer) >= m.buffers.size())
+        gfail(strf("bufferViews[%d]: buffer %d out of range", a.bufferView, bv.buffer));
+    const tinygltf::Buffer &buf = m.buffers[size_t(bv.buffer)];
+    uint64_t blen = buf.data.size();
+    if (bv.byteOffset > blen || bv.byteLength > blen - bv.byteOffset)
+        gfail(strf("bufferViews[%d]: byteOffset %zu + byteLength %zu exceeds buffers[%d] "
+                   "(%llu bytes)",
+                   a.bufferView, bv.byteOffset, bv.byteLength, bv.buffer,
+                   (unsigned long long)blen));
+    size_t elem = csize * size_t(v.ncomp);
+    size_t stride = bv.byteStride ? bv.byteStride : elem;
+    if (stride < elem)
+        gfail(strf("accessors[%d]: bufferViews[%d].byteStride %zu is smaller than the element "
+                   "(%zu bytes)",
+                   ai, a.bufferView, stride, elem));
+    if (a.count > 0) {
+        uint64_t len = bv.byteLength;
+        bool ok = a.byteOffset <= len && elem <= len - a.byteOffset &&
+                  uint64_t(a.count - 1) <= (len - a.byteOffset - elem) / stride;
+        if (!ok)
+            gfail(strf("accessors[%d]: count %zu (byteOffset %zu, stride %zu, element %zu bytes) "
+                       "exceeds bufferView %d (%zu bytes)",
+                       ai, a.count, a.byteOffset, stride, elem, a.bufferView, bv.byteLength));
+    }
+    v.base = buf.data.data() + bv.byteOffset + a.byteOffset;
+    v.stride = stride;
+    return v;
+}
+
+void expect_float(const View &v, const char *semantic, int type)
+{
+    if (v.type != type || v.ctype != TINYGLTF_COMPONENT_TYPE_FLOAT)
+        gfail(strf("accessors[%d]: %s must be %s FLOAT (got %s %s)", v.index, semantic,
+                   type_name(type), type_name(v.type), ctype_name(v.ctype)));
+}
+
+/* Reads element i as floats (FLOAT, or normalized UNSIGNED_BYTE / UNSIGNED_SHORT). */
+inline void read_floats(const View &v, size_t i, float *out)
+{
+    const unsigned char *p = v.base + i * v.stride;
+    switch (v.ctype) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: memcpy(out, p, sizeof(float) * size_t(v.ncomp)); break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        for (int k = 0; k < v.ncomp; k++) out[k] = float(p[k]) / 255.0f;
+        break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        for (int k = 0; k < v.ncomp; k++) {
+            uint16_t x;
+            memcpy(&x, p + 2 * k, 2);
+            out[k] = float(x) / 65535.0f;
+        }
+        break;
+    default:
+        for (int k = 0; k < v.ncomp; k++) out[k] = 0;
+    }
+}
+
+inline uint32_t read_index(const View &v, size_t i)
+{
+    const unsigned char *p = v.base + i * v.stride;
+    switch (v.ctype) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t x;
+        memcpy(&x, p, 2);
+        return x;
+    }
+    default: {
+        uint32_t x;
+        memcpy(&x, p, 4);
+        return x;
+    }
+    }
+}
+
+/* column-major 4x4, double */
+struct Mat4 {
+    double m[16];
+};
+
+Mat4 mat_identity()
+{
+    Mat4 r{};
+    r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1.0;
+    return r;
+}
+
+Mat4 mat_mul(const Mat4 &a, const Mat4 &b)
+{
+    Mat4 r{};
+    for (int col = 0; col < 4; col++)
+        for (int row = 0; row < 4; row++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++) s += a.m[k * 4 + row] * b.m[col * 4 + k];
+            r.m[col * 4 + row] = s;
+        }
+    return r;
+}
+
+Mat4 node_local(const tinygltf::Node &n, int ni)
+{
+    Mat4 r = mat_identity();
+    if (n.matrix.size() == 16) {
+        for (int i = 0; i < 16; i++) r.m[i] = n.matrix[size_t(i)];
+        return r;
+    }
+    double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
+    if (n.translation.size() == 3)
+        for (int i = 0; i < 3; i++) t[i] = n.translation[size_t(i)];
+    if (n.scale.size() == 3)
+        for (int i = 0; i < 3; i++) s[i] = n.scale[size_t(i)];
+    if (n.rotation.size() == 4) {
+        for (int i = 0; i < 4; i++) q[i] = n.rotation[size_t(i)];
+        double l = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+        if (!(l > 1e-12)) gfail(strf("nodes[%d].rotation: zero-length quaternion", ni));
+        for (double &x : q) x /= l;
+    }
+    double x = q[0], y = q[1], z = q[2], w = q[3];
+    double R[9] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
+                   2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+                   2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y)};
+    /* R is column-major: column c = R[c*3 .. c*3+2]; M = T * R * S */
+    for (int col = 0; col < 3; col++)
+        for (int row = 0; row < 3; row++) r.m[col * 4 + row] = R[col * 3 + row] * s[col];
+    r.m[12] = t[0];
+    r.m[13] = t[1];
+    r.m[14] = t[2];
+    return r;
+}
+
+struct Out {
+    std::vector<pg_vertex> verts;
+    std::vector<uint32_t> idx;
+    std::vector<pg_primitive> prims;
+    std::vector<uint32_t> prim_gltf_material; /* -1 (UINT32_MAX) = default material */
+};
+
+void check_finite(const float *v, int n, const View &view, const char *semantic, size_t i)
+{
+    for (int k = 0; k < n; k++)
+        if (!std::isfinite(v[k]))
+            gfail(strf("accessors[%d]: %s element %zu is not finite (%g)", view.index, semantic, i,
+                       double(v[k])));
+}
+
+const int *find_attr(const tinygltf::Primitive &p, const char *name)
+{
+    auto it = p.attributes.find(name);
+    return it == p.attributes.end() ? nullptr : &it->second;
+}
+
+void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
+{
+    const tinygltf::Primitive &prim = c.model.meshes[size_t(mi)].primitives[size_t(pi)];
+    const std::string pw = strf("meshes[%d].primitives[%d]", mi, pi);
+    int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
+        c.skipped_prims++;
+        return;
+    }
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        gfail(strf("%s.mode: %d is not a glTF primitive mode", pw.c_str(), mode));
+
+    const int *pa = find_attr(prim, "POSITION");
+    if (!pa) gfail(pw + ".attributes: POSITION missing (required)");
+    View pos = get_view(c, *pa);
+    expect_float(pos, "POSITION", TINYGLTF_TYPE_VEC3);
+    const size_t n = pos.count;
+
+    auto optional_view = [&](const char *name) -> std::unique_ptr<View> {
+        const int *ai = find_attr(prim, name);
+        if (!ai) return nullptr;
+        std::unique_ptr<View> v(new View(get_view(c, *ai)));
+        if (v->count != n)
+            gfail(strf("%s: %s (accessors[%d]) has %zu elements but POSITION has %zu", pw.c_str(),
+                       name, *ai, v->count, n));
+        return v;
+    };
+    std::unique_ptr<View> nrm = optional_view("NORMAL");
+    if (nrm) expect_float(*nrm, "NORMAL", TINYGLTF_TYPE_VEC3);
+    std::unique_ptr<View> tan = optional_view("TANGENT");
+    if (tan) expect_float(*tan, "TANGENT", TINYGLTF_TYPE_VEC4);
+    std::unique_ptr<View> uv = optional_view("TEXCOORD_0");
+    if (uv) {
+        bool ok = uv->type == TINYGLTF_TYPE_VEC2 &&
+                  (uv->ctype == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                   (uv->normalized && (uv->ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                       uv->ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+        if (!ok)
+            gfail(strf("accessors[%d]: TEXCOORD_0 must be VEC2 FLOAT or normalized "
+                       "UNSIGNED_BYTE/UNSIGNED_SHORT (got %s %s)",
+                       uv->index, type_name(uv->type), ctype_name(uv->ctype)));
+    }
+
+    /* indices (local to this primitive) */
+    std::vector<uint32_t> ind;
+    if (prim.indices >= 0) {
+        View iv = get_view(c, prim.indices);
+        if (iv.type != TINYGLTF_TYPE_SCALAR ||
+            (iv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+             iv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+             iv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+            gfail(strf("accessors[%d]: indices must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or "
+                       "UNSIGNED_INT (got %s %s)",
+                       iv.index, type_name(iv.type), ctype_name(iv.ctype)));
+        ind.resize(iv.count);
+        for (size_t i = 0; i < iv.count; i++) {
+            uint32_t x = read_index(iv, i);
+            if (x >= n)
+                gfail(strf("%s: index %u at position %zu is out of range (vertex count %zu)",
+                           pw.c_str(), x, i, n));
+            ind[i] = x;
+        }
+    } else {
+        if (n > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, pw + ": too many vertices");
+        ind.resize(n);
+        for (size_t i = 0; i < n; i++) ind[i] = uint32_t(i);
+    }
+
+    /* strips and fans become lists */
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        std::vector<uint32_t> list;
+        for (size_t i = 2; i < ind.size(); i++) {
+            if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+                list.insert(list.end(), {ind[0], ind[i - 1], ind[i]});
+            } else if (i % 2 == 0) {
+                list.insert(list.end(), {ind[i - 2], ind[i - 1], ind[i]});
+            } else {
+                list.insert(list.end(), {ind[i - 1], ind[i - 2], ind[i]});
+            }
+        }
+        ind.swap(list);
+    } else if (ind.size() % 3 != 0) {
+        gfail(strf("%s: %zu indices is not a multiple of 3 (TRIANGLES)", pw.c_str(), ind.size()));
+    }
+    if (ind.empty() || n == 0) return;
+
+    /* transform: positions by M, normals by the inverse-transpose of M's upper 3x3, tangents by
+     * the upper 3x3; a mirroring transform flips the winding and the tangent handedness */
+    const double *m = M.m;
+    double a00 = m[0], a01 = m[4], a02 = m[8], a10 = m[1], a11 = m[5], a12 = m[9], a20 = m[2],
+           a21 = m[6], a22 = m[10];
+    double cof[9] = {a11 * a22 - a12 * a21, a12 * a20 - a10 * a22, a10 * a21 - a11 * a20,
+                     a02 * a21 - a01 * a22, a00 * a22 - a02 * a20, a01 * a20 - a00 * a21,
+                     a01 * a12 - a02 * a11, a02 * a10 - a00 * a12, a00 * a11 - a01 * a10};
+    /* cof[r*3+c] = cofactor(r,c); inverse-transpose = cof / det */
+    double det = a00 * cof[0] + a01 * cof[1] + a02 * cof[2];
+    if (!std::isfinite(det)) gfail(pw + ": node transform is not finite");
+    const double nsign = det < 0 ? -1.0 : 1.0;
+
+    if (o.verts.size() + n > 0xFFFFFFF0ull || o.idx.size() + ind.size() > 0xFFFFFFF0ull ||
+        o.verts.size() > 0x7FFFFFFFull)
+        fail(PG_ERR_LIMIT, pw + ": scene exceeds 2^32 vertices or indices");
+    const size_t base = o.verts.size();
+    o.verts.resize(base + n);
+    pg_vertex *V = o.verts.data() + base;
+    for (size_t i = 0; i < n; i++) {
+        pg_vertex &vx = V[i];
+        float p[3];
+        read_floats(pos, i, p);
+        check_finite(p, 3, pos, "POSITION", i);
+        for (int r = 0; r < 3; r++)
+            vx.position[r] = float(m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]);
+        if (nrm) {
+            float q[3];
+            read_floats(*nrm, i, q);
+            check_finite(q, 3, *nrm, "NORMAL", i);
+            double t[3];
+            for (int r = 0; r < 3; r++)
+                t[r] = nsign * (cof[r * 3 + 0] * q[0] + cof[r * 3 + 1] * q[1] + cof[r * 3 + 2] * q[2]);
+            double l = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+            if (l > 1e-30) {
+                for (int r = 0; r < 3; r++) vx.normal[r] = float(t[r] / l);
+            } else {
+                vx.normal[0] = 0;
+                vx.normal[1] = 1;
+                vx.normal[2] = 0;
+            }
+        }
+        if (uv) {
+            read_floats(*uv, i, vx.uv);
+            check_finite(vx.uv, 2, *uv, "TEXCOORD_0", i);
+        }
+        if (tan) {
+            float q[4];
+            read_floats(*tan, i, q);
+            check_finite(q, 4, *tan, "TANGENT", i);
+            double t[3];
+            for (int r = 0; r < 3; r++) t[r] = m[r] * q[0] + m[4 + r] * q[1] + m[8 + r] * q[2];
+            double l = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+            if (l > 1e-30)
+                for (int r = 0; r < 3; r++) vx.tangent[r] = float(t[r] / l);
+            vx.tangent[3] = float((q[3] < 0 ? -1.0 : 1.0) * nsign);
+        }
+    }
+    if (det < 0)
+        for (size_t t = 0; t + 2 < ind.size(); t += 3) std::swap(ind[t + 1], ind[t + 2]);
+
+    if (!nrm) pg_mesh_compute_normals(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
+    bool normal_mapped = prim.material >= 0 &&
+                         c.model.materials[size_t(prim.material)].normalTexture.index >= 0;
+    if (!tan && normal_mapped)
+        pg_mesh_compute_tangents(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
+
+    pg_primitive pr;
+    memset(&pr, 0, sizeof pr);
+    pr.first_index = uint32_t(o.idx.size());
+    pr.index_count = uint32_t(ind.size());
+    pr.vertex_offset = int32_t(base);
+    pr.material = 0;
+    o.idx.insert(o.idx.end(), ind.begin(), ind.end());
+    o.prims.push_back(pr);
+    o.prim_gltf_material.push_back(prim.material >= 0 ? uint32_t(prim.material) : UINT32_MAX);
+}
+
+struct Walker {
+    Ctx &c;
+    Out &o;
+    std::vector<char> on_path;
+    size_t visits = 0;
+
+    void visit(int ni, const Mat4 &parent, int depth)
+    {
+        const auto &nodes = c.model.nodes;
+        if (ni < 0 || size_t(ni) >= nodes.size())
+            gfail(strf("nodes[%d]: out of range (%zu nodes)", ni, nodes.size()));
+        if (on_path[size_t(ni)])
+            gfail(strf("nodes[%d]: cyclic node graph (nodes[%d] is its own ancestor)", ni, ni));
+        if (depth > kMaxNodeDepth)
+            fail(PG_ERR_LIMIT, strf("nodes[%d]: node hierarchy deeper than %d", ni, kMaxNodeDepth));
+        if (++visits > kMaxNodeVisits)
+            fail(PG_ERR_LIMIT, strf("nodes: more than %zu node instances", kMaxNodeVisits));
+        const tinygltf::Node &nd = nodes[size_t(ni)];
+        Mat4 world = mat_mul(parent, node_local(nd, ni));
+        for (double x : world.m)
+            if (!std::isfinite(x)) gfail(strf("nodes[%d]: world transform is not finite", ni));
+        on_path[size_t(ni)] = 1;
+        if (nd.mesh >= 0) {
+            if (size_t(nd.mesh) >= c.model.meshes.size())
+                gfail(strf("nodes[%d].mesh: %d out of range", ni, nd.mesh));
+            const tinygltf::Mesh &mesh = c.model.meshes[size_t(nd.mesh)];
+            for (size_t p = 0; p < mesh.primitives.size(); p++)
+                emit_primitive(c, o, nd.mesh, int(p), world);
+        }
+        for (int ch : nd.children) visit(ch, world, depth + 1);
+        on_path[size_t(ni)] = 0;
+    }
+};
+
+float clamp01(double x) { return float(x < 0 ? 0 : x > 1 ? 1 : x); }
+
+struct TexKey {
+    int image;
+    bool srgb;
+    bool operator<(const TexKey &b) const
+    {
+        return image != b.image ? image < b.image : srgb < b.srgb;
+    }
+};
+
+struct SceneDeleter {
+    void operator()(pg_scene *s) const { pg_scene_free(s); }
+};
+
+template <class T> T *copy_out(const std::vector<T> &v)
+{
+    if (v.empty()) return nullptr;
+    T *p = static_cast<T *>(malloc(sizeof(T) * v.size()));
+    if (!p) throw std::bad_alloc();
+    memcpy(p, v.data(), sizeof(T) * v.size());
+    return p;
+}
+
+std::string file_stem(const std::string &path)
+{
+    size_t s = path.find_last_of("/\\");
+    std::string b = s == std::string::npos ? path : path.substr(s + 1);
+    size_t d = b.find_last_of('.');
+    if (d != std::string::npos && d > 0) b = b.substr(0, d);
+    return b;
+}
+
+std::string image_name(const tinygltf::Image &im, int idx)
+{
+    if (!im.name.empty()) return im.name;
+    if (!im.uri.empty() && im.uri.compare(0, 5, "data:") != 0) return file_stem(im.uri);
+    return strf("image%d", idx);
+}
+
+pg_scene *load(Ctx &c)
+{
+    /* 1. the file */
+    char *raw = nullptr;
+    size_t raw_size = 0;
+    pg_error rerr;
+    memset(&rerr, 0, sizeof rerr);
+    if (pg_read_file(c.path.c_str(), &raw, &raw_size, &rerr) != PG_OK) {
+        /* keep pg_read_file's "PATH: cannot open: ..." message */
+        throw LoadFail{rerr.code, std::string("\x01") + rerr.msg};
+    }
+    std::unique_ptr<char, decltype(&free)> raw_owner(raw, &free);
+    const unsigned char *bytes = reinterpret_cast<const unsigned char *>(raw);
+    if (raw_size == 0) fail(PG_ERR_PARSE, "empty file");
+    c.is_glb = raw_size >= 4 && memcmp(raw, "glTF", 4) == 0;
+
+    /* 2. JSON + pre-validation */
+    {
+        std::string text = c.is_glb ? glb_json(c, bytes, raw_size) : std::string(raw, raw_size);
+        try {
+            c.j = json::parse(text);
+        } catch (const json::parse_error &e) {
+            std::string w = e.what();
+            size_t k = w.find("] ");
+            if (k != std::string::npos) w = w.substr(k + 2);
+            fail(PG_ERR_PARSE, "JSON syntax error: " + w);
+        }
+    }
+    prevalidate(c);
+
+    /* 3. tinygltf */
+    {
+        tinygltf::TinyGLTF loader;
+        tinygltf::FsCallbacks fs;
+        fs.FileExists = &fs_file_exists;
+        fs.ExpandFilePath = &tinygltf::ExpandFilePath;
+        fs.ReadWholeFile = &tinygltf::ReadWholeFile;
+        fs.WriteWholeFile = &tinygltf::WriteWholeFile;
+        fs.user_data = &c;
+        loader.SetFsCallbacks(fs);
+        loader.SetImageLoader(&load_image_cb, &c);
+        std::string terr, twarn;
+        if (raw_size > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
+        bool ok = c.is_glb ? loader.LoadBinaryFromMemory(&c.model, &terr, &twarn, bytes,
+                                                         unsigned(raw_size), c.base_dir)
+                           : loader.LoadASCIIFromString(&c.model, &terr, &twarn, raw,
+                                                        unsigned(raw_size), c.base_dir);
+        if (!c.image_err.empty()) gfail(c.image_err);
+        if (!ok) {
+            std::string why = first_lines(terr.empty() ? twarn : terr);
+            gfail("tinygltf: " + (why.empty() ? std::string("load failed") : why));
+        }
+        for (size_t i = 0; i < c.model.images.size(); i++) {
+            const tinygltf::Image &im = c.model.images[i];
+            if (im.image.empty() || im.width < 1 || im.height < 1 ||
+                im.image.size() != size_t(im.width) * size_t(im.height) * 4)
+                gfail(image_desc(c, int(i)) + ": could not be loaded");
+        }
+    }
+    raw_owner.reset();
+    const tinygltf::Model &md = c.model;
+
+    /* 4. node hierarchy -> geometry */
+    Out o;
+    {
+        std::vector<int> roots;
+        if (md.defaultScene >= 0 && size_t(md.defaultScene) < md.scenes.size()) {
+            roots = md.scenes[size_t(md.defaultScene)].nodes;
+        } else if (!md.scenes.empty()) {
+            roots = md.scenes[0].nodes;
+        } else {
+            std::vector<char> is_child(md.nodes.size(), 0);
+            for (const auto &nd : md.nodes)
+                for (int ch : nd.children)
+                    if (ch >= 0 && size_t(ch) < md.nodes.size()) is_child[size_t(ch)] = 1;
+            for (size_t i = 0; i < md.nodes.size(); i++)
+                if (!is_child[i]) roots.push_back(int(i));
+            if (roots.empty() && !md.nodes.empty())
+                gfail("nodes: cyclic node graph (every node is some node's child)");
+        }
+        Walker w{c, o, std::vector<char>(md.nodes.size(), 0), 0};
+        for (int r : roots) w.visit(r, mat_identity(), 0);
+    }
+    if (c.skipped_prims)
+        fprintf(stderr, "%s: warning: skipped %u point/line primitive(s) (only triangles are drawn)\n",
+                c.path.c_str(), c.skipped_prims);
+    if (o.idx.empty()) gfail("the scene has no triangles");
+
+    /* 5. materials and textures */
+    std::vector<pg_material> mats;
+    std::map<TexKey, uint32_t> tex_of;
+    std::vector<TexKey> tex_order;
+    auto texture_for = [&](int tex_index, bool srgb, const std::string &where) -> int {
+        if (tex_index < 0) return -1;
+        if (size_t(tex_index) >= md.textures.size())
+            gfail(strf("%s: texture %d out of range", where.c_str(), tex_index));
+        int src = md.textures[size_t(tex_index)].source;
+        if (src < 0 || size_t(src) >= md.images.size())
+            gfail(strf("textures[%d]: no usable source image", tex_index));
+        TexKey k{src, srgb};
+        auto it = tex_of.find(k);
+        if (it != tex_of.end()) return int(it->second);
+        uint32_t id = uint32_t(tex_order.size());
+        tex_of[k] = id;
+        tex_order.push_back(k);
+        return int(id);
+    };
+    for (size_t i = 0; i < md.materials.size(); i++) {
+        const tinygltf::Material &gm = md.materials[i];
+        const std::string mw = strf("materials[%zu]", i);
+        pg_material pm;
+        memset(&pm, 0, sizeof pm);
+        pg_strlcpy(pm.name, gm.name.empty() ? mw.c_str() : gm.name.c_str(), sizeof pm.name);
+        const auto &pbr = gm.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() != 4)
+            gfail(mw + ".pbrMetallicRoughness.baseColorFactor: expected 4 numbers");
+        for (int k = 0; k < 4; k++) {
+            double x = pbr.baseColorFactor[size_t(k)];
+            if (!std::isfinite(x))
+                gfail(mw + ".pbrMetallicRoughness.baseColorFactor: not finite");
+            pm.base_color[k] = clamp01(x);
+        }
+        pm.base_color_tex = texture_for(pbr.baseColorTexture.index, true,
+                                        mw + ".pbrMetallicRoughness.baseColorTexture");
+        pm.normal_tex = texture_for(gm.normalTexture.index, false, mw + ".normalTexture");
+        pm.normal_scale = float(std::isfinite(gm.normalTexture.scale) ? gm.normalTexture.scale : 1.0);
+        if (gm.alphaMode == "MASK") pm.alpha_mode = PG_ALPHA_MASK;
+        else if (gm.alphaMode == "BLEND") pm.alpha_mode = PG_ALPHA_BLEND;
+        else pm.alpha_mode = PG_ALPHA_OPAQUE;
+        if (!std::isfinite(gm.alphaCutoff) || gm.alphaCutoff < 0)
+            gfail(mw + ".alphaCutoff: expected a finite number >= 0");
+        pm.alpha_cutoff = float(gm.alphaCutoff);
+        double metal = std::isfinite(pbr.metallicFactor) ? clamp01(pbr.metallicFactor) : 1.0;
+        double rough = std::isfinite(pbr.roughnessFactor) ? clamp01(pbr.roughnessFactor) : 1.0;
+        pm.specular = float(0.04 + 0.5 * (1.0 - rough) * (1.0 - metal));
+        double r4 = rough * rough * rough * rough;
+        double sh = 2.0 / (r4 + 1e-4) - 2.0;
+        pm.shininess = float(sh < 1 ? 1 : sh > 512 ? 512 : sh);
+        pm.double_sided = gm.doubleSided;
+        mats.push_back(pm);
+    }
+    bool need_default = false;
+    for (size_t p = 0; p < o.prims.size(); p++) {
+        uint32_t gmat = o.prim_gltf_material[p];
+        if (gmat == UINT32_MAX) {
+            need_default = true;
+            o.prims[p].material = uint32_t(md.materials.size());
+        } else {
+            o.prims[p].material = gmat;
+        }
+    }
+    if (need_default) {
+        pg_material pm;
+        memset(&pm, 0, sizeof pm);
+        pg_strlcpy(pm.name, "default", sizeof pm.name);
+        for (float &x : pm.base_color) x = 1.0f;
+        pm.base_color_tex = -1;
+        pm.normal_tex = -1;
+        pm.normal_scale = 1.0f;
+        pm.alpha_mode = PG_ALPHA_OPAQUE;
+        pm.alpha_cutoff = 0.5f;
+        pm.specular = 0.04f;
+        pm.shininess = 1.0f;
+        mats.push_back(pm);
+    }
+
+    /* 6. hand out */
+    std::unique_ptr<pg_scene, SceneDeleter> s(static_cast<pg_scene *>(calloc(1, sizeof(pg_scene))));
+    if (!s) throw std::bad_alloc();
+    pg_strlcpy(s->name, file_stem(c.path).c_str(), sizeof s->name);
+    pg_strlcpy(s->path, c.path.c_str(), sizeof s->path);
+    s->vertices = copy_out(o.verts);
+    s->n_vertices = uint32_t(o.verts.size());
+    s->indices = copy_out(o.idx);
+    s->n_indices = uint32_t(o.idx.size());
+    s->primitives = copy_out(o.prims);
+    s->n_primitives = uint32_t(o.prims.size());
+    s->materials = copy_out(mats);
+    s->n_materials = uint32_t(mats.size());
+    if (!tex_order.empty()) {
+        s->textures = static_cast<pg_texture *>(calloc(tex_order.size(), sizeof(pg_texture)));
+        if (!s->textures) throw std::bad_alloc();
+        for (const TexKey &k : tex_order) {
+            const tinygltf::Image &im = md.images[size_t(k.image)];
+            pg_error terr;
+            memset(&terr, 0, sizeof terr);
+            if (pg_texture_init(&s->textures[s->n_textures], image_name(im, k.image).c_str(),
+                                im.image.data(), uint32_t(im.width), uint32_t(im.height), k.srgb,
+                                &terr) != PG_OK)
+                fail(terr.code, image_desc(c, k.image) + ": " + terr.msg);
+            s->n_textures++;
+        }
+    }
+    pg_scene_finalize(s.get());
+    return s.release();
+}
+
+} // namespace
+
+extern "C" pg_result pg_scene_load_gltf(const char *path, pg_scene **out, pg_error *err)
+{
+    if (!out) return pg_fail(err, PG_ERR_INVALID_ARG, "pg_scene_load_gltf: out is NULL");
+    *out = nullptr;
+    if (!path || !path[0])
+        return pg_fail(err, PG_ERR_INVALID_ARG, "pg_scene_load_gltf: empty path");
+    try {
+        Ctx c;
+        c.path = path;
+        size_t slash = c.path.find_last_of('/');
+        c.base_dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : c.path.substr(0, slash));
+        c.dir_prefix = join_path(c.base_dir, "");
+        *out = load(c);
+        return PG_OK;
+    } catch (const LoadFail &f) {
+        if (!f.msg.empty() && f.msg[0] == '\x01')
+            return pg_fail(err, f.code, "%s", f.msg.c_str() + 1);
+        return pg_fail(err, f.code, "%s: %s", path, f.msg.c_str());
+    } catch (const std::bad_alloc &) {
+        return pg_fail(err, PG_ERR_OOM, "%s: out of memory", path);
+    } catch (const std::exception &e) {
+        return pg_fail(err, PG_ERR_GLTF, "%s: %s", path, e.what());
+    } catch (...) {
+        return pg_fail(err, PG_ERR_GLTF, "%s: unknown error", path);
+    }
+}

@@ -1,0 +1,286 @@
+/* scene_gpu.c - uploads a pg_scene once; everything here is read-only afterwards. */
+#include "scene_gpu.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg_error *err)
+{
+    /* one staging buffer: vertices | indices | materials | every mip of every texture */
+    VkDeviceSize vb = (VkDeviceSize)scene->n_vertices * sizeof(pg_vertex);
+    VkDeviceSize ib = (VkDeviceSize)scene->n_indices * sizeof(uint32_t);
+    uint32_t n_mat = scene->n_materials ? scene->n_materials : 1;
+    VkDeviceSize mb = (VkDeviceSize)n_mat * sizeof(pg_gpu_material);
+    VkDeviceSize total = vb + ib + mb + 16;
+    for (uint32_t t = 0; t < scene->n_textures; t++) total += (scene->textures[t].data_size + 15) & ~(VkDeviceSize)15;
+    total += 16; /* white texel */
+
+    pg_result r;
+    pg_buffer staging;
+    if ((r = pg_buffer_create(gpu, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, "scene.staging", &staging, err)))
+        return r;
+    uint8_t *dst = staging.mapped;
+    VkDeviceSize off = 0;
+    memcpy(dst + off, scene->vertices, vb);
+    VkDeviceSize v_off = off;
+    off += vb;
+    VkDeviceSize i_off = off;
+    memcpy(dst + off, scene->indices, ib);
+    off += ib;
+    VkDeviceSize m_off = off;
+    pg_gpu_material *gm = (pg_gpu_material *)(dst + off);
+    for (uint32_t m = 0; m < n_mat; m++) {
+        pg_gpu_material g = {{1, 1, 1, 1}, {-1, -1, 0, 0}, {0.5f, 1, 0.04f, 16}};
+        if (scene->n_materials) {
+            const pg_material *s = &scene->materials[m];
+            memcpy(g.base_color, s->base_color, sizeof g.base_color);
+            /* texture i of the scene is image i+1 on the GPU (0 is white) */
+            g.tex[0] = s->base_color_tex >= 0 ? s->base_color_tex + 1 : -1;
+            g.tex[1] = s->normal_tex >= 0 ? s->normal_tex + 1 : -1;
+            g.tex[2] = (int32_t)s->alpha_mode;
+            g.tex[3] = s->double_sided ? 1 : 0;
+            g.params[0] = s->alpha_cutoff;
+            g.params[1] = s->normal_scale;
+            g.params[2] = s->specular;
+            g.params[3] = s->shininess;
+        }
+        memcpy(&gm[m], &g, sizeof g);
+    }
+    off += mb;
+    off = (off + 15) & ~(VkDeviceSize)15;
+    VkDeviceSize white_off = off;
+    static const uint8_t white[4] = {255, 255, 255, 255};
+    memcpy(dst + off, white, 4);
+    off += 16;
+    VkDeviceSize *tex_off = calloc(scene->n_textures + 1, sizeof *tex_off);
+    if (!tex_off) {
+        pg_buffer_destroy(gpu, &staging);
+        return pg_fail(err, PG_ERR_OOM, "out of memory");
+    }
+    for (uint32_t t = 0; t < scene->n_textures; t++) {
+        tex_off[t] = off;
+        memcpy(dst + off, scene->textures[t].data, scene->textures[t].data_size);
+        off += (scene->textures[t].data_size + 15) & ~(VkDeviceSize)15;
+    }
+
+    VkCommandBuffer cmd;
+    if ((r = pg_gpu_begin_once(gpu, &cmd, err))) goto out;
+    VkBufferCopy c0 = {v_off, 0, vb};
+    if (vb) vkCmdCopyBuffer(cmd, staging.buffer, sg->vertices.buffer, 1, &c0);
+    VkBufferCopy c1 = {i_off, 0, ib};
+    if (ib) vkCmdCopyBuffer(cmd, staging.buffer, sg->indices.buffer, 1, &c1);
+    VkBufferCopy c2 = {m_off, 0, mb};
+    vkCmdCopyBuffer(cmd, staging.buffer, sg->materials.buffer, 1, &c2);
+
+    VkImageMemoryBarrier2 *bars = calloc(sg->n_images, sizeof *bars);
+    if (!bars) {
+        vkEndCommandBuffer(cmd);
+        vkFreeCommandBuffers(gpu->device, gpu->cmd_pool, 1, &cmd);
+        r = pg_fail(err, PG_ERR_OOM, "out of memory");
+        goto out;
+    }
+    for (uint32_t i = 0; i < sg->n_images; i++)
+        bars[i] = pg_image_barrier(sg->images[i].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0,
+                                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                   VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    pg_cmd_barriers(cmd, sg->n_images, bars, 0, NULL);
+    VkBufferImageCopy wc = {.bufferOffset = white_off,
+                            .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                            .imageExtent = {1, 1, 1}};
+    vkCmdCopyBufferToImage(cmd, staging.buffer, sg->images[0].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &wc);
+    for (uint32_t t = 0; t < scene->n_textures; t++) {
+        const pg_texture *tex = &scene->textures[t];
+        VkBufferImageCopy regions[PG_MAX_MIPS];
+        for (uint32_t m = 0; m < tex->n_mips; m++) {
+            regions[m] = (VkBufferImageCopy){
+                .bufferOffset = tex_off[t] + (VkDeviceSize)(tex->mips[m].rgba - tex->data),
+                .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1},
+                .imageExtent = {tex->mips[m].width, tex->mips[m].height, 1},
+            };
+        }
+        vkCmdCopyBufferToImage(cmd, staging.buffer, sg->images[t + 1].image,
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, tex->n_mips, regions);
+    }
+    for (uint32_t i = 0; i < sg->n_images; i++)
+        bars[i] = pg_image_barrier(sg->images[i].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                   VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    VkBufferMemoryBarrier2 bb[3];
+    VkBuffer bufs[3] = {sg->vertices.buffer, sg->indices.buffer, sg->materials.buffer};
+    VkAccessFlags2 acc[3] = {VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT, VK_ACCESS_2_INDEX_READ_BIT,
+                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT};
+    VkPipelineStageFlags2 st[3] = {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
+                                   VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT,
+                                   VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT};
+    for (int i = 0; i < 3; i++)
+        bb[i] = (VkBufferMemoryBarrier2){
+            .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
+            .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+            .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+            .dstStageMask = st[i],
+            .dstAccessMask = acc[i],
+            .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+            .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+            .buffer = bufs[i],
+            .size = VK_WHOLE_SIZE,
+        };
+    pg_cmd_barriers(cmd, sg->n_images, bars, 3, bb);
+    free(bars);
+    r = pg_gpu_end_once(gpu, cmd, err);
+out:
+    free(tex_off);
+    pg_buffer_destroy(gpu, &staging);
+    return r;
+}
+
+static int draw_cmp(const void *a, const void *b)
+{
+    const pg_draw *x = a, *y = b;
+    if (x->alpha_mask != y->alpha_mask) return x->alpha_mask ? 1 : -1;
+    if (x->material != y->material) return x->material < y->material ? -1 : 1;
+    return x->first_index < y->first_index ? -1 : (x->first_index > y->first_index);
+}
+
+pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu **out, pg_error *err)
+{
+    *out = NULL;
+    pg_scene_gpu *sg = calloc(1, sizeof *sg);
+    if (!sg) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    pg_result r;
+    sg->features = scene->features;
+    memcpy(sg->bounds_min, scene->bounds_min, sizeof sg->bounds_min);
+    memcpy(sg->bounds_max, scene->bounds_max, sizeof sg->bounds_max);
+    uint32_t n_mat = scene->n_materials ? scene->n_materials : 1;
+    if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_vertices * sizeof(pg_vertex),
+                              VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                              "scene.vertices", &sg->vertices, err)))
+        goto fail;
+    if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_indices * sizeof(uint32_t),
+                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                              "scene.indices", &sg->indices, err)))
+        goto fail;
+    if ((r = pg_buffer_create(gpu, (VkDeviceSize)n_mat * sizeof(pg_gpu_material),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                              "scene.materials", &sg->materials, err)))
+        goto fail;
+    sg->bytes = sg->vertices.size + sg->indices.size + sg->materials.size;
+    sg->n_images = scene->n_textures + 1;
+    sg->images = calloc(sg->n_images, sizeof *sg->images);
+    if (!sg->images) {
+        r = pg_fail(err, PG_ERR_OOM, "out of memory");
+        goto fail;
+    }
+    VkImageUsageFlags iu = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    if ((r = pg_image_create(gpu, VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1, iu, "scene.white", &sg->images[0], err)))
+        goto fail;
+    for (uint32_t t = 0; t < scene->n_textures; t++) {
+        const pg_texture *tex = &scene->textures[t];
+        char name[PG_NAME_MAX + 16];
+        snprintf(name, sizeof name, "tex.%s", tex->name);
+        if ((r = pg_image_create(gpu, tex->srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM,
+                                 tex->mips[0].width, tex->mips[0].height, tex->n_mips, iu, name,
+                                 &sg->images[t + 1], err)))
+            goto fail;
+        sg->bytes += tex->data_size;
+    }
+    VkSamplerCreateInfo sci = {
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = VK_FILTER_LINEAR,
+        .minFilter = VK_FILTER_LINEAR,
+        .mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR,
+        .addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT,
+        .addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT,
+        .addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT,
+        .maxLod = VK_LOD_CLAMP_NONE,
+    };
+    VkResult vr = vkCreateSampler(gpu->device, &sci, NULL, &sg->sampler);
+    if (vr != VK_SUCCESS) {
+        r = pg_fail(err, PG_ERR_VULKAN, "vkCreateSampler failed: %s", pg_vk_result_name(vr));
+        goto fail;
+    }
+    if ((r = upload(gpu, sg, scene, err))) goto fail;
+
+    /* descriptor set */
+    VkDescriptorSetLayoutBinding b[2] = {
+        {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_VERTEX_BIT, NULL},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sg->n_images, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
+    };
+    VkDescriptorSetLayoutCreateInfo lci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                           .bindingCount = 2, .pBindings = b};
+    vr = vkCreateDescriptorSetLayout(gpu->device, &lci, NULL, &sg->set_layout);
+    if (vr != VK_SUCCESS) {
+        r = pg_fail(err, PG_ERR_VULKAN, "vkCreateDescriptorSetLayout failed: %s", pg_vk_result_name(vr));
+        goto fail;
+    }
+    VkDescriptorPoolSize ps[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
+                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sg->n_images}};
+    VkDescriptorPoolCreateInfo pci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                      .maxSets = 1, .poolSizeCount = 2, .pPoolSizes = ps};
+    vr = vkCreateDescriptorPool(gpu->device, &pci, NULL, &sg->pool);
+    if (vr != VK_SUCCESS) {
+        r = pg_fail(err, PG_ERR_VULKAN, "vkCreateDescriptorPool failed: %s", pg_vk_result_name(vr));
+        goto fail;
+    }
+    VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                      .descriptorPool = sg->pool, .descriptorSetCount = 1,
+                                      .pSetLayouts = &sg->set_layout};
+    vr = vkAllocateDescriptorSets(gpu->device, &ai, &sg->set);
+    if (vr != VK_SUCCESS) {
+        r = pg_fail(err, PG_ERR_VULKAN, "vkAllocateDescriptorSets failed: %s", pg_vk_result_name(vr));
+        goto fail;
+    }
+    VkDescriptorImageInfo *ii = calloc(sg->n_images, sizeof *ii);
+    if (!ii) {
+        r = pg_fail(err, PG_ERR_OOM, "out of memory");
+        goto fail;
+    }
+    for (uint32_t i = 0; i < sg->n_images; i++)
+        ii[i] = (VkDescriptorImageInfo){sg->sampler, sg->images[i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorBufferInfo bi = {sg->materials.buffer, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet w[2] = {
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = sg->set, .dstBinding = 0,
+         .descriptorCount = 1, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &bi},
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = sg->set, .dstBinding = 1,
+         .descriptorCount = sg->n_images, .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+         .pImageInfo = ii},
+    };
+    vkUpdateDescriptorSets(gpu->device, 2, w, 0, NULL);
+    free(ii);
+
+    sg->draws = calloc(scene->n_primitives ? scene->n_primitives : 1, sizeof *sg->draws);
+    if (!sg->draws) {
+        r = pg_fail(err, PG_ERR_OOM, "out of memory");
+        goto fail;
+    }
+    for (uint32_t p = 0; p < scene->n_primitives; p++) {
+        const pg_primitive *pr = &scene->primitives[p];
+        if (!pr->index_count) continue;
+        uint32_t m = pr->material < n_mat ? pr->material : 0;
+        bool mask = scene->n_materials && scene->materials[m].alpha_mode == PG_ALPHA_MASK;
+        bool two = scene->n_materials && scene->materials[m].double_sided;
+        sg->draws[sg->n_draws++] = (pg_draw){pr->first_index, pr->index_count, pr->vertex_offset, m, mask, two};
+        if (!mask) sg->n_opaque_draws++;
+    }
+    qsort(sg->draws, sg->n_draws, sizeof *sg->draws, draw_cmp);
+    *out = sg;
+    return PG_OK;
+fail:
+    pg_scene_gpu_destroy(gpu, sg);
+    return r;
+}
+
+void pg_scene_gpu_destroy(pg_gpu *gpu, pg_scene_gpu *sg)
+{
+    if (!sg) return;
+    if (sg->pool) vkDestroyDescriptorPool(gpu->device, sg->pool, NULL);
+    if (sg->set_layout) vkDestroyDescriptorSetLayout(gpu->device, sg->set_layout, NULL);
+    if (sg->sampler) vkDestroySampler(gpu->device, sg->sampler, NULL);
+    for (uint32_t i = 0; sg->images && i < sg->n_images; i++) pg_image_destroy(gpu, &sg->images[i]);
+    free(sg->images);
+    pg_buffer_destroy(gpu, &sg->vertices);
+    pg_buffer_destroy(gpu, &sg->indices);
+    pg_buffer_destroy(gpu, &sg->materials);
+    free(sg->draws);
+    free(sg);
+}

@@ -1,0 +1,52 @@
+/* scene_gpu.h - a pg_scene uploaded for drawing: vertex/index buffers, a material storage buffer,
+ * every texture with its mips, one sampler, and a descriptor set (set 1 of scene-drawing passes):
+ *   binding 0: readonly buffer Materials { GpuMaterial materials[]; }
+ *   binding 1: sampler2D textures[texture_count]   (index 0 is a 1x1 white texture)
+ * Draws are sorted opaque first, then alpha-masked. Static after upload (made visible with one
+ * barrier at upload time), so the graph does not track it. */
+#ifndef PG_SCENE_GPU_H
+#define PG_SCENE_GPU_H
+
+#include "scene.h"
+#include "vk_context.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pg_gpu_material { /* std430, matches shaders/common.glsl */
+    float base_color[4];
+    int32_t tex[4];              /* base colour texture, normal texture, alpha mode, double sided */
+    float params[4];             /* alpha cutoff, normal scale, specular, shininess */
+} pg_gpu_material;
+
+typedef struct pg_draw {
+    uint32_t first_index, index_count;
+    int32_t vertex_offset;
+    uint32_t material;
+    bool alpha_mask;
+    bool double_sided;       /* draw without back-face culling */
+} pg_draw;
+
+typedef struct pg_scene_gpu {
+    pg_buffer vertices, indices, materials;
+    uint32_t n_images;
+    pg_image *images;            /* n_images; [0] = white */
+    VkSampler sampler;
+    VkDescriptorSetLayout set_layout;
+    VkDescriptorPool pool;
+    VkDescriptorSet set;
+    uint32_t n_draws, n_opaque_draws; /* draws[0..n_opaque) opaque, the rest alpha-masked */
+    pg_draw *draws;
+    pg_scene_features features;
+    float bounds_min[3], bounds_max[3];
+    uint64_t bytes;
+} pg_scene_gpu;
+
+pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu **out, pg_error *err);
+void pg_scene_gpu_destroy(pg_gpu *gpu, pg_scene_gpu *sg);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

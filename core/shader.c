@@ -1,0 +1,261 @@
+/* shader.c - glslang C interface wrapper with textual #include expansion. */
+#include "shader.h"
+
+#include <glslang/Include/glslang_c_interface.h>
+#include <glslang/Public/resource_limits_c.h>
+#include <limits.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "vk_context.h"
+
+static char g_data_dir[PG_PATH_MAX];
+static pthread_once_t g_data_once = PTHREAD_ONCE_INIT;
+
+static bool dir_has_shaders(const char *dir)
+{
+    char p[PG_PATH_MAX + 32];
+    snprintf(p, sizeof p, "%s/shaders/common.glsl", dir);
+    return access(p, R_OK) == 0;
+}
+
+static void find_data_dir(void)
+{
+    const char *env = getenv("PASSGRAPH_DATA_DIR");
+    if (env && env[0]) {
+        pg_strlcpy(g_data_dir, env, sizeof g_data_dir);
+        return;
+    }
+    char exe[PG_PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0) {
+        exe[n] = 0;
+        char *slash = strrchr(exe, '/');
+        if (slash) {
+            *slash = 0;
+            char cand[PG_PATH_MAX + 32];
+            snprintf(cand, sizeof cand, "%s/../share/passgraph", exe);
+            if (dir_has_shaders(cand)) {
+                pg_strlcpy(g_data_dir, cand, sizeof g_data_dir);
+                return;
+            }
+            snprintf(cand, sizeof cand, "%s", exe);
+            if (dir_has_shaders(cand)) {
+                pg_strlcpy(g_data_dir, cand, sizeof g_data_dir);
+                return;
+            }
+        }
+    }
+    pg_strlcpy(g_data_dir, PG_SOURCE_DIR, sizeof g_data_dir);
+}
+
+const char *pg_data_dir(void)
+{
+    pthread_once(&g_data_once, find_data_dir);
+    return g_data_dir;
+}
+
+void pg_data_path(char *buf, size_t size, const char *rel)
+{
+    snprintf(buf, size, "%s/%s", pg_data_dir(), rel);
+}
+
+/* ---- textual include expansion ---- */
+typedef struct strbuf {
+    char *data;
+    size_t len, cap;
+} strbuf;
+
+static bool sb_append(strbuf *sb, const char *s, size_t n)
+{
+    if (sb->len + n + 1 > sb->cap) {
+        size_t cap = sb->cap ? sb->cap * 2 : 4096;
+        while (cap < sb->len + n + 1) cap *= 2;
+        char *d = realloc(sb->data, cap);
+        if (!d) return false;
+        sb->data = d;
+        sb->cap = cap;
+    }
+    memcpy(sb->data + sb->len, s, n);
+    sb->len += n;
+    sb->data[sb->len] = 0;
+    return true;
+}
+
+static pg_result expand(const char *name, int depth, strbuf *out, pg_error *err)
+{
+    if (depth > 8) return pg_fail(err, PG_ERR_SHADER, "shaders/%s: #include nested too deep", name);
+    char path[PG_PATH_MAX + 64];
+    snprintf(path, sizeof path, "%s/shaders/%s", pg_data_dir(), name);
+    char *text = NULL;
+    pg_result r = pg_read_file(path, &text, NULL, err);
+    if (r) return r;
+    const char *p = text;
+    int line = 1;
+    while (*p) {
+        const char *eol = strchr(p, '\n');
+        size_t n = eol ? (size_t)(eol - p + 1) : strlen(p);
+        const char *q = p;
+        while (*q == ' ' || *q == '\t') q++;
+        if (strncmp(q, "#include", 8) == 0) {
+            const char *a = strchr(q, '"');
+            const char *b = a ? strchr(a + 1, '"') : NULL;
+            if (!a || !b || b > p + n) {
+                free(text);
+                return pg_fail(err, PG_ERR_SHADER, "%s:%d: malformed #include", path, line);
+            }
+            char inc[PG_NAME_MAX * 2];
+            size_t il = (size_t)(b - a - 1);
+            if (il >= sizeof inc) il = sizeof inc - 1;
+            memcpy(inc, a + 1, il);
+            inc[il] = 0;
+            r = expand(inc, depth + 1, out, err);
+            if (r) {
+                free(text);
+                return r;
+            }
+            if (!sb_append(out, "\n", 1)) goto oom;
+        } else if (!sb_append(out, p, n)) {
+            goto oom;
+        }
+        p += n;
+        line++;
+    }
+    free(text);
+    return PG_OK;
+oom:
+    free(text);
+    return pg_fail(err, PG_ERR_OOM, "out of memory expanding %s", path);
+}
+
+static pthread_mutex_t g_glslang_lock = PTHREAD_MUTEX_INITIALIZER;
+static bool g_glslang_ready;
+
+static glslang_stage_t to_glslang_stage(VkShaderStageFlagBits s)
+{
+    switch (s) {
+    case VK_SHADER_STAGE_VERTEX_BIT: return GLSLANG_STAGE_VERTEX;
+    case VK_SHADER_STAGE_FRAGMENT_BIT: return GLSLANG_STAGE_FRAGMENT;
+    default: return GLSLANG_STAGE_COMPUTE;
+    }
+}
+
+pg_result pg_shader_compile(const char *name, VkShaderStageFlagBits stage,
+                            const char *const *defines, uint32_t n_defines, uint32_t **spirv,
+                            size_t *n_words, pg_error *err)
+{
+    *spirv = NULL;
+    *n_words = 0;
+    strbuf body = {0};
+    pg_result r = expand(name, 0, &body, err);
+    if (r) {
+        free(body.data);
+        return r;
+    }
+    /* put the defines right after the #version line */
+    strbuf src = {0};
+    char *ver = strstr(body.data, "#version");
+    char *ver_end = ver ? strchr(ver, '\n') : NULL;
+    if (!ver || !ver_end) {
+        free(body.data);
+        return pg_fail(err, PG_ERR_SHADER, "shaders/%s: no #version line", name);
+    }
+    bool ok = sb_append(&src, body.data, (size_t)(ver_end - body.data + 1));
+    for (uint32_t i = 0; ok && i < n_defines; i++) {
+        char line[PG_NAME_MAX + 32];
+        const char *eq = strchr(defines[i], '=');
+        if (eq)
+            snprintf(line, sizeof line, "#define %.*s %s\n", (int)(eq - defines[i]), defines[i], eq + 1);
+        else
+            snprintf(line, sizeof line, "#define %s 1\n", defines[i]);
+        ok = sb_append(&src, line, strlen(line));
+    }
+    char lineinfo[64];
+    snprintf(lineinfo, sizeof lineinfo, "#line 2\n");
+    ok = ok && sb_append(&src, lineinfo, strlen(lineinfo)) &&
+         sb_append(&src, ver_end + 1, strlen(ver_end + 1));
+    free(body.data);
+    if (!ok) {
+        free(src.data);
+        return pg_fail(err, PG_ERR_OOM, "out of memory");
+    }
+
+    pthread_mutex_lock(&g_glslang_lock);
+    if (!g_glslang_ready) {
+        glslang_initialize_process();
+        g_glslang_ready = true;
+    }
+    glslang_input_t input = {
+        .language = GLSLANG_SOURCE_GLSL,
+        .stage = to_glslang_stage(stage),
+        .client = GLSLANG_CLIENT_VULKAN,
+        .client_version = GLSLANG_TARGET_VULKAN_1_3,
+        .target_language = GLSLANG_TARGET_SPV,
+        .target_language_version = GLSLANG_TARGET_SPV_1_6,
+        .code = src.data,
+        .default_version = 460,
+        .default_profile = GLSLANG_NO_PROFILE,
+        .messages = GLSLANG_MSG_DEFAULT_BIT | GLSLANG_MSG_SPV_RULES_BIT | GLSLANG_MSG_VULKAN_RULES_BIT,
+        .resource = glslang_default_resource(),
+    };
+    glslang_shader_t *sh = glslang_shader_create(&input);
+    glslang_program_t *prog = NULL;
+    if (!sh) {
+        r = pg_fail(err, PG_ERR_SHADER, "shaders/%s: glslang_shader_create failed", name);
+        goto done;
+    }
+    if (!glslang_shader_preprocess(sh, &input) || !glslang_shader_parse(sh, &input)) {
+        r = pg_fail(err, PG_ERR_SHADER, "shaders/%s: compile failed:\n%s", name,
+                    glslang_shader_get_info_log(sh));
+        goto done;
+    }
+    prog = glslang_program_create();
+    glslang_program_add_shader(prog, sh);
+    if (!glslang_program_link(prog, GLSLANG_MSG_SPV_RULES_BIT | GLSLANG_MSG_VULKAN_RULES_BIT)) {
+        r = pg_fail(err, PG_ERR_SHADER, "shaders/%s: link failed:\n%s", name,
+                    glslang_program_get_info_log(prog));
+        goto done;
+    }
+    glslang_program_SPIRV_generate(prog, input.stage);
+    size_t words = glslang_program_SPIRV_get_size(prog);
+    uint32_t *code = malloc(words * sizeof(uint32_t));
+    if (!code) {
+        r = pg_fail(err, PG_ERR_OOM, "out of memory");
+        goto done;
+    }
+    glslang_program_SPIRV_get(prog, code);
+    *spirv = code;
+    *n_words = words;
+    r = PG_OK;
+done:
+    if (prog) glslang_program_delete(prog);
+    if (sh) glslang_shader_delete(sh);
+    pthread_mutex_unlock(&g_glslang_lock);
+    free(src.data);
+    return r;
+}
+
+pg_result pg_shader_module(pg_gpu *gpu, const char *name, VkShaderStageFlagBits stage,
+                           const char *const *defines, uint32_t n_defines, VkShaderModule *out,
+                           pg_error *err)
+{
+    uint32_t *code;
+    size_t words;
+    pg_result r = pg_shader_compile(name, stage, defines, n_defines, &code, &words, err);
+    if (r) return r;
+    VkShaderModuleCreateInfo ci = {
+        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+        .codeSize = words * sizeof(uint32_t),
+        .pCode = code,
+    };
+    VkResult vr = vkCreateShaderModule(gpu->device, &ci, NULL, out);
+    free(code);
+    if (vr != VK_SUCCESS)
+        return pg_fail(err, PG_ERR_VULKAN, "vkCreateShaderModule(%s) failed: %s", name,
+                       pg_vk_result_name(vr));
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_SHADER_MODULE, (uint64_t)*out, "%s", name);
+    return PG_OK;
+}

@@ -1,0 +1,39 @@
+/* shader.h - GLSL -> SPIR-V through glslang's C interface, with per-variant defines.
+ *
+ * Shaders live in shaders/ (found through pg_data_dir()). `#include "file.glsl"` lines are
+ * expanded by passgraph itself (relative to the shaders folder, depth <= 8). Defines are inserted
+ * after the #version line. Compile errors name the file and glslang's log.
+ */
+#ifndef PG_SHADER_H
+#define PG_SHADER_H
+
+#include <vulkan/vulkan.h>
+
+#include "pg_common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct pg_gpu;
+
+/* Where shaders/, pipelines/ and assets/ live: $PASSGRAPH_DATA_DIR, else next to the executable
+ * (../share/passgraph for an installed bundle), else the source tree. Never NULL. */
+const char *pg_data_dir(void);
+/* Joins pg_data_dir() and rel into buf. */
+void pg_data_path(char *buf, size_t size, const char *rel);
+
+/* Compiles shaders/<name> for stage (VK_SHADER_STAGE_*_BIT). defines: "NAME" or "NAME=VALUE".
+ * *spirv is malloc'd (free it). */
+pg_result pg_shader_compile(const char *name, VkShaderStageFlagBits stage,
+                            const char *const *defines, uint32_t n_defines, uint32_t **spirv,
+                            size_t *n_words, pg_error *err);
+/* Same, then wraps it in a VkShaderModule named after the file. */
+pg_result pg_shader_module(struct pg_gpu *gpu, const char *name, VkShaderStageFlagBits stage,
+                           const char *const *defines, uint32_t n_defines, VkShaderModule *out,
+                           pg_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,567 @@
+/* vk_context.c - instance, device, queue, validation, allocation helpers. */
+#include "vk_context.h"
+
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *pg_vk_result_name(VkResult r)
+{
+    switch (r) {
+#define C(x) case x: return #x;
+    C(VK_SUCCESS) C(VK_NOT_READY) C(VK_TIMEOUT) C(VK_EVENT_SET) C(VK_EVENT_RESET) C(VK_INCOMPLETE)
+    C(VK_ERROR_OUT_OF_HOST_MEMORY) C(VK_ERROR_OUT_OF_DEVICE_MEMORY) C(VK_ERROR_INITIALIZATION_FAILED)
+    C(VK_ERROR_DEVICE_LOST) C(VK_ERROR_MEMORY_MAP_FAILED) C(VK_ERROR_LAYER_NOT_PRESENT)
+    C(VK_ERROR_EXTENSION_NOT_PRESENT) C(VK_ERROR_FEATURE_NOT_PRESENT) C(VK_ERROR_INCOMPATIBLE_DRIVER)
+    C(VK_ERROR_TOO_MANY_OBJECTS) C(VK_ERROR_FORMAT_NOT_SUPPORTED) C(VK_ERROR_FRAGMENTED_POOL)
+    C(VK_ERROR_UNKNOWN) C(VK_ERROR_OUT_OF_POOL_MEMORY) C(VK_ERROR_SURFACE_LOST_KHR)
+    C(VK_SUBOPTIMAL_KHR) C(VK_ERROR_OUT_OF_DATE_KHR)
+#undef C
+    default: return "VK_ERROR_(other)";
+    }
+}
+
+static VKAPI_ATTR VkBool32 VKAPI_CALL debug_cb(VkDebugUtilsMessageSeverityFlagBitsEXT sev,
+                                               VkDebugUtilsMessageTypeFlagsEXT type,
+                                               const VkDebugUtilsMessengerCallbackDataEXT *data,
+                                               void *user)
+{
+    (void)type;
+    pg_gpu *gpu = user;
+    if (sev & (VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT |
+               VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT)) {
+        gpu->validation_messages++;
+        if (sev & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) gpu->validation_errors++;
+        fprintf(stderr, "passgraph: validation %s: %s\n",
+                (sev & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "error" : "warning",
+                data && data->pMessage ? data->pMessage : "(no message)");
+    }
+    return VK_FALSE;
+}
+
+static bool has_layer(const char *name)
+{
+    uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, NULL);
+    VkLayerProperties *p = calloc(n ? n : 1, sizeof *p);
+    if (!p) return false;
+    vkEnumerateInstanceLayerProperties(&n, p);
+    bool found = false;
+    for (uint32_t i = 0; i < n; i++)
+        if (strcmp(p[i].layerName, name) == 0) found = true;
+    free(p);
+    return found;
+}
+
+static bool has_instance_ext(const char *name)
+{
+    uint32_t n = 0;
+    vkEnumerateInstanceExtensionProperties(NULL, &n, NULL);
+    VkExtensionProperties *p = calloc(n ? n : 1, sizeof *p);
+    if (!p) return false;
+    vkEnumerateInstanceExtensionProperties(NULL, &n, p);
+    bool found = false;
+    for (uint32_t i = 0; i < n; i++)
+        if (strcmp(p[i].extensionName, name) == 0) found = true;
+    free(p);
+    return found;
+}
+
+static const char *device_type_name(VkPhysicalDeviceType t)
+{
+    switch (t) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
+    default: return "other";
+    }
+}
+
+static int device_score(const VkPhysicalDeviceProperties *p)
+{
+    if (p->apiVersion < VK_API_VERSION_1_3) return -1;
+    switch (p->deviceType) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    default: return 1;
+    }
+}
+
+static pg_result make_instance(pg_gpu *gpu, bool validation, pg_error *err)
+{
+    const char *exts[4];
+    uint32_t n_ext = 0;
+    if (has_instance_ext(VK_EXT_DEBUG_UTILS_EXTENSION_NAME)) {
+        exts[n_ext++] = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+        gpu->debug_utils = true;
+    }
+    const char *layers[1];
+    uint32_t n_layers = 0;
+    if (validation) {
+        if (!has_layer("VK_LAYER_KHRONOS_validation"))
+            return pg_fail(err, PG_ERR_NO_DEVICE,
+                           "validation requested but VK_LAYER_KHRONOS_validation is not installed "
+                           "(Debian: apt-get install vulkan-validationlayers)");
+        layers[n_layers++] = "VK_LAYER_KHRONOS_validation";
+    }
+    VkApplicationInfo app = {
+        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+        .pApplicationName = "passgraph",
+        .applicationVersion = VK_MAKE_VERSION(0, 1, 0),
+        .pEngineName = "passgraph",
+        .apiVersion = VK_API_VERSION_1_3,
+    };
+    VkValidationFeatureEnableEXT enables[] = {
+        VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT,
+    };
+    VkValidationFeaturesEXT vfeat = {
+        .sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
+        .enabledValidationFeatureCount = 1,
+        .pEnabledValidationFeatures = enables,
+    };
+    VkDebugUtilsMessengerCreateInfoEXT dbg = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+        .pfnUserCallback = debug_cb,
+        .pUserData = gpu,
+    };
+    if (validation) {
+        vfeat.pNext = gpu->debug_utils ? &dbg : NULL;
+    }
+    VkInstanceCreateInfo ci = {
+        .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+        .pNext = validation ? (const void *)&vfeat : NULL,
+        .pApplicationInfo = &app,
+        .enabledLayerCount = n_layers,
+        .ppEnabledLayerNames = layers,
+        .enabledExtensionCount = n_ext,
+        .ppEnabledExtensionNames = exts,
+    };
+    VkResult r = vkCreateInstance(&ci, NULL, &gpu->instance);
+    if (r != VK_SUCCESS)
+        return pg_fail(err, PG_ERR_NO_DEVICE,
+                       "vkCreateInstance failed: %s (is a Vulkan 1.3 driver installed? Debian: "
+                       "mesa-vulkan-drivers for lavapipe)",
+                       pg_vk_result_name(r));
+    if (gpu->debug_utils) {
+        gpu->set_object_name = (PFN_vkSetDebugUtilsObjectNameEXT)vkGetInstanceProcAddr(
+            gpu->instance, "vkSetDebugUtilsObjectNameEXT");
+        gpu->cmd_begin_label = (PFN_vkCmdBeginDebugUtilsLabelEXT)vkGetInstanceProcAddr(
+            gpu->instance, "vkCmdBeginDebugUtilsLabelEXT");
+        gpu->cmd_end_label = (PFN_vkCmdEndDebugUtilsLabelEXT)vkGetInstanceProcAddr(
+            gpu->instance, "vkCmdEndDebugUtilsLabelEXT");
+        if (validation) {
+            PFN_vkCreateDebugUtilsMessengerEXT create =
+                (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(
+                    gpu->instance, "vkCreateDebugUtilsMessengerEXT");
+            if (create) PG_VK_TRY(err, create(gpu->instance, &dbg, NULL, &gpu->messenger));
+        }
+    }
+    return PG_OK;
+}
+
+pg_result pg_gpu_list_devices(FILE *f, pg_error *err)
+{
+    VkInstance inst;
+    VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+                             .apiVersion = VK_API_VERSION_1_3};
+    VkInstanceCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+                               .pApplicationInfo = &app};
+    VkResult r = vkCreateInstance(&ci, NULL, &inst);
+    if (r != VK_SUCCESS)
+        return pg_fail(err, PG_ERR_NO_DEVICE, "vkCreateInstance failed: %s", pg_vk_result_name(r));
+    uint32_t n = 0;
+    vkEnumeratePhysicalDevices(inst, &n, NULL);
+    VkPhysicalDevice devs[16];
+    if (n > 16) n = 16;
+    vkEnumeratePhysicalDevices(inst, &n, devs);
+    for (uint32_t i = 0; i < n; i++) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(devs[i], &p);
+        fprintf(f, "%u: %s (%s, Vulkan %u.%u.%u)%s\n", i, p.deviceName,
+                device_type_name(p.deviceType), VK_API_VERSION_MAJOR(p.apiVersion),
+                VK_API_VERSION_MINOR(p.apiVersion), VK_API_VERSION_PATCH(p.apiVersion),
+                p.apiVersion < VK_API_VERSION_1_3 ? " [too old: needs 1.3]" : "");
+    }
+    vkDestroyInstance(inst, NULL);
+    return PG_OK;
+}
+
+pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
+{
+    *out = NULL;
+    pg_gpu *gpu = calloc(1, sizeof *gpu);
+    if (!gpu) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    gpu->validation = desc->validation;
+    pg_result res = make_instance(gpu, desc->validation, err);
+    if (res) goto fail;
+
+    uint32_t n = 0;
+    vkEnumeratePhysicalDevices(gpu->instance, &n, NULL);
+    if (n == 0) {
+        res = pg_fail(err, PG_ERR_NO_DEVICE, "no Vulkan device found");
+        goto fail;
+    }
+    VkPhysicalDevice devs[16];
+    if (n > 16) n = 16;
+    vkEnumeratePhysicalDevices(gpu->instance, &n, devs);
+    int best = -1, best_score = -1;
+    for (uint32_t i = 0; i < n; i++) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(devs[i], &p);
+        int s = device_score(&p);
+        if (desc->device_index >= 0 && (int)i != desc->device_index) continue;
+        if (desc->device_match && desc->device_match[0] && !strstr(p.deviceName, desc->device_match))
+            continue;
+        if (s > best_score) {
+            best = (int)i;
+            best_score = s;
+        }
+    }
+    if (best < 0 || best_score < 0) {
+        res = pg_fail(err, PG_ERR_NO_DEVICE,
+                      "no Vulkan 1.3 device matches (device index %d, name '%s'); run "
+                      "'passgraph devices' to list them",
+                      desc->device_index, desc->device_match ? desc->device_match : "");
+        goto fail;
+    }
+    gpu->phys = devs[best];
+    vkGetPhysicalDeviceProperties(gpu->phys, &gpu->props);
+    vkGetPhysicalDeviceMemoryProperties(gpu->phys, &gpu->mem_props);
+    gpu->timestamp_period_ns = gpu->props.limits.timestampPeriod;
+
+    uint32_t nq = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(gpu->phys, &nq, NULL);
+    VkQueueFamilyProperties qf[16];
+    if (nq > 16) nq = 16;
+    vkGetPhysicalDeviceQueueFamilyProperties(gpu->phys, &nq, qf);
+    int fam = -1;
+    for (uint32_t i = 0; i < nq; i++)
+        if ((qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
+            fam = (int)i;
+            break;
+        }
+    if (fam < 0) {
+        res = pg_fail(err, PG_ERR_NO_DEVICE, "%s: no graphics+compute queue", gpu->props.deviceName);
+        goto fail;
+    }
+    gpu->queue_family = (uint32_t)fam;
+    gpu->timestamp_valid_bits = qf[fam].timestampValidBits;
+
+    VkPhysicalDeviceVulkan13Features f13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceVulkan12Features f12 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                                            .pNext = &f13};
+    VkPhysicalDeviceFeatures2 f2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f12};
+    vkGetPhysicalDeviceFeatures2(gpu->phys, &f2);
+    if (!f13.synchronization2 || !f13.dynamicRendering) {
+        res = pg_fail(err, PG_ERR_NO_DEVICE, "%s lacks synchronization2 or dynamicRendering",
+                      gpu->props.deviceName);
+        goto fail;
+    }
+    VkPhysicalDeviceVulkan13Features e13 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+        .synchronization2 = VK_TRUE,
+        .dynamicRendering = VK_TRUE,
+        .maintenance4 = f13.maintenance4,
+    };
+    VkPhysicalDeviceVulkan12Features e12 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+        .pNext = &e13,
+        .hostQueryReset = f12.hostQueryReset,
+        .scalarBlockLayout = f12.scalarBlockLayout,
+        .shaderSampledImageArrayNonUniformIndexing = f12.shaderSampledImageArrayNonUniformIndexing,
+        .runtimeDescriptorArray = f12.runtimeDescriptorArray,
+    };
+    VkPhysicalDeviceFeatures2 e2 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+        .pNext = &e12,
+        .features = {
+            .samplerAnisotropy = f2.features.samplerAnisotropy,
+            .fragmentStoresAndAtomics = f2.features.fragmentStoresAndAtomics,
+            .shaderInt64 = f2.features.shaderInt64,
+            .depthClamp = f2.features.depthClamp,
+        },
+    };
+    float prio = 1.0f;
+    VkDeviceQueueCreateInfo qci = {
+        .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+        .queueFamilyIndex = gpu->queue_family,
+        .queueCount = 1,
+        .pQueuePriorities = &prio,
+    };
+    VkDeviceCreateInfo dci = {
+        .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+        .pNext = &e2,
+        .queueCreateInfoCount = 1,
+        .pQueueCreateInfos = &qci,
+    };
+    VkResult r = vkCreateDevice(gpu->phys, &dci, NULL, &gpu->device);
+    if (r != VK_SUCCESS) {
+        res = pg_fail(err, PG_ERR_VULKAN, "vkCreateDevice failed: %s", pg_vk_result_name(r));
+        goto fail;
+    }
+    vkGetDeviceQueue(gpu->device, gpu->queue_family, 0, &gpu->queue);
+    VkCommandPoolCreateInfo pci = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+        .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+        .queueFamilyIndex = gpu->queue_family,
+    };
+    r = vkCreateCommandPool(gpu->device, &pci, NULL, &gpu->cmd_pool);
+    if (r != VK_SUCCESS) {
+        res = pg_fail(err, PG_ERR_VULKAN, "vkCreateCommandPool failed: %s", pg_vk_result_name(r));
+        goto fail;
+    }
+    if (!desc->quiet)
+        fprintf(stderr, "passgraph: device %s (%s, Vulkan %u.%u)%s\n", gpu->props.deviceName,
+                device_type_name(gpu->props.deviceType), VK_API_VERSION_MAJOR(gpu->props.apiVersion),
+                VK_API_VERSION_MINOR(gpu->props.apiVersion),
+                desc->validation ? ", validation + sync validation on" : "");
+    *out = gpu;
+    return PG_OK;
+fail:
+    pg_gpu_destroy(gpu);
+    return res;
+}
+
+void pg_gpu_destroy(pg_gpu *gpu)
+{
+    if (!gpu) return;
+    if (gpu->device) {
+        vkDeviceWaitIdle(gpu->device);
+        if (gpu->cmd_pool) vkDestroyCommandPool(gpu->device, gpu->cmd_pool, NULL);
+        vkDestroyDevice(gpu->device, NULL);
+    }
+    if (gpu->messenger) {
+        PFN_vkDestroyDebugUtilsMessengerEXT destroy =
+            (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(
+                gpu->instance, "vkDestroyDebugUtilsMessengerEXT");
+        if (destroy) destroy(gpu->instance, gpu->messenger, NULL);
+    }
+    if (gpu->instance) vkDestroyInstance(gpu->instance, NULL);
+    free(gpu);
+}
+
+void pg_gpu_name(pg_gpu *gpu, VkObjectType type, uint64_t handle, const char *fmt, ...)
+{
+    if (!gpu->set_object_name || !handle) return;
+    char name[160];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(name, sizeof name, fmt, ap);
+    va_end(ap);
+    VkDebugUtilsObjectNameInfoEXT info = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT,
+        .objectType = type,
+        .objectHandle = handle,
+        .pObjectName = name,
+    };
+    gpu->set_object_name(gpu->device, &info);
+}
+
+uint32_t pg_gpu_memory_type(const pg_gpu *gpu, uint32_t bits, VkMemoryPropertyFlags want)
+{
+    for (uint32_t i = 0; i < gpu->mem_props.memoryTypeCount; i++)
+        if ((bits & (1u << i)) && (gpu->mem_props.memoryTypes[i].propertyFlags & want) == want)
+            return i;
+    return UINT32_MAX;
+}
+
+pg_result pg_buffer_create(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags usage,
+                           bool host_visible, const char *name, pg_buffer *out, pg_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (size == 0) size = 16;
+    VkBufferCreateInfo bci = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+        .size = size,
+        .usage = usage,
+        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+    };
+    PG_VK_TRY(err, vkCreateBuffer(gpu->device, &bci, NULL, &out->buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(gpu->device, out->buffer, &req);
+    VkMemoryPropertyFlags want = host_visible
+                                     ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                     : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    uint32_t type = pg_gpu_memory_type(gpu, req.memoryTypeBits, want);
+    if (type == UINT32_MAX) {
+        pg_buffer_destroy(gpu, out);
+        return pg_fail(err, PG_ERR_VULKAN, "buffer '%s': no suitable memory type", name);
+    }
+    VkMemoryAllocateInfo mai = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+        .allocationSize = req.size,
+        .memoryTypeIndex = type,
+    };
+    VkResult r = vkAllocateMemory(gpu->device, &mai, NULL, &out->memory);
+    if (r != VK_SUCCESS) {
+        pg_buffer_destroy(gpu, out);
+        return pg_fail(err, PG_ERR_VULKAN, "buffer '%s': vkAllocateMemory(%llu bytes) failed: %s",
+                       name, (unsigned long long)req.size, pg_vk_result_name(r));
+    }
+    PG_VK_TRY(err, vkBindBufferMemory(gpu->device, out->buffer, out->memory, 0));
+    if (host_visible) PG_VK_TRY(err, vkMapMemory(gpu->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped));
+    out->size = size;
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_BUFFER, (uint64_t)out->buffer, "%s", name);
+    return PG_OK;
+}
+
+void pg_buffer_destroy(pg_gpu *gpu, pg_buffer *b)
+{
+    if (b->buffer) vkDestroyBuffer(gpu->device, b->buffer, NULL);
+    if (b->memory) vkFreeMemory(gpu->device, b->memory, NULL);
+    memset(b, 0, sizeof *b);
+}
+
+VkImageAspectFlags pg_vk_aspect(VkFormat f)
+{
+    switch (f) {
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_D16_UNORM:
+        return VK_IMAGE_ASPECT_DEPTH_BIT;
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT:
+        return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
+    default:
+        return VK_IMAGE_ASPECT_COLOR_BIT;
+    }
+}
+
+pg_result pg_image_create(pg_gpu *gpu, VkFormat format, uint32_t w, uint32_t h, uint32_t mips,
+                          VkImageUsageFlags usage, const char *name, pg_image *out, pg_error *err)
+{
+    memset(out, 0, sizeof *out);
+    VkImageCreateInfo ici = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+        .imageType = VK_IMAGE_TYPE_2D,
+        .format = format,
+        .extent = {w, h, 1},
+        .mipLevels = mips,
+        .arrayLayers = 1,
+        .samples = VK_SAMPLE_COUNT_1_BIT,
+        .tiling = VK_IMAGE_TILING_OPTIMAL,
+        .usage = usage,
+        .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+    };
+    PG_VK_TRY(err, vkCreateImage(gpu->device, &ici, NULL, &out->image));
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(gpu->device, out->image, &req);
+    uint32_t type = pg_gpu_memory_type(gpu, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (type == UINT32_MAX) type = pg_gpu_memory_type(gpu, req.memoryTypeBits, 0);
+    VkMemoryAllocateInfo mai = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+        .allocationSize = req.size,
+        .memoryTypeIndex = type,
+    };
+    VkResult r = vkAllocateMemory(gpu->device, &mai, NULL, &out->memory);
+    if (r != VK_SUCCESS) {
+        pg_image_destroy(gpu, out);
+        return pg_fail(err, PG_ERR_VULKAN, "image '%s' %ux%u: vkAllocateMemory failed: %s", name,
+                       w, h, pg_vk_result_name(r));
+    }
+    PG_VK_TRY(err, vkBindImageMemory(gpu->device, out->image, out->memory, 0));
+    VkImageViewCreateInfo vci = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+        .image = out->image,
+        .viewType = VK_IMAGE_VIEW_TYPE_2D,
+        .format = format,
+        .subresourceRange = {pg_vk_aspect(format), 0, mips, 0, 1},
+    };
+    PG_VK_TRY(err, vkCreateImageView(gpu->device, &vci, NULL, &out->view));
+    out->format = format;
+    out->width = w;
+    out->height = h;
+    out->mips = mips;
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_IMAGE, (uint64_t)out->image, "%s", name);
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)out->view, "%s.view", name);
+    return PG_OK;
+}
+
+void pg_image_destroy(pg_gpu *gpu, pg_image *img)
+{
+    if (img->view) vkDestroyImageView(gpu->device, img->view, NULL);
+    if (img->image) vkDestroyImage(gpu->device, img->image, NULL);
+    if (img->memory) vkFreeMemory(gpu->device, img->memory, NULL);
+    memset(img, 0, sizeof *img);
+}
+
+pg_result pg_gpu_begin_once(pg_gpu *gpu, VkCommandBuffer *out, pg_error *err)
+{
+    VkCommandBufferAllocateInfo ai = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+        .commandPool = gpu->cmd_pool,
+        .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+        .commandBufferCount = 1,
+    };
+    PG_VK_TRY(err, vkAllocateCommandBuffers(gpu->device, &ai, out));
+    VkCommandBufferBeginInfo bi = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
+    };
+    VkResult r = vkBeginCommandBuffer(*out, &bi);
+    if (r != VK_SUCCESS) {
+        vkFreeCommandBuffers(gpu->device, gpu->cmd_pool, 1, out);
+        return pg_fail(err, PG_ERR_VULKAN, "vkBeginCommandBuffer failed: %s", pg_vk_result_name(r));
+    }
+    return PG_OK;
+}
+
+pg_result pg_gpu_end_once(pg_gpu *gpu, VkCommandBuffer cmd, pg_error *err)
+{
+    pg_result res = PG_OK;
+    VkResult r = vkEndCommandBuffer(cmd);
+    if (r == VK_SUCCESS) {
+        VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO,
+                                         .commandBuffer = cmd};
+        VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2,
+                            .commandBufferInfoCount = 1,
+                            .pCommandBufferInfos = &cbi};
+        r = vkQueueSubmit2(gpu->queue, 1, &si, VK_NULL_HANDLE);
+        if (r == VK_SUCCESS) r = vkQueueWaitIdle(gpu->queue);
+    }
+    if (r != VK_SUCCESS)
+        res = pg_fail(err, PG_ERR_VULKAN, "one-shot submit failed: %s", pg_vk_result_name(r));
+    vkFreeCommandBuffers(gpu->device, gpu->cmd_pool, 1, &cmd);
+    return res;
+}
+
+VkImageMemoryBarrier2 pg_image_barrier(VkImage image, VkImageAspectFlags aspect,
+                                       VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                                       VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access,
+                                       VkImageLayout old_layout, VkImageLayout new_layout)
+{
+    VkImageMemoryBarrier2 b = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+        .srcStageMask = src_stage,
+        .srcAccessMask = src_access,
+        .dstStageMask = dst_stage,
+        .dstAccessMask = dst_access,
+        .oldLayout = old_layout,
+        .newLayout = new_layout,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .image = image,
+        .subresourceRange = {aspect, 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS},
+    };
+    return b;
+}
+
+void pg_cmd_barriers(VkCommandBuffer cmd, uint32_t n_images, const VkImageMemoryBarrier2 *images,
+                     uint32_t n_buffers, const VkBufferMemoryBarrier2 *buffers)
+{
+    if (!n_images && !n_buffers) return;
+    VkDependencyInfo dep = {
+        .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+        .bufferMemoryBarrierCount = n_buffers,
+        .pBufferMemoryBarriers = buffers,
+        .imageMemoryBarrierCount = n_images,
+        .pImageMemoryBarriers = images,
+    };
+    vkCmdPipelineBarrier2(cmd, &dep);
+}

@@ -1,0 +1,114 @@
+/* vk_context.h - the Vulkan device passgraph renders with: instance (validation optional),
+ * physical device choice, one graphics+compute queue, Vulkan 1.3 with synchronization2 and
+ * dynamic rendering, debug names, one-shot command helpers and plain buffer/image allocation.
+ *
+ * Validation: with desc.validation the Khronos layer runs with synchronization validation on;
+ * every message it sends is printed to stderr and counted (gpu->validation_messages), so tests
+ * can fail on any.
+ */
+#ifndef PG_VK_CONTEXT_H
+#define PG_VK_CONTEXT_H
+
+#include <stdio.h>
+#include <vulkan/vulkan.h>
+
+#include "pg_common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pg_gpu_desc {
+    bool validation;          /* enable VK_LAYER_KHRONOS_validation + sync validation */
+    int device_index;         /* -1: pick automatically (discrete > integrated > cpu) */
+    const char *device_match; /* optional substring of the device name */
+    bool quiet;               /* do not print the chosen device */
+} pg_gpu_desc;
+
+typedef struct pg_gpu {
+    VkInstance instance;
+    VkDebugUtilsMessengerEXT messenger;
+    VkPhysicalDevice phys;
+    VkDevice device;
+    VkQueue queue;
+    uint32_t queue_family;
+    VkPhysicalDeviceProperties props;
+    VkPhysicalDeviceMemoryProperties mem_props;
+    VkCommandPool cmd_pool;      /* for one-shot commands */
+    float timestamp_period_ns;   /* ns per tick */
+    uint32_t timestamp_valid_bits;
+    bool debug_utils;
+    bool validation;
+    uint32_t validation_messages; /* errors + warnings reported by the validation layer */
+    uint32_t validation_errors;
+    PFN_vkSetDebugUtilsObjectNameEXT set_object_name;
+    PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label;
+    PFN_vkCmdEndDebugUtilsLabelEXT cmd_end_label;
+} pg_gpu;
+
+pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err);
+void pg_gpu_destroy(pg_gpu *gpu);
+/* Prints the Vulkan devices (index, name, type, API version) to f. */
+pg_result pg_gpu_list_devices(FILE *f, pg_error *err);
+
+/* Debug name for any Vulkan object (no-op without VK_EXT_debug_utils). */
+void pg_gpu_name(pg_gpu *gpu, VkObjectType type, uint64_t handle, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+const char *pg_vk_result_name(VkResult r);
+/* Evaluates a Vulkan call; on failure fills err with the call text and VkResult and returns. */
+#define PG_VK_TRY(err, call)                                                                 \
+    do {                                                                                     \
+        VkResult pg_vk_r_ = (call);                                                          \
+        if (pg_vk_r_ != VK_SUCCESS)                                                          \
+            return pg_fail((err), PG_ERR_VULKAN, "%s failed: %s (%s:%d)", #call,             \
+                           pg_vk_result_name(pg_vk_r_), __FILE__, __LINE__);                 \
+    } while (0)
+
+uint32_t pg_gpu_memory_type(const pg_gpu *gpu, uint32_t type_bits, VkMemoryPropertyFlags want);
+
+typedef struct pg_buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    VkDeviceSize size;
+    void *mapped; /* non-NULL when host visible */
+} pg_buffer;
+
+/* host_visible: HOST_VISIBLE|HOST_COHERENT, persistently mapped; else DEVICE_LOCAL. */
+pg_result pg_buffer_create(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags usage,
+                           bool host_visible, const char *name, pg_buffer *out, pg_error *err);
+void pg_buffer_destroy(pg_gpu *gpu, pg_buffer *b);
+
+typedef struct pg_image {
+    VkImage image;
+    VkDeviceMemory memory;
+    VkImageView view;
+    VkFormat format;
+    uint32_t width, height, mips;
+} pg_image;
+
+pg_result pg_image_create(pg_gpu *gpu, VkFormat format, uint32_t w, uint32_t h, uint32_t mips,
+                          VkImageUsageFlags usage, const char *name, pg_image *out,
+                          pg_error *err);
+void pg_image_destroy(pg_gpu *gpu, pg_image *img);
+VkImageAspectFlags pg_vk_aspect(VkFormat f);
+
+/* One-shot commands: begin returns a recording command buffer; end submits, waits, frees. */
+pg_result pg_gpu_begin_once(pg_gpu *gpu, VkCommandBuffer *out, pg_error *err);
+pg_result pg_gpu_end_once(pg_gpu *gpu, VkCommandBuffer cmd, pg_error *err);
+
+/* Small synchronization2 helpers (niagara style). */
+VkImageMemoryBarrier2 pg_image_barrier(VkImage image, VkImageAspectFlags aspect,
+                                       VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                                       VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access,
+                                       VkImageLayout old_layout, VkImageLayout new_layout);
+void pg_cmd_barriers(VkCommandBuffer cmd, uint32_t n_images, const VkImageMemoryBarrier2 *images,
+                     uint32_t n_buffers, const VkBufferMemoryBarrier2 *buffers);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,211 @@
+#include "vk_pipeline.h"
+
+#include <stddef.h>
+#include <string.h>
+
+#include "scene.h"
+
+pg_result pg_pipeline_layout_create(pg_gpu *gpu, uint32_t n_sets, const VkDescriptorSetLayout *sets,
+                                    uint32_t push_bytes, VkPipelineLayout *out, pg_error *err)
+{
+    VkPushConstantRange pr = {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT,
+                              0, push_bytes};
+    VkPipelineLayoutCreateInfo ci = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+        .setLayoutCount = n_sets,
+        .pSetLayouts = sets,
+        .pushConstantRangeCount = push_bytes ? 1 : 0,
+        .pPushConstantRanges = &pr,
+    };
+    PG_VK_TRY(err, vkCreatePipelineLayout(gpu->device, &ci, NULL, out));
+    return PG_OK;
+}
+
+pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, const char *name, VkPipeline *out,
+                                 pg_error *err)
+{
+    VkPipelineShaderStageCreateInfo stages[2] = {
+        {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_VERTEX_BIT,
+         .module = d->vs, .pName = "main"},
+        {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
+         .module = d->fs, .pName = "main"},
+    };
+    VkVertexInputBindingDescription vb = {0, sizeof(pg_vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    VkVertexInputAttributeDescription va[4] = {
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(pg_vertex, position)},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(pg_vertex, normal)},
+        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(pg_vertex, uv)},
+        {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(pg_vertex, tangent)},
+    };
+    VkPipelineVertexInputStateCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    if (d->scene_vertices) {
+        vi.vertexBindingDescriptionCount = 1;
+        vi.pVertexBindingDescriptions = &vb;
+        vi.vertexAttributeDescriptionCount = 4;
+        vi.pVertexAttributeDescriptions = va;
+    }
+    VkPipelineInputAssemblyStateCreateInfo ia = {.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
+                                                 .topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
+    VkPipelineViewportStateCreateInfo vp = {.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO,
+                                            .viewportCount = 1, .scissorCount = 1};
+    VkPipelineRasterizationStateCreateInfo rs = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO,
+        .polygonMode = VK_POLYGON_MODE_FILL,
+        .cullMode = d->cull,
+        .frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE,
+        .lineWidth = 1.0f,
+    };
+    VkPipelineMultisampleStateCreateInfo ms = {.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
+                                               .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT};
+    VkPipelineDepthStencilStateCreateInfo ds = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
+        .depthTestEnable = d->depth_test,
+        .depthWriteEnable = d->depth_write,
+        .depthCompareOp = d->depth_compare ? d->depth_compare : VK_COMPARE_OP_LESS,
+    };
+    VkPipelineColorBlendAttachmentState att[8];
+    memset(att, 0, sizeof att);
+    for (uint32_t i = 0; i < d->n_color && i < 8; i++)
+        att[i].colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                                VK_COLOR_COMPONENT_A_BIT;
+    VkPipelineColorBlendStateCreateInfo cb = {.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
+                                              .attachmentCount = d->n_color, .pAttachments = att};
+    VkDynamicState dyn[3] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR, VK_DYNAMIC_STATE_CULL_MODE};
+    VkPipelineDynamicStateCreateInfo dy = {.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
+                                           .dynamicStateCount = d->dynamic_cull ? 3 : 2, .pDynamicStates = dyn};
+    VkPipelineRenderingCreateInfo ri = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO,
+        .colorAttachmentCount = d->n_color,
+        .pColorAttachmentFormats = d->color_formats,
+        .depthAttachmentFormat = d->depth_format,
+    };
+    VkGraphicsPipelineCreateInfo ci = {
+        .sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+        .pNext = &ri,
+        .stageCount = 2,
+        .pStages = stages,
+        .pVertexInputState = &vi,
+        .pInputAssemblyState = &ia,
+        .pViewportState = &vp,
+        .pRasterizationState = &rs,
+        .pMultisampleState = &ms,
+        .pDepthStencilState = &ds,
+        .pColorBlendState = &cb,
+        .pDynamicState = &dy,
+        .layout = d->layout,
+    };
+    PG_VK_TRY(err, vkCreateGraphicsPipelines(gpu->device, VK_NULL_HANDLE, 1, &ci, NULL, out));
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_PIPELINE, (uint64_t)*out, "%s", name);
+    return PG_OK;
+}
+
+pg_result pg_compute_pipeline_create(pg_gpu *gpu, VkPipelineLayout layout, VkShaderModule cs, const char *name,
+                                     VkPipeline *out, pg_error *err)
+{
+    VkComputePipelineCreateInfo ci = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                  .module = cs, .pName = "main"},
+        .layout = layout,
+    };
+    PG_VK_TRY(err, vkCreateComputePipelines(gpu->device, VK_NULL_HANDLE, 1, &ci, NULL, out));
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_PIPELINE, (uint64_t)*out, "%s", name);
+    return PG_OK;
+}
+
+pg_result pg_pass_set_create(pg_gpu *gpu, uint32_t n, const pg_set_binding *b, const char *name, pg_pass_set *out,
+                             pg_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (n > 16) return pg_fail(err, PG_ERR_LIMIT, "%s: too many bindings", name);
+    VkDescriptorSetLayoutBinding lb[16];
+    VkDescriptorPoolSize ps[16];
+    for (uint32_t i = 0; i < n; i++) {
+        lb[i] = (VkDescriptorSetLayoutBinding){i, b[i].type, 1,
+                                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
+                                                   VK_SHADER_STAGE_COMPUTE_BIT,
+                                               NULL};
+        ps[i] = (VkDescriptorPoolSize){b[i].type, 1};
+    }
+    VkDescriptorSetLayoutCreateInfo lci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                           .bindingCount = n, .pBindings = lb};
+    PG_VK_TRY(err, vkCreateDescriptorSetLayout(gpu->device, &lci, NULL, &out->layout));
+    VkDescriptorPoolCreateInfo pci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                      .maxSets = 1, .poolSizeCount = n, .pPoolSizes = ps};
+    PG_VK_TRY(err, vkCreateDescriptorPool(gpu->device, &pci, NULL, &out->pool));
+    VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                      .descriptorPool = out->pool, .descriptorSetCount = 1,
+                                      .pSetLayouts = &out->layout};
+    PG_VK_TRY(err, vkAllocateDescriptorSets(gpu->device, &ai, &out->set));
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_DESCRIPTOR_SET, (uint64_t)out->set, "%s", name);
+    VkWriteDescriptorSet w[16];
+    VkDescriptorBufferInfo bi[16];
+    VkDescriptorImageInfo ii[16];
+    for (uint32_t i = 0; i < n; i++) {
+        w[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = out->set,
+                                      .dstBinding = i, .descriptorCount = 1, .descriptorType = b[i].type};
+        if (b[i].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || b[i].type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER) {
+            bi[i] = (VkDescriptorBufferInfo){b[i].res->buffer, 0, VK_WHOLE_SIZE};
+            w[i].pBufferInfo = &bi[i];
+        } else {
+            VkImageLayout l = b[i].layout;
+            if (!l)
+                l = b[i].type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? VK_IMAGE_LAYOUT_GENERAL
+                                                                  : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+            ii[i] = (VkDescriptorImageInfo){b[i].sampler, b[i].res->view, l};
+            w[i].pImageInfo = &ii[i];
+        }
+    }
+    vkUpdateDescriptorSets(gpu->device, n, w, 0, NULL);
+    return PG_OK;
+}
+
+void pg_pass_set_destroy(pg_gpu *gpu, pg_pass_set *s)
+{
+    if (s->pool) vkDestroyDescriptorPool(gpu->device, s->pool, NULL);
+    if (s->layout) vkDestroyDescriptorSetLayout(gpu->device, s->layout, NULL);
+    memset(s, 0, sizeof *s);
+}
+
+void pg_cmd_viewport(VkCommandBuffer cmd, uint32_t w, uint32_t h)
+{
+    VkViewport vp = {0, 0, (float)w, (float)h, 0, 1};
+    VkRect2D sc = {{0, 0}, {w, h}};
+    vkCmdSetViewport(cmd, 0, 1, &vp);
+    vkCmdSetScissor(cmd, 0, 1, &sc);
+}
+
+void pg_cmd_begin_rendering(VkCommandBuffer cmd, uint32_t w, uint32_t h, uint32_t n_color,
+                            const VkImageView *color_views, const VkClearColorValue *clear_colors,
+                            VkImageView depth_view, bool clear_depth, float depth_clear)
+{
+    VkRenderingAttachmentInfo ca[8];
+    for (uint32_t i = 0; i < n_color && i < 8; i++) {
+        ca[i] = (VkRenderingAttachmentInfo){
+            .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+            .imageView = color_views[i],
+            .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+            .loadOp = clear_colors ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD,
+            .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+        };
+        if (clear_colors) ca[i].clearValue.color = clear_colors[i];
+    }
+    VkRenderingAttachmentInfo da = {
+        .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+        .imageView = depth_view,
+        .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+        .loadOp = clear_depth ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD,
+        .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+        .clearValue.depthStencil = {depth_clear, 0},
+    };
+    VkRenderingInfo ri = {
+        .sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
+        .renderArea = {{0, 0}, {w, h}},
+        .layerCount = 1,
+        .colorAttachmentCount = n_color,
+        .pColorAttachments = ca,
+        .pDepthAttachment = depth_view ? &da : NULL,
+    };
+    vkCmdBeginRendering(cmd, &ri);
+    pg_cmd_viewport(cmd, w, h);
+}

@@ -1,0 +1,62 @@
+/* vk_pipeline.h - small builders passes share: pipeline layouts, graphics pipelines for dynamic
+ * rendering, compute pipelines, a pass-private descriptor set over graph resources, and
+ * vkCmdBeginRendering with sensible defaults. Descriptor structs: zero means default. */
+#ifndef PG_VK_PIPELINE_H
+#define PG_VK_PIPELINE_H
+
+#include "graph_execute.h"
+#include "vk_context.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pg_gfx_pipeline_desc {
+    VkPipelineLayout layout;
+    VkShaderModule vs, fs;
+    uint32_t n_color;
+    VkFormat color_formats[8];
+    VkFormat depth_format;          /* VK_FORMAT_UNDEFINED: none */
+    bool depth_test, depth_write;
+    VkCompareOp depth_compare;      /* 0 (NEVER) -> LESS */
+    VkCullModeFlags cull;           /* 0 -> none */
+    bool dynamic_cull;              /* cull mode set per draw with vkCmdSetCullMode */
+    bool scene_vertices;            /* pg_vertex input at binding 0; else no vertex input */
+} pg_gfx_pipeline_desc;
+
+pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, const char *name,
+                                 VkPipeline *out, pg_error *err);
+pg_result pg_compute_pipeline_create(pg_gpu *gpu, VkPipelineLayout layout, VkShaderModule cs,
+                                     const char *name, VkPipeline *out, pg_error *err);
+pg_result pg_pipeline_layout_create(pg_gpu *gpu, uint32_t n_sets, const VkDescriptorSetLayout *sets,
+                                    uint32_t push_bytes, VkPipelineLayout *out, pg_error *err);
+
+/* One binding of a pass-private descriptor set. */
+typedef struct pg_set_binding {
+    VkDescriptorType type;          /* STORAGE_BUFFER, UNIFORM_BUFFER, COMBINED_IMAGE_SAMPLER, STORAGE_IMAGE */
+    const pg_phys_resource *res;
+    VkSampler sampler;              /* for COMBINED_IMAGE_SAMPLER */
+    VkImageLayout layout;           /* for images; 0 -> SHADER_READ_ONLY / GENERAL by type */
+} pg_set_binding;
+
+typedef struct pg_pass_set {
+    VkDescriptorSetLayout layout;
+    VkDescriptorPool pool;
+    VkDescriptorSet set;
+} pg_pass_set;
+
+/* Bindings are numbered 0..n-1, visible to all stages. */
+pg_result pg_pass_set_create(pg_gpu *gpu, uint32_t n, const pg_set_binding *bindings, const char *name,
+                             pg_pass_set *out, pg_error *err);
+void pg_pass_set_destroy(pg_gpu *gpu, pg_pass_set *s);
+
+/* clear_colors NULL -> load. depth_view VK_NULL_HANDLE -> none. */
+void pg_cmd_begin_rendering(VkCommandBuffer cmd, uint32_t w, uint32_t h, uint32_t n_color,
+                            const VkImageView *color_views, const VkClearColorValue *clear_colors,
+                            VkImageView depth_view, bool clear_depth, float depth_clear);
+void pg_cmd_viewport(VkCommandBuffer cmd, uint32_t w, uint32_t h);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

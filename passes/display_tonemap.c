@@ -1,0 +1,118 @@
+/* display_tonemap.c - scene-linear HDR -> 8-bit display image (a placeholder for the OpenColorIO
+ * display pass): exposure, then "clamp" | "reinhard" | "aces" (default clamp, which keeps the
+ * reference projects' look: output = albedo x light sum, saturated at 1); sRGB encoding comes
+ * from writing an rgba8_srgb target.
+ * Slots: reads [hdr] (sampled, fragment); writes [ldr]. Options: exposure (> 0, default 1),
+ * operator. */
+#include <string.h>
+
+#include "graph_execute.h"
+#include "pass_api.h"
+#include "shader.h"
+#include "vk_pipeline.h"
+
+typedef struct display_tonemap {
+    pg_pass_set set;
+    VkSampler sampler;
+    VkPipelineLayout layout;
+    VkPipeline pipeline;
+    float exposure;
+} display_tonemap;
+
+static const char *const k_ops[] = {"clamp", "reinhard", "aces", NULL};
+
+static pg_result dt_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
+{
+    static const char *const known[] = {"exposure", "operator", NULL};
+    pg_result r;
+    double exposure;
+    int op;
+    if ((r = pg_opt_check_known(in->desc, known, err))) return r;
+    if ((r = pg_opt_float(in->desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err))) return r;
+    if ((r = pg_opt_enum(in->desc, "operator", k_ops, 0, &op, err))) return r;
+    pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    char def[32];
+    snprintf(def, sizeof def, "PG_TONEMAP=%d", op);
+    pg_decl_define(out, def);
+    return PG_OK;
+}
+
+static pg_result dt_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
+{
+    display_tonemap *p = self;
+    pg_gpu *gpu = ctx->gpu;
+    pg_result r;
+    double exposure = 1.0;
+    if ((r = pg_opt_float(ctx->desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err))) return r;
+    p->exposure = (float)exposure;
+    VkSamplerCreateInfo sci = {
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = VK_FILTER_NEAREST,
+        .minFilter = VK_FILTER_NEAREST,
+        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+    };
+    PG_VK_TRY(err, vkCreateSampler(gpu->device, &sci, NULL, &p->sampler));
+    pg_set_binding b = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[0], p->sampler, 0};
+    if ((r = pg_pass_set_create(gpu, 1, &b, ctx->pass->name, &p->set, err))) return r;
+    VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
+    if ((r = pg_pipeline_layout_create(gpu, 2, sets, sizeof(float), &p->layout, err))) return r;
+    const char *defs[PG_MAX_DEFINES];
+    for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) defs[i] = ctx->pass->decl.defines[i];
+    VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE;
+    if ((r = pg_shader_module(gpu, "fullscreen.vert", VK_SHADER_STAGE_VERTEX_BIT, NULL, 0, &vs, err))) goto out;
+    if ((r = pg_shader_module(gpu, "display_tonemap.frag", VK_SHADER_STAGE_FRAGMENT_BIT, defs,
+                              ctx->pass->decl.n_defines, &fs, err)))
+        goto out;
+    pg_gfx_pipeline_desc d = {
+        .layout = p->layout,
+        .vs = vs,
+        .fs = fs,
+        .n_color = 1,
+        .color_formats = {ctx->slots[1]->format},
+    };
+    r = pg_gfx_pipeline_create(gpu, &d, ctx->pass->name, &p->pipeline, err);
+out:
+    if (vs) vkDestroyShaderModule(gpu->device, vs, NULL);
+    if (fs) vkDestroyShaderModule(gpu->device, fs, NULL);
+    return r;
+}
+
+static void dt_record(void *self, const pg_pass_record_ctx *ctx)
+{
+    display_tonemap *p = self;
+    const pg_phys_resource *ldr = ctx->slots[1];
+    VkClearColorValue clear = {{0, 0, 0, 1}};
+    pg_cmd_begin_rendering(ctx->cmd, ldr->width, ldr->height, 1, &ldr->view, &clear, VK_NULL_HANDLE, false, 0);
+    VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
+    vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
+    vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->layout, 0, 2, sets, 0, NULL);
+    vkCmdPushConstants(ctx->cmd, p->layout,
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       sizeof(float), &p->exposure);
+    vkCmdDraw(ctx->cmd, 3, 1, 0, 0);
+    vkCmdEndRendering(ctx->cmd);
+}
+
+static void dt_destroy(void *self, pg_gpu *gpu)
+{
+    display_tonemap *p = self;
+    if (p->pipeline) vkDestroyPipeline(gpu->device, p->pipeline, NULL);
+    if (p->layout) vkDestroyPipelineLayout(gpu->device, p->layout, NULL);
+    if (p->sampler) vkDestroySampler(gpu->device, p->sampler, NULL);
+    pg_pass_set_destroy(gpu, &p->set);
+}
+
+const pg_pass_type pg_pass_display_tonemap = {
+    .name = "display_tonemap",
+    .summary = "graphics: HDR -> 8-bit sRGB display image (exposure + clamp/Reinhard/ACES)",
+    .read_slots = "hdr",
+    .write_slots = "ldr",
+    .instance_size = sizeof(display_tonemap),
+    .declare = dt_declare,
+    .create = dt_create,
+    .record = dt_record,
+    .destroy = dt_destroy,
+};

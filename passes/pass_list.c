@@ -1,0 +1,14 @@
+#include "pass_list.h"
+
+#include <string.h>
+
+void pg_register_builtin_passes(pg_pass_registry *reg)
+{
+    static const pg_pass_type *const builtin[] = {
+        &pg_pass_light_animate,
+        &pg_pass_forward_naive,
+        &pg_pass_display_tonemap,
+    };
+    memset(reg, 0, sizeof *reg);
+    for (size_t i = 0; i < sizeof builtin / sizeof builtin[0]; i++) reg->types[reg->count++] = builtin[i];
+}

@@ -1,0 +1,15 @@
+/* pass_list.h - the built-in pass types. Adding a pass type = one file in passes/ exporting a
+ * const pg_pass_type, plus one line in pass_list.c. */
+#ifndef PG_PASS_LIST_H
+#define PG_PASS_LIST_H
+
+#include "pass_api.h"
+
+extern const pg_pass_type pg_pass_light_animate;
+extern const pg_pass_type pg_pass_forward_naive;
+extern const pg_pass_type pg_pass_display_tonemap;
+
+/* Fills reg with every built-in pass type. */
+void pg_register_builtin_passes(pg_pass_registry *reg);
+
+#endif

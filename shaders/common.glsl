@@ -1,0 +1,34 @@
+// common.glsl - declarations shared by every passgraph shader.
+// FrameUniforms mirrors pg_frame_uniforms (core/frame.h); GpuMaterial mirrors pg_gpu_material
+// (core/scene_gpu.h); Light is the 32-byte record the light_animate pass writes.
+
+struct Light {
+    vec4 pos_radius;   // xyz world position, w range R
+    vec4 color;        // rgb radiant colour (already times intensity), w unused
+};
+
+struct GpuMaterial {
+    vec4 base_color;
+    ivec4 tex;         // base colour texture, normal texture (-1 none), alpha mode, double sided
+    vec4 params;       // alpha cutoff, normal scale, specular, shininess
+};
+
+#define FRAME_UNIFORMS_BLOCK                                                                  \
+    layout(set = 0, binding = 0, std140) uniform FrameUniforms {                                 \
+        mat4 view; mat4 proj; mat4 view_proj; mat4 inv_view; mat4 inv_proj;                      \
+        vec4 camera_pos;    /* w = time */                                                       \
+        vec4 light_box_min; /* w = radius */                                                     \
+        vec4 light_box_max; /* w = intensity */                                                  \
+        vec4 light_params;  /* saturation, speed, motion (0 noise, 1 static), min distance */    \
+        uvec4 counts;       /* light count, seed, width, height */                               \
+        vec4 clip;          /* near, far */                                                      \
+    } frame;
+
+const float PG_HDR_MAX = 65000.0;
+
+// Keeps HDR values finite and inside half-float range (NaN -> 0).
+vec3 pg_hdr_sanitize(vec3 c)
+{
+    c = mix(c, vec3(0.0), isnan(c));
+    return clamp(c, vec3(0.0), vec3(PG_HDR_MAX));
+}

@@ -1,0 +1,414 @@
+#!/usr/bin/env python3
+"""Generates the glTF robustness corpus (tiny hostile/malformed files + a few valid ones) and its
+MANIFEST. Run from anywhere: `python3 tests/corpus/gltf/gen_corpus.py`. The output is committed;
+the script is kept so the corpus can be regenerated or extended. Deterministic.
+
+MANIFEST lines: `FILE  CODE  SUBSTRING` - loading FILE with pg_scene_load_gltf must return CODE
+(a pg_result name) and, for errors, a message containing SUBSTRING (the rest of the line).
+PG_OK lines expect a successful load ('-' as substring). '#' starts a comment line.
+"""
+import base64
+import json
+import os
+import struct
+import zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+manifest = []
+
+
+def b64(data):
+    return "data:application/octet-stream;base64," + base64.b64encode(data).decode()
+
+
+def f32(*v):
+    return struct.pack("<%df" % len(v), *v)
+
+
+def u16(*v):
+    return struct.pack("<%dH" % len(v), *v)
+
+
+def u32(*v):
+    return struct.pack("<%dI" % len(v), *v)
+
+
+def pad4(b):
+    return b + b"\0" * ((4 - len(b) % 4) % 4)
+
+
+TRI_POS = f32(0, 0, 0, 1, 0, 0, 0, 1, 0)          # 36 bytes
+TRI_NRM = f32(0, 0, 1, 0, 0, 1, 0, 0, 1)          # 36 bytes
+TRI_UV = f32(0, 0, 1, 0, 0, 1)                    # 24 bytes
+TRI_IDX16 = pad4(u16(0, 1, 2))                    # 8 bytes
+
+
+def base_doc(pos=TRI_POS, idx=TRI_IDX16, idx_ct=5123, idx_count=3, extra_bin=b"",
+             uri=None, with_normals=False):
+    """One triangle: bufferView 0 = positions, 1 = indices (+2 = normals)."""
+    data = pos + idx
+    views = [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)},
+             {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx)}]
+    attrs = {"POSITION": 0}
+    accessors = [{"bufferView": 0, "componentType": 5126, "count": len(pos) // 12,
+                  "type": "VEC3"},
+                 {"bufferView": 1, "componentType": idx_ct, "count": idx_count,
+                  "type": "SCALAR"}]
+    if with_normals:
+        views.append({"buffer": 0, "byteOffset": len(data), "byteLength": len(TRI_NRM)})
+        data += TRI_NRM
+        accessors.append({"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC3"})
+        attrs["NORMAL"] = 2
+    data += extra_bin
+    return {
+        "asset": {"version": "2.0", "generator": "passgraph gen_corpus.py"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": attrs, "indices": 1}]}],
+        "accessors": accessors,
+        "bufferViews": views,
+        "buffers": [{"byteLength": len(data), "uri": uri if uri else b64(data)}],
+    }, data
+
+
+def write(name, doc_or_text, code, substring="-"):
+    path = os.path.join(HERE, name)
+    if isinstance(doc_or_text, (bytes, bytearray)):
+        open(path, "wb").write(doc_or_text)
+    elif isinstance(doc_or_text, str):
+        open(path, "w").write(doc_or_text)
+    else:
+        open(path, "w").write(json.dumps(doc_or_text, indent=1) + "\n")
+    manifest.append((name, code, substring))
+
+
+def png_chunk(tag, data):
+    return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF)
+
+
+def png_rgba(w, h, pixels):
+    raw = b"".join(b"\0" + bytes(pixels[y * w * 4:(y + 1) * w * 4]) for y in range(h))
+    return (b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
+            + png_chunk(b"IDAT", zlib.compress(raw)) + png_chunk(b"IEND", b""))
+
+
+def png_data_uri(png):
+    return "data:image/png;base64," + base64.b64encode(png).decode()
+
+
+def glb(doc, binchunk):
+    j = json.dumps(doc).encode()
+    j += b" " * ((4 - len(j) % 4) % 4)
+    body = struct.pack("<I", len(j)) + struct.pack("<I", 0x4E4F534A) + j
+    if binchunk is not None:
+        binchunk = pad4(binchunk)
+        body += struct.pack("<I", len(binchunk)) + struct.pack("<I", 0x004E4942) + binchunk
+    return b"glTF" + struct.pack("<II", 2, 12 + len(body)) + body
+
+
+for f in os.listdir(HERE):
+    if f.endswith((".gltf", ".glb", ".bin", ".png")) or f == "MANIFEST":
+        os.remove(os.path.join(HERE, f))
+
+# ------------------------------------------------------------------------------------------------
+# syntax / top level
+write("not_json.gltf", "this is not JSON {\n", "PG_ERR_PARSE", "JSON syntax error")
+write("empty.gltf", "", "PG_ERR_PARSE", "empty file")
+write("truncated_json.gltf", '{"asset": {"version": "2.0"}, "nodes": [', "PG_ERR_PARSE",
+      "JSON syntax error")
+write("array_root.gltf", "[1, 2, 3]\n", "PG_ERR_GLTF", "root: expected a JSON object")
+d, _ = base_doc()
+del d["asset"]
+write("no_asset.gltf", d, "PG_ERR_GLTF", "asset: missing")
+d, _ = base_doc()
+d["asset"] = {"generator": "x"}
+write("no_version.gltf", d, "PG_ERR_GLTF", "asset.version: missing")
+d, _ = base_doc()
+d["asset"]["version"] = "1.0"
+write("version_1.gltf", d, "PG_ERR_GLTF", "asset.version: '1.0' is not supported")
+d, _ = base_doc()
+d["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+d["extensionsUsed"] = ["KHR_draco_mesh_compression"]
+write("required_extension.gltf", d, "PG_ERR_GLTF",
+      "extensionsRequired: 'KHR_draco_mesh_compression' is not supported")
+manifest.append(("does_not_exist.gltf", "PG_ERR_IO", "cannot open"))
+
+# ------------------------------------------------------------------------------------------------
+# buffers and views
+d, data = base_doc()
+d["buffers"][0]["uri"] = b64(data[:30])
+write("truncated_buffer.gltf", d, "PG_ERR_GLTF",
+      "buffers[0]: data URI holds 30 bytes but byteLength is 44")
+d, data = base_doc(uri="short.bin")
+d["buffers"][0]["byteLength"] = 100
+open(os.path.join(HERE, "short.bin"), "wb").write(data)
+write("bytelength_larger_than_file.gltf", d, "PG_ERR_GLTF",
+      "buffers[0]: 'short.bin' has 44 bytes but byteLength is 100")
+d, _ = base_doc(uri="missing.bin")
+write("missing_bin.gltf", d, "PG_ERR_GLTF", "buffers[0]: cannot open 'missing.bin'")
+d, data = base_doc()
+d["buffers"][0]["uri"] = "data:foo/bar;base64,AAAA"
+write("bad_data_uri.gltf", d, "PG_ERR_GLTF", "buffers[0].uri: unsupported data URI")
+d, _ = base_doc()
+d["bufferViews"][0]["byteOffset"] = 40
+write("view_past_buffer.gltf", d, "PG_ERR_GLTF",
+      "bufferViews[0]: byteOffset 40 + byteLength 36 exceeds buffers[0] (44 bytes)")
+d, _ = base_doc()
+d["bufferViews"][0]["buffer"] = 3
+write("view_bad_buffer.gltf", d, "PG_ERR_GLTF", "bufferViews[0].buffer: buffers index 3 out of range")
+d, _ = base_doc()
+d["accessors"][0]["count"] = 10
+write("accessor_past_view.gltf", d, "PG_ERR_GLTF", "accessors[0]: count 10")
+d, _ = base_doc()
+d["accessors"][0]["byteOffset"] = 4
+write("accessor_offset_past_view.gltf", d, "PG_ERR_GLTF", "exceeds bufferView 0 (36 bytes)")
+d, _ = base_doc()
+d["accessors"][0]["count"] = 2147483648
+write("huge_accessor_count.gltf", d, "PG_ERR_GLTF", "accessors[0]: count 2147483648")
+d, _ = base_doc()
+d["accessors"][1]["count"] = 4294967296 * 4
+write("huge_index_count.gltf", d, "PG_ERR_GLTF", "accessors[1]: count 17179869184")
+d, _ = base_doc()
+d["bufferViews"][0]["byteStride"] = 6
+write("bad_byte_stride.gltf", d, "PG_ERR_GLTF", "bufferViews[0].byteStride: 6 is not a multiple of 4")
+d, _ = base_doc()
+d["bufferViews"][0]["byteStride"] = 8
+write("stride_smaller_than_element.gltf", d, "PG_ERR_GLTF",
+      "byteStride 8 is smaller than the element (12 bytes)")
+d, _ = base_doc()
+d["accessors"][0]["sparse"] = {"count": 1,
+                               "indices": {"bufferView": 1, "componentType": 5123},
+                               "values": {"bufferView": 0}}
+write("sparse_accessor.gltf", d, "PG_ERR_GLTF", "accessors[0]: sparse accessors not supported")
+d, _ = base_doc()
+del d["accessors"][0]["bufferView"]
+write("accessor_without_view.gltf", d, "PG_ERR_GLTF", "accessors[0]: has no bufferView")
+d, _ = base_doc()
+d["accessors"][0]["componentType"] = 5130
+write("double_component_type.gltf", d, "PG_ERR_GLTF",
+      "accessors[0].componentType: 5130 is not a glTF component type")
+d, _ = base_doc()
+d["accessors"][0]["type"] = "VEC5"
+write("bad_accessor_type.gltf", d, "PG_ERR_GLTF", "accessors[0].type: missing or not SCALAR")
+
+# ------------------------------------------------------------------------------------------------
+# attributes, indices, values
+d, _ = base_doc()
+d["accessors"][0]["type"] = "VEC2"
+write("position_vec2.gltf", d, "PG_ERR_GLTF", "accessors[0]: POSITION must be VEC3 FLOAT")
+d, _ = base_doc()
+d["accessors"][0]["componentType"] = 5123
+d["accessors"][0]["count"] = 3
+write("position_ushort.gltf", d, "PG_ERR_GLTF", "accessors[0]: POSITION must be VEC3 FLOAT")
+d, _ = base_doc()
+d["meshes"][0]["primitives"][0]["attributes"] = {"NORMAL": 0}
+write("no_position.gltf", d, "PG_ERR_GLTF", "meshes[0].primitives[0].attributes: POSITION missing")
+d, _ = base_doc(with_normals=True)
+d["accessors"][2]["count"] = 2
+write("normal_count_mismatch.gltf", d, "PG_ERR_GLTF",
+      "NORMAL (accessors[2]) has 2 elements but POSITION has 3")
+d, _ = base_doc()
+d["accessors"].append({"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"})
+d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2
+write("texcoord_vec3.gltf", d, "PG_ERR_GLTF", "accessors[2]: TEXCOORD_0 must be VEC2 FLOAT")
+d, _ = base_doc(idx=TRI_IDX16)
+d["accessors"][1]["componentType"] = 5126
+d["accessors"][1]["count"] = 2
+write("float_indices.gltf", d, "PG_ERR_GLTF", "accessors[1]: indices must be SCALAR UNSIGNED_BYTE")
+d, _ = base_doc(idx=pad4(u16(0, 1, 7)))
+write("index_out_of_range_16.gltf", d, "PG_ERR_GLTF",
+      "meshes[0].primitives[0]: index 7 at position 2 is out of range (vertex count 3)")
+d, _ = base_doc(idx=u32(0, 70000, 2), idx_ct=5125)
+write("index_out_of_range_32.gltf", d, "PG_ERR_GLTF",
+      "meshes[0].primitives[0]: index 70000 at position 1 is out of range (vertex count 3)")
+d, _ = base_doc(idx=pad4(bytes([0, 200, 1])), idx_ct=5121)
+write("index_out_of_range_8.gltf", d, "PG_ERR_GLTF",
+      "index 200 at position 1 is out of range (vertex count 3)")
+d, _ = base_doc(idx=u16(0, 1, 2, 0), idx_count=4)
+write("index_count_not_triangles.gltf", d, "PG_ERR_GLTF", "4 indices is not a multiple of 3")
+nan = struct.unpack("<f", struct.pack("<I", 0x7FC00000))[0]
+d, _ = base_doc(pos=f32(0, 0, 0, nan, 0, 0, 0, 1, 0))
+write("nan_position.gltf", d, "PG_ERR_GLTF", "accessors[0]: POSITION element 1 is not finite")
+d, _ = base_doc(pos=f32(0, 0, 0, 1, 0, 0, 0, float("inf"), 0))
+write("inf_position.gltf", d, "PG_ERR_GLTF", "accessors[0]: POSITION element 2 is not finite (inf)")
+d, _ = base_doc()
+d["meshes"][0]["primitives"][0]["mode"] = 7
+write("bad_primitive_mode.gltf", d, "PG_ERR_GLTF", "meshes[0].primitives[0].mode: 7 is not a glTF primitive mode")
+d, _ = base_doc()
+d["meshes"][0]["primitives"][0]["mode"] = 0
+write("points_only.gltf", d, "PG_ERR_GLTF", "the scene has no triangles")
+
+# ------------------------------------------------------------------------------------------------
+# references and node graph
+d, _ = base_doc()
+d["nodes"] = [{"mesh": 0, "children": [1]}, {"children": [0]}]
+write("cyclic_nodes.gltf", d, "PG_ERR_GLTF", "cyclic node graph")
+d, _ = base_doc()
+d["nodes"] = [{"mesh": 0, "children": [0]}]
+write("self_child_node.gltf", d, "PG_ERR_GLTF", "nodes[0]: cyclic node graph")
+d, _ = base_doc()
+d["nodes"] = [{"children": [1]}, {"children": [2]}, {"mesh": 0, "children": [1]}]
+del d["scene"]
+del d["scenes"]
+write("cyclic_no_scene.gltf", d, "PG_ERR_GLTF", "cyclic node graph")
+d, _ = base_doc()
+d["nodes"][0]["mesh"] = 5
+write("node_missing_mesh.gltf", d, "PG_ERR_GLTF", "nodes[0].mesh: meshes index 5 out of range (1 meshes)")
+d, _ = base_doc()
+d["nodes"][0]["mesh"] = -1
+write("node_negative_mesh.gltf", d, "PG_ERR_GLTF", "nodes[0].mesh: meshes index -1 is negative")
+d, _ = base_doc()
+d["nodes"][0]["mesh"] = 0.5
+write("node_float_mesh.gltf", d, "PG_ERR_GLTF", "nodes[0].mesh: expected an index")
+d, _ = base_doc()
+d["nodes"][0]["children"] = [9]
+write("node_missing_child.gltf", d, "PG_ERR_GLTF", "nodes[0].children[0]: not a valid node index")
+d, _ = base_doc()
+d["nodes"][0]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0]
+write("node_bad_matrix.gltf", d, "PG_ERR_GLTF", "nodes[0].matrix: expected 16 finite numbers")
+d, _ = base_doc()
+d["nodes"][0]["rotation"] = [0, 0, 0, 0]
+write("node_zero_quaternion.gltf", d, "PG_ERR_GLTF", "nodes[0].rotation: zero-length quaternion")
+d, _ = base_doc()
+d["scene"] = 3
+write("scene_out_of_range.gltf", d, "PG_ERR_GLTF", "scene: 3 is not a valid index")
+d, _ = base_doc()
+d["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 9
+write("mesh_missing_accessor.gltf", d, "PG_ERR_GLTF",
+      "meshes[0].primitives[0].attributes.POSITION: accessors index 9 out of range")
+d, _ = base_doc()
+d["meshes"][0]["primitives"][0]["indices"] = 4
+write("mesh_missing_index_accessor.gltf", d, "PG_ERR_GLTF",
+      "meshes[0].primitives[0].indices: accessors index 4 out of range")
+d, _ = base_doc()
+d["meshes"][0]["primitives"][0]["material"] = 3
+write("material_out_of_range.gltf", d, "PG_ERR_GLTF",
+      "meshes[0].primitives[0].material: materials index 3 out of range (0 materials)")
+d, _ = base_doc()
+d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 4}}}]
+d["meshes"][0]["primitives"][0]["material"] = 0
+write("texture_out_of_range.gltf", d, "PG_ERR_GLTF",
+      "materials[0].pbrMetallicRoughness.baseColorTexture.index: textures index 4 out of range")
+d, _ = base_doc()
+d["materials"] = [{"alphaMode": "CUTOUT"}]
+write("bad_alpha_mode.gltf", d, "PG_ERR_GLTF", "materials[0].alphaMode: expected")
+
+# ------------------------------------------------------------------------------------------------
+# images
+pix = [255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255]
+PNG2 = png_rgba(2, 2, pix)
+
+
+def textured_doc(image):
+    d, data = base_doc()
+    uvs = TRI_UV
+    d["bufferViews"].append({"buffer": 0, "byteOffset": len(data), "byteLength": len(uvs)})
+    data += uvs
+    d["buffers"][0] = {"byteLength": len(data), "uri": b64(data)}
+    d["accessors"].append({"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC2"})
+    d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2
+    d["meshes"][0]["primitives"][0]["material"] = 0
+    d["images"] = [image]
+    d["textures"] = [{"source": 0}]
+    d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    return d
+
+
+write("missing_image.gltf", textured_doc({"uri": "nope.png"}), "PG_ERR_GLTF",
+      "images[0]: cannot open 'nope.png'")
+open(os.path.join(HERE, "corrupt.png"), "wb").write(b"\x89PNG\r\n\x1a\n" + bytes(range(64)))
+write("corrupt_image_file.gltf", textured_doc({"uri": "corrupt.png"}), "PG_ERR_GLTF",
+      "images[0] ('corrupt.png'): cannot decode")
+write("corrupt_image_datauri.gltf",
+      textured_doc({"uri": "data:image/png;base64," + base64.b64encode(b"garbage!" * 8).decode()}),
+      "PG_ERR_GLTF", "images[0] (data URI): cannot decode")
+open(os.path.join(HERE, "empty.png"), "wb").write(b"")
+write("empty_image_file.gltf", textured_doc({"uri": "empty.png"}), "PG_ERR_GLTF",
+      "images[0]: 'empty.png' is empty")
+huge = (b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", struct.pack(">IIBBBBB", 100000, 100000, 8, 6, 0, 0, 0))
+        + png_chunk(b"IDAT", zlib.compress(b"\0" * 64)) + png_chunk(b"IEND", b""))
+write("huge_image.gltf", textured_doc({"uri": png_data_uri(huge)}), "PG_ERR_GLTF",
+      "images[0] (data URI): size 100000x100000 is outside 1..16384")
+wide = (b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", struct.pack(">IIBBBBB", 16385, 1, 8, 6, 0, 0, 0))
+        + png_chunk(b"IDAT", zlib.compress(b"\0" * 64)) + png_chunk(b"IEND", b""))
+open(os.path.join(HERE, "too_wide.png"), "wb").write(wide)
+write("too_wide_image.gltf", textured_doc({"uri": "too_wide.png"}), "PG_ERR_GLTF",
+      "size 16385x1 is outside 1..16384")
+write("image_no_source.gltf", textured_doc({"name": "nothing"}), "PG_ERR_GLTF",
+      "images[0]: has neither uri nor bufferView")
+
+# ------------------------------------------------------------------------------------------------
+# GLB containers
+d, data = base_doc()
+del d["buffers"][0]["uri"]
+good_glb = glb(d, data)
+write("ok_minimal.glb", good_glb, "PG_OK")
+write("glb_truncated.glb", good_glb[:60], "PG_ERR_PARSE", "GLB: header length")
+bad = bytearray(good_glb)
+bad[20:24] = b"{{{{"
+write("glb_bad_json.glb", bytes(bad), "PG_ERR_PARSE", "JSON syntax error")
+d2 = json.loads(json.dumps(d))
+d2["buffers"][0]["byteLength"] = 1000
+write("glb_bytelength_exceeds_bin.glb", glb(d2, data), "PG_ERR_GLTF",
+      "buffers[0]: byteLength 1000 exceeds the GLB BIN chunk (44 bytes)")
+write("glb_no_bin.glb", glb(d, None), "PG_ERR_GLTF", "there is none")
+write("glb_version_1.glb", b"glTF" + struct.pack("<II", 1, 20) + b"\0" * 8, "PG_ERR_PARSE",
+      "GLB: container version 1")
+
+# ------------------------------------------------------------------------------------------------
+# valid files (checked in more detail by test_scene.c)
+d, _ = base_doc()
+write("ok_minimal.gltf", d, "PG_OK")
+d, data = base_doc(uri="ok_external.bin")
+open(os.path.join(HERE, "ok_external.bin"), "wb").write(data)
+write("ok_external_bin.gltf", d, "PG_OK")
+# triangle strip of 4 vertices -> 2 triangles; no indices
+pos = f32(0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0)
+d, data = base_doc(pos=pos)
+del d["meshes"][0]["primitives"][0]["indices"]
+d["meshes"][0]["primitives"][0]["mode"] = 5
+write("ok_strip.gltf", d, "PG_OK")
+# mirrored node (negative determinant) with normals: the loader must flip the winding
+d, _ = base_doc(with_normals=True)
+d["nodes"][0]["scale"] = [-1, 1, 1]
+write("ok_mirrored.gltf", d, "PG_OK")
+# hierarchy with TRS: parent translation (10, 0, 0), child rotation 90 deg about +Z
+d, _ = base_doc()
+s = 0.7071067811865476
+d["nodes"] = [{"translation": [10, 0, 0], "children": [1]}, {"rotation": [0, 0, s, s], "mesh": 0}]
+write("ok_trs_hierarchy.gltf", d, "PG_OK")
+# interleaved positions + normals (byteStride 24), 8-bit indices, no scene (root nodes)
+inter = b"".join(TRI_POS[i * 12:(i + 1) * 12] + TRI_NRM[i * 12:(i + 1) * 12] for i in range(3))
+idx8 = pad4(bytes([0, 1, 2]))
+data = inter + idx8
+d = {"asset": {"version": "2.0"},
+     "nodes": [{"mesh": 0}],
+     "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2}]}],
+     "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+                   {"bufferView": 0, "byteOffset": 12, "componentType": 5126, "count": 3, "type": "VEC3"},
+                   {"bufferView": 1, "componentType": 5121, "count": 3, "type": "SCALAR"}],
+     "bufferViews": [{"buffer": 0, "byteLength": len(inter), "byteStride": 24},
+                     {"buffer": 0, "byteOffset": len(inter), "byteLength": len(idx8)}],
+     "buffers": [{"byteLength": len(data), "uri": b64(data)}]}
+write("ok_interleaved_u8.gltf", d, "PG_OK")
+# one image used as base colour AND normal map (-> 2 textures), MASK, no TANGENT (-> computed)
+d = textured_doc({"uri": "ok_2x2.png"})
+open(os.path.join(HERE, "ok_2x2.png"), "wb").write(PNG2)
+d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}},
+                   "normalTexture": {"index": 0, "scale": 0.5},
+                   "alphaMode": "MASK", "alphaCutoff": 0.3, "doubleSided": True}]
+write("ok_textured.gltf", d, "PG_OK")
+# points + triangles in one mesh: the points primitive is skipped with a warning
+d, _ = base_doc()
+p = dict(d["meshes"][0]["primitives"][0])
+p["mode"] = 0
+d["meshes"][0]["primitives"].insert(0, p)
+write("ok_points_skipped.gltf", d, "PG_OK")
+
+with open(os.path.join(HERE, "MANIFEST"), "w") as m:
+    m.write("# glTF robustness corpus, generated by gen_corpus.py.\n"
+            "# FILE  CODE  SUBSTRING-of-the-message ('-' for PG_OK)\n")
+    for name, code, sub in manifest:
+        m.write("%-36s %-14s %s\n" % (name, code, sub))
+print("%d manifest entries" % len(manifest))

@@ -1,0 +1,37 @@
+/* test_util.h - a tiny assertion harness. Each CHECK failure is printed with file:line and
+ * counted; pg_test_finish() prints "N passed, M failed" and returns the process exit code. */
+#ifndef PG_TEST_UTIL_H
+#define PG_TEST_UTIL_H
+
+#include <stdio.h>
+
+extern int pg_test_passed, pg_test_failed;
+
+#define CHECK(cond)                                                                        \
+    do {                                                                                   \
+        if (cond) {                                                                        \
+            pg_test_passed++;                                                              \
+        } else {                                                                           \
+            pg_test_failed++;                                                              \
+            fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond);       \
+        }                                                                                  \
+    } while (0)
+
+#define CHECK_MSG(cond, ...)                                                               \
+    do {                                                                                   \
+        if (cond) {                                                                        \
+            pg_test_passed++;                                                              \
+        } else {                                                                           \
+            pg_test_failed++;                                                              \
+            fprintf(stderr, "%s:%d: CHECK failed: %s: ", __FILE__, __LINE__, #cond);       \
+            fprintf(stderr, __VA_ARGS__);                                                  \
+            fprintf(stderr, "\n");                                                         \
+        }                                                                                  \
+    } while (0)
+
+/* Prints the summary line and returns 0 if nothing failed, 1 otherwise. */
+int pg_test_finish(const char *suite);
+/* Returns 77 (ctest SKIP) after printing why. */
+int pg_test_skip(const char *suite, const char *why);
+
+#endif

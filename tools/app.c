@@ -1,0 +1,68 @@
+#include "app.h"
+
+#include <string.h>
+
+#include "pass_list.h"
+#include "shader.h"
+
+pg_result pg_app_open(pg_app *app, const pg_cli_common *opt, bool with_gpu, pg_error *err)
+{
+    memset(app, 0, sizeof *app);
+    app->opt = *opt;
+    pg_register_builtin_passes(&app->registry);
+    pg_result r;
+    if (opt->pipeline) pg_strlcpy(app->pipeline_path, opt->pipeline, sizeof app->pipeline_path);
+    else pg_data_path(app->pipeline_path, sizeof app->pipeline_path, "pipelines/naive.json");
+    if (opt->scenario) {
+        if ((r = pg_scenario_load(opt->scenario, &app->scenario, err))) return r;
+        app->has_scenario = true;
+    }
+    const char *scene = opt->scene ? opt->scene : "default";
+    if (app->has_scenario && app->scenario.scene[0] && (!opt->scene || !strcmp(opt->scene, "default")))
+        scene = app->scenario.scene;
+    pg_strlcpy(app->scene_path, scene, sizeof app->scene_path);
+    if ((r = pg_scene_load(scene, &app->scene, err))) return r;
+    if (with_gpu) {
+        pg_gpu_desc gd = {
+            .validation = opt->validation,
+            .device_index = opt->device_index,
+            .device_match = opt->device_match,
+            .quiet = opt->quiet,
+        };
+        if ((r = pg_gpu_create(&gd, &app->gpu, err))) goto fail;
+        if ((r = pg_scene_gpu_create(app->gpu, app->scene, &app->scene_gpu, err))) goto fail;
+    }
+    app->lights = pg_light_setup_default(app->scene, opt->lights, opt->seed);
+    app->camera = pg_camera_default_for_scene(app->scene, (float)opt->width / (float)opt->height);
+    if (app->has_scenario) pg_scenario_apply(&app->scenario, &app->lights, &app->camera);
+    if (opt->has_lights || !(app->has_scenario && app->scenario.has_light_count)) app->lights.count = opt->lights;
+    if (opt->has_radius) app->lights.radius = opt->radius;
+    if (opt->has_intensity) app->lights.intensity = opt->intensity;
+    app->lights.seed = opt->seed;
+    return PG_OK;
+fail:
+    pg_app_close(app);
+    return r;
+}
+
+void pg_app_close(pg_app *app)
+{
+    if (app->scene_gpu) pg_scene_gpu_destroy(app->gpu, app->scene_gpu);
+    pg_scene_free(app->scene);
+    pg_gpu_destroy(app->gpu);
+    app->scene_gpu = NULL;
+    app->scene = NULL;
+    app->gpu = NULL;
+}
+
+pg_frame_info pg_app_frame(const pg_app *app)
+{
+    pg_frame_info fi = {
+        .camera = app->camera,
+        .lights = app->lights,
+        .time = app->opt.time,
+        .width = app->opt.width,
+        .height = app->opt.height,
+    };
+    return fi;
+}

@@ -1,0 +1,34 @@
+/* app.h - what every GPU subcommand sets up from the common options: device, scene (and its GPU
+ * copy), light set-up, camera, pass registry. */
+#ifndef PG_APP_H
+#define PG_APP_H
+
+#include "cli.h"
+#include "frame.h"
+#include "pass_api.h"
+#include "render_session.h"
+#include "scenario.h"
+#include "scene.h"
+#include "scene_gpu.h"
+#include "vk_context.h"
+
+typedef struct pg_app {
+    pg_cli_common opt;
+    pg_gpu *gpu;
+    pg_scene *scene;
+    pg_scene_gpu *scene_gpu;
+    pg_scenario scenario;
+    bool has_scenario;
+    pg_light_setup lights;
+    pg_camera camera;
+    pg_pass_registry registry;
+    char pipeline_path[PG_PATH_MAX];
+    char scene_path[PG_PATH_MAX];
+} pg_app;
+
+/* with_gpu false: no device (dump/explain-only paths). */
+pg_result pg_app_open(pg_app *app, const pg_cli_common *opt, bool with_gpu, pg_error *err);
+void pg_app_close(pg_app *app);
+pg_frame_info pg_app_frame(const pg_app *app);
+
+#endif

@@ -1,0 +1,164 @@
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *const pg_cli_common_help =
+    "  --pipeline FILE      pipeline JSON (default: pipelines/naive.json in the data folder)\n"
+    "  --scene FILE|default glTF 2.0 scene (.gltf/.glb) or the built-in atrium (default)\n"
+    "  --scenario FILE      JSON set-up: camera, light box, count, radius, intensity, motion\n"
+    "                       (e.g. assets/scenarios/cis565.json); explicit options override it\n"
+    "  --lights N           number of point lights, 0..16777216 (default 256)\n"
+    "  --radius R           light range in scene units (default: from the scene size)\n"
+    "  --intensity I        light colour multiplier (default 1)\n"
+    "  --size WxH           output size, 1..16384 each (default 640x360)\n"
+    "  --time T             animation time in seconds; fixes the frame (default 0)\n"
+    "  --seed S             light seed, 0..4294967295 (default 1)\n"
+    "  --set KEY=VALUE      override a pipeline parameter (repeatable)\n"
+    "  --device N|NAME      Vulkan device index or name substring ('passgraph devices')\n"
+    "  --validation         enable the Khronos validation layer + synchronization validation;\n"
+    "                       any message makes the command fail\n"
+    "  --no-aliasing        give every transient its own memory (debugging switch)\n"
+    "  --explain            print what the compiled graph left out, culled and why\n"
+    "  --frames N           frames to render; timings are the median (default 1)\n";
+
+void pg_cli_defaults(pg_cli_common *c)
+{
+    memset(c, 0, sizeof *c);
+    c->scene = "default";
+    c->lights = 256;
+    c->width = 640;
+    c->height = 360;
+    c->seed = 1;
+    c->device_index = -1;
+    c->frames = 1;
+}
+
+static pg_result parse_u64(const char *opt, const char *s, uint64_t min, uint64_t max, uint64_t *out, pg_error *err)
+{
+    if (!s || !*s) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: missing value", opt);
+    const char *p = s;
+    if (*p == '+') p++;
+    if (*p < '0' || *p > '9')
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s %s: expected a whole number in [%llu, %llu]", opt, s,
+                       (unsigned long long)min, (unsigned long long)max);
+    errno = 0;
+    char *end;
+    unsigned long long v = strtoull(p, &end, 10);
+    if (errno || *end || v < min || v > max)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s %s: expected a whole number in [%llu, %llu]", opt, s,
+                       (unsigned long long)min, (unsigned long long)max);
+    *out = v;
+    return PG_OK;
+}
+
+static pg_result parse_float(const char *opt, const char *s, double min, double max, float *out, pg_error *err)
+{
+    if (!s || !*s) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: missing value", opt);
+    errno = 0;
+    char *end;
+    double v = strtod(s, &end);
+    if (errno || *end || !isfinite(v) || v < min || v > max)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s %s: expected a finite number in [%g, %g]", opt, s, min, max);
+    *out = (float)v;
+    return PG_OK;
+}
+
+pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, bool *used, pg_error *err)
+{
+    const char *a = argv[*i];
+    const char *v = *i + 1 < argc ? argv[*i + 1] : NULL;
+    *used = true;
+    uint64_t u;
+    pg_result r = PG_OK;
+#define NEED_VALUE()                                                                        \
+    do {                                                                                    \
+        if (!v) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: missing value", a);            \
+        (*i)++;                                                                             \
+    } while (0)
+    if (!strcmp(a, "--pipeline")) {
+        NEED_VALUE();
+        c->pipeline = v;
+    } else if (!strcmp(a, "--scene")) {
+        NEED_VALUE();
+        c->scene = v;
+    } else if (!strcmp(a, "--scenario")) {
+        NEED_VALUE();
+        c->scenario = v;
+    } else if (!strcmp(a, "--out")) {
+        NEED_VALUE();
+        c->out = v;
+    } else if (!strcmp(a, "--lights")) {
+        NEED_VALUE();
+        if (v[0] == '-') return pg_fail(err, PG_ERR_INVALID_ARG, "--lights %s: must not be negative", v);
+        if ((r = parse_u64(a, v, 0, PG_MAX_LIGHTS, &u, err))) return r;
+        c->lights = (uint32_t)u;
+        c->has_lights = true;
+    } else if (!strcmp(a, "--seed")) {
+        NEED_VALUE();
+        if ((r = parse_u64(a, v, 0, UINT32_MAX, &u, err))) return r;
+        c->seed = (uint32_t)u;
+    } else if (!strcmp(a, "--frames")) {
+        NEED_VALUE();
+        if ((r = parse_u64(a, v, 1, 100000, &u, err))) return r;
+        c->frames = (uint32_t)u;
+    } else if (!strcmp(a, "--time")) {
+        NEED_VALUE();
+        if ((r = parse_float(a, v, -1e7, 1e7, &c->time, err))) return r;
+    } else if (!strcmp(a, "--radius")) {
+        NEED_VALUE();
+        if ((r = parse_float(a, v, 0, 1e7, &c->radius, err))) return r;
+        c->has_radius = true;
+    } else if (!strcmp(a, "--intensity")) {
+        NEED_VALUE();
+        if ((r = parse_float(a, v, 0, 1e7, &c->intensity, err))) return r;
+        c->has_intensity = true;
+    } else if (!strcmp(a, "--size")) {
+        NEED_VALUE();
+        const char *x = strchr(v, 'x');
+        if (!x) return pg_fail(err, PG_ERR_INVALID_ARG, "--size %s: expected WxH, e.g. 640x360", v);
+        char wbuf[32];
+        size_t wl = (size_t)(x - v);
+        if (wl == 0 || wl >= sizeof wbuf) return pg_fail(err, PG_ERR_INVALID_ARG, "--size %s: expected WxH", v);
+        memcpy(wbuf, v, wl);
+        wbuf[wl] = 0;
+        uint64_t w, h;
+        if ((r = parse_u64("--size width", wbuf, 1, 16384, &w, err))) return r;
+        if ((r = parse_u64("--size height", x + 1, 1, 16384, &h, err))) return r;
+        c->width = (uint32_t)w;
+        c->height = (uint32_t)h;
+    } else if (!strcmp(a, "--set")) {
+        NEED_VALUE();
+        const char *eq = strchr(v, '=');
+        if (!eq || eq == v) return pg_fail(err, PG_ERR_INVALID_ARG, "--set %s: expected KEY=VALUE", v);
+        if (c->n_sets >= PG_CLI_MAX_SETS) return pg_fail(err, PG_ERR_INVALID_ARG, "--set: at most %d", PG_CLI_MAX_SETS);
+        /* split in place: argv strings are writable */
+        char *mut = argv[*i];
+        mut[eq - v] = 0;
+        c->sets[c->n_sets].key = mut;
+        c->sets[c->n_sets].value = mut + (eq - v) + 1;
+        c->n_sets++;
+    } else if (!strcmp(a, "--device")) {
+        NEED_VALUE();
+        if (v[0] >= '0' && v[0] <= '9') {
+            if ((r = parse_u64(a, v, 0, 15, &u, err))) return r;
+            c->device_index = (int)u;
+        } else {
+            c->device_match = v;
+        }
+    } else if (!strcmp(a, "--validation")) {
+        c->validation = true;
+    } else if (!strcmp(a, "--no-aliasing")) {
+        c->no_aliasing = true;
+    } else if (!strcmp(a, "--explain")) {
+        c->explain = true;
+    } else if (!strcmp(a, "--quiet")) {
+        c->quiet = true;
+    } else {
+        *used = false;
+    }
+#undef NEED_VALUE
+    return PG_OK;
+}

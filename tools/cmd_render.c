@@ -1,0 +1,135 @@
+/* cmd_render.c - `passgraph render`: one reproducible frame to a PNG, with GPU timings. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+#include "commands.h"
+#include "image_util.h"
+
+static const char *const render_help =
+    "usage: passgraph render [options] --out FILE.png\n"
+    "Renders one frame of a scene with a pipeline, headless, and writes the display image.\n"
+    "Prints one summary line: GPU ms in total and per pass (timestamps; median over --frames),\n"
+    "and the number of non-finite pixels in the HDR output.\n\n"
+    "options:\n";
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, uint32_t n)
+{
+    qsort(v, n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+void pg_print_explain(const pg_session *s, FILE *f)
+{
+    const pg_graph_plan *p = s->plan;
+    fprintf(f, "explain: %s: %u passes run, %u culled; transient memory %.2f MiB -> %.2f MiB with aliasing%s\n",
+            s->pipeline->name, p->n_order, p->n_passes - p->n_order, p->transient_bytes_unaliased / 1048576.0,
+            p->transient_bytes_aliased / 1048576.0, p->aliasing_disabled ? " (aliasing disabled)" : "");
+    for (uint32_t i = 0; i < p->n_explain; i++) fprintf(f, "explain:   %s\n", p->explain[i]);
+}
+
+int pg_cmd_render(int argc, char **argv)
+{
+    pg_cli_common opt;
+    pg_cli_defaults(&opt);
+    pg_error err = {0};
+    for (int i = 0; i < argc; i++) {
+        bool used;
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("%s%s  --out FILE.png       where to write the display image (required)\n", render_help,
+                   pg_cli_common_help);
+            return 0;
+        }
+        if (pg_cli_parse_common(&opt, argc, argv, &i, &used, &err)) {
+            fprintf(stderr, "passgraph render: %s\n", err.msg);
+            return 2;
+        }
+        if (!used) {
+            fprintf(stderr, "passgraph render: unknown option '%s' (see passgraph render --help)\n", argv[i]);
+            return 2;
+        }
+    }
+    if (!opt.out) {
+        fprintf(stderr, "passgraph render: --out FILE.png is required\n");
+        return 2;
+    }
+    pg_app app;
+    if (pg_app_open(&app, &opt, true, &err)) {
+        fprintf(stderr, "passgraph render: %s\n", err.msg);
+        return 1;
+    }
+    int rc = 1;
+    pg_session *s = NULL;
+    float *hdr = NULL;
+    pg_session_desc sd = {
+        .pipeline_path = app.pipeline_path,
+        .overrides = opt.sets,
+        .n_overrides = opt.n_sets,
+        .registry = &app.registry,
+        .disable_aliasing = opt.no_aliasing,
+    };
+    if (pg_session_create(app.gpu, app.scene_gpu, &sd, &s, &err)) goto done;
+    pg_frame_info fi = pg_app_frame(&app);
+    double *samples = calloc((size_t)opt.frames * (PG_MAX_PASSES + 1), sizeof(double));
+    if (!samples) {
+        pg_fail(&err, PG_ERR_OOM, "out of memory");
+        goto done;
+    }
+    pg_frame_stats st = {0};
+    for (uint32_t f = 0; f < opt.frames; f++) {
+        if (pg_session_render(s, &fi, f + 1 == opt.frames, &st, &err)) {
+            free(samples);
+            goto done;
+        }
+        samples[f] = st.gpu_total_ms;
+        for (uint32_t p = 0; p < st.n_passes; p++) samples[(size_t)(p + 1) * opt.frames + f] = st.pass_ms[p];
+    }
+    if (opt.explain) pg_print_explain(s, stdout);
+    uint32_t w, h;
+    pg_format fmt;
+    const uint8_t *ldr = pg_runtime_output(s->runtime, 0, &w, &h, &fmt);
+    if (!ldr || pg_format_get(fmt)->bytes_per_pixel != 4) {
+        pg_fail(&err, PG_ERR_FORMAT, "%s: output '%s' must be an 8-bit RGBA image to write a PNG", s->pipeline->path,
+                s->pipeline->output);
+        free(samples);
+        goto done;
+    }
+    if (pg_write_png(opt.out, ldr, w, h, &err)) {
+        free(samples);
+        goto done;
+    }
+    long long nonfinite = -1;
+    uint32_t hw, hh;
+    pg_format hfmt;
+    const void *hpix = pg_runtime_output(s->runtime, 1, &hw, &hh, &hfmt);
+    if (hpix) {
+        hdr = malloc((size_t)hw * hh * 4 * sizeof(float));
+        if (hdr && !pg_hdr_to_float(hpix, hfmt, hw, hh, hdr, &err)) nonfinite = (long long)pg_count_nonfinite(hdr, hw, hh);
+    }
+    printf("render: %s %ux%u lights=%u gpu=%.3f ms [", s->pipeline->name, w, h, fi.lights.count,
+           median(samples, opt.frames));
+    for (uint32_t p = 0; p < st.n_passes; p++)
+        printf("%s%s %.3f", p ? ", " : "", st.pass_names[p], median(samples + (size_t)(p + 1) * opt.frames, opt.frames));
+    if (nonfinite >= 0) printf("] nonfinite=%lld", nonfinite);
+    else printf("] nonfinite=n/a");
+    printf(" frames=%u -> %s\n", opt.frames, opt.out);
+    free(samples);
+    rc = 0;
+    if (app.gpu->validation && app.gpu->validation_messages) {
+        fprintf(stderr, "passgraph render: %u validation message(s)\n", app.gpu->validation_messages);
+        rc = 1;
+    }
+done:
+    if (rc && err.code) fprintf(stderr, "passgraph render: %s\n", err.msg);
+    free(hdr);
+    pg_session_destroy(s);
+    pg_app_close(&app);
+    return rc;
+}

@@ -1,0 +1,12 @@
+#ifndef PG_COMMANDS_H
+#define PG_COMMANDS_H
+
+#include <stdio.h>
+
+#include "render_session.h"
+
+int pg_cmd_render(int argc, char **argv);
+int pg_cmd_devices(int argc, char **argv);
+void pg_print_explain(const pg_session *s, FILE *f);
+
+#endif

@@ -1,0 +1,52 @@
+/* passgraph.c - the one executable: `passgraph SUBCOMMAND [options]`. */
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+#include "vk_context.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: passgraph <command> [options]\n"
+            "\n"
+            "passgraph renders scenes lit by many point lights with render pipelines described in JSON\n"
+            "(pipelines/*.json): the graph orders passes, culls what the output does not need, aliases\n"
+            "transient memory and places every Vulkan barrier itself.\n"
+            "\n"
+            "commands:\n"
+            "  render    render one frame headless to a PNG and print GPU timings per pass\n"
+            "  devices   list the Vulkan devices (for --device)\n"
+            "\n"
+            "'passgraph <command> --help' lists a command's options.\n");
+}
+
+int pg_cmd_devices(int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    pg_error err = {0};
+    if (pg_gpu_list_devices(stdout, &err)) {
+        fprintf(stderr, "passgraph devices: %s\n", err.msg);
+        return 1;
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
+        usage(stdout);
+        return 0;
+    }
+    if (!strcmp(cmd, "render")) return pg_cmd_render(argc - 2, argv + 2);
+    if (!strcmp(cmd, "devices")) return pg_cmd_devices(argc - 2, argv + 2);
+    fprintf(stderr, "passgraph: unknown command '%s'\n", cmd);
+    usage(stderr);
+    return 2;
+}
