@@ -2,6 +2,7 @@
  * and access masks, an image layout and usage flags. Barrier inference uses nothing else. */
 #include "graph.h"
 
+#include <string.h>
 #include <vulkan/vulkan_core.h>
 
 static uint64_t shader_stages(uint32_t stages)
@@ -16,7 +17,8 @@ static uint64_t shader_stages(uint32_t stages)
 
 pg_sync_info pg_access_sync(pg_access access, uint32_t stages, pg_res_kind kind, pg_format format)
 {
-    pg_sync_info s = {0};
+    pg_sync_info s;
+    memset(&s, 0, sizeof s); /* padding too: plans are compared bytewise */
     const bool img = kind == PG_RES_IMAGE;
     const bool depth = pg_format_get(format)->fmt_class == PG_FMTCLASS_DEPTH;
     (void)depth;

@@ -608,8 +608,15 @@ static pg_result parse_text(loader *L, src_file *f, const char *text, size_t len
         while (ws < len && (text[ws] == ' ' || text[ws] == '\t' || text[ws] == '\n' ||
                             text[ws] == '\r'))
             ws++;
-        if (ws == len) extra = " (empty document)";
-        else if (bad >= text + len - 1) extra = " (unexpected end of input)";
+        if (ws == len) {
+            extra = " (empty document)";
+        } else {
+            /* cJSON reports the byte after the culprit: step back over whitespace to it */
+            while (bad > text && (bad == text + len || *bad == ' ' || *bad == '\t' ||
+                                  *bad == '\n' || *bad == '\r'))
+                bad--;
+            if (bad + 1 >= text + len) extra = " (unexpected end of input)";
+        }
     } else {
         const char *e = end ? end : text + len;
         while (e < text + len && (*e == ' ' || *e == '\t' || *e == '\n' || *e == '\r')) e++;

@@ -33,6 +33,7 @@ void pg_print_explain(const pg_session *s, FILE *f)
             s->pipeline->name, p->n_order, p->n_passes - p->n_order, p->transient_bytes_unaliased / 1048576.0,
             p->transient_bytes_aliased / 1048576.0, p->aliasing_disabled ? " (aliasing disabled)" : "");
     for (uint32_t i = 0; i < p->n_explain; i++) fprintf(f, "explain:   %s\n", p->explain[i]);
+    pg_graph_plan_print(p, s->pipeline, f);
 }
 
 int pg_cmd_render(int argc, char **argv)
