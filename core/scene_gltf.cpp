@@ -513,6 +513,44 @@ std::string image_desc(const Ctx &c, int idx)
     return d;
 }
 
+/* Reads the pixel size from a PNG or JPEG header without decoding (stb_image refuses to report
+ * absurd sizes, so this gives the clearer error). Returns false for other formats. */
+bool peek_image_size(const unsigned char *b, size_t n, long long *w, long long *h)
+{
+    static const unsigned char png_sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (n >= 24 && memcmp(b, png_sig, 8) == 0 && memcmp(b + 12, "IHDR", 4) == 0) {
+        *w = (long long)b[16] << 24 | b[17] << 16 | b[18] << 8 | b[19];
+        *h = (long long)b[20] << 24 | b[21] << 16 | b[22] << 8 | b[23];
+        return true;
+    }
+    if (n >= 4 && b[0] == 0xFF && b[1] == 0xD8) {
+        size_t i = 2;
+        while (i + 4 <= n) {
+            if (b[i] != 0xFF) return false;
+            unsigned char mk = b[i + 1];
+            if (mk == 0xFF) { /* fill byte */
+                i++;
+                continue;
+            }
+            if (mk == 0xD8 || mk == 0x01 || (mk >= 0xD0 && mk <= 0xD7)) {
+                i += 2;
+                continue;
+            }
+            size_t len = size_t(b[i + 2]) << 8 | b[i + 3];
+            bool sof = mk >= 0xC0 && mk <= 0xCF && mk != 0xC4 && mk != 0xC8 && mk != 0xCC;
+            if (sof) {
+                if (i + 9 > n) return false;
+                *h = (long long)b[i + 5] << 8 | b[i + 6];
+                *w = (long long)b[i + 7] << 8 | b[i + 8];
+                return true;
+            }
+            if (len < 2) return false;
+            i += 2 + len;
+        }
+    }
+    return false;
+}
+
 struct StbFree {
     void operator()(unsigned char *p) const { stbi_image_free(p); }
 };
@@ -525,6 +563,13 @@ bool load_image_cb(tinygltf::Image *image, const int idx, std::string *, std::st
         std::string where = image_desc(*c, idx);
         if (!bytes || size <= 0) {
             c->image_err = where + ": no image data";
+            return false;
+        }
+        long long pw = 0, ph = 0;
+        if (peek_image_size(bytes, size_t(size), &pw, &ph) &&
+            (pw < 1 || ph < 1 || pw > kMaxImageSide || ph > kMaxImageSide)) {
+            c->image_err = where + strf(": size %lldx%lld is outside 1..%d on a side", pw, ph,
+                                        kMaxImageSide);
             return false;
         }
         int w = 0, h = 0, comp = 0;

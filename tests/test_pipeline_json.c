@@ -441,10 +441,10 @@ static void test_inline_errors(void)
     CHECK(pg_pipeline_load_string(abs_inc, "/nonexistent/x.json", NULL, 0, &p, &err) == PG_OK);
     CHECK(p && p->n_passes == 1 && p->n_resources == 2);
     pg_pipeline_free(p);
-    /* the output of a pipeline with a syntax error deep in a line */
+    /* a syntax error on the second line */
     expect_fail("{\"output\": \"o\",\n \"resources\": [1, 2,,]}", NULL, 0, PG_ERR_PARSE,
                 "inline.json:2:");
-    /* NUL in the middle of load_string text: the string ends there */
+    /* no output at all */
     expect_fail("{\"name\": \"x\"}", NULL, 0, PG_ERR_NO_OUTPUT, "output: missing");
     /* JSON null where an object is expected */
     expect_fail("null", NULL, 0, PG_ERR_SCHEMA, "expected a JSON object, got null");

@@ -1,0 +1,760 @@
+/* test_scene.c - the CPU scene: default scene, textures and mips, camera math, Sponza (when the
+ * shared asset is present; set PG_TEST_NO_SPONZA=1 to skip it, e.g. under valgrind), scenarios,
+ * and the glTF robustness corpus (tests/corpus/gltf/MANIFEST). No GPU. */
+#include "scenario.h"
+#include "scene.h"
+#include "test_util.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#ifndef PG_TEST_DIR
+#define PG_TEST_DIR "tests"
+#endif
+#ifndef PG_SHARED_DIR
+#define PG_SHARED_DIR "../shared"
+#endif
+
+static bool near_f(float a, float b, float eps) { return fabsf(a - b) <= eps; }
+
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
+}
+
+static float len3(const float *v) { return sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+static float dot3(const float *a, const float *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void cross3(const float *a, const float *b, float *o)
+{
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* ---- shared structural checks ---------------------------------------------------------------- */
+
+typedef struct geo_stats {
+    uint32_t bad_index, bad_normal, bad_tangent, tangents, tris, wound_ok, wound_bad, degenerate;
+} geo_stats;
+
+static geo_stats scene_geometry_stats(const pg_scene *s)
+{
+    geo_stats g;
+    memset(&g, 0, sizeof g);
+    for (uint32_t i = 0; i < s->n_vertices; i++) {
+        const pg_vertex *v = &s->vertices[i];
+        if (fabsf(len3(v->normal) - 1.0f) > 1e-3f) g.bad_normal++;
+        if (v->tangent[0] != 0 || v->tangent[1] != 0 || v->tangent[2] != 0 || v->tangent[3] != 0) {
+            g.tangents++;
+            if (fabsf(len3(v->tangent) - 1.0f) > 1e-3f || fabsf(dot3(v->tangent, v->normal)) > 1e-3f ||
+                fabsf(fabsf(v->tangent[3]) - 1.0f) > 0)
+                g.bad_tangent++;
+        }
+    }
+    for (uint32_t p = 0; p < s->n_primitives; p++) {
+        const pg_primitive *pr = &s->primitives[p];
+        if ((uint64_t)pr->first_index + pr->index_count > s->n_indices || pr->index_count % 3) {
+            g.bad_index++;
+            continue;
+        }
+        for (uint32_t t = 0; t < pr->index_count; t += 3) {
+            const pg_vertex *v[3];
+            bool ok = true;
+            for (int k = 0; k < 3; k++) {
+                int64_t vi = (int64_t)s->indices[pr->first_index + t + k] + pr->vertex_offset;
+                if (vi < 0 || vi >= (int64_t)s->n_vertices) {
+                    ok = false;
+                    break;
+                }
+                v[k] = &s->vertices[vi];
+            }
+            if (!ok) {
+                g.bad_index++;
+                continue;
+            }
+            g.tris++;
+            float e1[3], e2[3], fn[3], vn[3];
+            for (int k = 0; k < 3; k++) {
+                e1[k] = v[1]->position[k] - v[0]->position[k];
+                e2[k] = v[2]->position[k] - v[0]->position[k];
+                vn[k] = v[0]->normal[k] + v[1]->normal[k] + v[2]->normal[k];
+            }
+            cross3(e1, e2, fn);
+            if (len3(fn) < 1e-12f) {
+                g.degenerate++;
+                continue;
+            }
+            if (dot3(fn, vn) > 0) g.wound_ok++;
+            else g.wound_bad++;
+        }
+    }
+    return g;
+}
+
+static void check_texture_chain(const pg_texture *t)
+{
+    uint32_t w = t->mips[0].width, h = t->mips[0].height, m = w > h ? w : h, n = 1;
+    while (m > 1) {
+        m >>= 1;
+        n++;
+    }
+    CHECK_MSG(t->n_mips == n, "texture %s: %u mips, expected %u", t->name, t->n_mips, n);
+    CHECK_MSG(t->mips[t->n_mips - 1].width == 1 && t->mips[t->n_mips - 1].height == 1,
+              "texture %s: last mip not 1x1", t->name);
+    size_t off = 0;
+    bool ok = true;
+    for (uint32_t i = 0; i < t->n_mips; i++) {
+        uint32_t ew = w >> i ? w >> i : 1, eh = h >> i ? h >> i : 1;
+        if (t->mips[i].width != ew || t->mips[i].height != eh) ok = false;
+        if (t->mips[i].rgba != t->data + off) ok = false;
+        off += (size_t)ew * eh * 4;
+    }
+    CHECK_MSG(ok && off == t->data_size, "texture %s: mip layout", t->name);
+}
+
+/* ---- default scene --------------------------------------------------------------------------- */
+
+static void test_default_scene(void)
+{
+    pg_scene *s = NULL, *s2 = NULL;
+    pg_error err = {0};
+    double t0 = now_s();
+    CHECK(pg_scene_create_default(&s, &err) == PG_OK);
+    double t1 = now_s();
+    if (!s) {
+        fprintf(stderr, "default scene: %s\n", err.msg);
+        return;
+    }
+    printf("default scene: %u triangles, %u vertices, %u materials, %u textures, %.3f s\n",
+           s->n_indices / 3, s->n_vertices, s->n_materials, s->n_textures, t1 - t0);
+    CHECK(strcmp(s->name, "default") == 0);
+    CHECK(s->n_indices / 3 >= 30000 && s->n_indices / 3 <= 80000);
+    CHECK(s->n_materials >= 5);
+    CHECK(s->features.has_textures && s->features.has_normal_maps && s->features.has_alpha_mask);
+    CHECK(s->features.light_count == 0);
+    CHECK(near_f(s->bounds_min[1], 0.0f, 1e-4f));
+    CHECK(s->bounds_max[0] - s->bounds_min[0] > 25 && s->bounds_max[0] - s->bounds_min[0] < 40);
+    CHECK(s->bounds_max[1] > 8 && s->bounds_max[1] < 20);
+    CHECK(fabsf(s->bounds_min[0] + s->bounds_max[0]) < 1 && fabsf(s->bounds_min[2] + s->bounds_max[2]) < 1);
+
+    geo_stats g = scene_geometry_stats(s);
+    CHECK_MSG(g.bad_index == 0, "%u bad indices", g.bad_index);
+    CHECK_MSG(g.bad_normal == 0, "%u non-unit normals", g.bad_normal);
+    CHECK_MSG(g.tangents > 0 && g.bad_tangent == 0, "%u tangents, %u bad", g.tangents, g.bad_tangent);
+    CHECK_MSG(g.wound_bad == 0, "%u triangles wound against their normals", g.wound_bad);
+    CHECK(g.tris == s->n_indices / 3);
+
+    bool mask = false, mask_ds = false, normal_tex_linear = true, plain = false;
+    uint32_t with_nm = 0;
+    for (uint32_t i = 0; i < s->n_materials; i++) {
+        const pg_material *m = &s->materials[i];
+        if (m->alpha_mode == PG_ALPHA_MASK) {
+            mask = true;
+            mask_ds = m->double_sided && near_f(m->alpha_cutoff, 0.5f, 1e-6f);
+        }
+        if (m->base_color_tex < 0) plain = true;
+        if (m->normal_tex >= 0) {
+            with_nm++;
+            CHECK(m->normal_tex < (int)s->n_textures);
+            if (s->textures[m->normal_tex].srgb) normal_tex_linear = false;
+        }
+        if (m->base_color_tex >= 0) {
+            CHECK(m->base_color_tex < (int)s->n_textures);
+            CHECK(s->textures[m->base_color_tex].srgb);
+        }
+    }
+    CHECK(mask && mask_ds);
+    CHECK(plain);
+    CHECK(with_nm >= 1 && normal_tex_linear);
+    for (uint32_t i = 0; i < s->n_textures; i++) check_texture_chain(&s->textures[i]);
+    /* each primitive uses a valid material and has bounds inside the scene's */
+    for (uint32_t p = 0; p < s->n_primitives; p++) {
+        const pg_primitive *pr = &s->primitives[p];
+        CHECK(pr->material < s->n_materials);
+        for (int k = 0; k < 3; k++)
+            CHECK(pr->bounds_min[k] >= s->bounds_min[k] && pr->bounds_max[k] <= s->bounds_max[k]);
+    }
+
+    /* deterministic: a second generation gives identical bytes */
+    CHECK(pg_scene_load("default", &s2, &err) == PG_OK);
+    if (s2) {
+        bool same = s2->n_vertices == s->n_vertices && s2->n_indices == s->n_indices &&
+                    s2->n_textures == s->n_textures && s2->n_materials == s->n_materials &&
+                    s2->n_primitives == s->n_primitives;
+        if (same) {
+            same = memcmp(s->vertices, s2->vertices, sizeof(pg_vertex) * s->n_vertices) == 0 &&
+                   memcmp(s->indices, s2->indices, sizeof(uint32_t) * s->n_indices) == 0 &&
+                   memcmp(s->materials, s2->materials, sizeof(pg_material) * s->n_materials) == 0 &&
+                   memcmp(s->primitives, s2->primitives, sizeof(pg_primitive) * s->n_primitives) == 0;
+            for (uint32_t i = 0; same && i < s->n_textures; i++)
+                same = s->textures[i].data_size == s2->textures[i].data_size &&
+                       memcmp(s->textures[i].data, s2->textures[i].data, s->textures[i].data_size) == 0;
+        }
+        CHECK_MSG(same, "two default scenes differ");
+        pg_scene_free(s2);
+    }
+
+    /* the default camera stands inside the room and looks along +X */
+    pg_camera cam = pg_camera_default_for_scene(s, 16.0f / 9.0f);
+    for (int k = 0; k < 3; k++)
+        CHECK(cam.position[k] > s->bounds_min[k] && cam.position[k] < s->bounds_max[k]);
+    CHECK(cam.target[0] > cam.position[0] && near_f(cam.target[1], cam.position[1], 1e-4f) &&
+          near_f(cam.target[2], cam.position[2], 1e-4f));
+    CHECK(near_f(cam.fov_y_deg, 60.0f, 0) && near_f(cam.aspect, 16.0f / 9.0f, 1e-6f));
+    float sz[3] = {s->bounds_max[0] - s->bounds_min[0], s->bounds_max[1] - s->bounds_min[1],
+                   s->bounds_max[2] - s->bounds_min[2]};
+    float diag = len3(sz);
+    CHECK(near_f(cam.near_z, fmaxf(0.01f, 0.001f * diag), 1e-5f));
+    CHECK(near_f(cam.far_z, 2.0f * diag, 1e-3f));
+
+    /* light defaults from the bounds */
+    pg_light_setup L = pg_light_setup_default(s, 1000, 7);
+    CHECK(L.count == 1000 && L.seed == 7 && L.motion == PG_MOTION_NOISE);
+    CHECK(near_f(L.radius, 0.12f * sz[0], 1e-3f));
+    CHECK(near_f(L.intensity, 1.0f, 0) && near_f(L.saturation, 0.8f, 1e-6f) && near_f(L.speed, 1.0f, 0));
+    for (int k = 0; k < 3; k++)
+        CHECK(L.box_min[k] > s->bounds_min[k] && L.box_max[k] < s->bounds_max[k] &&
+              L.box_min[k] < L.box_max[k]);
+    pg_scene_free(s);
+}
+
+/* ---- textures -------------------------------------------------------------------------------- */
+
+static void test_textures(void)
+{
+    pg_texture t;
+    pg_error err = {0};
+    uint8_t px[5 * 3 * 4];
+    for (size_t i = 0; i < sizeof px; i++) px[i] = (uint8_t)(i % 4 == 3 ? 255 : 100);
+    CHECK(pg_texture_init(&t, "odd", px, 5, 3, true, &err) == PG_OK);
+    CHECK(t.n_mips == 3 && t.mips[1].width == 2 && t.mips[1].height == 1 && t.mips[2].width == 1);
+    check_texture_chain(&t);
+    /* a constant image stays constant (sRGB round trip is exact) */
+    bool constant = true;
+    for (uint32_t m = 0; m < t.n_mips; m++)
+        for (uint32_t i = 0; i < t.mips[m].width * t.mips[m].height * 4; i++)
+            if (t.mips[m].rgba[i] != (i % 4 == 3 ? 255 : 100)) constant = false;
+    CHECK(constant);
+    pg_texture_release(&t);
+    CHECK(t.data == NULL && t.n_mips == 0);
+
+    /* 2x2 black/white: sRGB averages in linear space (-> 188), linear averages bytes (-> 128) */
+    uint8_t bw[16] = {0, 0, 0, 255, 255, 255, 255, 255, 255, 255, 255, 255, 0, 0, 0, 0};
+    CHECK(pg_texture_init(&t, "bw_srgb", bw, 2, 2, true, &err) == PG_OK);
+    CHECK_MSG(t.mips[1].rgba[0] == 188 && t.mips[1].rgba[3] == 191, "srgb mip %u a %u",
+              t.mips[1].rgba[0], t.mips[1].rgba[3]);
+    pg_texture_release(&t);
+    CHECK(pg_texture_init(&t, "bw_linear", bw, 2, 2, false, &err) == PG_OK);
+    CHECK_MSG(t.mips[1].rgba[0] == 128, "linear mip %u", t.mips[1].rgba[0]);
+    pg_texture_release(&t);
+    /* 3x1 -> 1x1 box: every source texel weighs 1/3 */
+    uint8_t row[12] = {0, 30, 90, 255, 30, 60, 90, 255, 60, 90, 90, 255};
+    CHECK(pg_texture_init(&t, "row", row, 3, 1, false, &err) == PG_OK);
+    CHECK(t.n_mips == 2 && t.mips[1].rgba[0] == 30 && t.mips[1].rgba[1] == 60 && t.mips[1].rgba[2] == 90);
+    pg_texture_release(&t);
+    /* 1 x 7 column: only the height halves */
+    uint8_t col[28];
+    memset(col, 77, sizeof col);
+    CHECK(pg_texture_init(&t, "col", col, 1, 7, false, &err) == PG_OK);
+    CHECK(t.n_mips == 3 && t.mips[1].width == 1 && t.mips[1].height == 3 && t.mips[2].height == 1);
+    pg_texture_release(&t);
+    /* invalid sizes */
+    CHECK(pg_texture_init(&t, "zero", px, 0, 3, false, &err) == PG_ERR_INVALID_ARG);
+    CHECK(pg_texture_init(&t, "null", NULL, 2, 2, false, &err) == PG_ERR_INVALID_ARG);
+}
+
+/* ---- camera math ----------------------------------------------------------------------------- */
+
+static void xform(const float m[16], const float p[4], float o[4])
+{
+    for (int r = 0; r < 4; r++) {
+        o[r] = 0;
+        for (int k = 0; k < 4; k++) o[r] += m[k * 4 + r] * p[k];
+    }
+}
+
+static bool is_identity(const float m[16], float eps)
+{
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++)
+            if (fabsf(m[c * 4 + r] - (c == r ? 1.0f : 0.0f)) > eps) return false;
+    return true;
+}
+
+static void test_camera(void)
+{
+    pg_camera cam = {.position = {1, 2, 3}, .target = {11, 2, 3}, .up = {0, 1, 0},
+                     .fov_y_deg = 60, .near_z = 0.5f, .far_z = 100, .aspect = 2.0f};
+    float V[16], P[16], VP[16], I[16], M[16];
+    pg_camera_view(&cam, V);
+    pg_camera_proj(&cam, P);
+    float o[4];
+    float eye[4] = {1, 2, 3, 1};
+    xform(V, eye, o);
+    CHECK(near_f(o[0], 0, 1e-5f) && near_f(o[1], 0, 1e-5f) && near_f(o[2], 0, 1e-5f));
+    float tgt[4] = {11, 2, 3, 1};
+    xform(V, tgt, o);
+    CHECK(near_f(o[0], 0, 1e-5f) && near_f(o[1], 0, 1e-5f) && near_f(o[2], -10, 1e-4f));
+    float above[4] = {6, 3, 3, 1}; /* world up -> view +Y */
+    xform(V, above, o);
+    CHECK(o[1] > 0.99f && near_f(o[0], 0, 1e-5f));
+    float right[4] = {6, 2, 4, 1}; /* looking +X with +Y up, +Z is to the right */
+    xform(V, right, o);
+    CHECK(o[0] > 0.99f);
+
+    /* projection: near -> depth 0, far -> depth 1, above -> top (y_ndc < 0), right -> x_ndc > 0 */
+    pg_mat4_mul(P, V, VP);
+    float pn[4] = {1.5f, 2, 3, 1}, pf[4] = {101, 2, 3, 1}, pu[4] = {11, 4, 3, 1}, pr[4] = {11, 2, 5, 1};
+    xform(VP, pn, o);
+    CHECK(near_f(o[2] / o[3], 0.0f, 1e-5f) && near_f(o[3], 0.5f, 1e-5f));
+    xform(VP, pf, o);
+    CHECK(near_f(o[2] / o[3], 1.0f, 1e-5f));
+    xform(VP, pu, o);
+    CHECK(o[1] / o[3] < 0);
+    xform(VP, pr, o);
+    CHECK(o[0] / o[3] > 0);
+    /* fov: a point at the top edge of the frustum maps to y_ndc = -1; aspect scales x */
+    float h = 10.0f * tanf(30.0f * 3.14159265f / 180.0f);
+    float top[4] = {11, 2 + h, 3, 1}, side[4] = {11, 2, 3 + 2 * h, 1};
+    xform(VP, top, o);
+    CHECK(near_f(o[1] / o[3], -1.0f, 1e-4f));
+    xform(VP, side, o);
+    CHECK(near_f(o[0] / o[3], 1.0f, 1e-4f));
+
+    /* inverses */
+    CHECK(pg_mat4_invert(V, I));
+    pg_mat4_mul(I, V, M);
+    CHECK(is_identity(M, 1e-5f));
+    CHECK(pg_mat4_invert(P, I));
+    pg_mat4_mul(I, P, M);
+    CHECK(is_identity(M, 1e-4f));
+    CHECK(pg_mat4_invert(VP, I));
+    pg_mat4_mul(VP, I, M);
+    CHECK(is_identity(M, 1e-4f));
+    float G[16] = {2, 1, 0, 0.5f, -1, 3, 2, 0, 0.25f, 0, 1, 4, 1, 2, 3, 1};
+    CHECK(pg_mat4_invert(G, I));
+    pg_mat4_mul(I, G, M);
+    CHECK(is_identity(M, 1e-5f));
+    float S[16] = {1, 2, 3, 4, 2, 4, 6, 8, 0, 1, 0, 1, 5, 5, 5, 5}; /* column 1 = 2 * column 0 */
+    float keep[16];
+    memcpy(keep, I, sizeof keep);
+    CHECK(!pg_mat4_invert(S, I));
+    CHECK(memcmp(keep, I, sizeof keep) == 0);
+    float Z[16] = {0};
+    CHECK(!pg_mat4_invert(Z, I));
+    /* mul may alias its output */
+    float A[16];
+    memcpy(A, G, sizeof A);
+    pg_mat4_invert(G, I);
+    pg_mat4_mul(A, I, A);
+    CHECK(is_identity(A, 1e-5f));
+
+    /* up parallel to the view direction still gives a valid (invertible) view */
+    pg_camera down = {.position = {0, 10, 0}, .target = {0, 0, 0}, .up = {0, 1, 0},
+                      .fov_y_deg = 60, .near_z = 0.1f, .far_z = 100, .aspect = 1};
+    pg_camera_view(&down, V);
+    CHECK(pg_mat4_invert(V, I));
+    float orig[4] = {0, 0, 0, 1};
+    xform(V, orig, o);
+    CHECK(near_f(o[2], -10, 1e-4f));
+
+    /* a camera for an empty scene is still usable */
+    pg_camera c0 = pg_camera_default_for_scene(NULL, 1.0f);
+    CHECK(c0.near_z > 0 && c0.far_z > c0.near_z && c0.target[0] > c0.position[0]);
+}
+
+/* ---- Sponza ---------------------------------------------------------------------------------- */
+
+static void test_sponza(void)
+{
+    const char *skip = getenv("PG_TEST_NO_SPONZA");
+    if (skip && skip[0] && strcmp(skip, "0") != 0) {
+        printf("sponza: skipped (PG_TEST_NO_SPONZA set)\n");
+        return;
+    }
+    const char *path = PG_SHARED_DIR "/assets/dabrovic-sponza/sponza.gltf";
+    if (access(path, R_OK) != 0) {
+        printf("sponza: skipped (%s not present)\n", path);
+        return;
+    }
+    pg_scene *s = NULL;
+    pg_error err = {0};
+    double t0 = now_s();
+    pg_result r = pg_scene_load(path, &s, &err);
+    double t1 = now_s();
+    CHECK_MSG(r == PG_OK, "%s", err.msg);
+    if (!s) return;
+    printf("sponza: %u triangles, %u vertices, %u materials, %u textures, loaded in %.3f s\n",
+           s->n_indices / 3, s->n_vertices, s->n_materials, s->n_textures, t1 - t0);
+    CHECK(t1 - t0 < 5.0);
+    CHECK(strcmp(s->name, "sponza") == 0);
+    CHECK(s->n_indices / 3 == 66454);
+    CHECK(s->n_vertices == 62611);
+    CHECK(s->n_primitives == 37);
+    CHECK(s->n_materials == 14);
+    CHECK(s->n_textures == 17);
+    uint32_t nm = 0;
+    for (uint32_t i = 0; i < s->n_materials; i++) nm += s->materials[i].normal_tex >= 0;
+    CHECK(nm == 6);
+    CHECK(s->features.has_textures && s->features.has_normal_maps && !s->features.has_alpha_mask);
+    const float bmin[3] = {-17.4028f, -0.9067f, -7.7985f}, bmax[3] = {17.4172f, 15.6533f, 7.8015f};
+    for (int k = 0; k < 3; k++)
+        CHECK(near_f(s->bounds_min[k], bmin[k], 1e-3f) && near_f(s->bounds_max[k], bmax[k], 1e-3f));
+    geo_stats g = scene_geometry_stats(s);
+    CHECK(g.bad_index == 0);
+    CHECK_MSG(g.bad_normal == 0, "%u non-unit normals", g.bad_normal);
+    CHECK_MSG(g.bad_tangent == 0, "%u bad tangents", g.bad_tangent);
+    /* the asset itself: 66218 of 66453 triangles have vertex normals on their CCW side */
+    CHECK_MSG(g.wound_ok >= 0.995 * (g.wound_ok + g.wound_bad), "winding agrees on %u of %u",
+              g.wound_ok, g.wound_ok + g.wound_bad);
+    for (uint32_t i = 0; i < s->n_textures; i++) check_texture_chain(&s->textures[i]);
+    /* every primitive of a normal-mapped material carries tangents */
+    uint32_t missing_t = 0;
+    for (uint32_t p = 0; p < s->n_primitives; p++) {
+        const pg_primitive *pr = &s->primitives[p];
+        if (s->materials[pr->material].normal_tex < 0) continue;
+        for (uint32_t i = 0; i < pr->index_count; i++) {
+            const pg_vertex *v = &s->vertices[s->indices[pr->first_index + i] + pr->vertex_offset];
+            if (fabsf(fabsf(v->tangent[3]) - 1) > 0) missing_t++;
+        }
+    }
+    CHECK_MSG(missing_t == 0, "%u normal-mapped vertices without tangents", missing_t);
+
+    /* pg_mesh_compute_tangents agrees with the file's tangents (same glTF convention) */
+    uint32_t n_cmp = 0, w_same = 0, dir_same = 0;
+    for (uint32_t p = 0; p < s->n_primitives; p++) {
+        const pg_primitive *pr = &s->primitives[p];
+        if (s->materials[pr->material].normal_tex < 0) continue;
+        uint32_t vmax = 0;
+        for (uint32_t i = 0; i < pr->index_count; i++)
+            if (s->indices[pr->first_index + i] + 1 > vmax) vmax = s->indices[pr->first_index + i] + 1;
+        pg_vertex *copy = malloc(sizeof(pg_vertex) * vmax);
+        if (!copy) continue;
+        memcpy(copy, s->vertices + pr->vertex_offset, sizeof(pg_vertex) * vmax);
+        pg_mesh_compute_tangents(copy, vmax, s->indices + pr->first_index, pr->index_count);
+        for (uint32_t i = 0; i < vmax; i++) {
+            const pg_vertex *f = &s->vertices[pr->vertex_offset + i];
+            n_cmp++;
+            w_same += copy[i].tangent[3] == f->tangent[3];
+            dir_same += dot3(copy[i].tangent, f->tangent) > 0.9f;
+        }
+        free(copy);
+    }
+    printf("sponza: recomputed tangents: handedness agrees on %.1f%%, direction on %.1f%% of %u\n",
+           100.0 * w_same / (n_cmp ? n_cmp : 1), 100.0 * dir_same / (n_cmp ? n_cmp : 1), n_cmp);
+    CHECK(n_cmp > 0 && w_same >= 0.95 * n_cmp && dir_same >= 0.9 * n_cmp);
+
+    pg_camera cam = pg_camera_default_for_scene(s, 1.0f);
+    CHECK(cam.position[0] > s->bounds_min[0] && cam.position[0] < s->bounds_max[0]);
+    pg_scene_free(s);
+}
+
+/* ---- scenarios ------------------------------------------------------------------------------- */
+
+static char g_tmpdir[256];
+
+static void write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) return;
+    fputs(text, f);
+    fclose(f);
+}
+
+typedef struct bad_scenario {
+    const char *json;
+    pg_result code;
+    const char *substring;
+} bad_scenario;
+
+static void test_scenarios(void)
+{
+    pg_scenario sc;
+    pg_error err = {0};
+    const char *path = PG_TEST_DIR "/../assets/scenarios/cis565.json";
+    pg_result r = pg_scenario_load(path, &sc, &err);
+    CHECK_MSG(r == PG_OK, "%s", err.msg);
+    if (r == PG_OK) {
+        CHECK(strcmp(sc.name, "cis565") == 0);
+        CHECK(sc.has_camera && sc.has_cam_position && sc.has_cam_target && sc.has_cam_up &&
+              sc.has_cam_fov && sc.has_cam_near && sc.has_cam_far);
+        CHECK(sc.camera.position[0] == -7 && sc.camera.position[1] == 2 && sc.camera.position[2] == 0);
+        CHECK(sc.camera.target[0] > sc.camera.position[0] && sc.camera.target[1] == 2 &&
+              sc.camera.target[2] == 0);
+        CHECK(sc.camera.fov_y_deg == 45 && near_f(sc.camera.near_z, 0.1f, 1e-7f) && sc.camera.far_z == 1000);
+        CHECK(sc.has_light_count && sc.lights.count == 500);
+        CHECK(sc.has_light_box && sc.lights.box_min[0] == -10 && sc.lights.box_min[1] == 0 &&
+              sc.lights.box_min[2] == -5 && sc.lights.box_max[0] == 10 && sc.lights.box_max[1] == 8 &&
+              sc.lights.box_max[2] == 5);
+        CHECK(sc.has_radius && sc.lights.radius == 2.0f);
+        CHECK(sc.has_intensity && near_f(sc.lights.intensity, 0.1f, 1e-7f));
+        CHECK(sc.has_saturation && near_f(sc.lights.saturation, 0.8f, 1e-7f));
+        CHECK(sc.has_motion && sc.lights.motion == PG_MOTION_NOISE);
+        CHECK(sc.has_speed && sc.lights.speed == 1.0f);
+        CHECK(!sc.has_seed);
+        CHECK(strcmp(sc.shading, "lambert") == 0);
+        CHECK(sc.scene[0] == 0);
+
+        /* apply: present fields replace, the seed (absent) is kept; --lights applied after wins */
+        pg_light_setup L = pg_light_setup_default(NULL, 64, 99);
+        pg_camera cam = pg_camera_default_for_scene(NULL, 1.5f);
+        pg_scenario_apply(&sc, &L, &cam);
+        CHECK(L.count == 500 && L.seed == 99 && L.radius == 2.0f && L.box_max[1] == 8);
+        CHECK(cam.position[0] == -7 && cam.fov_y_deg == 45 && cam.far_z == 1000 && cam.aspect == 1.5f);
+        pg_scenario_apply(&sc, NULL, NULL);
+    }
+
+    /* a scenario with only some fields */
+    snprintf(g_tmpdir, sizeof g_tmpdir, "/tmp/pg_test_scene_XXXXXX");
+    if (!mkdtemp(g_tmpdir)) {
+        CHECK_MSG(0, "mkdtemp failed");
+        return;
+    }
+    char p[512];
+    snprintf(p, sizeof p, "%s/partial.json", g_tmpdir);
+    write_text(p, "{\"scene\": \"models/x.gltf\", \"lights\": {\"radius\": 0.5, \"seed\": 12},"
+                  " \"camera\": {\"near\": 5}}");
+    r = pg_scenario_load(p, &sc, &err);
+    CHECK_MSG(r == PG_OK, "%s", err.msg);
+    if (r == PG_OK) {
+        char want[512];
+        snprintf(want, sizeof want, "%s/models/x.gltf", g_tmpdir);
+        CHECK(strcmp(sc.scene, want) == 0);
+        CHECK(strcmp(sc.name, "partial") == 0);
+        pg_light_setup L = pg_light_setup_default(NULL, 64, 1);
+        pg_light_setup L0 = L;
+        pg_camera cam = {.position = {1, 1, 1}, .target = {2, 1, 1}, .up = {0, 1, 0},
+                         .fov_y_deg = 50, .near_z = 0.1f, .far_z = 2, .aspect = 1};
+        pg_scenario_apply(&sc, &L, &cam);
+        CHECK(L.radius == 0.5f && L.seed == 12 && L.count == 64 && L.intensity == L0.intensity &&
+              memcmp(L.box_min, L0.box_min, sizeof L.box_min) == 0);
+        CHECK(cam.near_z == 5 && cam.far_z > cam.near_z && cam.fov_y_deg == 50 && cam.position[0] == 1);
+    }
+    unlink(p);
+    snprintf(p, sizeof p, "%s/default_scene.json", g_tmpdir);
+    write_text(p, "{\"scene\": \"default\"}");
+    CHECK(pg_scenario_load(p, &sc, &err) == PG_OK && strcmp(sc.scene, "default") == 0);
+    unlink(p);
+
+    static const bad_scenario bad[] = {
+        {"{\"lights\": {\"radius\": -1}}", PG_ERR_SCHEMA, "lights.radius: expected a finite number >= 0"},
+        {"{\"lights\": {\"radius\": \"big\"}}", PG_ERR_SCHEMA, "lights.radius: expected a finite number >= 0"},
+        {"{\"lights\": {\"raduis\": 2}}", PG_ERR_SCHEMA, "lights.raduis: unknown key"},
+        {"{\"camrea\": {}}", PG_ERR_SCHEMA, "camrea: unknown key"},
+        {"{\"camera\": {\"fov\": 45}}", PG_ERR_SCHEMA, "camera.fov: unknown key"},
+        {"{\"lights\": {\"box_min\": [0, 0, 0], \"box_max\": [1, -1, 1]}}", PG_ERR_SCHEMA,
+         "lights.box_min: must be <= lights.box_max in every component (y: 0 > -1)"},
+        {"{\"lights\": {\"box_min\": [0, 0, 0]}}", PG_ERR_SCHEMA, "lights.box_max: required together"},
+        {"{\"lights\": {\"box_min\": [0, 0], \"box_max\": [1, 1, 1]}}", PG_ERR_SCHEMA,
+         "lights.box_min: expected an array of 3 finite numbers"},
+        {"{\"camera\": {\"fov_y\": 0}}", PG_ERR_SCHEMA, "camera.fov_y: expected a number of degrees in (0, 180)"},
+        {"{\"camera\": {\"fov_y\": 180}}", PG_ERR_SCHEMA, "camera.fov_y"},
+        {"{\"camera\": {\"near\": 0}}", PG_ERR_SCHEMA, "camera.near: expected a finite number > 0"},
+        {"{\"camera\": {\"near\": 10, \"far\": 10}}", PG_ERR_SCHEMA, "camera.far: must be greater than camera.near"},
+        {"{\"camera\": {\"position\": [1, 2, 3], \"target\": [1, 2, 3]}}", PG_ERR_SCHEMA,
+         "camera.target: must differ from camera.position"},
+        {"{\"camera\": {\"position\": [0, 0, 0], \"target\": [0, 5, 0], \"up\": [0, 1, 0]}}",
+         PG_ERR_SCHEMA, "camera.up: must not be parallel"},
+        {"{\"camera\": {\"up\": [0, 0, 0]}}", PG_ERR_SCHEMA, "camera.up: must not be the zero vector"},
+        {"{\"lights\": {\"count\": 1.5}}", PG_ERR_SCHEMA, "lights.count: expected an integer"},
+        {"{\"lights\": {\"count\": -3}}", PG_ERR_SCHEMA, "lights.count: expected an integer"},
+        {"{\"lights\": {\"count\": 100000000}}", PG_ERR_SCHEMA, "lights.count: expected an integer in 0..16777216"},
+        {"{\"lights\": {\"saturation\": 1.5}}", PG_ERR_SCHEMA, "lights.saturation: expected a number in [0, 1]"},
+        {"{\"lights\": {\"motion\": \"wobble\"}}", PG_ERR_SCHEMA, "lights.motion: expected \"noise\" or \"static\""},
+        {"{\"lights\": {\"speed\": -1}}", PG_ERR_SCHEMA, "lights.speed"},
+        {"{\"lights\": {\"seed\": -1}}", PG_ERR_SCHEMA, "lights.seed"},
+        {"{\"shading\": \"phong\"}", PG_ERR_SCHEMA, "shading: expected \"lambert\" or \"blinn_phong\""},
+        {"{\"name\": 3}", PG_ERR_SCHEMA, "name: expected a string"},
+        {"{\"lights\": {\"radius\": 1, \"radius\": 2}}", PG_ERR_SCHEMA, "lights.radius: duplicate key"},
+        {"[1, 2]", PG_ERR_SCHEMA, "expected a JSON object"},
+        {"{\"lights\": [1]}", PG_ERR_SCHEMA, "lights: expected an object"},
+        {"{\"lights\": {\"radius\": 2,}}", PG_ERR_PARSE, "JSON syntax error"},
+        {"{\n  \"name\": \"x\"\n  \"shading\": \"lambert\"\n}", PG_ERR_PARSE, ":3:"},
+        {"", PG_ERR_PARSE, "empty file"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        snprintf(p, sizeof p, "%s/bad%zu.json", g_tmpdir, i);
+        write_text(p, bad[i].json);
+        memset(&err, 0, sizeof err);
+        r = pg_scenario_load(p, &sc, &err);
+        CHECK_MSG(r == bad[i].code && strstr(err.msg, bad[i].substring) && strstr(err.msg, p),
+                  "bad scenario %zu: got %s '%s', want %s '%s'", i, pg_result_name(r), err.msg,
+                  pg_result_name(bad[i].code), bad[i].substring);
+        unlink(p);
+    }
+    snprintf(p, sizeof p, "%s/missing.json", g_tmpdir);
+    CHECK(pg_scenario_load(p, &sc, &err) == PG_ERR_IO);
+    rmdir(g_tmpdir);
+}
+
+/* ---- glTF corpus ----------------------------------------------------------------------------- */
+
+static pg_result code_from_name(const char *n)
+{
+    for (int r = 0; r < PG_ERR_COUNT; r++)
+        if (strcmp(pg_result_name((pg_result)r), n) == 0) return (pg_result)r;
+    return PG_ERR_COUNT;
+}
+
+static pg_scene *load_corpus(const char *name)
+{
+    char p[512];
+    snprintf(p, sizeof p, "%s/corpus/gltf/%s", PG_TEST_DIR, name);
+    pg_scene *s = NULL;
+    pg_error err = {0};
+    if (pg_scene_load_gltf(p, &s, &err) != PG_OK) {
+        CHECK_MSG(0, "%s: %s", name, err.msg);
+        return NULL;
+    }
+    return s;
+}
+
+static void test_corpus_valid_details(void)
+{
+    pg_scene *s;
+    if ((s = load_corpus("ok_minimal.gltf"))) {
+        CHECK(s->n_indices == 3 && s->n_vertices == 3 && s->n_materials == 1);
+        CHECK(strcmp(s->materials[0].name, "default") == 0 && s->materials[0].base_color[0] == 1);
+        CHECK(near_f(s->vertices[0].normal[2], 1.0f, 1e-6f)); /* computed from the winding */
+        CHECK(strcmp(s->name, "ok_minimal") == 0);
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_minimal.glb"))) {
+        CHECK(s->n_indices == 3);
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_external_bin.gltf"))) {
+        CHECK(s->n_indices == 3);
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_strip.gltf"))) {
+        CHECK(s->n_indices == 6 && s->n_vertices == 4);
+        geo_stats g = scene_geometry_stats(s);
+        CHECK(g.wound_bad == 0 && g.wound_ok == 2);
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_mirrored.gltf"))) {
+        geo_stats g = scene_geometry_stats(s);
+        CHECK(g.wound_ok == 1 && g.wound_bad == 0);
+        CHECK(near_f(s->vertices[1].position[0], -1.0f, 1e-6f));
+        CHECK(near_f(s->vertices[0].normal[2], 1.0f, 1e-6f));
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_trs_hierarchy.gltf"))) {
+        CHECK(near_f(s->bounds_min[0], 9, 1e-5f) && near_f(s->bounds_max[0], 10, 1e-5f));
+        CHECK(near_f(s->bounds_min[1], 0, 1e-5f) && near_f(s->bounds_max[1], 1, 1e-5f));
+        /* vertex 1 (1,0,0): rotated 90 deg about Z -> (0,1,0), translated -> (10,1,0) */
+        CHECK(near_f(s->vertices[1].position[0], 10, 1e-5f) && near_f(s->vertices[1].position[1], 1, 1e-5f));
+        CHECK(near_f(s->primitives[0].bounds_min[0], 9, 1e-5f));
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_interleaved_u8.gltf"))) {
+        CHECK(s->n_indices == 3 && near_f(s->vertices[2].normal[2], 1, 0) &&
+              near_f(s->vertices[2].position[1], 1, 0));
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_textured.gltf"))) {
+        CHECK(s->n_textures == 2 && s->n_materials == 1);
+        const pg_material *m = &s->materials[0];
+        CHECK(m->base_color_tex >= 0 && m->normal_tex >= 0 && m->base_color_tex != m->normal_tex);
+        if (m->base_color_tex >= 0 && m->normal_tex >= 0) {
+            CHECK(s->textures[m->base_color_tex].srgb && !s->textures[m->normal_tex].srgb);
+            CHECK(s->textures[m->base_color_tex].mips[0].width == 2 &&
+                  s->textures[m->base_color_tex].n_mips == 2);
+            CHECK(s->textures[m->base_color_tex].mips[0].rgba[0] == 255 &&
+                  s->textures[m->base_color_tex].mips[0].rgba[1] == 0);
+        }
+        CHECK(m->alpha_mode == PG_ALPHA_MASK && near_f(m->alpha_cutoff, 0.3f, 1e-6f) && m->double_sided);
+        CHECK(near_f(m->normal_scale, 0.5f, 1e-6f));
+        CHECK(s->features.has_textures && s->features.has_normal_maps && s->features.has_alpha_mask);
+        /* tangents computed from UVs: T = +X (u grows along x), bitangent = -Y (v grows along y,
+         * glTF v points down the image), N = +Z -> w = -1 */
+        const pg_vertex *v = &s->vertices[0];
+        CHECK(near_f(v->tangent[0], 1, 1e-5f) && near_f(v->tangent[1], 0, 1e-5f) && v->tangent[3] == -1);
+        geo_stats g = scene_geometry_stats(s);
+        CHECK(g.bad_tangent == 0 && g.tangents == 3);
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_points_skipped.gltf"))) {
+        CHECK(s->n_primitives == 1 && s->n_indices == 3);
+        pg_scene_free(s);
+    }
+}
+
+static void test_corpus(void)
+{
+    char mpath[512];
+    snprintf(mpath, sizeof mpath, "%s/corpus/gltf/MANIFEST", PG_TEST_DIR);
+    FILE *f = fopen(mpath, "r");
+    CHECK_MSG(f != NULL, "cannot open %s", mpath);
+    if (!f) return;
+    char line[1024];
+    int n_err = 0, n_ok = 0, n_fail = 0;
+    while (fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\r\n")] = 0;
+        char *p = line;
+        while (*p == ' ' || *p == '\t') p++;
+        if (!*p || *p == '#') continue;
+        char file[256], code[64];
+        int used = 0;
+        if (sscanf(p, "%255s %63s %n", file, code, &used) < 2) {
+            CHECK_MSG(0, "bad MANIFEST line: %s", line);
+            continue;
+        }
+        const char *sub = p + used;
+        pg_result want = code_from_name(code);
+        CHECK_MSG(want != PG_ERR_COUNT, "MANIFEST: unknown code %s", code);
+        char path[600];
+        snprintf(path, sizeof path, "%s/corpus/gltf/%s", PG_TEST_DIR, file);
+        pg_scene *s = NULL;
+        pg_error err = {0};
+        pg_result r = pg_scene_load_gltf(path, &s, &err);
+        bool ok;
+        if (want == PG_OK) {
+            ok = r == PG_OK && s != NULL && s->n_indices > 0;
+            n_ok++;
+        } else {
+            ok = r == want && s == NULL && strstr(err.msg, sub) != NULL && strstr(err.msg, file) != NULL;
+            n_err++;
+        }
+        if (!ok) n_fail++;
+        CHECK_MSG(ok, "%s: got %s '%s', want %s '%s'", file, pg_result_name(r), r ? err.msg : "",
+                  code, sub);
+        pg_scene_free(s);
+    }
+    fclose(f);
+    printf("glTF corpus: %d error cases, %d valid files, %d mismatches\n", n_err, n_ok, n_fail);
+    CHECK(n_err >= 30);
+    test_corpus_valid_details();
+}
+
+static void test_api_edges(void)
+{
+    pg_scene *s = (pg_scene *)1;
+    pg_error err = {0};
+    CHECK(pg_scene_load(NULL, &s, &err) == PG_ERR_INVALID_ARG && s == NULL);
+    CHECK(pg_scene_load("", &s, &err) == PG_ERR_INVALID_ARG);
+    CHECK(pg_scene_load_gltf(PG_TEST_DIR "/corpus/gltf/nothing_here.gltf", &s, &err) == PG_ERR_IO);
+    CHECK(strstr(err.msg, "nothing_here.gltf") != NULL);
+    pg_scene_free(NULL);
+    pg_texture_release(NULL);
+}
+
+int main(void)
+{
+    test_textures();
+    test_camera();
+    test_default_scene();
+    test_scenarios();
+    test_corpus();
+    test_api_edges();
+    test_sponza();
+    return pg_test_finish("test_scene");
+}
