@@ -25,11 +25,20 @@ pg_result pg_error_prefix(pg_error *err, const char *fmt, ...)
     char prefix[PG_ERROR_MSG_MAX];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(prefix, sizeof prefix, fmt, ap);
+    int n = vsnprintf(prefix, sizeof prefix - 2, fmt, ap);
     va_end(ap);
-    char old[PG_ERROR_MSG_MAX];
-    memcpy(old, err->msg, sizeof old);
-    snprintf(err->msg, sizeof err->msg, "%s: %s", prefix, old);
+    if (n < 0) return err->code;
+    size_t plen = strlen(prefix);
+    memcpy(prefix + plen, ": ", 3);
+    plen += 2;
+    /* shift the old message right and put the prefix in front (truncating the tail) */
+    size_t old = strnlen(err->msg, sizeof err->msg - 1);
+    if (plen >= sizeof err->msg - 1) plen = sizeof err->msg - 1;
+    size_t keep = old;
+    if (plen + keep > sizeof err->msg - 1) keep = sizeof err->msg - 1 - plen;
+    memmove(err->msg + plen, err->msg, keep);
+    memcpy(err->msg, prefix, plen);
+    err->msg[plen + keep] = 0;
     return err->code;
 }
 

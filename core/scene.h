@@ -86,7 +86,18 @@ typedef struct pg_camera {
 } pg_camera;
 
 /* Loads a .gltf (JSON + external/embedded buffers and images) or .glb. Errors name the file and
- * the glTF object, e.g. "x.gltf: accessors[4]: count 100 exceeds bufferView 2 (48 bytes)". */
+ * the glTF object, e.g. "x.gltf: accessors[4]: count 100 (...) exceeds bufferView 2 (48 bytes)":
+ * PG_ERR_IO when the file itself cannot be read, PG_ERR_PARSE for JSON syntax / a broken GLB
+ * container, PG_ERR_GLTF for content (missing buffer or image files, ranges, types, indices,
+ * non-finite values, cycles, undecodable or > 16384 px images), PG_ERR_LIMIT past 2^32 vertices.
+ * Details (core/scene_gltf.cpp header): the node hierarchy of `scene` (else scenes[0], else every
+ * root node) is baked into the vertices (normals by the inverse-transpose, a mirroring transform
+ * flips the winding and the tangent handedness); one pg_primitive per drawn (node, primitive)
+ * pair, its indices local (add vertex_offset); TRIANGLES/STRIP/FAN are drawn, points and lines
+ * skipped with a warning on stderr; missing normals are computed (area-weighted), missing tangents
+ * are computed for normal-mapped materials; materials keep their glTF indices (a white "default"
+ * material is appended for primitives without one); textures are decoded to RGBA8 with full mip
+ * chains, one pg_texture per (image, sRGB-or-linear) use. name = the file stem. */
 pg_result pg_scene_load_gltf(const char *path, pg_scene **out, pg_error *err);
 /* The built-in atrium (columns, arches, several procedural materials, tens of thousands of
  * triangles). Deterministic. */

@@ -176,6 +176,31 @@ std::string glb_json(Ctx &c, const unsigned char *b, size_t n)
 /* ------------------------------------------------------------------------------------------ */
 /* step 2: JSON pre-validation                                                                  */
 
+/* tinygltf converts `extras`/`extensions` recursively: bound the nesting before any parser runs
+ * (a non-recursive scan of the text, strings skipped). */
+constexpr int kMaxJsonDepth = 200;
+
+void check_json_depth(const std::string &t)
+{
+    int depth = 0;
+    bool in_str = false;
+    for (size_t i = 0; i < t.size(); i++) {
+        char ch = t[i];
+        if (in_str) {
+            if (ch == '\\') i++;
+            else if (ch == '"') in_str = false;
+        } else if (ch == '"') {
+            in_str = true;
+        } else if (ch == '[' || ch == '{') {
+            if (++depth > kMaxJsonDepth)
+                fail(PG_ERR_LIMIT, strf("JSON nesting deeper than %d levels (at byte %zu)",
+                                        kMaxJsonDepth, i));
+        } else if (ch == ']' || ch == '}') {
+            depth--;
+        }
+    }
+}
+
 const json *opt_array(const json &o, const char *key, const std::string &where)
 {
     auto it = o.find(key);
@@ -1108,6 +1133,7 @@ pg_scene *load(Ctx &c)
     /* 2. JSON + pre-validation */
     {
         std::string text = c.is_glb ? glb_json(c, bytes, raw_size) : std::string(raw, raw_size);
+        check_json_depth(text);
         try {
             c.j = json::parse(text);
         } catch (const json::parse_error &e) {

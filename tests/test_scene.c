@@ -647,6 +647,15 @@ static void test_corpus_valid_details(void)
         CHECK(near_f(s->vertices[0].normal[2], 1.0f, 1e-6f));
         pg_scene_free(s);
     }
+    if ((s = load_corpus("ok_mirrored_tangent.gltf"))) {
+        const pg_vertex *v = &s->vertices[0];
+        CHECK(near_f(v->tangent[0], -1, 1e-6f) && v->tangent[3] == 1.0f);
+        pg_vertex copy[3];
+        memcpy(copy, s->vertices, sizeof copy);
+        pg_mesh_compute_tangents(copy, 3, s->indices, 3);
+        CHECK(near_f(copy[0].tangent[0], v->tangent[0], 1e-5f) && copy[0].tangent[3] == v->tangent[3]);
+        pg_scene_free(s);
+    }
     if ((s = load_corpus("ok_trs_hierarchy.gltf"))) {
         CHECK(near_f(s->bounds_min[0], 9, 1e-5f) && near_f(s->bounds_max[0], 10, 1e-5f));
         CHECK(near_f(s->bounds_min[1], 0, 1e-5f) && near_f(s->bounds_max[1], 1, 1e-5f));

@@ -133,6 +133,8 @@ d["extensionsUsed"] = ["KHR_draco_mesh_compression"]
 write("required_extension.gltf", d, "PG_ERR_GLTF",
       "extensionsRequired: 'KHR_draco_mesh_compression' is not supported")
 manifest.append(("does_not_exist.gltf", "PG_ERR_IO", "cannot open"))
+write("deep_nesting.gltf", '{"asset": {"version": "2.0"}, "extras": ' + "[" * 1000 + "]" * 1000 + "}\n",
+      "PG_ERR_LIMIT", "JSON nesting deeper than 200 levels")
 
 # ------------------------------------------------------------------------------------------------
 # buffers and views
@@ -373,6 +375,20 @@ write("ok_strip.gltf", d, "PG_OK")
 d, _ = base_doc(with_normals=True)
 d["nodes"][0]["scale"] = [-1, 1, 1]
 write("ok_mirrored.gltf", d, "PG_OK")
+# mirrored node with UVs and TANGENT (1,0,0,-1): the tangent becomes (-1,0,0) and, as the frame is
+# mirrored, its handedness flips to +1 (what recomputing from the mirrored UVs gives)
+d, data = base_doc(with_normals=True)
+tan = f32(1, 0, 0, -1, 1, 0, 0, -1, 1, 0, 0, -1)
+d["bufferViews"].append({"buffer": 0, "byteOffset": len(data), "byteLength": len(TRI_UV)})
+d["bufferViews"].append({"buffer": 0, "byteOffset": len(data) + len(TRI_UV), "byteLength": len(tan)})
+data += TRI_UV + tan
+d["buffers"][0] = {"byteLength": len(data), "uri": b64(data)}
+d["accessors"].append({"bufferView": 3, "componentType": 5126, "count": 3, "type": "VEC2"})
+d["accessors"].append({"bufferView": 4, "componentType": 5126, "count": 3, "type": "VEC4"})
+d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 3
+d["meshes"][0]["primitives"][0]["attributes"]["TANGENT"] = 4
+d["nodes"][0]["scale"] = [-1, 1, 1]
+write("ok_mirrored_tangent.gltf", d, "PG_OK")
 # hierarchy with TRS: parent translation (10, 0, 0), child rotation 90 deg about +Z
 d, _ = base_doc()
 s = 0.7071067811865476
