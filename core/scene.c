@@ -439,8 +439,8 @@ pg_camera pg_camera_default_for_scene(const pg_scene *scene, float aspect)
     }
     pg_camera c;
     memset(&c, 0, sizeof c);
-    c.position[0] = mn[0] + 0.1f * size[0];
-    c.position[1] = mn[1] + 0.3f * size[1];
+    c.position[0] = mn[0] + 0.2f * size[0];
+    c.position[1] = mn[1] + 0.18f * size[1];
     c.position[2] = center[2];
     c.target[0] = mx[0];
     c.target[1] = c.position[1];

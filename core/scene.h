@@ -129,8 +129,8 @@ void pg_mesh_compute_tangents(pg_vertex *verts, uint32_t n_verts, const uint32_t
  * the features (from the materials the primitives with triangles actually use). */
 void pg_scene_finalize(pg_scene *scene);
 
-/* A sensible view of the whole scene from its bounds: position (min.x + 0.1*size.x,
- * min.y + 0.3*size.y, center.z), looking along +X at (max.x, same height, center.z), up +Y,
+/* A sensible view of the whole scene from its bounds: position (min.x + 0.2*size.x,
+ * min.y + 0.18*size.y, center.z), looking along +X at (max.x, same height, center.z), up +Y,
  * fov_y 60 deg, near = max(0.01, 0.001*diagonal), far = 2*diagonal. For the atrium-like scenes
  * this stands inside the nave looking down its length. */
 pg_camera pg_camera_default_for_scene(const pg_scene *scene, float aspect);
