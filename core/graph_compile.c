@@ -494,7 +494,7 @@ static pg_result phase_validate(compile_ctx *c)
         pp->n_slots = pd->n_reads + pd->n_writes;
         c->n_uses[i] = 0;
         for (uint32_t s = 0; s < pp->n_slots; s++)
-            if ((r = merge_slot(c, (int)i, (int)s))) return r;
+            if (!pp->slots[s].decl.unused && (r = merge_slot(c, (int)i, (int)s))) return r;
         for (uint32_t k = 0; k < c->n_uses[i]; k++) {
             pass_use *u = &c->uses[i][k];
             if (u->reads) u->full_write = false; /* loads what it writes: not a full overwrite */
@@ -859,6 +859,7 @@ static pg_result phase_lifetimes(compile_ctx *c)
         const int p = plan->order[k];
         const pg_plan_pass *pp = &plan->passes[p];
         for (uint32_t s = 0; s < pp->n_slots; s++) {
+            if (pp->slots[s].decl.unused) continue; /* bound but not touched this time */
             pg_plan_resource *pr = &plan->resources[pp->slots[s].resource];
             if (pr->first_pass < 0) pr->first_pass = (int)k;
             pr->last_pass = (int)k;

@@ -525,6 +525,20 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
                 stats->timestamps_valid = true;
             }
         }
+        for (uint32_t o = 0; o < plan->n_order; o++) {
+            const pg_plan_pass *pass = &plan->passes[plan->order[o]];
+            if (!pass->type->report) continue;
+            pg_pass_report rep = {0};
+            pass->type->report(rt->pass_state[plan->order[o]], &rep);
+            for (uint32_t k = 0; k < rep.n && stats->n_counters < 32; k++) {
+                pg_strlcpy(stats->counters[stats->n_counters].pass, pass->name, PG_NAME_MAX);
+                pg_strlcpy(stats->counters[stats->n_counters].name, rep.counters[k].name, 32);
+                stats->counters[stats->n_counters].value = rep.counters[k].value;
+                stats->n_counters++;
+                if (!strcmp(rep.counters[k].name, "overflow_clusters")) stats->overflow_clusters += rep.counters[k].value;
+                if (!strcmp(rep.counters[k].name, "overflow_dropped")) stats->overflow_dropped += rep.counters[k].value;
+            }
+        }
         stats->cpu_ms = now_ms() - t0;
     }
     return PG_OK;

@@ -61,6 +61,15 @@ typedef struct pg_frame_stats {
     double gpu_total_ms;
     double cpu_ms;                    /* record + submit + wait */
     bool timestamps_valid;
+    /* counters reported by passes (pg_pass_type.report), e.g. cluster overflow */
+    uint32_t n_counters;
+    struct {
+        char pass[PG_NAME_MAX];
+        char name[32];
+        uint64_t value;
+    } counters[32];
+    uint64_t overflow_clusters;       /* sum of every "overflow_clusters" counter */
+    uint64_t overflow_dropped;        /* sum of every "overflow_dropped" counter (light refs lost) */
 } pg_frame_stats;
 
 typedef struct pg_runtime_stats {

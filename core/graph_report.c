@@ -203,7 +203,8 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
                 const pg_plan_slot *sl = &pp->slots[s];
                 if (sl->is_write != (w == 1)) continue;
                 fprintf(f, "%s%s %s (%s)", any ? "," : (w ? "      writes:" : "      reads: "),
-                        "", plan->resources[sl->resource].name, pg_access_name(sl->decl.access));
+                        "", plan->resources[sl->resource].name,
+                        sl->decl.unused ? "unused" : pg_access_name(sl->decl.access));
                 any = true;
             }
             if (any) fprintf(f, "\n");

@@ -54,6 +54,9 @@ typedef struct pg_slot_decl {
     pg_access access;
     uint32_t stages;          /* PG_STAGE_* for shader accesses; ignored for attachments/transfer */
     uint32_t formats;         /* pg_format_class mask accepted (images) */
+    bool unused;              /* bound but not touched in this configuration (e.g. cluster
+                               * lists with 0 lights): no dependency, barrier or lifetime, so
+                               * the producer can be culled. Set with pg_decl_mark_unused(). */
 } pg_slot_decl;
 
 #define PG_MAX_DEFINES 16
@@ -80,6 +83,7 @@ typedef struct pg_declare_in {
 struct pg_gpu;
 struct pg_pass_create_ctx;
 struct pg_pass_record_ctx;
+struct pg_pass_report;
 
 typedef struct pg_pass_type {
     const char *name;        /* the "type" string in pipeline JSON */
@@ -91,7 +95,21 @@ typedef struct pg_pass_type {
     pg_result (*create)(void *self, const struct pg_pass_create_ctx *ctx, pg_error *err);
     void (*record)(void *self, const struct pg_pass_record_ctx *ctx);
     void (*destroy)(void *self, struct pg_gpu *gpu);
+    /* Optional: counters the pass measured in the frame that just finished (called after the
+     * frame's fence), e.g. cluster overflow. */
+    void (*report)(void *self, struct pg_pass_report *out);
 } pg_pass_type;
+
+#define PG_MAX_PASS_COUNTERS 8
+typedef struct pg_pass_report {
+    uint32_t n;
+    struct {
+        char name[32];
+        uint64_t value;
+    } counters[PG_MAX_PASS_COUNTERS];
+} pg_pass_report;
+/* Adds a counter (ignored when full). */
+void pg_report_add(pg_pass_report *r, const char *name, uint64_t value);
 
 typedef struct pg_pass_registry {
     uint32_t count;
@@ -109,6 +127,8 @@ void pg_decl_read(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access
 void pg_decl_write(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
                    uint32_t stages, uint32_t formats);
 void pg_decl_define(pg_pass_decl *d, const char *define);
+/* Marks reads[index] (or writes[index]) unused and records why in the explanation. */
+void pg_decl_mark_unused(pg_pass_decl *d, bool is_write, uint32_t index, const char *why);
 void pg_decl_explain(pg_pass_decl *d, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))

@@ -152,3 +152,21 @@ pg_result pg_decl_check_counts(const pg_pass_desc *desc, const pg_pass_decl *d,
     }
     return PG_OK;
 }
+
+void pg_decl_mark_unused(pg_pass_decl *d, bool is_write, uint32_t index, const char *why)
+{
+    pg_slot_decl *sd = NULL;
+    if (is_write && index < d->n_writes) sd = &d->writes[index];
+    if (!is_write && index < d->n_reads) sd = &d->reads[index];
+    if (!sd) return;
+    sd->unused = true;
+    pg_decl_explain(d, "slot '%s' unused: %s", sd->name, why);
+}
+
+void pg_report_add(pg_pass_report *r, const char *name, uint64_t value)
+{
+    if (r->n >= PG_MAX_PASS_COUNTERS) return;
+    pg_strlcpy(r->counters[r->n].name, name, sizeof r->counters[r->n].name);
+    r->counters[r->n].value = value;
+    r->n++;
+}

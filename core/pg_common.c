@@ -62,6 +62,7 @@ static const pg_format_info g_formats[PG_FMT_COUNT] = {
     [PG_FMT_RGBA16F] = {"rgba16f", VK_FORMAT_R16G16B16A16_SFLOAT, 8, PG_FMTCLASS_FLOAT, false, true},
     [PG_FMT_RGBA32F] = {"rgba32f", VK_FORMAT_R32G32B32A32_SFLOAT, 16, PG_FMTCLASS_FLOAT, false, true},
     [PG_FMT_RG16F] = {"rg16f", VK_FORMAT_R16G16_SFLOAT, 4, PG_FMTCLASS_FLOAT, false, true},
+    [PG_FMT_RGBA16_UNORM] = {"rgba16", VK_FORMAT_R16G16B16A16_UNORM, 8, PG_FMTCLASS_FLOAT, false, true},
     [PG_FMT_RG16_UNORM] = {"rg16", VK_FORMAT_R16G16_UNORM, 4, PG_FMTCLASS_FLOAT, false, true},
     [PG_FMT_RG16_SNORM] = {"rg16_snorm", VK_FORMAT_R16G16_SNORM, 4, PG_FMTCLASS_FLOAT, false, true},
     [PG_FMT_R32F] = {"r32f", VK_FORMAT_R32_SFLOAT, 4, PG_FMTCLASS_FLOAT, false, true},

@@ -84,6 +84,7 @@ typedef enum pg_format {
     PG_FMT_RGBA16F,
     PG_FMT_RGBA32F,
     PG_FMT_RG16F,
+    PG_FMT_RGBA16_UNORM,
     PG_FMT_RG16_UNORM,
     PG_FMT_RG16_SNORM,
     PG_FMT_R32F,

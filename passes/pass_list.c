@@ -8,6 +8,10 @@ void pg_register_builtin_passes(pg_pass_registry *reg)
         &pg_pass_light_animate,
         &pg_pass_forward_naive,
         &pg_pass_display_tonemap,
+        &pg_pass_cluster_assign,
+        &pg_pass_forward_plus,
+        &pg_pass_gbuffer,
+        &pg_pass_deferred_lighting,
     };
     memset(reg, 0, sizeof *reg);
     for (size_t i = 0; i < sizeof builtin / sizeof builtin[0]; i++) reg->types[reg->count++] = builtin[i];

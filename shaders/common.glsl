@@ -13,6 +13,26 @@ struct GpuMaterial {
     vec4 params;       // alpha cutoff, normal scale, specular, shininess
 };
 
+// What shading needs of a visible point (from the material in forward, from the G-buffer in
+// deferred).
+struct Surface {
+    vec3 albedo;
+    vec3 normal;    // unit, facing the camera side that is seen
+    float specular; // Blinn-Phong strength
+    float shininess;
+};
+
+vec3 pg_srgb_encode(vec3 c)
+{
+    c = clamp(c, 0.0, 1.0);
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
+
+vec3 pg_srgb_decode(vec3 c)
+{
+    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
+}
+
 #define FRAME_UNIFORMS_BLOCK                                                                  \
     layout(set = 0, binding = 0, std140) uniform FrameUniforms {                                 \
         mat4 view; mat4 proj; mat4 view_proj; mat4 inv_view; mat4 inv_proj;                      \

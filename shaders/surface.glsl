@@ -5,13 +5,6 @@ layout(set = 1, binding = 0, std430) readonly buffer Materials { GpuMaterial mat
 layout(set = 1, binding = 1) uniform sampler2D textures[TEXTURE_COUNT];
 layout(push_constant) uniform DrawPush { uint material; } draw;
 
-struct Surface {
-    vec3 albedo;
-    vec3 normal;
-    float specular;
-    float shininess;
-};
-
 Surface pg_surface(vec3 world_normal, vec2 uv, vec4 tangent, bool front_facing)
 {
     GpuMaterial m = materials[draw.material];

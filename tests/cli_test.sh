@@ -58,5 +58,52 @@ grep -q "explain:" "$tmp/out" && ok || bad "--explain printed nothing"
 [ -s "$tmp/r.png" ] && ok || bad "PNG not written"
 grep -q "validation" "$tmp/err" && grep -q "validation message" "$tmp/err" && bad "validation messages" || ok
 
+# ---- passgraph compare: image error against a reference pipeline ----
+root=$(cd "$(dirname "$0")/.." && pwd)
+naive="$root/pipelines/naive.json"
+"$PG" --help | grep -q "compare" && ok || bad "passgraph --help does not list compare"
+"$PG" compare --help >"$tmp/h" || bad "compare --help exit"
+for o in --pipeline --reference --reference-set --scene --scenario --lights --size --time --seed --set --device \
+         --validation --frames --heatmap --heatmap-scale --threshold --json; do
+  grep -qF -- "$o" "$tmp/h" && ok || bad "compare --help does not document $o"
+done
+# compare_value KEY: the value of KEY= on the 'compare:' line of $tmp/out
+compare_value() { grep '^compare: ' "$tmp/out" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+"$PG" compare --pipeline "$naive" --reference "$naive" --size 64x36 --lights 8 --validation --json "$tmp/c.json" \
+  >"$tmp/out" 2>"$tmp/err"
+rc=$?
+if [ $rc -ne 0 ]; then bad "compare same pipeline: exit $rc"; cat "$tmp/err"; else ok; fi
+grep -Eq '^compare: pipeline=naive reference=naive lights=8 size=64x36 rmse_linear=' "$tmp/out" \
+  && ok || { bad "compare line shape"; cat "$tmp/out"; }
+[ "$(compare_value rmse_linear)" = 0 ] && ok || bad "same pipeline twice: rmse_linear=$(compare_value rmse_linear), want 0"
+[ "$(compare_value max_abs_display)" = 0 ] && ok || bad "same pipeline twice: max_abs_display=$(compare_value max_abs_display), want 0"
+[ "$(compare_value psnr_linear)" = inf ] && ok || bad "same pipeline twice: psnr_linear=$(compare_value psnr_linear), want inf"
+[ "$(compare_value over_threshold)" = 0 ] && ok || bad "same pipeline twice: over_threshold not 0"
+grep -q "validation message" "$tmp/err" && bad "compare: validation messages" || ok
+grep -Eq '"rmse_linear":[[:space:]]*0,' "$tmp/c.json" && grep -q '"psnr_linear":[[:space:]]*"inf"' "$tmp/c.json" \
+  && ok || { bad "compare --json content"; cat "$tmp/c.json"; }
+"$PG" compare --pipeline "$naive" --reference "$naive" --set hdr_format=rgba32f --size 64x36 --lights 8 --validation \
+  --heatmap "$tmp/heat.png" >"$tmp/out" 2>"$tmp/err"
+rc=$?
+if [ $rc -ne 0 ]; then bad "compare rgba32f vs rgba16f: exit $rc"; cat "$tmp/err"; else ok; fi
+awk -v r="$(compare_value rmse_linear)" -v m="$(compare_value max_abs_linear)" 'BEGIN { exit !(r > 0 && r < 0.01 && m > 0 && m < 1) }' \
+  && ok || bad "rgba32f vs rgba16f: want a small nonzero linear error: rmse_linear=$(compare_value rmse_linear) max_abs_linear=$(compare_value max_abs_linear)"
+[ "$(head -c 4 "$tmp/heat.png" 2>/dev/null | tail -c 3)" = PNG ] && ok || bad "compare --heatmap did not write a PNG"
+expect_fail "compare: missing reference" "nope_ref.json" compare --reference "$tmp/nope_ref.json" --size 32x18 --lights 4
+expect_fail "compare: missing pipeline" "nope_a.json" compare --pipeline "$tmp/nope_a.json" --size 32x18 --lights 4
+printf '{"name":"nohdr","include":["%s/pipelines/fragments/lights.json","%s/pipelines/fragments/display.json"],
+ "resources":[{"name":"hdr","type":"image","format":"rgba16f"},{"name":"depth","type":"image","format":"d32f"}],
+ "passes":[{"name":"shade","type":"forward_naive","reads":["lights"],"writes":["hdr","depth"]}],"output":"ldr"}' \
+  "$root" "$root" >"$tmp/nohdr.json"
+expect_fail "compare: no hdr_output" "hdr_output" compare --pipeline "$tmp/nohdr.json" --size 32x18 --lights 4
+expect_fail "compare: unknown option" "unknown option" compare --bogus
+expect_fail "compare: --out is not an option" "unknown option '--out'" compare --out "$tmp/x.png"
+expect_fail "compare: negative threshold" "--threshold -1" compare --threshold -1
+expect_fail "compare: heatmap-scale garbage" "--heatmap-scale big" compare --heatmap-scale big
+expect_fail "compare: reference-set without =" "KEY=VALUE" compare --reference-set foo
+expect_fail "compare: unknown reference parameter" "no_such_param" compare --reference-set no_such_param=1 --size 32x18 --lights 4
+expect_fail "compare: unwritable heatmap" "cannot write" compare --size 32x18 --lights 4 --heatmap "$tmp/no/such/dir/h.png"
+expect_fail "compare: unwritable json" "cannot write" compare --size 32x18 --lights 4 --json "$tmp/no/such/dir/c.json"
+
 echo "cli_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]

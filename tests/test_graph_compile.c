@@ -84,6 +84,15 @@ static pg_result d_buf_to_color(const pg_declare_in *in, pg_pass_decl *d, pg_err
     pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
     return PG_OK;
 }
+/* reads a buffer only when there are lights: the cluster-list pattern of the clustered passes */
+static pg_result d_buf_maybe(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
+{
+    (void)e;
+    pg_decl_read(d, "buf", BUF, PG_ACCESS_STORAGE_READ, FRAG, 0);
+    pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
+    if (in->features.light_count == 0) pg_decl_mark_unused(d, false, 0, "0 lights");
+    return PG_OK;
+}
 static pg_result d_buf_blur(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
 {
     (void)in, (void)e;
@@ -228,7 +237,7 @@ static pg_result d_rnd(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
     return PG_OK;
 }
 
-#define TYPE(n, fn, rs, ws) {n, "test type", rs, ws, 0, fn, NULL, NULL, NULL}
+#define TYPE(n, fn, rs, ws) {.name = n, .summary = "test type", .read_slots = rs, .write_slots = ws, .declare = fn}
 static const pg_pass_type g_types[] = {
     TYPE("fake_color", d_color, "", "color"),
     TYPE("fake_depth_color", d_depth_color, "", "color, depth"),
@@ -239,6 +248,7 @@ static const pg_pass_type g_types[] = {
     TYPE("fake_compute_buf", d_compute_buf, "", "buf"),
     TYPE("fake_buf_to_color", d_buf_to_color, "buf", "color"),
     TYPE("fake_buf_blur", d_buf_blur, "buf, src", "color"),
+    TYPE("fake_buf_maybe", d_buf_maybe, "buf", "color"),
     TYPE("fake_rmw", d_rmw, "", "depth"),
     TYPE("fake_color_rmw", d_color_rmw, "", "color"),
     TYPE("fake_depth_read", d_depth_read, "depth", "color"),
@@ -1729,6 +1739,39 @@ static void test_report(void)
     pl_free(pl);
 }
 
+/* A slot declared unused (0 lights) creates no dependency, barrier or lifetime: its producer and
+ * the resource are culled; with lights everything runs. */
+static void test_unused_slots(void)
+{
+    for (int lights = 0; lights < 2; lights++) {
+        pg_pipeline *pl = pl_new("out");
+        buf(pl, "buf", 32, 0);
+        img(pl, "out", PG_FMT_RGBA8_UNORM);
+        pass(pl, "Make", "fake_compute_buf", "", "buf");
+        pass(pl, "Use", "fake_buf_maybe", "buf", "out");
+        pg_compile_desc d = desc_of(pl);
+        d.features.light_count = (uint32_t)lights;
+        pg_graph_plan *p = compile_d(&d, __LINE__);
+        if (p) {
+            const pg_plan_pass *make = &p->passes[pidx(p, "Make")], *use = &p->passes[pidx(p, "Use")];
+            if (lights == 0) {
+                CHECK(make->culled && !use->culled && p->n_order == 1);
+                CHECK(p->resources[0].culled);
+                for (uint32_t b = 0; b < use->n_barriers; b++) CHECK(use->barriers[b].resource != 0);
+                bool explained = false;
+                for (uint32_t i = 0; i < p->n_explain; i++)
+                    if (strstr(p->explain[i], "slot 'buf' unused: 0 lights")) explained = true;
+                CHECK(explained);
+            } else {
+                CHECK(!make->culled && !use->culled && p->n_order == 2);
+                CHECK(use->n_barriers >= 1 && use->barriers[0].resource == 0);
+            }
+            pg_graph_plan_free(p);
+        }
+        pl_free(pl);
+    }
+}
+
 int main(void)
 {
     for (size_t i = 0; i < sizeof g_types / sizeof g_types[0]; i++) {
@@ -1744,5 +1787,6 @@ int main(void)
     test_barriers();
     test_random();
     test_report();
+    test_unused_slots();
     return pg_test_finish("test_graph_compile");
 }

@@ -16,6 +16,8 @@ static void usage(FILE *f)
             "\n"
             "commands:\n"
             "  render    render one frame headless to a PNG and print GPU timings per pass\n"
+            "  compare   render one frame with a pipeline and a reference pipeline; print the image\n"
+            "            error (RMSE, PSNR, max abs; linear HDR and 8-bit display) and GPU timings\n"
             "  devices   list the Vulkan devices (for --device)\n"
             "\n"
             "'passgraph <command> --help' lists a command's options.\n");
@@ -45,6 +47,7 @@ int main(int argc, char **argv)
         return 0;
     }
     if (!strcmp(cmd, "render")) return pg_cmd_render(argc - 2, argv + 2);
+    if (!strcmp(cmd, "compare")) return pg_cmd_compare(argc - 2, argv + 2);
     if (!strcmp(cmd, "devices")) return pg_cmd_devices(argc - 2, argv + 2);
     fprintf(stderr, "passgraph: unknown command '%s'\n", cmd);
     usage(stderr);

@@ -1,0 +1,124 @@
+/* deferred_lighting.c - compute pass: for every pixel, rebuild position, normal and material
+ * from the G-buffer of one packing variant and shade it with the lights of its cluster
+ * (shaders/deferred_lighting.comp; same light model and summation order as forward).
+ * Slots: reads [lights, cluster_counts, cluster_lights, depth, G-buffer targets of the variant]
+ *        writes [hdr] (storage image, every pixel written).
+ * Options: packing (as gbuffer), shading, ambient, view, grid_x/y/z, max_lights. */
+#include <stdio.h>
+#include <string.h>
+
+#include "gbuffer_layout.h"
+#include "shader.h"
+#include "shading_common.h"
+
+typedef struct deferred_lighting {
+    int packing;
+    VkSampler sampler;
+    pg_pass_set gbuf, lights;
+    VkPipelineLayout layout;
+    VkPipeline pipeline;
+} deferred_lighting;
+
+static const char *const k_extra[] = {"packing", NULL};
+
+static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
+{
+    pg_shading_opts o;
+    int packing;
+    pg_result r;
+    if ((r = pg_shading_opts_read(in->desc, true, k_extra, &o, err))) return r;
+    if ((r = pg_opt_enum(in->desc, "packing", pg_gbuffer_packings, 0, &packing, err))) return r;
+    pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+    pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+    pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+    pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_DEPTH);
+    for (uint32_t t = 0; t < pg_gbuffer_targets[packing]; t++)
+        pg_decl_read(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE,
+                     packing == PG_GBUFFER_PACKED ? PG_FMTCLASS_UINT : PG_FMTCLASS_FLOAT);
+    pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    pg_decl_define(out, pg_gbuffer_defines[packing]);
+    pg_shading_declare(&o, in, out, true, 0, 1);
+    return PG_OK;
+}
+
+static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
+{
+    deferred_lighting *p = self;
+    pg_gpu *gpu = ctx->gpu;
+    pg_shading_opts o;
+    pg_result r;
+    if ((r = pg_shading_opts_read(ctx->desc, true, k_extra, &o, err))) return r;
+    if ((r = pg_opt_enum(ctx->desc, "packing", pg_gbuffer_packings, 0, &p->packing, err))) return r;
+    if ((r = pg_check_cluster_buffers(ctx, &o, 1, err))) return r;
+    uint32_t n_targets = pg_gbuffer_targets[p->packing];
+    const pg_phys_resource *hdr = ctx->slots[4 + n_targets];
+    const char *hdr_fmt = pg_format_get(hdr->pg_fmt)->name;
+    if (strcmp(hdr_fmt, "rgba16f") && strcmp(hdr_fmt, "rgba32f"))
+        return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: deferred lighting writes rgba16f or rgba32f, not %s",
+                       ctx->desc->file, ctx->desc->json_path, hdr_fmt);
+    VkSamplerCreateInfo sci = {
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = VK_FILTER_NEAREST,
+        .minFilter = VK_FILTER_NEAREST,
+        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+    };
+    PG_VK_TRY(err, vkCreateSampler(gpu->device, &sci, NULL, &p->sampler));
+    pg_set_binding b[5];
+    uint32_t n = 0;
+    for (uint32_t t = 0; t < 1 + n_targets; t++)
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[3 + t], p->sampler, 0};
+    b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr, VK_NULL_HANDLE, 0};
+    char name[PG_NAME_MAX + 16];
+    snprintf(name, sizeof name, "%s.gbuffer", ctx->pass->name);
+    if ((r = pg_pass_set_create(gpu, n, b, name, &p->gbuf, err))) return r;
+    if ((r = pg_light_set_create(ctx, true, 0, 1, &p->lights, err))) return r;
+    VkDescriptorSetLayout sets[3] = {ctx->frame_layout, p->gbuf.layout, p->lights.layout};
+    if ((r = pg_pipeline_layout_create(gpu, p->lights.layout ? 3 : 2, sets, 0, &p->layout, err))) return r;
+    const char *defs[PG_MAX_DEFINES + 2];
+    uint32_t nd = 0;
+    for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) defs[nd++] = ctx->pass->decl.defines[i];
+    char fmt_def[48];
+    snprintf(fmt_def, sizeof fmt_def, "PG_HDR_FORMAT=%s", hdr_fmt);
+    defs[nd++] = fmt_def;
+    VkShaderModule cs;
+    if ((r = pg_shader_module(gpu, "deferred_lighting.comp", VK_SHADER_STAGE_COMPUTE_BIT, defs, nd, &cs, err)))
+        return r;
+    r = pg_compute_pipeline_create(gpu, p->layout, cs, ctx->pass->name, &p->pipeline, err);
+    vkDestroyShaderModule(gpu->device, cs, NULL);
+    return r;
+}
+
+static void dl_record(void *self, const pg_pass_record_ctx *ctx)
+{
+    deferred_lighting *p = self;
+    const pg_phys_resource *hdr = ctx->slots[4 + pg_gbuffer_targets[p->packing]];
+    VkDescriptorSet sets[3] = {ctx->frame_set, p->gbuf.set, p->lights.set};
+    vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
+    vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, p->lights.set ? 3 : 2, sets, 0,
+                            NULL);
+    vkCmdDispatch(ctx->cmd, (hdr->width + 7) / 8, (hdr->height + 7) / 8, 1);
+}
+
+static void dl_destroy(void *self, pg_gpu *gpu)
+{
+    deferred_lighting *p = self;
+    if (p->pipeline) vkDestroyPipeline(gpu->device, p->pipeline, NULL);
+    if (p->layout) vkDestroyPipelineLayout(gpu->device, p->layout, NULL);
+    pg_pass_set_destroy(gpu, &p->gbuf);
+    pg_pass_set_destroy(gpu, &p->lights);
+    if (p->sampler) vkDestroySampler(gpu->device, p->sampler, NULL);
+}
+
+const pg_pass_type pg_pass_deferred_lighting = {
+    .name = "deferred_lighting",
+    .summary = "compute: shade every pixel from the G-buffer with the lights of its cluster",
+    .read_slots = "lights, cluster_counts, cluster_lights, depth, G-buffer targets (3 float | 2 oct16 | 1 packed)",
+    .write_slots = "hdr",
+    .instance_size = sizeof(deferred_lighting),
+    .declare = dl_declare,
+    .create = dl_create,
+    .record = dl_record,
+    .destroy = dl_destroy,
+};

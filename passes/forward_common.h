@@ -1,0 +1,20 @@
+/* forward_common.h - create/record/destroy shared by the two forward shading pass types
+ * (forward_naive.c, forward_plus.c); each file keeps its own declare() and type table.
+ * Slot layout: reads [lights (, cluster_counts, cluster_lights)], writes [color, depth]. */
+#ifndef PG_FORWARD_COMMON_H
+#define PG_FORWARD_COMMON_H
+
+#include "scene_draw.h"
+#include "shading_common.h"
+
+typedef struct pg_forward_pass {
+    bool clustered;
+    pg_pass_set lights;
+    pg_scene_draw draw;
+} pg_forward_pass;
+
+pg_result pg_forward_create(pg_forward_pass *p, const pg_pass_create_ctx *ctx, bool clustered, pg_error *err);
+void pg_forward_record(void *self, const pg_pass_record_ctx *ctx);
+void pg_forward_destroy(void *self, pg_gpu *gpu);
+
+#endif

@@ -1,0 +1,45 @@
+/* forward_plus.c - clustered forward shading: draws the scene once with depth; each fragment
+ * finds its cluster (screen tile x exponential depth slice) and shades only the lights the
+ * cluster_assign pass listed for it, in ascending light order - the same sum as naive whenever
+ * no cluster overflowed.
+ * Slots: reads [lights, cluster_counts, cluster_lights] (storage buffers, fragment);
+ *        writes [color, depth].
+ * Options: shading, ambient, view (every debug view), grid_x/y/z, max_lights (must match the
+ * cluster_assign pass and the buffer sizes; the shared fragment pipelines/fragments/clusters.json
+ * wires all three from the same parameters). */
+#include "forward_common.h"
+
+static pg_result fp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
+{
+    pg_shading_opts o;
+    pg_result r = pg_shading_opts_read(in->desc, true, NULL, &o, err);
+    if (r) return r;
+    pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
+    if (in->features.has_alpha_mask) pg_decl_define(out, "PG_ALPHA_MASK");
+    else pg_decl_explain(out, "no alpha-mask materials: alpha-test (discard) variant not compiled");
+    if (in->features.has_normal_maps) pg_decl_define(out, "PG_NORMAL_MAPS");
+    else pg_decl_explain(out, "no normal maps: tangent-space normal path compiled out");
+    pg_shading_declare(&o, in, out, true, 0, 1);
+    return PG_OK;
+}
+
+static pg_result fp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
+{
+    return pg_forward_create(self, ctx, true, err);
+}
+
+const pg_pass_type pg_pass_forward_plus = {
+    .name = "forward_plus",
+    .summary = "graphics: clustered forward+ - each fragment shades the lights of its cluster",
+    .read_slots = "lights, cluster_counts, cluster_lights",
+    .write_slots = "color, depth",
+    .instance_size = sizeof(pg_forward_pass),
+    .declare = fp_declare,
+    .create = fp_create,
+    .record = pg_forward_record,
+    .destroy = pg_forward_destroy,
+};

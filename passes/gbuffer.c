@@ -1,0 +1,81 @@
+/* gbuffer.c - rasterizes the scene into the G-buffer of one packing variant (gbuffer_layout.h)
+ * plus depth (shaders/gbuffer.frag).
+ * Slots: writes [targets of the variant..., depth] - 3, 2 or 1 targets then depth.
+ * Options: packing "float" | "oct16" | "packed" (default float). Only the targets the variant
+ * uses are bound, allocated and written (the deferred pipelines declare the others under a
+ * `when` that drops them). */
+#include <string.h>
+
+#include "gbuffer_layout.h"
+#include "scene_draw.h"
+
+typedef struct gbuffer_pass {
+    int packing;
+    pg_scene_draw draw;
+} gbuffer_pass;
+
+static pg_result gb_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
+{
+    static const char *const known[] = {"packing", NULL};
+    pg_result r;
+    int packing;
+    if ((r = pg_opt_check_known(in->desc, known, err))) return r;
+    if ((r = pg_opt_enum(in->desc, "packing", pg_gbuffer_packings, 0, &packing, err))) return r;
+    for (uint32_t t = 0; t < pg_gbuffer_targets[packing]; t++)
+        pg_decl_write(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT,
+                      packing == PG_GBUFFER_PACKED ? PG_FMTCLASS_UINT : PG_FMTCLASS_FLOAT);
+    pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
+    pg_decl_define(out, pg_gbuffer_defines[packing]);
+    if (in->features.has_alpha_mask) pg_decl_define(out, "PG_ALPHA_MASK");
+    else pg_decl_explain(out, "no alpha-mask materials: alpha-test (discard) variant not compiled");
+    if (in->features.has_normal_maps) pg_decl_define(out, "PG_NORMAL_MAPS");
+    else pg_decl_explain(out, "no normal maps: tangent-space normal path compiled out");
+    return PG_OK;
+}
+
+static pg_result gb_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
+{
+    gbuffer_pass *p = self;
+    pg_result r = pg_opt_enum(ctx->desc, "packing", pg_gbuffer_packings, 0, &p->packing, err);
+    if (r) return r;
+    uint32_t n = pg_gbuffer_targets[p->packing];
+    pg_scene_draw_desc d = {
+        .fragment_shader = "gbuffer.frag",
+        .n_color = n,
+        .depth_format = ctx->slots[n]->format,
+    };
+    for (uint32_t t = 0; t < n; t++) d.color_formats[t] = ctx->slots[t]->format;
+    return pg_scene_draw_create(ctx, &d, &p->draw, err);
+}
+
+static void gb_record(void *self, const pg_pass_record_ctx *ctx)
+{
+    gbuffer_pass *p = self;
+    uint32_t n = pg_gbuffer_targets[p->packing];
+    VkImageView views[3];
+    VkClearColorValue clears[3];
+    memset(clears, 0, sizeof clears);
+    for (uint32_t t = 0; t < n; t++) views[t] = ctx->slots[t]->view;
+    const pg_phys_resource *depth = ctx->slots[n];
+    pg_cmd_begin_rendering(ctx->cmd, depth->width, depth->height, n, views, clears, depth->view, true, 1.0f);
+    pg_scene_draw_record(&p->draw, ctx, VK_NULL_HANDLE);
+    vkCmdEndRendering(ctx->cmd);
+}
+
+static void gb_destroy(void *self, pg_gpu *gpu)
+{
+    gbuffer_pass *p = self;
+    pg_scene_draw_destroy(gpu, &p->draw);
+}
+
+const pg_pass_type pg_pass_gbuffer = {
+    .name = "gbuffer",
+    .summary = "graphics: draw the scene into a G-buffer (packing float | oct16 | packed) and depth",
+    .read_slots = "",
+    .write_slots = "float: position, normal, albedo, depth | oct16: normal_oct, albedo, depth | packed: packed, depth",
+    .instance_size = sizeof(gbuffer_pass),
+    .declare = gb_declare,
+    .create = gb_create,
+    .record = gb_record,
+    .destroy = gb_destroy,
+};

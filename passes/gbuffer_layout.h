@@ -1,0 +1,24 @@
+/* gbuffer_layout.h - the G-buffer packing variants, shared by the gbuffer and deferred_lighting
+ * pass types (one pipeline parameter, `packing`, selects the same layout in both):
+ *   float  : position (rgba32f, or rgba16f to show its failure far from the origin),
+ *            normal+shininess (rgba32f), albedo+specular (rgba32f)          - 3 targets
+ *   oct16  : normal as 2x16-bit octahedral + shininess/512 (rgba16 unorm), albedo sRGB8 +
+ *            specular (rgba8_srgb); position rebuilt from the depth buffer  - 2 targets
+ *   packed : one rgba32ui: oct16 normal | sRGB8 albedo + spec8 | shininess f32 | view depth f32;
+ *            position rebuilt from the stored view depth                    - 1 target  */
+#ifndef PG_GBUFFER_LAYOUT_H
+#define PG_GBUFFER_LAYOUT_H
+
+#include <stdint.h>
+
+enum { PG_GBUFFER_FLOAT = 0, PG_GBUFFER_OCT16 = 1, PG_GBUFFER_PACKED = 2 };
+static const char *const pg_gbuffer_packings[] = {"float", "oct16", "packed", NULL};
+static const uint32_t pg_gbuffer_targets[] = {3, 2, 1};
+static const char *const pg_gbuffer_defines[] = {"PG_GBUFFER_FLOAT", "PG_GBUFFER_OCT16", "PG_GBUFFER_PACKED"};
+static const char *const pg_gbuffer_slot_names[3][3] = {
+    {"position", "normal", "albedo"},
+    {"normal_oct", "albedo"},
+    {"packed"},
+};
+
+#endif

@@ -1,0 +1,100 @@
+#include "scene_draw.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "shader.h"
+
+pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_draw_desc *d, pg_scene_draw *out,
+                               pg_error *err)
+{
+    pg_gpu *gpu = ctx->gpu;
+    const pg_plan_pass *pass = ctx->pass;
+    pg_result r;
+    if (!ctx->scene) return pg_fail(err, PG_ERR_INVALID_ARG, "needs a scene");
+    VkDescriptorSetLayout sets[3] = {ctx->frame_layout, ctx->scene->set_layout, d->pass_layout};
+    if ((r = pg_pipeline_layout_create(gpu, d->pass_layout ? 3 : 2, sets, sizeof(uint32_t), &out->layout, err)))
+        return r;
+    const char *defs[PG_MAX_DEFINES + 8];
+    uint32_t n = 0;
+    char tc[32];
+    snprintf(tc, sizeof tc, "TEXTURE_COUNT=%u", ctx->scene->n_images);
+    defs[n++] = tc;
+    bool has_mask = false;
+    for (uint32_t i = 0; i < pass->decl.n_defines; i++) {
+        if (strcmp(pass->decl.defines[i], "PG_ALPHA_MASK") == 0) {
+            has_mask = true;
+            continue;
+        }
+        defs[n++] = pass->decl.defines[i];
+    }
+    for (uint32_t i = 0; i < d->n_extra_defines; i++) defs[n++] = d->extra_defines[i];
+    VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE, fs_mask = VK_NULL_HANDLE;
+    if ((r = pg_shader_module(gpu, "scene.vert", VK_SHADER_STAGE_VERTEX_BIT, defs, n, &vs, err))) goto out;
+    if ((r = pg_shader_module(gpu, d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, &fs, err))) goto out;
+    pg_gfx_pipeline_desc gd = {
+        .layout = out->layout,
+        .vs = vs,
+        .fs = fs,
+        .n_color = d->n_color,
+        .depth_format = d->depth_format,
+        .depth_test = true,
+        .depth_write = true,
+        .dynamic_cull = true,
+        .scene_vertices = true,
+    };
+    memcpy(gd.color_formats, d->color_formats, sizeof gd.color_formats);
+    if ((r = pg_gfx_pipeline_create(gpu, &gd, pass->name, &out->opaque, err))) goto out;
+    if (has_mask && ctx->scene->n_draws > ctx->scene->n_opaque_draws) {
+        defs[n++] = "PG_ALPHA_MASK";
+        if ((r = pg_shader_module(gpu, d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, &fs_mask, err)))
+            goto out;
+        gd.fs = fs_mask;
+        char name[PG_NAME_MAX + 16];
+        snprintf(name, sizeof name, "%s.masked", pass->name);
+        r = pg_gfx_pipeline_create(gpu, &gd, name, &out->masked, err);
+    }
+out:
+    if (vs) vkDestroyShaderModule(gpu->device, vs, NULL);
+    if (fs) vkDestroyShaderModule(gpu->device, fs, NULL);
+    if (fs_mask) vkDestroyShaderModule(gpu->device, fs_mask, NULL);
+    return r;
+}
+
+void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set)
+{
+    const pg_scene_gpu *sc = ctx->scene;
+    VkCommandBuffer cmd = ctx->cmd;
+    VkDescriptorSet sets[3] = {ctx->frame_set, sc->set, pass_set};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sd->opaque);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sd->layout, 0, pass_set ? 3 : 2, sets, 0, NULL);
+    VkDeviceSize zero = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &sc->vertices.buffer, &zero);
+    vkCmdBindIndexBuffer(cmd, sc->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+    VkCullModeFlags cull = ~0u;
+    for (uint32_t i = 0; i < sc->n_draws; i++) {
+        const pg_draw *d = &sc->draws[i];
+        if (i == sc->n_opaque_draws) {
+            if (!sd->masked) break;
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sd->masked);
+            cull = ~0u;
+        }
+        VkCullModeFlags want = d->double_sided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+        if (want != cull) {
+            vkCmdSetCullMode(cmd, want);
+            cull = want;
+        }
+        vkCmdPushConstants(cmd, sd->layout,
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                           sizeof(uint32_t), &d->material);
+        vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, d->vertex_offset, 0);
+    }
+}
+
+void pg_scene_draw_destroy(pg_gpu *gpu, pg_scene_draw *sd)
+{
+    if (sd->opaque) vkDestroyPipeline(gpu->device, sd->opaque, NULL);
+    if (sd->masked) vkDestroyPipeline(gpu->device, sd->masked, NULL);
+    if (sd->layout) vkDestroyPipelineLayout(gpu->device, sd->layout, NULL);
+    memset(sd, 0, sizeof *sd);
+}

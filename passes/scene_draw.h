@@ -1,0 +1,36 @@
+/* scene_draw.h - what every pass that rasterizes the scene shares (forward_naive, forward_plus,
+ * gbuffer): the pipeline layout (set 0 frame, set 1 scene materials/textures, set 2 the pass's
+ * own), an opaque pipeline and, only when the scene has alpha-mask materials, a second pipeline
+ * compiled with PG_ALPHA_MASK for those draws; and the draw loop (per-draw material push
+ * constant, back-face culling unless the material is double-sided). */
+#ifndef PG_SCENE_DRAW_H
+#define PG_SCENE_DRAW_H
+
+#include "graph_execute.h"
+#include "vk_pipeline.h"
+
+typedef struct pg_scene_draw {
+    VkPipelineLayout layout;
+    VkPipeline opaque, masked;
+} pg_scene_draw;
+
+typedef struct pg_scene_draw_desc {
+    const char *fragment_shader;      /* e.g. "forward.frag" */
+    VkDescriptorSetLayout pass_layout;/* set 2 (may be VK_NULL_HANDLE) */
+    uint32_t n_color;
+    VkFormat color_formats[8];
+    VkFormat depth_format;
+    const char *extra_defines[4];     /* added to the pass's declared defines */
+    uint32_t n_extra_defines;
+} pg_scene_draw_desc;
+
+/* Uses ctx->pass->decl.defines (PG_ALPHA_MASK there selects whether the masked pipeline is made)
+ * plus TEXTURE_COUNT for the scene. */
+pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_draw_desc *d,
+                               pg_scene_draw *out, pg_error *err);
+/* Binds sets 0..2 (pass_set may be VK_NULL_HANDLE when there is no set 2) and draws every
+ * draw of the scene. Rendering must have begun. */
+void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set);
+void pg_scene_draw_destroy(pg_gpu *gpu, pg_scene_draw *sd);
+
+#endif

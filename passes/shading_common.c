@@ -1,0 +1,133 @@
+#include "shading_common.h"
+
+#include <stdio.h>
+#include <string.h>
+
+const char *const pg_debug_views[] = {"none",     "cluster_heat", "cluster_x", "cluster_y", "cluster_z",
+                                      "overflow", "albedo",       "normal",    "depth",     NULL};
+static const char *const k_shading[] = {"lambert", "blinn_phong", NULL};
+
+pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const char *const *extra_known,
+                               pg_shading_opts *o, pg_error *err)
+{
+    const char *known[24];
+    uint32_t n = 0;
+    known[n++] = "shading";
+    known[n++] = "ambient";
+    known[n++] = "view";
+    if (clustered) {
+        known[n++] = "grid_x";
+        known[n++] = "grid_y";
+        known[n++] = "grid_z";
+        known[n++] = "max_lights";
+    }
+    for (uint32_t i = 0; extra_known && extra_known[i] && n < 23; i++) known[n++] = extra_known[i];
+    known[n] = NULL;
+    pg_result r;
+    memset(o, 0, sizeof *o);
+    if ((r = pg_opt_check_known(desc, known, err))) return r;
+    if ((r = pg_opt_enum(desc, "shading", k_shading, 0, &o->shading, err))) return r;
+    if ((r = pg_opt_float(desc, "ambient", 0.0, 0.0, 1e6, &o->ambient, err))) return r;
+    if ((r = pg_opt_enum(desc, "view", pg_debug_views, 0, &o->view, err))) return r;
+    if (!clustered && o->view >= 1 && o->view <= 5) {
+        char key[64];
+        snprintf(key, sizeof key, "%s.options.view", desc->json_path);
+        return pg_fail(err, PG_ERR_SCHEMA, "%s: %s: debug view '%s' needs a clustered pass (forward_plus or deferred_lighting)",
+                       desc->file, key, pg_debug_views[o->view]);
+    }
+    if (clustered) {
+        int64_t v;
+        static const char *const gk[3] = {"grid_x", "grid_y", "grid_z"};
+        static const int64_t gd[3] = {16, 9, 24};
+        for (int k = 0; k < 3; k++) {
+            if ((r = pg_opt_int(desc, gk[k], gd[k], 1, 1024, &v, err))) return r;
+            o->grid[k] = (uint32_t)v;
+        }
+        if ((r = pg_opt_int(desc, "max_lights", 256, 1, 65536, &v, err))) return r;
+        o->max_lights = (uint32_t)v;
+        uint64_t cells = (uint64_t)o->grid[0] * o->grid[1] * o->grid[2];
+        if (cells > (1u << 22) || cells * o->max_lights > (1ull << 31))
+            return pg_fail(err, PG_ERR_LIMIT, "%s: %s.options: cluster grid %ux%ux%u x %u lights is too large",
+                           desc->file, desc->json_path, o->grid[0], o->grid[1], o->grid[2], o->max_lights);
+    }
+    return PG_OK;
+}
+
+void pg_shading_declare(const pg_shading_opts *o, const pg_declare_in *in, pg_pass_decl *out, bool clustered,
+                        int light_slot, int cluster_slot)
+{
+    char def[PG_NAME_MAX];
+    snprintf(def, sizeof def, "PG_AMBIENT=%.9g", o->ambient);
+    pg_decl_define(out, def);
+    if (o->shading == 1) pg_decl_define(out, "PG_BLINN_PHONG");
+    if (o->view) {
+        snprintf(def, sizeof def, "PG_DEBUG_VIEW=%d", o->view);
+        pg_decl_define(out, def);
+        pg_decl_explain(out, "debug view '%s': output shows it instead of lighting", pg_debug_views[o->view]);
+    }
+    if (clustered) {
+        pg_decl_define(out, "PG_CLUSTERED");
+        snprintf(def, sizeof def, "GRID_X=%u", o->grid[0]);
+        pg_decl_define(out, def);
+        snprintf(def, sizeof def, "GRID_Y=%u", o->grid[1]);
+        pg_decl_define(out, def);
+        snprintf(def, sizeof def, "GRID_Z=%u", o->grid[2]);
+        pg_decl_define(out, def);
+        snprintf(def, sizeof def, "MAX_LIGHTS=%u", o->max_lights);
+        pg_decl_define(out, def);
+    }
+    /* a debug view that shows no lighting and needs no cluster data reads no lights either */
+    bool view_needs_lights = o->view == 0 || (o->view >= 1 && o->view <= 5);
+    if (in->features.light_count > 0 && view_needs_lights) {
+        pg_decl_define(out, "PG_HAS_LIGHTS");
+    } else {
+        const char *why = in->features.light_count == 0 ? "0 lights: light loop compiled out"
+                                                        : "debug view reads no lights";
+        if (light_slot >= 0) pg_decl_mark_unused(out, false, (uint32_t)light_slot, why);
+        if (clustered && cluster_slot >= 0) {
+            pg_decl_mark_unused(out, false, (uint32_t)cluster_slot, why);
+            pg_decl_mark_unused(out, false, (uint32_t)cluster_slot + 1, why);
+        }
+    }
+}
+
+bool pg_shading_has_lights(const pg_plan_pass *pass)
+{
+    for (uint32_t i = 0; i < pass->decl.n_defines; i++)
+        if (!strcmp(pass->decl.defines[i], "PG_HAS_LIGHTS")) return true;
+    return false;
+}
+
+pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, bool clustered, int light_slot, int cluster_slot,
+                              pg_pass_set *out, pg_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!pg_shading_has_lights(ctx->pass)) return PG_OK;
+    pg_set_binding b[3] = {
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[light_slot], VK_NULL_HANDLE, 0},
+    };
+    uint32_t n = 1;
+    if (clustered) {
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[cluster_slot], VK_NULL_HANDLE, 0};
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[cluster_slot + 1], VK_NULL_HANDLE, 0};
+    }
+    char name[PG_NAME_MAX + 16];
+    snprintf(name, sizeof name, "%s.lights", ctx->pass->name);
+    return pg_pass_set_create(ctx->gpu, n, b, name, out, err);
+}
+
+pg_result pg_check_cluster_buffers(const pg_pass_create_ctx *ctx, const pg_shading_opts *o, int cluster_slot,
+                                   pg_error *err)
+{
+    if (!pg_shading_has_lights(ctx->pass)) return PG_OK;
+    uint64_t cells = (uint64_t)o->grid[0] * o->grid[1] * o->grid[2];
+    const pg_phys_resource *counts = ctx->slots[cluster_slot], *lists = ctx->slots[cluster_slot + 1];
+    if (counts->size < cells * 4 || lists->size < cells * o->max_lights * 4)
+        return pg_fail(err, PG_ERR_INVALID_ARG,
+                       "%s: %s: cluster buffers (%llu and %llu bytes) are smaller than grid %ux%ux%u x %u lights needs "
+                       "(%llu and %llu bytes): size them from the same parameters",
+                       ctx->desc->file, ctx->desc->json_path, (unsigned long long)counts->size,
+                       (unsigned long long)lists->size, o->grid[0], o->grid[1], o->grid[2], o->max_lights,
+                       (unsigned long long)(cells * 4), (unsigned long long)(cells * o->max_lights * 4));
+    return PG_OK;
+}

@@ -1,0 +1,44 @@
+/* shading_common.h - options, variant defines and the light descriptor set shared by the
+ * shading passes (forward_naive, forward_plus, deferred_lighting).
+ *
+ * Options: shading "lambert" | "blinn_phong"; ambient >= 0; view (debug view: none,
+ * cluster_heat, cluster_x, cluster_y, cluster_z, overflow, albedo, normal, depth); clustered
+ * passes also grid_x, grid_y, grid_z (cluster grid) and max_lights (per cluster).
+ * With 0 lights the light slots are declared unused (so light animation and cluster assignment
+ * are culled) and the light loop is compiled out. */
+#ifndef PG_SHADING_COMMON_H
+#define PG_SHADING_COMMON_H
+
+#include "graph_execute.h"
+#include "pass_api.h"
+#include "vk_pipeline.h"
+
+typedef struct pg_shading_opts {
+    int shading;         /* 0 lambert, 1 blinn_phong */
+    double ambient;
+    int view;            /* index into pg_debug_views */
+    uint32_t grid[3];
+    uint32_t max_lights;
+} pg_shading_opts;
+
+extern const char *const pg_debug_views[]; /* NULL-terminated */
+
+/* known: the pass's other option keys (NULL-terminated, may be NULL). */
+pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const char *const *extra_known,
+                               pg_shading_opts *o, pg_error *err);
+/* Adds defines (PG_AMBIENT, PG_BLINN_PHONG, PG_DEBUG_VIEW, PG_HAS_LIGHTS, PG_CLUSTERED, GRID_*,
+ * MAX_LIGHTS) and explanations; marks the light slots unused with 0 lights. light_slot and
+ * cluster_slot are read-slot indices (cluster_slot: counts, cluster_slot+1: lists; -1 if none). */
+void pg_shading_declare(const pg_shading_opts *o, const pg_declare_in *in, pg_pass_decl *out, bool clustered,
+                        int light_slot, int cluster_slot);
+/* true when the pass was declared with lights (PG_HAS_LIGHTS among its defines). */
+bool pg_shading_has_lights(const pg_plan_pass *pass);
+/* Set 2: lights (+ cluster counts and lists). Leaves *out zeroed when the pass has no lights. */
+pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, bool clustered, int light_slot, int cluster_slot,
+                              pg_pass_set *out, pg_error *err);
+/* Checks cluster buffers are big enough for the grid (a mismatch between the pipeline's buffer
+ * sizes and the pass options would read out of bounds). */
+pg_result pg_check_cluster_buffers(const pg_pass_create_ctx *ctx, const pg_shading_opts *o, int cluster_slot,
+                                   pg_error *err);
+
+#endif

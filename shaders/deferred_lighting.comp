@@ -1,0 +1,78 @@
+#version 460
+// deferred_lighting.comp - one thread per pixel: rebuild the surface from the G-buffer of one
+// packing variant, then shade with the lights of its cluster (shading.glsl, same model and same
+// summation order as forward). Background pixels (cleared depth) are black, as in forward.
+#include "common.glsl"
+FRAME_UNIFORMS_BLOCK
+#include "lighting.glsl"
+#include "cluster.glsl"
+#include "octahedral.glsl"
+#include "depth_reconstruct.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 1, binding = 0) uniform sampler2D g_depth;
+#if defined(PG_GBUFFER_FLOAT)
+layout(set = 1, binding = 1) uniform sampler2D g_position;
+layout(set = 1, binding = 2) uniform sampler2D g_normal;
+layout(set = 1, binding = 3) uniform sampler2D g_albedo;
+#define HDR_BINDING 4
+#elif defined(PG_GBUFFER_OCT16)
+layout(set = 1, binding = 1) uniform sampler2D g_normal;
+layout(set = 1, binding = 2) uniform sampler2D g_albedo;
+#define HDR_BINDING 3
+#else
+layout(set = 1, binding = 1) uniform usampler2D g_packed;
+#define HDR_BINDING 2
+#endif
+layout(set = 1, binding = HDR_BINDING, PG_HDR_FORMAT) uniform writeonly image2D hdr_out;
+
+#include "shading.glsl"
+
+void main()
+{
+    ivec2 size = imageSize(hdr_out);
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    if (px.x >= size.x || px.y >= size.y) return;
+    float depth = texelFetch(g_depth, px, 0).r;
+    if (!(depth < 1.0)) {
+        imageStore(hdr_out, px, vec4(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+    vec2 frag = vec2(px) + 0.5;
+    vec2 uv = frag / vec2(size);
+    Surface s;
+    vec3 P;
+    float view_depth;
+#if defined(PG_GBUFFER_FLOAT)
+    P = texelFetch(g_position, px, 0).xyz;
+    vec4 n = texelFetch(g_normal, px, 0);
+    vec4 a = texelFetch(g_albedo, px, 0);
+    s.normal = n.xyz;
+    s.shininess = n.w;
+    s.albedo = a.rgb;
+    s.specular = a.a;
+    view_depth = -(frame.view * vec4(P, 1.0)).z;
+#elif defined(PG_GBUFFER_OCT16)
+    vec3 pv = pg_view_pos_from_depth(uv, depth, frame.inv_proj);
+    view_depth = -pv.z;
+    P = (frame.inv_view * vec4(pv, 1.0)).xyz;
+    vec4 n = texelFetch(g_normal, px, 0);
+    vec4 a = texelFetch(g_albedo, px, 0); // sRGB decoded by the sampler
+    s.normal = pg_oct_decode(n.xy * 2.0 - 1.0);
+    s.shininess = n.z * 512.0;
+    s.albedo = a.rgb;
+    s.specular = a.a;
+#else
+    uvec4 g = texelFetch(g_packed, px, 0);
+    s.normal = pg_oct_unpack_unorm16(g.x);
+    vec4 a = unpackUnorm4x8(g.y);
+    s.albedo = pg_srgb_decode(a.rgb);
+    s.specular = a.a;
+    s.shininess = uintBitsToFloat(g.z);
+    view_depth = uintBitsToFloat(g.w);
+    vec3 pv = pg_view_pos_from_view_depth(uv, view_depth, frame.proj);
+    P = (frame.inv_view * vec4(pv, 1.0)).xyz;
+#endif
+    vec3 c = pg_shade_point(s, P, view_depth, frag);
+    imageStore(hdr_out, px, vec4(pg_hdr_sanitize(c), 1.0));
+}

@@ -1,0 +1,39 @@
+#version 460
+// gbuffer.frag - writes the G-buffer of one packing variant (one of PG_GBUFFER_FLOAT,
+// PG_GBUFFER_OCT16, PG_GBUFFER_PACKED); see passes/gbuffer.c for the layouts.
+#include "common.glsl"
+FRAME_UNIFORMS_BLOCK
+#include "surface.glsl"
+#include "octahedral.glsl"
+layout(location = 0) in vec3 v_world;
+layout(location = 1) in vec3 v_normal;
+layout(location = 2) in vec2 v_uv;
+layout(location = 3) in vec4 v_tangent;
+#if defined(PG_GBUFFER_FLOAT)
+layout(location = 0) out vec4 g_position; // world position (rgba32f, or rgba16f to show its failure)
+layout(location = 1) out vec4 g_normal;   // xyz normal, w shininess
+layout(location = 2) out vec4 g_albedo;   // rgb albedo, a specular
+#elif defined(PG_GBUFFER_OCT16)
+layout(location = 0) out vec4 g_normal;   // rgba16 unorm: octahedral normal xy, shininess / 512
+layout(location = 1) out vec4 g_albedo;   // rgba8 sRGB: albedo, a specular
+#else
+layout(location = 0) out uvec4 g_packed;  // oct16 normal | sRGB8 albedo + spec8 | shininess f32 | view depth f32
+#endif
+
+void main()
+{
+    Surface s = pg_surface(v_normal, v_uv, v_tangent, gl_FrontFacing);
+#if defined(PG_GBUFFER_FLOAT)
+    g_position = vec4(v_world, 1.0);
+    g_normal = vec4(s.normal, s.shininess);
+    g_albedo = vec4(s.albedo, s.specular);
+#elif defined(PG_GBUFFER_OCT16)
+    g_normal = vec4(pg_oct_encode(s.normal) * 0.5 + 0.5, clamp(s.shininess / 512.0, 0.0, 1.0), 0.0);
+    g_albedo = vec4(clamp(s.albedo, 0.0, 1.0), clamp(s.specular, 0.0, 1.0));
+#else
+    float view_depth = -(frame.view * vec4(v_world, 1.0)).z;
+    g_packed = uvec4(pg_oct_pack_unorm16(s.normal),
+                     packUnorm4x8(vec4(pg_srgb_encode(s.albedo), clamp(s.specular, 0.0, 1.0))),
+                     floatBitsToUint(s.shininess), floatBitsToUint(view_depth));
+#endif
+}

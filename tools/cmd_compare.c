@@ -1,0 +1,427 @@
+/* cmd_compare.c - `passgraph compare`: renders one frame with a pipeline and with a reference
+ * pipeline (same device, scene, camera, lights, time, seed, size) and reports the image error of
+ * the pipeline against the reference, linear (HDR) and display (8-bit), with both GPU timings. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cjson/cJSON.h>
+
+#include "app.h"
+#include "commands.h"
+#include "image_compare.h"
+#include "image_util.h"
+#include "shader.h"
+
+static const char *const compare_help =
+    "usage: passgraph compare --pipeline FILE [--reference FILE] [options]\n"
+    "Renders the same frame (scene, camera, lights, time, seed, size) with a pipeline and with a\n"
+    "reference pipeline on one device and reports the error of the pipeline against the reference:\n"
+    "RMSE, PSNR and max abs difference over RGB of the scene-linear HDR outputs (hdr_output; PSNR peak\n"
+    "= the reference's largest RGB value; pixels with NaN/Inf are left out and counted) and of the\n"
+    "8-bit display outputs (0..255 units, PSNR peak 255), the share of pixels whose display RGB differs\n"
+    "by more than --threshold, and both pipelines' GPU ms (total and per pass; median over --frames).\n"
+    "The last line starts with 'compare:' and holds key=value pairs; PSNR of identical images is 'inf'.\n"
+    "Counters the passes report (e.g. light overflow of a clustered pipeline) are printed too.\n"
+    "Frames are rendered alternately (pipeline, reference, ...); the first frame of each includes\n"
+    "one-time costs on some drivers, so compare GPU ms with --frames 3 or more.\n"
+    "Both pipelines must declare an hdr_output. Exit 0 on success, 1 on a failure (load, render,\n"
+    "validation message with --validation), 2 on bad options.\n\n"
+    "options (--set and --no-aliasing apply to --pipeline; --set does not reach the reference):\n";
+
+static const char *const compare_help_own =
+    "  --reference FILE     reference pipeline JSON (default: pipelines/naive.json, the exact one)\n"
+    "  --reference-set KEY=VALUE  override a parameter of the reference pipeline (repeatable)\n"
+    "  --threshold T        8-bit units; a pixel counts as different when its max |RGB difference|\n"
+    "                       in the display images is > T (default 1)\n"
+    "  --heatmap FILE.png   write a heatmap of the per-pixel linear error (max over RGB of |a - b|)\n"
+    "                       in a dark-purple -> orange -> pale-yellow colormap; cyan marks pixels\n"
+    "                       with NaN/Inf in either image\n"
+    "  --heatmap-scale S|max  linear error mapped to the brightest colour; larger errors saturate.\n"
+    "                       Default: the 99th percentile of the errors of the pixels that differ\n"
+    "                       (HDR errors are heavy-tailed: the largest one leaves the rest black);\n"
+    "                       'max' or 0: the largest error\n"
+    "  --json FILE          also write the results as a JSON object (the 'compare:' keys, plus\n"
+    "                       per-pass times; non-finite numbers as the strings \"inf\", \"-inf\", \"nan\")\n";
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, uint32_t n)
+{
+    qsort(v, n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static pg_result parse_nonneg(const char *opt, const char *s, double *out, pg_error *err)
+{
+    if (!s || !*s) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: missing value", opt);
+    errno = 0;
+    char *end;
+    double v = strtod(s, &end);
+    if (errno || *end || !isfinite(v) || v < 0 || v > 1e30)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s %s: expected a finite number in [0, 1e+30]", opt, s);
+    *out = v;
+    return PG_OK;
+}
+
+/* %g, but "inf" / "-inf" / "nan" spelled the same on every libc. */
+static const char *num(char *buf, size_t size, double v)
+{
+    if (isnan(v)) snprintf(buf, size, "nan");
+    else if (isinf(v)) snprintf(buf, size, v > 0 ? "inf" : "-inf");
+    else snprintf(buf, size, "%.6g", v);
+    return buf;
+}
+
+static cJSON *json_num(double v)
+{
+    char b[16];
+    return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateString(num(b, sizeof b, v));
+}
+
+/* One side of the comparison: its session, per-frame timings and read-back images. */
+typedef struct side {
+    const char *label;       /* "pipeline" / "reference" */
+    pg_session *s;
+    double *samples;         /* frames x (1 + PG_MAX_PASSES): total, then per pass */
+    pg_frame_stats st;       /* of the last frame */
+    double gpu_ms, pass_ms[PG_MAX_PASSES];
+    const uint8_t *ldr;
+    float *hdr;
+    uint32_t lw, lh, hw, hh;
+    pg_format hfmt;
+} side;
+
+static pg_result side_create(side *sd, const char *label, pg_app *app, const char *path, const pg_param_override *sets,
+                             uint32_t n_sets, bool no_aliasing, uint32_t frames, pg_error *err)
+{
+    memset(sd, 0, sizeof *sd);
+    sd->label = label;
+    pg_session_desc desc = {
+        .pipeline_path = path,
+        .overrides = sets,
+        .n_overrides = n_sets,
+        .registry = &app->registry,
+        .disable_aliasing = no_aliasing,
+    };
+    if (pg_session_create(app->gpu, app->scene_gpu, &desc, &sd->s, err)) return pg_error_prefix(err, "%s", label);
+    if (!sd->s->pipeline->hdr_output[0])
+        return pg_fail(err, PG_ERR_NO_OUTPUT,
+                       "%s: %s: pipeline '%s' declares no hdr_output; compare needs the scene-linear HDR image", label,
+                       sd->s->pipeline->path, sd->s->pipeline->name);
+    sd->samples = calloc((size_t)frames * (PG_MAX_PASSES + 1), sizeof(double));
+    if (!sd->samples) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    return PG_OK;
+}
+
+static pg_result side_render(side *sd, const pg_frame_info *fi, uint32_t f, uint32_t frames, pg_error *err)
+{
+    if (pg_session_render(sd->s, fi, f + 1 == frames, &sd->st, err)) return pg_error_prefix(err, "%s", sd->label);
+    sd->samples[f] = sd->st.gpu_total_ms;
+    for (uint32_t p = 0; p < sd->st.n_passes; p++) sd->samples[(size_t)(p + 1) * frames + f] = sd->st.pass_ms[p];
+    return PG_OK;
+}
+
+static pg_result side_finish(side *sd, uint32_t frames, pg_error *err)
+{
+    sd->gpu_ms = median(sd->samples, frames);
+    for (uint32_t p = 0; p < sd->st.n_passes; p++) sd->pass_ms[p] = median(sd->samples + (size_t)(p + 1) * frames, frames);
+    const pg_pipeline *pl = sd->s->pipeline;
+    pg_format fmt;
+    sd->ldr = pg_runtime_output(sd->s->runtime, 0, &sd->lw, &sd->lh, &fmt);
+    if (!sd->ldr || (fmt != PG_FMT_RGBA8_UNORM && fmt != PG_FMT_RGBA8_SRGB))
+        return pg_fail(err, PG_ERR_FORMAT, "%s: %s: output '%s' must be an 8-bit RGBA image (rgba8 or rgba8_srgb)",
+                       sd->label, pl->path, pl->output);
+    const void *hpix = pg_runtime_output(sd->s->runtime, 1, &sd->hw, &sd->hh, &sd->hfmt);
+    if (!hpix)
+        return pg_fail(err, PG_ERR_NO_OUTPUT, "%s: %s: hdr_output '%s' was not read back", sd->label, pl->path,
+                       pl->hdr_output);
+    sd->hdr = malloc((size_t)sd->hw * sd->hh * 4 * sizeof(float));
+    if (!sd->hdr) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    if (pg_hdr_to_float(hpix, sd->hfmt, sd->hw, sd->hh, sd->hdr, err))
+        return pg_error_prefix(err, "%s: %s: hdr_output '%s'", sd->label, pl->path, pl->hdr_output);
+    return PG_OK;
+}
+
+static void side_print(const side *sd, FILE *f)
+{
+    fprintf(f, "%-10s %s (%s, hdr %s) gpu=%.3f ms [", sd->label, sd->s->pipeline->name, sd->s->pipeline->path,
+            pg_format_get(sd->hfmt)->name, sd->gpu_ms);
+    for (uint32_t p = 0; p < sd->st.n_passes; p++)
+        fprintf(f, "%s%s %.3f", p ? ", " : "", sd->st.pass_names[p], sd->pass_ms[p]);
+    fprintf(f, "]");
+    /* counters the passes report (pg_frame_stats.counters, e.g. light overflow of a cluster pass) */
+    for (uint32_t k = 0; k < sd->st.n_counters; k++)
+        fprintf(f, " %s.%s=%llu", sd->st.counters[k].pass, sd->st.counters[k].name,
+                (unsigned long long)sd->st.counters[k].value);
+    fprintf(f, "\n");
+}
+
+/* The overflow sums for the 'compare:' line, only for a pipeline whose passes report counters. */
+static void side_print_overflow(const side *sd, const char *prefix, FILE *f)
+{
+    if (!sd->st.n_counters) return;
+    fprintf(f, " %soverflow_clusters=%llu %soverflow_dropped=%llu", prefix,
+            (unsigned long long)sd->st.overflow_clusters, prefix, (unsigned long long)sd->st.overflow_dropped);
+}
+
+static cJSON *side_counters_json(const side *sd)
+{
+    cJSON *o = cJSON_CreateObject();
+    for (uint32_t k = 0; o && k < sd->st.n_counters; k++) {
+        char key[PG_NAME_MAX + 40];
+        snprintf(key, sizeof key, "%s.%s", sd->st.counters[k].pass, sd->st.counters[k].name);
+        cJSON_AddNumberToObject(o, key, (double)sd->st.counters[k].value);
+    }
+    return o;
+}
+
+static cJSON *side_passes_json(const side *sd)
+{
+    cJSON *o = cJSON_CreateObject();
+    for (uint32_t p = 0; o && p < sd->st.n_passes; p++) cJSON_AddItemToObject(o, sd->st.pass_names[p], json_num(sd->pass_ms[p]));
+    return o;
+}
+
+static void side_free(side *sd)
+{
+    free(sd->samples);
+    free(sd->hdr);
+    pg_session_destroy(sd->s);
+    memset(sd, 0, sizeof *sd);
+}
+
+static pg_result write_json(const char *path, const side *a, const side *r, const pg_app *app, double threshold,
+                            double heat_scale, const char *heatmap, const pg_image_error *e, pg_error *err)
+{
+    cJSON *o = cJSON_CreateObject();
+    if (!o) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    cJSON_AddStringToObject(o, "pipeline", a->s->pipeline->name);
+    cJSON_AddStringToObject(o, "reference", r->s->pipeline->name);
+    cJSON_AddStringToObject(o, "pipeline_path", a->s->pipeline->path);
+    cJSON_AddStringToObject(o, "reference_path", r->s->pipeline->path);
+    cJSON_AddStringToObject(o, "scene", app->scene_path);
+    cJSON_AddNumberToObject(o, "lights", app->lights.count);
+    cJSON_AddNumberToObject(o, "width", e->width);
+    cJSON_AddNumberToObject(o, "height", e->height);
+    cJSON_AddNumberToObject(o, "time", app->opt.time);
+    cJSON_AddNumberToObject(o, "seed", app->opt.seed);
+    cJSON_AddNumberToObject(o, "frames", app->opt.frames);
+    cJSON_AddStringToObject(o, "hdr_format", pg_format_get(a->hfmt)->name);
+    cJSON_AddStringToObject(o, "reference_hdr_format", pg_format_get(r->hfmt)->name);
+    cJSON_AddItemToObject(o, "rmse_linear", json_num(e->rmse_linear));
+    cJSON_AddItemToObject(o, "psnr_linear", json_num(e->psnr_linear));
+    cJSON_AddItemToObject(o, "max_abs_linear", json_num(e->max_abs_linear));
+    cJSON_AddItemToObject(o, "peak_linear", json_num(e->peak_linear));
+    cJSON_AddItemToObject(o, "rmse_display", json_num(e->rmse_display));
+    cJSON_AddItemToObject(o, "psnr_display", json_num(e->psnr_display));
+    cJSON_AddItemToObject(o, "max_abs_display", json_num(e->max_abs_display));
+    cJSON_AddNumberToObject(o, "threshold", threshold);
+    cJSON_AddItemToObject(o, "over_threshold", json_num(e->share_over_threshold));
+    cJSON_AddNumberToObject(o, "pixels_over_threshold", (double)e->over_threshold);
+    cJSON_AddNumberToObject(o, "nonfinite", (double)e->nonfinite_a);
+    cJSON_AddNumberToObject(o, "reference_nonfinite", (double)e->nonfinite_b);
+    cJSON_AddItemToObject(o, "gpu_ms", json_num(a->gpu_ms));
+    cJSON_AddItemToObject(o, "reference_gpu_ms", json_num(r->gpu_ms));
+    cJSON_AddItemToObject(o, "passes", side_passes_json(a));
+    cJSON_AddItemToObject(o, "reference_passes", side_passes_json(r));
+    if (a->st.n_counters) {
+        cJSON_AddNumberToObject(o, "overflow_clusters", (double)a->st.overflow_clusters);
+        cJSON_AddNumberToObject(o, "overflow_dropped", (double)a->st.overflow_dropped);
+        cJSON_AddItemToObject(o, "counters", side_counters_json(a));
+    }
+    if (r->st.n_counters) {
+        cJSON_AddNumberToObject(o, "reference_overflow_clusters", (double)r->st.overflow_clusters);
+        cJSON_AddNumberToObject(o, "reference_overflow_dropped", (double)r->st.overflow_dropped);
+        cJSON_AddItemToObject(o, "reference_counters", side_counters_json(r));
+    }
+    if (heatmap) {
+        cJSON_AddStringToObject(o, "heatmap", heatmap);
+        cJSON_AddItemToObject(o, "heatmap_scale", json_num(heat_scale));
+    }
+    char *txt = cJSON_Print(o);
+    cJSON_Delete(o);
+    if (!txt) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    FILE *f = fopen(path, "w");
+    bool ok = f && fputs(txt, f) >= 0 && fputc('\n', f) != EOF;
+    if (f && fclose(f)) ok = false;
+    cJSON_free(txt);
+    if (!ok) return pg_fail(err, PG_ERR_IO, "--json %s: cannot write: %s", path, strerror(errno));
+    return PG_OK;
+}
+
+int pg_cmd_compare(int argc, char **argv)
+{
+    pg_cli_common opt;
+    pg_cli_defaults(&opt);
+    pg_error err = {0};
+    const char *reference = NULL, *heatmap = NULL, *json = NULL;
+    double threshold = 1.0, heat_scale_arg = -1.0; /* < 0: 99th percentile; 0: max */
+    pg_param_override ref_sets[PG_CLI_MAX_SETS];
+    uint32_t n_ref_sets = 0;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        bool own = true;
+        pg_result r = PG_OK;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            printf("%s%s%s", compare_help, pg_cli_common_help, compare_help_own);
+            return 0;
+        }
+        if (!strcmp(a, "--reference") || !strcmp(a, "--reference-set") || !strcmp(a, "--heatmap") ||
+            !strcmp(a, "--heatmap-scale") || !strcmp(a, "--threshold") || !strcmp(a, "--json")) {
+            if (!v) {
+                fprintf(stderr, "passgraph compare: %s: missing value\n", a);
+                return 2;
+            }
+            i++;
+            if (!strcmp(a, "--reference")) {
+                reference = v;
+            } else if (!strcmp(a, "--heatmap")) {
+                heatmap = v;
+            } else if (!strcmp(a, "--json")) {
+                json = v;
+            } else if (!strcmp(a, "--threshold")) {
+                r = parse_nonneg(a, v, &threshold, &err);
+            } else if (!strcmp(a, "--heatmap-scale")) {
+                if (!strcmp(v, "max")) heat_scale_arg = 0;
+                else r = parse_nonneg(a, v, &heat_scale_arg, &err);
+            } else { /* --reference-set */
+                const char *eq = strchr(v, '=');
+                if (!eq || eq == v) {
+                    r = pg_fail(&err, PG_ERR_INVALID_ARG, "--reference-set %s: expected KEY=VALUE", v);
+                } else if (n_ref_sets >= PG_CLI_MAX_SETS) {
+                    r = pg_fail(&err, PG_ERR_INVALID_ARG, "--reference-set: at most %d", PG_CLI_MAX_SETS);
+                } else {
+                    char *mut = argv[i]; /* split in place: argv strings are writable */
+                    mut[eq - v] = 0;
+                    ref_sets[n_ref_sets].key = mut;
+                    ref_sets[n_ref_sets].value = mut + (eq - v) + 1;
+                    n_ref_sets++;
+                }
+            }
+        } else if (!strcmp(a, "--out")) {
+            own = false; /* compare writes no display image: --heatmap / --json */
+        } else {
+            r = pg_cli_parse_common(&opt, argc, argv, &i, &own, &err);
+        }
+        if (r) {
+            fprintf(stderr, "passgraph compare: %s\n", err.msg);
+            return 2;
+        }
+        if (!own) {
+            fprintf(stderr, "passgraph compare: unknown option '%s' (see passgraph compare --help)\n", a);
+            return 2;
+        }
+    }
+    char ref_path[PG_PATH_MAX];
+    if (reference) pg_strlcpy(ref_path, reference, sizeof ref_path);
+    else pg_data_path(ref_path, sizeof ref_path, "pipelines/naive.json");
+
+    pg_app app;
+    if (pg_app_open(&app, &opt, true, &err)) {
+        fprintf(stderr, "passgraph compare: %s\n", err.msg);
+        return 1;
+    }
+    int rc = 1;
+    uint8_t *heat = NULL;
+    side A, R;
+    memset(&A, 0, sizeof A);
+    memset(&R, 0, sizeof R);
+    if (side_create(&A, "pipeline", &app, app.pipeline_path, opt.sets, opt.n_sets, opt.no_aliasing, opt.frames, &err))
+        goto done;
+    if (side_create(&R, "reference", &app, ref_path, ref_sets, n_ref_sets, opt.no_aliasing, opt.frames, &err))
+        goto done;
+    pg_frame_info fi = pg_app_frame(&app);
+    for (uint32_t f = 0; f < opt.frames; f++) { /* interleaved: both see the same device state */
+        if (side_render(&A, &fi, f, opt.frames, &err)) goto done;
+        if (side_render(&R, &fi, f, opt.frames, &err)) goto done;
+    }
+    if (opt.explain) {
+        pg_print_explain(A.s, stdout);
+        pg_print_explain(R.s, stdout);
+    }
+    if (side_finish(&A, opt.frames, &err) || side_finish(&R, opt.frames, &err)) goto done;
+    if (pg_image_sizes_match("output (display)", A.lw, A.lh, R.lw, R.lh, &err) ||
+        pg_image_sizes_match("hdr_output", A.hw, A.hh, R.hw, R.hh, &err) ||
+        pg_image_sizes_match("hdr_output vs output", A.hw, A.hh, A.lw, A.lh, &err))
+        goto done;
+    pg_image_error e;
+    if (pg_image_error_compute(A.hdr, R.hdr, A.ldr, R.ldr, A.lw, A.lh, threshold, &e, &err)) goto done;
+
+    double heat_scale = 0;
+    char heat_how[64] = "";
+    if (heatmap) {
+        heat = malloc((size_t)e.width * e.height * 4);
+        if (!heat) {
+            pg_fail(&err, PG_ERR_OOM, "out of memory");
+            goto done;
+        }
+        const char *how = heat_scale_arg > 0 ? "--heatmap-scale" : "the largest error";
+        if (heat_scale_arg < 0) {
+            heat_scale = pg_error_quantile(A.hdr, R.hdr, e.width, e.height, 0.99);
+            if (heat_scale > 0) how = "99th percentile of the differing pixels' errors";
+        } else {
+            heat_scale = heat_scale_arg;
+        }
+        heat_scale = pg_error_heatmap_scale(A.hdr, R.hdr, e.width, e.height, heat_scale);
+        snprintf(heat_how, sizeof heat_how, "%s", how);
+        pg_error_heatmap(A.hdr, R.hdr, e.width, e.height, heat_scale, heat);
+        if (pg_write_png(heatmap, heat, e.width, e.height, &err)) {
+            pg_error_prefix(&err, "--heatmap");
+            goto done;
+        }
+    }
+    if (json && write_json(json, &A, &R, &app, threshold, heat_scale, heatmap, &e, &err)) goto done;
+
+    char b1[32], b2[32], b3[32], b4[32];
+    side_print(&A, stdout);
+    side_print(&R, stdout);
+    printf("%-10s %s %ux%u lights=%u time=%g seed=%u frames=%u\n", "frame", app.scene_path, e.width, e.height,
+           fi.lights.count, (double)opt.time, opt.seed, opt.frames);
+    printf("%-10s rmse=%s psnr=%s dB max_abs=%s (HDR RGB; PSNR peak %s = reference max; %llu pixels compared;"
+           " nonfinite pixels: pipeline %llu, reference %llu)\n",
+           "linear", num(b1, sizeof b1, e.rmse_linear), num(b2, sizeof b2, e.psnr_linear),
+           num(b3, sizeof b3, e.max_abs_linear), num(b4, sizeof b4, e.peak_linear),
+           (unsigned long long)e.compared_linear, (unsigned long long)e.nonfinite_a,
+           (unsigned long long)e.nonfinite_b);
+    printf("%-10s rmse=%s psnr=%s dB max_abs=%s (8-bit RGB, 0..255; PSNR peak 255)\n", "display",
+           num(b1, sizeof b1, e.rmse_display), num(b2, sizeof b2, e.psnr_display), num(b3, sizeof b3, e.max_abs_display));
+    printf("%-10s %llu of %llu pixels (%.4f%%) differ by more than %g in some display channel\n", "threshold",
+           (unsigned long long)e.over_threshold, (unsigned long long)e.width * e.height,
+           100.0 * e.share_over_threshold, threshold);
+    if (heatmap)
+        printf("%-10s %s (max RGB |linear error| over [0, %s]: %s)\n", "heatmap", heatmap,
+               num(b1, sizeof b1, heat_scale), heat_how);
+    if (json) printf("%-10s %s\n", "json", json);
+    printf("compare: pipeline=%s reference=%s lights=%u size=%ux%u", A.s->pipeline->name, R.s->pipeline->name,
+           fi.lights.count, e.width, e.height);
+    printf(" rmse_linear=%s psnr_linear=%s max_abs_linear=%s", num(b1, sizeof b1, e.rmse_linear),
+           num(b2, sizeof b2, e.psnr_linear), num(b3, sizeof b3, e.max_abs_linear));
+    printf(" rmse_display=%s psnr_display=%s max_abs_display=%s", num(b1, sizeof b1, e.rmse_display),
+           num(b2, sizeof b2, e.psnr_display), num(b3, sizeof b3, e.max_abs_display));
+    printf(" over_threshold=%s nonfinite=%llu reference_nonfinite=%llu gpu_ms=%.3f reference_gpu_ms=%.3f",
+           num(b1, sizeof b1, e.share_over_threshold), (unsigned long long)e.nonfinite_a,
+           (unsigned long long)e.nonfinite_b, A.gpu_ms, R.gpu_ms);
+    side_print_overflow(&A, "", stdout);
+    side_print_overflow(&R, "reference_", stdout);
+    printf("\n");
+    rc = 0;
+    if (app.gpu->validation && app.gpu->validation_messages) {
+        fprintf(stderr, "passgraph compare: %u validation message(s)\n", app.gpu->validation_messages);
+        rc = 1;
+    }
+done:
+    if (rc && err.code) fprintf(stderr, "passgraph compare: %s\n", err.msg);
+    free(heat);
+    side_free(&A);
+    side_free(&R);
+    pg_app_close(&app);
+    return rc;
+}
