@@ -219,7 +219,8 @@ pg_vec3 pg_oct_unpack_unorm16(uint32_t p)
 float pg_view_depth_from_depth(float depth, float near_z, float far_z)
 {
     float d = depth < 1.0f ? (depth > 0.0f ? depth : 0.0f) : 1.0f;
-    return far_z / (d + (1.0f - d) * (far_z / near_z));
+    float ratio = fminf(far_z / near_z, PG_FLT_MAX_F);
+    return far_z / (d + (1.0f - d) * ratio);
 }
 
 pg_vec3 pg_view_pos_from_depth(pg_vec2 uv, float depth, const float m[16])

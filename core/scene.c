@@ -572,8 +572,21 @@ bool pg_mat4_invert(const float m[16], float out[16])
     inv[15] = a[0] * a[5] * a[10] - a[0] * a[6] * a[9] - a[4] * a[1] * a[10] +
               a[4] * a[2] * a[9] + a[8] * a[1] * a[6] - a[8] * a[2] * a[5];
     double det = a[0] * inv[0] + a[1] * inv[4] + a[2] * inv[8] + a[3] * inv[12];
-    /* singular (or numerically so) relative to the matrix's scale */
-    double scale = maxabs * maxabs * maxabs * maxabs;
+    /* Singular (or numerically so) relative to the matrix's scale. Hadamard's inequality bounds
+     * |det| by the product of the row norms and by the product of the column norms; the smaller
+     * one is the right scale: a view matrix with a large translation (camera ~1e5 from the
+     * origin) has det 1 and huge rows but unit columns 0..2, and must stay invertible. */
+    double prod_rows = 1, prod_cols = 1;
+    for (int i = 0; i < 4; i++) {
+        double rn = 0, cn = 0;
+        for (int j = 0; j < 4; j++) {
+            rn += a[j * 4 + i] * a[j * 4 + i];
+            cn += a[i * 4 + j] * a[i * 4 + j];
+        }
+        prod_rows *= sqrt(rn);
+        prod_cols *= sqrt(cn);
+    }
+    double scale = prod_rows < prod_cols ? prod_rows : prod_cols;
     if (!isfinite(det) || fabs(det) <= 1e-12 * scale) return false;
     double id = 1.0 / det;
     float r[16];

@@ -11,6 +11,8 @@
 //
 // Valid clip parameters: near_z a normal float (>= 2^-126) and near_z < far_z <= FLT_MAX. Other
 // parameters (0, negative, NaN, Inf, far <= near) make every depth fall in slice 0.
+#ifndef PG_CLUSTER_GLSL
+#define PG_CLUSTER_GLSL
 
 const float PG_FLT_MIN_NORMAL = 1.17549435e-38;  // 2^-126
 const float PG_FLT_MAX = 3.40282347e+38;
@@ -143,3 +145,5 @@ bool pg_sphere_intersects_aabb(vec3 center, float radius, vec3 aabb_min, vec3 aa
     float d2 = dot(d, d);
     return d2 <= radius * radius * (1.0 + 1e-5) + 1e-12;
 }
+
+#endif // PG_CLUSTER_GLSL

@@ -44,6 +44,14 @@ vec3 pg_srgb_decode(vec3 c)
         vec4 clip;          /* near, far */                                                      \
     } frame;
 
+// Camera-relative rendering (use after FRAME_UNIFORMS_BLOCK): shading works on positions
+// relative to the camera ("rel" = world - camera), so scenes far from the origin (~1e5) keep
+// their precision: view * vec4(world, 1) would cancel large terms and make depth - and every
+// position rebuilt from it - useless there, and 1/d^2 would see the 0.008 quantization of fp32
+// world coordinates at 1e5.
+#define PG_REL_TO_VIEW(r) (mat3(frame.view) * (r))
+#define PG_VIEW_TO_REL(v) (mat3(frame.inv_view) * (v))
+
 const float PG_HDR_MAX = 65000.0;
 
 // Keeps HDR values finite and inside half-float range (NaN -> 0).

@@ -41,21 +41,21 @@ void main()
     vec2 frag = vec2(px) + 0.5;
     vec2 uv = frag / vec2(size);
     Surface s;
-    vec3 P;
+    vec3 P; // camera-relative
     float view_depth;
 #if defined(PG_GBUFFER_FLOAT)
-    P = texelFetch(g_position, px, 0).xyz;
+    P = texelFetch(g_position, px, 0).xyz - frame.camera_pos.xyz; // world -> camera-relative
     vec4 n = texelFetch(g_normal, px, 0);
     vec4 a = texelFetch(g_albedo, px, 0);
     s.normal = n.xyz;
     s.shininess = n.w;
     s.albedo = a.rgb;
     s.specular = a.a;
-    view_depth = -(frame.view * vec4(P, 1.0)).z;
+    view_depth = -PG_REL_TO_VIEW(P).z;
 #elif defined(PG_GBUFFER_OCT16)
     vec3 pv = pg_view_pos_from_depth(uv, depth, frame.inv_proj);
     view_depth = -pv.z;
-    P = (frame.inv_view * vec4(pv, 1.0)).xyz;
+    P = PG_VIEW_TO_REL(pv);
     vec4 n = texelFetch(g_normal, px, 0);
     vec4 a = texelFetch(g_albedo, px, 0); // sRGB decoded by the sampler
     s.normal = pg_oct_decode(n.xy * 2.0 - 1.0);
@@ -71,7 +71,7 @@ void main()
     s.shininess = uintBitsToFloat(g.z);
     view_depth = uintBitsToFloat(g.w);
     vec3 pv = pg_view_pos_from_view_depth(uv, view_depth, frame.proj);
-    P = (frame.inv_view * vec4(pv, 1.0)).xyz;
+    P = PG_VIEW_TO_REL(pv);
 #endif
     vec3 c = pg_shade_point(s, P, view_depth, frag);
     imageStore(hdr_out, px, vec4(pg_hdr_sanitize(c), 1.0));

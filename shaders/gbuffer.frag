@@ -5,7 +5,7 @@
 FRAME_UNIFORMS_BLOCK
 #include "surface.glsl"
 #include "octahedral.glsl"
-layout(location = 0) in vec3 v_world;
+layout(location = 0) in vec3 v_rel;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec2 v_uv;
 layout(location = 3) in vec4 v_tangent;
@@ -24,14 +24,14 @@ void main()
 {
     Surface s = pg_surface(v_normal, v_uv, v_tangent, gl_FrontFacing);
 #if defined(PG_GBUFFER_FLOAT)
-    g_position = vec4(v_world, 1.0);
+    g_position = vec4(v_rel + frame.camera_pos.xyz, 1.0); // world space, as the classic layout
     g_normal = vec4(s.normal, s.shininess);
     g_albedo = vec4(s.albedo, s.specular);
 #elif defined(PG_GBUFFER_OCT16)
     g_normal = vec4(pg_oct_encode(s.normal) * 0.5 + 0.5, clamp(s.shininess / 512.0, 0.0, 1.0), 0.0);
     g_albedo = vec4(clamp(s.albedo, 0.0, 1.0), clamp(s.specular, 0.0, 1.0));
 #else
-    float view_depth = -(frame.view * vec4(v_world, 1.0)).z;
+    float view_depth = -PG_REL_TO_VIEW(v_rel).z;
     g_packed = uvec4(pg_oct_pack_unorm16(s.normal),
                      packUnorm4x8(vec4(pg_srgb_encode(s.albedo), clamp(s.specular, 0.0, 1.0))),
                      floatBitsToUint(s.shininess), floatBitsToUint(view_depth));

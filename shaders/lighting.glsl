@@ -10,10 +10,11 @@ struct PgShade {
     vec3 specular;
 };
 
-void pg_accumulate_light(Light light, vec3 P, vec3 N, vec3 V, float shininess, float min_dist,
+// P is camera-relative (world - cam); the light is moved into the same frame first.
+void pg_accumulate_light(Light light, vec3 cam, vec3 P, vec3 N, vec3 V, float shininess, float min_dist,
                          inout PgShade acc)
 {
-    vec3 Ld = light.pos_radius.xyz - P;
+    vec3 Ld = (light.pos_radius.xyz - cam) - P;
     float d2 = dot(Ld, Ld);
     float R = light.pos_radius.w;
     if (!(d2 < R * R)) return;            // outside range (and R = 0, and NaN)

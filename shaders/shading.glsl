@@ -32,11 +32,12 @@ vec3 pg_index_color(uint i)
     return vec3(float((h >> 8) & 255u), float((h >> 16) & 255u), float((h >> 24) & 255u)) / 255.0 * 0.8 + 0.2;
 }
 
-// Shades one visible point. frag_xy: pixel centre (gl_FragCoord.xy); view_depth: positive
-// distance along the view axis.
+// Shades one visible point. P: camera-relative position (world - camera); frag_xy: pixel centre
+// (gl_FragCoord.xy); view_depth: positive distance along the view axis.
 vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 {
-    vec3 V = normalize(frame.camera_pos.xyz - P);
+    vec3 V = normalize(-P);
+    vec3 cam = frame.camera_pos.xyz;
     PgShade acc;
     acc.diffuse = vec3(0.0);
     acc.specular = vec3(0.0);
@@ -73,11 +74,11 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
     uint n = min(raw, uint(MAX_LIGHTS));
     uint base = ci * uint(MAX_LIGHTS);
     for (uint k = 0u; k < n; k++)
-        pg_accumulate_light(lights[cluster_lights[base + k]], P, s.normal, V, s.shininess, min_dist, acc);
+        pg_accumulate_light(lights[cluster_lights[base + k]], cam, P, s.normal, V, s.shininess, min_dist, acc);
 #else
     uint count = frame.counts.x;
     for (uint i = 0u; i < count; i++)
-        pg_accumulate_light(lights[i], P, s.normal, V, s.shininess, min_dist, acc);
+        pg_accumulate_light(lights[i], cam, P, s.normal, V, s.shininess, min_dist, acc);
 #endif
 #endif
     return s.albedo * (acc.diffuse + vec3(PG_AMBIENT)) + s.specular * acc.specular;

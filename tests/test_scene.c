@@ -349,6 +349,17 @@ static void test_camera(void)
     CHECK(memcmp(keep, I, sizeof keep) == 0);
     float Z[16] = {0};
     CHECK(!pg_mat4_invert(Z, I));
+    /* regression: a camera ~1e5 from the origin has a view matrix with det 1 but a huge
+     * translation; it must invert (the far-geometry deferred variants rebuild positions with it) */
+    pg_camera farcam = {.position = {1.0e5f, 2, 1.0e5f}, .target = {1.0e5f + 10, 2, 1.0e5f}, .up = {0, 1, 0},
+                        .fov_y_deg = 60, .near_z = 0.1f, .far_z = 100, .aspect = 16.0f / 9};
+    float FV[16], FI[16];
+    pg_camera_view(&farcam, FV);
+    CHECK(pg_mat4_invert(FV, FI));
+    float fp[4] = {1.0e5f + 5, 3, 1.0e5f - 1, 1}, fv4[4], back[4];
+    xform(FV, fp, fv4);
+    xform(FI, fv4, back);
+    CHECK(fabsf(back[0] - fp[0]) < 0.05f && fabsf(back[1] - fp[1]) < 0.05f && fabsf(back[2] - fp[2]) < 0.05f);
     /* mul may alias its output */
     float A[16];
     memcpy(A, G, sizeof A);

@@ -22,7 +22,10 @@ const char *const pg_cli_common_help =
     "                       any message makes the command fail\n"
     "  --no-aliasing        give every transient its own memory (debugging switch)\n"
     "  --explain            print what the compiled graph left out, culled and why\n"
-    "  --frames N           frames to render; timings are the median (default 1)\n";
+    "  --frames N           frames to render; timings are the median (default 1)\n"
+    "  --view NAME          debug view instead of lighting (the pipeline's 'view' parameter):\n"
+    "                       cluster_heat, cluster_x, cluster_y, cluster_z, overflow (clustered\n"
+    "                       pipelines), albedo, normal, depth (all)\n";
 
 void pg_cli_defaults(pg_cli_common *c)
 {
@@ -148,6 +151,13 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         } else {
             c->device_match = v;
         }
+    } else if (!strcmp(a, "--view")) {
+        NEED_VALUE();
+        if (c->n_sets >= PG_CLI_MAX_SETS) return pg_fail(err, PG_ERR_INVALID_ARG, "--view: too many overrides");
+        c->view = v;
+        c->sets[c->n_sets].key = "view";
+        c->sets[c->n_sets].value = v;
+        c->n_sets++;
     } else if (!strcmp(a, "--validation")) {
         c->validation = true;
     } else if (!strcmp(a, "--no-aliasing")) {

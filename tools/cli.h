@@ -29,6 +29,7 @@ typedef struct pg_cli_common {
     bool no_aliasing;            /* --no-aliasing */
     bool explain;                /* --explain */
     uint32_t frames;             /* --frames N */
+    const char *view;            /* --view NAME: the pipeline's debug view parameter */
     bool quiet;
 } pg_cli_common;
 

@@ -29,7 +29,8 @@ static const char *const compare_help =
     "one-time costs on some drivers, so compare GPU ms with --frames 3 or more.\n"
     "Both pipelines must declare an hdr_output. Exit 0 on success, 1 on a failure (load, render,\n"
     "validation message with --validation), 2 on bad options.\n\n"
-    "options (--set and --no-aliasing apply to --pipeline; --set does not reach the reference):\n";
+    "options (--set and --view apply to --pipeline only, --reference-set to the reference;\n"
+    "the others, --no-aliasing included, to both):\n";
 
 static const char *const compare_help_own =
     "  --reference FILE     reference pipeline JSON (default: pipelines/naive.json, the exact one)\n"

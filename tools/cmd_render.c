@@ -120,6 +120,11 @@ int pg_cmd_render(int argc, char **argv)
         printf("%s%s %.3f", p ? ", " : "", st.pass_names[p], median(samples + (size_t)(p + 1) * opt.frames, opt.frames));
     if (nonfinite >= 0) printf("] nonfinite=%lld", nonfinite);
     else printf("] nonfinite=n/a");
+    bool clustered = false;
+    for (uint32_t k = 0; k < st.n_counters; k++) clustered |= !strcmp(st.counters[k].name, "overflow_clusters");
+    if (clustered)
+        printf(" overflow=%llu clusters (%llu light refs dropped)", (unsigned long long)st.overflow_clusters,
+               (unsigned long long)st.overflow_dropped);
     printf(" frames=%u -> %s\n", opt.frames, opt.out);
     free(samples);
     rc = 0;

@@ -1,0 +1,80 @@
+#include "gpu_harness.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "image_util.h"
+#include "shader.h"
+
+bool pg_th_render(pg_gpu *gpu, const pg_pass_registry *reg, const pg_scene_gpu *sg, const char *pipeline,
+                  const pg_param_override *sets, uint32_t n_sets, const pg_frame_info *fi, uint32_t frames,
+                  bool no_alias, pg_th_frame *out)
+{
+    memset(out, 0, sizeof *out);
+    char path[PG_PATH_MAX];
+    pg_data_path(path, sizeof path, pipeline);
+    pg_session_desc sd = {.pipeline_path = path, .registry = reg, .disable_aliasing = no_alias,
+                          .overrides = sets, .n_overrides = n_sets};
+    pg_session *s = NULL;
+    pg_error err = {0};
+    if (pg_session_create(gpu, sg, &sd, &s, &err)) {
+        fprintf(stderr, "%s: %s\n", pipeline, err.msg);
+        return false;
+    }
+    bool ok = true;
+    for (uint32_t f = 0; f < frames && ok; f++) {
+        if (pg_session_render(s, fi, f + 1 == frames, &out->stats, &err)) {
+            fprintf(stderr, "%s: render: %s\n", pipeline, err.msg);
+            ok = false;
+        }
+    }
+    if (ok) {
+        pg_format fmt, hf;
+        uint32_t hw, hh;
+        const uint8_t *p = pg_runtime_output(s->runtime, 0, &out->w, &out->h, &fmt);
+        const void *hp = pg_runtime_output(s->runtime, 1, &hw, &hh, &hf);
+        ok = p && hp && hw == out->w && hh == out->h;
+        if (ok) {
+            out->ldr = malloc((size_t)out->w * out->h * 4);
+            out->hdr = malloc((size_t)hw * hh * 4 * sizeof(float));
+            ok = out->ldr && out->hdr;
+        }
+        if (ok) {
+            memcpy(out->ldr, p, (size_t)out->w * out->h * 4);
+            ok = !pg_hdr_to_float(hp, hf, hw, hh, out->hdr, &err);
+        }
+        out->creations = pg_runtime_get_stats(s->runtime).resource_creations;
+        out->n_order = s->plan->n_order;
+        for (uint32_t k = 0; k < s->plan->n_order; k++) {
+            size_t len = strlen(out->order);
+            snprintf(out->order + len, sizeof out->order - len, "%s%s", k ? "," : "",
+                     s->plan->passes[s->plan->order[k]].name);
+        }
+    }
+    pg_session_destroy(s);
+    if (!ok) pg_th_release(out);
+    return ok;
+}
+
+void pg_th_release(pg_th_frame *f)
+{
+    free(f->ldr);
+    free(f->hdr);
+    f->ldr = NULL;
+    f->hdr = NULL;
+}
+
+double pg_th_max_abs(const pg_th_frame *a, const pg_th_frame *b, double *ref_peak)
+{
+    double m = 0, peak = 0;
+    for (size_t i = 0; i < (size_t)a->w * a->h * 4; i++) {
+        if (i % 4 == 3) continue;
+        double d = fabs((double)a->hdr[i] - b->hdr[i]);
+        if (!(d <= m)) m = d; /* NaN propagates as "larger" */
+        if (b->hdr[i] > peak) peak = b->hdr[i];
+    }
+    if (ref_peak) *ref_peak = peak;
+    return m;
+}

@@ -1,0 +1,25 @@
+/* gpu_harness.h - render one configuration and keep its images and stats (GPU tests). */
+#ifndef PG_GPU_HARNESS_H
+#define PG_GPU_HARNESS_H
+
+#include "render_session.h"
+
+typedef struct pg_th_frame {
+    uint8_t *ldr;          /* w*h RGBA8 display image */
+    float *hdr;            /* w*h RGBA32F scene-linear image */
+    uint32_t w, h;
+    pg_frame_stats stats;
+    uint32_t creations;
+    uint32_t n_order;      /* passes run */
+    char order[256];       /* their names, comma separated */
+} pg_th_frame;
+
+/* pipeline is relative to the data folder ("pipelines/naive.json"). Prints errors. */
+bool pg_th_render(pg_gpu *gpu, const pg_pass_registry *reg, const pg_scene_gpu *sg, const char *pipeline,
+                  const pg_param_override *sets, uint32_t n_sets, const pg_frame_info *fi, uint32_t frames,
+                  bool no_alias, pg_th_frame *out);
+void pg_th_release(pg_th_frame *f);
+/* Largest |a-b| over RGB and the largest reference value (for relative bounds). */
+double pg_th_max_abs(const pg_th_frame *a, const pg_th_frame *b, double *ref_peak);
+
+#endif
