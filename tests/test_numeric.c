@@ -586,7 +586,7 @@ static void test_slices(void)
             }
         }
         char name[64];
-        snprintf(name, sizeof name, "%g..%g", n, f);
+        snprintf(name, sizeof name, "%.8g..%.8g", n, f);
         printf("  %-22s %6.1f | %-14.2e %-14.2e %-14.2e | %.2e\n", name, lr, c_mis, c_dep, c_rt, tol);
     }
     /* invalid clip parameters and degenerate grids */
