@@ -105,5 +105,15 @@ expect_fail "compare: unknown reference parameter" "no_such_param" compare --ref
 expect_fail "compare: unwritable heatmap" "cannot write" compare --size 32x18 --lights 4 --heatmap "$tmp/no/such/dir/h.png"
 expect_fail "compare: unwritable json" "cannot write" compare --size 32x18 --lights 4 --json "$tmp/no/such/dir/c.json"
 
+# debug views: every view of a clustered pipeline renders; a cluster view on naive is refused
+for v in cluster_heat cluster_x cluster_y cluster_z overflow albedo normal depth; do
+  "$PG" render --pipeline "$root/pipelines/forward_plus.json" --view $v --size 64x36 --lights 16 --out "$tmp/v.png" >"$tmp/out" 2>"$tmp/err" \
+    && [ -s "$tmp/v.png" ] && ok || { bad "--view $v"; cat "$tmp/err"; }
+done
+expect_fail "cluster view on naive" "not one of" render --pipeline "$root/pipelines/naive.json" --view cluster_heat --size 64x36 --out "$tmp/v.png"
+# clustered summary reports overflow (all lights at one point, 2 per cluster)
+"$PG" render --pipeline "$root/pipelines/forward_plus.json" --set max_lights=2 --lights 64 --radius 100 --size 64x36 --out "$tmp/o.png" >"$tmp/out" 2>&1
+grep -Eq 'overflow=[1-9][0-9]* clusters \([0-9]+ light refs dropped\)' "$tmp/out" && ok || { bad "overflow not reported"; cat "$tmp/out"; }
+
 echo "cli_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]
