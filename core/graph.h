@@ -104,6 +104,8 @@ typedef struct pg_compile_desc {
     uint32_t output_width, output_height;
     bool disable_aliasing;           /* debugging switch: every transient gets its own memory */
     uint32_t output_layout;          /* VkImageLayout the outputs end in; 0 -> TRANSFER_SRC */
+    uint64_t output_stages;          /* stages that read the outputs after the graph; 0 -> COPY
+                                      * (read-back); the viewer adds BLIT to put it on screen */
 } pg_compile_desc;
 
 typedef struct pg_graph_plan {

@@ -1063,7 +1063,7 @@ static access_req output_req(const compile_ctx *c)
                                       : (uint32_t)VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     a.reads = true;
     if (a.layout != VK_IMAGE_LAYOUT_PRESENT_SRC_KHR) { /* presentation waits on a semaphore */
-        a.stages = VK_PIPELINE_STAGE_2_COPY_BIT;
+        a.stages = c->desc->output_stages ? c->desc->output_stages : VK_PIPELINE_STAGE_2_COPY_BIT;
         a.access = VK_ACCESS_2_TRANSFER_READ_BIT;
     }
     return a;

@@ -560,3 +560,10 @@ pg_runtime_stats pg_runtime_get_stats(const pg_runtime *rt)
 {
     return rt->stats;
 }
+
+const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which)
+{
+    if (!rt->plan || which < 0 || which > 1) return NULL;
+    int idx = which ? rt->plan->hdr_output : rt->plan->output;
+    return idx >= 0 ? &rt->res[idx] : NULL;
+}

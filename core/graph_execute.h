@@ -92,6 +92,9 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
 /* Pixels of the last read-back frame: which = 0 the output, 1 the hdr_output (NULL if none). */
 const void *pg_runtime_output(const pg_runtime *rt, int which, uint32_t *w, uint32_t *h, pg_format *fmt);
 pg_runtime_stats pg_runtime_get_stats(const pg_runtime *rt);
+/* The physical image of the output (which 0) or hdr_output (1), in TRANSFER_SRC_OPTIMAL layout
+ * after each frame (NULL if none). For the viewer's blit to the window. */
+const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which);
 
 #ifdef __cplusplus
 }

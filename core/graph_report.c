@@ -169,6 +169,53 @@ static void print_barrier(FILE *f, const pg_graph_plan *plan, const pg_barrier *
     fprintf(f, ")\n");
 }
 
+/* The memory timeline as text: one row per transient resource, grouped by memory block, one
+ * 3-character column per executed pass plus 'E' (read back after the last pass):
+ *   "[==" first pass, "===" live, "==]" last pass, "[=]" one pass only, " . " not live. */
+static void print_timeline(FILE *f, const pg_graph_plan *plan)
+{
+    const uint32_t n_cols = plan->n_order + 1;
+    fprintf(f, "\nmemory timeline (transient resources by memory block; columns are the executed "
+               "passes, E = read back after the last pass):\n");
+    if (!plan->n_blocks) {
+        fprintf(f, "  no transient resources\n");
+        return;
+    }
+    fprintf(f, "  %-26s", "");
+    for (uint32_t k = 0; k < n_cols; k++) {
+        if (k < plan->n_order) fprintf(f, "%3u", k % 1000);
+        else fprintf(f, "  E");
+    }
+    fprintf(f, "\n");
+    for (uint32_t b = 0; b < plan->n_blocks; b++) {
+        const pg_plan_block *bl = &plan->blocks[b];
+        char bytes[32];
+        fmt_bytes(bl->size_bytes, bytes, sizeof bytes);
+        fprintf(f, "  #%u %s %s%s\n", b, pg_res_kind_name(bl->kind), bytes,
+                bl->n_members > 1 ? " (shared)" : "");
+        for (uint32_t m = 0; m < bl->n_members && m < PG_MAX_RESOURCES; m++) {
+            const pg_plan_resource *pr = &plan->resources[bl->members[m]];
+            fprintf(f, "    %-24.24s", pr->name);
+            for (uint32_t k = 0; k < n_cols; k++) {
+                const int kk = (int)k;
+                const char *cell = " . ";
+                if (kk >= pr->first_pass && kk <= pr->last_pass && pr->first_pass >= 0) {
+                    if (pr->first_pass == pr->last_pass) cell = "[=]";
+                    else if (kk == pr->first_pass) cell = "[==";
+                    else if (kk == pr->last_pass) cell = "==]";
+                    else cell = "===";
+                }
+                fputs(cell, f);
+            }
+            fprintf(f, "\n");
+        }
+    }
+    fprintf(f, "  passes:");
+    for (uint32_t k = 0; k < plan->n_order; k++)
+        fprintf(f, "%s %u %s", k ? "," : "", k, plan->passes[plan->order[k]].name);
+    fprintf(f, "\n");
+}
+
 void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline, void *FILE_ptr)
 {
     FILE *f = FILE_ptr ? (FILE *)FILE_ptr : stdout;
@@ -219,32 +266,26 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
             print_barrier(f, plan, &plan->final_barriers[b]);
     }
 
-    if (n_culled) {
-        fprintf(f, "\nculled passes:\n");
-        for (uint32_t i = 0; i < plan->n_passes; i++)
-            if (plan->passes[i].culled)
-                fprintf(f, "  %s: %s\n", plan->passes[i].name, plan->passes[i].cull_reason);
-    }
+    fprintf(f, "\nculled passes:%s\n", n_culled ? "" : " none");
+    for (uint32_t i = 0; i < plan->n_passes; i++)
+        if (plan->passes[i].culled)
+            fprintf(f, "  %s: %s\n", plan->passes[i].name, plan->passes[i].cull_reason);
     bool any_res_culled = false;
     for (uint32_t r = 0; r < plan->n_resources; r++) any_res_culled |= plan->resources[r].culled;
-    if (any_res_culled) {
-        fprintf(f, "\nculled resources:\n");
-        for (uint32_t r = 0; r < plan->n_resources; r++)
-            if (plan->resources[r].culled)
-                fprintf(f, "  %s: %s\n", plan->resources[r].name, plan->resources[r].cull_reason);
-    }
-    if (plan->n_explain) {
-        fprintf(f, "\nexplain:\n");
-        for (uint32_t e = 0; e < plan->n_explain && e < PG_MAX_EXPLAIN; e++)
-            fprintf(f, "  %s\n", plan->explain[e]);
-    }
+    fprintf(f, "\nculled resources:%s\n", any_res_culled ? "" : " none");
+    for (uint32_t r = 0; r < plan->n_resources; r++)
+        if (plan->resources[r].culled)
+            fprintf(f, "  %s: %s\n", plan->resources[r].name, plan->resources[r].cull_reason);
+    fprintf(f, "\nexplain (left out, culled, and why):%s\n", plan->n_explain ? "" : " nothing");
+    for (uint32_t e = 0; e < plan->n_explain && e < PG_MAX_EXPLAIN; e++)
+        fprintf(f, "  %s\n", plan->explain[e]);
 
     fprintf(f, "\nresources:\n");
-    fprintf(f, "  %-16s %-6s %-10s %-11s %-12s %-10s %-24s %s\n", "name", "kind", "lifetime",
-            "format", "size", "bytes", "lifetime (first..last)", "block");
+    fprintf(f, "  %-16s %-6s %-10s %-11s %-12s %-10s %-31s %s\n", "name", "kind", "lifetime",
+            "format", "size", "bytes", "lifetime (first..last)", "block @ offset");
     for (uint32_t r = 0; r < plan->n_resources; r++) {
         const pg_plan_resource *pr = &plan->resources[r];
-        char size[32], bytes[32], life[2 * PG_NAME_MAX + 8], block[16];
+        char size[32], bytes[32], life[2 * PG_NAME_MAX + 8], block[48];
         if (pr->kind == PG_RES_IMAGE)
             snprintf(size, sizeof size, "%ux%u", pr->width, pr->height);
         else
@@ -256,10 +297,10 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
             snprintf(life, sizeof life, "%s..%s", pass_name_at(plan, pr->first_pass),
                      pass_name_at(plan, pr->last_pass));
         if (pr->block >= 0)
-            snprintf(block, sizeof block, "#%d", pr->block);
+            snprintf(block, sizeof block, "#%d @ %" PRIu64, pr->block, pr->block_offset);
         else
             snprintf(block, sizeof block, "-");
-        fprintf(f, "  %-16s %-6s %-10s %-11s %-12s %-10s %-24s %s%s\n", pr->name,
+        fprintf(f, "  %-16s %-6s %-10s %-11s %-12s %-10s %-31s %s%s\n", pr->name,
                 pg_res_kind_name(pr->kind), pg_lifetime_name(pr->lifetime),
                 pr->kind == PG_RES_IMAGE ? pg_format_get(pr->format)->name : "-", size, bytes,
                 life, block, pr->is_output ? " (output)" : "");
@@ -274,9 +315,11 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
         for (uint32_t m = 0; m < bl->n_members && m < PG_MAX_RESOURCES; m++) {
             const pg_plan_resource *pr = &plan->resources[bl->members[m]];
             fprintf(f, "%s %s [%d..%d]", m ? "," : "", pr->name, pr->first_pass, pr->last_pass);
+            if (pr->block_offset) fprintf(f, " @ %" PRIu64, pr->block_offset);
         }
         fprintf(f, "\n");
     }
+    print_timeline(f, plan);
 
     char un[32], al[32];
     fmt_bytes(plan->transient_bytes_unaliased, un, sizeof un);

@@ -20,6 +20,7 @@ typedef struct pg_session_desc {
     uint32_t n_overrides;
     const pg_pass_registry *registry;
     bool disable_aliasing;
+    uint64_t output_stages;       /* see pg_compile_desc.output_stages */
 } pg_session_desc;
 
 typedef struct pg_session {

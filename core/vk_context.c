@@ -89,10 +89,16 @@ static int device_score(const VkPhysicalDeviceProperties *p)
     }
 }
 
-static pg_result make_instance(pg_gpu *gpu, bool validation, pg_error *err)
+static pg_result make_instance(pg_gpu *gpu, const pg_gpu_desc *desc, pg_error *err)
 {
-    const char *exts[4];
+    bool validation = desc->validation;
+    const char *exts[20];
     uint32_t n_ext = 0;
+    for (uint32_t i = 0; i < desc->n_instance_extensions && n_ext < 16; i++) {
+        if (!has_instance_ext(desc->instance_extensions[i]))
+            return pg_fail(err, PG_ERR_NO_DEVICE, "instance extension %s is not available", desc->instance_extensions[i]);
+        exts[n_ext++] = desc->instance_extensions[i];
+    }
     if (has_instance_ext(VK_EXT_DEBUG_UTILS_EXTENSION_NAME)) {
         exts[n_ext++] = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
         gpu->debug_utils = true;
@@ -199,7 +205,7 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
     pg_gpu *gpu = calloc(1, sizeof *gpu);
     if (!gpu) return pg_fail(err, PG_ERR_OOM, "out of memory");
     gpu->validation = desc->validation;
-    pg_result res = make_instance(gpu, desc->validation, err);
+    pg_result res = make_instance(gpu, desc, err);
     if (res) goto fail;
 
     uint32_t n = 0;
@@ -243,12 +249,14 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
     vkGetPhysicalDeviceQueueFamilyProperties(gpu->phys, &nq, qf);
     int fam = -1;
     for (uint32_t i = 0; i < nq; i++)
-        if ((qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
+        if ((qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT) &&
+            (!desc->present_ok || desc->present_ok(gpu->instance, gpu->phys, i, desc->present_user))) {
             fam = (int)i;
             break;
         }
     if (fam < 0) {
-        res = pg_fail(err, PG_ERR_NO_DEVICE, "%s: no graphics+compute queue", gpu->props.deviceName);
+        res = pg_fail(err, PG_ERR_NO_DEVICE, "%s: no graphics+compute queue%s", gpu->props.deviceName,
+                      desc->present_ok ? " that can present to the window" : "");
         goto fail;
     }
     gpu->queue_family = (uint32_t)fam;
@@ -295,11 +303,14 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
         .queueCount = 1,
         .pQueuePriorities = &prio,
     };
+    const char *dev_exts[1] = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
     VkDeviceCreateInfo dci = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .pNext = &e2,
         .queueCreateInfoCount = 1,
         .pQueueCreateInfos = &qci,
+        .enabledExtensionCount = desc->swapchain ? 1 : 0,
+        .ppEnabledExtensionNames = dev_exts,
     };
     VkResult r = vkCreateDevice(gpu->phys, &dci, NULL, &gpu->device);
     if (r != VK_SUCCESS) {

@@ -23,6 +23,13 @@ typedef struct pg_gpu_desc {
     int device_index;         /* -1: pick automatically (discrete > integrated > cpu) */
     const char *device_match; /* optional substring of the device name */
     bool quiet;               /* do not print the chosen device */
+    /* windowed use (the viewer): extra instance extensions (e.g. from GLFW), VK_KHR_swapchain on
+     * the device, and a queue family that can present (asked through present_ok) */
+    const char *const *instance_extensions;
+    uint32_t n_instance_extensions;
+    bool swapchain;
+    bool (*present_ok)(VkInstance instance, VkPhysicalDevice phys, uint32_t family, void *user);
+    void *present_user;
 } pg_gpu_desc;
 
 typedef struct pg_gpu {

@@ -7,6 +7,12 @@
 
 pg_result pg_app_open(pg_app *app, const pg_cli_common *opt, bool with_gpu, pg_error *err)
 {
+    return pg_app_open_ex(app, opt, with_gpu, NULL, err);
+}
+
+pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, const pg_gpu_desc *window_bits,
+                         pg_error *err)
+{
     memset(app, 0, sizeof *app);
     app->opt = *opt;
     pg_register_builtin_passes(&app->registry);
@@ -29,6 +35,13 @@ pg_result pg_app_open(pg_app *app, const pg_cli_common *opt, bool with_gpu, pg_e
             .device_match = opt->device_match,
             .quiet = opt->quiet,
         };
+        if (window_bits) {
+            gd.instance_extensions = window_bits->instance_extensions;
+            gd.n_instance_extensions = window_bits->n_instance_extensions;
+            gd.swapchain = window_bits->swapchain;
+            gd.present_ok = window_bits->present_ok;
+            gd.present_user = window_bits->present_user;
+        }
         if ((r = pg_gpu_create(&gd, &app->gpu, err))) goto fail;
         if ((r = pg_scene_gpu_create(app->gpu, app->scene, &app->scene_gpu, err))) goto fail;
     }

@@ -28,6 +28,9 @@ typedef struct pg_app {
 
 /* with_gpu false: no device (dump/explain-only paths). */
 pg_result pg_app_open(pg_app *app, const pg_cli_common *opt, bool with_gpu, pg_error *err);
+/* window_bits (may be NULL): instance extensions, swapchain and present_ok for a window. */
+pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, const pg_gpu_desc *window_bits,
+                         pg_error *err);
 void pg_app_close(pg_app *app);
 pg_frame_info pg_app_frame(const pg_app *app);
 

@@ -16,8 +16,12 @@ static void usage(FILE *f)
             "\n"
             "commands:\n"
             "  render    render one frame headless to a PNG and print GPU timings per pass\n"
+            "  view      open a window: fly through the scene, switch and edit pipelines live\n"
             "  compare   render one frame with a pipeline and a reference pipeline; print the image\n"
             "            error (RMSE, PSNR, max abs; linear HDR and 8-bit display) and GPU timings\n"
+            "  dump      print the compiled graph without rendering (no GPU): passes, barriers,\n"
+            "            culls and reasons, resources, memory blocks; as text, JSON, Graphviz DOT/SVG\n"
+            "            or a memory-timeline SVG\n"
             "  devices   list the Vulkan devices (for --device)\n"
             "\n"
             "'passgraph <command> --help' lists a command's options.\n");
@@ -47,7 +51,9 @@ int main(int argc, char **argv)
         return 0;
     }
     if (!strcmp(cmd, "render")) return pg_cmd_render(argc - 2, argv + 2);
+    if (!strcmp(cmd, "view")) return pg_cmd_view(argc - 2, argv + 2);
     if (!strcmp(cmd, "compare")) return pg_cmd_compare(argc - 2, argv + 2);
+    if (!strcmp(cmd, "dump")) return pg_cmd_dump(argc - 2, argv + 2);
     if (!strcmp(cmd, "devices")) return pg_cmd_devices(argc - 2, argv + 2);
     fprintf(stderr, "passgraph: unknown command '%s'\n", cmd);
     usage(stderr);

@@ -11,6 +11,7 @@ PKGS=(
   glslang-dev glslang-tools spirv-tools
   libtinygltf-dev nlohmann-json3-dev libcjson-dev libstb-dev
   valgrind
+  libglfw3-dev libimgui-dev xvfb xauth graphviz
 )
 
 missing=()
