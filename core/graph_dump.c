@@ -740,10 +740,10 @@ static void dot_edges_of_pass(FILE *f, const pg_graph_plan *plan, uint32_t i)
             fprintf(f, "  p%u -> r%d [", i, sl->resource);
         else
             fprintf(f, "  r%d -> p%u [", sl->resource, i);
-        if (pp->culled || plan->resources[sl->resource].culled)
-            fputs("style=dashed, color=\"#a0a0a0\", ", f);
-        else if (all_unused)
+        if (all_unused)
             fputs("style=dotted, color=\"#a0a0a0\", fontcolor=\"#8a8a8a\", label=\"unused\", ", f);
+        else if (pp->culled || plan->resources[sl->resource].culled)
+            fputs("style=dashed, color=\"#a0a0a0\", ", f);
         else if (n_b) {
             fputs("color=\"#c0392b\", fontcolor=\"#a02818\", label=\"", f);
             dot_esc(f, label);
@@ -766,7 +766,7 @@ void pg_dump_dot(const pg_graph_plan *plan, const pg_pipeline *pipeline, FILE *f
     const char *font = "Helvetica,Arial,sans-serif";
     fputs("digraph passgraph {\n", f);
     fprintf(f, "  graph [rankdir=TB, fontname=\"%s\", fontsize=12, labelloc=t, labeljust=l, nodesep=0.22, "
-               "ranksep=0.45, pad=0.25, newrank=true,\n         label=<<b>",
+               "ranksep=0.45, pad=0.25,\n         label=<<b>",
             font);
     html_esc(f, pipeline ? pipeline->name : "graph");
     fputs("</b>", f);
@@ -785,7 +785,8 @@ void pg_dump_dot(const pg_graph_plan *plan, const pg_pipeline *pipeline, FILE *f
             plan->n_order, count_culled_passes(plan), count_barriers(plan), plan->n_final_barriers, un, al,
             plan->aliasing_disabled ? "(aliasing disabled)" : "with aliasing", saving_percent(plan));
     fputs("<br/><font point-size=\"9\" color=\"#555555\">rounded box = pass (type \xc2\xb7 #execution position) "
-          "\xc2\xb7 note = resource, colour = memory block \xc2\xb7 red edge = barrier: hazard, access "
+          "\xc2\xb7 note = resource, colour = memory block \xc2\xb7 arrows: resource \xe2\x86\x92 pass = read, "
+          "pass \xe2\x86\x92 resource = write<br/>red edge = barrier before the pass: hazard, access "
           "src\xe2\x86\x92" "dst, layout old\xe2\x86\x92new \xc2\xb7 plain edge = no barrier needed \xc2\xb7 "
           "dashed grey = culled or left out</font>>];\n",
           f);
@@ -865,6 +866,27 @@ static double text_w(const char *s, double px)
     return (double)n * px * 0.6;
 }
 
+/* Writes s XML-escaped, cut with an ellipsis to fit width pixels at font size px. */
+static void xml_fit(FILE *f, const char *s, double width, double px)
+{
+    if (text_w(s, px) <= width) {
+        xml_esc(f, s);
+        return;
+    }
+    char cut[PG_NAME_MAX];
+    size_t keep = width > px ? (size_t)(width / (px * 0.6)) : 1;
+    if (keep > 1) keep--;
+    if (keep >= sizeof cut) keep = sizeof cut - 1;
+    pg_strlcpy(cut, s, keep + 1);
+    /* do not split a UTF-8 sequence */
+    size_t n = strlen(cut);
+    while (n && ((unsigned char)cut[n - 1] & 0xc0) == 0x80) n--;
+    if (n && ((unsigned char)cut[n - 1] & 0xc0) == 0xc0) n--;
+    cut[n] = 0;
+    xml_esc(f, cut);
+    fputs("\xe2\x80\xa6", f);
+}
+
 void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline, FILE *f)
 {
     if (!f) return;
@@ -887,11 +909,20 @@ void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline
     const double grid_w = col_w * plan->n_order + end_w;
     const double top = 104; /* first row */
     const uint32_t n_rows = plan->n_blocks ? plan->n_blocks : 1;
-    const double live_h = 64;
+    const double live_h = 84;
     const double rows_bottom = top + row_h * n_rows;
-    const double legend_y = rows_bottom + live_h + 30;
+    const double legend_y = rows_bottom + live_h + 38;
+    static const char *const legend[3] = {
+        "Columns: the executed passes in order; \xe2\x80\x9cread back\xe2\x80\x9d: after the last pass (outputs "
+        "live until then).",
+        "Rows: memory blocks; a bar is one transient resource from its first to its last pass. Bars in one row "
+        "share that block's memory (aliasing).",
+        "Colour = memory block (the same colours as the resources in the graph of passgraph dump --format dot). "
+        "Persistent and imported resources are not shown.",
+    };
     double width = left + grid_w + right_margin;
-    if (width < 720) width = 720;
+    for (int i = 0; i < 3; i++)
+        if (text_w(legend[i], 11) + 40 > width) width = text_w(legend[i], 11) + 40;
     const double height = legend_y + 3 * 17 + 14;
 #define COL_X(k) (left + ((uint32_t)(k) < plan->n_order ? col_w * (double)(k) : col_w * (double)plan->n_order))
 #define COL_W(k) ((uint32_t)(k) < plan->n_order ? col_w : end_w)
@@ -942,7 +973,7 @@ void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline
             fprintf(f, "  <text x=\"%.1f\" y=\"72\" text-anchor=\"middle\" font-size=\"10\" fill=\"#777777\">#%u</text>\n",
                     x + w / 2, k);
             fprintf(f, "  <text x=\"%.1f\" y=\"90\" text-anchor=\"middle\" font-weight=\"bold\">", x + w / 2);
-            xml_esc(f, plan->passes[plan->order[k]].name);
+            xml_fit(f, plan->passes[plan->order[k]].name, w - 8, 12);
             fputs("</text>\n", f);
         } else {
             fprintf(f, "  <rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"url(#hatch)\"/>\n", x, top,
@@ -956,7 +987,7 @@ void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline
     for (uint32_t k = 0; k <= n_cols; k++) {
         const double x = k < n_cols ? COL_X(k) : COL_X(plan->n_order) + end_w;
         fprintf(f, "  <line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#d0d0d0\"/>\n", x, top - 8, x,
-                rows_bottom + live_h);
+                rows_bottom + live_h + 8);
     }
 
     /* one row per memory block, one bar per member */
@@ -1020,15 +1051,9 @@ void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline
                     fputs("</tspan>", f);
                 }
             } else {
-                char cut[PG_NAME_MAX];
-                size_t keep = (size_t)(avail / (12 * 0.6));
-                if (keep > 1) keep--;
-                if (keep >= sizeof cut) keep = sizeof cut - 1;
-                memcpy(cut, pr->name, keep);
-                cut[keep] = 0;
                 fputs("<tspan font-weight=\"bold\">", f);
-                xml_esc(f, cut);
-                fputs("\xe2\x80\xa6</tspan>", f);
+                xml_fit(f, pr->name, avail, 12);
+                fputs("</tspan>", f);
             }
             fputs("</text></g>\n", f);
         }
@@ -1047,24 +1072,25 @@ void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline
     /* the memory the blocks take (all allocated for the whole frame) is the reference line */
     const uint64_t allocated = plan->transient_bytes_aliased;
     if (allocated > max_live) max_live = allocated;
-    const double live_top = rows_bottom + 8, live_bar_max = live_h - 26;
+    const double live_top = rows_bottom + 8, live_bar_max = live_h - 30;
     fprintf(f, "  <text x=\"16\" y=\"%.1f\" font-weight=\"bold\">live bytes</text>\n", live_top + 18);
     fprintf(f, "  <text x=\"16\" y=\"%.1f\" font-size=\"10\" fill=\"#666666\">sum of the live resources</text>\n",
             live_top + 32);
     for (uint32_t k = 0; k < n_cols && k <= PG_MAX_PASSES; k++) {
         const double w = COL_W(k) * 0.5, x = COL_X(k) + (COL_W(k) - w) / 2;
-        const double h = max_live ? live_bar_max * (double)live[k] / (double)max_live : 0;
-        const double base = live_top + live_h - 12;
+        double h = max_live ? live_bar_max * (double)live[k] / (double)max_live : 0;
+        if (live[k] && h < 1.5) h = 1.5;
+        const double base = live_top + live_h - 16;
         char lb[32];
         fmt_bytes(live[k], lb, sizeof lb);
         fprintf(f, "  <rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#9fb6d6\"/>\n", x, base - h, w,
                 h);
         fprintf(f, "  <text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\" font-size=\"10\" fill=\"#333333\">%s</text>\n",
-                COL_X(k) + COL_W(k) / 2, base - h - 3, lb);
+                COL_X(k) + COL_W(k) / 2, base + 12, lb);
     }
 
     if (allocated && plan->n_blocks) {
-        const double base = live_top + live_h - 12;
+        const double base = live_top + live_h - 16;
         const double ya = base - live_bar_max * (double)allocated / (double)max_live;
         fprintf(f,
                 "  <line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#b04032\" stroke-width=\"1\" "
@@ -1077,18 +1103,11 @@ void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline
     }
 
     /* legend */
-    fprintf(f,
-            "  <text x=\"16\" y=\"%.1f\" font-size=\"11\" fill=\"#444444\">Columns: the executed passes in order; "
-            "\xe2\x80\x9cread back\xe2\x80\x9d: after the last pass (outputs live until then).</text>\n",
-            legend_y);
-    fprintf(f,
-            "  <text x=\"16\" y=\"%.1f\" font-size=\"11\" fill=\"#444444\">Rows: memory blocks; a bar is one transient "
-            "resource from its first to its last pass. Bars in one row share that block's memory (aliasing).</text>\n",
-            legend_y + 17);
-    fprintf(f,
-            "  <text x=\"16\" y=\"%.1f\" font-size=\"11\" fill=\"#444444\">Colour = memory block (the same colours as "
-            "the resources in the graph of passgraph dump --format dot). Persistent and imported resources are not shown.</text>\n",
-            legend_y + 34);
+    for (int i = 0; i < 3; i++) {
+        fprintf(f, "  <text x=\"16\" y=\"%.1f\" font-size=\"11\" fill=\"#444444\">", legend_y + 17 * i);
+        xml_esc(f, legend[i]);
+        fputs("</text>\n", f);
+    }
     fputs("</svg>\n", f);
 #undef COL_X
 #undef COL_W

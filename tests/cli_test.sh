@@ -115,5 +115,44 @@ expect_fail "cluster view on naive" "not one of" render --pipeline "$root/pipeli
 "$PG" render --pipeline "$root/pipelines/forward_plus.json" --set max_lights=2 --lights 64 --radius 100 --size 64x36 --out "$tmp/o.png" >"$tmp/out" 2>&1
 grep -Eq 'overflow=[1-9][0-9]* clusters \([0-9]+ light refs dropped\)' "$tmp/out" && ok || { bad "overflow not reported"; cat "$tmp/out"; }
 
+# ---- passgraph dump: the compiled graph without rendering (text, JSON, DOT, memory timeline) ----
+deferred="$root/pipelines/deferred.json"
+"$PG" --help | grep -q "dump" && ok || bad "passgraph --help does not list dump"
+"$PG" dump --help >"$tmp/h" || bad "dump --help exit"
+for o in --pipeline --scene --lights --size --set --no-aliasing --view --format --out text json dot timeline graphviz; do
+  grep -qF -- "$o" "$tmp/h" && ok || bad "dump --help does not document $o"
+done
+for fmt in text json dot timeline; do
+  "$PG" dump --pipeline "$deferred" --lights 1000 --format $fmt >"$tmp/dump.$fmt" 2>"$tmp/err" && [ -s "$tmp/dump.$fmt" ] \
+    && ok || { bad "dump --format $fmt"; cat "$tmp/err"; }
+done
+grep -q "^totals: 5 passes run, 0 culled; 14 barriers" "$tmp/dump.text" && grep -q "^memory timeline" "$tmp/dump.text" \
+  && ok || { bad "dump text: totals or timeline missing"; cat "$tmp/dump.text"; }
+python3 -c 'import json,sys; json.load(sys.stdin)' <"$tmp/dump.json" && ok || bad "dump --format json does not parse"
+python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["format_version"] == 1 and d["order"][-1] == "display" and d["totals"]["passes_run"] == 5' \
+  <"$tmp/dump.json" && ok || bad "dump json content"
+head -n 1 "$tmp/dump.dot" | grep -q "^digraph" && ok || bad "dump --format dot is not a digraph"
+head -c 4 "$tmp/dump.timeline" | grep -q "<svg" && tail -n 1 "$tmp/dump.timeline" | grep -q "</svg>" && ok || bad "dump --format timeline is not an SVG"
+"$PG" dump --pipeline "$deferred" --format timeline --out "$tmp/tl.svg" >"$tmp/out" 2>"$tmp/err" && grep -q "^dump: deferred 1920x1080" "$tmp/out" \
+  && grep -q "class=\"bar\"" "$tmp/tl.svg" && ok || { bad "dump timeline --out"; cat "$tmp/err"; }
+"$PG" dump --pipeline "$deferred" --lights 0 --format json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert [p["name"] for p in d["culled_passes"]] == ["animate_lights", "assign_lights"]' \
+  && ok || bad "dump --lights 0 does not cull light animation and assignment"
+if command -v dot >/dev/null 2>&1; then
+  "$PG" dump --pipeline "$deferred" --format dot --out "$tmp/graph.svg" >"$tmp/out" 2>"$tmp/err" && grep -q "<svg" "$tmp/graph.svg" \
+    && ok || { bad "dump --format dot --out x.svg"; cat "$tmp/err"; }
+  dot -Tsvg "$tmp/dump.dot" -o "$tmp/graph2.svg" 2>"$tmp/err" && ok || { bad "dot rejects the DOT dump"; cat "$tmp/err"; }
+else
+  echo "cli_test: Graphviz 'dot' not installed: skipping dump --out x.svg"
+fi
+PATH=/nonexistent-passgraph "$PG" dump --pipeline "$deferred" --format dot --out "$tmp/nodot.svg" >"$tmp/out" 2>"$tmp/err"
+rc=$?
+[ $rc -ne 0 ] && [ $rc -lt 128 ] && grep -q "graphviz" "$tmp/err" && ok || { bad "dump without dot: rc $rc, no message naming graphviz"; cat "$tmp/err"; }
+expect_fail "dump: bad pipeline" "passes[0].type" dump --pipeline "$tmp/unknown_type.json"
+expect_fail "dump: missing pipeline" "nope_dump.json" dump --pipeline "$tmp/nope_dump.json"
+expect_fail "dump: bad format" "--format xml" dump --pipeline "$deferred" --format xml
+expect_fail "dump: timeline as png" "writes SVG" dump --pipeline "$deferred" --format timeline --out "$tmp/tl.png"
+expect_fail "dump: unknown option" "unknown option" dump --bogus
+expect_fail "dump: unwritable out" "cannot write" dump --pipeline "$deferred" --out "$tmp/no/such/dir/d.txt"
+
 echo "cli_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]
