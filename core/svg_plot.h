@@ -11,9 +11,11 @@
  * overlap another label or marker, and left out where no free spot exists (the legend still names
  * every series). Colours come from one fixed qualitative palette (Tableau 10) by index.
  *
- * Log10 axes: ticks at powers of ten, plus 2 and 5 times them when the range spans at most two and
- * a half decades; labels are plain decimals between 0.001 and 99999, SI-suffixed above ("100k",
- * "1M"), and 10 with a superscript exponent below 0.001. Values <= 0 cannot sit on a log axis:
+ * Log10 axes: labelled ticks at powers of ten (every k-th over more than 8 decades), plus 2 and 5
+ * times them when the range spans at most two and a half decades (unlabelled minor ticks at the
+ * other multiples up to 4 decades); a range under 0.6 decades gets linear-style ticks. Labels are
+ * plain decimals from 0.001 to 99999, SI-suffixed above ("100k", "1M"); when an axis reaches below
+ * 0.001 its labels below 1 are written as 10 with a superscript exponent. Values <= 0 cannot sit on a log axis:
  * with zero_label set they are drawn in a separate band at the low end of the axis (below the
  * plot area's log range, after a gap), labelled zero_label (e.g. "0" for zero lights, "0 (exact)"
  * for a zero error); without it they are left out.
@@ -68,7 +70,8 @@ typedef struct pg_plot_series {
     pg_plot_marker marker;
     double marker_size;         /* radius-like size in px; 0: 4.5 */
     bool line;                  /* connect the points in the given order */
-    bool dashed;
+    bool dashed;                /* a "6,4" dash pattern */
+    const char *dasharray;      /* any SVG stroke-dasharray (e.g. "2,3"); overrides dashed */
     double line_width;          /* 0: 1.8 */
 } pg_plot_series;
 
@@ -80,8 +83,10 @@ typedef struct pg_plot_bars {
     const char *const *stack_names;  /* n_stack, legend entries */
     const double *values;
     const int *stack_colors;         /* optional palette indexes (default: k) */
-    bool show_totals;                /* write each bar's total after it */
-    const char *total_format;        /* printf format for one double, default "%.3g" */
+    const uint32_t *order;           /* optional: bar b draws its segments left to right in the order
+                                        order[b * n_stack + 0..n_stack-1] (stack indexes; default 0, 1, ...) */
+    bool show_totals;                /* write each bar's total after it (3 significant digits) */
+    const char *total_unit;          /* appended to the totals, e.g. " ms" (NULL: none) */
 } pg_plot_bars;
 
 typedef struct pg_plot {
@@ -97,7 +102,7 @@ typedef struct pg_plot {
 
 typedef struct pg_svg_doc_desc {
     const char *title;               /* document title above the panels (NULL: none) */
-    const char *subtitle;
+    const char *subtitle;            /* '\n' starts a new line */
     uint32_t columns;                /* panels per row; 0: 2 (or 1 for a single panel) */
 } pg_svg_doc_desc;
 

@@ -19,6 +19,9 @@ static void usage(FILE *f)
             "  view      open a window: fly through the scene, switch and edit pipelines live\n"
             "  compare   render one frame with a pipeline and a reference pipeline; print the image\n"
             "            error (RMSE, PSNR, max abs; linear HDR and 8-bit display) and GPU timings\n"
+            "  bench     render every pipeline over light counts, sizes and parameter sweeps; record GPU\n"
+            "            time per pass, memory, overflow and image error against naive to CSV, JSON\n"
+            "            and SVG charts\n"
             "  dump      print the compiled graph without rendering (no GPU): passes, barriers,\n"
             "            culls and reasons, resources, memory blocks; as text, JSON, Graphviz DOT/SVG\n"
             "            or a memory-timeline SVG\n"
@@ -54,6 +57,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "view")) return pg_cmd_view(argc - 2, argv + 2);
     if (!strcmp(cmd, "compare")) return pg_cmd_compare(argc - 2, argv + 2);
     if (!strcmp(cmd, "dump")) return pg_cmd_dump(argc - 2, argv + 2);
+    if (!strcmp(cmd, "bench")) return pg_cmd_bench(argc - 2, argv + 2);
     if (!strcmp(cmd, "devices")) return pg_cmd_devices(argc - 2, argv + 2);
     fprintf(stderr, "passgraph: unknown command '%s'\n", cmd);
     usage(stderr);

@@ -1,0 +1,296 @@
+/* test_bench.c - the benchmark's building blocks, CPU only: sample statistics (core/bench_stats.c),
+ * the Pareto front of (time, error) points, and the SVG chart writer (core/svg_plot.c): tick
+ * placement, labels, escaping and a well-formed document. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench_stats.h"
+#include "svg_plot.h"
+#include "test_util.h"
+
+static bool near(double a, double b)
+{
+    return fabs(a - b) <= 1e-12 * (1.0 + fabs(b));
+}
+
+static void test_stats(void)
+{
+    pg_sample_stats s;
+    /* odd count, unsorted input left untouched */
+    double odd[] = {5, 1, 4, 2, 3};
+    CHECK(pg_sample_stats_compute(odd, 5, &s, NULL) == PG_OK);
+    CHECK(s.n == 5 && near(s.median, 3) && near(s.mean, 3) && near(s.min, 1) && near(s.max, 5));
+    CHECK_MSG(near(s.p95, 5), "p95 of 5 samples = rank ceil(4.75) = 5th = 5, got %g", s.p95);
+    CHECK(odd[0] == 5 && odd[1] == 1);
+    /* even count: mean of the two middle samples */
+    double even[] = {10, 2, 8, 4};
+    CHECK(pg_sample_stats_compute(even, 4, &s, NULL) == PG_OK);
+    CHECK_MSG(near(s.median, 6), "median of 2,4,8,10 = 6, got %g", s.median);
+    CHECK(near(s.mean, 6) && near(s.min, 2) && near(s.max, 10) && near(s.p95, 10));
+    /* one sample */
+    double one[] = {7.5};
+    CHECK(pg_sample_stats_compute(one, 1, &s, NULL) == PG_OK);
+    CHECK(s.n == 1 && near(s.median, 7.5) && near(s.mean, 7.5) && near(s.min, 7.5) && near(s.max, 7.5) &&
+          near(s.p95, 7.5));
+    /* p95 by nearest rank: 1..20 -> rank 19 -> 19; 1..100 -> 95; 1..21 -> rank ceil(19.95) = 20 */
+    double v[100];
+    for (int i = 0; i < 100; i++) v[i] = 100 - i; /* descending: the function sorts */
+    CHECK(pg_sample_stats_compute(v + 80, 20, &s, NULL) == PG_OK);
+    CHECK_MSG(near(s.p95, 19), "p95 of 1..20 = 19, got %g", s.p95);
+    CHECK(near(s.median, 10.5));
+    CHECK(pg_sample_stats_compute(v, 100, &s, NULL) == PG_OK);
+    CHECK_MSG(near(s.p95, 95), "p95 of 1..100 = 95, got %g", s.p95);
+    CHECK(pg_sample_stats_compute(v + 79, 21, &s, NULL) == PG_OK);
+    CHECK_MSG(near(s.p95, 20), "p95 of 1..21 = 20, got %g", s.p95);
+    CHECK(pg_nearest_rank_pct(95, 20) == 19 && pg_nearest_rank_pct(95, 1) == 1 && pg_nearest_rank_pct(95, 0) == 0);
+    CHECK(pg_nearest_rank_pct(50, 4) == 2 && pg_nearest_rank_pct(100, 7) == 7);
+    /* non-finite samples are left out */
+    double mixed[] = {NAN, 3, INFINITY, 1};
+    CHECK(pg_sample_stats_compute(mixed, 4, &s, NULL) == PG_OK);
+    CHECK(s.n == 2 && near(s.median, 2) && near(s.max, 3));
+    /* nothing to summarise: n = 0, NaN, not an error */
+    CHECK(pg_sample_stats_compute(NULL, 0, &s, NULL) == PG_OK);
+    CHECK(s.n == 0 && isnan(s.median) && isnan(s.p95));
+    double nans[] = {NAN, NAN};
+    CHECK(pg_sample_stats_compute(nans, 2, &s, NULL) == PG_OK && s.n == 0 && isnan(s.mean));
+    pg_error err = {0};
+    CHECK(pg_sample_stats_compute(NULL, 3, &s, &err) == PG_ERR_INVALID_ARG && err.msg[0]);
+}
+
+static void test_pareto(void)
+{
+    bool f[8];
+    uint32_t order[8];
+    /* x = time, y = error; point 2 is dominated by 1, point 4 by 3 (same time, more error) */
+    double x[] = {1, 2, 3, 5, 5, 8};
+    double y[] = {10, 4, 6, 1, 2, 1};
+    uint32_t n = pg_pareto_front(x, y, 6, f, order);
+    CHECK_MSG(n == 3, "front of 6 points: want 3, got %u", n);
+    CHECK(f[0] && f[1] && !f[2] && f[3] && !f[4] && !f[5]);
+    CHECK(order[0] == 0 && order[1] == 1 && order[2] == 3);
+    /* single point */
+    double x1[] = {4}, y1[] = {0.5};
+    CHECK(pg_pareto_front(x1, y1, 1, f, order) == 1 && f[0] && order[0] == 0);
+    /* exact ties: identical points are all on the front, in index order */
+    double xt[] = {2, 1, 2, 3};
+    double yt[] = {1, 5, 1, 0};
+    n = pg_pareto_front(xt, yt, 4, f, order);
+    CHECK_MSG(n == 4, "ties: want 4, got %u", n);
+    CHECK(order[0] == 1 && order[1] == 0 && order[2] == 2 && order[3] == 3);
+    /* tie in one coordinate only: the other decides */
+    double xs[] = {1, 1}, ys[] = {2, 3};
+    CHECK(pg_pareto_front(xs, ys, 2, f, NULL) == 1 && f[0] && !f[1]);
+    /* a point better in both dominates everything */
+    double xd[] = {5, 1, 3}, yd[] = {5, 0, 2};
+    CHECK(pg_pareto_front(xd, yd, 3, f, order) == 1 && f[1] && order[0] == 1);
+    /* non-finite points are never on the front and dominate nothing; zero error is fine */
+    double xn[] = {NAN, 2, 1}, yn[] = {0, 0, INFINITY};
+    CHECK(pg_pareto_front(xn, yn, 3, f, NULL) == 1 && !f[0] && f[1] && !f[2]);
+    CHECK(pg_pareto_front(NULL, NULL, 0, NULL, NULL) == 0);
+}
+
+/* A minimal XML check: every element opened is closed in order, attributes are quoted,
+ * no raw '&' outside an entity. Returns false with a reason. */
+static bool xml_balanced(const char *s, char *why, size_t why_size)
+{
+    char stack[64][32];
+    int depth = 0;
+    for (const char *p = s; *p; p++) {
+        if (*p == '&') {
+            const char *ents[] = {"&amp;", "&lt;", "&gt;", "&quot;", "&apos;"};
+            bool ok = false;
+            for (int k = 0; k < 5; k++) ok |= !strncmp(p, ents[k], strlen(ents[k]));
+            if (!ok) {
+                snprintf(why, why_size, "raw '&' at offset %ld", (long)(p - s));
+                return false;
+            }
+            continue;
+        }
+        if (*p != '<') continue;
+        const char *q = strchr(p, '>');
+        if (!q) {
+            snprintf(why, why_size, "unterminated tag at offset %ld", (long)(p - s));
+            return false;
+        }
+        bool closing = p[1] == '/', self = q[-1] == '/';
+        const char *n = p + (closing ? 2 : 1);
+        size_t len = strcspn(n, " \t\n/>");
+        if (len == 0 || len >= 32) {
+            snprintf(why, why_size, "bad tag name at offset %ld", (long)(p - s));
+            return false;
+        }
+        /* quotes inside the tag must pair up */
+        int quotes = 0;
+        for (const char *c = p; c < q; c++) quotes += *c == '"';
+        if (quotes % 2) {
+            snprintf(why, why_size, "odd quotes in tag at offset %ld", (long)(p - s));
+            return false;
+        }
+        if (closing) {
+            if (depth == 0 || strncmp(stack[depth - 1], n, len) || stack[depth - 1][len]) {
+                snprintf(why, why_size, "</%.*s> does not close <%s>", (int)len, n, depth ? stack[depth - 1] : "");
+                return false;
+            }
+            depth--;
+        } else if (!self) {
+            if (depth >= 64) {
+                snprintf(why, why_size, "too deep");
+                return false;
+            }
+            memcpy(stack[depth], n, len);
+            stack[depth][len] = 0;
+            depth++;
+        }
+        p = q;
+    }
+    if (depth) {
+        snprintf(why, why_size, "<%s> never closed", stack[depth - 1]);
+        return false;
+    }
+    return true;
+}
+
+static void test_ticks(void)
+{
+    pg_plot_tick t[64];
+    /* log axis over 4 decades: labelled ticks exactly at the powers of ten */
+    uint32_t n = pg_plot_ticks(PG_PLOT_LOG10, 1, 10000, t, 64);
+    uint32_t majors = 0;
+    bool pow10 = true;
+    for (uint32_t i = 0; i < n; i++) {
+        if (!t[i].major) continue;
+        majors++;
+        double e = log10(t[i].value);
+        pow10 &= fabs(e - round(e)) < 1e-9;
+    }
+    CHECK_MSG(majors == 5 && pow10, "log ticks 1..1e4: want the 5 powers of ten labelled, got %u (pow10 %d)", majors,
+              pow10);
+    CHECK(n > majors); /* minor ticks 2..9 */
+    /* tiny values, many decades */
+    n = pg_plot_ticks(PG_PLOT_LOG10, 1e-7, 1e-1, t, 64);
+    majors = 0;
+    for (uint32_t i = 0; i < n; i++) majors += t[i].major;
+    CHECK(majors == 7 && n >= 7);
+    /* narrow log range: 1, 2, 5 labelled */
+    n = pg_plot_ticks(PG_PLOT_LOG10, 10, 200, t, 64);
+    bool has2 = false, has5 = false, has3 = false;
+    for (uint32_t i = 0; i < n; i++) {
+        if (!t[i].major) continue;
+        has2 |= near(t[i].value, 20);
+        has5 |= near(t[i].value, 50);
+        has3 |= near(t[i].value, 30);
+    }
+    CHECK(has2 && has5 && !has3);
+    /* nice ranges */
+    double lo, hi;
+    pg_plot_nice_range(PG_PLOT_LOG10, 30, 80, &lo, &hi);
+    CHECK_MSG(near(lo, 20) && near(hi, 100), "log range of 30..80: %g..%g", lo, hi);
+    pg_plot_nice_range(PG_PLOT_LOG10, 1e-6, 3e-3, &lo, &hi);
+    CHECK(near(lo, 1e-6) && near(hi, 5e-3));
+    pg_plot_nice_range(PG_PLOT_LINEAR, 0, 47, &lo, &hi);
+    CHECK_MSG(near(lo, 0) && near(hi, 50), "linear range 0..47: %g..%g", lo, hi);
+    pg_plot_nice_range(PG_PLOT_LINEAR, 5, 5, &lo, &hi);
+    CHECK(lo < 5 && hi > 5);
+    n = pg_plot_ticks(PG_PLOT_LINEAR, 0, 50, t, 64);
+    CHECK(n == 6 && near(t[0].value, 0) && near(t[5].value, 50));
+    /* labels */
+    char b[64];
+    pg_plot_format_tick(PG_PLOT_LOG10, 1000, 0, b, sizeof b);
+    CHECK_MSG(!strcmp(b, "1000"), "got '%s'", b);
+    pg_plot_format_tick(PG_PLOT_LOG10, 1e6, 0, b, sizeof b);
+    CHECK_MSG(!strcmp(b, "1M"), "got '%s'", b);
+    pg_plot_format_tick(PG_PLOT_LOG10, 100000, 0, b, sizeof b);
+    CHECK_MSG(!strcmp(b, "100k"), "got '%s'", b);
+    pg_plot_format_tick(PG_PLOT_LOG10, 0.01, 0, b, sizeof b);
+    CHECK_MSG(!strcmp(b, "0.01"), "got '%s'", b);
+    pg_plot_format_tick(PG_PLOT_LOG10, 1e-6, 0, b, sizeof b);
+    CHECK_MSG(!strcmp(b, "10^-6"), "got '%s'", b);
+    pg_plot_format_tick(PG_PLOT_LINEAR, 0.25, 0.25, b, sizeof b);
+    CHECK_MSG(!strcmp(b, "0.25"), "got '%s'", b);
+    pg_plot_format_tick(PG_PLOT_LINEAR, 40, 10, b, sizeof b);
+    CHECK_MSG(!strcmp(b, "40"), "got '%s'", b);
+    pg_svg_escape("a<b & \"c\" 'd'>", b, sizeof b);
+    CHECK_MSG(!strcmp(b, "a&lt;b &amp; &quot;c&quot; &apos;d&apos;&gt;"), "got '%s'", b);
+    pg_svg_escape("&&&&&&", b, 12);
+    CHECK_MSG(!strcmp(b, "&amp;&amp;"), "truncation keeps whole entities: got '%s'", b);
+    CHECK(strcmp(pg_plot_color(0), pg_plot_color(1)) && !strcmp(pg_plot_color(0), pg_plot_color(PG_PLOT_PALETTE_SIZE)));
+}
+
+static void test_svg(void)
+{
+    double lx[] = {0, 100, 1000, 10000}, ly[] = {1.5, 3, 20, 180};
+    double sx[] = {12}, sy[] = {0}, s2x[] = {8}, s2y[] = {2e-5};
+    const char *labels[] = {"fast & <exact>"};
+    pg_plot_series ser[] = {
+        {.name = "naive <ref> & \"co\"", .x = lx, .y = ly, .n = 4, .color = 0, .marker = PG_MARKER_CIRCLE, .line = true},
+        {.name = "forward+", .x = sx, .y = sy, .n = 1, .labels = labels, .color = 1, .marker = PG_MARKER_SQUARE},
+        {.name = "deferred", .x = s2x, .y = s2y, .n = 1, .color = 2, .marker = PG_MARKER_TRIANGLE, .dasharray = "2,2"},
+    };
+    pg_plot plots[2] = {
+        {.title = "time & lights <log>", .subtitle = "sub 'x'",
+         .x = {.label = "lights", .scale = PG_PLOT_LOG10, .zero_label = "0"},
+         .y = {.label = "ms", .scale = PG_PLOT_LOG10, .zero_label = "0 (exact)"}, .series = ser, .n_series = 3},
+    };
+    const char *bl[] = {"a", "b"}, *sn[] = {"shade", "display"};
+    double bv[] = {3, 2, 2, NAN};
+    const uint32_t order[] = {1, 0, 0, 1}; /* bar a draws display first */
+    pg_plot_bars bars = {.n_bars = 2, .n_stack = 2, .bar_labels = bl, .stack_names = sn, .values = bv,
+                         .order = order, .show_totals = true, .total_unit = " ms"};
+    plots[1] = (pg_plot){.title = "bars", .x = {.label = "ms"}, .bars = &bars};
+    char *svg = NULL;
+    size_t len = 0;
+    pg_error err = {0};
+    pg_svg_doc_desc d = {.title = "doc <1>", .subtitle = "s & t"};
+    CHECK(pg_svg_render(plots, 2, &d, &svg, &len, &err) == PG_OK);
+    CHECK(svg && len == strlen(svg));
+    if (svg) {
+        CHECK_MSG(!strncmp(svg, "<svg ", 5), "document starts with '%.20s'", svg);
+        CHECK(strstr(svg, "xmlns=\"http://www.w3.org/2000/svg\"") != NULL);
+        char why[128] = "";
+        CHECK_MSG(xml_balanced(svg, why, sizeof why), "not well-formed: %s", why);
+        CHECK(strstr(svg, "time &amp; lights &lt;log&gt;") != NULL);
+        CHECK(strstr(svg, "naive &lt;ref&gt; &amp; &quot;co&quot;") != NULL);
+        CHECK(strstr(svg, "doc &lt;1&gt;") != NULL);
+        CHECK(strstr(svg, "fast &amp; &lt;exact&gt;") != NULL);
+        CHECK(strstr(svg, "<time") == NULL && strstr(svg, "<ref>") == NULL);
+        /* log x ticks at powers of ten: 100, 1000, 10000 labelled; the zero band labelled "0" */
+        CHECK(strstr(svg, ">100<") != NULL && strstr(svg, ">1000<") != NULL && strstr(svg, ">10000<") != NULL);
+        CHECK(strstr(svg, ">0 (exact)<") != NULL);
+        /* 2e-5 on a log y axis reaching below 0.001: superscript exponents */
+        CHECK(strstr(svg, "<tspan") != NULL);
+        CHECK(strstr(svg, "stroke-dasharray=\"2,2\"") == NULL); /* no line for the scatter series */
+        CHECK(strstr(svg, "5 ms") != NULL && strstr(svg, "2 ms") != NULL); /* bar totals; NaN counts as 0 */
+        const char *disp = strstr(svg, "<title>display: "), *shade = strstr(svg, "<title>shade: ");
+        CHECK_MSG(disp && shade && disp < shade, "bar segments follow the given order");
+        CHECK(strstr(svg, "<polyline") != NULL && strstr(svg, "<rect") != NULL && strstr(svg, "<circle") != NULL);
+        size_t l = strlen(svg);
+        CHECK(l > 7 && !strcmp(svg + l - 7, "</svg>\n"));
+    }
+    free(svg);
+    /* an empty panel: a message, still well-formed */
+    pg_plot empty = {.title = "nothing", .x = {.scale = PG_PLOT_LOG10}, .y = {.scale = PG_PLOT_LOG10},
+                     .empty_message = "naive skipped above 5000 lights"};
+    CHECK(pg_svg_render(&empty, 1, NULL, &svg, &len, &err) == PG_OK);
+    if (svg) {
+        char why[128] = "";
+        CHECK_MSG(xml_balanced(svg, why, sizeof why), "empty panel not well-formed: %s", why);
+        CHECK(strstr(svg, "naive skipped above 5000 lights") != NULL);
+    }
+    free(svg);
+    /* bad input */
+    pg_plot_series bad = {.name = "x", .n = 3};
+    pg_plot bp = {.series = &bad, .n_series = 1};
+    svg = NULL;
+    CHECK(pg_svg_render(&bp, 1, NULL, &svg, &len, &err) == PG_ERR_INVALID_ARG && !svg && err.msg[0]);
+    CHECK(pg_svg_write("/nonexistent-dir/x.svg", &empty, 1, NULL, &err) == PG_ERR_IO && strstr(err.msg, "x.svg"));
+}
+
+int main(void)
+{
+    test_stats();
+    test_pareto();
+    test_ticks();
+    test_svg();
+    return pg_test_finish("test_bench");
+}
