@@ -154,5 +154,57 @@ expect_fail "dump: timeline as png" "writes SVG" dump --pipeline "$deferred" --f
 expect_fail "dump: unknown option" "unknown option" dump --bogus
 expect_fail "dump: unwritable out" "cannot write" dump --pipeline "$deferred" --out "$tmp/no/such/dir/d.txt"
 
+# ---- passgraph bench: every pipeline over light counts; CSV, JSON and SVG charts ----
+"$PG" --help | grep -q "bench" && ok || bad "passgraph --help does not list bench"
+"$PG" bench --help >"$tmp/h" || bad "bench --help exit"
+for o in --pipelines --lights --size --warmup --frames --seed --out --set --sweep --naive-max-lights --time-step \
+         --validation; do
+  grep -qF -- "$o" "$tmp/h" && ok || bad "bench --help does not document $o"
+done
+n_pipes=$(ls "$root"/pipelines/*.json | wc -l)
+n_gbuf=$(grep -l '"gbuffer"' "$root"/pipelines/*.json | wc -l)
+"$PG" bench --pipelines all --lights 0,16 --size 64x36 --frames 2 --warmup 1 --validation --out "$tmp/bench" \
+  >"$tmp/out" 2>"$tmp/err"
+rc=$?
+if [ $rc -ne 0 ]; then bad "bench --pipelines all: exit $rc"; cat "$tmp/err"; else ok; fi
+rows=$(($(wc -l <"$tmp/bench/results.csv" 2>/dev/null || echo 0) - 1))
+[ "$rows" -eq $((n_pipes * 2)) ] && ok || bad "bench results.csv: $rows rows, want $((n_pipes * 2)) ($n_pipes pipelines x 2 light counts)"
+head -1 "$tmp/bench/results.csv" | grep -q '^scene,pipeline,variant,.*gpu_ms_median,.*rmse_linear,.*error_note' \
+  && ok || bad "bench results.csv header"
+[ "$(grep -c ',ok,' "$tmp/bench/results.csv")" -eq $((n_pipes * 2)) ] && ok || bad "bench: not every row has status ok"
+python3 -c 'import json,sys;d=json.load(open(sys.argv[1]));assert len(d["rows"])==int(sys.argv[2])' \
+  "$tmp/bench/results.json" $((n_pipes * 2)) && ok || bad "bench results.json does not parse or has the wrong row count"
+for f in gpu_time_vs_lights passes_stacked error_vs_time; do
+  [ "$(head -c 5 "$tmp/bench/$f.svg" 2>/dev/null)" = "<svg " ] && tail -1 "$tmp/bench/$f.svg" | grep -q '</svg>' \
+    && ok || bad "bench did not write $f.svg"
+done
+"$PG" bench --pipelines all --lights 16 --size 64x36 --frames 1 --warmup 0 --sweep gbuffer=float,packed \
+  --out "$tmp/bench2" >"$tmp/out" 2>"$tmp/err"
+rc=$?
+if [ $rc -ne 0 ]; then bad "bench --sweep: exit $rc"; cat "$tmp/err"; else ok; fi
+rows=$(($(wc -l <"$tmp/bench2/results.csv" 2>/dev/null || echo 0) - 1))
+[ "$rows" -eq $((n_pipes + n_gbuf)) ] && ok || bad "bench --sweep: $rows rows, want $((n_pipes + n_gbuf))"
+for v in gbuffer=float gbuffer=packed; do
+  [ "$(grep -c ",$v," "$tmp/bench2/results.csv")" -eq "$n_gbuf" ] && ok || bad "bench --sweep: want $n_gbuf rows of variant $v"
+done
+# above --naive-max-lights the error columns are empty and say why; the reference's own row is skipped
+"$PG" bench --pipelines naive,forward_plus --lights 8 --naive-max-lights 4 --size 32x18 --frames 1 --warmup 0 \
+  --out "$tmp/bench3" >"$tmp/out" 2>"$tmp/err" && ok || { bad "bench --naive-max-lights: exit"; cat "$tmp/err"; }
+grep -q '^default,forward_plus,.*,ok,.*naive skipped above 4 lights' "$tmp/bench3/results.csv" \
+  && grep -q '^default,naive,.*,skipped,' "$tmp/bench3/results.csv" && ok || { bad "bench: naive skip not reported"; cat "$tmp/bench3/results.csv"; }
+# a pipeline that does not load is reported in its row; the others still run; exit 1
+echo '{"name": "broken", "passes": [' >"$tmp/broken.json"
+"$PG" bench --pipelines "$tmp/broken.json",naive --lights 4 --size 32x18 --frames 1 --warmup 0 --out "$tmp/bench4" \
+  >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q '^default,broken,.*,error,' "$tmp/bench4/results.csv" && grep -q '^default,naive,.*,ok,' "$tmp/bench4/results.csv" \
+  && ok || { bad "bench: broken pipeline not reported in its row"; cat "$tmp/err"; }
+expect_fail "bench: size 0x0" "--size width 0" bench --size 0x0 --out "$tmp/b5"
+expect_fail "bench: bad light list" "--lights -5" bench --lights 100,-5 --out "$tmp/b5"
+expect_fail "bench: no --out" "--out DIR" bench --lights 4
+expect_fail "bench: sweep of an undeclared key" "no_such_key" bench --sweep no_such_key=1,2 --out "$tmp/b5"
+expect_fail "bench: sweep without values" "KEY=VALUE1" bench --sweep gbuffer --out "$tmp/b5"
+expect_fail "bench: unknown option" "unknown option" bench --bogus --out "$tmp/b5"
+[ ! -e "$tmp/b5" ] && ok || bad "bench: bad options created the output folder"
+
 echo "cli_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]
