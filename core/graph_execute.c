@@ -32,6 +32,8 @@ struct pg_runtime {
     pg_buffer readback[2];
     bool readback_valid[2];
     pg_runtime_stats stats;
+    const pg_param_override *settings; /* borrowed, see pg_runtime_set_settings */
+    uint32_t n_settings;
 };
 
 static uint64_t fnv(uint64_t h, const void *data, size_t n)
@@ -42,13 +44,19 @@ static uint64_t fnv(uint64_t h, const void *data, size_t n)
 }
 
 /* Everything that decides which Vulkan objects exist. Options are hashed as printed JSON. */
-static uint64_t plan_signature(const pg_graph_plan *plan, const pg_pipeline *pl, const pg_scene_gpu *scene,
-                               uint32_t w, uint32_t h)
+static uint64_t plan_signature(const pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pl,
+                               const pg_scene_gpu *scene, uint32_t w, uint32_t h)
 {
     uint64_t s = 1469598103934665603ull;
     s = fnv(s, &w, sizeof w);
     s = fnv(s, &h, sizeof h);
     s = fnv(s, &scene, sizeof scene);
+    for (uint32_t i = 0; i < rt->n_settings; i++) {
+        const char *k = rt->settings[i].key ? rt->settings[i].key : "";
+        const char *v = rt->settings[i].value ? rt->settings[i].value : "";
+        s = fnv(s, k, strlen(k) + 1);
+        s = fnv(s, v, strlen(v) + 1);
+    }
     for (uint32_t i = 0; i < plan->n_resources; i++) {
         const pg_plan_resource *r = &plan->resources[i];
         s = fnv(s, r->name, strlen(r->name));
@@ -97,9 +105,9 @@ static void destroy_built(pg_runtime *rt)
         if (r->view) vkDestroyImageView(gpu->device, r->view, NULL);
         if (r->image) vkDestroyImage(gpu->device, r->image, NULL);
         if (r->buffer) vkDestroyBuffer(gpu->device, r->buffer, NULL);
-        if (r->own_memory) vkFreeMemory(gpu->device, r->own_memory, NULL);
+        if (r->own_memory) pg_gpu_free_memory(gpu, r->own_memory);
         memset(r, 0, sizeof *r);
-        if (rt->block_memory[i]) vkFreeMemory(gpu->device, rt->block_memory[i], NULL);
+        if (rt->block_memory[i]) pg_gpu_free_memory(gpu, rt->block_memory[i]);
         rt->block_memory[i] = VK_NULL_HANDLE;
         rt->persistent_initialized[i] = false;
     }
@@ -262,7 +270,7 @@ static pg_result alloc(pg_runtime *rt, VkDeviceSize size, uint32_t bits, const c
     if (type == UINT32_MAX) return pg_fail(err, PG_ERR_VULKAN, "%s: no memory type fits", name);
     VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
                                 .allocationSize = size, .memoryTypeIndex = type};
-    VkResult vr = vkAllocateMemory(rt->gpu->device, &mai, NULL, out);
+    VkResult vr = pg_gpu_alloc_memory(rt->gpu, &mai, out);
     if (vr != VK_SUCCESS)
         return pg_fail(err, PG_ERR_VULKAN, "%s: vkAllocateMemory(%llu bytes) failed: %s", name,
                        (unsigned long long)size, pg_vk_result_name(vr));
@@ -346,6 +354,8 @@ static pg_result build(pg_runtime *rt, pg_error *err)
             .frame_layout = rt->frame_layout,
             .width = rt->width,
             .height = rt->height,
+            .settings = rt->settings,
+            .n_settings = rt->n_settings,
         };
         for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->res[pass->slots[s].resource];
         rt->pass_state[pi] = calloc(1, pass->type->instance_size ? pass->type->instance_size : 1);
@@ -357,10 +367,24 @@ static pg_result build(pg_runtime *rt, pg_error *err)
     return PG_OK;
 }
 
+void pg_runtime_set_settings(pg_runtime *rt, const pg_param_override *settings, uint32_t n_settings)
+{
+    rt->settings = n_settings ? settings : NULL;
+    rt->n_settings = settings ? n_settings : 0;
+}
+
+const char *pg_ctx_setting(const pg_pass_create_ctx *ctx, const char *key)
+{
+    const char *found = NULL;
+    for (uint32_t i = 0; ctx && key && i < ctx->n_settings; i++)
+        if (ctx->settings[i].key && !strcmp(ctx->settings[i].key, key)) found = ctx->settings[i].value;
+    return found;
+}
+
 pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
                               const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err)
 {
-    uint64_t sig = plan_signature(plan, pipeline, scene, width, height);
+    uint64_t sig = plan_signature(rt, plan, pipeline, scene, width, height);
     if (rt->built && sig == rt->signature) {
         /* same physical layout: keep every object, adopt the new (identical) plan */
         rt->plan = plan;

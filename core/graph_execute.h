@@ -41,7 +41,14 @@ typedef struct pg_pass_create_ctx {
     VkDescriptorSetLayout frame_layout; /* set 0: FrameUniforms */
     const pg_phys_resource *slots[2 * PG_MAX_SLOTS]; /* same order as pass->slots */
     uint32_t width, height;           /* output size */
+    /* Application settings: key/value strings the graph forwards to every pass unread (e.g.
+     * "ocio.config"); see pg_session_desc.settings. Read them with pg_ctx_setting(). */
+    const pg_param_override *settings;
+    uint32_t n_settings;
 } pg_pass_create_ctx;
+
+/* The value of an application setting (the last one with that key), or NULL when absent. */
+const char *pg_ctx_setting(const pg_pass_create_ctx *ctx, const char *key);
 
 typedef struct pg_pass_record_ctx {
     pg_gpu *gpu;
@@ -83,6 +90,10 @@ typedef struct pg_runtime pg_runtime;
 
 pg_result pg_runtime_create(pg_gpu *gpu, pg_runtime **out, pg_error *err);
 void pg_runtime_destroy(pg_runtime *rt);
+/* Application settings handed to every pass's create (pg_pass_create_ctx.settings). Borrowed:
+ * they must stay alive until the runtime is destroyed. Call before pg_runtime_set_plan(); they
+ * are part of the physical signature, so a plan set after a change re-creates the passes. */
+void pg_runtime_set_settings(pg_runtime *rt, const pg_param_override *settings, uint32_t n_settings);
 /* plan, pipeline and scene are borrowed and must stay alive until the next set_plan/destroy. */
 pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
                               const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err);

@@ -149,6 +149,9 @@ pg_result pg_opt_bool(const pg_pass_desc *desc, const char *key, bool def, bool 
 /* choices is a NULL-terminated list; *out gets the index of the chosen value. */
 pg_result pg_opt_enum(const pg_pass_desc *desc, const char *key, const char *const *choices,
                       int def, int *out, pg_error *err);
+/* A string option copied into out (out_size bytes with the NUL); longer strings are refused. */
+pg_result pg_opt_string(const pg_pass_desc *desc, const char *key, const char *def, char *out, size_t out_size,
+                        pg_error *err);
 /* known is a NULL-terminated list of accepted option keys. */
 pg_result pg_opt_check_known(const pg_pass_desc *desc, const char *const *known, pg_error *err);
 

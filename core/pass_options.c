@@ -145,6 +145,24 @@ pg_result pg_opt_enum(const pg_pass_desc *desc, const char *key, const char *con
                    desc_file(desc), desc_path(desc), key, list, got);
 }
 
+pg_result pg_opt_string(const pg_pass_desc *desc, const char *key, const char *def, char *out, size_t out_size,
+                        pg_error *err)
+{
+    const cJSON *v = opt_get(desc, key);
+    if (!v) {
+        snprintf(out, out_size, "%s", def ? def : "");
+        return PG_OK;
+    }
+    if (!cJSON_IsString(v) || !v->valuestring || strlen(v->valuestring) >= out_size) {
+        char got[96];
+        opt_describe(v, got, sizeof got);
+        return pg_fail(err, PG_ERR_SCHEMA, "%s: %s.options.%s: expected a string of at most %zu bytes, got %s",
+                       desc_file(desc), desc_path(desc), key, out_size - 1, got);
+    }
+    snprintf(out, out_size, "%s", v->valuestring);
+    return PG_OK;
+}
+
 pg_result pg_opt_check_known(const pg_pass_desc *desc, const char *const *known, pg_error *err)
 {
     if (!desc || !cJSON_IsObject(desc->options)) return PG_OK;

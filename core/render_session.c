@@ -1,6 +1,7 @@
 #include "render_session.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 pg_result pg_session_create(pg_gpu *gpu, const pg_scene_gpu *scene, const pg_session_desc *desc, pg_session **out,
                             pg_error *err)
@@ -11,8 +12,37 @@ pg_result pg_session_create(pg_gpu *gpu, const pg_scene_gpu *scene, const pg_ses
     s->gpu = gpu;
     s->scene = scene;
     s->desc = *desc;
-    pg_result r = pg_pipeline_load(desc->pipeline_path, desc->overrides, desc->n_overrides, &s->pipeline, err);
+    s->desc.settings = NULL;
+    s->desc.n_settings = 0;
+    pg_result r = PG_OK;
+    if (desc->n_settings && desc->settings) {
+        /* one block: the array, then every key and value string */
+        size_t bytes = desc->n_settings * sizeof(pg_param_override);
+        for (uint32_t i = 0; i < desc->n_settings; i++) {
+            bytes += strlen(desc->settings[i].key ? desc->settings[i].key : "") + 1;
+            bytes += strlen(desc->settings[i].value ? desc->settings[i].value : "") + 1;
+        }
+        s->settings = malloc(bytes);
+        if (!s->settings) r = pg_fail(err, PG_ERR_OOM, "out of memory");
+        char *p = s->settings ? (char *)(s->settings + desc->n_settings) : NULL;
+        for (uint32_t i = 0; p && i < desc->n_settings; i++) {
+            const char *k = desc->settings[i].key ? desc->settings[i].key : "";
+            const char *v = desc->settings[i].value ? desc->settings[i].value : "";
+            s->settings[i].key = p;
+            memcpy(p, k, strlen(k) + 1);
+            p += strlen(k) + 1;
+            s->settings[i].value = p;
+            memcpy(p, v, strlen(v) + 1);
+            p += strlen(v) + 1;
+        }
+        if (s->settings) {
+            s->desc.settings = s->settings;
+            s->desc.n_settings = desc->n_settings;
+        }
+    }
+    if (!r) r = pg_pipeline_load(desc->pipeline_path, desc->overrides, desc->n_overrides, &s->pipeline, err);
     if (!r && gpu) r = pg_runtime_create(gpu, &s->runtime, err);
+    if (!r && s->runtime) pg_runtime_set_settings(s->runtime, s->desc.settings, s->desc.n_settings);
     if (r) {
         pg_session_destroy(s);
         return r;
@@ -68,5 +98,6 @@ void pg_session_destroy(pg_session *s)
     pg_runtime_destroy(s->runtime);
     pg_graph_plan_free(s->plan);
     pg_pipeline_free(s->pipeline);
+    free(s->settings);
     free(s);
 }

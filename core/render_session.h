@@ -21,12 +21,19 @@ typedef struct pg_session_desc {
     const pg_pass_registry *registry;
     bool disable_aliasing;
     uint64_t output_stages;       /* see pg_compile_desc.output_stages */
+    /* Application settings (key/value strings, not pipeline parameters) handed to every pass's
+     * create as pg_pass_create_ctx.settings; the graph core does not read them. Copied by
+     * pg_session_create. Keys in use: "ocio.config" (an OpenColorIO config file), "ocio.display",
+     * "ocio.view" (see passes/display_ocio.c). */
+    const pg_param_override *settings;
+    uint32_t n_settings;
 } pg_session_desc;
 
 typedef struct pg_session {
     pg_gpu *gpu;                  /* borrowed */
     const pg_scene_gpu *scene;    /* borrowed */
-    pg_session_desc desc;
+    pg_session_desc desc;         /* desc.settings points to the session's own copy */
+    pg_param_override *settings;  /* owned copy of desc.settings (keys and values) */
     pg_pipeline *pipeline;
     pg_graph_plan *plan;
     pg_runtime *runtime;

@@ -85,14 +85,28 @@ static bool sb_append(strbuf *sb, const char *s, size_t n)
     return true;
 }
 
-static pg_result expand(const char *name, int depth, strbuf *out, pg_error *err)
+typedef struct gen_sources {
+    const pg_shader_source *v;
+    uint32_t n;
+} gen_sources;
+
+static pg_result expand(const char *name, int depth, const gen_sources *gen, strbuf *out, pg_error *err)
 {
     if (depth > 8) return pg_fail(err, PG_ERR_SHADER, "shaders/%s: #include nested too deep", name);
     char path[PG_PATH_MAX + 64];
     snprintf(path, sizeof path, "%s/shaders/%s", pg_data_dir(), name);
     char *text = NULL;
-    pg_result r = pg_read_file(path, &text, NULL, err);
-    if (r) return r;
+    pg_result r = PG_OK;
+    for (uint32_t i = 0; gen && i < gen->n && !text; i++) {
+        if (!gen->v[i].name || strcmp(gen->v[i].name, name)) continue;
+        snprintf(path, sizeof path, "<generated %s>", name);
+        size_t len = gen->v[i].text ? strlen(gen->v[i].text) : 0;
+        text = malloc(len + 1);
+        if (!text) return pg_fail(err, PG_ERR_OOM, "out of memory expanding %s", path);
+        if (len) memcpy(text, gen->v[i].text, len);
+        text[len] = 0;
+    }
+    if (!text && (r = pg_read_file(path, &text, NULL, err))) return r;
     const char *p = text;
     int line = 1;
     while (*p) {
@@ -112,7 +126,7 @@ static pg_result expand(const char *name, int depth, strbuf *out, pg_error *err)
             if (il >= sizeof inc) il = sizeof inc - 1;
             memcpy(inc, a + 1, il);
             inc[il] = 0;
-            r = expand(inc, depth + 1, out, err);
+            r = expand(inc, depth + 1, gen, out, err);
             if (r) {
                 free(text);
                 return r;
@@ -147,10 +161,18 @@ pg_result pg_shader_compile(const char *name, VkShaderStageFlagBits stage,
                             const char *const *defines, uint32_t n_defines, uint32_t **spirv,
                             size_t *n_words, pg_error *err)
 {
+    return pg_shader_compile_ex(name, stage, defines, n_defines, NULL, 0, spirv, n_words, err);
+}
+
+pg_result pg_shader_compile_ex(const char *name, VkShaderStageFlagBits stage, const char *const *defines,
+                               uint32_t n_defines, const pg_shader_source *sources, uint32_t n_sources,
+                               uint32_t **spirv, size_t *n_words, pg_error *err)
+{
     *spirv = NULL;
     *n_words = 0;
     strbuf body = {0};
-    pg_result r = expand(name, 0, &body, err);
+    gen_sources gen = {sources, n_sources};
+    pg_result r = expand(name, 0, &gen, &body, err);
     if (r) {
         free(body.data);
         return r;
@@ -242,9 +264,16 @@ pg_result pg_shader_module(pg_gpu *gpu, const char *name, VkShaderStageFlagBits 
                            const char *const *defines, uint32_t n_defines, VkShaderModule *out,
                            pg_error *err)
 {
+    return pg_shader_module_ex(gpu, name, stage, defines, n_defines, NULL, 0, out, err);
+}
+
+pg_result pg_shader_module_ex(pg_gpu *gpu, const char *name, VkShaderStageFlagBits stage,
+                              const char *const *defines, uint32_t n_defines, const pg_shader_source *sources,
+                              uint32_t n_sources, VkShaderModule *out, pg_error *err)
+{
     uint32_t *code;
     size_t words;
-    pg_result r = pg_shader_compile(name, stage, defines, n_defines, &code, &words, err);
+    pg_result r = pg_shader_compile_ex(name, stage, defines, n_defines, sources, n_sources, &code, &words, err);
     if (r) return r;
     VkShaderModuleCreateInfo ci = {
         .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,

@@ -23,6 +23,13 @@ const char *pg_data_dir(void);
 /* Joins pg_data_dir() and rel into buf. */
 void pg_data_path(char *buf, size_t size, const char *rel);
 
+/* Text made at run time (e.g. OpenColorIO's shader code) that a shader pulls in with
+ * `#include "NAME"`: such an include is resolved from these before the shaders folder. */
+typedef struct pg_shader_source {
+    const char *name;
+    const char *text;
+} pg_shader_source;
+
 /* Compiles shaders/<name> for stage (VK_SHADER_STAGE_*_BIT). defines: "NAME" or "NAME=VALUE".
  * *spirv is malloc'd (free it). */
 pg_result pg_shader_compile(const char *name, VkShaderStageFlagBits stage,
@@ -32,6 +39,13 @@ pg_result pg_shader_compile(const char *name, VkShaderStageFlagBits stage,
 pg_result pg_shader_module(struct pg_gpu *gpu, const char *name, VkShaderStageFlagBits stage,
                            const char *const *defines, uint32_t n_defines, VkShaderModule *out,
                            pg_error *err);
+/* The same with generated sources for #include (n_sources may be 0). */
+pg_result pg_shader_compile_ex(const char *name, VkShaderStageFlagBits stage, const char *const *defines,
+                               uint32_t n_defines, const pg_shader_source *sources, uint32_t n_sources,
+                               uint32_t **spirv, size_t *n_words, pg_error *err);
+pg_result pg_shader_module_ex(struct pg_gpu *gpu, const char *name, VkShaderStageFlagBits stage,
+                              const char *const *defines, uint32_t n_defines, const pg_shader_source *sources,
+                              uint32_t n_sources, VkShaderModule *out, pg_error *err);
 
 #ifdef __cplusplus
 }

@@ -21,6 +21,21 @@ const char *pg_vk_result_name(VkResult r)
     }
 }
 
+static long g_fault_at = -2; /* -2: not read yet, -1: off */
+static long g_fault_count;
+
+bool pg_vk_fault_next(const char *call)
+{
+    if (g_fault_at == -2) {
+        const char *e = getenv("PASSGRAPH_FAULT_AT");
+        g_fault_at = e && *e ? strtol(e, NULL, 10) : -1;
+    }
+    if (g_fault_at < 0) return false;
+    if (++g_fault_count != g_fault_at) return false;
+    fprintf(stderr, "passgraph: fault injection: failing call #%ld: %s\n", g_fault_count, call);
+    return true;
+}
+
 static VKAPI_ATTR VkBool32 VKAPI_CALL debug_cb(VkDebugUtilsMessageSeverityFlagBitsEXT sev,
                                                VkDebugUtilsMessageTypeFlagsEXT type,
                                                const VkDebugUtilsMessengerCallbackDataEXT *data,
@@ -312,7 +327,8 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
         .enabledExtensionCount = desc->swapchain ? 1 : 0,
         .ppEnabledExtensionNames = dev_exts,
     };
-    VkResult r = vkCreateDevice(gpu->phys, &dci, NULL, &gpu->device);
+    VkResult r = pg_vk_fault_next("vkCreateDevice") ? VK_ERROR_DEVICE_LOST
+                                                    : vkCreateDevice(gpu->phys, &dci, NULL, &gpu->device);
     if (r != VK_SUCCESS) {
         res = pg_fail(err, PG_ERR_VULKAN, "vkCreateDevice failed: %s", pg_vk_result_name(r));
         goto fail;
@@ -410,7 +426,7 @@ pg_result pg_buffer_create(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags us
         .allocationSize = req.size,
         .memoryTypeIndex = type,
     };
-    VkResult r = vkAllocateMemory(gpu->device, &mai, NULL, &out->memory);
+    VkResult r = pg_gpu_alloc_memory(gpu, &mai, &out->memory);
     if (r != VK_SUCCESS) {
         pg_buffer_destroy(gpu, out);
         return pg_fail(err, PG_ERR_VULKAN, "buffer '%s': vkAllocateMemory(%llu bytes) failed: %s",
@@ -426,7 +442,7 @@ pg_result pg_buffer_create(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags us
 void pg_buffer_destroy(pg_gpu *gpu, pg_buffer *b)
 {
     if (b->buffer) vkDestroyBuffer(gpu->device, b->buffer, NULL);
-    if (b->memory) vkFreeMemory(gpu->device, b->memory, NULL);
+    if (b->memory) pg_gpu_free_memory(gpu, b->memory);
     memset(b, 0, sizeof *b);
 }
 
@@ -470,7 +486,7 @@ pg_result pg_image_create(pg_gpu *gpu, VkFormat format, uint32_t w, uint32_t h, 
         .allocationSize = req.size,
         .memoryTypeIndex = type,
     };
-    VkResult r = vkAllocateMemory(gpu->device, &mai, NULL, &out->memory);
+    VkResult r = pg_gpu_alloc_memory(gpu, &mai, &out->memory);
     if (r != VK_SUCCESS) {
         pg_image_destroy(gpu, out);
         return pg_fail(err, PG_ERR_VULKAN, "image '%s' %ux%u: vkAllocateMemory failed: %s", name,
@@ -498,7 +514,7 @@ void pg_image_destroy(pg_gpu *gpu, pg_image *img)
 {
     if (img->view) vkDestroyImageView(gpu->device, img->view, NULL);
     if (img->image) vkDestroyImage(gpu->device, img->image, NULL);
-    if (img->memory) vkFreeMemory(gpu->device, img->memory, NULL);
+    if (img->memory) pg_gpu_free_memory(gpu, img->memory);
     memset(img, 0, sizeof *img);
 }
 
@@ -533,7 +549,8 @@ pg_result pg_gpu_end_once(pg_gpu *gpu, VkCommandBuffer cmd, pg_error *err)
         VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2,
                             .commandBufferInfoCount = 1,
                             .pCommandBufferInfos = &cbi};
-        r = vkQueueSubmit2(gpu->queue, 1, &si, VK_NULL_HANDLE);
+        r = pg_vk_fault_next("vkQueueSubmit2(one-shot)") ? VK_ERROR_DEVICE_LOST
+                                                          : vkQueueSubmit2(gpu->queue, 1, &si, VK_NULL_HANDLE);
         if (r == VK_SUCCESS) r = vkQueueWaitIdle(gpu->queue);
     }
     if (r != VK_SUCCESS)
@@ -575,4 +592,28 @@ void pg_cmd_barriers(VkCommandBuffer cmd, uint32_t n_images, const VkImageMemory
         .pImageMemoryBarriers = images,
     };
     vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+VkResult pg_gpu_alloc_memory(pg_gpu *gpu, const VkMemoryAllocateInfo *info, VkDeviceMemory *out)
+{
+    VkResult r = vkAllocateMemory(gpu->device, info, NULL, out);
+    if (r == VK_SUCCESS) gpu->live_memory_objects++;
+    return r;
+}
+
+void pg_gpu_free_memory(pg_gpu *gpu, VkDeviceMemory mem)
+{
+    if (!mem) return;
+    vkFreeMemory(gpu->device, mem, NULL);
+    gpu->live_memory_objects--;
+}
+
+uint64_t pg_process_rss(void)
+{
+    FILE *f = fopen("/proc/self/statm", "r");
+    if (!f) return 0;
+    unsigned long size = 0, resident = 0;
+    int n = fscanf(f, "%lu %lu", &size, &resident);
+    fclose(f);
+    return n == 2 ? (uint64_t)resident * 4096u : 0;
 }

@@ -48,6 +48,7 @@ typedef struct pg_gpu {
     bool validation;
     uint32_t validation_messages; /* errors + warnings reported by the validation layer */
     uint32_t validation_errors;
+    int64_t live_memory_objects;  /* VkDeviceMemory allocated through passgraph and not freed */
     PFN_vkSetDebugUtilsObjectNameEXT set_object_name;
     PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label;
     PFN_vkCmdEndDebugUtilsLabelEXT cmd_end_label;
@@ -66,16 +67,26 @@ void pg_gpu_name(pg_gpu *gpu, VkObjectType type, uint64_t handle, const char *fm
     ;
 
 const char *pg_vk_result_name(VkResult r);
+/* Fault injection for robustness tests: with PASSGRAPH_FAULT_AT=k in the environment, the k-th
+ * checked Vulkan call (counting from 1, in execution order) is not made and reports
+ * VK_ERROR_DEVICE_LOST instead, so every error path can be exercised. Returns true to fail. */
+bool pg_vk_fault_next(const char *call);
 /* Evaluates a Vulkan call; on failure fills err with the call text and VkResult and returns. */
 #define PG_VK_TRY(err, call)                                                                 \
     do {                                                                                     \
-        VkResult pg_vk_r_ = (call);                                                          \
+        VkResult pg_vk_r_ = pg_vk_fault_next(#call) ? VK_ERROR_DEVICE_LOST : (call);         \
         if (pg_vk_r_ != VK_SUCCESS)                                                          \
             return pg_fail((err), PG_ERR_VULKAN, "%s failed: %s (%s:%d)", #call,             \
                            pg_vk_result_name(pg_vk_r_), __FILE__, __LINE__);                 \
     } while (0)
 
 uint32_t pg_gpu_memory_type(const pg_gpu *gpu, uint32_t type_bits, VkMemoryPropertyFlags want);
+/* Every VkDeviceMemory passgraph makes goes through these two (so long runs can prove the count
+ * stays flat). */
+VkResult pg_gpu_alloc_memory(pg_gpu *gpu, const VkMemoryAllocateInfo *info, VkDeviceMemory *out);
+void pg_gpu_free_memory(pg_gpu *gpu, VkDeviceMemory mem);
+/* Resident set size of this process in bytes (0 if unknown). */
+uint64_t pg_process_rss(void);
 
 typedef struct pg_buffer {
     VkBuffer buffer;

@@ -1,7 +1,8 @@
-/* display_tonemap.c - scene-linear HDR -> 8-bit display image (a placeholder for the OpenColorIO
- * display pass): exposure, then "clamp" | "reinhard" | "aces" (default clamp, which keeps the
- * reference projects' look: output = albedo x light sum, saturated at 1); sRGB encoding comes
- * from writing an rgba8_srgb target.
+/* display_tonemap.c - scene-linear HDR -> 8-bit display image, the simple alternative to the
+ * OpenColorIO display pass (display_ocio): exposure, then "clamp" | "reinhard" | "aces" (default
+ * clamp, which keeps the reference projects' look: output = albedo x light sum, saturated at 1).
+ * sRGB encoding: an rgba8_srgb target encodes on write; for a UNORM target (rgba8, rgba16) the
+ * shader applies the sRGB curve itself (define PG_ENCODE_SRGB); float targets get linear values.
  * Slots: reads [hdr] (sampled, fragment); writes [ldr]. Options: exposure (> 0, default 1),
  * operator. */
 #include <string.h>
@@ -35,6 +36,14 @@ static pg_result dt_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     char def[32];
     snprintf(def, sizeof def, "PG_TONEMAP=%d", op);
     pg_decl_define(out, def);
+    const pg_resource_desc *ldr =
+        in->desc->n_writes >= 1 && in->pipeline ? pg_pipeline_find_resource(in->pipeline, in->desc->writes[0]) : NULL;
+    if (ldr && ldr->kind == PG_RES_IMAGE &&
+        (ldr->format == PG_FMT_RGBA8_UNORM || ldr->format == PG_FMT_RGBA16_UNORM)) {
+        pg_decl_define(out, "PG_ENCODE_SRGB");
+        pg_decl_explain(out, "target '%s' is %s (UNORM): the shader applies the sRGB curve", ldr->name,
+                        pg_format_get(ldr->format)->name);
+    }
     return PG_OK;
 }
 

@@ -8,6 +8,7 @@ void pg_register_builtin_passes(pg_pass_registry *reg)
         &pg_pass_light_animate,
         &pg_pass_forward_naive,
         &pg_pass_display_tonemap,
+        &pg_pass_display_ocio,
         &pg_pass_cluster_assign,
         &pg_pass_forward_plus,
         &pg_pass_gbuffer,

@@ -1,7 +1,7 @@
 #version 460
-// display_tonemap.frag - scene-linear HDR -> display. Placeholder for the OpenColorIO display
-// pass: exposure, then an operator (PG_TONEMAP 0 clamp, 1 Reinhard, 2 ACES fit); the sRGB
-// encoding is done by the rgba8_srgb target.
+// display_tonemap.frag - scene-linear HDR -> display, the simple alternative to display_ocio:
+// exposure, then an operator (PG_TONEMAP 0 clamp, 1 Reinhard, 2 ACES fit); the sRGB encoding is
+// done by an rgba8_srgb target, or here (PG_ENCODE_SRGB) for a UNORM target.
 layout(set = 1, binding = 0) uniform sampler2D hdr;
 layout(push_constant) uniform Push { float exposure; } pc;
 layout(location = 0) in vec2 v_uv;
@@ -25,6 +25,10 @@ void main()
     c = aces_fit(c);
 #else
     c = clamp(c, 0.0, 1.0);
+#endif
+#ifdef PG_ENCODE_SRGB
+    c = clamp(c, 0.0, 1.0);
+    c = mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
 #endif
     out_color = vec4(c, 1.0);
 }

@@ -27,7 +27,8 @@ expect_fail() {
 "$PG" --help >"$tmp/h" && grep -q "render" "$tmp/h" && ok || bad "passgraph --help"
 "$PG" render --help >"$tmp/h" || bad "render --help exit"
 for o in --pipeline --scene --scenario --lights --size --time --seed --out --set --device --validation \
-         --no-aliasing --explain --frames --radius --intensity; do
+         --no-aliasing --explain --frames --radius --intensity --view --debug-view --ocio-config --display \
+         --ocio-view --hdr-out; do
   grep -qF -- "$o" "$tmp/h" && ok || bad "render --help does not document $o"
 done
 
@@ -111,6 +112,22 @@ for v in cluster_heat cluster_x cluster_y cluster_z overflow albedo normal depth
     && [ -s "$tmp/v.png" ] && ok || { bad "--view $v"; cat "$tmp/err"; }
 done
 expect_fail "cluster view on naive" "not one of" render --pipeline "$root/pipelines/naive.json" --view cluster_heat --size 64x36 --out "$tmp/v.png"
+# colour: OCIO views and displays by name (spaces and parentheses), EXR output, clear refusals
+"$PG" render --validation --size 64x36 --lights 8 --view "Filmic (ACES)" --display Rec.1886 --out "$tmp/c.exr" \
+  >"$tmp/out" 2>"$tmp/err" && [ "$(head -c 4 "$tmp/c.exr" | od -An -tx1 | tr -d ' ')" = 762f3101 ] \
+  && [ "$(head -c 4 "$tmp/c.png" | tail -c 3)" = PNG ] && ok || { bad "render --view 'Filmic (ACES)' --out x.exr"; cat "$tmp/err"; }
+grep -q "validation message" "$tmp/err" && bad "OCIO render: validation messages" || ok
+"$PG" render --size 64x36 --lights 8 --ocio-view Raw --debug-view albedo --out "$tmp/c2.png" --hdr-out "$tmp/c2.exr" \
+  >"$tmp/out" 2>"$tmp/err" && [ -s "$tmp/c2.png" ] && [ -s "$tmp/c2.exr" ] && ok || { bad "--ocio-view --debug-view --hdr-out"; cat "$tmp/err"; }
+expect_fail "unknown OCIO display" "displays: sRGB, Rec.1886" render --display Nope --size 32x18 --out "$tmp/x.png"
+expect_fail "unknown OCIO view" "views: Standard, Filmic (ACES), Raw" render --ocio-view Nope --size 32x18 --out "$tmp/x.png"
+expect_fail "missing OCIO config" "nope.ocio" render --ocio-config "$tmp/nope.ocio" --size 32x18 --out "$tmp/x.png"
+printf 'ocio_profile_version: 2\nroles: [\n' >"$tmp/broken.ocio"
+expect_fail "broken OCIO config" "broken.ocio" render --ocio-config "$tmp/broken.ocio" --size 32x18 --out "$tmp/x.png"
+OCIO="$tmp/broken.ocio" "$PG" render --size 32x18 --lights 4 --out "$tmp/x.png" >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 1 ] && grep -q "broken.ocio" "$tmp/err" && ok || { bad "\$OCIO broken config not reported"; cat "$tmp/err"; }
+expect_fail "--hdr-out not .exr" "expected a .exr" render --hdr-out "$tmp/x.png" --out "$tmp/x.png"
+
 # clustered summary reports overflow (all lights at one point, 2 per cluster)
 "$PG" render --pipeline "$root/pipelines/forward_plus.json" --set max_lights=2 --lights 64 --radius 100 --size 64x36 --out "$tmp/o.png" >"$tmp/out" 2>&1
 grep -Eq 'overflow=[1-9][0-9]* clusters \([0-9]+ light refs dropped\)' "$tmp/out" && ok || { bad "overflow not reported"; cat "$tmp/out"; }

@@ -2,8 +2,8 @@
 # view_test.sh PASSGRAPH_BINARY - the viewer under Xvfb with lavapipe, validation and
 # synchronization validation on: every pipeline is cycled through, the window is resized, a
 # pipeline file is broken on disk (the error is reported, the last good graph keeps running) and
-# mended (it reloads), parameters and the difference view are switched, and the screenshot (scene +
-# UI) is written. Any validation message fails the run.
+# mended (it reloads), parameters, the OCIO view and display and the difference view are switched,
+# and the screenshot (scene + UI) is written. Any validation message fails the run.
 set -u
 PG=$1
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -22,6 +22,7 @@ xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --validation --size 320x180 --
   --at 3:resize=400x240 --at 9:set=view=cluster_heat --at 13:copy="$tmp/broken.json:$tmp/pipelines/naive.json" \
   --at 15:pipeline=naive.json --at 20:copy="$root/pipelines/naive.json:$tmp/pipelines/naive.json" \
   --at 25:diff=on --at 30:diff=off --at 33:resize=320x180 --at 35:lights=0 --at 40:lights=64 \
+  --at "42:ocioview=Filmic (ACES)" --at 44:display=Rec.1886 \
   --screenshot "$tmp/shot.png" >"$tmp/out" 2>"$tmp/err"
 rc=$?
 [ $rc -eq 0 ] && ok || { bad "view exit $rc"; tail -20 "$tmp/err"; }
@@ -30,6 +31,8 @@ grep -q "switching to" "$tmp/out" && ok || bad "no pipeline cycling"
 grep -q "JSON syntax error" "$tmp/err" && ok || bad "broken pipeline error not reported"
 [ "$(grep -c 'change on disk' "$tmp/out")" -ge 2 ] && ok || bad "edits on disk not reloaded"
 grep -Eq '^view: 48 frames' "$tmp/out" && ok || { bad "did not run 48 frames"; tail -3 "$tmp/out"; }
+grep -q "frame 42: ocioview Filmic (ACES)" "$tmp/out" && grep -q "frame 44: display Rec.1886" "$tmp/out" \
+  && ok || bad "OCIO view / display not switched"
 grep -Eq 'swapchain builds' "$tmp/out" && ! grep -q '1 swapchain builds' "$tmp/out" && ok || bad "resize did not rebuild the swapchain"
 [ "$(head -c 4 "$tmp/shot.png" 2>/dev/null | tail -c 3)" = PNG ] && ok || bad "no screenshot"
 for p in naive forward_plus deferred deferred_oct16 deferred_packed; do

@@ -79,3 +79,17 @@ pg_frame_info pg_app_frame(const pg_app *app)
     };
     return fi;
 }
+
+pg_session_desc pg_app_session_desc(const pg_app *app)
+{
+    pg_session_desc sd = {
+        .pipeline_path = app->pipeline_path,
+        .overrides = app->opt.sets,
+        .n_overrides = app->opt.n_sets,
+        .registry = &app->registry,
+        .disable_aliasing = app->opt.no_aliasing,
+        .settings = app->opt.settings,
+        .n_settings = app->opt.n_settings,
+    };
+    return sd;
+}

@@ -13,7 +13,9 @@
 #include "vk_context.h"
 
 typedef struct pg_app {
-    pg_cli_common opt;
+    pg_cli_common opt;            /* a copy of the options; opt.settings / opt.n_settings are the
+                                   * application settings (OCIO config, display, view) every session
+                                   * of the command gets: see pg_app_session_desc() */
     pg_gpu *gpu;
     pg_scene *scene;
     pg_scene_gpu *scene_gpu;
@@ -33,5 +35,9 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
                          pg_error *err);
 void pg_app_close(pg_app *app);
 pg_frame_info pg_app_frame(const pg_app *app);
+/* A session description for the app's pipeline with the command line's --set overrides, the
+ * application settings (--ocio-config, --display, --ocio-view / --view) and --no-aliasing.
+ * Borrowed pointers into app->opt: valid while app is. */
+pg_session_desc pg_app_session_desc(const pg_app *app);
 
 #endif

@@ -1,5 +1,7 @@
 #include "cli.h"
 
+#include "ocio.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -23,9 +25,14 @@ const char *const pg_cli_common_help =
     "  --no-aliasing        give every transient its own memory (debugging switch)\n"
     "  --explain            print what the compiled graph left out, culled and why\n"
     "  --frames N           frames to render; timings are the median (default 1)\n"
-    "  --view NAME          debug view instead of lighting (the pipeline's 'view' parameter):\n"
-    "                       cluster_heat, cluster_x, cluster_y, cluster_z, overflow (clustered\n"
-    "                       pipelines), albedo, normal, depth (all)\n";
+    "  --view NAME          an OCIO view of the display (e.g. \"Standard\", \"Filmic (ACES)\", \"Raw\")\n"
+    "                       or else a debug view (the pipeline's 'view' parameter; --debug-view)\n"
+    "  --debug-view NAME    debug view instead of lighting: cluster_heat, cluster_x, cluster_y,\n"
+    "                       cluster_z, overflow (clustered pipelines), albedo, normal, depth (all)\n"
+    "  --ocio-config FILE   OpenColorIO config (default: $OCIO, else assets/ocio/config.ocio)\n"
+    "  --display NAME       OCIO display (default: the config's; shipped: sRGB, Rec.1886)\n"
+    "  --ocio-view NAME     OCIO view of the display (default: the config's; shipped: Standard,\n"
+    "                       Filmic (ACES), Raw); exposure: --set exposure=X (scene-linear multiply)\n";
 
 void pg_cli_defaults(pg_cli_common *c)
 {
@@ -66,6 +73,47 @@ static pg_result parse_float(const char *opt, const char *s, double min, double 
     if (errno || *end || !isfinite(v) || v < min || v > max)
         return pg_fail(err, PG_ERR_INVALID_ARG, "%s %s: expected a finite number in [%g, %g]", opt, s, min, max);
     *out = (float)v;
+    return PG_OK;
+}
+
+/* The last value given to opt anywhere on the command line (NULL if none): the colour options
+ * are checked against the config and display the whole command line selects. */
+static const char *prescan(int argc, char **argv, const char *opt)
+{
+    const char *v = NULL;
+    for (int k = 0; k + 1 < argc; k++)
+        if (!strcmp(argv[k], opt)) v = argv[k + 1];
+    return v;
+}
+
+static pg_result open_config(int argc, char **argv, pg_ocio_config **cfg, pg_error *err)
+{
+    char path[PG_PATH_MAX];
+    pg_ocio_resolve_path(prescan(argc, argv, "--ocio-config"), path, sizeof path);
+    return pg_ocio_open(path, cfg, err);
+}
+
+static void rebuild_settings(pg_cli_common *c)
+{
+    c->n_settings = 0;
+    if (c->ocio_config) c->settings[c->n_settings++] = (pg_param_override){"ocio.config", c->ocio_config};
+    if (c->display) c->settings[c->n_settings++] = (pg_param_override){"ocio.display", c->display};
+    if (c->ocio_view) c->settings[c->n_settings++] = (pg_param_override){"ocio.view", c->ocio_view};
+}
+
+static pg_result set_debug_view(pg_cli_common *c, const char *opt, const char *v, pg_error *err)
+{
+    for (uint32_t k = 0; k < c->n_sets; k++) /* one 'view' override from these options */
+        if (c->sets[k].key && !strcmp(c->sets[k].key, "view") && c->sets[k].value == c->debug_view) {
+            c->sets[k].value = v;
+            c->debug_view = v;
+            return PG_OK;
+        }
+    if (c->n_sets >= PG_CLI_MAX_SETS) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: too many overrides", opt);
+    c->debug_view = v;
+    c->sets[c->n_sets].key = "view";
+    c->sets[c->n_sets].value = v;
+    c->n_sets++;
     return PG_OK;
 }
 
@@ -153,11 +201,39 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         }
     } else if (!strcmp(a, "--view")) {
         NEED_VALUE();
-        if (c->n_sets >= PG_CLI_MAX_SETS) return pg_fail(err, PG_ERR_INVALID_ARG, "--view: too many overrides");
         c->view = v;
-        c->sets[c->n_sets].key = "view";
-        c->sets[c->n_sets].value = v;
-        c->n_sets++;
+        /* an OCIO view of the chosen display, else a debug view; a config that does not load is
+         * reported by the display pass (or by --ocio-config / --display), not here */
+        pg_ocio_config *cfg = NULL;
+        pg_error ignored = {0};
+        bool is_ocio = false;
+        if (!open_config(argc, argv, &cfg, &ignored)) {
+            is_ocio = pg_ocio_has_view(cfg, prescan(argc, argv, "--display"), v);
+            pg_ocio_close(cfg);
+        }
+        if (is_ocio) {
+            c->ocio_view = v;
+            rebuild_settings(c);
+        } else if ((r = set_debug_view(c, a, v, err))) {
+            return r;
+        }
+    } else if (!strcmp(a, "--debug-view")) {
+        NEED_VALUE();
+        if ((r = set_debug_view(c, a, v, err))) return r;
+    } else if (!strcmp(a, "--ocio-config") || !strcmp(a, "--display") || !strcmp(a, "--ocio-view")) {
+        NEED_VALUE();
+        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: empty name", a);
+        pg_ocio_config *cfg = NULL;
+        if ((r = open_config(argc, argv, &cfg, err))) return pg_error_prefix(err, "%s", a);
+        const char *display = prescan(argc, argv, "--display");
+        if (!strcmp(a, "--display")) r = pg_ocio_resolve(cfg, v, NULL, NULL, 0, NULL, 0, err);
+        else if (!strcmp(a, "--ocio-view")) r = pg_ocio_resolve(cfg, display, v, NULL, 0, NULL, 0, err);
+        pg_ocio_close(cfg);
+        if (r) return pg_error_prefix(err, "%s %s", a, v);
+        if (!strcmp(a, "--ocio-config")) c->ocio_config = v;
+        else if (!strcmp(a, "--display")) c->display = v;
+        else c->ocio_view = v;
+        rebuild_settings(c);
     } else if (!strcmp(a, "--validation")) {
         c->validation = true;
     } else if (!strcmp(a, "--no-aliasing")) {

@@ -8,6 +8,7 @@
 #include "scenario.h"
 
 #define PG_CLI_MAX_SETS 32
+#define PG_CLI_MAX_SETTINGS 8
 
 typedef struct pg_cli_common {
     const char *pipeline;        /* --pipeline FILE */
@@ -29,13 +30,24 @@ typedef struct pg_cli_common {
     bool no_aliasing;            /* --no-aliasing */
     bool explain;                /* --explain */
     uint32_t frames;             /* --frames N */
-    const char *view;            /* --view NAME: the pipeline's debug view parameter */
+    const char *view;            /* --view NAME as given: an OCIO view of the display if the config
+                                  * has one of that name, else the pipeline's debug view */
+    const char *debug_view;      /* the pipeline parameter 'view' set by --debug-view / --view */
+    /* colour management (application settings, not pipeline parameters) */
+    const char *ocio_config;     /* --ocio-config FILE (absent: $OCIO, else the shipped config) */
+    const char *display;         /* --display NAME */
+    const char *ocio_view;       /* --ocio-view NAME, or a --view naming an OCIO view */
+    uint32_t n_settings;         /* what the options above give as pg_session_desc.settings: */
+    pg_param_override settings[PG_CLI_MAX_SETTINGS]; /* "ocio.config", "ocio.display", "ocio.view" */
     bool quiet;
 } pg_cli_common;
 
 void pg_cli_defaults(pg_cli_common *c);
 /* Tries to consume argv[*i] (and its value). Returns PG_OK and sets *used when it was a
- * common option; PG_ERR_INVALID_ARG with a message for a bad value. */
+ * common option; PG_ERR_INVALID_ARG with a message for a bad value. The colour options are
+ * checked against the OCIO config the whole command line selects (wherever --ocio-config and
+ * --display appear): an unknown display or view is an error listing the available ones, a bad
+ * config an error naming the file. */
 pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, bool *used, pg_error *err);
 /* Text block describing the common options, for --help. */
 extern const char *const pg_cli_common_help;

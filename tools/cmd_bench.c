@@ -639,6 +639,8 @@ static void reference_render(bench *B, pg_app *app, const pg_frame_info *fi0, re
         .n_overrides = B->n_ref_ov,
         .registry = &app->registry,
         .disable_aliasing = B->opt.no_aliasing,
+        .settings = app->opt.settings, /* OCIO config / display / view */
+        .n_settings = app->opt.n_settings,
     };
     pg_session *s = NULL;
     pg_error e = {0};
@@ -701,6 +703,8 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
         .n_overrides = va->n_ov,
         .registry = &app->registry,
         .disable_aliasing = B->opt.no_aliasing,
+        .settings = app->opt.settings,
+        .n_settings = app->opt.n_settings,
     };
     pg_session *s = NULL;
     pg_error e = {0};

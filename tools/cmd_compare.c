@@ -110,6 +110,8 @@ static pg_result side_create(side *sd, const char *label, pg_app *app, const cha
         .n_overrides = n_sets,
         .registry = &app->registry,
         .disable_aliasing = no_aliasing,
+        .settings = app->opt.settings, /* both sides: the same display / view */
+        .n_settings = app->opt.n_settings,
     };
     if (pg_session_create(app->gpu, app->scene_gpu, &desc, &sd->s, err)) return pg_error_prefix(err, "%s", label);
     if (!sd->s->pipeline->hdr_output[0])

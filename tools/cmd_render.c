@@ -1,18 +1,36 @@
-/* cmd_render.c - `passgraph render`: one reproducible frame to a PNG, with GPU timings. */
+/* cmd_render.c - `passgraph render`: one reproducible frame to a PNG (the display image, through
+ * the pipeline's display pass) and optionally an OpenEXR file (the linear HDR output), with GPU
+ * timings. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "app.h"
 #include "commands.h"
+#include "exr.h"
 #include "image_util.h"
 
 static const char *const render_help =
-    "usage: passgraph render [options] --out FILE.png\n"
+    "usage: passgraph render [options] --out FILE.png|FILE.exr [--hdr-out FILE.exr]\n"
     "Renders one frame of a scene with a pipeline, headless, and writes the display image.\n"
     "Prints one summary line: GPU ms in total and per pass (timestamps; median over --frames),\n"
     "and the number of non-finite pixels in the HDR output.\n\n"
     "options:\n";
+
+static const char *const render_out_help =
+    "  --out FILE.png       where to write the display image (8-bit, through the display pass: the\n"
+    "                       OCIO view, see --display / --view)\n"
+    "  --out FILE.exr       write the linear HDR image (the pipeline's hdr_output, scene-linear\n"
+    "                       Rec.709, RGBA half floats for rgba16f, floats for rgba32f) to FILE.exr\n"
+    "                       AND the display image to FILE.png\n"
+    "  --hdr-out FILE.exr   write the linear HDR image to FILE.exr as well (with --out FILE.png)\n";
+
+static bool ends_with_exr(const char *p)
+{
+    size_t n = strlen(p);
+    return n >= 4 && !strcasecmp(p + n - 4, ".exr");
+}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -41,12 +59,24 @@ int pg_cmd_render(int argc, char **argv)
     pg_cli_common opt;
     pg_cli_defaults(&opt);
     pg_error err = {0};
+    const char *hdr_out = NULL;
     for (int i = 0; i < argc; i++) {
         bool used;
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("%s%s  --out FILE.png       where to write the display image (required)\n", render_help,
-                   pg_cli_common_help);
+            printf("%s%s%s", render_help, pg_cli_common_help, render_out_help);
             return 0;
+        }
+        if (!strcmp(argv[i], "--hdr-out")) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "passgraph render: --hdr-out: missing value\n");
+                return 2;
+            }
+            hdr_out = argv[++i];
+            if (!ends_with_exr(hdr_out)) {
+                fprintf(stderr, "passgraph render: --hdr-out %s: expected a .exr file name\n", hdr_out);
+                return 2;
+            }
+            continue;
         }
         if (pg_cli_parse_common(&opt, argc, argv, &i, &used, &err)) {
             fprintf(stderr, "passgraph render: %s\n", err.msg);
@@ -61,6 +91,28 @@ int pg_cmd_render(int argc, char **argv)
         fprintf(stderr, "passgraph render: --out FILE.png is required\n");
         return 2;
     }
+    /* --out x.exr: the HDR image to x.exr and the display image to x.png */
+    char png_path[PG_PATH_MAX], exr_path[PG_PATH_MAX] = "";
+    if (ends_with_exr(opt.out)) {
+        if (hdr_out) {
+            fprintf(stderr, "passgraph render: --out %s and --hdr-out %s: give one EXR file\n", opt.out, hdr_out);
+            return 2;
+        }
+        size_t n = strlen(opt.out);
+        if (n >= sizeof png_path) {
+            fprintf(stderr, "passgraph render: --out %s: path too long\n", opt.out);
+            return 2;
+        }
+        pg_strlcpy(exr_path, opt.out, sizeof exr_path);
+        pg_strlcpy(png_path, opt.out, sizeof png_path);
+        memcpy(png_path + n - 4, ".png", 4);
+    } else {
+        pg_strlcpy(png_path, opt.out, sizeof png_path);
+        if (hdr_out && !pg_strlcpy(exr_path, hdr_out, sizeof exr_path)) {
+            fprintf(stderr, "passgraph render: --hdr-out %s: path too long\n", hdr_out);
+            return 2;
+        }
+    }
     pg_app app;
     if (pg_app_open(&app, &opt, true, &err)) {
         fprintf(stderr, "passgraph render: %s\n", err.msg);
@@ -69,13 +121,7 @@ int pg_cmd_render(int argc, char **argv)
     int rc = 1;
     pg_session *s = NULL;
     float *hdr = NULL;
-    pg_session_desc sd = {
-        .pipeline_path = app.pipeline_path,
-        .overrides = opt.sets,
-        .n_overrides = opt.n_sets,
-        .registry = &app.registry,
-        .disable_aliasing = opt.no_aliasing,
-    };
+    pg_session_desc sd = pg_app_session_desc(&app);
     if (pg_session_create(app.gpu, app.scene_gpu, &sd, &s, &err)) goto done;
     pg_frame_info fi = pg_app_frame(&app);
     double *samples = calloc((size_t)opt.frames * (PG_MAX_PASSES + 1), sizeof(double));
@@ -102,7 +148,7 @@ int pg_cmd_render(int argc, char **argv)
         free(samples);
         goto done;
     }
-    if (pg_write_png(opt.out, ldr, w, h, &err)) {
+    if (pg_write_png(png_path, ldr, w, h, &err)) {
         free(samples);
         goto done;
     }
@@ -113,6 +159,21 @@ int pg_cmd_render(int argc, char **argv)
     if (hpix) {
         hdr = malloc((size_t)hw * hh * 4 * sizeof(float));
         if (hdr && !pg_hdr_to_float(hpix, hfmt, hw, hh, hdr, &err)) nonfinite = (long long)pg_count_nonfinite(hdr, hw, hh);
+    }
+    if (exr_path[0]) {
+        if (!hpix || nonfinite < 0) {
+            if (!hpix)
+                pg_fail(&err, PG_ERR_NO_OUTPUT, "%s: pipeline '%s' declares no hdr_output to write to %s",
+                        s->pipeline->path, s->pipeline->name, exr_path);
+            else if (!hdr)
+                pg_fail(&err, PG_ERR_OOM, "out of memory");
+            free(samples);
+            goto done;
+        }
+        if (pg_exr_write_rgba(exr_path, hdr, hw, hh, hfmt != PG_FMT_RGBA32F, &err)) {
+            free(samples);
+            goto done;
+        }
     }
     printf("render: %s %ux%u lights=%u gpu=%.3f ms [", s->pipeline->name, w, h, fi.lights.count,
            median(samples, opt.frames));
@@ -125,7 +186,7 @@ int pg_cmd_render(int argc, char **argv)
     if (clustered)
         printf(" overflow=%llu clusters (%llu light refs dropped)", (unsigned long long)st.overflow_clusters,
                (unsigned long long)st.overflow_dropped);
-    printf(" frames=%u -> %s\n", opt.frames, opt.out);
+    printf(" frames=%u -> %s%s%s\n", opt.frames, png_path, exr_path[0] ? ", " : "", exr_path);
     free(samples);
     rc = 0;
     if (app.gpu->validation && app.gpu->validation_messages) {

@@ -20,6 +20,7 @@
 #include "commands.h"
 #include "image_compare.h"
 #include "image_util.h"
+#include "ocio.h"
 #include "shader.h"
 #include "ui.h"
 #include "view_window.h"
@@ -79,11 +80,26 @@ typedef struct viewer {
     uint32_t reloads;
     /* scripted mode */
     uint32_t frames_limit, cycle_every;
-    bool cycle;
+    bool cycle, random_params;
+    uint64_t rss100;
+    int64_t mem100;
     const char *screenshot_path;
     bool want_shot;
     char shot_file[PG_PATH_MAX];
     pg_buffer shot;
+    /* the graph's 8-bit output copied (not converted) into an image whose sRGB-ness matches the
+     * swapchain's, so the blit does not decode or encode it again (see present_source) */
+    pg_image present_copy;
+    /* colour management: the OCIO config (for the display / view lists) and the settings every
+     * session gets; changing display or view makes a new session */
+    pg_ocio_config *ocio;
+    char ocio_error[PG_ERROR_MSG_MAX];
+    char ocio_path[PG_PATH_MAX];
+    char display[128], ocio_view[128];
+    bool colour_chosen;         /* display/view given on the command line or picked: they go to
+                                 * the sessions as settings (else the pipeline's options rule) */
+    pg_param_override settings[3];
+    uint32_t n_settings;
     char scene_input[PG_PATH_MAX];
     view_action actions[MAX_ACTIONS];
     int n_actions;
@@ -183,6 +199,8 @@ static pg_result open_session(viewer *v, const char *path, bool with_overrides, 
         .registry = &v->app.registry,
         .disable_aliasing = v->app.opt.no_aliasing,
         .output_stages = VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_BLIT_BIT,
+        .settings = v->settings,
+        .n_settings = v->n_settings,
     };
     return pg_session_create(v->app.gpu, v->app.scene_gpu, &sd, out, err);
 }
@@ -256,6 +274,98 @@ static double watch_signature(const viewer *v)
         if (!inside && stat(v->paths[i], &st) == 0) sig += (double)st.st_mtim.tv_sec + st.st_mtim.tv_nsec * 1e-9;
     }
     return sig;
+}
+
+/* ---------------------------------------------------------------- colour (OpenColorIO) */
+
+static void colour_settings(viewer *v)
+{
+    v->n_settings = 0;
+    if (v->app.opt.ocio_config) v->settings[v->n_settings++] = (pg_param_override){"ocio.config", v->ocio_path};
+    if (v->colour_chosen && v->display[0])
+        v->settings[v->n_settings++] = (pg_param_override){"ocio.display", v->display};
+    if (v->colour_chosen && v->ocio_view[0])
+        v->settings[v->n_settings++] = (pg_param_override){"ocio.view", v->ocio_view};
+}
+
+/* Opens the config for its lists; the display and view start from the command line, else the
+ * config's defaults. A config that does not load is shown in the window (the display pass reports
+ * it too). */
+static void colour_init(viewer *v)
+{
+    pg_ocio_resolve_path(v->app.opt.ocio_config, v->ocio_path, sizeof v->ocio_path);
+    v->colour_chosen = v->app.opt.display || v->app.opt.ocio_view;
+    pg_error err = {0};
+    if (pg_ocio_open(v->ocio_path, &v->ocio, &err)) {
+        snprintf(v->ocio_error, sizeof v->ocio_error, "%s", err.msg);
+        v->ocio = NULL;
+    } else if (pg_ocio_resolve(v->ocio, v->app.opt.display, v->app.opt.ocio_view, v->display, sizeof v->display,
+                               v->ocio_view, sizeof v->ocio_view, &err)) {
+        snprintf(v->ocio_error, sizeof v->ocio_error, "%s", err.msg);
+    }
+    if (!v->display[0] && v->app.opt.display) pg_strlcpy(v->display, v->app.opt.display, sizeof v->display);
+    if (!v->ocio_view[0] && v->app.opt.ocio_view) pg_strlcpy(v->ocio_view, v->app.opt.ocio_view, sizeof v->ocio_view);
+    colour_settings(v);
+}
+
+/* Picks a display (its default view unless `view` is one of its views) or a view; reloads. */
+static pg_result colour_choose(viewer *v, const char *display, const char *view, pg_error *err)
+{
+    if (!v->ocio) return pg_fail(err, PG_ERR_INVALID_ARG, "%s", v->ocio_error[0] ? v->ocio_error : "no OCIO config");
+    const char *d = display ? display : v->display;
+    const char *w = view ? view : (display && !pg_ocio_has_view(v->ocio, display, v->ocio_view) ? NULL : v->ocio_view);
+    char nd[sizeof v->display], nv[sizeof v->ocio_view];
+    pg_result r = pg_ocio_resolve(v->ocio, d, w, nd, sizeof nd, nv, sizeof nv, err);
+    if (r) return r;
+    if (strcmp(nd, v->display) || strcmp(nv, v->ocio_view)) {
+        pg_strlcpy(v->display, nd, sizeof v->display);
+        pg_strlcpy(v->ocio_view, nv, sizeof v->ocio_view);
+        v->colour_chosen = true;
+        colour_settings(v);
+        v->reload = true;
+    }
+    return PG_OK;
+}
+
+static void colour_ui(viewer *v)
+{
+    if (!pg_ui_header("Colour (OpenColorIO)", true)) return;
+    if (!v->ocio) {
+        pg_ui_text_colored(0xff5050ff, "OCIO config:");
+        pg_ui_text_wrapped(v->ocio_error);
+        return;
+    }
+    pg_ui_text_wrapped(pg_ocio_config_path(v->ocio));
+    const char *items[32];
+    int n = 0, cur = 0;
+    for (uint32_t i = 0; i < pg_ocio_num_displays(v->ocio) && n < 32; i++) {
+        items[n] = pg_ocio_display(v->ocio, i);
+        if (items[n] && !strcmp(items[n], v->display)) cur = n;
+        if (items[n]) n++;
+    }
+    pg_error err = {0};
+    if (pg_ui_combo("display", &cur, items, n)) colour_choose(v, items[cur], NULL, &err);
+    n = 0;
+    cur = 0;
+    for (uint32_t i = 0; i < pg_ocio_num_views(v->ocio, v->display) && n < 32; i++) {
+        items[n] = pg_ocio_view(v->ocio, v->display, i);
+        if (items[n] && !strcmp(items[n], v->ocio_view)) cur = n;
+        if (items[n]) n++;
+    }
+    if (pg_ui_combo("view", &cur, items, n)) colour_choose(v, NULL, items[cur], &err);
+    pg_ui_tooltip("the OCIO view transform from scene-linear to the display (a new session is made)");
+    const pg_pipeline *pl = v->session ? v->session->pipeline : NULL;
+    const pg_param *ex = pl ? pg_pipeline_find_param(pl, "exposure") : NULL;
+    if (ex && ex->type == PG_PARAM_FLOAT) {
+        float stops = ex->number > 0 ? (float)log2(ex->number) : 0.0f;
+        if (pg_ui_slider_float("exposure EV", &stops, -10.0f, 10.0f, "%+.2f", false)) {
+            char val[PG_NAME_MAX];
+            snprintf(val, sizeof val, "%.9g", exp2((double)stops));
+            set_override(v, "exposure", val);
+            v->reload = true;
+        }
+        pg_ui_tooltip("the pipeline parameter 'exposure' (x 2^stops), a scene-linear multiply before the view");
+    }
 }
 
 /* ---------------------------------------------------------------- camera */
@@ -461,6 +571,7 @@ static void build_ui(viewer *v)
             }
             pg_ui_text("WASD/QE fly (shift: faster), right mouse: look");
         }
+        colour_ui(v);
         if (pl && pg_ui_header("Pipeline parameters", true)) {
             for (uint32_t i = 0; i < pl->n_params; i++) param_widget(v, &pl->params[i]);
             if (pg_ui_checkbox("difference to naive (heatmap)", &v->diff)) v->hist_n = 0;
@@ -574,6 +685,52 @@ static pg_result update_diff(viewer *v, pg_error *err)
 
 /* ---------------------------------------------------------------- one frame */
 
+static bool srgb_format(VkFormat f)
+{
+    return f == VK_FORMAT_R8G8B8A8_SRGB || f == VK_FORMAT_B8G8R8A8_SRGB || f == VK_FORMAT_A8B8G8R8_SRGB_PACK32;
+}
+
+/* The image to blit into the swapchain. The graph's 8-bit output holds display-encoded bytes
+ * whether it is rgba8 (the OCIO display pass encoded them) or rgba8_srgb (encoded on write); a
+ * blit between a UNORM and an sRGB format would decode or encode them once more, so when the
+ * output's kind differs from the swapchain's the bytes are first copied (vkCmdCopyImage: no
+ * conversion) into an image of the swapchain's kind. */
+static pg_result present_source(viewer *v, VkCommandBuffer cmd, const pg_phys_resource *out, VkImage *src,
+                                pg_error *err)
+{
+    *src = out->image;
+    VkFormat other;
+    if (out->format == VK_FORMAT_R8G8B8A8_UNORM) other = VK_FORMAT_R8G8B8A8_SRGB;
+    else if (out->format == VK_FORMAT_R8G8B8A8_SRGB) other = VK_FORMAT_R8G8B8A8_UNORM;
+    else return PG_OK; /* float outputs: the blit converts values, which is right for them */
+    if (srgb_format(out->format) == srgb_format(v->win.format)) return PG_OK;
+    pg_image *pc = &v->present_copy;
+    if (!pc->image || pc->format != other || pc->width != out->width || pc->height != out->height) {
+        vkDeviceWaitIdle(v->app.gpu->device);
+        pg_image_destroy(v->app.gpu, pc);
+        pg_result r = pg_image_create(v->app.gpu, other, out->width, out->height, 1,
+                                      VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                          VK_IMAGE_USAGE_SAMPLED_BIT, /* pg_image_create makes a view */
+                                      "view.present_copy", pc, err);
+        if (r) return r;
+    }
+    VkImageMemoryBarrier2 b = pg_image_barrier(pc->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT, 0,
+                                               VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                               VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    pg_cmd_barriers(cmd, 1, &b, 0, NULL);
+    VkImageCopy c = {.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                     .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                     .extent = {out->width, out->height, 1}};
+    vkCmdCopyImage(cmd, out->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, pc->image,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &c);
+    b = pg_image_barrier(pc->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                         VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    pg_cmd_barriers(cmd, 1, &b, 0, NULL);
+    *src = pc->image;
+    return PG_OK;
+}
+
 static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
 {
     pg_gpu *gpu = v->app.gpu;
@@ -645,7 +802,7 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
         sh = v->diff_image.height;
     } else {
         const pg_phys_resource *out = pg_runtime_output_image(v->session->runtime, 0);
-        src = out->image;
+        if ((r = present_source(v, cmd, out, &src, err))) return r;
         sw = out->width;
         sh = out->height;
     }
@@ -806,6 +963,10 @@ static pg_result run_action(viewer *v, const view_action *a, pg_error *err)
         for (int i = 0; i < v->n_pipelines; i++)
             if (!strcmp(v->names[i], a->arg)) v->requested = i;
         v->reload = true;
+    } else if (!strcmp(a->what, "display") || !strcmp(a->what, "ocioview")) {
+        pg_result r = !strcmp(a->what, "display") ? colour_choose(v, a->arg, NULL, err)
+                                                  : colour_choose(v, NULL, a->arg, err);
+        if (r) return pg_error_prefix(err, "--at %u:%s=%s", a->frame, a->what, a->arg);
     } else if (!strcmp(a->what, "diff")) {
         v->diff = !strcmp(a->arg, "on");
     } else if (!strcmp(a->what, "lights")) {
@@ -814,7 +975,7 @@ static pg_result run_action(viewer *v, const view_action *a, pg_error *err)
         v->want_shot = true;
         pg_strlcpy(v->shot_file, a->arg, sizeof v->shot_file);
     } else {
-        return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s: unknown action (resize, iconify, restore, copy, set, pipeline, diff, lights, screenshot)",
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s: unknown action (resize, iconify, restore, copy, set, pipeline, display, ocioview, diff, lights, screenshot)",
                        a->frame, a->what);
     }
     return PG_OK;
@@ -826,7 +987,8 @@ static const char *const view_help =
     "tuned and edited live: every JSON file in pipelines/ (and --pipelines DIR) is listed; editing a\n"
     "pipeline or shader on disk reloads it (a broken file shows its error and the last good graph\n"
     "keeps running). Controls: light count, radius, intensity, seed, time, every pipeline parameter\n"
-    "(debug views included), difference to naive, camera fly (WASD/QE, right mouse to look).\n"
+    "(debug views included), OpenColorIO display, view and exposure, difference to naive, camera\n"
+    "fly (WASD/QE, right mouse to look).\n"
     "Scripted mode for tests and demos: --frames N [--screenshot FILE.png] [--cycle-pipelines].\n\n"
     "options:\n";
 
@@ -849,9 +1011,12 @@ int pg_cmd_view(int argc, char **argv)
                    "  --screenshot FILE    write the window (scene + UI) to a PNG at the last frame\n"
                    "  --cycle-pipelines    switch to the next pipeline every --cycle-every frames\n"
                    "  --cycle-every K      frames between switches (default 20)\n"
+                   "  --random-params      with --cycle-pipelines: random shading, HDR format, cluster\n"
+                   "                       capacity and depth slices, G-buffer packing, light count\n"
                    "  --at FRAME:ACTION    scripted action at a frame (repeatable): resize=WxH, iconify,\n"
                    "                       restore, copy=SRC:DST (an edit on disk), set=KEY=VALUE,\n"
-                   "                       pipeline=FILE.json, diff=on|off, lights=N, screenshot=FILE.png\n"
+                   "                       pipeline=FILE.json, display=NAME, ocioview=NAME (OCIO),\n"
+                   "                       diff=on|off, lights=N, screenshot=FILE.png\n"
                    "  (--frames N          exit after N frames; 0 or absent: run until closed)\n",
                    view_help, pg_cli_common_help);
             free(v);
@@ -879,6 +1044,10 @@ int pg_cmd_view(int argc, char **argv)
             const char *rest = spec + used_chars;
             pg_strlcpy(a->arg, *rest == '=' ? rest + 1 : "", sizeof a->arg);
             v->n_actions++;
+            continue;
+        }
+        if (!strcmp(argv[i], "--random-params")) {
+            v->random_params = true;
             continue;
         }
         if (!strcmp(argv[i], "--cycle-pipelines")) {
@@ -973,6 +1142,7 @@ int pg_cmd_view(int argc, char **argv)
                     v->app.scene->bounds_max[2] - v->app.scene->bounds_min[2]};
     v->move_speed = fmaxf(0.1f, 0.15f * sqrtf(ext[0] * ext[0] + ext[1] * ext[1] + ext[2] * ext[2]));
     for (uint32_t i = 0; i < opt.n_sets; i++) set_override(v, opt.sets[i].key, opt.sets[i].value);
+    colour_init(v);
     scan_pipelines(v, v->app.pipeline_path);
     v->requested = v->current;
     reload(v);
@@ -1023,6 +1193,18 @@ int pg_cmd_view(int argc, char **argv)
         if (v->cycle && frame > 0 && frame % v->cycle_every == 0 && v->n_pipelines > 1) {
             v->requested = (v->current + 1) % v->n_pipelines;
             v->reload = true;
+            if (v->random_params) { /* long-run soak: random values for the common parameters */
+                static const char *const sh[] = {"lambert", "blinn_phong"}, *const hf[] = {"rgba16f", "rgba32f"},
+                                         *const ml[] = {"32", "128", "512"}, *const gz[] = {"8", "24", "32"},
+                                         *const gb[] = {"float", "oct16", "packed"};
+                uint32_t r = frame * 2654435761u;
+                set_override(v, "shading", sh[(r >> 3) % 2]);
+                set_override(v, "hdr_format", hf[(r >> 7) % 2]);
+                set_override(v, "max_lights", ml[(r >> 11) % 3]);
+                set_override(v, "grid_z", gz[(r >> 15) % 3]);
+                set_override(v, "gbuffer", gb[(r >> 19) % 3]);
+                v->light_count = (int)((r >> 23) % 500);
+            }
             printf("view: frame %u: switching to %s\n", frame, v->names[v->requested]);
         }
         if (v->reload) reload(v);
@@ -1033,10 +1215,18 @@ int pg_cmd_view(int argc, char **argv)
         if (draw_frame(v, capture, &err)) goto fail;
         v->want_shot = false;
         frame++;
+        if (frame == 100) {
+            v->rss100 = pg_process_rss();
+            v->mem100 = v->app.gpu->live_memory_objects;
+        }
         if (v->frames_limit && frame >= v->frames_limit) break;
     }
     printf("view: %u frames, %u pipeline loads, %u swapchain builds, last GPU %.3f ms\n", frame, v->reloads,
            v->win.recreations, v->stats.gpu_total_ms);
+    if (frame > 100)
+        printf("view: RSS frame 100 %.1f MiB, end %.1f MiB; VkDeviceMemory objects frame 100 %lld, end %lld\n",
+               v->rss100 / 1048576.0, pg_process_rss() / 1048576.0, (long long)v->mem100,
+               (long long)v->app.gpu->live_memory_objects);
     rc = 0;
     if (v->app.gpu->validation && v->app.gpu->validation_messages) {
         fprintf(stderr, "passgraph view: %u validation message(s)\n", v->app.gpu->validation_messages);
@@ -1054,9 +1244,11 @@ done:
     pg_session_destroy(v->naive);
     if (v->app.gpu) {
         pg_image_destroy(v->app.gpu, &v->diff_image);
+        pg_image_destroy(v->app.gpu, &v->present_copy);
         pg_buffer_destroy(v->app.gpu, &v->diff_staging);
         pg_buffer_destroy(v->app.gpu, &v->shot);
     }
+    pg_ocio_close(v->ocio);
     free(v->diff_rgba);
     free(v->hdr_a);
     free(v->hdr_b);

@@ -12,6 +12,7 @@ PKGS=(
   libtinygltf-dev nlohmann-json3-dev libcjson-dev libstb-dev
   valgrind
   libglfw3-dev libimgui-dev xvfb xauth graphviz
+  libopencolorio-dev libopenexr-dev
 )
 
 missing=()

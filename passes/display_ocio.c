@@ -1,0 +1,333 @@
+/* display_ocio.c - scene-linear HDR -> display image through OpenColorIO (the default display
+ * pass; display_tonemap is the simple alternative).
+ *
+ * create() opens the OCIO config, builds the processor scene_linear -> (display, view), lets OCIO
+ * generate its GLSL (core/ocio.h rewrites it for Vulkan: LUT samplers at set 1, bindings 1..N),
+ * compiles shaders/display_ocio.frag with that code included, and uploads OCIO's LUT textures
+ * once (staging buffer, one-shot command buffer with its own barriers, waited for). record()
+ * draws one full-screen triangle: exposure (a multiply in scene-linear, push constant), then the
+ * OCIO function. The result is display-encoded, so the target is rgba8 (UNORM) or a float
+ * format; rgba8_srgb is refused (it would encode a second time).
+ *
+ * Slots: reads [hdr] (sampled, fragment); writes [ldr] (colour attachment).
+ * Options: exposure (> 0, default 1), display, view (strings; "" = the config's defaults).
+ * Application settings (pg_ctx_setting) win over the options: "ocio.config" (file; absent: $OCIO,
+ * else assets/ocio/config.ocio), "ocio.display", "ocio.view".
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "exr.h"
+#include "graph_execute.h"
+#include "ocio.h"
+#include "pass_api.h"
+#include "shader.h"
+#include "vk_pipeline.h"
+
+#define DO_MAX_LUTS 15 /* + the hdr binding = pg_pass_set_create's 16 */
+#define DO_NAME_MAX 128
+
+typedef struct do_lut {
+    VkImage image;
+    VkDeviceMemory memory;
+    VkImageView view;
+    pg_phys_resource res; /* only .view is read (pg_pass_set_create) */
+} do_lut;
+
+typedef struct display_ocio {
+    pg_pass_set set;
+    VkSampler nearest, linear;
+    VkPipelineLayout layout;
+    VkPipeline pipeline;
+    uint32_t n_luts;
+    do_lut luts[DO_MAX_LUTS];
+    float exposure;
+} display_ocio;
+
+static const char *const k_known[] = {"exposure", "display", "view", NULL};
+
+static pg_result do_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
+{
+    pg_result r;
+    double exposure;
+    char name[DO_NAME_MAX];
+    if ((r = pg_opt_check_known(in->desc, k_known, err))) return r;
+    if ((r = pg_opt_float(in->desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err))) return r;
+    if ((r = pg_opt_string(in->desc, "display", "", name, sizeof name, err))) return r;
+    if ((r = pg_opt_string(in->desc, "view", "", name, sizeof name, err))) return r;
+    if (in->desc->n_writes >= 1 && in->pipeline) {
+        const pg_resource_desc *ldr = pg_pipeline_find_resource(in->pipeline, in->desc->writes[0]);
+        if (ldr && ldr->kind == PG_RES_IMAGE && pg_format_get(ldr->format)->srgb)
+            return pg_fail(err, PG_ERR_FORMAT,
+                           "%s: %s.writes[0]: resource '%s' is %s, but display_ocio writes display-encoded values "
+                           "(the OCIO view encodes for the display): use rgba8 (UNORM) or a float format",
+                           in->desc->file, in->desc->json_path, ldr->name, pg_format_get(ldr->format)->name);
+    }
+    pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    return PG_OK;
+}
+
+static bool linear_filter_ok(pg_gpu *gpu, VkFormat f)
+{
+    VkFormatProperties fp;
+    vkGetPhysicalDeviceFormatProperties(gpu->phys, f, &fp);
+    return (fp.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
+}
+
+/* One LUT image (1D/2D/3D, one mip level) with its memory and view. Vulkan calls are checked
+ * with PG_VK_TRY (fault injection included); do_destroy frees whatever was made. */
+static pg_result create_lut_image(pg_gpu *gpu, do_lut *l, const pg_ocio_texture *t, VkFormat format,
+                                  const char *pass_name, pg_error *err)
+{
+    VkImageType type = t->dim == PG_OCIO_TEX_1D ? VK_IMAGE_TYPE_1D
+                       : t->dim == PG_OCIO_TEX_2D ? VK_IMAGE_TYPE_2D : VK_IMAGE_TYPE_3D;
+    VkImageViewType vtype = t->dim == PG_OCIO_TEX_1D ? VK_IMAGE_VIEW_TYPE_1D
+                            : t->dim == PG_OCIO_TEX_2D ? VK_IMAGE_VIEW_TYPE_2D : VK_IMAGE_VIEW_TYPE_3D;
+    uint32_t limit = t->dim == PG_OCIO_TEX_1D ? gpu->props.limits.maxImageDimension1D
+                     : t->dim == PG_OCIO_TEX_2D ? gpu->props.limits.maxImageDimension2D
+                                                : gpu->props.limits.maxImageDimension3D;
+    if (t->width > limit || t->height > limit || t->depth > limit)
+        return pg_fail(err, PG_ERR_LIMIT, "OCIO LUT '%s' (%ux%ux%u) exceeds the device limit %u", t->sampler, t->width,
+                       t->height, t->depth, limit);
+    VkImageCreateInfo ici = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+        .imageType = type,
+        .format = format,
+        .extent = {t->width, t->height, t->depth},
+        .mipLevels = 1,
+        .arrayLayers = 1,
+        .samples = VK_SAMPLE_COUNT_1_BIT,
+        .tiling = VK_IMAGE_TILING_OPTIMAL,
+        .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+        .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+    };
+    PG_VK_TRY(err, vkCreateImage(gpu->device, &ici, NULL, &l->image));
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_IMAGE, (uint64_t)l->image, "%s.%s", pass_name, t->sampler);
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(gpu->device, l->image, &req);
+    uint32_t mt = pg_gpu_memory_type(gpu, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (mt == UINT32_MAX) mt = pg_gpu_memory_type(gpu, req.memoryTypeBits, 0);
+    if (mt == UINT32_MAX) return pg_fail(err, PG_ERR_VULKAN, "OCIO LUT '%s': no memory type fits", t->sampler);
+    VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
+                                .memoryTypeIndex = mt};
+    PG_VK_TRY(err, pg_gpu_alloc_memory(gpu, &mai, &l->memory));
+    PG_VK_TRY(err, vkBindImageMemory(gpu->device, l->image, l->memory, 0));
+    VkImageViewCreateInfo vci = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+                                 .image = l->image,
+                                 .viewType = vtype,
+                                 .format = format,
+                                 .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    PG_VK_TRY(err, vkCreateImageView(gpu->device, &vci, NULL, &l->view));
+    l->res.kind = PG_RES_IMAGE;
+    l->res.image = l->image;
+    l->res.view = l->view;
+    l->res.format = format;
+    l->res.width = t->width;
+    l->res.height = t->height;
+    return PG_OK;
+}
+
+/* OCIO's R or RGB floats -> R / RGBA texels, 32- or 16-bit. */
+static void fill_texels(uint8_t *dst, const pg_ocio_texture *t, VkFormat format)
+{
+    size_t n = (size_t)t->width * t->height * t->depth;
+    bool one = t->channels == 1;
+    bool f32 = format == VK_FORMAT_R32_SFLOAT || format == VK_FORMAT_R32G32B32A32_SFLOAT;
+    uint32_t nc = one ? 1 : 4;
+    for (size_t k = 0; k < n; k++) {
+        float v[4] = {t->values[k * t->channels], 0, 0, 1};
+        if (!one) {
+            v[1] = t->values[k * 3 + 1];
+            v[2] = t->values[k * 3 + 2];
+        }
+        for (uint32_t c = 0; c < nc; c++) {
+            if (f32) {
+                memcpy(dst + (k * nc + c) * 4, &v[c], 4);
+            } else {
+                uint16_t h = pg_float_to_half(v[c]);
+                memcpy(dst + (k * nc + c) * 2, &h, 2);
+            }
+        }
+    }
+}
+
+/* Creates the LUT images, uploads every texture's values through one staging buffer and a
+ * one-shot command buffer (waited for), and leaves them SHADER_READ_ONLY for the fragment shader. */
+static pg_result upload_luts(display_ocio *p, pg_gpu *gpu, const pg_ocio_shader *sh, const char *pass_name,
+                             pg_error *err)
+{
+    if (!sh->n_textures) return PG_OK;
+    if (sh->n_textures > DO_MAX_LUTS)
+        return pg_fail(err, PG_ERR_LIMIT, "the OCIO processor needs %u LUT textures (at most %d)", sh->n_textures,
+                       DO_MAX_LUTS);
+    /* float32 texels when the device filters them (or nothing is filtered), else half floats */
+    bool f32_rgba = linear_filter_ok(gpu, VK_FORMAT_R32G32B32A32_SFLOAT);
+    bool f32_r = linear_filter_ok(gpu, VK_FORMAT_R32_SFLOAT);
+    VkFormat formats[DO_MAX_LUTS];
+    VkDeviceSize offsets[DO_MAX_LUTS], total = 0;
+    for (uint32_t i = 0; i < sh->n_textures; i++) {
+        const pg_ocio_texture *t = &sh->textures[i];
+        bool one = t->channels == 1;
+        bool f32 = (one ? f32_r : f32_rgba) || !t->linear;
+        formats[i] = one ? (f32 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R16_SFLOAT)
+                         : (f32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT);
+        VkDeviceSize texel = (one ? 1 : 4) * (f32 ? 4 : 2);
+        offsets[i] = total;
+        total += ((VkDeviceSize)t->width * t->height * t->depth * texel + 15) & ~(VkDeviceSize)15;
+    }
+    pg_buffer staging = {0};
+    pg_result r = pg_buffer_create(gpu, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, "display_ocio.staging",
+                                   &staging, err);
+    for (uint32_t i = 0; i < sh->n_textures && !r; i++) {
+        p->n_luts = i + 1;
+        r = create_lut_image(gpu, &p->luts[i], &sh->textures[i], formats[i], pass_name, err);
+        if (!r) fill_texels((uint8_t *)staging.mapped + offsets[i], &sh->textures[i], formats[i]);
+    }
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    if (!r) r = pg_gpu_begin_once(gpu, &cmd, err);
+    if (!r) {
+        VkImageMemoryBarrier2 b[DO_MAX_LUTS];
+        for (uint32_t i = 0; i < sh->n_textures; i++)
+            b[i] = pg_image_barrier(p->luts[i].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0,
+                                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                    VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        pg_cmd_barriers(cmd, sh->n_textures, b, 0, NULL);
+        for (uint32_t i = 0; i < sh->n_textures; i++) {
+            const pg_ocio_texture *t = &sh->textures[i];
+            VkBufferImageCopy c = {.bufferOffset = offsets[i],
+                                   .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                   .imageExtent = {t->width, t->height, t->depth}};
+            vkCmdCopyBufferToImage(cmd, staging.buffer, p->luts[i].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &c);
+        }
+        for (uint32_t i = 0; i < sh->n_textures; i++)
+            b[i] = pg_image_barrier(p->luts[i].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                    VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        pg_cmd_barriers(cmd, sh->n_textures, b, 0, NULL);
+        r = pg_gpu_end_once(gpu, cmd, err);
+    }
+    pg_buffer_destroy(gpu, &staging);
+    return r;
+}
+
+static pg_result create_samplers(display_ocio *p, pg_gpu *gpu, pg_error *err)
+{
+    VkSamplerCreateInfo sci = {
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = VK_FILTER_NEAREST,
+        .minFilter = VK_FILTER_NEAREST,
+        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+    };
+    PG_VK_TRY(err, vkCreateSampler(gpu->device, &sci, NULL, &p->nearest));
+    sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
+    PG_VK_TRY(err, vkCreateSampler(gpu->device, &sci, NULL, &p->linear));
+    return PG_OK;
+}
+
+static pg_result do_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
+{
+    display_ocio *p = self;
+    pg_gpu *gpu = ctx->gpu;
+    pg_result r;
+    double exposure = 1.0;
+    char opt_display[DO_NAME_MAX], opt_view[DO_NAME_MAX];
+    if ((r = pg_opt_float(ctx->desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err))) return r;
+    if ((r = pg_opt_string(ctx->desc, "display", "", opt_display, sizeof opt_display, err))) return r;
+    if ((r = pg_opt_string(ctx->desc, "view", "", opt_view, sizeof opt_view, err))) return r;
+    p->exposure = (float)exposure;
+    const char *display = pg_ctx_setting(ctx, "ocio.display");
+    const char *view = pg_ctx_setting(ctx, "ocio.view");
+    if (!display || !display[0]) display = opt_display;
+    if (!view || !view[0]) view = opt_view;
+    char path[PG_PATH_MAX];
+    pg_ocio_resolve_path(pg_ctx_setting(ctx, "ocio.config"), path, sizeof path);
+
+    pg_ocio_config *cfg = NULL;
+    pg_ocio_shader *sh = NULL;
+    VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE;
+    if ((r = pg_ocio_open(path, &cfg, err))) goto out;
+    pg_ocio_shader_desc sd = {.display = display, .view = view, .function_name = "ocio_display",
+                              .set = 1, .first_binding = 1};
+    if ((r = pg_ocio_shader_create(cfg, &sd, &sh, err))) goto out;
+    if ((r = upload_luts(p, gpu, sh, ctx->pass->name, err))) goto out;
+
+    if ((r = create_samplers(p, gpu, err))) goto out;
+    pg_set_binding b[1 + DO_MAX_LUTS];
+    b[0] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[0], p->nearest, 0};
+    for (uint32_t i = 0; i < p->n_luts; i++)
+        b[1 + i] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &p->luts[i].res,
+                                    sh->textures[i].linear ? p->linear : p->nearest, 0};
+    if ((r = pg_pass_set_create(gpu, 1 + p->n_luts, b, ctx->pass->name, &p->set, err))) goto out;
+    VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
+    if ((r = pg_pipeline_layout_create(gpu, 2, sets, sizeof(float), &p->layout, err))) goto out;
+    pg_shader_source gen = {"ocio_display.glsl", sh->glsl};
+    if ((r = pg_shader_module(gpu, "fullscreen.vert", VK_SHADER_STAGE_VERTEX_BIT, NULL, 0, &vs, err))) goto out;
+    if ((r = pg_shader_module_ex(gpu, "display_ocio.frag", VK_SHADER_STAGE_FRAGMENT_BIT, NULL, 0, &gen, 1, &fs,
+                                 err))) {
+        pg_error_prefix(err, "%s: display '%s', view '%s'", path, sh->display, sh->view);
+        goto out;
+    }
+    pg_gfx_pipeline_desc d = {
+        .layout = p->layout,
+        .vs = vs,
+        .fs = fs,
+        .n_color = 1,
+        .color_formats = {ctx->slots[1]->format},
+    };
+    r = pg_gfx_pipeline_create(gpu, &d, ctx->pass->name, &p->pipeline, err);
+out:
+    if (vs) vkDestroyShaderModule(gpu->device, vs, NULL);
+    if (fs) vkDestroyShaderModule(gpu->device, fs, NULL);
+    pg_ocio_shader_free(sh);
+    pg_ocio_close(cfg);
+    return r;
+}
+
+static void do_record(void *self, const pg_pass_record_ctx *ctx)
+{
+    display_ocio *p = self;
+    const pg_phys_resource *ldr = ctx->slots[1];
+    VkClearColorValue clear = {{0, 0, 0, 1}};
+    pg_cmd_begin_rendering(ctx->cmd, ldr->width, ldr->height, 1, &ldr->view, &clear, VK_NULL_HANDLE, false, 0);
+    VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
+    vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
+    vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->layout, 0, 2, sets, 0, NULL);
+    vkCmdPushConstants(ctx->cmd, p->layout,
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       sizeof(float), &p->exposure);
+    vkCmdDraw(ctx->cmd, 3, 1, 0, 0);
+    vkCmdEndRendering(ctx->cmd);
+}
+
+static void do_destroy(void *self, pg_gpu *gpu)
+{
+    display_ocio *p = self;
+    if (p->pipeline) vkDestroyPipeline(gpu->device, p->pipeline, NULL);
+    if (p->layout) vkDestroyPipelineLayout(gpu->device, p->layout, NULL);
+    pg_pass_set_destroy(gpu, &p->set);
+    if (p->nearest) vkDestroySampler(gpu->device, p->nearest, NULL);
+    if (p->linear) vkDestroySampler(gpu->device, p->linear, NULL);
+    for (uint32_t i = 0; i < p->n_luts; i++) {
+        do_lut *l = &p->luts[i];
+        if (l->view) vkDestroyImageView(gpu->device, l->view, NULL);
+        if (l->image) vkDestroyImage(gpu->device, l->image, NULL);
+        pg_gpu_free_memory(gpu, l->memory);
+    }
+    memset(p, 0, sizeof *p);
+}
+
+const pg_pass_type pg_pass_display_ocio = {
+    .name = "display_ocio",
+    .summary = "graphics: HDR -> display image through an OpenColorIO display/view transform (exposure first)",
+    .read_slots = "hdr",
+    .write_slots = "ldr",
+    .instance_size = sizeof(display_ocio),
+    .declare = do_declare,
+    .create = do_create,
+    .record = do_record,
+    .destroy = do_destroy,
+};

@@ -1,0 +1,157 @@
+/* test_long_run.c - a long session as the viewer runs it: N frames (PG_LONG_RUN_FRAMES, default
+ * 400; docs/robustness.md records a 10,000-frame run), a new pipeline every 50 frames with random
+ * parameter changes (G-buffer packing, shading, HDR format, cluster grid and capacity, light
+ * count, aliasing on/off), validation + synchronization validation on. Asserts: no validation
+ * message, every frame renders, resident memory and live VkDeviceMemory objects flat (the same
+ * configuration at frame 100 and at the end uses the same number of memory objects, and RSS grows
+ * by less than RSS_SLACK). */
+#include <malloc.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pass_list.h"
+#include "render_session.h"
+#include "shader.h"
+#include "test_util.h"
+
+#define RSS_SLACK (12u << 20)
+
+static uint32_t rng_state = 12345u;
+static uint32_t rnd(uint32_t n)
+{
+    rng_state = rng_state * 1664525u + 1013904223u;
+    return (rng_state >> 8) % n;
+}
+
+typedef struct config {
+    int pipeline;
+    pg_param_override sets[6];
+    uint32_t n_sets;
+    uint32_t lights;
+    bool no_alias;
+} config;
+
+static const char *const k_pipes[] = {"pipelines/naive.json", "pipelines/forward_plus.json", "pipelines/deferred.json",
+                                      "pipelines/deferred_oct16.json", "pipelines/deferred_packed.json"};
+
+static config random_config(void)
+{
+    static const char *const shading[] = {"lambert", "blinn_phong"};
+    static const char *const hdr[] = {"rgba16f", "rgba32f"};
+    static const char *const gbuf[] = {"float", "oct16", "packed"};
+    static const char *const maxl[] = {"32", "128", "512"};
+    static const char *const gz[] = {"8", "24", "32"};
+    config c = {0};
+    c.pipeline = (int)rnd(5);
+    c.sets[c.n_sets++] = (pg_param_override){"shading", shading[rnd(2)]};
+    c.sets[c.n_sets++] = (pg_param_override){"hdr_format", hdr[rnd(2)]};
+    if (c.pipeline >= 1) {
+        c.sets[c.n_sets++] = (pg_param_override){"max_lights", maxl[rnd(3)]};
+        c.sets[c.n_sets++] = (pg_param_override){"grid_z", gz[rnd(3)]};
+    }
+    if (c.pipeline >= 2) c.sets[c.n_sets++] = (pg_param_override){"gbuffer", gbuf[rnd(3)]};
+    static const uint32_t lights[] = {0, 1, 16, 200, 1000};
+    c.lights = lights[rnd(5)];
+    c.no_alias = rnd(4) == 0;
+    return c;
+}
+
+static pg_session *open_config(pg_gpu *gpu, const pg_pass_registry *reg, const pg_scene_gpu *sg, const config *c)
+{
+    char path[PG_PATH_MAX];
+    pg_data_path(path, sizeof path, k_pipes[c->pipeline]);
+    pg_session_desc sd = {.pipeline_path = path, .registry = reg, .overrides = c->sets, .n_overrides = c->n_sets,
+                          .disable_aliasing = c->no_alias};
+    pg_session *s = NULL;
+    pg_error err = {0};
+    if (pg_session_create(gpu, sg, &sd, &s, &err)) {
+        fprintf(stderr, "%s: %s\n", k_pipes[c->pipeline], err.msg);
+        return NULL;
+    }
+    return s;
+}
+
+int main(void)
+{
+    const char *env = getenv("PG_LONG_RUN_FRAMES");
+    uint32_t frames = env ? (uint32_t)strtoul(env, NULL, 10) : 400;
+    if (frames < 150) frames = 150;
+    pg_pass_registry reg;
+    pg_register_builtin_passes(&reg);
+    pg_gpu_desc gd = {.validation = getenv("PG_LONG_RUN_NO_VALIDATION") == NULL, .device_index = -1, .quiet = true};
+    pg_error err = {0};
+    pg_gpu *gpu = NULL;
+    pg_scene *scene = NULL;
+    pg_scene_gpu *sg = NULL;
+    if (pg_gpu_create(&gd, &gpu, &err) || pg_scene_create_default(&scene, &err) ||
+        pg_scene_gpu_create(gpu, scene, &sg, &err)) {
+        fprintf(stderr, "test_long_run: %s\n", err.msg);
+        return 1;
+    }
+    config first = {0}, cur = {0};
+    pg_session *s = NULL;
+    uint64_t rss100 = 0, heap100 = 0, rss_mid = 0;
+    int64_t mem100 = 0;
+    uint32_t failures = 0, swaps = 0;
+    for (uint32_t f = 0; f < frames; f++) {
+        bool last_phase = f + 50 >= frames && f % 50 == 0; /* back to the frame-100 config at the end */
+        if (f % 50 == 0) {
+            pg_session_destroy(s);
+            cur = last_phase ? first : random_config();
+            if (f == 100) first = cur;
+            s = open_config(gpu, &reg, sg, &cur);
+            swaps++;
+            if (!s) {
+                failures++;
+                break;
+            }
+        }
+        pg_frame_info fi = {
+            .camera = pg_camera_default_for_scene(scene, 16.0f / 9),
+            .lights = pg_light_setup_default(scene, cur.lights, 5),
+            .time = f / 30.0f,
+            .width = 64,
+            .height = 36,
+        };
+        pg_frame_stats st;
+        if (pg_session_render(s, &fi, (f % 25) == 0, &st, &err)) {
+            fprintf(stderr, "frame %u: %s\n", f, err.msg);
+            failures++;
+            break;
+        }
+        if (f == frames / 2) rss_mid = pg_process_rss();
+        if (f == 100) {
+            rss100 = pg_process_rss();
+            heap100 = mallinfo2().uordblks;
+            mem100 = gpu->live_memory_objects;
+        }
+    }
+    uint64_t rss_end = pg_process_rss();
+    uint64_t heap_end = mallinfo2().uordblks;
+    int64_t mem_end = gpu->live_memory_objects;
+    printf("long run: %u frames, %u pipeline swaps, RSS frame 100 %.1f MiB, end %.1f MiB (%+.2f MiB), "
+           "live VkDeviceMemory frame 100 %lld, end %lld, validation messages %u\n",
+           frames, swaps, rss100 / 1048576.0, rss_end / 1048576.0, ((double)rss_end - (double)rss100) / 1048576.0,
+           (long long)mem100, (long long)mem_end, gpu->validation_messages);
+    printf("long run: malloc heap in use frame 100 %.1f MiB, end %.1f MiB (%+.2f MiB)\n", heap100 / 1048576.0,
+           heap_end / 1048576.0, ((double)heap_end - (double)heap100) / 1048576.0);
+    CHECK(failures == 0);
+    CHECK_MSG(mem_end == mem100, "VkDeviceMemory objects %lld -> %lld", (long long)mem100, (long long)mem_end);
+    /* RSS rises while the driver (llvmpipe's JIT code, caches) meets new shader variants, then
+     * plateaus: the second half of the run must stay flat, and the malloc heap must not grow */
+    printf("long run: RSS at frame %u %.1f MiB, second half %+.2f MiB\n", frames / 2, rss_mid / 1048576.0,
+           ((double)rss_end - (double)rss_mid) / 1048576.0);
+    CHECK_MSG(rss_end < rss_mid + RSS_SLACK, "RSS grew %.1f MiB in the second half",
+              ((double)rss_end - (double)rss_mid) / 1048576.0);
+    CHECK_MSG(heap_end < heap100 + RSS_SLACK, "malloc heap grew %.1f MiB", ((double)heap_end - (double)heap100) / 1048576.0);
+    CHECK_MSG(gpu->validation_messages == 0, "%u validation messages", gpu->validation_messages);
+    pg_session_destroy(s);
+    int64_t scene_objects = gpu->live_memory_objects;
+    pg_scene_gpu_destroy(gpu, sg);
+    CHECK_MSG(gpu->live_memory_objects == 0, "%lld VkDeviceMemory objects leaked (scene held %lld)",
+              (long long)gpu->live_memory_objects, (long long)scene_objects);
+    pg_scene_free(scene);
+    pg_gpu_destroy(gpu);
+    return pg_test_finish("test_long_run");
+}
