@@ -9,8 +9,9 @@
  *      buffers present with exactly byteLength bytes, bufferViews inside their buffers, image
  *      files present. tinygltf 2.7 does not check all of these (and reads an image bufferView's
  *      bytes without a range check), so they must hold before tinygltf sees the file;
- *   3. tinygltf builds the Model; images go through our stb callback (RGBA8; sides > 16384 are
- *      refused before decoding);
+ *   3. tinygltf builds the Model; images go through our stb callback (RGBA8; PNG and JPEG only;
+ *      sides > 16384, and JPEGs with more pixels than their size can code, are refused before
+ *      decoding);
  *   4. walk the node hierarchy of `scene` (else scenes[0], else every root node) with cycle
  *      detection, validate every accessor a primitive uses (type, range within its bufferView,
  *      byteStride, index range, finite values), bake transforms, build materials and textures.
@@ -20,7 +21,8 @@
  * lists); POINTS/LINES/LINE_LOOP/LINE_STRIP are skipped with one warning line on stderr; any other
  * mode value is an error. A scene left with no triangles is an error.
  * TEXCOORD_0 is used for every texture (a texCoord other than 0 is read from TEXCOORD_0).
- * Non-finite POSITION / NORMAL / TEXCOORD_0 / TANGENT values are errors.
+ * Non-finite POSITION / NORMAL / TEXCOORD_0 / TANGENT values are errors, and so are positions that
+ * leave the float range (or normals/tangents that overflow) under their node transform.
  *
  * Material mapping (glTF metallic-roughness -> passgraph Blinn-Phong):
  *   specular  = 0.04 + 0.5 * (1 - roughness) * (1 - metallic)      (0.04 .. 0.54)
@@ -41,6 +43,7 @@
 
 #include <sys/stat.h>
 
+#include <cfloat>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -58,6 +61,10 @@ namespace {
 using json = nlohmann::json;
 
 constexpr int kMaxImageSide = 16384;
+/* No real JPEG codes more than ~512 pixels per byte (at least one bit per 8x8 block, even
+ * progressive); stb_image decodes a truncated JPEG stream as if it went on with zero bits, so a
+ * 140-byte header claiming 16384x16384 would otherwise become a 1 GiB texture. */
+constexpr uint64_t kMaxJpegPixelsPerByte = 1024;
 constexpr int kMaxNodeDepth = 1024;
 constexpr size_t kMaxNodeVisits = size_t(1) << 20;
 
@@ -590,6 +597,17 @@ bool load_image_cb(tinygltf::Image *image, const int idx, std::string *, std::st
             c->image_err = where + ": no image data";
             return false;
         }
+        /* glTF 2.0 images are PNG or JPEG; stb_image's other decoders (TGA, BMP, PSD, GIF, HDR,
+         * PIC, PNM) are not offered untrusted bytes (TGA RLE, like truncated JPEG, invents
+         * pixels past the end of the data) */
+        static const unsigned char png_magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+        const bool png = size >= 8 && memcmp(bytes, png_magic, 8) == 0;
+        const bool jpeg = size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+        if (!png && !jpeg) {
+            c->image_err = where + ": cannot decode (not a PNG or JPEG image; glTF 2.0 allows "
+                                   "only image/png and image/jpeg)";
+            return false;
+        }
         long long pw = 0, ph = 0;
         if (peek_image_size(bytes, size_t(size), &pw, &ph) &&
             (pw < 1 || ph < 1 || pw > kMaxImageSide || ph > kMaxImageSide)) {
@@ -606,6 +624,12 @@ bool load_image_cb(tinygltf::Image *image, const int idx, std::string *, std::st
         if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide) {
             c->image_err = where + strf(": size %dx%d is outside 1..%d on a side", w, h,
                                         kMaxImageSide);
+            return false;
+        }
+        if (jpeg && uint64_t(w) * uint64_t(h) > uint64_t(size) * kMaxJpegPixelsPerByte) {
+            c->image_err = where + strf(": cannot decode (a %dx%d JPEG cannot fit in %d bytes: "
+                                        "truncated or corrupt)",
+                                        w, h, size);
             return false;
         }
         std::unique_ptr<unsigned char, StbFree> px(
@@ -986,8 +1010,15 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
         float p[3];
         read_floats(pos, i, p);
         check_finite(p, 3, pos, "POSITION", i);
-        for (int r = 0; r < 3; r++)
-            vx.position[r] = float(m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]);
+        for (int r = 0; r < 3; r++) {
+            /* finite floats under a finite transform can still leave the float range */
+            double x = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+            if (!(std::fabs(x) <= double(FLT_MAX)))
+                gfail(strf("%s: POSITION element %zu (accessors[%d]) is outside the float range "
+                           "after the node transform",
+                           pw.c_str(), i, pos.index));
+            vx.position[r] = float(x);
+        }
         if (nrm) {
             float q[3];
             read_floats(*nrm, i, q);
@@ -995,7 +1026,11 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
             double t[3];
             for (int r = 0; r < 3; r++)
                 t[r] = nsign * (cof[r * 3 + 0] * q[0] + cof[r * 3 + 1] * q[1] + cof[r * 3 + 2] * q[2]);
-            double l = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+            double l = std::hypot(t[0], t[1], t[2]); /* no overflow in the squares */
+            if (!std::isfinite(l))
+                gfail(strf("%s: NORMAL element %zu (accessors[%d]) overflows under the node "
+                           "transform",
+                           pw.c_str(), i, nrm->index));
             if (l > 1e-30) {
                 for (int r = 0; r < 3; r++) vx.normal[r] = float(t[r] / l);
             } else {
@@ -1014,7 +1049,11 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
             check_finite(q, 4, *tan, "TANGENT", i);
             double t[3];
             for (int r = 0; r < 3; r++) t[r] = m[r] * q[0] + m[4 + r] * q[1] + m[8 + r] * q[2];
-            double l = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+            double l = std::hypot(t[0], t[1], t[2]);
+            if (!std::isfinite(l))
+                gfail(strf("%s: TANGENT element %zu (accessors[%d]) overflows under the node "
+                           "transform",
+                           pw.c_str(), i, tan->index));
             if (l > 1e-30)
                 for (int r = 0; r < 3; r++) vx.tangent[r] = float(t[r] / l);
             vx.tangent[3] = float((q[3] < 0 ? -1.0 : 1.0) * nsign);

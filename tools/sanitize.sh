@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# sanitize.sh - the test suite under AddressSanitizer + UndefinedBehaviorSanitizer (LeakSanitizer
+# on): configures -DPG_SANITIZE=ON into $PG_ASAN_BUILD_DIR (default /tmp/build-asan), builds, and
+# runs ctest there. tests/CMakeLists.txt sets ASAN_/LSAN_/UBSAN_OPTIONS for every test (leaks and
+# UB fail it; driver-internal leaks are suppressed by tests/sanitizer/lsan.supp) and disables the
+# memcheck_* tests (valgrind cannot run ASan binaries; ASan covers what they check).
+# docs/robustness.md ("Sanitizers") lists what runs and how long it takes.
+#
+# Usage: tools/sanitize.sh [extra ctest arguments]     (CI: .ci/run calls it with none)
+#   PG_SANITIZE_EXCLUDE   ctest -E regex of tests left out (default: none; "" runs everything)
+# Run tools/setup.sh first (it installs the packages; gcc's libasan/libubsan come with it).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD=${PG_ASAN_BUILD_DIR:-/tmp/build-asan}
+EXCLUDE=${PG_SANITIZE_EXCLUDE-}
+start=$(date +%s)
+cmake -S . -B "$BUILD" -DPG_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build "$BUILD" -j"$(nproc)"
+args=(--test-dir "$BUILD" --output-on-failure)
+[ -n "$EXCLUDE" ] && args+=(-E "$EXCLUDE")
+status=0
+ctest "${args[@]}" "$@" || status=$?
+echo "sanitize: ASan+UBSan suite in $BUILD: $(( $(date +%s) - start )) s, ctest exit $status"
+exit $status
