@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # sanitize.sh - the test suite under AddressSanitizer + UndefinedBehaviorSanitizer (LeakSanitizer
-# on): configures -DPG_SANITIZE=ON into $PG_ASAN_BUILD_DIR (default /tmp/build-asan), builds, and
+# on): configures -DPG_SANITIZE=ON into $PG_ASAN_BUILD_DIR (default build-asan in the checkout), builds, and
 # runs ctest there. tests/CMakeLists.txt sets ASAN_/LSAN_/UBSAN_OPTIONS for every test (leaks and
 # UB fail it; driver-internal leaks are suppressed by tests/sanitizer/lsan.supp) and disables the
 # memcheck_* tests (valgrind cannot run ASan binaries; ASan covers what they check).
@@ -11,7 +11,7 @@
 # Run tools/setup.sh first (it installs the packages; gcc's libasan/libubsan come with it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-BUILD=${PG_ASAN_BUILD_DIR:-/tmp/build-asan}
+BUILD=${PG_ASAN_BUILD_DIR:-build-asan} # inside the checkout (ignored): a /tmp cache from another checkout would clash
 EXCLUDE=${PG_SANITIZE_EXCLUDE-}
 start=$(date +%s)
 cmake -S . -B "$BUILD" -DPG_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
