@@ -89,7 +89,8 @@ typedef struct pg_camera {
  * the glTF object, e.g. "x.gltf: accessors[4]: count 100 (...) exceeds bufferView 2 (48 bytes)":
  * PG_ERR_IO when the file itself cannot be read, PG_ERR_PARSE for JSON syntax / a broken GLB
  * container, PG_ERR_GLTF for content (missing buffer or image files, ranges, types, indices,
- * non-finite values, cycles, undecodable or > 16384 px images), PG_ERR_LIMIT past 2^32 vertices.
+ * non-finite values, cycles, undecodable, non-PNG/JPEG or > 16384 px images), PG_ERR_LIMIT past
+ * 2^32 vertices.
  * Details (core/scene_gltf.cpp header): the node hierarchy of `scene` (else scenes[0], else every
  * root node) is baked into the vertices (normals by the inverse-transpose, a mirroring transform
  * flips the winding and the tangent handedness); one pg_primitive per drawn (node, primitive)

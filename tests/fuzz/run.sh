@@ -41,12 +41,15 @@ for t in "${TARGETS[@]}"; do
     *) echo "run.sh: unknown target $t" >&2; exit 1 ;;
   esac
   corpus="$WORK/corpus/$t"; art="$WORK/artifacts/$t"; logs="$WORK/logs/$t"
-  mkdir -p "$corpus" "$art" "$logs"
+  mkdir -p "$corpus" "$art" "$logs" "$WORK/tmp"
   if [ -z "$(ls -A "$corpus")" ]; then $seeder "$corpus"; fi
   echo "run.sh: $t: $(ls "$corpus" | wc -l) corpus files, up to $RUNS runs / ${SECONDS_MAX}s"
-  (cd "$logs" && "$bin" -jobs=1 -runs="$RUNS" -max_total_time="$SECONDS_MAX" -max_len=65536 \
+  # the targets' private directories go under $WORK/tmp: a crash or an interrupt skips their
+  # clean-up at exit, so they are removed here
+  (cd "$logs" && TMPDIR="$WORK/tmp" "$bin" -jobs=1 -runs="$RUNS" -max_total_time="$SECONDS_MAX" -max_len=65536 \
      -timeout=10 -rss_limit_mb=2048 -dict="$ROOT/tests/fuzz/$dict" -artifact_prefix="$art/" \
      -print_final_stats=1 "$corpus") || true
+  rm -rf "$WORK"/tmp/pg_fuzz_*
   tail -n 25 "$logs/fuzz-0.log"
   echo "run.sh: $t: corpus now $(ls "$corpus" | wc -l) files; findings: $(ls "$art" | wc -l)"
 done
