@@ -15,10 +15,7 @@ static pg_result fn_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
     pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
     pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
-    if (in->features.has_alpha_mask) pg_decl_define(out, "PG_ALPHA_MASK");
-    else pg_decl_explain(out, "no alpha-mask materials: alpha-test (discard) variant not compiled");
-    if (in->features.has_normal_maps) pg_decl_define(out, "PG_NORMAL_MAPS");
-    else pg_decl_explain(out, "no normal maps: tangent-space normal path compiled out");
+    pg_scene_draw_declare_features(in, out);
     pg_shading_declare(&o, in, out, false, 0, -1);
     return PG_OK;
 }

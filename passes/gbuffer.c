@@ -26,10 +26,7 @@ static pg_result gb_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
                       packing == PG_GBUFFER_PACKED ? PG_FMTCLASS_UINT : PG_FMTCLASS_FLOAT);
     pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
     pg_decl_define(out, pg_gbuffer_defines[packing]);
-    if (in->features.has_alpha_mask) pg_decl_define(out, "PG_ALPHA_MASK");
-    else pg_decl_explain(out, "no alpha-mask materials: alpha-test (discard) variant not compiled");
-    if (in->features.has_normal_maps) pg_decl_define(out, "PG_NORMAL_MAPS");
-    else pg_decl_explain(out, "no normal maps: tangent-space normal path compiled out");
+    pg_scene_draw_declare_features(in, out);
     return PG_OK;
 }
 

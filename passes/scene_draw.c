@@ -98,3 +98,11 @@ void pg_scene_draw_destroy(pg_gpu *gpu, pg_scene_draw *sd)
     if (sd->layout) vkDestroyPipelineLayout(gpu->device, sd->layout, NULL);
     memset(sd, 0, sizeof *sd);
 }
+
+void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out)
+{
+    if (in->features.has_alpha_mask) pg_decl_define(out, "PG_ALPHA_MASK");
+    else pg_decl_explain(out, "no alpha-mask materials: alpha-test (discard) variant not compiled");
+    if (in->features.has_normal_maps) pg_decl_define(out, "PG_NORMAL_MAPS");
+    else pg_decl_explain(out, "no normal maps: tangent-space normal path compiled out");
+}
