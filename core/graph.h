@@ -81,6 +81,8 @@ typedef struct pg_plan_resource {
     uint64_t size_bytes;         /* images: estimate width*height*bpp; buffers: exact */
     uint32_t usage;              /* union of Vk*UsageFlags over surviving accesses */
     bool is_output;              /* output or hdr_output: lives to the end, read back */
+    bool growable;               /* "grow": size_bytes is the initial size; own memory, never
+                                  * aliased; the runtime may re-create it larger (pg_report_grow) */
     bool culled;
     char cull_reason[PG_EXPLAIN_MAX];
     int first_pass, last_pass;   /* positions in plan->order; -1 when unused; outputs'

@@ -852,6 +852,7 @@ static pg_result phase_lifetimes(compile_ctx *c)
         pr->first_pass = pr->last_pass = -1;
         pr->block = -1;
         pr->is_output = (int)r == plan->output || (int)r == plan->hdr_output;
+        pr->growable = rd->kind == PG_RES_BUFFER && rd->growable;
         pg_result res = resolve_size(c, (int)r);
         if (res) return res;
     }
@@ -898,6 +899,11 @@ static void phase_alias(compile_ctx *c)
     for (uint32_t r = 0; r < plan->n_resources; r++) {
         const pg_plan_resource *pr = &plan->resources[r];
         if (pr->lifetime != PG_LIFETIME_TRANSIENT || pr->culled || pr->first_pass < 0) continue;
+        if (pr->growable) { /* re-created at run time with a new size: its own memory */
+            plan->transient_bytes_unaliased += pr->size_bytes;
+            plan->transient_bytes_aliased += pr->size_bytes;
+            continue;
+        }
         int k = n++;
         while (k > 0 && plan->resources[list[k - 1]].first_pass > pr->first_pass) {
             list[k] = list[k - 1];

@@ -34,7 +34,28 @@ struct pg_runtime {
     pg_runtime_stats stats;
     const pg_param_override *settings; /* borrowed, see pg_runtime_set_settings */
     uint32_t n_settings;
+    /* "grow" buffers: the size each one reached, by name, kept across plans so a new plan (a
+     * new light count, a pipeline switch) starts from it instead of growing again; limit: a
+     * size the device refused (later requests stay below it) */
+    struct {
+        char name[PG_NAME_MAX];
+        uint64_t bytes, limit;
+    } capacity[PG_MAX_RESOURCES];
+    uint32_t n_capacity;
+    char grow_note[160];               /* last refused growth, repeated in every frame's stats */
 };
+
+static uint32_t capacity_slot(pg_runtime *rt, const char *name, bool add)
+{
+    for (uint32_t i = 0; i < rt->n_capacity; i++)
+        if (!strcmp(rt->capacity[i].name, name)) return i;
+    if (!add || rt->n_capacity >= PG_MAX_RESOURCES) return UINT32_MAX;
+    uint32_t i = rt->n_capacity++;
+    pg_strlcpy(rt->capacity[i].name, name, sizeof rt->capacity[i].name);
+    rt->capacity[i].bytes = 0;
+    rt->capacity[i].limit = UINT64_MAX;
+    return i;
+}
 
 static uint64_t fnv(uint64_t h, const void *data, size_t n)
 {
@@ -221,9 +242,13 @@ static pg_result create_unbound(pg_runtime *rt, int i, pg_error *err)
         pg_gpu_name(gpu, VK_OBJECT_TYPE_IMAGE, (uint64_t)r->image, "%s", pr->name);
     } else {
         r->size = pr->size_bytes;
+        if (pr->growable) {
+            uint32_t c = capacity_slot(rt, pr->name, false);
+            if (c != UINT32_MAX && rt->capacity[c].bytes > r->size) r->size = rt->capacity[c].bytes;
+        }
         VkBufferCreateInfo bci = {
             .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
-            .size = pr->size_bytes,
+            .size = r->size,
             .usage = (pr->usage ? pr->usage : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
             .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
         };
@@ -275,6 +300,31 @@ static pg_result alloc(pg_runtime *rt, VkDeviceSize size, uint32_t bits, const c
         return pg_fail(err, PG_ERR_VULKAN, "%s: vkAllocateMemory(%llu bytes) failed: %s", name,
                        (unsigned long long)size, pg_vk_result_name(vr));
     pg_gpu_name(rt->gpu, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)*out, "%s", name);
+    return PG_OK;
+}
+
+static pg_result create_pass(pg_runtime *rt, int pi, pg_error *err)
+{
+    const pg_graph_plan *plan = rt->plan;
+    const pg_plan_pass *pass = &plan->passes[pi];
+    pg_pass_create_ctx ctx = {
+        .gpu = rt->gpu,
+        .plan = plan,
+        .pass = pass,
+        .desc = &rt->pipeline->passes[pass->desc_index],
+        .pipeline = rt->pipeline,
+        .scene = rt->scene,
+        .frame_layout = rt->frame_layout,
+        .width = rt->width,
+        .height = rt->height,
+        .settings = rt->settings,
+        .n_settings = rt->n_settings,
+    };
+    for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->res[pass->slots[s].resource];
+    rt->pass_state[pi] = calloc(1, pass->type->instance_size ? pass->type->instance_size : 1);
+    if (!rt->pass_state[pi]) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    pg_result r = pass->type->create(rt->pass_state[pi], &ctx, err);
+    if (r) return pg_error_prefix(err, "pass '%s' (%s)", pass->name, pass->type->name);
     return PG_OK;
 }
 
@@ -341,29 +391,113 @@ static pg_result build(pg_runtime *rt, pg_error *err)
         PG_VK_TRY(err, vkCreateQueryPool(gpu->device, &qci, NULL, &rt->queries));
     }
     /* pass instances */
-    for (uint32_t o = 0; o < plan->n_order; o++) {
-        int pi = plan->order[o];
-        const pg_plan_pass *pass = &plan->passes[pi];
-        pg_pass_create_ctx ctx = {
-            .gpu = gpu,
-            .plan = plan,
-            .pass = pass,
-            .desc = &rt->pipeline->passes[pass->desc_index],
-            .pipeline = rt->pipeline,
-            .scene = rt->scene,
-            .frame_layout = rt->frame_layout,
-            .width = rt->width,
-            .height = rt->height,
-            .settings = rt->settings,
-            .n_settings = rt->n_settings,
-        };
-        for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->res[pass->slots[s].resource];
-        rt->pass_state[pi] = calloc(1, pass->type->instance_size ? pass->type->instance_size : 1);
-        if (!rt->pass_state[pi]) return pg_fail(err, PG_ERR_OOM, "out of memory");
-        if ((r = pass->type->create(rt->pass_state[pi], &ctx, err)))
-            return pg_error_prefix(err, "pass '%s' (%s)", pass->name, pass->type->name);
-    }
+    for (uint32_t o = 0; o < plan->n_order; o++)
+        if ((r = create_pass(rt, plan->order[o], err))) return r;
     rt->built = true;
+    return PG_OK;
+}
+
+/* Re-creates the growable buffer ri with at least `needed` bytes: twice its size or `needed`,
+ * whichever is larger, at most `max` (and below any size the device refused before). The new
+ * buffer is made before the old one goes, so a refused allocation keeps the old one (and a note
+ * says so); then every pass bound to the buffer is re-created (its descriptors point at it). */
+static pg_result grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t max, pg_frame_stats *st,
+                             pg_error *err)
+{
+    pg_gpu *gpu = rt->gpu;
+    pg_phys_resource *r = &rt->res[ri];
+    const pg_plan_resource *pr = &rt->plan->resources[ri];
+    uint32_t c = capacity_slot(rt, pr->name, true);
+    if (c == UINT32_MAX) return PG_OK;
+    uint64_t limit = max < rt->capacity[c].limit ? max : rt->capacity[c].limit;
+    if (needed <= r->size || limit <= r->size) return PG_OK; /* at its limit: the pass counts the rest */
+    uint64_t want = r->size > UINT64_MAX / 2 ? UINT64_MAX : r->size * 2;
+    if (want < needed) want = needed;
+    if (want > limit) want = limit;
+    uint64_t exact = needed < limit ? needed : limit;
+    uint64_t tries[2] = {want, exact < want ? exact : 0};
+    VkBuffer nb = VK_NULL_HANDLE;
+    VkDeviceMemory nm = VK_NULL_HANDLE;
+    VkResult vr = VK_SUCCESS;
+    uint64_t got = 0;
+    for (int t = 0; t < 2 && !got; t++) {
+        if (tries[t] <= r->size) continue;
+        VkBufferCreateInfo bci = {
+            .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+            .size = tries[t],
+            .usage = (pr->usage ? pr->usage : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
+            .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+        };
+        vr = pg_vk_fault_next("vkCreateBuffer(grow)") ? VK_ERROR_OUT_OF_DEVICE_MEMORY
+                                                       : vkCreateBuffer(gpu->device, &bci, NULL, &nb);
+        if (vr != VK_SUCCESS) {
+            nb = VK_NULL_HANDLE;
+            continue;
+        }
+        VkMemoryRequirements req;
+        vkGetBufferMemoryRequirements(gpu->device, nb, &req);
+        uint32_t type = pg_gpu_memory_type(gpu, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        if (type == UINT32_MAX) type = pg_gpu_memory_type(gpu, req.memoryTypeBits, 0);
+        VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                    .allocationSize = req.size, .memoryTypeIndex = type};
+        vr = type == UINT32_MAX ? VK_ERROR_OUT_OF_DEVICE_MEMORY : pg_gpu_alloc_memory(gpu, &mai, &nm);
+        if (vr == VK_SUCCESS) vr = vkBindBufferMemory(gpu->device, nb, nm, 0);
+        if (vr != VK_SUCCESS) {
+            if (nm) pg_gpu_free_memory(gpu, nm);
+            vkDestroyBuffer(gpu->device, nb, NULL);
+            nb = VK_NULL_HANDLE;
+            nm = VK_NULL_HANDLE;
+            continue;
+        }
+        got = tries[t];
+    }
+    if (!got) {
+        rt->capacity[c].limit = r->size;
+        snprintf(rt->grow_note, sizeof rt->grow_note,
+                 "buffer '%s' could not grow from %llu to %llu bytes (%s): kept; what does not fit is dropped "
+                 "and counted",
+                 pr->name, (unsigned long long)r->size, (unsigned long long)exact, pg_vk_result_name(vr));
+        return PG_OK;
+    }
+    /* the passes bound to the buffer hold descriptors of it: destroy them first */
+    for (uint32_t o = 0; o < rt->plan->n_order; o++) {
+        int pi = rt->plan->order[o];
+        const pg_plan_pass *pass = &rt->plan->passes[pi];
+        bool uses = false;
+        for (uint32_t k = 0; k < pass->n_slots; k++) uses |= pass->slots[k].resource == ri;
+        if (uses && rt->pass_state[pi]) {
+            pass->type->destroy(rt->pass_state[pi], gpu);
+            free(rt->pass_state[pi]);
+            rt->pass_state[pi] = NULL;
+        }
+    }
+    uint64_t old = r->size;
+    vkDestroyBuffer(gpu->device, r->buffer, NULL);
+    if (r->own_memory) pg_gpu_free_memory(gpu, r->own_memory);
+    r->buffer = nb;
+    r->own_memory = nm;
+    r->size = got;
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_BUFFER, (uint64_t)nb, "%s", pr->name);
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)nm, "%s", pr->name);
+    rt->capacity[c].bytes = got;
+    rt->stats.grow_events++;
+    rt->stats.memory_bytes_transient += got - old;
+    rt->stats.memory_bytes_unaliased += got - old;
+    if (st && st->n_grown < 4) {
+        pg_strlcpy(st->grown[st->n_grown].resource, pr->name, PG_NAME_MAX);
+        st->grown[st->n_grown].old_bytes = old;
+        st->grown[st->n_grown].new_bytes = got;
+        st->n_grown++;
+    }
+    for (uint32_t o = 0; o < rt->plan->n_order; o++) {
+        int pi = rt->plan->order[o];
+        if (rt->pass_state[pi]) continue;
+        pg_result res = create_pass(rt, pi, err);
+        if (res) {
+            destroy_built(rt);
+            return res;
+        }
+    }
     return PG_OK;
 }
 
@@ -529,7 +663,9 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
         if (!plan->resources[i].culled && plan->resources[i].lifetime != PG_LIFETIME_TRANSIENT)
             rt->persistent_initialized[i] = true;
 
-    if (stats) {
+    pg_frame_stats local_stats;
+    if (!stats) stats = &local_stats;
+    {
         memset(stats, 0, sizeof *stats);
         stats->n_passes = plan->n_order;
         for (uint32_t o = 0; o < plan->n_order; o++)
@@ -562,7 +698,19 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
                 if (!strcmp(rep.counters[k].name, "overflow_clusters")) stats->overflow_clusters += rep.counters[k].value;
                 if (!strcmp(rep.counters[k].name, "overflow_dropped")) stats->overflow_dropped += rep.counters[k].value;
             }
+            for (uint32_t k = 0; k < rep.n_notes && stats->n_notes < 4; k++)
+                pg_strlcpy(stats->notes[stats->n_notes++], rep.notes[k], sizeof stats->notes[0]);
+            for (uint32_t k = 0; k < rep.n_grow; k++) {
+                if (rep.grow[k].slot >= pass->n_slots) continue;
+                int ri = pass->slots[rep.grow[k].slot].resource;
+                if (ri < 0 || !plan->resources[ri].growable) continue;
+                pg_result gr = grow_buffer(rt, ri, rep.grow[k].needed, rep.grow[k].max, stats, err);
+                if (gr) return gr;
+                if (!rt->built) return pg_fail(err, PG_ERR_VULKAN, "runtime lost its plan while growing a buffer");
+            }
         }
+        if (rt->grow_note[0] && stats->n_notes < 4)
+            pg_strlcpy(stats->notes[stats->n_notes++], rt->grow_note, sizeof stats->notes[0]);
         stats->cpu_ms = now_ms() - t0;
     }
     return PG_OK;
@@ -582,7 +730,11 @@ const void *pg_runtime_output(const pg_runtime *rt, int which, uint32_t *w, uint
 
 pg_runtime_stats pg_runtime_get_stats(const pg_runtime *rt)
 {
-    return rt->stats;
+    pg_runtime_stats st = rt->stats;
+    st.grow_bytes = 0;
+    for (uint32_t i = 0; rt->plan && i < rt->plan->n_resources; i++)
+        if (rt->plan->resources[i].growable && !rt->plan->resources[i].culled) st.grow_bytes += rt->res[i].size;
+    return st;
 }
 
 const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which)

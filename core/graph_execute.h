@@ -61,6 +61,11 @@ typedef struct pg_pass_record_ctx {
     uint32_t width, height;
 } pg_pass_record_ctx;
 
+typedef struct pg_grow_event {
+    char resource[PG_NAME_MAX];
+    uint64_t old_bytes, new_bytes;
+} pg_grow_event;
+
 typedef struct pg_frame_stats {
     uint32_t n_passes;
     char pass_names[PG_MAX_PASSES][PG_NAME_MAX];
@@ -77,6 +82,16 @@ typedef struct pg_frame_stats {
     } counters[32];
     uint64_t overflow_clusters;       /* sum of every "overflow_clusters" counter */
     uint64_t overflow_dropped;        /* sum of every "overflow_dropped" counter (light refs lost) */
+    /* "grow" buffers re-created larger after this frame because a pass found them too small
+     * (pg_report_grow): this frame was incomplete and the next one will not be. */
+    uint32_t n_grown;
+    pg_grow_event grown[4];
+    /* notes from passes and from the runtime (e.g. a growth the device refused) */
+    uint32_t n_notes;
+    char notes[4][160];
+    /* pg_session_render: times this frame was rendered again after a growth (the stats are the
+     * last rendering's; n_grown/grown then list every growth of all renderings) */
+    uint32_t rerenders;
 } pg_frame_stats;
 
 typedef struct pg_runtime_stats {
@@ -84,6 +99,8 @@ typedef struct pg_runtime_stats {
     uint64_t memory_bytes_transient;  /* actual VkDeviceMemory for transient blocks */
     uint64_t memory_bytes_unaliased;  /* sum of transient resources' memory requirements */
     uint32_t blocks_fallback;         /* blocks split because members had no common memory type */
+    uint32_t grow_events;             /* "grow" buffers re-created larger, over the runtime's life */
+    uint64_t grow_bytes;              /* current bytes of all "grow" buffers */
 } pg_runtime_stats;
 
 typedef struct pg_runtime pg_runtime;

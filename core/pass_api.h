@@ -100,16 +100,37 @@ typedef struct pg_pass_type {
     void (*report)(void *self, struct pg_pass_report *out);
 } pg_pass_type;
 
-#define PG_MAX_PASS_COUNTERS 8
+#define PG_MAX_PASS_COUNTERS 12
+#define PG_MAX_PASS_GROWS 2
+#define PG_MAX_PASS_NOTES 2
 typedef struct pg_pass_report {
     uint32_t n;
     struct {
         char name[32];
         uint64_t value;
     } counters[PG_MAX_PASS_COUNTERS];
+    /* A write slot of a "grow" buffer was too small for this frame: the runtime re-creates it
+     * with at least `needed` bytes (geometric growth, at most `max` bytes) before the next frame,
+     * re-creates the passes bound to it, and tells the caller that this frame was incomplete. */
+    uint32_t n_grow;
+    struct {
+        uint32_t slot;         /* index into the pass's plan slots (reads first, then writes) */
+        uint64_t needed, max;
+    } grow[PG_MAX_PASS_GROWS];
+    /* One-line notes for the user (e.g. "list budget clamped to the device limit") */
+    uint32_t n_notes;
+    char notes[PG_MAX_PASS_NOTES][160];
 } pg_pass_report;
 /* Adds a counter (ignored when full). */
 void pg_report_add(pg_pass_report *r, const char *name, uint64_t value);
+/* Asks for a larger "grow" buffer (see pg_pass_report.grow; ignored when full). */
+void pg_report_grow(pg_pass_report *r, uint32_t slot, uint64_t needed, uint64_t max);
+/* Adds a note (ignored when full). */
+void pg_report_note(pg_pass_report *r, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
 
 typedef struct pg_pass_registry {
     uint32_t count;

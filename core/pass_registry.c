@@ -170,3 +170,22 @@ void pg_report_add(pg_pass_report *r, const char *name, uint64_t value)
     r->counters[r->n].value = value;
     r->n++;
 }
+
+void pg_report_grow(pg_pass_report *r, uint32_t slot, uint64_t needed, uint64_t max)
+{
+    if (r->n_grow >= PG_MAX_PASS_GROWS) return;
+    r->grow[r->n_grow].slot = slot;
+    r->grow[r->n_grow].needed = needed;
+    r->grow[r->n_grow].max = max;
+    r->n_grow++;
+}
+
+void pg_report_note(pg_pass_report *r, const char *fmt, ...)
+{
+    if (r->n_notes >= PG_MAX_PASS_NOTES) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->notes[r->n_notes], sizeof r->notes[r->n_notes], fmt, ap);
+    va_end(ap);
+    r->n_notes++;
+}

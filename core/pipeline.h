@@ -85,6 +85,9 @@ typedef struct pg_resource_desc {
     uint32_t stride;
     uint32_t n_count_terms;
     pg_count_term count[PG_MAX_COUNT_TERMS];
+    /* "grow": true - the count is only the initial size: a pass writing the buffer may ask the
+     * runtime for more after a frame (pg_report_grow); never aliased */
+    bool growable;
     /* where it was declared, for error messages */
     char file[PG_PATH_MAX];
     char json_path[PG_JSON_PATH_MAX]; /* e.g. "resources[3]" */

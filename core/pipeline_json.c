@@ -993,7 +993,7 @@ static pg_result eval_when(loader *L, const src_file *f, const cJSON *item, cons
 
 static const char *const k_res_keys[] = {"name",  "type",     "format", "scale",       "extent",
                                          "stride", "count",   "lifetime", "when",      "description",
-                                         NULL};
+                                         "grow", NULL};
 static const char *const k_pass_keys[] = {"name",  "type",         "reads",   "writes",
                                           "after", "side_effects", "options", "when",
                                           "description", NULL};
@@ -1091,7 +1091,7 @@ static pg_result parse_resource(loader *L, uint32_t idx)
     }
 
     static const char *const image_only[] = {"format", "scale", "extent", NULL};
-    static const char *const buffer_only[] = {"stride", "count", NULL};
+    static const char *const buffer_only[] = {"stride", "count", "grow", NULL};
     const char *const *wrong = d->kind == PG_RES_IMAGE ? buffer_only : image_only;
     for (; *wrong; wrong++) {
         if (!cJSON_GetObjectItemCaseSensitive(o, *wrong)) continue;
@@ -1182,6 +1182,15 @@ static pg_result parse_resource(loader *L, uint32_t idx)
                            got);
         }
         d->stride = (uint32_t)sv;
+        const cJSON *grow = cJSON_GetObjectItemCaseSensitive(o, "grow");
+        if (grow) {
+            snprintf(path, sizeof path, "%s.grow", ip);
+            if (!cJSON_IsBool(grow)) {
+                describe(grow, got, sizeof got);
+                return fail_at(L, PG_ERR_SCHEMA, f, path, "expected true or false, got %s", got);
+            }
+            d->growable = cJSON_IsTrue(grow);
+        }
         const cJSON *count = cJSON_GetObjectItemCaseSensitive(o, "count");
         snprintf(path, sizeof path, "%s.count", ip);
         if (!count) {

@@ -89,7 +89,24 @@ pg_result pg_session_render(pg_session *s, const pg_frame_info *info, bool readb
     if (!s->runtime) return pg_fail(err, PG_ERR_INVALID_ARG, "session has no GPU");
     pg_result r = pg_session_compile(s, info->lights.count, info->width, info->height, err);
     if (r) return r;
-    return pg_runtime_render(s->runtime, info, readback, stats, err);
+    /* A frame after which a "grow" buffer was enlarged was incomplete (a pass had less room than
+     * it needed): render it again, so every frame the caller sees is complete unless a budget or
+     * the device said no (then the pass counts what it dropped). Growth is geometric, so this
+     * happens a few times over a session, not every frame. */
+    pg_frame_stats local;
+    pg_frame_stats *st = stats ? stats : &local;
+    uint32_t n_grown = 0, rerenders = 0;
+    pg_grow_event grown[4];
+    for (;;) {
+        if ((r = pg_runtime_render(s->runtime, info, readback, st, err))) return r;
+        for (uint32_t i = 0; i < st->n_grown && n_grown < 4; i++) grown[n_grown++] = st->grown[i];
+        if (!st->n_grown || rerenders >= 16) break;
+        rerenders++;
+    }
+    st->n_grown = n_grown;
+    memcpy(st->grown, grown, sizeof grown[0] * n_grown);
+    st->rerenders = rerenders;
+    return PG_OK;
 }
 
 void pg_session_destroy(pg_session *s)

@@ -287,11 +287,27 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
                       gpu->props.deviceName);
         goto fail;
     }
+    {
+        VkPhysicalDeviceVulkan13Properties p13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES};
+        VkPhysicalDeviceSubgroupProperties sp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
+                                                 .pNext = &p13};
+        VkPhysicalDeviceProperties2 pp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &sp};
+        vkGetPhysicalDeviceProperties2(gpu->phys, &pp);
+        gpu->subgroup_size = sp.subgroupSize;
+        gpu->exact_subgroups = f13.subgroupSizeControl && f13.computeFullSubgroups &&
+                               (p13.requiredSubgroupSizeStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+                               sp.subgroupSize >= p13.minSubgroupSize && sp.subgroupSize <= p13.maxSubgroupSize &&
+                               sp.subgroupSize >= 4 && sp.subgroupSize <= 128 &&
+                               sp.subgroupSize <= gpu->props.limits.maxComputeWorkGroupSize[0];
+        gpu->max_storage_buffer_range = gpu->props.limits.maxStorageBufferRange;
+    }
     VkPhysicalDeviceVulkan13Features e13 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
         .synchronization2 = VK_TRUE,
         .dynamicRendering = VK_TRUE,
         .maintenance4 = f13.maintenance4,
+        .subgroupSizeControl = f13.subgroupSizeControl,
+        .computeFullSubgroups = f13.computeFullSubgroups,
     };
     VkPhysicalDeviceVulkan12Features e12 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,

@@ -46,6 +46,12 @@ typedef struct pg_gpu {
     uint32_t timestamp_valid_bits;
     bool debug_utils;
     bool validation;
+    /* subgroups: size (VkPhysicalDeviceSubgroupProperties) and whether a compute pipeline can
+     * require one full subgroup of exactly that size per workgroup (subgroupSizeControl +
+     * computeFullSubgroups enabled, compute in requiredSubgroupSizeStages, size in range) */
+    uint32_t subgroup_size;
+    bool exact_subgroups;
+    uint64_t max_storage_buffer_range; /* bytes one storage-buffer binding may span */
     uint32_t validation_messages; /* errors + warnings reported by the validation layer */
     uint32_t validation_errors;
     int64_t live_memory_objects;  /* VkDeviceMemory allocated through passgraph and not freed */

@@ -113,6 +113,36 @@ pg_result pg_compute_pipeline_create(pg_gpu *gpu, VkPipelineLayout layout, VkSha
     return PG_OK;
 }
 
+pg_result pg_compute_pipeline_create_ex(pg_gpu *gpu, const pg_compute_pipeline_desc *d, const char *name,
+                                        VkPipeline *out, pg_error *err)
+{
+    VkSpecializationMapEntry map[8];
+    if (d->n_spec > 8) return pg_fail(err, PG_ERR_LIMIT, "%s: more than 8 specialization constants", name);
+    for (uint32_t i = 0; i < d->n_spec; i++) map[i] = (VkSpecializationMapEntry){i, i * 4, 4};
+    VkSpecializationInfo si = {.mapEntryCount = d->n_spec, .pMapEntries = map, .dataSize = d->n_spec * 4u,
+                               .pData = d->spec_data};
+    VkPipelineShaderStageRequiredSubgroupSizeCreateInfo rs = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_REQUIRED_SUBGROUP_SIZE_CREATE_INFO,
+        .requiredSubgroupSize = d->subgroup_size,
+    };
+    if (d->subgroup_size && !gpu->exact_subgroups)
+        return pg_fail(err, PG_ERR_NO_DEVICE, "%s: %s cannot require a subgroup size", name, gpu->props.deviceName);
+    VkComputePipelineCreateInfo ci = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                  .pNext = d->subgroup_size ? &rs : NULL,
+                  .flags = d->subgroup_size ? VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT : 0,
+                  .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                  .module = d->cs,
+                  .pName = "main",
+                  .pSpecializationInfo = d->n_spec ? &si : NULL},
+        .layout = d->layout,
+    };
+    PG_VK_TRY(err, vkCreateComputePipelines(gpu->device, VK_NULL_HANDLE, 1, &ci, NULL, out));
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_PIPELINE, (uint64_t)*out, "%s", name);
+    return PG_OK;
+}
+
 pg_result pg_pass_set_create(pg_gpu *gpu, uint32_t n, const pg_set_binding *b, const char *name, pg_pass_set *out,
                              pg_error *err)
 {

@@ -28,6 +28,18 @@ pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, con
                                  VkPipeline *out, pg_error *err);
 pg_result pg_compute_pipeline_create(pg_gpu *gpu, VkPipelineLayout layout, VkShaderModule cs,
                                      const char *name, VkPipeline *out, pg_error *err);
+/* A compute pipeline with options: spec_data/n_spec are uint32 specialization constants (ids
+ * 0..n-1); subgroup_size != 0 requires exactly that subgroup size with full subgroups
+ * (only when gpu->exact_subgroups; the local size must then be that size). */
+typedef struct pg_compute_pipeline_desc {
+    VkPipelineLayout layout;
+    VkShaderModule cs;
+    const uint32_t *spec_data;
+    uint32_t n_spec;
+    uint32_t subgroup_size;
+} pg_compute_pipeline_desc;
+pg_result pg_compute_pipeline_create_ex(pg_gpu *gpu, const pg_compute_pipeline_desc *d, const char *name,
+                                        VkPipeline *out, pg_error *err);
 pg_result pg_pipeline_layout_create(pg_gpu *gpu, uint32_t n_sets, const VkDescriptorSetLayout *sets,
                                     uint32_t push_bytes, VkPipelineLayout *out, pg_error *err);
 

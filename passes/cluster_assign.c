@@ -1,10 +1,33 @@
-/* cluster_assign.c - compute pass: builds per-cluster light lists over a grid of screen tiles x
- * exponential depth slices (shaders/cluster_assign.comp). Conservative sphere-vs-AABB test,
- * lists in ascending light order, raw counts kept so overflow is visible; the number of
- * overflowing clusters and dropped light references are read back every frame and reported
- * (counters "overflow_clusters", "overflow_dropped", "max_count", "total_refs").
- * Slots: reads [lights]; writes [cluster_counts (uint per cluster), cluster_lights (max_lights
- * uints per cluster)]. Options: grid_x, grid_y, grid_z, max_lights (defaults 16, 9, 24, 256). */
+/* cluster_assign.c - compute pass: per-cluster light lists over a grid of screen tiles x
+ * exponential depth slices, exact by default at any light count.
+ *
+ * Four dispatches in one pass (method "binned", the default):
+ *   1. bin   (shaders/cluster_bin.comp)   each light sets its bit in the masks of the tiles and
+ *            depth slices its sphere can reach (conservative; O(lights x (gx + gy + gz)));
+ *   2. count (shaders/cluster_lists.comp) per cluster, the candidates (tile mask AND slice mask,
+ *            32 lights a word) get the exact sphere-vs-box test; raw count per cluster;
+ *   3. scan  (shaders/cluster_scan.comp)  offsets, the optional per-cluster cap, and the
+ *            deterministic subset when the list buffer is too small;
+ *   4. fill  (cluster_lists.comp, PG_FILL) the same walk again, writing the hits in ascending
+ *            light order at each cluster's offset.
+ * Method "brute_force" skips the bin step and makes every light a candidate of every cluster
+ * (O(clusters x lights)): the oracle tests/test_cluster_assign.c checks the binned lists against.
+ *
+ * The list buffer (slot cluster_lights) is a "grow" buffer: when the lists need more room than
+ * it has, the pass keeps a deterministic subset this frame, counts the rest, and asks the runtime
+ * (pg_report_grow) for the size it needs; the session renders the frame again with the larger
+ * buffer. Growth stops at the memory budget (option budget_mb, clamped to the device's storage
+ * buffer range): past it the clusters keep their first k lights for the largest k that fits and
+ * the dropped references are counted (counters overflow_clusters, overflow_dropped).
+ *
+ * Slots: reads [lights]; writes [cluster_counts (16 bytes per cluster: offset, stored, raw, 0),
+ * cluster_lights (grow buffer of uint light indices)].
+ * Options: grid_x, grid_y, grid_z (16, 9, 24), max_lights (per-cluster cap, 0 = none: the
+ * default), budget_mb (list memory budget, default 1024), method ("binned" | "brute_force"),
+ * subgroups (bool, default true: one full subgroup per workgroup where the device allows it;
+ * false: 64-wide workgroups with shared-memory scans).
+ * Counters: overflow_clusters, overflow_dropped, dropped_cap, total_refs, needed_refs,
+ * max_count, list_bytes, mask_bytes. */
 #include <stdio.h>
 #include <string.h>
 
@@ -13,51 +36,127 @@
 #include "shader.h"
 #include "vk_pipeline.h"
 
+enum { SLOT_LIGHTS = 0, SLOT_RECORDS = 1, SLOT_LISTS = 2 }; /* plan slots: reads, then writes */
+enum { PIPE_BIN, PIPE_COUNT, PIPE_SCAN, PIPE_FILL, PIPE_N };
+/* pg_pipeline_layout_create declares push constants for every stage */
+#define PUSH_STAGES (VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT)
+
+typedef struct ca_opts {
+    uint32_t grid[3];
+    uint32_t max_lights; /* 0: no cap */
+    uint64_t budget_bytes;
+    int method;          /* 0 binned, 1 brute_force */
+    bool subgroups;
+} ca_opts;
+
+typedef struct ca_stats { /* mirrors Stats in cluster_scan.comp */
+    uint32_t needed, stored, dropped, overflow_clusters, max_count, dropped_cap, fair_cap, capacity;
+} ca_stats;
+
 typedef struct cluster_assign {
-    uint32_t grid[3], max_lights;
-    pg_buffer stats;           /* host visible: 4 uints */
+    ca_opts o;
+    uint32_t clusters, light_count, words;
+    uint64_t budget;            /* bytes the lists may grow to (budget clamped to the device) */
+    bool budget_clamped;
+    pg_buffer stats;            /* host visible */
+    pg_buffer tile_masks, slice_masks;
     pg_pass_set set;
     VkPipelineLayout layout;
-    VkPipeline pipeline;
+    VkPipeline pipe[PIPE_N];
+    uint64_t list_bytes;        /* capacity of the list buffer this instance was created with */
     bool ran;
 } cluster_assign;
 
-static const char *const k_known[] = {"grid_x", "grid_y", "grid_z", "max_lights", NULL};
+static const char *const k_known[] = {"grid_x", "grid_y", "grid_z", "max_lights", "budget_mb", "method",
+                                      "subgroups", NULL};
+static const char *const k_methods[] = {"binned", "brute_force", NULL};
 
-static pg_result read_opts(const pg_pass_desc *desc, uint32_t grid[3], uint32_t *max_lights, pg_error *err)
+static pg_result read_opts(const pg_pass_desc *desc, ca_opts *o, pg_error *err)
 {
     pg_result r;
     int64_t v;
     static const char *const gk[3] = {"grid_x", "grid_y", "grid_z"};
     static const int64_t gd[3] = {16, 9, 24};
+    memset(o, 0, sizeof *o);
     if ((r = pg_opt_check_known(desc, k_known, err))) return r;
     for (int k = 0; k < 3; k++) {
         if ((r = pg_opt_int(desc, gk[k], gd[k], 1, 1024, &v, err))) return r;
-        grid[k] = (uint32_t)v;
+        o->grid[k] = (uint32_t)v;
     }
-    if ((r = pg_opt_int(desc, "max_lights", 256, 1, 65536, &v, err))) return r;
-    *max_lights = (uint32_t)v;
+    uint64_t cells = (uint64_t)o->grid[0] * o->grid[1] * o->grid[2];
+    if (cells > (1u << 22))
+        return pg_fail(err, PG_ERR_LIMIT, "%s: %s.options: cluster grid %ux%ux%u has more than 2^22 clusters",
+                       desc->file, desc->json_path, o->grid[0], o->grid[1], o->grid[2]);
+    if ((r = pg_opt_int(desc, "max_lights", 0, 0, 16777216, &v, err))) return r;
+    o->max_lights = (uint32_t)v;
+    double mb;
+    if ((r = pg_opt_float(desc, "budget_mb", 1024.0, 1.0, 1048576.0, &mb, err))) return r;
+    o->budget_bytes = (uint64_t)(mb * 1048576.0) & ~(uint64_t)255;
+    if ((r = pg_opt_enum(desc, "method", k_methods, 0, &o->method, err))) return r;
+    if ((r = pg_opt_bool(desc, "subgroups", true, &o->subgroups, err))) return r;
     return PG_OK;
 }
 
 static pg_result ca_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
-    uint32_t grid[3], max_lights;
-    pg_result r = read_opts(in->desc, grid, &max_lights, err);
+    ca_opts o;
+    pg_result r = read_opts(in->desc, &o, err);
     if (r) return r;
     pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
     pg_decl_write(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
     pg_decl_write(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
     char def[PG_NAME_MAX];
-    snprintf(def, sizeof def, "GRID_X=%u", grid[0]);
+    snprintf(def, sizeof def, "GRID_X=%u", o.grid[0]);
     pg_decl_define(out, def);
-    snprintf(def, sizeof def, "GRID_Y=%u", grid[1]);
+    snprintf(def, sizeof def, "GRID_Y=%u", o.grid[1]);
     pg_decl_define(out, def);
-    snprintf(def, sizeof def, "GRID_Z=%u", grid[2]);
+    snprintf(def, sizeof def, "GRID_Z=%u", o.grid[2]);
     pg_decl_define(out, def);
-    snprintf(def, sizeof def, "MAX_LIGHTS=%u", max_lights);
-    pg_decl_define(out, def);
+    if (o.method == 1) {
+        pg_decl_define(out, "PG_BRUTE_FORCE");
+        pg_decl_explain(out, "method brute_force: every light tested against every cluster (the oracle)");
+    }
+    if (o.max_lights)
+        pg_decl_explain(out, "max_lights %u: at most %u lights per cluster (an approximation: the rest is "
+                        "counted as overflow)", o.max_lights, o.max_lights);
     return PG_OK;
+}
+
+static pg_result shader(pg_gpu *gpu, const pg_plan_pass *pass, const char *file, const char *extra1,
+                        const char *extra2, VkShaderModule *out, pg_error *err)
+{
+    const char *defs[PG_MAX_DEFINES + 2];
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < pass->decl.n_defines; i++) defs[n++] = pass->decl.defines[i];
+    if (extra1) defs[n++] = extra1;
+    if (extra2) defs[n++] = extra2;
+    return pg_shader_module(gpu, file, VK_SHADER_STAGE_COMPUTE_BIT, defs, n, out, err);
+}
+
+static pg_result make_pipe(cluster_assign *p, pg_gpu *gpu, const pg_plan_pass *pass, int which, pg_error *err)
+{
+    static const char *const files[PIPE_N] = {"cluster_bin.comp", "cluster_lists.comp", "cluster_scan.comp",
+                                              "cluster_lists.comp"};
+    static const char *const suffix[PIPE_N] = {"bin", "count", "scan", "fill"};
+    bool lists = which == PIPE_COUNT || which == PIPE_FILL;
+    bool one_sg = lists && p->o.subgroups && gpu->exact_subgroups;
+    VkShaderModule cs;
+    pg_result r = shader(gpu, pass, files[which], which == PIPE_FILL ? "PG_FILL" : NULL,
+                         one_sg ? "PG_ONE_SUBGROUP" : NULL, &cs, err);
+    if (r) return r;
+    uint32_t spec[1] = {gpu->subgroup_size};
+    pg_compute_pipeline_desc d = {
+        .layout = p->layout,
+        .cs = cs,
+        .spec_data = one_sg ? spec : NULL,
+        .n_spec = one_sg ? 1 : 0,
+        .subgroup_size = one_sg ? gpu->subgroup_size : 0,
+    };
+    char name[PG_NAME_MAX + 16];
+    snprintf(name, sizeof name, "%s.%s", pass->name, suffix[which]);
+    r = pg_compute_pipeline_create_ex(gpu, &d, name, &p->pipe[which], err);
+    vkDestroyShaderModule(gpu->device, cs, NULL);
+    return r;
 }
 
 static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
@@ -65,74 +164,162 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     cluster_assign *p = self;
     pg_gpu *gpu = ctx->gpu;
     pg_result r;
-    if ((r = read_opts(ctx->desc, p->grid, &p->max_lights, err))) return r;
-    VkPhysicalDeviceSubgroupProperties sp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
-    VkPhysicalDeviceProperties2 pp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &sp};
-    vkGetPhysicalDeviceProperties2(gpu->phys, &pp);
-    if (!(sp.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT) || !(sp.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT))
-        return pg_fail(err, PG_ERR_NO_DEVICE, "%s: cluster_assign needs subgroup ballot in compute shaders",
-                       gpu->props.deviceName);
-    uint64_t cells = (uint64_t)p->grid[0] * p->grid[1] * p->grid[2];
-    if (ctx->slots[1]->size < cells * 4 || ctx->slots[2]->size < cells * p->max_lights * 4)
+    if ((r = read_opts(ctx->desc, &p->o, err))) return r;
+    p->clusters = p->o.grid[0] * p->o.grid[1] * p->o.grid[2];
+    p->light_count = (uint32_t)(ctx->slots[SLOT_LIGHTS]->size / 32);
+    p->words = (p->light_count + 31) / 32;
+    if (ctx->slots[SLOT_RECORDS]->size < (uint64_t)p->clusters * 16)
         return pg_fail(err, PG_ERR_INVALID_ARG,
-                       "%s: %s: cluster buffers (%llu, %llu bytes) too small for grid %ux%ux%u x %u lights",
-                       ctx->desc->file, ctx->desc->json_path, (unsigned long long)ctx->slots[1]->size,
-                       (unsigned long long)ctx->slots[2]->size, p->grid[0], p->grid[1], p->grid[2], p->max_lights);
+                       "%s: %s: cluster_counts (%llu bytes) is smaller than grid %ux%ux%u needs (16 bytes per "
+                       "cluster: %llu)",
+                       ctx->desc->file, ctx->desc->json_path, (unsigned long long)ctx->slots[SLOT_RECORDS]->size,
+                       p->o.grid[0], p->o.grid[1], p->o.grid[2], (unsigned long long)p->clusters * 16);
+    /* the lists' budget, within what one storage-buffer binding can span */
+    uint64_t dev_max = gpu->max_storage_buffer_range & ~(uint64_t)255;
+    p->budget = p->o.budget_bytes;
+    if (dev_max && p->budget > dev_max) {
+        p->budget = dev_max;
+        p->budget_clamped = true;
+    }
+    p->list_bytes = ctx->slots[SLOT_LISTS]->size;
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.stats", ctx->pass->name);
-    if ((r = pg_buffer_create(gpu, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true,
-                              name, &p->stats, err)))
+    if ((r = pg_buffer_create(gpu, sizeof(ca_stats), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              true, name, &p->stats, err)))
         return r;
-    pg_phys_resource stats_res = {.kind = PG_RES_BUFFER, .buffer = p->stats.buffer, .size = 16};
-    pg_set_binding b[4] = {
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[0], VK_NULL_HANDLE, 0},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[1], VK_NULL_HANDLE, 0},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[2], VK_NULL_HANDLE, 0},
+    const bool binned = p->o.method == 0;
+    uint64_t tile_bytes = (uint64_t)p->o.grid[0] * p->o.grid[1] * p->words * 4;
+    uint64_t slice_bytes = (uint64_t)p->o.grid[2] * p->words * 4;
+    if (binned) {
+        if (tile_bytes > gpu->max_storage_buffer_range)
+            return pg_fail(err, PG_ERR_LIMIT,
+                           "%s: %s: %u lights need %llu bytes of tile masks, more than %s binds (%llu): use fewer "
+                           "lights or a coarser grid",
+                           ctx->desc->file, ctx->desc->json_path, p->light_count, (unsigned long long)tile_bytes,
+                           gpu->props.deviceName, (unsigned long long)gpu->max_storage_buffer_range);
+        snprintf(name, sizeof name, "%s.tile_masks", ctx->pass->name);
+        if ((r = pg_buffer_create(gpu, tile_bytes ? tile_bytes : 16,
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false, name,
+                                  &p->tile_masks, err)))
+            return r;
+        snprintf(name, sizeof name, "%s.slice_masks", ctx->pass->name);
+        if ((r = pg_buffer_create(gpu, slice_bytes ? slice_bytes : 16,
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false, name,
+                                  &p->slice_masks, err)))
+            return r;
+    }
+    pg_phys_resource stats_res = {.kind = PG_RES_BUFFER, .buffer = p->stats.buffer, .size = p->stats.size};
+    pg_phys_resource tm = {.kind = PG_RES_BUFFER, .buffer = p->tile_masks.buffer, .size = p->tile_masks.size};
+    pg_phys_resource sm = {.kind = PG_RES_BUFFER, .buffer = p->slice_masks.buffer, .size = p->slice_masks.size};
+    /* one set for every step: 0 lights, 1 records, 2 lists, 3 tile masks, 4 slice masks, 5 stats
+     * (the brute-force method binds the stats buffer in the mask slots: never read there) */
+    pg_set_binding b[6] = {
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[SLOT_LIGHTS], VK_NULL_HANDLE, 0},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[SLOT_RECORDS], VK_NULL_HANDLE, 0},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[SLOT_LISTS], VK_NULL_HANDLE, 0},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binned ? &tm : &stats_res, VK_NULL_HANDLE, 0},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binned ? &sm : &stats_res, VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &stats_res, VK_NULL_HANDLE, 0},
     };
-    if ((r = pg_pass_set_create(gpu, 4, b, ctx->pass->name, &p->set, err))) return r;
+    if ((r = pg_pass_set_create(gpu, 6, b, ctx->pass->name, &p->set, err))) return r;
     VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
-    if ((r = pg_pipeline_layout_create(gpu, 2, sets, 0, &p->layout, err))) return r;
-    const char *defs[PG_MAX_DEFINES];
-    for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) defs[i] = ctx->pass->decl.defines[i];
-    VkShaderModule cs;
-    if ((r = pg_shader_module(gpu, "cluster_assign.comp", VK_SHADER_STAGE_COMPUTE_BIT, defs,
-                              ctx->pass->decl.n_defines, &cs, err)))
-        return r;
-    r = pg_compute_pipeline_create(gpu, p->layout, cs, ctx->pass->name, &p->pipeline, err);
-    vkDestroyShaderModule(gpu->device, cs, NULL);
-    return r;
+    if ((r = pg_pipeline_layout_create(gpu, 2, sets, 16, &p->layout, err))) return r;
+    for (int i = 0; i < PIPE_N; i++) {
+        if (i == PIPE_BIN && !binned) continue;
+        if ((r = make_pipe(p, gpu, ctx->pass, i, err))) return r;
+    }
+    return PG_OK;
+}
+
+static void buffer_barrier(VkCommandBuffer cmd, VkBuffer buf, uint64_t src_stage, uint64_t src_access,
+                           uint64_t dst_stage, uint64_t dst_access, VkBufferMemoryBarrier2 *out)
+{
+    *out = (VkBufferMemoryBarrier2){
+        .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
+        .srcStageMask = src_stage,
+        .srcAccessMask = src_access,
+        .dstStageMask = dst_stage,
+        .dstAccessMask = dst_access,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .buffer = buf,
+        .size = VK_WHOLE_SIZE,
+    };
+    (void)cmd;
+}
+
+/* compute -> compute on every buffer the steps share */
+static void step_barrier(VkCommandBuffer cmd)
+{
+    VkMemoryBarrier2 mb = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+        .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+        .srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+        .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+        .dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+    };
+    VkDependencyInfo di = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
+                           .pMemoryBarriers = &mb};
+    vkCmdPipelineBarrier2(cmd, &di);
+}
+
+static void dispatch_groups(VkCommandBuffer cmd, uint32_t groups)
+{
+    if (!groups) return;
+    uint32_t gx = groups < 65535 ? groups : 65535;
+    vkCmdDispatch(cmd, gx, (groups + gx - 1) / gx, 1);
 }
 
 static void ca_record(void *self, const pg_pass_record_ctx *ctx)
 {
     cluster_assign *p = self;
     VkCommandBuffer cmd = ctx->cmd;
-    /* the stats buffer is the pass's own: it places its own barriers */
-    vkCmdFillBuffer(cmd, p->stats.buffer, 0, 16, 0);
-    VkBufferMemoryBarrier2 b = {
-        .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
-        .srcStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-        .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-        .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-        .dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .buffer = p->stats.buffer,
-        .size = VK_WHOLE_SIZE,
-    };
-    pg_cmd_barriers(cmd, 0, NULL, 1, &b);
+    const bool binned = p->o.method == 0;
+    /* the stats and mask buffers are the pass's own: it places their barriers */
+    vkCmdFillBuffer(cmd, p->stats.buffer, 0, VK_WHOLE_SIZE, 0);
+    if (binned) {
+        vkCmdFillBuffer(cmd, p->tile_masks.buffer, 0, VK_WHOLE_SIZE, 0);
+        vkCmdFillBuffer(cmd, p->slice_masks.buffer, 0, VK_WHOLE_SIZE, 0);
+    }
+    VkBufferMemoryBarrier2 bb[3];
+    uint32_t nb = 0;
+    const uint64_t xfer = VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
+    const uint64_t rw = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    buffer_barrier(cmd, p->stats.buffer, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                   rw, &bb[nb++]);
+    if (binned) {
+        buffer_barrier(cmd, p->tile_masks.buffer, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw, &bb[nb++]);
+        buffer_barrier(cmd, p->slice_masks.buffer, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw, &bb[nb++]);
+    }
+    pg_cmd_barriers(cmd, 0, NULL, nb, bb);
+
     VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
+    uint32_t capacity = (uint32_t)(p->list_bytes / 4 > 0xffffffffu ? 0xffffffffu : p->list_bytes / 4);
+    uint32_t push[4] = {p->words, 0, 0, 0};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 2, sets, 0, NULL);
-    uint32_t cells = p->grid[0] * p->grid[1] * p->grid[2];
-    uint32_t gx = cells < 65535 ? cells : 65535;
-    vkCmdDispatch(cmd, gx, (cells + gx - 1) / gx, 1);
-    b.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    b.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    b.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    pg_cmd_barriers(cmd, 0, NULL, 1, &b);
+    if (binned) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_BIN]);
+        vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, push);
+        dispatch_groups(cmd, (p->light_count + 63) / 64);
+        step_barrier(cmd);
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_COUNT]);
+    vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, push);
+    dispatch_groups(cmd, p->clusters);
+    step_barrier(cmd);
+    uint32_t scan_push[4] = {p->clusters, capacity, p->o.max_lights, 0};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_SCAN]);
+    vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, scan_push);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    step_barrier(cmd);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_FILL]);
+    vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, push);
+    dispatch_groups(cmd, p->clusters);
+    buffer_barrier(cmd, p->stats.buffer, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                   VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT, &bb[0]);
+    pg_cmd_barriers(cmd, 0, NULL, 1, bb);
     p->ran = true;
 }
 
@@ -140,25 +327,41 @@ static void ca_report(void *self, pg_pass_report *out)
 {
     cluster_assign *p = self;
     if (!p->ran) return;
-    const uint32_t *s = p->stats.mapped;
-    pg_report_add(out, "overflow_clusters", s[0]);
-    pg_report_add(out, "overflow_dropped", s[1]);
-    pg_report_add(out, "max_count", s[2]);
-    pg_report_add(out, "total_refs", s[3]);
+    const ca_stats *s = p->stats.mapped;
+    pg_report_add(out, "overflow_clusters", s->overflow_clusters);
+    pg_report_add(out, "overflow_dropped", s->dropped);
+    pg_report_add(out, "dropped_cap", s->dropped_cap);
+    pg_report_add(out, "total_refs", s->stored);
+    pg_report_add(out, "needed_refs", s->needed);
+    pg_report_add(out, "max_count", s->max_count);
+    pg_report_add(out, "list_bytes", p->list_bytes);
+    pg_report_add(out, "mask_bytes", p->tile_masks.size + p->slice_masks.size);
+    uint64_t needed = (uint64_t)s->needed * 4;
+    if (needed > p->list_bytes) {
+        pg_report_grow(out, SLOT_LISTS, needed, p->budget);
+        if (needed > p->budget)
+            pg_report_note(out, "light lists need %.1f MiB, over the %s%.1f MiB budget: %u refs dropped "
+                           "(set budget_mb%s)", needed / 1048576.0, p->budget_clamped ? "device's " : "",
+                           p->budget / 1048576.0, s->dropped - s->dropped_cap,
+                           p->budget_clamped ? "; the device's storage buffer range is the limit" : "");
+    }
 }
 
 static void ca_destroy(void *self, pg_gpu *gpu)
 {
     cluster_assign *p = self;
-    if (p->pipeline) vkDestroyPipeline(gpu->device, p->pipeline, NULL);
+    for (int i = 0; i < PIPE_N; i++)
+        if (p->pipe[i]) vkDestroyPipeline(gpu->device, p->pipe[i], NULL);
     if (p->layout) vkDestroyPipelineLayout(gpu->device, p->layout, NULL);
     pg_pass_set_destroy(gpu, &p->set);
     pg_buffer_destroy(gpu, &p->stats);
+    pg_buffer_destroy(gpu, &p->tile_masks);
+    pg_buffer_destroy(gpu, &p->slice_masks);
 }
 
 const pg_pass_type pg_pass_cluster_assign = {
     .name = "cluster_assign",
-    .summary = "compute: per-cluster light lists (conservative sphere vs cluster AABB, overflow counted)",
+    .summary = "compute: per-cluster light lists, exact by default (binned lights, exact test, growing lists)",
     .read_slots = "lights",
     .write_slots = "cluster_counts, cluster_lights",
     .instance_size = sizeof(cluster_assign),

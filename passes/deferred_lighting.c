@@ -3,7 +3,7 @@
  * (shaders/deferred_lighting.comp; same light model and summation order as forward).
  * Slots: reads [lights, cluster_counts, cluster_lights, depth, G-buffer targets of the variant]
  *        writes [hdr] (storage image, every pixel written).
- * Options: packing (as gbuffer), shading, ambient, view, grid_x/y/z, max_lights. */
+ * Options: packing (as gbuffer), shading, ambient, view, grid_x/y/z. */
 #include <stdio.h>
 #include <string.h>
 

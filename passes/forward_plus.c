@@ -4,7 +4,7 @@
  * no cluster overflowed.
  * Slots: reads [lights, cluster_counts, cluster_lights] (storage buffers, fragment);
  *        writes [color, depth].
- * Options: shading, ambient, view (every debug view), grid_x/y/z, max_lights (must match the
+ * Options: shading, ambient, view (every debug view), grid_x/y/z (must match the
  * cluster_assign pass and the buffer sizes; the shared fragment pipelines/fragments/clusters.json
  * wires all three from the same parameters). */
 #include "forward_common.h"

@@ -19,7 +19,6 @@ pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const c
         known[n++] = "grid_x";
         known[n++] = "grid_y";
         known[n++] = "grid_z";
-        known[n++] = "max_lights";
     }
     for (uint32_t i = 0; extra_known && extra_known[i] && n < 23; i++) known[n++] = extra_known[i];
     known[n] = NULL;
@@ -43,12 +42,10 @@ pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const c
             if ((r = pg_opt_int(desc, gk[k], gd[k], 1, 1024, &v, err))) return r;
             o->grid[k] = (uint32_t)v;
         }
-        if ((r = pg_opt_int(desc, "max_lights", 256, 1, 65536, &v, err))) return r;
-        o->max_lights = (uint32_t)v;
         uint64_t cells = (uint64_t)o->grid[0] * o->grid[1] * o->grid[2];
-        if (cells > (1u << 22) || cells * o->max_lights > (1ull << 31))
-            return pg_fail(err, PG_ERR_LIMIT, "%s: %s.options: cluster grid %ux%ux%u x %u lights is too large",
-                           desc->file, desc->json_path, o->grid[0], o->grid[1], o->grid[2], o->max_lights);
+        if (cells > (1u << 22))
+            return pg_fail(err, PG_ERR_LIMIT, "%s: %s.options: cluster grid %ux%ux%u has more than 2^22 clusters",
+                           desc->file, desc->json_path, o->grid[0], o->grid[1], o->grid[2]);
     }
     return PG_OK;
 }
@@ -72,8 +69,6 @@ void pg_shading_declare(const pg_shading_opts *o, const pg_declare_in *in, pg_pa
         snprintf(def, sizeof def, "GRID_Y=%u", o->grid[1]);
         pg_decl_define(out, def);
         snprintf(def, sizeof def, "GRID_Z=%u", o->grid[2]);
-        pg_decl_define(out, def);
-        snprintf(def, sizeof def, "MAX_LIGHTS=%u", o->max_lights);
         pg_decl_define(out, def);
     }
     /* a debug view that shows no lighting and needs no cluster data reads no lights either */
@@ -122,12 +117,12 @@ pg_result pg_check_cluster_buffers(const pg_pass_create_ctx *ctx, const pg_shadi
     if (!pg_shading_has_lights(ctx->pass)) return PG_OK;
     uint64_t cells = (uint64_t)o->grid[0] * o->grid[1] * o->grid[2];
     const pg_phys_resource *counts = ctx->slots[cluster_slot], *lists = ctx->slots[cluster_slot + 1];
-    if (counts->size < cells * 4 || lists->size < cells * o->max_lights * 4)
+    if (counts->size < cells * 16 || lists->size < 4)
         return pg_fail(err, PG_ERR_INVALID_ARG,
-                       "%s: %s: cluster buffers (%llu and %llu bytes) are smaller than grid %ux%ux%u x %u lights needs "
-                       "(%llu and %llu bytes): size them from the same parameters",
+                       "%s: %s: cluster buffers (%llu and %llu bytes) do not fit grid %ux%ux%u (cluster_counts needs "
+                       "16 bytes per cluster: %llu): size them from the same parameters",
                        ctx->desc->file, ctx->desc->json_path, (unsigned long long)counts->size,
-                       (unsigned long long)lists->size, o->grid[0], o->grid[1], o->grid[2], o->max_lights,
-                       (unsigned long long)(cells * 4), (unsigned long long)(cells * o->max_lights * 4));
+                       (unsigned long long)lists->size, o->grid[0], o->grid[1], o->grid[2],
+                       (unsigned long long)(cells * 16));
     return PG_OK;
 }

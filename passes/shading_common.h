@@ -3,7 +3,7 @@
  *
  * Options: shading "lambert" | "blinn_phong"; ambient >= 0; view (debug view: none,
  * cluster_heat, cluster_x, cluster_y, cluster_z, overflow, albedo, normal, depth); clustered
- * passes also grid_x, grid_y, grid_z (cluster grid) and max_lights (per cluster).
+ * passes also grid_x, grid_y, grid_z (cluster grid; must match cluster_assign's).
  * With 0 lights the light slots are declared unused (so light animation and cluster assignment
  * are culled) and the light loop is compiled out. */
 #ifndef PG_SHADING_COMMON_H
@@ -18,7 +18,6 @@ typedef struct pg_shading_opts {
     double ambient;
     int view;            /* index into pg_debug_views */
     uint32_t grid[3];
-    uint32_t max_lights;
 } pg_shading_opts;
 
 extern const char *const pg_debug_views[]; /* NULL-terminated */
@@ -26,8 +25,7 @@ extern const char *const pg_debug_views[]; /* NULL-terminated */
 /* known: the pass's other option keys (NULL-terminated, may be NULL). */
 pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const char *const *extra_known,
                                pg_shading_opts *o, pg_error *err);
-/* Adds defines (PG_AMBIENT, PG_BLINN_PHONG, PG_DEBUG_VIEW, PG_HAS_LIGHTS, PG_CLUSTERED, GRID_*,
- * MAX_LIGHTS) and explanations; marks the light slots unused with 0 lights. light_slot and
+/* Adds defines (PG_AMBIENT, PG_BLINN_PHONG, PG_DEBUG_VIEW, PG_HAS_LIGHTS, PG_CLUSTERED, GRID_*) and explanations; marks the light slots unused with 0 lights. light_slot and
  * cluster_slot are read-slot indices (cluster_slot: counts, cluster_slot+1: lists; -1 if none). */
 void pg_shading_declare(const pg_shading_opts *o, const pg_declare_in *in, pg_pass_decl *out, bool clustered,
                         int light_slot, int cluster_slot);

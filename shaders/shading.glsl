@@ -1,7 +1,8 @@
 // shading.glsl - the lighting loop every shading pass shares (forward naive, forward+, deferred).
 // Needs common.glsl, lighting.glsl, and for PG_CLUSTERED cluster.glsl. Set 2 holds the lights:
-//   binding 0 Lights, and with PG_CLUSTERED binding 1 cluster light counts (raw, may exceed
-//   MAX_LIGHTS), binding 2 cluster light lists (MAX_LIGHTS indices per cluster, ascending).
+//   binding 0 Lights, and with PG_CLUSTERED binding 1 the per-cluster records (uvec4: list
+//   offset, lights stored, lights reaching the cluster, 0; see cluster_light.glsl), binding 2 the
+//   lists (light indices, ascending within each cluster).
 // Without PG_HAS_LIGHTS (0 lights in the scene) no light buffer is declared or read.
 // Debug views (PG_DEBUG_VIEW): 0 none, 1 cluster_heat, 2 cluster_x, 3 cluster_y, 4 cluster_z,
 // 5 overflow, 6 albedo, 7 normal, 8 depth.
@@ -9,7 +10,7 @@
 #ifdef PG_HAS_LIGHTS
 layout(set = 2, binding = 0, std430) readonly buffer Lights { Light lights[]; };
 #ifdef PG_CLUSTERED
-layout(set = 2, binding = 1, std430) readonly buffer ClusterCounts { uint cluster_counts[]; };
+layout(set = 2, binding = 1, std430) readonly buffer ClusterRecords { uvec4 cluster_records[]; };
 layout(set = 2, binding = 2, std430) readonly buffer ClusterLights { uint cluster_lights[]; };
 #endif
 #endif
@@ -46,10 +47,11 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
     uvec3 cc = pg_cluster_coord(frag_xy, vec2(frame.counts.zw), view_depth, frame.clip.x, frame.clip.y, grid);
     uint ci = pg_cluster_index(cc, grid);
 #ifdef PG_HAS_LIGHTS
-    uint raw = cluster_counts[ci];
+    uvec4 rec = cluster_records[ci];
 #else
-    uint raw = 0u;
+    uvec4 rec = uvec4(0u);
 #endif
+    uint raw = rec.z;
 #endif
 #if PG_DEBUG_VIEW == 6
     return s.albedo;
@@ -58,7 +60,7 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #elif PG_DEBUG_VIEW == 8
     return vec3(log2(max(view_depth / frame.clip.x, 1.0)) / max(log2(frame.clip.y / frame.clip.x), 1e-6));
 #elif defined(PG_CLUSTERED) && PG_DEBUG_VIEW == 1
-    return pg_heat(float(raw) / float(MAX_LIGHTS));
+    return pg_heat(log2(1.0 + float(raw)) / 16.0);   // log scale: 1 .. 65535 lights
 #elif defined(PG_CLUSTERED) && PG_DEBUG_VIEW == 2
     return pg_index_color(cc.x);
 #elif defined(PG_CLUSTERED) && PG_DEBUG_VIEW == 3
@@ -66,15 +68,13 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #elif defined(PG_CLUSTERED) && PG_DEBUG_VIEW == 4
     return pg_index_color(cc.z);
 #elif defined(PG_CLUSTERED) && PG_DEBUG_VIEW == 5
-    return raw > uint(MAX_LIGHTS) ? vec3(1.0, 0.0, 0.0) : s.albedo * 0.25;
+    return rec.y < raw ? vec3(1.0, 0.0, 0.0) : s.albedo * 0.25;
 #else
 #ifdef PG_HAS_LIGHTS
     float min_dist = frame.light_params.w;
 #ifdef PG_CLUSTERED
-    uint n = min(raw, uint(MAX_LIGHTS));
-    uint base = ci * uint(MAX_LIGHTS);
-    for (uint k = 0u; k < n; k++)
-        pg_accumulate_light(lights[cluster_lights[base + k]], cam, P, s.normal, V, s.shininess, min_dist, acc);
+    for (uint k = 0u; k < rec.y; k++)
+        pg_accumulate_light(lights[cluster_lights[rec.x + k]], cam, P, s.normal, V, s.shininess, min_dist, acc);
 #else
     uint count = frame.counts.x;
     for (uint i = 0u; i < count; i++)

@@ -175,6 +175,7 @@ int pg_cmd_render(int argc, char **argv)
             goto done;
         }
     }
+    for (uint32_t k = 0; k < st.n_notes; k++) printf("note: %s\n", st.notes[k]);
     printf("render: %s %ux%u lights=%u gpu=%.3f ms [", s->pipeline->name, w, h, fi.lights.count,
            median(samples, opt.frames));
     for (uint32_t p = 0; p < st.n_passes; p++)
@@ -183,9 +184,21 @@ int pg_cmd_render(int argc, char **argv)
     else printf("] nonfinite=n/a");
     bool clustered = false;
     for (uint32_t k = 0; k < st.n_counters; k++) clustered |= !strcmp(st.counters[k].name, "overflow_clusters");
-    if (clustered)
+    if (clustered) {
         printf(" overflow=%llu clusters (%llu light refs dropped)", (unsigned long long)st.overflow_clusters,
                (unsigned long long)st.overflow_dropped);
+        uint64_t list_bytes = 0, refs = 0;
+        for (uint32_t k = 0; k < st.n_counters; k++) {
+            if (!strcmp(st.counters[k].name, "list_bytes")) list_bytes += st.counters[k].value;
+            if (!strcmp(st.counters[k].name, "total_refs")) refs += st.counters[k].value;
+        }
+        printf(" refs=%llu lists=%.2f MiB", (unsigned long long)refs, list_bytes / 1048576.0);
+    }
+    /* buffers that grew while rendering (the frames were rendered again: see pg_session_render) */
+    for (uint32_t k = 0; k < st.n_grown; k++)
+        printf(" grew %s %.2f->%.2f MiB", st.grown[k].resource, st.grown[k].old_bytes / 1048576.0,
+               st.grown[k].new_bytes / 1048576.0);
+    if (st.n_grown) printf(" (%u re-render%s)", st.rerenders, st.rerenders == 1 ? "" : "s");
     printf(" frames=%u -> %s%s%s\n", opt.frames, png_path, exr_path[0] ? ", " : "", exr_path);
     free(samples);
     rc = 0;

@@ -1,0 +1,123 @@
+#version 460
+// cluster_lists.comp - light assignment, steps 2 and 4 of 4 (passes/cluster_assign.c). One
+// workgroup per cluster walks the 32-light words of its candidates (tile mask AND slice mask from
+// cluster_bin.comp; with PG_BRUTE_FORCE every light is a candidate: the oracle), applies the exact
+// test (pg_sphere_intersects_aabb against pg_cluster_aabb) to each candidate and
+//   - without PG_FILL (count): writes the number of hits, record.z (raw count);
+//   - with PG_FILL: writes the first record.y hits, in ascending light order, at record.x.
+// Both variants visit candidates in the same order and apply the same test, so the fill stores
+// exactly the lights the count counted. Words are handed to lanes in order and combined with an
+// exclusive prefix sum, so the lists come out ascending.
+// PG_ONE_SUBGROUP: the workgroup is exactly one full subgroup (the pipeline requires the size;
+// gpu->exact_subgroups): subgroup operations only, no barrier. Otherwise a 64-wide workgroup and
+// a shared-memory scan in gl_LocalInvocationIndex order.
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#include "common.glsl"
+FRAME_UNIFORMS_BLOCK
+#include "cluster.glsl"
+#include "cluster_light.glsl"
+
+#ifdef PG_ONE_SUBGROUP
+layout(local_size_x_id = 0) in;
+#else
+layout(local_size_x = 64) in;
+#endif
+layout(set = 1, binding = 0, std430) readonly buffer Lights { Light lights[]; };
+layout(set = 1, binding = 1, std430) buffer Records { uvec4 records[]; };
+#ifdef PG_FILL
+layout(set = 1, binding = 2, std430) writeonly buffer Lists { uint lists[]; };
+#endif
+#ifndef PG_BRUTE_FORCE
+layout(set = 1, binding = 3, std430) readonly buffer TileMasks { uint tile_masks[]; };
+layout(set = 1, binding = 4, std430) readonly buffer SliceMasks { uint slice_masks[]; };
+#endif
+layout(push_constant) uniform Push { uint words; } pc;
+
+#ifndef PG_ONE_SUBGROUP
+shared uint s_scan[64];
+#endif
+
+// Exclusive prefix of v over the workgroup in lane order, and the total.
+void scan(uint v, out uint excl, out uint total)
+{
+#ifdef PG_ONE_SUBGROUP
+    excl = subgroupExclusiveAdd(v);
+    total = subgroupAdd(v);
+#else
+    uint lid = gl_LocalInvocationIndex;
+    s_scan[lid] = v;
+    barrier();
+    for (uint d = 1u; d < 64u; d <<= 1u) {
+        uint add = lid >= d ? s_scan[lid - d] : 0u;
+        barrier();
+        s_scan[lid] += add;
+        barrier();
+    }
+    excl = s_scan[lid] - v;
+    total = s_scan[63];
+    barrier();
+#endif
+}
+
+void main()
+{
+    const uvec3 grid = uvec3(GRID_X, GRID_Y, GRID_Z);
+    uint cluster = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    if (cluster >= grid.x * grid.y * grid.z) return;  // the whole workgroup leaves together
+    uvec3 c = uvec3(cluster % grid.x, (cluster / grid.x) % grid.y, cluster / (grid.x * grid.y));
+    vec3 bmin, bmax;
+    pg_cluster_aabb(c, grid, frame.inv_proj, frame.clip.x, frame.clip.y, bmin, bmax);
+#ifdef PG_ONE_SUBGROUP
+    uint lane = gl_SubgroupInvocationID, width = gl_SubgroupSize;
+#else
+    uint lane = gl_LocalInvocationIndex, width = 64u;
+#endif
+    uint count = frame.counts.x;
+    uint words = pc.words;
+#ifndef PG_BRUTE_FORCE
+    uint tile_base = (c.y * grid.x + c.x) * words, slice_base = c.z * words;
+#endif
+#ifdef PG_FILL
+    uvec4 rec = records[cluster];
+    uint keep = rec.y;
+    if (keep == 0u) return;
+#endif
+    uint running = 0u;
+    for (uint w0 = 0u; w0 < words; w0 += width) {
+        uint w = w0 + lane;
+        uint hits = 0u;
+        if (w < words) {
+#ifdef PG_BRUTE_FORCE
+            uint n = min(count - min(count, w * 32u), 32u);
+            uint m = n >= 32u ? ~0u : ((1u << n) - 1u);
+#else
+            uint m = tile_masks[tile_base + w] & slice_masks[slice_base + w];
+#endif
+            while (m != 0u) {
+                int b = findLSB(m);
+                m &= m - 1u;
+                vec4 sph = pg_light_view_sphere(lights[w * 32u + uint(b)]);
+                if (pg_sphere_intersects_aabb(sph.xyz, sph.w, bmin, bmax)) hits |= 1u << uint(b);
+            }
+        }
+        uint excl, total;
+        scan(bitCount(hits), excl, total);
+#ifdef PG_FILL
+        uint slot = running + excl;
+        while (hits != 0u && slot < keep) {
+            int b = findLSB(hits);
+            hits &= hits - 1u;
+            lists[rec.x + slot] = w * 32u + uint(b);
+            slot++;
+        }
+#endif
+        running += total;
+#ifdef PG_FILL
+        if (running >= keep) break;                   // uniform: every lane has the same total
+#endif
+    }
+#ifndef PG_FILL
+    if (lane == 0u) records[cluster] = uvec4(0u, 0u, running, 0u);
+#endif
+}
