@@ -249,7 +249,8 @@ static pg_result create_unbound(pg_runtime *rt, int i, pg_error *err)
         VkBufferCreateInfo bci = {
             .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
             .size = r->size,
-            .usage = (pr->usage ? pr->usage : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
+            /* + TRANSFER_SRC: pg_runtime_read_buffer can copy any buffer out */
+            .usage = (pr->usage ? pr->usage : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
             .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
         };
         PG_VK_TRY(err, vkCreateBuffer(gpu->device, &bci, NULL, &r->buffer));
@@ -425,7 +426,7 @@ static pg_result grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t m
         VkBufferCreateInfo bci = {
             .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
             .size = tries[t],
-            .usage = (pr->usage ? pr->usage : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
+            .usage = (pr->usage ? pr->usage : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
             .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
         };
         vr = pg_vk_fault_next("vkCreateBuffer(grow)") ? VK_ERROR_OUT_OF_DEVICE_MEMORY
@@ -742,4 +743,68 @@ const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which)
     if (!rt->plan || which < 0 || which > 1) return NULL;
     int idx = which ? rt->plan->hdr_output : rt->plan->output;
     return idx >= 0 ? &rt->res[idx] : NULL;
+}
+
+static int buffer_index(const pg_runtime *rt, const char *name)
+{
+    if (!rt->plan || !name) return -1;
+    for (uint32_t i = 0; i < rt->plan->n_resources; i++) {
+        const pg_plan_resource *pr = &rt->plan->resources[i];
+        if (!strcmp(pr->name, name) && pr->kind == PG_RES_BUFFER && !pr->culled && rt->res[i].buffer) return (int)i;
+    }
+    return -1;
+}
+
+uint64_t pg_runtime_buffer_size(const pg_runtime *rt, const char *name)
+{
+    int i = buffer_index(rt, name);
+    return i < 0 ? 0 : rt->res[i].size;
+}
+
+pg_result pg_runtime_read_buffer(pg_runtime *rt, const char *name, uint64_t offset, uint64_t size, void *dst,
+                                 pg_error *err)
+{
+    int i = buffer_index(rt, name);
+    if (i < 0) return pg_fail(err, PG_ERR_INVALID_ARG, "read_buffer: no buffer resource '%s' in the plan", name ? name : "");
+    const pg_phys_resource *r = &rt->res[i];
+    if (offset > r->size || size > r->size - offset)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "read_buffer: '%s': bytes %llu..%llu past its %llu bytes", name,
+                       (unsigned long long)offset, (unsigned long long)(offset + size), (unsigned long long)r->size);
+    if (!size) return PG_OK;
+    pg_buffer staging;
+    pg_result res = pg_buffer_create(rt->gpu, size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, "readback.buffer",
+                                     &staging, err);
+    if (res) return res;
+    VkCommandBuffer cmd;
+    if ((res = pg_gpu_begin_once(rt->gpu, &cmd, err))) {
+        pg_buffer_destroy(rt->gpu, &staging);
+        return res;
+    }
+    VkMemoryBarrier2 mb = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+        .srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+        .srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT,
+        .dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+        .dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT,
+    };
+    VkDependencyInfo di = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1, .pMemoryBarriers = &mb};
+    vkCmdPipelineBarrier2(cmd, &di);
+    VkBufferCopy c = {offset, 0, size};
+    vkCmdCopyBuffer(cmd, r->buffer, staging.buffer, 1, &c);
+    VkBufferMemoryBarrier2 hb = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
+        .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+        .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+        .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
+        .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .buffer = staging.buffer,
+        .size = VK_WHOLE_SIZE,
+    };
+    pg_cmd_barriers(cmd, 0, NULL, 1, &hb);
+    res = pg_gpu_end_once(rt->gpu, cmd, err);
+    if (!res) memcpy(dst, staging.mapped, size);
+    pg_buffer_destroy(rt->gpu, &staging);
+    return res;
 }

@@ -120,6 +120,15 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
 /* Pixels of the last read-back frame: which = 0 the output, 1 the hdr_output (NULL if none). */
 const void *pg_runtime_output(const pg_runtime *rt, int which, uint32_t *w, uint32_t *h, pg_format *fmt);
 pg_runtime_stats pg_runtime_get_stats(const pg_runtime *rt);
+/* Copies bytes [offset, offset + size) of the buffer resource `name` as the last frame left it
+ * into dst (for tests and debugging; waits for the device). Transient buffers hold what the
+ * frame wrote unless another resource aliased them later in the frame (render with aliasing
+ * off to be sure). Fails for an unknown, culled or image resource or a range past its end. */
+pg_result pg_runtime_read_buffer(pg_runtime *rt, const char *name, uint64_t offset, uint64_t size, void *dst,
+                                 pg_error *err);
+/* Current size in bytes of a buffer resource (a "grow" buffer may exceed the plan's size); 0
+ * when unknown or culled. */
+uint64_t pg_runtime_buffer_size(const pg_runtime *rt, const char *name);
 /* The physical image of the output (which 0) or hdr_output (1), in TRANSFER_SRC_OPTIMAL layout
  * after each frame (NULL if none). For the viewer's blit to the window. */
 const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which);
