@@ -10,8 +10,10 @@
  *            deterministic subset when the list buffer is too small;
  *   4. fill  (cluster_lists.comp, PG_FILL) the same walk again, writing the hits in ascending
  *            light order at each cluster's offset.
- * Method "brute_force" skips the bin step and makes every light a candidate of every cluster
- * (O(clusters x lights)): the oracle tests/test_cluster_assign.c checks the binned lists against.
+ * Step 1 also stores each light's view-space sphere, which steps 2 and 4 test. Method
+ * "brute_force" only stores the spheres in step 1 and makes every light a candidate of every
+ * cluster (O(clusters x lights)): the oracle tests/test_cluster_assign.c checks the binned lists
+ * against.
  *
  * The list buffer (slot cluster_lights) is a "grow" buffer: when the lists need more room than
  * it has, the pass keeps a deterministic subset this frame, counts the rest, and asks the runtime
@@ -60,6 +62,7 @@ typedef struct cluster_assign {
     bool budget_clamped;
     pg_buffer stats;            /* host visible */
     pg_buffer tile_masks, slice_masks;
+    pg_buffer spheres;          /* view-space sphere per light (bin step), read by count/fill */
     pg_pass_set set;
     VkPipelineLayout layout;
     VkPipeline pipe[PIPE_N];
@@ -208,26 +211,30 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
                                   &p->slice_masks, err)))
             return r;
     }
+    snprintf(name, sizeof name, "%s.spheres", ctx->pass->name);
+    if ((r = pg_buffer_create(gpu, (uint64_t)(p->light_count ? p->light_count : 1) * 16,
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false, name, &p->spheres, err)))
+        return r;
     pg_phys_resource stats_res = {.kind = PG_RES_BUFFER, .buffer = p->stats.buffer, .size = p->stats.size};
     pg_phys_resource tm = {.kind = PG_RES_BUFFER, .buffer = p->tile_masks.buffer, .size = p->tile_masks.size};
     pg_phys_resource sm = {.kind = PG_RES_BUFFER, .buffer = p->slice_masks.buffer, .size = p->slice_masks.size};
-    /* one set for every step: 0 lights, 1 records, 2 lists, 3 tile masks, 4 slice masks, 5 stats
-     * (the brute-force method binds the stats buffer in the mask slots: never read there) */
-    pg_set_binding b[6] = {
+    pg_phys_resource sp = {.kind = PG_RES_BUFFER, .buffer = p->spheres.buffer, .size = p->spheres.size};
+    /* one set for every step: 0 lights, 1 records, 2 lists, 3 tile masks, 4 slice masks, 5 stats,
+     * 6 spheres (the brute-force method binds the stats buffer in the mask slots: never read) */
+    pg_set_binding b[7] = {
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[SLOT_LIGHTS], VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[SLOT_RECORDS], VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[SLOT_LISTS], VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binned ? &tm : &stats_res, VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binned ? &sm : &stats_res, VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &stats_res, VK_NULL_HANDLE, 0},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &sp, VK_NULL_HANDLE, 0},
     };
-    if ((r = pg_pass_set_create(gpu, 6, b, ctx->pass->name, &p->set, err))) return r;
+    if ((r = pg_pass_set_create(gpu, 7, b, ctx->pass->name, &p->set, err))) return r;
     VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
     if ((r = pg_pipeline_layout_create(gpu, 2, sets, 16, &p->layout, err))) return r;
-    for (int i = 0; i < PIPE_N; i++) {
-        if (i == PIPE_BIN && !binned) continue;
+    for (int i = 0; i < PIPE_N; i++)
         if ((r = make_pipe(p, gpu, ctx->pass, i, err))) return r;
-    }
     return PG_OK;
 }
 
@@ -299,12 +306,10 @@ static void ca_record(void *self, const pg_pass_record_ctx *ctx)
     uint32_t capacity = (uint32_t)(p->list_bytes / 4 > 0xffffffffu ? 0xffffffffu : p->list_bytes / 4);
     uint32_t push[4] = {p->words, 0, 0, 0};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 2, sets, 0, NULL);
-    if (binned) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_BIN]);
-        vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, push);
-        dispatch_groups(cmd, (p->light_count + 63) / 64);
-        step_barrier(cmd);
-    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_BIN]);
+    vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, push);
+    dispatch_groups(cmd, (p->light_count + 63) / 64);
+    step_barrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_COUNT]);
     vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, push);
     dispatch_groups(cmd, p->clusters);
@@ -335,13 +340,13 @@ static void ca_report(void *self, pg_pass_report *out)
     pg_report_add(out, "needed_refs", s->needed);
     pg_report_add(out, "max_count", s->max_count);
     pg_report_add(out, "list_bytes", p->list_bytes);
-    pg_report_add(out, "mask_bytes", p->tile_masks.size + p->slice_masks.size);
+    pg_report_add(out, "mask_bytes", p->tile_masks.size + p->slice_masks.size + p->spheres.size);
     uint64_t needed = (uint64_t)s->needed * 4;
     if (needed > p->list_bytes) {
         pg_report_grow(out, SLOT_LISTS, needed, p->budget);
         if (needed > p->budget)
             pg_report_note(out, "light lists need %.1f MiB, over the %s%.1f MiB budget: %u refs dropped "
-                           "(set budget_mb%s)", needed / 1048576.0, p->budget_clamped ? "device's " : "",
+                           "(raise list_budget_mb%s)", needed / 1048576.0, p->budget_clamped ? "device's " : "",
                            p->budget / 1048576.0, s->dropped - s->dropped_cap,
                            p->budget_clamped ? "; the device's storage buffer range is the limit" : "");
     }
@@ -357,6 +362,7 @@ static void ca_destroy(void *self, pg_gpu *gpu)
     pg_buffer_destroy(gpu, &p->stats);
     pg_buffer_destroy(gpu, &p->tile_masks);
     pg_buffer_destroy(gpu, &p->slice_masks);
+    pg_buffer_destroy(gpu, &p->spheres);
 }
 
 const pg_pass_type pg_pass_cluster_assign = {

@@ -18,6 +18,8 @@
 //    cluster's box lies inside, since ray * depth is linear in depth.
 // The radius is grown by 1e-4 relative plus 1e-5 of the distance: 10x the test's slack and
 // float rounding. tests/test_cluster_assign.c checks the lists against the brute-force oracle.
+// Every light's sphere is also stored (spheres[]), so the list steps test candidates without
+// transforming lights again; with PG_BRUTE_FORCE only that is done.
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "cluster.glsl"
@@ -25,8 +27,11 @@ FRAME_UNIFORMS_BLOCK
 
 layout(local_size_x = 64) in;
 layout(set = 1, binding = 0, std430) readonly buffer Lights { Light lights[]; };
+#ifndef PG_BRUTE_FORCE
 layout(set = 1, binding = 3, std430) buffer TileMasks { uint tile_masks[]; };   // tile * words + w
 layout(set = 1, binding = 4, std430) buffer SliceMasks { uint slice_masks[]; }; // slice * words + w
+#endif
+layout(set = 1, binding = 6, std430) writeonly buffer Spheres { vec4 spheres[]; }; // per light, for steps 2 and 4
 layout(push_constant) uniform Push { uint words; } pc;
 
 shared float s_depth[GRID_Z + 1];                       // slice boundaries
@@ -71,6 +76,8 @@ void main()
     uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + lid;
     if (i >= frame.counts.x) return;
     vec4 sph = pg_light_view_sphere(lights[i]);
+    spheres[i] = sph;
+#ifndef PG_BRUTE_FORCE                               // the oracle needs only the spheres
     if (!(sph.w > 0.0) || any(isnan(sph.xyz)) || any(isinf(sph.xyz))) return;
     float rr = sph.w * (1.0 + 1e-4) + 1e-5 * length(sph.xyz) + 1e-6;
     float pad_rel = 4.0 * PG_CLUSTER_AABB_PAD * s_m;
@@ -115,4 +122,5 @@ void main()
     for (int k = k0; k <= k1; k++) atomicOr(slice_masks[uint(k) * pc.words + w], bit);
     for (int y = y0; y <= y1; y++)
         for (int x = x0; x <= x1; x++) atomicOr(tile_masks[(uint(y) * grid.x + uint(x)) * pc.words + w], bit);
+#endif
 }

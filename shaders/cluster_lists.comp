@@ -23,7 +23,7 @@ layout(local_size_x_id = 0) in;
 #else
 layout(local_size_x = 64) in;
 #endif
-layout(set = 1, binding = 0, std430) readonly buffer Lights { Light lights[]; };
+layout(set = 1, binding = 6, std430) readonly buffer Spheres { vec4 spheres[]; }; // cluster_bin.comp
 layout(set = 1, binding = 1, std430) buffer Records { uvec4 records[]; };
 #ifdef PG_FILL
 layout(set = 1, binding = 2, std430) writeonly buffer Lists { uint lists[]; };
@@ -97,7 +97,7 @@ void main()
             while (m != 0u) {
                 int b = findLSB(m);
                 m &= m - 1u;
-                vec4 sph = pg_light_view_sphere(lights[w * 32u + uint(b)]);
+                vec4 sph = spheres[w * 32u + uint(b)];
                 if (pg_sphere_intersects_aabb(sph.xyz, sph.w, bmin, bmax)) hits |= 1u << uint(b);
             }
         }

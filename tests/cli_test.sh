@@ -128,6 +128,14 @@ OCIO="$tmp/broken.ocio" "$PG" render --size 32x18 --lights 4 --out "$tmp/x.png" 
 [ $? -eq 1 ] && grep -q "broken.ocio" "$tmp/err" && ok || { bad "\$OCIO broken config not reported"; cat "$tmp/err"; }
 expect_fail "--hdr-out not .exr" "expected a .exr" render --hdr-out "$tmp/x.png" --out "$tmp/x.png"
 
+# exact by default: the light lists grow to what the frame needs (frame rendered again) and drop nothing
+"$PG" render --pipeline "$root/pipelines/forward_plus.json" --lights 3000 --radius 6 --size 64x36 --out "$tmp/o.png" >"$tmp/out" 2>&1
+grep -Eq 'overflow=0 clusters \(0 light refs dropped\) refs=[0-9]+ lists=[0-9.]+ MiB grew cluster_lights [0-9.]+->[0-9.]+ MiB \(1 re-render\)' "$tmp/out" \
+  && ok || { bad "list growth not reported"; cat "$tmp/out"; }
+# past the list budget: the overflow is counted and a note says why
+"$PG" render --pipeline "$root/pipelines/deferred.json" --lights 20000 --radius 6 --set list_budget_mb=1 --size 64x36 --out "$tmp/o.png" >"$tmp/out" 2>&1
+grep -Eq 'overflow=[1-9][0-9]* clusters \([1-9][0-9]* light refs dropped\)' "$tmp/out" && grep -q '^note: light lists need .* over the 1.0 MiB budget' "$tmp/out" \
+  && ok || { bad "budget overflow not reported"; cat "$tmp/out"; }
 # clustered summary reports overflow (all lights at one point, 2 per cluster)
 "$PG" render --pipeline "$root/pipelines/forward_plus.json" --set max_lights=2 --lights 64 --radius 100 --size 64x36 --out "$tmp/o.png" >"$tmp/out" 2>&1
 grep -Eq 'overflow=[1-9][0-9]* clusters \([0-9]+ light refs dropped\)' "$tmp/out" && ok || { bad "overflow not reported"; cat "$tmp/out"; }

@@ -40,7 +40,7 @@ static config random_config(void)
     static const char *const shading[] = {"lambert", "blinn_phong"};
     static const char *const hdr[] = {"rgba16f", "rgba32f"};
     static const char *const gbuf[] = {"float", "oct16", "packed"};
-    static const char *const maxl[] = {"32", "128", "512"};
+    static const char *const maxl[] = {"0", "32", "512"};
     static const char *const gz[] = {"8", "24", "32"};
     config c = {0};
     c.pipeline = (int)rnd(5);

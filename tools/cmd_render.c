@@ -130,11 +130,15 @@ int pg_cmd_render(int argc, char **argv)
         goto done;
     }
     pg_frame_stats st = {0};
+    pg_grow_event grown[4];
+    uint32_t n_grown = 0, rerenders = 0;
     for (uint32_t f = 0; f < opt.frames; f++) {
         if (pg_session_render(s, &fi, f + 1 == opt.frames, &st, &err)) {
             free(samples);
             goto done;
         }
+        for (uint32_t k = 0; k < st.n_grown && n_grown < 4; k++) grown[n_grown++] = st.grown[k];
+        rerenders += st.rerenders;
         samples[f] = st.gpu_total_ms;
         for (uint32_t p = 0; p < st.n_passes; p++) samples[(size_t)(p + 1) * opt.frames + f] = st.pass_ms[p];
     }
@@ -195,10 +199,10 @@ int pg_cmd_render(int argc, char **argv)
         printf(" refs=%llu lists=%.2f MiB", (unsigned long long)refs, list_bytes / 1048576.0);
     }
     /* buffers that grew while rendering (the frames were rendered again: see pg_session_render) */
-    for (uint32_t k = 0; k < st.n_grown; k++)
-        printf(" grew %s %.2f->%.2f MiB", st.grown[k].resource, st.grown[k].old_bytes / 1048576.0,
-               st.grown[k].new_bytes / 1048576.0);
-    if (st.n_grown) printf(" (%u re-render%s)", st.rerenders, st.rerenders == 1 ? "" : "s");
+    for (uint32_t k = 0; k < n_grown; k++)
+        printf(" grew %s %.2f->%.2f MiB", grown[k].resource, grown[k].old_bytes / 1048576.0,
+               grown[k].new_bytes / 1048576.0);
+    if (n_grown) printf(" (%u re-render%s)", rerenders, rerenders == 1 ? "" : "s");
     printf(" frames=%u -> %s%s%s\n", opt.frames, png_path, exr_path[0] ? ", " : "", exr_path);
     free(samples);
     rc = 0;

@@ -103,6 +103,8 @@ typedef struct viewer {
     char scene_input[PG_PATH_MAX];
     view_action actions[MAX_ACTIONS];
     int n_actions;
+    uint32_t growths;           /* light-list (grow buffer) enlargements seen so far */
+    char last_growth[160];
 } viewer;
 
 static double now_s(void)
@@ -592,7 +594,17 @@ static void build_ui(viewer *v)
                                    "light overflow: %llu clusters, %llu light refs dropped",
                                    (unsigned long long)st->overflow_clusters,
                                    (unsigned long long)st->overflow_dropped);
+                uint64_t list_bytes = 0, refs = 0;
+                for (uint32_t k = 0; k < st->n_counters; k++) {
+                    if (!strcmp(st->counters[k].name, "list_bytes")) list_bytes += st->counters[k].value;
+                    if (!strcmp(st->counters[k].name, "total_refs")) refs += st->counters[k].value;
+                }
+                if (list_bytes)
+                    pg_ui_text("light lists: %llu refs in %.2f MiB; grew %u time%s%s%s", (unsigned long long)refs,
+                               list_bytes / 1048576.0, v->growths, v->growths == 1 ? "" : "s",
+                               v->last_growth[0] ? ", last: " : "", v->last_growth);
             }
+            for (uint32_t k = 0; k < st->n_notes; k++) pg_ui_text_colored(0xffa040ff, "%s", st->notes[k]);
             static const char *const cols[] = {"pass", "ms", "share"};
             if (pg_ui_table_begin("timings", 3)) {
                 pg_ui_table_header(cols, 3);
@@ -748,6 +760,11 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     fi.height = w->extent.height;
     pg_result r = pg_session_render(v->session, &fi, v->diff, &v->stats, err);
     if (r) return r;
+    for (uint32_t k = 0; k < v->stats.n_grown; k++) {
+        v->growths++;
+        snprintf(v->last_growth, sizeof v->last_growth, "%s grew %.2f -> %.2f MiB at %d lights", v->stats.grown[k].resource,
+                 v->stats.grown[k].old_bytes / 1048576.0, v->stats.grown[k].new_bytes / 1048576.0, v->light_count);
+    }
     bool show_diff = false;
     if (v->diff) {
         if (!v->naive) {
@@ -1195,7 +1212,7 @@ int pg_cmd_view(int argc, char **argv)
             v->reload = true;
             if (v->random_params) { /* long-run soak: random values for the common parameters */
                 static const char *const sh[] = {"lambert", "blinn_phong"}, *const hf[] = {"rgba16f", "rgba32f"},
-                                         *const ml[] = {"32", "128", "512"}, *const gz[] = {"8", "24", "32"},
+                                         *const ml[] = {"0", "32", "512"}, *const gz[] = {"8", "24", "32"},
                                          *const gb[] = {"float", "oct16", "packed"};
                 uint32_t r = frame * 2654435761u;
                 set_override(v, "shading", sh[(r >> 3) % 2]);
