@@ -4,7 +4,7 @@
  * Four dispatches in one pass (method "binned", the default):
  *   1. bin   (shaders/cluster_bin.comp)   each light sets its bit in the masks of the tiles and
  *            depth slices its sphere can reach (conservative; O(lights x (gx + gy + gz)));
- *   2. count (shaders/cluster_lists.comp) per cluster, the candidates (tile mask AND slice mask,
+ *   2. count (shaders/cluster_lists.comp) per cluster and segment of 16,384 lights, the candidates (tile mask AND slice mask,
  *            32 lights a word) get the exact sphere-vs-box test; raw count per cluster;
  *   3. scan  (shaders/cluster_scan.comp)  offsets, the optional per-cluster cap, and the
  *            deterministic subset when the list buffer is too small;
@@ -29,7 +29,8 @@
  * subgroups (bool, default true: one full subgroup per workgroup where the device allows it;
  * false: 64-wide workgroups with shared-memory scans).
  * Counters: overflow_clusters, overflow_dropped, dropped_cap, total_refs, needed_refs,
- * max_count, list_bytes, mask_bytes. */
+ * max_count, list_bytes, mask_bytes (masks + spheres), bin_ns, count_ns, scan_ns, fill_ns (GPU
+ * time of each step). */
 #include <stdio.h>
 #include <string.h>
 
@@ -39,6 +40,9 @@
 #include "vk_pipeline.h"
 
 enum { SLOT_LIGHTS = 0, SLOT_RECORDS = 1, SLOT_LISTS = 2 }; /* plan slots: reads, then writes */
+/* words (32 lights each) one count/fill workgroup walks: 16,384 lights, so 1,000,000 lights give
+ * 62 workgroups per cluster (enough in flight on a large GPU) and 4,000 lights one */
+#define SEG_WORDS 512u
 enum { PIPE_BIN, PIPE_COUNT, PIPE_SCAN, PIPE_FILL, PIPE_N };
 /* pg_pipeline_layout_create declares push constants for every stage */
 #define PUSH_STAGES (VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT)
@@ -63,10 +67,14 @@ typedef struct cluster_assign {
     pg_buffer stats;            /* host visible */
     pg_buffer tile_masks, slice_masks;
     pg_buffer spheres;          /* view-space sphere per light (bin step), read by count/fill */
+    pg_buffer segments;         /* hits per (cluster, segment of SEG_WORDS words) */
+    uint32_t n_segments;
     pg_pass_set set;
     VkPipelineLayout layout;
     VkPipeline pipe[PIPE_N];
     uint64_t list_bytes;        /* capacity of the list buffer this instance was created with */
+    VkQueryPool queries;        /* timestamps around the four steps (when the queue has them) */
+    pg_gpu *gpu;                /* borrowed, for report() */
     bool ran;
 } cluster_assign;
 
@@ -168,6 +176,7 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     pg_gpu *gpu = ctx->gpu;
     pg_result r;
     if ((r = read_opts(ctx->desc, &p->o, err))) return r;
+    p->gpu = gpu;
     p->clusters = p->o.grid[0] * p->o.grid[1] * p->o.grid[2];
     p->light_count = (uint32_t)(ctx->slots[SLOT_LIGHTS]->size / 32);
     p->words = (p->light_count + 31) / 32;
@@ -215,13 +224,24 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     if ((r = pg_buffer_create(gpu, (uint64_t)(p->light_count ? p->light_count : 1) * 16,
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false, name, &p->spheres, err)))
         return r;
+    p->n_segments = p->words ? (p->words + SEG_WORDS - 1) / SEG_WORDS : 1;
+    if ((uint64_t)p->clusters * p->n_segments > 65535ull * 65535ull ||
+        (uint64_t)p->clusters * p->n_segments * 4 > gpu->max_storage_buffer_range)
+        return pg_fail(err, PG_ERR_LIMIT, "%s: %s: %u clusters x %u lights is too large for %s: use fewer lights or a "
+                       "coarser grid", ctx->desc->file, ctx->desc->json_path, p->clusters, p->light_count,
+                       gpu->props.deviceName);
+    snprintf(name, sizeof name, "%s.segments", ctx->pass->name);
+    if ((r = pg_buffer_create(gpu, (uint64_t)p->clusters * p->n_segments * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              false, name, &p->segments, err)))
+        return r;
     pg_phys_resource stats_res = {.kind = PG_RES_BUFFER, .buffer = p->stats.buffer, .size = p->stats.size};
     pg_phys_resource tm = {.kind = PG_RES_BUFFER, .buffer = p->tile_masks.buffer, .size = p->tile_masks.size};
     pg_phys_resource sm = {.kind = PG_RES_BUFFER, .buffer = p->slice_masks.buffer, .size = p->slice_masks.size};
     pg_phys_resource sp = {.kind = PG_RES_BUFFER, .buffer = p->spheres.buffer, .size = p->spheres.size};
+    pg_phys_resource sg = {.kind = PG_RES_BUFFER, .buffer = p->segments.buffer, .size = p->segments.size};
     /* one set for every step: 0 lights, 1 records, 2 lists, 3 tile masks, 4 slice masks, 5 stats,
-     * 6 spheres (the brute-force method binds the stats buffer in the mask slots: never read) */
-    pg_set_binding b[7] = {
+     * 6 spheres, 7 segments (the brute-force method binds the stats buffer in the mask slots) */
+    pg_set_binding b[8] = {
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[SLOT_LIGHTS], VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[SLOT_RECORDS], VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[SLOT_LISTS], VK_NULL_HANDLE, 0},
@@ -229,12 +249,18 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binned ? &sm : &stats_res, VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &stats_res, VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &sp, VK_NULL_HANDLE, 0},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &sg, VK_NULL_HANDLE, 0},
     };
-    if ((r = pg_pass_set_create(gpu, 7, b, ctx->pass->name, &p->set, err))) return r;
+    if ((r = pg_pass_set_create(gpu, 8, b, ctx->pass->name, &p->set, err))) return r;
     VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
     if ((r = pg_pipeline_layout_create(gpu, 2, sets, 16, &p->layout, err))) return r;
     for (int i = 0; i < PIPE_N; i++)
         if ((r = make_pipe(p, gpu, ctx->pass, i, err))) return r;
+    if (gpu->timestamp_valid_bits) {
+        VkQueryPoolCreateInfo qci = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+                                     .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = 5};
+        PG_VK_TRY(err, vkCreateQueryPool(gpu->device, &qci, NULL, &p->queries));
+    }
     return PG_OK;
 }
 
@@ -302,26 +328,37 @@ static void ca_record(void *self, const pg_pass_record_ctx *ctx)
     }
     pg_cmd_barriers(cmd, 0, NULL, nb, bb);
 
+    if (p->queries) {
+        vkCmdResetQueryPool(cmd, p->queries, 0, 5);
+        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, p->queries, 0);
+    }
+#define STAMP(i) \
+    if (p->queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, p->queries, i)
     VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
     uint32_t capacity = (uint32_t)(p->list_bytes / 4 > 0xffffffffu ? 0xffffffffu : p->list_bytes / 4);
-    uint32_t push[4] = {p->words, 0, 0, 0};
+    uint32_t push[4] = {p->words, p->n_segments, SEG_WORDS, 0};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 2, sets, 0, NULL);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_BIN]);
     vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, push);
     dispatch_groups(cmd, (p->light_count + 63) / 64);
     step_barrier(cmd);
+    STAMP(1);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_COUNT]);
     vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, push);
-    dispatch_groups(cmd, p->clusters);
+    dispatch_groups(cmd, p->clusters * p->n_segments);
     step_barrier(cmd);
-    uint32_t scan_push[4] = {p->clusters, capacity, p->o.max_lights, 0};
+    STAMP(2);
+    uint32_t scan_push[4] = {p->clusters, capacity, p->o.max_lights, p->n_segments};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_SCAN]);
     vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, scan_push);
     vkCmdDispatch(cmd, 1, 1, 1);
     step_barrier(cmd);
+    STAMP(3);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_FILL]);
     vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, push);
-    dispatch_groups(cmd, p->clusters);
+    dispatch_groups(cmd, p->clusters * p->n_segments);
+    STAMP(4);
+#undef STAMP
     buffer_barrier(cmd, p->stats.buffer, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT, &bb[0]);
     pg_cmd_barriers(cmd, 0, NULL, 1, bb);
@@ -332,6 +369,15 @@ static void ca_report(void *self, pg_pass_report *out)
 {
     cluster_assign *p = self;
     if (!p->ran) return;
+    uint64_t ts[5];
+    if (p->queries && vkGetQueryPoolResults(p->gpu->device, p->queries, 0, 5, sizeof ts, ts, sizeof ts[0],
+                                            VK_QUERY_RESULT_64_BIT) == VK_SUCCESS) {
+        /* nanoseconds per step (each includes the barrier before the next) */
+        static const char *const names[4] = {"bin_ns", "count_ns", "scan_ns", "fill_ns"};
+        uint64_t mask = p->gpu->timestamp_valid_bits >= 64 ? ~0ull : ((1ull << p->gpu->timestamp_valid_bits) - 1);
+        for (int i = 0; i < 4; i++)
+            pg_report_add(out, names[i], (uint64_t)(((ts[i + 1] - ts[i]) & mask) * (double)p->gpu->timestamp_period_ns));
+    }
     const ca_stats *s = p->stats.mapped;
     pg_report_add(out, "overflow_clusters", s->overflow_clusters);
     pg_report_add(out, "overflow_dropped", s->dropped);
@@ -358,11 +404,13 @@ static void ca_destroy(void *self, pg_gpu *gpu)
     for (int i = 0; i < PIPE_N; i++)
         if (p->pipe[i]) vkDestroyPipeline(gpu->device, p->pipe[i], NULL);
     if (p->layout) vkDestroyPipelineLayout(gpu->device, p->layout, NULL);
+    if (p->queries) vkDestroyQueryPool(gpu->device, p->queries, NULL);
     pg_pass_set_destroy(gpu, &p->set);
     pg_buffer_destroy(gpu, &p->stats);
     pg_buffer_destroy(gpu, &p->tile_masks);
     pg_buffer_destroy(gpu, &p->slice_masks);
     pg_buffer_destroy(gpu, &p->spheres);
+    pg_buffer_destroy(gpu, &p->segments);
 }
 
 const pg_pass_type pg_pass_cluster_assign = {

@@ -1,10 +1,12 @@
 #version 460
 // cluster_lists.comp - light assignment, steps 2 and 4 of 4 (passes/cluster_assign.c). One
-// workgroup per cluster walks the 32-light words of its candidates (tile mask AND slice mask from
+// workgroup per (cluster, segment of seg_words words: many workgroups per cluster at high light
+// counts, so the GPU has enough of them in flight) walks the 32-light words of its candidates (tile mask AND slice mask from
 // cluster_bin.comp; with PG_BRUTE_FORCE every light is a candidate: the oracle), applies the exact
 // test (pg_sphere_intersects_aabb against pg_cluster_aabb) to each candidate and
-//   - without PG_FILL (count): writes the number of hits, record.z (raw count);
-//   - with PG_FILL: writes the first record.y hits, in ascending light order, at record.x.
+//   - without PG_FILL (count): writes the number of hits of its segment;
+//   - with PG_FILL: writes its hits, in ascending light order, at record.x + the hits of the
+//     cluster's earlier segments, as long as they are within the first record.y.
 // Both variants visit candidates in the same order and apply the same test, so the fill stores
 // exactly the lights the count counted. Words are handed to lanes in order and combined with an
 // exclusive prefix sum, so the lists come out ascending.
@@ -24,7 +26,10 @@ layout(local_size_x_id = 0) in;
 layout(local_size_x = 64) in;
 #endif
 layout(set = 1, binding = 6, std430) readonly buffer Spheres { vec4 spheres[]; }; // cluster_bin.comp
-layout(set = 1, binding = 1, std430) buffer Records { uvec4 records[]; };
+layout(set = 1, binding = 1, std430) readonly buffer Records { uvec4 records[]; };
+// per (cluster, segment): the count step writes the hits of the segment; the scan step turns
+// them into exclusive prefixes within the cluster, which the fill step starts from
+layout(set = 1, binding = 7, std430) buffer Segments { uint segments[]; };
 #ifdef PG_FILL
 layout(set = 1, binding = 2, std430) writeonly buffer Lists { uint lists[]; };
 #endif
@@ -32,7 +37,7 @@ layout(set = 1, binding = 2, std430) writeonly buffer Lists { uint lists[]; };
 layout(set = 1, binding = 3, std430) readonly buffer TileMasks { uint tile_masks[]; };
 layout(set = 1, binding = 4, std430) readonly buffer SliceMasks { uint slice_masks[]; };
 #endif
-layout(push_constant) uniform Push { uint words; } pc;
+layout(push_constant) uniform Push { uint words; uint segments; uint seg_words; } pc;
 
 #ifndef PG_ONE_SUBGROUP
 shared uint s_scan[64];
@@ -63,7 +68,8 @@ void scan(uint v, out uint excl, out uint total)
 void main()
 {
     const uvec3 grid = uvec3(GRID_X, GRID_Y, GRID_Z);
-    uint cluster = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    uint cluster = group / pc.segments, seg = group % pc.segments;
     if (cluster >= grid.x * grid.y * grid.z) return;  // the whole workgroup leaves together
     uvec3 c = uvec3(cluster % grid.x, (cluster / grid.x) % grid.y, cluster / (grid.x * grid.y));
     vec3 bmin, bmax;
@@ -78,16 +84,20 @@ void main()
 #ifndef PG_BRUTE_FORCE
     uint tile_base = (c.y * grid.x + c.x) * words, slice_base = c.z * words;
 #endif
+    uint seg_index = cluster * pc.segments + seg;
+    uint w_begin = seg * pc.seg_words, w_end = min(words, w_begin + pc.seg_words);
 #ifdef PG_FILL
     uvec4 rec = records[cluster];
     uint keep = rec.y;
-    if (keep == 0u) return;
-#endif
+    uint running = segments[seg_index];              // hits of the cluster's earlier segments
+    if (running >= keep) return;
+#else
     uint running = 0u;
-    for (uint w0 = 0u; w0 < words; w0 += width) {
+#endif
+    for (uint w0 = w_begin; w0 < w_end; w0 += width) {
         uint w = w0 + lane;
         uint hits = 0u;
-        if (w < words) {
+        if (w < w_end) {
 #ifdef PG_BRUTE_FORCE
             uint n = min(count - min(count, w * 32u), 32u);
             uint m = n >= 32u ? ~0u : ((1u << n) - 1u);
@@ -118,6 +128,6 @@ void main()
 #endif
     }
 #ifndef PG_FILL
-    if (lane == 0u) records[cluster] = uvec4(0u, 0u, running, 0u);
+    if (lane == 0u) segments[seg_index] = running;
 #endif
 }

@@ -1,6 +1,8 @@
 #version 460
 // cluster_scan.comp - light assignment, step 3 of 4 (passes/cluster_assign.c). One workgroup
-// turns the raw counts (record.z, from the count step) into list offsets and stored counts:
+// sums the hits of each cluster's segments (count step) into its raw count (record.z), turns the
+// segment counts into prefixes for the fill step, and the raw counts into list offsets and
+// stored counts:
 //   stored_c = min(raw_c, cap) with cap the per-cluster limit (push constant; 0 = none, the
 //   default: exact);
 //   if the stored references exceed the list buffer (capacity, in elements), every cluster keeps
@@ -25,7 +27,8 @@ layout(set = 1, binding = 5, std430) buffer Stats {
     uint fair_cap;          // the k applied when the capacity was short (0xffffffff: none)
     uint capacity;          // the list capacity this frame had (elements)
 } stats;
-layout(push_constant) uniform Push { uint clusters; uint capacity; uint cap; } pc;
+layout(set = 1, binding = 7, std430) buffer Segments { uint segments[]; };
+layout(push_constant) uniform Push { uint clusters; uint capacity; uint cap; uint segments; } pc;
 
 shared uint s_red[WG];
 
@@ -75,6 +78,16 @@ void main()
     uint per = (n + WG - 1u) / WG;
     uint first = min(lid * per, n), last = min(first + per, n);
 
+    // raw count per cluster = the sum of its segments' hits; segments become exclusive prefixes
+    for (uint c = first; c < last; c++) {
+        uint sum = 0u;
+        for (uint g = 0u; g < pc.segments; g++) {
+            uint h = segments[c * pc.segments + g];
+            segments[c * pc.segments + g] = sum;
+            sum += h;
+        }
+        records[c] = uvec4(0u, 0u, sum, 0u);
+    }
     uint s_stored = 0u, s_raw = 0u, m_raw = 0u, m_stored = 0u;
     for (uint c = first; c < last; c++) {
         uint raw = records[c].z;

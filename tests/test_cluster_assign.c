@@ -328,7 +328,7 @@ static void oracle_cases(const pg_scene_gpu *sg)
         float fov, n, f;
         uint32_t grid[3];
         bool subgroups;
-        int set; /* 0 hostile, 1 random */
+        int set; /* 0 hostile, 1 random, 2 many small random */
     } cases[] = {
         {"hostile 16x9x24", 60, 0.1f, 1000, {16, 9, 24}, true, 0},
         {"hostile 16x9x24 wg64", 60, 0.1f, 1000, {16, 9, 24}, false, 0},
@@ -339,12 +339,15 @@ static void oracle_cases(const pg_scene_gpu *sg)
         {"hostile grid 1x1x1", 60, 0.1f, 300, {1, 1, 1}, true, 0},
         {"random 4000 r 0.1..20", 60, 0.5f, 1000, {16, 9, 24}, true, 1},
         {"random 4000 grid 32x18x48", 60, 0.5f, 1000, {32, 18, 48}, false, 1},
+        {"random 40000 (3 segments)", 60, 0.5f, 1000, {16, 9, 24}, true, 2},
+        {"random 40000 (3 segs) wg64", 60, 0.5f, 1000, {16, 9, 24}, false, 2},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         light_clear();
         if (cases[i].set == 0) hostile_set(cases[i].fov, cases[i].n, cases[i].f, cases[i].grid[0], cases[i].grid[1],
                                            cases[i].grid[2]);
-        else random_set(4000, cases[i].n, cases[i].f, 0.1f, 20.0f);
+        else if (cases[i].set == 1) random_set(4000, cases[i].n, cases[i].f, 0.1f, 20.0f);
+        else random_set(40000, cases[i].n, cases[i].f, 0.05f, 3.0f); /* > 16,384: several segments */
         run_desc d = {.grid = {cases[i].grid[0], cases[i].grid[1], cases[i].grid[2]}, .budget_mb = 1024,
                       .subgroups = cases[i].subgroups, .cam = camera(cases[i].fov, cases[i].n, cases[i].f)};
         run_result r = run(sg, &d);
@@ -444,7 +447,7 @@ int main(void)
         fprintf(stderr, "%s\n", err.msg);
         return 1;
     }
-    g_lights = calloc((size_t)16384 * 8, sizeof(float));
+    g_lights = calloc((size_t)65536 * 8, sizeof(float));
     pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
     if (!g_lights || pg_gpu_create(&gd, &g_gpu, &err)) {
         fprintf(stderr, "test_cluster_assign: %s\n", err.msg);
