@@ -2,6 +2,11 @@
 // deferred_lighting.comp - one thread per pixel: rebuild the surface from the G-buffer of one
 // packing variant, then shade with the lights of its cluster (shading.glsl, same model and same
 // summation order as forward). Background pixels (cleared depth) are black, as in forward.
+// PG_TILE_LIGHTS (option tile_lights, default on): the 8x8 workgroup first culls each cluster's
+// list against the bounding box of its pixels and shares the kept lights through shared memory
+// (pg_shade_tile in shading.glsl): the same sum, far fewer light evaluations.
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "lighting.glsl"
@@ -28,21 +33,34 @@ layout(set = 1, binding = HDR_BINDING, PG_HDR_FORMAT) uniform writeonly image2D 
 
 #include "shading.glsl"
 
+#if defined(PG_TILE_LIGHTS) && defined(PG_CLUSTERED) && defined(PG_HAS_LIGHTS) && PG_DEBUG_VIEW == 0
+#define PG_TILED 1   // the workgroup shades together (pg_shade_tile): no early return before it
+#endif
+
 void main()
 {
     ivec2 size = imageSize(hdr_out);
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-    if (px.x >= size.x || px.y >= size.y) return;
-    float depth = texelFetch(g_depth, px, 0).r;
-    if (!(depth < 1.0)) {
+    bool inside = px.x < size.x && px.y < size.y;
+    float depth = inside ? texelFetch(g_depth, px, 0).r : 1.0;
+    bool lit = depth < 1.0;
+#ifndef PG_TILED
+    if (!inside) return;
+    if (!lit) {
         imageStore(hdr_out, px, vec4(0.0, 0.0, 0.0, 1.0));
         return;
     }
+#endif
     vec2 frag = vec2(px) + 0.5;
     vec2 uv = frag / vec2(size);
     Surface s;
-    vec3 P; // camera-relative
-    float view_depth;
+    vec3 P = vec3(0.0); // camera-relative
+    float view_depth = 0.0;
+    s.albedo = vec3(0.0);
+    s.normal = vec3(0.0, 0.0, 1.0);
+    s.specular = 0.0;
+    s.shininess = 1.0;
+    if (lit) {
 #if defined(PG_GBUFFER_FLOAT)
     P = texelFetch(g_position, px, 0).xyz - frame.camera_pos.xyz; // world -> camera-relative
     vec4 n = texelFetch(g_normal, px, 0);
@@ -75,6 +93,12 @@ void main()
     vec3 pv = pg_view_pos_from_view_depth(uv, view_depth, frame.proj);
     P = PG_VIEW_TO_REL(pv);
 #endif
+    }
+#ifdef PG_TILED
+    vec3 c = pg_shade_tile(lit, s, P, view_depth, frag);
+    if (inside) imageStore(hdr_out, px, vec4(lit ? pg_hdr_sanitize(c) : vec3(0.0), 1.0));
+#else
     vec3 c = pg_shade_point(s, P, view_depth, frag);
     imageStore(hdr_out, px, vec4(pg_hdr_sanitize(c), 1.0));
+#endif
 }

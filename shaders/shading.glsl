@@ -84,3 +84,126 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
     return s.albedo * (acc.diffuse + vec3(PG_AMBIENT)) + s.specular * acc.specular;
 #endif
 }
+
+#if defined(PG_TILE_LIGHTS) && defined(PG_CLUSTERED) && defined(PG_HAS_LIGHTS) && PG_DEBUG_VIEW == 0
+// Tile-refined clustered shading for a compute workgroup of 64 invocations (one per pixel of an
+// 8x8 tile; every invocation of the workgroup must call it, in uniform control flow). For each
+// distinct cluster among the tile's lit pixels (smallest index first), the workgroup streams the
+// cluster's list through shared memory 64 lights at a time, keeps only the lights whose sphere
+// reaches the bounding box of the tile's pixels in that cluster (their camera-relative
+// positions: a light that reaches a pixel reaches that box), and the pixels of the cluster sum
+// the kept lights in list order. Lights dropped by the box test would have added exactly nothing
+// (pg_accumulate_light returns before touching acc when d >= R), so the sum is bit-identical to
+// the per-pixel loop of pg_shade_point, with far fewer evaluations and each light read once per
+// tile instead of once per pixel.
+// PG_TILE_SUBGROUPS: the pipeline requires full subgroups (gpu->exact_subgroups), so subgroup
+// ballots give the order within a subgroup; otherwise a shared-memory scan.
+shared uint s_tl_cluster;
+shared uint s_tl_box[6];                 // ordered-uint min xyz, max xyz
+shared vec4 s_tl_light[2 * 64];          // pos_radius, color of the kept lights
+shared uint s_tl_count[64];
+
+uint pg_tl_order(float f)                // float -> uint with the same order
+{
+    uint b = floatBitsToUint(f);
+    return (b & 0x80000000u) != 0u ? ~b : b | 0x80000000u;
+}
+
+float pg_tl_unorder(uint u)
+{
+    return uintBitsToFloat((u & 0x80000000u) != 0u ? u & 0x7fffffffu : ~u);
+}
+
+vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
+{
+    uint lid = gl_LocalInvocationIndex;
+    vec3 V = lit ? normalize(-P) : vec3(0.0, 0.0, 1.0);
+    vec3 cam = frame.camera_pos.xyz;
+    float min_dist = frame.light_params.w;
+    PgShade acc;
+    acc.diffuse = vec3(0.0);
+    acc.specular = vec3(0.0);
+    uvec3 grid = uvec3(GRID_X, GRID_Y, GRID_Z);
+    uint ci = 0xffffffffu;
+    if (lit) ci = pg_cluster_index(pg_cluster_coord(frag_xy, vec2(frame.counts.zw), view_depth, frame.clip.x,
+                                                    frame.clip.y, grid), grid);
+    bool pending = lit;
+#ifdef PG_TILE_SUBGROUPS
+    uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; // a permutation of 0..63
+#else
+    uint slot = lid;
+#endif
+    for (;;) {
+        if (lid == 0u) {
+            s_tl_cluster = 0xffffffffu;
+            s_tl_box[0] = s_tl_box[1] = s_tl_box[2] = 0xffffffffu;
+            s_tl_box[3] = s_tl_box[4] = s_tl_box[5] = 0u;
+        }
+        barrier();
+        if (pending) atomicMin(s_tl_cluster, ci);
+        barrier();
+        uint c = s_tl_cluster;
+        if (c == 0xffffffffu) break;                  // uniform: every invocation read the same
+        bool mine = pending && ci == c;
+        if (mine) {
+            for (int k = 0; k < 3; k++) {
+                atomicMin(s_tl_box[k], pg_tl_order(P[k]));
+                atomicMax(s_tl_box[3 + k], pg_tl_order(P[k]));
+            }
+        }
+        barrier();
+        vec3 bmin = vec3(pg_tl_unorder(s_tl_box[0]), pg_tl_unorder(s_tl_box[1]), pg_tl_unorder(s_tl_box[2]));
+        vec3 bmax = vec3(pg_tl_unorder(s_tl_box[3]), pg_tl_unorder(s_tl_box[4]), pg_tl_unorder(s_tl_box[5]));
+        uvec4 rec = cluster_records[c];
+        for (uint base = 0u; base < rec.y; base += 64u) {
+            uint k = base + slot;
+            bool keep = false;
+            Light L;
+            if (k < rec.y) {
+                L = lights[cluster_lights[rec.x + k]];
+                keep = pg_sphere_intersects_aabb(L.pos_radius.xyz - cam, L.pos_radius.w, bmin, bmax);
+            }
+            uint pos, total;
+#ifdef PG_TILE_SUBGROUPS
+            uvec4 bal = subgroupBallot(keep);
+            if (subgroupElect()) s_tl_count[gl_SubgroupID] = subgroupBallotBitCount(bal);
+            barrier();
+            pos = subgroupBallotExclusiveBitCount(bal);
+            total = 0u;
+            for (uint g = 0u; g < gl_NumSubgroups; g++) {
+                uint n = s_tl_count[g];
+                pos += g < gl_SubgroupID ? n : 0u;
+                total += n;
+            }
+#else
+            s_tl_count[lid] = keep ? 1u : 0u;
+            barrier();
+            for (uint d = 1u; d < 64u; d <<= 1u) {
+                uint add = lid >= d ? s_tl_count[lid - d] : 0u;
+                barrier();
+                s_tl_count[lid] += add;
+                barrier();
+            }
+            pos = s_tl_count[lid] - (keep ? 1u : 0u);
+            total = s_tl_count[63];
+#endif
+            if (keep) {
+                s_tl_light[2u * pos] = L.pos_radius;
+                s_tl_light[2u * pos + 1u] = L.color;
+            }
+            barrier();
+            if (mine) {
+                for (uint j = 0u; j < total; j++) {
+                    Light T;
+                    T.pos_radius = s_tl_light[2u * j];
+                    T.color = s_tl_light[2u * j + 1u];
+                    pg_accumulate_light(T, cam, P, s.normal, V, s.shininess, min_dist, acc);
+                }
+            }
+            barrier();
+        }
+        pending = pending && !mine;
+    }
+    return s.albedo * (acc.diffuse + vec3(PG_AMBIENT)) + s.specular * acc.specular;
+}
+#endif
