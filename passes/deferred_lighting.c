@@ -3,10 +3,11 @@
  * (shaders/deferred_lighting.comp; same light model and summation order as forward).
  * Slots: reads [lights, cluster_counts, cluster_lights, depth, G-buffer targets of the variant]
  *        writes [hdr] (storage image, every pixel written).
- * Options: packing (as gbuffer), shading, ambient, view, grid_x/y/z, tile_lights (default true:
- * each 8x8 tile culls its clusters' lists against the bounding box of its pixels and shares the
+ * Options: packing (as gbuffer), shading, ambient, view, grid_x/y/z, tile_size (8 or 16, default
+ * 8: the workgroup is tile_size x tile_size pixels), tile_lights (default true: each tile culls its clusters' lists against the bounding box of its pixels and shares the
  * kept lights through shared memory; bit-identical to false, with far fewer light evaluations). */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "gbuffer_layout.h"
@@ -15,14 +16,14 @@
 
 typedef struct deferred_lighting {
     int packing;
-    bool tiled;
+    uint32_t tile;          /* workgroup edge in pixels (8 or 16) */
     VkSampler sampler;
     pg_pass_set gbuf, lights;
     VkPipelineLayout layout;
     VkPipeline pipeline;
 } deferred_lighting;
 
-static const char *const k_extra[] = {"packing", "tile_lights", NULL};
+static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", NULL};
 
 static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
@@ -42,7 +43,15 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     pg_decl_define(out, pg_gbuffer_defines[packing]);
     pg_shading_declare(&o, in, out, true, 0, 1);
     bool tiled;
+    int64_t tile;
     if ((r = pg_opt_bool(in->desc, "tile_lights", true, &tiled, err))) return r;
+    if ((r = pg_opt_int(in->desc, "tile_size", 8, 8, 16, &tile, err))) return r;
+    if (tile != 8 && tile != 16)
+        return pg_fail(err, PG_ERR_SCHEMA, "%s: %s.options.tile_size: expected 8 or 16, got %lld", in->desc->file,
+                       in->desc->json_path, (long long)tile);
+    char def[PG_NAME_MAX];
+    snprintf(def, sizeof def, "PG_TILE=%lld", (long long)tile);
+    pg_decl_define(out, def);
     if (tiled && o.view == 0 && in->features.light_count > 0) pg_decl_define(out, "PG_TILE_LIGHTS");
     return PG_OK;
 }
@@ -89,9 +98,14 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     snprintf(fmt_def, sizeof fmt_def, "PG_HDR_FORMAT=%s", hdr_fmt);
     defs[nd++] = fmt_def;
     bool tiled = false;
-    for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) tiled |= !strcmp(ctx->pass->decl.defines[i], "PG_TILE_LIGHTS");
+    p->tile = 8;
+    for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) {
+        tiled |= !strcmp(ctx->pass->decl.defines[i], "PG_TILE_LIGHTS");
+        if (!strncmp(ctx->pass->decl.defines[i], "PG_TILE=", 8)) p->tile = (uint32_t)atoi(ctx->pass->decl.defines[i] + 8);
+    }
     /* the tiled path orders lights within a subgroup by ballots when every subgroup is full */
-    bool subgroups = tiled && gpu->exact_subgroups && gpu->subgroup_size <= 64 && 64 % gpu->subgroup_size == 0;
+    uint32_t tile_n = p->tile * p->tile;
+    bool subgroups = tiled && gpu->exact_subgroups && gpu->subgroup_size <= tile_n && tile_n % gpu->subgroup_size == 0;
     if (subgroups) defs[nd++] = "PG_TILE_SUBGROUPS";
     VkShaderModule cs;
     if ((r = pg_shader_module(gpu, "deferred_lighting.comp", VK_SHADER_STAGE_COMPUTE_BIT, defs, nd, &cs, err)))
@@ -110,7 +124,7 @@ static void dl_record(void *self, const pg_pass_record_ctx *ctx)
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, p->lights.set ? 3 : 2, sets, 0,
                             NULL);
-    vkCmdDispatch(ctx->cmd, (hdr->width + 7) / 8, (hdr->height + 7) / 8, 1);
+    vkCmdDispatch(ctx->cmd, (hdr->width + p->tile - 1) / p->tile, (hdr->height + p->tile - 1) / p->tile, 1);
 }
 
 static void dl_destroy(void *self, pg_gpu *gpu)

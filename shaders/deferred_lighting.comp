@@ -2,7 +2,7 @@
 // deferred_lighting.comp - one thread per pixel: rebuild the surface from the G-buffer of one
 // packing variant, then shade with the lights of its cluster (shading.glsl, same model and same
 // summation order as forward). Background pixels (cleared depth) are black, as in forward.
-// PG_TILE_LIGHTS (option tile_lights, default on): the 8x8 workgroup first culls each cluster's
+// PG_TILE_LIGHTS (option tile_lights, default on): the PG_TILE x PG_TILE workgroup first culls each cluster's
 // list against the bounding box of its pixels and shares the kept lights through shared memory
 // (pg_shade_tile in shading.glsl): the same sum, far fewer light evaluations.
 #extension GL_KHR_shader_subgroup_basic : require
@@ -14,7 +14,10 @@ FRAME_UNIFORMS_BLOCK
 #include "octahedral.glsl"
 #include "depth_reconstruct.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+#ifndef PG_TILE
+#define PG_TILE 8
+#endif
+layout(local_size_x = PG_TILE, local_size_y = PG_TILE) in;
 layout(set = 1, binding = 0) uniform sampler2D g_depth;
 #if defined(PG_GBUFFER_FLOAT)
 layout(set = 1, binding = 1) uniform sampler2D g_position;

@@ -86,24 +86,29 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 }
 
 #if defined(PG_TILE_LIGHTS) && defined(PG_CLUSTERED) && defined(PG_HAS_LIGHTS) && PG_DEBUG_VIEW == 0
-// Tile-refined clustered shading for a compute workgroup of 64 invocations (one per pixel of an
-// 8x8 tile; every invocation of the workgroup must call it, in uniform control flow). For each
-// distinct cluster among the tile's lit pixels (smallest index first), the workgroup streams the
-// cluster's list through shared memory 64 lights at a time, keeps only the lights whose sphere
-// reaches the bounding box of the tile's pixels in that cluster (their camera-relative
+// Tile-refined clustered shading for a compute workgroup of PG_TILE x PG_TILE invocations (one per
+// pixel of a tile; every invocation of the workgroup must call it, in uniform control flow). For
+// each distinct cluster among the tile's lit pixels (smallest index first), the workgroup streams
+// the cluster's list through shared memory PG_TILE_N lights at a time, keeps only the lights whose
+// sphere reaches the bounding box of the tile's pixels in that cluster (their camera-relative
 // positions: a light that reaches a pixel reaches that box), and the pixels of the cluster sum
 // the kept lights in list order. Lights dropped by the box test would have added exactly nothing
 // (pg_accumulate_light returns before touching acc when d >= R), so the sum is bit-identical to
 // the per-pixel loop of pg_shade_point, with far fewer evaluations and each light read once per
-// tile instead of once per pixel.
+// tile instead of once per pixel. Two shared buffers alternate between chunks, so a chunk costs
+// two barriers.
 // PG_TILE_SUBGROUPS: the pipeline requires full subgroups (gpu->exact_subgroups), so subgroup
 // ballots give the order within a subgroup; otherwise a shared-memory scan.
+#ifndef PG_TILE
+#define PG_TILE 8
+#endif
+#define PG_TILE_N (PG_TILE * PG_TILE)
 shared uint s_tl_cluster;
-shared uint s_tl_box[6];                 // ordered-uint min xyz, max xyz
-shared vec4 s_tl_light[2 * 64];          // pos_radius, color of the kept lights
-shared uint s_tl_count[64];
+shared uint s_tl_box[6];                     // ordered-uint min xyz, max xyz
+shared vec4 s_tl_light[2][2 * PG_TILE_N];    // pos_radius, color of the kept lights
+shared uint s_tl_count[2][PG_TILE_N];
 
-uint pg_tl_order(float f)                // float -> uint with the same order
+uint pg_tl_order(float f)                    // float -> uint with the same order
 {
     uint b = floatBitsToUint(f);
     return (b & 0x80000000u) != 0u ? ~b : b | 0x80000000u;
@@ -129,10 +134,11 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                                                     frame.clip.y, grid), grid);
     bool pending = lit;
 #ifdef PG_TILE_SUBGROUPS
-    uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; // a permutation of 0..63
+    uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; // a permutation of the tile
 #else
     uint slot = lid;
 #endif
+    uint buf = 0u;
     for (;;) {
         if (lid == 0u) {
             s_tl_cluster = 0xffffffffu;
@@ -155,54 +161,57 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
         vec3 bmin = vec3(pg_tl_unorder(s_tl_box[0]), pg_tl_unorder(s_tl_box[1]), pg_tl_unorder(s_tl_box[2]));
         vec3 bmax = vec3(pg_tl_unorder(s_tl_box[3]), pg_tl_unorder(s_tl_box[4]), pg_tl_unorder(s_tl_box[5]));
         uvec4 rec = cluster_records[c];
-        for (uint base = 0u; base < rec.y; base += 64u) {
+        for (uint base = 0u; base < rec.y; base += uint(PG_TILE_N)) {
             uint k = base + slot;
             bool keep = false;
             Light L;
+            L.pos_radius = vec4(0.0);
+            L.color = vec4(0.0);
             if (k < rec.y) {
-                L = lights[cluster_lights[rec.x + k]];
+                L = lights[cluster_lights[rec.x + k]]; // whole record: one 32-byte sector anyway
                 keep = pg_sphere_intersects_aabb(L.pos_radius.xyz - cam, L.pos_radius.w, bmin, bmax);
             }
             uint pos, total;
 #ifdef PG_TILE_SUBGROUPS
             uvec4 bal = subgroupBallot(keep);
-            if (subgroupElect()) s_tl_count[gl_SubgroupID] = subgroupBallotBitCount(bal);
+            if (subgroupElect()) s_tl_count[buf][gl_SubgroupID] = subgroupBallotBitCount(bal);
             barrier();
             pos = subgroupBallotExclusiveBitCount(bal);
             total = 0u;
             for (uint g = 0u; g < gl_NumSubgroups; g++) {
-                uint n = s_tl_count[g];
+                uint n = s_tl_count[buf][g];
                 pos += g < gl_SubgroupID ? n : 0u;
                 total += n;
             }
 #else
-            s_tl_count[lid] = keep ? 1u : 0u;
+            s_tl_count[buf][lid] = keep ? 1u : 0u;
             barrier();
-            for (uint d = 1u; d < 64u; d <<= 1u) {
-                uint add = lid >= d ? s_tl_count[lid - d] : 0u;
+            for (uint d = 1u; d < uint(PG_TILE_N); d <<= 1u) {
+                uint add = lid >= d ? s_tl_count[buf][lid - d] : 0u;
                 barrier();
-                s_tl_count[lid] += add;
+                s_tl_count[buf][lid] += add;
                 barrier();
             }
-            pos = s_tl_count[lid] - (keep ? 1u : 0u);
-            total = s_tl_count[63];
+            pos = s_tl_count[buf][lid] - (keep ? 1u : 0u);
+            total = s_tl_count[buf][PG_TILE_N - 1];
 #endif
             if (keep) {
-                s_tl_light[2u * pos] = L.pos_radius;
-                s_tl_light[2u * pos + 1u] = L.color;
+                s_tl_light[buf][2u * pos] = L.pos_radius;
+                s_tl_light[buf][2u * pos + 1u] = L.color;
             }
             barrier();
             if (mine) {
                 for (uint j = 0u; j < total; j++) {
                     Light T;
-                    T.pos_radius = s_tl_light[2u * j];
-                    T.color = s_tl_light[2u * j + 1u];
+                    T.pos_radius = s_tl_light[buf][2u * j];
+                    T.color = s_tl_light[buf][2u * j + 1u];
                     pg_accumulate_light(T, cam, P, s.normal, V, s.shininess, min_dist, acc);
                 }
             }
-            barrier();
+            buf ^= 1u;   // the next chunk fills the other buffers: no barrier needed here
         }
         pending = pending && !mine;
+        barrier();       // before the next round resets the cluster and box
     }
     return s.albedo * (acc.diffuse + vec3(PG_AMBIENT)) + s.specular * acc.specular;
 }
