@@ -1087,7 +1087,12 @@ static void check_blocks(const pg_graph_plan *p, int line)
     }
     for (uint32_t r = 0; r < p->n_resources; r++) {
         const pg_plan_resource *pr = &p->resources[r];
-        if (pr->lifetime == PG_LIFETIME_TRANSIENT && !pr->culled) {
+        if (pr->lifetime == PG_LIFETIME_TRANSIENT && !pr->culled && pr->growable) {
+            /* a "grow" buffer is re-created at run time: its own memory, counted in both totals */
+            sum_transients += pr->size_bytes;
+            sum_blocks += pr->size_bytes;
+            CHECK_MSG(pr->block == -1, "line %d: grow buffer %s is in a block", line, pr->name);
+        } else if (pr->lifetime == PG_LIFETIME_TRANSIENT && !pr->culled) {
             sum_transients += pr->size_bytes;
             CHECK_MSG(pr->block >= 0, "line %d: transient %s has no block", line, pr->name);
         } else {
@@ -1110,6 +1115,41 @@ static pg_pipeline *chain_pipeline(const char *third_type)
     pass(pl, "C", third_type, "t2", "t3");
     pass(pl, "D", "fake_blur", "t3", "out");
     return pl;
+}
+
+/* "grow" buffers are never aliased: a buffer with a disjoint lifetime does not join them */
+static void test_grow_not_aliased(void)
+{
+    pg_pipeline *pl = pl_new("out");
+    buf(pl, "a", 4, 1, PG_COUNT_CONST, 1000.0)->growable = true;
+    buf(pl, "b", 4, 1, PG_COUNT_CONST, 1000.0);
+    img(pl, "c", PG_FMT_RGBA16F);
+    img(pl, "d", PG_FMT_RGBA16F);
+    img(pl, "out", PG_FMT_RGBA8_UNORM);
+    pass(pl, "W1", "fake_compute_buf", "", "a");
+    pass(pl, "R1", "fake_buf_to_color", "a", "c");
+    pass(pl, "W2", "fake_compute_buf", "", "b");
+    pass(pl, "R2", "fake_buf_to_color", "b", "d");
+    after(&pl->passes[2], "R1");
+    pass(pl, "final", "fake_compose2", "c, d", "out");
+    pg_graph_plan *p = COMPILE(pl);
+    if (p) {
+        const pg_plan_resource *a = res(p, "a"), *b = res(p, "b");
+        CHECK(a->growable && !b->growable);
+        CHECK(a->block == -1);
+        CHECK(b->block >= 0 && p->blocks[b->block].n_members == 1);
+        check_blocks(p, __LINE__);
+        pg_graph_plan_free(p);
+        /* the same without "grow": b may share a's memory */
+        pl->resources[0].growable = false;
+        p = COMPILE(pl);
+        if (p) {
+            CHECK(res(p, "a")->block >= 0 && res(p, "a")->block == res(p, "b")->block);
+            check_blocks(p, __LINE__);
+            pg_graph_plan_free(p);
+        }
+    }
+    pl_free(pl);
 }
 
 static void test_aliasing(void)
@@ -1784,6 +1824,7 @@ int main(void)
     test_culling();
     test_lifetimes();
     test_aliasing();
+    test_grow_not_aliased();
     test_barriers();
     test_random();
     test_report();

@@ -186,6 +186,10 @@ case("buf_count_unknown_term.json", "PG_ERR_SCHEMA", "resources[2].count[0]",
      doc=mod(lambda d: d["resources"][2].update({"count": ["texels"]})))
 case("buf_count_too_many_terms.json", "PG_ERR_LIMIT", "resources[2].count: 5 terms",
      doc=mod(lambda d: d["resources"][2].update({"count": [1, 2, 3, 4, 5]})))
+case("buf_grow_not_bool.json", "PG_ERR_SCHEMA", "resources[2].grow: expected true or false, got",
+     doc=mod(lambda d: d["resources"][2].update({"grow": 1})))
+case("img_with_grow.json", "PG_ERR_SCHEMA", "resources[0].grow: 'grow' is only for buffer",
+     doc=mod(lambda d: d["resources"][0].update({"grow": True})))
 
 # ---- passes ----
 case("pass_not_object.json", "PG_ERR_SCHEMA", "passes[1]: expected a pass object",
