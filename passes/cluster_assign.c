@@ -390,11 +390,13 @@ static void ca_report(void *self, pg_pass_report *out)
     uint64_t needed = (uint64_t)s->needed * 4;
     if (needed > p->list_bytes) {
         pg_report_grow(out, SLOT_LISTS, needed, p->budget);
-        if (needed > p->budget)
-            pg_report_note(out, "light lists need %.1f MiB, over the %s%.1f MiB budget: %u refs dropped "
-                           "(raise list_budget_mb%s)", needed / 1048576.0, p->budget_clamped ? "device's " : "",
-                           p->budget / 1048576.0, s->dropped - s->dropped_cap,
-                           p->budget_clamped ? "; the device's storage buffer range is the limit" : "");
+        if (needed > p->budget && p->budget_clamped)
+            pg_report_note(out, "light lists need %.1f MiB, over the %.1f MiB one storage buffer can span on this "
+                           "device: %u refs dropped (use fewer lights or a coarser grid)", needed / 1048576.0,
+                           p->budget / 1048576.0, s->dropped - s->dropped_cap);
+        else if (needed > p->budget)
+            pg_report_note(out, "light lists need %.1f MiB, over the %.1f MiB budget: %u refs dropped (raise "
+                           "list_budget_mb)", needed / 1048576.0, p->budget / 1048576.0, s->dropped - s->dropped_cap);
     }
 }
 

@@ -38,5 +38,17 @@ grep -Eq 'swapchain builds' "$tmp/out" && ! grep -q '1 swapchain builds' "$tmp/o
 for p in naive forward_plus deferred deferred_oct16 deferred_packed; do
   grep -q "switching to $p.json\|pipeline $p.json" "$tmp/out" && ok || bad "pipeline $p.json never shown"
 done
+
+# the light slider from 0 to 1,000,000 and back (tiny window): the light lists grow, a small list
+# budget drops and reports references, and the viewer keeps running
+xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --validation --size 64x36 --frames 14 --lights 0 \
+  --pipeline "$root/pipelines/deferred_packed.json" --at 2:lights=1000 --at 4:lights=100000 --at 6:lights=1000000 \
+  --at 8:set=list_budget_mb=8 --at 10:lights=300000 --at 12:lights=0 >"$tmp/out2" 2>"$tmp/err2"
+rc=$?
+[ $rc -eq 0 ] && ok || { bad "light sweep: view exit $rc"; tail -20 "$tmp/err2"; }
+grep -q "validation message" "$tmp/err2" && { bad "light sweep: validation messages"; grep -m3 "validation" "$tmp/err2"; } || ok
+grep -Eq '^view: 14 frames' "$tmp/out2" && ok || { bad "light sweep: did not run 14 frames"; tail -3 "$tmp/out2"; }
+grep -Eq '^view: cluster_lights grew .* at 1000000 lights' "$tmp/out2" && ok || { bad "light sweep: no growth at 1,000,000"; cat "$tmp/out2"; }
+grep -Eq '^view: light lists need .* over the 8.0 MiB budget' "$tmp/out2" && ok || { bad "light sweep: budget overflow not reported"; cat "$tmp/out2"; }
 echo "view_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -764,7 +764,9 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
         v->growths++;
         snprintf(v->last_growth, sizeof v->last_growth, "%s grew %.2f -> %.2f MiB at %d lights", v->stats.grown[k].resource,
                  v->stats.grown[k].old_bytes / 1048576.0, v->stats.grown[k].new_bytes / 1048576.0, v->light_count);
+        printf("view: %s\n", v->last_growth);
     }
+    if (v->stats.overflow_dropped && v->stats.n_notes) printf("view: %s\n", v->stats.notes[0]);
     bool show_diff = false;
     if (v->diff) {
         if (!v->naive) {
