@@ -51,7 +51,10 @@ static const char *const bench_help =
     "when the reference declares KEY, to the reference too, so --sweep shading=lambert,blinn_phong\n"
     "compares each light model with the same one (--reference-set shading=lambert pins it instead);\n"
     "--debug-view is the pipelines' only. The 'bench: sides:' lines at the start, the 'sets' and\n"
-    "'reference_sets' columns and results.json's meta say what each side used.\n\n"
+    "'reference_sets' columns and results.json's meta say what each side used.\n\n";
+
+/* a second string: C11 compilers need only support 4095 characters in one literal */
+static const char *const bench_help_options =
     "bench options:\n"
     "  --pipelines LIST|all pipeline JSON files, comma-separated; a bare name (forward_plus) means\n"
     "                       pipelines/NAME.json of the data folder; 'all' (default): every top-level\n"
@@ -1702,7 +1705,7 @@ int pg_cmd_bench(int argc, char **argv)
         char *v = i + 1 < argc ? argv[i + 1] : NULL;
         pg_result r = PG_OK;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            printf("%s%s", bench_help, pg_cli_common_help);
+            printf("%s%s%s", bench_help, bench_help_options, pg_cli_common_help);
             rc = 0;
             goto out;
         }
