@@ -64,8 +64,8 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 naive="$root/pipelines/naive.json"
 "$PG" --help | grep -q "compare" && ok || bad "passgraph --help does not list compare"
 "$PG" compare --help >"$tmp/h" || bad "compare --help exit"
-for o in --pipeline --reference --reference-set --scene --scenario --lights --size --time --seed --set --device \
-         --validation --frames --heatmap --heatmap-scale --threshold --json; do
+for o in --pipeline --reference --reference-set --pipeline-set --scene --scenario --lights --size --time --seed --set \
+         --device --validation --frames --heatmap --heatmap-scale --threshold --json pipelines/reference.json; do
   grep -qF -- "$o" "$tmp/h" && ok || bad "compare --help does not document $o"
 done
 # compare_value KEY: the value of KEY= on the 'compare:' line of $tmp/out
@@ -83,7 +83,8 @@ grep -Eq '^compare: pipeline=naive reference=naive lights=8 size=64x36 rmse_line
 grep -q "validation message" "$tmp/err" && bad "compare: validation messages" || ok
 grep -Eq '"rmse_linear":[[:space:]]*0,' "$tmp/c.json" && grep -q '"psnr_linear":[[:space:]]*"inf"' "$tmp/c.json" \
   && ok || { bad "compare --json content"; cat "$tmp/c.json"; }
-"$PG" compare --pipeline "$naive" --reference "$naive" --set hdr_format=rgba32f --size 64x36 --lights 8 --validation \
+# --pipeline-set: the reference declares hdr_format too, so --set would give both sides rgba32f
+"$PG" compare --pipeline "$naive" --reference "$naive" --pipeline-set hdr_format=rgba32f --size 64x36 --lights 8 --validation \
   --heatmap "$tmp/heat.png" >"$tmp/out" 2>"$tmp/err"
 rc=$?
 if [ $rc -ne 0 ]; then bad "compare rgba32f vs rgba16f: exit $rc"; cat "$tmp/err"; else ok; fi
@@ -102,9 +103,65 @@ expect_fail "compare: --out is not an option" "unknown option '--out'" compare -
 expect_fail "compare: negative threshold" "--threshold -1" compare --threshold -1
 expect_fail "compare: heatmap-scale garbage" "--heatmap-scale big" compare --heatmap-scale big
 expect_fail "compare: reference-set without =" "KEY=VALUE" compare --reference-set foo
-expect_fail "compare: unknown reference parameter" "no_such_param" compare --reference-set no_such_param=1 --size 32x18 --lights 4
-expect_fail "compare: unwritable heatmap" "cannot write" compare --size 32x18 --lights 4 --heatmap "$tmp/no/such/dir/h.png"
-expect_fail "compare: unwritable json" "cannot write" compare --size 32x18 --lights 4 --json "$tmp/no/such/dir/c.json"
+expect_fail "compare: unknown reference parameter" "--reference-set no_such_param=1: the reference naive" \
+  compare --reference "$naive" --reference-set no_such_param=1 --size 32x18 --lights 4
+expect_fail "compare: unwritable heatmap" "cannot write" compare --reference "$naive" --size 32x18 --lights 4 --heatmap "$tmp/no/such/dir/h.png"
+expect_fail "compare: unwritable json" "cannot write" compare --reference "$naive" --size 32x18 --lights 4 --json "$tmp/no/such/dir/c.json"
+
+# --set reaches the reference when it declares the key; --pipeline-set / --reference-set one side only;
+# the debug view stays the pipeline's. The 'sides:' line says what each side used.
+fplus="$root/pipelines/forward_plus.json"
+# compare_sides [args...]: runs forward_plus against naive at 64x36 (64 lights: no cluster overflows, so
+# forward+ equals naive when both shade alike); output in $tmp/out
+compare_sides() {
+  "$PG" compare --pipeline "$fplus" --reference "$naive" --size 64x36 --lights 64 --quiet "$@" >"$tmp/out" 2>"$tmp/err"
+}
+sides_value() { grep '^sides: ' "$tmp/out" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+# exact KEY: compare_value KEY is within 1e-6 of 0; large: rmse_linear > 1e-3 and > 5% of the pixels differ
+near_zero() { awk -v r="$(compare_value rmse_linear)" -v o="$(compare_value over_threshold)" 'BEGIN { exit !(r != "" && r + 0 < 1e-6 && o == 0) }'; }
+large_error() { awk -v r="$(compare_value rmse_linear)" -v o="$(compare_value over_threshold)" 'BEGIN { exit !(r + 0 > 1e-3 && o + 0 > 0.05) }'; }
+compare_sides --set shading=blinn_phong --json "$tmp/sides.json"
+rc=$?
+if [ $rc -ne 0 ]; then bad "compare --set shading=blinn_phong: exit $rc"; cat "$tmp/err"; else ok; fi
+near_zero && ok || bad "compare --set shading=blinn_phong: the reference must shade Blinn-Phong too: rmse_linear=$(compare_value rmse_linear) over_threshold=$(compare_value over_threshold)"
+[ "$(head -n 1 "$tmp/out" | cut -d' ' -f1)" = "sides:" ] && ok || { bad "compare: the sides line is not the first line"; cat "$tmp/out"; }
+[ "$(sides_value pipeline)" = forward_plus ] && [ "$(sides_value pipeline_path)" = "$fplus" ] \
+  && [ "$(sides_value pipeline_sets)" = shading=blinn_phong ] && [ "$(sides_value reference)" = naive ] \
+  && [ "$(sides_value reference_path)" = "$naive" ] && [ "$(sides_value reference_sets)" = shading=blinn_phong ] \
+  && ok || { bad "compare --set: sides line"; grep '^sides:' "$tmp/out"; }
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["pipeline_sets"] == {"shading": "blinn_phong"} and d["reference_sets"] == {"shading": "blinn_phong"}, d' \
+  "$tmp/sides.json" && ok || bad "compare --json: pipeline_sets / reference_sets"
+compare_sides --pipeline-set shading=blinn_phong
+large_error && ok || bad "compare --pipeline-set shading=blinn_phong: want a large error against a Lambert reference: rmse_linear=$(compare_value rmse_linear) over_threshold=$(compare_value over_threshold)"
+[ "$(sides_value pipeline_sets)" = shading=blinn_phong ] && [ "$(sides_value reference_sets)" = none ] \
+  && ok || { bad "compare --pipeline-set: sides line"; grep '^sides:' "$tmp/out"; }
+compare_sides --set shading=blinn_phong --reference-set shading=lambert
+large_error && ok || bad "compare --reference-set wins over --set: rmse_linear=$(compare_value rmse_linear)"
+[ "$(sides_value pipeline_sets)" = shading=blinn_phong ] && [ "$(sides_value reference_sets)" = shading=lambert ] \
+  && ok || { bad "compare --set + --reference-set: sides line"; grep '^sides:' "$tmp/out"; }
+compare_sides --reference-set shading=blinn_phong --pipeline-set shading=blinn_phong
+near_zero && [ "$(sides_value reference_sets)" = shading=blinn_phong ] && ok || bad "compare: --pipeline-set and --reference-set together"
+compare_sides --set shading=blinn_phong --debug-view albedo
+rc=$?
+[ $rc -eq 0 ] && [ "$(sides_value pipeline_sets)" = "shading=blinn_phong;view=albedo" ] && [ "$(sides_value reference_sets)" = shading=blinn_phong ] \
+  && ok || { bad "compare --debug-view: pipeline only (rc $rc)"; grep '^sides:' "$tmp/out"; cat "$tmp/err"; }
+large_error && ok || bad "compare --debug-view albedo against lit naive: want a large error"
+expect_fail "compare: --pipeline-set without =" "--pipeline-set shading: expected KEY=VALUE" compare --pipeline-set shading
+expect_fail "compare: --pipeline-set of an undeclared key" "--pipeline-set gbuffer=packed: the pipeline forward_plus" \
+  compare --pipeline "$fplus" --reference "$naive" --pipeline-set gbuffer=packed
+expect_fail "compare: a --set value the reference refuses" "--reference-set view=VALUE" \
+  compare --pipeline "$fplus" --reference "$naive" --set view=cluster_heat
+expect_fail "compare: a --reference-set value refused" "--reference-set shading=toon: reference" \
+  compare --reference "$naive" --reference-set shading=toon
+"$PG" compare --reference "$naive" --reference-set shading=toon >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 2 ] && ok || bad "compare: a refused --reference-set value must exit 2 (bad option)"
+# the default reference is pipelines/reference.json of the data folder
+if [ -f "$root/pipelines/reference.json" ]; then
+  "$PG" compare --size 32x18 --lights 4 --quiet >"$tmp/out" 2>"$tmp/err" && [ "$(sides_value reference_path)" = "$root/pipelines/reference.json" ] \
+    && ok || { bad "compare: default reference"; cat "$tmp/out" "$tmp/err"; }
+else
+  expect_fail "compare: default reference (pipelines/reference.json, not in this checkout)" "pipelines/reference.json" compare --size 32x18 --lights 4
+fi
 
 # debug views: every view of a clustered pipeline renders; a cluster view on naive is refused
 for v in cluster_heat cluster_x cluster_y cluster_z overflow albedo normal depth; do
@@ -182,8 +239,8 @@ expect_fail "dump: unwritable out" "cannot write" dump --pipeline "$deferred" --
 # ---- passgraph bench: every pipeline over light counts; CSV, JSON and SVG charts ----
 "$PG" --help | grep -q "bench" && ok || bad "passgraph --help does not list bench"
 "$PG" bench --help >"$tmp/h" || bad "bench --help exit"
-for o in --pipelines --lights --size --warmup --frames --seed --out --set --sweep --naive-max-lights --time-step \
-         --validation; do
+for o in --pipelines --lights --size --warmup --frames --seed --out --set --sweep --reference --reference-max-lights \
+         --pipeline-set --reference-set --naive-max-lights --time-step --validation pipelines/reference.json; do
   grep -qF -- "$o" "$tmp/h" && ok || bad "bench --help does not document $o"
 done
 n_pipes=$(ls "$root"/pipelines/*.json | wc -l)
@@ -212,11 +269,74 @@ rows=$(($(wc -l <"$tmp/bench2/results.csv" 2>/dev/null || echo 0) - 1))
 for v in gbuffer=float gbuffer=packed; do
   [ "$(grep -c ",$v," "$tmp/bench2/results.csv")" -eq "$n_gbuf" ] && ok || bad "bench --sweep: want $n_gbuf rows of variant $v"
 done
-# above --naive-max-lights the error columns are empty and say why; the reference's own row is skipped
-"$PG" bench --pipelines naive,forward_plus --lights 8 --naive-max-lights 4 --size 32x18 --frames 1 --warmup 0 \
-  --out "$tmp/bench3" >"$tmp/out" 2>"$tmp/err" && ok || { bad "bench --naive-max-lights: exit"; cat "$tmp/err"; }
-grep -q '^default,forward_plus,.*,ok,.*naive skipped above 4 lights' "$tmp/bench3/results.csv" \
-  && grep -q '^default,naive,.*,skipped,' "$tmp/bench3/results.csv" && ok || { bad "bench: naive skip not reported"; cat "$tmp/bench3/results.csv"; }
+# above --reference-max-lights the error columns are empty and say why; the reference's own row is skipped
+"$PG" bench --pipelines naive,forward_plus --reference "$naive" --lights 4,8 --reference-max-lights 4 --size 32x18 \
+  --frames 1 --warmup 0 --out "$tmp/bench3" >"$tmp/out" 2>"$tmp/err" && ok || { bad "bench --reference-max-lights: exit"; cat "$tmp/err"; }
+grep -q '^default,forward_plus,,,8,.*,ok,.*,naive skipped above 4 lights (--reference-max-lights 4),' "$tmp/bench3/results.csv" \
+  && grep -q '^default,naive,,,8,.*,skipped,' "$tmp/bench3/results.csv" && ok || { bad "bench: reference skip not reported"; cat "$tmp/bench3/results.csv"; }
+python3 -c 'import csv,sys; r=[x for x in csv.DictReader(open(sys.argv[1])) if x["lights"] == "4"]; assert len(r) == 2 and all(x["status"] == "ok" and x["rmse_linear"] != "" and x["error_note"] == "" for x in r), r' \
+  "$tmp/bench3/results.csv" && ok || bad "bench: rows at the limit must have their error measured"
+grep -q 'deprecated' "$tmp/err" && bad "bench: a deprecation warning without --naive-max-lights" || ok
+python3 -c 'import json,sys; m=json.load(open(sys.argv[1]))["meta"]["reference_max_lights"]; assert m["source"] == "--reference-max-lights" and m["by_size"] == {"32x18": 4}, m' \
+  "$tmp/bench3/results.json" && ok || bad "bench results.json: meta reference_max_lights"
+# --naive-max-lights: the old name still works, with one warning line
+"$PG" bench --pipelines naive,forward_plus --reference "$naive" --lights 8 --naive-max-lights 4 --naive-max-lights 4 --size 32x18 \
+  --frames 1 --warmup 0 --quiet --out "$tmp/bench3b" >"$tmp/out" 2>"$tmp/err" && ok || { bad "bench --naive-max-lights: exit"; cat "$tmp/err"; }
+grep -q '^default,forward_plus,.*,ok,.*naive skipped above 4 lights' "$tmp/bench3b/results.csv" \
+  && grep -q '^default,naive,.*,skipped,' "$tmp/bench3b/results.csv" && ok || { bad "bench: --naive-max-lights skip not reported"; cat "$tmp/bench3b/results.csv"; }
+[ "$(grep -c 'warning: --naive-max-lights is deprecated; use --reference-max-lights' "$tmp/err")" -eq 1 ] \
+  && ok || { bad "bench --naive-max-lights: want exactly one deprecation warning"; cat "$tmp/err"; }
+# the default limit: 1,000,000 lights on a GPU; on a CPU device a light x pixel budget (555 lights at 1920x1080)
+"$PG" bench --pipelines deferred_packed --reference "$naive" --lights 556 --size 1920x1080 --frames 1 --warmup 0 --quiet \
+  --out "$tmp/bench3c" >"$tmp/out" 2>"$tmp/err" && ok || { bad "bench default reference limit: exit"; cat "$tmp/err"; }
+if "$PG" devices 2>/dev/null | head -n 1 | grep -q '(cpu,'; then
+  python3 -c 'import csv,sys,re; r=list(csv.DictReader(open(sys.argv[1]))); assert len(r) == 1 and r[0]["status"] == "ok" and r[0]["rmse_linear"] == "" and re.fullmatch(r"naive skipped above 555 lights on a CPU device \(.+\) at 1920x1080, the default budget .*: set --reference-max-lights", r[0]["error_note"]), r' \
+    "$tmp/bench3c/results.csv" && ok || { bad "bench on a CPU device: default reference limit note"; cat "$tmp/bench3c/results.csv"; }
+  grep -q 'no error measured: naive skipped above 555 lights on a CPU device' "$tmp/bench3c/error_vs_time.svg" \
+    && ok || bad "bench: the error chart does not say why no error was measured"
+else
+  python3 -c 'import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); assert r[0]["rmse_linear"] != "", r' "$tmp/bench3c/results.csv" \
+    && ok || bad "bench on a GPU: 556 lights are under the default reference limit (1000000)"
+fi
+# bench follows the same rule as compare: --set and swept values reach the reference when it declares the key
+bench_sides() { # bench_sides DIR args...: forward_plus against naive at 64x36, 64 lights
+  local d=$1
+  shift
+  "$PG" bench --pipelines forward_plus --reference "$naive" --lights 64 --size 64x36 --frames 1 --warmup 0 --quiet \
+    --out "$d" "$@" >"$tmp/out" 2>"$tmp/err"
+}
+# bench_rows FILE 'python condition on row x': every row of results.csv satisfies it (and there is one)
+bench_rows() { python3 -c 'import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); x=None; assert r and all(eval(sys.argv[2]) for x in r), r' "$1" "$2"; }
+bench_sides "$tmp/bench6" --set shading=blinn_phong && ok || { bad "bench --set shading: exit"; cat "$tmp/err"; }
+bench_rows "$tmp/bench6/results.csv" 'x["sets"] == "shading=blinn_phong" and x["reference_sets"] == "shading=blinn_phong" and float(x["rmse_linear"]) < 1e-6 and float(x["share_over_1"]) == 0' \
+  && ok || { bad "bench --set shading=blinn_phong: the reference must take it (error ~0)"; cat "$tmp/bench6/results.csv"; }
+grep -q "^bench: sides: pipeline=forward_plus pipeline_path=$fplus pipeline_sets=shading=blinn_phong sweeps=none reference=naive reference_path=$naive reference_sets=shading=blinn_phong\$" "$tmp/out" \
+  && ok || { bad "bench: sides header line"; cat "$tmp/out"; }
+python3 -c 'import json,sys; m=json.load(open(sys.argv[1]))["meta"]; s=m["sides"]; assert m["sets"] == {"shading": "blinn_phong"} and s == [{"pipeline": "forward_plus", "pipeline_path": sys.argv[2], "pipeline_sets": "shading=blinn_phong", "reference_sets": ["shading=blinn_phong"], "reference": "naive", "reference_path": sys.argv[3]}], m' \
+  "$tmp/bench6/results.json" "$fplus" "$naive" && ok || bad "bench results.json: meta sides"
+bench_sides "$tmp/bench7" --pipeline-set shading=blinn_phong && ok || { bad "bench --pipeline-set: exit"; cat "$tmp/err"; }
+bench_rows "$tmp/bench7/results.csv" 'x["sets"] == "shading=blinn_phong" and x["reference_sets"] == "" and float(x["rmse_linear"]) > 1e-3 and float(x["share_over_1"]) > 0.05' \
+  && ok || { bad "bench --pipeline-set shading=blinn_phong: want a large error against a Lambert reference"; cat "$tmp/bench7/results.csv"; }
+bench_sides "$tmp/bench8" --sweep shading=lambert,blinn_phong && ok || { bad "bench --sweep shading: exit"; cat "$tmp/err"; }
+bench_rows "$tmp/bench8/results.csv" 'x["reference_sets"] == x["variant"] and float(x["rmse_linear"]) < 1e-6' \
+  && [ "$(grep -c ',shading=blinn_phong,' "$tmp/bench8/results.csv")" -ge 1 ] \
+  && ok || { bad "bench --sweep shading: the reference must follow the swept value"; cat "$tmp/bench8/results.csv"; }
+grep -q "sweeps=shading .*reference_sets=shading=lambert|shading=blinn_phong\$" "$tmp/out" && ok || { bad "bench --sweep: sides header"; cat "$tmp/out"; }
+bench_sides "$tmp/bench9" --sweep shading=lambert,blinn_phong --reference-set shading=lambert && ok || { bad "bench --sweep + --reference-set: exit"; cat "$tmp/err"; }
+bench_rows "$tmp/bench9/results.csv" 'x["reference_sets"] == "shading=lambert" and (float(x["rmse_linear"]) < 1e-6) == (x["variant"] == "shading=lambert")' \
+  && ok || { bad "bench: --reference-set pins the reference under a sweep"; cat "$tmp/bench9/results.csv"; }
+bench_sides "$tmp/bench10" --set shading=blinn_phong --debug-view albedo && ok || { bad "bench --debug-view: exit"; cat "$tmp/err"; }
+bench_rows "$tmp/bench10/results.csv" 'x["sets"] == "shading=blinn_phong;view=albedo" and x["reference_sets"] == "shading=blinn_phong"' \
+  && ok || { bad "bench --debug-view: the pipeline's only"; cat "$tmp/bench10/results.csv"; }
+expect_fail "bench: --reference-set of an undeclared key" "--reference-set gbuffer=packed: the reference naive" \
+  bench --pipelines forward_plus --reference "$naive" --reference-set gbuffer=packed --out "$tmp/b5"
+expect_fail "bench: --pipeline-set no pipeline declares" "--pipeline-set gbuffer=packed: no selected pipeline" \
+  bench --pipelines forward_plus --reference "$naive" --pipeline-set gbuffer=packed --out "$tmp/b5"
+expect_fail "bench: a swept value the reference refuses" "--sweep view=cluster_heat: reference" \
+  bench --pipelines forward_plus --reference "$naive" --sweep view=none,cluster_heat --out "$tmp/b5"
+expect_fail "bench: --sweep and --pipeline-set of one key" "the same key is given with --pipeline-set" \
+  bench --pipelines forward_plus --sweep shading=lambert --pipeline-set shading=lambert --out "$tmp/b5"
+expect_fail "bench: bad --reference-max-lights" "--reference-max-lights x" bench --reference-max-lights x --out "$tmp/b5"
 # a pipeline that does not load is reported in its row; the others still run; exit 1
 echo '{"name": "broken", "passes": [' >"$tmp/broken.json"
 "$PG" bench --pipelines "$tmp/broken.json",naive --lights 4 --size 32x18 --frames 1 --warmup 0 --out "$tmp/bench4" \

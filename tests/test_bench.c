@@ -1,11 +1,15 @@
 /* test_bench.c - the benchmark's building blocks, CPU only: sample statistics (core/bench_stats.c),
- * the Pareto front of (time, error) points, and the SVG chart writer (core/svg_plot.c): tick
- * placement, labels, escaping and a well-formed document. */
+ * the Pareto front of (time, error) points, the SVG chart writer (core/svg_plot.c): tick
+ * placement, labels, escaping and a well-formed document; and which overrides each side of a
+ * comparison takes (tools/sides.c, shared by compare and bench: --set, --pipeline-set,
+ * --reference-set, the debug view, swept values). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "bench_stats.h"
+#include "sides.h"
 #include "svg_plot.h"
 #include "test_util.h"
 
@@ -286,11 +290,165 @@ static void test_svg(void)
     CHECK(pg_svg_write("/nonexistent-dir/x.svg", &empty, 1, NULL, &err) == PG_ERR_IO && strstr(err.msg, "x.svg"));
 }
 
+/* ---------------------------------------------------------------- sides: what each side takes */
+
+/* A pipeline under test (shading, view, max_lights) and a reference (shading, view, exposure). */
+#define SIDES_PIPE(name, params)                                                                   \
+    "{\"name\": \"" name "\", \"parameters\": {" params "},"                                      \
+    " \"resources\": [{\"name\": \"out\", \"type\": \"image\", \"format\": \"rgba8\"}],"            \
+    " \"passes\": [{\"name\": \"p\", \"type\": \"t\", \"writes\": [\"out\"]}], \"output\": \"out\"}"
+#define P_SHADING "\"shading\": {\"type\": \"enum\", \"values\": [\"lambert\", \"blinn_phong\"], \"default\": \"lambert\"}"
+#define P_VIEW "\"view\": {\"type\": \"enum\", \"values\": [\"none\", \"albedo\"], \"default\": \"none\"}"
+static const char *const k_sides_pipe =
+    SIDES_PIPE("fwd", P_SHADING ", " P_VIEW ", \"max_lights\": {\"type\": \"int\", \"default\": 64, \"min\": 1, \"max\": 1024}");
+static const char *const k_sides_ref =
+    SIDES_PIPE("ref", P_SHADING ", " P_VIEW ", \"exposure\": {\"type\": \"float\", \"default\": 1, \"min\": 0, \"max\": 100}");
+
+/* "k=v;k=v" of a list, for compact checks */
+static const char *fmt_ov(const pg_ov_list *l)
+{
+    static char buf[512];
+    pg_ov_list_format(l, buf, sizeof buf);
+    return buf;
+}
+
+static void test_sides(void)
+{
+    pg_error err = {0};
+    pg_pipeline *pl = NULL, *ref = NULL;
+    CHECK_MSG(pg_pipeline_load_string(k_sides_pipe, "fwd.json", NULL, 0, &pl, &err) == PG_OK, "%s", err.msg);
+    CHECK_MSG(pg_pipeline_load_string(k_sides_ref, "ref.json", NULL, 0, &ref, &err) == PG_OK, "%s", err.msg);
+    if (!pl || !ref) {
+        pg_pipeline_free(pl);
+        pg_pipeline_free(ref);
+        return;
+    }
+    static pg_side_sets ss;
+    static pg_ov_list po, ro;
+    /* the command line: --set shading=blinn_phong --set max_lights=8 --debug-view albedo, where the
+     * common parser keeps the debug view among the sets as 'view' (pointer identity marks it) */
+    pg_cli_common c;
+    memset(&c, 0, sizeof c);
+    static char dv[] = "albedo";
+    c.sets[c.n_sets++] = (pg_param_override){"shading", "blinn_phong"};
+    c.sets[c.n_sets++] = (pg_param_override){"view", dv};
+    c.sets[c.n_sets++] = (pg_param_override){"max_lights", "8"};
+    c.debug_view = dv;
+    memset(&ss, 0, sizeof ss);
+    CHECK(pg_sides_from_common(&ss, &c));
+    CHECK_MSG(!strcmp(fmt_ov(&ss.set), "shading=blinn_phong;max_lights=8"), "--set list: %s", fmt_ov(&ss.set));
+    CHECK_MSG(!strcmp(fmt_ov(&ss.pipeline), "view=albedo") && !strcmp(ss.pipeline.from[0], "--debug-view"),
+              "the debug view is the pipeline's: %s", fmt_ov(&ss.pipeline));
+    /* compare: the pipeline takes everything; the reference the --set keys it declares, no debug view */
+    pg_sides_pipeline(&ss, NULL, NULL, 0, &po);
+    pg_sides_reference(&ss, ref, NULL, 0, &ro);
+    CHECK_MSG(!strcmp(fmt_ov(&po), "shading=blinn_phong;max_lights=8;view=albedo"), "pipeline: %s", fmt_ov(&po));
+    CHECK_MSG(!strcmp(fmt_ov(&ro), "shading=blinn_phong"), "reference: %s", fmt_ov(&ro));
+    CHECK(!strcmp(ro.from[0], "--set"));
+    /* a reference that did not load takes no --set value */
+    pg_sides_reference(&ss, NULL, NULL, 0, &ro);
+    CHECK(ro.n == 0);
+    /* --set view=albedo (not the debug view) goes to both sides */
+    memset(&c, 0, sizeof c);
+    c.sets[c.n_sets++] = (pg_param_override){"view", "albedo"};
+    memset(&ss, 0, sizeof ss);
+    CHECK(pg_sides_from_common(&ss, &c));
+    pg_sides_reference(&ss, ref, NULL, 0, &ro);
+    CHECK_MSG(!strcmp(fmt_ov(&ro), "view=albedo"), "--set view=albedo on the reference: %s", fmt_ov(&ro));
+
+    /* --pipeline-set and --reference-set: parsed in place, each wins over --set on its side */
+    memset(&ss, 0, sizeof ss);
+    pg_ov_list_put(&ss.set, "shading", "blinn_phong", "--set");
+    char a0[] = "--pipeline-set", a1[] = "shading=lambert", a2[] = "--reference-set", a3[] = "exposure=2",
+         a4[] = "--reference-set", a5[] = "shading=lambert", a6[] = "--bogus";
+    char *argv[] = {a0, a1, a2, a3, a4, a5, a6};
+    int argc = 7;
+    for (int i = 0; i < argc; i++) {
+        bool used = false;
+        pg_result r = pg_sides_parse(&ss, argc, argv, &i, &used, &err);
+        CHECK_MSG(r == PG_OK, "%s", err.msg);
+        CHECK_MSG(used == (i < 6), "argv[%d] used=%d", i, used);
+    }
+    CHECK_MSG(!strcmp(fmt_ov(&ss.pipeline), "shading=lambert"), "%s", fmt_ov(&ss.pipeline));
+    CHECK_MSG(!strcmp(fmt_ov(&ss.reference), "exposure=2;shading=lambert"), "%s", fmt_ov(&ss.reference));
+    pg_sides_pipeline(&ss, pl, NULL, 0, &po);
+    pg_sides_reference(&ss, ref, NULL, 0, &ro);
+    CHECK_MSG(!strcmp(fmt_ov(&po), "shading=lambert") && !strcmp(po.from[0], "--pipeline-set"), "pipeline: %s",
+              fmt_ov(&po));
+    CHECK_MSG(!strcmp(fmt_ov(&ro), "shading=lambert;exposure=2") && !strcmp(ro.from[0], "--reference-set"),
+              "reference: %s", fmt_ov(&ro));
+
+    /* bench: a pipeline takes the keys it declares; swept values go to the reference when it declares
+     * the key, unless --reference-set pins it */
+    memset(&ss, 0, sizeof ss);
+    pg_ov_list_put(&ss.set, "exposure", "4", "--set"); /* the reference's only */
+    pg_ov_list_put(&ss.pipeline, "max_lights", "16", "--pipeline-set");
+    pg_param_override swept[] = {{"shading", "blinn_phong"}, {"max_lights", "32"}};
+    pg_sides_pipeline(&ss, pl, swept, 1, &po);
+    pg_sides_reference(&ss, ref, swept, 2, &ro);
+    CHECK_MSG(!strcmp(fmt_ov(&po), "shading=blinn_phong;max_lights=16"), "bench pipeline: %s", fmt_ov(&po));
+    CHECK_MSG(!strcmp(fmt_ov(&ro), "exposure=4;shading=blinn_phong") && !strcmp(ro.from[1], "--sweep"),
+              "bench reference follows the sweep: %s", fmt_ov(&ro));
+    pg_ov_list_put(&ss.reference, "shading", "lambert", "--reference-set");
+    pg_sides_reference(&ss, ref, swept, 1, &ro);
+    CHECK_MSG(!strcmp(fmt_ov(&ro), "exposure=4;shading=lambert"), "--reference-set pins it: %s", fmt_ov(&ro));
+
+    /* keys a side does not declare: an option error naming the option, the key and the side */
+    memset(&ro, 0, sizeof ro);
+    pg_ov_list_put(&ro, "max_lights", "8", "--reference-set");
+    CHECK(pg_sides_check_keys(&ro, ref, "reference", &err) == PG_ERR_INVALID_ARG);
+    CHECK_MSG(strstr(err.msg, "--reference-set max_lights=8") && strstr(err.msg, "reference ref") &&
+                  strstr(err.msg, "declared: shading, view, exposure"),
+              "%s", err.msg);
+    memset(&po, 0, sizeof po);
+    pg_ov_list_put(&po, "view", "albedo", "--debug-view");
+    CHECK(pg_sides_check_keys(&po, pl, "pipeline", &err) == PG_OK);
+    CHECK(pg_sides_check_keys(&po, ref, "reference", &err) == PG_OK);
+    pg_ov_list_put(&po, "exposure", "1", "--pipeline-set");
+    CHECK(pg_sides_check_keys(&po, pl, "pipeline", &err) == PG_ERR_INVALID_ARG && strstr(err.msg, "--pipeline-set exposure=1"));
+
+    /* values a side refuses: the option that gave it, not the loader's '--set' */
+    char path[] = "/tmp/passgraph_test_sides_XXXXXX";
+    int fd = mkstemp(path);
+    CHECK(fd >= 0);
+    if (fd >= 0) {
+        size_t n = strlen(k_sides_ref);
+        CHECK(write(fd, k_sides_ref, n) == (ssize_t)n);
+        close(fd);
+        memset(&ro, 0, sizeof ro);
+        pg_ov_list_put(&ro, "exposure", "2", "--set");
+        CHECK_MSG(pg_sides_check_values(path, &ro, "reference", &err) == PG_OK, "%s", err.msg);
+        pg_ov_list_put(&ro, "shading", "toon", "--reference-set");
+        CHECK(pg_sides_check_values(path, &ro, "reference", &err) == PG_ERR_INVALID_ARG);
+        CHECK_MSG(!strncmp(err.msg, "--reference-set shading=toon: reference ", 40) && strstr(err.msg, "not one of") &&
+                      !strstr(err.msg, "--set "),
+                  "%s", err.msg);
+        memset(&ro, 0, sizeof ro);
+        pg_ov_list_put(&ro, "shading", "toon", "--sweep");
+        CHECK(pg_sides_check_values(path, &ro, "reference", &err) == PG_ERR_INVALID_ARG);
+        CHECK_MSG(!strncmp(err.msg, "--sweep shading=toon: ", 22) && strstr(err.msg, "--reference-set shading=VALUE"),
+                  "a shared value says how to give the reference its own: %s", err.msg);
+        unlink(path);
+    }
+    /* parse errors name the option */
+    memset(&ss, 0, sizeof ss);
+    char b0[] = "--reference-set", b1[] = "shading";
+    char *bargv[] = {b0, b1};
+    int i = 0;
+    bool used;
+    CHECK(pg_sides_parse(&ss, 2, bargv, &i, &used, &err) == PG_ERR_INVALID_ARG && strstr(err.msg, "--reference-set shading: expected KEY=VALUE"));
+    i = 0;
+    CHECK(pg_sides_parse(&ss, 1, bargv, &i, &used, &err) == PG_ERR_INVALID_ARG && strstr(err.msg, "missing value"));
+    pg_pipeline_free(pl);
+    pg_pipeline_free(ref);
+}
+
 int main(void)
 {
     test_stats();
     test_pareto();
     test_ticks();
     test_svg();
+    test_sides();
     return pg_test_finish("test_bench");
 }

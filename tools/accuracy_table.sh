@@ -2,13 +2,15 @@
 # accuracy_table.sh [BUILD_DIR] - the error-against-naive tables of docs/accuracy.md: every
 # pipeline and G-buffer variant against pipelines/naive.json on the default scene and the Sponza
 # (cis565 scenario) at 100, 1000 and 5000 lights, 640x360, time 2, median GPU ms of 3 frames.
-# Prints markdown. Needs ../shared/assets/dabrovic-sponza for the Sponza rows.
+# The reference is named explicitly (compare's default is pipelines/reference.json); PG_REFERENCE
+# picks another. Prints markdown. Needs ../shared/assets/dabrovic-sponza for the Sponza rows.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PG=${1:-build}/passgraph
 SPONZA=../shared/assets/dabrovic-sponza/sponza.gltf
 SIZE=${PG_SIZE:-640x360}
 LIGHTS=${PG_LIGHTS:-100 1000 5000}
+REFERENCE=${PG_REFERENCE:-pipelines/naive.json}
 variants=(
   "forward+|pipelines/forward_plus.json|"
   "deferred float|pipelines/deferred.json|"
@@ -33,7 +35,7 @@ for scene in default sponza; do
     for v in "${variants[@]}"; do
       IFS='|' read -r label pipe extra <<<"$v"
       # shellcheck disable=SC2086
-      line=$($PG compare --pipeline $pipe "${sargs[@]}" --lights $n --size $SIZE --time 2 --frames 3 --quiet $extra | grep '^compare:')
+      line=$($PG compare --pipeline $pipe --reference "$REFERENCE" "${sargs[@]}" --lights $n --size $SIZE --time 2 --frames 3 --quiet $extra | grep '^compare:')
       over=$(get overflow_clusters "$line"); [ -n "$over" ] || over=-
       printf "| %s | %s | %.1f | %.1f | %.3g | %s | %.3g | %s | %.3f%% | %s |\n" "$n" "$label" \
         "$(get gpu_ms "$line")" "$(get reference_gpu_ms "$line")" "$(get rmse_linear "$line")" \

@@ -3,10 +3,11 @@
  *
  * For each scene x size x light count x pipeline x variant it renders --warmup + --frames timed
  * frames (frame k at --time + k * --time-step: the lights move as in an animation, reproducibly)
- * and then one frame at exactly --time with read-back, whose images are compared with the naive
- * reference's frame at the same time (pg_image_error_compute). Results go to DIR/results.csv,
- * DIR/results.json and three SVG charts written by core/svg_plot.c. SIGINT stops after the current
- * frame and writes what was measured (exit 130). */
+ * and then one frame at exactly --time with read-back, whose images are compared with the
+ * reference pipeline's frame at the same time (pg_image_error_compute; the reference takes the
+ * overrides sides.h describes, so one block may render it once per swept value it declares).
+ * Results go to DIR/results.csv, DIR/results.json and three SVG charts written by core/svg_plot.c.
+ * SIGINT stops after the current frame and writes what was measured (exit 130). */
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -27,6 +28,7 @@
 #include "image_compare.h"
 #include "image_util.h"
 #include "shader.h"
+#include "sides.h"
 #include "svg_plot.h"
 
 static const char *const bench_help =
@@ -35,14 +37,24 @@ static const char *const bench_help =
     "per configuration: GPU ms per pass and in total from timestamps (median, mean, min, max, p95 over\n"
     "--frames timed frames after --warmup), CPU frame time (record + submit + wait), transient memory\n"
     "before/after aliasing (the plan's numbers and the device memory allocated), light overflow of\n"
-    "clustered pipelines, and the image error against the naive reference at --time (RMSE, PSNR, max\n"
-    "abs; linear HDR and 8-bit display). Writes DIR/results.csv, DIR/results.json and the charts\n"
+    "clustered pipelines, and the image error against the reference pipeline at --time (RMSE, PSNR,\n"
+    "max abs; linear HDR and 8-bit display). Writes DIR/results.csv, DIR/results.json and the charts\n"
     "DIR/gpu_time_vs_lights.svg, DIR/passes_stacked.svg, DIR/error_vs_time.svg (docs/performance.md\n"
     "documents every column). Timed frame k (warm-up frames included) renders at --time + k *\n"
     "--time-step, so the lights move; the error frame is rendered at exactly --time, after them.\n"
     "Progress and ETA go to stderr; Ctrl-C finishes the current frame, writes what was measured and\n"
     "exits 130. Exit 0 when every configuration ran, 1 when one failed (its rows say why in 'status'\n"
     "and 'message'; the others still run) or validation reported a message, 2 on bad options.\n\n"
+    "What each side takes: --set KEY=VALUE goes to every pipeline that declares KEY and to the reference\n"
+    "when it declares KEY; --pipeline-set KEY=VALUE to the pipelines only, --reference-set KEY=VALUE to\n"
+    "the reference only (each wins over --set on its side); a --sweep value goes to the pipeline and,\n"
+    "when the reference declares KEY, to the reference too, so --sweep shading=lambert,blinn_phong\n"
+    "compares each light model with the same one (--reference-set shading=lambert pins it instead);\n"
+    "--debug-view is the pipelines' only. The 'bench: sides:' lines at the start, the 'sets' and\n"
+    "'reference_sets' columns and results.json's meta say what each side used.\n\n";
+
+/* a second string: C11 compilers need only support 4095 characters in one literal */
+static const char *const bench_help_options =
     "bench options:\n"
     "  --pipelines LIST|all pipeline JSON files, comma-separated; a bare name (forward_plus) means\n"
     "                       pipelines/NAME.json of the data folder; 'all' (default): every top-level\n"
@@ -56,12 +68,20 @@ static const char *const bench_help =
     "  --time-step S        animation time added per frame (default 0.0166667 = 1/60 s; 0: every frame\n"
     "                       at --time)\n"
     "  --sweep KEY=V1,V2,.. run each pipeline that declares parameter KEY once per value (repeatable;\n"
-    "                       several sweeps give every combination); the 'variant' column says which\n"
-    "  --set KEY=VALUE      applied to every pipeline that declares KEY, and to the reference\n"
-    "  --reference FILE     the exact pipeline errors are measured against (default pipelines/naive.json);\n"
-    "                       it takes the --set values it declares, not the --sweep values\n"
-    "  --naive-max-lights N above N lights the reference is not rendered (error columns empty, with an\n"
-    "                       'error_note') and the reference pipeline's own rows are skipped (default 5000)\n"
+    "                       several sweeps give every combination); the 'variant' column says which.\n"
+    "                       The reference takes each value too when it declares KEY\n"
+    "  --set KEY=VALUE      applied to every pipeline that declares KEY, and to the reference if it\n"
+    "                       declares KEY (a key none of them declares is refused)\n"
+    "  --pipeline-set KEY=VALUE  applied to every pipeline that declares KEY, never to the reference\n"
+    "  --reference-set KEY=VALUE applied to the reference only; wins over --set and --sweep there\n"
+    "  --reference FILE     the exact pipeline errors are measured against (default\n"
+    "                       pipelines/reference.json: a compute pass shading every pixel with every light)\n"
+    "  --reference-max-lights N  above N lights the reference is not rendered (error columns empty,\n"
+    "                       'error_note' says why) and the reference pipeline's own rows are skipped.\n"
+    "                       Default: 1000000 on a GPU; on a CPU device (lavapipe) what keeps a reference\n"
+    "                       frame under 1.152e9 light x pixel evaluations (about 10 s there): 20000\n"
+    "                       lights at 320x180, 5000 at 640x360, 555 at 1920x1080\n"
+    "  --naive-max-lights N deprecated name of --reference-max-lights (prints a warning)\n"
     "  --out DIR            output folder (created if missing)\n"
     "  --quiet              no progress bar\n\n"
     "common options (--lights, --size, --pipeline, --frames as above):\n";
@@ -70,7 +90,11 @@ static const char *const bench_help =
 #define MAX_SWEEPS 8
 #define MAX_SWEEP_VALUES 32
 #define MAX_VARIANTS 1024
-#define MAX_OV (PG_CLI_MAX_SETS + MAX_SWEEPS)
+/* Reference frames on a CPU device (lavapipe) cost about 1e8 light x pixel evaluations a second
+ * on two cores; without --reference-max-lights the reference is rendered up to this many per
+ * frame (20,000 lights at 320x180, 5,000 at 640x360: about ten seconds a reference frame). */
+#define CPU_REFERENCE_BUDGET (20000.0 * 320.0 * 180.0)
+#define GPU_REFERENCE_MAX_LIGHTS 1000000u
 
 static volatile sig_atomic_t g_interrupted;
 
@@ -88,9 +112,9 @@ typedef struct sweep {
 
 typedef struct variant {
     char label[256];                  /* "gbuffer=oct16;max_lights=256"; "" without sweeps */
-    char sets_label[256];             /* the --set values this pipeline takes */
-    pg_param_override ov[MAX_OV];
-    uint32_t n_ov;
+    char sets_label[256];             /* its overrides besides the swept values (--set, --pipeline-set) */
+    pg_ov_list ov;                    /* what the pipeline gets: --set, swept values, --pipeline-set */
+    uint32_t ref;                     /* index into bench.refs: what the reference gets for this variant */
     bool ok;                          /* loads with these overrides */
     char msg[PG_ERROR_MSG_MAX];
     uint32_t series;                  /* global index: colour / marker in the charts */
@@ -141,6 +165,12 @@ typedef struct reference {
     uint32_t w, h;
 } reference;
 
+typedef struct ref_variant {
+    pg_ov_list ov;                    /* the reference's overrides */
+    char label[256];                  /* "k=v;k=v" as in the results' reference_sets column */
+    uint32_t last_use;                /* last (pipeline, variant) in run order that needs it */
+} ref_variant;
+
 typedef struct bench {
     pg_cli_common opt;
     /* lists */
@@ -154,9 +184,15 @@ typedef struct bench {
     uint32_t n_series;
     char ref_path[PG_PATH_MAX];
     char ref_name[PG_NAME_MAX];
-    pg_param_override ref_ov[PG_CLI_MAX_SETS];
-    uint32_t n_ref_ov;
-    uint32_t warmup, naive_max_lights;
+    pg_side_sets sides;               /* --set, --pipeline-set, --reference-set, the debug view */
+    uint32_t n_refs;                  /* distinct reference override sets (one per swept value the
+                                       * reference declares), each rendered once per block */
+    ref_variant *refs;
+    char ref_sweeps[256];             /* the swept keys the reference declares, ","-separated */
+    bool has_ref_max_lights;          /* --reference-max-lights (or --naive-max-lights) given */
+    uint32_t ref_max_lights;
+    bool device_known, device_cpu;    /* VK_PHYSICAL_DEVICE_TYPE_CPU: the default limit is a budget */
+    uint32_t warmup;
     double time_step;
     const char *out_dir;
     /* results */
@@ -401,29 +437,68 @@ static bool same_file(const char *a, const char *b)
     return !strcmp(ra, rb);
 }
 
-/* Loads every pipeline once (names, declared parameters), checks that each --set / --sweep key is
- * declared somewhere, builds the variants and checks that each loads. Bad keys are option errors
- * (exit 2, returned as PG_ERR_INVALID_ARG); a pipeline that does not load is recorded in its rows. */
+static bool same_ov(const pg_ov_list *a, const pg_ov_list *b)
+{
+    if (a->n != b->n) return false;
+    for (uint32_t k = 0; k < a->n; k++)
+        if (strcmp(a->ov[k].key, b->ov[k].key) || strcmp(a->ov[k].value, b->ov[k].value)) return false;
+    return true;
+}
+
+/* The index of the reference set ov in B->refs, added if new (lists are built in one key order). */
+static uint32_t find_or_add_ref(bench *B, const pg_ov_list *ov, pg_error *err, bool *oom)
+{
+    for (uint32_t k = 0; k < B->n_refs; k++)
+        if (same_ov(&B->refs[k].ov, ov)) return k;
+    ref_variant *r = realloc(B->refs, (B->n_refs + 1) * sizeof *r);
+    if (!r) {
+        *oom = true;
+        pg_fail(err, PG_ERR_OOM, "out of memory");
+        return 0;
+    }
+    B->refs = r;
+    ref_variant *e = &r[B->n_refs];
+    memset(e, 0, sizeof *e);
+    e->ov = *ov;
+    pg_ov_list_format(ov, e->label, sizeof e->label);
+    return B->n_refs++;
+}
+
+/* Loads every pipeline once (names, declared parameters), checks that each --set / --pipeline-set /
+ * --sweep key is declared somewhere and each --reference-set key by the reference, builds the
+ * variants with what each side gets (sides.h) and checks that each loads. Bad keys, and values
+ * the reference refuses, are option errors (exit 2, returned as PG_ERR_INVALID_ARG); a pipeline
+ * that does not load is recorded in its rows, a reference that does not load in every row's note. */
 static pg_result plan_variants(bench *B, pg_error *err)
 {
-    const pg_cli_common *o = &B->opt;
-    bool set_used[PG_CLI_MAX_SETS] = {0}, sweep_used[MAX_SWEEPS] = {0};
+    const pg_side_sets *ss = &B->sides;
+    bool set_used[PG_SIDES_MAX_OV] = {0}, pset_used[PG_SIDES_MAX_OV] = {0}, sweep_used[MAX_SWEEPS] = {0};
     bool any_loaded = false;
-    for (uint32_t k = 0; k < B->n_sweeps; k++)
-        for (uint32_t s = 0; s < o->n_sets; s++)
-            if (!strcmp(o->sets[s].key, B->sweeps[k].key))
-                return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: the same key is given with --set", B->sweeps[k].key);
-    /* the reference takes the --set values it declares */
+    pg_result r = PG_OK;
+    for (uint32_t k = 0; k < B->n_sweeps; k++) {
+        if (pg_ov_list_get(&ss->set, B->sweeps[k].key))
+            return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: the same key is given with --set", B->sweeps[k].key);
+        for (uint32_t s = 0; s < ss->pipeline.n; s++)
+            if (!strcmp(ss->pipeline.ov[s].key, B->sweeps[k].key))
+                return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: the same key is given with %s", B->sweeps[k].key,
+                               ss->pipeline.from[s]);
+    }
+    /* the reference: its declared parameters decide which --set and swept values it takes */
     pg_pipeline *ref = NULL;
-    if (!pg_pipeline_load(B->ref_path, NULL, 0, &ref, NULL)) {
+    pg_error re = {0};
+    if (!pg_pipeline_load(B->ref_path, NULL, 0, &ref, &re)) {
         pg_strlcpy(B->ref_name, ref->name, sizeof B->ref_name);
-        for (uint32_t s = 0; s < o->n_sets; s++)
-            if (pg_pipeline_find_param(ref, o->sets[s].key)) {
-                B->ref_ov[B->n_ref_ov++] = o->sets[s];
-                set_used[s] = true;
+        if ((r = pg_sides_check_keys(&ss->reference, ref, "reference", err))) goto done;
+        for (uint32_t s = 0; s < ss->set.n; s++) set_used[s] |= pg_pipeline_find_param(ref, ss->set.ov[s].key) != NULL;
+        size_t l = 0;
+        for (uint32_t k = 0; k < B->n_sweeps; k++)
+            if (pg_pipeline_find_param(ref, B->sweeps[k].key) && !pg_ov_list_get(&ss->reference, B->sweeps[k].key)) {
+                l += (size_t)snprintf(B->ref_sweeps + l, l < sizeof B->ref_sweeps ? sizeof B->ref_sweeps - l : 0, "%s%s",
+                                      l ? "," : "", B->sweeps[k].key);
+                if (l >= sizeof B->ref_sweeps) l = sizeof B->ref_sweeps - 1;
             }
-        pg_pipeline_free(ref);
     } else {
+        ref = NULL;
         file_stem(B->ref_path, B->ref_name, sizeof B->ref_name);
     }
     uint32_t series = 0;
@@ -434,80 +509,138 @@ static pg_result plan_variants(bench *B, pg_error *err)
         pg_error le = {0};
         uint32_t n_var = 1;
         bool declares[MAX_SWEEPS] = {0};
-        pg_param_override sets[PG_CLI_MAX_SETS];
-        uint32_t n_sets = 0;
+        pg_ov_list fixed; /* this pipeline's overrides without the swept values */
+        memset(&fixed, 0, sizeof fixed);
         if (pg_pipeline_load(pe->path, NULL, 0, &pl, &le)) {
             pg_strlcpy(pe->msg, le.msg, sizeof pe->msg);
         } else {
             pe->loaded = any_loaded = true;
             pg_strlcpy(pe->name, pl->name, sizeof pe->name);
-            for (uint32_t s = 0; s < o->n_sets; s++)
-                if (pg_pipeline_find_param(pl, o->sets[s].key)) {
-                    sets[n_sets++] = o->sets[s];
-                    set_used[s] = true;
-                }
+            for (uint32_t s = 0; s < ss->set.n; s++) set_used[s] |= pg_pipeline_find_param(pl, ss->set.ov[s].key) != NULL;
+            for (uint32_t s = 0; s < ss->pipeline.n; s++)
+                pset_used[s] |= pg_pipeline_find_param(pl, ss->pipeline.ov[s].key) != NULL;
+            pg_sides_pipeline(ss, pl, NULL, 0, &fixed);
             for (uint32_t k = 0; k < B->n_sweeps; k++)
                 if (pg_pipeline_find_param(pl, B->sweeps[k].key)) {
                     declares[k] = sweep_used[k] = true;
                     n_var *= B->sweeps[k].n;
                     if (n_var > MAX_VARIANTS) {
                         pg_pipeline_free(pl);
-                        return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep: more than %d variants of %s", MAX_VARIANTS,
-                                       pe->path);
+                        r = pg_fail(err, PG_ERR_INVALID_ARG, "--sweep: more than %d variants of %s", MAX_VARIANTS, pe->path);
+                        goto done;
                     }
                 }
-            pg_pipeline_free(pl);
         }
         pe->variants = calloc(n_var, sizeof *pe->variants);
-        if (!pe->variants) return pg_fail(err, PG_ERR_OOM, "out of memory");
+        if (!pe->variants) {
+            pg_pipeline_free(pl);
+            r = pg_fail(err, PG_ERR_OOM, "out of memory");
+            goto done;
+        }
         pe->n_variants = n_var;
         for (uint32_t v = 0; v < n_var; v++) {
             variant *va = &pe->variants[v];
             va->series = series++;
-            size_t sl = 0;
-            for (uint32_t s = 0; s < n_sets; s++) {
-                va->ov[va->n_ov++] = sets[s];
-                sl += (size_t)snprintf(va->sets_label + sl, sl < sizeof va->sets_label ? sizeof va->sets_label - sl : 0,
-                                       "%s%s=%s", s ? ";" : "", sets[s].key, sets[s].value);
-                if (sl >= sizeof va->sets_label) sl = sizeof va->sets_label - 1;
-            }
-            uint32_t rest = v, ll = 0;
+            pg_ov_list_format(&fixed, va->sets_label, sizeof va->sets_label);
+            pg_param_override swept[MAX_SWEEPS];
+            uint32_t n_swept = 0, rest = v, ll = 0;
             for (uint32_t k = 0; k < B->n_sweeps; k++) { /* the last declared sweep varies fastest */
                 if (!declares[k]) continue;
                 uint32_t div = 1;
                 for (uint32_t k2 = k + 1; k2 < B->n_sweeps; k2++)
                     if (declares[k2]) div *= B->sweeps[k2].n;
                 const char *val = B->sweeps[k].values[(rest / div) % B->sweeps[k].n];
-                va->ov[va->n_ov++] = (pg_param_override){B->sweeps[k].key, val};
+                swept[n_swept++] = (pg_param_override){B->sweeps[k].key, val};
                 ll += (uint32_t)snprintf(va->label + ll, ll < sizeof va->label ? sizeof va->label - ll : 0, "%s%s=%s",
                                          ll ? ";" : "", B->sweeps[k].key, val);
                 if (ll >= sizeof va->label) ll = sizeof va->label - 1;
+            }
+            if (pl) pg_sides_pipeline(ss, pl, swept, n_swept, &va->ov); /* else it is never run */
+            pg_ov_list rov;
+            pg_sides_reference(ss, ref, swept, n_swept, &rov);
+            bool oom = false;
+            va->ref = find_or_add_ref(B, &rov, err, &oom);
+            if (oom) {
+                pg_pipeline_free(pl);
+                r = PG_ERR_OOM;
+                goto done;
             }
             if (!pe->loaded) {
                 pg_strlcpy(va->msg, pe->msg, sizeof va->msg);
                 continue;
             }
             pg_error ve = {0};
-            if (pg_pipeline_load(pe->path, va->ov, va->n_ov, &pl, &ve)) {
+            pg_pipeline *vp = NULL;
+            if (pg_pipeline_load(pe->path, va->ov.ov, va->ov.n, &vp, &ve)) {
                 pg_strlcpy(va->msg, ve.msg, sizeof va->msg);
             } else {
                 va->ok = true;
-                pg_pipeline_free(pl);
+                pg_pipeline_free(vp);
             }
         }
+        pg_pipeline_free(pl);
     }
     B->n_series = series;
     if (any_loaded) {
-        for (uint32_t s = 0; s < o->n_sets; s++)
-            if (!set_used[s])
-                return pg_fail(err, PG_ERR_INVALID_ARG, "--set %s=%s: no selected pipeline (nor the reference) declares '%s'",
-                               o->sets[s].key, o->sets[s].value, o->sets[s].key);
+        for (uint32_t s = 0; s < ss->set.n; s++)
+            if (!set_used[s]) {
+                r = pg_fail(err, PG_ERR_INVALID_ARG, "--set %s=%s: no selected pipeline (nor the reference) declares '%s'",
+                            ss->set.ov[s].key, ss->set.ov[s].value, ss->set.ov[s].key);
+                goto done;
+            }
+        for (uint32_t s = 0; s < ss->pipeline.n; s++)
+            if (!pset_used[s]) {
+                r = pg_fail(err, PG_ERR_INVALID_ARG, "%s %s=%s: no selected pipeline declares '%s'", ss->pipeline.from[s],
+                            ss->pipeline.ov[s].key, ss->pipeline.ov[s].value, ss->pipeline.ov[s].key);
+                goto done;
+            }
         for (uint32_t k = 0; k < B->n_sweeps; k++)
-            if (!sweep_used[k])
-                return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: no selected pipeline declares '%s'", B->sweeps[k].key,
-                               B->sweeps[k].key);
+            if (!sweep_used[k]) {
+                r = pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: no selected pipeline declares '%s'", B->sweeps[k].key,
+                            B->sweeps[k].key);
+                goto done;
+            }
     }
-    return PG_OK;
+    /* a value the reference refuses is a bad option, not a failure of every row */
+    for (uint32_t k = 0; ref && k < B->n_refs; k++)
+        if (pg_sides_check_values(B->ref_path, &B->refs[k].ov, "reference", err) == PG_ERR_INVALID_ARG) {
+            r = PG_ERR_INVALID_ARG;
+            goto done;
+        }
+    /* the last (pipeline, variant) of a block that needs each reference: it is freed after that row */
+    for (uint32_t pi = 0, idx = 0; pi < B->n_pipes; pi++)
+        for (uint32_t v = 0; v < B->pipes[pi].n_variants; v++, idx++) B->refs[B->pipes[pi].variants[v].ref].last_use = idx;
+done:
+    pg_pipeline_free(ref);
+    return r;
+}
+
+/* The most lights the reference is rendered with at w x h: --reference-max-lights; else on a GPU
+ * 1,000,000 and on a CPU device (lavapipe) CPU_REFERENCE_BUDGET / pixels. */
+static uint32_t ref_limit(const bench *B, uint32_t w, uint32_t h)
+{
+    if (B->has_ref_max_lights) return B->ref_max_lights;
+    if (!B->device_cpu) return GPU_REFERENCE_MAX_LIGHTS;
+    double n = floor(CPU_REFERENCE_BUDGET / ((double)w * h));
+    return n >= GPU_REFERENCE_MAX_LIGHTS ? GPU_REFERENCE_MAX_LIGHTS : (uint32_t)n;
+}
+
+/* Why a row above the limit has no error: the limit, and where it came from (brief: one line that
+ * fits a chart panel). */
+static void ref_skip_note(const bench *B, uint32_t w, uint32_t h, bool brief, char *buf, size_t size)
+{
+    uint32_t n = ref_limit(B, w, h);
+    if (B->has_ref_max_lights)
+        snprintf(buf, size, "%s skipped above %u lights (--reference-max-lights %u)", B->ref_name, n, n);
+    else if (B->device_cpu && brief)
+        snprintf(buf, size, "%s skipped above %u lights on a CPU device: set --reference-max-lights", B->ref_name, n);
+    else if (B->device_cpu)
+        snprintf(buf, size,
+                 "%s skipped above %u lights on a CPU device (%.48s) at %ux%u, the default budget of %.4g light x "
+                 "pixel evaluations per reference frame (about 10 s on lavapipe): set --reference-max-lights",
+                 B->ref_name, n, B->device, w, h, CPU_REFERENCE_BUDGET);
+    else
+        snprintf(buf, size, "%s skipped above %u lights (the default on a GPU): set --reference-max-lights", B->ref_name, n);
 }
 
 /* ---------------------------------------------------------------- progress */
@@ -630,13 +763,13 @@ static pg_result grab_images(const pg_session *s, float **hdr, uint8_t **ldr, ui
     return PG_OK;
 }
 
-static void reference_render(bench *B, pg_app *app, const pg_frame_info *fi0, reference *ref)
+static void reference_render(bench *B, pg_app *app, const pg_frame_info *fi0, const ref_variant *rv, reference *ref)
 {
     ref->tried = true;
     pg_session_desc desc = {
         .pipeline_path = B->ref_path,
-        .overrides = B->ref_ov,
-        .n_overrides = B->n_ref_ov,
+        .overrides = rv->ov.ov,
+        .n_overrides = rv->ov.n,
         .registry = &app->registry,
         .disable_aliasing = B->opt.no_aliasing,
         .settings = app->opt.settings, /* OCIO config / display / view */
@@ -667,15 +800,16 @@ static void collect_stats(bench_row *row, const double *samples, uint32_t frames
 
 /* One configuration: its timed frames, then the error frame. Fills row; failures are recorded in
  * it (status, message), never returned: only OOM of the row table stops the bench. */
-static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *ref, bench_row *row, const char *what)
+static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *refs, bench_row *row, const char *what)
 {
     const pipe_entry *pe = &B->pipes[row->pipe];
     const variant *va = &pe->variants[row->variant];
+    reference *ref = &refs[va->ref];
     double fw = frame_work(row->width, row->height, row->lights);
     uint32_t nf = B->warmup + B->opt.frames;
-    bool ref_skipped = row->lights > B->naive_max_lights;
-    if (ref_skipped)
-        snprintf(row->error_note, sizeof row->error_note, "%s skipped above %u lights", B->ref_name, B->naive_max_lights);
+    uint32_t limit = ref_limit(B, row->width, row->height);
+    bool ref_skipped = row->lights > limit;
+    if (ref_skipped) ref_skip_note(B, row->width, row->height, false, row->error_note, sizeof row->error_note);
     if (!va->ok) {
         row->status = ROW_ERROR;
         snprintf(row->message, sizeof row->message, "%s", va->msg);
@@ -684,8 +818,7 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
     }
     if (pe->is_reference && ref_skipped) {
         row->status = ROW_SKIPPED;
-        snprintf(row->message, sizeof row->message, "the reference pipeline is not run above %u lights (--naive-max-lights)",
-                 B->naive_max_lights);
+        snprintf(row->message, sizeof row->message, "the reference pipeline itself is not run: %s", row->error_note);
         B->done_work += fw * (nf + 1);
         return;
     }
@@ -694,13 +827,13 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
         char rw[PG_NAME_MAX + 64];
         snprintf(rw, sizeof rw, "%s (reference) %ux%u lights=%u", B->ref_name, row->width, row->height, row->lights);
         progress_draw(B, rw, false);
-        reference_render(B, app, fi0, ref);
+        reference_render(B, app, fi0, &B->refs[va->ref], ref);
         B->done_work += frame_work(row->width, row->height, row->lights) * 4;
     }
     pg_session_desc desc = {
         .pipeline_path = pe->path,
-        .overrides = va->ov,
-        .n_overrides = va->n_ov,
+        .overrides = va->ov.ov,
+        .n_overrides = va->ov.n,
         .registry = &app->registry,
         .disable_aliasing = B->opt.no_aliasing,
         .settings = app->opt.settings,
@@ -893,7 +1026,7 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
     fputs(",plan_transient_bytes_unaliased,plan_transient_bytes_aliased,device_transient_bytes_unaliased,"
           "device_transient_bytes_aliased,overflow_clusters,overflow_dropped,overflow_clusters_max,reference,"
           "rmse_linear,psnr_linear,max_abs_linear,peak_linear,rmse_display,psnr_display,max_abs_display,"
-          "share_over_1,nonfinite,error_note,pipeline_path",
+          "share_over_1,nonfinite,error_note,pipeline_path,reference_sets",
           f);
     for (uint32_t p = 0; p < u->n; p++)
         for (int k = 0; k < 5; k++) fprintf(f, ",pass_%s_ms_%s", u->names[p], stat_names[k]);
@@ -934,6 +1067,7 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
         csv_u64(f, r->has_nonfinite, r->nonfinite);
         csv_str(f, r->error_note, false);
         csv_str(f, pe->path, false);
+        csv_str(f, B->refs[va->ref].label, false);
         for (uint32_t p = 0; p < u->n; p++) {
             const pass_stat *ps = NULL;
             for (uint32_t q = 0; q < r->n_passes && !ps; q++)
@@ -977,7 +1111,45 @@ static cJSON *json_meta(const bench *B)
     if (B->opt.scenario) cJSON_AddStringToObject(m, "scenario", B->opt.scenario);
     cJSON_AddStringToObject(m, "reference", B->ref_name);
     cJSON_AddStringToObject(m, "reference_path", B->ref_path);
-    cJSON_AddNumberToObject(m, "naive_max_lights", B->naive_max_lights);
+    cJSON *rl = cJSON_AddObjectToObject(m, "reference_max_lights");
+    if (rl) {
+        cJSON_AddStringToObject(rl, "source", B->has_ref_max_lights ? "--reference-max-lights"
+                                              : !B->device_known ? "default (no device opened)"
+                                              : B->device_cpu   ? "default on a CPU device: a light x pixel budget"
+                                                                : "default on a GPU");
+        if (!B->has_ref_max_lights && B->device_cpu) cJSON_AddNumberToObject(rl, "budget", CPU_REFERENCE_BUDGET);
+        cJSON *bs = cJSON_AddObjectToObject(rl, "by_size");
+        for (uint32_t i = 0; bs && i < B->n_sizes; i++) {
+            char b[32];
+            snprintf(b, sizeof b, "%ux%u", B->widths[i], B->heights[i]);
+            cJSON_AddNumberToObject(bs, b, ref_limit(B, B->widths[i], B->heights[i]));
+        }
+    }
+    cJSON *sides = cJSON_AddArrayToObject(m, "sides"); /* what each pipeline and its reference used */
+    for (uint32_t p = 0; sides && p < B->n_pipes; p++) {
+        const pipe_entry *pe = &B->pipes[p];
+        cJSON *o = cJSON_CreateObject();
+        if (!o) break;
+        cJSON_AddStringToObject(o, "pipeline", pe->name);
+        cJSON_AddStringToObject(o, "pipeline_path", pe->path);
+        cJSON_AddStringToObject(o, "pipeline_sets", pe->n_variants ? pe->variants[0].sets_label : "");
+        cJSON *rs = cJSON_AddArrayToObject(o, "reference_sets"); /* one per distinct set over the variants */
+        for (uint32_t v = 0; rs && v < pe->n_variants; v++) {
+            bool seen = false;
+            for (uint32_t w = 0; w < v && !seen; w++) seen = pe->variants[w].ref == pe->variants[v].ref;
+            if (!seen) cJSON_AddItemToArray(rs, cJSON_CreateString(B->refs[pe->variants[v].ref].label));
+        }
+        cJSON_AddStringToObject(o, "reference", B->ref_name);
+        cJSON_AddStringToObject(o, "reference_path", B->ref_path);
+        cJSON_AddItemToArray(sides, o);
+    }
+    cJSON *so = cJSON_AddObjectToObject(m, "pipeline_sets"); /* --pipeline-set and the debug view */
+    for (uint32_t i = 0; so && i < B->sides.pipeline.n; i++)
+        cJSON_AddStringToObject(so, B->sides.pipeline.ov[i].key, B->sides.pipeline.ov[i].value);
+    so = cJSON_AddObjectToObject(m, "reference_sets"); /* --reference-set */
+    for (uint32_t i = 0; so && i < B->sides.reference.n; i++)
+        cJSON_AddStringToObject(so, B->sides.reference.ov[i].key, B->sides.reference.ov[i].value);
+    cJSON_AddStringToObject(m, "reference_sweeps", B->ref_sweeps);
     cJSON_AddNumberToObject(m, "warmup", B->warmup);
     cJSON_AddNumberToObject(m, "frames", B->opt.frames);
     cJSON_AddNumberToObject(m, "time", B->opt.time);
@@ -994,8 +1166,9 @@ static cJSON *json_meta(const bench *B)
         snprintf(b, sizeof b, "%ux%u", B->widths[i], B->heights[i]);
         cJSON_AddItemToArray(sz, cJSON_CreateString(b));
     }
-    cJSON *st = cJSON_AddObjectToObject(m, "sets");
-    for (uint32_t i = 0; st && i < B->opt.n_sets; i++) cJSON_AddStringToObject(st, B->opt.sets[i].key, B->opt.sets[i].value);
+    cJSON *st = cJSON_AddObjectToObject(m, "sets"); /* --set */
+    for (uint32_t i = 0; st && i < B->sides.set.n; i++)
+        cJSON_AddStringToObject(st, B->sides.set.ov[i].key, B->sides.set.ov[i].value);
     cJSON *sw = cJSON_AddObjectToObject(m, "sweeps");
     for (uint32_t k = 0; sw && k < B->n_sweeps; k++) {
         cJSON *a = cJSON_AddArrayToObject(sw, B->sweeps[k].key);
@@ -1050,6 +1223,7 @@ static cJSON *json_row(const bench *B, const bench_row *r)
         cJSON_AddNullToObject(o, "overflow");
     }
     cJSON_AddStringToObject(o, "reference", B->ref_name);
+    cJSON_AddStringToObject(o, "reference_sets", B->refs[va->ref].label);
     if (r->has_error) {
         const pg_image_error *e = &r->e;
         cJSON *m = cJSON_AddObjectToObject(o, "error");
@@ -1379,9 +1553,11 @@ static pg_result chart_error(const bench *B, const char *path, pg_error *err)
         const char *en = NULL;
         for (uint32_t i = 0; i < B->n_rows && !en; i++)
             if (row_in_block(B, &B->rows[i], sc, si, li) && B->rows[i].error_note[0]) en = B->rows[i].error_note;
-        if (B->lights[li] > B->naive_max_lights)
-            snprintf(note, sizeof note, "no error measured: %s skipped above %u lights", B->ref_name, B->naive_max_lights);
-        else
+        if (B->lights[li] > ref_limit(B, B->widths[si], B->heights[si])) {
+            char why[256];
+            ref_skip_note(B, B->widths[si], B->heights[si], true, why, sizeof why);
+            snprintf(note, sizeof note, "no error measured: %s", why);
+        } else
             snprintf(note, sizeof note, "no error measured%s%s", en ? ": " : "", en ? en : "");
         pl->empty_message = cm_str(&m, note);
         pl->series = ser;
@@ -1450,7 +1626,62 @@ static void bench_free(bench *B)
 {
     for (uint32_t i = 0; i < B->n_pipes; i++) free(B->pipes[i].variants);
     free(B->pipes);
+    free(B->refs);
     free(B->rows);
+}
+
+/* Position of (pipeline, variant) in a block's run order (what ref_variant.last_use counts). */
+static uint32_t var_index(const bench *B, uint32_t pipe, uint32_t var)
+{
+    uint32_t idx = 0;
+    for (uint32_t p = 0; p < pipe; p++) idx += B->pipes[p].n_variants;
+    return idx + var;
+}
+
+/* Work for the progress bar's ETA: every row's frames and the reference frames (one per distinct
+ * reference set per block, up to the limit, which depends on the device). */
+static void estimate_work(bench *B, uint32_t vars)
+{
+    B->total_work = 0;
+    for (uint32_t si = 0; si < B->n_sizes; si++)
+        for (uint32_t li = 0; li < B->n_lights; li++) {
+            double fw = frame_work(B->widths[si], B->heights[si], B->lights[li]);
+            bool ref = B->lights[li] <= ref_limit(B, B->widths[si], B->heights[si]);
+            B->total_work += B->n_scenes * (vars * fw * (B->warmup + B->opt.frames + 1) + (ref ? 4 * fw * B->n_refs : 0));
+        }
+}
+
+/* The header: for every pipeline, the file and overrides it takes and what its reference takes
+ * (several reference sets when the reference follows a sweep). */
+static void print_sides(const bench *B)
+{
+    for (uint32_t p = 0; p < B->n_pipes; p++) {
+        const pipe_entry *pe = &B->pipes[p];
+        char refs[1024] = "";
+        size_t l = 0;
+        for (uint32_t v = 0; v < pe->n_variants && l < sizeof refs; v++) {
+            bool seen = false;
+            for (uint32_t w = 0; w < v && !seen; w++) seen = pe->variants[w].ref == pe->variants[v].ref;
+            if (seen) continue;
+            const char *lab = B->refs[pe->variants[v].ref].label;
+            int n = snprintf(refs + l, sizeof refs - l, "%s%s", l ? "|" : "", lab[0] ? lab : "none");
+            if (n < 0) break;
+            l += (size_t)n;
+        }
+        const char *sets = pe->n_variants && pe->variants[0].sets_label[0] ? pe->variants[0].sets_label : "none";
+        char sweeps[256] = "";
+        size_t sl = 0;
+        for (uint32_t k = 0; k < B->n_sweeps && sl < sizeof sweeps; k++)
+            if (pe->n_variants && pg_ov_list_get(&pe->variants[0].ov, B->sweeps[k].key)) {
+                int n = snprintf(sweeps + sl, sizeof sweeps - sl, "%s%s", sl ? "," : "", B->sweeps[k].key);
+                if (n < 0) break;
+                sl += (size_t)n;
+            }
+        printf("bench: sides: pipeline=%s pipeline_path=%s pipeline_sets=%s sweeps=%s reference=%s reference_path=%s "
+               "reference_sets=%s\n",
+               pe->name, pe->path, sets, sweeps[0] ? sweeps : "none", B->ref_name, B->ref_path, refs);
+    }
+    fflush(stdout);
 }
 
 int pg_cmd_bench(int argc, char **argv)
@@ -1463,24 +1694,25 @@ int pg_cmd_bench(int argc, char **argv)
     pg_cli_defaults(&B->opt);
     B->opt.frames = 10;
     B->warmup = 2;
-    B->naive_max_lights = 5000;
     B->time_step = 1.0 / 60.0;
     pg_error err = {0};
     char *pipelines = NULL, *lights = NULL, *sizes = NULL, *scenes = NULL;
     const char *ref_arg = NULL;
+    bool warned_naive = false;
     int rc = 2;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         char *v = i + 1 < argc ? argv[i + 1] : NULL;
         pg_result r = PG_OK;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            printf("%s%s", bench_help, pg_cli_common_help);
+            printf("%s%s%s", bench_help, bench_help_options, pg_cli_common_help);
             rc = 0;
             goto out;
         }
         bool takes = !strcmp(a, "--pipelines") || !strcmp(a, "--lights") || !strcmp(a, "--size") ||
                      !strcmp(a, "--scene") || !strcmp(a, "--sweep") || !strcmp(a, "--warmup") ||
-                     !strcmp(a, "--naive-max-lights") || !strcmp(a, "--time-step") || !strcmp(a, "--reference");
+                     !strcmp(a, "--naive-max-lights") || !strcmp(a, "--reference-max-lights") ||
+                     !strcmp(a, "--time-step") || !strcmp(a, "--reference");
         if (takes) {
             if (!v) {
                 fprintf(stderr, "passgraph bench: %s: missing value\n", a);
@@ -1500,8 +1732,14 @@ int pg_cmd_bench(int argc, char **argv)
                 r = parse_sweep(B, v, &err);
             } else if (!strcmp(a, "--warmup")) {
                 r = parse_u32_opt(a, v, 10000, &B->warmup, &err);
-            } else if (!strcmp(a, "--naive-max-lights")) {
-                r = parse_u32_opt(a, v, PG_MAX_LIGHTS, &B->naive_max_lights, &err);
+            } else if (!strcmp(a, "--reference-max-lights") || !strcmp(a, "--naive-max-lights")) {
+                if (!strcmp(a, "--naive-max-lights") && !warned_naive) {
+                    fprintf(stderr, "passgraph bench: warning: --naive-max-lights is deprecated; use "
+                                    "--reference-max-lights (same meaning)\n");
+                    warned_naive = true;
+                }
+                r = parse_u32_opt(a, v, PG_MAX_LIGHTS, &B->ref_max_lights, &err);
+                B->has_ref_max_lights = true;
             } else if (!strcmp(a, "--reference")) {
                 ref_arg = v;
             } else { /* --time-step */
@@ -1516,7 +1754,8 @@ int pg_cmd_bench(int argc, char **argv)
             r = pg_fail(&err, PG_ERR_INVALID_ARG, "%s: not supported by bench (use passgraph render %s)", a, a);
         } else {
             bool used;
-            r = pg_cli_parse_common(&B->opt, argc, argv, &i, &used, &err);
+            r = pg_sides_parse(&B->sides, argc, argv, &i, &used, &err); /* --pipeline-set, --reference-set */
+            if (!r && !used) r = pg_cli_parse_common(&B->opt, argc, argv, &i, &used, &err);
             if (!r && !used) {
                 fprintf(stderr, "passgraph bench: unknown option '%s' (see passgraph bench --help)\n", a);
                 goto out;
@@ -1553,13 +1792,14 @@ int pg_cmd_bench(int argc, char **argv)
     if (!r && !B->opt.out) r = pg_fail(&err, PG_ERR_INVALID_ARG, "--out DIR is required");
     if (!r && pipelines && B->opt.pipeline)
         r = pg_fail(&err, PG_ERR_INVALID_ARG, "--pipeline and --pipelines: give one of them");
+    if (!r && !pg_sides_from_common(&B->sides, &B->opt)) r = pg_fail(&err, PG_ERR_INVALID_ARG, "--set: too many overrides");
     if (r) {
         fprintf(stderr, "passgraph bench: %s\n", err.msg);
         goto out;
     }
     B->out_dir = B->opt.out;
     if (ref_arg) pg_strlcpy(B->ref_path, ref_arg, sizeof B->ref_path);
-    else pg_data_path(B->ref_path, sizeof B->ref_path, "pipelines/naive.json");
+    else pg_data_path(B->ref_path, sizeof B->ref_path, "pipelines/reference.json");
     {
         char one[PG_PATH_MAX];
         char *plist = pipelines;
@@ -1580,16 +1820,10 @@ int pg_cmd_bench(int argc, char **argv)
     }
     for (uint32_t s = 0; s < B->n_scenes; s++) pg_strlcpy(B->scene_names[s], B->scenes[s], PG_PATH_MAX);
 
-    /* totals for the progress bar */
+    print_sides(B);
     uint32_t vars = 0;
     for (uint32_t p = 0; p < B->n_pipes; p++) vars += B->pipes[p].n_variants;
     B->rows_total = B->n_scenes * B->n_sizes * B->n_lights * vars;
-    for (uint32_t si = 0; si < B->n_sizes; si++)
-        for (uint32_t li = 0; li < B->n_lights; li++) {
-            double fw = frame_work(B->widths[si], B->heights[si], B->lights[li]);
-            B->total_work += B->n_scenes * (vars * fw * (B->warmup + B->opt.frames + 1) +
-                                            (B->lights[li] <= B->naive_max_lights ? 4 * fw : 0));
-        }
     B->progress = !B->opt.quiet;
     B->tty = isatty(STDERR_FILENO);
     B->t_start = B->t_last_draw = now_s();
@@ -1639,8 +1873,12 @@ int pg_cmd_bench(int argc, char **argv)
             fprintf(stderr, "passgraph bench: %s\n", ae.msg);
             continue;
         }
-        if (sc == 0)
+        if (!B->device_known) { /* the default reference limit depends on the device type */
             snprintf(B->device, sizeof B->device, "%s", app.gpu->props.deviceName);
+            B->device_known = true;
+            B->device_cpu = app.gpu->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+            estimate_work(B, vars);
+        }
         for (uint32_t si = 0; si < B->n_sizes && !g_interrupted && !rc; si++) {
             for (uint32_t li = 0; li < B->n_lights && !g_interrupted && !rc; li++) {
                 pg_frame_info fi = pg_app_frame(&app);
@@ -1649,8 +1887,12 @@ int pg_cmd_bench(int argc, char **argv)
                 fi.camera.aspect = (float)fi.width / (float)fi.height;
                 fi.lights.count = B->lights[li];
                 fi.time = B->opt.time;
-                reference ref;
-                memset(&ref, 0, sizeof ref);
+                reference *refs = calloc(B->n_refs ? B->n_refs : 1, sizeof *refs);
+                if (!refs) {
+                    pg_fail(&err, PG_ERR_OOM, "out of memory");
+                    rc = 1;
+                    break;
+                }
                 for (uint32_t p = 0; p < B->n_pipes && !g_interrupted && !rc; p++)
                     for (uint32_t v = 0; v < B->pipes[p].n_variants && !g_interrupted; v++) {
                         bench_row *row = new_row(B, &err);
@@ -1668,7 +1910,9 @@ int pg_cmd_bench(int argc, char **argv)
                         char lab[PG_NAME_MAX + 260];
                         series_label(B, p, v, lab, sizeof lab);
                         snprintf(what, sizeof what, "%s %ux%u lights=%u", lab, row->width, row->height, row->lights);
-                        run_row(B, &app, &fi, &ref, row, what);
+                        run_row(B, &app, &fi, refs, row, what);
+                        for (uint32_t k = 0; k < B->n_refs; k++) /* needed by no later row of this block */
+                            if (B->refs[k].last_use <= var_index(B, p, v)) reference_free(&refs[k]);
                         if (row->status == ROW_INTERRUPTED && row->frames == 0) {
                             B->n_rows--; /* nothing measured */
                             break;
@@ -1680,7 +1924,8 @@ int pg_cmd_bench(int argc, char **argv)
                         snprintf(what, sizeof what, "%s %ux%u lights=%u", lab, row->width, row->height, row->lights);
                         progress_draw(B, what, true);
                     }
-                reference_free(&ref);
+                for (uint32_t k = 0; k < B->n_refs; k++) reference_free(&refs[k]);
+                free(refs);
             }
         }
         if (app.gpu->validation) B->validation_messages += app.gpu->validation_messages;

@@ -14,6 +14,7 @@
 #include "image_compare.h"
 #include "image_util.h"
 #include "shader.h"
+#include "sides.h"
 
 static const char *const compare_help =
     "usage: passgraph compare --pipeline FILE [--reference FILE] [options]\n"
@@ -29,12 +30,21 @@ static const char *const compare_help =
     "one-time costs on some drivers, so compare GPU ms with --frames 3 or more.\n"
     "Both pipelines must declare an hdr_output. Exit 0 on success, 1 on a failure (load, render,\n"
     "validation message with --validation), 2 on bad options.\n\n"
-    "options (--set and --view apply to --pipeline only, --reference-set to the reference;\n"
-    "the others, --no-aliasing included, to both):\n";
+    "--set KEY=VALUE applies to the pipeline, and to the reference too when the reference declares KEY\n"
+    "(so --set shading=blinn_phong compares Blinn-Phong with Blinn-Phong); --pipeline-set KEY=VALUE\n"
+    "applies to the pipeline only and --reference-set KEY=VALUE to the reference only, each winning\n"
+    "over --set on its side. A debug view (--view NAME of no OCIO view, --debug-view) is the\n"
+    "pipeline's only. The first line ('sides:') says which file and overrides each side used.\n"
+    "The other options, --no-aliasing and the OCIO display / view included, apply to both.\n\n"
+    "options:\n";
 
 static const char *const compare_help_own =
-    "  --reference FILE     reference pipeline JSON (default: pipelines/naive.json, the exact one)\n"
-    "  --reference-set KEY=VALUE  override a parameter of the reference pipeline (repeatable)\n"
+    "  --reference FILE     reference pipeline JSON (default: pipelines/reference.json of the data\n"
+    "                       folder: a compute pass that shades every pixel with every light)\n"
+    "  --pipeline-set KEY=VALUE   override a parameter of the pipeline only, not of the reference\n"
+    "                       (repeatable; wins over --set)\n"
+    "  --reference-set KEY=VALUE  override a parameter of the reference only (repeatable; wins over\n"
+    "                       --set); e.g. --set shading=blinn_phong --reference-set shading=lambert\n"
     "  --threshold T        8-bit units; a pixel counts as different when its max |RGB difference|\n"
     "                       in the display images is > T (default 1)\n"
     "  --heatmap FILE.png   write a heatmap of the per-pixel linear error (max over RGB of |a - b|)\n"
@@ -200,8 +210,16 @@ static void side_free(side *sd)
     memset(sd, 0, sizeof *sd);
 }
 
-static pg_result write_json(const char *path, const side *a, const side *r, const pg_app *app, double threshold,
-                            double heat_scale, const char *heatmap, const pg_image_error *e, pg_error *err)
+static cJSON *ov_json(const pg_ov_list *l)
+{
+    cJSON *o = cJSON_CreateObject();
+    for (uint32_t k = 0; o && k < l->n; k++) cJSON_AddStringToObject(o, l->ov[k].key, l->ov[k].value);
+    return o;
+}
+
+static pg_result write_json(const char *path, const side *a, const pg_ov_list *aov, const side *r,
+                            const pg_ov_list *rov, const pg_app *app, double threshold, double heat_scale,
+                            const char *heatmap, const pg_image_error *e, pg_error *err)
 {
     cJSON *o = cJSON_CreateObject();
     if (!o) return pg_fail(err, PG_ERR_OOM, "out of memory");
@@ -209,6 +227,8 @@ static pg_result write_json(const char *path, const side *a, const side *r, cons
     cJSON_AddStringToObject(o, "reference", r->s->pipeline->name);
     cJSON_AddStringToObject(o, "pipeline_path", a->s->pipeline->path);
     cJSON_AddStringToObject(o, "reference_path", r->s->pipeline->path);
+    cJSON_AddItemToObject(o, "pipeline_sets", ov_json(aov)); /* the overrides each side used */
+    cJSON_AddItemToObject(o, "reference_sets", ov_json(rov));
     cJSON_AddStringToObject(o, "scene", app->scene_path);
     cJSON_AddNumberToObject(o, "lights", app->lights.count);
     cJSON_AddNumberToObject(o, "width", e->width);
@@ -259,6 +279,42 @@ static pg_result write_json(const char *path, const side *a, const side *r, cons
     return PG_OK;
 }
 
+/* The overrides of each side (sides.h), checked before any device is opened: a key a side does not
+ * declare or a value it refuses is an option error (exit 2) naming the option that gave it. A file
+ * that does not load is left to the session, which reports it (exit 1). */
+static int plan_sides(const pg_side_sets *ss, const char *pipe_path, const char *ref_path, pg_ov_list *pipe_ov,
+                      pg_ov_list *ref_ov, pg_error *err)
+{
+    pg_pipeline *pl = NULL, *ref = NULL;
+    pg_error ignored = {0};
+    if (pg_pipeline_load(ref_path, NULL, 0, &ref, &ignored)) ref = NULL;
+    pg_sides_pipeline(ss, NULL, NULL, 0, pipe_ov);
+    pg_sides_reference(ss, ref, NULL, 0, ref_ov);
+    int rc = 0;
+    if (!pg_pipeline_load(pipe_path, NULL, 0, &pl, &ignored) &&
+        (pg_sides_check_keys(pipe_ov, pl, "pipeline", err) ||
+         pg_sides_check_values(pipe_path, pipe_ov, "pipeline", err) == PG_ERR_INVALID_ARG))
+        rc = 2;
+    if (!rc && ref &&
+        (pg_sides_check_keys(ref_ov, ref, "reference", err) ||
+         pg_sides_check_values(ref_path, ref_ov, "reference", err) == PG_ERR_INVALID_ARG))
+        rc = 2;
+    pg_pipeline_free(pl);
+    pg_pipeline_free(ref);
+    return rc;
+}
+
+static void print_sides(const side *a, const pg_ov_list *aov, const side *r, const pg_ov_list *rov, FILE *f)
+{
+    char sa[2048], sr[2048];
+    pg_ov_list_format(aov, sa, sizeof sa);
+    pg_ov_list_format(rov, sr, sizeof sr);
+    fprintf(f, "sides: pipeline=%s pipeline_path=%s pipeline_sets=%s reference=%s reference_path=%s reference_sets=%s\n",
+            a->s->pipeline->name, a->s->pipeline->path, aov->n ? sa : "none", r->s->pipeline->name,
+            r->s->pipeline->path, rov->n ? sr : "none");
+    fflush(f);
+}
+
 int pg_cmd_compare(int argc, char **argv)
 {
     pg_cli_common opt;
@@ -266,8 +322,8 @@ int pg_cmd_compare(int argc, char **argv)
     pg_error err = {0};
     const char *reference = NULL, *heatmap = NULL, *json = NULL;
     double threshold = 1.0, heat_scale_arg = -1.0; /* < 0: 99th percentile; 0: max */
-    pg_param_override ref_sets[PG_CLI_MAX_SETS];
-    uint32_t n_ref_sets = 0;
+    pg_side_sets ss;
+    memset(&ss, 0, sizeof ss);
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -277,8 +333,8 @@ int pg_cmd_compare(int argc, char **argv)
             printf("%s%s%s", compare_help, pg_cli_common_help, compare_help_own);
             return 0;
         }
-        if (!strcmp(a, "--reference") || !strcmp(a, "--reference-set") || !strcmp(a, "--heatmap") ||
-            !strcmp(a, "--heatmap-scale") || !strcmp(a, "--threshold") || !strcmp(a, "--json")) {
+        if (!strcmp(a, "--reference") || !strcmp(a, "--heatmap") || !strcmp(a, "--heatmap-scale") ||
+            !strcmp(a, "--threshold") || !strcmp(a, "--json")) {
             if (!v) {
                 fprintf(stderr, "passgraph compare: %s: missing value\n", a);
                 return 2;
@@ -292,27 +348,15 @@ int pg_cmd_compare(int argc, char **argv)
                 json = v;
             } else if (!strcmp(a, "--threshold")) {
                 r = parse_nonneg(a, v, &threshold, &err);
-            } else if (!strcmp(a, "--heatmap-scale")) {
+            } else { /* --heatmap-scale */
                 if (!strcmp(v, "max")) heat_scale_arg = 0;
                 else r = parse_nonneg(a, v, &heat_scale_arg, &err);
-            } else { /* --reference-set */
-                const char *eq = strchr(v, '=');
-                if (!eq || eq == v) {
-                    r = pg_fail(&err, PG_ERR_INVALID_ARG, "--reference-set %s: expected KEY=VALUE", v);
-                } else if (n_ref_sets >= PG_CLI_MAX_SETS) {
-                    r = pg_fail(&err, PG_ERR_INVALID_ARG, "--reference-set: at most %d", PG_CLI_MAX_SETS);
-                } else {
-                    char *mut = argv[i]; /* split in place: argv strings are writable */
-                    mut[eq - v] = 0;
-                    ref_sets[n_ref_sets].key = mut;
-                    ref_sets[n_ref_sets].value = mut + (eq - v) + 1;
-                    n_ref_sets++;
-                }
             }
         } else if (!strcmp(a, "--out")) {
             own = false; /* compare writes no display image: --heatmap / --json */
         } else {
-            r = pg_cli_parse_common(&opt, argc, argv, &i, &own, &err);
+            r = pg_sides_parse(&ss, argc, argv, &i, &own, &err); /* --pipeline-set, --reference-set */
+            if (!r && !own) r = pg_cli_parse_common(&opt, argc, argv, &i, &own, &err);
         }
         if (r) {
             fprintf(stderr, "passgraph compare: %s\n", err.msg);
@@ -323,9 +367,20 @@ int pg_cmd_compare(int argc, char **argv)
             return 2;
         }
     }
-    char ref_path[PG_PATH_MAX];
+    if (!pg_sides_from_common(&ss, &opt)) {
+        fprintf(stderr, "passgraph compare: --set: too many overrides\n");
+        return 2;
+    }
+    char ref_path[PG_PATH_MAX], pipe_path[PG_PATH_MAX];
     if (reference) pg_strlcpy(ref_path, reference, sizeof ref_path);
-    else pg_data_path(ref_path, sizeof ref_path, "pipelines/naive.json");
+    else pg_data_path(ref_path, sizeof ref_path, "pipelines/reference.json");
+    if (opt.pipeline) pg_strlcpy(pipe_path, opt.pipeline, sizeof pipe_path);
+    else pg_data_path(pipe_path, sizeof pipe_path, "pipelines/naive.json"); /* pg_app_open's default */
+    pg_ov_list pipe_ov, ref_ov;
+    if (plan_sides(&ss, pipe_path, ref_path, &pipe_ov, &ref_ov, &err)) {
+        fprintf(stderr, "passgraph compare: %s\n", err.msg);
+        return 2;
+    }
 
     pg_app app;
     if (pg_app_open(&app, &opt, true, &err)) {
@@ -337,10 +392,11 @@ int pg_cmd_compare(int argc, char **argv)
     side A, R;
     memset(&A, 0, sizeof A);
     memset(&R, 0, sizeof R);
-    if (side_create(&A, "pipeline", &app, app.pipeline_path, opt.sets, opt.n_sets, opt.no_aliasing, opt.frames, &err))
+    if (side_create(&A, "pipeline", &app, pipe_path, pipe_ov.ov, pipe_ov.n, opt.no_aliasing, opt.frames, &err))
         goto done;
-    if (side_create(&R, "reference", &app, ref_path, ref_sets, n_ref_sets, opt.no_aliasing, opt.frames, &err))
+    if (side_create(&R, "reference", &app, ref_path, ref_ov.ov, ref_ov.n, opt.no_aliasing, opt.frames, &err))
         goto done;
+    print_sides(&A, &pipe_ov, &R, &ref_ov, stdout);
     pg_frame_info fi = pg_app_frame(&app);
     for (uint32_t f = 0; f < opt.frames; f++) { /* interleaved: both see the same device state */
         if (side_render(&A, &fi, f, opt.frames, &err)) goto done;
@@ -381,7 +437,7 @@ int pg_cmd_compare(int argc, char **argv)
             goto done;
         }
     }
-    if (json && write_json(json, &A, &R, &app, threshold, heat_scale, heatmap, &e, &err)) goto done;
+    if (json && write_json(json, &A, &pipe_ov, &R, &ref_ov, &app, threshold, heat_scale, heatmap, &e, &err)) goto done;
 
     char b1[32], b2[32], b3[32], b4[32];
     side_print(&A, stdout);
