@@ -372,7 +372,10 @@ static pg_result build(pg_runtime *rt, pg_error *err)
         VkMemoryRequirements req = requirements(rt, (int)i);
         if ((r = alloc(rt, req.size, req.memoryTypeBits, plan->resources[i].name, &rt->res[i].own_memory, err)))
             return r;
-        if (plan->resources[i].lifetime == PG_LIFETIME_TRANSIENT) rt->stats.memory_bytes_transient += req.size;
+        if (plan->resources[i].lifetime == PG_LIFETIME_TRANSIENT) {
+            rt->stats.memory_bytes_transient += req.size;
+            rt->stats.memory_bytes_unaliased += req.size; /* e.g. "grow" buffers: never aliased */
+        }
         if ((r = bind(rt, (int)i, rt->res[i].own_memory, err))) return r;
     }
     /* readback buffers */

@@ -150,6 +150,10 @@ typedef struct bench_row {
     uint64_t plan_unaliased, plan_aliased, dev_unaliased, dev_aliased;
     bool has_overflow;
     uint64_t ov_clusters, ov_dropped, ov_clusters_max;
+    /* light lists of clustered pipelines: references stored, bytes of the list buffers, and how
+     * often a "grow" buffer was enlarged over the row's frames (each such frame rendered again) */
+    uint64_t light_refs, list_bytes;
+    uint32_t grow_events;
     bool has_error;
     pg_image_error e;
     bool has_nonfinite;
@@ -856,6 +860,7 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
         fi.time = (float)(B->opt.time + k * B->time_step);
         if (pg_session_render(s, &fi, false, &st, &e)) goto fail;
         B->done_work += fw;
+        row->grow_events += st.n_grown;
         if (k >= B->warmup) {
             uint32_t f = k - B->warmup;
             samples[f] = st.timestamps_valid ? st.gpu_total_ms : NAN;
@@ -895,10 +900,15 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
     fi.time = B->opt.time;
     if (pg_session_render(s, &fi, true, &st, &e)) goto fail;
     B->done_work += fw;
+    row->grow_events += st.n_grown;
     if (st.n_counters) {
         row->has_overflow = true;
         row->ov_clusters = st.overflow_clusters;
         row->ov_dropped = st.overflow_dropped;
+        for (uint32_t k = 0; k < st.n_counters; k++) {
+            if (!strcmp(st.counters[k].name, "total_refs")) row->light_refs += st.counters[k].value;
+            if (!strcmp(st.counters[k].name, "list_bytes")) row->list_bytes += st.counters[k].value;
+        }
     }
     uint32_t w = 0, h = 0;
     pg_error ie = {0};
@@ -942,7 +952,10 @@ static void print_row(const bench *B, const bench_row *r)
         if (isinf(r->e.psnr_linear)) printf(" rmse=%.4g psnr=inf", r->e.rmse_linear);
         else printf(" rmse=%.4g psnr=%.2f dB", r->e.rmse_linear, r->e.psnr_linear);
     }
-    if (r->has_overflow) printf(" overflow=%llu", (unsigned long long)r->ov_clusters);
+    if (r->has_overflow)
+        printf(" overflow=%llu dropped=%llu refs=%llu lists=%.1fMiB", (unsigned long long)r->ov_clusters,
+               (unsigned long long)r->ov_dropped, (unsigned long long)r->light_refs, r->list_bytes / 1048576.0);
+    if (r->grow_events) printf(" grew=%u", r->grow_events);
     if (r->status == ROW_ERROR || r->status == ROW_SKIPPED) printf(": %s", r->message);
     printf("\n");
     fflush(stdout);
@@ -1024,7 +1037,8 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
     for (int k = 0; k < 5; k++) fprintf(f, ",gpu_ms_%s", stat_names[k]);
     for (int k = 0; k < 5; k++) fprintf(f, ",cpu_ms_%s", stat_names[k]);
     fputs(",plan_transient_bytes_unaliased,plan_transient_bytes_aliased,device_transient_bytes_unaliased,"
-          "device_transient_bytes_aliased,overflow_clusters,overflow_dropped,overflow_clusters_max,reference,"
+          "device_transient_bytes_aliased,overflow_clusters,overflow_dropped,overflow_clusters_max,light_refs,list_bytes,"
+          "grow_events,reference,"
           "rmse_linear,psnr_linear,max_abs_linear,peak_linear,rmse_display,psnr_display,max_abs_display,"
           "share_over_1,nonfinite,error_note,pipeline_path,reference_sets",
           f);
@@ -1053,6 +1067,9 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
         csv_u64(f, ov_now, r->ov_clusters);
         csv_u64(f, ov_now, r->ov_dropped);
         csv_u64(f, r->has_overflow, r->ov_clusters_max);
+        csv_u64(f, ov_now, r->light_refs);
+        csv_u64(f, ov_now, r->list_bytes);
+        csv_u64(f, r->status == ROW_OK || r->status == ROW_INTERRUPTED, r->grow_events);
         csv_str(f, B->ref_name, false);
         const pg_image_error *e = &r->e;
         bool he = r->has_error;
@@ -1217,11 +1234,14 @@ static cJSON *json_row(const bench *B, const bench_row *r)
         if (r->status == ROW_OK) {
             cJSON_AddNumberToObject(m, "clusters", (double)r->ov_clusters);
             cJSON_AddNumberToObject(m, "dropped", (double)r->ov_dropped);
+            cJSON_AddNumberToObject(m, "light_refs", (double)r->light_refs);
+            cJSON_AddNumberToObject(m, "list_bytes", (double)r->list_bytes);
         }
         cJSON_AddNumberToObject(m, "clusters_max", (double)r->ov_clusters_max);
     } else {
         cJSON_AddNullToObject(o, "overflow");
     }
+    cJSON_AddNumberToObject(o, "grow_events", r->grow_events);
     cJSON_AddStringToObject(o, "reference", B->ref_name);
     cJSON_AddStringToObject(o, "reference_sets", B->refs[va->ref].label);
     if (r->has_error) {
