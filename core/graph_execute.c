@@ -642,17 +642,8 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
         VkBufferImageCopy c = {.imageSubresource = {pg_vk_aspect(r->format), 0, 0, 1},
                                .imageExtent = {r->width, r->height, 1}};
         vkCmdCopyImageToBuffer(cmd, r->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, rt->readback[k].buffer, 1, &c);
-        VkBufferMemoryBarrier2 hb = {
-            .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
-            .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-            .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-            .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
-            .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
-            .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-            .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-            .buffer = rt->readback[k].buffer,
-            .size = VK_WHOLE_SIZE,
-        };
+        VkBufferMemoryBarrier2 hb = pg_buffer_barrier(rt->readback[k].buffer, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                                  VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
         pg_cmd_barriers(cmd, 0, NULL, 1, &hb);
         rt->readback_valid[k] = true;
     }
@@ -794,17 +785,8 @@ pg_result pg_runtime_read_buffer(pg_runtime *rt, const char *name, uint64_t offs
     vkCmdPipelineBarrier2(cmd, &di);
     VkBufferCopy c = {offset, 0, size};
     vkCmdCopyBuffer(cmd, r->buffer, staging.buffer, 1, &c);
-    VkBufferMemoryBarrier2 hb = {
-        .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
-        .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-        .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-        .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
-        .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
-        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .buffer = staging.buffer,
-        .size = VK_WHOLE_SIZE,
-    };
+    VkBufferMemoryBarrier2 hb = pg_buffer_barrier(staging.buffer, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                                  VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     pg_cmd_barriers(cmd, 0, NULL, 1, &hb);
     res = pg_gpu_end_once(rt->gpu, cmd, err);
     if (!res) memcpy(dst, staging.mapped, size);

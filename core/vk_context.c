@@ -575,6 +575,22 @@ pg_result pg_gpu_end_once(pg_gpu *gpu, VkCommandBuffer cmd, pg_error *err)
     return res;
 }
 
+VkBufferMemoryBarrier2 pg_buffer_barrier(VkBuffer buffer, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                                         VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
+{
+    return (VkBufferMemoryBarrier2){
+        .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
+        .srcStageMask = src_stage,
+        .srcAccessMask = src_access,
+        .dstStageMask = dst_stage,
+        .dstAccessMask = dst_access,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .buffer = buffer,
+        .size = VK_WHOLE_SIZE,
+    };
+}
+
 VkImageMemoryBarrier2 pg_image_barrier(VkImage image, VkImageAspectFlags aspect,
                                        VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                                        VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access,

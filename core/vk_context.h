@@ -125,6 +125,9 @@ pg_result pg_gpu_begin_once(pg_gpu *gpu, VkCommandBuffer *out, pg_error *err);
 pg_result pg_gpu_end_once(pg_gpu *gpu, VkCommandBuffer cmd, pg_error *err);
 
 /* Small synchronization2 helpers (niagara style). */
+/* A whole-buffer barrier (no queue family transfer). */
+VkBufferMemoryBarrier2 pg_buffer_barrier(VkBuffer buffer, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                                         VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
 VkImageMemoryBarrier2 pg_image_barrier(VkImage image, VkImageAspectFlags aspect,
                                        VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                                        VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access,

@@ -264,23 +264,6 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     return PG_OK;
 }
 
-static void buffer_barrier(VkCommandBuffer cmd, VkBuffer buf, uint64_t src_stage, uint64_t src_access,
-                           uint64_t dst_stage, uint64_t dst_access, VkBufferMemoryBarrier2 *out)
-{
-    *out = (VkBufferMemoryBarrier2){
-        .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
-        .srcStageMask = src_stage,
-        .srcAccessMask = src_access,
-        .dstStageMask = dst_stage,
-        .dstAccessMask = dst_access,
-        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .buffer = buf,
-        .size = VK_WHOLE_SIZE,
-    };
-    (void)cmd;
-}
-
 /* compute -> compute on every buffer the steps share */
 static void step_barrier(VkCommandBuffer cmd)
 {
@@ -318,13 +301,13 @@ static void ca_record(void *self, const pg_pass_record_ctx *ctx)
     uint32_t nb = 0;
     const uint64_t xfer = VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
     const uint64_t rw = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    buffer_barrier(cmd, p->stats.buffer, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                   rw, &bb[nb++]);
+    bb[nb++] = pg_buffer_barrier(p->stats.buffer, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                   rw);
     if (binned) {
-        buffer_barrier(cmd, p->tile_masks.buffer, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw, &bb[nb++]);
-        buffer_barrier(cmd, p->slice_masks.buffer, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw, &bb[nb++]);
+        bb[nb++] = pg_buffer_barrier(p->tile_masks.buffer, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw);
+        bb[nb++] = pg_buffer_barrier(p->slice_masks.buffer, xfer, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, rw);
     }
     pg_cmd_barriers(cmd, 0, NULL, nb, bb);
 
@@ -359,8 +342,8 @@ static void ca_record(void *self, const pg_pass_record_ctx *ctx)
     dispatch_groups(cmd, p->clusters * p->n_segments);
     STAMP(4);
 #undef STAMP
-    buffer_barrier(cmd, p->stats.buffer, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                   VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT, &bb[0]);
+    bb[0] = pg_buffer_barrier(p->stats.buffer, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                   VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     pg_cmd_barriers(cmd, 0, NULL, 1, bb);
     p->ran = true;
 }

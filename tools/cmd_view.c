@@ -861,17 +861,8 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
         VkImageMemoryBarrier2 to_present = pg_image_barrier(
             w->images[index], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, 0, VK_PIPELINE_STAGE_2_NONE, 0,
             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
-        VkBufferMemoryBarrier2 host = {
-            .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
-            .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-            .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-            .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
-            .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
-            .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-            .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-            .buffer = v->shot.buffer,
-            .size = VK_WHOLE_SIZE,
-        };
+        VkBufferMemoryBarrier2 host = pg_buffer_barrier(v->shot.buffer, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                                  VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
         pg_cmd_barriers(cmd, 1, &to_present, 1, &host);
     }
     PG_VK_TRY(err, vkEndCommandBuffer(cmd));
