@@ -306,6 +306,8 @@ static pg_result phase_declare(compile_ctx *c)
         in.desc = pd;
         in.pipeline = pl;
         in.features = c->desc->features;
+        in.output_width = c->desc->output_width;
+        in.output_height = c->desc->output_height;
         pg_error e;
         memset(&e, 0, sizeof e);
         memset(&pp->decl, 0, sizeof pp->decl);

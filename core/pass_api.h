@@ -3,9 +3,9 @@
  * Each pass type lives in its own file under passes/ and exports one const pg_pass_type.
  * The core never includes a specific pass; passes/pass_list.c lists the built-in ones.
  *
- *   declare  pure: from the options and the scene features, say what each read/write slot is
- *            (access, shader stages, format classes), which shader variant is needed, and what
- *            was left out and why. No Vulkan. Called by pg_graph_compile().
+ *   declare  pure: from the options, the scene features and the output size, say what each
+ *            read/write slot is (access, shader stages, format classes), which shader variant is
+ *            needed, and what was left out and why. No Vulkan. Called by pg_graph_compile().
  *   create   build Vulkan objects (pipelines, samplers, descriptor layouts) for a compiled graph.
  *   record   record commands for one frame; the graph already placed every barrier.
  *   destroy  free what create made. Must accept a partially created instance.
@@ -77,6 +77,7 @@ typedef struct pg_declare_in {
     const pg_pass_desc *desc;          /* name, options (cJSON object), bound reads/writes */
     const pg_pipeline *pipeline;       /* resource formats etc. */
     pg_scene_features features;
+    uint32_t output_width, output_height; /* the size the graph is compiled for (>= 1) */
 } pg_declare_in;
 
 /* Runtime types (defined in core/vk_context.h, core/graph_execute.h, core/scene_gpu.h). */

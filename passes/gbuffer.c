@@ -3,7 +3,12 @@
  * Slots: writes [targets of the variant..., depth] - 3, 2 or 1 targets then depth.
  * Options: packing "float" | "oct16" | "packed" (default float). Only the targets the variant
  * uses are bound, allocated and written (the deferred pipelines declare the others under a
- * `when` that drops them). */
+ * `when` that drops them).
+ *          position_space "world" (default) | "camera", float packing only: what the position
+ *          target holds. "world" is the classic layout (deferred_lighting subtracts the camera
+ *          again, which rounds); "camera" stores the interpolated camera-relative position the
+ *          forward shaders shade with, unchanged (w = 1 covered, 0 background), which the exact
+ *          reference_lighting pass needs. */
 #include <string.h>
 
 #include "gbuffer_layout.h"
@@ -14,18 +19,35 @@ typedef struct gbuffer_pass {
     pg_scene_draw draw;
 } gbuffer_pass;
 
+static const char *const k_spaces[] = {"world", "camera", NULL};
+
+/* packing, and position_space (0 world, 1 camera; camera only with the float packing) */
+static pg_result gb_options(const pg_pass_desc *desc, int *packing, int *space, pg_error *err)
+{
+    static const char *const known[] = {"packing", "position_space", NULL};
+    pg_result r;
+    if ((r = pg_opt_check_known(desc, known, err))) return r;
+    if ((r = pg_opt_enum(desc, "packing", pg_gbuffer_packings, 0, packing, err))) return r;
+    if ((r = pg_opt_enum(desc, "position_space", k_spaces, 0, space, err))) return r;
+    if (*space == 1 && *packing != PG_GBUFFER_FLOAT)
+        return pg_fail(err, PG_ERR_SCHEMA,
+                       "%s: %s.options.position_space: \"camera\" needs packing \"float\" (packing \"%s\" stores no "
+                       "position; it is rebuilt from depth)",
+                       desc->file, desc->json_path, pg_gbuffer_packings[*packing]);
+    return PG_OK;
+}
+
 static pg_result gb_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
-    static const char *const known[] = {"packing", NULL};
     pg_result r;
-    int packing;
-    if ((r = pg_opt_check_known(in->desc, known, err))) return r;
-    if ((r = pg_opt_enum(in->desc, "packing", pg_gbuffer_packings, 0, &packing, err))) return r;
+    int packing, space;
+    if ((r = gb_options(in->desc, &packing, &space, err))) return r;
     for (uint32_t t = 0; t < pg_gbuffer_targets[packing]; t++)
         pg_decl_write(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT,
                       packing == PG_GBUFFER_PACKED ? PG_FMTCLASS_UINT : PG_FMTCLASS_FLOAT);
     pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
     pg_decl_define(out, pg_gbuffer_defines[packing]);
+    if (space == 1) pg_decl_define(out, "PG_GBUFFER_CAMERA_POSITION");
     pg_scene_draw_declare_features(in, out);
     return PG_OK;
 }
@@ -33,7 +55,8 @@ static pg_result gb_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
 static pg_result gb_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
     gbuffer_pass *p = self;
-    pg_result r = pg_opt_enum(ctx->desc, "packing", pg_gbuffer_packings, 0, &p->packing, err);
+    int space;
+    pg_result r = gb_options(ctx->desc, &p->packing, &space, err);
     if (r) return r;
     uint32_t n = pg_gbuffer_targets[p->packing];
     pg_scene_draw_desc d = {

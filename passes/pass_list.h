@@ -13,6 +13,7 @@ extern const pg_pass_type pg_pass_cluster_assign;
 extern const pg_pass_type pg_pass_forward_plus;
 extern const pg_pass_type pg_pass_gbuffer;
 extern const pg_pass_type pg_pass_deferred_lighting;
+extern const pg_pass_type pg_pass_reference_lighting;
 
 /* Fills reg with every built-in pass type. */
 void pg_register_builtin_passes(pg_pass_registry *reg);

@@ -10,7 +10,9 @@ layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec2 v_uv;
 layout(location = 3) in vec4 v_tangent;
 #if defined(PG_GBUFFER_FLOAT)
-layout(location = 0) out vec4 g_position; // world position (rgba32f, or rgba16f to show its failure)
+layout(location = 0) out vec4 g_position; // world position (rgba32f, or rgba16f to show its failure);
+                                          // PG_GBUFFER_CAMERA_POSITION: camera-relative, as shaded
+                                          // by forward (w = 1; cleared 0 where nothing is drawn)
 layout(location = 1) out vec4 g_normal;   // xyz normal, w shininess
 layout(location = 2) out vec4 g_albedo;   // rgb albedo, a specular
 #elif defined(PG_GBUFFER_OCT16)
@@ -24,7 +26,11 @@ void main()
 {
     Surface s = pg_surface(v_normal, v_uv, v_tangent, gl_FrontFacing);
 #if defined(PG_GBUFFER_FLOAT)
+#ifdef PG_GBUFFER_CAMERA_POSITION
+    g_position = vec4(v_rel, 1.0); // exactly the position forward.frag shades
+#else
     g_position = vec4(v_rel + frame.camera_pos.xyz, 1.0); // world space, as the classic layout
+#endif
     g_normal = vec4(s.normal, s.shininess);
     g_albedo = vec4(s.albedo, s.specular);
 #elif defined(PG_GBUFFER_OCT16)

@@ -81,7 +81,7 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
         pg_accumulate_light(lights[i], cam, P, s.normal, V, s.shininess, min_dist, acc);
 #endif
 #endif
-    return s.albedo * (acc.diffuse + vec3(PG_AMBIENT)) + s.specular * acc.specular;
+    return pg_shade_combine(s, acc, vec3(PG_AMBIENT));
 #endif
 }
 

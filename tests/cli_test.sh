@@ -244,7 +244,7 @@ for o in --pipelines --lights --size --warmup --frames --seed --out --set --swee
   grep -qF -- "$o" "$tmp/h" && ok || bad "bench --help does not document $o"
 done
 n_pipes=$(ls "$root"/pipelines/*.json | wc -l)
-n_gbuf=$(grep -l '"gbuffer"' "$root"/pipelines/*.json | wc -l)
+n_gbuf=$(grep -lE '"gbuffer": *\{' "$root"/pipelines/*.json | wc -l) # pipelines declaring the parameter
 "$PG" bench --pipelines all --lights 0,16 --size 64x36 --frames 2 --warmup 1 --validation --out "$tmp/bench" \
   >"$tmp/out" 2>"$tmp/err"
 rc=$?

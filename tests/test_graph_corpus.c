@@ -81,8 +81,8 @@ int main(void)
     /* leave out what the scene does not need: compile the shipped pipelines for a scene without
      * alpha-mask materials, normal maps or lights, and check variants, culls and reasons */
     const char *pipes[] = {"naive.json", "forward_plus.json", "deferred.json", "deferred_oct16.json",
-                           "deferred_packed.json"};
-    for (int i = 0; i < 5; i++) {
+                           "deferred_packed.json", "reference.json"};
+    for (int i = 0; i < 6; i++) {
         char path[1400];
         snprintf(path, sizeof path, "%s/%s", dir, pipes[i]);
         pg_pipeline *p = NULL;

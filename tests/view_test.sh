@@ -35,7 +35,7 @@ grep -q "frame 42: ocioview Filmic (ACES)" "$tmp/out" && grep -q "frame 44: disp
   && ok || bad "OCIO view / display not switched"
 grep -Eq 'swapchain builds' "$tmp/out" && ! grep -q '1 swapchain builds' "$tmp/out" && ok || bad "resize did not rebuild the swapchain"
 [ "$(head -c 4 "$tmp/shot.png" 2>/dev/null | tail -c 3)" = PNG ] && ok || bad "no screenshot"
-for p in naive forward_plus deferred deferred_oct16 deferred_packed; do
+for p in naive forward_plus deferred deferred_oct16 deferred_packed reference; do
   grep -q "switching to $p.json\|pipeline $p.json" "$tmp/out" && ok || bad "pipeline $p.json never shown"
 done
 

@@ -81,6 +81,8 @@ typedef struct viewer {
     /* scripted mode */
     uint32_t frames_limit, cycle_every;
     bool cycle, random_params;
+    char cycle_tried[PG_PATH_MAX]; /* the pipeline the last cycling step asked for while it has
+                                    * not loaded ("": none, or it loaded) */
     uint64_t rss100;
     int64_t mem100;
     const char *screenshot_path;
@@ -234,6 +236,7 @@ static void reload(viewer *v)
     v->session = s;
     v->current = idx;
     v->requested = idx;
+    v->cycle_tried[0] = 0; /* loaded: the cycle goes on from here */
     v->error[0] = 0;
     v->hist_n = 0;
     v->reloads++;
@@ -1201,7 +1204,13 @@ int pg_cmd_view(int argc, char **argv)
             }
         }
         if (v->cycle && frame > 0 && frame % v->cycle_every == 0 && v->n_pipelines > 1) {
-            v->requested = (v->current + 1) % v->n_pipelines;
+            /* continue after the last one asked for even if it did not load (e.g. a --set value it
+             * does not declare), so one pipeline that fails does not stop the cycle there */
+            int from = v->current;
+            for (int i = 0; i < v->n_pipelines && v->cycle_tried[0]; i++)
+                if (!strcmp(v->paths[i], v->cycle_tried)) from = i;
+            v->requested = (from + 1) % v->n_pipelines;
+            pg_strlcpy(v->cycle_tried, v->paths[v->requested], sizeof v->cycle_tried);
             v->reload = true;
             if (v->random_params) { /* long-run soak: random values for the common parameters */
                 static const char *const sh[] = {"lambert", "blinn_phong"}, *const hf[] = {"rgba16f", "rgba32f"},

@@ -1,0 +1,317 @@
+/* reference_lighting.c - the exact reference for any light count, as a compute pass: every pixel
+ * of a full-precision G-buffer is shaded with every light, summed in ascending light index order
+ * with the same operations as forward_naive (shaders/reference_lighting.comp: pg_accumulate_light
+ * and pg_shade_combine of lighting.glsl), so its HDR image is bit-identical to naive's in the same
+ * format (tests/test_reference.c). What differs from naive is only the cost model: the lights are
+ * streamed through shared memory in tiles of REF_TILE (256, one per thread of a 16x16 workgroup,
+ * one barrier pair per tile), and the light loop is split over several dispatches so that none
+ * runs long enough to trip a driver watchdog.
+ *
+ * Split: a dispatch shades the lights [first, first + C) for every pixel. C is the option
+ * lights_per_dispatch, or with 0 (auto) the largest multiple of REF_TILE that keeps a dispatch
+ * at or below REF_EVALS_PER_DISPATCH = 2^34 light evaluations (pixels x lights; >= one tile):
+ * 8192 lights at 1920x1080, 123 dispatches for 1,000,000 lights. A dispatch then takes ~3.4 ms
+ * at ~5e12 evaluations/s (~0.4 s a frame) and still only ~0.7 s at 2.5e10/s (what naive's
+ * fragment loop reaches on an H100, docs/performance.md), under the 2 s a Windows (TDR) or X
+ * watchdog allows. C never exceeds REF_MAX_LIGHTS_PER_DISPATCH (32768, below).
+ * With more than one dispatch the running fp32 sums wait in rgba32f storage images: diffuse in
+ * `accum_diffuse`, specular (Blinn-Phong only) in `accum_specular`. The first dispatch starts
+ * from zero and writes every pixel of them, the middle ones load, add and store, the last one
+ * loads, adds, combines and writes the HDR pixel; the pass places its own compute -> compute
+ * barrier on them between dispatches (a read and a write of 16 B a pixel each, 2 x 33 MB at
+ * 1080p: ~15 us at 4.8 TB/s). fp32 in memory is what the registers held: any split gives the
+ * same bits. (Images, not a buffer: a 1080p buffer of 32 B a pixel is 66 MB, past lavapipe's
+ * maxStorageBufferRange of 128 MiB from 2048x2048 on; image size limits are per side.)
+ *
+ * Slots: reads [lights (storage buffer), position (rgba32f, camera-relative: a gbuffer pass with
+ *        packing "float" and position_space "camera"), normal (rgba32f), albedo (rgba32f)]
+ *        writes [hdr (storage image, rgba16f or rgba32f, every pixel written),
+ *                accum_diffuse, accum_specular (rgba32f storage images of hdr's size, written by
+ *                the first dispatch before any other reads them; declared unused - so not
+ *                allocated - when one dispatch does: 0 lights, a debug view, or no more lights
+ *                than one dispatch takes at the compiled output size; accum_specular also with
+ *                lambert shading)].
+ * Options: shading, ambient, view (none, albedo, normal, depth) as forward_naive;
+ *          lights_per_dispatch (0 = auto, default; else 1..32768). */
+#include <stdio.h>
+#include <string.h>
+
+#include "shader.h"
+#include "shading_common.h"
+
+#define REF_TILE_X 16u
+#define REF_TILE_Y 16u
+#define REF_TILE (REF_TILE_X * REF_TILE_Y)
+#define REF_EVALS_PER_DISPATCH (1ull << 34)
+/* llvmpipe (lavapipe) ends every loop of a shader invocation once all its loops together have
+ * run 65535 iterations (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS, "shared between every loop in a
+ * shader"); a dispatch of 32768 lights runs 32768 + 128 iterations, well inside it. */
+#define REF_MAX_LIGHTS_PER_DISPATCH 32768u
+
+enum { REF_MODE_LOAD = 1u, REF_MODE_STORE = 2u };
+
+typedef struct reference_lighting {
+    uint32_t lights_per_dispatch; /* 0: auto */
+    bool has_lights, has_accum, has_accum_specular;
+    VkSampler sampler;
+    pg_pass_set surface, lights;
+    VkPipelineLayout layout;
+    VkPipeline pipeline;
+} reference_lighting;
+
+static const char *const k_extra[] = {"lights_per_dispatch", NULL};
+static const char *const k_surface_slots[3] = {"position", "normal", "albedo"};
+
+static pg_result ref_options(const pg_pass_desc *desc, pg_shading_opts *o, uint32_t *lpd, pg_error *err)
+{
+    int64_t v;
+    pg_result r;
+    if ((r = pg_shading_opts_read(desc, false, k_extra, o, err))) return r;
+    if ((r = pg_opt_int(desc, "lights_per_dispatch", 0, 0, REF_MAX_LIGHTS_PER_DISPATCH, &v, err))) return r;
+    *lpd = (uint32_t)v;
+    return PG_OK;
+}
+
+/* The exact shading needs the surface in full precision and the position camera-relative as the
+ * forward shaders see it: rgba32f targets, the position written by a gbuffer pass with packing
+ * "float" and position_space "camera" (a world-space position would round when the camera is
+ * subtracted again, an rgba16f one much more). */
+static pg_result ref_check_surface(const pg_declare_in *in, pg_error *err)
+{
+    const pg_pass_desc *d = in->desc;
+    pg_result r;
+    if (d->n_reads != 4) return PG_OK; /* the compiler reports the slot count */
+    for (uint32_t k = 1; k < 4; k++) {
+        const pg_resource_desc *rd = pg_pipeline_find_resource(in->pipeline, d->reads[k]);
+        if (rd && rd->kind == PG_RES_IMAGE && rd->format != PG_FMT_RGBA32F)
+            return pg_fail(err, PG_ERR_FORMAT,
+                           "%s: %s.reads[%u]: reference_lighting reads the %s target as rgba32f (full precision), "
+                           "resource '%s' is %s",
+                           d->file, d->json_path, k, k_surface_slots[k - 1], rd->name, pg_format_get(rd->format)->name);
+    }
+    for (uint32_t k = 1; k < 3 && d->n_writes == 3; k++) {
+        const pg_resource_desc *rd = pg_pipeline_find_resource(in->pipeline, d->writes[k]);
+        if (rd && rd->kind == PG_RES_IMAGE && rd->format != PG_FMT_RGBA32F)
+            return pg_fail(err, PG_ERR_FORMAT,
+                           "%s: %s.writes[%u]: reference_lighting keeps its running sums in rgba32f (any other format "
+                           "would round them between dispatches), resource '%s' is %s",
+                           d->file, d->json_path, k, rd->name, pg_format_get(rd->format)->name);
+    }
+    const char *pos = d->reads[1];
+    for (uint32_t i = 0; i < in->pipeline->n_passes; i++) {
+        const pg_pass_desc *q = &in->pipeline->passes[i];
+        bool writes = false;
+        for (uint32_t k = 0; k < q->n_writes && !writes; k++) writes = strcmp(q->writes[k], pos) == 0;
+        if (!writes) continue;
+        char packing[PG_NAME_MAX] = "", space[PG_NAME_MAX] = "";
+        if (!strcmp(q->type, "gbuffer")) {
+            if ((r = pg_opt_string(q, "packing", "float", packing, sizeof packing, err))) return r;
+            if ((r = pg_opt_string(q, "position_space", "world", space, sizeof space, err))) return r;
+        }
+        if (strcmp(q->type, "gbuffer") || strcmp(packing, "float") || strcmp(space, "camera"))
+            return pg_fail(err, PG_ERR_SCHEMA,
+                           "%s: %s.reads[1]: reference_lighting needs camera-relative positions: '%s' must be written "
+                           "by a gbuffer pass with options packing \"float\" and position_space \"camera\", but pass "
+                           "'%s' (%s%s%s%s%s) writes it",
+                           d->file, d->json_path, pos, q->name, q->type, packing[0] ? ", packing " : "", packing,
+                           space[0] ? ", position_space " : "", space);
+    }
+    return PG_OK;
+}
+
+/* Lights a dispatch takes: the option, or (auto) the most whole tiles within the evaluation
+ * budget at the output size, at least one tile. declare() and record() both use it, with the
+ * size the graph was compiled for. */
+static uint32_t ref_chunk(uint32_t lights_per_dispatch, uint32_t width, uint32_t height)
+{
+    if (lights_per_dispatch) return lights_per_dispatch;
+    uint64_t pixels = (uint64_t)width * height;
+    uint64_t c = REF_EVALS_PER_DISPATCH / (pixels ? pixels : 1) / REF_TILE * REF_TILE;
+    if (c < REF_TILE) c = REF_TILE;
+    return c > REF_MAX_LIGHTS_PER_DISPATCH ? REF_MAX_LIGHTS_PER_DISPATCH : (uint32_t)c;
+}
+
+static uint32_t ref_dispatches(uint32_t lights, uint32_t chunk)
+{
+    return lights ? (uint32_t)(((uint64_t)lights + chunk - 1) / chunk) : 1;
+}
+
+static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
+{
+    pg_shading_opts o;
+    uint32_t lpd;
+    pg_result r;
+    if ((r = ref_options(in->desc, &o, &lpd, err))) return r;
+    if ((r = ref_check_surface(in, err))) return r;
+    pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+    for (uint32_t t = 0; t < 3; t++)
+        pg_decl_read(out, k_surface_slots[t], PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    /* written in full by the first dispatch before any later one reads them */
+    pg_decl_write(out, "accum_diffuse", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    pg_decl_write(out, "accum_specular", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    char def[PG_NAME_MAX];
+    snprintf(def, sizeof def, "LIGHT_TILE_X=%u", REF_TILE_X);
+    pg_decl_define(out, def);
+    snprintf(def, sizeof def, "LIGHT_TILE_Y=%u", REF_TILE_Y);
+    pg_decl_define(out, def);
+    pg_shading_declare(&o, in, out, false, 0, -1);
+    uint32_t n = in->features.light_count;
+    bool lit = false;
+    for (uint32_t i = 0; i < out->n_defines; i++) lit |= !strcmp(out->defines[i], "PG_HAS_LIGHTS");
+    uint32_t chunk = ref_chunk(lpd, in->output_width, in->output_height);
+    uint32_t nd = ref_dispatches(n, chunk);
+    if (lit && nd > 1) {
+        pg_decl_define(out, "PG_REFERENCE_ACCUM");
+        pg_decl_explain(out, "%u lights in %u dispatches of <= %u lights (%s), running sums kept between them", n, nd,
+                        chunk, lpd ? "lights_per_dispatch" : "auto: <= 2^34 light evaluations and 32768 lights each");
+        if (o.shading == 0) pg_decl_mark_unused(out, true, 2, "lambert: no specular sum");
+    } else {
+        char why[160];
+        if (!lit) snprintf(why, sizeof why, "%s", n == 0 ? "0 lights" : "debug view reads no lights");
+        else snprintf(why, sizeof why, "%u lights fit one dispatch (<= %u lights, %s)", n, chunk,
+                      lpd ? "lights_per_dispatch" : "auto: <= 2^34 light evaluations and 32768 lights");
+        pg_decl_mark_unused(out, true, 1, why);
+        pg_decl_mark_unused(out, true, 2, why);
+    }
+    return PG_OK;
+}
+
+static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
+{
+    reference_lighting *p = self;
+    pg_gpu *gpu = ctx->gpu;
+    pg_shading_opts o;
+    pg_result r;
+    if ((r = ref_options(ctx->desc, &o, &p->lights_per_dispatch, err))) return r;
+    p->has_lights = pg_shading_has_lights(ctx->pass);
+    p->has_accum = !ctx->pass->slots[5].decl.unused;
+    p->has_accum_specular = !ctx->pass->slots[6].decl.unused;
+    const pg_phys_resource *hdr = ctx->slots[4];
+    const char *hdr_fmt = pg_format_get(hdr->pg_fmt)->name;
+    if (strcmp(hdr_fmt, "rgba16f") && strcmp(hdr_fmt, "rgba32f"))
+        return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: reference lighting writes rgba16f or rgba32f, not %s",
+                       ctx->desc->file, ctx->desc->json_path, hdr_fmt);
+    for (uint32_t t = 1; t < 7; t++) {
+        if (t == 4 || (t == 5 && !p->has_accum) || (t == 6 && !p->has_accum_specular)) continue;
+        const pg_phys_resource *im = ctx->slots[t];
+        if (im->width != hdr->width || im->height != hdr->height)
+            return pg_fail(err, PG_ERR_INVALID_ARG, "%s: %s.%s[%u]: '%s' is %ux%u, hdr is %ux%u: the G-buffer and the "
+                           "running sums must have the size of the image they are shaded into",
+                           ctx->desc->file, ctx->desc->json_path, t < 4 ? "reads" : "writes", t < 4 ? t : t - 4,
+                           t < 4 ? ctx->desc->reads[t] : ctx->desc->writes[t - 4], im->width, im->height, hdr->width,
+                           hdr->height);
+    }
+    VkSamplerCreateInfo sci = {
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = VK_FILTER_NEAREST,
+        .minFilter = VK_FILTER_NEAREST,
+        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+    };
+    PG_VK_TRY(err, vkCreateSampler(gpu->device, &sci, NULL, &p->sampler));
+    pg_set_binding b[6];
+    uint32_t n = 0;
+    for (uint32_t t = 1; t < 4; t++)
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[t], p->sampler, 0};
+    b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr, VK_NULL_HANDLE, 0};
+    if (p->has_accum) b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[5], VK_NULL_HANDLE, 0};
+    if (p->has_accum_specular)
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[6], VK_NULL_HANDLE, 0};
+    char name[PG_NAME_MAX + 16];
+    snprintf(name, sizeof name, "%s.surface", ctx->pass->name);
+    if ((r = pg_pass_set_create(gpu, n, b, name, &p->surface, err))) return r;
+    if ((r = pg_light_set_create(ctx, false, 0, -1, &p->lights, err))) return r;
+    VkDescriptorSetLayout sets[3] = {ctx->frame_layout, p->surface.layout, p->lights.layout};
+    if ((r = pg_pipeline_layout_create(gpu, p->lights.layout ? 3 : 2, sets, 4 * sizeof(uint32_t), &p->layout, err)))
+        return r;
+    const char *defs[PG_MAX_DEFINES + 2];
+    uint32_t nd = 0;
+    for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) defs[nd++] = ctx->pass->decl.defines[i];
+    char fmt_def[48];
+    snprintf(fmt_def, sizeof fmt_def, "PG_HDR_FORMAT=%s", hdr_fmt);
+    defs[nd++] = fmt_def;
+    VkShaderModule cs;
+    if ((r = pg_shader_module(gpu, "reference_lighting.comp", VK_SHADER_STAGE_COMPUTE_BIT, defs, nd, &cs, err)))
+        return r;
+    r = pg_compute_pipeline_create(gpu, p->layout, cs, ctx->pass->name, &p->pipeline, err);
+    vkDestroyShaderModule(gpu->device, cs, NULL);
+    return r;
+}
+
+static void ref_record(void *self, const pg_pass_record_ctx *ctx)
+{
+    reference_lighting *p = self;
+    const pg_phys_resource *hdr = ctx->slots[4];
+    VkCommandBuffer cmd = ctx->cmd;
+    VkDescriptorSet sets[3] = {ctx->frame_set, p->surface.set, p->lights.set};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, p->lights.set ? 3 : 2, sets, 0, NULL);
+    uint32_t gx = (hdr->width + REF_TILE_X - 1) / REF_TILE_X, gy = (hdr->height + REF_TILE_Y - 1) / REF_TILE_Y;
+    uint32_t n = 0;
+    if (p->has_lights) {
+        uint64_t cap = ctx->slots[0]->size / 32; /* never read past the light buffer */
+        n = ctx->frame->counts[0] < cap ? ctx->frame->counts[0] : (uint32_t)cap;
+    }
+    uint32_t chunk = ref_chunk(p->lights_per_dispatch, ctx->width, ctx->height);
+    /* Without the sum images (the graph was compiled for fewer lights than this frame has) the
+     * whole loop runs in one dispatch: slower, never wrong. */
+    if (n <= chunk || !p->has_accum) {
+        uint32_t pc[4] = {0, n, 0, 0};
+        vkCmdPushConstants(cmd, p->layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT,
+                           0, sizeof pc, pc);
+        vkCmdDispatch(cmd, gx, gy, 1);
+        return;
+    }
+    /* this dispatch's sums -> the next one (read and written again) */
+    VkImageMemoryBarrier2 b[2];
+    uint32_t nb = p->has_accum_specular ? 2 : 1;
+    for (uint32_t k = 0; k < nb; k++)
+        b[k] = (VkImageMemoryBarrier2){
+            .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+            .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+            .srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+            .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+            .dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+            .oldLayout = VK_IMAGE_LAYOUT_GENERAL,
+            .newLayout = VK_IMAGE_LAYOUT_GENERAL,
+            .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+            .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+            .image = ctx->slots[5 + k]->image,
+            .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1},
+        };
+    for (uint32_t first = 0; first < n; first += chunk) {
+        uint32_t end = n - first > chunk ? first + chunk : n;
+        uint32_t mode = (first > 0 ? REF_MODE_LOAD : 0u) | (end < n ? REF_MODE_STORE : 0u);
+        uint32_t pc[4] = {first, end, mode, 0};
+        vkCmdPushConstants(cmd, p->layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT,
+                           0, sizeof pc, pc);
+        vkCmdDispatch(cmd, gx, gy, 1);
+        if (end < n) pg_cmd_barriers(cmd, nb, b, 0, NULL);
+    }
+}
+
+static void ref_destroy(void *self, pg_gpu *gpu)
+{
+    reference_lighting *p = self;
+    if (p->pipeline) vkDestroyPipeline(gpu->device, p->pipeline, NULL);
+    if (p->layout) vkDestroyPipelineLayout(gpu->device, p->layout, NULL);
+    pg_pass_set_destroy(gpu, &p->surface);
+    pg_pass_set_destroy(gpu, &p->lights);
+    if (p->sampler) vkDestroySampler(gpu->device, p->sampler, NULL);
+}
+
+const pg_pass_type pg_pass_reference_lighting = {
+    .name = "reference_lighting",
+    .summary = "compute: shade every pixel of a float G-buffer with every light in index order, tiled through shared "
+               "memory and split over dispatches (exact reference, bit-identical to forward_naive)",
+    .read_slots = "lights, position (camera-relative rgba32f), normal, albedo",
+    .write_slots = "hdr, accum_diffuse, accum_specular (rgba32f running sums, used when the lights take several "
+                   "dispatches)",
+    .instance_size = sizeof(reference_lighting),
+    .declare = ref_declare,
+    .create = ref_create,
+    .record = ref_record,
+    .destroy = ref_destroy,
+};

@@ -1,0 +1,127 @@
+#version 460
+// reference_lighting.comp - the exact reference as a compute pass: one thread per pixel shades the
+// surface the G-buffer holds (float packing, camera-relative position: gbuffer position_space
+// "camera") with every light, in ascending light index order, with the same operations as
+// forward naive (pg_accumulate_light, pg_shade_combine): bit-identical to naive when the HDR
+// targets have the same format.
+//
+// Lights are streamed through shared memory: the workgroup (LIGHT_TILE threads) loads LIGHT_TILE
+// lights cooperatively, one per thread, then every thread walks the tile in order; one barrier
+// pair per tile. A dispatch covers the lights [pc.first, pc.end). The pass splits large light
+// counts over several dispatches (passes/reference_lighting.c); the running sums then wait in
+// rgba32f images (acc_diffuse, and acc_specular for Blinn-Phong), fp32 like the registers they
+// come from, so splitting does not change a bit. pc.mode bits: 1 = start from the sums stored
+// there (else from 0), 2 = store the sums and stop (else combine and write the HDR pixel).
+// Background pixels (position.w == 0) are black with alpha 1, as forward clears them.
+#include "common.glsl"
+FRAME_UNIFORMS_BLOCK
+#include "lighting.glsl"
+
+#ifndef LIGHT_TILE_X
+#define LIGHT_TILE_X 16
+#endif
+#ifndef LIGHT_TILE_Y
+#define LIGHT_TILE_Y 16
+#endif
+#define LIGHT_TILE (LIGHT_TILE_X * LIGHT_TILE_Y)
+layout(local_size_x = LIGHT_TILE_X, local_size_y = LIGHT_TILE_Y) in;
+
+layout(set = 1, binding = 0) uniform sampler2D g_position; // camera-relative xyz, w 1 (0: nothing drawn)
+layout(set = 1, binding = 1) uniform sampler2D g_normal;   // xyz normal, w shininess
+layout(set = 1, binding = 2) uniform sampler2D g_albedo;   // rgb albedo, a specular
+layout(set = 1, binding = 3, PG_HDR_FORMAT) uniform writeonly image2D hdr_out;
+#ifdef PG_REFERENCE_ACCUM
+layout(set = 1, binding = 4, rgba32f) uniform image2D acc_diffuse; // running diffuse sum (rgb)
+#ifdef PG_BLINN_PHONG
+layout(set = 1, binding = 5, rgba32f) uniform image2D acc_specular; // running specular sum (rgb)
+#endif
+#endif
+
+#include "shading.glsl" // the Lights buffer (set 2) and the debug views
+
+layout(push_constant) uniform Push {
+    uint first; // first light of this dispatch
+    uint end;   // one past its last light
+    uint mode;  // 1: load the running sums, 2: store them instead of writing hdr_out
+} pc;
+
+#ifdef PG_HAS_LIGHTS
+shared vec4 s_pos_radius[LIGHT_TILE];
+shared vec4 s_color[LIGHT_TILE];
+#endif
+
+void main()
+{
+    ivec2 size = imageSize(hdr_out);
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    // Threads outside the image still load lights and reach every barrier.
+    bool inside = px.x < size.x && px.y < size.y;
+    vec4 p4 = inside ? texelFetch(g_position, px, 0) : vec4(0.0);
+    bool covered = inside && p4.w > 0.0;
+    vec3 P = p4.xyz; // camera-relative
+    Surface s;
+    vec4 n = covered ? texelFetch(g_normal, px, 0) : vec4(0.0, 0.0, 1.0, 1.0);
+    vec4 a = covered ? texelFetch(g_albedo, px, 0) : vec4(0.0);
+    s.normal = n.xyz;
+    s.shininess = n.w;
+    s.albedo = a.rgb;
+    s.specular = a.a;
+#if PG_DEBUG_VIEW != 0
+    if (!inside) return;
+    float view_depth = -PG_REL_TO_VIEW(P).z;
+    vec3 c = covered ? pg_shade_point(s, P, view_depth, vec2(px) + 0.5) : vec3(0.0);
+    imageStore(hdr_out, px, vec4(pg_hdr_sanitize(c), 1.0));
+#else
+    PgShade acc;
+    acc.diffuse = vec3(0.0);
+    acc.specular = vec3(0.0);
+#ifdef PG_HAS_LIGHTS
+#ifdef PG_REFERENCE_ACCUM
+    if ((pc.mode & 1u) != 0u && covered) {
+        acc.diffuse = imageLoad(acc_diffuse, px).rgb;
+#ifdef PG_BLINN_PHONG
+        acc.specular = imageLoad(acc_specular, px).rgb;
+#endif
+    }
+#endif
+    vec3 V = normalize(-P);
+    vec3 cam = frame.camera_pos.xyz;
+    float min_dist = frame.light_params.w;
+    uint lid = gl_LocalInvocationIndex;
+    for (uint base = pc.first; base < pc.end; base += uint(LIGHT_TILE)) {
+        uint count = min(uint(LIGHT_TILE), pc.end - base);
+        if (lid < count) {
+            s_pos_radius[lid] = lights[base + lid].pos_radius;
+            s_color[lid] = lights[base + lid].color;
+        }
+        memoryBarrierShared();
+        barrier();
+        if (covered) {
+            for (uint k = 0u; k < count; k++) {
+                Light l;
+                l.pos_radius = s_pos_radius[k];
+                l.color = s_color[k];
+                pg_accumulate_light(l, cam, P, s.normal, V, s.shininess, min_dist, acc);
+            }
+        }
+        memoryBarrierShared();
+        barrier(); // the tile is read by every thread before the next one overwrites it
+    }
+#ifdef PG_REFERENCE_ACCUM
+    if ((pc.mode & 2u) != 0u) {
+        // every pixel is written (0 for background), so no dispatch reads undefined contents
+        if (inside) {
+            imageStore(acc_diffuse, px, vec4(acc.diffuse, 0.0));
+#ifdef PG_BLINN_PHONG
+            imageStore(acc_specular, px, vec4(acc.specular, 0.0));
+#endif
+        }
+        return;
+    }
+#endif
+#endif
+    if (!inside) return;
+    vec3 c = covered ? pg_shade_combine(s, acc, vec3(PG_AMBIENT)) : vec3(0.0);
+    imageStore(hdr_out, px, vec4(pg_hdr_sanitize(c), 1.0));
+#endif
+}
