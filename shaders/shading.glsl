@@ -213,6 +213,6 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
         pending = pending && !mine;
         barrier();       // before the next round resets the cluster and box
     }
-    return s.albedo * (acc.diffuse + vec3(PG_AMBIENT)) + s.specular * acc.specular;
+    return pg_shade_combine(s, acc, vec3(PG_AMBIENT));
 }
 #endif
