@@ -60,10 +60,11 @@ static const uint32_t k_counts[] = {1, 100, 1000, COUNT_OVER_OLD_CAP};
 
 /* ---- bounds --------------------------------------------------------------------------------
  * Measured on lavapipe (Mesa 22.3, 320x180) over every frame of the sweep with every light shaded
- * (no overflow; the 5000/10000-light frames with a max_lights large enough, the same lists an
- * uncapped assignment builds). "Margin 2x" means: the bound is twice a pair (A0, B0) that every
- * measured pixel meets, so the worst measured pixel uses at most half of it (bound: lines,
- * worst_px_usage <= 0.5).
+ * (no overflow; the 5000/10000-light frames with max_lights=8192 set for the measurement, which
+ * gives the same lists as an uncapped assignment). "Margin 2x" means: the bound is twice a pair
+ * (A0, B0) that every measured pixel meets, so the worst measured pixel uses at most half of it
+ * (bound: lines, worst_px_usage <= 0.5). README.md ("Pipelines") and docs/accuracy.md quote these values: change
+ * them together.
  *
  * Deferred float, rgba32f position. The HDR target is rgba16f, whose step is at most 2^-10
  * (9.8e-4) of the value; deferred float differs from naive by one such step where the world ->
@@ -221,10 +222,11 @@ static void sweep_frame_check(const sweep_scene *ss, uint32_t lights, const char
         if (va->kind != SW_EXACT) per_pixel(&f, &ref, peak, va->px_a, va->px_b, &usage, &need_a);
         CHECK(!pg_image_error_compute(f.hdr, ref.hdr, f.ldr, ref.ldr, f.w, f.h, 1.0, &e, &err));
         bool dropped = f.stats.overflow_clusters || f.stats.overflow_dropped;
-        printf("accuracy: scene=%s lights=%u shading=%s hdr=%s variant=%s overflow_clusters=%llu "
+        printf("accuracy: scene=%s size=%ux%u lights=%u shading=%s hdr=%s variant=%s overflow_clusters=%llu "
                "overflow_dropped=%llu identical=%d lit=%.2f%% peak=%.4g max_abs=%.3g max_rel_peak=%.3g "
                "px_usage=%.3g px_need_a=%.3g rmse=%.3g disp_max=%.0f disp_share=%.4f%%%s\n",
-               ss->name, lights, shading, hdr_format, va->label, (unsigned long long)f.stats.overflow_clusters,
+               ss->name, f.w, f.h, lights, shading, hdr_format, va->label,
+               (unsigned long long)f.stats.overflow_clusters,
                (unsigned long long)f.stats.overflow_dropped, identical, 100 * lit_share, peak, m, m / peak, usage,
                need_a, e.rmse_linear, e.max_abs_display, 100 * e.share_over_threshold,
                dropped ? " (lights dropped: bounds not asserted)" : "");
@@ -472,9 +474,9 @@ static void far_geometry(void)
             CHECK(!pg_image_error_compute(f.hdr, ref.hdr, f.ldr, ref.ldr, f.w, f.h, 1.0, &e, &err));
             if (peak <= 0) peak = 1;
             double mrel = m / peak;
-            printf("far: offset=1e5 lights=256 variant=%s identical=%d peak=%.4g max_abs=%.3g max_rel_peak=%.3g "
-                   "rmse=%.3g disp_max=%.0f disp_share=%.4f%% overflow_dropped=%llu\n",
-                   va->label, pg_th_hdr_identical(&f, &ref), peak, m, mrel, e.rmse_linear, e.max_abs_display,
+            printf("far: offset=1e5 lights=256 size=%ux%u variant=%s identical=%d peak=%.4g max_abs=%.3g "
+                   "max_rel_peak=%.3g rmse=%.3g disp_max=%.0f disp_share=%.4f%% overflow_dropped=%llu\n",
+                   f.w, f.h, va->label, pg_th_hdr_identical(&f, &ref), peak, m, mrel, e.rmse_linear, e.max_abs_display,
                    100 * e.share_over_threshold, (unsigned long long)f.stats.overflow_dropped);
             if (!strcmp(va->label, "forward_plus"))
                 CHECK_MSG(pg_th_hdr_identical(&f, &ref), "far forward_plus: not byte-identical (max rel %g)", mrel);
@@ -530,6 +532,7 @@ int main(void)
         return 1;
     }
     printf("device: %s\n", g_gpu->props.deviceName);
+    printf("sweep: size=%dx%d time=%g seed=%d\n", W, H, (double)SWEEP_TIME, SWEEP_SEED);
     run_scene("default", "default", NULL, true);
     char sponza[PG_PATH_MAX];
     snprintf(sponza, sizeof sponza, "%s/assets/dabrovic-sponza/sponza.gltf", PG_SHARED_DIR);
