@@ -191,7 +191,8 @@ static void sweep_frame_check(const sweep_scene *ss, uint32_t lights, const char
     pg_frame_info fi = sweep_frame(ss, lights);
     pg_param_override sets[2] = {{"shading", shading}, {"hdr_format", hdr_format}};
     char where[96];
-    snprintf(where, sizeof where, "%s %u lights %s %s", ss->name, lights, shading, hdr_format);
+    snprintf(where, sizeof where, "%s %u light%s %s %s", ss->name, lights, lights == 1 ? "" : "s", shading,
+             hdr_format);
     pg_th_frame ref;
     if (!pg_th_render(g_gpu, &g_reg, ss->sg, "pipelines/naive.json", sets, 2, &fi, 1, false, &ref)) {
         CHECK_MSG(0, "%s: naive failed", where);

@@ -47,6 +47,16 @@ today=$(date -u +%Y-%m-%d)
 load() { cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo unknown; }
 
 get() { sed -n "s/.* $1=\([^ ]*\).*/\1/p" <<<"$2" | head -1; }
+label_of() { # the test's variant names -> the tables' names
+  case $1 in
+    forward_plus) echo "forward+" ;;
+    deferred_float) echo "deferred float (rgba32f position)" ;;
+    deferred_float_rgba16f_position) echo "deferred float, rgba16f position" ;;
+    deferred_oct16) echo "deferred oct16" ;;
+    deferred_packed) echo "deferred packed" ;;
+    *) echo "$1" ;;
+  esac
+}
 
 variants=(
   "forward+|pipelines/forward_plus.json|"
@@ -158,8 +168,7 @@ part_tests() {
           "$(get identical "$line")" "$frames" "$fr" ;;
       *)
         local label bound worst
-        case $v in deferred_float) label="deferred float (rgba32f position)" ;; deferred_oct16) label="deferred oct16" ;;
-                   deferred_packed) label="deferred packed" ;; *) label=$v ;; esac
+        label=$(label_of "$v")
         bound="\|d\| ≤ $(get px_a "$line") \|ref\| + $(get px_b "$line") peak"
         worst="$(get worst_px_usage "$line") of the bound [$(sed -n 's/.*worst_px_usage=[^ ]* \[\([^]]*\)\].*/\1/p' <<<"$line")]; max \|d\| = $(get worst_max_rel_peak "$line") peak"
         if [ "$(get disp_max_bound "$line")" != - ]; then
@@ -208,7 +217,7 @@ part_tests() {
   echo "| variant | byte-identical | max abs / peak | RMSE | max abs (8-bit) | pixels > 1/255 |"
   echo "|---|---|---:|---:|---:|---:|"
   while IFS= read -r line; do
-    printf "| %s | %s | %s | %s | %s | %s |\n" "$(get variant "$line" | tr _ ' ')" \
+    printf "| %s | %s | %s | %s | %s | %s |\n" "$(label_of "$(get variant "$line")")" \
       "$( [ "$(get identical "$line")" = 1 ] && echo yes || echo no)" "$(get max_rel_peak "$line")" \
       "$(get rmse "$line")" "$(get disp_max "$line")" "$(get disp_share "$line")"
   done < <(grep '^far:' <<<"$out")
