@@ -36,13 +36,19 @@ bool pg_th_render(pg_gpu *gpu, const pg_pass_registry *reg, const pg_scene_gpu *
         const uint8_t *p = pg_runtime_output(s->runtime, 0, &out->w, &out->h, &fmt);
         const void *hp = pg_runtime_output(s->runtime, 1, &hw, &hh, &hf);
         ok = p && hp && hw == out->w && hh == out->h;
+        const pg_format_info *hi = ok ? pg_format_get(hf) : NULL;
+        ok = ok && hi && hi->bytes_per_pixel > 0;
         if (ok) {
+            out->hdr_format = hf;
+            out->hdr_raw_bytes = (size_t)hw * hh * hi->bytes_per_pixel;
             out->ldr = malloc((size_t)out->w * out->h * 4);
             out->hdr = malloc((size_t)hw * hh * 4 * sizeof(float));
-            ok = out->ldr && out->hdr;
+            out->hdr_raw = malloc(out->hdr_raw_bytes);
+            ok = out->ldr && out->hdr && out->hdr_raw;
         }
         if (ok) {
             memcpy(out->ldr, p, (size_t)out->w * out->h * 4);
+            memcpy(out->hdr_raw, hp, out->hdr_raw_bytes);
             ok = !pg_hdr_to_float(hp, hf, hw, hh, out->hdr, &err);
         }
         out->creations = pg_runtime_get_stats(s->runtime).resource_creations;
@@ -62,8 +68,17 @@ void pg_th_release(pg_th_frame *f)
 {
     free(f->ldr);
     free(f->hdr);
+    free(f->hdr_raw);
     f->ldr = NULL;
     f->hdr = NULL;
+    f->hdr_raw = NULL;
+    f->hdr_raw_bytes = 0;
+}
+
+bool pg_th_hdr_identical(const pg_th_frame *a, const pg_th_frame *b)
+{
+    return a->hdr_raw && b->hdr_raw && a->w == b->w && a->h == b->h && a->hdr_format == b->hdr_format &&
+           a->hdr_raw_bytes == b->hdr_raw_bytes && memcmp(a->hdr_raw, b->hdr_raw, a->hdr_raw_bytes) == 0;
 }
 
 double pg_th_max_abs(const pg_th_frame *a, const pg_th_frame *b, double *ref_peak)

@@ -6,7 +6,10 @@
 
 typedef struct pg_th_frame {
     uint8_t *ldr;          /* w*h RGBA8 display image */
-    float *hdr;            /* w*h RGBA32F scene-linear image */
+    float *hdr;            /* w*h RGBA32F scene-linear image (converted from hdr_raw) */
+    void *hdr_raw;         /* the HDR output as read back, in hdr_format (for bit-exact compares) */
+    size_t hdr_raw_bytes;  /* w*h*bytes_per_pixel(hdr_format) */
+    pg_format hdr_format;  /* the pipeline's hdr_output format (rgba16f or rgba32f) */
     uint32_t w, h;
     pg_frame_stats stats;
     uint32_t creations;
@@ -19,6 +22,8 @@ bool pg_th_render(pg_gpu *gpu, const pg_pass_registry *reg, const pg_scene_gpu *
                   const pg_param_override *sets, uint32_t n_sets, const pg_frame_info *fi, uint32_t frames,
                   bool no_alias, pg_th_frame *out);
 void pg_th_release(pg_th_frame *f);
+/* true when both frames have one size and HDR format and their read-back HDR bytes are equal. */
+bool pg_th_hdr_identical(const pg_th_frame *a, const pg_th_frame *b);
 /* Largest |a-b| over RGB and the largest reference value (for relative bounds). */
 double pg_th_max_abs(const pg_th_frame *a, const pg_th_frame *b, double *ref_peak);
 
