@@ -4,7 +4,8 @@
 # the Sponza in .bundle/assets. PART sponza: every shipped pipeline on the Sponza (cis565
 # scenario) at 1920x1080, 1,000 .. 1,000,000 lights (naive with one timed frame: it takes ~85 s a
 # frame at 1M lights), plus the deferred_oct16 frame at 1M lights and its error heatmap; PART
-# default: the same on the built-in atrium, and a max_lights sweep on the Sponza. Everything goes
+# default: the same on the built-in atrium, a max_lights sweep on the Sponza, and the 1M-light
+# frame (reference and oct16) at a low exposure. Everything goes
 # to OUT (bench folders tarred into one file, to fit the device tool's file limits).
 set -u
 part=$1
@@ -35,5 +36,10 @@ else
   timeout -s INT 120 $PG bench --pipelines deferred_oct16 --scene $S --scenario $SC --size 1920x1080 \
     --lights 20000,100000 --sweep max_lights=0,32,128,512,2048 --warmup 1 --frames 5 --out "$out/w/sweep_max_lights" \
     2>&1 | grep -v '%' | tail -12
+  # the 1,000,000-light frame at an exposure that shows it (the default saturates), exact and oct16
+  for p in reference deferred_oct16; do
+    $PG render --pipeline $B/share/passgraph/pipelines/$p.json --scene $S --scenario $SC --size 1920x1080 \
+      --lights 1000000 --set exposure=0.002 --out "$out/${p}_1m_exposure.png" 2>&1 | tail -1
+  done
 fi
 tar -C "$out/w" -czf "$out/$part.tar.gz" . && rm -rf "$out/w"
