@@ -67,7 +67,7 @@ typedef struct viewer {
     float hist_total[HIST], hist_pass[PG_MAX_PASSES][HIST];
     int hist_pos, hist_n;
     double cpu_frame_ms;
-    /* difference to naive */
+    /* difference to the exact reference (pipelines/reference.json) */
     bool diff;
     pg_buffer diff_staging;
     pg_image diff_image;
@@ -579,7 +579,7 @@ static void build_ui(viewer *v)
         colour_ui(v);
         if (pl && pg_ui_header("Pipeline parameters", true)) {
             for (uint32_t i = 0; i < pl->n_params; i++) param_widget(v, &pl->params[i]);
-            if (pg_ui_checkbox("difference to naive (heatmap)", &v->diff)) v->hist_n = 0;
+            if (pg_ui_checkbox("difference to the reference (heatmap)", &v->diff)) v->hist_n = 0;
             if (v->diff)
                 pg_ui_text("linear RMSE %.4g, colour scale 0..%.4g", v->diff_rmse, v->diff_scale);
         }
@@ -774,7 +774,7 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     if (v->diff) {
         if (!v->naive) {
             char naive[PG_PATH_MAX];
-            pg_data_path(naive, sizeof naive, "pipelines/naive.json");
+            pg_data_path(naive, sizeof naive, "pipelines/reference.json"); /* exact, fast at any count */
             if ((r = open_session(v, naive, false, &v->naive, err))) return r;
         }
         pg_frame_stats ns;
@@ -1000,7 +1000,7 @@ static const char *const view_help =
     "tuned and edited live: every JSON file in pipelines/ (and --pipelines DIR) is listed; editing a\n"
     "pipeline or shader on disk reloads it (a broken file shows its error and the last good graph\n"
     "keeps running). Controls: light count, radius, intensity, seed, time, every pipeline parameter\n"
-    "(debug views included), OpenColorIO display, view and exposure, difference to naive, camera\n"
+    "(debug views included), OpenColorIO display, view and exposure, difference to the reference, camera\n"
     "fly (WASD/QE, right mouse to look).\n"
     "Scripted mode for tests and demos: --frames N [--screenshot FILE.png] [--cycle-pipelines].\n\n"
     "options:\n";
