@@ -26,6 +26,11 @@ static long g_fault_count;
 
 bool pg_vk_fault_next(const char *call)
 {
+    const char *match = getenv("PASSGRAPH_FAULT_CALL");
+    if (match && *match && call && strstr(call, match)) {
+        fprintf(stderr, "passgraph: fault injection: failing %s (PASSGRAPH_FAULT_CALL)\n", call);
+        return true;
+    }
     if (g_fault_at == -2) {
         const char *e = getenv("PASSGRAPH_FAULT_AT");
         g_fault_at = e && *e ? strtol(e, NULL, 10) : -1;

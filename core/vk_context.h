@@ -75,7 +75,10 @@ void pg_gpu_name(pg_gpu *gpu, VkObjectType type, uint64_t handle, const char *fm
 const char *pg_vk_result_name(VkResult r);
 /* Fault injection for robustness tests: with PASSGRAPH_FAULT_AT=k in the environment, the k-th
  * checked Vulkan call (counting from 1, in execution order) is not made and reports
- * VK_ERROR_DEVICE_LOST instead, so every error path can be exercised. Returns true to fail. */
+ * VK_ERROR_DEVICE_LOST instead, so every error path can be exercised. With
+ * PASSGRAPH_FAULT_CALL=TEXT every checked call whose name contains TEXT fails (e.g. "(grow)": the
+ * enlargement of a grow buffer, which reports VK_ERROR_OUT_OF_DEVICE_MEMORY there). Returns true
+ * to fail. */
 bool pg_vk_fault_next(const char *call);
 /* Evaluates a Vulkan call; on failure fills err with the call text and VkResult and returns. */
 #define PG_VK_TRY(err, call)                                                                 \

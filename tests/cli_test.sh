@@ -193,6 +193,13 @@ grep -Eq 'overflow=0 clusters \(0 light refs dropped\) refs=[0-9]+ lists=[0-9.]+
 "$PG" render --pipeline "$root/pipelines/deferred.json" --lights 20000 --radius 6 --set list_budget_mb=1 --size 64x36 --out "$tmp/o.png" >"$tmp/out" 2>&1
 grep -Eq 'overflow=[1-9][0-9]* clusters \([1-9][0-9]* light refs dropped\)' "$tmp/out" && grep -q '^note: light lists need .* over the 1.0 MiB budget' "$tmp/out" \
   && ok || { bad "budget overflow not reported"; cat "$tmp/out"; }
+# an allocation the device refuses while the lists grow: a note, the overflow reported, exit 0, no crash
+PASSGRAPH_FAULT_CALL="(grow)" "$PG" render --pipeline "$root/pipelines/forward_plus.json" --lights 3000 --radius 6 --size 64x36 \
+  --out "$tmp/o.png" >"$tmp/out" 2>&1
+rc=$?
+[ $rc -eq 0 ] && grep -q "^note: buffer 'cluster_lights' could not grow from .* (VK_ERROR_OUT_OF_DEVICE_MEMORY): kept" "$tmp/out" \
+  && grep -Eq 'overflow=[1-9][0-9]* clusters \([1-9][0-9]* light refs dropped\)' "$tmp/out" \
+  && ok || { bad "refused list growth not reported (rc $rc)"; cat "$tmp/out"; }
 # clustered summary reports overflow (all lights at one point, 2 per cluster)
 "$PG" render --pipeline "$root/pipelines/forward_plus.json" --set max_lights=2 --lights 64 --radius 100 --size 64x36 --out "$tmp/o.png" >"$tmp/out" 2>&1
 grep -Eq 'overflow=[1-9][0-9]* clusters \([0-9]+ light refs dropped\)' "$tmp/out" && ok || { bad "overflow not reported"; cat "$tmp/out"; }
