@@ -1,6 +1,7 @@
 /* scenario.c - scenario JSON (assets/scenarios/README.md describes the format), default light
  * set-up for a scene, and applying a scenario over defaults. */
 #include "scenario.h"
+#include "frame.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -347,6 +348,30 @@ pg_light_setup pg_light_setup_default(const pg_scene *scene, uint32_t count, uin
     L.motion = PG_MOTION_NOISE;
     L.speed = 1.0f;
     L.seed = seed;
+    return L;
+}
+
+pg_light_setup pg_light_setup_object(const pg_scene *scene, uint32_t count, uint32_t seed)
+{
+    pg_light_setup L = pg_light_setup_default(scene, count, seed);
+    float mn[3] = {-1, -1, -1}, mx[3] = {1, 1, 1};
+    if (scene && scene->n_indices > 0 && scene->bounds_min[0] <= scene->bounds_max[0] &&
+        scene->bounds_min[1] <= scene->bounds_max[1] && scene->bounds_min[2] <= scene->bounds_max[2]) {
+        memcpy(mn, scene->bounds_min, sizeof mn);
+        memcpy(mx, scene->bounds_max, sizeof mx);
+    }
+    double h2 = 0;
+    for (int k = 0; k < 3; k++) h2 += 0.25 * ((double)mx[k] - mn[k]) * ((double)mx[k] - mn[k]);
+    double r = sqrt(h2);
+    if (!(r > 1e-30)) r = 1.0;
+    for (int k = 0; k < 3; k++) {
+        L.box_min[k] = (float)(mn[k] - 0.6 * r);
+        L.box_max[k] = (float)(mx[k] + 0.6 * r);
+    }
+    double s = r > PG_LIGHT_MIN_DISTANCE ? r : PG_LIGHT_MIN_DISTANCE;
+    L.radius = (float)(1.5 * r);
+    L.intensity = (float)(PG_OBJECT_LIGHT_K * s * s * 256.0 / (count > 0 ? count : 1));
+    L.saturation = 0.3f;
     return L;
 }
 

@@ -48,6 +48,14 @@ pg_result pg_scenario_load(const char *path, pg_scenario *out, pg_error *err);
  * 0.12 * the largest extent of the bounds; intensity 1; saturation 0.8; motion noise; speed 1.
  * A NULL or empty scene uses the box (-1,-1,-1)..(1,1,1). */
 pg_light_setup pg_light_setup_default(const pg_scene *scene, uint32_t count, uint32_t seed);
+/* Defaults for an object (every loaded glTF, README "Scenes"): with r = half the diagonal of the
+ * scene bounds (1 when empty), s = max(r, PG_LIGHT_MIN_DISTANCE): box = the bounds grown by 0.6 r
+ * on every side (so lights surround the object, not only its inside); radius = 1.5 r; intensity
+ * = PG_OBJECT_LIGHT_K * s^2 * 256 / max(count, 1) (the point-light falloff is 1/d^2 in scene
+ * units and d ~ r here, so brightness does not depend on the object's size, and the total over
+ * all lights does not depend on the count); saturation 0.3; motion noise; speed 1. */
+#define PG_OBJECT_LIGHT_K 0.007f
+pg_light_setup pg_light_setup_object(const pg_scene *scene, uint32_t count, uint32_t seed);
 /* Applies the scenario's fields over setup/camera (either may be NULL): only fields present in
  * the file (has_*) are copied; camera fields one by one. If the result has far_z <= near_z,
  * far_z becomes near_z * 1000. The light count from a scenario is a default: callers apply a

@@ -47,6 +47,7 @@ void pg_scene_free(pg_scene *scene)
     free(scene->indices);
     free(scene->primitives);
     free(scene->materials);
+    free(scene->cameras);
     free(scene);
 }
 
@@ -453,6 +454,147 @@ pg_camera pg_camera_default_for_scene(const pg_scene *scene, float aspect)
     c.far_z = 2.0f * diag;
     c.aspect = aspect > 0 && isfinite(aspect) ? aspect : 1.0f;
     return c;
+}
+
+static bool scene_has_bounds(const pg_scene *scene)
+{
+    return scene && scene->n_indices > 0 && scene->bounds_min[0] <= scene->bounds_max[0] &&
+           scene->bounds_min[1] <= scene->bounds_max[1] && scene->bounds_min[2] <= scene->bounds_max[2];
+}
+
+pg_camera pg_camera_frame_object(const pg_scene *scene, float aspect, float *out_radius, float *out_distance)
+{
+    float mn[3] = {-1, -1, -1}, mx[3] = {1, 1, 1};
+    if (scene_has_bounds(scene)) {
+        memcpy(mn, scene->bounds_min, sizeof mn);
+        memcpy(mx, scene->bounds_max, sizeof mx);
+    }
+    double c[3], h2 = 0;
+    for (int k = 0; k < 3; k++) {
+        c[k] = 0.5 * ((double)mn[k] + (double)mx[k]);
+        double h = 0.5 * ((double)mx[k] - (double)mn[k]);
+        h2 += h * h;
+    }
+    double r = sqrt(h2);
+    if (!(r > 1e-30)) r = 1.0;
+    if (!(aspect > 0) || !isfinite(aspect)) aspect = 1.0f;
+    const double pi = 3.14159265358979323846;
+    double fy = 0.5 * 45.0 * pi / 180.0;
+    double fx = atan(tan(fy) * aspect);
+    double a = fy < fx ? fy : fx;
+    double d = 1.1 * r / sin(a);
+    double az = 35.0 * pi / 180.0, el = 25.0 * pi / 180.0;
+    double dir[3] = {sin(az) * cos(el), sin(el), cos(az) * cos(el)};
+    pg_camera cam;
+    memset(&cam, 0, sizeof cam);
+    for (int k = 0; k < 3; k++) {
+        cam.position[k] = (float)(c[k] + d * dir[k]);
+        cam.target[k] = (float)c[k];
+    }
+    cam.up[1] = 1.0f;
+    cam.fov_y_deg = 45.0f;
+    cam.near_z = (float)(d - 1.05 * r);
+    cam.far_z = (float)(d + 1.05 * r);
+    cam.aspect = aspect;
+    if (out_radius) *out_radius = (float)r;
+    if (out_distance) *out_distance = (float)d;
+    return cam;
+}
+
+pg_result pg_camera_from_scene(const pg_scene *scene, uint32_t index, float aspect, pg_camera *out, pg_error *err)
+{
+    if (!scene || index >= scene->n_cameras)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "camera %u: out of range (%u cameras)", index,
+                       scene ? scene->n_cameras : 0);
+    const pg_scene_camera *sc = &scene->cameras[index];
+    if (sc->type != PG_CAMERA_PERSPECTIVE)
+        return pg_fail(err, PG_ERR_INVALID_ARG,
+                       "%s: camera '%s' (cameras[%d], node '%s') is orthographic: the renderer and the "
+                       "cluster math are perspective-only; pick another with --camera (or --camera auto)",
+                       scene->path, sc->name, sc->gltf_camera, sc->node_name);
+    pg_camera cam;
+    memset(&cam, 0, sizeof cam);
+    double dist = 1.0; /* look-at distance: any positive value gives the same view */
+    if (scene_has_bounds(scene)) {
+        double cc = 0, r2 = 0;
+        for (int k = 0; k < 3; k++) {
+            double c = 0.5 * ((double)scene->bounds_min[k] + scene->bounds_max[k]);
+            double h = 0.5 * ((double)scene->bounds_max[k] - scene->bounds_min[k]);
+            cc += (c - sc->position[k]) * sc->forward[k];
+            r2 += h * h;
+        }
+        dist = cc > 1e-6 * sqrt(r2) ? cc : (sqrt(r2) > 0 ? sqrt(r2) : 1.0);
+    }
+    for (int k = 0; k < 3; k++) {
+        cam.position[k] = sc->position[k];
+        cam.target[k] = (float)(sc->position[k] + dist * sc->forward[k]);
+        cam.up[k] = sc->up[k];
+    }
+    cam.fov_y_deg = sc->yfov_rad * (float)(180.0 / 3.14159265358979323846);
+    cam.near_z = sc->znear;
+    float far = sc->zfar;
+    if (!(far > 0)) { /* infinite: to the farthest corner of the bounds, twice */
+        double m = 0;
+        for (int i = 0; i < 8; i++) {
+            double d2 = 0;
+            for (int k = 0; k < 3; k++) {
+                double v = ((i >> k) & 1) ? scene->bounds_max[k] : scene->bounds_min[k];
+                d2 += (v - sc->position[k]) * (v - sc->position[k]);
+            }
+            if (d2 > m) m = d2;
+        }
+        far = (float)(2.0 * sqrt(m));
+        if (far < 1000.0f * sc->znear) far = 1000.0f * sc->znear;
+    }
+    cam.far_z = far;
+    cam.aspect = aspect > 0 && isfinite(aspect) ? aspect : 1.0f;
+    *out = cam;
+    return PG_OK;
+}
+
+pg_result pg_scene_find_camera(const pg_scene *scene, const char *spec, uint32_t *out_index, pg_error *err)
+{
+    uint32_t n = scene ? scene->n_cameras : 0;
+    if (spec && spec[0]) {
+        const char *p = spec;
+        bool digits = true;
+        for (; *p; p++)
+            if (*p < '0' || *p > '9') digits = false;
+        if (digits && strlen(spec) < 10) {
+            unsigned long v = strtoul(spec, NULL, 10);
+            if (v < n) {
+                *out_index = (uint32_t)v;
+                return PG_OK;
+            }
+        }
+        for (uint32_t i = 0; i < n; i++)
+            if (!strcmp(scene->cameras[i].name, spec)) {
+                *out_index = i;
+                return PG_OK;
+            }
+        for (uint32_t i = 0; i < n; i++)
+            if (!strcmp(scene->cameras[i].node_name, spec)) {
+                *out_index = i;
+                return PG_OK;
+            }
+    }
+    const char *file = scene ? scene->path : "(no scene)";
+    if (n == 0)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--camera %s: %s has no cameras; use --camera auto", spec ? spec : "",
+                       file);
+    char list[768];
+    size_t len = 0;
+    list[0] = 0;
+    for (uint32_t i = 0; i < n && len + 1 < sizeof list; i++) {
+        int w = snprintf(list + len, sizeof list - len, "%s%u '%s' (node '%s'%s)", i ? ", " : "", i,
+                         scene->cameras[i].name, scene->cameras[i].node_name,
+                         scene->cameras[i].type == PG_CAMERA_ORTHOGRAPHIC ? ", orthographic" : "");
+        if (w < 0) break;
+        len += (size_t)w;
+        if (len >= sizeof list) len = sizeof list - 1;
+    }
+    return pg_fail(err, PG_ERR_INVALID_ARG, "--camera %s: no such camera in %s; available: %s, or auto",
+                   spec ? spec : "", file, list);
 }
 
 void pg_camera_view(const pg_camera *cam, float out[16])

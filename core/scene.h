@@ -59,6 +59,24 @@ typedef struct pg_primitive {
     float bounds_min[3], bounds_max[3];
 } pg_primitive;
 
+/* A camera of the glTF file, placed by its node's world transform (one entry per camera NODE
+ * reached in the default scene, in depth-first node order; a camera used by two nodes appears
+ * twice). glTF cameras look down their local -Z with +Y up. */
+typedef enum pg_camera_type { PG_CAMERA_PERSPECTIVE = 0, PG_CAMERA_ORTHOGRAPHIC = 1 } pg_camera_type;
+typedef struct pg_scene_camera {
+    char name[PG_NAME_MAX];      /* cameras[i].name, else "cameras[i]" */
+    char node_name[PG_NAME_MAX]; /* nodes[n].name, else "nodes[n]" */
+    int gltf_camera, gltf_node;  /* indices in the file */
+    pg_camera_type type;
+    float yfov_rad;              /* perspective */
+    float aspect_ratio;          /* perspective; 0 when the file gives none */
+    float xmag, ymag;            /* orthographic */
+    float znear;
+    float zfar;                  /* 0 = infinite (perspective without zfar) */
+    float position[3];           /* world */
+    float forward[3], up[3];     /* world, unit length (node -Z and +Y, orthonormalised) */
+} pg_scene_camera;
+
 typedef struct pg_scene {
     char name[PG_NAME_MAX];
     char path[PG_PATH_MAX];   /* "default" for the generated scene */
@@ -74,6 +92,9 @@ typedef struct pg_scene {
     uint32_t n_textures;
     float bounds_min[3], bounds_max[3];
     pg_scene_features features; /* light_count left 0 here */
+    pg_scene_camera *cameras;   /* owned (freed by pg_scene_free); NULL when n_cameras == 0;
+                                   the built-in atrium has none */
+    uint32_t n_cameras;
 } pg_scene;
 
 typedef struct pg_camera {
@@ -135,6 +156,31 @@ void pg_scene_finalize(pg_scene *scene);
  * fov_y 60 deg, near = max(0.01, 0.001*diagonal), far = 2*diagonal. For the atrium-like scenes
  * this stands inside the nave looking down its length. */
 pg_camera pg_camera_default_for_scene(const pg_scene *scene, float aspect);
+
+/* Object framing, the default for loaded glTF without a camera (README "Scenes"): the bounding
+ * sphere of the scene box (center c, radius r = half the box diagonal; r < 1e-30 -> 1) is fitted
+ * into BOTH the vertical and the horizontal field of view: fov_y = 45 deg, half-angle
+ * a = min(fov_y/2, atan(tan(fov_y/2) * aspect)), distance d = 1.1 * r / sin(a). The camera looks
+ * at c from the direction (sin 35 cos 25, sin 25, cos 35 cos 25) (a 3/4 view from above, front =
+ * +Z as glTF models face), up +Y; near = d - 1.05 r (> 0.5 d, as d >= 2.8 r), far = d + 1.05 r, so depth precision follows the object. out_radius / out_distance (may be
+ * NULL) receive r and d. */
+pg_camera pg_camera_frame_object(const pg_scene *scene, float aspect, float *out_radius,
+                                 float *out_distance);
+
+/* The pg_camera of scene->cameras[index] for an output of `aspect` (width / height): perspective
+ * keeps yfov (the file's aspectRatio is not forced: the output size decides the width), znear,
+ * zfar; an infinite zfar becomes the distance from the camera to the farthest corner of the
+ * scene bounds times 2 (at least 1000 * znear). Orthographic cameras are refused
+ * (PG_ERR_INVALID_ARG: "camera 'NAME' (cameras[i]) is orthographic: the renderer and the cluster
+ * math are perspective-only; pick another with --camera"). */
+pg_result pg_camera_from_scene(const pg_scene *scene, uint32_t index, float aspect, pg_camera *out,
+                               pg_error *err);
+
+/* Finds a camera by "N" (index into scene->cameras) or a name (camera name first, then node
+ * name). Not found: PG_ERR_INVALID_ARG "--camera X: no such camera in FILE; available: 0 'a'
+ * (node 'n'), 1 ... , or auto" (or "the scene has no cameras; use --camera auto"). */
+pg_result pg_scene_find_camera(const pg_scene *scene, const char *spec, uint32_t *out_index,
+                               pg_error *err);
 
 /* Column-major 4x4 matrices (element row r, column c at m[c*4 + r]; p' = M * p).
  * pg_camera_view: right-handed look-at; camera space +X right, +Y up, looking down -Z.

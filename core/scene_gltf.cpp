@@ -1153,6 +1153,72 @@ std::string image_name(const tinygltf::Image &im, int idx)
     return strf("image%d", idx);
 }
 
+/* ---- cameras: every camera node reached from the scene roots, depth-first in node order (the
+ * Walker above has already rejected cycles and out-of-range children) ---- */
+void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_camera> &out)
+{
+    const tinygltf::Model &md = c.model;
+    const tinygltf::Node &nd = md.nodes[size_t(ni)];
+    Mat4 world = mat_mul(parent, node_local(nd, ni));
+    if (nd.camera >= 0) {
+        if (size_t(nd.camera) >= md.cameras.size())
+            gfail(strf("nodes[%d].camera: %d out of range (%zu cameras)", ni, nd.camera, md.cameras.size()));
+        const tinygltf::Camera &gc = md.cameras[size_t(nd.camera)];
+        const std::string cw = strf("cameras[%d]", nd.camera);
+        pg_scene_camera sc;
+        memset(&sc, 0, sizeof sc);
+        pg_strlcpy(sc.name, gc.name.empty() ? cw.c_str() : gc.name.c_str(), sizeof sc.name);
+        pg_strlcpy(sc.node_name, nd.name.empty() ? strf("nodes[%d]", ni).c_str() : nd.name.c_str(),
+                   sizeof sc.node_name);
+        sc.gltf_camera = nd.camera;
+        sc.gltf_node = ni;
+        if (gc.type == "perspective") {
+            const auto &p = gc.perspective;
+            if (!(std::isfinite(p.yfov) && p.yfov > 0 && p.yfov < 3.14159))
+                gfail(cw + ".perspective.yfov: expected a finite angle in (0, pi) radians");
+            if (!(std::isfinite(p.znear) && p.znear > 0))
+                gfail(cw + ".perspective.znear: expected a finite number > 0");
+            if (!(std::isfinite(p.zfar) && (p.zfar == 0 || p.zfar > p.znear)))
+                gfail(cw + ".perspective.zfar: expected a finite number > znear (or absent: infinite)");
+            if (!(std::isfinite(p.aspectRatio) && p.aspectRatio >= 0))
+                gfail(cw + ".perspective.aspectRatio: expected a finite number > 0");
+            sc.type = PG_CAMERA_PERSPECTIVE;
+            sc.yfov_rad = float(p.yfov);
+            sc.aspect_ratio = float(p.aspectRatio);
+            sc.znear = float(p.znear);
+            sc.zfar = float(p.zfar);
+        } else if (gc.type == "orthographic") {
+            const auto &o = gc.orthographic;
+            if (!(std::isfinite(o.xmag) && o.xmag != 0 && std::isfinite(o.ymag) && o.ymag != 0))
+                gfail(cw + ".orthographic.xmag/ymag: expected finite non-zero numbers");
+            if (!(std::isfinite(o.znear) && o.znear >= 0 && std::isfinite(o.zfar) && o.zfar > o.znear))
+                gfail(cw + ".orthographic.znear/zfar: expected finite 0 <= znear < zfar");
+            sc.type = PG_CAMERA_ORTHOGRAPHIC;
+            sc.xmag = float(o.xmag);
+            sc.ymag = float(o.ymag);
+            sc.znear = float(o.znear);
+            sc.zfar = float(o.zfar);
+        } else {
+            gfail(cw + ".type: '" + gc.type + "': expected \"perspective\" or \"orthographic\"");
+        }
+        double f[3] = {-world.m[8], -world.m[9], -world.m[10]}, u[3] = {world.m[4], world.m[5], world.m[6]};
+        double fl = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        if (!(fl > 1e-30)) gfail(strf("nodes[%d]: camera node transform is singular", ni));
+        for (double &x : f) x /= fl;
+        double fu = f[0] * u[0] + f[1] * u[1] + f[2] * u[2];
+        for (int k = 0; k < 3; k++) u[k] -= fu * f[k];
+        double ul = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        if (!(ul > 1e-12 * fl)) gfail(strf("nodes[%d]: camera node transform is singular", ni));
+        for (int k = 0; k < 3; k++) {
+            sc.position[k] = float(world.m[12 + k]);
+            sc.forward[k] = float(f[k]);
+            sc.up[k] = float(u[k] / ul);
+        }
+        out.push_back(sc);
+    }
+    for (int ch : nd.children) camera_visit(c, ch, world, out);
+}
+
 pg_scene *load(Ctx &c)
 {
     /* 1. the file */
@@ -1218,6 +1284,7 @@ pg_scene *load(Ctx &c)
 
     /* 4. node hierarchy -> geometry */
     Out o;
+    std::vector<pg_scene_camera> cams;
     {
         std::vector<int> roots;
         if (md.defaultScene >= 0 && size_t(md.defaultScene) < md.scenes.size()) {
@@ -1236,6 +1303,7 @@ pg_scene *load(Ctx &c)
         }
         Walker w{c, o, std::vector<char>(md.nodes.size(), 0), 0};
         for (int r : roots) w.visit(r, mat_identity(), 0);
+        for (int r : roots) camera_visit(c, r, mat_identity(), cams);
     }
     if (c.skipped_prims)
         fprintf(stderr, "%s: warning: skipped %u point/line primitive(s) (only triangles are drawn)\n",
@@ -1333,6 +1401,8 @@ pg_scene *load(Ctx &c)
     s->n_primitives = uint32_t(o.prims.size());
     s->materials = copy_out(mats);
     s->n_materials = uint32_t(mats.size());
+    s->cameras = copy_out(cams);
+    s->n_cameras = uint32_t(cams.size());
     if (!tex_order.empty()) {
         s->textures = static_cast<pg_texture *>(calloc(tex_order.size(), sizeof(pg_texture)));
         if (!s->textures) throw std::bad_alloc();

@@ -12,6 +12,10 @@ const char *const pg_cli_common_help =
     "  --scene FILE|default glTF 2.0 scene (.gltf/.glb) or the built-in atrium (default)\n"
     "  --scenario FILE      JSON set-up: camera, light box, count, radius, intensity, motion\n"
     "                       (e.g. assets/scenarios/cis565.json); explicit options override it\n"
+    "  --camera N|NAME|auto a glTF camera (index among the scene's camera nodes, camera or node\n"
+    "                       name) or auto (frame the bounds); default: the file's first camera,\n"
+    "                       else auto (glTF), the interior view (--scene default); a scenario's\n"
+    "                       camera fields still apply over it\n"
     "  --lights N           number of point lights, 0..16777216 (default 256)\n"
     "  --radius R           light range in scene units (default: from the scene size)\n"
     "  --intensity I        light colour multiplier (default 1)\n"
@@ -138,6 +142,10 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
     } else if (!strcmp(a, "--scenario")) {
         NEED_VALUE();
         c->scenario = v;
+    } else if (!strcmp(a, "--camera")) {
+        NEED_VALUE();
+        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--camera: empty name (N, NAME or auto)");
+        c->camera = v;
     } else if (!strcmp(a, "--out")) {
         NEED_VALUE();
         c->out = v;

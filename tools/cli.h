@@ -14,6 +14,7 @@ typedef struct pg_cli_common {
     const char *pipeline;        /* --pipeline FILE */
     const char *scene;           /* --scene FILE|default */
     const char *scenario;        /* --scenario FILE */
+    const char *camera;          /* --camera N|NAME|auto (NULL: the default choice, app.h) */
     bool has_lights;             /* --lights N given */
     uint32_t lights;
     uint32_t width, height;      /* --size WxH */

@@ -403,6 +403,7 @@ int pg_cmd_compare(int argc, char **argv)
         if (side_render(&R, &fi, f, opt.frames, &err)) goto done;
     }
     if (opt.explain) {
+        printf("explain: %s\nexplain: %s\n", app.camera_why, app.lights_why);
         pg_print_explain(A.s, stdout);
         pg_print_explain(R.s, stdout);
     }

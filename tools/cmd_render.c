@@ -142,7 +142,10 @@ int pg_cmd_render(int argc, char **argv)
         samples[f] = st.gpu_total_ms;
         for (uint32_t p = 0; p < st.n_passes; p++) samples[(size_t)(p + 1) * opt.frames + f] = st.pass_ms[p];
     }
-    if (opt.explain) pg_print_explain(s, stdout);
+    if (opt.explain) {
+        printf("explain: %s\nexplain: %s\n", app.camera_why, app.lights_why);
+        pg_print_explain(s, stdout);
+    }
     uint32_t w, h;
     pg_format fmt;
     const uint8_t *ldr = pg_runtime_output(s->runtime, 0, &w, &h, &fmt);

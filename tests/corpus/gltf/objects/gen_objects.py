@@ -1,0 +1,164 @@
+#!/usr/bin/env python3
+"""Generates the valid single-object glTF files used by the framing / default-lighting / camera
+tests (tests/test_scene.c, tests/test_gpu_framing.c, tests/cli_test.sh). Deterministic; the output
+is committed. Run: `python3 tests/corpus/gltf/objects/gen_objects.py`.
+
+  cube.gltf          unit cube (side 1) at the origin, flat normals
+  sphere.gltf        UV sphere, radius 1, centred at (3, 1, -2)
+  quad.gltf          flat 2x2 quad in the XZ plane facing +Y (a floor tile)
+  rod.gltf           long thin box 10 x 0.2 x 0.2 along X
+  tiny.gltf          cube of side 1e-3
+  huge.gltf          cube of side 1e4 centred at (5e3, 0, 0)
+  camera.gltf        the unit cube + one perspective camera 'front' (node 'front_node') at
+                     (0.5, 0.8, 3) looking at the origin, yfov 0.6, znear 0.1, zfar 100
+  two_cameras.gltf   the unit cube + camera 'side' (perspective, infinite zfar, node 'side_node'
+                     at (4, 0, 0) looking along -X) and camera 'top' (orthographic, node 'top_node')
+"""
+import base64
+import json
+import math
+import os
+import struct
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def b64(data):
+    return "data:application/octet-stream;base64," + base64.b64encode(data).decode()
+
+
+def box(mn, mx):
+    """24 vertices (flat normals), 36 indices."""
+    faces = [  # normal, four corners (counter-clockwise seen from outside)
+        ((1, 0, 0), [(1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1)]),
+        ((-1, 0, 0), [(0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 1, 0)]),
+        ((0, 1, 0), [(0, 1, 0), (0, 1, 1), (1, 1, 1), (1, 1, 0)]),
+        ((0, -1, 0), [(0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1)]),
+        ((0, 0, 1), [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]),
+        ((0, 0, -1), [(0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0)]),
+    ]
+    pos, nrm, idx = [], [], []
+    for n, corners in faces:
+        base = len(pos)
+        for c in corners:
+            pos.append(tuple(mn[k] + c[k] * (mx[k] - mn[k]) for k in range(3)))
+            nrm.append(n)
+        idx += [base, base + 1, base + 2, base, base + 2, base + 3]
+    return pos, nrm, idx
+
+
+def sphere(center, r, nu=24, nv=12):
+    pos, nrm, idx = [], [], []
+    for j in range(nv + 1):
+        th = math.pi * j / nv
+        for i in range(nu + 1):
+            ph = 2 * math.pi * i / nu
+            n = (math.sin(th) * math.cos(ph), math.cos(th), -math.sin(th) * math.sin(ph))
+            nrm.append(n)
+            pos.append(tuple(center[k] + r * n[k] for k in range(3)))
+    for j in range(nv):
+        for i in range(nu):
+            a = j * (nu + 1) + i
+            b = a + nu + 1
+            idx += [a, b, a + 1, a + 1, b, b + 1]
+    return pos, nrm, idx
+
+
+def quad():
+    pos = [(-1, 0, -1), (-1, 0, 1), (1, 0, 1), (1, 0, -1)]
+    return pos, [(0, 1, 0)] * 4, [0, 1, 2, 0, 2, 3]
+
+
+def look_rotation(eye, target):
+    """Unit quaternion (x, y, z, w) turning the node's -Z to (target - eye), +Y kept up."""
+    f = [target[k] - eye[k] for k in range(3)]
+    l = math.sqrt(sum(x * x for x in f))
+    f = [x / l for x in f]
+    z = [-x for x in f]                       # node +Z = -forward
+    up = (0, 1, 0)
+    x = [up[1] * z[2] - up[2] * z[1], up[2] * z[0] - up[0] * z[2], up[0] * z[1] - up[1] * z[0]]
+    lx = math.sqrt(sum(v * v for v in x))
+    x = [v / lx for v in x]
+    y = [z[1] * x[2] - z[2] * x[1], z[2] * x[0] - z[0] * x[2], z[0] * x[1] - z[1] * x[0]]
+    m00, m01, m02 = x[0], y[0], z[0]
+    m10, m11, m12 = x[1], y[1], z[1]
+    m20, m21, m22 = x[2], y[2], z[2]
+    tr = m00 + m11 + m22
+    if tr > 0:
+        s = math.sqrt(tr + 1.0) * 2
+        return [(m21 - m12) / s, (m02 - m20) / s, (m10 - m01) / s, 0.25 * s]
+    if m00 > m11 and m00 > m22:
+        s = math.sqrt(1.0 + m00 - m11 - m22) * 2
+        return [0.25 * s, (m01 + m10) / s, (m02 + m20) / s, (m21 - m12) / s]
+    if m11 > m22:
+        s = math.sqrt(1.0 + m11 - m00 - m22) * 2
+        return [(m01 + m10) / s, 0.25 * s, (m12 + m21) / s, (m02 - m20) / s]
+    s = math.sqrt(1.0 + m22 - m00 - m11) * 2
+    return [(m02 + m20) / s, (m12 + m21) / s, 0.25 * s, (m10 - m01) / s]
+
+
+def doc(mesh, cameras=None, camera_nodes=None):
+    pos, nrm, idx = mesh
+    pb = b"".join(struct.pack("<3f", *p) for p in pos)
+    nb = b"".join(struct.pack("<3f", *n) for n in nrm)
+    ib = struct.pack("<%dI" % len(idx), *idx)
+    data = pb + nb + ib
+    mn = [min(p[k] for p in pos) for k in range(3)]
+    mx = [max(p[k] for p in pos) for k in range(3)]
+    nodes = [{"name": "object", "mesh": 0}]
+    for cn in camera_nodes or []:
+        nodes.append(cn)
+    d = {
+        "asset": {"version": "2.0", "generator": "passgraph gen_objects.py"},
+        "scene": 0,
+        "scenes": [{"nodes": list(range(len(nodes)))}],
+        "nodes": nodes,
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2,
+                                    "material": 0}]}],
+        "materials": [{"name": "grey", "pbrMetallicRoughness": {
+            "baseColorFactor": [0.8, 0.8, 0.8, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": len(pos), "type": "VEC3",
+             "min": mn, "max": mx},
+            {"bufferView": 1, "componentType": 5126, "count": len(nrm), "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5125, "count": len(idx), "type": "SCALAR"},
+        ],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": len(pb)},
+            {"buffer": 0, "byteOffset": len(pb), "byteLength": len(nb)},
+            {"buffer": 0, "byteOffset": len(pb) + len(nb), "byteLength": len(ib)},
+        ],
+        "buffers": [{"byteLength": len(data), "uri": b64(data)}],
+    }
+    if cameras:
+        d["cameras"] = cameras
+    return d
+
+
+def write(name, d):
+    with open(os.path.join(HERE, name), "w") as f:
+        json.dump(d, f, indent=1)
+        f.write("\n")
+
+
+cube = box((-0.5, -0.5, -0.5), (0.5, 0.5, 0.5))
+write("cube.gltf", doc(cube))
+write("sphere.gltf", doc(sphere((3, 1, -2), 1.0)))
+write("quad.gltf", doc(quad()))
+write("rod.gltf", doc(box((-5, -0.1, -0.1), (5, 0.1, 0.1))))
+write("tiny.gltf", doc(box((-5e-4, -5e-4, -5e-4), (5e-4, 5e-4, 5e-4))))
+write("huge.gltf", doc(box((0, -5e3, -5e3), (1e4, 5e3, 5e3))))
+eye = (0.5, 0.8, 3.0)
+write("camera.gltf", doc(cube,
+      cameras=[{"name": "front", "type": "perspective",
+                "perspective": {"yfov": 0.6, "znear": 0.1, "zfar": 100.0, "aspectRatio": 1.5}}],
+      camera_nodes=[{"name": "front_node", "camera": 0, "translation": list(eye),
+                     "rotation": look_rotation(eye, (0, 0, 0))}]))
+write("two_cameras.gltf", doc(cube,
+      cameras=[{"name": "side", "type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.05}},
+               {"name": "top", "type": "orthographic",
+                "orthographic": {"xmag": 1.0, "ymag": 1.0, "znear": 0.1, "zfar": 10.0}}],
+      camera_nodes=[{"name": "side_node", "camera": 0, "translation": [4, 0, 0],
+                     "rotation": look_rotation((4, 0, 0), (0, 0, 0))},
+                    {"name": "top_node", "camera": 1, "translation": [0, 5, 0],
+                     "rotation": [-math.sqrt(0.5), 0, 0, math.sqrt(0.5)]}]))
