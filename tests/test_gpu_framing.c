@@ -1,0 +1,202 @@
+/* test_gpu_framing.c - any glTF renders framed and lit with the default options (issue 11): the
+ * generated objects of tests/corpus/gltf/objects/ (cube, sphere, flat quad, long rod, 1e-3 and
+ * 1e4 cubes) are rendered on the Vulkan device (lavapipe) with the default view of the tools
+ * (pg_app_default_view: auto framing + object lights) at 160x90, with the validation layer and
+ * synchronization validation on (zero messages). The object's pixels come from the albedo debug
+ * view; they must lie fully inside the image, span 20-90% of the shorter image axis, and be lit
+ * (>= 90% of them with luma > 10, mean luma 40..220 of 255). The glTF camera is the default for a
+ * file that has one: its image equals a render with the camera given explicitly, and differs
+ * from --camera auto, which frames the object. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+#include "gpu_harness.h"
+#include "pass_list.h"
+#include "test_util.h"
+
+#define W 160
+#define H 90
+
+static pg_gpu *g_gpu;
+static pg_pass_registry g_reg;
+
+typedef struct shot {
+    bool ok;
+    uint32_t n_obj;                /* object pixels (albedo view not black) */
+    int x0, y0, x1, y1;            /* their bounding box */
+    double lit_fraction, mean_luma;/* over the object pixels, in the lit image */
+    uint8_t *ldr;                  /* the lit image */
+} shot;
+
+static double luma(const uint8_t *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
+static shot take(const char *label, const pg_scene_gpu *sg, const pg_frame_info *fi)
+{
+    shot s;
+    memset(&s, 0, sizeof s);
+    pg_param_override albedo = {"view", "albedo"};
+    pg_th_frame a, l;
+    if (!pg_th_render(g_gpu, &g_reg, sg, "pipelines/naive.json", &albedo, 1, fi, 1, false, &a)) {
+        CHECK_MSG(0, "%s: albedo render", label);
+        return s;
+    }
+    if (!pg_th_render(g_gpu, &g_reg, sg, "pipelines/naive.json", NULL, 0, fi, 1, false, &l)) {
+        CHECK_MSG(0, "%s: lit render", label);
+        pg_th_release(&a);
+        return s;
+    }
+    s.x0 = W;
+    s.y0 = H;
+    s.x1 = s.y1 = -1;
+    uint32_t lit = 0;
+    double sum = 0;
+    for (uint32_t y = 0; y < H; y++)
+        for (uint32_t x = 0; x < W; x++) {
+            const uint8_t *pa = a.ldr + ((size_t)y * W + x) * 4, *pl = l.ldr + ((size_t)y * W + x) * 4;
+            if (pa[0] + pa[1] + pa[2] == 0) continue;
+            s.n_obj++;
+            if ((int)x < s.x0) s.x0 = (int)x;
+            if ((int)y < s.y0) s.y0 = (int)y;
+            if ((int)x > s.x1) s.x1 = (int)x;
+            if ((int)y > s.y1) s.y1 = (int)y;
+            double lu = luma(pl);
+            sum += lu;
+            if (lu > 10) lit++;
+        }
+    s.lit_fraction = s.n_obj ? (double)lit / s.n_obj : 0;
+    s.mean_luma = s.n_obj ? sum / s.n_obj : 0;
+    s.ldr = malloc((size_t)W * H * 4);
+    if (s.ldr) memcpy(s.ldr, l.ldr, (size_t)W * H * 4);
+    s.ok = s.ldr != NULL;
+    pg_th_release(&a);
+    pg_th_release(&l);
+    return s;
+}
+
+static void check_framed_lit(const char *label, const shot *s)
+{
+    CHECK_MSG(s->ok && s->n_obj > 0, "%s: object not visible", label);
+    if (!s->ok || !s->n_obj) return;
+    double span = fmax(s->x1 - s->x0 + 1, s->y1 - s->y0 + 1) / (double)(W < H ? W : H);
+    printf("%s: object %u px, box x %d..%d y %d..%d (%.0f%% of the shorter axis), lit %.1f%%, mean luma %.1f\n",
+           label, s->n_obj, s->x0, s->x1, s->y0, s->y1, 100 * span, 100 * s->lit_fraction, s->mean_luma);
+    CHECK_MSG(s->x0 > 0 && s->y0 > 0 && s->x1 < W - 1 && s->y1 < H - 1, "%s: object touches the border", label);
+    CHECK_MSG(span >= 0.2 && span <= 0.9, "%s: object spans %.0f%% of the shorter axis", label, 100 * span);
+    CHECK_MSG(s->lit_fraction >= 0.9, "%s: only %.1f%% of the object lit", label, 100 * s->lit_fraction);
+    CHECK_MSG(s->mean_luma >= 40 && s->mean_luma <= 220, "%s: mean luma %.1f", label, s->mean_luma);
+}
+
+static bool open_scene(const char *file, pg_scene **sc, pg_scene_gpu **sg)
+{
+    char path[PG_PATH_MAX];
+    snprintf(path, sizeof path, "%s/corpus/gltf/objects/%s", PG_TEST_DIR, file);
+    pg_error err = {0};
+    *sc = NULL;
+    *sg = NULL;
+    if (pg_scene_load(path, sc, &err) || pg_scene_gpu_create(g_gpu, *sc, sg, &err)) {
+        CHECK_MSG(0, "%s: %s", file, err.msg);
+        pg_scene_free(*sc);
+        *sc = NULL;
+        return false;
+    }
+    return true;
+}
+
+static pg_frame_info view_of(const pg_scene *sc, const char *spec, char *why, size_t why_size)
+{
+    pg_frame_info fi = {.time = 0, .width = W, .height = H};
+    pg_error err = {0};
+    char lw[256];
+    if (pg_app_default_view(sc, spec, (float)W / H, 256, 1, &fi.camera, &fi.lights, why, why_size, lw, sizeof lw, &err))
+        CHECK_MSG(0, "default view: %s", err.msg);
+    return fi;
+}
+
+static void check_objects(void)
+{
+    const char *files[] = {"cube.gltf", "sphere.gltf", "quad.gltf", "rod.gltf", "tiny.gltf", "huge.gltf"};
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        pg_scene *sc;
+        pg_scene_gpu *sg;
+        if (!open_scene(files[i], &sc, &sg)) continue;
+        char why[256];
+        pg_frame_info fi = view_of(sc, NULL, why, sizeof why);
+        CHECK_MSG(strstr(why, "auto framing") != NULL, "%s: %s", files[i], why);
+        shot s = take(files[i], sg, &fi);
+        check_framed_lit(files[i], &s);
+        free(s.ldr);
+        pg_scene_gpu_destroy(g_gpu, sg);
+        pg_scene_free(sc);
+    }
+}
+
+static void check_cameras(void)
+{
+    pg_scene *sc;
+    pg_scene_gpu *sg;
+    if (!open_scene("camera.gltf", &sc, &sg)) return;
+    char why[256];
+    pg_frame_info def = view_of(sc, NULL, why, sizeof why);
+    CHECK_MSG(strstr(why, "glTF camera 0 'front'") != NULL, "camera.gltf default: %s", why);
+    pg_frame_info expl = def;
+    pg_error err = {0};
+    CHECK(pg_camera_from_scene(sc, 0, (float)W / H, &expl.camera, &err) == PG_OK);
+    pg_frame_info by_name = view_of(sc, "front", why, sizeof why);
+    pg_frame_info autof = view_of(sc, "auto", why, sizeof why);
+    CHECK_MSG(strstr(why, "auto framing") != NULL, "camera.gltf auto: %s", why);
+    shot a = take("camera.gltf default", sg, &def), b = take("camera.gltf explicit", sg, &expl),
+         c = take("camera.gltf --camera front", sg, &by_name), d = take("camera.gltf --camera auto", sg, &autof);
+    if (a.ok && b.ok && c.ok && d.ok) {
+        CHECK_MSG(memcmp(a.ldr, b.ldr, (size_t)W * H * 4) == 0, "default != the glTF camera given explicitly");
+        CHECK_MSG(memcmp(a.ldr, c.ldr, (size_t)W * H * 4) == 0, "default != --camera front");
+        CHECK_MSG(memcmp(a.ldr, d.ldr, (size_t)W * H * 4) != 0, "the glTF camera renders like auto framing");
+        /* the file's camera looks at the cube's centre from 3.1 units: the cube is centred */
+        double cx = 0.5 * (a.x0 + a.x1), cy = 0.5 * (a.y0 + a.y1);
+        CHECK_MSG(fabs(cx - W / 2.0) < 0.1 * W && fabs(cy - H / 2.0) < 0.1 * H, "glTF camera: cube centre at %.1f, %.1f",
+                  cx, cy);
+    }
+    check_framed_lit("camera.gltf default (glTF camera)", &a);
+    check_framed_lit("camera.gltf --camera auto", &d);
+    free(a.ldr);
+    free(b.ldr);
+    free(c.ldr);
+    free(d.ldr);
+    pg_scene_gpu_destroy(g_gpu, sg);
+    pg_scene_free(sc);
+
+    if (!open_scene("two_cameras.gltf", &sc, &sg)) return;
+    pg_frame_info side = view_of(sc, NULL, why, sizeof why);
+    CHECK_MSG(strstr(why, "'side'") != NULL, "two_cameras.gltf default: %s", why);
+    shot s = take("two_cameras.gltf default ('side', infinite zfar)", sg, &side);
+    check_framed_lit("two_cameras.gltf default ('side', infinite zfar)", &s);
+    free(s.ldr);
+    pg_frame_info fi;
+    memset(&fi, 0, sizeof fi);
+    char lw[256];
+    pg_result r = pg_app_default_view(sc, "top", (float)W / H, 256, 1, &fi.camera, &fi.lights, why, sizeof why, lw,
+                                      sizeof lw, &err);
+    CHECK_MSG(r == PG_ERR_INVALID_ARG && strstr(err.msg, "'top'") && strstr(err.msg, "orthographic"),
+              "orthographic camera: %d %s", r, err.msg);
+    pg_scene_gpu_destroy(g_gpu, sg);
+    pg_scene_free(sc);
+}
+
+int main(void)
+{
+    if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_framing", "PG_TEST_NO_GPU set");
+    pg_register_builtin_passes(&g_reg);
+    pg_gpu_desc gd = {.validation = true, .device_index = -1};
+    pg_error err = {0};
+    if (pg_gpu_create(&gd, &g_gpu, &err)) {
+        fprintf(stderr, "test_gpu_framing: %s\n", err.msg);
+        return 1;
+    }
+    check_objects();
+    check_cameras();
+    printf("validation messages: %u\n", g_gpu->validation_messages);
+    CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);
+    pg_gpu_destroy(g_gpu);
+    return pg_test_finish("test_gpu_framing");
+}
