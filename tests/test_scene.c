@@ -755,6 +755,216 @@ static void test_corpus(void)
     test_corpus_valid_details();
 }
 
+/* ---- object framing, object lights, glTF cameras (tests/corpus/gltf/objects) ------------------ */
+
+static pg_scene *load_object(const char *file)
+{
+    char path[PG_PATH_MAX];
+    snprintf(path, sizeof path, "%s/corpus/gltf/objects/%s", PG_TEST_DIR, file);
+    pg_scene *s = NULL;
+    pg_error err = {0};
+    if (pg_scene_load_gltf(path, &s, &err)) CHECK_MSG(0, "%s: %s", file, err.msg);
+    return s;
+}
+
+/* Projects the 8 corners of the scene bounds; *inside: all in front of near, behind far and in the
+ * image; returns the larger side of their screen box over the shorter image side. */
+static double projected_span(const pg_scene *s, const pg_camera *cam, float w, float h, bool *inside)
+{
+    float V[16], P[16], VP[16];
+    pg_camera_view(cam, V);
+    pg_camera_proj(cam, P);
+    pg_mat4_mul(P, V, VP);
+    double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
+    *inside = true;
+    for (int i = 0; i < 8; i++) {
+        float p[4] = {(i & 1) ? s->bounds_max[0] : s->bounds_min[0], (i & 2) ? s->bounds_max[1] : s->bounds_min[1],
+                      (i & 4) ? s->bounds_max[2] : s->bounds_min[2], 1}, o[4];
+        xform(VP, p, o);
+        if (!(o[3] > 0)) {
+            *inside = false;
+            return 0;
+        }
+        double x = o[0] / o[3], y = o[1] / o[3], z = o[2] / o[3];
+        if (x < -1 || x > 1 || y < -1 || y > 1 || z < 0 || z > 1) *inside = false;
+        x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
+    }
+    double bw = 0.5 * (x1 - x0) * w, bh = 0.5 * (y1 - y0) * h;
+    return fmax(bw, bh) / fmin(w, h);
+}
+
+static void test_object_framing(void)
+{
+    const char *files[] = {"cube.gltf", "sphere.gltf", "quad.gltf", "rod.gltf", "tiny.gltf", "huge.gltf"};
+    const float aspects[] = {16.0f / 9, 1.0f, 9.0f / 16, 4.0f};
+    float cube_intensity = 0, cube_r = 0;
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        pg_scene *s = load_object(files[i]);
+        if (!s) continue;
+        CHECK(s->n_cameras == 0 && s->cameras == NULL);
+        for (size_t a = 0; a < sizeof aspects / sizeof aspects[0]; a++) {
+            float r = 0, d = 0;
+            pg_camera cam = pg_camera_frame_object(s, aspects[a], &r, &d);
+            bool inside;
+            double span = projected_span(s, &cam, 100.0f * aspects[a], 100.0f, &inside);
+            CHECK_MSG(inside, "%s aspect %.2f: bounds not fully in view", files[i], aspects[a]);
+            CHECK_MSG(span >= 0.2 && span <= 0.9, "%s aspect %.2f: span %.2f", files[i], aspects[a], span);
+            /* near/far hug the bounding sphere: depth precision follows the object's size */
+            CHECK_MSG(cam.near_z > 0.5f * d && cam.far_z < 1.5f * d && cam.far_z / cam.near_z < 3.0f,
+                      "%s: near %g far %g d %g", files[i], cam.near_z, cam.far_z, d);
+            /* from above and in front (+Y, +Z), to the side (+X) */
+            float c[3];
+            for (int k = 0; k < 3; k++) c[k] = 0.5f * (s->bounds_min[k] + s->bounds_max[k]);
+            CHECK(cam.position[1] > c[1] && cam.position[2] > c[2] && cam.position[0] > c[0]);
+        }
+        float r = 0;
+        pg_camera_frame_object(s, 1.0f, &r, NULL);
+        pg_light_setup L = pg_light_setup_object(s, 256, 3);
+        for (int k = 0; k < 3; k++) /* the box surrounds the bounds */
+            CHECK(L.box_min[k] < s->bounds_min[k] - 0.5f * r && L.box_max[k] > s->bounds_max[k] + 0.5f * r);
+        CHECK(fabsf(L.radius - 1.5f * r) <= 1e-5f * r);
+        if (!strcmp(files[i], "cube.gltf")) {
+            cube_intensity = L.intensity;
+            cube_r = r;
+            CHECK(fabsf(L.intensity - PG_OBJECT_LIGHT_K * r * r) < 1e-6f);
+            /* the total stays when the count changes */
+            pg_light_setup L4 = pg_light_setup_object(s, 1024, 3);
+            CHECK(fabsf(L4.intensity * 4 - L.intensity) < 1e-6f);
+        }
+        if (!strcmp(files[i], "huge.gltf") && cube_r > 0) /* intensity ~ r^2 */
+            CHECK_MSG(fabs(L.intensity / cube_intensity / ((r / cube_r) * (r / cube_r)) - 1) < 1e-3,
+                      "huge: intensity %g", L.intensity);
+        pg_scene_free(s);
+    }
+    /* empty / NULL scene: the unit box, still valid */
+    pg_camera c0 = pg_camera_frame_object(NULL, 0.0f, NULL, NULL);
+    CHECK(c0.aspect == 1.0f && c0.near_z > 0 && c0.far_z > c0.near_z);
+}
+
+static void test_gltf_cameras(void)
+{
+    pg_error err = {0};
+    pg_scene *s = load_object("camera.gltf");
+    if (s) {
+        CHECK(s->n_cameras == 1);
+        if (s->n_cameras == 1) {
+            const pg_scene_camera *c = &s->cameras[0];
+            CHECK(!strcmp(c->name, "front") && !strcmp(c->node_name, "front_node"));
+            CHECK(c->type == PG_CAMERA_PERSPECTIVE && c->gltf_camera == 0 && c->gltf_node == 1);
+            CHECK(fabsf(c->yfov_rad - 0.6f) < 1e-6f && fabsf(c->znear - 0.1f) < 1e-7f && fabsf(c->zfar - 100) < 1e-4f);
+            CHECK(fabsf(c->aspect_ratio - 1.5f) < 1e-6f);
+            CHECK(fabsf(c->position[0] - 0.5f) < 1e-6f && fabsf(c->position[1] - 0.8f) < 1e-6f &&
+                  fabsf(c->position[2] - 3.0f) < 1e-6f);
+            /* looks at the origin (gen_objects.py), up has no component along forward */
+            float l = sqrtf(0.25f + 0.64f + 9.0f);
+            CHECK(fabsf(c->forward[0] + 0.5f / l) < 1e-5f && fabsf(c->forward[1] + 0.8f / l) < 1e-5f &&
+                  fabsf(c->forward[2] + 3.0f / l) < 1e-5f);
+            CHECK(fabsf(c->up[0] * c->forward[0] + c->up[1] * c->forward[1] + c->up[2] * c->forward[2]) < 1e-5f &&
+                  c->up[1] > 0.9f);
+            pg_camera cam;
+            CHECK(pg_camera_from_scene(s, 0, 2.0f, &cam, &err) == PG_OK);
+            CHECK(fabsf(cam.fov_y_deg - 0.6f * 180.0f / 3.14159265f) < 1e-3f && cam.aspect == 2.0f);
+            CHECK(cam.near_z == c->znear && cam.far_z == c->zfar);
+            /* the origin projects to the image centre */
+            float V[16], P[16], VP[16], o4[4], org[4] = {0, 0, 0, 1};
+            pg_camera_view(&cam, V);
+            pg_camera_proj(&cam, P);
+            pg_mat4_mul(P, V, VP);
+            xform(VP, org, o4);
+            CHECK(o4[3] > 0 && fabsf(o4[0] / o4[3]) < 1e-4f && fabsf(o4[1] / o4[3]) < 1e-4f);
+        }
+        uint32_t idx = 9;
+        CHECK(pg_scene_find_camera(s, "0", &idx, &err) == PG_OK && idx == 0);
+        CHECK(pg_scene_find_camera(s, "front", &idx, &err) == PG_OK && idx == 0);
+        CHECK(pg_scene_find_camera(s, "front_node", &idx, &err) == PG_OK && idx == 0);
+        CHECK(pg_scene_find_camera(s, "1", &idx, &err) == PG_ERR_INVALID_ARG);
+        CHECK_MSG(strstr(err.msg, "--camera 1: no such camera") && strstr(err.msg, "0 'front' (node 'front_node')") &&
+                      strstr(err.msg, "or auto"),
+                  "%s", err.msg);
+        pg_scene_free(s);
+    }
+    s = load_object("two_cameras.gltf");
+    if (s) {
+        CHECK(s->n_cameras == 2);
+        if (s->n_cameras == 2) {
+            CHECK(!strcmp(s->cameras[0].name, "side") && s->cameras[0].zfar == 0);
+            CHECK(!strcmp(s->cameras[1].name, "top") && s->cameras[1].type == PG_CAMERA_ORTHOGRAPHIC);
+            CHECK(s->cameras[1].xmag == 1.0f && s->cameras[1].ymag == 1.0f && s->cameras[1].zfar == 10.0f);
+            CHECK(s->cameras[1].forward[1] < -0.999f); /* rotated -90 deg about X: looks down */
+            pg_camera cam;
+            CHECK(pg_camera_from_scene(s, 0, 1.0f, &cam, &err) == PG_OK);
+            /* infinite zfar: twice the farthest bounds corner from (4,0,0) = 2*|(4.5,.5,.5)|, or 1000 near */
+            float want = fmaxf(2.0f * sqrtf(4.5f * 4.5f + 0.5f), 1000.0f * 0.05f);
+            CHECK_MSG(fabsf(cam.far_z - want) < 1e-3f * want, "far %g want %g", cam.far_z, want);
+            CHECK(pg_camera_from_scene(s, 1, 1.0f, &cam, &err) == PG_ERR_INVALID_ARG);
+            CHECK_MSG(strstr(err.msg, "'top'") && strstr(err.msg, "orthographic") && strstr(err.msg, "two_cameras.gltf"),
+                      "%s", err.msg);
+            CHECK(pg_camera_from_scene(s, 2, 1.0f, &cam, &err) == PG_ERR_INVALID_ARG);
+        }
+        uint32_t idx = 9;
+        CHECK(pg_scene_find_camera(s, "top", &idx, &err) == PG_OK && idx == 1);
+        CHECK(pg_scene_find_camera(s, "side_node", &idx, &err) == PG_OK && idx == 0);
+        CHECK(pg_scene_find_camera(s, "1", &idx, &err) == PG_OK && idx == 1);
+        CHECK(pg_scene_find_camera(s, "nope", &idx, &err) == PG_ERR_INVALID_ARG);
+        CHECK_MSG(strstr(err.msg, "0 'side' (node 'side_node')") && strstr(err.msg, "1 'top' (node 'top_node', orthographic)"),
+                  "%s", err.msg);
+        pg_scene_free(s);
+    }
+    s = load_object("cube.gltf");
+    if (s) {
+        uint32_t idx;
+        CHECK(pg_scene_find_camera(s, "0", &idx, &err) == PG_ERR_INVALID_ARG);
+        CHECK_MSG(strstr(err.msg, "has no cameras; use --camera auto"), "%s", err.msg);
+        pg_scene_free(s);
+    }
+    /* the atrium has no cameras; its interior camera is unchanged (docs and tests depend on it) */
+    pg_scene *d = NULL;
+    if (pg_scene_create_default(&d, &err) == PG_OK) {
+        CHECK(d->n_cameras == 0 && d->cameras == NULL);
+        pg_scene_free(d);
+    }
+}
+
+/* Bad camera objects in a file: errors name the glTF object. */
+static void test_gltf_camera_errors(void)
+{
+    const char *tmpl =
+        "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1]}],"
+        "\"nodes\":[{\"mesh\":0},{\"camera\":0}],\"cameras\":[%s],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
+        "\"buffers\":[{\"byteLength\":36,\"uri\":\"data:application/octet-stream;base64,"
+        "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA\"}]}";
+    struct {
+        const char *cam, *want;
+    } cases[] = {
+        {"{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.7,\"znear\":0.1}}", NULL},
+        {"{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.7,\"znear\":0.1,\"zfar\":0.05}}",
+         "cameras[0].perspective.zfar"},
+        {"{\"type\":\"perspective\",\"perspective\":{\"yfov\":4.0,\"znear\":0.1}}", "cameras[0].perspective.yfov"},
+    };
+    char path[PG_PATH_MAX];
+    snprintf(path, sizeof path, "/tmp/pg_test_scene_cam_%d.gltf", (int)getpid());
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[2048];
+        snprintf(text, sizeof text, tmpl, cases[i].cam);
+        write_text(path, text);
+        pg_scene *s = NULL;
+        pg_error err = {0};
+        pg_result r = pg_scene_load_gltf(path, &s, &err);
+        if (!cases[i].want) {
+            CHECK_MSG(r == PG_OK && s && s->n_cameras == 1 && !strcmp(s->cameras[0].name, "cameras[0]") &&
+                          !strcmp(s->cameras[0].node_name, "nodes[1]"),
+                      "case %zu: %s", i, err.msg);
+        } else {
+            CHECK_MSG(r != PG_OK && strstr(err.msg, cases[i].want), "case %zu: %d %s", i, r, err.msg);
+        }
+        pg_scene_free(s);
+    }
+    unlink(path);
+}
+
 static void test_api_edges(void)
 {
     pg_scene *s = (pg_scene *)1;
@@ -775,6 +985,9 @@ int main(void)
     test_scenarios();
     test_corpus();
     test_api_edges();
+    test_object_framing();
+    test_gltf_cameras();
+    test_gltf_camera_errors();
     test_sponza();
     return pg_test_finish("test_scene");
 }
