@@ -48,6 +48,7 @@ static const char *const dump_help =
     "\n"
     "accepted so that a 'passgraph render' command line can be reused, without effect here:\n"
     "  --time, --seed, --radius, --intensity, --frames, --device, --validation, --explain, --quiet,\n"
+    "  --camera (checked: an unknown glTF camera is refused, as by render),\n"
     "  --ocio-config, --display, --ocio-view (checked against the OCIO config)\n"
     "\n"
     "examples:\n"

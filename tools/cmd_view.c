@@ -36,6 +36,8 @@ typedef struct view_action {
     char arg[PG_PATH_MAX * 2];
 } view_action;
 
+#define VIEW_MAX_CAMS 64
+
 typedef struct viewer {
     pg_app app;
     GLFWwindow *window;
@@ -103,6 +105,10 @@ typedef struct viewer {
     pg_param_override settings[3];
     uint32_t n_settings;
     char scene_input[PG_PATH_MAX];
+    /* camera choice: 0 = the start view (app.camera_why), 1 = auto framing, 2+k = glTF camera k */
+    int cam_choice, n_cam_items;
+    char cam_items[VIEW_MAX_CAMS + 2][PG_NAME_MAX * 2 + 16];
+    const char *cam_ptrs[VIEW_MAX_CAMS + 2];
     view_action actions[MAX_ACTIONS];
     int n_actions;
     uint32_t growths;           /* light-list (grow buffer) enlargements seen so far */
@@ -385,6 +391,45 @@ static void camera_angles(viewer *v)
     v->pitch = asinf(fmaxf(-1.0f, fminf(1.0f, d[1] / len)));
 }
 
+/* The camera combo's items for the current scene: the start view, auto framing, the glTF cameras
+ * (at most VIEW_MAX_CAMS listed). */
+static void camera_list(viewer *v, const char *start_label)
+{
+    const pg_scene *sc = v->app.scene;
+    int n = 0;
+    snprintf(v->cam_items[n++], sizeof v->cam_items[0], "%s", start_label);
+    snprintf(v->cam_items[n++], sizeof v->cam_items[0], "auto framing");
+    for (uint32_t k = 0; sc && k < sc->n_cameras && k < VIEW_MAX_CAMS; k++)
+        snprintf(v->cam_items[n++], sizeof v->cam_items[0], "%u %s (node %s)%s", k, sc->cameras[k].name,
+                 sc->cameras[k].node_name, sc->cameras[k].type == PG_CAMERA_ORTHOGRAPHIC ? " [orthographic]" : "");
+    for (int i = 0; i < n; i++) v->cam_ptrs[i] = v->cam_items[i];
+    v->n_cam_items = n;
+    v->cam_choice = 0;
+}
+
+/* Applies combo item `choice`; an orthographic camera is refused into v->error. */
+static void camera_choose(viewer *v, int choice)
+{
+    const pg_scene *sc = v->app.scene;
+    float aspect = v->win.extent.height ? (float)v->win.extent.width / (float)v->win.extent.height : 16.0f / 9;
+    pg_camera cam = v->home;
+    if (choice == 1) {
+        float r = 0, d = 0;
+        cam = pg_camera_frame_object(sc, aspect, &r, &d);
+        printf("view: camera: auto framing (bounds radius %.3g, distance %.3g)\n", r, d);
+    } else if (choice >= 2) {
+        pg_error err = {0};
+        if (pg_camera_from_scene(sc, (uint32_t)(choice - 2), aspect, &cam, &err)) {
+            snprintf(v->error, sizeof v->error, "%s", err.msg);
+            return;
+        }
+        printf("view: camera: glTF camera %d '%s'\n", choice - 2, sc->cameras[choice - 2].name);
+    }
+    v->cam_choice = choice;
+    v->camera = cam;
+    camera_angles(v);
+}
+
 static void camera_update(viewer *v, float dt)
 {
     float fwd[3] = {cosf(v->pitch) * cosf(v->yaw), sinf(v->pitch), cosf(v->pitch) * sinf(v->yaw)};
@@ -546,10 +591,18 @@ static void build_ui(viewer *v)
                     v->app.scene = sc;
                     v->app.scene_gpu = sg;
                     pg_strlcpy(v->app.scene_path, v->scene_input, sizeof v->app.scene_path);
-                    v->home = pg_camera_default_for_scene(sc, 1.0f);
+                    pg_light_setup ls;
+                    char cw[256], lw[256];
+                    pg_error verr = {0};
+                    float aspect = v->win.extent.height ? (float)v->win.extent.width / (float)v->win.extent.height
+                                                        : 16.0f / 9;
+                    if (pg_app_default_view(sc, NULL, aspect, (uint32_t)v->light_count, (uint32_t)v->seed, &v->home,
+                                            &ls, cw, sizeof cw, lw, sizeof lw, &verr))
+                        snprintf(v->error, sizeof v->error, "%s", verr.msg);
+                    printf("view: %s\nview: %s\n", cw, lw);
                     v->camera = v->home;
                     camera_angles(v);
-                    pg_light_setup ls = pg_light_setup_default(sc, (uint32_t)v->light_count, (uint32_t)v->seed);
+                    camera_list(v, "start view");
                     v->app.lights = ls;
                     v->radius = ls.radius;
                     v->intensity = ls.intensity;
@@ -565,8 +618,12 @@ static void build_ui(viewer *v)
             pg_ui_same_line();
             pg_ui_text("time %.2f s", v->time);
             pg_ui_slider_float("fly speed", &v->move_speed, 0.01f, 1000.0f, "%.2f", true);
+            int cam_cur = v->cam_choice;
+            if (pg_ui_combo("camera", &cam_cur, v->cam_ptrs, v->n_cam_items) && cam_cur != v->cam_choice)
+                camera_choose(v, cam_cur);
             if (pg_ui_button("reset view")) {
                 v->camera = v->home;
+                v->cam_choice = 0;
                 camera_angles(v);
             }
             pg_ui_same_line();
@@ -984,11 +1041,22 @@ static pg_result run_action(viewer *v, const view_action *a, pg_error *err)
         v->diff = !strcmp(a->arg, "on");
     } else if (!strcmp(a->what, "lights")) {
         v->light_count = atoi(a->arg);
+    } else if (!strcmp(a->what, "camera")) {
+        if (!strcmp(a->arg, "auto")) {
+            camera_choose(v, 1);
+        } else {
+            uint32_t k = 0;
+            pg_result r = pg_scene_find_camera(v->app.scene, a->arg, &k, err);
+            if (r) return pg_error_prefix(err, "--at %u:camera", a->frame);
+            v->error[0] = 0;
+            camera_choose(v, (int)k + 2);
+            if (v->error[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:camera=%s: %s", a->frame, a->arg, v->error);
+        }
     } else if (!strcmp(a->what, "screenshot")) {
         v->want_shot = true;
         pg_strlcpy(v->shot_file, a->arg, sizeof v->shot_file);
     } else {
-        return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s: unknown action (resize, iconify, restore, copy, set, pipeline, display, ocioview, diff, lights, screenshot)",
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s: unknown action (resize, iconify, restore, copy, set, pipeline, display, ocioview, diff, lights, camera, screenshot)",
                        a->frame, a->what);
     }
     return PG_OK;
@@ -1029,7 +1097,8 @@ int pg_cmd_view(int argc, char **argv)
                    "  --at FRAME:ACTION    scripted action at a frame (repeatable): resize=WxH, iconify,\n"
                    "                       restore, copy=SRC:DST (an edit on disk), set=KEY=VALUE,\n"
                    "                       pipeline=FILE.json, display=NAME, ocioview=NAME (OCIO),\n"
-                   "                       diff=on|off, lights=N, screenshot=FILE.png\n"
+                   "                       diff=on|off, lights=N, screenshot=FILE.png,\n"
+                   "                       camera=auto|N|NAME (as the camera combo)\n"
                    "  (--frames N          exit after N frames; 0 or absent: run until closed)\n",
                    view_help, pg_cli_common_help);
             free(v);
@@ -1150,6 +1219,8 @@ int pg_cmd_view(int argc, char **argv)
     v->time = opt.time;
     v->camera = v->home = v->app.camera;
     camera_angles(v);
+    printf("view: %s\nview: %s\n", v->app.camera_why, v->app.lights_why);
+    camera_list(v, "start view");
     float ext[3] = {v->app.scene->bounds_max[0] - v->app.scene->bounds_min[0],
                     v->app.scene->bounds_max[1] - v->app.scene->bounds_min[1],
                     v->app.scene->bounds_max[2] - v->app.scene->bounds_min[2]};
