@@ -26,7 +26,7 @@ expect_fail() {
 
 "$PG" --help >"$tmp/h" && grep -q "render" "$tmp/h" && ok || bad "passgraph --help"
 "$PG" render --help >"$tmp/h" || bad "render --help exit"
-for o in --pipeline --scene --scenario --lights --size --time --seed --out --set --device --validation \
+for o in --pipeline --scene --scenario --camera --lights --size --time --seed --out --set --device --validation \
          --no-aliasing --explain --frames --radius --intensity --view --debug-view --ocio-config --display \
          --ocio-view --hdr-out; do
   grep -qF -- "$o" "$tmp/h" && ok || bad "render --help does not document $o"
@@ -358,5 +358,42 @@ expect_fail "bench: sweep without values" "KEY=VALUE1" bench --sweep gbuffer --o
 expect_fail "bench: unknown option" "unknown option" bench --bogus --out "$tmp/b5"
 [ ! -e "$tmp/b5" ] && ok || bad "bench: bad options created the output folder"
 
+# ---- default framing, lights and glTF cameras (issue 11; tests/corpus/gltf/objects) ----
+objs="$root/tests/corpus/gltf/objects"
+camline() { "$PG" render --size 64x36 --lights 8 --explain --out "$tmp/c.png" "$@" 2>"$tmp/cerr" | grep -E '^explain: (camera|lights):'; }
+camline >"$tmp/cl" && grep -q "^explain: camera: interior view of the built-in atrium" "$tmp/cl" && \
+  grep -q "^explain: lights: interior box" "$tmp/cl" && ok || { bad "atrium: camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
+camline --scene "$objs/cube.gltf" >"$tmp/cl" && \
+  grep -q "^explain: camera: auto framing (object, no glTF camera: bounds radius 0.866, distance 2.49" "$tmp/cl" && \
+  grep -q "^explain: lights: object box" "$tmp/cl" && ok || { bad "cube: camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
+camline --scene "$objs/camera.gltf" >"$tmp/cl" && grep -q "^explain: camera: glTF camera 0 'front' (node 'front_node'), the scene's first camera" "$tmp/cl" \
+  && ok || { bad "camera.gltf: default camera line"; cat "$tmp/cl" "$tmp/cerr"; }
+camline --scene "$objs/camera.gltf" --camera auto >"$tmp/cl" && grep -q "^explain: camera: auto framing (--camera auto" "$tmp/cl" \
+  && ok || { bad "camera.gltf --camera auto"; cat "$tmp/cl" "$tmp/cerr"; }
+camline --scene "$objs/two_cameras.gltf" --camera side_node >"$tmp/cl" && grep -q "^explain: camera: glTF camera 0 'side' (node 'side_node'), selected by --camera side_node" "$tmp/cl" \
+  && ok || { bad "two_cameras --camera side_node"; cat "$tmp/cl" "$tmp/cerr"; }
+camline --scene "$objs/cube.gltf" --scenario "$root/assets/scenarios/cis565.json" >"$tmp/cl" && \
+  grep -q "^explain: camera: scenario .*cis565.json" "$tmp/cl" && grep -q "^explain: lights: scenario .*cis565.json" "$tmp/cl" \
+  && ok || { bad "scenario camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
+# the default render of a glTF with a camera is the render with that camera named
+"$PG" render --size 64x36 --lights 8 --scene "$objs/camera.gltf" --out "$tmp/cam_default.png" >/dev/null 2>&1 &&
+  "$PG" render --size 64x36 --lights 8 --scene "$objs/camera.gltf" --camera 0 --out "$tmp/cam_0.png" >/dev/null 2>&1 &&
+  "$PG" render --size 64x36 --lights 8 --scene "$objs/camera.gltf" --camera auto --out "$tmp/cam_auto.png" >/dev/null 2>&1 &&
+  cmp -s "$tmp/cam_default.png" "$tmp/cam_0.png" && ! cmp -s "$tmp/cam_default.png" "$tmp/cam_auto.png" \
+  && ok || bad "camera.gltf: default render != --camera 0, or == --camera auto"
+two="$objs/two_cameras.gltf"
+expect_fail "unknown camera lists the cameras" "available: 0 'side' (node 'side_node'), 1 'top' (node 'top_node', orthographic), or auto" \
+  render --scene "$two" --camera nope --size 32x18 --out "$tmp/x.png"
+expect_fail "camera index out of range" "--camera 2: no such camera" render --scene "$two" --camera 2 --size 32x18 --out "$tmp/x.png"
+expect_fail "orthographic camera refused" "camera 'top' (cameras[1], node 'top_node') is orthographic" \
+  render --scene "$two" --camera top --size 32x18 --out "$tmp/x.png"
+expect_fail "camera on a file without cameras" "has no cameras; use --camera auto" \
+  render --scene "$objs/cube.gltf" --camera 0 --size 32x18 --out "$tmp/x.png"
+expect_fail "camera on the atrium" "has no cameras" render --camera 0 --size 32x18 --out "$tmp/x.png"
+expect_fail "empty camera" "--camera: empty name" render --camera "" --size 32x18 --out "$tmp/x.png"
+expect_fail "camera without value" "--camera: missing value" render --camera
+expect_fail "compare: unknown camera" "no such camera" compare --scene "$two" --camera nope --size 32x18
+expect_fail "dump: unknown camera" "no such camera" dump --scene "$two" --camera nope
+expect_fail "bench: unknown camera" "no such camera" bench --scene "$two" --camera nope --size 32x18 --frames 1 --out "$tmp/b_cam"
 echo "cli_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -121,6 +121,14 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     if (opt->has_lights || !(app->has_scenario && app->scenario.has_light_count)) app->lights.count = opt->lights;
     if (opt->has_radius) app->lights.radius = opt->radius;
     if (opt->has_intensity) app->lights.intensity = opt->intensity;
+    app->object_lights = strcmp(app->scene->path, "default") != 0 && !opt->has_intensity &&
+                         !(app->has_scenario && app->scenario.has_intensity);
+    if (app->object_lights && app->lights.count != opt->lights) /* a scenario's light count */
+        app->lights.intensity = pg_light_setup_object(app->scene, app->lights.count, opt->seed).intensity;
+    if (opt->has_radius || opt->has_intensity)
+        snprintf(app->lights_why + strlen(app->lights_why), sizeof app->lights_why - strlen(app->lights_why),
+                 "; %s%s%s from the command line", opt->has_radius ? "radius" : "",
+                 opt->has_radius && opt->has_intensity ? " and " : "", opt->has_intensity ? "intensity" : "");
     app->lights.seed = opt->seed;
     return PG_OK;
 fail:

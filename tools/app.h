@@ -28,6 +28,8 @@ typedef struct pg_app {
     char scene_path[PG_PATH_MAX];
     char camera_why[256];         /* "camera: ..." one line: which camera was chosen and why */
     char lights_why[256];         /* "lights: ..." one line */
+    bool object_lights;           /* the intensity is pg_light_setup_object's (it depends on the
+                                     light count): no scenario intensity, no --intensity */
 } pg_app;
 
 /* The default camera and light set-up for a scene (before a scenario is applied), README "Scenes":

@@ -1869,7 +1869,7 @@ int pg_cmd_bench(int argc, char **argv)
             pg_app_close(&app);
             progress_clear(B);
             /* no device is fatal; a scene that does not load fails its rows */
-            if (ae.code == PG_ERR_NO_DEVICE || ae.code == PG_ERR_VULKAN) {
+            if (ae.code == PG_ERR_NO_DEVICE || ae.code == PG_ERR_VULKAN || ae.code == PG_ERR_INVALID_ARG) {
                 fprintf(stderr, "passgraph bench: %s\n", ae.msg);
                 rc = 1;
                 break;
@@ -1906,6 +1906,8 @@ int pg_cmd_bench(int argc, char **argv)
                 fi.height = B->heights[si];
                 fi.camera.aspect = (float)fi.width / (float)fi.height;
                 fi.lights.count = B->lights[li];
+                if (app.object_lights) /* the object rule keeps the total over the lights: per count */
+                    fi.lights.intensity = pg_light_setup_object(app.scene, B->lights[li], fi.lights.seed).intensity;
                 fi.time = B->opt.time;
                 reference *refs = calloc(B->n_refs ? B->n_refs : 1, sizeof *refs);
                 if (!refs) {
