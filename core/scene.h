@@ -119,7 +119,9 @@ typedef struct pg_camera {
  * skipped with a warning on stderr; missing normals are computed (area-weighted), missing tangents
  * are computed for normal-mapped materials; materials keep their glTF indices (a white "default"
  * material is appended for primitives without one); textures are decoded to RGBA8 with full mip
- * chains, one pg_texture per (image, sRGB-or-linear) use. name = the file stem. */
+ * chains, one pg_texture per (image, sRGB-or-linear) use. name = the file stem. Camera nodes of
+ * the same hierarchy fill scene->cameras (pg_scene_camera; bad camera objects are PG_ERR_GLTF
+ * naming "cameras[i].perspective.yfov" etc.). */
 pg_result pg_scene_load_gltf(const char *path, pg_scene **out, pg_error *err);
 /* The built-in atrium (columns, arches, several procedural materials, tens of thousands of
  * triangles). Deterministic. */
@@ -154,7 +156,8 @@ void pg_scene_finalize(pg_scene *scene);
 /* A sensible view of the whole scene from its bounds: position (min.x + 0.2*size.x,
  * min.y + 0.18*size.y, center.z), looking along +X at (max.x, same height, center.z), up +Y,
  * fov_y 60 deg, near = max(0.01, 0.001*diagonal), far = 2*diagonal. For the atrium-like scenes
- * this stands inside the nave looking down its length. */
+ * this stands inside the nave looking down its length. The tools use it for the built-in atrium
+ * only (tools/app.h pg_app_default_view); loaded glTF get pg_camera_frame_object or a glTF camera. */
 pg_camera pg_camera_default_for_scene(const pg_scene *scene, float aspect);
 
 /* Object framing, the default for loaded glTF without a camera (README "Scenes"): the bounding
