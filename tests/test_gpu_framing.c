@@ -181,6 +181,16 @@ static void check_cameras(void)
               "orthographic camera: %d %s", r, err.msg);
     pg_scene_gpu_destroy(g_gpu, sg);
     pg_scene_free(sc);
+
+    /* an orthographic first camera: the default falls back to auto framing, saying why */
+    if (!open_scene("ortho_first.gltf", &sc, &sg)) return;
+    pg_frame_info of = view_of(sc, NULL, why, sizeof why);
+    CHECK_MSG(strstr(why, "auto framing") && strstr(why, "'plan' is orthographic (unsupported)"), "ortho_first: %s", why);
+    shot o = take("ortho_first.gltf default (auto framing)", sg, &of);
+    check_framed_lit("ortho_first.gltf default (auto framing)", &o);
+    free(o.ldr);
+    pg_scene_gpu_destroy(g_gpu, sg);
+    pg_scene_free(sc);
 }
 
 int main(void)
