@@ -484,7 +484,8 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
             !add_str_or_null(o, "format", image ? pg_format_get(pr->format)->name : NULL) ||
             !add_int_or_null(o, "width", image, (int)pr->width) ||
             !add_int_or_null(o, "height", image, (int)pr->height) || !add_u64(o, "size_bytes", pr->size_bytes) ||
-            !cJSON_AddBoolToObject(o, "output", pr->is_output) || !cJSON_AddBoolToObject(o, "culled", pr->culled) ||
+            !cJSON_AddBoolToObject(o, "output", pr->is_output) || !cJSON_AddBoolToObject(o, "grow", pr->growable) ||
+            !cJSON_AddBoolToObject(o, "culled", pr->culled) ||
             !add_str_or_null(o, "cull_reason", pr->culled ? pr->cull_reason : NULL) ||
             !add_str_or_null(o, "first_pass", live ? pass_at(plan, pr->first_pass) : NULL) ||
             !add_str_or_null(o, "last_pass", live ? pass_at(plan, pr->last_pass) : NULL) ||

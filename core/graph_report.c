@@ -299,7 +299,7 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
         if (pr->block >= 0)
             snprintf(block, sizeof block, "#%d @ %" PRIu64, pr->block, pr->block_offset);
         else
-            snprintf(block, sizeof block, "-");
+            snprintf(block, sizeof block, pr->growable ? "own (grow)" : "-");
         fprintf(f, "  %-16s %-6s %-10s %-11s %-12s %-10s %-31s %s%s\n", pr->name,
                 pg_res_kind_name(pr->kind), pg_lifetime_name(pr->lifetime),
                 pr->kind == PG_RES_IMAGE ? pg_format_get(pr->format)->name : "-", size, bytes,

@@ -185,6 +185,14 @@ OCIO="$tmp/broken.ocio" "$PG" render --size 32x18 --lights 4 --out "$tmp/x.png" 
 [ $? -eq 1 ] && grep -q "broken.ocio" "$tmp/err" && ok || { bad "\$OCIO broken config not reported"; cat "$tmp/err"; }
 expect_fail "--hdr-out not .exr" "expected a .exr" render --hdr-out "$tmp/x.png" --out "$tmp/x.png"
 
+# the dump marks grow buffers (own memory, never aliased)
+"$PG" dump --pipeline "$root/pipelines/forward_plus.json" --format json 2>/dev/null | python3 -c '
+import json, sys
+d = json.load(sys.stdin)
+g = {r["name"]: r for r in d["resources"]}
+sys.exit(0 if g["cluster_lights"]["grow"] and g["cluster_lights"]["block"] is None and not g["cluster_counts"]["grow"] else 1)' \
+  && ok || bad "dump json: cluster_lights not marked grow"
+"$PG" dump --pipeline "$root/pipelines/forward_plus.json" 2>/dev/null | grep -Eq '^  cluster_lights .* own \(grow\)$' && ok || bad "dump text: no 'own (grow)'"
 # exact by default: the light lists grow to what the frame needs (frame rendered again) and drop nothing
 "$PG" render --pipeline "$root/pipelines/forward_plus.json" --lights 3000 --radius 6 --size 64x36 --out "$tmp/o.png" >"$tmp/out" 2>&1
 grep -Eq 'overflow=0 clusters \(0 light refs dropped\) refs=[0-9]+ lists=[0-9.]+ MiB grew cluster_lights [0-9.]+->[0-9.]+ MiB \(1 re-render\)' "$tmp/out" \
