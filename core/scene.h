@@ -10,6 +10,8 @@
 #include "pg_common.h"
 #include "scene_features.h"
 
+#include <stdio.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -74,6 +76,14 @@ typedef struct pg_scene {
     uint32_t n_textures;
     float bounds_min[3], bounds_max[3];
     pg_scene_features features; /* light_count left 0 here */
+    /* What the loader could not draw as the file asks, one line each, "PATH: cause: what is
+     * drawn instead" (e.g. "x.gltf: 2 skins ignored: rendered in bind pose"); in load order, at
+     * most one line per kind of feature. Owned by the scene: warnings[i] and the array are
+     * malloc'd and freed by pg_scene_free(); NULL / 0 when there are none (always for the default
+     * scene). The library never prints them: the tools print each once per loaded scene
+     * (pg_scene_print_warnings). */
+    char **warnings;
+    uint32_t n_warnings;
 } pg_scene;
 
 typedef struct pg_camera {
@@ -89,8 +99,15 @@ typedef struct pg_camera {
  * the glTF object, e.g. "x.gltf: accessors[4]: count 100 (...) exceeds bufferView 2 (48 bytes)":
  * PG_ERR_IO when the file itself cannot be read, PG_ERR_PARSE for JSON syntax / a broken GLB
  * container, PG_ERR_GLTF for content (missing buffer or image files, ranges, types, indices,
- * non-finite values, cycles, undecodable, non-PNG/JPEG or > 16384 px images), PG_ERR_LIMIT past
- * 2^32 vertices.
+ * non-finite values, cycles, undecodable, non-PNG/JPEG or > 16384 px images, glTF 1.0, an
+ * unsupported extension in extensionsRequired), PG_ERR_LIMIT past 2^32 vertices. A directory is
+ * "PATH: is a directory (expected a glTF 2.0 .gltf/.glb file)" (PG_ERR_IO); a file that is neither
+ * JSON nor GLB (an .obj, say) is "PATH: not a glTF 2.0 file (passgraph reads .gltf and .glb
+ * only)" (PG_ERR_PARSE). Features the loader does not draw are listed in scene->warnings (see
+ * the README "Scenes" table): skins and morph targets (bind pose / base geometry), extensions in
+ * extensionsUsed only, alphaMode BLEND (opaque), COLOR_0, TEXCOORD_1+, sampler wrap/filter modes,
+ * emissive, occlusion and metallic-roughness textures, point/line primitives. Sparse accessors
+ * are applied.
  * Details (core/scene_gltf.cpp header): the node hierarchy of `scene` (else scenes[0], else every
  * root node) is baked into the vertices (normals by the inverse-transpose, a mirroring transform
  * flips the winding and the tangent handedness); one pg_primitive per drawn (node, primitive)
@@ -106,6 +123,11 @@ pg_result pg_scene_create_default(pg_scene **out, pg_error *err);
 /* "default" -> generated scene, else glTF. */
 pg_result pg_scene_load(const char *path_or_default, pg_scene **out, pg_error *err);
 void pg_scene_free(pg_scene *scene);
+/* Appends a copy of `line` to scene->warnings (PG_ERR_OOM when it cannot). */
+pg_result pg_scene_add_warning(pg_scene *scene, const char *line, pg_error *err);
+/* Writes each warning as "PREFIXwarning: LINE\n" to f (prefix e.g. "passgraph render: ", may be
+ * NULL). */
+void pg_scene_print_warnings(const pg_scene *scene, const char *prefix, FILE *f);
 
 /* Builds a full mip chain (box filter; sRGB textures are filtered in linear space) from an
  * RGBA8 image it copies. */
