@@ -1347,6 +1347,9 @@ void collect_warnings(Ctx &c)
         morph_meshes += t > 0;
         morph_targets += t;
     }
+    if (!md.animations.empty())
+        W.push_back(plural(md.animations.size(), "animation", "animations") +
+                    " ignored: the nodes are drawn at their static transforms");
     if (morph_meshes)
         W.push_back(plural(morph_targets, "morph target", "morph targets") + " in " +
                     plural(morph_meshes, "mesh", "meshes") +
@@ -1354,9 +1357,13 @@ void collect_warnings(Ctx &c)
     for (const std::string &e : md.extensionsUsed)
         W.push_back("extensionsUsed: '" + e.substr(0, 80) + "' ignored: " + extension_effect(e));
 
-    std::vector<std::string> blend, emissive, occlusion, mr;
+    std::vector<std::string> blend, emissive, occlusion, mr, texcoord;
     for (size_t i = 0; i < md.materials.size(); i++) {
         const tinygltf::Material &m = md.materials[i];
+        if ((m.pbrMetallicRoughness.baseColorTexture.index >= 0 &&
+             m.pbrMetallicRoughness.baseColorTexture.texCoord != 0) ||
+            (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0))
+            texcoord.push_back(material_desc(md, i));
         if (m.alphaMode == "BLEND") blend.push_back(material_desc(md, i));
         bool em = m.emissiveTexture.index >= 0;
         for (double x : m.emissiveFactor) em = em || x != 0.0;
@@ -1378,6 +1385,9 @@ void collect_warnings(Ctx &c)
     if (!occlusion.empty())
         W.push_back("occlusionTexture of " + plural(occlusion.size(), "material", "materials") +
                     " (" + name_list(occlusion) + ") ignored");
+    if (!texcoord.empty())
+        W.push_back("textures of " + plural(texcoord.size(), "material", "materials") + " (" +
+                    name_list(texcoord) + ") ask for a texCoord other than 0: read with TEXCOORD_0");
     if (c.color_prims)
         W.push_back("COLOR_0 vertex colours in " +
                     plural(c.color_prims, "primitive", "primitives") + " ignored");

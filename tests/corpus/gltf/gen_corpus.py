@@ -501,6 +501,20 @@ d["scenes"] = [{"nodes": [1]}]
 d["skins"] = [{"joints": [0]}, {"joints": [0, 1]}]
 write("ok_skins.gltf", d, "PG_OK", warn=["2 skins ignored: rendered in bind pose"])
 d, _ = base_doc()
+times = f32(0, 1)
+rots = f32(0, 0, 0, 1, 0, 0.7071068, 0, 0.7071068)
+data = _ + times + rots
+d["bufferViews"] += [{"buffer": 0, "byteOffset": len(_), "byteLength": 8},
+                     {"buffer": 0, "byteOffset": len(_) + 8, "byteLength": 32}]
+d["buffers"][0] = {"byteLength": len(data), "uri": b64(data)}
+d["accessors"] += [{"bufferView": 2, "componentType": 5126, "count": 2, "type": "SCALAR",
+                    "min": [0], "max": [1]},
+                   {"bufferView": 3, "componentType": 5126, "count": 2, "type": "VEC4"}]
+d["animations"] = [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "rotation"}}],
+                    "samplers": [{"input": 2, "output": 3}]}]
+write("ok_animation.gltf", d, "PG_OK",
+      warn=["1 animation ignored: the nodes are drawn at their static transforms"])
+d, _ = base_doc()
 d["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": 0}, {"POSITION": 0}]
 d["meshes"][0]["weights"] = [0.5, 0.25]
 write("ok_morph_targets.gltf", d, "PG_OK",
@@ -533,7 +547,10 @@ write("ok_alpha_blend.gltf", d, "PG_OK",
 d = textured_doc({"uri": "ok_2x2.png"})
 d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 0
 d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = 2
+d["materials"][0]["name"] = "decal"
+d["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1
 write("ok_color_texcoord1.gltf", d, "PG_OK", warn=[
+    "textures of 1 material (materials[0] 'decal') ask for a texCoord other than 0: read with TEXCOORD_0",
     "COLOR_0 vertex colours in 1 primitive ignored",
     "TEXCOORD_1 (and higher) in 1 primitive ignored: every texture is read with TEXCOORD_0"])
 d = textured_doc({"uri": "ok_2x2.png"})
