@@ -112,7 +112,7 @@ typedef struct pg_camera {
  * root node) is baked into the vertices (normals by the inverse-transpose, a mirroring transform
  * flips the winding and the tangent handedness); one pg_primitive per drawn (node, primitive)
  * pair, its indices local (add vertex_offset); TRIANGLES/STRIP/FAN are drawn, points and lines
- * skipped with a warning on stderr; missing normals are computed (area-weighted), missing tangents
+ * skipped with a line in scene->warnings; missing normals are computed (area-weighted), missing tangents
  * are computed for normal-mapped materials; materials keep their glTF indices (a white "default"
  * material is appended for primitives without one); textures are decoded to RGBA8 with full mip
  * chains, one pg_texture per (image, sRGB-or-linear) use. name = the file stem. */

@@ -5,7 +5,8 @@
  *   1. read the file (missing/unreadable: PG_ERR_IO); .glb is recognised by its magic bytes and
  *      its container header is checked here (PG_ERR_PARSE);
  *   2. parse the JSON with nlohmann::json (syntax errors: PG_ERR_PARSE) and PRE-VALIDATE it:
- *      root object, asset.version 2.x, no extensionsRequired, every cross-reference in range,
+ *      root object, asset.version 2.x, no extensionsRequired, every cross-reference in range
+ *      (sparse indices/values bufferViews included),
  *      buffers present with exactly byteLength bytes, bufferViews inside their buffers, image
  *      files present. tinygltf 2.7 does not check all of these (and reads an image bufferView's
  *      bytes without a range check), so they must hold before tinygltf sees the file;
@@ -18,9 +19,18 @@
  * Every glTF-content error is PG_ERR_GLTF with "PATH: object: cause".
  *
  * Primitive modes: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN are drawn (strips/fans become
- * lists); POINTS/LINES/LINE_LOOP/LINE_STRIP are skipped with one warning line on stderr; any other
+ * lists); POINTS/LINES/LINE_LOOP/LINE_STRIP are skipped with one warning line; any other
  * mode value is an error. A scene left with no triangles is an error.
- * TEXCOORD_0 is used for every texture (a texCoord other than 0 is read from TEXCOORD_0).
+ * TEXCOORD_0 is used for every texture (a texCoord other than 0 is read from TEXCOORD_0, warned).
+ * Sparse accessors are applied to a dense copy (Ctx::sparse_data) of the accessor's data.
+ *
+ * Warnings (pg_scene.warnings, collect_warnings): everything the file uses that is not drawn as it
+ * asks gets one line per kind (skins, morph targets, animations, each extension in
+ * extensionsUsed, BLEND materials, emissive / occlusion / metallic-roughness textures, COLOR_0,
+ * TEXCOORD_1+, texCoord != 0, sampler modes, point/line primitives). The library never prints
+ * them. Any entry of extensionsRequired is an error (no extension is implemented). A non-GLB file
+ * whose first non-blank byte is not '{' or '[' is "not a glTF 2.0 file"; asset.version 1.x is
+ * "glTF 1.0 is not supported, only 2.0".
  * Non-finite POSITION / NORMAL / TEXCOORD_0 / TANGENT values are errors, and so are positions that
  * leave the float range (or normals/tangents that overflow) under their node transform.
  *

@@ -50,5 +50,14 @@ grep -q "validation message" "$tmp/err2" && { bad "light sweep: validation messa
 grep -Eq '^view: 14 frames' "$tmp/out2" && ok || { bad "light sweep: did not run 14 frames"; tail -3 "$tmp/out2"; }
 grep -Eq '^view: cluster_lights grew .* at 1000000 lights' "$tmp/out2" && ok || { bad "light sweep: no growth at 1,000,000"; cat "$tmp/out2"; }
 grep -Eq '^view: light lists need .* over the 8.0 MiB budget' "$tmp/out2" && ok || { bad "light sweep: budget overflow not reported"; cat "$tmp/out2"; }
+# a glTF with a feature the loader does not draw: the warning line once on stderr (the UI lists it
+# too); a .jpg screenshot is a JPEG
+skins="$root/tests/corpus/gltf/ok_skins.gltf"
+xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --size 64x36 --frames 2 --lights 4 --scene "$skins" \
+  --screenshot "$tmp/shot.jpg" >"$tmp/out3" 2>"$tmp/err3"
+[ $? -eq 0 ] && ok || { bad "view of a warned glTF: exit"; tail -5 "$tmp/err3"; }
+[ "$(grep -cxF "passgraph: warning: $skins: 2 skins ignored: rendered in bind pose" "$tmp/err3")" = 1 ] \
+  && ok || { bad "view: skins warning not printed once"; cat "$tmp/err3"; }
+[ "$(head -c 3 "$tmp/shot.jpg" 2>/dev/null | od -An -tx1 | tr -d ' ')" = "ffd8ff" ] && ok || bad "view --screenshot x.jpg: not a JPEG"
 echo "view_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]
