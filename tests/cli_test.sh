@@ -368,6 +368,10 @@ expect_fail "--scenario is a directory" "$tmp/adir: is a directory (expected a s
 expect_fail "--pipeline is a directory" "$tmp/adir: is a directory (expected a pipeline .json file)" \
   render --pipeline "$tmp/adir" --size 32x18 --lights 4 --out "$tmp/x.png"
 grep -q "out of memory" "$tmp/err" && bad "a directory still reads as 'out of memory'" || ok
+expect_fail "--ocio-config is a directory" "$tmp/adir: is a directory (expected an OCIO config .ocio file)" \
+  render --ocio-config "$tmp/adir" --size 32x18 --lights 4 --out "$tmp/x.png"
+expect_fail "compare --reference is a directory" "reference: $tmp/adir: is a directory (expected a pipeline .json file)" \
+  compare --reference "$tmp/adir" --size 32x18 --lights 4
 expect_fail "--scene an OBJ file" "$gcorp/cube.obj: not a glTF 2.0 file (passgraph reads .gltf and .glb only)" \
   render --scene "$gcorp/cube.obj" --size 32x18 --lights 4 --out "$tmp/x.png"
 expect_fail "--scene a glTF 1.0 file" "glTF 1.0 is not supported, only 2.0" \
