@@ -77,8 +77,8 @@ typedef struct pg_scene {
     float bounds_min[3], bounds_max[3];
     pg_scene_features features; /* light_count left 0 here */
     /* What the loader could not draw as the file asks, one line each, "PATH: cause: what is
-     * drawn instead" (e.g. "x.gltf: 2 skins ignored: rendered in bind pose"); in load order, at
-     * most one line per kind of feature. Owned by the scene: warnings[i] and the array are
+     * drawn instead" (e.g. "x.gltf: 2 skins ignored: rendered in bind pose"); in load order, one
+     * line per kind of feature (one per extensionsUsed entry, the 17th on summed up in one line). Owned by the scene: warnings[i] and the array are
      * malloc'd and freed by pg_scene_free(); NULL / 0 when there are none (always for the default
      * scene). The library never prints them: the tools print each once per loaded scene
      * (pg_scene_print_warnings). */

@@ -1302,16 +1302,17 @@ std::string name_list(const std::vector<std::string> &v)
     return r;
 }
 
-const char *wrap_name(int w)
+std::string wrap_name(int w)
 {
     switch (w) {
     case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return "CLAMP_TO_EDGE";
     case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return "MIRRORED_REPEAT";
-    default: return "REPEAT";
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return "REPEAT";
+    default: return strf("%d", w);
     }
 }
 
-const char *filter_name(int f)
+std::string filter_name(int f)
 {
     switch (f) {
     case TINYGLTF_TEXTURE_FILTER_NEAREST: return "NEAREST";
@@ -1320,7 +1321,7 @@ const char *filter_name(int f)
     case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: return "LINEAR_MIPMAP_NEAREST";
     case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR: return "NEAREST_MIPMAP_LINEAR";
     case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR: return "LINEAR_MIPMAP_LINEAR";
-    default: return "?";
+    default: return strf("%d", f);
     }
 }
 
@@ -1364,8 +1365,14 @@ void collect_warnings(Ctx &c)
         W.push_back(plural(morph_targets, "morph target", "morph targets") + " in " +
                     plural(morph_meshes, "mesh", "meshes") +
                     " ignored: rendered with the base geometry (weights not applied)");
-    for (const std::string &e : md.extensionsUsed)
+    constexpr size_t kMaxExtensionLines = 16;
+    for (size_t i = 0; i < md.extensionsUsed.size() && i < kMaxExtensionLines; i++) {
+        const std::string &e = md.extensionsUsed[i];
         W.push_back("extensionsUsed: '" + e.substr(0, 80) + "' ignored: " + extension_effect(e));
+    }
+    if (md.extensionsUsed.size() > kMaxExtensionLines)
+        W.push_back(strf("extensionsUsed: %zu more extensions ignored (not supported)",
+                         md.extensionsUsed.size() - kMaxExtensionLines));
 
     std::vector<std::string> blend, emissive, occlusion, mr, texcoord;
     for (size_t i = 0; i < md.materials.size(); i++) {
@@ -1410,13 +1417,13 @@ void collect_warnings(Ctx &c)
     for (size_t i = 0; i < md.samplers.size(); i++) {
         const tinygltf::Sampler &sm = md.samplers[i];
         std::string d;
-        if (sm.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT) d += std::string(" wrapS ") + wrap_name(sm.wrapS);
-        if (sm.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT) d += std::string(" wrapT ") + wrap_name(sm.wrapT);
+        if (sm.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT) d += " wrapS " + wrap_name(sm.wrapS);
+        if (sm.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT) d += " wrapT " + wrap_name(sm.wrapT);
         if (sm.magFilter >= 0 && sm.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR)
-            d += std::string(" magFilter ") + filter_name(sm.magFilter);
+            d += " magFilter " + filter_name(sm.magFilter);
         if (sm.minFilter >= 0 && sm.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR &&
             sm.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR)
-            d += std::string(" minFilter ") + filter_name(sm.minFilter);
+            d += " minFilter " + filter_name(sm.minFilter);
         if (!d.empty()) odd.push_back(strf("samplers[%zu]:", i) + d);
     }
     if (!odd.empty())

@@ -529,6 +529,11 @@ write("ok_extensions_used.gltf", d, "PG_OK", warn=[
     "extensionsUsed: 'KHR_draco_mesh_compression' ignored: compressed data not decoded, the uncompressed fallback is drawn",
     "extensionsUsed: 'KHR_materials_clearcoat' ignored: the core material is drawn without it",
     "extensionsUsed: 'EXT_made_up' ignored: not supported"])
+d, _ = base_doc()
+d["extensionsUsed"] = ["EXT_x_%02d" % i for i in range(18)]
+write("ok_many_extensions.gltf", d, "PG_OK",
+      warn=["extensionsUsed: 'EXT_x_%02d' ignored: not supported" % i for i in range(16)]
+      + ["extensionsUsed: 2 more extensions ignored (not supported)"])
 for name, exts in (("required_texture_transform.gltf", ["KHR_texture_transform", "KHR_mesh_quantization"]),
                    ("required_meshopt.gltf", ["EXT_meshopt_compression"]),
                    ("required_emissive_strength.gltf", ["KHR_materials_emissive_strength"])):
