@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include <stb_image_write.h>
 
@@ -57,6 +58,43 @@ pg_result pg_write_png(const char *path, const uint8_t *rgba, uint32_t w, uint32
     if (!stbi_write_png(path, (int)w, (int)h, 4, rgba, (int)(w * 4)))
         return pg_fail(err, PG_ERR_IO, "%s: cannot write PNG", path);
     return PG_OK;
+}
+
+pg_image_kind pg_image_kind_of(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    const char *slash = strrchr(path, '/');
+    if (!dot || (slash && dot < slash)) return PG_IMAGE_UNKNOWN;
+    if (!strcasecmp(dot, ".png")) return PG_IMAGE_PNG;
+    if (!strcasecmp(dot, ".jpg") || !strcasecmp(dot, ".jpeg")) return PG_IMAGE_JPEG;
+    if (!strcasecmp(dot, ".exr")) return PG_IMAGE_EXR;
+    return PG_IMAGE_UNKNOWN;
+}
+
+pg_result pg_image_path_check(const char *path, bool allow_exr, pg_error *err)
+{
+    pg_image_kind k = pg_image_kind_of(path);
+    if (k == PG_IMAGE_PNG || k == PG_IMAGE_JPEG || (k == PG_IMAGE_EXR && allow_exr)) return PG_OK;
+    const char *dot = strrchr(path, '.');
+    const char *slash = strrchr(path, '/');
+    const char *accepted = allow_exr ? ".png, .jpg, .jpeg, .exr" : ".png, .jpg, .jpeg";
+    if (!dot || (slash && dot < slash))
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: no file extension (accepted: %s)", path, accepted);
+    return pg_fail(err, PG_ERR_INVALID_ARG, "%s: unsupported image extension '%s' (accepted: %s)", path, dot,
+                   accepted);
+}
+
+pg_result pg_write_image(const char *path, const uint8_t *rgba, uint32_t w, uint32_t h, pg_error *err)
+{
+    pg_result r = pg_image_path_check(path, false, err);
+    if (r) return r;
+    if (pg_image_kind_of(path) == PG_IMAGE_JPEG) {
+        /* JPEG has no alpha: the RGB channels, quality 95 */
+        if (!stbi_write_jpg(path, (int)w, (int)h, 4, rgba, 95))
+            return pg_fail(err, PG_ERR_IO, "%s: cannot write JPEG", path);
+        return PG_OK;
+    }
+    return pg_write_png(path, rgba, w, h, err);
 }
 
 pg_image_stats pg_rgba8_stats(const uint8_t *rgba, uint32_t w, uint32_t h)

@@ -10,6 +10,8 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -57,6 +59,10 @@ extern "C" pg_result pg_ocio_open(const char *path, pg_ocio_config **out, pg_err
     FILE *f = fopen(path, "rb");
     if (!f) return pg_fail(err, PG_ERR_IO, "%s: cannot open OCIO config: %s", path, strerror(errno));
     fclose(f);
+    struct stat st;
+    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode))
+        return pg_fail(err, PG_ERR_IO, "%s: %s (expected an OCIO config .ocio file)", path,
+                       S_ISDIR(st.st_mode) ? "is a directory" : "is not a regular file");
     try {
         pg_ocio_config *c = new pg_ocio_config;
         c->path = path;

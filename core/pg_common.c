@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <vulkan/vulkan_core.h>
 
 pg_result pg_fail(pg_error *err, pg_result code, const char *fmt, ...)
@@ -100,8 +101,21 @@ bool pg_strlcpy(char *dst, const char *src, size_t dst_size)
 
 pg_result pg_read_file(const char *path, char **out_text, size_t *out_size, pg_error *err)
 {
+    return pg_read_file_as(path, NULL, out_text, out_size, err);
+}
+
+pg_result pg_read_file_as(const char *path, const char *expected, char **out_text, size_t *out_size,
+                          pg_error *err)
+{
     *out_text = NULL;
     if (out_size) *out_size = 0;
+    /* a directory opens (and ftell reports LONG_MAX on some libcs): refuse it by name first */
+    struct stat st;
+    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+        const char *what = S_ISDIR(st.st_mode) ? "is a directory" : "is not a regular file";
+        if (expected) return pg_fail(err, PG_ERR_IO, "%s: %s (expected %s)", path, what, expected);
+        return pg_fail(err, PG_ERR_IO, "%s: %s", path, what);
+    }
     FILE *f = fopen(path, "rb");
     if (!f) return pg_fail(err, PG_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
     if (fseek(f, 0, SEEK_END) != 0) {

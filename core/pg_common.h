@@ -123,6 +123,11 @@ pg_format pg_format_from_name(const char *name);
 bool pg_strlcpy(char *dst, const char *src, size_t dst_size);
 /* Reads a whole file into a malloc'd NUL-terminated buffer. */
 pg_result pg_read_file(const char *path, char **out_text, size_t *out_size, pg_error *err);
+/* The same; a path that is a directory or another non-regular file is refused (PG_ERR_IO) with
+ * "PATH: is a directory (expected EXPECTED)" (EXPECTED e.g. "a scenario .json file"; NULL leaves
+ * the parenthesis out). */
+pg_result pg_read_file_as(const char *path, const char *expected, char **out_text, size_t *out_size,
+                          pg_error *err);
 
 #ifdef __cplusplus
 }

@@ -724,7 +724,7 @@ static pg_result load_include(loader *L, const src_file *from, uint32_t idx, con
     f->canon = canon;
     char *text = NULL;
     size_t len = 0;
-    pg_result r = pg_read_file(path, &text, &len, L->err);
+    pg_result r = pg_read_file_as(path, "a pipeline .json file", &text, &len, L->err);
     if (r) {
         char cause[PG_ERROR_MSG_MAX];
         pg_strlcpy(cause, L->err ? L->err->msg : "", sizeof cause);
@@ -1611,7 +1611,9 @@ pg_result pg_pipeline_load(const char *path, const pg_param_override *overrides,
     struct stat st;
     if (stat(path, &st) != 0)
         return pg_fail(err, PG_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-    if (!S_ISREG(st.st_mode)) return pg_fail(err, PG_ERR_IO, "%s: not a regular file", path);
+    if (!S_ISREG(st.st_mode))
+        return pg_fail(err, PG_ERR_IO, "%s: %s (expected a pipeline .json file)", path,
+                       S_ISDIR(st.st_mode) ? "is a directory" : "is not a regular file");
     char *text = NULL;
     size_t len = 0;
     pg_result r = pg_read_file(path, &text, &len, err);

@@ -295,7 +295,7 @@ pg_result pg_scenario_load(const char *path, pg_scenario *out, pg_error *err)
 
     char *text = NULL;
     size_t size = 0;
-    pg_result r = pg_read_file(path, &text, &size, err);
+    pg_result r = pg_read_file_as(path, "a scenario .json file", &text, &size, err);
     if (r != PG_OK) return r;
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithOpts(text, &end, 1);

@@ -48,7 +48,31 @@ void pg_scene_free(pg_scene *scene)
     free(scene->primitives);
     free(scene->materials);
     free(scene->cameras);
+    for (uint32_t i = 0; i < scene->n_warnings; i++) free(scene->warnings[i]);
+    free(scene->warnings);
     free(scene);
+}
+
+pg_result pg_scene_add_warning(pg_scene *scene, const char *line, pg_error *err)
+{
+    size_t n = strlen(line);
+    char *copy = malloc(n + 1);
+    char **grown = copy ? realloc(scene->warnings, sizeof(char *) * (scene->n_warnings + 1)) : NULL;
+    if (!grown) {
+        free(copy);
+        return pg_fail(err, PG_ERR_OOM, "%s: out of memory adding a warning", scene->path);
+    }
+    memcpy(copy, line, n + 1);
+    scene->warnings = grown;
+    scene->warnings[scene->n_warnings++] = copy;
+    return PG_OK;
+}
+
+void pg_scene_print_warnings(const pg_scene *scene, const char *prefix, FILE *f)
+{
+    if (!scene) return;
+    for (uint32_t i = 0; i < scene->n_warnings; i++)
+        fprintf(f, "%swarning: %s\n", prefix ? prefix : "", scene->warnings[i]);
 }
 
 /* ------------------------------------------------------------------------------------------ */

@@ -10,6 +10,8 @@
 #include "pg_common.h"
 #include "scene_features.h"
 
+#include <stdio.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -95,6 +97,14 @@ typedef struct pg_scene {
     pg_scene_camera *cameras;   /* owned (freed by pg_scene_free); NULL when n_cameras == 0;
                                    the built-in atrium has none */
     uint32_t n_cameras;
+    /* What the loader could not draw as the file asks, one line each, "PATH: cause: what is
+     * drawn instead" (e.g. "x.gltf: 2 skins ignored: rendered in bind pose"); in load order, one
+     * line per kind of feature (one per extensionsUsed entry, the 17th on summed up in one line). Owned by the scene: warnings[i] and the array are
+     * malloc'd and freed by pg_scene_free(); NULL / 0 when there are none (always for the default
+     * scene). The library never prints them: the tools print each once per loaded scene
+     * (pg_scene_print_warnings). */
+    char **warnings;
+    uint32_t n_warnings;
 } pg_scene;
 
 typedef struct pg_camera {
@@ -110,13 +120,20 @@ typedef struct pg_camera {
  * the glTF object, e.g. "x.gltf: accessors[4]: count 100 (...) exceeds bufferView 2 (48 bytes)":
  * PG_ERR_IO when the file itself cannot be read, PG_ERR_PARSE for JSON syntax / a broken GLB
  * container, PG_ERR_GLTF for content (missing buffer or image files, ranges, types, indices,
- * non-finite values, cycles, undecodable, non-PNG/JPEG or > 16384 px images), PG_ERR_LIMIT past
- * 2^32 vertices.
+ * non-finite values, cycles, undecodable, non-PNG/JPEG or > 16384 px images, glTF 1.0, an
+ * unsupported extension in extensionsRequired), PG_ERR_LIMIT past 2^32 vertices. A directory is
+ * "PATH: is a directory (expected a glTF 2.0 .gltf/.glb file)" (PG_ERR_IO); a file that is neither
+ * JSON nor GLB (an .obj, say) is "PATH: not a glTF 2.0 file (passgraph reads .gltf and .glb
+ * only)" (PG_ERR_PARSE). Features the loader does not draw are listed in scene->warnings (see
+ * the README "Scenes" table): skins and morph targets (bind pose / base geometry), extensions in
+ * extensionsUsed only, alphaMode BLEND (opaque), COLOR_0, TEXCOORD_1+, sampler wrap/filter modes,
+ * emissive, occlusion and metallic-roughness textures, point/line primitives. Sparse accessors
+ * are applied.
  * Details (core/scene_gltf.cpp header): the node hierarchy of `scene` (else scenes[0], else every
  * root node) is baked into the vertices (normals by the inverse-transpose, a mirroring transform
  * flips the winding and the tangent handedness); one pg_primitive per drawn (node, primitive)
  * pair, its indices local (add vertex_offset); TRIANGLES/STRIP/FAN are drawn, points and lines
- * skipped with a warning on stderr; missing normals are computed (area-weighted), missing tangents
+ * skipped with a line in scene->warnings; missing normals are computed (area-weighted), missing tangents
  * are computed for normal-mapped materials; materials keep their glTF indices (a white "default"
  * material is appended for primitives without one); textures are decoded to RGBA8 with full mip
  * chains, one pg_texture per (image, sRGB-or-linear) use. name = the file stem. Camera nodes of
@@ -129,6 +146,11 @@ pg_result pg_scene_create_default(pg_scene **out, pg_error *err);
 /* "default" -> generated scene, else glTF. */
 pg_result pg_scene_load(const char *path_or_default, pg_scene **out, pg_error *err);
 void pg_scene_free(pg_scene *scene);
+/* Appends a copy of `line` to scene->warnings (PG_ERR_OOM when it cannot). */
+pg_result pg_scene_add_warning(pg_scene *scene, const char *line, pg_error *err);
+/* Writes each warning as "PREFIXwarning: LINE\n" to f (prefix e.g. "passgraph render: ", may be
+ * NULL). */
+void pg_scene_print_warnings(const pg_scene *scene, const char *prefix, FILE *f);
 
 /* Builds a full mip chain (box filter; sRGB textures are filtered in linear space) from an
  * RGBA8 image it copies. */

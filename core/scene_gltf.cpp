@@ -5,7 +5,8 @@
  *   1. read the file (missing/unreadable: PG_ERR_IO); .glb is recognised by its magic bytes and
  *      its container header is checked here (PG_ERR_PARSE);
  *   2. parse the JSON with nlohmann::json (syntax errors: PG_ERR_PARSE) and PRE-VALIDATE it:
- *      root object, asset.version 2.x, no extensionsRequired, every cross-reference in range,
+ *      root object, asset.version 2.x, no extensionsRequired, every cross-reference in range
+ *      (sparse indices/values bufferViews included),
  *      buffers present with exactly byteLength bytes, bufferViews inside their buffers, image
  *      files present. tinygltf 2.7 does not check all of these (and reads an image bufferView's
  *      bytes without a range check), so they must hold before tinygltf sees the file;
@@ -18,9 +19,18 @@
  * Every glTF-content error is PG_ERR_GLTF with "PATH: object: cause".
  *
  * Primitive modes: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN are drawn (strips/fans become
- * lists); POINTS/LINES/LINE_LOOP/LINE_STRIP are skipped with one warning line on stderr; any other
+ * lists); POINTS/LINES/LINE_LOOP/LINE_STRIP are skipped with one warning line; any other
  * mode value is an error. A scene left with no triangles is an error.
- * TEXCOORD_0 is used for every texture (a texCoord other than 0 is read from TEXCOORD_0).
+ * TEXCOORD_0 is used for every texture (a texCoord other than 0 is read from TEXCOORD_0, warned).
+ * Sparse accessors are applied to a dense copy (Ctx::sparse_data) of the accessor's data.
+ *
+ * Warnings (pg_scene.warnings, collect_warnings): everything the file uses that is not drawn as it
+ * asks gets one line per kind (skins, morph targets, animations, each extension in
+ * extensionsUsed, BLEND materials, emissive / occlusion / metallic-roughness textures, COLOR_0,
+ * TEXCOORD_1+, texCoord != 0, sampler modes, point/line primitives). The library never prints
+ * them. Any entry of extensionsRequired is an error (no extension is implemented). A non-GLB file
+ * whose first non-blank byte is not '{' or '[' is "not a glTF 2.0 file"; asset.version 1.x is
+ * "glTF 1.0 is not supported, only 2.0".
  * Non-finite POSITION / NORMAL / TEXCOORD_0 / TANGENT values are errors, and so are positions that
  * leave the float range (or normals/tangents that overflow) under their node transform.
  *
@@ -43,6 +53,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstdarg>
@@ -140,6 +151,11 @@ struct Ctx {
     tinygltf::Model model;
     std::string image_err; /* set by the image callback */
     unsigned skipped_prims = 0;
+    unsigned color_prims = 0;    /* drawn primitives with COLOR_0 (ignored) */
+    unsigned texcoord1_prims = 0;/* drawn primitives with TEXCOORD_1.. (ignored) */
+    std::vector<std::string> warnings; /* without the "PATH: " prefix */
+    /* dense copies of sparse accessors (accessor index -> data), owned until hand-out */
+    std::map<int, std::vector<unsigned char>> sparse_data;
 };
 
 /* ------------------------------------------------------------------------------------------ */
@@ -294,6 +310,8 @@ void prevalidate(Ctx &c)
     auto vit = ait->find("version");
     if (vit == ait->end() || !vit->is_string()) gfail("asset.version: missing (required)");
     std::string ver = vit->get<std::string>();
+    if (ver.compare(0, 2, "1.") == 0)
+        gfail(strf("asset.version: '%s': glTF 1.0 is not supported, only 2.0", ver.c_str()));
     if (ver.compare(0, 2, "2.") != 0)
         gfail(strf("asset.version: '%s' is not supported (glTF 2.x only)", ver.c_str()));
     auto mvit = ait->find("minVersion");
@@ -301,10 +319,17 @@ void prevalidate(Ctx &c)
         gfail(strf("asset.minVersion: '%s' is not supported",
                    mvit->get<std::string>().c_str()));
 
+    /* passgraph implements no glTF extension: a required one is refused, naming each */
     if (const json *req = opt_array(j, "extensionsRequired", "")) {
         if (!req->empty()) {
-            std::string e = (*req)[0].is_string() ? (*req)[0].get<std::string>() : "?";
-            gfail(strf("extensionsRequired: '%s' is not supported", e.c_str()));
+            std::string names;
+            for (const json &e : *req) {
+                if (!names.empty()) names += ", ";
+                names += "'" + (e.is_string() ? e.get<std::string>() : e.dump()) + "'";
+            }
+            gfail(strf("extensionsRequired: %s %s not supported (passgraph implements no glTF "
+                       "extensions; only core glTF 2.0)",
+                       names.c_str(), req->size() == 1 ? "is" : "are"));
         }
     }
 
@@ -399,8 +424,22 @@ void prevalidate(Ctx &c)
             for (const char *ty : types) ok = ok || t->get<std::string>() == ty;
         if (!ok) gfail(w + ".type: missing or not SCALAR/VEC2/VEC3/VEC4/MAT2/MAT3/MAT4");
         if (const json *sp = opt_object(o, "sparse", w)) {
-            (void)sp;
-            /* checked when a primitive uses the accessor ("sparse accessors not supported") */
+            /* ranges are checked when a primitive uses the accessor (get_view) */
+            std::string sw = w + ".sparse";
+            uint_field(*sp, "count", sw, true);
+            const json *si = opt_object(*sp, "indices", sw);
+            const json *sv = opt_object(*sp, "values", sw);
+            if (!si) gfail(sw + ".indices: missing (required)");
+            if (!sv) gfail(sw + ".values: missing (required)");
+            ref(*si, "bufferView", arr_size(views), "bufferViews", sw + ".indices", true);
+            uint_field(*si, "byteOffset", sw + ".indices", false, 0);
+            uint64_t ict = uint_field(*si, "componentType", sw + ".indices", true);
+            if (ict != 5121 && ict != 5123 && ict != 5125)
+                gfail(strf("%s.indices.componentType: %llu is not UNSIGNED_BYTE, UNSIGNED_SHORT or "
+                           "UNSIGNED_INT",
+                           sw.c_str(), (unsigned long long)ict));
+            ref(*sv, "bufferView", arr_size(views), "bufferViews", sw + ".values", true);
+            uint_field(*sv, "byteOffset", sw + ".values", false, 0);
         }
     });
 
@@ -724,7 +763,108 @@ struct View {
     bool normalized = false;
 };
 
-View get_view(const Ctx &c, int ai)
+inline uint32_t read_index(const View &v, size_t i)
+{
+    const unsigned char *p = v.base + i * v.stride;
+    switch (v.ctype) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t x;
+        memcpy(&x, p, 2);
+        return x;
+    }
+    default: {
+        uint32_t x;
+        memcpy(&x, p, 4);
+        return x;
+    }
+    }
+}
+
+/* The bytes of bufferViews[bvi] (range-checked against its buffer). */
+std::pair<const unsigned char *, size_t> view_bytes(const Ctx &c, int bvi, const std::string &who)
+{
+    const tinygltf::Model &m = c.model;
+    if (bvi < 0 || size_t(bvi) >= m.bufferViews.size())
+        gfail(strf("%s: bufferView %d out of range", who.c_str(), bvi));
+    const tinygltf::BufferView &bv = m.bufferViews[size_t(bvi)];
+    if (bv.buffer < 0 || size_t(bv.buffer) >= m.buffers.size())
+        gfail(strf("bufferViews[%d]: buffer %d out of range", bvi, bv.buffer));
+    const tinygltf::Buffer &buf = m.buffers[size_t(bv.buffer)];
+    uint64_t blen = buf.data.size();
+    if (bv.byteOffset > blen || bv.byteLength > blen - bv.byteOffset)
+        gfail(strf("bufferViews[%d]: byteOffset %zu + byteLength %zu exceeds buffers[%d] "
+                   "(%llu bytes)",
+                   bvi, bv.byteOffset, bv.byteLength, bv.buffer, (unsigned long long)blen));
+    return {buf.data.data() + bv.byteOffset, bv.byteLength};
+}
+
+/* Sparse accessors (core glTF 2.0): a dense copy of the base data (zeros without a bufferView)
+ * with sparse.count elements substituted at sparse.indices (strictly increasing, < count). */
+void apply_sparse(Ctx &c, int ai, const tinygltf::Accessor &a, View &v, size_t elem)
+{
+    auto done = c.sparse_data.find(ai);
+    if (done != c.sparse_data.end()) {
+        v.base = done->second.data();
+        v.stride = elem;
+        return;
+    }
+    const std::string sw = strf("accessors[%d].sparse", ai);
+    constexpr uint64_t kMaxSparseBytes = uint64_t(1) << 30;
+    if (uint64_t(a.count) > kMaxSparseBytes / elem)
+        fail(PG_ERR_LIMIT, strf("accessors[%d]: sparse accessor of %zu elements (%zu bytes each) "
+                                "exceeds 1 GiB",
+                                ai, a.count, elem));
+    std::vector<unsigned char> d(a.count * elem, 0);
+    if (v.base)
+        for (size_t i = 0; i < a.count; i++) memcpy(&d[i * elem], v.base + i * v.stride, elem);
+    const size_t sc = a.sparse.count < 0 ? 0 : size_t(a.sparse.count);
+    if (sc < 1 || sc > a.count)
+        gfail(strf("%s.count: %d is outside 1..%zu (the accessor's count)", sw.c_str(),
+                   a.sparse.count, a.count));
+    const int ict = a.sparse.indices.componentType;
+    const size_t isz = ctype_size(ict);
+    if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        gfail(strf("%s.indices.componentType: %d is not an unsigned integer type", sw.c_str(), ict));
+    auto ib = view_bytes(c, a.sparse.indices.bufferView, sw + ".indices");
+    auto vb = view_bytes(c, a.sparse.values.bufferView, sw + ".values");
+    const uint64_t ioff = uint64_t(a.sparse.indices.byteOffset < 0 ? 0 : a.sparse.indices.byteOffset);
+    const uint64_t voff = uint64_t(a.sparse.values.byteOffset < 0 ? 0 : a.sparse.values.byteOffset);
+    if (ioff > ib.second || sc > (ib.second - ioff) / isz)
+        gfail(strf("%s.indices: %zu indices (byteOffset %llu) exceed bufferView %d (%zu bytes)",
+                   sw.c_str(), sc, (unsigned long long)ioff, a.sparse.indices.bufferView,
+                   ib.second));
+    if (voff > vb.second || sc > (vb.second - voff) / elem)
+        gfail(strf("%s.values: %zu elements of %zu bytes (byteOffset %llu) exceed bufferView %d "
+                   "(%zu bytes)",
+                   sw.c_str(), sc, elem, (unsigned long long)voff, a.sparse.values.bufferView,
+                   vb.second));
+    View iv;
+    iv.base = ib.first + ioff;
+    iv.stride = isz;
+    iv.ctype = ict;
+    uint64_t prev = 0;
+    for (size_t k = 0; k < sc; k++) {
+        uint32_t idx = read_index(iv, k);
+        if (idx >= a.count)
+            gfail(strf("%s.indices: index %u at position %zu is out of range (count %zu)",
+                       sw.c_str(), idx, k, a.count));
+        if (k > 0 && idx <= prev)
+            gfail(strf("%s.indices: index %u at position %zu is not greater than the one before "
+                       "(%llu)",
+                       sw.c_str(), idx, k, (unsigned long long)prev));
+        prev = idx;
+        memcpy(&d[size_t(idx) * elem], vb.first + voff + k * elem, elem);
+    }
+    auto &stored = c.sparse_data[ai];
+    stored.swap(d);
+    v.base = stored.data();
+    v.stride = elem;
+}
+
+View get_view(Ctx &c, int ai)
 {
     const tinygltf::Model &m = c.model;
     if (ai < 0 || size_t(ai) >= m.accessors.size())
@@ -737,27 +877,23 @@ View get_view(const Ctx &c, int ai)
     v.ncomp = type_comps(a.type);
     v.count = a.count;
     v.normalized = a.normalized;
-    if (a.sparse.isSparse && a.sparse.count > 0)
-        gfail(strf("accessors[%d]: sparse accessors not supported", ai));
+    const bool sparse = a.sparse.isSparse;
     size_t csize = ctype_size(a.componentType);
     if (!csize || !v.ncomp)
         gfail(strf("accessors[%d]: invalid componentType %d or type", ai, a.componentType));
-    if (a.bufferView < 0)
-        gfail(strf("accessors[%d]: has no bufferView (zero-filled accessors are not supported)",
-                   ai));
+    size_t elem = csize * size_t(v.ncomp);
+    if (a.bufferView < 0) {
+        if (!sparse)
+            gfail(strf("accessors[%d]: has no bufferView (zero-filled accessors are not supported "
+                       "without sparse)",
+                       ai));
+        apply_sparse(c, ai, a, v, elem);
+        return v;
+    }
     if (size_t(a.bufferView) >= m.bufferViews.size())
         gfail(strf("accessors[%d]: bufferView %d out of range", ai, a.bufferView));
     const tinygltf::BufferView &bv = m.bufferViews[size_t(a.bufferView)];
-    if (bv.buffer < 0 || size_t(bv.buffer) >= m.buffers.size())
-        gfail(strf("bufferViews[%d]: buffer %d out of range", a.bufferView, bv.buffer));
-    const tinygltf::Buffer &buf = m.buffers[size_t(bv.buffer)];
-    uint64_t blen = buf.data.size();
-    if (bv.byteOffset > blen || bv.byteLength > blen - bv.byteOffset)
-        gfail(strf("bufferViews[%d]: byteOffset %zu + byteLength %zu exceeds buffers[%d] "
-                   "(%llu bytes)",
-                   a.bufferView, bv.byteOffset, bv.byteLength, bv.buffer,
-                   (unsigned long long)blen));
-    size_t elem = csize * size_t(v.ncomp);
+    auto bytes = view_bytes(c, a.bufferView, strf("accessors[%d]", ai));
     size_t stride = bv.byteStride ? bv.byteStride : elem;
     if (stride < elem)
         gfail(strf("accessors[%d]: bufferViews[%d].byteStride %zu is smaller than the element "
@@ -772,8 +908,9 @@ View get_view(const Ctx &c, int ai)
                        "exceeds bufferView %d (%zu bytes)",
                        ai, a.count, a.byteOffset, stride, elem, a.bufferView, bv.byteLength));
     }
-    v.base = buf.data.data() + bv.byteOffset + a.byteOffset;
+    v.base = bytes.first + a.byteOffset;
     v.stride = stride;
+    if (sparse) apply_sparse(c, ai, a, v, elem);
     return v;
 }
 
@@ -802,24 +939,6 @@ inline void read_floats(const View &v, size_t i, float *out)
         break;
     default:
         for (int k = 0; k < v.ncomp; k++) out[k] = 0;
-    }
-}
-
-inline uint32_t read_index(const View &v, size_t i)
-{
-    const unsigned char *p = v.base + i * v.stride;
-    switch (v.ctype) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        uint16_t x;
-        memcpy(&x, p, 2);
-        return x;
-    }
-    default: {
-        uint32_t x;
-        memcpy(&x, p, 4);
-        return x;
-    }
     }
 }
 
@@ -914,6 +1033,13 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
 
     const int *pa = find_attr(prim, "POSITION");
     if (!pa) gfail(pw + ".attributes: POSITION missing (required)");
+    bool has_color = false, has_uv1 = false;
+    for (const auto &at : prim.attributes) {
+        has_color = has_color || at.first.compare(0, 6, "COLOR_") == 0;
+        has_uv1 = has_uv1 || (at.first.compare(0, 9, "TEXCOORD_") == 0 && at.first != "TEXCOORD_0");
+    }
+    c.color_prims += has_color;
+    c.texcoord1_prims += has_uv1;
     View pos = get_view(c, *pa);
     expect_float(pos, "POSITION", TINYGLTF_TYPE_VEC3);
     const size_t n = pos.count;
@@ -1219,6 +1345,159 @@ void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene
     for (int ch : nd.children) camera_visit(c, ch, world, out);
 }
 
+std::string plural(size_t n, const char *one, const char *many)
+{
+    return strf("%zu %s", n, n == 1 ? one : many);
+}
+
+/* "materials[2] 'glass'" */
+std::string material_desc(const tinygltf::Model &md, size_t i)
+{
+    std::string d = strf("materials[%zu]", i);
+    if (i < md.materials.size() && !md.materials[i].name.empty())
+        d += " '" + md.materials[i].name.substr(0, 60) + "'";
+    return d;
+}
+
+/* Up to 3 names, then ", ..." */
+std::string name_list(const std::vector<std::string> &v)
+{
+    std::string r;
+    for (size_t i = 0; i < v.size() && i < 3; i++) r += (i ? ", " : "") + v[i];
+    if (v.size() > 3) r += ", ...";
+    return r;
+}
+
+std::string wrap_name(int w)
+{
+    switch (w) {
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return "CLAMP_TO_EDGE";
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return "MIRRORED_REPEAT";
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return "REPEAT";
+    default: return strf("%d", w);
+    }
+}
+
+std::string filter_name(int f)
+{
+    switch (f) {
+    case TINYGLTF_TEXTURE_FILTER_NEAREST: return "NEAREST";
+    case TINYGLTF_TEXTURE_FILTER_LINEAR: return "LINEAR";
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST: return "NEAREST_MIPMAP_NEAREST";
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: return "LINEAR_MIPMAP_NEAREST";
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR: return "NEAREST_MIPMAP_LINEAR";
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR: return "LINEAR_MIPMAP_LINEAR";
+    default: return strf("%d", f);
+    }
+}
+
+/* What an extension in extensionsUsed (and not in extensionsRequired, which is refused) means
+ * for the image. */
+std::string extension_effect(const std::string &e)
+{
+    if (e == "KHR_texture_transform") return "texture offset/rotation/scale not applied";
+    if (e == "KHR_materials_emissive_strength") return "emission is not drawn";
+    if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression")
+        return "compressed data not decoded, the uncompressed fallback is drawn";
+    if (e == "KHR_mesh_quantization")
+        return "quantized attributes are not decoded (a primitive using them is an error)";
+    if (e == "KHR_lights_punctual") return "the file's lights are not used";
+    if (e == "KHR_materials_variants") return "the default material of each primitive is drawn";
+    if (e.compare(0, 14, "KHR_materials_") == 0) return "the core material is drawn without it";
+    return "not supported";
+}
+
+/* Every feature the file uses that is not drawn as the file asks: one line each (see scene.h). */
+void collect_warnings(Ctx &c)
+{
+    const tinygltf::Model &md = c.model;
+    auto &W = c.warnings;
+    if (c.skipped_prims)
+        W.push_back(strf("skipped %u point/line primitive(s) (only triangles are drawn)",
+                         c.skipped_prims));
+    if (!md.skins.empty())
+        W.push_back(plural(md.skins.size(), "skin", "skins") + " ignored: rendered in bind pose");
+    size_t morph_meshes = 0, morph_targets = 0;
+    for (const auto &m : md.meshes) {
+        size_t t = 0;
+        for (const auto &p : m.primitives) t = std::max(t, p.targets.size());
+        morph_meshes += t > 0;
+        morph_targets += t;
+    }
+    if (!md.animations.empty())
+        W.push_back(plural(md.animations.size(), "animation", "animations") +
+                    " ignored: the nodes are drawn at their static transforms");
+    if (morph_meshes)
+        W.push_back(plural(morph_targets, "morph target", "morph targets") + " in " +
+                    plural(morph_meshes, "mesh", "meshes") +
+                    " ignored: rendered with the base geometry (weights not applied)");
+    constexpr size_t kMaxExtensionLines = 16;
+    for (size_t i = 0; i < md.extensionsUsed.size() && i < kMaxExtensionLines; i++) {
+        const std::string &e = md.extensionsUsed[i];
+        W.push_back("extensionsUsed: '" + e.substr(0, 80) + "' ignored: " + extension_effect(e));
+    }
+    if (md.extensionsUsed.size() > kMaxExtensionLines)
+        W.push_back(strf("extensionsUsed: %zu more extensions ignored (not supported)",
+                         md.extensionsUsed.size() - kMaxExtensionLines));
+
+    std::vector<std::string> blend, emissive, occlusion, mr, texcoord;
+    for (size_t i = 0; i < md.materials.size(); i++) {
+        const tinygltf::Material &m = md.materials[i];
+        if ((m.pbrMetallicRoughness.baseColorTexture.index >= 0 &&
+             m.pbrMetallicRoughness.baseColorTexture.texCoord != 0) ||
+            (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0))
+            texcoord.push_back(material_desc(md, i));
+        if (m.alphaMode == "BLEND") blend.push_back(material_desc(md, i));
+        bool em = m.emissiveTexture.index >= 0;
+        for (double x : m.emissiveFactor) em = em || x != 0.0;
+        if (em) emissive.push_back(material_desc(md, i));
+        if (m.occlusionTexture.index >= 0) occlusion.push_back(material_desc(md, i));
+        if (m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
+            mr.push_back(material_desc(md, i));
+    }
+    if (!blend.empty())
+        W.push_back(plural(blend.size(), "material", "materials") + " with alphaMode BLEND (" +
+                    name_list(blend) + "): rendered as opaque");
+    if (!emissive.empty())
+        W.push_back("emissive factor/texture of " +
+                    plural(emissive.size(), "material", "materials") + " (" + name_list(emissive) +
+                    ") ignored: emission is not drawn");
+    if (!mr.empty())
+        W.push_back("metallicRoughnessTexture of " + plural(mr.size(), "material", "materials") +
+                    " (" + name_list(mr) + ") ignored: the metallic/roughness factors are used");
+    if (!occlusion.empty())
+        W.push_back("occlusionTexture of " + plural(occlusion.size(), "material", "materials") +
+                    " (" + name_list(occlusion) + ") ignored");
+    if (!texcoord.empty())
+        W.push_back("textures of " + plural(texcoord.size(), "material", "materials") + " (" +
+                    name_list(texcoord) + ") ask for a texCoord other than 0: read with TEXCOORD_0");
+    if (c.color_prims)
+        W.push_back("COLOR_0 vertex colours in " +
+                    plural(c.color_prims, "primitive", "primitives") + " ignored");
+    if (c.texcoord1_prims)
+        W.push_back("TEXCOORD_1 (and higher) in " +
+                    plural(c.texcoord1_prims, "primitive", "primitives") +
+                    " ignored: every texture is read with TEXCOORD_0");
+
+    std::vector<std::string> odd;
+    for (size_t i = 0; i < md.samplers.size(); i++) {
+        const tinygltf::Sampler &sm = md.samplers[i];
+        std::string d;
+        if (sm.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT) d += " wrapS " + wrap_name(sm.wrapS);
+        if (sm.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT) d += " wrapT " + wrap_name(sm.wrapT);
+        if (sm.magFilter >= 0 && sm.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR)
+            d += " magFilter " + filter_name(sm.magFilter);
+        if (sm.minFilter >= 0 && sm.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR &&
+            sm.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR)
+            d += " minFilter " + filter_name(sm.minFilter);
+        if (!d.empty()) odd.push_back(strf("samplers[%zu]:", i) + d);
+    }
+    if (!odd.empty())
+        W.push_back(plural(odd.size(), "sampler", "samplers") + " with other wrap/filter modes (" +
+                    name_list(odd) + ") ignored: textures are drawn with REPEAT and linear " +
+                    "(trilinear) filtering");
+}
+
 pg_scene *load(Ctx &c)
 {
     /* 1. the file */
@@ -1226,7 +1505,8 @@ pg_scene *load(Ctx &c)
     size_t raw_size = 0;
     pg_error rerr;
     memset(&rerr, 0, sizeof rerr);
-    if (pg_read_file(c.path.c_str(), &raw, &raw_size, &rerr) != PG_OK) {
+    if (pg_read_file_as(c.path.c_str(), "a glTF 2.0 .gltf/.glb file", &raw, &raw_size, &rerr) !=
+        PG_OK) {
         /* keep pg_read_file's "PATH: cannot open: ..." message */
         throw LoadFail{rerr.code, std::string("\x01") + rerr.msg};
     }
@@ -1234,6 +1514,17 @@ pg_scene *load(Ctx &c)
     const unsigned char *bytes = reinterpret_cast<const unsigned char *>(raw);
     if (raw_size == 0) fail(PG_ERR_PARSE, "empty file");
     c.is_glb = raw_size >= 4 && memcmp(raw, "glTF", 4) == 0;
+    if (!c.is_glb) {
+        /* a .gltf is a JSON object: anything else (an .obj, .fbx, .ply, a PNG...) is another
+         * format, said plainly instead of a JSON syntax error */
+        size_t k = 0;
+        if (raw_size >= 3 && memcmp(raw, "\xEF\xBB\xBF", 3) == 0) k = 3; /* UTF-8 BOM */
+        while (k < raw_size && (raw[k] == ' ' || raw[k] == '\t' || raw[k] == '\r' || raw[k] == '\n'))
+            k++;
+        if (k == raw_size) fail(PG_ERR_PARSE, "empty file");
+        if (raw[k] != '{' && raw[k] != '[')
+            fail(PG_ERR_PARSE, "not a glTF 2.0 file (passgraph reads .gltf and .glb only)");
+    }
 
     /* 2. JSON + pre-validation */
     {
@@ -1305,10 +1596,8 @@ pg_scene *load(Ctx &c)
         for (int r : roots) w.visit(r, mat_identity(), 0);
         for (int r : roots) camera_visit(c, r, mat_identity(), cams);
     }
-    if (c.skipped_prims)
-        fprintf(stderr, "%s: warning: skipped %u point/line primitive(s) (only triangles are drawn)\n",
-                c.path.c_str(), c.skipped_prims);
     if (o.idx.empty()) gfail("the scene has no triangles");
+    collect_warnings(c);
 
     /* 5. materials and textures */
     std::vector<pg_material> mats;
@@ -1416,6 +1705,12 @@ pg_scene *load(Ctx &c)
                 fail(terr.code, image_desc(c, k.image) + ": " + terr.msg);
             s->n_textures++;
         }
+    }
+    for (const std::string &wline : c.warnings) {
+        pg_error werr;
+        memset(&werr, 0, sizeof werr);
+        if (pg_scene_add_warning(s.get(), (c.path + ": " + wline).c_str(), &werr) != PG_OK)
+            throw std::bad_alloc();
     }
     pg_scene_finalize(s.get());
     return s.release();

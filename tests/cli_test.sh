@@ -403,5 +403,56 @@ expect_fail "camera without value" "--camera: missing value" render --camera
 expect_fail "compare: unknown camera" "no such camera" compare --scene "$two" --camera nope --size 32x18
 expect_fail "dump: unknown camera" "no such camera" dump --scene "$two" --camera nope
 expect_fail "bench: unknown camera" "no such camera" bench --scene "$two" --camera nope --size 32x18 --frames 1 --out "$tmp/b_cam"
+# ---- new-user mistakes (issue 11): one clear line each ----
+gcorp="$root/tests/corpus/gltf"
+mkdir -p "$tmp/adir"
+expect_fail "--scene is a directory" "$tmp/adir: is a directory (expected a glTF 2.0 .gltf/.glb file)" \
+  render --scene "$tmp/adir" --size 32x18 --lights 4 --out "$tmp/x.png"
+expect_fail "--scenario is a directory" "$tmp/adir: is a directory (expected a scenario .json file)" \
+  render --scenario "$tmp/adir" --size 32x18 --lights 4 --out "$tmp/x.png"
+expect_fail "--pipeline is a directory" "$tmp/adir: is a directory (expected a pipeline .json file)" \
+  render --pipeline "$tmp/adir" --size 32x18 --lights 4 --out "$tmp/x.png"
+grep -q "out of memory" "$tmp/err" && bad "a directory still reads as 'out of memory'" || ok
+expect_fail "--ocio-config is a directory" "$tmp/adir: is a directory (expected an OCIO config .ocio file)" \
+  render --ocio-config "$tmp/adir" --size 32x18 --lights 4 --out "$tmp/x.png"
+expect_fail "compare --reference is a directory" "reference: $tmp/adir: is a directory (expected a pipeline .json file)" \
+  compare --reference "$tmp/adir" --size 32x18 --lights 4
+expect_fail "--scene an OBJ file" "$gcorp/cube.obj: not a glTF 2.0 file (passgraph reads .gltf and .glb only)" \
+  render --scene "$gcorp/cube.obj" --size 32x18 --lights 4 --out "$tmp/x.png"
+expect_fail "--scene a glTF 1.0 file" "glTF 1.0 is not supported, only 2.0" \
+  render --scene "$gcorp/version_1.gltf" --size 32x18 --lights 4 --out "$tmp/x.png"
+expect_fail "--scene: an unsupported required extension" "extensionsRequired: 'KHR_texture_transform', 'KHR_mesh_quantization' are not supported" \
+  render --scene "$gcorp/required_texture_transform.gltf" --size 32x18 --lights 4 --out "$tmp/x.png"
+expect_fail "--out .bmp" "--out $tmp/x.bmp: unsupported image extension '.bmp' (accepted: .png, .jpg, .jpeg, .exr)" \
+  render --size 32x18 --lights 4 --out "$tmp/x.bmp"
+expect_fail "--out without extension" "--out $tmp/x: no file extension (accepted: .png, .jpg, .jpeg, .exr)" \
+  render --size 32x18 --lights 4 --out "$tmp/x"
+[ ! -e "$tmp/x.bmp" ] && [ ! -e "$tmp/x" ] && ok || bad "a refused --out extension wrote a file"
+expect_fail "compare --heatmap .bmp" "--heatmap: $tmp/h.bmp: unsupported image extension '.bmp' (accepted: .png, .jpg, .jpeg)" \
+  compare --reference "$naive" --size 32x18 --lights 4 --heatmap "$tmp/h.bmp"
+expect_fail "view --screenshot .bmp" "--screenshot $tmp/s.bmp: unsupported image extension '.bmp' (accepted: .png, .jpg, .jpeg)" \
+  view --frames 1 --screenshot "$tmp/s.bmp"
+expect_fail "view --at N:screenshot=.tga" "unsupported image extension '.tga'" view --frames 2 --at 1:screenshot="$tmp/s.tga"
+# --out x.jpg writes a JPEG (not PNG bytes under a .jpg name)
+"$PG" render --size 32x18 --lights 4 --out "$tmp/r.jpg" >"$tmp/out" 2>"$tmp/err" \
+  && [ "$(head -c 3 "$tmp/r.jpg" | od -An -tx1 | tr -d ' ')" = "ffd8ff" ] && grep -q -- "-> $tmp/r.jpg" "$tmp/out" \
+  && ok || { bad "render --out x.jpg: not a JPEG"; cat "$tmp/err"; }
+"$PG" render --size 32x18 --lights 4 --out "$tmp/r2.JPEG" >"$tmp/out" 2>"$tmp/err" \
+  && [ "$(head -c 3 "$tmp/r2.JPEG" | od -An -tx1 | tr -d ' ')" = "ffd8ff" ] && ok || { bad "render --out x.JPEG"; cat "$tmp/err"; }
+# unsupported glTF features: one warning line on stderr, once, and listed by --explain
+skin_w="passgraph: warning: $gcorp/ok_skins.gltf: 2 skins ignored: rendered in bind pose"
+"$PG" render --scene "$gcorp/ok_skins.gltf" --size 32x18 --lights 4 --explain --out "$tmp/sk.png" >"$tmp/out" 2>"$tmp/err" \
+  && [ "$(grep -cxF -- "$skin_w" "$tmp/err")" = 1 ] && [ "$(grep -c 'warning' "$tmp/err")" = 1 ] \
+  && grep -qxF "explain: scene warning: $gcorp/ok_skins.gltf: 2 skins ignored: rendered in bind pose" "$tmp/out" \
+  && ok || { bad "render: skins warning"; cat "$tmp/err" "$tmp/out"; }
+"$PG" render --scene "$gcorp/ok_minimal.gltf" --size 32x18 --lights 4 --out "$tmp/mi.png" >"$tmp/out" 2>"$tmp/err" \
+  && ! grep -q "warning" "$tmp/err" && ok || { bad "render: a plain glTF warns"; cat "$tmp/err"; }
+"$PG" compare --scene "$gcorp/ok_alpha_blend.gltf" --reference "$naive" --size 32x18 --lights 4 --quiet >"$tmp/out" 2>"$tmp/err" \
+  && [ "$(grep -cxF -- "passgraph: warning: $gcorp/ok_alpha_blend.gltf: 1 material with alphaMode BLEND (materials[0] 'glass'): rendered as opaque" "$tmp/err")" = 1 ] \
+  && ok || { bad "compare: BLEND warning"; cat "$tmp/err"; }
+"$PG" bench --scene "$gcorp/ok_skins.gltf" --pipelines naive --lights 4,8 --size 32x18 --frames 1 --warmup 0 --out "$tmp/bw" \
+  >"$tmp/out" 2>"$tmp/err" && [ "$(grep -cxF -- "$skin_w" "$tmp/err")" = 1 ] \
+  && ok || { bad "bench: skins warning once"; cat "$tmp/err"; }
+
 echo "cli_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -653,6 +653,13 @@ static void test_api_edges(void)
     CHECK(pg_pipeline_load(CORPUS "/no_such_file.json", NULL, 0, &p, &err) == PG_ERR_IO);
     CHECK(p == NULL && strstr(err.msg, "no_such_file.json"));
     CHECK(pg_pipeline_load(CORPUS "/inc", NULL, 0, &p, &err) == PG_ERR_IO);
+    CHECK_MSG(!strcmp(err.msg, CORPUS "/inc: is a directory (expected a pipeline .json file)"), "%s", err.msg);
+    /* the common reader says the same for any path (include files, shaders, scenarios) */
+    char *text = (char *)1;
+    CHECK(pg_read_file_as(CORPUS "/inc", "a thing", &text, NULL, &err) == PG_ERR_IO && text == NULL);
+    CHECK_MSG(!strcmp(err.msg, CORPUS "/inc: is a directory (expected a thing)"), "%s", err.msg);
+    CHECK(pg_read_file(CORPUS "/inc", &text, NULL, &err) == PG_ERR_IO);
+    CHECK_MSG(!strcmp(err.msg, CORPUS "/inc: is a directory"), "%s", err.msg);
     CHECK(pg_pipeline_load(NULL, NULL, 0, &p, &err) == PG_ERR_INVALID_ARG);
     CHECK(pg_pipeline_load_string(NULL, "x.json", NULL, 0, &p, &err) == PG_ERR_INVALID_ARG);
     CHECK(pg_pipeline_load_string("{}", "x.json", NULL, 0, NULL, &err) == PG_ERR_INVALID_ARG);

@@ -708,6 +708,110 @@ static void test_corpus_valid_details(void)
     }
 }
 
+/* scene->warnings must be exactly the WARNINGS lines of `file` (each "PATH: LINE"), in order. */
+static bool check_corpus_warnings(const char *file, const char *path, const pg_scene *s)
+{
+    char wpath[512];
+    snprintf(wpath, sizeof wpath, "%s/corpus/gltf/WARNINGS", PG_TEST_DIR);
+    FILE *f = fopen(wpath, "r");
+    CHECK_MSG(f != NULL, "cannot open %s", wpath);
+    if (!f) return false;
+    char line[1024];
+    uint32_t k = 0;
+    bool ok = true;
+    while (fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\r\n")] = 0;
+        char *tab = strchr(line, '\t');
+        if (!tab) continue;
+        *tab = 0;
+        if (strcmp(line, file) != 0) continue;
+        char want[1400];
+        snprintf(want, sizeof want, "%s: %s", path, tab + 1);
+        bool same = k < s->n_warnings && !strcmp(s->warnings[k], want);
+        CHECK_MSG(same, "%s: warning %u is '%s', want '%s'", file, k, k < s->n_warnings ? s->warnings[k] : "(none)",
+                  want);
+        ok = ok && same;
+        k++;
+    }
+    fclose(f);
+    CHECK_MSG(s->n_warnings == k, "%s: %u warnings, WARNINGS lists %u (first: %s)", file, s->n_warnings, k,
+              s->n_warnings ? s->warnings[0] : "-");
+    return ok && s->n_warnings == k;
+}
+
+/* Sparse substitution, the exact lines of the new-user mistakes, ownership of the warnings. */
+static void test_corpus_features(void)
+{
+    pg_scene *s;
+    if ((s = load_corpus("ok_sparse.gltf"))) {
+        /* vertex 2 moved from (0,1,0) to (0,2,0) by the sparse values; 0 and 1 kept */
+        CHECK(s->n_vertices == 3 && s->vertices[2].position[1] == 2.0f && s->vertices[1].position[0] == 1.0f &&
+              s->vertices[0].position[1] == 0.0f);
+        CHECK(s->bounds_max[1] == 2.0f);
+        CHECK(s->n_warnings == 0 && s->warnings == NULL);
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_sparse_no_view.gltf"))) {
+        CHECK(s->n_vertices == 3 && s->vertices[1].position[0] == 1.0f && s->vertices[2].position[1] == 3.0f);
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_skins.gltf"))) {
+        char want[600];
+        snprintf(want, sizeof want, "%s/corpus/gltf/ok_skins.gltf: 2 skins ignored: rendered in bind pose", PG_TEST_DIR);
+        CHECK(s->n_warnings == 1 && !strcmp(s->warnings[0], want));
+        /* the tools' printer: one "PREFIXwarning: LINE" per warning */
+        char *buf = NULL;
+        size_t len = 0;
+        FILE *mf = open_memstream(&buf, &len);
+        CHECK(mf != NULL);
+        if (mf) {
+            pg_scene_print_warnings(s, "passgraph: ", mf);
+            fclose(mf);
+            char line[700];
+            snprintf(line, sizeof line, "passgraph: warning: %s\n", want);
+            CHECK(buf && !strcmp(buf, line));
+            free(buf);
+        }
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_alpha_blend.gltf"))) {
+        CHECK(s->n_materials >= 1 && s->materials[0].alpha_mode == PG_ALPHA_BLEND);
+        pg_scene_free(s);
+    }
+    pg_error err = {0};
+    pg_scene *bad = (pg_scene *)1;
+    /* a directory: said so, with what was expected */
+    CHECK(pg_scene_load_gltf(PG_TEST_DIR "/corpus/gltf", &bad, &err) == PG_ERR_IO && bad == NULL);
+    CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus/gltf: is a directory (expected a glTF 2.0 .gltf/.glb file)"),
+              "%s", err.msg);
+    CHECK(pg_scene_load(PG_TEST_DIR "/corpus/gltf/", &bad, &err) == PG_ERR_IO);
+    CHECK(strstr(err.msg, ": is a directory (expected a glTF 2.0 .gltf/.glb file)") != NULL);
+    CHECK(pg_scene_load_gltf(PG_TEST_DIR "/corpus/gltf/cube.obj", &bad, &err) == PG_ERR_PARSE);
+    CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus/gltf/cube.obj: not a glTF 2.0 file (passgraph reads .gltf and "
+                               ".glb only)"),
+              "%s", err.msg);
+    CHECK(pg_scene_load_gltf(PG_TEST_DIR "/corpus/gltf/version_1.gltf", &bad, &err) == PG_ERR_GLTF);
+    CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus/gltf/version_1.gltf: asset.version: '1.0': glTF 1.0 is not "
+                               "supported, only 2.0"),
+              "%s", err.msg);
+    CHECK(pg_scene_load_gltf(PG_TEST_DIR "/corpus/gltf/required_meshopt.gltf", &bad, &err) == PG_ERR_GLTF);
+    CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus/gltf/required_meshopt.gltf: extensionsRequired: "
+                               "'EXT_meshopt_compression' is not supported (passgraph implements no glTF "
+                               "extensions; only core glTF 2.0)"),
+              "%s", err.msg);
+    /* a scenario path that is a directory */
+    pg_scenario sc;
+    CHECK(pg_scenario_load(PG_TEST_DIR "/corpus", &sc, &err) == PG_ERR_IO);
+    CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus: is a directory (expected a scenario .json file)"), "%s", err.msg);
+    /* the default scene has no warnings */
+    if (pg_scene_create_default(&s, &err) == PG_OK) {
+        CHECK(s->n_warnings == 0 && s->warnings == NULL);
+        CHECK(pg_scene_add_warning(s, "x: one", &err) == PG_OK && pg_scene_add_warning(s, "x: two", &err) == PG_OK);
+        CHECK(s->n_warnings == 2 && !strcmp(s->warnings[1], "x: two"));
+        pg_scene_free(s);
+    }
+}
+
 static void test_corpus(void)
 {
     char mpath[512];
@@ -739,6 +843,7 @@ static void test_corpus(void)
         bool ok;
         if (want == PG_OK) {
             ok = r == PG_OK && s != NULL && s->n_indices > 0;
+            if (ok) ok = check_corpus_warnings(file, path, s);
             n_ok++;
         } else {
             ok = r == want && s == NULL && strstr(err.msg, sub) != NULL && strstr(err.msg, file) != NULL;
@@ -753,6 +858,7 @@ static void test_corpus(void)
     printf("glTF corpus: %d error cases, %d valid files, %d mismatches\n", n_err, n_ok, n_fail);
     CHECK(n_err >= 30);
     test_corpus_valid_details();
+    test_corpus_features();
 }
 
 /* ---- object framing, object lights, glTF cameras (tests/corpus/gltf/objects) ------------------ */

@@ -62,5 +62,14 @@ grep -q "^view: camera: glTF camera 0 'side'" "$tmp/out3" && ok || { bad "camera
 grep -q "^view: camera: auto framing" "$tmp/out3" && ok || { bad "cameras: auto framing line"; cat "$tmp/out3"; }
 grep -q "^view: lights: object box" "$tmp/out3" && ok || { bad "cameras: lights line"; cat "$tmp/out3"; }
 grep -q "validation message" "$tmp/err3" && bad "cameras: validation messages" || ok
+# a glTF with a feature the loader does not draw: the warning line once on stderr (the UI lists it
+# too); a .jpg screenshot is a JPEG
+skins="$root/tests/corpus/gltf/ok_skins.gltf"
+xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --size 64x36 --frames 2 --lights 4 --scene "$skins" \
+  --screenshot "$tmp/shot.jpg" >"$tmp/out4" 2>"$tmp/err4"
+[ $? -eq 0 ] && ok || { bad "view of a warned glTF: exit"; tail -5 "$tmp/err4"; }
+[ "$(grep -cxF "passgraph: warning: $skins: 2 skins ignored: rendered in bind pose" "$tmp/err4")" = 1 ] \
+  && ok || { bad "view: skins warning not printed once"; cat "$tmp/err4"; }
+[ "$(head -c 3 "$tmp/shot.jpg" 2>/dev/null | od -An -tx1 | tr -d ' ')" = "ffd8ff" ] && ok || bad "view --screenshot x.jpg: not a JPEG"
 echo "view_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]

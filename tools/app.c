@@ -85,6 +85,7 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
         scene = app->scenario.scene;
     pg_strlcpy(app->scene_path, scene, sizeof app->scene_path);
     if ((r = pg_scene_load(scene, &app->scene, err))) return r;
+    pg_scene_print_warnings(app->scene, "passgraph: ", stderr); /* once per loaded scene */
     if (with_gpu) {
         pg_gpu_desc gd = {
             .validation = opt->validation,

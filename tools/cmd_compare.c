@@ -344,6 +344,7 @@ int pg_cmd_compare(int argc, char **argv)
                 reference = v;
             } else if (!strcmp(a, "--heatmap")) {
                 heatmap = v;
+                if ((r = pg_image_path_check(v, false, &err))) pg_error_prefix(&err, "--heatmap");
             } else if (!strcmp(a, "--json")) {
                 json = v;
             } else if (!strcmp(a, "--threshold")) {
@@ -406,6 +407,8 @@ int pg_cmd_compare(int argc, char **argv)
         printf("explain: %s\nexplain: %s\n", app.camera_why, app.lights_why);
         pg_print_explain(A.s, stdout);
         pg_print_explain(R.s, stdout);
+        for (uint32_t k = 0; k < app.scene->n_warnings; k++)
+            printf("explain: scene warning: %s\n", app.scene->warnings[k]);
     }
     if (side_finish(&A, opt.frames, &err) || side_finish(&R, opt.frames, &err)) goto done;
     if (pg_image_sizes_match("output (display)", A.lw, A.lh, R.lw, R.lh, &err) ||
@@ -433,7 +436,7 @@ int pg_cmd_compare(int argc, char **argv)
         heat_scale = pg_error_heatmap_scale(A.hdr, R.hdr, e.width, e.height, heat_scale);
         snprintf(heat_how, sizeof heat_how, "%s", how);
         pg_error_heatmap(A.hdr, R.hdr, e.width, e.height, heat_scale, heat);
-        if (pg_write_png(heatmap, heat, e.width, e.height, &err)) {
+        if (pg_write_image(heatmap, heat, e.width, e.height, &err)) {
             pg_error_prefix(&err, "--heatmap");
             goto done;
         }

@@ -12,7 +12,7 @@
 #include "image_util.h"
 
 static const char *const render_help =
-    "usage: passgraph render [options] --out FILE.png|FILE.exr [--hdr-out FILE.exr]\n"
+    "usage: passgraph render [options] --out FILE.png|FILE.jpg|FILE.exr [--hdr-out FILE.exr]\n"
     "Renders one frame of a scene with a pipeline, headless, and writes the display image.\n"
     "Prints one summary line: GPU ms in total and per pass (timestamps; median over --frames),\n"
     "and the number of non-finite pixels in the HDR output.\n\n"
@@ -20,7 +20,8 @@ static const char *const render_help =
 
 static const char *const render_out_help =
     "  --out FILE.png       where to write the display image (8-bit, through the display pass: the\n"
-    "                       OCIO view, see --display / --view)\n"
+    "                       OCIO view, see --display / --view); FILE.jpg / FILE.jpeg write a JPEG\n"
+    "                       (quality 95); other extensions are refused\n"
     "  --out FILE.exr       write the linear HDR image (the pipeline's hdr_output, scene-linear\n"
     "                       Rec.709, RGBA half floats for rgba16f, floats for rgba32f) to FILE.exr\n"
     "                       AND the display image to FILE.png\n"
@@ -91,6 +92,10 @@ int pg_cmd_render(int argc, char **argv)
         fprintf(stderr, "passgraph render: --out FILE.png is required\n");
         return 2;
     }
+    if (pg_image_path_check(opt.out, true, &err)) {
+        fprintf(stderr, "passgraph render: --out %s\n", err.msg);
+        return 2;
+    }
     /* --out x.exr: the HDR image to x.exr and the display image to x.png */
     char png_path[PG_PATH_MAX], exr_path[PG_PATH_MAX] = "";
     if (ends_with_exr(opt.out)) {
@@ -145,17 +150,19 @@ int pg_cmd_render(int argc, char **argv)
     if (opt.explain) {
         printf("explain: %s\nexplain: %s\n", app.camera_why, app.lights_why);
         pg_print_explain(s, stdout);
+        for (uint32_t k = 0; k < app.scene->n_warnings; k++)
+            printf("explain: scene warning: %s\n", app.scene->warnings[k]);
     }
     uint32_t w, h;
     pg_format fmt;
     const uint8_t *ldr = pg_runtime_output(s->runtime, 0, &w, &h, &fmt);
     if (!ldr || pg_format_get(fmt)->bytes_per_pixel != 4) {
-        pg_fail(&err, PG_ERR_FORMAT, "%s: output '%s' must be an 8-bit RGBA image to write a PNG", s->pipeline->path,
-                s->pipeline->output);
+        pg_fail(&err, PG_ERR_FORMAT, "%s: output '%s' must be an 8-bit RGBA image to write %s",
+                s->pipeline->path, s->pipeline->output, png_path);
         free(samples);
         goto done;
     }
-    if (pg_write_png(png_path, ldr, w, h, &err)) {
+    if (pg_write_image(png_path, ldr, w, h, &err)) {
         free(samples);
         goto done;
     }

@@ -574,6 +574,11 @@ static void build_ui(viewer *v)
         if (pl && pl->description[0]) pg_ui_text_wrapped(pl->description);
         if (pg_ui_header("Scene and lights", true)) {
             pg_ui_text("scene: %s", v->app.scene_path);
+            /* what the loader could not draw as the file asks (scene.h: warnings) */
+            for (uint32_t k = 0; v->app.scene && k < v->app.scene->n_warnings; k++) {
+                pg_ui_text_colored(0xffc040ff, "warning:");
+                pg_ui_text_wrapped(v->app.scene->warnings[k]);
+            }
             if (pg_ui_input_text("open glTF", v->scene_input, sizeof v->scene_input) && v->scene_input[0]) {
                 pg_scene *sc = NULL;
                 pg_scene_gpu *sg = NULL;
@@ -582,6 +587,7 @@ static void build_ui(viewer *v)
                     snprintf(v->error, sizeof v->error, "%s", err.msg);
                     pg_scene_free(sc);
                 } else {
+                    pg_scene_print_warnings(sc, "passgraph view: ", stderr);
                     vkDeviceWaitIdle(v->app.gpu->device);
                     pg_session_destroy(v->session);
                     pg_session_destroy(v->naive);
@@ -963,7 +969,7 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
                     px[i * 4 + 2] = t;
                 }
             for (uint32_t i = 0; i < n; i++) px[i * 4 + 3] = 255;
-            r = pg_write_png(v->shot_file, px, w->extent.width, w->extent.height, err);
+            r = pg_write_image(v->shot_file, px, w->extent.width, w->extent.height, err);
             free(px);
             if (r) return r;
             printf("view: screenshot %s (%ux%u)\n", v->shot_file, w->extent.width, w->extent.height);
@@ -1089,7 +1095,7 @@ int pg_cmd_view(int argc, char **argv)
             printf("%s%s"
                    "  --size WxH           initial window size (default 1280x720)\n"
                    "  --pipelines DIR      also list the pipelines in DIR\n"
-                   "  --screenshot FILE    write the window (scene + UI) to a PNG at the last frame\n"
+                   "  --screenshot FILE    write the window (scene + UI) to FILE (.png, .jpg) at the last frame\n"
                    "  --cycle-pipelines    switch to the next pipeline every --cycle-every frames\n"
                    "  --cycle-every K      frames between switches (default 20)\n"
                    "  --random-params      with --cycle-pipelines: random shading, HDR format, cluster\n"
@@ -1110,6 +1116,11 @@ int pg_cmd_view(int argc, char **argv)
         }
         if (!strcmp(argv[i], "--screenshot") && i + 1 < argc) {
             v->screenshot_path = argv[++i];
+            if (pg_image_path_check(v->screenshot_path, false, &err)) {
+                fprintf(stderr, "passgraph view: --screenshot %s\n", err.msg);
+                free(v);
+                return 2;
+            }
             continue;
         }
         if (!strcmp(argv[i], "--at") && i + 1 < argc) {
@@ -1125,6 +1136,11 @@ int pg_cmd_view(int argc, char **argv)
             pg_strlcpy(a->what, what, sizeof a->what);
             const char *rest = spec + used_chars;
             pg_strlcpy(a->arg, *rest == '=' ? rest + 1 : "", sizeof a->arg);
+            if (!strcmp(a->what, "screenshot") && pg_image_path_check(a->arg, false, &err)) {
+                fprintf(stderr, "passgraph view: --at %s: %s\n", spec, err.msg);
+                free(v);
+                return 2;
+            }
             v->n_actions++;
             continue;
         }

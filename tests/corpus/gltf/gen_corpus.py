@@ -6,6 +6,9 @@ the script is kept so the corpus can be regenerated or extended. Deterministic.
 MANIFEST lines: `FILE  CODE  SUBSTRING` - loading FILE with pg_scene_load_gltf must return CODE
 (a pg_result name) and, for errors, a message containing SUBSTRING (the rest of the line).
 PG_OK lines expect a successful load ('-' as substring). '#' starts a comment line.
+WARNINGS lines: `FILE<TAB>LINE` - the exact scene->warnings of a PG_OK file, in order, each
+prefixed there with "PATH: " (the path it was loaded by); a PG_OK file without WARNINGS lines must
+load with no warnings.
 """
 import base64
 import json
@@ -15,6 +18,7 @@ import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 manifest = []
+warnings = []
 
 
 def b64(data):
@@ -72,7 +76,7 @@ def base_doc(pos=TRI_POS, idx=TRI_IDX16, idx_ct=5123, idx_count=3, extra_bin=b""
     }, data
 
 
-def write(name, doc_or_text, code, substring="-"):
+def write(name, doc_or_text, code, substring="-", warn=()):
     path = os.path.join(HERE, name)
     if isinstance(doc_or_text, (bytes, bytearray)):
         open(path, "wb").write(doc_or_text)
@@ -81,6 +85,7 @@ def write(name, doc_or_text, code, substring="-"):
     else:
         open(path, "w").write(json.dumps(doc_or_text, indent=1) + "\n")
     manifest.append((name, code, substring))
+    warnings.extend((name, w) for w in warn)
 
 
 def png_chunk(tag, data):
@@ -108,12 +113,17 @@ def glb(doc, binchunk):
 
 
 for f in os.listdir(HERE):
-    if f.endswith((".gltf", ".glb", ".bin", ".png")) or f == "MANIFEST":
+    if f.endswith((".gltf", ".glb", ".bin", ".png", ".obj")) or f in ("MANIFEST", "WARNINGS"):
         os.remove(os.path.join(HERE, f))
 
 # ------------------------------------------------------------------------------------------------
 # syntax / top level
-write("not_json.gltf", "this is not JSON {\n", "PG_ERR_PARSE", "JSON syntax error")
+write("not_json.gltf", "this is not JSON {\n", "PG_ERR_PARSE",
+      "not_json.gltf: not a glTF 2.0 file (passgraph reads .gltf and .glb only)")
+# new-user mistakes: another mesh format, a directory
+write("cube.obj", "# an OBJ file\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "PG_ERR_PARSE",
+      "cube.obj: not a glTF 2.0 file (passgraph reads .gltf and .glb only)")
+manifest.append(("fuzz", "PG_ERR_IO", "fuzz: is a directory (expected a glTF 2.0 .gltf/.glb file)"))
 write("empty.gltf", "", "PG_ERR_PARSE", "empty file")
 write("truncated_json.gltf", '{"asset": {"version": "2.0"}, "nodes": [', "PG_ERR_PARSE",
       "JSON syntax error")
@@ -126,7 +136,7 @@ d["asset"] = {"generator": "x"}
 write("no_version.gltf", d, "PG_ERR_GLTF", "asset.version: missing")
 d, _ = base_doc()
 d["asset"]["version"] = "1.0"
-write("version_1.gltf", d, "PG_ERR_GLTF", "asset.version: '1.0' is not supported")
+write("version_1.gltf", d, "PG_ERR_GLTF", "asset.version: '1.0': glTF 1.0 is not supported, only 2.0")
 d, _ = base_doc()
 d["extensionsRequired"] = ["KHR_draco_mesh_compression"]
 d["extensionsUsed"] = ["KHR_draco_mesh_compression"]
@@ -182,7 +192,41 @@ d, _ = base_doc()
 d["accessors"][0]["sparse"] = {"count": 1,
                                "indices": {"bufferView": 1, "componentType": 5123},
                                "values": {"bufferView": 0}}
-write("sparse_accessor.gltf", d, "PG_ERR_GLTF", "accessors[0]: sparse accessors not supported")
+# index 0 (the first index of the triangle) <- the first position (0,0,0): a valid no-op
+write("ok_sparse_noop.gltf", d, "PG_OK")
+
+
+def sparse_doc(sp_idx, sp_vals, base_view=True, count=None, idx_ct=5123):
+    """accessors[0] (POSITION, 3 elements) sparse: indices in bufferView 2, values in 3."""
+    d, data = base_doc()
+    ib = pad4(u16(*sp_idx) if idx_ct == 5123 else u32(*sp_idx))
+    vb = f32(*sp_vals)
+    d["bufferViews"].append({"buffer": 0, "byteOffset": len(data), "byteLength": len(ib)})
+    data += ib
+    d["bufferViews"].append({"buffer": 0, "byteOffset": len(data), "byteLength": len(vb)})
+    data += vb
+    d["buffers"][0] = {"byteLength": len(data), "uri": b64(data)}
+    d["accessors"][0]["sparse"] = {"count": len(sp_idx) if count is None else count,
+                                   "indices": {"bufferView": 2, "componentType": idx_ct},
+                                   "values": {"bufferView": 3}}
+    if not base_view:
+        del d["accessors"][0]["bufferView"]
+    return d
+
+
+# vertex 2 moves from (0,1,0) to (0,2,0)
+write("ok_sparse.gltf", sparse_doc([2], [0, 2, 0]), "PG_OK")
+# no bufferView: zeros, then all three positions substituted (32-bit sparse indices)
+write("ok_sparse_no_view.gltf", sparse_doc([0, 1, 2], [0, 0, 0, 1, 0, 0, 0, 3, 0], base_view=False,
+                                           idx_ct=5125), "PG_OK")
+write("sparse_index_out_of_range.gltf", sparse_doc([5], [0, 2, 0]), "PG_ERR_GLTF",
+      "accessors[0].sparse.indices: index 5 at position 0 is out of range (count 3)")
+write("sparse_not_increasing.gltf", sparse_doc([1, 1], [0, 2, 0, 0, 3, 0]), "PG_ERR_GLTF",
+      "accessors[0].sparse.indices: index 1 at position 1 is not greater than the one before (1)")
+write("sparse_values_past_view.gltf", sparse_doc([0, 1], [0, 2, 0], count=2), "PG_ERR_GLTF",
+      "accessors[0].sparse.values: 2 elements of 12 bytes (byteOffset 0) exceed bufferView 3 (12 bytes)")
+write("sparse_count_too_big.gltf", sparse_doc([0, 1, 2, 0], [0] * 12, count=4), "PG_ERR_GLTF",
+      "accessors[0].sparse.count: 4 is outside 1..3 (the accessor's count)")
 d, _ = base_doc()
 del d["accessors"][0]["bufferView"]
 write("accessor_without_view.gltf", d, "PG_ERR_GLTF", "accessors[0]: has no bufferView")
@@ -420,7 +464,8 @@ d, _ = base_doc()
 p = dict(d["meshes"][0]["primitives"][0])
 p["mode"] = 0
 d["meshes"][0]["primitives"].insert(0, p)
-write("ok_points_skipped.gltf", d, "PG_OK")
+write("ok_points_skipped.gltf", d, "PG_OK",
+      warn=["skipped 1 point/line primitive(s) (only triangles are drawn)"])
 
 # decompression bombs: 140 bytes of baseline JPEG header (1-bit Huffman codes, then EOI) that
 # claim 16384x16384, which stb_image would decode as zero bits into a 1 GiB image; and a TGA RLE
@@ -449,6 +494,92 @@ write("position_float_overflow.gltf", d, "PG_ERR_GLTF",
       "POSITION element 1 (accessors[0]) is outside the float range after the node transform")
 
 # ------------------------------------------------------------------------------------------------
+# features the loader does not draw: each loads, with one exact warning line per feature
+d, _ = base_doc()
+d["nodes"] = [{"mesh": 0, "skin": 0}, {"children": [0]}]
+d["scenes"] = [{"nodes": [1]}]
+d["skins"] = [{"joints": [0]}, {"joints": [0, 1]}]
+write("ok_skins.gltf", d, "PG_OK", warn=["2 skins ignored: rendered in bind pose"])
+d, _ = base_doc()
+times = f32(0, 1)
+rots = f32(0, 0, 0, 1, 0, 0.7071068, 0, 0.7071068)
+data = _ + times + rots
+d["bufferViews"] += [{"buffer": 0, "byteOffset": len(_), "byteLength": 8},
+                     {"buffer": 0, "byteOffset": len(_) + 8, "byteLength": 32}]
+d["buffers"][0] = {"byteLength": len(data), "uri": b64(data)}
+d["accessors"] += [{"bufferView": 2, "componentType": 5126, "count": 2, "type": "SCALAR",
+                    "min": [0], "max": [1]},
+                   {"bufferView": 3, "componentType": 5126, "count": 2, "type": "VEC4"}]
+d["animations"] = [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "rotation"}}],
+                    "samplers": [{"input": 2, "output": 3}]}]
+write("ok_animation.gltf", d, "PG_OK",
+      warn=["1 animation ignored: the nodes are drawn at their static transforms"])
+d, _ = base_doc()
+d["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": 0}, {"POSITION": 0}]
+d["meshes"][0]["weights"] = [0.5, 0.25]
+write("ok_morph_targets.gltf", d, "PG_OK",
+      warn=["2 morph targets in 1 mesh ignored: rendered with the base geometry (weights not applied)"])
+d, _ = base_doc()
+d["extensionsUsed"] = ["KHR_texture_transform", "KHR_mesh_quantization", "EXT_meshopt_compression",
+                       "KHR_draco_mesh_compression", "KHR_materials_clearcoat", "EXT_made_up"]
+write("ok_extensions_used.gltf", d, "PG_OK", warn=[
+    "extensionsUsed: 'KHR_texture_transform' ignored: texture offset/rotation/scale not applied",
+    "extensionsUsed: 'KHR_mesh_quantization' ignored: quantized attributes are not decoded (a primitive using them is an error)",
+    "extensionsUsed: 'EXT_meshopt_compression' ignored: compressed data not decoded, the uncompressed fallback is drawn",
+    "extensionsUsed: 'KHR_draco_mesh_compression' ignored: compressed data not decoded, the uncompressed fallback is drawn",
+    "extensionsUsed: 'KHR_materials_clearcoat' ignored: the core material is drawn without it",
+    "extensionsUsed: 'EXT_made_up' ignored: not supported"])
+d, _ = base_doc()
+d["extensionsUsed"] = ["EXT_x_%02d" % i for i in range(18)]
+write("ok_many_extensions.gltf", d, "PG_OK",
+      warn=["extensionsUsed: 'EXT_x_%02d' ignored: not supported" % i for i in range(16)]
+      + ["extensionsUsed: 2 more extensions ignored (not supported)"])
+for name, exts in (("required_texture_transform.gltf", ["KHR_texture_transform", "KHR_mesh_quantization"]),
+                   ("required_meshopt.gltf", ["EXT_meshopt_compression"]),
+                   ("required_emissive_strength.gltf", ["KHR_materials_emissive_strength"])):
+    d, _ = base_doc()
+    d["extensionsUsed"] = exts
+    d["extensionsRequired"] = exts
+    names = ", ".join("'%s'" % e for e in exts)
+    write(name, d, "PG_ERR_GLTF", "extensionsRequired: %s %s not supported (passgraph implements no "
+          "glTF extensions; only core glTF 2.0)" % (names, "is" if len(exts) == 1 else "are"))
+d, _ = base_doc()
+d["meshes"][0]["primitives"][0]["material"] = 0
+d["materials"] = [{"name": "glass", "alphaMode": "BLEND",
+                   "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.3]}}]
+write("ok_alpha_blend.gltf", d, "PG_OK",
+      warn=["1 material with alphaMode BLEND (materials[0] 'glass'): rendered as opaque"])
+d = textured_doc({"uri": "ok_2x2.png"})
+d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 0
+d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = 2
+d["materials"][0]["name"] = "decal"
+d["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1
+write("ok_color_texcoord1.gltf", d, "PG_OK", warn=[
+    "textures of 1 material (materials[0] 'decal') ask for a texCoord other than 0: read with TEXCOORD_0",
+    "COLOR_0 vertex colours in 1 primitive ignored",
+    "TEXCOORD_1 (and higher) in 1 primitive ignored: every texture is read with TEXCOORD_0"])
+d = textured_doc({"uri": "ok_2x2.png"})
+d["samplers"] = [{"magFilter": 9729, "minFilter": 9987},
+                 {"wrapS": 33071, "wrapT": 33648, "magFilter": 9728, "minFilter": 9984}]
+d["textures"] = [{"source": 0, "sampler": 1}]
+write("ok_sampler_modes.gltf", d, "PG_OK", warn=[
+    "1 sampler with other wrap/filter modes (samplers[1]: wrapS CLAMP_TO_EDGE wrapT MIRRORED_REPEAT "
+    "magFilter NEAREST minFilter NEAREST_MIPMAP_NEAREST) ignored: textures are drawn with REPEAT and "
+    "linear (trilinear) filtering"])
+d = textured_doc({"uri": "ok_2x2.png"})
+d["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+d["materials"] = [{"name": "lamp", "emissiveFactor": [1, 0.5, 0],
+                   "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 5}}},
+                  {"emissiveTexture": {"index": 0},
+                   "pbrMetallicRoughness": {"metallicRoughnessTexture": {"index": 0}},
+                   "occlusionTexture": {"index": 0}}]
+write("ok_emissive.gltf", d, "PG_OK", warn=[
+    "extensionsUsed: 'KHR_materials_emissive_strength' ignored: emission is not drawn",
+    "emissive factor/texture of 2 materials (materials[0] 'lamp', materials[1]) ignored: emission is not drawn",
+    "metallicRoughnessTexture of 1 material (materials[1]) ignored: the metallic/roughness factors are used",
+    "occlusionTexture of 1 material (materials[1]) ignored"])
+
+# ------------------------------------------------------------------------------------------------
 # fuzz findings (tests/fuzz/README.md): the inputs are kept verbatim in fuzz/, which this script
 # neither deletes nor regenerates; only their MANIFEST lines are listed here.
 FUZZ_CASES = [
@@ -463,4 +594,7 @@ with open(os.path.join(HERE, "MANIFEST"), "w") as m:
             "# FILE  CODE  SUBSTRING-of-the-message ('-' for PG_OK)\n")
     for name, code, sub in manifest:
         m.write("%-36s %-14s %s\n" % (name, code, sub))
-print("%d manifest entries" % len(manifest))
+with open(os.path.join(HERE, "WARNINGS"), "w") as m:
+    for name, line in warnings:
+        m.write("%s\t%s\n" % (name, line))
+print("%d manifest entries, %d warning lines" % (len(manifest), len(warnings)))
