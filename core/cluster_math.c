@@ -136,15 +136,6 @@ uint64_t pg_cluster_count(pg_uvec3 grid)
     return xy * grid.z;
 }
 
-uint64_t pg_cluster_grid_bytes(pg_uvec3 grid, uint32_t max_lights)
-{
-    uint64_t n = pg_cluster_count(grid);
-    if (n == UINT64_MAX) return UINT64_MAX;
-    uint64_t per = (uint64_t)max_lights * sizeof(uint32_t);
-    if (per && n > UINT64_MAX / per) return UINT64_MAX;
-    return n * per;
-}
-
 /* ---------------------------------------------------------------------------------------- */
 /* octahedral.glsl                                                                           */
 

@@ -61,10 +61,6 @@ bool pg_sphere_intersects_aabb(pg_vec3 center, float radius, pg_vec3 aabb_min, p
 
 /* Number of clusters (grid.x * grid.y * grid.z, in 64 bits). */
 uint64_t pg_cluster_count(pg_uvec3 grid);
-/* Buffer sizes for a grid: returns the bytes of the light-list buffer (one uint32 light index per
- * slot, max_lights slots per cluster: clusters * max_lights * 4); the per-cluster count buffer is
- * pg_cluster_count(grid) * 4 bytes. Returns UINT64_MAX when the product does not fit in 64 bits. */
-uint64_t pg_cluster_grid_bytes(pg_uvec3 grid, uint32_t max_lights);
 
 /* ---- octahedral.glsl ---- */
 

@@ -8,7 +8,7 @@
 pg_result pg_pipeline_layout_create(pg_gpu *gpu, uint32_t n_sets, const VkDescriptorSetLayout *sets,
                                     uint32_t push_bytes, VkPipelineLayout *out, pg_error *err)
 {
-    VkPushConstantRange pr = {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT,
+    VkPushConstantRange pr = {PG_PUSH_STAGES,
                               0, push_bytes};
     VkPipelineLayoutCreateInfo ci = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
@@ -238,4 +238,19 @@ void pg_cmd_begin_rendering(VkCommandBuffer cmd, uint32_t w, uint32_t h, uint32_
     };
     vkCmdBeginRendering(cmd, &ri);
     pg_cmd_viewport(cmd, w, h);
+}
+
+pg_result pg_sampler_create(pg_gpu *gpu, VkFilter filter, VkSamplerAddressMode address, VkSampler *out,
+                            pg_error *err)
+{
+    VkSamplerCreateInfo sci = {
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = filter,
+        .minFilter = filter,
+        .addressModeU = address,
+        .addressModeV = address,
+        .addressModeW = address,
+    };
+    PG_VK_TRY(err, vkCreateSampler(gpu->device, &sci, NULL, out));
+    return PG_OK;
 }

@@ -40,6 +40,12 @@ typedef struct pg_compute_pipeline_desc {
 } pg_compute_pipeline_desc;
 pg_result pg_compute_pipeline_create_ex(pg_gpu *gpu, const pg_compute_pipeline_desc *d, const char *name,
                                         VkPipeline *out, pg_error *err);
+/* The stages of the push-constant range every layout from pg_pipeline_layout_create declares:
+ * vkCmdPushConstants must name all of them. */
+#define PG_PUSH_STAGES (VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT)
+/* A sampler with one filter (min, mag; mipmaps off) and one address mode on every axis. */
+pg_result pg_sampler_create(pg_gpu *gpu, VkFilter filter, VkSamplerAddressMode address, VkSampler *out,
+                            pg_error *err);
 pg_result pg_pipeline_layout_create(pg_gpu *gpu, uint32_t n_sets, const VkDescriptorSetLayout *sets,
                                     uint32_t push_bytes, VkPipelineLayout *out, pg_error *err);
 

@@ -44,8 +44,6 @@ enum { SLOT_LIGHTS = 0, SLOT_RECORDS = 1, SLOT_LISTS = 2 }; /* plan slots: reads
  * 62 workgroups per cluster (enough in flight on a large GPU) and 4,000 lights one */
 #define SEG_WORDS 512u
 enum { PIPE_BIN, PIPE_COUNT, PIPE_SCAN, PIPE_FILL, PIPE_N };
-/* pg_pipeline_layout_create declares push constants for every stage */
-#define PUSH_STAGES (VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT)
 
 typedef struct ca_opts {
     uint32_t grid[3];
@@ -322,23 +320,23 @@ static void ca_record(void *self, const pg_pass_record_ctx *ctx)
     uint32_t push[4] = {p->words, p->n_segments, SEG_WORDS, 0};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 2, sets, 0, NULL);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_BIN]);
-    vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, push);
+    vkCmdPushConstants(cmd, p->layout, PG_PUSH_STAGES, 0, 16, push);
     dispatch_groups(cmd, (p->light_count + 63) / 64);
     step_barrier(cmd);
     STAMP(1);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_COUNT]);
-    vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, push);
+    vkCmdPushConstants(cmd, p->layout, PG_PUSH_STAGES, 0, 16, push);
     dispatch_groups(cmd, p->clusters * p->n_segments);
     step_barrier(cmd);
     STAMP(2);
     uint32_t scan_push[4] = {p->clusters, capacity, p->o.max_lights, p->n_segments};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_SCAN]);
-    vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, scan_push);
+    vkCmdPushConstants(cmd, p->layout, PG_PUSH_STAGES, 0, 16, scan_push);
     vkCmdDispatch(cmd, 1, 1, 1);
     step_barrier(cmd);
     STAMP(3);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_FILL]);
-    vkCmdPushConstants(cmd, p->layout, PUSH_STAGES, 0, 16, push);
+    vkCmdPushConstants(cmd, p->layout, PG_PUSH_STAGES, 0, 16, push);
     dispatch_groups(cmd, p->clusters * p->n_segments);
     STAMP(4);
 #undef STAMP

@@ -71,15 +71,7 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     if (strcmp(hdr_fmt, "rgba16f") && strcmp(hdr_fmt, "rgba32f"))
         return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: deferred lighting writes rgba16f or rgba32f, not %s",
                        ctx->desc->file, ctx->desc->json_path, hdr_fmt);
-    VkSamplerCreateInfo sci = {
-        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-        .magFilter = VK_FILTER_NEAREST,
-        .minFilter = VK_FILTER_NEAREST,
-        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-    };
-    PG_VK_TRY(err, vkCreateSampler(gpu->device, &sci, NULL, &p->sampler));
+    if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
     pg_set_binding b[5];
     uint32_t n = 0;
     for (uint32_t t = 0; t < 1 + n_targets; t++)

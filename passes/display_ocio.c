@@ -214,18 +214,9 @@ static pg_result upload_luts(display_ocio *p, pg_gpu *gpu, const pg_ocio_shader 
 
 static pg_result create_samplers(display_ocio *p, pg_gpu *gpu, pg_error *err)
 {
-    VkSamplerCreateInfo sci = {
-        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-        .magFilter = VK_FILTER_NEAREST,
-        .minFilter = VK_FILTER_NEAREST,
-        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-    };
-    PG_VK_TRY(err, vkCreateSampler(gpu->device, &sci, NULL, &p->nearest));
-    sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
-    PG_VK_TRY(err, vkCreateSampler(gpu->device, &sci, NULL, &p->linear));
-    return PG_OK;
+    pg_result r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->nearest, err);
+    if (r) return r;
+    return pg_sampler_create(gpu, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->linear, err);
 }
 
 static pg_result do_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
@@ -297,7 +288,7 @@ static void do_record(void *self, const pg_pass_record_ctx *ctx)
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->layout, 0, 2, sets, 0, NULL);
     vkCmdPushConstants(ctx->cmd, p->layout,
-                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       PG_PUSH_STAGES, 0,
                        sizeof(float), &p->exposure);
     vkCmdDraw(ctx->cmd, 3, 1, 0, 0);
     vkCmdEndRendering(ctx->cmd);

@@ -55,15 +55,7 @@ static pg_result dt_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     double exposure = 1.0;
     if ((r = pg_opt_float(ctx->desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err))) return r;
     p->exposure = (float)exposure;
-    VkSamplerCreateInfo sci = {
-        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-        .magFilter = VK_FILTER_NEAREST,
-        .minFilter = VK_FILTER_NEAREST,
-        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-    };
-    PG_VK_TRY(err, vkCreateSampler(gpu->device, &sci, NULL, &p->sampler));
+    if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
     pg_set_binding b = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[0], p->sampler, 0};
     if ((r = pg_pass_set_create(gpu, 1, &b, ctx->pass->name, &p->set, err))) return r;
     VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
@@ -99,7 +91,7 @@ static void dt_record(void *self, const pg_pass_record_ctx *ctx)
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->layout, 0, 2, sets, 0, NULL);
     vkCmdPushConstants(ctx->cmd, p->layout,
-                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       PG_PUSH_STAGES, 0,
                        sizeof(float), &p->exposure);
     vkCmdDraw(ctx->cmd, 3, 1, 0, 0);
     vkCmdEndRendering(ctx->cmd);

@@ -202,15 +202,7 @@ static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
                            t < 4 ? ctx->desc->reads[t] : ctx->desc->writes[t - 4], im->width, im->height, hdr->width,
                            hdr->height);
     }
-    VkSamplerCreateInfo sci = {
-        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-        .magFilter = VK_FILTER_NEAREST,
-        .minFilter = VK_FILTER_NEAREST,
-        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-    };
-    PG_VK_TRY(err, vkCreateSampler(gpu->device, &sci, NULL, &p->sampler));
+    if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
     pg_set_binding b[6];
     uint32_t n = 0;
     for (uint32_t t = 1; t < 4; t++)
@@ -259,7 +251,7 @@ static void ref_record(void *self, const pg_pass_record_ctx *ctx)
      * whole loop runs in one dispatch: slower, never wrong. */
     if (n <= chunk || !p->has_accum) {
         uint32_t pc[4] = {0, n, 0, 0};
-        vkCmdPushConstants(cmd, p->layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT,
+        vkCmdPushConstants(cmd, p->layout, PG_PUSH_STAGES,
                            0, sizeof pc, pc);
         vkCmdDispatch(cmd, gx, gy, 1);
         return;
@@ -285,7 +277,7 @@ static void ref_record(void *self, const pg_pass_record_ctx *ctx)
         uint32_t end = n - first > chunk ? first + chunk : n;
         uint32_t mode = (first > 0 ? REF_MODE_LOAD : 0u) | (end < n ? REF_MODE_STORE : 0u);
         uint32_t pc[4] = {first, end, mode, 0};
-        vkCmdPushConstants(cmd, p->layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT,
+        vkCmdPushConstants(cmd, p->layout, PG_PUSH_STAGES,
                            0, sizeof pc, pc);
         vkCmdDispatch(cmd, gx, gy, 1);
         if (end < n) pg_cmd_barriers(cmd, nb, b, 0, NULL);

@@ -85,7 +85,7 @@ void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx
             cull = want;
         }
         vkCmdPushConstants(cmd, sd->layout,
-                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                           PG_PUSH_STAGES, 0,
                            sizeof(uint32_t), &d->material);
         vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, d->vertex_offset, 0);
     }

@@ -185,6 +185,12 @@ OCIO="$tmp/broken.ocio" "$PG" render --size 32x18 --lights 4 --out "$tmp/x.png" 
 [ $? -eq 1 ] && grep -q "broken.ocio" "$tmp/err" && ok || { bad "\$OCIO broken config not reported"; cat "$tmp/err"; }
 expect_fail "--hdr-out not .exr" "expected a .exr" render --hdr-out "$tmp/x.png" --out "$tmp/x.png"
 
+# the tiled deferred light loop is bit-identical to the per-pixel one (both tile sizes)
+for t in 8 16; do
+  "$PG" compare --pipeline "$root/pipelines/deferred_packed.json" --reference "$root/pipelines/deferred_packed.json" \
+    --pipeline-set tile_size=$t --reference-set tile_lights=false --lights 2000 --radius 4 --size 64x36 >"$tmp/out" 2>&1
+  grep -q '^compare: .* rmse_linear=0 .*max_abs_linear=0 ' "$tmp/out" && ok || { bad "tile_size=$t differs from the per-pixel loop"; tail -2 "$tmp/out"; }
+done
 # the dump marks grow buffers (own memory, never aliased)
 "$PG" dump --pipeline "$root/pipelines/forward_plus.json" --format json 2>/dev/null | python3 -c '
 import json, sys
