@@ -36,6 +36,23 @@ pg_result pg_scene_load(const char *path_or_default, pg_scene **out, pg_error *e
     return pg_scene_load_gltf(path_or_default, out, err);
 }
 
+void pg_material_init(pg_material *m, const char *name)
+{
+    memset(m, 0, sizeof *m);
+    pg_strlcpy(m->name, name ? name : "", sizeof m->name);
+    for (int k = 0; k < 4; k++) m->base_color[k] = 1.0f;
+    m->base_color_tex = m->normal_tex = m->emissive_tex = -1;
+    m->normal_scale = 1.0f;
+    m->alpha_mode = PG_ALPHA_OPAQUE;
+    m->alpha_cutoff = 0.5f;
+    m->specular = 0.04f;
+    m->shininess = 1.0f;
+    for (int t = 0; t < PG_TEXSLOT_COUNT; t++) {
+        m->uv_transform[t][0] = 1.0f;
+        m->uv_transform[t][4] = 1.0f;
+    }
+}
+
 void pg_scene_free(pg_scene *scene)
 {
     if (!scene) return;
@@ -44,6 +61,8 @@ void pg_scene_free(pg_scene *scene)
         free(scene->textures);
     }
     free(scene->vertices);
+    free(scene->colors);
+    free(scene->uv1);
     free(scene->indices);
     free(scene->primitives);
     free(scene->materials);
@@ -428,6 +447,15 @@ void pg_scene_finalize(pg_scene *s)
             if (m->base_color_tex >= 0) s->features.has_textures = true;
             if (m->normal_tex >= 0) s->features.has_normal_maps = true;
             if (m->alpha_mode == PG_ALPHA_MASK) s->features.has_alpha_mask = true;
+            if (m->alpha_mode == PG_ALPHA_BLEND) s->features.has_blend = true;
+            if (m->emissive[0] > 0 || m->emissive[1] > 0 || m->emissive[2] > 0) s->features.has_emissive = true;
+            for (int t = 0; t < PG_TEXSLOT_COUNT; t++) {
+                int tex = t == PG_TEXSLOT_BASE ? m->base_color_tex
+                          : t == PG_TEXSLOT_NORMAL ? m->normal_tex : m->emissive_tex;
+                if (tex < 0) continue;
+                if (m->has_uv_transform[t]) s->features.has_uv_transform = true;
+                if (m->tex_coord[t] == 1 && s->uv1) s->features.has_uv1 = true;
+            }
         }
     }
     if (!any) {

@@ -25,18 +25,38 @@ typedef struct pg_vertex {
 
 typedef enum pg_alpha_mode { PG_ALPHA_OPAQUE = 0, PG_ALPHA_MASK = 1, PG_ALPHA_BLEND = 2 } pg_alpha_mode;
 
+/* The texture slots of a material (index into pg_material.tex_coord / uv_transform). */
+enum { PG_TEXSLOT_BASE = 0, PG_TEXSLOT_NORMAL = 1, PG_TEXSLOT_EMISSIVE = 2, PG_TEXSLOT_COUNT = 3 };
+
 typedef struct pg_material {
     char name[PG_NAME_MAX];
     float base_color[4];     /* factor, linear */
     int base_color_tex;      /* index into scene->textures, -1 if none */
     int normal_tex;          /* -1 if none */
     float normal_scale;
-    pg_alpha_mode alpha_mode;/* BLEND is drawn as opaque (documented) */
+    pg_alpha_mode alpha_mode;/* OPAQUE, MASK (discard), BLEND (transparent pass) */
     float alpha_cutoff;      /* MASK: discard below (default 0.5) */
     float specular;          /* Blinn-Phong specular strength (from roughness/metallic), 0..1 */
     float shininess;         /* Blinn-Phong exponent */
     bool double_sided;
+    float emissive[3];       /* emissiveFactor times KHR_materials_emissive_strength, linear */
+    int emissive_tex;        /* sRGB texture, -1 if none */
+    /* per slot (PG_TEXSLOT_*): which TEXCOORD_n the texture reads (0 or 1) */
+    uint8_t tex_coord[PG_TEXSLOT_COUNT];
+    /* per slot: KHR_texture_transform as a 2x3 row-major matrix, uv' = M * (u, v, 1):
+     * {m00, m01, m02, m10, m11, m12}; identity when the slot has none */
+    float uv_transform[PG_TEXSLOT_COUNT][6];
+    bool has_uv_transform[PG_TEXSLOT_COUNT];
 } pg_material;
+
+/* glTF sampler state of a texture (one pg_texture per (image, colour space, sampler) use) */
+typedef enum pg_wrap { PG_WRAP_REPEAT = 0, PG_WRAP_CLAMP = 1, PG_WRAP_MIRROR = 2 } pg_wrap;
+typedef enum pg_mip_mode { PG_MIP_LINEAR = 0, PG_MIP_NEAREST = 1, PG_MIP_NONE = 2 } pg_mip_mode;
+typedef struct pg_sampler_state {
+    pg_wrap wrap_s, wrap_t;
+    bool mag_nearest, min_nearest; /* false: linear */
+    pg_mip_mode mip;               /* NONE: level 0 only (minFilter NEAREST / LINEAR) */
+} pg_sampler_state;               /* all zero = glTF's default (repeat, linear, trilinear) */
 
 typedef struct pg_mip {
     uint32_t width, height;
@@ -46,7 +66,8 @@ typedef struct pg_mip {
 #define PG_MAX_MIPS 16
 typedef struct pg_texture {
     char name[PG_NAME_MAX];
-    bool srgb;                /* base colour: sRGB; normal maps: linear */
+    bool srgb;                /* base colour, emissive: sRGB; normal maps: linear */
+    pg_sampler_state sampler;
     uint32_t n_mips;          /* full chain down to 1x1 */
     pg_mip mips[PG_MAX_MIPS];
     uint8_t *data;            /* one allocation holding all mips */
@@ -84,6 +105,11 @@ typedef struct pg_scene {
     char path[PG_PATH_MAX];   /* "default" for the generated scene */
     pg_vertex *vertices;
     uint32_t n_vertices;
+    /* Optional per-vertex streams, n_vertices entries each, NULL when no drawn primitive has the
+     * attribute (then no shader path reads it): COLOR_0 as linear RGBA (white where a primitive
+     * has none), TEXCOORD_1 (0,0 where a primitive has none). */
+    float (*colors)[4];
+    float (*uv1)[2];
     uint32_t *indices;        /* 16-bit glTF indices are widened */
     uint32_t n_indices;
     pg_primitive *primitives;
@@ -156,6 +182,9 @@ void pg_scene_print_warnings(const pg_scene *scene, const char *prefix, FILE *f)
  * RGBA8 image it copies. */
 pg_result pg_texture_init(pg_texture *tex, const char *name, const uint8_t *rgba, uint32_t w,
                           uint32_t h, bool srgb, pg_error *err);
+/* A material with glTF's defaults: white, no textures, opaque, cutoff 0.5, normal scale 1, no
+ * emissive, TEXCOORD_0 and identity transforms everywhere, specular 0.04, shininess 1. */
+void pg_material_init(pg_material *m, const char *name);
 void pg_texture_release(pg_texture *tex);
 
 /* ---- helpers shared by the loaders (glTF shim, default scene); usable by tools ----

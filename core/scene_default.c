@@ -638,8 +638,7 @@ static void tex_grille(int S, uint8_t *rgb)
 static void set_material(pg_material *m, const char *name, float r, float g, float b, int tex,
                          int ntex, float spec, float shin)
 {
-    memset(m, 0, sizeof *m);
-    pg_strlcpy(m->name, name, sizeof m->name);
+    pg_material_init(m, name);
     m->base_color[0] = r;
     m->base_color[1] = g;
     m->base_color[2] = b;

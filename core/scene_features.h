@@ -10,6 +10,11 @@ typedef struct pg_scene_features {
     bool has_textures;    /* any base-colour texture */
     bool has_normal_maps; /* any material with a normal map (and tangents) */
     bool has_alpha_mask;  /* any alpha-mask material */
+    bool has_blend;       /* any alphaMode BLEND material (transparent pass) */
+    bool has_emissive;    /* any material with a non-zero emissive factor */
+    bool has_vertex_colors; /* scene->colors present (COLOR_0 on a drawn primitive) */
+    bool has_uv1;         /* scene->uv1 present and a texture reads TEXCOORD_1 */
+    bool has_uv_transform;/* any KHR_texture_transform on a used texture */
     uint32_t light_count;
 } pg_scene_features;
 

@@ -1622,8 +1622,7 @@ pg_scene *load(Ctx &c)
         const tinygltf::Material &gm = md.materials[i];
         const std::string mw = strf("materials[%zu]", i);
         pg_material pm;
-        memset(&pm, 0, sizeof pm);
-        pg_strlcpy(pm.name, gm.name.empty() ? mw.c_str() : gm.name.c_str(), sizeof pm.name);
+        pg_material_init(&pm, gm.name.empty() ? mw.c_str() : gm.name.c_str());
         const auto &pbr = gm.pbrMetallicRoughness;
         if (pbr.baseColorFactor.size() != 4)
             gfail(mw + ".pbrMetallicRoughness.baseColorFactor: expected 4 numbers");
@@ -1664,16 +1663,7 @@ pg_scene *load(Ctx &c)
     }
     if (need_default) {
         pg_material pm;
-        memset(&pm, 0, sizeof pm);
-        pg_strlcpy(pm.name, "default", sizeof pm.name);
-        for (float &x : pm.base_color) x = 1.0f;
-        pm.base_color_tex = -1;
-        pm.normal_tex = -1;
-        pm.normal_scale = 1.0f;
-        pm.alpha_mode = PG_ALPHA_OPAQUE;
-        pm.alpha_cutoff = 0.5f;
-        pm.specular = 0.04f;
-        pm.shininess = 1.0f;
+        pg_material_init(&pm, "default");
         mats.push_back(pm);
     }
 

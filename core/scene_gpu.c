@@ -30,19 +30,29 @@ static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg
     VkDeviceSize m_off = off;
     pg_gpu_material *gm = (pg_gpu_material *)(dst + off);
     for (uint32_t m = 0; m < n_mat; m++) {
-        pg_gpu_material g = {{1, 1, 1, 1}, {-1, -1, 0, 0}, {0.5f, 1, 0.04f, 16}};
-        if (scene->n_materials) {
-            const pg_material *s = &scene->materials[m];
-            memcpy(g.base_color, s->base_color, sizeof g.base_color);
-            /* texture i of the scene is image i+1 on the GPU (0 is white) */
-            g.tex[0] = s->base_color_tex >= 0 ? s->base_color_tex + 1 : -1;
-            g.tex[1] = s->normal_tex >= 0 ? s->normal_tex + 1 : -1;
-            g.tex[2] = (int32_t)s->alpha_mode;
-            g.tex[3] = s->double_sided ? 1 : 0;
-            g.params[0] = s->alpha_cutoff;
-            g.params[1] = s->normal_scale;
-            g.params[2] = s->specular;
-            g.params[3] = s->shininess;
+        pg_material dm;
+        pg_material_init(&dm, "default");
+        const pg_material *s = scene->n_materials ? &scene->materials[m] : &dm;
+        pg_gpu_material g;
+        memset(&g, 0, sizeof g);
+        memcpy(g.base_color, s->base_color, sizeof g.base_color);
+        /* texture i of the scene is image i+1 on the GPU (0 is white) */
+        g.tex[0] = s->base_color_tex >= 0 ? s->base_color_tex + 1 : -1;
+        g.tex[1] = s->normal_tex >= 0 ? s->normal_tex + 1 : -1;
+        g.tex[2] = (int32_t)s->alpha_mode;
+        g.tex[3] = s->double_sided ? 1 : 0;
+        g.params[0] = s->alpha_cutoff;
+        g.params[1] = s->normal_scale;
+        g.params[2] = s->specular;
+        g.params[3] = s->shininess;
+        memcpy(g.emissive, s->emissive, sizeof s->emissive);
+        g.tex2[0] = s->emissive_tex >= 0 ? s->emissive_tex + 1 : -1;
+        for (int t = 0; t < PG_TEXSLOT_COUNT; t++) {
+            if (s->tex_coord[t] == 1) g.tex2[1] |= 1 << t;
+            for (int k = 0; k < 3; k++) {
+                g.uv_xform[t][0][k] = s->uv_transform[t][k];
+                g.uv_xform[t][1][k] = s->uv_transform[t][3 + k];
+            }
         }
         memcpy(&gm[m], &g, sizeof g);
     }

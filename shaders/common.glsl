@@ -11,15 +11,30 @@ struct GpuMaterial {
     vec4 base_color;
     ivec4 tex;         // base colour texture, normal texture (-1 none), alpha mode, double sided
     vec4 params;       // alpha cutoff, normal scale, specular, shininess
+    vec4 emissive;     // rgb emissive (factor x strength)
+    ivec4 tex2;        // emissive texture (-1 none), texcoord set bits (bit s: slot s reads
+                       // TEXCOORD_1; slots 0 base, 1 normal, 2 emissive), 0, 0
+    vec4 uv_xform[6];  // per slot s: rows 2s and 2s+1 of its 2x3 KHR_texture_transform matrix
 };
 
 // What shading needs of a visible point (from the material in forward, from the G-buffer in
 // deferred).
 struct Surface {
     vec3 albedo;
+    float alpha;    // base colour alpha (BLEND materials: coverage)
     vec3 normal;    // unit, facing the camera side that is seen
     float specular; // Blinn-Phong strength
     float shininess;
+    vec3 emissive;  // added to the lit colour (0 without PG_EMISSIVE)
+};
+
+// What a fragment shader knows of the surface before the material (surface_inputs.glsl).
+struct SurfaceInput {
+    vec3 normal;    // interpolated world normal (not normalized)
+    vec2 uv0, uv1;  // TEXCOORD_0, TEXCOORD_1 (0 without PG_UV1)
+    vec4 tangent;
+    vec4 color;     // COLOR_0 (1 without PG_VERTEX_COLORS)
+    bool front_facing;
 };
 
 vec3 pg_srgb_encode(vec3 c)

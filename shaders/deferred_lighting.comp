@@ -63,6 +63,8 @@ void main()
     s.normal = vec3(0.0, 0.0, 1.0);
     s.specular = 0.0;
     s.shininess = 1.0;
+    s.alpha = 1.0;
+    s.emissive = vec3(0.0);
     if (lit) {
 #if defined(PG_GBUFFER_FLOAT)
     P = texelFetch(g_position, px, 0).xyz - frame.camera_pos.xyz; // world -> camera-relative

@@ -3,12 +3,9 @@
 // PG_GBUFFER_OCT16, PG_GBUFFER_PACKED); see passes/gbuffer.c for the layouts.
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
+#include "surface_inputs.glsl"
 #include "surface.glsl"
 #include "octahedral.glsl"
-layout(location = 0) in vec3 v_rel;
-layout(location = 1) in vec3 v_normal;
-layout(location = 2) in vec2 v_uv;
-layout(location = 3) in vec4 v_tangent;
 #if defined(PG_GBUFFER_FLOAT)
 layout(location = 0) out vec4 g_position; // world position (rgba32f, or rgba16f to show its failure);
                                           // PG_GBUFFER_CAMERA_POSITION: camera-relative, as shaded
@@ -24,7 +21,7 @@ layout(location = 0) out uvec4 g_packed;  // oct16 normal | sRGB8 albedo + spec8
 
 void main()
 {
-    Surface s = pg_surface(v_normal, v_uv, v_tangent, gl_FrontFacing);
+    Surface s = pg_surface(pg_surface_input());
 #if defined(PG_GBUFFER_FLOAT)
 #ifdef PG_GBUFFER_CAMERA_POSITION
     g_position = vec4(v_rel, 1.0); // exactly the position forward.frag shades

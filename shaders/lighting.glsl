@@ -38,5 +38,5 @@ void pg_accumulate_light(Light light, vec3 cam, vec3 P, vec3 N, vec3 V, float sh
 // (shading.glsl, reference_lighting.comp), so they combine with the same operations.
 vec3 pg_shade_combine(Surface s, PgShade acc, vec3 ambient)
 {
-    return s.albedo * (acc.diffuse + ambient) + s.specular * acc.specular;
+    return s.albedo * (acc.diffuse + ambient) + s.specular * acc.specular + s.emissive;
 }

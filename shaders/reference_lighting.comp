@@ -66,6 +66,8 @@ void main()
     s.shininess = n.w;
     s.albedo = a.rgb;
     s.specular = a.a;
+    s.alpha = 1.0;
+    s.emissive = vec3(0.0);
 #if PG_DEBUG_VIEW != 0
     if (!inside) return;
     float view_depth = -PG_REL_TO_VIEW(P).z;

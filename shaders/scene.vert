@@ -1,12 +1,22 @@
 #version 460
 // scene.vert - transforms scene vertices (already in world space) for forward and G-buffer
-// passes, camera-relative (see common.glsl).
+// passes, camera-relative (see common.glsl). Streams: binding 0 pg_vertex (locations 0-3);
+// PG_VERTEX_COLORS: binding 1 COLOR_0 (location 4, vec4); PG_UV1: binding 2 TEXCOORD_1
+// (location 5, vec2). The outputs match surface_inputs.glsl.
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_tangent;
+#ifdef PG_VERTEX_COLORS
+layout(location = 4) in vec4 in_color;
+layout(location = 4) out vec4 v_color;
+#endif
+#ifdef PG_UV1
+layout(location = 5) in vec2 in_uv1;
+layout(location = 5) out vec2 v_uv1;
+#endif
 layout(location = 0) out vec3 v_rel; // camera-relative position (world - camera)
 layout(location = 1) out vec3 v_normal;
 layout(location = 2) out vec2 v_uv;
@@ -18,5 +28,11 @@ void main()
     v_normal = in_normal;
     v_uv = in_uv;
     v_tangent = in_tangent;
+#ifdef PG_VERTEX_COLORS
+    v_color = in_color;
+#endif
+#ifdef PG_UV1
+    v_uv1 = in_uv1;
+#endif
     gl_Position = frame.proj * vec4(PG_REL_TO_VIEW(v_rel), 1.0);
 }
