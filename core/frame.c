@@ -30,4 +30,5 @@ void pg_frame_uniforms_fill(const pg_frame_info *info, pg_frame_uniforms *u)
     u->counts[3] = info->height;
     u->clip[0] = cam.near_z;
     u->clip[1] = cam.far_z;
+    u->clip[2] = info->lights.ambient;
 }

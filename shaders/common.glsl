@@ -56,7 +56,7 @@ vec3 pg_srgb_decode(vec3 c)
         vec4 light_box_max; /* w = intensity */                                                  \
         vec4 light_params;  /* saturation, speed, motion (0 noise, 1 static), min distance */    \
         uvec4 counts;       /* light count, seed, width, height */                               \
-        vec4 clip;          /* near, far */                                                      \
+        vec4 clip;          /* near, far, ambient (light set-up, run time), 0 */                                                      \
     } frame;
 
 // Camera-relative rendering (use after FRAME_UNIFORMS_BLOCK): shading works on positions

@@ -81,7 +81,7 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
         pg_accumulate_light(lights[i], cam, P, s.normal, V, s.shininess, min_dist, acc);
 #endif
 #endif
-    return pg_shade_combine(s, acc, vec3(PG_AMBIENT));
+    return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z));
 #endif
 }
 
@@ -212,6 +212,6 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
         pending = pending && !mine;
         barrier();       // before the next round resets the cluster and box (a cluster may have no chunk)
     }
-    return pg_shade_combine(s, acc, vec3(PG_AMBIENT));
+    return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z));
 }
 #endif

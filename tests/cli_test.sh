@@ -379,7 +379,9 @@ camline >"$tmp/cl" && grep -q "^explain: camera: interior view of the built-in a
   grep -q "^explain: lights: interior box" "$tmp/cl" && ok || { bad "atrium: camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
 camline --scene "$objs/cube.gltf" >"$tmp/cl" && \
   grep -q "^explain: camera: auto framing (object, no glTF camera: bounds radius 0.866, distance 2.49" "$tmp/cl" && \
-  grep -q "^explain: lights: object box" "$tmp/cl" && ok || { bad "cube: camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
+  grep -q "^explain: lights: object box (bounds grown by 0.6 x radius per side), radius 1.3, intensity 0.168, ambient 0.02$" "$tmp/cl" && ok || { bad "cube: camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
+camline --scene "$objs/cube.gltf" --ambient 0 >"$tmp/cl" && grep -q "^explain: lights: object box.*; ambient 0 from --ambient$" "$tmp/cl" \
+  && ok || { bad "cube --ambient 0: lights line"; cat "$tmp/cl" "$tmp/cerr"; }
 camline --scene "$objs/camera.gltf" >"$tmp/cl" && grep -q "^explain: camera: glTF camera 0 'front' (node 'front_node'), the scene's first camera" "$tmp/cl" \
   && ok || { bad "camera.gltf: default camera line"; cat "$tmp/cl" "$tmp/cerr"; }
 camline --scene "$objs/camera.gltf" --camera auto >"$tmp/cl" && grep -q "^explain: camera: auto framing (--camera auto" "$tmp/cl" \

@@ -6,7 +6,9 @@
  * view; they must lie fully inside the image, span 20-90% of the shorter image axis, and be lit
  * (>= 90% of them with luma > 10, mean luma 40..220 of 255). The glTF camera is the default for a
  * file that has one: its image equals a render with the camera given explicitly, and differs
- * from --camera auto, which frames the object. */
+ * from --camera auto, which frames the object. The object default ambient (PG_OBJECT_AMBIENT, a
+ * run-time value of the light set-up): with 0 lights every object pixel is exactly albedo x 0.02
+ * in HDR (nothing pure black), and with the ambient set to 0 it is black. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -132,6 +134,47 @@ static void check_objects(void)
     }
 }
 
+static void check_ambient(void)
+{
+    pg_scene *sc;
+    pg_scene_gpu *sg;
+    if (!open_scene("cube.gltf", &sc, &sg)) return;
+    char why[256];
+    pg_frame_info fi = view_of(sc, NULL, why, sizeof why);
+    CHECK_MSG(fi.lights.ambient == PG_OBJECT_AMBIENT, "object ambient %g", fi.lights.ambient);
+    fi.lights.count = 0;
+    pg_param_override albedo = {"view", "albedo"};
+    pg_th_frame a, amb, none;
+    memset(&a, 0, sizeof a);
+    memset(&amb, 0, sizeof amb);
+    memset(&none, 0, sizeof none);
+    bool ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/naive.json", &albedo, 1, &fi, 1, false, &a);
+    ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/deferred_oct16.json", NULL, 0, &fi, 1, false, &amb) && ok;
+    fi.lights.ambient = 0;
+    ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/naive.json", NULL, 0, &fi, 1, false, &none) && ok;
+    CHECK_MSG(ok, "ambient renders");
+    if (ok) {
+        uint32_t n_obj = 0, bad = 0, lit_none = 0;
+        for (size_t i = 0; i < (size_t)W * H; i++) {
+            const float *al = a.hdr + i * 4, *c = amb.hdr + i * 4, *z = none.hdr + i * 4;
+            if (al[0] + al[1] + al[2] == 0) continue;
+            n_obj++;
+            for (int k = 0; k < 3; k++)
+                if (fabsf(c[k] - PG_OBJECT_AMBIENT * al[k]) > 2e-3f * al[k] + 1e-6f) bad++;
+            if (z[0] + z[1] + z[2] != 0) lit_none++;
+        }
+        printf("ambient: %u object pixels, %u channels off albedo x %.2f, %u lit with ambient 0\n", n_obj, bad,
+               PG_OBJECT_AMBIENT, lit_none);
+        CHECK_MSG(n_obj > 100 && bad == 0, "0 lights: %u of %u object pixels are not albedo x ambient", bad, n_obj);
+        CHECK_MSG(lit_none == 0, "ambient 0, 0 lights: %u object pixels not black", lit_none);
+    }
+    pg_th_release(&a);
+    pg_th_release(&amb);
+    pg_th_release(&none);
+    pg_scene_gpu_destroy(g_gpu, sg);
+    pg_scene_free(sc);
+}
+
 static void check_cameras(void)
 {
     pg_scene *sc;
@@ -204,6 +247,7 @@ int main(void)
         return 1;
     }
     check_objects();
+    check_ambient();
     check_cameras();
     printf("validation messages: %u\n", g_gpu->validation_messages);
     CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);

@@ -52,8 +52,9 @@ pg_result pg_app_default_view(const pg_scene *scene, const char *camera_spec, fl
                  ls.intensity);
     } else {
         ls = pg_light_setup_object(scene, count, seed);
-        snprintf(lw, sizeof lw, "lights: object box (bounds grown by 0.6 x radius per side), radius %.3g, intensity %.3g",
-                 ls.radius, ls.intensity);
+        snprintf(lw, sizeof lw,
+                 "lights: object box (bounds grown by 0.6 x radius per side), radius %.3g, intensity %.3g, ambient %.3g",
+                 ls.radius, ls.intensity, ls.ambient);
     }
     *camera = cam;
     *lights = ls;
@@ -109,6 +110,11 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
         goto fail;
     if (app->has_scenario) {
         bool cam_from_scenario = app->scenario.has_camera && !opt->camera;
+        /* a scenario that places its own lights (an interior set-up such as cis565) gets no object
+         * ambient unless it asks for one */
+        if ((app->scenario.has_light_box || app->scenario.has_radius || app->scenario.has_intensity) &&
+            !app->scenario.has_ambient)
+            app->lights.ambient = 0;
         pg_scenario_apply(&app->scenario, &app->lights, cam_from_scenario ? &app->camera : NULL);
         if (cam_from_scenario)
             snprintf(app->camera_why, sizeof app->camera_why, "camera: scenario %s (its camera fields over the default)",
@@ -122,6 +128,7 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     if (opt->has_lights || !(app->has_scenario && app->scenario.has_light_count)) app->lights.count = opt->lights;
     if (opt->has_radius) app->lights.radius = opt->radius;
     if (opt->has_intensity) app->lights.intensity = opt->intensity;
+    if (opt->has_ambient) app->lights.ambient = opt->ambient;
     app->object_lights = strcmp(app->scene->path, "default") != 0 && !opt->has_intensity &&
                          !(app->has_scenario && app->scenario.has_intensity);
     if (app->object_lights && app->lights.count != opt->lights) /* a scenario's light count */
@@ -130,6 +137,9 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
         snprintf(app->lights_why + strlen(app->lights_why), sizeof app->lights_why - strlen(app->lights_why),
                  "; %s%s%s from the command line", opt->has_radius ? "radius" : "",
                  opt->has_radius && opt->has_intensity ? " and " : "", opt->has_intensity ? "intensity" : "");
+    if (opt->has_ambient || (app->has_scenario && app->scenario.has_ambient))
+        snprintf(app->lights_why + strlen(app->lights_why), sizeof app->lights_why - strlen(app->lights_why),
+                 "; ambient %g from %s", app->lights.ambient, opt->has_ambient ? "--ambient" : "the scenario");
     app->lights.seed = opt->seed;
     return PG_OK;
 fail:
