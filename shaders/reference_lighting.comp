@@ -86,7 +86,7 @@ void main()
 #endif
     }
 #endif
-    vec3 V = normalize(-P);
+    vec3 V = PG_VIEW_DIR(P);
     vec3 cam = frame.camera_pos.xyz;
     float min_dist = frame.light_params.w;
     uint lid = gl_LocalInvocationIndex;

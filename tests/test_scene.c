@@ -1005,9 +1005,15 @@ static void test_gltf_cameras(void)
             /* infinite zfar: twice the farthest bounds corner from (4,0,0) = 2*|(4.5,.5,.5)|, or 1000 near */
             float want = fmaxf(2.0f * sqrtf(4.5f * 4.5f + 0.5f), 1000.0f * 0.05f);
             CHECK_MSG(fabsf(cam.far_z - want) < 1e-3f * want, "far %g want %g", cam.far_z, want);
-            CHECK(pg_camera_from_scene(s, 1, 1.0f, &cam, &err) == PG_ERR_INVALID_ARG);
-            CHECK_MSG(strstr(err.msg, "'top'") && strstr(err.msg, "orthographic") && strstr(err.msg, "two_cameras.gltf"),
-                      "%s", err.msg);
+            CHECK(cam.ortho_height == 0);
+            /* orthographic: full height 2 ymag, near/far kept; the projection maps y = +-ymag to the
+             * image edges, x = +-ymag * aspect, z_ndc linear from near to far, w = 1 */
+            CHECK(pg_camera_from_scene(s, 1, 2.0f, &cam, &err) == PG_OK);
+            CHECK(cam.ortho_height == 2.0f && cam.near_z == 0.1f && cam.far_z == 10.0f && cam.aspect == 2.0f);
+            float P[16];
+            pg_camera_proj(&cam, P);
+            CHECK(fabsf(P[0] - 0.5f) < 1e-7f && fabsf(P[5] + 1.0f) < 1e-7f && P[11] == 0 && P[15] == 1.0f);
+            CHECK(fabsf(P[10] * -0.1f + P[14]) < 1e-7f && fabsf(P[10] * -10.0f + P[14] - 1.0f) < 1e-6f);
             CHECK(pg_camera_from_scene(s, 2, 1.0f, &cam, &err) == PG_ERR_INVALID_ARG);
         }
         uint32_t idx = 9;

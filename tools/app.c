@@ -19,30 +19,24 @@ pg_result pg_app_default_view(const pg_scene *scene, const char *camera_spec, fl
         pg_result r = pg_scene_find_camera(scene, camera_spec, &ci, err);
         if (!r) r = pg_camera_from_scene(scene, ci, aspect, &cam, err);
         if (r) return r;
-        snprintf(cw, sizeof cw, "camera: glTF camera %u '%s' (node '%s'), selected by --camera %s", ci,
-                 scene->cameras[ci].name, scene->cameras[ci].node_name, camera_spec);
+        snprintf(cw, sizeof cw, "camera: glTF camera %u '%s' (node '%s', %s), selected by --camera %s", ci,
+                 scene->cameras[ci].name, scene->cameras[ci].node_name,
+                 scene->cameras[ci].type == PG_CAMERA_ORTHOGRAPHIC ? "orthographic" : "perspective", camera_spec);
     } else if (!want_auto && atrium) {
         cam = pg_camera_default_for_scene(scene, aspect);
         snprintf(cw, sizeof cw, "camera: interior view of the built-in atrium (inside the bounds, looking along +X)");
     } else {
-        const char *note = "";
-        char buf[200] = "";
         if (!want_auto && scene && scene->n_cameras > 0) {
-            pg_error ignored = {0};
-            if (!pg_camera_from_scene(scene, 0, aspect, &cam, &ignored)) {
-                snprintf(cw, sizeof cw, "camera: glTF camera 0 '%s' (node '%s'), the scene's first camera; "
-                         "--camera auto frames the bounds instead", scene->cameras[0].name, scene->cameras[0].node_name);
-            } else {
-                snprintf(buf, sizeof buf, "; the first glTF camera '%s' is orthographic (unsupported)",
-                         scene->cameras[0].name);
-                note = buf;
-            }
-        }
-        if (!cw[0]) {
+            pg_result r = pg_camera_from_scene(scene, 0, aspect, &cam, err);
+            if (r) return r;
+            snprintf(cw, sizeof cw, "camera: glTF camera 0 '%s' (node '%s', %s), the scene's first camera; "
+                     "--camera auto frames the bounds instead", scene->cameras[0].name, scene->cameras[0].node_name,
+                     scene->cameras[0].type == PG_CAMERA_ORTHOGRAPHIC ? "orthographic" : "perspective");
+        } else {
             float r = 0, d = 0;
             cam = pg_camera_frame_object(scene, aspect, &r, &d);
-            snprintf(cw, sizeof cw, "camera: auto framing (%s: bounds radius %.3g, distance %.3g, fov_y 45%s)",
-                     want_auto ? "--camera auto" : "object, no glTF camera", r, d, note);
+            snprintf(cw, sizeof cw, "camera: auto framing (%s: bounds radius %.3g, distance %.3g, fov_y 45)",
+                     want_auto ? "--camera auto" : "object, no glTF camera", r, d);
         }
     }
     pg_light_setup ls;

@@ -407,7 +407,7 @@ static void camera_list(viewer *v, const char *start_label)
     v->cam_choice = 0;
 }
 
-/* Applies combo item `choice`; an orthographic camera is refused into v->error. */
+/* Applies combo item `choice` (0 start view, 1 auto framing, 2.. the glTF cameras). */
 static void camera_choose(viewer *v, int choice)
 {
     const pg_scene *sc = v->app.scene;
