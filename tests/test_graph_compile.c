@@ -155,6 +155,19 @@ static pg_result d_side(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
     d->side_effects = true;
     return PG_OK;
 }
+/* the transparent-pass pattern: blends onto colour over the depth of an earlier pass, reads a
+ * buffer of its own; not needed (pg_decl_skip) when the scene has no BLEND material. Declares
+ * side effects so the test shows that a skip wins over them. */
+static pg_result d_transparent(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
+{
+    (void)e;
+    pg_decl_read(d, "buf", BUF, PG_ACCESS_STORAGE_READ, FRAG, 0);
+    pg_decl_read(d, "depth", IMG, PG_ACCESS_DEPTH_READ, 0, PG_FMTCLASS_DEPTH);
+    pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_RMW, 0, PG_FMTCLASS_FLOAT);
+    d->side_effects = true;
+    if (!in->features.has_blend) pg_decl_skip(d, "no BLEND materials: no transparent pass");
+    return PG_OK;
+}
 /* options.inputs (default 1) sampled inputs, one colour output; explains what it did */
 static pg_result d_opts(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
 {
@@ -257,6 +270,7 @@ static const pg_pass_type g_types[] = {
     TYPE("fake_storage_write", d_storage_write, "", "img"),
     TYPE("fake_storage_read", d_storage_read, "img, src", "dst"),
     TYPE("fake_side", d_side, "buf", ""),
+    TYPE("fake_transparent", d_transparent, "buf, depth", "color"),
     TYPE("fake_opts", d_opts, "input0..input3 (options.inputs)", "color"),
     TYPE("fake_many_defines", d_many_defines, "", "color"),
     TYPE("fake_many_reads", d_many_reads, "r x13", "color"),
@@ -1812,6 +1826,62 @@ static void test_unused_slots(void)
     }
 }
 
+/* pg_decl_skip: the pass is culled with its own reason (even with side effects), what only it
+ * reads is culled too, and its RMW target passes through from the previous writer. */
+static void test_skip(void)
+{
+    for (int blend = 0; blend < 2; blend++) {
+        pg_pipeline *pl = pl_new("out");
+        buf(pl, "tbuf", 32, 0);
+        img(pl, "color", PG_FMT_RGBA16F);
+        img(pl, "depth", PG_FMT_D32F);
+        img(pl, "out", PG_FMT_RGBA8_UNORM);
+        pass(pl, "Make", "fake_compute_buf", "", "tbuf");
+        pass(pl, "Opaque", "fake_depth_color", "", "color, depth");
+        pass(pl, "Trans", "fake_transparent", "tbuf, depth", "color");
+        pass(pl, "Final", "fake_blur", "color", "out");
+        pg_compile_desc d = desc_of(pl);
+        d.features.has_blend = blend == 1;
+        pg_graph_plan *p = compile_d(&d, __LINE__);
+        if (p) {
+            const pg_plan_pass *t = &p->passes[pidx(p, "Trans")];
+            if (!blend) {
+                CHECK(t->culled && p->n_order == 2 && pos(p, "Opaque") == 0 && pos(p, "Final") == 1);
+                CHECK_MSG(strcmp(t->cull_reason, "no BLEND materials: no transparent pass") == 0, "%s",
+                          t->cull_reason);
+                CHECK(explain_has(p, "culled pass 'Trans': no BLEND materials: no transparent pass"));
+                CHECK(p->passes[pidx(p, "Make")].culled && res(p, "tbuf")->culled);
+                CHECK(!res(p, "depth")->culled && !res(p, "color")->culled);
+                /* Final reads what Opaque wrote: one barrier from the colour attachment write */
+                const pg_barrier *b = barrier_for(p, "Final", "color");
+                CHECK(b && b->src_stages == VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT &&
+                      b->old_layout == VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL &&
+                      b->new_layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+                CHECK(res(p, "color")->usage == (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT));
+                CHECK(res(p, "depth")->last_pass == 0);
+            } else {
+                CHECK(!t->culled && p->n_order == 4 && pos(p, "Trans") == 2 && pos(p, "Final") == 3);
+                CHECK(!res(p, "tbuf")->culled && res(p, "depth")->last_pass == 2);
+                const pg_barrier *b = barrier_for(p, "Trans", "depth");
+                CHECK(b && b->new_layout == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
+                CHECK(n_barriers_for(p, "Trans", "color") == 1);
+            }
+            pg_graph_plan_free(p);
+        }
+        pl_free(pl);
+    }
+    /* a skipped pass cannot be the only producer of an output */
+    pg_pipeline *pl = pl_new("color");
+    buf(pl, "tbuf", 32, 0);
+    img_l(pl, "color", PG_FMT_RGBA16F, PG_LIFETIME_PERSISTENT);
+    img_l(pl, "depth", PG_FMT_D32F, PG_LIFETIME_PERSISTENT);
+    pass(pl, "Make", "fake_compute_buf", "", "tbuf");
+    pass(pl, "Trans", "fake_transparent", "tbuf, depth", "color");
+    const char *m = FAIL(pl, PG_ERR_NO_OUTPUT);
+    HAS(m, "'color' is written only by pass 'Trans', which is skipped for this scene (no BLEND materials");
+    pl_free(pl);
+}
+
 int main(void)
 {
     for (size_t i = 0; i < sizeof g_types / sizeof g_types[0]; i++) {
@@ -1829,5 +1899,6 @@ int main(void)
     test_random();
     test_report();
     test_unused_slots();
+    test_skip();
     return pg_test_finish("test_graph_compile");
 }
