@@ -5,6 +5,7 @@
  *  - over: 0 lights, ambient 1, camera straight above. The BLEND quad (1, 0.25, 0), alpha 0.5, over
  *    the opaque floor: the centre pixel is 0.5 * quad + 0.5 * floor, with floor the pipeline's own
  *    floor pixel beside the quad (which is 0.8 within the G-buffer's quantization); alpha stays 1.
+ *    From below, the single-sided quad's back face is culled (naive, deferred, deferred_packed).
  *  - order: two overlapping BLEND quads, red below green, no floor. From above (green nearer) the
  *    overlap is 0.5 G + 0.25 R, from below (red nearer) 0.5 R + 0.25 G: back to front, whichever
  *    side the camera is on (scene order is right from above only).
@@ -103,6 +104,17 @@ static void test_over(void)
         CHECK_MSG(near3(c, want, 2e-3), "%s: centre is not alpha*quad + (1-alpha)*floor", k_pipelines[p]);
         CHECK_MSG(fabs(c[3] - 1.0) < 1e-3, "%s: alpha %g", k_pipelines[p], c[3]);
         CHECK_MSG(strstr(f.order, "transparent") != NULL, "%s: %s", k_pipelines[p], f.order);
+        pg_th_release(&f);
+    }
+    /* from below: the single-sided quad shows its back and is culled (the floor too): black */
+    fi = top_view(-4.0f, 0, scene);
+    for (int p = 0; p < N_PIPELINES; p += 2) {
+        pg_th_frame f;
+        if (!render(sg, k_pipelines[p], sets, 1, &fi, &f)) continue;
+        const float *c = px(&f, W / 2, H / 2);
+        printf("over %-16s from below: centre (%.4f %.4f %.4f)\n", k_pipelines[p], c[0], c[1], c[2]);
+        CHECK_MSG(c[0] == 0 && c[1] == 0 && c[2] == 0, "%s: back face of a single-sided BLEND quad drawn",
+                  k_pipelines[p]);
         pg_th_release(&f);
     }
     pg_scene_gpu_destroy(g_gpu, sg);
