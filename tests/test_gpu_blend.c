@@ -9,7 +9,8 @@
  *  - order: two overlapping BLEND quads, red below green, no floor. From above (green nearer) the
  *    overlap is 0.5 G + 0.25 R, from below (red nearer) 0.5 R + 0.25 G: back to front, whichever
  *    side the camera is on (scene order is right from above only).
- *  - lit: the lit scene with 100 lights against the reference (rgba32f): naive and forward+ are
+ *  - lit: the lit scene with 100 lights, Lambert and Blinn-Phong, against the reference
+ *    (rgba32f): naive and forward+ are
  *    bit-identical, the deferred packings (hdr_format rgba32f) within the bounds of
  *    test_gpu_clustered.c (|out - ref| <= A |ref| + B peak per channel); the transparent pass runs
  *    in each. (The reference's own transparent pass shades every light, like naive's.)
@@ -158,38 +159,44 @@ static void test_lit(void)
         .width = W,
         .height = H,
     };
-    pg_param_override f32 = {"hdr_format", "rgba32f"};
-    pg_th_frame ref;
-    if (!render(sg, "reference", NULL, 0, &fi, &ref)) goto out;
-    double peak;
-    pg_th_max_abs(&ref, &ref, &peak);
-    CHECK_MSG(peak > 0 && strstr(ref.order, "transparent"), "reference: peak %g, %s", peak, ref.order);
-    /* (A, B): 0 = bit-identical; the deferred bounds of test_gpu_clustered.c */
-    static const double bounds[N_PIPELINES][2] = {{0, 0}, {0, 0}, {2e-3, 1e-5}, {0.03, 6e-3}, {0.015, 2e-3}, {0, 0}};
-    for (int p = 0; p < N_PIPELINES - 1; p++) {
-        pg_th_frame f;
-        if (!render(sg, k_pipelines[p], &f32, 1, &fi, &f)) continue;
-        double worst = 0, max_abs = 0;
-        size_t bad = 0;
-        for (size_t i = 0; i < (size_t)W * H; i++)
-            for (int k = 0; k < 3; k++) {
-                double a = f.hdr[4 * i + k], b = ref.hdr[4 * i + k];
-                double bound = bounds[p][0] * fabs(b) + bounds[p][1] * peak;
-                double d = fabs(a - b);
-                if (d > max_abs) max_abs = d;
-                if (bound > 0 && d / bound > worst) worst = d / bound;
-                bad += !(d <= bound);
-            }
-        printf("lit %-16s vs reference: max |d| %.3g (peak %.3g), %s %.3g of the bound, %zu channels over [%s]\n",
-               k_pipelines[p], max_abs, peak, bounds[p][0] ? "worst" : "bit-identical:", worst, bad, f.order);
-        if (bounds[p][0] == 0)
-            CHECK_MSG(pg_th_hdr_identical(&f, &ref), "%s: not bit-identical to the reference", k_pipelines[p]);
-        else
-            CHECK_MSG(bad == 0, "%s: %zu channels outside the bound", k_pipelines[p], bad);
-        CHECK_MSG(strstr(f.order, "transparent") != NULL, "%s: %s", k_pipelines[p], f.order);
-        pg_th_release(&f);
+    static const char *const shadings[] = {"lambert", "blinn_phong"};
+    for (int sh = 0; sh < 2; sh++) {
+        pg_param_override rsets[1] = {{"shading", shadings[sh]}};
+        pg_param_override psets[2] = {{"hdr_format", "rgba32f"}, {"shading", shadings[sh]}};
+        pg_th_frame ref;
+        if (!render(sg, "reference", rsets, 1, &fi, &ref)) goto out;
+        double peak;
+        pg_th_max_abs(&ref, &ref, &peak);
+        CHECK_MSG(peak > 0 && strstr(ref.order, "transparent"), "reference: peak %g, %s", peak, ref.order);
+        /* (A, B): 0 = bit-identical; the deferred bounds of test_gpu_clustered.c */
+        static const double bounds[N_PIPELINES][2] = {{0, 0}, {0, 0}, {2e-3, 1e-5}, {0.03, 6e-3}, {0.015, 2e-3}, {0, 0}};
+        for (int p = 0; p < N_PIPELINES - 1; p++) {
+            pg_th_frame f;
+            if (!render(sg, k_pipelines[p], psets, 2, &fi, &f)) continue;
+            double worst = 0, max_abs = 0;
+            size_t bad = 0;
+            for (size_t i = 0; i < (size_t)W * H; i++)
+                for (int k = 0; k < 3; k++) {
+                    double a = f.hdr[4 * i + k], b = ref.hdr[4 * i + k];
+                    double bound = bounds[p][0] * fabs(b) + bounds[p][1] * peak;
+                    double d = fabs(a - b);
+                    if (d > max_abs) max_abs = d;
+                    if (bound > 0 && d / bound > worst) worst = d / bound;
+                    bad += !(d <= bound);
+                }
+            printf("lit %-11s %-16s vs reference: max |d| %.3g (peak %.3g), %s %.3g of the bound, %zu channels over [%s]\n",
+                   shadings[sh], k_pipelines[p], max_abs, peak, bounds[p][0] ? "worst" : "bit-identical:", worst, bad,
+                   f.order);
+            if (bounds[p][0] == 0)
+                CHECK_MSG(pg_th_hdr_identical(&f, &ref), "%s %s: not bit-identical to the reference", k_pipelines[p],
+                          shadings[sh]);
+            else
+                CHECK_MSG(bad == 0, "%s %s: %zu channels outside the bound", k_pipelines[p], shadings[sh], bad);
+            CHECK_MSG(strstr(f.order, "transparent") != NULL, "%s: %s", k_pipelines[p], f.order);
+            pg_th_release(&f);
+        }
+        pg_th_release(&ref);
     }
-    pg_th_release(&ref);
 out:
     pg_scene_gpu_destroy(g_gpu, sg);
     pg_scene_free(scene);
