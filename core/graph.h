@@ -5,7 +5,8 @@
  *   2. validate   slot counts, kinds (image/buffer), format class vs access, known resources
  *   3. order      dependency edges (reader after writer, write chains, "after"), stable
  *                 topological sort (ties keep declaration order); cycles reported with their path
- *   4. cull       walk back from the outputs and side-effect passes; every culled pass and
+ *   4. cull       walk back from the outputs and side-effect passes (a pass that skipped itself
+ *                 with pg_decl_skip never runs: its reason is its cull reason); every culled pass and
  *                 resource gets a reason
  *   5. lifetimes  first/last executed pass of each resource; outputs live to the end
  *   6. alias      transient resources of the same kind with disjoint lifetimes share a memory

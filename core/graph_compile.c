@@ -11,8 +11,9 @@
  *   3. order      writers of a resource are explicitly ordered; every pass is placed after the
  *                 passes it depends on; ties keep declaration order; no transient is read before
  *                 it is written.
- *   4. cull       the passes that run are exactly those that feed an output or have side effects;
- *                 everything left out carries a reason.
+ *   4. cull       the passes that run are exactly those that feed an output or have side effects
+ *                 and did not skip themselves (pg_decl_skip); everything left out carries a
+ *                 reason.
  *   5. lifetimes  sizes are resolved; every used resource has [first, last] positions in
  *                 plan->order (outputs to n_order) and its usage flags.
  *   6. alias      blocks hold transients of one kind with disjoint lifetimes; only the first
@@ -688,10 +689,19 @@ static pg_result phase_cull(compile_ctx *c)
     for (int k = 0; k < 2; k++) {
         if (outs[k] < 0) continue;
         bool written = false;
+        int skipped = -1;
         for (int p = 0; p < n && !written; p++) {
             pass_use *u = find_use(c, p, outs[k]);
-            written = u && u->writes;
+            if (u && u->writes && plan->passes[p].decl.skip) skipped = p;
+            else written = u && u->writes;
         }
+        if (!written && skipped >= 0)
+            return pg_fail(c->err, PG_ERR_NO_OUTPUT,
+                           "%s: %s: '%s' is written only by pass '%s', which is skipped for this "
+                           "scene (%s)",
+                           pl->path[0] ? pl->path : "<pipeline>", keys[k],
+                           pl->resources[outs[k]].name, plan->passes[skipped].name,
+                           plan->passes[skipped].decl.skip_reason);
         if (!written)
             return pg_fail(c->err, PG_ERR_NO_OUTPUT, "%s: %s: no pass writes '%s'",
                            pl->path[0] ? pl->path : "<pipeline>", keys[k],
@@ -701,11 +711,14 @@ static pg_result phase_cull(compile_ctx *c)
     /* Roots: passes with side effects and (below) the writers of the outputs. A pass runs if it
      * writes a needed resource; everything a running pass touches is needed. Iterate to a fixed
      * point (at most n rounds): a chain a -> b -> out needs two rounds in the worst order. */
-    for (int p = 0; p < n; p++) needed[p] = pass_has_side_effects(c, p);
+    /* A pass that declared itself not needed for this scene (pg_decl_skip) is never a root and
+     * never needed: its writes keep the previous writer's value, which is the one readers get. */
+    for (int p = 0; p < n; p++) needed[p] = pass_has_side_effects(c, p) && !plan->passes[p].decl.skip;
     bool changed = true;
     while (changed) {
         changed = false;
         for (int p = 0; p < n; p++) {
+            if (plan->passes[p].decl.skip) continue;
             if (!needed[p])
                 for (uint32_t k = 0; k < c->n_uses[p]; k++)
                     if (c->uses[p][k].writes && c->needed_res[c->uses[p][k].res]) {
@@ -730,6 +743,10 @@ static pg_result phase_cull(compile_ctx *c)
             continue;
         }
         pp->culled = true;
+        if (pp->decl.skip) {
+            pg_strlcpy(pp->cull_reason, pp->decl.skip_reason, sizeof pp->cull_reason);
+            continue;
+        }
         char list[PG_EXPLAIN_MAX];
         size_t len = 0;
         list[0] = 0;

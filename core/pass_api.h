@@ -71,6 +71,11 @@ typedef struct pg_pass_decl {
     /* what the pass left out for this scene and why ("no alpha-mask materials: no discard") */
     uint32_t n_explain;
     char explain[8][PG_EXPLAIN_MAX];
+    /* not needed for this scene at all (e.g. no BLEND materials: no transparent pass): the
+     * compiler culls it with skip_reason, even with side effects; its writes then keep the value
+     * of the previous writer and what only it reads is culled too. Set with pg_decl_skip(). */
+    bool skip;
+    char skip_reason[PG_EXPLAIN_MAX];
 } pg_pass_decl;
 
 typedef struct pg_declare_in {
@@ -152,6 +157,13 @@ void pg_decl_define(pg_pass_decl *d, const char *define);
 /* Marks reads[index] (or writes[index]) unused and records why in the explanation. */
 void pg_decl_mark_unused(pg_pass_decl *d, bool is_write, uint32_t index, const char *why);
 void pg_decl_explain(pg_pass_decl *d, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* declare(): this pass is not needed for this scene; the reason is shown as its cull reason
+ * (--explain, dump). The slots must still be declared (they are validated and ordered). */
+void pg_decl_skip(pg_pass_decl *d, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif

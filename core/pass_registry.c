@@ -99,6 +99,17 @@ void pg_decl_explain(pg_pass_decl *d, const char *fmt, ...)
     d->n_explain++;
 }
 
+void pg_decl_skip(pg_pass_decl *d, const char *fmt, ...)
+{
+    if (!d || !fmt) return;
+    d->skip = true;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(d->skip_reason, sizeof d->skip_reason, fmt, ap);
+    va_end(ap);
+    if (!d->skip_reason[0]) pg_strlcpy(d->skip_reason, "not needed for this scene", sizeof d->skip_reason);
+}
+
 static void slot_names(const pg_slot_decl *slots, uint32_t n, char *buf, size_t size)
 {
     size_t len = 0;

@@ -26,7 +26,7 @@
  *
  * Warnings (pg_scene.warnings, collect_warnings): everything the file uses that is not drawn as it
  * asks gets one line per kind (skins, morph targets, animations, each extension in
- * extensionsUsed, BLEND materials, emissive / occlusion / metallic-roughness textures, COLOR_0,
+ * extensionsUsed, emissive / occlusion / metallic-roughness textures, COLOR_0,
  * TEXCOORD_1+, texCoord != 0, sampler modes, point/line primitives). The library never prints
  * them. Any entry of extensionsRequired is an error (no extension is implemented). A non-GLB file
  * whose first non-blank byte is not '{' or '[' is "not a glTF 2.0 file"; asset.version 1.x is
@@ -1440,14 +1440,13 @@ void collect_warnings(Ctx &c)
         W.push_back(strf("extensionsUsed: %zu more extensions ignored (not supported)",
                          md.extensionsUsed.size() - kMaxExtensionLines));
 
-    std::vector<std::string> blend, emissive, occlusion, mr, texcoord;
+    std::vector<std::string> emissive, occlusion, mr, texcoord;
     for (size_t i = 0; i < md.materials.size(); i++) {
         const tinygltf::Material &m = md.materials[i];
         if ((m.pbrMetallicRoughness.baseColorTexture.index >= 0 &&
              m.pbrMetallicRoughness.baseColorTexture.texCoord != 0) ||
             (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0))
             texcoord.push_back(material_desc(md, i));
-        if (m.alphaMode == "BLEND") blend.push_back(material_desc(md, i));
         bool em = m.emissiveTexture.index >= 0;
         for (double x : m.emissiveFactor) em = em || x != 0.0;
         if (em) emissive.push_back(material_desc(md, i));
@@ -1455,9 +1454,6 @@ void collect_warnings(Ctx &c)
         if (m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
             mr.push_back(material_desc(md, i));
     }
-    if (!blend.empty())
-        W.push_back(plural(blend.size(), "material", "materials") + " with alphaMode BLEND (" +
-                    name_list(blend) + "): rendered as opaque");
     if (!emissive.empty())
         W.push_back("emissive factor/texture of " +
                     plural(emissive.size(), "material", "materials") + " (" + name_list(emissive) +

@@ -147,6 +147,7 @@ out:
 static int draw_cmp(const void *a, const void *b)
 {
     const pg_draw *x = a, *y = b;
+    if (x->blend != y->blend) return x->blend ? 1 : -1;
     if (x->alpha_mask != y->alpha_mask) return x->alpha_mask ? 1 : -1;
     if (x->material != y->material) return x->material < y->material ? -1 : 1;
     return x->first_index < y->first_index ? -1 : (x->first_index > y->first_index);
@@ -268,9 +269,13 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
         if (!pr->index_count) continue;
         uint32_t m = pr->material < n_mat ? pr->material : 0;
         bool mask = scene->n_materials && scene->materials[m].alpha_mode == PG_ALPHA_MASK;
+        bool blend = scene->n_materials && scene->materials[m].alpha_mode == PG_ALPHA_BLEND;
         bool two = scene->n_materials && scene->materials[m].double_sided;
-        sg->draws[sg->n_draws++] = (pg_draw){pr->first_index, pr->index_count, pr->vertex_offset, m, mask, two};
-        if (!mask) sg->n_opaque_draws++;
+        pg_draw d = {pr->first_index, pr->index_count, pr->vertex_offset, m, mask, blend, two, {0, 0, 0}};
+        for (int k = 0; k < 3; k++) d.center[k] = 0.5f * (pr->bounds_min[k] + pr->bounds_max[k]);
+        sg->draws[sg->n_draws++] = d;
+        if (blend) sg->n_blend_draws++;
+        else if (!mask) sg->n_opaque_draws++;
     }
     qsort(sg->draws, sg->n_draws, sizeof *sg->draws, draw_cmp);
     *out = sg;

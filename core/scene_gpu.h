@@ -2,7 +2,8 @@
  * every texture with its mips, one sampler, and a descriptor set (set 1 of scene-drawing passes):
  *   binding 0: readonly buffer Materials { GpuMaterial materials[]; }
  *   binding 1: sampler2D textures[texture_count]   (index 0 is a 1x1 white texture)
- * Draws are sorted opaque first, then alpha-masked. Static after upload (made visible with one
+ * Draws are sorted opaque first, then alpha-masked, then alpha-blended (drawn only by the
+ * transparent pass, which sorts them back to front by their bounds centre). Static after upload (made visible with one
  * barrier at upload time), so the graph does not track it. */
 #ifndef PG_SCENE_GPU_H
 #define PG_SCENE_GPU_H
@@ -30,7 +31,9 @@ typedef struct pg_draw {
     int32_t vertex_offset;
     uint32_t material;
     bool alpha_mask;
+    bool blend;              /* alphaMode BLEND: the transparent pass draws it, no other pass */
     bool double_sided;       /* draw without back-face culling */
+    float center[3];         /* centre of the primitive's world-space bounds (for sorting) */
 } pg_draw;
 
 typedef struct pg_scene_gpu {
@@ -41,7 +44,9 @@ typedef struct pg_scene_gpu {
     VkDescriptorSetLayout set_layout;
     VkDescriptorPool pool;
     VkDescriptorSet set;
-    uint32_t n_draws, n_opaque_draws; /* draws[0..n_opaque) opaque, the rest alpha-masked */
+    /* draws[0, n_opaque) opaque, [n_opaque, n_draws - n_blend) alpha-masked,
+     * [n_draws - n_blend, n_draws) alpha-blended */
+    uint32_t n_draws, n_opaque_draws, n_blend_draws;
     pg_draw *draws;
     pg_scene_features features;
     float bounds_min[3], bounds_max[3];

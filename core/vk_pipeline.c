@@ -65,9 +65,19 @@ pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, con
     };
     VkPipelineColorBlendAttachmentState att[8];
     memset(att, 0, sizeof att);
-    for (uint32_t i = 0; i < d->n_color && i < 8; i++)
+    for (uint32_t i = 0; i < d->n_color && i < 8; i++) {
         att[i].colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
                                 VK_COLOR_COMPONENT_A_BIT;
+        if (d->blend_over) {
+            att[i].blendEnable = VK_TRUE;
+            att[i].srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+            att[i].dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+            att[i].colorBlendOp = VK_BLEND_OP_ADD;
+            att[i].srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+            att[i].dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+            att[i].alphaBlendOp = VK_BLEND_OP_ADD;
+        }
+    }
     VkPipelineColorBlendStateCreateInfo cb = {.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
                                               .attachmentCount = d->n_color, .pAttachments = att};
     VkDynamicState dyn[3] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR, VK_DYNAMIC_STATE_CULL_MODE};

@@ -22,6 +22,8 @@ typedef struct pg_gfx_pipeline_desc {
     VkCullModeFlags cull;           /* 0 -> none */
     bool dynamic_cull;              /* cull mode set per draw with vkCmdSetCullMode */
     bool scene_vertices;            /* pg_vertex input at binding 0; else no vertex input */
+    bool blend_over;                /* every colour attachment: rgb = src.a*src + (1-src.a)*dst,
+                                     * a = src.a + (1-src.a)*dst.a (non-premultiplied "over") */
 } pg_gfx_pipeline_desc;
 
 pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, const char *name,

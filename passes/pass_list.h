@@ -7,6 +7,7 @@
 
 extern const pg_pass_type pg_pass_light_animate;
 extern const pg_pass_type pg_pass_forward_naive;
+extern const pg_pass_type pg_pass_forward_transparent;
 extern const pg_pass_type pg_pass_display_tonemap;
 extern const pg_pass_type pg_pass_display_ocio;
 extern const pg_pass_type pg_pass_cluster_assign;

@@ -39,13 +39,14 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
         .n_color = d->n_color,
         .depth_format = d->depth_format,
         .depth_test = true,
-        .depth_write = true,
+        .depth_write = !d->blend,
         .dynamic_cull = true,
         .scene_vertices = true,
+        .blend_over = d->blend,
     };
     memcpy(gd.color_formats, d->color_formats, sizeof gd.color_formats);
     if ((r = pg_gfx_pipeline_create(gpu, &gd, pass->name, &out->opaque, err))) goto out;
-    if (has_mask && ctx->scene->n_draws > ctx->scene->n_opaque_draws) {
+    if (has_mask && !d->blend && ctx->scene->n_draws - ctx->scene->n_blend_draws > ctx->scene->n_opaque_draws) {
         defs[n++] = "PG_ALPHA_MASK";
         if ((r = pg_shader_module(gpu, d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, &fs_mask, err)))
             goto out;
@@ -61,7 +62,7 @@ out:
     return r;
 }
 
-void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set)
+static void bind_scene(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set)
 {
     const pg_scene_gpu *sc = ctx->scene;
     VkCommandBuffer cmd = ctx->cmd;
@@ -71,8 +72,34 @@ void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx
     VkDeviceSize zero = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &sc->vertices.buffer, &zero);
     vkCmdBindIndexBuffer(cmd, sc->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+}
+
+void pg_scene_draw_record_list(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set,
+                               const uint32_t *order, uint32_t n)
+{
+    const pg_scene_gpu *sc = ctx->scene;
+    VkCommandBuffer cmd = ctx->cmd;
+    bind_scene(sd, ctx, pass_set);
     VkCullModeFlags cull = ~0u;
-    for (uint32_t i = 0; i < sc->n_draws; i++) {
+    for (uint32_t k = 0; k < n; k++) {
+        const pg_draw *d = &sc->draws[order[k]];
+        VkCullModeFlags want = d->double_sided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+        if (want != cull) {
+            vkCmdSetCullMode(cmd, want);
+            cull = want;
+        }
+        vkCmdPushConstants(cmd, sd->layout, PG_PUSH_STAGES, 0, sizeof(uint32_t), &d->material);
+        vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, d->vertex_offset, 0);
+    }
+}
+
+void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set)
+{
+    const pg_scene_gpu *sc = ctx->scene;
+    VkCommandBuffer cmd = ctx->cmd;
+    bind_scene(sd, ctx, pass_set);
+    VkCullModeFlags cull = ~0u;
+    for (uint32_t i = 0; i < sc->n_draws - sc->n_blend_draws; i++) { /* BLEND: the transparent pass */
         const pg_draw *d = &sc->draws[i];
         if (i == sc->n_opaque_draws) {
             if (!sd->masked) break;

@@ -22,6 +22,9 @@ typedef struct pg_scene_draw_desc {
     VkFormat depth_format;
     const char *extra_defines[4];     /* added to the pass's declared defines */
     uint32_t n_extra_defines;
+    bool blend;                       /* the pipeline for the BLEND draws (forward_transparent):
+                                       * "over" blending, depth test without depth write, no
+                                       * alpha-mask pipeline */
 } pg_scene_draw_desc;
 
 /* Uses ctx->pass->decl.defines (PG_ALPHA_MASK there selects whether the masked pipeline is made)
@@ -29,8 +32,13 @@ typedef struct pg_scene_draw_desc {
 pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_draw_desc *d,
                                pg_scene_draw *out, pg_error *err);
 /* Binds sets 0..2 (pass_set may be VK_NULL_HANDLE when there is no set 2) and draws every
- * draw of the scene. Rendering must have begun. */
+ * opaque and alpha-masked draw of the scene (BLEND draws are left to forward_transparent).
+ * Rendering must have begun. */
 void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set);
+/* Binds like pg_scene_draw_record and draws the BLEND draws sc->draws[order[0..n)] in that order
+ * with the `opaque` pipeline (made with desc.blend). */
+void pg_scene_draw_record_list(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set,
+                               const uint32_t *order, uint32_t n);
 void pg_scene_draw_destroy(pg_gpu *gpu, pg_scene_draw *sd);
 /* declare(): the surface variant the scene needs (PG_ALPHA_MASK, PG_NORMAL_MAPS) and, for what it
  * lacks, why that path is left out. */

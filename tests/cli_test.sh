@@ -229,7 +229,7 @@ for fmt in text json dot timeline; do
   "$PG" dump --pipeline "$deferred" --lights 1000 --format $fmt >"$tmp/dump.$fmt" 2>"$tmp/err" && [ -s "$tmp/dump.$fmt" ] \
     && ok || { bad "dump --format $fmt"; cat "$tmp/err"; }
 done
-grep -q "^totals: 5 passes run, 0 culled; 14 barriers" "$tmp/dump.text" && grep -q "^memory timeline" "$tmp/dump.text" \
+grep -q "^totals: 5 passes run, 1 culled; 14 barriers" "$tmp/dump.text" && grep -q "^memory timeline" "$tmp/dump.text" \
   && ok || { bad "dump text: totals or timeline missing"; cat "$tmp/dump.text"; }
 python3 -c 'import json,sys; json.load(sys.stdin)' <"$tmp/dump.json" && ok || bad "dump --format json does not parse"
 python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["format_version"] == 1 and d["order"][-1] == "display" and d["totals"]["passes_run"] == 5' \
@@ -238,8 +238,14 @@ head -n 1 "$tmp/dump.dot" | grep -q "^digraph" && ok || bad "dump --format dot i
 head -c 4 "$tmp/dump.timeline" | grep -q "<svg" && tail -n 1 "$tmp/dump.timeline" | grep -q "</svg>" && ok || bad "dump --format timeline is not an SVG"
 "$PG" dump --pipeline "$deferred" --format timeline --out "$tmp/tl.svg" >"$tmp/out" 2>"$tmp/err" && grep -q "^dump: deferred 1920x1080" "$tmp/out" \
   && grep -q "class=\"bar\"" "$tmp/tl.svg" && ok || { bad "dump timeline --out"; cat "$tmp/err"; }
-"$PG" dump --pipeline "$deferred" --lights 0 --format json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert [p["name"] for p in d["culled_passes"]] == ["animate_lights", "assign_lights"]' \
+"$PG" dump --pipeline "$deferred" --lights 0 --format json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert [p["name"] for p in d["culled_passes"]] == ["animate_lights", "assign_lights", "transparent"]' \
   && ok || bad "dump --lights 0 does not cull light animation and assignment"
+# the transparent pass: culled with its reason without BLEND materials, run with them
+grep -q "culled pass 'transparent': no BLEND materials: no transparent pass" "$tmp/dump.text" \
+  && ok || bad "dump text: transparent pass not culled with its reason"
+"$PG" dump --pipeline "$deferred" --scene "$root/tests/corpus/gltf/blend/blend_lit.gltf" --format json 2>/dev/null \
+  | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["order"][-2:] == ["transparent", "display"]' \
+  && ok || bad "dump with a BLEND scene does not run the transparent pass before the display"
 if command -v dot >/dev/null 2>&1; then
   "$PG" dump --pipeline "$deferred" --format dot --out "$tmp/graph.svg" >"$tmp/out" 2>"$tmp/err" && grep -q "<svg" "$tmp/graph.svg" \
     && ok || { bad "dump --format dot --out x.svg"; cat "$tmp/err"; }
@@ -456,9 +462,12 @@ skin_w="passgraph: warning: $gcorp/ok_skins.gltf: 2 skins ignored: rendered in b
   && ok || { bad "render: skins warning"; cat "$tmp/err" "$tmp/out"; }
 "$PG" render --scene "$gcorp/ok_minimal.gltf" --size 32x18 --lights 4 --out "$tmp/mi.png" >"$tmp/out" 2>"$tmp/err" \
   && ! grep -q "warning" "$tmp/err" && ok || { bad "render: a plain glTF warns"; cat "$tmp/err"; }
-"$PG" compare --scene "$gcorp/ok_alpha_blend.gltf" --reference "$naive" --size 32x18 --lights 4 --quiet >"$tmp/out" 2>"$tmp/err" \
-  && [ "$(grep -cxF -- "passgraph: warning: $gcorp/ok_alpha_blend.gltf: 1 material with alphaMode BLEND (materials[0] 'glass'): rendered as opaque" "$tmp/err")" = 1 ] \
-  && ok || { bad "compare: BLEND warning"; cat "$tmp/err"; }
+"$PG" compare --scene "$gcorp/ok_animation.gltf" --reference "$naive" --size 32x18 --lights 4 --quiet >"$tmp/out" 2>"$tmp/err" \
+  && [ "$(grep -cxF -- "passgraph: warning: $gcorp/ok_animation.gltf: 1 animation ignored: the nodes are drawn at their static transforms" "$tmp/err")" = 1 ] \
+  && ok || { bad "compare: scene warning once"; cat "$tmp/err"; }
+# BLEND is drawn now: no warning, and the transparent pass runs
+"$PG" render --scene "$gcorp/ok_alpha_blend.gltf" --size 32x18 --lights 4 --out "$tmp/ab.png" >"$tmp/out" 2>"$tmp/err" \
+  && ! grep -q "warning" "$tmp/err" && grep -q "transparent" "$tmp/out" && ok || { bad "render: BLEND scene"; cat "$tmp/err" "$tmp/out"; }
 "$PG" bench --scene "$gcorp/ok_skins.gltf" --pipelines naive --lights 4,8 --size 32x18 --frames 1 --warmup 0 --out "$tmp/bw" \
   >"$tmp/out" 2>"$tmp/err" && [ "$(grep -cxF -- "$skin_w" "$tmp/err")" = 1 ] \
   && ok || { bad "bench: skins warning once"; cat "$tmp/err"; }

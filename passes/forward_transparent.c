@@ -1,0 +1,177 @@
+/* forward_transparent.c - glTF alphaMode BLEND: after the opaque lighting (forward or deferred),
+ * draws only the scene's BLEND draws onto the HDR image, sorted back to front every frame by the
+ * distance from the camera to each draw's bounds centre, with "over" blending
+ * (rgb = a*src + (1-a)*dst, non-premultiplied; a = s.alpha), depth tested against the opaque
+ * depth but not written, back faces culled unless the material is double-sided. Each fragment is
+ * shaded like forward.frag (pg_surface + pg_shade_point: the same lights, ambient and model).
+ * Slots: lights "all":      reads [lights, depth], writes [color]
+ *        lights "clusters": reads [lights, cluster_counts, cluster_lights, depth], writes [color]
+ * (depth: depth attachment, read-only; color: colour attachment, loaded and blended).
+ * Options: lights ("all": every light, as forward_naive; "clusters": the cluster lists, as
+ * forward_plus, with grid_x/y/z), shading, ambient, view.
+ * Not needed (pg_decl_skip, so the graph culls it and what only it reads) when the scene has no
+ * BLEND material, and with a debug view (the views show the opaque surfaces). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene_draw.h"
+#include "shading_common.h"
+
+typedef struct pg_transparent_pass {
+    bool clustered;
+    pg_pass_set lights;
+    pg_scene_draw draw;
+    uint32_t n;            /* BLEND draws of the scene */
+    uint32_t *order;       /* their indices in scene->draws, sorted every frame */
+    float *key;            /* squared camera distance per BLEND draw (scratch) */
+} pg_transparent_pass;
+
+static const char *const k_lights[] = {"all", "clusters", NULL};
+static const char *const k_extra[] = {"lights", NULL};
+
+static pg_result read_opts(const pg_pass_desc *desc, bool *clustered, pg_shading_opts *o, pg_error *err)
+{
+    int mode = 0;
+    pg_result r = pg_opt_enum(desc, "lights", k_lights, 0, &mode, err);
+    if (r) return r;
+    *clustered = mode == 1;
+    return pg_shading_opts_read(desc, *clustered, k_extra, o, err);
+}
+
+static pg_result ft_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
+{
+    bool clustered;
+    pg_shading_opts o;
+    pg_result r = read_opts(in->desc, &clustered, &o, err);
+    if (r) return r;
+    pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    if (clustered) {
+        pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+        pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    }
+    pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_READ, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
+    pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_RMW, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    if (!in->features.has_blend) {
+        pg_decl_skip(out, "no BLEND materials: no transparent pass");
+        return PG_OK;
+    }
+    if (o.view) {
+        pg_decl_skip(out, "debug view '%s': transparent surfaces not drawn (the view shows the opaque ones)",
+                     pg_debug_views[o.view]);
+        return PG_OK;
+    }
+    pg_scene_draw_declare_features(in, out);
+    pg_decl_define(out, "PG_TRANSPARENT");
+    pg_shading_declare(&o, in, out, clustered, 0, clustered ? 1 : -1);
+    return PG_OK;
+}
+
+static pg_result ft_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
+{
+    pg_transparent_pass *p = self;
+    pg_shading_opts o;
+    pg_result r = read_opts(ctx->desc, &p->clustered, &o, err);
+    if (r) return r;
+    const int depth_slot = p->clustered ? 3 : 1, color_slot = depth_slot + 1;
+    const pg_phys_resource *color = ctx->slots[color_slot];
+    VkFormatProperties fp;
+    vkGetPhysicalDeviceFormatProperties(ctx->gpu->phys, color->format, &fp);
+    if (!(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
+        return pg_fail(err, PG_ERR_FORMAT,
+                       "%s: %s.writes[0]: '%s' is %s, which this device cannot blend onto "
+                       "(VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT missing): use rgba16f or rgba32f",
+                       ctx->desc->file, ctx->desc->json_path, ctx->desc->writes[0],
+                       pg_format_get(color->pg_fmt)->name);
+    if (p->clustered && (r = pg_check_cluster_buffers(ctx, &o, 1, err))) return r;
+    if ((r = pg_light_set_create(ctx, p->clustered, 0, 1, &p->lights, err))) return r;
+    p->n = ctx->scene->n_blend_draws;
+    p->order = calloc(p->n ? p->n : 1, sizeof *p->order);
+    p->key = calloc(p->n ? p->n : 1, sizeof *p->key);
+    if (!p->order || !p->key) return pg_fail(err, PG_ERR_OOM, "%s: out of memory", ctx->pass->name);
+    pg_scene_draw_desc d = {
+        .fragment_shader = "forward.frag",
+        .pass_layout = p->lights.layout,
+        .n_color = 1,
+        .color_formats = {color->format},
+        .depth_format = ctx->slots[depth_slot]->format,
+        .blend = true,
+    };
+    return pg_scene_draw_create(ctx, &d, &p->draw, err);
+}
+
+/* Back to front: larger squared distance first; equal distances keep scene draw order. */
+static void sort_back_to_front(pg_transparent_pass *p, const pg_scene_gpu *sc, const float cam[3])
+{
+    const uint32_t first = sc->n_draws - p->n;
+    for (uint32_t i = 0; i < p->n; i++) {
+        const float *c = sc->draws[first + i].center;
+        float dx = c[0] - cam[0], dy = c[1] - cam[1], dz = c[2] - cam[2];
+        float k = dx * dx + dy * dy + dz * dz;
+        /* insertion sort: a handful of draws, and stable */
+        uint32_t j = i;
+        while (j > 0 && p->key[j - 1] < k) {
+            p->key[j] = p->key[j - 1];
+            p->order[j] = p->order[j - 1];
+            j--;
+        }
+        p->key[j] = k;
+        p->order[j] = first + i;
+    }
+}
+
+static void ft_record(void *self, const pg_pass_record_ctx *ctx)
+{
+    pg_transparent_pass *p = self;
+    const int depth_slot = p->clustered ? 3 : 1;
+    const pg_phys_resource *depth = ctx->slots[depth_slot], *color = ctx->slots[depth_slot + 1];
+    sort_back_to_front(p, ctx->scene, ctx->frame->camera_pos);
+    VkRenderingAttachmentInfo ca = {
+        .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+        .imageView = color->view,
+        .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+        .loadOp = VK_ATTACHMENT_LOAD_OP_LOAD,
+        .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+    };
+    VkRenderingAttachmentInfo da = {
+        .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+        .imageView = depth->view,
+        .imageLayout = VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL,
+        .loadOp = VK_ATTACHMENT_LOAD_OP_LOAD,
+        .storeOp = VK_ATTACHMENT_STORE_OP_NONE, /* read-only: nothing to store */
+    };
+    VkRenderingInfo ri = {
+        .sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
+        .renderArea = {{0, 0}, {color->width, color->height}},
+        .layerCount = 1,
+        .colorAttachmentCount = 1,
+        .pColorAttachments = &ca,
+        .pDepthAttachment = &da,
+    };
+    vkCmdBeginRendering(ctx->cmd, &ri);
+    pg_cmd_viewport(ctx->cmd, color->width, color->height);
+    pg_scene_draw_record_list(&p->draw, ctx, p->lights.set, p->order, p->n);
+    vkCmdEndRendering(ctx->cmd);
+}
+
+static void ft_destroy(void *self, pg_gpu *gpu)
+{
+    pg_transparent_pass *p = self;
+    pg_scene_draw_destroy(gpu, &p->draw);
+    pg_pass_set_destroy(gpu, &p->lights);
+    free(p->order);
+    free(p->key);
+    p->order = NULL;
+    p->key = NULL;
+}
+
+const pg_pass_type pg_pass_forward_transparent = {
+    .name = "forward_transparent",
+    .summary = "graphics: alphaMode BLEND draws, back to front, blended onto the lit HDR image",
+    .read_slots = "lights (, cluster_counts, cluster_lights with lights \"clusters\"), depth",
+    .write_slots = "color",
+    .instance_size = sizeof(pg_transparent_pass),
+    .declare = ft_declare,
+    .create = ft_create,
+    .record = ft_record,
+    .destroy = ft_destroy,
+};
