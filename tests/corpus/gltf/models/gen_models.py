@@ -3,7 +3,7 @@
 object-type glTF models, `passgraph render --scene MODEL --out x.png` with no other option gives a
 framed, lit, recognisable image"). Python 3 standard library only; deterministic (no random
 module, no time stamps: the same bytes on every run); the output is committed next to this file.
-Run: `python3 tests/corpus/gltf/models/gen_models.py`.
+Run: `python3 tests/corpus/gltf/models/gen_models.py` (`--out DIR` writes into DIR instead).
 
 Every model faces +Z, stands on y = 0, is in metres, and has several materials and node
 transforms (translation / rotation / scale) for some parts. Geometry is built from a few
@@ -41,9 +41,11 @@ import json
 import math
 import os
 import struct
+import sys
 import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+OUT = HERE
 
 # ----------------------------------------------------------------------------- small vector math
 
@@ -438,7 +440,7 @@ def crate_png():
 
 def crate_normal_png():
     """Tangent-space normal map of crate_height (+X right = +u, +Y up = -v, +Z out)."""
-    depth = 3.0   # pixels of height per unit of the height field
+    depth = 6.0   # pixels of height per unit of the height field
 
     def hgt(x, y):
         return crate_height(min(CRATE_N - 1, max(0, x)), min(CRATE_N - 1, max(0, y)))[0] * depth
@@ -604,7 +606,7 @@ class Model:
         glb = filename.endswith(".glb")
         d, blob = self.build(glb)
         validate(d, blob, filename)
-        path = os.path.join(HERE, filename)
+        path = os.path.join(OUT, filename)
         if glb:
             js = json.dumps(d, separators=(",", ":")).encode()
             js += b" " * ((4 - len(js) % 4) % 4)
@@ -863,7 +865,7 @@ def rocket():
     flame = M.material(mat("flame", (1.0, 0.55, 0.1, 1), rough=1.0,
                            emissiveFactor=[1.0, 0.5, 0.08]))
     concrete = M.material(mat("launch_pad", (0.35, 0.35, 0.33, 1), rough=0.9))
-    y0 = 0.55                         # bottom of the hull
+    y0 = 0.85                         # bottom of the hull (hovering: lift-off)
     hull, nose, fins, noz, port, fl, pad = (Prim(white), Prim(red), Prim(red), Prim(metal),
                                             Prim(glass), Prim(flame), Prim(concrete))
     rim = Prim(metal)
@@ -894,7 +896,7 @@ def rocket():
     closed_lathe(rim, [(0, 0.17), (0.075, 0.17), (0.075, 0.186), (0.058, 0.19), (0, 0.19)],
                  m=chain(T(0, y0 + 1.0, 0), R("x", 90)), seg=28)
     # flame: a long cone pointing down from the nozzle (lift-off)
-    closed_lathe(fl, [(0, 0.06), (0.07, 0.11), (0.125, 0.28), (0.1, y0 - 0.12), (0, y0 - 0.12)],
+    closed_lathe(fl, [(0, 0.06), (0.06, 0.1), (0.13, 0.35), (0.1, y0 - 0.12), (0, y0 - 0.12)],
                  seg=32, smooth_deg=60)
     cylinder(pad, 0.75, 0.06, y0=0.0, seg=48)
     box(pad, (-0.5, 0.0, -0.5), (-0.35, 0.06, 0.5))
@@ -1165,6 +1167,13 @@ MODELS = [("mug.gltf", mug), ("pawn.gltf", pawn), ("table_chair.gltf", table_cha
           ("desk_lamp.gltf", desk_lamp)]
 
 if __name__ == "__main__":
+    # --out DIR writes elsewhere (cli_test.sh checks that the committed files are what this
+    # script writes)
+    if len(sys.argv) == 3 and sys.argv[1] == "--out":
+        OUT = sys.argv[2]
+        os.makedirs(OUT, exist_ok=True)
+    elif len(sys.argv) != 1:
+        sys.exit("usage: gen_models.py [--out DIR]")
     for fname, fn in MODELS:
         size, tris = fn().write(fname)
         assert size < 300 * 1024, (fname, size)
