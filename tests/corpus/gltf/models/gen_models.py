@@ -709,12 +709,13 @@ def mug():
                           (0, H - 0.0155)], seg=48)
     # handle: half torus in its own XY plane, placed by the node (rotation about X turns the torus
     # axis Y to Z, so the ring lies in the XY plane)
-    # (open at both ends: the ends are inside the wall)
-    torus(handle, 0.026, 0.0055, u_range=(-95, 95), nu=24, nv=12)
+    # (open at both ends: at u = +-90 degrees the end circles lie in the plane x = 0.04 of the
+    # node, inside the wall between its inner (0.0375) and outer (0.042) radius)
+    torus(handle, 0.026, 0.0055, u_range=(-90, 90), nu=24, nv=12)
     body = M.mesh("mug_body", [(body_out, glaze), (body_in, inside), (liquid, coffee)])
     hmesh = M.mesh("mug_handle", [(handle, glaze)])
     M.node("body", body)
-    M.node("handle", hmesh, t=(R_ - 0.008, 0.05, 0), r=quat("x", 90), s=(1, 1.25, 1))
+    M.node("handle", hmesh, t=(R_ - 0.002, 0.05, 0), r=quat("x", 90), s=(1, 1.25, 1))
     return M
 
 
