@@ -418,6 +418,27 @@ expect_fail "camera without value" "--camera: missing value" render --camera
 expect_fail "compare: unknown camera" "no such camera" compare --scene "$two" --camera nope --size 32x18
 expect_fail "dump: unknown camera" "no such camera" dump --scene "$two" --camera nope
 expect_fail "bench: unknown camera" "no such camera" bench --scene "$two" --camera nope --size 32x18 --frames 1 --out "$tmp/b_cam"
+# the ten object models (tests/corpus/gltf/models, gen_models.py): the committed files are what the
+# generator writes; a render with default options (but the size) exits 0 and writes a PNG that is
+# framed (3%..90% of the pixels not black; 0.04%..0.2% if framed from 10x the distance) and lit
+# (mean 8-bit luma of those > 40; 55..109 measured, 12..33 with --lights 0, the object ambient
+# alone); the desk lamp's own camera is its default view
+models="$root/tests/corpus/gltf/models"
+python3 "$models/gen_models.py" --out "$tmp/gen" >/dev/null && ok || bad "gen_models.py failed"
+nmodels=0
+for m in "$models"/*.gltf "$models"/*.glb; do
+  n=$(basename "$m"); nmodels=$((nmodels + 1))
+  cmp -s "$m" "$tmp/gen/$n" && ok || bad "model $n: committed file differs from gen_models.py's output"
+  rm -f "$tmp/m.png" "$tmp/mstat"
+  if "$PG" render --scene "$m" --size 96x54 --out "$tmp/m.png" >"$tmp/mout" 2>"$tmp/merr" && [ -s "$tmp/m.png" ] &&
+     python3 "$root/tests/png_stats.py" "$tmp/m.png" >"$tmp/mstat" &&
+     awk '{ exit !($1 == 96 && $2 == 54 && $3 >= 0.03 && $3 <= 0.9 && $4 > 40) }' "$tmp/mstat"; then ok
+  else bad "model $n: default render failed or not framed/lit (W H cover mean: $(cat "$tmp/mstat" 2>/dev/null))"; cat "$tmp/merr"; fi
+done
+[ $nmodels -eq 10 ] && ok || bad "expected 10 models in $models, found $nmodels"
+camline --scene "$models/desk_lamp.gltf" >"$tmp/cl" && \
+  grep -q "^explain: camera: glTF camera 0 'product_shot' (node 'camera', perspective), the scene's first camera" "$tmp/cl" \
+  && ok || { bad "desk_lamp.gltf: default camera line"; cat "$tmp/cl" "$tmp/cerr"; }
 # ---- new-user mistakes (issue 11): one clear line each ----
 gcorp="$root/tests/corpus/gltf"
 mkdir -p "$tmp/adir"
