@@ -69,7 +69,7 @@ static pg_result gb_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     pg_result r = gb_options(ctx->desc, &p->packing, &space, err);
     if (r) return r;
     uint32_t n = pg_gbuffer_targets[p->packing];
-    p->emissive = ctx->pass->n_slots > n + 2 && !ctx->pass->slots[n + 1].decl.unused;
+    p->emissive = ctx->pass->n_slots > n + 1 && !ctx->pass->slots[n + 1].decl.unused;
     pg_scene_draw_desc d = {
         .fragment_shader = "gbuffer.frag",
         .n_color = n + (p->emissive ? 1 : 0),
