@@ -13,7 +13,8 @@
  *     of the sum) on the emissive pixels, many of them lit, and bit-identical elsewhere (the
  *     emission is added once, only where a material emits); forward+ is byte-identical to naive,
  *     the reference bit-identical to naive in rgba32f, deferred float/oct16/packed within the
- *     per-pixel bounds of tests/test_gpu_clustered.c (same values, see there and docs/accuracy.md).
+ *     per-pixel bounds of tests/test_gpu_clustered.c (same values, see there and docs/accuracy.md),
+ *     and their tiled light path (tile_lights, the default) byte-identical to the per-pixel one.
  *  3. Culling: with plain.gltf every deferred pipeline and the reference cull gb_emissive ("not used
  *     by any pass"), give it no memory block, ask for its size less transient memory (plan and
  *     runtime) than with emissive.gltf, and
@@ -264,6 +265,15 @@ static void lit(const loaded *em, const loaded *plain, const uint8_t *mask)
             printf("  %-16s vs naive: worst pixel uses %.3f of |d| <= %g |ref| + %g peak\n", p->name, usage, p->a,
                    p->b);
             CHECK_MSG(ok, "%s: outside its bound (usage %g)", p->name, usage);
+            /* the tiled light path (pg_shade_tile, the default) adds the emission as the per-pixel loop */
+            pg_param_override untiled = {"tile_lights", "false"};
+            pg_th_frame u;
+            if (render(em, p, &untiled, 1, &fi, &u)) {
+                bool same = pg_th_hdr_identical(&f, &u);
+                printf("  %-16s tile_lights true vs false: %s\n", p->name, same ? "byte-identical" : "DIFFERENT");
+                CHECK_MSG(same, "%s: the tiled and per-pixel light paths differ with emission", p->name);
+                pg_th_release(&u);
+            }
         }
         pg_th_release(&f);
     }
