@@ -22,7 +22,9 @@
  *     no emissive define is compiled. With emissive.gltf the emissive variants are compiled.
  *     Forward passes: PG_EMISSIVE only with emissive.gltf, else the explain line.
  *  4. A pipeline that binds no emissive slot (deferred_without_emissive.json, written before the
- *     target existed) still compiles and renders: no emission, and an explain line says so. */
+ *     target existed) still compiles and renders: no emission, and an explain line says so.
+ *  5. hot.gltf: an emission of (1e30, 1, 0) (inf once stored in rgba16f) comes out of every pipeline
+ *     as (PG_HDR_MAX, 1, 0): sanitized like every other sum (pg_hdr_sanitize), never non-finite. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -386,6 +388,32 @@ static void culling(const loaded *em, const loaded *plain)
     }
 }
 
+/* ---- 5. an emission past the half-float range is clamped like any other sum ---------------- */
+static void hot(const uint8_t *mask)
+{
+    loaded h;
+    if (!load("hot.gltf", &h)) return;
+    pg_frame_info fi = frame_for(h.scene, 0);
+    for (size_t i = 0; i < N_PIPES; i++) {
+        pg_th_frame f;
+        if (!render(&h, &k_pipes[i], NULL, 0, &fi, &f)) continue;
+        /* an rgba16f output holds PG_HDR_MAX (65000) as the nearest half, 64992 (steps of 32 there) */
+        const float want[3] = {f.hdr_format == PG_FMT_RGBA16F ? 64992.0f : PG_HDR_MAX, 1.0f, 0.0f};
+        uint32_t glow = 0, wrong = 0;
+        for (size_t k = 0; k < (size_t)W * H; k++) {
+            if (mask[k] != 1) continue;
+            glow++;
+            wrong += !rgb_is(f.hdr + 4 * k, want);
+        }
+        printf("  %-16s emissive (1e30, 1, 0): %u of %u glow pixels are (%g, 1, 0)\n", k_pipes[i].name,
+               glow - wrong, glow, want[0]);
+        CHECK_MSG(glow > 2000 && wrong == 0, "%s: %u of %u glow pixels not clamped to (PG_HDR_MAX, 1, 0)",
+                  k_pipes[i].name, wrong, glow);
+        pg_th_release(&f);
+    }
+    unload(&h);
+}
+
 /* ---- 4. a pipeline without the emissive slot --------------------------------------------- */
 static void without_slot(const loaded *em)
 {
@@ -428,9 +456,11 @@ int main(void)
         uint8_t *mask = calloc((size_t)W * H, 1);
         unlit(&em, &plain, mask);
         lit(&em, &plain, mask);
-        free(mask);
+        printf("emission past the rgba16f range, 0 lights:\n");
+        hot(mask);
         culling(&em, &plain);
         without_slot(&em);
+        free(mask);
     }
     unload(&em);
     unload(&plain);

@@ -13,6 +13,8 @@ cube lies in its own third of a 16:9 image:
                           unchanged.
   emissive_required.gltf  the same with KHR_materials_emissive_strength in extensionsRequired.
   plain.gltf              the same geometry and base colours, no emissive material at all.
+  hot.gltf                'glow' emits (1e30, 1, 0) (strength 1): past the rgba16f range, which the
+                          pipelines must clamp to PG_HDR_MAX (pg_hdr_sanitize) like any other sum.
 Base colours: glow (0.8, 0.3, 0.2), lamp (0.2, 0.3, 0.8), matte (0.7, 0.7, 0.7), floor (0.5, 0.5, 0.5).
 """
 import base64
@@ -75,7 +77,7 @@ def look_rotation(eye, target):
     return [(m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s, (m[1][0] - m[0][1]) / s]
 
 
-def scene(emissive, required=False):
+def scene(emissive, required=False, hot=False):
     meshes = [("glow", box((-2.5, 0, -0.5), (-1.5, 1, 0.5))), ("lamp", box((-0.5, 0, -0.5), (0.5, 1, 0.5))),
               ("matte", box((1.5, 0, -0.5), (2.5, 1, 0.5))), ("floor", floor())]
     data = b""
@@ -111,6 +113,8 @@ def scene(emissive, required=False):
         doc["extensionsUsed"] = ["KHR_materials_emissive_strength"]
         if required:
             doc["extensionsRequired"] = ["KHR_materials_emissive_strength"]
+        if hot:
+            mats[0]["emissiveFactor"] = [1e30, 1, 0]
     eye = (0, 1.6, 4.2)
     nodes.append({"name": "front_node", "camera": 0, "translation": list(eye),
                   "rotation": look_rotation(eye, (0, 0.45, 0))})
@@ -131,7 +135,7 @@ def scene(emissive, required=False):
 
 
 for name, doc in (("emissive.gltf", scene(True)), ("emissive_required.gltf", scene(True, True)),
-                  ("plain.gltf", scene(False))):
+                  ("plain.gltf", scene(False)), ("hot.gltf", scene(True, hot=True))):
     with open(os.path.join(HERE, name), "w") as f:
         f.write(json.dumps(doc, indent=1) + "\n")
-print("wrote emissive.gltf, emissive_required.gltf, plain.gltf")
+print("wrote emissive.gltf, emissive_required.gltf, plain.gltf, hot.gltf")
