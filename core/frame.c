@@ -30,4 +30,6 @@ void pg_frame_uniforms_fill(const pg_frame_info *info, pg_frame_uniforms *u)
     u->counts[3] = info->height;
     u->clip[0] = cam.near_z;
     u->clip[1] = cam.far_z;
+    u->clip[2] = info->lights.ambient;
+    u->clip[3] = cam.ortho_height > 0 ? 1.0f : 0.0f;
 }

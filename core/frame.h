@@ -26,7 +26,7 @@ typedef struct pg_frame_uniforms {
     float light_box_max[4]; /* xyz, w = intensity */
     float light_params[4];  /* saturation, speed, motion (0 noise, 1 static), min distance */
     uint32_t counts[4];     /* light count, seed, width, height */
-    float clip[4];          /* near, far, 0, 0 */
+    float clip[4];          /* near, far, ambient (pg_light_setup.ambient), 1 = orthographic */
 } pg_frame_uniforms;
 
 typedef struct pg_frame_info {

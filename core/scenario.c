@@ -182,6 +182,10 @@ static pg_result parse_lights(const sc_ctx *c, const cJSON *li, pg_scenario *sc)
             TRY(get_number(c, it, "lights.intensity", 0, 3.0e38f, false, false,
                            "expected a finite number >= 0", &L->intensity));
             sc->has_intensity = true;
+        } else if (strcmp(key, "ambient") == 0) {
+            TRY(get_number(c, it, "lights.ambient", 0, 1000, false, false,
+                           "expected a number in [0, 1000]", &L->ambient));
+            sc->has_ambient = true;
         } else if (strcmp(key, "saturation") == 0) {
             TRY(get_number(c, it, "lights.saturation", 0, 1, false, false,
                            "expected a number in [0, 1]", &L->saturation));
@@ -207,7 +211,7 @@ static pg_result parse_lights(const sc_ctx *c, const cJSON *li, pg_scenario *sc)
             snprintf(f, sizeof f, "lights.%s", key);
             return schema(c, f,
                           "unknown key (expected count, box_min, box_max, radius, intensity, "
-                          "saturation, motion, speed or seed)");
+                          "ambient, saturation, motion, speed or seed)");
         }
     }
     if (has_min != has_max)
@@ -372,6 +376,7 @@ pg_light_setup pg_light_setup_object(const pg_scene *scene, uint32_t count, uint
     L.radius = (float)(1.5 * r);
     L.intensity = (float)(PG_OBJECT_LIGHT_K * s * s * 256.0 / (count > 0 ? count : 1));
     L.saturation = 0.3f;
+    L.ambient = PG_OBJECT_AMBIENT;
     return L;
 }
 
@@ -388,6 +393,7 @@ void pg_scenario_apply(const pg_scenario *sc, pg_light_setup *setup, pg_camera *
         if (sc->has_radius) setup->radius = s->radius;
         if (sc->has_intensity) setup->intensity = s->intensity;
         if (sc->has_saturation) setup->saturation = s->saturation;
+        if (sc->has_ambient) setup->ambient = s->ambient;
         if (sc->has_motion) setup->motion = s->motion;
         if (sc->has_speed) setup->speed = s->speed;
         if (sc->has_seed) setup->seed = s->seed;

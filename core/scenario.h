@@ -19,6 +19,9 @@ typedef struct pg_light_setup {
     float radius;                 /* light range R */
     float intensity;              /* colour multiplier */
     float saturation;             /* 0 = white, 1 = pure random hue (cis565: 0.8) */
+    float ambient;                /* constant light on every surface (times albedo), a run-time
+                                     value added to the pipeline's `ambient` parameter: 0 for the
+                                     atrium, PG_OBJECT_AMBIENT for objects */
     pg_light_motion motion;
     float speed;                  /* noise frequency scale (1 = default) */
     uint32_t seed;
@@ -34,7 +37,7 @@ typedef struct pg_scenario {
     bool has_cam_position, has_cam_target, has_cam_up, has_cam_fov, has_cam_near, has_cam_far;
     pg_camera camera;             /* aspect is ignored (taken from the output size) */
     bool has_light_count, has_light_box, has_radius, has_intensity, has_saturation,
-         has_motion, has_speed, has_seed;
+         has_motion, has_speed, has_seed, has_ambient;
     pg_light_setup lights;
     char shading[PG_NAME_MAX];    /* optional: "lambert" / "blinn_phong" */
 } pg_scenario;
@@ -45,7 +48,8 @@ typedef struct pg_scenario {
 pg_result pg_scenario_load(const char *path, pg_scenario *out, pg_error *err);
 
 /* Defaults for a scene: box = scene bounds shrunk by 2% of each extent per side; radius =
- * 0.12 * the largest extent of the bounds; intensity 1; saturation 0.8; motion noise; speed 1.
+ * 0.12 * the largest extent of the bounds; intensity 1; saturation 0.8; motion noise; speed 1;
+ * ambient 0.
  * A NULL or empty scene uses the box (-1,-1,-1)..(1,1,1). */
 pg_light_setup pg_light_setup_default(const pg_scene *scene, uint32_t count, uint32_t seed);
 /* Defaults for an object (every loaded glTF, README "Scenes"): with r = half the diagonal of the
@@ -53,8 +57,10 @@ pg_light_setup pg_light_setup_default(const pg_scene *scene, uint32_t count, uin
  * on every side (so lights surround the object, not only its inside); radius = 1.5 r; intensity
  * = PG_OBJECT_LIGHT_K * s^2 * 256 / max(count, 1) (the point-light falloff is 1/d^2 in scene
  * units and d ~ r here, so brightness does not depend on the object's size, and the total over
- * all lights does not depend on the count); saturation 0.3; motion noise; speed 1. */
+ * all lights does not depend on the count); saturation 0.3; motion noise; speed 1; ambient
+ * PG_OBJECT_AMBIENT (so no surface of an object is pure black, whatever the lights reach). */
 #define PG_OBJECT_LIGHT_K 0.007f
+#define PG_OBJECT_AMBIENT 0.02f
 pg_light_setup pg_light_setup_object(const pg_scene *scene, uint32_t count, uint32_t seed);
 /* Applies the scenario's fields over setup/camera (either may be NULL): only fields present in
  * the file (has_*) are copied; camera fields one by one. If the result has far_z <= near_z,

@@ -559,11 +559,6 @@ pg_result pg_camera_from_scene(const pg_scene *scene, uint32_t index, float aspe
         return pg_fail(err, PG_ERR_INVALID_ARG, "camera %u: out of range (%u cameras)", index,
                        scene ? scene->n_cameras : 0);
     const pg_scene_camera *sc = &scene->cameras[index];
-    if (sc->type != PG_CAMERA_PERSPECTIVE)
-        return pg_fail(err, PG_ERR_INVALID_ARG,
-                       "%s: camera '%s' (cameras[%d], node '%s') is orthographic: the renderer and the "
-                       "cluster math are perspective-only; pick another with --camera (or --camera auto)",
-                       scene->path, sc->name, sc->gltf_camera, sc->node_name);
     pg_camera cam;
     memset(&cam, 0, sizeof cam);
     double dist = 1.0; /* look-at distance: any positive value gives the same view */
@@ -600,6 +595,11 @@ pg_result pg_camera_from_scene(const pg_scene *scene, uint32_t index, float aspe
     }
     cam.far_z = far;
     cam.aspect = aspect > 0 && isfinite(aspect) ? aspect : 1.0f;
+    if (sc->type == PG_CAMERA_ORTHOGRAPHIC) {
+        cam.ortho_height = 2.0f * sc->ymag;
+        cam.fov_y_deg = 45.0f; /* unused */
+        if (!(cam.near_z > 1e-6f * cam.far_z)) cam.near_z = 1e-6f * cam.far_z;
+    }
     *out = cam;
     return PG_OK;
 }
@@ -702,8 +702,17 @@ void pg_camera_proj(const pg_camera *cam, float out[16])
     float aspect = cam->aspect > 0 && isfinite(cam->aspect) ? cam->aspect : 1.0f;
     float n = cam->near_z > 0 ? cam->near_z : 0.01f;
     float fz = cam->far_z > n ? cam->far_z : n * 1000.0f;
-    float t = 1.0f / tanf(fov * PG_PI_F / 360.0f);
     memset(out, 0, 16 * sizeof(float));
+    if (cam->ortho_height > 0 && isfinite(cam->ortho_height)) {
+        float hh = 0.5f * cam->ortho_height;
+        out[0] = 1.0f / (hh * aspect);
+        out[5] = -1.0f / hh;             /* Vulkan: clip y down */
+        out[10] = 1.0f / (n - fz);       /* z_ndc = (-z - n) / (f - n) */
+        out[14] = n / (n - fz);
+        out[15] = 1.0f;
+        return;
+    }
+    float t = 1.0f / tanf(fov * PG_PI_F / 360.0f);
     out[0] = t / aspect;
     out[5] = -t;                     /* Vulkan: clip y down */
     out[10] = fz / (n - fz);         /* z_ndc: 0 at near, 1 at far */

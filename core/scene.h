@@ -140,6 +140,8 @@ typedef struct pg_camera {
     float fov_y_deg;
     float near_z, far_z;
     float aspect;             /* width / height */
+    float ortho_height;       /* > 0: orthographic, the full view height in scene units (2 x the
+                                 glTF ymag; the width follows the aspect); 0: perspective */
 } pg_camera;
 
 /* Loads a .gltf (JSON + external/embedded buffers and images) or .glb. Errors name the file and
@@ -224,9 +226,9 @@ pg_camera pg_camera_frame_object(const pg_scene *scene, float aspect, float *out
 /* The pg_camera of scene->cameras[index] for an output of `aspect` (width / height): perspective
  * keeps yfov (the file's aspectRatio is not forced: the output size decides the width), znear,
  * zfar; an infinite zfar becomes the distance from the camera to the farthest corner of the
- * scene bounds times 2 (at least 1000 * znear). Orthographic cameras are refused
- * (PG_ERR_INVALID_ARG: "camera 'NAME' (cameras[i]) is orthographic: the renderer and the cluster
- * math are perspective-only; pick another with --camera"). */
+ * scene bounds times 2 (at least 1000 * znear). Orthographic: ortho_height = 2 ymag (xmag is not
+ * forced either: the output aspect decides the width), znear, zfar (a znear of 0, which glTF
+ * allows, becomes 1e-6 zfar: the depth slices of the clusters are logarithmic). */
 pg_result pg_camera_from_scene(const pg_scene *scene, uint32_t index, float aspect, pg_camera *out,
                                pg_error *err);
 
@@ -240,7 +242,9 @@ pg_result pg_scene_find_camera(const pg_scene *scene, const char *spec, uint32_t
  * pg_camera_view: right-handed look-at; camera space +X right, +Y up, looking down -Z.
  * pg_camera_proj: perspective to Vulkan clip space: y_ndc = -1 is the TOP of the image (view +Y
  * is negated so the image is upright with a positive-height viewport), z_ndc = 0 at near_z and 1
- * at far_z (standard depth, not reversed), w_clip = -z_view.
+ * at far_z (standard depth, not reversed), w_clip = -z_view. With ortho_height > 0 the same
+ * conventions orthographically: x_ndc = x / (h/2 * aspect), y_ndc = -y / (h/2),
+ * z_ndc = (-z - near) / (far - near), w_clip = 1 (frame uniforms clip.w = 1 tells the shaders).
  * pg_mat4_mul: out = a * b (out may alias a or b).
  * pg_mat4_invert: general inverse (double precision cofactors); returns false and leaves out
  * untouched when m is singular (|det| <= 1e-12 * max|m_ij|^4) or not finite. */

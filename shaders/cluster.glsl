@@ -108,7 +108,7 @@ uvec3 pg_cluster_coord(vec2 frag_xy, vec2 viewport_size, float view_depth, float
 // of the 8 points ray * z_near_k and ray * z_far_k. For a perspective projection the piece is the
 // convex hull of those 8 points, so the box contains it. The box is then grown by
 // PG_CLUSTER_AABB_PAD times its largest coordinate magnitude (see above).
-void pg_cluster_aabb(uvec3 c, uvec3 grid, mat4 inv_proj, float near_z, float far_z,
+void pg_cluster_aabb(uvec3 c, uvec3 grid, mat4 inv_proj, float near_z, float far_z, bool ortho,
                      out vec3 aabb_min, out vec3 aabb_max)
 {
     float zn = pg_slice_depth(c.z, near_z, far_z, grid.z);
@@ -122,8 +122,8 @@ void pg_cluster_aabb(uvec3 c, uvec3 grid, mat4 inv_proj, float near_z, float far
     for (int i = 0; i < 4; i++) {
         vec4 p = inv_proj * vec4((i & 1) != 0 ? x1 : x0, (i & 2) != 0 ? y1 : y0, 0.0, 1.0);
         vec3 ray = p.xyz / -p.z;
-        vec3 a = ray * zn;
-        vec3 b = ray * zf;
+        vec3 a = ortho ? vec3(p.xy, -zn) : ray * zn;   // orthographic: parallel view rays
+        vec3 b = ortho ? vec3(p.xy, -zf) : ray * zf;
         mn = min(mn, min(a, b));
         mx = max(mx, max(a, b));
     }

@@ -42,8 +42,11 @@ shared float s_m;
 vec3 edge_ray(float nx, float ny)
 {
     vec4 p = frame.inv_proj * vec4(nx, ny, 0.0, 1.0);
-    return p.xyz / -p.z;
+    return PG_ORTHO ? vec3(p.xy, -1.0) : p.xyz / -p.z; // orthographic: the edge's x / y itself
 }
+
+// An edge coordinate at view depth z: perspective rays scale with z, orthographic ones do not.
+float at_depth(float e, float z) { return PG_ORTHO ? e : e * z; }
 
 void main()
 {
@@ -87,7 +90,7 @@ void main()
     int k0 = -1, k1 = -1;
     for (uint k = 0u; k < grid.z; k++) {
         float zn = s_depth[k], zf = s_depth[k + 1u];
-        float pad = pad_rel * zf;
+        float pad = PG_ORTHO ? 4.0 * PG_CLUSTER_AABB_PAD * max(s_m, zf) : pad_rel * zf;
         if (dmax >= zn - pad && dmin <= zf + pad) {
             if (k0 < 0) k0 = int(k);
             k1 = int(k);
@@ -95,12 +98,12 @@ void main()
     }
     if (k0 < 0) return;                              // behind the camera, past far, or NaN
     float za = s_depth[k0], zb = s_depth[k1 + 1];
-    float pad = pad_rel * zb;
+    float pad = PG_ORTHO ? 4.0 * PG_CLUSTER_AABB_PAD * max(s_m, zb) : pad_rel * zb;
 
     int x0 = -1, x1 = -1;
     for (uint x = 0u; x < grid.x; x++) {
         float lo = min(s_col_lo[x], s_col_lo[x + 1u]), hi = max(s_col_hi[x], s_col_hi[x + 1u]);
-        float bmin = min(lo * za, lo * zb) - pad, bmax = max(hi * za, hi * zb) + pad;
+        float bmin = min(at_depth(lo, za), at_depth(lo, zb)) - pad, bmax = max(at_depth(hi, za), at_depth(hi, zb)) + pad;
         if (sph.x + rr >= bmin && sph.x - rr <= bmax) {
             if (x0 < 0) x0 = int(x);
             x1 = int(x);
@@ -110,7 +113,7 @@ void main()
     for (uint y = 0u; y < grid.y; y++) {
         // tile row 0 is the top one: NDC y -1 (Vulkan)
         float lo = min(s_row_lo[y], s_row_lo[y + 1u]), hi = max(s_row_hi[y], s_row_hi[y + 1u]);
-        float bmin = min(lo * za, lo * zb) - pad, bmax = max(hi * za, hi * zb) + pad;
+        float bmin = min(at_depth(lo, za), at_depth(lo, zb)) - pad, bmax = max(at_depth(hi, za), at_depth(hi, zb)) + pad;
         if (sph.y + rr >= bmin && sph.y - rr <= bmax) {
             if (y0 < 0) y0 = int(y);
             y1 = int(y);

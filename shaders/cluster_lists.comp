@@ -73,7 +73,7 @@ void main()
     if (cluster >= grid.x * grid.y * grid.z) return;  // the whole workgroup leaves together
     uvec3 c = uvec3(cluster % grid.x, (cluster / grid.x) % grid.y, cluster / (grid.x * grid.y));
     vec3 bmin, bmax;
-    pg_cluster_aabb(c, grid, frame.inv_proj, frame.clip.x, frame.clip.y, bmin, bmax);
+    pg_cluster_aabb(c, grid, frame.inv_proj, frame.clip.x, frame.clip.y, PG_ORTHO, bmin, bmax);
 #ifdef PG_ONE_SUBGROUP
     uint lane = gl_SubgroupInvocationID, width = gl_SubgroupSize;
 #else

@@ -56,7 +56,7 @@ vec3 pg_srgb_decode(vec3 c)
         vec4 light_box_max; /* w = intensity */                                                  \
         vec4 light_params;  /* saturation, speed, motion (0 noise, 1 static), min distance */    \
         uvec4 counts;       /* light count, seed, width, height */                               \
-        vec4 clip;          /* near, far */                                                      \
+        vec4 clip;          /* near, far, ambient (light set-up, run time), 1 = orthographic */                                                      \
     } frame;
 
 // Camera-relative rendering (use after FRAME_UNIFORMS_BLOCK): shading works on positions
@@ -66,6 +66,12 @@ vec3 pg_srgb_decode(vec3 c)
 // world coordinates at 1e5.
 #define PG_REL_TO_VIEW(r) (mat3(frame.view) * (r))
 #define PG_VIEW_TO_REL(v) (mat3(frame.inv_view) * (v))
+// Orthographic camera (core/scene.h pg_camera.ortho_height): a uniform flag, so one shader
+// variant serves both projections.
+#define PG_ORTHO (frame.clip.w > 0.5)
+// Unit direction from a camera-relative point P to the eye: -P normalized for perspective; the
+// view axis (camera +Z in world space) for orthographic, where every view ray is parallel.
+#define PG_VIEW_DIR(P) (PG_ORTHO ? normalize(PG_VIEW_TO_REL(vec3(0.0, 0.0, 1.0))) : normalize(-(P)))
 
 const float PG_HDR_MAX = 65000.0;
 

@@ -83,8 +83,10 @@ void main()
 #elif defined(PG_GBUFFER_OCT16)
     // via the linear view depth: finite for any near/far (unprojecting through inv_proj breaks
     // down when far/near > 2^24, where proj[10] rounds to -1)
-    view_depth = pg_view_depth_from_depth(depth, frame.clip.x, frame.clip.y);
-    vec3 pv = pg_view_pos_from_view_depth(uv, view_depth, frame.proj);
+    view_depth = PG_ORTHO ? pg_ortho_view_depth_from_depth(depth, frame.clip.x, frame.clip.y)
+                          : pg_view_depth_from_depth(depth, frame.clip.x, frame.clip.y);
+    vec3 pv = PG_ORTHO ? pg_ortho_view_pos_from_view_depth(uv, view_depth, frame.proj)
+                       : pg_view_pos_from_view_depth(uv, view_depth, frame.proj);
     P = PG_VIEW_TO_REL(pv);
     vec4 n = texelFetch(g_normal, px, 0);
     vec4 a = texelFetch(g_albedo, px, 0); // sRGB decoded by the sampler
@@ -100,7 +102,8 @@ void main()
     s.specular = a.a;
     s.shininess = uintBitsToFloat(g.z);
     view_depth = uintBitsToFloat(g.w);
-    vec3 pv = pg_view_pos_from_view_depth(uv, view_depth, frame.proj);
+    vec3 pv = PG_ORTHO ? pg_ortho_view_pos_from_view_depth(uv, view_depth, frame.proj)
+                       : pg_view_pos_from_view_depth(uv, view_depth, frame.proj);
     P = PG_VIEW_TO_REL(pv);
 #endif
 #ifdef PG_DEFERRED_EMISSIVE

@@ -51,4 +51,19 @@ vec3 pg_view_pos_from_view_depth(vec2 uv, float view_depth, mat4 proj)
     return vec3((ndc.x / proj[0][0]) * view_depth, (ndc.y / proj[1][1]) * view_depth, -view_depth);
 }
 
+// Orthographic twins (pg_camera.ortho_height > 0): depth is linear in view depth,
+//   z = near + d * (far - near),
+// and the view-space x, y of a pixel do not depend on its depth: x = ndc.x / proj[0][0].
+float pg_ortho_view_depth_from_depth(float depth, float near_z, float far_z)
+{
+    float d = depth < 1.0 ? (depth > 0.0 ? depth : 0.0) : 1.0;
+    return d < 1.0 ? near_z + d * (far_z - near_z) : far_z;
+}
+
+vec3 pg_ortho_view_pos_from_view_depth(vec2 uv, float view_depth, mat4 proj)
+{
+    vec2 ndc = uv * 2.0 - 1.0;
+    return vec3(ndc.x / proj[0][0], ndc.y / proj[1][1], -view_depth);
+}
+
 #endif // PG_DEPTH_RECONSTRUCT_GLSL

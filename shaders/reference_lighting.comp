@@ -101,7 +101,7 @@ void main()
 #endif
     }
 #endif
-    vec3 V = normalize(-P);
+    vec3 V = PG_VIEW_DIR(P);
     vec3 cam = frame.camera_pos.xyz;
     float min_dist = frame.light_params.w;
     uint lid = gl_LocalInvocationIndex;
@@ -138,7 +138,7 @@ void main()
 #endif
 #endif
     if (!inside) return;
-    vec3 c = covered ? pg_shade_combine(s, acc, vec3(PG_AMBIENT)) : vec3(0.0);
+    vec3 c = covered ? pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z)) : vec3(0.0);
     imageStore(hdr_out, px, vec4(pg_hdr_sanitize(c), 1.0));
 #endif
 }

@@ -37,7 +37,7 @@ vec3 pg_index_color(uint i)
 // (gl_FragCoord.xy); view_depth: positive distance along the view axis.
 vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 {
-    vec3 V = normalize(-P);
+    vec3 V = PG_VIEW_DIR(P);
     vec3 cam = frame.camera_pos.xyz;
     PgShade acc;
     acc.diffuse = vec3(0.0);
@@ -81,7 +81,7 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
         pg_accumulate_light(lights[i], cam, P, s.normal, V, s.shininess, min_dist, acc);
 #endif
 #endif
-    return pg_shade_combine(s, acc, vec3(PG_AMBIENT));
+    return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z));
 #endif
 }
 
@@ -122,7 +122,7 @@ float pg_tl_unorder(uint u)
 vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
 {
     uint lid = gl_LocalInvocationIndex;
-    vec3 V = lit ? normalize(-P) : vec3(0.0, 0.0, 1.0);
+    vec3 V = lit ? PG_VIEW_DIR(P) : vec3(0.0, 0.0, 1.0);
     vec3 cam = frame.camera_pos.xyz;
     float min_dist = frame.light_params.w;
     PgShade acc;
@@ -212,6 +212,6 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
         pending = pending && !mine;
         barrier();       // before the next round resets the cluster and box (a cluster may have no chunk)
     }
-    return pg_shade_combine(s, acc, vec3(PG_AMBIENT));
+    return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z));
 }
 #endif

@@ -379,12 +379,14 @@ camline >"$tmp/cl" && grep -q "^explain: camera: interior view of the built-in a
   grep -q "^explain: lights: interior box" "$tmp/cl" && ok || { bad "atrium: camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
 camline --scene "$objs/cube.gltf" >"$tmp/cl" && \
   grep -q "^explain: camera: auto framing (object, no glTF camera: bounds radius 0.866, distance 2.49" "$tmp/cl" && \
-  grep -q "^explain: lights: object box" "$tmp/cl" && ok || { bad "cube: camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
-camline --scene "$objs/camera.gltf" >"$tmp/cl" && grep -q "^explain: camera: glTF camera 0 'front' (node 'front_node'), the scene's first camera" "$tmp/cl" \
+  grep -q "^explain: lights: object box (bounds grown by 0.6 x radius per side), radius 1.3, intensity 0.168, ambient 0.02$" "$tmp/cl" && ok || { bad "cube: camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
+camline --scene "$objs/cube.gltf" --ambient 0 >"$tmp/cl" && grep -q "^explain: lights: object box.*; ambient 0 from --ambient$" "$tmp/cl" \
+  && ok || { bad "cube --ambient 0: lights line"; cat "$tmp/cl" "$tmp/cerr"; }
+camline --scene "$objs/camera.gltf" >"$tmp/cl" && grep -q "^explain: camera: glTF camera 0 'front' (node 'front_node', perspective), the scene's first camera" "$tmp/cl" \
   && ok || { bad "camera.gltf: default camera line"; cat "$tmp/cl" "$tmp/cerr"; }
 camline --scene "$objs/camera.gltf" --camera auto >"$tmp/cl" && grep -q "^explain: camera: auto framing (--camera auto" "$tmp/cl" \
   && ok || { bad "camera.gltf --camera auto"; cat "$tmp/cl" "$tmp/cerr"; }
-camline --scene "$objs/two_cameras.gltf" --camera side_node >"$tmp/cl" && grep -q "^explain: camera: glTF camera 0 'side' (node 'side_node'), selected by --camera side_node" "$tmp/cl" \
+camline --scene "$objs/two_cameras.gltf" --camera side_node >"$tmp/cl" && grep -q "^explain: camera: glTF camera 0 'side' (node 'side_node', perspective), selected by --camera side_node" "$tmp/cl" \
   && ok || { bad "two_cameras --camera side_node"; cat "$tmp/cl" "$tmp/cerr"; }
 camline --scene "$objs/cube.gltf" --scenario "$root/assets/scenarios/cis565.json" >"$tmp/cl" && \
   grep -q "^explain: camera: scenario .*cis565.json" "$tmp/cl" && grep -q "^explain: lights: scenario .*cis565.json" "$tmp/cl" \
@@ -399,8 +401,9 @@ two="$objs/two_cameras.gltf"
 expect_fail "unknown camera lists the cameras" "available: 0 'side' (node 'side_node'), 1 'top' (node 'top_node', orthographic), or auto" \
   render --scene "$two" --camera nope --size 32x18 --out "$tmp/x.png"
 expect_fail "camera index out of range" "--camera 2: no such camera" render --scene "$two" --camera 2 --size 32x18 --out "$tmp/x.png"
-expect_fail "orthographic camera refused" "camera 'top' (cameras[1], node 'top_node') is orthographic" \
-  render --scene "$two" --camera top --size 32x18 --out "$tmp/x.png"
+"$PG" render --scene "$two" --camera top --size 32x18 --lights 8 --explain --out "$tmp/top.png" 2>"$tmp/cerr" | \
+  grep -q "^explain: camera: glTF camera 1 'top' (node 'top_node', orthographic), selected by --camera top" \
+  && [ -s "$tmp/top.png" ] && ok || { bad "orthographic camera: render"; cat "$tmp/cerr"; }
 expect_fail "camera on a file without cameras" "has no cameras; use --camera auto" \
   render --scene "$objs/cube.gltf" --camera 0 --size 32x18 --out "$tmp/x.png"
 expect_fail "camera on the atrium" "has no cameras" render --camera 0 --size 32x18 --out "$tmp/x.png"

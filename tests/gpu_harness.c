@@ -93,3 +93,24 @@ double pg_th_max_abs(const pg_th_frame *a, const pg_th_frame *b, double *ref_pea
     if (ref_peak) *ref_peak = peak;
     return m;
 }
+
+void pg_th_bound_usage(const pg_th_frame *a, const pg_th_frame *ref, double peak, double A, double B, double *usage,
+                       double *need_a)
+{
+    double u = 0, na = 0;
+    for (size_t i = 0; i < (size_t)a->w * a->h * 4; i++) {
+        if (i % 4 == 3) continue;
+        double r = fabs((double)ref->hdr[i]), d = fabs((double)a->hdr[i] - ref->hdr[i]);
+        double lim = A * r + B * peak;
+        double ui = d == 0 ? 0 : lim > 0 ? d / lim : INFINITY;
+        if (!(ui <= u)) u = isnan(ui) ? INFINITY : ui;
+        double over = d - B * peak;
+        if (over > 0 || isnan(d)) {
+            double ai = r > 0 ? over / r : INFINITY;
+            if (!(ai <= na)) na = isnan(ai) ? INFINITY : ai;
+        }
+    }
+    *usage = u;
+    *need_a = na;
+}
+

@@ -27,4 +27,10 @@ bool pg_th_hdr_identical(const pg_th_frame *a, const pg_th_frame *b);
 /* Largest |a-b| over RGB and the largest reference value (for relative bounds). */
 double pg_th_max_abs(const pg_th_frame *a, const pg_th_frame *b, double *ref_peak);
 
+/* The per-pixel bound |a - ref| <= A |ref| + B peak (accuracy_bounds.h) over RGB: usage = the
+ * worst |a - ref| / (A |ref| + B peak) (<= 1: within the bound; 0 when identical), need_a = the
+ * smallest A that would hold with this B. */
+void pg_th_bound_usage(const pg_th_frame *a, const pg_th_frame *ref, double peak, double A, double B, double *usage,
+                       double *need_a);
+
 #endif

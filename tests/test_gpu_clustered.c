@@ -58,35 +58,8 @@ static const uint32_t k_counts[] = {1, 100, 1000, COUNT_OVER_OLD_CAP};
 /* The reference must light this share of its pixels (else 1 light compares black images). */
 #define MIN_LIT_SHARE 0.001
 
-/* ---- bounds --------------------------------------------------------------------------------
- * Measured on lavapipe (Mesa 22.3, 320x180) over every frame of the sweep with every light shaded
- * (no overflow; the 5000/10000-light frames with max_lights=8192 set for the measurement, which
- * gives the same lists as an uncapped assignment). "Margin 2x" means: the bound is twice a pair
- * (A0, B0) that every measured pixel meets, so the worst measured pixel uses at most half of it
- * (bound: lines, worst_px_usage <= 0.5). README.md ("Pipelines") and docs/accuracy.md quote these values: change
- * them together.
- *
- * Deferred float, rgba32f position. The HDR target is rgba16f, whose step is at most 2^-10
- * (9.8e-4) of the value; deferred float differs from naive by one such step where the world ->
- * camera-relative subtraction rounds differently (measured: never more than one step). A = two
- * steps, B covers half-float subnormals and dark pixels; worst usage measured 0.38. */
-#define FLOAT_PX_A 2e-3
-#define FLOAT_PX_B 1e-5
-/* oct16: normal 2x16-bit octahedral, albedo sRGB8, position rebuilt from the D32 depth.
- * Measured: every pixel within 0.0126 |ref| + 0.003 peak (Sponza, 1000 lights); margin 2x.
- * Display: 6 steps (Sponza, 5000 lights), 3.4% of the pixels > 1 step (atrium, 5000 lights:
- * a bright image, mostly in the coarse upper display steps); margin 2x. */
-#define OCT16_PX_A 0.03
-#define OCT16_PX_B 6e-3
-#define OCT16_DISPLAY_MAX_STEP 12
-#define OCT16_DISPLAY_SHARE 0.07
-/* packed: as oct16 but the position rebuilt from a stored float32 view depth. Measured: every
- * pixel within 0.0066 |ref| + 0.001 peak (atrium, 1 light); margin 2x (rounded up). Display:
- * 2 steps, 0.46% of the pixels > 1 step (atrium, 10000 lights); margin 2x. */
-#define PACKED_PX_A 0.015
-#define PACKED_PX_B 2e-3
-#define PACKED_DISPLAY_MAX_STEP 4
-#define PACKED_DISPLAY_SHARE 0.01
+#include "accuracy_bounds.h"
+
 /* Far from the origin (far_geometry) */
 #define FAR_REL 0.03
 #define FAR_FLOAT_REL 0.10
@@ -137,26 +110,6 @@ static sweep_worst g_worst[N_SWEEP];
 
 /* Over every pixel and channel (RGB): *usage = max |d| / (A |ref| + B peak) (<= 1: the bound
  * holds; NaN counts as infinite); *need_a = the smallest A that would hold with this B. */
-static void per_pixel(const pg_th_frame *a, const pg_th_frame *ref, double peak, double A, double B, double *usage,
-                      double *need_a)
-{
-    double u = 0, na = 0;
-    for (size_t i = 0; i < (size_t)a->w * a->h * 4; i++) {
-        if (i % 4 == 3) continue;
-        double r = fabs((double)ref->hdr[i]), d = fabs((double)a->hdr[i] - ref->hdr[i]);
-        double lim = A * r + B * peak;
-        double ui = d == 0 ? 0 : lim > 0 ? d / lim : INFINITY;
-        if (!(ui <= u)) u = isnan(ui) ? INFINITY : ui;
-        double over = d - B * peak;
-        if (over > 0 || isnan(d)) {
-            double ai = r > 0 ? over / r : INFINITY;
-            if (!(ai <= na)) na = isnan(ai) ? INFINITY : ai;
-        }
-    }
-    *usage = u;
-    *need_a = na;
-}
-
 typedef struct sweep_scene {
     const char *name;
     const pg_scene *scene;
@@ -220,7 +173,7 @@ static void sweep_frame_check(const sweep_scene *ss, uint32_t lights, const char
         double m = pg_th_max_abs(&f, &ref, NULL);
         bool identical = pg_th_hdr_identical(&f, &ref);
         double usage = 0, need_a = 0;
-        if (va->kind != SW_EXACT) per_pixel(&f, &ref, peak, va->px_a, va->px_b, &usage, &need_a);
+        if (va->kind != SW_EXACT) pg_th_bound_usage(&f, &ref, peak, va->px_a, va->px_b, &usage, &need_a);
         CHECK(!pg_image_error_compute(f.hdr, ref.hdr, f.ldr, ref.ldr, f.w, f.h, 1.0, &e, &err));
         bool dropped = f.stats.overflow_clusters || f.stats.overflow_dropped;
         printf("accuracy: scene=%s size=%ux%u lights=%u shading=%s hdr=%s variant=%s overflow_clusters=%llu "

@@ -6,12 +6,15 @@
  * view; they must lie fully inside the image, span 20-90% of the shorter image axis, and be lit
  * (>= 90% of them with luma > 10, mean luma 40..220 of 255). The glTF camera is the default for a
  * file that has one: its image equals a render with the camera given explicitly, and differs
- * from --camera auto, which frames the object. */
+ * from --camera auto, which frames the object. The object default ambient (PG_OBJECT_AMBIENT, a
+ * run-time value of the light set-up): with 0 lights every object pixel is exactly albedo x 0.02
+ * in HDR (nothing pure black), and with the ambient set to 0 it is black. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "app.h"
+#include "accuracy_bounds.h"
 #include "gpu_harness.h"
 #include "pass_list.h"
 #include "test_util.h"
@@ -132,6 +135,90 @@ static void check_objects(void)
     }
 }
 
+static void check_ambient(void)
+{
+    pg_scene *sc;
+    pg_scene_gpu *sg;
+    if (!open_scene("cube.gltf", &sc, &sg)) return;
+    char why[256];
+    pg_frame_info fi = view_of(sc, NULL, why, sizeof why);
+    CHECK_MSG(fi.lights.ambient == PG_OBJECT_AMBIENT, "object ambient %g", fi.lights.ambient);
+    fi.lights.count = 0;
+    pg_param_override albedo = {"view", "albedo"};
+    pg_th_frame a, amb, none;
+    memset(&a, 0, sizeof a);
+    memset(&amb, 0, sizeof amb);
+    memset(&none, 0, sizeof none);
+    bool ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/naive.json", &albedo, 1, &fi, 1, false, &a);
+    ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/deferred_oct16.json", NULL, 0, &fi, 1, false, &amb) && ok;
+    fi.lights.ambient = 0;
+    ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/naive.json", NULL, 0, &fi, 1, false, &none) && ok;
+    CHECK_MSG(ok, "ambient renders");
+    if (ok) {
+        uint32_t n_obj = 0, bad = 0, lit_none = 0;
+        for (size_t i = 0; i < (size_t)W * H; i++) {
+            const float *al = a.hdr + i * 4, *c = amb.hdr + i * 4, *z = none.hdr + i * 4;
+            if (al[0] + al[1] + al[2] == 0) continue;
+            n_obj++;
+            for (int k = 0; k < 3; k++)
+                if (fabsf(c[k] - PG_OBJECT_AMBIENT * al[k]) > 2e-3f * al[k] + 1e-6f) bad++;
+            if (z[0] + z[1] + z[2] != 0) lit_none++;
+        }
+        printf("ambient: %u object pixels, %u channels off albedo x %.2f, %u lit with ambient 0\n", n_obj, bad,
+               PG_OBJECT_AMBIENT, lit_none);
+        CHECK_MSG(n_obj > 100 && bad == 0, "0 lights: %u of %u object pixels are not albedo x ambient", bad, n_obj);
+        CHECK_MSG(lit_none == 0, "ambient 0, 0 lights: %u object pixels not black", lit_none);
+    }
+    pg_th_release(&a);
+    pg_th_release(&amb);
+    pg_th_release(&none);
+    pg_scene_gpu_destroy(g_gpu, sg);
+    pg_scene_free(sc);
+}
+
+/* Every shipped pipeline under an orthographic camera: forward+ is bit-identical to naive (the
+ * orthographic cluster bounds lose no light) and so is the reference, the deferred ones (depth
+ * reconstruction through the orthographic twins) keep their shipped per-pixel bounds
+ * (accuracy_bounds.h), with
+ * Blinn-Phong on (the view direction is the view axis). 200 lights of a small radius so that
+ * the clusters matter. */
+static void check_ortho_pipelines(const pg_scene_gpu *sg, const pg_frame_info *fi0)
+{
+    pg_frame_info fi = *fi0;
+    fi.lights.count = 200;
+    fi.lights.radius *= 0.4f;
+    fi.lights.intensity *= 4;
+    pg_param_override sets[2] = {{"shading", "blinn_phong"}, {"hdr_format", "rgba32f"}};
+    pg_th_frame ref;
+    if (!pg_th_render(g_gpu, &g_reg, sg, "pipelines/naive.json", sets, 2, &fi, 1, false, &ref)) {
+        CHECK_MSG(0, "orthographic: naive");
+        return;
+    }
+    static const char *const pipes[] = {"pipelines/forward_plus.json", "pipelines/reference.json",
+                                        "pipelines/deferred.json", "pipelines/deferred_oct16.json",
+                                        "pipelines/deferred_packed.json"};
+    static const double bound_a[] = {0, 0, FLOAT_PX_A, OCT16_PX_A, PACKED_PX_A};
+    static const double bound_b[] = {0, 0, FLOAT_PX_B, OCT16_PX_B, PACKED_PX_B};
+    for (size_t i = 0; i < sizeof pipes / sizeof pipes[0]; i++) {
+        pg_th_frame f;
+        bool exact = i <= 1;
+        if (!pg_th_render(g_gpu, &g_reg, sg, pipes[i], sets, exact ? 2 : 1, &fi, 1, false, &f)) {
+            CHECK_MSG(0, "orthographic: %s", pipes[i]);
+            continue;
+        }
+        double peak = 0, d = pg_th_max_abs(&f, &ref, &peak), usage = 0, need_a = 0;
+        if (!exact) pg_th_bound_usage(&f, &ref, peak, bound_a[i], bound_b[i], &usage, &need_a);
+        printf("orthographic: %-32s max |d| %.3g of peak %.3g%s", pipes[i], d, peak,
+               exact ? (pg_th_hdr_identical(&f, &ref) ? " (bit-identical)\n" : " (DIFFERENT)\n") : "");
+        if (!exact) printf(", bound usage %.3g\n", usage);
+        CHECK_MSG(peak > 0, "orthographic: %s is black", pipes[i]);
+        if (exact) CHECK_MSG(pg_th_hdr_identical(&f, &ref), "orthographic: %s != naive (max |d| %g)", pipes[i], d);
+        else CHECK_MSG(usage <= 1.0, "orthographic: %s outside its bound (usage %g)", pipes[i], usage);
+        pg_th_release(&f);
+    }
+    pg_th_release(&ref);
+}
+
 static void check_cameras(void)
 {
     pg_scene *sc;
@@ -172,22 +259,28 @@ static void check_cameras(void)
     shot s = take("two_cameras.gltf default ('side', infinite zfar)", sg, &side);
     check_framed_lit("two_cameras.gltf default ('side', infinite zfar)", &s);
     free(s.ldr);
-    pg_frame_info fi;
-    memset(&fi, 0, sizeof fi);
-    char lw[256];
-    pg_result r = pg_app_default_view(sc, "top", (float)W / H, 256, 1, &fi.camera, &fi.lights, why, sizeof why, lw,
-                                      sizeof lw, &err);
-    CHECK_MSG(r == PG_ERR_INVALID_ARG && strstr(err.msg, "'top'") && strstr(err.msg, "orthographic"),
-              "orthographic camera: %d %s", r, err.msg);
+    /* the orthographic camera 'top' (ymag 1, 5 units above the unit cube, looking down): the
+     * cube's top face is a square of exactly H/2 pixels (1 unit of a 2-unit view height), the same
+     * in x (parallel projection); and the clustered pipelines shade it with the same lights */
+    pg_frame_info top = view_of(sc, "top", why, sizeof why);
+    CHECK_MSG(strstr(why, "'top' (node 'top_node', orthographic)") != NULL, "two_cameras --camera top: %s", why);
+    shot t = take("two_cameras.gltf --camera top (orthographic)", sg, &top);
+    check_framed_lit("two_cameras.gltf --camera top (orthographic)", &t);
+    if (t.ok)
+        CHECK_MSG(t.x1 - t.x0 + 1 == H / 2 && t.y1 - t.y0 + 1 == H / 2, "orthographic top view: %dx%d px, want %dx%d",
+                  t.x1 - t.x0 + 1, t.y1 - t.y0 + 1, H / 2, H / 2);
+    free(t.ldr);
+    check_ortho_pipelines(sg, &top);
     pg_scene_gpu_destroy(g_gpu, sg);
     pg_scene_free(sc);
 
-    /* an orthographic first camera: the default falls back to auto framing, saying why */
+    /* an orthographic first camera is the default view */
     if (!open_scene("ortho_first.gltf", &sc, &sg)) return;
     pg_frame_info of = view_of(sc, NULL, why, sizeof why);
-    CHECK_MSG(strstr(why, "auto framing") && strstr(why, "'plan' is orthographic (unsupported)"), "ortho_first: %s", why);
-    shot o = take("ortho_first.gltf default (auto framing)", sg, &of);
-    check_framed_lit("ortho_first.gltf default (auto framing)", &o);
+    CHECK_MSG(strstr(why, "glTF camera 0 'plan' (node 'plan_node', orthographic), the scene's first camera"),
+              "ortho_first: %s", why);
+    shot o = take("ortho_first.gltf default (orthographic 'plan')", sg, &of);
+    check_framed_lit("ortho_first.gltf default (orthographic 'plan')", &o);
     free(o.ldr);
     pg_scene_gpu_destroy(g_gpu, sg);
     pg_scene_free(sc);
@@ -204,6 +297,7 @@ int main(void)
         return 1;
     }
     check_objects();
+    check_ambient();
     check_cameras();
     printf("validation messages: %u\n", g_gpu->validation_messages);
     CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);

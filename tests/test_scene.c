@@ -530,7 +530,7 @@ static void test_scenarios(void)
     }
     char p[512];
     snprintf(p, sizeof p, "%s/partial.json", g_tmpdir);
-    write_text(p, "{\"scene\": \"models/x.gltf\", \"lights\": {\"radius\": 0.5, \"seed\": 12},"
+    write_text(p, "{\"scene\": \"models/x.gltf\", \"lights\": {\"radius\": 0.5, \"seed\": 12, \"ambient\": 0.25},"
                   " \"camera\": {\"near\": 5}}");
     r = pg_scenario_load(p, &sc, &err);
     CHECK_MSG(r == PG_OK, "%s", err.msg);
@@ -544,6 +544,7 @@ static void test_scenarios(void)
         pg_camera cam = {.position = {1, 1, 1}, .target = {2, 1, 1}, .up = {0, 1, 0},
                          .fov_y_deg = 50, .near_z = 0.1f, .far_z = 2, .aspect = 1};
         pg_scenario_apply(&sc, &L, &cam);
+        CHECK(L0.ambient == 0 && L.ambient == 0.25f && sc.has_ambient);
         CHECK(L.radius == 0.5f && L.seed == 12 && L.count == 64 && L.intensity == L0.intensity &&
               memcmp(L.box_min, L0.box_min, sizeof L.box_min) == 0);
         CHECK(cam.near_z == 5 && cam.far_z > cam.near_z && cam.fov_y_deg == 50 && cam.position[0] == 1);
@@ -581,6 +582,7 @@ static void test_scenarios(void)
         {"{\"lights\": {\"motion\": \"wobble\"}}", PG_ERR_SCHEMA, "lights.motion: expected \"noise\" or \"static\""},
         {"{\"lights\": {\"speed\": -1}}", PG_ERR_SCHEMA, "lights.speed"},
         {"{\"lights\": {\"seed\": -1}}", PG_ERR_SCHEMA, "lights.seed"},
+        {"{\"lights\": {\"ambient\": -0.1}}", PG_ERR_SCHEMA, "lights.ambient: expected a number in [0, 1000]"},
         {"{\"shading\": \"phong\"}", PG_ERR_SCHEMA, "shading: expected \"lambert\" or \"blinn_phong\""},
         {"{\"name\": 3}", PG_ERR_SCHEMA, "name: expected a string"},
         {"{\"lights\": {\"radius\": 1, \"radius\": 2}}", PG_ERR_SCHEMA, "lights.radius: duplicate key"},
@@ -975,6 +977,7 @@ static void test_object_framing(void)
         for (int k = 0; k < 3; k++) /* the box surrounds the bounds */
             CHECK(L.box_min[k] < s->bounds_min[k] - 0.5f * r && L.box_max[k] > s->bounds_max[k] + 0.5f * r);
         CHECK(fabsf(L.radius - 1.5f * r) <= 1e-5f * r);
+        CHECK(L.ambient == PG_OBJECT_AMBIENT);
         if (!strcmp(files[i], "cube.gltf")) {
             cube_intensity = L.intensity;
             cube_r = r;
@@ -1048,9 +1051,15 @@ static void test_gltf_cameras(void)
             /* infinite zfar: twice the farthest bounds corner from (4,0,0) = 2*|(4.5,.5,.5)|, or 1000 near */
             float want = fmaxf(2.0f * sqrtf(4.5f * 4.5f + 0.5f), 1000.0f * 0.05f);
             CHECK_MSG(fabsf(cam.far_z - want) < 1e-3f * want, "far %g want %g", cam.far_z, want);
-            CHECK(pg_camera_from_scene(s, 1, 1.0f, &cam, &err) == PG_ERR_INVALID_ARG);
-            CHECK_MSG(strstr(err.msg, "'top'") && strstr(err.msg, "orthographic") && strstr(err.msg, "two_cameras.gltf"),
-                      "%s", err.msg);
+            CHECK(cam.ortho_height == 0);
+            /* orthographic: full height 2 ymag, near/far kept; the projection maps y = +-ymag to the
+             * image edges, x = +-ymag * aspect, z_ndc linear from near to far, w = 1 */
+            CHECK(pg_camera_from_scene(s, 1, 2.0f, &cam, &err) == PG_OK);
+            CHECK(cam.ortho_height == 2.0f && cam.near_z == 0.1f && cam.far_z == 10.0f && cam.aspect == 2.0f);
+            float P[16];
+            pg_camera_proj(&cam, P);
+            CHECK(fabsf(P[0] - 0.5f) < 1e-7f && fabsf(P[5] + 1.0f) < 1e-7f && P[11] == 0 && P[15] == 1.0f);
+            CHECK(fabsf(P[10] * -0.1f + P[14]) < 1e-7f && fabsf(P[10] * -10.0f + P[14] - 1.0f) < 1e-6f);
             CHECK(pg_camera_from_scene(s, 2, 1.0f, &cam, &err) == PG_ERR_INVALID_ARG);
         }
         uint32_t idx = 9;

@@ -19,30 +19,24 @@ pg_result pg_app_default_view(const pg_scene *scene, const char *camera_spec, fl
         pg_result r = pg_scene_find_camera(scene, camera_spec, &ci, err);
         if (!r) r = pg_camera_from_scene(scene, ci, aspect, &cam, err);
         if (r) return r;
-        snprintf(cw, sizeof cw, "camera: glTF camera %u '%s' (node '%s'), selected by --camera %s", ci,
-                 scene->cameras[ci].name, scene->cameras[ci].node_name, camera_spec);
+        snprintf(cw, sizeof cw, "camera: glTF camera %u '%s' (node '%s', %s), selected by --camera %s", ci,
+                 scene->cameras[ci].name, scene->cameras[ci].node_name,
+                 scene->cameras[ci].type == PG_CAMERA_ORTHOGRAPHIC ? "orthographic" : "perspective", camera_spec);
     } else if (!want_auto && atrium) {
         cam = pg_camera_default_for_scene(scene, aspect);
         snprintf(cw, sizeof cw, "camera: interior view of the built-in atrium (inside the bounds, looking along +X)");
     } else {
-        const char *note = "";
-        char buf[200] = "";
         if (!want_auto && scene && scene->n_cameras > 0) {
-            pg_error ignored = {0};
-            if (!pg_camera_from_scene(scene, 0, aspect, &cam, &ignored)) {
-                snprintf(cw, sizeof cw, "camera: glTF camera 0 '%s' (node '%s'), the scene's first camera; "
-                         "--camera auto frames the bounds instead", scene->cameras[0].name, scene->cameras[0].node_name);
-            } else {
-                snprintf(buf, sizeof buf, "; the first glTF camera '%s' is orthographic (unsupported)",
-                         scene->cameras[0].name);
-                note = buf;
-            }
-        }
-        if (!cw[0]) {
+            pg_result r = pg_camera_from_scene(scene, 0, aspect, &cam, err);
+            if (r) return r;
+            snprintf(cw, sizeof cw, "camera: glTF camera 0 '%s' (node '%s', %s), the scene's first camera; "
+                     "--camera auto frames the bounds instead", scene->cameras[0].name, scene->cameras[0].node_name,
+                     scene->cameras[0].type == PG_CAMERA_ORTHOGRAPHIC ? "orthographic" : "perspective");
+        } else {
             float r = 0, d = 0;
             cam = pg_camera_frame_object(scene, aspect, &r, &d);
-            snprintf(cw, sizeof cw, "camera: auto framing (%s: bounds radius %.3g, distance %.3g, fov_y 45%s)",
-                     want_auto ? "--camera auto" : "object, no glTF camera", r, d, note);
+            snprintf(cw, sizeof cw, "camera: auto framing (%s: bounds radius %.3g, distance %.3g, fov_y 45)",
+                     want_auto ? "--camera auto" : "object, no glTF camera", r, d);
         }
     }
     pg_light_setup ls;
@@ -52,8 +46,9 @@ pg_result pg_app_default_view(const pg_scene *scene, const char *camera_spec, fl
                  ls.intensity);
     } else {
         ls = pg_light_setup_object(scene, count, seed);
-        snprintf(lw, sizeof lw, "lights: object box (bounds grown by 0.6 x radius per side), radius %.3g, intensity %.3g",
-                 ls.radius, ls.intensity);
+        snprintf(lw, sizeof lw,
+                 "lights: object box (bounds grown by 0.6 x radius per side), radius %.3g, intensity %.3g, ambient %.3g",
+                 ls.radius, ls.intensity, ls.ambient);
     }
     *camera = cam;
     *lights = ls;
@@ -109,6 +104,11 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
         goto fail;
     if (app->has_scenario) {
         bool cam_from_scenario = app->scenario.has_camera && !opt->camera;
+        /* a scenario that places its own lights (an interior set-up such as cis565) gets no object
+         * ambient unless it asks for one */
+        if ((app->scenario.has_light_box || app->scenario.has_radius || app->scenario.has_intensity) &&
+            !app->scenario.has_ambient)
+            app->lights.ambient = 0;
         pg_scenario_apply(&app->scenario, &app->lights, cam_from_scenario ? &app->camera : NULL);
         if (cam_from_scenario)
             snprintf(app->camera_why, sizeof app->camera_why, "camera: scenario %s (its camera fields over the default)",
@@ -122,6 +122,7 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     if (opt->has_lights || !(app->has_scenario && app->scenario.has_light_count)) app->lights.count = opt->lights;
     if (opt->has_radius) app->lights.radius = opt->radius;
     if (opt->has_intensity) app->lights.intensity = opt->intensity;
+    if (opt->has_ambient) app->lights.ambient = opt->ambient;
     app->object_lights = strcmp(app->scene->path, "default") != 0 && !opt->has_intensity &&
                          !(app->has_scenario && app->scenario.has_intensity);
     if (app->object_lights && app->lights.count != opt->lights) /* a scenario's light count */
@@ -130,6 +131,9 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
         snprintf(app->lights_why + strlen(app->lights_why), sizeof app->lights_why - strlen(app->lights_why),
                  "; %s%s%s from the command line", opt->has_radius ? "radius" : "",
                  opt->has_radius && opt->has_intensity ? " and " : "", opt->has_intensity ? "intensity" : "");
+    if (opt->has_ambient || (app->has_scenario && app->scenario.has_ambient))
+        snprintf(app->lights_why + strlen(app->lights_why), sizeof app->lights_why - strlen(app->lights_why),
+                 "; ambient %g from %s", app->lights.ambient, opt->has_ambient ? "--ambient" : "the scenario");
     app->lights.seed = opt->seed;
     return PG_OK;
 fail:

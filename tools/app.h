@@ -34,10 +34,9 @@ typedef struct pg_app {
 
 /* The default camera and light set-up for a scene (before a scenario is applied), README "Scenes":
  *   camera: --camera auto -> pg_camera_frame_object; --camera N|NAME -> that glTF camera
- *   (pg_scene_find_camera / pg_camera_from_scene; unknown or orthographic: an error); none given:
+ *   (pg_scene_find_camera / pg_camera_from_scene; unknown: an error); none given:
  *   the built-in atrium ("default") keeps its interior view (pg_camera_default_for_scene), a glTF
- *   with cameras uses its first one (an orthographic first camera falls back to auto framing with
- *   a note in camera_why), else auto framing. Every glTF is treated as an object: interiors
+ *   with cameras uses its first one (perspective or orthographic), else auto framing. Every glTF is treated as an object: interiors
  *   (Sponza) take a scenario or --camera.
  *   lights: the atrium -> pg_light_setup_default (inside the bounds); a glTF ->
  *   pg_light_setup_object (around the bounds).

@@ -19,6 +19,8 @@ const char *const pg_cli_common_help =
     "  --lights N           number of point lights, 0..16777216 (default 256)\n"
     "  --radius R           light range in scene units (default: from the scene size)\n"
     "  --intensity I        light colour multiplier (default 1)\n"
+    "  --ambient A          constant light times albedo, added to the pipeline's ambient\n"
+    "                       (default: 0.02 for a glTF object, 0 for the atrium)\n"
     "  --size WxH           output size, 1..16384 each (default 640x360)\n"
     "  --time T             animation time in seconds; fixes the frame (default 0)\n"
     "  --seed S             light seed, 0..4294967295 (default 1)\n"
@@ -174,6 +176,10 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         NEED_VALUE();
         if ((r = parse_float(a, v, 0, 1e7, &c->intensity, err))) return r;
         c->has_intensity = true;
+    } else if (!strcmp(a, "--ambient")) {
+        NEED_VALUE();
+        if ((r = parse_float(a, v, 0, 1000, &c->ambient, err))) return r;
+        c->has_ambient = true;
     } else if (!strcmp(a, "--size")) {
         NEED_VALUE();
         const char *x = strchr(v, 'x');

@@ -20,8 +20,9 @@ typedef struct pg_cli_common {
     uint32_t width, height;      /* --size WxH */
     float time;                  /* --time T */
     uint32_t seed;               /* --seed S */
-    bool has_radius, has_intensity;
+    bool has_radius, has_intensity, has_ambient;
     float radius, intensity;     /* --radius, --intensity */
+    float ambient;               /* --ambient (the light set-up's run-time ambient) */
     const char *out;             /* --out FILE */
     uint32_t n_sets;
     pg_param_override sets[PG_CLI_MAX_SETS]; /* --set key=value (points into argv) */

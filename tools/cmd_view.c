@@ -57,7 +57,7 @@ typedef struct viewer {
     bool reload;
     /* frame settings */
     int light_count;
-    float radius, intensity, speed, time;
+    float radius, intensity, speed, time, ambient;
     int seed;
     bool paused;
     pg_camera camera, home;
@@ -407,7 +407,7 @@ static void camera_list(viewer *v, const char *start_label)
     v->cam_choice = 0;
 }
 
-/* Applies combo item `choice`; an orthographic camera is refused into v->error. */
+/* Applies combo item `choice` (0 start view, 1 auto framing, 2.. the glTF cameras). */
 static void camera_choose(viewer *v, int choice)
 {
     const pg_scene *sc = v->app.scene;
@@ -612,12 +612,14 @@ static void build_ui(viewer *v)
                     v->app.lights = ls;
                     v->radius = ls.radius;
                     v->intensity = ls.intensity;
+                    v->ambient = ls.ambient;
                     v->reload = true;
                 }
             }
             pg_ui_slider_int("lights", &v->light_count, 0, 1000000, true);
             pg_ui_slider_float("radius", &v->radius, 0.01f, 100.0f, "%.3f", true);
             pg_ui_slider_float("intensity", &v->intensity, 0.001f, 100.0f, "%.3f", true);
+            pg_ui_slider_float("ambient", &v->ambient, 0.0f, 1.0f, "%.3f", false);
             pg_ui_slider_float("motion speed", &v->speed, 0.0f, 10.0f, "%.2f", false);
             pg_ui_input_int("seed", &v->seed);
             pg_ui_checkbox("pause", &v->paused);
@@ -819,6 +821,7 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     fi.lights.count = (uint32_t)v->light_count;
     fi.lights.radius = v->radius;
     fi.lights.intensity = v->intensity;
+    fi.lights.ambient = v->ambient;
     fi.lights.speed = v->speed;
     fi.lights.seed = (uint32_t)v->seed;
     fi.time = v->time;
@@ -1230,6 +1233,7 @@ int pg_cmd_view(int argc, char **argv)
     v->light_count = (int)v->app.lights.count;
     v->radius = v->app.lights.radius;
     v->intensity = v->app.lights.intensity;
+    v->ambient = v->app.lights.ambient;
     v->speed = v->app.lights.speed;
     v->seed = (int)v->app.lights.seed;
     v->time = opt.time;

@@ -11,7 +11,7 @@ is committed. Run: `python3 tests/corpus/gltf/objects/gen_objects.py`.
   huge.gltf          cube of side 1e4 centred at (5e3, 0, 0)
   camera.gltf        the unit cube + one perspective camera 'front' (node 'front_node') at
                      (0.5, 0.8, 3) looking at the origin, yfov 0.6, znear 0.1, zfar 100
-  ortho_first.gltf   the unit cube + an orthographic camera "plan" only (default: auto framing)
+  ortho_first.gltf   the unit cube + an orthographic camera "plan" only (the default view)
   two_cameras.gltf   the unit cube + camera 'side' (perspective, infinite zfar, node 'side_node'
                      at (4, 0, 0) looking along -X) and camera 'top' (orthographic, node 'top_node')
 """
@@ -163,7 +163,7 @@ write("two_cameras.gltf", doc(cube,
                      "rotation": look_rotation((4, 0, 0), (0, 0, 0))},
                     {"name": "top_node", "camera": 1, "translation": [0, 5, 0],
                      "rotation": [-math.sqrt(0.5), 0, 0, math.sqrt(0.5)]}]))
-# an orthographic camera first: the default falls back to auto framing (with a note)
+# an orthographic camera first: it is the default view
 write("ortho_first.gltf", doc(cube,
       cameras=[{"name": "plan", "type": "orthographic",
                 "orthographic": {"xmag": 2.0, "ymag": 1.0, "znear": 0.1, "zfar": 20.0}}],

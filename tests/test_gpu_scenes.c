@@ -1,0 +1,178 @@
+/* test_gpu_scenes.c - every shipped pipeline keeps its accuracy claim on every generated glTF
+ * scene (issue 11): the objects, the ten models and the feature files under
+ * tests/corpus/gltf/<dir>/ (every .gltf / .glb of the folders listed in k_dirs that exist), each
+ * with the tools' default view (pg_app_default_view: its glTF camera or auto framing, the object
+ * lights and ambient), 48 lights, at 128x72, on lavapipe with validation + synchronization
+ * validation (any message fails).
+ *
+ * Claims checked per scene, with the same statements as the atrium/Sponza tests:
+ *   - the reference (pipelines/reference.json) is bit-identical to naive in rgba32f
+ *     (test_reference's claim);
+ *   - forward+ is bit-identical to naive (exact light lists, test_gpu_clustered's claim);
+ *   - deferred (float), deferred_oct16 and deferred_packed stay inside their per-pixel bounds
+ *     against naive in the same HDR format (tests/accuracy_bounds.h);
+ *   - the image is lit (the reference has a positive peak) and finite.
+ * A control renders one scene with half the lights and expects the exact comparison to fail, so
+ * the comparisons can fail. */
+#include <dirent.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "accuracy_bounds.h"
+#include "app.h"
+#include "gpu_harness.h"
+#include "image_util.h"
+#include "pass_list.h"
+#include "test_util.h"
+
+#define W 128
+#define H 72
+#define LIGHTS 48
+
+static pg_gpu *g_gpu;
+static pg_pass_registry g_reg;
+static const char *const k_dirs[] = {"objects", "models", "features", "emissive", "blend", "compressed"};
+
+typedef struct approx {
+    const char *label, *pipeline;
+    double a, b;
+} approx;
+static const approx k_approx[] = {
+    {"deferred", "pipelines/deferred.json", FLOAT_PX_A, FLOAT_PX_B},
+    {"deferred_oct16", "pipelines/deferred_oct16.json", OCT16_PX_A, OCT16_PX_B},
+    {"deferred_packed", "pipelines/deferred_packed.json", PACKED_PX_A, PACKED_PX_B},
+};
+
+static bool render(const pg_scene_gpu *sg, const char *pipeline, const pg_param_override *sets, uint32_t n,
+                   const pg_frame_info *fi, pg_th_frame *out)
+{
+    memset(out, 0, sizeof *out);
+    return pg_th_render(g_gpu, &g_reg, sg, pipeline, sets, n, fi, 1, false, out);
+}
+
+static bool ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), k = strlen(suffix);
+    return n >= k && !strcmp(s + n - k, suffix);
+}
+
+static uint32_t g_scenes;
+static double g_worst[3];
+static char g_worst_scene[3][96];
+
+static void check_scene(const char *dir, const char *file, bool control)
+{
+    char path[PG_PATH_MAX];
+    snprintf(path, sizeof path, "%s/corpus/gltf/%s/%s", PG_TEST_DIR, dir, file);
+    pg_scene *sc = NULL;
+    pg_scene_gpu *sg = NULL;
+    pg_error err = {0};
+    if (pg_scene_load(path, &sc, &err) || pg_scene_gpu_create(g_gpu, sc, &sg, &err)) {
+        CHECK_MSG(0, "%s/%s: %s", dir, file, err.msg);
+        pg_scene_free(sc);
+        return;
+    }
+    pg_frame_info fi = {.time = 0.5f, .width = W, .height = H};
+    char cw[256], lw[256];
+    if (pg_app_default_view(sc, NULL, (float)W / H, LIGHTS, 5, &fi.camera, &fi.lights, cw, sizeof cw, lw, sizeof lw,
+                            &err)) {
+        CHECK_MSG(0, "%s/%s: default view: %s", dir, file, err.msg);
+        goto out;
+    }
+    pg_param_override f32 = {"hdr_format", "rgba32f"};
+    pg_th_frame ref, n32, n16, fp;
+    bool ok = render(sg, "pipelines/reference.json", NULL, 0, &fi, &ref);
+    ok = render(sg, "pipelines/naive.json", &f32, 1, &fi, &n32) && ok;
+    ok = render(sg, "pipelines/naive.json", NULL, 0, &fi, &n16) && ok;
+    ok = render(sg, "pipelines/forward_plus.json", NULL, 0, &fi, &fp) && ok;
+    CHECK_MSG(ok, "%s/%s: exact pipelines render", dir, file);
+    if (ok) {
+        double peak = 0, d_ref = pg_th_max_abs(&ref, &n32, &peak), p16 = 0, d_fp = pg_th_max_abs(&fp, &n16, &p16);
+        bool ref_same = pg_th_hdr_identical(&ref, &n32), fp_same = pg_th_hdr_identical(&fp, &n16);
+        printf("%s/%s: peak %.4g; reference vs naive %s (max |d| %g), forward+ vs naive %s (max |d| %g)", dir, file, peak,
+               ref_same ? "identical" : "DIFFERENT", d_ref, fp_same ? "identical" : "DIFFERENT", d_fp);
+        CHECK_MSG(peak > 0, "%s/%s: the reference is black", dir, file);
+        CHECK_MSG(pg_count_nonfinite(ref.hdr, ref.w, ref.h) == 0 && pg_count_nonfinite(fp.hdr, fp.w, fp.h) == 0,
+                  "%s/%s: non-finite pixels", dir, file);
+        CHECK_MSG(ref_same, "%s/%s: reference != naive (max |d| %g of peak %g)", dir, file, d_ref, peak);
+        CHECK_MSG(fp_same, "%s/%s: forward+ != naive (max |d| %g of peak %g)", dir, file, d_fp, p16);
+        for (size_t v = 0; v < sizeof k_approx / sizeof k_approx[0]; v++) {
+            pg_th_frame f;
+            if (!render(sg, k_approx[v].pipeline, NULL, 0, &fi, &f)) {
+                CHECK_MSG(0, "%s/%s: %s renders", dir, file, k_approx[v].label);
+                continue;
+            }
+            double usage = 0, need_a = 0;
+            pg_th_bound_usage(&f, &n16, p16, k_approx[v].a, k_approx[v].b, &usage, &need_a);
+            printf(", %s usage %.3g", k_approx[v].label, usage);
+            CHECK_MSG(usage <= 1.0, "%s/%s: %s outside its bound: usage %g (needs A %g)", dir, file, k_approx[v].label,
+                      usage, need_a);
+            if (usage > g_worst[v]) {
+                g_worst[v] = usage;
+                snprintf(g_worst_scene[v], sizeof g_worst_scene[v], "%s/%s", dir, file);
+            }
+            pg_th_release(&f);
+        }
+        printf("\n");
+        if (control) { /* half the lights: the exact comparison must see it */
+            pg_frame_info half = fi;
+            half.lights.count = LIGHTS / 2;
+            pg_th_frame h;
+            if (render(sg, "pipelines/naive.json", &f32, 1, &half, &h)) {
+                CHECK_MSG(!pg_th_hdr_identical(&ref, &h), "control: %s/%s with half the lights == reference", dir, file);
+                pg_th_release(&h);
+            } else {
+                CHECK_MSG(0, "control render");
+            }
+        }
+    }
+    pg_th_release(&ref);
+    pg_th_release(&n32);
+    pg_th_release(&n16);
+    pg_th_release(&fp);
+    g_scenes++;
+out:
+    pg_scene_gpu_destroy(g_gpu, sg);
+    pg_scene_free(sc);
+}
+
+static int name_cmp(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+int main(void)
+{
+    if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_scenes", "PG_TEST_NO_GPU set");
+    pg_register_builtin_passes(&g_reg);
+    pg_gpu_desc gd = {.validation = true, .device_index = -1};
+    pg_error err = {0};
+    if (pg_gpu_create(&gd, &g_gpu, &err)) {
+        fprintf(stderr, "test_gpu_scenes: %s\n", err.msg);
+        return 1;
+    }
+    bool control = true;
+    for (size_t d = 0; d < sizeof k_dirs / sizeof k_dirs[0]; d++) {
+        char dir[PG_PATH_MAX];
+        snprintf(dir, sizeof dir, "%s/corpus/gltf/%s", PG_TEST_DIR, k_dirs[d]);
+        DIR *dh = opendir(dir);
+        if (!dh) continue; /* a folder another feature adds */
+        char *names[256];
+        uint32_t n = 0;
+        for (struct dirent *e; (e = readdir(dh)) && n < 256;)
+            if (ends_with(e->d_name, ".gltf") || ends_with(e->d_name, ".glb")) names[n++] = strdup(e->d_name);
+        closedir(dh);
+        qsort(names, n, sizeof names[0], name_cmp);
+        for (uint32_t i = 0; i < n; i++) {
+            if (names[i]) check_scene(k_dirs[d], names[i], control);
+            control = false;
+            free(names[i]);
+        }
+    }
+    printf("scenes: %u\n", g_scenes);
+    for (size_t v = 0; v < sizeof k_approx / sizeof k_approx[0]; v++)
+        printf("bound: %s worst usage %.3g (%s)\n", k_approx[v].label, g_worst[v], g_worst_scene[v]);
+    CHECK_MSG(g_scenes >= 10, "only %u scenes found", g_scenes);
+    printf("validation messages: %u\n", g_gpu->validation_messages);
+    CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);
+    pg_gpu_destroy(g_gpu);
+    return pg_test_finish("test_gpu_scenes");
+}
