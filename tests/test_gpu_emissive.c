@@ -13,7 +13,7 @@
  *     of the sum) on the emissive pixels, many of them lit, and bit-identical elsewhere (the
  *     emission is added once, only where a material emits); forward+ is byte-identical to naive,
  *     the reference bit-identical to naive in rgba32f, deferred float/oct16/packed within the
- *     per-pixel bounds of tests/test_gpu_clustered.c (same values, see there and docs/accuracy.md),
+ *     per-pixel bounds of tests/accuracy_bounds.h (see docs/accuracy.md),
  *     and their tiled light path (tile_lights, the default) byte-identical to the per-pixel one.
  *  3. Culling: with plain.gltf every deferred pipeline and the reference cull gb_emissive ("not used
  *     by any pass"), give it no memory block, ask for its size less transient memory (plan and
@@ -29,6 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "accuracy_bounds.h"
 #include "gpu_harness.h"
 #include "shader.h"
 #include "image_util.h"
@@ -38,13 +39,6 @@
 #define W 320
 #define H 180
 #define LIT_LIGHTS 200
-/* tests/test_gpu_clustered.c's per-pixel bounds |out - ref| <= A |ref| + B peak (change together) */
-#define FLOAT_PX_A 2e-3
-#define FLOAT_PX_B 1e-5
-#define OCT16_PX_A 0.03
-#define OCT16_PX_B 6e-3
-#define PACKED_PX_A 0.015
-#define PACKED_PX_B 2e-3
 
 static pg_gpu *g_gpu;
 static pg_pass_registry g_reg;
@@ -194,17 +188,12 @@ static void unlit(const loaded *em, const loaded *plain, uint8_t *mask)
 }
 
 /* ---- 2. with lights ----------------------------------------------------------------------- */
+/* the per-pixel bound of accuracy_bounds.h */
 static bool within(const pg_th_frame *f, const pg_th_frame *ref, double a, double b, double *usage)
 {
-    double peak;
+    double peak, need_a;
     pg_th_max_abs(ref, ref, &peak);
-    *usage = 0;
-    for (size_t i = 0; i < (size_t)f->w * f->h * 4; i++) {
-        if (i % 4 == 3) continue;
-        double d = fabs((double)f->hdr[i] - ref->hdr[i]), bound = a * fabs(ref->hdr[i]) + b * peak;
-        double u = bound > 0 ? d / bound : (d > 0 ? INFINITY : 0);
-        if (!(u <= *usage)) *usage = u;
-    }
+    pg_th_bound_usage(f, ref, peak, a, b, usage, &need_a);
     return *usage <= 1.0;
 }
 
