@@ -5,7 +5,8 @@
  *   1. read the file (missing/unreadable: PG_ERR_IO); .glb is recognised by its magic bytes and
  *      its container header is checked here (PG_ERR_PARSE);
  *   2. parse the JSON with nlohmann::json (syntax errors: PG_ERR_PARSE) and PRE-VALIDATE it:
- *      root object, asset.version 2.x, no extensionsRequired, every cross-reference in range
+ *      root object, asset.version 2.x, no extensionsRequired passgraph does not implement,
+ *      emissiveFactor / emissiveStrength finite and >= 0, every cross-reference in range
  *      (sparse indices/values bufferViews included),
  *      buffers present with exactly byteLength bytes, bufferViews inside their buffers, image
  *      files present. tinygltf 2.7 does not check all of these (and reads an image bufferView's
@@ -26,9 +27,10 @@
  *
  * Warnings (pg_scene.warnings, collect_warnings): everything the file uses that is not drawn as it
  * asks gets one line per kind (skins, morph targets, animations, each extension in
- * extensionsUsed, emissive / occlusion / metallic-roughness textures, COLOR_0,
+ * extensionsUsed but not implemented, emissive / occlusion / metallic-roughness textures, COLOR_0,
  * TEXCOORD_1+, texCoord != 0, sampler modes, point/line primitives). The library never prints
- * them. Any entry of extensionsRequired is an error (no extension is implemented). A non-GLB file
+ * them. An entry of extensionsRequired other than the implemented extensions (kImplementedExtensions:
+ * KHR_materials_emissive_strength) is an error. A non-GLB file
  * whose first non-blank byte is not '{' or '[' is "not a glTF 2.0 file"; asset.version 1.x is
  * "glTF 1.0 is not supported, only 2.0".
  * Non-finite POSITION / NORMAL / TEXCOORD_0 / TANGENT values are errors, and so are positions that
@@ -38,6 +40,8 @@
  *   specular  = 0.04 + 0.5 * (1 - roughness) * (1 - metallic)      (0.04 .. 0.54)
  *   shininess = clamp(2 / (roughness^4 + 1e-4) - 2, 1, 512)         (Beckmann-like roughness
  *                                                                    to Blinn-Phong exponent)
+ *   emissive  = emissiveFactor x KHR_materials_emissive_strength.emissiveStrength (default 1),
+ *               linear, unclamped (a product past the float range is an error)
  * baseColorTexture -> sRGB texture, normalTexture -> linear texture; an image used both ways gets
  * two pg_texture entries. Primitives without a material use an appended white "default"
  * material (glTF's default: metallic 1, roughness 1).
@@ -300,6 +304,40 @@ bool is_regular_file(const std::string &p, uint64_t *size)
     return true;
 }
 
+/* The glTF extensions passgraph implements: accepted in extensionsRequired, no warning in
+ * extensionsUsed. */
+const char *const kImplementedExtensions[] = {
+    "KHR_materials_emissive_strength",
+};
+
+bool implemented_extension(const std::string &e)
+{
+    for (const char *k : kImplementedExtensions)
+        if (e == k) return true;
+    return false;
+}
+
+/* emissiveFactor: 3 finite numbers >= 0; KHR_materials_emissive_strength.emissiveStrength: a
+ * finite number >= 0 (materials[i] is `w`). */
+void check_emissive(const json &o, const std::string &w)
+{
+    auto it = o.find("emissiveFactor");
+    if (it != o.end()) {
+        bool ok = it->is_array() && it->size() == 3;
+        if (ok)
+            for (const auto &x : *it)
+                ok = ok && x.is_number() && std::isfinite(x.get<double>()) && x.get<double>() >= 0;
+        if (!ok) gfail(w + ".emissiveFactor: expected 3 finite numbers >= 0, got " + it->dump().substr(0, 80));
+    }
+    const json *ext = opt_object(o, "extensions", w);
+    const json *es = ext ? opt_object(*ext, "KHR_materials_emissive_strength", w + ".extensions") : nullptr;
+    if (!es) return;
+    auto st = es->find("emissiveStrength");
+    if (st != es->end() && !(st->is_number() && std::isfinite(st->get<double>()) && st->get<double>() >= 0))
+        gfail(w + ".extensions.KHR_materials_emissive_strength.emissiveStrength: expected a finite number >= 0, got " +
+              st->dump().substr(0, 80));
+}
+
 void prevalidate(Ctx &c)
 {
     const json &j = c.j;
@@ -319,18 +357,20 @@ void prevalidate(Ctx &c)
         gfail(strf("asset.minVersion: '%s' is not supported",
                    mvit->get<std::string>().c_str()));
 
-    /* passgraph implements no glTF extension: a required one is refused, naming each */
+    /* a required extension passgraph does not implement (kImplementedExtensions) is refused,
+     * naming each */
     if (const json *req = opt_array(j, "extensionsRequired", "")) {
-        if (!req->empty()) {
-            std::string names;
-            for (const json &e : *req) {
-                if (!names.empty()) names += ", ";
-                names += "'" + (e.is_string() ? e.get<std::string>() : e.dump()) + "'";
-            }
-            gfail(strf("extensionsRequired: %s %s not supported (passgraph implements no glTF "
-                       "extensions; only core glTF 2.0)",
-                       names.c_str(), req->size() == 1 ? "is" : "are"));
+        std::string names;
+        size_t n = 0;
+        for (const json &e : *req) {
+            if (e.is_string() && implemented_extension(e.get<std::string>())) continue;
+            if (!names.empty()) names += ", ";
+            names += "'" + (e.is_string() ? e.get<std::string>() : e.dump()) + "'";
+            n++;
         }
+        if (n)
+            gfail(strf("extensionsRequired: %s %s not supported (not implemented by passgraph)",
+                       names.c_str(), n == 1 ? "is" : "are"));
     }
 
     const json *buffers = opt_array(j, "buffers", "");
@@ -485,6 +525,7 @@ void prevalidate(Ctx &c)
             ref(*ti, "index", arr_size(textures), "textures", w + ".occlusionTexture", true);
         if (const json *ti = opt_object(o, "emissiveTexture", w))
             ref(*ti, "index", arr_size(textures), "textures", w + ".emissiveTexture", true);
+        check_emissive(o, w);
         auto am = o.find("alphaMode");
         if (am != o.end()) {
             std::string s = am->is_string() ? am->get<std::string>() : "";
@@ -1396,7 +1437,6 @@ std::string filter_name(int f)
 std::string extension_effect(const std::string &e)
 {
     if (e == "KHR_texture_transform") return "texture offset/rotation/scale not applied";
-    if (e == "KHR_materials_emissive_strength") return "emission is not drawn";
     if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression")
         return "compressed data not decoded, the uncompressed fallback is drawn";
     if (e == "KHR_mesh_quantization")
@@ -1432,13 +1472,16 @@ void collect_warnings(Ctx &c)
                     plural(morph_meshes, "mesh", "meshes") +
                     " ignored: rendered with the base geometry (weights not applied)");
     constexpr size_t kMaxExtensionLines = 16;
-    for (size_t i = 0; i < md.extensionsUsed.size() && i < kMaxExtensionLines; i++) {
-        const std::string &e = md.extensionsUsed[i];
-        W.push_back("extensionsUsed: '" + e.substr(0, 80) + "' ignored: " + extension_effect(e));
+    size_t ext_lines = 0, ext_more = 0;
+    for (const std::string &e : md.extensionsUsed) {
+        if (implemented_extension(e)) continue;
+        if (ext_lines++ < kMaxExtensionLines)
+            W.push_back("extensionsUsed: '" + e.substr(0, 80) + "' ignored: " + extension_effect(e));
+        else
+            ext_more++;
     }
-    if (md.extensionsUsed.size() > kMaxExtensionLines)
-        W.push_back(strf("extensionsUsed: %zu more extensions ignored (not supported)",
-                         md.extensionsUsed.size() - kMaxExtensionLines));
+    if (ext_more)
+        W.push_back(strf("extensionsUsed: %zu more extensions ignored (not supported)", ext_more));
 
     std::vector<std::string> emissive, occlusion, mr, texcoord;
     for (size_t i = 0; i < md.materials.size(); i++) {
@@ -1447,17 +1490,14 @@ void collect_warnings(Ctx &c)
              m.pbrMetallicRoughness.baseColorTexture.texCoord != 0) ||
             (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0))
             texcoord.push_back(material_desc(md, i));
-        bool em = m.emissiveTexture.index >= 0;
-        for (double x : m.emissiveFactor) em = em || x != 0.0;
-        if (em) emissive.push_back(material_desc(md, i));
+        if (m.emissiveTexture.index >= 0) emissive.push_back(material_desc(md, i));
         if (m.occlusionTexture.index >= 0) occlusion.push_back(material_desc(md, i));
         if (m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
             mr.push_back(material_desc(md, i));
     }
     if (!emissive.empty())
-        W.push_back("emissive factor/texture of " +
-                    plural(emissive.size(), "material", "materials") + " (" + name_list(emissive) +
-                    ") ignored: emission is not drawn");
+        W.push_back("emissiveTexture of " + plural(emissive.size(), "material", "materials") + " (" +
+                    name_list(emissive) + ") ignored: the emissiveFactor alone is drawn");
     if (!mr.empty())
         W.push_back("metallicRoughnessTexture of " + plural(mr.size(), "material", "materials") +
                     " (" + name_list(mr) + ") ignored: the metallic/roughness factors are used");
@@ -1645,6 +1685,18 @@ pg_scene *load(Ctx &c)
         double sh = 2.0 / (r4 + 1e-4) - 2.0;
         pm.shininess = float(sh < 1 ? 1 : sh > 512 ? 512 : sh);
         pm.double_sided = gm.doubleSided;
+        /* emissive = emissiveFactor x emissiveStrength (both checked finite >= 0 by prevalidate) */
+        double strength = 1.0;
+        auto es = gm.extensions.find("KHR_materials_emissive_strength");
+        if (es != gm.extensions.end() && es->second.Has("emissiveStrength"))
+            strength = es->second.Get("emissiveStrength").GetNumberAsDouble();
+        for (int k = 0; k < 3 && size_t(k) < gm.emissiveFactor.size(); k++) {
+            double e = gm.emissiveFactor[size_t(k)] * strength;
+            if (!(e <= FLT_MAX))
+                gfail(strf("%s.emissiveFactor: %g x emissiveStrength %g is outside the float range", mw.c_str(),
+                           gm.emissiveFactor[size_t(k)], strength));
+            pm.emissive[k] = float(e);
+        }
         mats.push_back(pm);
     }
     bool need_default = false;

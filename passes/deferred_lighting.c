@@ -1,7 +1,10 @@
 /* deferred_lighting.c - compute pass: for every pixel, rebuild position, normal and material
  * from the G-buffer of one packing variant and shade it with the lights of its cluster
  * (shaders/deferred_lighting.comp; same light model and summation order as forward).
- * Slots: reads [lights, cluster_counts, cluster_lights, depth, G-buffer targets of the variant]
+ * Slots: reads [lights, cluster_counts, cluster_lights, depth, G-buffer targets of the variant,
+ *               emissive (optional: the gbuffer pass's emissive target, added once per pixel as
+ *               forward adds it; unused - not allocated - without emissive materials; not bound:
+ *               no emission drawn, explain line)]
  *        writes [hdr] (storage image, every pixel written).
  * Options: packing (as gbuffer), shading, ambient, view, grid_x/y/z, tile_size (8 or 16, default
  * 8: the workgroup is tile_size x tile_size pixels), tile_lights (default true: each tile culls its clusters' lists against the bounding box of its pixels and shares the
@@ -16,6 +19,7 @@
 
 typedef struct deferred_lighting {
     int packing;
+    uint32_t hdr_slot;      /* plan slot of hdr: after the reads (the emissive read is optional) */
     uint32_t tile;          /* workgroup edge in pixels (8 or 16) */
     VkSampler sampler;
     pg_pass_set gbuf, lights;
@@ -39,8 +43,12 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     for (uint32_t t = 0; t < pg_gbuffer_targets[packing]; t++)
         pg_decl_read(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE,
                      packing == PG_GBUFFER_PACKED ? PG_FMTCLASS_UINT : PG_FMTCLASS_FLOAT);
+    bool emissive;
+    if ((r = pg_emissive_slot_declare(in, out, false, 4 + pg_gbuffer_targets[packing], false, &emissive, err)))
+        return r;
     pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
     pg_decl_define(out, pg_gbuffer_defines[packing]);
+    if (emissive) pg_decl_define(out, "PG_DEFERRED_EMISSIVE");
     pg_shading_declare(&o, in, out, true, 0, 1);
     bool tiled;
     int64_t tile;
@@ -66,17 +74,21 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     if ((r = pg_opt_enum(ctx->desc, "packing", pg_gbuffer_packings, 0, &p->packing, err))) return r;
     if ((r = pg_check_cluster_buffers(ctx, &o, 1, err))) return r;
     uint32_t n_targets = pg_gbuffer_targets[p->packing];
-    const pg_phys_resource *hdr = ctx->slots[4 + n_targets];
+    p->hdr_slot = ctx->desc->n_reads;
+    bool emissive = p->hdr_slot > 4 + n_targets && !ctx->pass->slots[4 + n_targets].decl.unused;
+    const pg_phys_resource *hdr = ctx->slots[p->hdr_slot];
     const char *hdr_fmt = pg_format_get(hdr->pg_fmt)->name;
     if (strcmp(hdr_fmt, "rgba16f") && strcmp(hdr_fmt, "rgba32f"))
         return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: deferred lighting writes rgba16f or rgba32f, not %s",
                        ctx->desc->file, ctx->desc->json_path, hdr_fmt);
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
-    pg_set_binding b[5];
+    pg_set_binding b[6];
     uint32_t n = 0;
     for (uint32_t t = 0; t < 1 + n_targets; t++)
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[3 + t], p->sampler, 0};
     b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr, VK_NULL_HANDLE, 0};
+    if (emissive) /* binding HDR_BINDING + 1 */
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[4 + n_targets], p->sampler, 0};
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.gbuffer", ctx->pass->name);
     if ((r = pg_pass_set_create(gpu, n, b, name, &p->gbuf, err))) return r;
@@ -111,7 +123,7 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 static void dl_record(void *self, const pg_pass_record_ctx *ctx)
 {
     deferred_lighting *p = self;
-    const pg_phys_resource *hdr = ctx->slots[4 + pg_gbuffer_targets[p->packing]];
+    const pg_phys_resource *hdr = ctx->slots[p->hdr_slot];
     VkDescriptorSet sets[3] = {ctx->frame_set, p->gbuf.set, p->lights.set};
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, p->lights.set ? 3 : 2, sets, 0,
@@ -132,7 +144,8 @@ static void dl_destroy(void *self, pg_gpu *gpu)
 const pg_pass_type pg_pass_deferred_lighting = {
     .name = "deferred_lighting",
     .summary = "compute: shade every pixel from the G-buffer with the lights of its cluster",
-    .read_slots = "lights, cluster_counts, cluster_lights, depth, G-buffer targets (3 float | 2 oct16 | 1 packed)",
+    .read_slots = "lights, cluster_counts, cluster_lights, depth, G-buffer targets (3 float | 2 oct16 | 1 packed), "
+                  "then optionally emissive",
     .write_slots = "hdr",
     .instance_size = sizeof(deferred_lighting),
     .declare = dl_declare,

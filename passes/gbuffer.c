@@ -1,6 +1,10 @@
 /* gbuffer.c - rasterizes the scene into the G-buffer of one packing variant (gbuffer_layout.h)
  * plus depth (shaders/gbuffer.frag).
- * Slots: writes [targets of the variant..., depth] - 3, 2 or 1 targets then depth.
+ * Slots: writes [targets of the variant..., depth, emissive (optional)] - 3, 2 or 1 targets, depth,
+ *        then optionally the emissive target (rgba16f or rgba32f, scene-linear emissive colour,
+ *        0 where nothing emits or nothing is drawn; gb_emissive in the shipped pipelines). Without
+ *        emissive materials that slot is declared unused (its resource is culled, not allocated);
+ *        a pipeline that binds none draws no emission (explain line).
  * Options: packing "float" | "oct16" | "packed" (default float). Only the targets the variant
  * uses are bound, allocated and written (the deferred pipelines declare the others under a
  * `when` that drops them).
@@ -13,9 +17,11 @@
 
 #include "gbuffer_layout.h"
 #include "scene_draw.h"
+#include "shading_common.h"
 
 typedef struct gbuffer_pass {
     int packing;
+    bool emissive;          /* the emissive target is written (bound, and emissive materials) */
     pg_scene_draw draw;
 } gbuffer_pass;
 
@@ -46,8 +52,12 @@ static pg_result gb_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         pg_decl_write(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT,
                       packing == PG_GBUFFER_PACKED ? PG_FMTCLASS_UINT : PG_FMTCLASS_FLOAT);
     pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
+    bool emissive;
+    if ((r = pg_emissive_slot_declare(in, out, true, pg_gbuffer_targets[packing] + 1, false, &emissive, err)))
+        return r;
     pg_decl_define(out, pg_gbuffer_defines[packing]);
     if (space == 1) pg_decl_define(out, "PG_GBUFFER_CAMERA_POSITION");
+    if (emissive) pg_decl_define(out, "PG_GBUFFER_EMISSIVE");
     pg_scene_draw_declare_features(in, out);
     return PG_OK;
 }
@@ -59,12 +69,14 @@ static pg_result gb_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     pg_result r = gb_options(ctx->desc, &p->packing, &space, err);
     if (r) return r;
     uint32_t n = pg_gbuffer_targets[p->packing];
+    p->emissive = ctx->pass->n_slots > n + 1 && !ctx->pass->slots[n + 1].decl.unused;
     pg_scene_draw_desc d = {
         .fragment_shader = "gbuffer.frag",
-        .n_color = n,
+        .n_color = n + (p->emissive ? 1 : 0),
         .depth_format = ctx->slots[n]->format,
     };
     for (uint32_t t = 0; t < n; t++) d.color_formats[t] = ctx->slots[t]->format;
+    if (p->emissive) d.color_formats[n] = ctx->slots[n + 1]->format; /* location n (after the targets) */
     return pg_scene_draw_create(ctx, &d, &p->draw, err);
 }
 
@@ -72,12 +84,14 @@ static void gb_record(void *self, const pg_pass_record_ctx *ctx)
 {
     gbuffer_pass *p = self;
     uint32_t n = pg_gbuffer_targets[p->packing];
-    VkImageView views[3];
-    VkClearColorValue clears[3];
+    VkImageView views[4];
+    VkClearColorValue clears[4];
     memset(clears, 0, sizeof clears);
     for (uint32_t t = 0; t < n; t++) views[t] = ctx->slots[t]->view;
+    if (p->emissive) views[n] = ctx->slots[n + 1]->view;
     const pg_phys_resource *depth = ctx->slots[n];
-    pg_cmd_begin_rendering(ctx->cmd, depth->width, depth->height, n, views, clears, depth->view, true, 1.0f);
+    pg_cmd_begin_rendering(ctx->cmd, depth->width, depth->height, n + (p->emissive ? 1 : 0), views, clears,
+                           depth->view, true, 1.0f);
     pg_scene_draw_record(&p->draw, ctx, VK_NULL_HANDLE);
     vkCmdEndRendering(ctx->cmd);
 }
@@ -92,7 +106,8 @@ const pg_pass_type pg_pass_gbuffer = {
     .name = "gbuffer",
     .summary = "graphics: draw the scene into a G-buffer (packing float | oct16 | packed) and depth",
     .read_slots = "",
-    .write_slots = "float: position, normal, albedo, depth | oct16: normal_oct, albedo, depth | packed: packed, depth",
+    .write_slots = "float: position, normal, albedo, depth | oct16: normal_oct, albedo, depth | packed: packed, depth; "
+                   "then optionally emissive (rgba16f/rgba32f)",
     .instance_size = sizeof(gbuffer_pass),
     .declare = gb_declare,
     .create = gb_create,

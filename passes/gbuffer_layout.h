@@ -5,7 +5,10 @@
  *   oct16  : normal as 2x16-bit octahedral + shininess/512 (rgba16 unorm), albedo sRGB8 +
  *            specular (rgba8_srgb); position rebuilt from the depth buffer  - 2 targets
  *   packed : one rgba32ui: oct16 normal | sRGB8 albedo + spec8 | shininess f32 | view depth f32;
- *            position rebuilt from the stored view depth                    - 1 target  */
+ *            position rebuilt from the stored view depth                    - 1 target
+ * Any variant may add one optional target after depth: emissive (rgba16f or rgba32f, the scene-linear
+ * emissive colour; gb_emissive in the shipped pipelines), unused and not allocated when no material
+ * emits (pg_emissive_slot_declare, passes/shading_common.h). */
 #ifndef PG_GBUFFER_LAYOUT_H
 #define PG_GBUFFER_LAYOUT_H
 

@@ -24,7 +24,10 @@
  * maxStorageBufferRange of 128 MiB from 2048x2048 on; image size limits are per side.)
  *
  * Slots: reads [lights (storage buffer), position (rgba32f, camera-relative: a gbuffer pass with
- *        packing "float" and position_space "camera"), normal (rgba32f), albedo (rgba32f)]
+ *        packing "float" and position_space "camera"), normal (rgba32f), albedo (rgba32f),
+ *        emissive (optional, rgba32f: the gbuffer pass's emissive target, added once per pixel by
+ *        pg_shade_combine as forward adds it, so the image stays bit-identical to naive's; unused -
+ *        not allocated - without emissive materials; not bound: no emission drawn, explain line)]
  *        writes [hdr (storage image, rgba16f or rgba32f, every pixel written),
  *                accum_diffuse, accum_specular (rgba32f storage images of hdr's size, written by
  *                the first dispatch before any other reads them; declared unused - so not
@@ -52,7 +55,8 @@ enum { REF_MODE_LOAD = 1u, REF_MODE_STORE = 2u };
 
 typedef struct reference_lighting {
     uint32_t lights_per_dispatch; /* 0: auto */
-    bool has_lights, has_accum, has_accum_specular;
+    bool has_lights, has_accum, has_accum_specular, has_emissive;
+    uint32_t nr;                  /* read slots bound: 4, or 5 with the emissive target */
     VkSampler sampler;
     pg_pass_set surface, lights;
     VkPipelineLayout layout;
@@ -80,7 +84,7 @@ static pg_result ref_check_surface(const pg_declare_in *in, pg_error *err)
 {
     const pg_pass_desc *d = in->desc;
     pg_result r;
-    if (d->n_reads != 4) return PG_OK; /* the compiler reports the slot count */
+    if (d->n_reads != 4 && d->n_reads != 5) return PG_OK; /* the compiler reports the slot count */
     for (uint32_t k = 1; k < 4; k++) {
         const pg_resource_desc *rd = pg_pipeline_find_resource(in->pipeline, d->reads[k]);
         if (rd && rd->kind == PG_RES_IMAGE && rd->format != PG_FMT_RGBA32F)
@@ -146,6 +150,9 @@ static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
     pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
     for (uint32_t t = 0; t < 3; t++)
         pg_decl_read(out, k_surface_slots[t], PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    bool emissive;
+    if ((r = pg_emissive_slot_declare(in, out, false, 4, true, &emissive, err))) return r;
+    if (emissive) pg_decl_define(out, "PG_REFERENCE_EMISSIVE");
     pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
     /* written in full by the first dispatch before any later one reads them */
     pg_decl_write(out, "accum_diffuse", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
@@ -185,32 +192,38 @@ static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
     pg_result r;
     if ((r = ref_options(ctx->desc, &o, &p->lights_per_dispatch, err))) return r;
     p->has_lights = pg_shading_has_lights(ctx->pass);
-    p->has_accum = !ctx->pass->slots[5].decl.unused;
-    p->has_accum_specular = !ctx->pass->slots[6].decl.unused;
-    const pg_phys_resource *hdr = ctx->slots[4];
+    const uint32_t nr = p->nr = ctx->desc->n_reads; /* hdr, accum_diffuse, accum_specular follow the reads */
+    p->has_emissive = nr == 5 && !ctx->pass->slots[4].decl.unused;
+    p->has_accum = !ctx->pass->slots[nr + 1].decl.unused;
+    p->has_accum_specular = !ctx->pass->slots[nr + 2].decl.unused;
+    const pg_phys_resource *hdr = ctx->slots[nr];
     const char *hdr_fmt = pg_format_get(hdr->pg_fmt)->name;
     if (strcmp(hdr_fmt, "rgba16f") && strcmp(hdr_fmt, "rgba32f"))
         return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: reference lighting writes rgba16f or rgba32f, not %s",
                        ctx->desc->file, ctx->desc->json_path, hdr_fmt);
-    for (uint32_t t = 1; t < 7; t++) {
-        if (t == 4 || (t == 5 && !p->has_accum) || (t == 6 && !p->has_accum_specular)) continue;
+    for (uint32_t t = 1; t < nr + 3; t++) {
+        if (t == nr || (t == 4 && nr == 5 && !p->has_emissive) || (t == nr + 1 && !p->has_accum) ||
+            (t == nr + 2 && !p->has_accum_specular))
+            continue;
         const pg_phys_resource *im = ctx->slots[t];
         if (im->width != hdr->width || im->height != hdr->height)
             return pg_fail(err, PG_ERR_INVALID_ARG, "%s: %s.%s[%u]: '%s' is %ux%u, hdr is %ux%u: the G-buffer and the "
                            "running sums must have the size of the image they are shaded into",
-                           ctx->desc->file, ctx->desc->json_path, t < 4 ? "reads" : "writes", t < 4 ? t : t - 4,
-                           t < 4 ? ctx->desc->reads[t] : ctx->desc->writes[t - 4], im->width, im->height, hdr->width,
+                           ctx->desc->file, ctx->desc->json_path, t < nr ? "reads" : "writes", t < nr ? t : t - nr,
+                           t < nr ? ctx->desc->reads[t] : ctx->desc->writes[t - nr], im->width, im->height, hdr->width,
                            hdr->height);
     }
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
-    pg_set_binding b[6];
+    pg_set_binding b[7];
     uint32_t n = 0;
     for (uint32_t t = 1; t < 4; t++)
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[t], p->sampler, 0};
     b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr, VK_NULL_HANDLE, 0};
-    if (p->has_accum) b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[5], VK_NULL_HANDLE, 0};
+    if (p->has_accum) b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[nr + 1], VK_NULL_HANDLE, 0};
     if (p->has_accum_specular)
-        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[6], VK_NULL_HANDLE, 0};
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[nr + 2], VK_NULL_HANDLE, 0};
+    if (p->has_emissive) /* the last binding (EMISSIVE_BINDING in the shader) */
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[4], p->sampler, 0};
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.surface", ctx->pass->name);
     if ((r = pg_pass_set_create(gpu, n, b, name, &p->surface, err))) return r;
@@ -235,7 +248,7 @@ static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
 static void ref_record(void *self, const pg_pass_record_ctx *ctx)
 {
     reference_lighting *p = self;
-    const pg_phys_resource *hdr = ctx->slots[4];
+    const pg_phys_resource *hdr = ctx->slots[p->nr];
     VkCommandBuffer cmd = ctx->cmd;
     VkDescriptorSet sets[3] = {ctx->frame_set, p->surface.set, p->lights.set};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
@@ -270,7 +283,7 @@ static void ref_record(void *self, const pg_pass_record_ctx *ctx)
             .newLayout = VK_IMAGE_LAYOUT_GENERAL,
             .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
             .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-            .image = ctx->slots[5 + k]->image,
+            .image = ctx->slots[p->nr + 1 + k]->image,
             .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1},
         };
     for (uint32_t first = 0; first < n; first += chunk) {
@@ -298,7 +311,7 @@ const pg_pass_type pg_pass_reference_lighting = {
     .name = "reference_lighting",
     .summary = "compute: shade every pixel of a float G-buffer with every light in index order, tiled through shared "
                "memory and split over dispatches (exact reference, bit-identical to forward_naive)",
-    .read_slots = "lights, position (camera-relative rgba32f), normal, albedo",
+    .read_slots = "lights, position (camera-relative rgba32f), normal, albedo, then optionally emissive (rgba32f)",
     .write_slots = "hdr, accum_diffuse, accum_specular (rgba32f running sums, used when the lights take several "
                    "dispatches)",
     .instance_size = sizeof(reference_lighting),

@@ -132,4 +132,6 @@ void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out)
     else pg_decl_explain(out, "no alpha-mask materials: alpha-test (discard) variant not compiled");
     if (in->features.has_normal_maps) pg_decl_define(out, "PG_NORMAL_MAPS");
     else pg_decl_explain(out, "no normal maps: tangent-space normal path compiled out");
+    if (in->features.has_emissive) pg_decl_define(out, "PG_EMISSIVE");
+    else pg_decl_explain(out, "no emissive materials: emissive term compiled out");
 }

@@ -40,7 +40,7 @@ void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx
 void pg_scene_draw_record_list(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set,
                                const uint32_t *order, uint32_t n);
 void pg_scene_draw_destroy(pg_gpu *gpu, pg_scene_draw *sd);
-/* declare(): the surface variant the scene needs (PG_ALPHA_MASK, PG_NORMAL_MAPS) and, for what it
+/* declare(): the surface variant the scene needs (PG_ALPHA_MASK, PG_NORMAL_MAPS, PG_EMISSIVE) and, for what it
  * lacks, why that path is left out. */
 void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out);
 

@@ -126,3 +126,35 @@ pg_result pg_check_cluster_buffers(const pg_pass_create_ctx *ctx, const pg_shadi
                        (unsigned long long)(cells * 16));
     return PG_OK;
 }
+
+pg_result pg_emissive_slot_declare(const pg_declare_in *in, pg_pass_decl *out, bool is_write, uint32_t index,
+                                   bool full_precision, bool *used, pg_error *err)
+{
+    const pg_pass_desc *d = in->desc;
+    const bool bound = (is_write ? d->n_writes : d->n_reads) > index;
+    *used = false;
+    if (!bound) {
+        if (in->features.has_emissive)
+            pg_decl_explain(out, "no emissive slot bound (%s[%u]): emissive materials are not drawn",
+                            is_write ? "writes" : "reads", index);
+        return PG_OK;
+    }
+    if (is_write)
+        pg_decl_write(out, "emissive", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    else
+        pg_decl_read(out, "emissive", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    const char *name = is_write ? d->writes[index] : d->reads[index];
+    const pg_resource_desc *rd = pg_pipeline_find_resource(in->pipeline, name);
+    if (rd && rd->kind == PG_RES_IMAGE &&
+        !(rd->format == PG_FMT_RGBA32F || (!full_precision && rd->format == PG_FMT_RGBA16F)))
+        return pg_fail(err, PG_ERR_FORMAT, "%s: %s.%s[%u]: the emissive target holds scene-linear colour: %s, resource '%s' is %s",
+                       d->file, d->json_path, is_write ? "writes" : "reads", index,
+                       full_precision ? "rgba32f (full precision, as the rest of this G-buffer)" : "rgba16f or rgba32f",
+                       rd->name, pg_format_get(rd->format)->name);
+    if (!in->features.has_emissive) {
+        pg_decl_mark_unused(out, is_write, index, "no emissive materials: emissive target not allocated");
+        return PG_OK;
+    }
+    *used = true;
+    return PG_OK;
+}

@@ -38,5 +38,14 @@ pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, bool clustered, int
  * sizes and the pass options would read out of bounds). */
 pg_result pg_check_cluster_buffers(const pg_pass_create_ctx *ctx, const pg_shading_opts *o, int cluster_slot,
                                    pg_error *err);
+/* The optional emissive G-buffer slot (gb_emissive): the last write of a gbuffer pass, the last read of
+ * deferred_lighting and reference_lighting, at slot `index` (of the writes or the reads). Bound when the
+ * pass desc has a slot there: declared (colour attachment written in the fragment stage, or sampled in
+ * compute), its resource must be rgba16f or rgba32f (rgba32f with full_precision), and without emissive
+ * materials it is marked unused (so the resource is culled and not allocated). Not bound: nothing is
+ * declared, and with emissive materials an explain line says they are not drawn. *used: bound and the
+ * scene has emissive materials (the pass then compiles its emissive variant). */
+pg_result pg_emissive_slot_declare(const pg_declare_in *in, pg_pass_decl *out, bool is_write, uint32_t index,
+                                   bool full_precision, bool *used, pg_error *err);
 
 #endif

@@ -5,6 +5,8 @@
 // PG_TILE_LIGHTS (option tile_lights, default on): the PG_TILE x PG_TILE workgroup first culls each cluster's
 // list against the bounding box of its pixels and shares the kept lights through shared memory
 // (pg_shade_tile in shading.glsl): the same sum, far fewer light evaluations.
+// PG_DEFERRED_EMISSIVE: the G-buffer's emissive target (binding HDR_BINDING + 1) is the surface's
+// s.emissive, added once by pg_shade_combine as in forward.
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #include "common.glsl"
@@ -33,6 +35,9 @@ layout(set = 1, binding = 1) uniform usampler2D g_packed;
 #define HDR_BINDING 2
 #endif
 layout(set = 1, binding = HDR_BINDING, PG_HDR_FORMAT) uniform writeonly image2D hdr_out;
+#ifdef PG_DEFERRED_EMISSIVE
+layout(set = 1, binding = HDR_BINDING + 1) uniform sampler2D g_emissive;
+#endif
 
 #include "shading.glsl"
 
@@ -100,6 +105,9 @@ void main()
     vec3 pv = PG_ORTHO ? pg_ortho_view_pos_from_view_depth(uv, view_depth, frame.proj)
                        : pg_view_pos_from_view_depth(uv, view_depth, frame.proj);
     P = PG_VIEW_TO_REL(pv);
+#endif
+#ifdef PG_DEFERRED_EMISSIVE
+    s.emissive = texelFetch(g_emissive, px, 0).rgb;
 #endif
     }
 #ifdef PG_TILED

@@ -1,6 +1,8 @@
 #version 460
 // gbuffer.frag - writes the G-buffer of one packing variant (one of PG_GBUFFER_FLOAT,
 // PG_GBUFFER_OCT16, PG_GBUFFER_PACKED); see passes/gbuffer.c for the layouts.
+// PG_GBUFFER_EMISSIVE: the optional emissive target after the variant's targets (rgba16f/rgba32f,
+// scene-linear s.emissive; the pass defines it only when bound and the scene has emissive materials).
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "surface_inputs.glsl"
@@ -17,6 +19,15 @@ layout(location = 0) out vec4 g_normal;   // rgba16 unorm: octahedral normal xy,
 layout(location = 1) out vec4 g_albedo;   // rgba8 sRGB: albedo, a specular
 #else
 layout(location = 0) out uvec4 g_packed;  // oct16 normal | sRGB8 albedo + spec8 | shininess f32 | view depth f32
+#endif
+#ifdef PG_GBUFFER_EMISSIVE
+#if defined(PG_GBUFFER_FLOAT)
+layout(location = 3) out vec4 g_emissive;
+#elif defined(PG_GBUFFER_OCT16)
+layout(location = 2) out vec4 g_emissive;
+#else
+layout(location = 1) out vec4 g_emissive;
+#endif
 #endif
 
 void main()
@@ -38,5 +49,8 @@ void main()
     g_packed = uvec4(pg_oct_pack_unorm16(s.normal),
                      packUnorm4x8(vec4(pg_srgb_encode(s.albedo), clamp(s.specular, 0.0, 1.0))),
                      floatBitsToUint(s.shininess), floatBitsToUint(view_depth));
+#endif
+#ifdef PG_GBUFFER_EMISSIVE
+    g_emissive = vec4(s.emissive, 0.0); // as forward adds it (0 without PG_EMISSIVE's factor)
 #endif
 }

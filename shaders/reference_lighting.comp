@@ -13,6 +13,8 @@
 // come from, so splitting does not change a bit. pc.mode bits: 1 = start from the sums stored
 // there (else from 0), 2 = store the sums and stop (else combine and write the HDR pixel).
 // Background pixels (position.w == 0) are black with alpha 1, as forward clears them.
+// PG_REFERENCE_EMISSIVE: the G-buffer's emissive target (rgba32f, the last binding) is s.emissive,
+// added once by pg_shade_combine as forward adds it.
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "lighting.glsl"
@@ -35,6 +37,16 @@ layout(set = 1, binding = 4, rgba32f) uniform image2D acc_diffuse; // running di
 #ifdef PG_BLINN_PHONG
 layout(set = 1, binding = 5, rgba32f) uniform image2D acc_specular; // running specular sum (rgb)
 #endif
+#endif
+#ifdef PG_REFERENCE_EMISSIVE
+#if defined(PG_REFERENCE_ACCUM) && defined(PG_BLINN_PHONG)
+#define EMISSIVE_BINDING 6
+#elif defined(PG_REFERENCE_ACCUM)
+#define EMISSIVE_BINDING 5
+#else
+#define EMISSIVE_BINDING 4
+#endif
+layout(set = 1, binding = EMISSIVE_BINDING) uniform sampler2D g_emissive; // rgb emissive, scene-linear
 #endif
 
 #include "shading.glsl" // the Lights buffer (set 2) and the debug views
@@ -68,6 +80,9 @@ void main()
     s.specular = a.a;
     s.alpha = 1.0;
     s.emissive = vec3(0.0);
+#ifdef PG_REFERENCE_EMISSIVE
+    if (covered) s.emissive = texelFetch(g_emissive, px, 0).rgb;
+#endif
 #if PG_DEBUG_VIEW != 0
     if (!inside) return;
     float view_depth = -PG_REL_TO_VIEW(P).z;

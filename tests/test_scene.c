@@ -798,8 +798,7 @@ static void test_corpus_features(void)
               "%s", err.msg);
     CHECK(pg_scene_load_gltf(PG_TEST_DIR "/corpus/gltf/required_meshopt.gltf", &bad, &err) == PG_ERR_GLTF);
     CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus/gltf/required_meshopt.gltf: extensionsRequired: "
-                               "'EXT_meshopt_compression' is not supported (passgraph implements no glTF "
-                               "extensions; only core glTF 2.0)"),
+                               "'EXT_meshopt_compression' is not supported (not implemented by passgraph)"),
               "%s", err.msg);
     /* a scenario path that is a directory */
     pg_scenario sc;
@@ -810,6 +809,52 @@ static void test_corpus_features(void)
         CHECK(s->n_warnings == 0 && s->warnings == NULL);
         CHECK(pg_scene_add_warning(s, "x: one", &err) == PG_OK && pg_scene_add_warning(s, "x: two", &err) == PG_OK);
         CHECK(s->n_warnings == 2 && !strcmp(s->warnings[1], "x: two"));
+        pg_scene_free(s);
+    }
+}
+
+static bool rgb_eq(const float *v, float r, float g, float b) { return v[0] == r && v[1] == g && v[2] == b; }
+
+/* emissive = emissiveFactor x KHR_materials_emissive_strength (default 1); the extension is
+ * implemented: no warning when used, accepted when required. The refused values (negative,
+ * non-finite, past the float range) are MANIFEST lines (gen_corpus.py). */
+static void test_emissive_loader(void)
+{
+    pg_error err = {0};
+    static const char *const files[] = {"emissive.gltf", "emissive_required.gltf", "plain.gltf"};
+    for (int f = 0; f < 3; f++) {
+        char path[PG_PATH_MAX];
+        snprintf(path, sizeof path, "%s/corpus/gltf/emissive/%s", PG_TEST_DIR, files[f]);
+        pg_scene *s = NULL;
+        CHECK_MSG(pg_scene_load_gltf(path, &s, &err) == PG_OK, "%s: %s", files[f], err.msg);
+        if (!s) continue;
+        bool emits = f < 2;
+        CHECK_MSG(s->n_materials == 4 && s->n_warnings == 0, "%s: %u materials, %u warnings", files[f], s->n_materials,
+                  s->n_warnings);
+        if (s->n_materials == 4) {
+            CHECK_MSG(!strcmp(s->materials[0].name, "glow") && !strcmp(s->materials[1].name, "lamp"), "%s", files[f]);
+            CHECK_MSG(emits ? rgb_eq(s->materials[0].emissive, 1.0f, 0.5f, 0.25f)
+                            : rgb_eq(s->materials[0].emissive, 0, 0, 0),
+                      "%s: glow emissive %g %g %g", files[f], s->materials[0].emissive[0], s->materials[0].emissive[1],
+                      s->materials[0].emissive[2]);
+            /* (0.25, 0.5, 1) x emissiveStrength 4 */
+            CHECK_MSG(emits ? rgb_eq(s->materials[1].emissive, 1.0f, 2.0f, 4.0f)
+                            : rgb_eq(s->materials[1].emissive, 0, 0, 0),
+                      "%s: lamp emissive %g %g %g", files[f], s->materials[1].emissive[0], s->materials[1].emissive[1],
+                      s->materials[1].emissive[2]);
+            CHECK(rgb_eq(s->materials[2].emissive, 0, 0, 0) && rgb_eq(s->materials[3].emissive, 0, 0, 0));
+        }
+        CHECK_MSG(s->features.has_emissive == emits, "%s: has_emissive %d", files[f], s->features.has_emissive);
+        pg_scene_free(s);
+    }
+    pg_scene *s;
+    if ((s = load_corpus("ok_emissive.gltf"))) { /* (1, 0.5, 0) x 5; the textured material emits nothing */
+        CHECK(s->n_materials >= 2 && rgb_eq(s->materials[0].emissive, 5.0f, 2.5f, 0.0f) &&
+              rgb_eq(s->materials[1].emissive, 0, 0, 0));
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_required_emissive_strength.gltf"))) { /* (0.5, 0.25, 1) x 2, required */
+        CHECK(s->n_materials >= 1 && rgb_eq(s->materials[0].emissive, 1.0f, 0.5f, 2.0f) && s->n_warnings == 0);
         pg_scene_free(s);
     }
 }
@@ -861,6 +906,7 @@ static void test_corpus(void)
     CHECK(n_err >= 30);
     test_corpus_valid_details();
     test_corpus_features();
+    test_emissive_loader();
 }
 
 /* ---- object framing, object lights, glTF cameras (tests/corpus/gltf/objects) ------------------ */

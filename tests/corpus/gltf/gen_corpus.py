@@ -536,13 +536,48 @@ write("ok_many_extensions.gltf", d, "PG_OK",
       + ["extensionsUsed: 2 more extensions ignored (not supported)"])
 for name, exts in (("required_texture_transform.gltf", ["KHR_texture_transform", "KHR_mesh_quantization"]),
                    ("required_meshopt.gltf", ["EXT_meshopt_compression"]),
-                   ("required_emissive_strength.gltf", ["KHR_materials_emissive_strength"])):
+                   ("required_emissive_and_meshopt.gltf", ["KHR_materials_emissive_strength",
+                                                           "EXT_meshopt_compression"])):
     d, _ = base_doc()
     d["extensionsUsed"] = exts
     d["extensionsRequired"] = exts
-    names = ", ".join("'%s'" % e for e in exts)
-    write(name, d, "PG_ERR_GLTF", "extensionsRequired: %s %s not supported (passgraph implements no "
-          "glTF extensions; only core glTF 2.0)" % (names, "is" if len(exts) == 1 else "are"))
+    refused = [e for e in exts if e != "KHR_materials_emissive_strength"]  # implemented: accepted
+    names = ", ".join("'%s'" % e for e in refused)
+    write(name, d, "PG_ERR_GLTF", "extensionsRequired: %s %s not supported (not implemented by passgraph)"
+          % (names, "is" if len(refused) == 1 else "are"))
+# an implemented extension is accepted when required, and not warned about when used
+d, _ = base_doc()
+d["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+d["extensionsRequired"] = ["KHR_materials_emissive_strength"]
+d["meshes"][0]["primitives"][0]["material"] = 0
+d["materials"] = [{"emissiveFactor": [0.5, 0.25, 1],
+                   "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2}}}]
+write("ok_required_emissive_strength.gltf", d, "PG_OK")
+# emissiveFactor / emissiveStrength must be finite and >= 0. JSON has no infinity: a number past the
+# double range (1e999) is refused by the JSON parser; a product past the float range by the loader.
+for name, mat, msg in (
+        ("emissive_negative.gltf", {"emissiveFactor": [1, -0.5, 0]},
+         "materials[0].emissiveFactor: expected 3 finite numbers >= 0, got [1,-0.5,0]"),
+        ("emissive_infinite.gltf", {"emissiveFactor": [1, "INF", 0]}, "number overflow parsing '1e999'"),
+        ("emissive_two_numbers.gltf", {"emissiveFactor": [1, 1]},
+         "materials[0].emissiveFactor: expected 3 finite numbers >= 0, got [1,1]"),
+        ("emissive_strength_negative.gltf",
+         {"emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": -2}}},
+         "materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength: expected a finite number >= 0, "
+         "got -2"),
+        ("emissive_strength_infinite.gltf",
+         {"emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": "INF"}}},
+         "number overflow parsing '1e999'"),
+        ("emissive_factor_overflow.gltf", {"emissiveFactor": [1e39, 0, 0]},
+         "materials[0].emissiveFactor: 1e+39 x emissiveStrength 1 is outside the float range"),
+        ("emissive_strength_overflow.gltf",
+         {"emissiveFactor": [1, 1e30, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 1e30}}},
+         "materials[0].emissiveFactor: 1e+30 x emissiveStrength 1e+30 is outside the float range")):
+    d, _ = base_doc()
+    d["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+    d["meshes"][0]["primitives"][0]["material"] = 0
+    d["materials"] = [mat]
+    write(name, json.dumps(d, indent=1).replace('"INF"', "1e999") + "\n", "PG_ERR_GLTF", msg)
 d, _ = base_doc()
 d["meshes"][0]["primitives"][0]["material"] = 0
 d["materials"] = [{"name": "glass", "alphaMode": "BLEND",
@@ -573,8 +608,7 @@ d["materials"] = [{"name": "lamp", "emissiveFactor": [1, 0.5, 0],
                    "pbrMetallicRoughness": {"metallicRoughnessTexture": {"index": 0}},
                    "occlusionTexture": {"index": 0}}]
 write("ok_emissive.gltf", d, "PG_OK", warn=[
-    "extensionsUsed: 'KHR_materials_emissive_strength' ignored: emission is not drawn",
-    "emissive factor/texture of 2 materials (materials[0] 'lamp', materials[1]) ignored: emission is not drawn",
+    "emissiveTexture of 1 material (materials[1]) ignored: the emissiveFactor alone is drawn",
     "metallicRoughnessTexture of 1 material (materials[1]) ignored: the metallic/roughness factors are used",
     "occlusionTexture of 1 material (materials[1]) ignored"])
 
