@@ -5,7 +5,8 @@
  *   1. read the file (missing/unreadable: PG_ERR_IO); .glb is recognised by its magic bytes and
  *      its container header is checked here (PG_ERR_PARSE);
  *   2. parse the JSON with nlohmann::json (syntax errors: PG_ERR_PARSE) and PRE-VALIDATE it:
- *      root object, asset.version 2.x, no extensionsRequired, every cross-reference in range
+ *      root object, asset.version 2.x, no extensionsRequired but the implemented ones
+ *      (kImplementedExtensions: KHR_texture_transform), every cross-reference in range
  *      (sparse indices/values bufferViews included),
  *      buffers present with exactly byteLength bytes, bufferViews inside their buffers, image
  *      files present. tinygltf 2.7 does not check all of these (and reads an image bufferView's
@@ -21,14 +22,18 @@
  * Primitive modes: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN are drawn (strips/fans become
  * lists); POINTS/LINES/LINE_LOOP/LINE_STRIP are skipped with one warning line; any other
  * mode value is an error. A scene left with no triangles is an error.
- * TEXCOORD_0 is used for every texture (a texCoord other than 0 is read from TEXCOORD_0, warned).
+ * COLOR_0 (VEC3/VEC4, FLOAT or normalized UNSIGNED_BYTE/SHORT) fills pg_scene.colors when a drawn
+ * primitive has it (white elsewhere); TEXCOORD_1 fills pg_scene.uv1 when a drawn primitive has it
+ * and its material reads it. textureInfo texCoord 0/1 (and KHR_texture_transform's texCoord, which
+ * overrides it) selects the set per slot; texCoord >= 2 reads TEXCOORD_0, warned.
  * Sparse accessors are applied to a dense copy (Ctx::sparse_data) of the accessor's data.
  *
  * Warnings (pg_scene.warnings, collect_warnings): everything the file uses that is not drawn as it
  * asks gets one line per kind (skins, morph targets, animations, each extension in
- * extensionsUsed, BLEND materials, emissive / occlusion / metallic-roughness textures, COLOR_0,
- * TEXCOORD_1+, texCoord != 0, sampler modes, point/line primitives). The library never prints
- * them. Any entry of extensionsRequired is an error (no extension is implemented). A non-GLB file
+ * extensionsUsed that is not implemented, BLEND materials, emission / occlusion /
+ * metallic-roughness textures, COLOR_1+, TEXCOORD_2+, texCoord >= 2, sampler values outside the
+ * glTF enums, point/line primitives). The library never prints them. An extensionsRequired entry
+ * that is not implemented is an error. A non-GLB file
  * whose first non-blank byte is not '{' or '[' is "not a glTF 2.0 file"; asset.version 1.x is
  * "glTF 1.0 is not supported, only 2.0".
  * Non-finite POSITION / NORMAL / TEXCOORD_0 / TANGENT values are errors, and so are positions that
@@ -39,7 +44,8 @@
  *   shininess = clamp(2 / (roughness^4 + 1e-4) - 2, 1, 512)         (Beckmann-like roughness
  *                                                                    to Blinn-Phong exponent)
  * baseColorTexture -> sRGB texture, normalTexture -> linear texture; an image used both ways gets
- * two pg_texture entries. Primitives without a material use an appended white "default"
+ * two pg_texture entries, and so does one image used with two sampler states (TexKey); the
+ * emissiveTexture is sRGB. Primitives without a material use an appended white "default"
  * material (glTF's default: metallic 1, roughness 1).
  *
  * Exceptions never leave this file: internal failures are thrown as LoadFail and turned into a
