@@ -162,6 +162,13 @@ out:
     return r;
 }
 
+/* field by field: the struct has padding */
+static bool same_state(const pg_sampler_state *a, const pg_sampler_state *b)
+{
+    return a->wrap_s == b->wrap_s && a->wrap_t == b->wrap_t && a->mag_nearest == b->mag_nearest &&
+           a->min_nearest == b->min_nearest && a->mip == b->mip;
+}
+
 pg_result pg_scene_sampler_create(pg_gpu *gpu, const pg_sampler_state *st, VkSampler *out, pg_error *err)
 {
     static const VkSamplerAddressMode wrap[3] = {VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
@@ -267,7 +274,7 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
     for (uint32_t t = 0; t < scene->n_textures; t++) {
         const pg_sampler_state *ss = &scene->textures[t].sampler;
         uint32_t k = 0;
-        while (k < sg->n_samplers && memcmp(&sg->sampler_states[k], ss, sizeof *ss) != 0) k++;
+        while (k < sg->n_samplers && !same_state(&sg->sampler_states[k], ss)) k++;
         if (k == sg->n_samplers) sg->sampler_states[sg->n_samplers++] = *ss;
         tex_sampler[t + 1] = k;
     }

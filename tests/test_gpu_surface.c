@@ -207,7 +207,8 @@ static void check_textured(const char *file, const tex_ref *r, float **keep)
         tex = &l.sc->textures[l.sc->materials[0].base_color_tex];
     CHECK_MSG(tex != NULL, "%s: no base colour texture", file);
     /* one sampler per distinct state: the white texture's default + this texture's */
-    bool default_state = tex && !memcmp(&tex->sampler, &(pg_sampler_state){0}, sizeof tex->sampler);
+    bool default_state = tex && tex->sampler.wrap_s == PG_WRAP_REPEAT && tex->sampler.wrap_t == PG_WRAP_REPEAT &&
+                         !tex->sampler.mag_nearest && !tex->sampler.min_nearest && tex->sampler.mip == PG_MIP_LINEAR;
     CHECK_MSG(l.sg->n_samplers == (default_state ? 1u : 2u), "%s: %u samplers", file, l.sg->n_samplers);
     for (int p = 0; p < 2 && tex; p++) {
         pg_th_frame f;
