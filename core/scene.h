@@ -107,7 +107,8 @@ typedef struct pg_scene {
     uint32_t n_vertices;
     /* Optional per-vertex streams, n_vertices entries each, NULL when no drawn primitive has the
      * attribute (then no shader path reads it): COLOR_0 as linear RGBA (white where a primitive
-     * has none), TEXCOORD_1 (0,0 where a primitive has none). */
+     * has none), TEXCOORD_1 (a copy of TEXCOORD_0 where a primitive has none; warned when its
+     * material reads set 1). */
     float (*colors)[4];
     float (*uv1)[2];
     uint32_t *indices;        /* 16-bit glTF indices are widened */

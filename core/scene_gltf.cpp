@@ -1168,8 +1168,9 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
     const size_t base = o.verts.size();
     o.verts.resize(base + n);
     /* the optional streams exist from the first primitive that has the attribute on (white /
-     * (0,0) for the vertices of primitives without it) */
+     * TEXCOORD_0 for the vertices of primitives without it, below) */
     if (col || !o.colors.empty()) o.colors.resize((base + n) * 4, 1.0f);
+    const bool uv1_fresh = uv1 && o.uv1.empty();
     if (uv1 || !o.uv1.empty()) o.uv1.resize((base + n) * 2, 0.0f);
     pg_vertex *V = o.verts.data() + base;
     for (size_t i = 0; i < n; i++) {
@@ -1235,6 +1236,12 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
                 for (int r = 0; r < 3; r++) vx.tangent[r] = float(t[r] / l);
             vx.tangent[3] = float((q[3] < 0 ? -1.0 : 1.0) * nsign);
         }
+    }
+    /* TEXCOORD_1 of the vertices of primitives without it: a copy of their TEXCOORD_0 (what a
+     * texture reading set 1 then samples, as when no primitive has TEXCOORD_1; warned) */
+    if (!o.uv1.empty()) {
+        const size_t from = uv1_fresh ? 0 : base, to = uv1 ? base : base + n;
+        for (size_t j = from; j < to; j++) memcpy(&o.uv1[j * 2], o.verts[j].uv, sizeof(float[2]));
     }
     if (det < 0)
         for (size_t t = 0; t + 2 < ind.size(); t += 3) std::swap(ind[t + 1], ind[t + 2]);
@@ -1854,12 +1861,19 @@ pg_scene *load(Ctx &c)
         memcpy(s->colors, o.colors.data(), o.colors.size() * sizeof(float));
     }
     bool uv1_read = false;
-    for (size_t p = 0; p < o.prims.size() && !o.uv1.empty(); p++) {
-        if (!o.prim_has_uv1[p] || !o.prims[p].index_count) continue;
+    unsigned uv1_missing = 0; /* drawn primitives whose material reads TEXCOORD_1 they lack */
+    for (size_t p = 0; p < o.prims.size(); p++) {
+        if (!o.prims[p].index_count) continue;
         const pg_material &pm = mats[o.prims[p].material];
         const int tex[PG_TEXSLOT_COUNT] = {pm.base_color_tex, pm.normal_tex, pm.emissive_tex};
-        for (int t = 0; t < PG_TEXSLOT_COUNT; t++) uv1_read = uv1_read || (tex[t] >= 0 && pm.tex_coord[t] == 1);
+        bool reads = false;
+        for (int t = 0; t < PG_TEXSLOT_COUNT; t++) reads = reads || (tex[t] >= 0 && pm.tex_coord[t] == 1);
+        if (reads && o.prim_has_uv1[p]) uv1_read = true;
+        if (reads && !o.prim_has_uv1[p]) uv1_missing++;
     }
+    if (uv1_missing)
+        c.warnings.push_back("TEXCOORD_1 missing in " + plural(uv1_missing, "primitive", "primitives") +
+                             " whose material reads it (texCoord 1): TEXCOORD_0 used");
     if (uv1_read) {
         s->uv1 = static_cast<float(*)[2]>(malloc(o.uv1.size() * sizeof(float)));
         if (!s->uv1) throw std::bad_alloc();

@@ -902,6 +902,20 @@ static void test_gltf_features(void)
         CHECK(s->uv1 == NULL && !s->features.has_uv1 && s->materials[0].tex_coord[PG_TEXSLOT_BASE] == 0);
         pg_scene_free(s);
     }
+    if ((s = load_feature("uv1_missing.gltf"))) { /* primitives 0 and 2 lack TEXCOORD_1: their TEXCOORD_0 */
+        CHECK(s->uv1 != NULL && s->n_vertices == 12 && s->features.has_uv1);
+        for (uint32_t v = 0; s->uv1 && v < 12; v++) {
+            const float *want = v >= 4 && v < 8 ? (const float[2]){0.55f + 0.4f * (v % 2), v < 6 ? 0.1f : 0.9f}
+                                                : s->vertices[v].uv;
+            CHECK_MSG(near_f(s->uv1[v][0], want[0], 1e-6f) && near_f(s->uv1[v][1], want[1], 1e-6f),
+                      "uv1_missing: vertex %u uv1 %g %g, want %g %g", v, s->uv1[v][0], s->uv1[v][1], want[0], want[1]);
+        }
+        CHECK(near_f(s->vertices[0].uv[0], 0.1f, 1e-6f) && near_f(s->vertices[11].uv[1], 0.9f, 1e-6f));
+        CHECK_MSG(s->n_warnings == 1 && strstr(s->warnings[0], "uv1_missing.gltf: TEXCOORD_1 missing in 2 primitives "
+                                                              "whose material reads it (texCoord 1): TEXCOORD_0 used"),
+                  "%s", s->n_warnings ? s->warnings[0] : "no warning");
+        pg_scene_free(s);
+    }
     if ((s = load_feature("texcoord0.gltf"))) {
         CHECK(s->uv1 == NULL && !s->features.has_uv1);
         pg_scene_free(s);

@@ -207,6 +207,17 @@ doc.write("slots.gltf")
 # TEXCOORD_1 present but no texture reads it: no uv1 stream
 textured("uv1_unused.gltf", 2, 1, [R, B], UV_LEFT, NEAREST, None, UV_RIGHT).write("uv1_unused.gltf")
 
+# TEXCOORD_1 read by a material but missing in primitives 0 and 2 (primitive 1 has it): their
+# TEXCOORD_1 is a copy of their TEXCOORD_0 (warned)
+doc = Doc()
+doc.d["images"] = [{"uri": png_uri(2, 1, R + B)}]
+doc.d["textures"] = [{"source": 0}]
+doc.d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 1}}}]
+doc.primitive(quad_attrs(doc, [(0.1, 0.2), (0.3, 0.2), (0.1, 0.4), (0.3, 0.4)], x0=-1, x1=-0.5), QUAD_IDX, 0)
+doc.primitive(quad_attrs(doc, UV01, UV_RIGHT, x0=-0.4, x1=0.1), QUAD_IDX, 0)
+doc.primitive(quad_attrs(doc, [(0.6, 0.7), (0.8, 0.7), (0.6, 0.9), (0.8, 0.9)], x0=0.2, x1=0.7), QUAD_IDX, 0)
+doc.write("uv1_missing.gltf")
+
 # samplers: one image used through every minFilter value and wrap mode; samplers 6 and 7 have
 # the same state (one pg_texture); texture 8 has no sampler (the default state, = sampler 5):
 # 7 pg_textures
