@@ -421,7 +421,7 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
         if (!o) return false;
         cJSON_AddItemToArray(passes, o);
         const uint32_t n_def = pp->decl.n_defines < PG_MAX_DEFINES ? pp->decl.n_defines : PG_MAX_DEFINES;
-        const uint32_t n_exp = pp->decl.n_explain < 8 ? pp->decl.n_explain : 8;
+        const uint32_t n_exp = pp->decl.n_explain < PG_MAX_PASS_EXPLAIN ? pp->decl.n_explain : PG_MAX_PASS_EXPLAIN;
         if (!cJSON_AddNumberToObject(o, "position", k) || !cJSON_AddStringToObject(o, "name", pp->name) ||
             !cJSON_AddStringToObject(o, "type", type_name(pp)) ||
             !cJSON_AddNumberToObject(o, "declared_index", pp->desc_index) ||

@@ -59,7 +59,8 @@ typedef struct pg_slot_decl {
                                * the producer can be culled. Set with pg_decl_mark_unused(). */
 } pg_slot_decl;
 
-#define PG_MAX_DEFINES 16
+#define PG_MAX_DEFINES 24
+#define PG_MAX_PASS_EXPLAIN 16 /* explanation lines of one pass (declare) */
 typedef struct pg_pass_decl {
     uint32_t n_reads, n_writes;
     pg_slot_decl reads[PG_MAX_SLOTS];  /* same order as pg_pass_desc.reads */
@@ -70,7 +71,7 @@ typedef struct pg_pass_decl {
     char defines[PG_MAX_DEFINES][PG_NAME_MAX];
     /* what the pass left out for this scene and why ("no alpha-mask materials: no discard") */
     uint32_t n_explain;
-    char explain[8][PG_EXPLAIN_MAX];
+    char explain[PG_MAX_PASS_EXPLAIN][PG_EXPLAIN_MAX];
     /* not needed for this scene at all (e.g. no BLEND materials: no transparent pass): the
      * compiler culls it with skip_reason, even with side effects; its writes then keep the value
      * of the previous writer and what only it reads is culled too. Set with pg_decl_skip(). */

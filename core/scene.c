@@ -414,6 +414,7 @@ void pg_scene_finalize(pg_scene *s)
     float smin[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, smax[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
     bool any = false;
     memset(&s->features, 0, sizeof s->features);
+    s->features.has_vertex_colors = s->colors != NULL;
     for (uint32_t p = 0; p < s->n_primitives; p++) {
         pg_primitive *pr = &s->primitives[p];
         float mn[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, mx[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};

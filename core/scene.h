@@ -107,7 +107,8 @@ typedef struct pg_scene {
     uint32_t n_vertices;
     /* Optional per-vertex streams, n_vertices entries each, NULL when no drawn primitive has the
      * attribute (then no shader path reads it): COLOR_0 as linear RGBA (white where a primitive
-     * has none), TEXCOORD_1 (0,0 where a primitive has none). */
+     * has none), TEXCOORD_1 (a copy of TEXCOORD_0 where a primitive has none; warned when its
+     * material reads set 1). */
     float (*colors)[4];
     float (*uv1)[2];
     uint32_t *indices;        /* 16-bit glTF indices are widened */
@@ -149,14 +150,16 @@ typedef struct pg_camera {
  * PG_ERR_IO when the file itself cannot be read, PG_ERR_PARSE for JSON syntax / a broken GLB
  * container, PG_ERR_GLTF for content (missing buffer or image files, ranges, types, indices,
  * non-finite values, cycles, undecodable, non-PNG/JPEG or > 16384 px images, glTF 1.0, an
- * unsupported extension in extensionsRequired), PG_ERR_LIMIT past 2^32 vertices. A directory is
+ * extensionsRequired entry other than KHR_texture_transform, bad KHR_texture_transform values), PG_ERR_LIMIT past 2^32 vertices. A directory is
  * "PATH: is a directory (expected a glTF 2.0 .gltf/.glb file)" (PG_ERR_IO); a file that is neither
  * JSON nor GLB (an .obj, say) is "PATH: not a glTF 2.0 file (passgraph reads .gltf and .glb
  * only)" (PG_ERR_PARSE). Features the loader does not draw are listed in scene->warnings (see
- * the README "Scenes" table): skins and morph targets (bind pose / base geometry), extensions in
- * extensionsUsed only, alphaMode BLEND (opaque), COLOR_0, TEXCOORD_1+, sampler wrap/filter modes,
- * emissive, occlusion and metallic-roughness textures, point/line primitives. Sparse accessors
- * are applied.
+ * the README "Scenes" table): skins and morph targets (bind pose / base geometry), unimplemented
+ * extensions in extensionsUsed, alphaMode BLEND (opaque), COLOR_1+, TEXCOORD_2+ and texCoord >= 2,
+ * sampler values outside the glTF enums, emission, occlusion and metallic-roughness textures,
+ * point/line primitives. Sparse accessors are applied. COLOR_0 fills scene->colors, TEXCOORD_1
+ * scene->uv1 (when a texture reads it), textureInfo texCoord / KHR_texture_transform fill
+ * pg_material.tex_coord / uv_transform, glTF samplers fill pg_texture.sampler.
  * Details (core/scene_gltf.cpp header): the node hierarchy of `scene` (else scenes[0], else every
  * root node) is baked into the vertices (normals by the inverse-transpose, a mirroring transform
  * flips the winding and the tangent handedness); one pg_primitive per drawn (node, primitive)
@@ -164,7 +167,7 @@ typedef struct pg_camera {
  * skipped with a line in scene->warnings; missing normals are computed (area-weighted), missing tangents
  * are computed for normal-mapped materials; materials keep their glTF indices (a white "default"
  * material is appended for primitives without one); textures are decoded to RGBA8 with full mip
- * chains, one pg_texture per (image, sRGB-or-linear) use. name = the file stem. Camera nodes of
+ * chains, one pg_texture per (image, sRGB-or-linear, sampler state) use. name = the file stem. Camera nodes of
  * the same hierarchy fill scene->cameras (pg_scene_camera; bad camera objects are PG_ERR_GLTF
  * naming "cameras[i].perspective.yfov" etc.). */
 pg_result pg_scene_load_gltf(const char *path, pg_scene **out, pg_error *err);

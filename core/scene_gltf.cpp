@@ -5,8 +5,9 @@
  *   1. read the file (missing/unreadable: PG_ERR_IO); .glb is recognised by its magic bytes and
  *      its container header is checked here (PG_ERR_PARSE);
  *   2. parse the JSON with nlohmann::json (syntax errors: PG_ERR_PARSE) and PRE-VALIDATE it:
- *      root object, asset.version 2.x, no extensionsRequired passgraph does not implement,
- *      emissiveFactor / emissiveStrength finite and >= 0, every cross-reference in range
+ *      root object, asset.version 2.x, no extensionsRequired but the implemented ones
+ *      (kImplementedExtensions), emissiveFactor / emissiveStrength finite and >= 0, every
+ *      cross-reference in range
  *      (sparse indices/values bufferViews included),
  *      buffers present with exactly byteLength bytes, bufferViews inside their buffers, image
  *      files present. tinygltf 2.7 does not check all of these (and reads an image bufferView's
@@ -22,15 +23,18 @@
  * Primitive modes: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN are drawn (strips/fans become
  * lists); POINTS/LINES/LINE_LOOP/LINE_STRIP are skipped with one warning line; any other
  * mode value is an error. A scene left with no triangles is an error.
- * TEXCOORD_0 is used for every texture (a texCoord other than 0 is read from TEXCOORD_0, warned).
+ * COLOR_0 (VEC3/VEC4, FLOAT or normalized UNSIGNED_BYTE/SHORT) fills pg_scene.colors when a drawn
+ * primitive has it (white elsewhere); TEXCOORD_1 fills pg_scene.uv1 when a drawn primitive has it
+ * and its material reads it. textureInfo texCoord 0/1 (and KHR_texture_transform's texCoord, which
+ * overrides it) selects the set per slot; texCoord >= 2 reads TEXCOORD_0, warned.
  * Sparse accessors are applied to a dense copy (Ctx::sparse_data) of the accessor's data.
  *
  * Warnings (pg_scene.warnings, collect_warnings): everything the file uses that is not drawn as it
  * asks gets one line per kind (skins, morph targets, animations, each extension in
- * extensionsUsed but not implemented, emissive / occlusion / metallic-roughness textures, COLOR_0,
- * TEXCOORD_1+, texCoord != 0, sampler modes, point/line primitives). The library never prints
- * them. An entry of extensionsRequired other than the implemented extensions (kImplementedExtensions:
- * KHR_materials_emissive_strength) is an error. A non-GLB file
+ * extensionsUsed that is not implemented, BLEND materials, emission / occlusion /
+ * metallic-roughness textures, COLOR_1+, TEXCOORD_2+, texCoord >= 2, sampler values outside the
+ * glTF enums, point/line primitives). The library never prints them. An extensionsRequired entry
+ * that is not implemented is an error. A non-GLB file
  * whose first non-blank byte is not '{' or '[' is "not a glTF 2.0 file"; asset.version 1.x is
  * "glTF 1.0 is not supported, only 2.0".
  * Non-finite POSITION / NORMAL / TEXCOORD_0 / TANGENT values are errors, and so are positions that
@@ -43,7 +47,8 @@
  *   emissive  = emissiveFactor x KHR_materials_emissive_strength.emissiveStrength (default 1),
  *               linear, unclamped (a product past the float range is an error)
  * baseColorTexture -> sRGB texture, normalTexture -> linear texture; an image used both ways gets
- * two pg_texture entries. Primitives without a material use an appended white "default"
+ * two pg_texture entries, and so does one image used with two sampler states (TexKey); the
+ * emissiveTexture is sRGB. Primitives without a material use an appended white "default"
  * material (glTF's default: metallic 1, roughness 1).
  *
  * Exceptions never leave this file: internal failures are thrown as LoadFail and turned into a
@@ -68,6 +73,7 @@
 #include <memory>
 #include <new>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -82,6 +88,16 @@ constexpr int kMaxImageSide = 16384;
 constexpr uint64_t kMaxJpegPixelsPerByte = 1024;
 constexpr int kMaxNodeDepth = 1024;
 constexpr size_t kMaxNodeVisits = size_t(1) << 20;
+
+/* The glTF extensions passgraph implements: accepted in extensionsRequired, not warned in
+ * extensionsUsed. */
+constexpr const char *kImplementedExtensions[] = {"KHR_materials_emissive_strength", "KHR_texture_transform"};
+bool extension_implemented(const std::string &e)
+{
+    for (const char *x : kImplementedExtensions)
+        if (e == x) return true;
+    return false;
+}
 
 struct LoadFail {
     pg_result code;
@@ -155,8 +171,8 @@ struct Ctx {
     tinygltf::Model model;
     std::string image_err; /* set by the image callback */
     unsigned skipped_prims = 0;
-    unsigned color_prims = 0;    /* drawn primitives with COLOR_0 (ignored) */
-    unsigned texcoord1_prims = 0;/* drawn primitives with TEXCOORD_1.. (ignored) */
+    unsigned color1_prims = 0;   /* drawn primitives with COLOR_1.. (ignored) */
+    unsigned texcoord2_prims = 0;/* drawn primitives with TEXCOORD_2.. (ignored) */
     std::vector<std::string> warnings; /* without the "PATH: " prefix */
     /* dense copies of sparse accessors (accessor index -> data), owned until hand-out */
     std::map<int, std::vector<unsigned char>> sparse_data;
@@ -304,18 +320,6 @@ bool is_regular_file(const std::string &p, uint64_t *size)
     return true;
 }
 
-/* The glTF extensions passgraph implements: accepted in extensionsRequired, no warning in
- * extensionsUsed. */
-const char *const kImplementedExtensions[] = {
-    "KHR_materials_emissive_strength",
-};
-
-bool implemented_extension(const std::string &e)
-{
-    for (const char *k : kImplementedExtensions)
-        if (e == k) return true;
-    return false;
-}
 
 /* emissiveFactor: 3 finite numbers >= 0; KHR_materials_emissive_strength.emissiveStrength: a
  * finite number >= 0 (materials[i] is `w`). */
@@ -357,20 +361,23 @@ void prevalidate(Ctx &c)
         gfail(strf("asset.minVersion: '%s' is not supported",
                    mvit->get<std::string>().c_str()));
 
-    /* a required extension passgraph does not implement (kImplementedExtensions) is refused,
-     * naming each */
+    /* a required extension passgraph does not implement is refused, naming each */
     if (const json *req = opt_array(j, "extensionsRequired", "")) {
         std::string names;
-        size_t n = 0;
+        size_t n_unsup = 0;
         for (const json &e : *req) {
-            if (e.is_string() && implemented_extension(e.get<std::string>())) continue;
+            if (e.is_string() && extension_implemented(e.get<std::string>())) continue;
             if (!names.empty()) names += ", ";
             names += "'" + (e.is_string() ? e.get<std::string>() : e.dump()) + "'";
-            n++;
+            n_unsup++;
         }
-        if (n)
-            gfail(strf("extensionsRequired: %s %s not supported (not implemented by passgraph)",
-                       names.c_str(), n == 1 ? "is" : "are"));
+        if (n_unsup) {
+            std::string impl;
+            for (const char *x : kImplementedExtensions) impl += std::string(impl.empty() ? "" : ", ") + x;
+            gfail(strf("extensionsRequired: %s %s not supported (passgraph implements only these glTF "
+                       "extensions: %s)",
+                       names.c_str(), n_unsup == 1 ? "is" : "are", impl.c_str()));
+        }
     }
 
     const json *buffers = opt_array(j, "buffers", "");
@@ -1043,6 +1050,9 @@ struct Out {
     std::vector<uint32_t> idx;
     std::vector<pg_primitive> prims;
     std::vector<uint32_t> prim_gltf_material; /* -1 (UINT32_MAX) = default material */
+    std::vector<char> prim_has_uv1;           /* the primitive has TEXCOORD_1 */
+    std::vector<float> colors;                /* COLOR_0, 4 per vertex; empty when no primitive has it */
+    std::vector<float> uv1;                   /* TEXCOORD_1, 2 per vertex; empty when none has it */
 };
 
 void check_finite(const float *v, int n, const View &view, const char *semantic, size_t i)
@@ -1074,13 +1084,14 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
 
     const int *pa = find_attr(prim, "POSITION");
     if (!pa) gfail(pw + ".attributes: POSITION missing (required)");
-    bool has_color = false, has_uv1 = false;
+    bool has_color1 = false, has_uv2 = false;
     for (const auto &at : prim.attributes) {
-        has_color = has_color || at.first.compare(0, 6, "COLOR_") == 0;
-        has_uv1 = has_uv1 || (at.first.compare(0, 9, "TEXCOORD_") == 0 && at.first != "TEXCOORD_0");
+        has_color1 = has_color1 || (at.first.compare(0, 6, "COLOR_") == 0 && at.first != "COLOR_0");
+        has_uv2 = has_uv2 || (at.first.compare(0, 9, "TEXCOORD_") == 0 && at.first != "TEXCOORD_0" &&
+                              at.first != "TEXCOORD_1");
     }
-    c.color_prims += has_color;
-    c.texcoord1_prims += has_uv1;
+    c.color1_prims += has_color1;
+    c.texcoord2_prims += has_uv2;
     View pos = get_view(c, *pa);
     expect_float(pos, "POSITION", TINYGLTF_TYPE_VEC3);
     const size_t n = pos.count;
@@ -1098,17 +1109,28 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
     if (nrm) expect_float(*nrm, "NORMAL", TINYGLTF_TYPE_VEC3);
     std::unique_ptr<View> tan = optional_view("TANGENT");
     if (tan) expect_float(*tan, "TANGENT", TINYGLTF_TYPE_VEC4);
+    /* TEXCOORD_n and COLOR_0: FLOAT, or normalized UNSIGNED_BYTE / UNSIGNED_SHORT */
+    auto float_or_unorm = [](const View &v) {
+        return v.ctype == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+               (v.normalized && (v.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                 v.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+    };
     std::unique_ptr<View> uv = optional_view("TEXCOORD_0");
-    if (uv) {
-        bool ok = uv->type == TINYGLTF_TYPE_VEC2 &&
-                  (uv->ctype == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                   (uv->normalized && (uv->ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                       uv->ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
-        if (!ok)
-            gfail(strf("accessors[%d]: TEXCOORD_0 must be VEC2 FLOAT or normalized "
-                       "UNSIGNED_BYTE/UNSIGNED_SHORT (got %s %s)",
-                       uv->index, type_name(uv->type), ctype_name(uv->ctype)));
-    }
+    if (uv && !(uv->type == TINYGLTF_TYPE_VEC2 && float_or_unorm(*uv)))
+        gfail(strf("accessors[%d]: TEXCOORD_0 must be VEC2 FLOAT or normalized "
+                   "UNSIGNED_BYTE/UNSIGNED_SHORT (got %s %s)",
+                   uv->index, type_name(uv->type), ctype_name(uv->ctype)));
+    std::unique_ptr<View> uv1 = optional_view("TEXCOORD_1");
+    if (uv1 && !(uv1->type == TINYGLTF_TYPE_VEC2 && float_or_unorm(*uv1)))
+        gfail(strf("accessors[%d]: TEXCOORD_1 must be VEC2 FLOAT or normalized "
+                   "UNSIGNED_BYTE/UNSIGNED_SHORT (got %s %s)",
+                   uv1->index, type_name(uv1->type), ctype_name(uv1->ctype)));
+    std::unique_ptr<View> col = optional_view("COLOR_0");
+    if (col && !((col->type == TINYGLTF_TYPE_VEC3 || col->type == TINYGLTF_TYPE_VEC4) && float_or_unorm(*col)))
+        gfail(strf("accessors[%d]: COLOR_0 must be VEC3 or VEC4, FLOAT or normalized "
+                   "UNSIGNED_BYTE/UNSIGNED_SHORT (got %s %s%s)",
+                   col->index, type_name(col->type), col->normalized ? "normalized " : "",
+                   ctype_name(col->ctype)));
 
     /* indices (local to this primitive) */
     std::vector<uint32_t> ind;
@@ -1171,6 +1193,11 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
         fail(PG_ERR_LIMIT, pw + ": scene exceeds 2^32 vertices or indices");
     const size_t base = o.verts.size();
     o.verts.resize(base + n);
+    /* the optional streams exist from the first primitive that has the attribute on (white /
+     * TEXCOORD_0 for the vertices of primitives without it, below) */
+    if (col || !o.colors.empty()) o.colors.resize((base + n) * 4, 1.0f);
+    const bool uv1_fresh = uv1 && o.uv1.empty();
+    if (uv1 || !o.uv1.empty()) o.uv1.resize((base + n) * 2, 0.0f);
     pg_vertex *V = o.verts.data() + base;
     for (size_t i = 0; i < n; i++) {
         pg_vertex &vx = V[i];
@@ -1210,6 +1237,16 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
             read_floats(*uv, i, vx.uv);
             check_finite(vx.uv, 2, *uv, "TEXCOORD_0", i);
         }
+        if (col) {
+            float q[4] = {1, 1, 1, 1}; /* VEC3: alpha 1 */
+            read_floats(*col, i, q);
+            check_finite(q, col->ncomp, *col, "COLOR_0", i);
+            memcpy(&o.colors[(base + i) * 4], q, sizeof q);
+        }
+        if (uv1) {
+            read_floats(*uv1, i, &o.uv1[(base + i) * 2]);
+            check_finite(&o.uv1[(base + i) * 2], 2, *uv1, "TEXCOORD_1", i);
+        }
         if (tan) {
             float q[4];
             read_floats(*tan, i, q);
@@ -1225,6 +1262,12 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
                 for (int r = 0; r < 3; r++) vx.tangent[r] = float(t[r] / l);
             vx.tangent[3] = float((q[3] < 0 ? -1.0 : 1.0) * nsign);
         }
+    }
+    /* TEXCOORD_1 of the vertices of primitives without it: a copy of their TEXCOORD_0 (what a
+     * texture reading set 1 then samples, as when no primitive has TEXCOORD_1; warned) */
+    if (!o.uv1.empty()) {
+        const size_t from = uv1_fresh ? 0 : base, to = uv1 ? base : base + n;
+        for (size_t j = from; j < to; j++) memcpy(&o.uv1[j * 2], o.verts[j].uv, sizeof(float[2]));
     }
     if (det < 0)
         for (size_t t = 0; t + 2 < ind.size(); t += 3) std::swap(ind[t + 1], ind[t + 2]);
@@ -1244,6 +1287,7 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
     o.idx.insert(o.idx.end(), ind.begin(), ind.end());
     o.prims.push_back(pr);
     o.prim_gltf_material.push_back(prim.material >= 0 ? uint32_t(prim.material) : UINT32_MAX);
+    o.prim_has_uv1.push_back(uv1 != nullptr);
 }
 
 struct Walker {
@@ -1282,14 +1326,89 @@ struct Walker {
 
 float clamp01(double x) { return float(x < 0 ? 0 : x > 1 ? 1 : x); }
 
+/* One pg_texture per (image, colour space, sampler state) use. */
 struct TexKey {
     int image;
     bool srgb;
-    bool operator<(const TexKey &b) const
+    pg_sampler_state sampler;
+    std::tuple<int, bool, int, int, bool, bool, int> tie() const
     {
-        return image != b.image ? image < b.image : srgb < b.srgb;
+        return std::make_tuple(image, srgb, int(sampler.wrap_s), int(sampler.wrap_t), sampler.mag_nearest,
+                               sampler.min_nearest, int(sampler.mip));
     }
+    bool operator<(const TexKey &b) const { return tie() < b.tie(); }
 };
+
+pg_wrap wrap_of(int w)
+{
+    if (w == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return PG_WRAP_CLAMP;
+    if (w == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return PG_WRAP_MIRROR;
+    return PG_WRAP_REPEAT; /* REPEAT; unknown values are warned (collect_warnings) */
+}
+
+/* glTF sampler -> pg_sampler_state: absent filters are LINEAR / LINEAR_MIPMAP_LINEAR; the
+ * minFilter values without MIPMAP sample level 0 only (PG_MIP_NONE). */
+pg_sampler_state sampler_state(const tinygltf::Sampler &sm)
+{
+    pg_sampler_state st;
+    memset(&st, 0, sizeof st);
+    st.wrap_s = wrap_of(sm.wrapS);
+    st.wrap_t = wrap_of(sm.wrapT);
+    st.mag_nearest = sm.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+    switch (sm.minFilter) {
+    case TINYGLTF_TEXTURE_FILTER_NEAREST: st.min_nearest = true; st.mip = PG_MIP_NONE; break;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR: st.mip = PG_MIP_NONE; break;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST: st.min_nearest = true; st.mip = PG_MIP_NEAREST; break;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: st.mip = PG_MIP_NEAREST; break;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR: st.min_nearest = true; break;
+    default: break; /* LINEAR_MIPMAP_LINEAR, absent, unknown (warned) */
+    }
+    return st;
+}
+
+/* KHR_texture_transform of a textureInfo JSON object `ti` (at `where`): fills the 2x3 row-major
+ * matrix M = T * R * S of the extension spec (rotation counter-clockwise in UV space):
+ *   { sx cos r,  sy sin r, ox,
+ *    -sx sin r,  sy cos r, oy }
+ * and returns true when the extension is present; *tex_coord is replaced by its texCoord. */
+bool texture_transform(const json &ti, const std::string &where, float m[6], int *tex_coord)
+{
+    const json *ext = opt_object(ti, "extensions", where);
+    if (!ext) return false;
+    const std::string xw = where + ".extensions";
+    const json *tt = opt_object(*ext, "KHR_texture_transform", xw);
+    if (!tt) return false;
+    const std::string tw = xw + ".KHR_texture_transform";
+    auto vec2 = [&](const char *key, double def, double out[2]) {
+        out[0] = out[1] = def;
+        auto it = tt->find(key);
+        if (it == tt->end()) return;
+        bool ok = it->is_array() && it->size() == 2;
+        if (ok)
+            for (const json &x : *it) ok = ok && x.is_number() && std::isfinite(x.get<double>());
+        if (!ok) gfail(strf("%s.%s: expected 2 finite numbers", tw.c_str(), key));
+        out[0] = (*it)[0].get<double>();
+        out[1] = (*it)[1].get<double>();
+    };
+    double off[2], sc[2], rot = 0;
+    vec2("offset", 0.0, off);
+    vec2("scale", 1.0, sc);
+    auto rit = tt->find("rotation");
+    if (rit != tt->end()) {
+        if (!rit->is_number() || !std::isfinite(rit->get<double>()))
+            gfail(tw + ".rotation: expected a finite number (radians)");
+        rot = rit->get<double>();
+    }
+    if (tt->contains("texCoord")) *tex_coord = int(std::min<uint64_t>(uint_field(*tt, "texCoord", tw, false), 1u << 20));
+    const double cr = std::cos(rot), sr = std::sin(rot);
+    m[0] = float(sc[0] * cr);
+    m[1] = float(sc[1] * sr);
+    m[2] = float(off[0]);
+    m[3] = float(-sc[0] * sr);
+    m[4] = float(sc[1] * cr);
+    m[5] = float(off[1]);
+    return true;
+}
 
 struct SceneDeleter {
     void operator()(pg_scene *s) const { pg_scene_free(s); }
@@ -1472,32 +1591,29 @@ void collect_warnings(Ctx &c)
                     plural(morph_meshes, "mesh", "meshes") +
                     " ignored: rendered with the base geometry (weights not applied)");
     constexpr size_t kMaxExtensionLines = 16;
-    size_t ext_lines = 0, ext_more = 0;
-    for (const std::string &e : md.extensionsUsed) {
-        if (implemented_extension(e)) continue;
-        if (ext_lines++ < kMaxExtensionLines)
-            W.push_back("extensionsUsed: '" + e.substr(0, 80) + "' ignored: " + extension_effect(e));
-        else
-            ext_more++;
+    std::vector<std::string> unimpl;
+    for (const std::string &e : md.extensionsUsed)
+        if (!extension_implemented(e)) unimpl.push_back(e);
+    for (size_t i = 0; i < unimpl.size() && i < kMaxExtensionLines; i++) {
+        const std::string &e = unimpl[i];
+        W.push_back("extensionsUsed: '" + e.substr(0, 80) + "' ignored: " + extension_effect(e));
     }
-    if (ext_more)
-        W.push_back(strf("extensionsUsed: %zu more extensions ignored (not supported)", ext_more));
+    if (unimpl.size() > kMaxExtensionLines)
+        W.push_back(strf("extensionsUsed: %zu more extensions ignored (not supported)",
+                         unimpl.size() - kMaxExtensionLines));
 
-    std::vector<std::string> emissive, occlusion, mr, texcoord;
+    std::vector<std::string> occlusion, mr, texcoord;
     for (size_t i = 0; i < md.materials.size(); i++) {
         const tinygltf::Material &m = md.materials[i];
         if ((m.pbrMetallicRoughness.baseColorTexture.index >= 0 &&
-             m.pbrMetallicRoughness.baseColorTexture.texCoord != 0) ||
-            (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0))
+             m.pbrMetallicRoughness.baseColorTexture.texCoord > 1) ||
+            (m.normalTexture.index >= 0 && m.normalTexture.texCoord > 1) ||
+            (m.emissiveTexture.index >= 0 && m.emissiveTexture.texCoord > 1))
             texcoord.push_back(material_desc(md, i));
-        if (m.emissiveTexture.index >= 0) emissive.push_back(material_desc(md, i));
         if (m.occlusionTexture.index >= 0) occlusion.push_back(material_desc(md, i));
         if (m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
             mr.push_back(material_desc(md, i));
     }
-    if (!emissive.empty())
-        W.push_back("emissiveTexture of " + plural(emissive.size(), "material", "materials") + " (" +
-                    name_list(emissive) + ") ignored: the emissiveFactor alone is drawn");
     if (!mr.empty())
         W.push_back("metallicRoughnessTexture of " + plural(mr.size(), "material", "materials") +
                     " (" + name_list(mr) + ") ignored: the metallic/roughness factors are used");
@@ -1506,32 +1622,36 @@ void collect_warnings(Ctx &c)
                     " (" + name_list(occlusion) + ") ignored");
     if (!texcoord.empty())
         W.push_back("textures of " + plural(texcoord.size(), "material", "materials") + " (" +
-                    name_list(texcoord) + ") ask for a texCoord other than 0: read with TEXCOORD_0");
-    if (c.color_prims)
-        W.push_back("COLOR_0 vertex colours in " +
-                    plural(c.color_prims, "primitive", "primitives") + " ignored");
-    if (c.texcoord1_prims)
-        W.push_back("TEXCOORD_1 (and higher) in " +
-                    plural(c.texcoord1_prims, "primitive", "primitives") +
-                    " ignored: every texture is read with TEXCOORD_0");
+                    name_list(texcoord) + ") ask for a texCoord other than 0 or 1: read with TEXCOORD_0");
+    if (c.color1_prims)
+        W.push_back("COLOR_1 (and higher) in " +
+                    plural(c.color1_prims, "primitive", "primitives") + " ignored: COLOR_0 is used");
+    if (c.texcoord2_prims)
+        W.push_back("TEXCOORD_2 (and higher) in " +
+                    plural(c.texcoord2_prims, "primitive", "primitives") +
+                    " ignored: textures read TEXCOORD_0 or TEXCOORD_1");
 
     std::vector<std::string> odd;
     for (size_t i = 0; i < md.samplers.size(); i++) {
         const tinygltf::Sampler &sm = md.samplers[i];
+        /* the glTF values are drawn (sampler_state); only values outside the spec are warned */
+        auto wrap_ok = [](int w) {
+            return w == TINYGLTF_TEXTURE_WRAP_REPEAT || w == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE ||
+                   w == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT;
+        };
         std::string d;
-        if (sm.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT) d += " wrapS " + wrap_name(sm.wrapS);
-        if (sm.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT) d += " wrapT " + wrap_name(sm.wrapT);
-        if (sm.magFilter >= 0 && sm.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR)
+        if (!wrap_ok(sm.wrapS)) d += " wrapS " + wrap_name(sm.wrapS);
+        if (!wrap_ok(sm.wrapT)) d += " wrapT " + wrap_name(sm.wrapT);
+        if (sm.magFilter >= 0 && sm.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR &&
+            sm.magFilter != TINYGLTF_TEXTURE_FILTER_NEAREST)
             d += " magFilter " + filter_name(sm.magFilter);
-        if (sm.minFilter >= 0 && sm.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR &&
-            sm.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR)
+        if (sm.minFilter >= 0 && filter_name(sm.minFilter) == strf("%d", sm.minFilter))
             d += " minFilter " + filter_name(sm.minFilter);
         if (!d.empty()) odd.push_back(strf("samplers[%zu]:", i) + d);
     }
     if (!odd.empty())
-        W.push_back(plural(odd.size(), "sampler", "samplers") + " with other wrap/filter modes (" +
-                    name_list(odd) + ") ignored: textures are drawn with REPEAT and linear " +
-                    "(trilinear) filtering");
+        W.push_back(plural(odd.size(), "sampler", "samplers") + " with unknown wrap/filter values (" +
+                    name_list(odd) + ") ignored: REPEAT / LINEAR (trilinear) used for them");
 }
 
 pg_scene *load(Ctx &c)
@@ -1646,7 +1766,9 @@ pg_scene *load(Ctx &c)
         int src = md.textures[size_t(tex_index)].source;
         if (src < 0 || size_t(src) >= md.images.size())
             gfail(strf("textures[%d]: no usable source image", tex_index));
-        TexKey k{src, srgb};
+        int smp = md.textures[size_t(tex_index)].sampler;
+        TexKey k{src, srgb, {}};
+        if (smp >= 0 && size_t(smp) < md.samplers.size()) k.sampler = sampler_state(md.samplers[size_t(smp)]);
         auto it = tex_of.find(k);
         if (it != tex_of.end()) return int(it->second);
         uint32_t id = uint32_t(tex_order.size());
@@ -1671,6 +1793,33 @@ pg_scene *load(Ctx &c)
         pm.base_color_tex = texture_for(pbr.baseColorTexture.index, true,
                                         mw + ".pbrMetallicRoughness.baseColorTexture");
         pm.normal_tex = texture_for(gm.normalTexture.index, false, mw + ".normalTexture");
+        pm.emissive_tex = texture_for(gm.emissiveTexture.index, true, mw + ".emissiveTexture");
+        /* per slot: texCoord (0 or 1; higher is warned and reads TEXCOORD_0) and
+         * KHR_texture_transform (whose texCoord overrides the textureInfo's) */
+        {
+            const json &jm = c.j.at("materials").at(i);
+            const json *jpbr = opt_object(jm, "pbrMetallicRoughness", mw);
+            const struct {
+                int slot, index, tex_coord;
+                const json *ti;
+                std::string where;
+            } slots[] = {
+                {PG_TEXSLOT_BASE, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                 jpbr ? opt_object(*jpbr, "baseColorTexture", mw) : nullptr,
+                 mw + ".pbrMetallicRoughness.baseColorTexture"},
+                {PG_TEXSLOT_NORMAL, gm.normalTexture.index, gm.normalTexture.texCoord,
+                 opt_object(jm, "normalTexture", mw), mw + ".normalTexture"},
+                {PG_TEXSLOT_EMISSIVE, gm.emissiveTexture.index, gm.emissiveTexture.texCoord,
+                 opt_object(jm, "emissiveTexture", mw), mw + ".emissiveTexture"},
+            };
+            for (const auto &sl : slots) {
+                if (sl.index < 0 || !sl.ti) continue;
+                int tc = sl.tex_coord;
+                pm.has_uv_transform[sl.slot] =
+                    texture_transform(*sl.ti, sl.where, pm.uv_transform[sl.slot], &tc);
+                pm.tex_coord[sl.slot] = uint8_t(tc == 1 ? 1 : 0);
+            }
+        }
         pm.normal_scale = float(std::isfinite(gm.normalTexture.scale) ? gm.normalTexture.scale : 1.0);
         if (gm.alphaMode == "MASK") pm.alpha_mode = PG_ALPHA_MASK;
         else if (gm.alphaMode == "BLEND") pm.alpha_mode = PG_ALPHA_BLEND;
@@ -1730,6 +1879,32 @@ pg_scene *load(Ctx &c)
     s->n_materials = uint32_t(mats.size());
     s->cameras = copy_out(cams);
     s->n_cameras = uint32_t(cams.size());
+    /* COLOR_0 when a drawn primitive has it; TEXCOORD_1 when a drawn primitive has it and a
+     * texture of its material reads it */
+    if (!o.colors.empty()) {
+        s->colors = static_cast<float(*)[4]>(malloc(o.colors.size() * sizeof(float)));
+        if (!s->colors) throw std::bad_alloc();
+        memcpy(s->colors, o.colors.data(), o.colors.size() * sizeof(float));
+    }
+    bool uv1_read = false;
+    unsigned uv1_missing = 0; /* drawn primitives whose material reads TEXCOORD_1 they lack */
+    for (size_t p = 0; p < o.prims.size(); p++) {
+        if (!o.prims[p].index_count) continue;
+        const pg_material &pm = mats[o.prims[p].material];
+        const int tex[PG_TEXSLOT_COUNT] = {pm.base_color_tex, pm.normal_tex, pm.emissive_tex};
+        bool reads = false;
+        for (int t = 0; t < PG_TEXSLOT_COUNT; t++) reads = reads || (tex[t] >= 0 && pm.tex_coord[t] == 1);
+        if (reads && o.prim_has_uv1[p]) uv1_read = true;
+        if (reads && !o.prim_has_uv1[p]) uv1_missing++;
+    }
+    if (uv1_missing)
+        c.warnings.push_back("TEXCOORD_1 missing in " + plural(uv1_missing, "primitive", "primitives") +
+                             " whose material reads it (texCoord 1): TEXCOORD_0 used");
+    if (uv1_read) {
+        s->uv1 = static_cast<float(*)[2]>(malloc(o.uv1.size() * sizeof(float)));
+        if (!s->uv1) throw std::bad_alloc();
+        memcpy(s->uv1, o.uv1.data(), o.uv1.size() * sizeof(float));
+    }
     if (!tex_order.empty()) {
         s->textures = static_cast<pg_texture *>(calloc(tex_order.size(), sizeof(pg_texture)));
         if (!s->textures) throw std::bad_alloc();
@@ -1741,6 +1916,7 @@ pg_scene *load(Ctx &c)
                                 im.image.data(), uint32_t(im.width), uint32_t(im.height), k.srgb,
                                 &terr) != PG_OK)
                 fail(terr.code, image_desc(c, k.image) + ": " + terr.msg);
+            s->textures[s->n_textures].sampler = k.sampler;
             s->n_textures++;
         }
     }

@@ -8,10 +8,12 @@ static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg
 {
     /* one staging buffer: vertices | indices | materials | every mip of every texture */
     VkDeviceSize vb = (VkDeviceSize)scene->n_vertices * sizeof(pg_vertex);
+    VkDeviceSize cb = sg->colors.buffer ? (VkDeviceSize)scene->n_vertices * sizeof(float[4]) : 0;
+    VkDeviceSize ub = sg->uv1.buffer ? (VkDeviceSize)scene->n_vertices * sizeof(float[2]) : 0;
     VkDeviceSize ib = (VkDeviceSize)scene->n_indices * sizeof(uint32_t);
     uint32_t n_mat = scene->n_materials ? scene->n_materials : 1;
     VkDeviceSize mb = (VkDeviceSize)n_mat * sizeof(pg_gpu_material);
-    VkDeviceSize total = vb + ib + mb + 16;
+    VkDeviceSize total = vb + cb + ub + ib + mb + 16;
     for (uint32_t t = 0; t < scene->n_textures; t++) total += (scene->textures[t].data_size + 15) & ~(VkDeviceSize)15;
     total += 16; /* white texel */
 
@@ -24,6 +26,12 @@ static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg
     memcpy(dst + off, scene->vertices, vb);
     VkDeviceSize v_off = off;
     off += vb;
+    VkDeviceSize c_off = off;
+    if (cb) memcpy(dst + off, scene->colors, cb);
+    off += cb;
+    VkDeviceSize u_off = off;
+    if (ub) memcpy(dst + off, scene->uv1, ub);
+    off += ub;
     VkDeviceSize i_off = off;
     memcpy(dst + off, scene->indices, ib);
     off += ib;
@@ -81,6 +89,9 @@ static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg
     if (ib) vkCmdCopyBuffer(cmd, staging.buffer, sg->indices.buffer, 1, &c1);
     VkBufferCopy c2 = {m_off, 0, mb};
     vkCmdCopyBuffer(cmd, staging.buffer, sg->materials.buffer, 1, &c2);
+    VkBufferCopy c3 = {c_off, 0, cb}, c4 = {u_off, 0, ub};
+    if (cb) vkCmdCopyBuffer(cmd, staging.buffer, sg->colors.buffer, 1, &c3);
+    if (ub) vkCmdCopyBuffer(cmd, staging.buffer, sg->uv1.buffer, 1, &c4);
 
     VkImageMemoryBarrier2 *bars = calloc(sg->n_images, sizeof *bars);
     if (!bars) {
@@ -116,15 +127,21 @@ static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg
                                    VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    VkBufferMemoryBarrier2 bb[3];
-    VkBuffer bufs[3] = {sg->vertices.buffer, sg->indices.buffer, sg->materials.buffer};
-    VkAccessFlags2 acc[3] = {VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT, VK_ACCESS_2_INDEX_READ_BIT,
-                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT};
-    VkPipelineStageFlags2 st[3] = {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
+    VkBufferMemoryBarrier2 bb[5];
+    VkBuffer bufs[5] = {sg->vertices.buffer, sg->indices.buffer, sg->materials.buffer, sg->colors.buffer,
+                        sg->uv1.buffer};
+    VkAccessFlags2 acc[5] = {VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT, VK_ACCESS_2_INDEX_READ_BIT,
+                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT,
+                             VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT};
+    VkPipelineStageFlags2 st[5] = {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
                                    VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT,
-                                   VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT};
-    for (int i = 0; i < 3; i++)
-        bb[i] = (VkBufferMemoryBarrier2){
+                                   VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                   VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
+                                   VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT};
+    uint32_t n_bb = 0;
+    for (int i = 0; i < 5; i++) {
+        if (!bufs[i]) continue;
+        bb[n_bb++] = (VkBufferMemoryBarrier2){
             .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
             .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
             .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -135,13 +152,40 @@ static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg
             .buffer = bufs[i],
             .size = VK_WHOLE_SIZE,
         };
-    pg_cmd_barriers(cmd, sg->n_images, bars, 3, bb);
+    }
+    pg_cmd_barriers(cmd, sg->n_images, bars, n_bb, bb);
     free(bars);
     r = pg_gpu_end_once(gpu, cmd, err);
 out:
     free(tex_off);
     pg_buffer_destroy(gpu, &staging);
     return r;
+}
+
+/* field by field: the struct has padding */
+static bool same_state(const pg_sampler_state *a, const pg_sampler_state *b)
+{
+    return a->wrap_s == b->wrap_s && a->wrap_t == b->wrap_t && a->mag_nearest == b->mag_nearest &&
+           a->min_nearest == b->min_nearest && a->mip == b->mip;
+}
+
+pg_result pg_scene_sampler_create(pg_gpu *gpu, const pg_sampler_state *st, VkSampler *out, pg_error *err)
+{
+    static const VkSamplerAddressMode wrap[3] = {VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                                                 VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT};
+    VkSamplerCreateInfo sci = {
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = st->mag_nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR,
+        .minFilter = st->min_nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR,
+        .mipmapMode = st->mip == PG_MIP_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST,
+        .addressModeU = wrap[st->wrap_s <= PG_WRAP_MIRROR ? st->wrap_s : 0],
+        .addressModeV = wrap[st->wrap_t <= PG_WRAP_MIRROR ? st->wrap_t : 0],
+        .addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT,
+        .maxLod = st->mip == PG_MIP_NONE ? 0.0f : VK_LOD_CLAMP_NONE, /* NONE: level 0 only */
+    };
+    VkResult vr = vkCreateSampler(gpu->device, &sci, NULL, out);
+    if (vr != VK_SUCCESS) return pg_fail(err, PG_ERR_VULKAN, "vkCreateSampler failed: %s", pg_vk_result_name(vr));
+    return PG_OK;
 }
 
 static int draw_cmp(const void *a, const void *b)
@@ -159,6 +203,7 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
     pg_scene_gpu *sg = calloc(1, sizeof *sg);
     if (!sg) return pg_fail(err, PG_ERR_OOM, "out of memory");
     pg_result r;
+    uint32_t *tex_sampler = NULL; /* texture -> index into sg->samplers */
     sg->features = scene->features;
     memcpy(sg->bounds_min, scene->bounds_min, sizeof sg->bounds_min);
     memcpy(sg->bounds_max, scene->bounds_max, sizeof sg->bounds_max);
@@ -175,7 +220,29 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
                               "scene.materials", &sg->materials, err)))
         goto fail;
-    sg->bytes = sg->vertices.size + sg->indices.size + sg->materials.size;
+    /* the optional streams only for a scene that uses them (the draw passes compile their paths
+     * from the same features) */
+    if (scene->features.has_vertex_colors) {
+        if (!scene->colors) {
+            r = pg_fail(err, PG_ERR_INVALID_ARG, "scene '%s': has_vertex_colors without colors", scene->name);
+            goto fail;
+        }
+        if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_vertices * sizeof(float[4]),
+                                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                                  "scene.colors", &sg->colors, err)))
+            goto fail;
+    }
+    if (scene->features.has_uv1) {
+        if (!scene->uv1) {
+            r = pg_fail(err, PG_ERR_INVALID_ARG, "scene '%s': has_uv1 without uv1", scene->name);
+            goto fail;
+        }
+        if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_vertices * sizeof(float[2]),
+                                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                                  "scene.uv1", &sg->uv1, err)))
+            goto fail;
+    }
+    sg->bytes = sg->vertices.size + sg->indices.size + sg->materials.size + sg->colors.size + sg->uv1.size;
     sg->n_images = scene->n_textures + 1;
     sg->images = calloc(sg->n_images, sizeof *sg->images);
     if (!sg->images) {
@@ -195,20 +262,26 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
             goto fail;
         sg->bytes += tex->data_size;
     }
-    VkSamplerCreateInfo sci = {
-        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-        .magFilter = VK_FILTER_LINEAR,
-        .minFilter = VK_FILTER_LINEAR,
-        .mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR,
-        .addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT,
-        .addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT,
-        .addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT,
-        .maxLod = VK_LOD_CLAMP_NONE,
-    };
-    VkResult vr = vkCreateSampler(gpu->device, &sci, NULL, &sg->sampler);
-    if (vr != VK_SUCCESS) {
-        r = pg_fail(err, PG_ERR_VULKAN, "vkCreateSampler failed: %s", pg_vk_result_name(vr));
+    /* one sampler per distinct state; [0] is the default (the white texture's) */
+    tex_sampler = calloc(scene->n_textures + 1, sizeof *tex_sampler);
+    sg->samplers = calloc(scene->n_textures + 1, sizeof *sg->samplers);
+    sg->sampler_states = calloc(scene->n_textures + 1, sizeof *sg->sampler_states);
+    if (!tex_sampler || !sg->samplers || !sg->sampler_states) {
+        r = pg_fail(err, PG_ERR_OOM, "out of memory");
         goto fail;
+    }
+    memset(&sg->sampler_states[0], 0, sizeof sg->sampler_states[0]);
+    sg->n_samplers = 1;
+    for (uint32_t t = 0; t < scene->n_textures; t++) {
+        const pg_sampler_state *ss = &scene->textures[t].sampler;
+        uint32_t k = 0;
+        while (k < sg->n_samplers && !same_state(&sg->sampler_states[k], ss)) k++;
+        if (k == sg->n_samplers) sg->sampler_states[sg->n_samplers++] = *ss;
+        tex_sampler[t + 1] = k;
+    }
+    VkResult vr;
+    for (uint32_t k = 0; k < sg->n_samplers; k++) {
+        if ((r = pg_scene_sampler_create(gpu, &sg->sampler_states[k], &sg->samplers[k], err))) goto fail;
     }
     if ((r = upload(gpu, sg, scene, err))) goto fail;
 
@@ -247,7 +320,10 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
         goto fail;
     }
     for (uint32_t i = 0; i < sg->n_images; i++)
-        ii[i] = (VkDescriptorImageInfo){sg->sampler, sg->images[i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        ii[i] = (VkDescriptorImageInfo){sg->samplers[tex_sampler[i]], sg->images[i].view,
+                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    free(tex_sampler);
+    tex_sampler = NULL;
     VkDescriptorBufferInfo bi = {sg->materials.buffer, 0, VK_WHOLE_SIZE};
     VkWriteDescriptorSet w[2] = {
         {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = sg->set, .dstBinding = 0,
@@ -281,6 +357,7 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
     *out = sg;
     return PG_OK;
 fail:
+    free(tex_sampler);
     pg_scene_gpu_destroy(gpu, sg);
     return r;
 }
@@ -290,12 +367,17 @@ void pg_scene_gpu_destroy(pg_gpu *gpu, pg_scene_gpu *sg)
     if (!sg) return;
     if (sg->pool) vkDestroyDescriptorPool(gpu->device, sg->pool, NULL);
     if (sg->set_layout) vkDestroyDescriptorSetLayout(gpu->device, sg->set_layout, NULL);
-    if (sg->sampler) vkDestroySampler(gpu->device, sg->sampler, NULL);
+    for (uint32_t k = 0; sg->samplers && k < sg->n_samplers; k++)
+        if (sg->samplers[k]) vkDestroySampler(gpu->device, sg->samplers[k], NULL);
+    free(sg->samplers);
+    free(sg->sampler_states);
     for (uint32_t i = 0; sg->images && i < sg->n_images; i++) pg_image_destroy(gpu, &sg->images[i]);
     free(sg->images);
     pg_buffer_destroy(gpu, &sg->vertices);
     pg_buffer_destroy(gpu, &sg->indices);
     pg_buffer_destroy(gpu, &sg->materials);
+    pg_buffer_destroy(gpu, &sg->colors);
+    pg_buffer_destroy(gpu, &sg->uv1);
     free(sg->draws);
     free(sg);
 }

@@ -1,7 +1,11 @@
-/* scene_gpu.h - a pg_scene uploaded for drawing: vertex/index buffers, a material storage buffer,
- * every texture with its mips, one sampler, and a descriptor set (set 1 of scene-drawing passes):
+/* scene_gpu.h - a pg_scene uploaded for drawing: vertex/index buffers (plus the optional COLOR_0
+ * stream, vec4 float, only when features.has_vertex_colors, and TEXCOORD_1, vec2 float, only when
+ * features.has_uv1), a material storage buffer, every texture with its mips, one VkSampler per
+ * distinct pg_sampler_state (the glTF sampler of each texture), and a descriptor set (set 1 of
+ * scene-drawing passes):
  *   binding 0: readonly buffer Materials { GpuMaterial materials[]; }
- *   binding 1: sampler2D textures[texture_count]   (index 0 is a 1x1 white texture)
+ *   binding 1: sampler2D textures[texture_count]   (index 0 is a 1x1 white texture, default
+ *              sampler; texture i+1 with the sampler of scene->textures[i])
  * Draws are sorted opaque first, then alpha-masked, then alpha-blended (drawn only by the
  * transparent pass, which sorts them back to front by their bounds centre). Static after upload (made visible with one
  * barrier at upload time), so the graph does not track it. */
@@ -38,9 +42,13 @@ typedef struct pg_draw {
 
 typedef struct pg_scene_gpu {
     pg_buffer vertices, indices, materials;
+    pg_buffer colors;            /* binding 1 stream (float4 per vertex); buffer NULL when absent */
+    pg_buffer uv1;               /* binding 2 stream (float2 per vertex); buffer NULL when absent */
     uint32_t n_images;
     pg_image *images;            /* n_images; [0] = white */
-    VkSampler sampler;
+    uint32_t n_samplers;
+    VkSampler *samplers;         /* distinct states; [0] = the glTF default (repeat, trilinear) */
+    pg_sampler_state *sampler_states; /* n_samplers */
     VkDescriptorSetLayout set_layout;
     VkDescriptorPool pool;
     VkDescriptorSet set;
@@ -55,6 +63,9 @@ typedef struct pg_scene_gpu {
 
 pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu **out, pg_error *err);
 void pg_scene_gpu_destroy(pg_gpu *gpu, pg_scene_gpu *sg);
+/* The VkSampler of a glTF sampler state: wrap S/T, mag/min filter, mipmap mode; PG_MIP_NONE
+ * samples level 0 only (maxLod 0); no anisotropy; maxLod unclamped otherwise. */
+pg_result pg_scene_sampler_create(pg_gpu *gpu, const pg_sampler_state *st, VkSampler *out, pg_error *err);
 
 #ifdef __cplusplus
 }

@@ -30,18 +30,29 @@ pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, con
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
          .module = d->fs, .pName = "main"},
     };
-    VkVertexInputBindingDescription vb = {0, sizeof(pg_vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-    VkVertexInputAttributeDescription va[4] = {
+    /* binding 0: pg_vertex; optional streams (pg_scene.colors / uv1): binding 1 COLOR_0, binding 2
+     * TEXCOORD_1, each a tightly packed float array (shaders/scene.vert) */
+    VkVertexInputBindingDescription vb[3] = {{0, sizeof(pg_vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+    VkVertexInputAttributeDescription va[6] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(pg_vertex, position)},
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(pg_vertex, normal)},
         {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(pg_vertex, uv)},
         {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(pg_vertex, tangent)},
     };
+    uint32_t n_vb = 1, n_va = 4;
+    if (d->vertex_colors) {
+        vb[n_vb++] = (VkVertexInputBindingDescription){1, sizeof(float[4]), VK_VERTEX_INPUT_RATE_VERTEX};
+        va[n_va++] = (VkVertexInputAttributeDescription){4, 1, VK_FORMAT_R32G32B32A32_SFLOAT, 0};
+    }
+    if (d->uv1) {
+        vb[n_vb++] = (VkVertexInputBindingDescription){2, sizeof(float[2]), VK_VERTEX_INPUT_RATE_VERTEX};
+        va[n_va++] = (VkVertexInputAttributeDescription){5, 2, VK_FORMAT_R32G32_SFLOAT, 0};
+    }
     VkPipelineVertexInputStateCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     if (d->scene_vertices) {
-        vi.vertexBindingDescriptionCount = 1;
-        vi.pVertexBindingDescriptions = &vb;
-        vi.vertexAttributeDescriptionCount = 4;
+        vi.vertexBindingDescriptionCount = n_vb;
+        vi.pVertexBindingDescriptions = vb;
+        vi.vertexAttributeDescriptionCount = n_va;
         vi.pVertexAttributeDescriptions = va;
     }
     VkPipelineInputAssemblyStateCreateInfo ia = {.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,

@@ -24,6 +24,8 @@ typedef struct pg_gfx_pipeline_desc {
     bool scene_vertices;            /* pg_vertex input at binding 0; else no vertex input */
     bool blend_over;                /* every colour attachment: rgb = src.a*src + (1-src.a)*dst,
                                      * a = src.a + (1-src.a)*dst.a (non-premultiplied "over") */
+    bool vertex_colors;             /* with scene_vertices: COLOR_0 float4 at binding 1, location 4 */
+    bool uv1;                       /* with scene_vertices: TEXCOORD_1 float2 at binding 2, location 5 */
 } pg_gfx_pipeline_desc;
 
 pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, const char *name,

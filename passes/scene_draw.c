@@ -21,12 +21,22 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     snprintf(tc, sizeof tc, "TEXTURE_COUNT=%u", ctx->scene->n_images);
     defs[n++] = tc;
     bool has_mask = false;
+    out->vertex_colors = out->uv1 = false;
     for (uint32_t i = 0; i < pass->decl.n_defines; i++) {
         if (strcmp(pass->decl.defines[i], "PG_ALPHA_MASK") == 0) {
             has_mask = true;
             continue;
         }
+        if (strcmp(pass->decl.defines[i], "PG_VERTEX_COLORS") == 0) out->vertex_colors = true;
+        if (strcmp(pass->decl.defines[i], "PG_UV1") == 0) out->uv1 = true;
         defs[n++] = pass->decl.defines[i];
+    }
+    if ((out->vertex_colors && !ctx->scene->colors.buffer) || (out->uv1 && !ctx->scene->uv1.buffer)) {
+        r = pg_fail(err, PG_ERR_INVALID_ARG, "%s: compiled with %s but the uploaded scene has no such stream",
+                    pass->name, out->vertex_colors && !ctx->scene->colors.buffer ? "PG_VERTEX_COLORS" : "PG_UV1");
+        vkDestroyPipelineLayout(gpu->device, out->layout, NULL);
+        out->layout = VK_NULL_HANDLE;
+        return r;
     }
     for (uint32_t i = 0; i < d->n_extra_defines; i++) defs[n++] = d->extra_defines[i];
     VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE, fs_mask = VK_NULL_HANDLE;
@@ -43,6 +53,8 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
         .dynamic_cull = true,
         .scene_vertices = true,
         .blend_over = d->blend,
+        .vertex_colors = out->vertex_colors,
+        .uv1 = out->uv1,
     };
     memcpy(gd.color_formats, d->color_formats, sizeof gd.color_formats);
     if ((r = pg_gfx_pipeline_create(gpu, &gd, pass->name, &out->opaque, err))) goto out;
@@ -71,6 +83,8 @@ static void bind_scene(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, V
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sd->layout, 0, pass_set ? 3 : 2, sets, 0, NULL);
     VkDeviceSize zero = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &sc->vertices.buffer, &zero);
+    if (sd->vertex_colors) vkCmdBindVertexBuffers(cmd, 1, 1, &sc->colors.buffer, &zero);
+    if (sd->uv1) vkCmdBindVertexBuffers(cmd, 2, 1, &sc->uv1.buffer, &zero);
     vkCmdBindIndexBuffer(cmd, sc->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
 }
 
@@ -134,4 +148,10 @@ void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out)
     else pg_decl_explain(out, "no normal maps: tangent-space normal path compiled out");
     if (in->features.has_emissive) pg_decl_define(out, "PG_EMISSIVE");
     else pg_decl_explain(out, "no emissive materials: emissive term compiled out");
+    if (in->features.has_vertex_colors) pg_decl_define(out, "PG_VERTEX_COLORS");
+    else pg_decl_explain(out, "no vertex colours: colour attribute path compiled out");
+    if (in->features.has_uv1) pg_decl_define(out, "PG_UV1");
+    else pg_decl_explain(out, "no texture reads TEXCOORD_1: second UV stream compiled out");
+    if (in->features.has_uv_transform) pg_decl_define(out, "PG_UV_TRANSFORM");
+    else pg_decl_explain(out, "no KHR_texture_transform: UV transform compiled out");
 }

@@ -12,6 +12,7 @@
 typedef struct pg_scene_draw {
     VkPipelineLayout layout;
     VkPipeline opaque, masked;
+    bool vertex_colors, uv1;          /* the pipelines read vertex streams 1 / 2 (PG_VERTEX_COLORS, PG_UV1) */
 } pg_scene_draw;
 
 typedef struct pg_scene_draw_desc {
@@ -40,8 +41,8 @@ void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx
 void pg_scene_draw_record_list(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set,
                                const uint32_t *order, uint32_t n);
 void pg_scene_draw_destroy(pg_gpu *gpu, pg_scene_draw *sd);
-/* declare(): the surface variant the scene needs (PG_ALPHA_MASK, PG_NORMAL_MAPS, PG_EMISSIVE) and, for what it
- * lacks, why that path is left out. */
+/* declare(): the surface variant the scene needs (PG_ALPHA_MASK, PG_NORMAL_MAPS, PG_EMISSIVE,
+ * PG_VERTEX_COLORS, PG_UV1, PG_UV_TRANSFORM) and, for what it lacks, why that path is left out. */
 void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out);
 
 #endif

@@ -457,7 +457,7 @@ expect_fail "--scene an OBJ file" "$gcorp/cube.obj: not a glTF 2.0 file (passgra
   render --scene "$gcorp/cube.obj" --size 32x18 --lights 4 --out "$tmp/x.png"
 expect_fail "--scene a glTF 1.0 file" "glTF 1.0 is not supported, only 2.0" \
   render --scene "$gcorp/version_1.gltf" --size 32x18 --lights 4 --out "$tmp/x.png"
-expect_fail "--scene: an unsupported required extension" "extensionsRequired: 'KHR_texture_transform', 'KHR_mesh_quantization' are not supported" \
+expect_fail "--scene: an unsupported required extension" "extensionsRequired: 'KHR_mesh_quantization' is not supported (passgraph implements only these glTF extensions: KHR_materials_emissive_strength, KHR_texture_transform)" \
   render --scene "$gcorp/required_texture_transform.gltf" --size 32x18 --lights 4 --out "$tmp/x.png"
 expect_fail "--out .bmp" "--out $tmp/x.bmp: unsupported image extension '.bmp' (accepted: .png, .jpg, .jpeg, .exr)" \
   render --size 32x18 --lights 4 --out "$tmp/x.bmp"
@@ -492,6 +492,25 @@ skin_w="passgraph: warning: $gcorp/ok_skins.gltf: 2 skins ignored: rendered in b
 "$PG" bench --scene "$gcorp/ok_skins.gltf" --pipelines naive --lights 4,8 --size 32x18 --frames 1 --warmup 0 --out "$tmp/bw" \
   >"$tmp/out" 2>"$tmp/err" && [ "$(grep -cxF -- "$skin_w" "$tmp/err")" = 1 ] \
   && ok || { bad "bench: skins warning once"; cat "$tmp/err"; }
+# glTF surface variants (PG_VERTEX_COLORS, PG_UV1, PG_UV_TRANSFORM): compiled only for a scene that
+# uses them; otherwise each scene-drawing pass explains why not (dump: the plan's defines)
+feat="$gcorp/features"
+for pl in forward_plus deferred_oct16; do
+  "$PG" dump --scene "$gcorp/ok_minimal.gltf" --pipeline "$root/pipelines/$pl.json" >"$tmp/d0" 2>"$tmp/err" \
+    && ! grep -qE "defines:.*(PG_VERTEX_COLORS|PG_UV1|PG_UV_TRANSFORM)" "$tmp/d0" \
+    && grep -qE ": no vertex colours: colour attribute path compiled out$" "$tmp/d0" \
+    && grep -qE ": no texture reads TEXCOORD_1: second UV stream compiled out$" "$tmp/d0" \
+    && grep -qE ": no KHR_texture_transform: UV transform compiled out$" "$tmp/d0" \
+    && ok || { bad "$pl: a plain glTF compiles a surface variant or does not say why not"; cat "$tmp/err" "$tmp/d0"; }
+  for fv in vcolor_unorm8.gltf:PG_VERTEX_COLORS texcoord1.gltf:PG_UV1 xform_offset.gltf:PG_UV_TRANSFORM \
+            xform_texcoord.gltf:PG_UV1 xform_texcoord.gltf:PG_UV_TRANSFORM; do
+    f=${fv%%:*} def=${fv#*:}
+    n=$("$PG" dump --scene "$feat/$f" --pipeline "$root/pipelines/$pl.json" 2>"$tmp/err" | grep -cE "defines:.* $def( |$)")
+    [ "$n" = 1 ] && ok || { bad "$pl $f: $n passes compiled with $def (want the one scene-drawing pass)"; cat "$tmp/err"; }
+  done
+  "$PG" dump --scene "$feat/vcolor_unorm8.gltf" --pipeline "$root/pipelines/$pl.json" 2>"$tmp/err" \
+    | grep -qE "defines:.*(PG_UV1|PG_UV_TRANSFORM)" && bad "$pl vcolor_unorm8: UV variants compiled" || ok
+done
 
 echo "cli_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -565,9 +565,9 @@ static void test_registry(void)
     CHECK(d.writes[0].kind == BUF && d.writes[0].access == PG_ACCESS_STORAGE_WRITE);
     CHECK(d.n_defines == 1 && strcmp(d.defines[0], "FOO=1") == 0);
     CHECK(d.n_explain == 1 && strcmp(d.explain[0], "line 7") == 0);
-    for (int i = 0; i < 12; i++) pg_decl_explain(&d, "more");
-    CHECK(d.n_explain == 8);
-    HAS(d.explain[7], "left out");
+    for (int i = 0; i < PG_MAX_PASS_EXPLAIN + 4; i++) pg_decl_explain(&d, "more");
+    CHECK(d.n_explain == PG_MAX_PASS_EXPLAIN);
+    HAS(d.explain[PG_MAX_PASS_EXPLAIN - 1], "left out");
 
     pg_pass_desc pd;
     memset(&pd, 0, sizeof pd);

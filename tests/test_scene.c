@@ -798,7 +798,8 @@ static void test_corpus_features(void)
               "%s", err.msg);
     CHECK(pg_scene_load_gltf(PG_TEST_DIR "/corpus/gltf/required_meshopt.gltf", &bad, &err) == PG_ERR_GLTF);
     CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus/gltf/required_meshopt.gltf: extensionsRequired: "
-                               "'EXT_meshopt_compression' is not supported (not implemented by passgraph)"),
+                               "'EXT_meshopt_compression' is not supported (passgraph implements only these "
+                               "glTF extensions: KHR_materials_emissive_strength, KHR_texture_transform)"),
               "%s", err.msg);
     /* a scenario path that is a directory */
     pg_scenario sc;
@@ -859,6 +860,190 @@ static void test_emissive_loader(void)
     }
 }
 
+/* ---- glTF surface features (tests/corpus/gltf/features/gen_features.py) ----------------------- */
+
+static pg_scene *load_feature(const char *name)
+{
+    char p[600];
+    snprintf(p, sizeof p, "%s/corpus/gltf/features/%s", PG_TEST_DIR, name);
+    pg_scene *s = NULL;
+    pg_error err = {0};
+    if (pg_scene_load_gltf(p, &s, &err) != PG_OK) {
+        CHECK_MSG(0, "%s: %s", name, err.msg);
+        return NULL;
+    }
+    return s;
+}
+
+static bool same_sampler(const pg_sampler_state *a, pg_wrap s, pg_wrap t, bool mag_nearest, bool min_nearest,
+                         pg_mip_mode mip)
+{
+    return a->wrap_s == s && a->wrap_t == t && a->mag_nearest == mag_nearest && a->min_nearest == min_nearest &&
+           a->mip == mip;
+}
+
+static void test_gltf_features(void)
+{
+    /* COLOR_0: four sub-quads of 4 vertices, colours (gen_features.py SUB_COLORS) decoded exactly */
+    static const float sub[4][4] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {0.25f, 0.5f, 1, 0.5f}};
+    static const float u8[4][4] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {64 / 255.0f, 128 / 255.0f, 1, 128 / 255.0f}};
+    static const float u16[4][4] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1},
+                                    {16384 / 65535.0f, 32768 / 65535.0f, 1, 32768 / 65535.0f}};
+    const struct {
+        const char *file;
+        const float (*want)[4];
+        bool vec3;
+        uint32_t n_vertices;
+    } vc[] = {{"vcolor_float3.gltf", sub, true, 16}, {"vcolor_unorm8.gltf", u8, false, 20},
+              {"vcolor_unorm16.gltf", u16, false, 16}};
+    for (size_t f = 0; f < 3; f++) {
+        pg_scene *s = load_feature(vc[f].file);
+        if (!s) continue;
+        CHECK_MSG(s->colors != NULL && s->features.has_vertex_colors && s->n_vertices == vc[f].n_vertices,
+                  "%s: colors %p, %u vertices", vc[f].file, (void *)s->colors, s->n_vertices);
+        CHECK(s->n_warnings == 0 && s->uv1 == NULL && !s->features.has_uv1 && !s->features.has_uv_transform);
+        for (uint32_t v = 0; s->colors && v < s->n_vertices; v++) {
+            const float *want = v < 16 ? vc[f].want[v / 4] : (const float[4]){1, 1, 1, 1}; /* no COLOR_0: white */
+            for (int k = 0; k < 4; k++) {
+                float w = (k == 3 && vc[f].vec3) ? 1.0f : want[k]; /* VEC3: alpha 1 */
+                CHECK_MSG(near_f(s->colors[v][k], w, 1e-7f), "%s: vertex %u colour[%d] %g, want %g", vc[f].file, v, k,
+                          s->colors[v][k], w);
+            }
+        }
+        pg_scene_free(s);
+    }
+    pg_scene *s;
+    pg_error err = {0};
+    pg_scene *bad = NULL;
+    const struct {
+        const char *file, *msg;
+    } errs[] = {
+        {"bad_color_vec2.gltf", "accessors[2]: COLOR_0 must be VEC3 or VEC4, FLOAT or normalized "
+                                "UNSIGNED_BYTE/UNSIGNED_SHORT (got VEC2 FLOAT)"},
+        {"bad_color_not_normalized.gltf", "accessors[2]: COLOR_0 must be VEC3 or VEC4, FLOAT or normalized "
+                                          "UNSIGNED_BYTE/UNSIGNED_SHORT (got VEC4 UNSIGNED_BYTE)"},
+        {"bad_xform_offset.gltf", "materials[0].pbrMetallicRoughness.baseColorTexture.extensions."
+                                  "KHR_texture_transform.offset: expected 2 finite numbers"},
+        {"bad_xform_rotation.gltf", "materials[0].pbrMetallicRoughness.baseColorTexture.extensions."
+                                    "KHR_texture_transform.rotation: expected a finite number (radians)"},
+    };
+    for (size_t i = 0; i < sizeof errs / sizeof errs[0]; i++) {
+        char p[600];
+        snprintf(p, sizeof p, "%s/corpus/gltf/features/%s", PG_TEST_DIR, errs[i].file);
+        pg_result r = pg_scene_load_gltf(p, &bad, &err);
+        CHECK_MSG(r == PG_ERR_GLTF && bad == NULL && strstr(err.msg, errs[i].msg), "%s: %s", errs[i].file, err.msg);
+        pg_scene_free(bad);
+        bad = NULL;
+    }
+
+    /* TEXCOORD_1: read by the base texture (texCoord 1) -> uv1 exactly; read by none -> no stream */
+    if ((s = load_feature("texcoord1.gltf"))) {
+        CHECK(s->uv1 != NULL && s->features.has_uv1 && s->materials[0].tex_coord[PG_TEXSLOT_BASE] == 1);
+        static const float uv1[4][2] = {{0.55f, 0.1f}, {0.95f, 0.1f}, {0.55f, 0.9f}, {0.95f, 0.9f}};
+        for (int v = 0; s->uv1 && v < 4; v++)
+            CHECK(near_f(s->uv1[v][0], uv1[v][0], 1e-7f) && near_f(s->uv1[v][1], uv1[v][1], 1e-7f) &&
+                  near_f(s->vertices[v].uv[0], uv1[v][0] - 0.5f, 1e-6f));
+        CHECK(s->colors == NULL && !s->features.has_vertex_colors && s->n_warnings == 0);
+        pg_scene_free(s);
+    }
+    if ((s = load_feature("uv1_unused.gltf"))) {
+        CHECK(s->uv1 == NULL && !s->features.has_uv1 && s->materials[0].tex_coord[PG_TEXSLOT_BASE] == 0);
+        pg_scene_free(s);
+    }
+    if ((s = load_feature("uv1_missing.gltf"))) { /* primitives 0 and 2 lack TEXCOORD_1: their TEXCOORD_0 */
+        CHECK(s->uv1 != NULL && s->n_vertices == 12 && s->features.has_uv1);
+        for (uint32_t v = 0; s->uv1 && v < 12; v++) {
+            const float *want = v >= 4 && v < 8 ? (const float[2]){0.55f + 0.4f * (v % 2), v < 6 ? 0.1f : 0.9f}
+                                                : s->vertices[v].uv;
+            CHECK_MSG(near_f(s->uv1[v][0], want[0], 1e-6f) && near_f(s->uv1[v][1], want[1], 1e-6f),
+                      "uv1_missing: vertex %u uv1 %g %g, want %g %g", v, s->uv1[v][0], s->uv1[v][1], want[0], want[1]);
+        }
+        CHECK(near_f(s->vertices[0].uv[0], 0.1f, 1e-6f) && near_f(s->vertices[11].uv[1], 0.9f, 1e-6f));
+        CHECK_MSG(s->n_warnings == 1 && strstr(s->warnings[0], "uv1_missing.gltf: TEXCOORD_1 missing in 2 primitives "
+                                                              "whose material reads it (texCoord 1): TEXCOORD_0 used"),
+                  "%s", s->n_warnings ? s->warnings[0] : "no warning");
+        pg_scene_free(s);
+    }
+    if ((s = load_feature("texcoord0.gltf"))) {
+        CHECK(s->uv1 == NULL && !s->features.has_uv1);
+        pg_scene_free(s);
+    }
+
+    /* every slot: texCoord, transforms (M = T * R * S, row-major 2x3), the emissive texture */
+    if ((s = load_feature("slots.gltf"))) {
+        CHECK(s->n_materials == 2 && s->uv1 != NULL && s->features.has_uv1 && s->features.has_uv_transform);
+        const pg_material *m = &s->materials[0];
+        CHECK(m->base_color_tex >= 0 && m->normal_tex >= 0 && m->emissive_tex >= 0);
+        if (m->emissive_tex >= 0 && m->normal_tex >= 0) {
+            CHECK(s->textures[m->emissive_tex].srgb && !s->textures[m->normal_tex].srgb);
+            CHECK(m->emissive_tex == m->base_color_tex); /* same image, sRGB, default sampler */
+        }
+        CHECK(m->tex_coord[PG_TEXSLOT_BASE] == 0 && m->tex_coord[PG_TEXSLOT_NORMAL] == 1 &&
+              m->tex_coord[PG_TEXSLOT_EMISSIVE] == 1); /* emissive: the transform's texCoord overrides */
+        CHECK(!m->has_uv_transform[PG_TEXSLOT_BASE] && m->has_uv_transform[PG_TEXSLOT_NORMAL] &&
+              m->has_uv_transform[PG_TEXSLOT_EMISSIVE]);
+        const float id[6] = {1, 0, 0, 0, 1, 0};
+        const float nrm[6] = {2, 0, 0.25f, 0, 3, -0.5f}; /* offset (0.25, -0.5), scale (2, 3) */
+        const float c = cosf(0.5f), sn = sinf(0.5f);
+        const float emi[6] = {c, sn, 0, -sn, c, 0};       /* rotation 0.5 rad */
+        for (int k = 0; k < 6; k++) {
+            CHECK_MSG(m->uv_transform[PG_TEXSLOT_BASE][k] == id[k], "base transform[%d]", k);
+            CHECK_MSG(near_f(m->uv_transform[PG_TEXSLOT_NORMAL][k], nrm[k], 1e-6f), "normal transform[%d] %g", k,
+                      m->uv_transform[PG_TEXSLOT_NORMAL][k]);
+            CHECK_MSG(near_f(m->uv_transform[PG_TEXSLOT_EMISSIVE][k], emi[k], 1e-6f), "emissive transform[%d] %g", k,
+                      m->uv_transform[PG_TEXSLOT_EMISSIVE][k]);
+        }
+        /* texCoord 2: warned, read with TEXCOORD_0 */
+        CHECK(s->materials[1].tex_coord[PG_TEXSLOT_BASE] == 0);
+        bool warned = false;
+        for (uint32_t i = 0; i < s->n_warnings; i++)
+            warned = warned || strstr(s->warnings[i], "textures of 1 material (materials[1] 'far') ask for a texCoord "
+                                                      "other than 0 or 1: read with TEXCOORD_0");
+        CHECK(warned);
+        pg_scene_free(s);
+    }
+    if ((s = load_feature("xform_rotation.gltf"))) {
+        const float *x = s->materials[0].uv_transform[PG_TEXSLOT_BASE];
+        /* 90 degrees counter-clockwise: (u, v) -> (v, -u) */
+        CHECK(near_f(x[0], 0, 1e-6f) && near_f(x[1], 1, 1e-6f) && near_f(x[3], -1, 1e-6f) && near_f(x[4], 0, 1e-6f));
+        CHECK(s->features.has_uv_transform && s->n_warnings == 0);
+        pg_scene_free(s);
+    }
+    if ((s = load_feature("xform_texcoord.gltf"))) { /* extensionsRequired: KHR_texture_transform accepted */
+        CHECK(s->n_warnings == 0 && s->materials[0].tex_coord[PG_TEXSLOT_BASE] == 1 && s->uv1 != NULL);
+        pg_scene_free(s);
+    }
+
+    /* samplers: every minFilter value, wrap modes, one pg_texture per (image, sRGB, state) */
+    if ((s = load_feature("samplers.gltf"))) {
+        CHECK_MSG(s->n_textures == 7 && s->n_warnings == 0, "%u textures, %u warnings", s->n_textures, s->n_warnings);
+        const pg_sampler_state *st[9];
+        for (int i = 0; i < 9; i++) {
+            int t = s->materials[i].base_color_tex;
+            st[i] = t >= 0 && (uint32_t)t < s->n_textures ? &s->textures[t].sampler : NULL;
+            CHECK_MSG(st[i] != NULL, "material %d: texture %d", i, t);
+            if (!st[i]) return pg_scene_free(s);
+        }
+        CHECK(same_sampler(st[0], PG_WRAP_CLAMP, PG_WRAP_MIRROR, true, true, PG_MIP_NONE));     /* NEAREST */
+        CHECK(same_sampler(st[1], PG_WRAP_MIRROR, PG_WRAP_CLAMP, false, false, PG_MIP_NONE));   /* LINEAR */
+        CHECK(same_sampler(st[2], PG_WRAP_REPEAT, PG_WRAP_REPEAT, false, true, PG_MIP_NEAREST));/* N_MIPMAP_N */
+        CHECK(same_sampler(st[3], PG_WRAP_REPEAT, PG_WRAP_REPEAT, false, false, PG_MIP_NEAREST));/* L_MIPMAP_N */
+        CHECK(same_sampler(st[4], PG_WRAP_REPEAT, PG_WRAP_REPEAT, false, true, PG_MIP_LINEAR)); /* N_MIPMAP_L */
+        CHECK(same_sampler(st[5], PG_WRAP_REPEAT, PG_WRAP_REPEAT, false, false, PG_MIP_LINEAR));/* L_MIPMAP_L */
+        CHECK(same_sampler(st[6], PG_WRAP_CLAMP, PG_WRAP_REPEAT, false, false, PG_MIP_LINEAR));
+        CHECK(s->materials[6].base_color_tex == s->materials[7].base_color_tex); /* same state: one texture */
+        CHECK(same_sampler(st[8], PG_WRAP_REPEAT, PG_WRAP_REPEAT, false, false, PG_MIP_LINEAR)); /* none: default */
+        CHECK(s->materials[8].base_color_tex == s->materials[5].base_color_tex);
+        pg_scene_free(s);
+    }
+    /* the corpus file with COLOR_0 + TEXCOORD_1 + texCoord 1 now draws them */
+    if ((s = load_corpus("ok_color_texcoord1.gltf"))) {
+        CHECK(s->colors && s->uv1 && s->features.has_vertex_colors && s->features.has_uv1);
+        if (s->colors) CHECK(s->colors[1][0] == 1 && s->colors[1][1] == 0 && s->colors[1][3] == 1); /* (1,0,0) VEC3 */
+        pg_scene_free(s);
+    }
+}
+
 static void test_corpus(void)
 {
     char mpath[512];
@@ -907,6 +1092,7 @@ static void test_corpus(void)
     test_corpus_valid_details();
     test_corpus_features();
     test_emissive_loader();
+    test_gltf_features();
 }
 
 /* ---- object framing, object lights, glTF cameras (tests/corpus/gltf/objects) ------------------ */
