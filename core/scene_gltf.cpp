@@ -47,6 +47,7 @@
  */
 #include "scene.h"
 
+#include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 #include <tiny_gltf.h>
@@ -150,10 +151,24 @@ struct Ctx {
     json j;
     tinygltf::Model model;
     std::string image_err; /* set by the image callback */
+    bool quantization = false; /* KHR_mesh_quantization in extensionsUsed */
     unsigned skipped_prims = 0;
     unsigned color_prims = 0;    /* drawn primitives with COLOR_0 (ignored) */
     unsigned texcoord1_prims = 0;/* drawn primitives with TEXCOORD_1.. (ignored) */
     std::vector<std::string> warnings; /* without the "PATH: " prefix */
+    /* EXT_meshopt_compression: the compressed bufferViews (checked by prevalidate, decoded by
+     * decode_meshopt into `decoded`, which view_bytes reads instead of the fallback buffer), and
+     * the fallback buffers without data (no uri: handed to tinygltf as empty buffers) */
+    struct Meshopt {
+        int view, buffer;
+        uint64_t offset, length, stride, count;
+        int mode;   /* 0 ATTRIBUTES, 1 TRIANGLES, 2 INDICES */
+        int filter; /* 0 NONE, 1 OCTAHEDRAL, 2 QUATERNION, 3 EXPONENTIAL */
+    };
+    std::vector<Meshopt> meshopt;
+    std::vector<char> view_is_meshopt;  /* per bufferView */
+    std::vector<char> buffer_no_data;   /* per buffer: fallback buffer without uri */
+    std::map<int, std::vector<unsigned char>> decoded;
     /* dense copies of sparse accessors (accessor index -> data), owned until hand-out */
     std::map<int, std::vector<unsigned char>> sparse_data;
 };
@@ -319,18 +334,22 @@ void prevalidate(Ctx &c)
         gfail(strf("asset.minVersion: '%s' is not supported",
                    mvit->get<std::string>().c_str()));
 
-    /* passgraph implements no glTF extension: a required one is refused, naming each */
+    /* a required extension passgraph does not implement is refused, naming each */
     if (const json *req = opt_array(j, "extensionsRequired", "")) {
-        if (!req->empty()) {
-            std::string names;
-            for (const json &e : *req) {
-                if (!names.empty()) names += ", ";
-                names += "'" + (e.is_string() ? e.get<std::string>() : e.dump()) + "'";
-            }
-            gfail(strf("extensionsRequired: %s %s not supported (passgraph implements no glTF "
-                       "extensions; only core glTF 2.0)",
-                       names.c_str(), req->size() == 1 ? "is" : "are"));
+        static const char *const implemented[] = {"KHR_mesh_quantization", "EXT_meshopt_compression"};
+        std::string names;
+        size_t n_bad = 0;
+        for (const json &e : *req) {
+            bool ok = false;
+            for (const char *name : implemented) ok = ok || (e.is_string() && e.get<std::string>() == name);
+            if (ok) continue;
+            if (!names.empty()) names += ", ";
+            names += "'" + (e.is_string() ? e.get<std::string>() : e.dump()) + "'";
+            n_bad++;
         }
+        if (n_bad)
+            gfail(strf("extensionsRequired: %s %s not supported (passgraph does not implement %s)",
+                       names.c_str(), n_bad == 1 ? "is" : "are", n_bad == 1 ? "it" : "them"));
     }
 
     const json *buffers = opt_array(j, "buffers", "");
@@ -360,6 +379,16 @@ void prevalidate(Ctx &c)
         uint64_t len = uint_field(o, "byteLength", w, true);
         buf_len.push_back(len);
         auto uit = o.find("uri");
+        bool fallback = false;
+        if (const json *ex = opt_object(o, "extensions", w))
+            if (const json *mo = opt_object(*ex, "EXT_meshopt_compression", w + ".extensions")) {
+                auto fb = mo->find("fallback");
+                if (fb != mo->end() && !fb->is_boolean())
+                    gfail(w + ".extensions.EXT_meshopt_compression.fallback: expected true or false");
+                fallback = fb != mo->end() && fb->get<bool>();
+            }
+        c.buffer_no_data.push_back(fallback && uit == o.end());
+        if (fallback && uit == o.end()) return; /* only compressed bufferViews may use it */
         if (uit == o.end()) {
             if (!c.is_glb) gfail(w + ".uri: missing (required outside .glb files)");
             if (!c.glb_has_bin) gfail(w + ": refers to the GLB BIN chunk, but there is none");
@@ -392,8 +421,8 @@ void prevalidate(Ctx &c)
                        (unsigned long long)fsize, (unsigned long long)len));
     });
 
-    /* bufferViews inside their buffers */
-    each_object(views, "bufferViews", [&](const json &o, const std::string &w, size_t) {
+    /* bufferViews inside their buffers; EXT_meshopt_compression parameters */
+    each_object(views, "bufferViews", [&](const json &o, const std::string &w, size_t vi) {
         long long b = ref(o, "buffer", arr_size(buffers), "buffers", w, true);
         uint64_t off = uint_field(o, "byteOffset", w, false, 0);
         uint64_t len = uint_field(o, "byteLength", w, true);
@@ -407,6 +436,77 @@ void prevalidate(Ctx &c)
                 gfail(strf("%s.byteStride: %llu is not a multiple of 4 in 4..252", w.c_str(),
                            (unsigned long long)s));
         }
+        const json *mo = nullptr;
+        if (const json *ex = opt_object(o, "extensions", w))
+            mo = opt_object(*ex, "EXT_meshopt_compression", w + ".extensions");
+        c.view_is_meshopt.push_back(mo != nullptr);
+        if (!mo) {
+            if (c.buffer_no_data[(size_t)b])
+                gfail(strf("%s: uses buffers[%lld], an EXT_meshopt_compression fallback buffer "
+                           "without data, but is not compressed",
+                           w.c_str(), b));
+            return;
+        }
+        const std::string mw = w + ".extensions.EXT_meshopt_compression";
+        Ctx::Meshopt m;
+        m.view = int(vi);
+        m.buffer = int(ref(*mo, "buffer", arr_size(buffers), "buffers", mw, true));
+        m.offset = uint_field(*mo, "byteOffset", mw, false, 0);
+        m.length = uint_field(*mo, "byteLength", mw, true);
+        m.stride = uint_field(*mo, "byteStride", mw, true);
+        m.count = uint_field(*mo, "count", mw, true);
+        if (c.buffer_no_data[size_t(m.buffer)])
+            gfail(strf("%s.buffer: buffers[%d] is a fallback buffer without data", mw.c_str(),
+                       m.buffer));
+        const uint64_t sl = buf_len[size_t(m.buffer)];
+        if (m.offset > sl || m.length > sl - m.offset)
+            gfail(strf("%s: byteOffset %llu + byteLength %llu exceeds buffers[%d] (%llu bytes)",
+                       mw.c_str(), (unsigned long long)m.offset, (unsigned long long)m.length,
+                       m.buffer, (unsigned long long)sl));
+        auto str = [&](const char *key, bool required) -> std::string {
+            auto it = mo->find(key);
+            if (it == mo->end()) {
+                if (required) gfail(strf("%s.%s: missing (required)", mw.c_str(), key));
+                return "NONE";
+            }
+            if (!it->is_string()) gfail(strf("%s.%s: expected a string", mw.c_str(), key));
+            return it->get<std::string>();
+        };
+        const std::string mode = str("mode", true), filter = str("filter", false);
+        static const char *const modes[] = {"ATTRIBUTES", "TRIANGLES", "INDICES"};
+        static const char *const filters[] = {"NONE", "OCTAHEDRAL", "QUATERNION", "EXPONENTIAL"};
+        m.mode = m.filter = -1;
+        for (int k = 0; k < 3; k++)
+            if (mode == modes[k]) m.mode = k;
+        for (int k = 0; k < 4; k++)
+            if (filter == filters[k]) m.filter = k;
+        if (m.mode < 0)
+            gfail(strf("%s.mode: '%s' is not ATTRIBUTES, TRIANGLES or INDICES", mw.c_str(),
+                       mode.substr(0, 40).c_str()));
+        if (m.filter < 0)
+            gfail(strf("%s.filter: '%s' is not NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL",
+                       mw.c_str(), filter.substr(0, 40).c_str()));
+        const uint64_t st = m.stride;
+        if (m.mode == 0 && (st < 4 || st > 256 || st % 4))
+            gfail(strf("%s.byteStride: %llu is not a multiple of 4 in 4..256 (ATTRIBUTES)",
+                       mw.c_str(), (unsigned long long)st));
+        if (m.mode != 0 && st != 2 && st != 4)
+            gfail(strf("%s.byteStride: %llu is not 2 or 4 (%s)", mw.c_str(),
+                       (unsigned long long)st, modes[m.mode]));
+        if (m.mode == 1 && m.count % 3)
+            gfail(strf("%s.count: %llu is not a multiple of 3 (TRIANGLES)", mw.c_str(),
+                       (unsigned long long)m.count));
+        if (m.filter != 0 && m.mode != 0)
+            gfail(strf("%s.filter: %s needs mode ATTRIBUTES", mw.c_str(), filters[m.filter]));
+        if ((m.filter == 1 && st != 4 && st != 8) || (m.filter == 2 && st != 8))
+            gfail(strf("%s.filter: %s needs byteStride %s (got %llu)", mw.c_str(),
+                       filters[m.filter], m.filter == 1 ? "4 or 8" : "8",
+                       (unsigned long long)st));
+        if (m.count > UINT64_MAX / st || m.count * st != len)
+            gfail(strf("%s: count %llu * byteStride %llu is not the bufferView's byteLength %llu",
+                       mw.c_str(), (unsigned long long)m.count, (unsigned long long)st,
+                       (unsigned long long)len));
+        c.meshopt.push_back(m);
     });
 
     each_object(accessors, "accessors", [&](const json &o, const std::string &w, size_t) {
@@ -447,6 +547,10 @@ void prevalidate(Ctx &c)
         long long bv = ref(o, "bufferView", arr_size(views), "bufferViews", w, false);
         auto uit = o.find("uri");
         if (bv >= 0 && uit != o.end()) gfail(w + ": has both uri and bufferView");
+        if (bv >= 0 && c.view_is_meshopt[size_t(bv)])
+            gfail(strf("%s.bufferView: bufferViews[%lld] is EXT_meshopt_compression compressed "
+                       "(images cannot be)",
+                       w.c_str(), bv));
         if (bv < 0 && uit == o.end()) gfail(w + ": has neither uri nor bufferView");
         if (uit == o.end()) return;
         if (!uit->is_string()) gfail(w + ".uri: expected a string");
@@ -701,6 +805,71 @@ std::string first_lines(const std::string &s)
 }
 
 /* ------------------------------------------------------------------------------------------ */
+/* step 3b: EXT_meshopt_compression (prevalidate checked every parameter the decoders assert on:
+ * ATTRIBUTES byteStride a multiple of 4 in 4..256, TRIANGLES/INDICES byteStride 2 or 4, TRIANGLES
+ * count a multiple of 3, the filters' strides; the source range inside its buffer; count *
+ * byteStride == the bufferView's byteLength). The decoders are safe on untrusted bytes.        */
+
+constexpr uint64_t kMaxDecodedBytes = uint64_t(1) << 30;
+
+const char *meshopt_rc(int rc)
+{
+    switch (rc) {
+    case -1: return "unsupported encoding version";
+    case -2: return "malformed or truncated data";
+    case -3: return "data left over after the last element";
+    default: return "decoding failed";
+    }
+}
+
+void decode_meshopt(Ctx &c)
+{
+    uint64_t total = 0;
+    for (const Ctx::Meshopt &m : c.meshopt) {
+        const std::string mw = strf("bufferViews[%d].extensions.EXT_meshopt_compression", m.view);
+        const uint64_t n = m.count * m.stride; /* no overflow: checked by prevalidate */
+        total += n;
+        if (total > kMaxDecodedBytes)
+            fail(PG_ERR_LIMIT, strf("%s: decoded bufferViews exceed 1 GiB", mw.c_str()));
+        const tinygltf::Buffer &buf = c.model.buffers[size_t(m.buffer)];
+        if (m.offset > buf.data.size() || m.length > buf.data.size() - m.offset)
+            gfail(strf("%s: byteOffset %llu + byteLength %llu exceeds buffers[%d] (%zu bytes)",
+                       mw.c_str(), (unsigned long long)m.offset, (unsigned long long)m.length,
+                       m.buffer, buf.data.size()));
+        const unsigned char *src = buf.data.data() + m.offset;
+        std::vector<unsigned char> out(n ? size_t(n) : 1); /* never a null destination */
+        int rc = 0;
+        const char *fn = "";
+        switch (m.mode) {
+        case 0:
+            fn = "meshopt_decodeVertexBuffer";
+            rc = meshopt_decodeVertexBuffer(out.data(), size_t(m.count), size_t(m.stride), src,
+                                            size_t(m.length));
+            break;
+        case 1:
+            fn = "meshopt_decodeIndexBuffer";
+            rc = meshopt_decodeIndexBuffer(out.data(), size_t(m.count), size_t(m.stride), src,
+                                           size_t(m.length));
+            break;
+        default:
+            fn = "meshopt_decodeIndexSequence";
+            rc = meshopt_decodeIndexSequence(out.data(), size_t(m.count), size_t(m.stride), src,
+                                             size_t(m.length));
+            break;
+        }
+        if (rc != 0)
+            gfail(strf("%s: %s returned %d (%s)", mw.c_str(), fn, rc, meshopt_rc(rc)));
+        if (m.count > 0) {
+            if (m.filter == 1) meshopt_decodeFilterOct(out.data(), size_t(m.count), size_t(m.stride));
+            if (m.filter == 2) meshopt_decodeFilterQuat(out.data(), size_t(m.count), size_t(m.stride));
+            if (m.filter == 3) meshopt_decodeFilterExp(out.data(), size_t(m.count), size_t(m.stride));
+        }
+        out.resize(size_t(n));
+        c.decoded[m.view].swap(out);
+    }
+}
+
+/* ------------------------------------------------------------------------------------------ */
 /* step 4: accessors, nodes, primitives                                                         */
 
 const char *type_name(int t)
@@ -788,6 +957,8 @@ std::pair<const unsigned char *, size_t> view_bytes(const Ctx &c, int bvi, const
     if (bvi < 0 || size_t(bvi) >= m.bufferViews.size())
         gfail(strf("%s: bufferView %d out of range", who.c_str(), bvi));
     const tinygltf::BufferView &bv = m.bufferViews[size_t(bvi)];
+    auto dec = c.decoded.find(bvi);
+    if (dec != c.decoded.end()) return {dec->second.data(), dec->second.size()};
     if (bv.buffer < 0 || size_t(bv.buffer) >= m.buffers.size())
         gfail(strf("bufferViews[%d]: buffer %d out of range", bvi, bv.buffer));
     const tinygltf::Buffer &buf = m.buffers[size_t(bv.buffer)];
@@ -914,31 +1085,83 @@ View get_view(Ctx &c, int ai)
     return v;
 }
 
-void expect_float(const View &v, const char *semantic, int type)
+/* KHR_mesh_quantization: the component types a vertex attribute may have. Core glTF 2.0 allows
+ * FLOAT for POSITION/NORMAL/TANGENT and FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT for
+ * TEXCOORD_n; with KHR_mesh_quantization in extensionsUsed also POSITION: (normalized or not)
+ * BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT; NORMAL and TANGENT: normalized BYTE/SHORT; TEXCOORD_n:
+ * (normalized or not) BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT. */
+enum AttrKind { ATTR_POSITION, ATTR_NORMAL, ATTR_TANGENT, ATTR_TEXCOORD };
+
+bool attr_type_ok(AttrKind k, int ct, bool normalized, bool quantization)
 {
-    if (v.type != type || v.ctype != TINYGLTF_COMPONENT_TYPE_FLOAT)
-        gfail(strf("accessors[%d]: %s must be %s FLOAT (got %s %s)", v.index, semantic,
-                   type_name(type), type_name(v.type), ctype_name(v.ctype)));
+    const bool i8_16 = ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                       ct == TINYGLTF_COMPONENT_TYPE_SHORT || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    if (ct == TINYGLTF_COMPONENT_TYPE_FLOAT) return !normalized;
+    switch (k) {
+    case ATTR_POSITION: return quantization && i8_16;
+    case ATTR_NORMAL:
+    case ATTR_TANGENT:
+        return quantization && normalized &&
+               (ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_SHORT);
+    case ATTR_TEXCOORD:
+        if (normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                           ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))
+            return true; /* core glTF 2.0 */
+        return quantization && i8_16;
+    }
+    return false;
 }
 
-/* Reads element i as floats (FLOAT, or normalized UNSIGNED_BYTE / UNSIGNED_SHORT). */
+void expect_attr(const View &v, const char *semantic, int type, AttrKind k, bool quantization)
+{
+    if (v.type == type && attr_type_ok(k, v.ctype, v.normalized, quantization)) return;
+    static const char *const allowed_core[] = {"FLOAT", "FLOAT", "FLOAT",
+                                               "FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT"};
+    static const char *const allowed_q[] = {
+        "FLOAT or (normalized) BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT",
+        "FLOAT or normalized BYTE/SHORT", "FLOAT or normalized BYTE/SHORT",
+        "FLOAT or (normalized) BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT"};
+    const bool would_be_ok = !quantization && v.type == type && attr_type_ok(k, v.ctype, v.normalized, true);
+    gfail(strf("accessors[%d]: %s must be %s %s (got %s %s%s)%s", v.index, semantic,
+               type_name(type), quantization ? allowed_q[k] : allowed_core[k], type_name(v.type),
+               v.normalized && v.ctype != TINYGLTF_COMPONENT_TYPE_FLOAT ? "normalized " : "",
+               ctype_name(v.ctype),
+               would_be_ok ? "; that type needs KHR_mesh_quantization in extensionsUsed" : ""));
+}
+
+/* Reads element i as floats, converted as glTF 2.0 and KHR_mesh_quantization say: FLOAT as is; normalized UNSIGNED_BYTE c / 255, UNSIGNED_SHORT c / 65535, BYTE
+ * max(c / 127, -1), SHORT max(c / 32767, -1); not normalized: the integer value. */
 inline void read_floats(const View &v, size_t i, float *out)
 {
     const unsigned char *p = v.base + i * v.stride;
+    const int n = v.ncomp;
     switch (v.ctype) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: memcpy(out, p, sizeof(float) * size_t(v.ncomp)); break;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: memcpy(out, p, sizeof(float) * size_t(n)); break;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        for (int k = 0; k < v.ncomp; k++) out[k] = float(p[k]) / 255.0f;
+        for (int k = 0; k < n; k++) out[k] = v.normalized ? float(p[k]) / 255.0f : float(p[k]);
+        break;
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+        for (int k = 0; k < n; k++) {
+            float x = float(int8_t(p[k]));
+            out[k] = v.normalized ? std::max(x / 127.0f, -1.0f) : x;
+        }
         break;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        for (int k = 0; k < v.ncomp; k++) {
+        for (int k = 0; k < n; k++) {
             uint16_t x;
             memcpy(&x, p + 2 * k, 2);
-            out[k] = float(x) / 65535.0f;
+            out[k] = v.normalized ? float(x) / 65535.0f : float(x);
+        }
+        break;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+        for (int k = 0; k < n; k++) {
+            int16_t x;
+            memcpy(&x, p + 2 * k, 2);
+            out[k] = v.normalized ? std::max(float(x) / 32767.0f, -1.0f) : float(x);
         }
         break;
     default:
-        for (int k = 0; k < v.ncomp; k++) out[k] = 0;
+        for (int k = 0; k < n; k++) out[k] = 0;
     }
 }
 
@@ -1040,8 +1263,9 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
     }
     c.color_prims += has_color;
     c.texcoord1_prims += has_uv1;
+    const bool quant = c.quantization;
     View pos = get_view(c, *pa);
-    expect_float(pos, "POSITION", TINYGLTF_TYPE_VEC3);
+    expect_attr(pos, "POSITION", TINYGLTF_TYPE_VEC3, ATTR_POSITION, quant);
     const size_t n = pos.count;
 
     auto optional_view = [&](const char *name) -> std::unique_ptr<View> {
@@ -1054,20 +1278,11 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
         return v;
     };
     std::unique_ptr<View> nrm = optional_view("NORMAL");
-    if (nrm) expect_float(*nrm, "NORMAL", TINYGLTF_TYPE_VEC3);
+    if (nrm) expect_attr(*nrm, "NORMAL", TINYGLTF_TYPE_VEC3, ATTR_NORMAL, quant);
     std::unique_ptr<View> tan = optional_view("TANGENT");
-    if (tan) expect_float(*tan, "TANGENT", TINYGLTF_TYPE_VEC4);
+    if (tan) expect_attr(*tan, "TANGENT", TINYGLTF_TYPE_VEC4, ATTR_TANGENT, quant);
     std::unique_ptr<View> uv = optional_view("TEXCOORD_0");
-    if (uv) {
-        bool ok = uv->type == TINYGLTF_TYPE_VEC2 &&
-                  (uv->ctype == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                   (uv->normalized && (uv->ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                       uv->ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
-        if (!ok)
-            gfail(strf("accessors[%d]: TEXCOORD_0 must be VEC2 FLOAT or normalized "
-                       "UNSIGNED_BYTE/UNSIGNED_SHORT (got %s %s)",
-                       uv->index, type_name(uv->type), ctype_name(uv->ctype)));
-    }
+    if (uv) expect_attr(*uv, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, ATTR_TEXCOORD, quant);
 
     /* indices (local to this primitive) */
     std::vector<uint32_t> ind;
@@ -1397,10 +1612,8 @@ std::string extension_effect(const std::string &e)
 {
     if (e == "KHR_texture_transform") return "texture offset/rotation/scale not applied";
     if (e == "KHR_materials_emissive_strength") return "emission is not drawn";
-    if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression")
+    if (e == "KHR_draco_mesh_compression")
         return "compressed data not decoded, the uncompressed fallback is drawn";
-    if (e == "KHR_mesh_quantization")
-        return "quantized attributes are not decoded (a primitive using them is an error)";
     if (e == "KHR_lights_punctual") return "the file's lights are not used";
     if (e == "KHR_materials_variants") return "the default material of each primitive is drawn";
     if (e.compare(0, 14, "KHR_materials_") == 0) return "the core material is drawn without it";
@@ -1432,13 +1645,16 @@ void collect_warnings(Ctx &c)
                     plural(morph_meshes, "mesh", "meshes") +
                     " ignored: rendered with the base geometry (weights not applied)");
     constexpr size_t kMaxExtensionLines = 16;
-    for (size_t i = 0; i < md.extensionsUsed.size() && i < kMaxExtensionLines; i++) {
-        const std::string &e = md.extensionsUsed[i];
+    std::vector<std::string> unimplemented;
+    for (const std::string &e : md.extensionsUsed)
+        if (e != "KHR_mesh_quantization" && e != "EXT_meshopt_compression") unimplemented.push_back(e);
+    for (size_t i = 0; i < unimplemented.size() && i < kMaxExtensionLines; i++) {
+        const std::string &e = unimplemented[i];
         W.push_back("extensionsUsed: '" + e.substr(0, 80) + "' ignored: " + extension_effect(e));
     }
-    if (md.extensionsUsed.size() > kMaxExtensionLines)
+    if (unimplemented.size() > kMaxExtensionLines)
         W.push_back(strf("extensionsUsed: %zu more extensions ignored (not supported)",
-                         md.extensionsUsed.size() - kMaxExtensionLines));
+                         unimplemented.size() - kMaxExtensionLines));
 
     std::vector<std::string> blend, emissive, occlusion, mr, texcoord;
     for (size_t i = 0; i < md.materials.size(); i++) {
@@ -1554,10 +1770,46 @@ pg_scene *load(Ctx &c)
         loader.SetImageLoader(&load_image_cb, &c);
         std::string terr, twarn;
         if (raw_size > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
-        bool ok = c.is_glb ? loader.LoadBinaryFromMemory(&c.model, &terr, &twarn, bytes,
-                                                         unsigned(raw_size), c.base_dir)
-                           : loader.LoadASCIIFromString(&c.model, &terr, &twarn, raw,
-                                                        unsigned(raw_size), c.base_dir);
+        /* EXT_meshopt_compression fallback buffers without data: tinygltf would look for a file,
+         * so it gets a copy of the file in which each is a 4-byte data URI (never read: only
+         * compressed bufferViews use it, and those are read from their decoded data) */
+        std::vector<unsigned char> rewritten;
+        if (std::find(c.buffer_no_data.begin(), c.buffer_no_data.end(), 1) != c.buffer_no_data.end()) {
+            json j2 = c.j;
+            for (size_t i = 0; i < c.buffer_no_data.size(); i++)
+                if (c.buffer_no_data[i]) {
+                    j2["buffers"][i]["uri"] = "data:application/octet-stream;base64,AAAAAA==";
+                    j2["buffers"][i]["byteLength"] = 4;
+                }
+            std::string t = j2.dump();
+            if (!c.is_glb) {
+                rewritten.assign(t.begin(), t.end());
+            } else {
+                while ((20 + t.size()) % 4) t += ' ';
+                const size_t old_json_end = 20 + size_t(rd_u32(bytes + 12));
+                const size_t old_len = rd_u32(bytes + 8);
+                const size_t total = 20 + t.size() + (old_len - old_json_end);
+                if (total > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
+                rewritten.resize(total);
+                auto put32 = [&](size_t at, uint32_t v) {
+                    for (int k = 0; k < 4; k++) rewritten[at + size_t(k)] = (unsigned char)(v >> (8 * k));
+                };
+                memcpy(rewritten.data(), bytes, 8); /* magic, version */
+                put32(8, uint32_t(total));
+                put32(12, uint32_t(t.size()));
+                put32(16, 0x4E4F534Au);
+                memcpy(rewritten.data() + 20, t.data(), t.size());
+                memcpy(rewritten.data() + 20 + t.size(), bytes + old_json_end, old_len - old_json_end);
+            }
+        }
+        const unsigned char *tbytes = rewritten.empty() ? bytes : rewritten.data();
+        const size_t tsize = rewritten.empty() ? raw_size : rewritten.size();
+        if (tsize > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
+        bool ok = c.is_glb ? loader.LoadBinaryFromMemory(&c.model, &terr, &twarn, tbytes,
+                                                         unsigned(tsize), c.base_dir)
+                           : loader.LoadASCIIFromString(&c.model, &terr, &twarn,
+                                                        reinterpret_cast<const char *>(tbytes),
+                                                        unsigned(tsize), c.base_dir);
         if (!c.image_err.empty()) gfail(c.image_err);
         if (!ok) {
             std::string why = first_lines(terr.empty() ? twarn : terr);
@@ -1571,6 +1823,9 @@ pg_scene *load(Ctx &c)
         }
     }
     raw_owner.reset();
+    for (const std::string &e : c.model.extensionsUsed)
+        c.quantization = c.quantization || e == "KHR_mesh_quantization";
+    decode_meshopt(c);
     const tinygltf::Model &md = c.model;
 
     /* 4. node hierarchy -> geometry */
