@@ -47,6 +47,7 @@
  */
 #include "scene.h"
 
+#include <draco/compression/decode.h>
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
@@ -169,6 +170,12 @@ struct Ctx {
     std::vector<char> view_is_meshopt;  /* per bufferView */
     std::vector<char> buffer_no_data;   /* per buffer: fallback buffer without uri */
     std::map<int, std::vector<unsigned char>> decoded;
+    /* KHR_draco_mesh_compression: decoded accessor data (accessor index -> dense bytes in the
+     * accessor's componentType/type) and the bufferView each came from; primitives done */
+    std::map<int, std::vector<unsigned char>> draco_data;
+    std::map<int, int> draco_view;
+    std::map<std::pair<int, int>, bool> draco_done;
+    std::map<int, int> draco_index_fix; /* indices accessor without bufferView -> Draco view */
     /* dense copies of sparse accessors (accessor index -> data), owned until hand-out */
     std::map<int, std::vector<unsigned char>> sparse_data;
 };
@@ -336,7 +343,8 @@ void prevalidate(Ctx &c)
 
     /* a required extension passgraph does not implement is refused, naming each */
     if (const json *req = opt_array(j, "extensionsRequired", "")) {
-        static const char *const implemented[] = {"KHR_mesh_quantization", "EXT_meshopt_compression"};
+        static const char *const implemented[] = {"KHR_mesh_quantization", "EXT_meshopt_compression",
+                                                  "KHR_draco_mesh_compression"};
         std::string names;
         size_t n_bad = 0;
         for (const json &e : *req) {
@@ -611,6 +619,31 @@ void prevalidate(Ctx &c)
                     pw + ".attributes", true);
             ref(pr, "indices", arr_size(accessors), "accessors", pw, false);
             ref(pr, "material", arr_size(materials), "materials", pw, false);
+            if (const json *ex = opt_object(pr, "extensions", pw))
+                if (const json *dr = opt_object(*ex, "KHR_draco_mesh_compression", pw + ".extensions")) {
+                    const std::string dw = pw + ".extensions.KHR_draco_mesh_compression";
+                    ref(*dr, "bufferView", arr_size(views), "bufferViews", dw, true);
+                    const json *da = opt_object(*dr, "attributes", dw);
+                    if (!da) gfail(dw + ".attributes: missing (required)");
+                    for (auto it = da->begin(); it != da->end(); ++it) {
+                        if (!it->is_number_unsigned() || it->get<uint64_t>() > 0x7FFFFFFFu)
+                            gfail(strf("%s.attributes.%s: expected a Draco attribute id (a "
+                                       "non-negative integer)",
+                                       dw.c_str(), it.key().substr(0, 40).c_str()));
+                        if (!attrs->contains(it.key()))
+                            gfail(strf("%s.attributes.%s: the primitive has no %s attribute",
+                                       dw.c_str(), it.key().substr(0, 40).c_str(),
+                                       it.key().substr(0, 40).c_str()));
+                    }
+                    if (!pr.contains("indices"))
+                        gfail(pw + ".indices: missing (required with KHR_draco_mesh_compression)");
+                    /* tinygltf 2.7 refuses an indices accessor without a bufferView, which is
+                     * how a required Draco primitive's indices look: tinygltf is told it is the
+                     * Draco bufferView (never read: get_view serves the decoded faces) */
+                    const size_t ia = pr["indices"].get<size_t>();
+                    if (!(*accessors)[ia].contains("bufferView"))
+                        c.draco_index_fix[int(ia)] = int((*dr)["bufferView"].get<size_t>());
+                }
             auto mit = pr.find("mode");
             if (mit != pr.end() && (!mit->is_number_unsigned() || mit->get<uint64_t>() > 6))
                 gfail(pw + ".mode: " + mit->dump() + " is not a glTF primitive mode (0..6)");
@@ -1053,7 +1086,13 @@ View get_view(Ctx &c, int ai)
     if (!csize || !v.ncomp)
         gfail(strf("accessors[%d]: invalid componentType %d or type", ai, a.componentType));
     size_t elem = csize * size_t(v.ncomp);
-    if (a.bufferView < 0) {
+    auto dd = c.draco_data.find(ai);
+    if (dd != c.draco_data.end()) {
+        v.base = dd->second.data();
+        v.stride = elem;
+        return v;
+    }
+    if (a.bufferView < 0 || c.draco_index_fix.count(ai)) {
         if (!sparse)
             gfail(strf("accessors[%d]: has no bufferView (zero-filled accessors are not supported "
                        "without sparse)",
@@ -1241,6 +1280,133 @@ const int *find_attr(const tinygltf::Primitive &p, const char *name)
     return it == p.attributes.end() ? nullptr : &it->second;
 }
 
+/* step 4a: KHR_draco_mesh_compression (prevalidate checked the extension's bufferView, that its
+ * attribute ids are integers naming attributes the primitive has, and that it has indices). The
+ * decoded points and faces become dense data of the primitive's accessors (their componentType,
+ * type and count describe the decoded data), which get_view then reads instead of any bufferView
+ * (the uncompressed fallback, if there is one, is not read).                                    */
+
+template <class T>
+void draco_fill(const draco::PointAttribute &pa, size_t np, int ncomp, unsigned char *out,
+                const std::string &who)
+{
+    std::vector<T> tmp(static_cast<size_t>(ncomp));
+    for (size_t i = 0; i < np; i++) {
+        draco::AttributeValueIndex avi = pa.mapped_index(draco::PointIndex(uint32_t(i)));
+        if (avi.value() >= pa.size() || !pa.ConvertValue<T>(avi, int8_t(ncomp), tmp.data()))
+            gfail(strf("%s: cannot read point %zu of the Draco attribute", who.c_str(), i));
+        memcpy(out + i * sizeof(T) * size_t(ncomp), tmp.data(), sizeof(T) * size_t(ncomp));
+    }
+}
+
+void decode_draco(Ctx &c, int mi, int pi)
+{
+    if (c.draco_done.count({mi, pi})) return;
+    c.draco_done[{mi, pi}] = true;
+    const json &pj = c.j["meshes"][size_t(mi)]["primitives"][size_t(pi)];
+    auto ex = pj.find("extensions");
+    if (ex == pj.end()) return;
+    auto dr = ex->find("KHR_draco_mesh_compression");
+    if (dr == ex->end()) return;
+    const tinygltf::Primitive &prim = c.model.meshes[size_t(mi)].primitives[size_t(pi)];
+    const std::string dw =
+        strf("meshes[%d].primitives[%d].extensions.KHR_draco_mesh_compression", mi, pi);
+    const int bvi = (*dr)["bufferView"].get<int>();
+    auto bytes = view_bytes(c, bvi, dw);
+    draco::DecoderBuffer db;
+    db.Init(reinterpret_cast<const char *>(bytes.first), bytes.second);
+    auto gt = draco::Decoder::GetEncodedGeometryType(&db);
+    if (!gt.ok())
+        gfail(strf("%s: bufferViews[%d] is not Draco data (%s)", dw.c_str(), bvi,
+                   gt.status().error_msg()));
+    if (gt.value() != draco::TRIANGULAR_MESH)
+        gfail(strf("%s: bufferViews[%d] holds a Draco point cloud, not a triangle mesh", dw.c_str(),
+                   bvi));
+    draco::Decoder dec;
+    auto r = dec.DecodeMeshFromBuffer(&db);
+    if (!r.ok())
+        gfail(strf("%s: Draco decoding of bufferViews[%d] failed (%s)", dw.c_str(), bvi,
+                   r.status().error_msg()));
+    std::unique_ptr<draco::Mesh> mesh = std::move(r).value();
+    if (!mesh) gfail(strf("%s: Draco decoding of bufferViews[%d] failed", dw.c_str(), bvi));
+    const size_t np = mesh->num_points(), nf = mesh->num_faces();
+    auto claim = [&](int ai) -> std::vector<unsigned char> * {
+        auto owner = c.draco_view.find(ai);
+        if (owner != c.draco_view.end()) {
+            if (owner->second != bvi)
+                gfail(strf("accessors[%d]: used by Draco primitives of different bufferViews (%d, "
+                           "%d)",
+                           ai, owner->second, bvi));
+            return nullptr; /* already decoded from the same data */
+        }
+        c.draco_view[ai] = bvi;
+        return &c.draco_data[ai];
+    };
+    const json &attrs = (*dr)["attributes"];
+    for (auto it = attrs.begin(); it != attrs.end(); ++it) {
+        const std::string &sem = it.key();
+        const std::string aw = dw + ".attributes." + sem.substr(0, 40);
+        const int *ai = find_attr(prim, sem.c_str());
+        if (!ai || *ai < 0 || size_t(*ai) >= c.model.accessors.size())
+            gfail(aw + ": the primitive has no such attribute");
+        const tinygltf::Accessor &a = c.model.accessors[size_t(*ai)];
+        const int uid = it->get<int>();
+        const draco::PointAttribute *pa = mesh->GetAttributeByUniqueId(uint32_t(uid));
+        if (!pa) gfail(strf("%s: the Draco data has no attribute with unique id %d", aw.c_str(), uid));
+        if (a.count != np)
+            gfail(strf("accessors[%d]: count %zu, but the Draco data of %s has %zu points", *ai,
+                       a.count, sem.substr(0, 40).c_str(), np));
+        const int ncomp = type_comps(a.type);
+        const size_t csize = ctype_size(a.componentType);
+        if (!ncomp || !csize || ncomp > 16)
+            gfail(strf("accessors[%d]: invalid componentType %d or type", *ai, a.componentType));
+        if (uint64_t(np) * csize * size_t(ncomp) > kMaxDecodedBytes)
+            fail(PG_ERR_LIMIT, strf("%s: decoded attribute exceeds 1 GiB", aw.c_str()));
+        std::vector<unsigned char> *out = claim(*ai);
+        if (!out) continue;
+        out->assign(np * csize * size_t(ncomp), 0);
+        const std::string who = strf("%s (accessors[%d])", aw.c_str(), *ai);
+        switch (a.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: draco_fill<int8_t>(*pa, np, ncomp, out->data(), who); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: draco_fill<uint8_t>(*pa, np, ncomp, out->data(), who); break;
+        case TINYGLTF_COMPONENT_TYPE_SHORT: draco_fill<int16_t>(*pa, np, ncomp, out->data(), who); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: draco_fill<uint16_t>(*pa, np, ncomp, out->data(), who); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: draco_fill<uint32_t>(*pa, np, ncomp, out->data(), who); break;
+        default: draco_fill<float>(*pa, np, ncomp, out->data(), who); break;
+        }
+    }
+    /* indices from the faces */
+    const int ii = prim.indices;
+    if (ii < 0 || size_t(ii) >= c.model.accessors.size()) gfail(dw + ": the primitive has no indices");
+    const tinygltf::Accessor &ia = c.model.accessors[size_t(ii)];
+    if (nf > kMaxDecodedBytes / 12 || ia.count != nf * 3)
+        gfail(strf("accessors[%d]: count %zu, but the Draco data has %zu triangles (%zu indices)", ii,
+                   ia.count, nf, nf * 3));
+    const size_t isz = ctype_size(ia.componentType);
+    if (ia.type != TINYGLTF_TYPE_SCALAR ||
+        (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+         ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+         ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+        gfail(strf("accessors[%d]: indices must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or "
+                   "UNSIGNED_INT",
+                   ii));
+    std::vector<unsigned char> *out = claim(ii);
+    if (!out) return;
+    out->assign(nf * 3 * isz, 0);
+    const uint64_t imax = isz == 1 ? 0xFFu : isz == 2 ? 0xFFFFu : 0xFFFFFFFFu;
+    for (size_t f = 0; f < nf; f++) {
+        const draco::Mesh::Face &face = mesh->face(draco::FaceIndex(uint32_t(f)));
+        for (int k = 0; k < 3; k++) {
+            uint64_t x = face[k].value();
+            if (x >= np || x > imax)
+                gfail(strf("%s: Draco face %zu has point %llu (%zu points, %s indices)", dw.c_str(), f,
+                           (unsigned long long)x, np, ctype_name(ia.componentType)));
+            uint32_t v = uint32_t(x);
+            memcpy(out->data() + (f * 3 + size_t(k)) * isz, &v, isz); /* little-endian */
+        }
+    }
+}
+
 void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
 {
     const tinygltf::Primitive &prim = c.model.meshes[size_t(mi)].primitives[size_t(pi)];
@@ -1254,6 +1420,7 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
         mode != TINYGLTF_MODE_TRIANGLE_FAN)
         gfail(strf("%s.mode: %d is not a glTF primitive mode", pw.c_str(), mode));
 
+    decode_draco(c, mi, pi);
     const int *pa = find_attr(prim, "POSITION");
     if (!pa) gfail(pw + ".attributes: POSITION missing (required)");
     bool has_color = false, has_uv1 = false;
@@ -1612,8 +1779,6 @@ std::string extension_effect(const std::string &e)
 {
     if (e == "KHR_texture_transform") return "texture offset/rotation/scale not applied";
     if (e == "KHR_materials_emissive_strength") return "emission is not drawn";
-    if (e == "KHR_draco_mesh_compression")
-        return "compressed data not decoded, the uncompressed fallback is drawn";
     if (e == "KHR_lights_punctual") return "the file's lights are not used";
     if (e == "KHR_materials_variants") return "the default material of each primitive is drawn";
     if (e.compare(0, 14, "KHR_materials_") == 0) return "the core material is drawn without it";
@@ -1647,7 +1812,9 @@ void collect_warnings(Ctx &c)
     constexpr size_t kMaxExtensionLines = 16;
     std::vector<std::string> unimplemented;
     for (const std::string &e : md.extensionsUsed)
-        if (e != "KHR_mesh_quantization" && e != "EXT_meshopt_compression") unimplemented.push_back(e);
+        if (e != "KHR_mesh_quantization" && e != "EXT_meshopt_compression" &&
+            e != "KHR_draco_mesh_compression")
+            unimplemented.push_back(e);
     for (size_t i = 0; i < unimplemented.size() && i < kMaxExtensionLines; i++) {
         const std::string &e = unimplemented[i];
         W.push_back("extensionsUsed: '" + e.substr(0, 80) + "' ignored: " + extension_effect(e));
@@ -1772,10 +1939,14 @@ pg_scene *load(Ctx &c)
         if (raw_size > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
         /* EXT_meshopt_compression fallback buffers without data: tinygltf would look for a file,
          * so it gets a copy of the file in which each is a 4-byte data URI (never read: only
-         * compressed bufferViews use it, and those are read from their decoded data) */
+         * compressed bufferViews use it, and those are read from their decoded data); Draco
+         * indices accessors without a bufferView get one (see prevalidate) */
         std::vector<unsigned char> rewritten;
-        if (std::find(c.buffer_no_data.begin(), c.buffer_no_data.end(), 1) != c.buffer_no_data.end()) {
+        if (std::find(c.buffer_no_data.begin(), c.buffer_no_data.end(), 1) != c.buffer_no_data.end() ||
+            !c.draco_index_fix.empty()) {
             json j2 = c.j;
+            for (const auto &fx : c.draco_index_fix)
+                j2["accessors"][size_t(fx.first)]["bufferView"] = fx.second;
             for (size_t i = 0; i < c.buffer_no_data.size(); i++)
                 if (c.buffer_no_data[i]) {
                     j2["buffers"][i]["uri"] = "data:application/octet-stream;base64,AAAAAA==";

@@ -14,8 +14,9 @@ The position scale is uniform (one number for x, y, z) so the node matrix does n
 normals. test_scene compares each to twin.gltf within the quantization step (QUANT_STEPS below,
 repeated in tests/test_scene.c).
 
-meshopt.gltf/.bin/.glb are written by the C tool tests/gen_meshopt.c (it needs the encoder), from
-twin.gltf; this script leaves them alone.
+meshopt.gltf/.bin/.glb and draco.gltf/.bin, draco_q.gltf/.bin are written by the C/C++ tools
+tests/gen_meshopt.c and tests/gen_draco.cpp (they need the encoders), from twin.gltf; this script
+leaves them alone (the hostile draco_*.gltf cases below are made from draco.gltf).
 """
 import json
 import math
@@ -189,7 +190,7 @@ def meshopt_case(name, mo, view_len=36, buf_len=64, count=3, fallback_uri=False,
 def generate():
     """Writes the files; returns the MANIFEST lines (name relative to ../, code, substring)."""
     for f in os.listdir(HERE):
-        if f.endswith((".gltf", ".bin")) and not f.startswith("meshopt."):
+        if f.endswith((".gltf", ".bin")) and f.split(".")[0] not in ("meshopt", "draco", "draco_q"):
             os.remove(os.path.join(HERE, f))
     pos, nrm, tan, uv, idx = grid()
     twin = doc([("POSITION", pack("3f", pos), 5126, "VEC3", False, 12),
@@ -203,6 +204,8 @@ def generate():
         lines.append(("compressed/" + name, "PG_OK", "-"))
     # written by tests/gen_meshopt.c (checked by the ctest gen_meshopt_check)
     lines += [("compressed/meshopt.gltf", "PG_OK", "-"), ("compressed/meshopt.glb", "PG_OK", "-")]
+    # written by tests/gen_draco.cpp (checked by the ctest gen_draco_check)
+    lines += [("compressed/draco.gltf", "PG_OK", "-"), ("compressed/draco_q.gltf", "PG_OK", "-")]
 
     # quantized types without KHR_mesh_quantization in extensionsUsed stay errors
     d, data = quantized_files(pos, nrm, tan, uv, idx)["q_u16.gltf"]
@@ -253,6 +256,39 @@ def generate():
     for name, mo, kw, sub in cases:
         meshopt_case(name, mo, **kw)
         lines.append(("compressed/" + name, "PG_ERR_GLTF", sub))
+    # hostile KHR_draco_mesh_compression primitives (from draco.gltf, data embedded)
+    dw = "meshes[0].primitives[0].extensions.KHR_draco_mesh_compression"
+    base = json.load(open(os.path.join(HERE, "draco.gltf")))
+    real = open(os.path.join(HERE, "draco.bin"), "rb").read()[:base["bufferViews"][0]["byteLength"]]
+
+    def draco_case(name, data, edit, sub):
+        d = json.loads(json.dumps(base))
+        d["buffers"][0] = {"byteLength": len(data), "uri": "data:application/octet-stream;base64,"
+                           + __import__("base64").b64encode(data).decode()}
+        d["bufferViews"][0]["byteLength"] = len(data)
+        edit(d)
+        open(os.path.join(HERE, name), "w").write(json.dumps(d, indent=1) + "\n")
+        lines.append(("compressed/" + name, "PG_ERR_GLTF", sub))
+
+    def attrs(d):
+        return d["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]
+
+    draco_case("draco_not_draco.gltf", b"NOTDRACO" * 8, lambda d: None,
+               dw + ": bufferViews[0] is not Draco data")
+    draco_case("draco_truncated.gltf", real[:len(real) // 2], lambda d: None,
+               dw + ": Draco decoding of bufferViews[0] failed")
+    draco_case("draco_bad_id.gltf", real, lambda d: attrs(d).update(NORMAL=9),
+               dw + ".attributes.NORMAL: the Draco data has no attribute with unique id 9")
+    draco_case("draco_count_mismatch.gltf", real, lambda d: d["accessors"][0].update(count=80),
+               "accessors[0]: count 80, but the Draco data of POSITION has 81 points")
+    draco_case("draco_index_count.gltf", real, lambda d: d["accessors"][4].update(count=381),
+               "accessors[4]: count 381, but the Draco data has 128 triangles (384 indices)")
+    draco_case("draco_unknown_attribute.gltf", real, lambda d: attrs(d).update(COLOR_0=0),
+               dw + ".attributes.COLOR_0: the primitive has no COLOR_0 attribute")
+    draco_case("draco_bad_view.gltf", real,
+               lambda d: d["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]
+               .update(bufferView=3),
+               dw + ".bufferView: bufferViews index 3 out of range (1 bufferViews)")
     return lines
 
 
