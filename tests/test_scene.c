@@ -987,8 +987,9 @@ static void test_compressed_twins(void)
         pg_scene_free(s);
     }
     /* EXT_meshopt_compression (tests/gen_meshopt.c): POSITION (filter NONE) and both index
-     * streams (TRIANGLES, INDICES) decode exactly; NORMAL/TANGENT went through the 16-bit
-     * octahedral filter (then normalized SHORT: within 2e-4), TEXCOORD_0 through the exponential
+     * streams (TRIANGLES, INDICES) decode exactly; NORMAL went through the 16-bit octahedral
+     * filter, TANGENT through the 16-bit quaternion filter (both normalized SHORT, renormalized:
+     * within 2e-4), TEXCOORD_0 through the exponential
      * filter with a 24-bit mantissa shared by u and v (within 1e-6 for |uv| <= 1). */
     const char *mo[] = {"compressed/meshopt.gltf", "compressed/meshopt.glb"};
     for (size_t i = 0; i < 2; i++) {
