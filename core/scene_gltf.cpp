@@ -5,14 +5,16 @@
  *   1. read the file (missing/unreadable: PG_ERR_IO); .glb is recognised by its magic bytes and
  *      its container header is checked here (PG_ERR_PARSE);
  *   2. parse the JSON with nlohmann::json (syntax errors: PG_ERR_PARSE) and PRE-VALIDATE it:
- *      root object, asset.version 2.x, no extensionsRequired, every cross-reference in range
- *      (sparse indices/values bufferViews included),
+ *      root object, asset.version 2.x, only implemented extensionsRequired, every cross-reference
+ *      in range (sparse indices/values bufferViews, EXT_meshopt_compression and
+ *      KHR_draco_mesh_compression parameters included),
  *      buffers present with exactly byteLength bytes, bufferViews inside their buffers, image
  *      files present. tinygltf 2.7 does not check all of these (and reads an image bufferView's
  *      bytes without a range check), so they must hold before tinygltf sees the file;
  *   3. tinygltf builds the Model; images go through our stb callback (RGBA8; PNG and JPEG only;
  *      sides > 16384, and JPEGs with more pixels than their size can code, are refused before
- *      decoding);
+ *      decoding); then every EXT_meshopt_compression bufferView is decoded (decode_meshopt);
+ *      KHR_draco_mesh_compression primitives are decoded when first drawn (decode_draco);
  *   4. walk the node hierarchy of `scene` (else scenes[0], else every root node) with cycle
  *      detection, validate every accessor a primitive uses (type, range within its bufferView,
  *      byteStride, index range, finite values), bake transforms, build materials and textures.
@@ -26,9 +28,10 @@
  *
  * Warnings (pg_scene.warnings, collect_warnings): everything the file uses that is not drawn as it
  * asks gets one line per kind (skins, morph targets, animations, each extension in
- * extensionsUsed, BLEND materials, emissive / occlusion / metallic-roughness textures, COLOR_0,
+ * extensionsUsed that is not implemented, BLEND materials, emissive / occlusion / metallic-roughness textures, COLOR_0,
  * TEXCOORD_1+, texCoord != 0, sampler modes, point/line primitives). The library never prints
- * them. Any entry of extensionsRequired is an error (no extension is implemented). A non-GLB file
+ * them. An entry of extensionsRequired is an error unless it is KHR_mesh_quantization,
+ * EXT_meshopt_compression or KHR_draco_mesh_compression (implemented here). A non-GLB file
  * whose first non-blank byte is not '{' or '[' is "not a glTF 2.0 file"; asset.version 1.x is
  * "glTF 1.0 is not supported, only 2.0".
  * Non-finite POSITION / NORMAL / TEXCOORD_0 / TANGENT values are errors, and so are positions that
