@@ -28,8 +28,8 @@
  *
  * Warnings (pg_scene.warnings, collect_warnings): everything the file uses that is not drawn as it
  * asks gets one line per kind (skins, morph targets, animations, each extension in
- * extensionsUsed that is not implemented, BLEND materials, emissive / occlusion / metallic-roughness textures, COLOR_0,
- * TEXCOORD_1+, texCoord != 0, sampler modes, point/line primitives). The library never prints
+ * extensionsUsed that is not implemented, BLEND materials, emissive / occlusion /
+ * metallic-roughness textures, COLOR_0, TEXCOORD_1+, texCoord != 0, sampler modes, point/line primitives). The library never prints
  * them. An entry of extensionsRequired is an error unless it is KHR_mesh_quantization,
  * EXT_meshopt_compression or KHR_draco_mesh_compression (implemented here). A non-GLB file
  * whose first non-blank byte is not '{' or '[' is "not a glTF 2.0 file"; asset.version 1.x is
