@@ -1166,7 +1166,7 @@ void expect_attr(const View &v, const char *semantic, int type, AttrKind k, bool
     const bool would_be_ok = !quantization && v.type == type && attr_type_ok(k, v.ctype, v.normalized, true);
     gfail(strf("accessors[%d]: %s must be %s %s (got %s %s%s)%s", v.index, semantic,
                type_name(type), quantization ? allowed_q[k] : allowed_core[k], type_name(v.type),
-               v.normalized && v.ctype != TINYGLTF_COMPONENT_TYPE_FLOAT ? "normalized " : "",
+               v.normalized ? "normalized " : "",
                ctype_name(v.ctype),
                would_be_ok ? "; that type needs KHR_mesh_quantization in extensionsUsed" : ""));
 }

@@ -10,6 +10,10 @@ q_u16.gltf     POSITION UNSIGNED_SHORT (integer values), NORMAL/TANGENT normaliz
                TEXCOORD_0 normalized UNSIGNED_SHORT; the node matrix dequantizes the positions.
 q_s16n.gltf    POSITION/NORMAL/TANGENT/TEXCOORD_0 normalized SHORT (node matrix: scale + offset).
 q_i8.gltf      POSITION BYTE (integer values), NORMAL/TANGENT/TEXCOORD_0 normalized BYTE.
+q_u8n.gltf     POSITION normalized UNSIGNED_BYTE, NORMAL/TANGENT normalized BYTE, TEXCOORD_0
+               normalized UNSIGNED_BYTE.
+q_s16.gltf     POSITION SHORT (integer values), NORMAL/TANGENT normalized SHORT, TEXCOORD_0 SHORT
+               (integer values: 8 * the twin's, which are multiples of 1/8, so exact).
 The position scale is uniform (one number for x, y, z) so the node matrix does not bend the
 normals. test_scene compares each to twin.gltf within the quantization step (QUANT_STEPS below,
 repeated in tests/test_scene.c).
@@ -31,6 +35,8 @@ QUANT_STEPS = {
     "q_u16.gltf": (2.0 / 65535, 1 / 127, 1 / 65535),
     "q_s16n.gltf": (1.0 / 32767, 1 / 32767, 1 / 32767),
     "q_i8.gltf": (1.0 / 127, 1 / 127, 1 / 127),
+    "q_u8n.gltf": (2.0 / 255, 1 / 127, 1 / 255),
+    "q_s16.gltf": (2.0 / 65534, 1 / 32767, 0),  # texcoords x8 (exact integers)
 }
 
 
@@ -68,6 +74,9 @@ def pack(fmt, rows, pad_to=None):
     return out
 
 
+FMT = {5126: "f", 5123: "H", 5122: "h", 5121: "B", 5120: "b"}
+
+
 def rnd(x):
     return int(math.floor(x + 0.5))
 
@@ -84,10 +93,9 @@ def doc(streams, idx, matrix=None, quant=True):
         if norm:
             a["normalized"] = True
         if sem == "POSITION":
-            a["min"] = [min(struct.unpack_from("<3" + {5126: "f", 5123: "H", 5122: "h", 5120: "b"}[ct],
-                                              b, k * stride)[c] for k in range(count)) for c in range(3)]
-            a["max"] = [max(struct.unpack_from("<3" + {5126: "f", 5123: "H", 5122: "h", 5120: "b"}[ct],
-                                              b, k * stride)[c] for k in range(count)) for c in range(3)]
+            rows = [struct.unpack_from("<3" + FMT[ct], b, k * stride) for k in range(count)]
+            a["min"] = [min(r[c] for r in rows) for c in range(3)]
+            a["max"] = [max(r[c] for r in rows) for c in range(3)]
         accessors.append(a)
         attrs[sem] = len(accessors) - 1
         data += b
@@ -159,6 +167,23 @@ def quantized_files(pos, nrm, tan, uv, idx):
         ("TANGENT", pack("4b", [tuple(rnd(c * 127) for c in t) for t in tan]), 5120, "VEC4", True, 4),
         ("TEXCOORD_0", pack("2b", [tuple(rnd(c * 127) for c in u) for u in uv], 4), 5120, "VEC2", True, 4),
     ], idx, uniform_matrix(s8, center))
+    # q_u8n: normalized unsigned bytes 0..1 (scale ext, offset lo)
+    qp = [tuple(rnd((p[c] - lo[c]) / ext * 255) for c in range(3)) for p in pos]
+    out["q_u8n.gltf"] = doc([
+        ("POSITION", pack("3B", qp, 4), 5121, "VEC3", True, 4),
+        ("NORMAL", pack("3b", [tuple(rnd(c * 127) for c in n) for n in nrm], 4), 5120, "VEC3", True, 4),
+        ("TANGENT", pack("4b", [tuple(rnd(c * 127) for c in t) for t in tan]), 5120, "VEC4", True, 4),
+        ("TEXCOORD_0", pack("2B", [tuple(rnd(c * 255) for c in u) for u in uv], 4), 5121, "VEC2", True, 4),
+    ], idx, uniform_matrix(ext, lo))
+    # q_s16: integer shorts -32767..32767 (scale ext/65534, offset centre); texcoords x8
+    s16 = ext / 65534
+    qp = [tuple(rnd((p[c] - center[c]) / s16) for c in range(3)) for p in pos]
+    out["q_s16.gltf"] = doc([
+        ("POSITION", pack("3h", qp, 8), 5122, "VEC3", False, 8),
+        ("NORMAL", pack("3h", [tuple(rnd(c * 32767) for c in n) for n in nrm], 8), 5122, "VEC3", True, 8),
+        ("TANGENT", pack("4h", [tuple(rnd(c * 32767) for c in t) for t in tan]), 5122, "VEC4", True, 8),
+        ("TEXCOORD_0", pack("2h", [tuple(rnd(c * 8) for c in u) for u in uv]), 5122, "VEC2", False, 4),
+    ], idx, uniform_matrix(s16, center))
     return out
 
 
