@@ -162,7 +162,7 @@ struct Ctx {
     std::vector<std::string> warnings; /* without the "PATH: " prefix */
     /* EXT_meshopt_compression: the compressed bufferViews (checked by prevalidate, decoded by
      * decode_meshopt into `decoded`, which view_bytes reads instead of the fallback buffer), and
-     * the fallback buffers without data (no uri: handed to tinygltf as empty buffers) */
+     * the fallback buffers (never loaded: handed to tinygltf as 4-byte data URIs) */
     struct Meshopt {
         int view, buffer;
         uint64_t offset, length, stride, count;
@@ -171,7 +171,7 @@ struct Ctx {
     };
     std::vector<Meshopt> meshopt;
     std::vector<char> view_is_meshopt;  /* per bufferView */
-    std::vector<char> buffer_no_data;   /* per buffer: fallback buffer without uri */
+    std::vector<char> buffer_no_data;   /* per buffer: an EXT_meshopt_compression fallback */
     std::map<int, std::vector<unsigned char>> decoded;
     /* KHR_draco_mesh_compression: decoded accessor data (accessor index -> dense bytes in the
      * accessor's componentType/type) and the bufferView each came from; primitives done */
@@ -398,8 +398,10 @@ void prevalidate(Ctx &c)
                     gfail(w + ".extensions.EXT_meshopt_compression.fallback: expected true or false");
                 fallback = fb != mo->end() && fb->get<bool>();
             }
-        c.buffer_no_data.push_back(fallback && uit == o.end());
-        if (fallback && uit == o.end()) return; /* only compressed bufferViews may use it */
+        /* a fallback buffer is never loaded (only compressed bufferViews may use it, and those
+         * are read from their decoded data), so its uri may be missing or name no file */
+        c.buffer_no_data.push_back(fallback);
+        if (fallback) return;
         if (uit == o.end()) {
             if (!c.is_glb) gfail(w + ".uri: missing (required outside .glb files)");
             if (!c.glb_has_bin) gfail(w + ": refers to the GLB BIN chunk, but there is none");
@@ -454,7 +456,7 @@ void prevalidate(Ctx &c)
         if (!mo) {
             if (c.buffer_no_data[(size_t)b])
                 gfail(strf("%s: uses buffers[%lld], an EXT_meshopt_compression fallback buffer "
-                           "without data, but is not compressed",
+                           "(never loaded), but is not compressed",
                            w.c_str(), b));
             return;
         }
@@ -467,7 +469,7 @@ void prevalidate(Ctx &c)
         m.stride = uint_field(*mo, "byteStride", mw, true);
         m.count = uint_field(*mo, "count", mw, true);
         if (c.buffer_no_data[size_t(m.buffer)])
-            gfail(strf("%s.buffer: buffers[%d] is a fallback buffer without data", mw.c_str(),
+            gfail(strf("%s.buffer: buffers[%d] is a fallback buffer (never loaded)", mw.c_str(),
                        m.buffer));
         const uint64_t sl = buf_len[size_t(m.buffer)];
         if (m.offset > sl || m.length > sl - m.offset)
@@ -1940,8 +1942,9 @@ pg_scene *load(Ctx &c)
         loader.SetImageLoader(&load_image_cb, &c);
         std::string terr, twarn;
         if (raw_size > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
-        /* EXT_meshopt_compression fallback buffers without data: tinygltf would look for a file,
-         * so it gets a copy of the file in which each is a 4-byte data URI (never read: only
+        /* EXT_meshopt_compression fallback buffers are not loaded: tinygltf would look for a
+         * file (or refuse a missing uri), so it gets a copy of the file in which each is a
+         * 4-byte data URI (never read: only
          * compressed bufferViews use it, and those are read from their decoded data); Draco
          * indices accessors without a bufferView get one (see prevalidate) */
         std::vector<unsigned char> rewritten;

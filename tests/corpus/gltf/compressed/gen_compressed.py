@@ -187,8 +187,8 @@ def quantized_files(pos, nrm, tan, uv, idx):
     return out
 
 
-def meshopt_case(name, mo, view_len=36, buf_len=64, count=3, fallback_uri=False, ctype=5126,
-                 plain_fallback_view=False):
+def meshopt_case(name, mo, view_len=36, buf_len=64, count=3, fallback_uri=None, ctype=5126,
+                 plain_fallback_view=False, fb_len=1024):
     """One triangle whose POSITION bufferView (12-byte stride) is EXT_meshopt_compression data
     described by `mo` (merged into the defaults) in buffers[0]; buffers[1] is the fallback."""
     ext = {"buffer": 0, "byteOffset": 0, "byteLength": 8, "byteStride": 12, "count": count,
@@ -206,9 +206,11 @@ def meshopt_case(name, mo, view_len=36, buf_len=64, count=3, fallback_uri=False,
          "buffers": [{"byteLength": len(comp),
                       "uri": "data:application/octet-stream;base64,"
                              + __import__("base64").b64encode(comp).decode()},
-                     {"byteLength": 1024, "extensions": {"EXT_meshopt_compression": {"fallback": True}}}]}
+                     {"byteLength": fb_len, "extensions": {"EXT_meshopt_compression": {"fallback": True}}}]}
     if plain_fallback_view:
         del d["bufferViews"][0]["extensions"]
+    if fallback_uri:  # never opened: the decoder's error comes first
+        d["buffers"][1]["uri"] = fallback_uri
     open(os.path.join(HERE, name), "w").write(json.dumps(d, indent=1) + "\n")
 
 
@@ -273,14 +275,22 @@ def generate():
         ("meshopt_triangles_count.gltf", {"mode": "TRIANGLES", "byteStride": 4, "count": 8},
          {"view_len": 32}, mw + ".count: 8 is not a multiple of 3 (TRIANGLES)"),
         ("meshopt_fallback_source.gltf", {"buffer": 1}, {},
-         mw + ".buffer: buffers[1] is a fallback buffer without data"),
+         mw + ".buffer: buffers[1] is a fallback buffer (never loaded)"),
         ("meshopt_plain_view_on_fallback.gltf", {}, {"plain_fallback_view": True},
-         "bufferViews[0]: uses buffers[1], an EXT_meshopt_compression fallback buffer without "
-         "data, but is not compressed"),
+         "bufferViews[0]: uses buffers[1], an EXT_meshopt_compression fallback buffer (never "
+         "loaded), but is not compressed"),
+        ("meshopt_fallback_missing_file.gltf", {"byteOffset": 1, "byteLength": 40},
+         {"fallback_uri": "no_such_fallback.bin"},
+         mw + ": meshopt_decodeVertexBuffer returned -1 (unsupported encoding version)"),
     ]
     for name, mo, kw, sub in cases:
         meshopt_case(name, mo, **kw)
         lines.append(("compressed/" + name, "PG_ERR_GLTF", sub))
+    # a fallback buffer is never loaded, so it can claim any size: the decoded size is bounded
+    meshopt_case("meshopt_too_large.gltf", {"count": 2 ** 28, "byteStride": 8},
+                 **{"view_len": 2 ** 31, "fb_len": 2 ** 31})
+    lines.append(("compressed/meshopt_too_large.gltf", "PG_ERR_LIMIT",
+                  mw + ": decoded bufferViews exceed 1 GiB"))
     # hostile KHR_draco_mesh_compression primitives (from draco.gltf, data embedded)
     dw = "meshes[0].primitives[0].extensions.KHR_draco_mesh_compression"
     base = json.load(open(os.path.join(HERE, "draco.gltf")))
