@@ -308,6 +308,23 @@ def generate():
     def attrs(d):
         return d["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]
 
+    # Draco used but not required: the accessors have an uncompressed fallback (zeros here),
+    # which must not be read (test_scene: equals twin.gltf)
+    d = json.loads(json.dumps(base))
+    del d["extensionsRequired"]
+    zeros_at = len(real) + (4 - len(real) % 4) % 4
+    data = real + bytes(zeros_at - len(real))
+    sizes = {"VEC3": 12, "VEC4": 16, "VEC2": 8, "SCALAR": 2}
+    for a in d["accessors"]:
+        n = a["count"] * sizes[a["type"]]
+        d["bufferViews"].append({"buffer": 0, "byteOffset": len(data), "byteLength": n})
+        a["bufferView"] = len(d["bufferViews"]) - 1
+        data += bytes(n + (4 - n % 4) % 4)
+    d["buffers"][0] = {"byteLength": len(data), "uri": "draco_fallback.bin"}
+    open(os.path.join(HERE, "draco_fallback.bin"), "wb").write(data)
+    open(os.path.join(HERE, "draco_fallback.gltf"), "w").write(json.dumps(d, indent=1) + "\n")
+    lines.append(("compressed/draco_fallback.gltf", "PG_OK", "-"))
+
     draco_case("draco_not_draco.gltf", b"NOTDRACO" * 8, lambda d: None,
                dw + ": bufferViews[0] is not Draco data")
     draco_case("draco_truncated.gltf", real[:len(real) // 2], lambda d: None,
