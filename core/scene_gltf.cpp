@@ -29,9 +29,10 @@
  * Warnings (pg_scene.warnings, collect_warnings): everything the file uses that is not drawn as it
  * asks gets one line per kind (skins, morph targets, animations, each extension in
  * extensionsUsed that is not implemented, BLEND materials, emissive / occlusion /
- * metallic-roughness textures, COLOR_0, TEXCOORD_1+, texCoord != 0, sampler modes, point/line primitives). The library never prints
- * them. An entry of extensionsRequired is an error unless it is KHR_mesh_quantization,
- * EXT_meshopt_compression or KHR_draco_mesh_compression (implemented here). A non-GLB file
+ * metallic-roughness textures, COLOR_0, TEXCOORD_1+, texCoord != 0, sampler modes, point/line
+ * primitives). The library never prints them. An entry of extensionsRequired is an error
+ * unless it is KHR_mesh_quantization, EXT_meshopt_compression or KHR_draco_mesh_compression
+ * (implemented here). A non-GLB file
  * whose first non-blank byte is not '{' or '[' is "not a glTF 2.0 file"; asset.version 1.x is
  * "glTF 1.0 is not supported, only 2.0".
  * Non-finite POSITION / NORMAL / TEXCOORD_0 / TANGENT values are errors, and so are positions that
@@ -1173,8 +1174,9 @@ void expect_attr(const View &v, const char *semantic, int type, AttrKind k, bool
                would_be_ok ? "; that type needs KHR_mesh_quantization in extensionsUsed" : ""));
 }
 
-/* Reads element i as floats, converted as glTF 2.0 and KHR_mesh_quantization say: FLOAT as is; normalized UNSIGNED_BYTE c / 255, UNSIGNED_SHORT c / 65535, BYTE
- * max(c / 127, -1), SHORT max(c / 32767, -1); not normalized: the integer value. */
+/* Reads element i as floats, converted as glTF 2.0 and KHR_mesh_quantization say: FLOAT as is;
+ * normalized UNSIGNED_BYTE c / 255, UNSIGNED_SHORT c / 65535, BYTE max(c / 127, -1), SHORT
+ * max(c / 32767, -1); not normalized: the integer value. */
 inline void read_floats(const View &v, size_t i, float *out)
 {
     const unsigned char *p = v.base + i * v.stride;
