@@ -7,14 +7,15 @@
  *   2. parse the JSON with nlohmann::json (syntax errors: PG_ERR_PARSE) and PRE-VALIDATE it:
  *      root object, asset.version 2.x, no extensionsRequired but the implemented ones
  *      (kImplementedExtensions), emissiveFactor / emissiveStrength finite and >= 0, every
- *      cross-reference in range
- *      (sparse indices/values bufferViews included),
+ *      cross-reference in range (sparse indices/values bufferViews, EXT_meshopt_compression and
+ *      KHR_draco_mesh_compression parameters included),
  *      buffers present with exactly byteLength bytes, bufferViews inside their buffers, image
  *      files present. tinygltf 2.7 does not check all of these (and reads an image bufferView's
  *      bytes without a range check), so they must hold before tinygltf sees the file;
  *   3. tinygltf builds the Model; images go through our stb callback (RGBA8; PNG and JPEG only;
  *      sides > 16384, and JPEGs with more pixels than their size can code, are refused before
- *      decoding);
+ *      decoding); then every EXT_meshopt_compression bufferView is decoded (decode_meshopt);
+ *      KHR_draco_mesh_compression primitives are decoded when first drawn (decode_draco);
  *   4. walk the node hierarchy of `scene` (else scenes[0], else every root node) with cycle
  *      detection, validate every accessor a primitive uses (type, range within its bufferView,
  *      byteStride, index range, finite values), bake transforms, build materials and textures.
@@ -56,6 +57,8 @@
  */
 #include "scene.h"
 
+#include <draco/compression/decode.h>
+#include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 #include <tiny_gltf.h>
@@ -91,7 +94,9 @@ constexpr size_t kMaxNodeVisits = size_t(1) << 20;
 
 /* The glTF extensions passgraph implements: accepted in extensionsRequired, not warned in
  * extensionsUsed. */
-constexpr const char *kImplementedExtensions[] = {"KHR_materials_emissive_strength", "KHR_texture_transform"};
+constexpr const char *kImplementedExtensions[] = {"EXT_meshopt_compression", "KHR_draco_mesh_compression",
+                                                  "KHR_materials_emissive_strength", "KHR_mesh_quantization",
+                                                  "KHR_texture_transform"};
 bool extension_implemented(const std::string &e)
 {
     for (const char *x : kImplementedExtensions)
@@ -170,10 +175,30 @@ struct Ctx {
     json j;
     tinygltf::Model model;
     std::string image_err; /* set by the image callback */
+    bool quantization = false; /* KHR_mesh_quantization in extensionsUsed */
     unsigned skipped_prims = 0;
     unsigned color1_prims = 0;   /* drawn primitives with COLOR_1.. (ignored) */
     unsigned texcoord2_prims = 0;/* drawn primitives with TEXCOORD_2.. (ignored) */
     std::vector<std::string> warnings; /* without the "PATH: " prefix */
+    /* EXT_meshopt_compression: the compressed bufferViews (checked by prevalidate, decoded by
+     * decode_meshopt into `decoded`, which view_bytes reads instead of the fallback buffer), and
+     * the fallback buffers (never loaded: handed to tinygltf as 4-byte data URIs) */
+    struct Meshopt {
+        int view, buffer;
+        uint64_t offset, length, stride, count;
+        int mode;   /* 0 ATTRIBUTES, 1 TRIANGLES, 2 INDICES */
+        int filter; /* 0 NONE, 1 OCTAHEDRAL, 2 QUATERNION, 3 EXPONENTIAL */
+    };
+    std::vector<Meshopt> meshopt;
+    std::vector<char> view_is_meshopt;  /* per bufferView */
+    std::vector<char> buffer_no_data;   /* per buffer: an EXT_meshopt_compression fallback */
+    std::map<int, std::vector<unsigned char>> decoded;
+    /* KHR_draco_mesh_compression: decoded accessor data (accessor index -> dense bytes in the
+     * accessor's componentType/type) and the bufferView each came from; primitives done */
+    std::map<int, std::vector<unsigned char>> draco_data;
+    std::map<int, int> draco_view;
+    std::map<std::pair<int, int>, bool> draco_done;
+    std::map<int, int> draco_index_fix; /* indices accessor without bufferView -> Draco view */
     /* dense copies of sparse accessors (accessor index -> data), owned until hand-out */
     std::map<int, std::vector<unsigned char>> sparse_data;
 };
@@ -407,6 +432,18 @@ void prevalidate(Ctx &c)
         uint64_t len = uint_field(o, "byteLength", w, true);
         buf_len.push_back(len);
         auto uit = o.find("uri");
+        bool fallback = false;
+        if (const json *ex = opt_object(o, "extensions", w))
+            if (const json *mo = opt_object(*ex, "EXT_meshopt_compression", w + ".extensions")) {
+                auto fb = mo->find("fallback");
+                if (fb != mo->end() && !fb->is_boolean())
+                    gfail(w + ".extensions.EXT_meshopt_compression.fallback: expected true or false");
+                fallback = fb != mo->end() && fb->get<bool>();
+            }
+        /* a fallback buffer is never loaded (only compressed bufferViews may use it, and those
+         * are read from their decoded data), so its uri may be missing or name no file */
+        c.buffer_no_data.push_back(fallback);
+        if (fallback) return;
         if (uit == o.end()) {
             if (!c.is_glb) gfail(w + ".uri: missing (required outside .glb files)");
             if (!c.glb_has_bin) gfail(w + ": refers to the GLB BIN chunk, but there is none");
@@ -439,8 +476,8 @@ void prevalidate(Ctx &c)
                        (unsigned long long)fsize, (unsigned long long)len));
     });
 
-    /* bufferViews inside their buffers */
-    each_object(views, "bufferViews", [&](const json &o, const std::string &w, size_t) {
+    /* bufferViews inside their buffers; EXT_meshopt_compression parameters */
+    each_object(views, "bufferViews", [&](const json &o, const std::string &w, size_t vi) {
         long long b = ref(o, "buffer", arr_size(buffers), "buffers", w, true);
         uint64_t off = uint_field(o, "byteOffset", w, false, 0);
         uint64_t len = uint_field(o, "byteLength", w, true);
@@ -454,6 +491,77 @@ void prevalidate(Ctx &c)
                 gfail(strf("%s.byteStride: %llu is not a multiple of 4 in 4..252", w.c_str(),
                            (unsigned long long)s));
         }
+        const json *mo = nullptr;
+        if (const json *ex = opt_object(o, "extensions", w))
+            mo = opt_object(*ex, "EXT_meshopt_compression", w + ".extensions");
+        c.view_is_meshopt.push_back(mo != nullptr);
+        if (!mo) {
+            if (c.buffer_no_data[(size_t)b])
+                gfail(strf("%s: uses buffers[%lld], an EXT_meshopt_compression fallback buffer "
+                           "(never loaded), but is not compressed",
+                           w.c_str(), b));
+            return;
+        }
+        const std::string mw = w + ".extensions.EXT_meshopt_compression";
+        Ctx::Meshopt m;
+        m.view = int(vi);
+        m.buffer = int(ref(*mo, "buffer", arr_size(buffers), "buffers", mw, true));
+        m.offset = uint_field(*mo, "byteOffset", mw, false, 0);
+        m.length = uint_field(*mo, "byteLength", mw, true);
+        m.stride = uint_field(*mo, "byteStride", mw, true);
+        m.count = uint_field(*mo, "count", mw, true);
+        if (c.buffer_no_data[size_t(m.buffer)])
+            gfail(strf("%s.buffer: buffers[%d] is a fallback buffer (never loaded)", mw.c_str(),
+                       m.buffer));
+        const uint64_t sl = buf_len[size_t(m.buffer)];
+        if (m.offset > sl || m.length > sl - m.offset)
+            gfail(strf("%s: byteOffset %llu + byteLength %llu exceeds buffers[%d] (%llu bytes)",
+                       mw.c_str(), (unsigned long long)m.offset, (unsigned long long)m.length,
+                       m.buffer, (unsigned long long)sl));
+        auto str = [&](const char *key, bool required) -> std::string {
+            auto it = mo->find(key);
+            if (it == mo->end()) {
+                if (required) gfail(strf("%s.%s: missing (required)", mw.c_str(), key));
+                return "NONE";
+            }
+            if (!it->is_string()) gfail(strf("%s.%s: expected a string", mw.c_str(), key));
+            return it->get<std::string>();
+        };
+        const std::string mode = str("mode", true), filter = str("filter", false);
+        static const char *const modes[] = {"ATTRIBUTES", "TRIANGLES", "INDICES"};
+        static const char *const filters[] = {"NONE", "OCTAHEDRAL", "QUATERNION", "EXPONENTIAL"};
+        m.mode = m.filter = -1;
+        for (int k = 0; k < 3; k++)
+            if (mode == modes[k]) m.mode = k;
+        for (int k = 0; k < 4; k++)
+            if (filter == filters[k]) m.filter = k;
+        if (m.mode < 0)
+            gfail(strf("%s.mode: '%s' is not ATTRIBUTES, TRIANGLES or INDICES", mw.c_str(),
+                       mode.substr(0, 40).c_str()));
+        if (m.filter < 0)
+            gfail(strf("%s.filter: '%s' is not NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL",
+                       mw.c_str(), filter.substr(0, 40).c_str()));
+        const uint64_t st = m.stride;
+        if (m.mode == 0 && (st < 4 || st > 256 || st % 4))
+            gfail(strf("%s.byteStride: %llu is not a multiple of 4 in 4..256 (ATTRIBUTES)",
+                       mw.c_str(), (unsigned long long)st));
+        if (m.mode != 0 && st != 2 && st != 4)
+            gfail(strf("%s.byteStride: %llu is not 2 or 4 (%s)", mw.c_str(),
+                       (unsigned long long)st, modes[m.mode]));
+        if (m.mode == 1 && m.count % 3)
+            gfail(strf("%s.count: %llu is not a multiple of 3 (TRIANGLES)", mw.c_str(),
+                       (unsigned long long)m.count));
+        if (m.filter != 0 && m.mode != 0)
+            gfail(strf("%s.filter: %s needs mode ATTRIBUTES", mw.c_str(), filters[m.filter]));
+        if ((m.filter == 1 && st != 4 && st != 8) || (m.filter == 2 && st != 8))
+            gfail(strf("%s.filter: %s needs byteStride %s (got %llu)", mw.c_str(),
+                       filters[m.filter], m.filter == 1 ? "4 or 8" : "8",
+                       (unsigned long long)st));
+        if (m.count > UINT64_MAX / st || m.count * st != len)
+            gfail(strf("%s: count %llu * byteStride %llu is not the bufferView's byteLength %llu",
+                       mw.c_str(), (unsigned long long)m.count, (unsigned long long)st,
+                       (unsigned long long)len));
+        c.meshopt.push_back(m);
     });
 
     each_object(accessors, "accessors", [&](const json &o, const std::string &w, size_t) {
@@ -494,6 +602,10 @@ void prevalidate(Ctx &c)
         long long bv = ref(o, "bufferView", arr_size(views), "bufferViews", w, false);
         auto uit = o.find("uri");
         if (bv >= 0 && uit != o.end()) gfail(w + ": has both uri and bufferView");
+        if (bv >= 0 && c.view_is_meshopt[size_t(bv)])
+            gfail(strf("%s.bufferView: bufferViews[%lld] is EXT_meshopt_compression compressed "
+                       "(images cannot be)",
+                       w.c_str(), bv));
         if (bv < 0 && uit == o.end()) gfail(w + ": has neither uri nor bufferView");
         if (uit == o.end()) return;
         if (!uit->is_string()) gfail(w + ".uri: expected a string");
@@ -555,6 +667,31 @@ void prevalidate(Ctx &c)
                     pw + ".attributes", true);
             ref(pr, "indices", arr_size(accessors), "accessors", pw, false);
             ref(pr, "material", arr_size(materials), "materials", pw, false);
+            if (const json *ex = opt_object(pr, "extensions", pw))
+                if (const json *dr = opt_object(*ex, "KHR_draco_mesh_compression", pw + ".extensions")) {
+                    const std::string dw = pw + ".extensions.KHR_draco_mesh_compression";
+                    ref(*dr, "bufferView", arr_size(views), "bufferViews", dw, true);
+                    const json *da = opt_object(*dr, "attributes", dw);
+                    if (!da) gfail(dw + ".attributes: missing (required)");
+                    for (auto it = da->begin(); it != da->end(); ++it) {
+                        if (!it->is_number_unsigned() || it->get<uint64_t>() > 0x7FFFFFFFu)
+                            gfail(strf("%s.attributes.%s: expected a Draco attribute id (a "
+                                       "non-negative integer)",
+                                       dw.c_str(), it.key().substr(0, 40).c_str()));
+                        if (!attrs->contains(it.key()))
+                            gfail(strf("%s.attributes.%s: the primitive has no %s attribute",
+                                       dw.c_str(), it.key().substr(0, 40).c_str(),
+                                       it.key().substr(0, 40).c_str()));
+                    }
+                    if (!pr.contains("indices"))
+                        gfail(pw + ".indices: missing (required with KHR_draco_mesh_compression)");
+                    /* tinygltf 2.7 refuses an indices accessor without a bufferView, which is
+                     * how a required Draco primitive's indices look: tinygltf is told it is the
+                     * Draco bufferView (never read: get_view serves the decoded faces) */
+                    const size_t ia = pr["indices"].get<size_t>();
+                    if (!(*accessors)[ia].contains("bufferView"))
+                        c.draco_index_fix[int(ia)] = int((*dr)["bufferView"].get<size_t>());
+                }
             auto mit = pr.find("mode");
             if (mit != pr.end() && (!mit->is_number_unsigned() || mit->get<uint64_t>() > 6))
                 gfail(pw + ".mode: " + mit->dump() + " is not a glTF primitive mode (0..6)");
@@ -749,6 +886,71 @@ std::string first_lines(const std::string &s)
 }
 
 /* ------------------------------------------------------------------------------------------ */
+/* step 3b: EXT_meshopt_compression (prevalidate checked every parameter the decoders assert on:
+ * ATTRIBUTES byteStride a multiple of 4 in 4..256, TRIANGLES/INDICES byteStride 2 or 4, TRIANGLES
+ * count a multiple of 3, the filters' strides; the source range inside its buffer; count *
+ * byteStride == the bufferView's byteLength). The decoders are safe on untrusted bytes.        */
+
+constexpr uint64_t kMaxDecodedBytes = uint64_t(1) << 30;
+
+const char *meshopt_rc(int rc)
+{
+    switch (rc) {
+    case -1: return "unsupported encoding version";
+    case -2: return "malformed or truncated data";
+    case -3: return "data left over after the last element";
+    default: return "decoding failed";
+    }
+}
+
+void decode_meshopt(Ctx &c)
+{
+    uint64_t total = 0;
+    for (const Ctx::Meshopt &m : c.meshopt) {
+        const std::string mw = strf("bufferViews[%d].extensions.EXT_meshopt_compression", m.view);
+        const uint64_t n = m.count * m.stride; /* no overflow: checked by prevalidate */
+        total += n;
+        if (total > kMaxDecodedBytes)
+            fail(PG_ERR_LIMIT, strf("%s: decoded bufferViews exceed 1 GiB", mw.c_str()));
+        const tinygltf::Buffer &buf = c.model.buffers[size_t(m.buffer)];
+        if (m.offset > buf.data.size() || m.length > buf.data.size() - m.offset)
+            gfail(strf("%s: byteOffset %llu + byteLength %llu exceeds buffers[%d] (%zu bytes)",
+                       mw.c_str(), (unsigned long long)m.offset, (unsigned long long)m.length,
+                       m.buffer, buf.data.size()));
+        const unsigned char *src = buf.data.data() + m.offset;
+        std::vector<unsigned char> out(n ? size_t(n) : 1); /* never a null destination */
+        int rc = 0;
+        const char *fn = "";
+        switch (m.mode) {
+        case 0:
+            fn = "meshopt_decodeVertexBuffer";
+            rc = meshopt_decodeVertexBuffer(out.data(), size_t(m.count), size_t(m.stride), src,
+                                            size_t(m.length));
+            break;
+        case 1:
+            fn = "meshopt_decodeIndexBuffer";
+            rc = meshopt_decodeIndexBuffer(out.data(), size_t(m.count), size_t(m.stride), src,
+                                           size_t(m.length));
+            break;
+        default:
+            fn = "meshopt_decodeIndexSequence";
+            rc = meshopt_decodeIndexSequence(out.data(), size_t(m.count), size_t(m.stride), src,
+                                             size_t(m.length));
+            break;
+        }
+        if (rc != 0)
+            gfail(strf("%s: %s returned %d (%s)", mw.c_str(), fn, rc, meshopt_rc(rc)));
+        if (m.count > 0) {
+            if (m.filter == 1) meshopt_decodeFilterOct(out.data(), size_t(m.count), size_t(m.stride));
+            if (m.filter == 2) meshopt_decodeFilterQuat(out.data(), size_t(m.count), size_t(m.stride));
+            if (m.filter == 3) meshopt_decodeFilterExp(out.data(), size_t(m.count), size_t(m.stride));
+        }
+        out.resize(size_t(n));
+        c.decoded[m.view].swap(out);
+    }
+}
+
+/* ------------------------------------------------------------------------------------------ */
 /* step 4: accessors, nodes, primitives                                                         */
 
 const char *type_name(int t)
@@ -836,6 +1038,8 @@ std::pair<const unsigned char *, size_t> view_bytes(const Ctx &c, int bvi, const
     if (bvi < 0 || size_t(bvi) >= m.bufferViews.size())
         gfail(strf("%s: bufferView %d out of range", who.c_str(), bvi));
     const tinygltf::BufferView &bv = m.bufferViews[size_t(bvi)];
+    auto dec = c.decoded.find(bvi);
+    if (dec != c.decoded.end()) return {dec->second.data(), dec->second.size()};
     if (bv.buffer < 0 || size_t(bv.buffer) >= m.buffers.size())
         gfail(strf("bufferViews[%d]: buffer %d out of range", bvi, bv.buffer));
     const tinygltf::Buffer &buf = m.buffers[size_t(bv.buffer)];
@@ -930,7 +1134,13 @@ View get_view(Ctx &c, int ai)
     if (!csize || !v.ncomp)
         gfail(strf("accessors[%d]: invalid componentType %d or type", ai, a.componentType));
     size_t elem = csize * size_t(v.ncomp);
-    if (a.bufferView < 0) {
+    auto dd = c.draco_data.find(ai);
+    if (dd != c.draco_data.end()) {
+        v.base = dd->second.data();
+        v.stride = elem;
+        return v;
+    }
+    if (a.bufferView < 0 || c.draco_index_fix.count(ai)) {
         if (!sparse)
             gfail(strf("accessors[%d]: has no bufferView (zero-filled accessors are not supported "
                        "without sparse)",
@@ -962,31 +1172,84 @@ View get_view(Ctx &c, int ai)
     return v;
 }
 
-void expect_float(const View &v, const char *semantic, int type)
+/* KHR_mesh_quantization: the component types a vertex attribute may have. Core glTF 2.0 allows
+ * FLOAT for POSITION/NORMAL/TANGENT and FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT for
+ * TEXCOORD_n; with KHR_mesh_quantization in extensionsUsed also POSITION: (normalized or not)
+ * BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT; NORMAL and TANGENT: normalized BYTE/SHORT; TEXCOORD_n:
+ * (normalized or not) BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT. */
+enum AttrKind { ATTR_POSITION, ATTR_NORMAL, ATTR_TANGENT, ATTR_TEXCOORD };
+
+bool attr_type_ok(AttrKind k, int ct, bool normalized, bool quantization)
 {
-    if (v.type != type || v.ctype != TINYGLTF_COMPONENT_TYPE_FLOAT)
-        gfail(strf("accessors[%d]: %s must be %s FLOAT (got %s %s)", v.index, semantic,
-                   type_name(type), type_name(v.type), ctype_name(v.ctype)));
+    const bool i8_16 = ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                       ct == TINYGLTF_COMPONENT_TYPE_SHORT || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    if (ct == TINYGLTF_COMPONENT_TYPE_FLOAT) return !normalized;
+    switch (k) {
+    case ATTR_POSITION: return quantization && i8_16;
+    case ATTR_NORMAL:
+    case ATTR_TANGENT:
+        return quantization && normalized &&
+               (ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_SHORT);
+    case ATTR_TEXCOORD:
+        if (normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                           ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))
+            return true; /* core glTF 2.0 */
+        return quantization && i8_16;
+    }
+    return false;
 }
 
-/* Reads element i as floats (FLOAT, or normalized UNSIGNED_BYTE / UNSIGNED_SHORT). */
+void expect_attr(const View &v, const char *semantic, int type, AttrKind k, bool quantization)
+{
+    if (v.type == type && attr_type_ok(k, v.ctype, v.normalized, quantization)) return;
+    static const char *const allowed_core[] = {"FLOAT", "FLOAT", "FLOAT",
+                                               "FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT"};
+    static const char *const allowed_q[] = {
+        "FLOAT or (normalized) BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT",
+        "FLOAT or normalized BYTE/SHORT", "FLOAT or normalized BYTE/SHORT",
+        "FLOAT or (normalized) BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT"};
+    const bool would_be_ok = !quantization && v.type == type && attr_type_ok(k, v.ctype, v.normalized, true);
+    gfail(strf("accessors[%d]: %s must be %s %s (got %s %s%s)%s", v.index, semantic,
+               type_name(type), quantization ? allowed_q[k] : allowed_core[k], type_name(v.type),
+               v.normalized ? "normalized " : "",
+               ctype_name(v.ctype),
+               would_be_ok ? "; that type needs KHR_mesh_quantization in extensionsUsed" : ""));
+}
+
+/* Reads element i as floats, converted as glTF 2.0 and KHR_mesh_quantization say: FLOAT as is;
+ * normalized UNSIGNED_BYTE c / 255, UNSIGNED_SHORT c / 65535, BYTE max(c / 127, -1), SHORT
+ * max(c / 32767, -1); not normalized: the integer value. */
 inline void read_floats(const View &v, size_t i, float *out)
 {
     const unsigned char *p = v.base + i * v.stride;
+    const int n = v.ncomp;
     switch (v.ctype) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: memcpy(out, p, sizeof(float) * size_t(v.ncomp)); break;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: memcpy(out, p, sizeof(float) * size_t(n)); break;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        for (int k = 0; k < v.ncomp; k++) out[k] = float(p[k]) / 255.0f;
+        for (int k = 0; k < n; k++) out[k] = v.normalized ? float(p[k]) / 255.0f : float(p[k]);
+        break;
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+        for (int k = 0; k < n; k++) {
+            float x = float(int8_t(p[k]));
+            out[k] = v.normalized ? std::max(x / 127.0f, -1.0f) : x;
+        }
         break;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        for (int k = 0; k < v.ncomp; k++) {
+        for (int k = 0; k < n; k++) {
             uint16_t x;
             memcpy(&x, p + 2 * k, 2);
-            out[k] = float(x) / 65535.0f;
+            out[k] = v.normalized ? float(x) / 65535.0f : float(x);
+        }
+        break;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+        for (int k = 0; k < n; k++) {
+            int16_t x;
+            memcpy(&x, p + 2 * k, 2);
+            out[k] = v.normalized ? std::max(float(x) / 32767.0f, -1.0f) : float(x);
         }
         break;
     default:
-        for (int k = 0; k < v.ncomp; k++) out[k] = 0;
+        for (int k = 0; k < n; k++) out[k] = 0;
     }
 }
 
@@ -1069,6 +1332,133 @@ const int *find_attr(const tinygltf::Primitive &p, const char *name)
     return it == p.attributes.end() ? nullptr : &it->second;
 }
 
+/* step 4a: KHR_draco_mesh_compression (prevalidate checked the extension's bufferView, that its
+ * attribute ids are integers naming attributes the primitive has, and that it has indices). The
+ * decoded points and faces become dense data of the primitive's accessors (their componentType,
+ * type and count describe the decoded data), which get_view then reads instead of any bufferView
+ * (the uncompressed fallback, if there is one, is not read).                                    */
+
+template <class T>
+void draco_fill(const draco::PointAttribute &pa, size_t np, int ncomp, unsigned char *out,
+                const std::string &who)
+{
+    std::vector<T> tmp(static_cast<size_t>(ncomp));
+    for (size_t i = 0; i < np; i++) {
+        draco::AttributeValueIndex avi = pa.mapped_index(draco::PointIndex(uint32_t(i)));
+        if (avi.value() >= pa.size() || !pa.ConvertValue<T>(avi, int8_t(ncomp), tmp.data()))
+            gfail(strf("%s: cannot read point %zu of the Draco attribute", who.c_str(), i));
+        memcpy(out + i * sizeof(T) * size_t(ncomp), tmp.data(), sizeof(T) * size_t(ncomp));
+    }
+}
+
+void decode_draco(Ctx &c, int mi, int pi)
+{
+    if (c.draco_done.count({mi, pi})) return;
+    c.draco_done[{mi, pi}] = true;
+    const json &pj = c.j["meshes"][size_t(mi)]["primitives"][size_t(pi)];
+    auto ex = pj.find("extensions");
+    if (ex == pj.end()) return;
+    auto dr = ex->find("KHR_draco_mesh_compression");
+    if (dr == ex->end()) return;
+    const tinygltf::Primitive &prim = c.model.meshes[size_t(mi)].primitives[size_t(pi)];
+    const std::string dw =
+        strf("meshes[%d].primitives[%d].extensions.KHR_draco_mesh_compression", mi, pi);
+    const int bvi = (*dr)["bufferView"].get<int>();
+    auto bytes = view_bytes(c, bvi, dw);
+    draco::DecoderBuffer db;
+    db.Init(reinterpret_cast<const char *>(bytes.first), bytes.second);
+    auto gt = draco::Decoder::GetEncodedGeometryType(&db);
+    if (!gt.ok())
+        gfail(strf("%s: bufferViews[%d] is not Draco data (%s)", dw.c_str(), bvi,
+                   gt.status().error_msg()));
+    if (gt.value() != draco::TRIANGULAR_MESH)
+        gfail(strf("%s: bufferViews[%d] holds a Draco point cloud, not a triangle mesh", dw.c_str(),
+                   bvi));
+    draco::Decoder dec;
+    auto r = dec.DecodeMeshFromBuffer(&db);
+    if (!r.ok())
+        gfail(strf("%s: Draco decoding of bufferViews[%d] failed (%s)", dw.c_str(), bvi,
+                   r.status().error_msg()));
+    std::unique_ptr<draco::Mesh> mesh = std::move(r).value();
+    if (!mesh) gfail(strf("%s: Draco decoding of bufferViews[%d] failed", dw.c_str(), bvi));
+    const size_t np = mesh->num_points(), nf = mesh->num_faces();
+    auto claim = [&](int ai) -> std::vector<unsigned char> * {
+        auto owner = c.draco_view.find(ai);
+        if (owner != c.draco_view.end()) {
+            if (owner->second != bvi)
+                gfail(strf("accessors[%d]: used by Draco primitives of different bufferViews (%d, "
+                           "%d)",
+                           ai, owner->second, bvi));
+            return nullptr; /* already decoded from the same data */
+        }
+        c.draco_view[ai] = bvi;
+        return &c.draco_data[ai];
+    };
+    const json &attrs = (*dr)["attributes"];
+    for (auto it = attrs.begin(); it != attrs.end(); ++it) {
+        const std::string &sem = it.key();
+        const std::string aw = dw + ".attributes." + sem.substr(0, 40);
+        const int *ai = find_attr(prim, sem.c_str());
+        if (!ai || *ai < 0 || size_t(*ai) >= c.model.accessors.size())
+            gfail(aw + ": the primitive has no such attribute");
+        const tinygltf::Accessor &a = c.model.accessors[size_t(*ai)];
+        const int uid = it->get<int>();
+        const draco::PointAttribute *pa = mesh->GetAttributeByUniqueId(uint32_t(uid));
+        if (!pa) gfail(strf("%s: the Draco data has no attribute with unique id %d", aw.c_str(), uid));
+        if (a.count != np)
+            gfail(strf("accessors[%d]: count %zu, but the Draco data of %s has %zu points", *ai,
+                       a.count, sem.substr(0, 40).c_str(), np));
+        const int ncomp = type_comps(a.type);
+        const size_t csize = ctype_size(a.componentType);
+        if (!ncomp || !csize || ncomp > 16)
+            gfail(strf("accessors[%d]: invalid componentType %d or type", *ai, a.componentType));
+        if (uint64_t(np) * csize * size_t(ncomp) > kMaxDecodedBytes)
+            fail(PG_ERR_LIMIT, strf("%s: decoded attribute exceeds 1 GiB", aw.c_str()));
+        std::vector<unsigned char> *out = claim(*ai);
+        if (!out) continue;
+        out->assign(np * csize * size_t(ncomp), 0);
+        const std::string who = strf("%s (accessors[%d])", aw.c_str(), *ai);
+        switch (a.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: draco_fill<int8_t>(*pa, np, ncomp, out->data(), who); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: draco_fill<uint8_t>(*pa, np, ncomp, out->data(), who); break;
+        case TINYGLTF_COMPONENT_TYPE_SHORT: draco_fill<int16_t>(*pa, np, ncomp, out->data(), who); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: draco_fill<uint16_t>(*pa, np, ncomp, out->data(), who); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: draco_fill<uint32_t>(*pa, np, ncomp, out->data(), who); break;
+        default: draco_fill<float>(*pa, np, ncomp, out->data(), who); break;
+        }
+    }
+    /* indices from the faces */
+    const int ii = prim.indices;
+    if (ii < 0 || size_t(ii) >= c.model.accessors.size()) gfail(dw + ": the primitive has no indices");
+    const tinygltf::Accessor &ia = c.model.accessors[size_t(ii)];
+    if (nf > kMaxDecodedBytes / 12 || ia.count != nf * 3)
+        gfail(strf("accessors[%d]: count %zu, but the Draco data has %zu triangles (%zu indices)", ii,
+                   ia.count, nf, nf * 3));
+    const size_t isz = ctype_size(ia.componentType);
+    if (ia.type != TINYGLTF_TYPE_SCALAR ||
+        (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+         ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+         ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+        gfail(strf("accessors[%d]: indices must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or "
+                   "UNSIGNED_INT",
+                   ii));
+    std::vector<unsigned char> *out = claim(ii);
+    if (!out) return;
+    out->assign(nf * 3 * isz, 0);
+    const uint64_t imax = isz == 1 ? 0xFFu : isz == 2 ? 0xFFFFu : 0xFFFFFFFFu;
+    for (size_t f = 0; f < nf; f++) {
+        const draco::Mesh::Face &face = mesh->face(draco::FaceIndex(uint32_t(f)));
+        for (int k = 0; k < 3; k++) {
+            uint64_t x = face[k].value();
+            if (x >= np || x > imax)
+                gfail(strf("%s: Draco face %zu has point %llu (%zu points, %s indices)", dw.c_str(), f,
+                           (unsigned long long)x, np, ctype_name(ia.componentType)));
+            uint32_t v = uint32_t(x);
+            memcpy(out->data() + (f * 3 + size_t(k)) * isz, &v, isz); /* little-endian */
+        }
+    }
+}
+
 void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
 {
     const tinygltf::Primitive &prim = c.model.meshes[size_t(mi)].primitives[size_t(pi)];
@@ -1082,6 +1472,7 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
         mode != TINYGLTF_MODE_TRIANGLE_FAN)
         gfail(strf("%s.mode: %d is not a glTF primitive mode", pw.c_str(), mode));
 
+    decode_draco(c, mi, pi);
     const int *pa = find_attr(prim, "POSITION");
     if (!pa) gfail(pw + ".attributes: POSITION missing (required)");
     bool has_color1 = false, has_uv2 = false;
@@ -1092,8 +1483,9 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
     }
     c.color1_prims += has_color1;
     c.texcoord2_prims += has_uv2;
+    const bool quant = c.quantization;
     View pos = get_view(c, *pa);
-    expect_float(pos, "POSITION", TINYGLTF_TYPE_VEC3);
+    expect_attr(pos, "POSITION", TINYGLTF_TYPE_VEC3, ATTR_POSITION, quant);
     const size_t n = pos.count;
 
     auto optional_view = [&](const char *name) -> std::unique_ptr<View> {
@@ -1106,25 +1498,19 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
         return v;
     };
     std::unique_ptr<View> nrm = optional_view("NORMAL");
-    if (nrm) expect_float(*nrm, "NORMAL", TINYGLTF_TYPE_VEC3);
+    if (nrm) expect_attr(*nrm, "NORMAL", TINYGLTF_TYPE_VEC3, ATTR_NORMAL, quant);
     std::unique_ptr<View> tan = optional_view("TANGENT");
-    if (tan) expect_float(*tan, "TANGENT", TINYGLTF_TYPE_VEC4);
-    /* TEXCOORD_n and COLOR_0: FLOAT, or normalized UNSIGNED_BYTE / UNSIGNED_SHORT */
+    if (tan) expect_attr(*tan, "TANGENT", TINYGLTF_TYPE_VEC4, ATTR_TANGENT, quant);
+    /* COLOR_0: FLOAT, or normalized UNSIGNED_BYTE / UNSIGNED_SHORT (core glTF) */
     auto float_or_unorm = [](const View &v) {
         return v.ctype == TINYGLTF_COMPONENT_TYPE_FLOAT ||
                (v.normalized && (v.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                                  v.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
     };
     std::unique_ptr<View> uv = optional_view("TEXCOORD_0");
-    if (uv && !(uv->type == TINYGLTF_TYPE_VEC2 && float_or_unorm(*uv)))
-        gfail(strf("accessors[%d]: TEXCOORD_0 must be VEC2 FLOAT or normalized "
-                   "UNSIGNED_BYTE/UNSIGNED_SHORT (got %s %s)",
-                   uv->index, type_name(uv->type), ctype_name(uv->ctype)));
+    if (uv) expect_attr(*uv, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, ATTR_TEXCOORD, quant);
     std::unique_ptr<View> uv1 = optional_view("TEXCOORD_1");
-    if (uv1 && !(uv1->type == TINYGLTF_TYPE_VEC2 && float_or_unorm(*uv1)))
-        gfail(strf("accessors[%d]: TEXCOORD_1 must be VEC2 FLOAT or normalized "
-                   "UNSIGNED_BYTE/UNSIGNED_SHORT (got %s %s)",
-                   uv1->index, type_name(uv1->type), ctype_name(uv1->ctype)));
+    if (uv1) expect_attr(*uv1, "TEXCOORD_1", TINYGLTF_TYPE_VEC2, ATTR_TEXCOORD, quant);
     std::unique_ptr<View> col = optional_view("COLOR_0");
     if (col && !((col->type == TINYGLTF_TYPE_VEC3 || col->type == TINYGLTF_TYPE_VEC4) && float_or_unorm(*col)))
         gfail(strf("accessors[%d]: COLOR_0 must be VEC3 or VEC4, FLOAT or normalized "
@@ -1556,10 +1942,6 @@ std::string filter_name(int f)
 std::string extension_effect(const std::string &e)
 {
     if (e == "KHR_texture_transform") return "texture offset/rotation/scale not applied";
-    if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression")
-        return "compressed data not decoded, the uncompressed fallback is drawn";
-    if (e == "KHR_mesh_quantization")
-        return "quantized attributes are not decoded (a primitive using them is an error)";
     if (e == "KHR_lights_punctual") return "the file's lights are not used";
     if (e == "KHR_materials_variants") return "the default material of each primitive is drawn";
     if (e.compare(0, 14, "KHR_materials_") == 0) return "the core material is drawn without it";
@@ -1710,10 +2092,51 @@ pg_scene *load(Ctx &c)
         loader.SetImageLoader(&load_image_cb, &c);
         std::string terr, twarn;
         if (raw_size > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
-        bool ok = c.is_glb ? loader.LoadBinaryFromMemory(&c.model, &terr, &twarn, bytes,
-                                                         unsigned(raw_size), c.base_dir)
-                           : loader.LoadASCIIFromString(&c.model, &terr, &twarn, raw,
-                                                        unsigned(raw_size), c.base_dir);
+        /* EXT_meshopt_compression fallback buffers are not loaded: tinygltf would look for a
+         * file (or refuse a missing uri), so it gets a copy of the file in which each is a
+         * 4-byte data URI (never read: only
+         * compressed bufferViews use it, and those are read from their decoded data); Draco
+         * indices accessors without a bufferView get one (see prevalidate) */
+        std::vector<unsigned char> rewritten;
+        if (std::find(c.buffer_no_data.begin(), c.buffer_no_data.end(), 1) != c.buffer_no_data.end() ||
+            !c.draco_index_fix.empty()) {
+            json j2 = c.j;
+            for (const auto &fx : c.draco_index_fix)
+                j2["accessors"][size_t(fx.first)]["bufferView"] = fx.second;
+            for (size_t i = 0; i < c.buffer_no_data.size(); i++)
+                if (c.buffer_no_data[i]) {
+                    j2["buffers"][i]["uri"] = "data:application/octet-stream;base64,AAAAAA==";
+                    j2["buffers"][i]["byteLength"] = 4;
+                }
+            std::string t = j2.dump();
+            if (!c.is_glb) {
+                rewritten.assign(t.begin(), t.end());
+            } else {
+                while ((20 + t.size()) % 4) t += ' ';
+                const size_t old_json_end = 20 + size_t(rd_u32(bytes + 12));
+                const size_t old_len = rd_u32(bytes + 8);
+                const size_t total = 20 + t.size() + (old_len - old_json_end);
+                if (total > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
+                rewritten.resize(total);
+                auto put32 = [&](size_t at, uint32_t v) {
+                    for (int k = 0; k < 4; k++) rewritten[at + size_t(k)] = (unsigned char)(v >> (8 * k));
+                };
+                memcpy(rewritten.data(), bytes, 8); /* magic, version */
+                put32(8, uint32_t(total));
+                put32(12, uint32_t(t.size()));
+                put32(16, 0x4E4F534Au);
+                memcpy(rewritten.data() + 20, t.data(), t.size());
+                memcpy(rewritten.data() + 20 + t.size(), bytes + old_json_end, old_len - old_json_end);
+            }
+        }
+        const unsigned char *tbytes = rewritten.empty() ? bytes : rewritten.data();
+        const size_t tsize = rewritten.empty() ? raw_size : rewritten.size();
+        if (tsize > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
+        bool ok = c.is_glb ? loader.LoadBinaryFromMemory(&c.model, &terr, &twarn, tbytes,
+                                                         unsigned(tsize), c.base_dir)
+                           : loader.LoadASCIIFromString(&c.model, &terr, &twarn,
+                                                        reinterpret_cast<const char *>(tbytes),
+                                                        unsigned(tsize), c.base_dir);
         if (!c.image_err.empty()) gfail(c.image_err);
         if (!ok) {
             std::string why = first_lines(terr.empty() ? twarn : terr);
@@ -1727,6 +2150,9 @@ pg_scene *load(Ctx &c)
         }
     }
     raw_owner.reset();
+    for (const std::string &e : c.model.extensionsUsed)
+        c.quantization = c.quantization || e == "KHR_mesh_quantization";
+    decode_meshopt(c);
     const tinygltf::Model &md = c.model;
 
     /* 4. node hierarchy -> geometry */

@@ -796,10 +796,12 @@ static void test_corpus_features(void)
     CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus/gltf/version_1.gltf: asset.version: '1.0': glTF 1.0 is not "
                                "supported, only 2.0"),
               "%s", err.msg);
-    CHECK(pg_scene_load_gltf(PG_TEST_DIR "/corpus/gltf/required_meshopt.gltf", &bad, &err) == PG_ERR_GLTF);
-    CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus/gltf/required_meshopt.gltf: extensionsRequired: "
-                               "'EXT_meshopt_compression' is not supported (passgraph implements only these "
-                               "glTF extensions: KHR_materials_emissive_strength, KHR_texture_transform)"),
+    /* the implemented required extension (EXT_meshopt_compression) is not named */
+    CHECK(pg_scene_load_gltf(PG_TEST_DIR "/corpus/gltf/required_made_up.gltf", &bad, &err) == PG_ERR_GLTF);
+    CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus/gltf/required_made_up.gltf: extensionsRequired: "
+                               "'EXT_made_up' is not supported (passgraph implements only these glTF extensions: "
+                               "EXT_meshopt_compression, KHR_draco_mesh_compression, KHR_materials_emissive_strength, "
+                               "KHR_mesh_quantization, KHR_texture_transform)"),
               "%s", err.msg);
     /* a scenario path that is a directory */
     pg_scenario sc;
@@ -1095,6 +1097,191 @@ static void test_corpus(void)
     test_gltf_features();
 }
 
+/* ---- compressed and quantized geometry (tests/corpus/gltf/compressed) ------------------------- */
+
+typedef struct twin_err {
+    double pos, nrm, tan, uv;
+    bool same_indices, tan_w;
+} twin_err;
+
+/* Largest differences between primitive `p` of `s` and the one primitive of `twin`; the
+ * indices (relative to each primitive's vertex_offset) must be equal, triangle by triangle; with
+ * `rotated`, each triangle's three indices may be rotated (EXT_meshopt_compression TRIANGLES mode
+ * keeps the triangle order and winding, not the first vertex). */
+static twin_err twin_diff(const pg_scene *twin, const pg_scene *s, uint32_t p, bool rotated)
+{
+    twin_err e = {0, 0, 0, 0, false, false};
+    const pg_primitive *a = &twin->primitives[0], *b = &s->primitives[p];
+    if (a->index_count != b->index_count || a->index_count % 3) return e;
+    e.same_indices = e.tan_w = true;
+    const uint32_t *ia = twin->indices + a->first_index, *ib = s->indices + b->first_index;
+    for (uint32_t t = 0; t < a->index_count; t += 3) {
+        int rot = -1;
+        for (int r = 0; r < (rotated ? 3 : 1) && rot < 0; r++)
+            if (ia[t] == ib[t + r] && ia[t + 1] == ib[t + (r + 1) % 3] && ia[t + 2] == ib[t + (r + 2) % 3]) rot = r;
+        e.same_indices = e.same_indices && rot >= 0;
+    }
+    for (uint32_t i = 0; i < a->index_count; i++) {
+        const pg_vertex *va = &twin->vertices[a->vertex_offset + (int32_t)ia[i]];
+        const pg_vertex *vb = &s->vertices[b->vertex_offset + (int32_t)ia[i]];
+        for (int k = 0; k < 3; k++) {
+            e.pos = fmax(e.pos, fabs((double)va->position[k] - vb->position[k]));
+            e.nrm = fmax(e.nrm, fabs((double)va->normal[k] - vb->normal[k]));
+            e.tan = fmax(e.tan, fabs((double)va->tangent[k] - vb->tangent[k]));
+        }
+        for (int k = 0; k < 2; k++) e.uv = fmax(e.uv, fabs((double)va->uv[k] - vb->uv[k]));
+        e.tan_w = e.tan_w && va->tangent[3] == vb->tangent[3];
+    }
+    return e;
+}
+
+/* Like twin_diff, for a primitive whose points and triangles may be renumbered (Draco): each
+ * triangle of `s` is matched to the twin triangle with the nearest centroid, its corners by the
+ * rotation (winding kept) with the nearest positions; every twin triangle must be matched once. */
+static twin_err twin_match(const pg_scene *twin, const pg_scene *s, uint32_t p)
+{
+    twin_err e = {0, 0, 0, 0, false, false};
+    const pg_primitive *a = &twin->primitives[0], *b = &s->primitives[p];
+    if (a->index_count != b->index_count || a->index_count % 3) return e;
+    const uint32_t nt = a->index_count / 3;
+    const uint32_t *ia = twin->indices + a->first_index, *ib = s->indices + b->first_index;
+    const pg_vertex *va = twin->vertices + a->vertex_offset, *vb = s->vertices + b->vertex_offset;
+    char *used = calloc(nt, 1);
+    if (!used) return e;
+    e.same_indices = e.tan_w = true;
+    for (uint32_t t = 0; t < nt; t++) {
+        float cb[3] = {0, 0, 0};
+        for (int k = 0; k < 3; k++)
+            for (int j = 0; j < 3; j++) cb[j] += vb[ib[3 * t + k]].position[j] / 3;
+        uint32_t best = 0;
+        double bd = 1e30;
+        for (uint32_t u = 0; u < nt; u++) {
+            double d = 0;
+            for (int j = 0; j < 3; j++) {
+                float ca = (va[ia[3 * u]].position[j] + va[ia[3 * u + 1]].position[j] + va[ia[3 * u + 2]].position[j]) / 3;
+                d += (ca - cb[j]) * (ca - cb[j]);
+            }
+            if (d < bd) bd = d, best = u;
+        }
+        if (used[best]) e.same_indices = false;
+        used[best] = 1;
+        int rot = 0;
+        double rd = 1e30;
+        for (int r = 0; r < 3; r++) {
+            double d = 0;
+            for (int k = 0; k < 3; k++)
+                for (int j = 0; j < 3; j++)
+                    d = fmax(d, fabs((double)va[ia[3 * best + k]].position[j] - vb[ib[3 * t + (k + r) % 3]].position[j]));
+            if (d < rd) rd = d, rot = r;
+        }
+        for (int k = 0; k < 3; k++) {
+            const pg_vertex *x = &va[ia[3 * best + k]], *y = &vb[ib[3 * t + (k + rot) % 3]];
+            for (int j = 0; j < 3; j++) {
+                e.pos = fmax(e.pos, fabs((double)x->position[j] - y->position[j]));
+                e.nrm = fmax(e.nrm, fabs((double)x->normal[j] - y->normal[j]));
+                e.tan = fmax(e.tan, fabs((double)x->tangent[j] - y->tangent[j]));
+            }
+            for (int j = 0; j < 2; j++) e.uv = fmax(e.uv, fabs((double)x->uv[j] - y->uv[j]));
+            e.tan_w = e.tan_w && x->tangent[3] == y->tangent[3];
+        }
+    }
+    free(used);
+    return e;
+}
+
+static void test_compressed_twins(void)
+{
+    pg_scene *twin = load_corpus("compressed/twin.gltf");
+    if (!twin) return;
+    CHECK(twin->n_primitives == 1 && twin->n_vertices == 81 && twin->n_indices == 384);
+    /* KHR_mesh_quantization: within half a quantization step (gen_compressed.py QUANT_STEPS:
+     * position, normal/tangent component, texcoord) plus float rounding; normals and tangents are
+     * renormalized after dequantization, which can move a component by up to one step. */
+    static const struct {
+        const char *file;
+        double pos_step, nrm_step, uv_step;
+    } q[] = {
+        {"compressed/q_u16.gltf", 2.0 / 65535, 1.0 / 127, 1.0 / 65535},
+        {"compressed/q_s16n.gltf", 1.0 / 32767, 1.0 / 32767, 1.0 / 32767},
+        {"compressed/q_i8.gltf", 1.0 / 127, 1.0 / 127, 1.0 / 127},
+        {"compressed/q_u8n.gltf", 2.0 / 255, 1.0 / 127, 1.0 / 255},
+        {"compressed/q_s16.gltf", 2.0 / 65534, 1.0 / 32767, -8}, /* texcoords: integers, 8x the twin's */
+    };
+    for (size_t i = 0; i < sizeof q / sizeof q[0]; i++) {
+        pg_scene *s = load_corpus(q[i].file);
+        if (!s) continue;
+        CHECK(s->n_primitives == 1 && s->n_vertices == twin->n_vertices);
+        if (q[i].uv_step < 0 && s->n_vertices == twin->n_vertices) {
+            /* not normalized SHORT texcoords are their integer values */
+            bool exact = true;
+            for (uint32_t v = 0; v < s->n_vertices; v++)
+                for (int k = 0; k < 2; k++) exact = exact && s->vertices[v].uv[k] == 8 * twin->vertices[v].uv[k];
+            CHECK_MSG(exact, "%s: texcoords are not 8x the twin's", q[i].file);
+            for (uint32_t v = 0; v < s->n_vertices; v++)
+                for (int k = 0; k < 2; k++) s->vertices[v].uv[k] /= 8;
+        }
+        twin_err e = twin_diff(twin, s, 0, false);
+        printf("%s: max |d| position %.3g, normal %.3g, tangent %.3g, texcoord %.3g\n", q[i].file, e.pos, e.nrm,
+               e.tan, e.uv);
+        CHECK_MSG(e.same_indices && e.tan_w, "%s: indices or tangent handedness differ from the twin", q[i].file);
+        CHECK_MSG(e.pos <= 0.5 * q[i].pos_step + 1e-6, "%s: position off by %g (step %g)", q[i].file, e.pos,
+                  q[i].pos_step);
+        CHECK_MSG(e.nrm <= q[i].nrm_step + 1e-6 && e.tan <= q[i].nrm_step + 1e-6,
+                  "%s: normal/tangent off by %g/%g (step %g)", q[i].file, e.nrm, e.tan, q[i].nrm_step);
+        CHECK_MSG(e.uv <= 0.5 * fabs(q[i].uv_step) * (q[i].uv_step > 0) + 1e-7, "%s: texcoord off by %g (step %g)", q[i].file, e.uv,
+                  q[i].uv_step);
+        CHECK(s->n_warnings == 0);
+        pg_scene_free(s);
+    }
+    /* EXT_meshopt_compression (tests/gen_meshopt.c): POSITION (filter NONE) and both index
+     * streams (TRIANGLES, INDICES) decode exactly; NORMAL went through the 16-bit octahedral
+     * filter, TANGENT through the 16-bit quaternion filter (both normalized SHORT, renormalized:
+     * within 2e-4), TEXCOORD_0 through the exponential
+     * filter with a 24-bit mantissa shared by u and v (within 1e-6 for |uv| <= 1). */
+    const char *mo[] = {"compressed/meshopt.gltf", "compressed/meshopt.glb"};
+    for (size_t i = 0; i < 2; i++) {
+        pg_scene *s = load_corpus(mo[i]);
+        if (!s) continue;
+        CHECK_MSG(s->n_primitives == 2 && s->n_vertices == 2 * twin->n_vertices, "%s: %u primitives", mo[i],
+                  s->n_primitives);
+        for (uint32_t p = 0; p < s->n_primitives && p < 2; p++) {
+            twin_err e = twin_diff(twin, s, p, p == 0);
+            printf("%s primitive %u: max |d| position %.3g, normal %.3g, tangent %.3g, texcoord %.3g\n", mo[i], p,
+                   e.pos, e.nrm, e.tan, e.uv);
+            CHECK_MSG(e.same_indices && e.tan_w && e.pos == 0, "%s primitive %u: indices/positions differ", mo[i], p);
+            CHECK_MSG(e.nrm <= 2e-4 && e.tan <= 2e-4 && e.uv <= 1e-6, "%s primitive %u: normal %g tangent %g uv %g",
+                      mo[i], p, e.nrm, e.tan, e.uv);
+        }
+        CHECK(s->n_warnings == 0);
+        pg_scene_free(s);
+    }
+    /* KHR_draco_mesh_compression (tests/gen_draco.cpp): draco.gltf is unquantized (every value
+     * exact); draco_q.gltf quantizes POSITION to 14 bits over the 2.0 extent (half step 6.1e-5),
+     * TEXCOORD_0 to 12 bits over 1.0 (half step 1.22e-4), NORMAL (octahedral) and the generic
+     * TANGENT attribute to 12 bits (within 2e-3 after renormalization). */
+    static const struct {
+        const char *file;
+        double pos, nrm, uv;
+    } dr[] = {{"compressed/draco.gltf", 0, 0, 0},
+              {"compressed/draco_q.gltf", 0.5 * 2.0 / 16383 + 1e-6, 2e-3, 0.5 / 4095 + 1e-6},
+              /* draco.gltf not required, its accessors with an all-zero fallback (not read) */
+              {"compressed/draco_fallback.gltf", 0, 0, 0}};
+    for (size_t i = 0; i < sizeof dr / sizeof dr[0]; i++) {
+        pg_scene *s = load_corpus(dr[i].file);
+        if (!s) continue;
+        CHECK(s->n_primitives == 1);
+        twin_err e = twin_match(twin, s, 0);
+        printf("%s: max |d| position %.3g, normal %.3g, tangent %.3g, texcoord %.3g\n", dr[i].file, e.pos, e.nrm, e.tan,
+               e.uv);
+        CHECK_MSG(e.same_indices && e.tan_w, "%s: triangles or tangent handedness differ from the twin", dr[i].file);
+        CHECK_MSG(e.pos <= dr[i].pos && e.nrm <= dr[i].nrm && e.tan <= dr[i].nrm && e.uv <= dr[i].uv,
+                  "%s: position %g normal %g tangent %g uv %g", dr[i].file, e.pos, e.nrm, e.tan, e.uv);
+        CHECK(s->n_warnings == 0);
+        pg_scene_free(s);
+    }
+    pg_scene_free(twin);
+}
+
 /* ---- object framing, object lights, glTF cameras (tests/corpus/gltf/objects) ------------------ */
 
 static pg_scene *load_object(const char *file)
@@ -1331,6 +1518,7 @@ int main(void)
     test_default_scene();
     test_scenarios();
     test_corpus();
+    test_compressed_twins();
     test_api_edges();
     test_object_framing();
     test_gltf_cameras();
