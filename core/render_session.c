@@ -67,6 +67,7 @@ pg_result pg_session_compile(pg_session *s, uint32_t light_count, uint32_t width
     pg_graph_plan *plan = NULL;
     pg_result r = pg_graph_compile(&cd, &plan, err);
     if (r) return r;
+    if (s->desc.test_edit_plan) s->desc.test_edit_plan(plan, s->desc.test_edit_user);
     if (s->runtime) {
         r = pg_runtime_set_plan(s->runtime, plan, s->pipeline, s->scene, width, height, err);
         if (r) {

@@ -27,6 +27,11 @@ typedef struct pg_session_desc {
      * "ocio.view" (see passes/display_ocio.c). */
     const pg_param_override *settings;
     uint32_t n_settings;
+    /* Test-only (NULL otherwise): called with every freshly compiled plan before the runtime is
+     * built from it; it may edit the plan (tests/test_gpu_canary.c removes one barrier to prove
+     * synchronization validation reports the hazard). */
+    void (*test_edit_plan)(pg_graph_plan *plan, void *user);
+    void *test_edit_user;
 } pg_session_desc;
 
 typedef struct pg_session {

@@ -52,6 +52,8 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL debug_cb(VkDebugUtilsMessageSeverityFlagBi
                VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT)) {
         gpu->validation_messages++;
         if (sev & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) gpu->validation_errors++;
+        if (data && data->pMessageIdName && strncmp(data->pMessageIdName, "SYNC-HAZARD", 11) == 0)
+            gpu->sync_hazards++;
         fprintf(stderr, "passgraph: validation %s: %s\n",
                 (sev & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "error" : "warning",
                 data && data->pMessage ? data->pMessage : "(no message)");
@@ -131,6 +133,12 @@ static pg_result make_instance(pg_gpu *gpu, const pg_gpu_desc *desc, pg_error *e
                            "validation requested but VK_LAYER_KHRONOS_validation is not installed "
                            "(Debian: apt-get install vulkan-validationlayers)");
         layers[n_layers++] = "VK_LAYER_KHRONOS_validation";
+        /* without the messenger nothing would count the layer's messages, and a test that
+         * asserts "zero messages" would pass vacuously: refuse instead */
+        if (!gpu->debug_utils)
+            return pg_fail(err, PG_ERR_NO_DEVICE,
+                           "validation requested but VK_EXT_debug_utils is not available: no "
+                           "messenger could count the validation layer's messages");
     }
     VkApplicationInfo app = {
         .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
@@ -186,7 +194,10 @@ static pg_result make_instance(pg_gpu *gpu, const pg_gpu_desc *desc, pg_error *e
             PFN_vkCreateDebugUtilsMessengerEXT create =
                 (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(
                     gpu->instance, "vkCreateDebugUtilsMessengerEXT");
-            if (create) PG_VK_TRY(err, create(gpu->instance, &dbg, NULL, &gpu->messenger));
+            if (!create)
+                return pg_fail(err, PG_ERR_NO_DEVICE,
+                               "validation requested but vkCreateDebugUtilsMessengerEXT is missing");
+            PG_VK_TRY(err, create(gpu->instance, &dbg, NULL, &gpu->messenger));
         }
     }
     return PG_OK;

@@ -4,7 +4,8 @@
  *
  * Validation: with desc.validation the Khronos layer runs with synchronization validation on;
  * every message it sends is printed to stderr and counted (gpu->validation_messages), so tests
- * can fail on any.
+ * can fail on any. Validation requires the messenger: when the layer or VK_EXT_debug_utils is
+ * missing, pg_gpu_create fails (it never runs with validation that nothing counts).
  */
 #ifndef PG_VK_CONTEXT_H
 #define PG_VK_CONTEXT_H
@@ -19,7 +20,8 @@ extern "C" {
 #endif
 
 typedef struct pg_gpu_desc {
-    bool validation;          /* enable VK_LAYER_KHRONOS_validation + sync validation */
+    bool validation;          /* enable VK_LAYER_KHRONOS_validation + sync validation and the
+                               * counting messenger; fails if either is unavailable */
     int device_index;         /* -1: pick automatically (discrete > integrated > cpu) */
     const char *device_match; /* optional substring of the device name */
     bool quiet;               /* do not print the chosen device */
@@ -54,6 +56,7 @@ typedef struct pg_gpu {
     uint64_t max_storage_buffer_range; /* bytes one storage-buffer binding may span */
     uint32_t validation_messages; /* errors + warnings reported by the validation layer */
     uint32_t validation_errors;
+    uint32_t sync_hazards;        /* of those, synchronization validation's (SYNC-HAZARD-*) */
     int64_t live_memory_objects;  /* VkDeviceMemory allocated through passgraph and not freed */
     PFN_vkSetDebugUtilsObjectNameEXT set_object_name;
     PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label;
