@@ -53,6 +53,9 @@ bool pg_th_render(pg_gpu *gpu, const pg_pass_registry *reg, const pg_scene_gpu *
         }
         out->creations = pg_runtime_get_stats(s->runtime).resource_creations;
         out->n_order = s->plan->n_order;
+        for (uint32_t b = 0; b < s->plan->n_blocks; b++) out->shared_blocks += s->plan->blocks[b].n_members >= 2;
+        out->transient_bytes_unaliased = s->plan->transient_bytes_unaliased;
+        out->transient_bytes_aliased = s->plan->transient_bytes_aliased;
         for (uint32_t k = 0; k < s->plan->n_order; k++) {
             size_t len = strlen(out->order);
             snprintf(out->order + len, sizeof out->order - len, "%s%s", k ? "," : "",

@@ -15,6 +15,8 @@ typedef struct pg_th_frame {
     uint32_t creations;
     uint32_t n_order;      /* passes run */
     char order[256];       /* their names, comma separated */
+    uint32_t shared_blocks;   /* the plan's memory blocks holding two or more resources */
+    uint64_t transient_bytes_unaliased, transient_bytes_aliased; /* the plan's totals */
 } pg_th_frame;
 
 /* pipeline is relative to the data folder ("pipelines/naive.json"). Prints errors. */
