@@ -130,8 +130,9 @@ static pg_result make_instance(pg_gpu *gpu, const pg_gpu_desc *desc, pg_error *e
     if (validation) {
         if (!has_layer("VK_LAYER_KHRONOS_validation"))
             return pg_fail(err, PG_ERR_NO_DEVICE,
-                           "validation requested but VK_LAYER_KHRONOS_validation is not installed "
-                           "(Debian: apt-get install vulkan-validationlayers)");
+                           "validation requested but the loader offers no VK_LAYER_KHRONOS_validation "
+                           "(Debian: apt-get install vulkan-validationlayers; or it is disabled, "
+                           "e.g. by VK_LOADER_LAYERS_DISABLE)");
         layers[n_layers++] = "VK_LAYER_KHRONOS_validation";
         /* without the messenger nothing would count the layer's messages, and a test that
          * asserts "zero messages" would pass vacuously: refuse instead */
