@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# renderdoc_test.sh PASSGRAPH_BINARY - passgraph under RenderDoc (Debian renderdoccmd, which
+# reports every device as Vulkan 1.2) on lavapipe:
+#  - `devices` under RenderDoc lists the device as usable ("used as 1.2 + extensions");
+#  - `render --capture` without RenderDoc is an error naming the cause, exit status 1;
+#  - for each pipeline below, `renderdoccmd capture -w passgraph render --capture X.rdc` writes
+#    X.rdc and the same image as a render without RenderDoc; tests/renderdoc_check.py replays the
+#    capture with RenderDoc's Python module and checks one labelled region per executed pass in
+#    the order of `passgraph dump --format json`, and every plan resource named;
+#  - the Vulkan 1.2 + extensions path forced on the 1.3 device (PASSGRAPH_VULKAN_1_2=1) renders
+#    every pipeline with validation + synchronization validation, zero messages, byte-identical;
+#  - the executable calls no Vulkan 1.3 core command directly (they go through vk_context.h).
+# Skipped (exit 77, reason printed) only when renderdoccmd or python3-renderdoc is missing;
+# tools/setup.sh installs both.
+set -u
+PG=$(realpath "$1")
+root=$(cd "$(dirname "$0")/.." && pwd)
+PY=/usr/bin/python3
+[ -x "$PY" ] || PY=python3
+if ! command -v renderdoccmd >/dev/null; then echo "renderdoc_test: skipped: renderdoccmd not installed (Debian renderdoccmd; tools/setup.sh)"; exit 77; fi
+if ! "$PY" -c "import renderdoc" 2>/dev/null; then echo "renderdoc_test: skipped: $PY cannot import renderdoc (Debian python3-renderdoc; tools/setup.sh)"; exit 77; fi
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cd "$tmp"
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+SIZE=160x90
+LIGHTS=64
+
+# no direct references to the 1.3 core commands (a 1.2 device would not have them)
+if command -v nm >/dev/null; then
+  direct=$(nm -u "$PG" | grep -E ' vk(CmdPipelineBarrier2|QueueSubmit2|CmdWriteTimestamp2|CmdBeginRendering|CmdEndRendering|CmdSetCullMode)$')
+  [ -z "$direct" ] && ok || bad "direct Vulkan 1.3 calls: $direct"
+fi
+
+renderdoccmd capture -w "$PG" devices >devices.out 2>&1
+grep -q "Vulkan 1\.2.*used as 1.2 + extensions" devices.out && ! grep -q "too old" devices.out && ok \
+  || { bad "devices under RenderDoc"; cat devices.out; }
+
+"$PG" render --size $SIZE --lights $LIGHTS --capture nord.rdc --out nord.png >nord.out 2>&1
+rc=$?
+[ $rc -eq 1 ] && grep -q "not started under RenderDoc" nord.out && [ ! -e nord.rdc ] && ok \
+  || { bad "render --capture outside RenderDoc: exit $rc"; cat nord.out; }
+
+for p in naive forward_plus deferred deferred_packed; do
+  pj="$root/pipelines/$p.json"
+  renderdoccmd capture -w -c "$tmp/rdtmp" "$PG" render --pipeline "$pj" --size $SIZE --lights $LIGHTS \
+    --capture "$tmp/$p.rdc" --out "$tmp/$p.rd.png" >"$p.rd.out" 2>&1
+  if ! grep -q "^render: .*capture $tmp/$p.rdc" "$p.rd.out" || [ ! -s "$p.rdc" ]; then
+    bad "$p: render --capture under RenderDoc"; cat "$p.rd.out"; continue
+  fi
+  ok
+  "$PG" render --pipeline "$pj" --size $SIZE --lights $LIGHTS --out "$p.png" >/dev/null 2>"$p.err" || bad "$p: plain render"
+  cmp -s "$p.png" "$p.rd.png" && ok || bad "$p: image under RenderDoc differs from the plain render"
+  "$PG" dump --pipeline "$pj" --size $SIZE --lights $LIGHTS --format json --out "$p.json" || { bad "$p: dump"; continue; }
+  "$PY" "$root/tests/renderdoc_check.py" "$p.rdc" "$p.json" >"$p.check" 2>&1 && ok || { bad "$p: capture check"; cat "$p.check"; }
+  sed "s/^/  $p: /" "$p.check"
+  PASSGRAPH_VULKAN_1_2=1 "$PG" render --validation --pipeline "$pj" --size $SIZE --lights $LIGHTS --out "$p.v12.png" >"$p.v12.out" 2>&1
+  rc=$?
+  [ $rc -eq 0 ] && grep -q "used as 1.2 + extensions" "$p.v12.out" && ! grep -q "validation" <(grep -v "validation + sync validation on" "$p.v12.out") && ok \
+    || { bad "$p: PASSGRAPH_VULKAN_1_2=1 --validation: exit $rc"; tail -5 "$p.v12.out"; }
+  cmp -s "$p.png" "$p.v12.png" && ok || bad "$p: 1.2-path image differs"
+done
+
+echo "renderdoc_test: $pass passed, $fail failed"
+[ $fail -eq 0 ]
