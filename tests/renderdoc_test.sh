@@ -64,5 +64,27 @@ for p in naive forward_plus deferred deferred_packed; do
   cmp -s "$p.png" "$p.v12.png" && ok || bad "$p: 1.2-path image differs"
 done
 
+# the viewer: --at N:capture (what the C key and the button do) under RenderDoc, and without it a
+# message while the viewer goes on
+if command -v xvfb-run >/dev/null; then
+  pj="$root/pipelines/deferred.json"
+  xvfb-run -a -s "-screen 0 640x480x24" renderdoccmd capture -w "$PG" view --size $SIZE --frames 4 --lights $LIGHTS \
+    --pipeline "$pj" --at 2:capture="$tmp/view.rdc" >view.out 2>&1
+  if grep -q "^view: RenderDoc capture $tmp/view.rdc" view.out && [ -s view.rdc ]; then
+    ok
+    "$PG" dump --pipeline "$pj" --size $SIZE --lights $LIGHTS --format json --out view.json 2>/dev/null
+    "$PY" "$root/tests/renderdoc_check.py" view.rdc view.json >view.check 2>&1 && ok || { bad "view: capture check"; cat view.check; }
+  else
+    bad "view: capture under RenderDoc"; tail -5 view.out
+  fi
+  xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size $SIZE --frames 4 --lights $LIGHTS --pipeline "$pj" \
+    --at 2:capture="$tmp/view0.rdc" >view0.out 2>&1
+  rc=$?
+  [ $rc -eq 0 ] && grep -q "RenderDoc capture: this process was not started under RenderDoc" view0.out && [ ! -e view0.rdc ] && ok \
+    || { bad "view: capture without RenderDoc: exit $rc"; tail -5 view0.out; }
+else
+  echo "renderdoc_test: xvfb-run not installed: viewer capture not checked"
+fi
+
 echo "renderdoc_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]
