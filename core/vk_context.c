@@ -608,6 +608,7 @@ pg_result pg_buffer_create(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags us
     if (host_visible) PG_VK_TRY(err, vkMapMemory(gpu->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped));
     out->size = size;
     pg_gpu_name(gpu, VK_OBJECT_TYPE_BUFFER, (uint64_t)out->buffer, "%s", name);
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)out->memory, "%s.memory", name);
     return PG_OK;
 }
 
@@ -679,6 +680,7 @@ pg_result pg_image_create(pg_gpu *gpu, VkFormat format, uint32_t w, uint32_t h, 
     out->mips = mips;
     pg_gpu_name(gpu, VK_OBJECT_TYPE_IMAGE, (uint64_t)out->image, "%s", name);
     pg_gpu_name(gpu, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)out->view, "%s.view", name);
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)out->memory, "%s.memory", name);
     return PG_OK;
 }
 
