@@ -113,8 +113,24 @@ PFN_vkCmdBeginRendering pg_vk_CmdBeginRendering;
 PFN_vkCmdEndRendering pg_vk_CmdEndRendering;
 PFN_vkCmdSetCullMode pg_vk_CmdSetCullMode;
 
+/* PASSGRAPH_HIDE_EXTENSION=NAME[,NAME...]: device extensions treated as absent, so the refusal of
+ * a 1.2 device that lacks one can be tested on any device. */
+static bool hidden_ext(const char *name)
+{
+    const char *h = getenv("PASSGRAPH_HIDE_EXTENSION");
+    size_t n = strlen(name);
+    for (const char *p = h; p && *p;) {
+        const char *e = strchr(p, ',');
+        size_t len = e ? (size_t)(e - p) : strlen(p);
+        if (len == n && !strncmp(p, name, n)) return true;
+        p = e ? e + 1 : NULL;
+    }
+    return false;
+}
+
 static bool has_device_ext(VkPhysicalDevice phys, const char *name)
 {
+    if (hidden_ext(name)) return false;
     uint32_t n = 0;
     vkEnumerateDeviceExtensionProperties(phys, NULL, &n, NULL);
     VkExtensionProperties *p = calloc(n ? n : 1, sizeof *p);

@@ -9,6 +9,7 @@
 #    the order of `passgraph dump --format json`, and every plan resource named;
 #  - the Vulkan 1.2 + extensions path forced on the 1.3 device (PASSGRAPH_VULKAN_1_2=1) renders
 #    every pipeline with validation + synchronization validation, zero messages, byte-identical;
+#  - a 1.2 device lacking a needed extension is refused with its name (PASSGRAPH_HIDE_EXTENSION);
 #  - the executable calls no Vulkan 1.3 core command directly (they go through vk_context.h).
 # Skipped (exit 77, reason printed) only when renderdoccmd or python3-renderdoc is missing;
 # tools/setup.sh installs both.
@@ -45,6 +46,15 @@ fi
 renderdoccmd capture -w "$PG" devices >devices.out 2>&1
 grep -q "Vulkan 1\.2.*used as 1.2 + extensions" devices.out && ! grep -q "too old" devices.out && ok \
   || { bad "devices under RenderDoc"; cat devices.out; }
+
+# a 1.2 device without a needed extension is refused, naming it (hidden: PASSGRAPH_HIDE_EXTENSION)
+PASSGRAPH_VULKAN_1_2=1 PASSGRAPH_HIDE_EXTENSION=VK_KHR_dynamic_rendering "$PG" devices >hide.out 2>&1
+grep -q "\[Vulkan 1.2 without VK_KHR_dynamic_rendering (needs 1.3, or 1.2 with these)\]" hide.out && ok \
+  || { bad "devices: missing extension not named"; cat hide.out; }
+PASSGRAPH_VULKAN_1_2=1 PASSGRAPH_HIDE_EXTENSION=VK_EXT_extended_dynamic_state "$PG" render --size 32x18 --out hide.png >hide.out 2>&1
+rc=$?
+[ $rc -eq 1 ] && grep -q "no usable Vulkan device matches .*: Vulkan 1.2 without VK_EXT_extended_dynamic_state" hide.out && ok \
+  || { bad "render: 1.2 device without an extension: exit $rc"; cat hide.out; }
 
 "$PG" render --size $SIZE --lights $LIGHTS --capture nord.rdc --out nord.png >nord.out 2>&1
 rc=$?
