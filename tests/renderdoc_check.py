@@ -1,17 +1,21 @@
 #!/usr/bin/python3
-"""renderdoc_check.py CAPTURE.rdc DUMP.json - opens a RenderDoc capture of `passgraph render
+"""renderdoc_check.py [--ui] CAPTURE.rdc DUMP.json - opens a RenderDoc capture of `passgraph render
 --capture` with RenderDoc's Python module (Debian python3-renderdoc), replays it and checks that
 it reads like the dump (`passgraph dump --format json` of the same pipeline, size and lights):
   - the top-level labelled regions (vkCmdBeginDebugUtilsLabelEXT) are exactly the dump's "order",
     one per executed pass, in plan order, each holding at least one GPU command;
-  - every resource the plan keeps (not culled) is a named object in the capture.
+  - every resource the plan keeps (not culled) is a named object in the capture, and so is every
+    memory block of the dump, at least one pipeline per executed pass (PASS or PASS.variant) and
+    every shader module.
 Prints one line per check; exit status 1 on any failure."""
 import json
 import sys
 
 import renderdoc as rd
 
-cap_path, dump_path = sys.argv[1], sys.argv[2]
+# --ui: a viewer capture, where Dear ImGui's Vulkan backend makes two shader modules of its own
+ui = "--ui" in sys.argv[1:]
+cap_path, dump_path = [a for a in sys.argv[1:] if a != "--ui"][:2]
 dump = json.load(open(dump_path))
 order = dump["order"]
 kept = [r["name"] for r in dump["resources"] if not r["culled"]]
@@ -58,6 +62,30 @@ if missing:
     print("FAIL: plan resources without a name in the capture: %s" % ", ".join(missing))
 else:
     print("ok: all %d plan resources named in the capture" % len(kept))
+# the memory blocks of the dump (block0..blockN-1), one pipeline per executed pass named after it
+# (the pass name, or PASS.variant), and every shader module named
+mem = {r.name for r in ctrl.GetResources() if r.type == rd.ResourceType.Memory}
+blocks = ["block%d" % b["index"] for b in dump["blocks"]]
+missing = [b for b in blocks if b not in mem]
+if missing:
+    failed += 1
+    print("FAIL: memory blocks without their name: %s" % ", ".join(missing))
+else:
+    print("ok: all %d memory blocks named" % len(blocks))
+pipes = [r.name for r in ctrl.GetResources() if r.type == rd.ResourceType.PipelineState]
+unnamed = [p for p in order if not any(n == p or n.startswith(p + ".") for n in pipes)]
+if unnamed:
+    failed += 1
+    print("FAIL: passes without a pipeline named after them: %s (pipelines: %s)" % (", ".join(unnamed), pipes))
+else:
+    print("ok: every pass has a named pipeline (%d pipelines)" % len(pipes))
+shaders = [r.name for r in ctrl.GetResources() if r.type == rd.ResourceType.Shader]
+unnamed = [n for n in shaders if not n or n.startswith("Shader ")]
+if not shaders or len(unnamed) > (2 if ui else 0):
+    failed += 1
+    print("FAIL: shader modules without a name: %s" % shaders)
+else:
+    print("ok: all %d shader modules named" % len(shaders))
 ctrl.Shutdown()
 cap.Shutdown()
 rd.ShutdownReplay()

@@ -90,7 +90,7 @@ if command -v xvfb-run >/dev/null; then
   if grep -q "^view: RenderDoc capture $tmp/view.rdc" view.out && [ -s view.rdc ]; then
     ok
     "$PG" dump --pipeline "$pj" --size $SIZE --lights $LIGHTS --format json --out view.json 2>/dev/null
-    "$PY" "$root/tests/renderdoc_check.py" view.rdc view.json >view.check 2>&1 && ok || { bad "view: capture check"; cat view.check; }
+    "$PY" "$root/tests/renderdoc_check.py" --ui view.rdc view.json >view.check 2>&1 && ok || { bad "view: capture check"; cat view.check; }
   else
     bad "view: capture under RenderDoc"; tail -5 view.out
   fi
