@@ -216,7 +216,9 @@ static pg_result make_instance(pg_gpu *gpu, const pg_gpu_desc *desc, pg_error *e
         .pApplicationName = "passgraph",
         .applicationVersion = VK_MAKE_VERSION(0, 1, 0),
         .pEngineName = "passgraph",
-        .apiVersion = VK_API_VERSION_1_3,
+        /* forced 1.2 path: the instance asks for 1.2 too, so the device is used as a 1.2 one and
+         * the validation layer checks it as such (1.3 commands, structs, SPIR-V 1.6 flagged) */
+        .apiVersion = force_vulkan12() ? VK_API_VERSION_1_2 : VK_API_VERSION_1_3,
     };
     VkValidationFeatureEnableEXT enables[] = {
         VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT,
