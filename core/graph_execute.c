@@ -183,6 +183,9 @@ pg_result pg_runtime_create(pg_gpu *gpu, pg_runtime **out, pg_error *err)
     VkFenceCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     vr = vkCreateFence(gpu->device, &fci, NULL, &rt->fence);
     if (vr) goto vkfail;
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_COMMAND_BUFFER, (uint64_t)(uintptr_t)rt->cmd, "frame.commands");
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_FENCE, (uint64_t)rt->fence, "frame.fence");
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, (uint64_t)rt->frame_layout, "frame.layout");
     *out = rt;
     return PG_OK;
 vkfail:
@@ -393,6 +396,7 @@ static pg_result build(pg_runtime *rt, pg_error *err)
         VkQueryPoolCreateInfo qci = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
                                      .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = rt->n_queries};
         PG_VK_TRY(err, vkCreateQueryPool(gpu->device, &qci, NULL, &rt->queries));
+        pg_gpu_name(gpu, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)rt->queries, "frame.timestamps");
     }
     /* pass instances */
     for (uint32_t o = 0; o < plan->n_order; o++)

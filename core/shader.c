@@ -164,9 +164,21 @@ pg_result pg_shader_compile(const char *name, VkShaderStageFlagBits stage,
     return pg_shader_compile_ex(name, stage, defines, n_defines, NULL, 0, spirv, n_words, err);
 }
 
+static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, const char *const *defines,
+                             uint32_t n_defines, const pg_shader_source *sources, uint32_t n_sources,
+                             bool vulkan12, uint32_t **spirv, size_t *n_words, pg_error *err);
+
 pg_result pg_shader_compile_ex(const char *name, VkShaderStageFlagBits stage, const char *const *defines,
                                uint32_t n_defines, const pg_shader_source *sources, uint32_t n_sources,
                                uint32_t **spirv, size_t *n_words, pg_error *err)
+{
+    return compile_for(name, stage, defines, n_defines, sources, n_sources, false, spirv, n_words, err);
+}
+
+/* vulkan12: target Vulkan 1.2 / SPIR-V 1.5 (the most a 1.2 device accepts) instead of 1.3 / 1.6 */
+static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, const char *const *defines,
+                             uint32_t n_defines, const pg_shader_source *sources, uint32_t n_sources,
+                             bool vulkan12, uint32_t **spirv, size_t *n_words, pg_error *err)
 {
     *spirv = NULL;
     *n_words = 0;
@@ -214,9 +226,9 @@ pg_result pg_shader_compile_ex(const char *name, VkShaderStageFlagBits stage, co
         .language = GLSLANG_SOURCE_GLSL,
         .stage = to_glslang_stage(stage),
         .client = GLSLANG_CLIENT_VULKAN,
-        .client_version = GLSLANG_TARGET_VULKAN_1_3,
+        .client_version = vulkan12 ? GLSLANG_TARGET_VULKAN_1_2 : GLSLANG_TARGET_VULKAN_1_3,
         .target_language = GLSLANG_TARGET_SPV,
-        .target_language_version = GLSLANG_TARGET_SPV_1_6,
+        .target_language_version = vulkan12 ? GLSLANG_TARGET_SPV_1_5 : GLSLANG_TARGET_SPV_1_6,
         .code = src.data,
         .default_version = 460,
         .default_profile = GLSLANG_NO_PROFILE,
@@ -273,7 +285,7 @@ pg_result pg_shader_module_ex(pg_gpu *gpu, const char *name, VkShaderStageFlagBi
 {
     uint32_t *code;
     size_t words;
-    pg_result r = pg_shader_compile_ex(name, stage, defines, n_defines, sources, n_sources, &code, &words, err);
+    pg_result r = compile_for(name, stage, defines, n_defines, sources, n_sources, gpu->vulkan12, &code, &words, err);
     if (r) return r;
     VkShaderModuleCreateInfo ci = {
         .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,

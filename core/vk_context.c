@@ -100,9 +100,88 @@ static const char *device_type_name(VkPhysicalDeviceType t)
     }
 }
 
-static int device_score(const VkPhysicalDeviceProperties *p)
+/* Vulkan 1.2 devices are used through the extensions passgraph's 1.3 features came from. */
+static const char *const k_ext12_required[] = {
+    VK_KHR_SYNCHRONIZATION_2_EXTENSION_NAME,
+    VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME,
+    VK_EXT_EXTENDED_DYNAMIC_STATE_EXTENSION_NAME,
+};
+#define N_EXT12_REQUIRED (sizeof k_ext12_required / sizeof k_ext12_required[0])
+
+PFN_vkCmdPipelineBarrier2 pg_vk_CmdPipelineBarrier2;
+PFN_vkQueueSubmit2 pg_vk_QueueSubmit2;
+PFN_vkCmdWriteTimestamp2 pg_vk_CmdWriteTimestamp2;
+PFN_vkCmdBeginRendering pg_vk_CmdBeginRendering;
+PFN_vkCmdEndRendering pg_vk_CmdEndRendering;
+PFN_vkCmdSetCullMode pg_vk_CmdSetCullMode;
+
+/* PASSGRAPH_HIDE_EXTENSION=NAME[,NAME...]: device extensions treated as absent, so the refusal of
+ * a 1.2 device that lacks one can be tested on any device. */
+static bool hidden_ext(const char *name)
 {
-    if (p->apiVersion < VK_API_VERSION_1_3) return -1;
+    const char *h = getenv("PASSGRAPH_HIDE_EXTENSION");
+    size_t n = strlen(name);
+    for (const char *p = h; p && *p;) {
+        const char *e = strchr(p, ',');
+        size_t len = e ? (size_t)(e - p) : strlen(p);
+        if (len == n && !strncmp(p, name, n)) return true;
+        p = e ? e + 1 : NULL;
+    }
+    return false;
+}
+
+static bool has_device_ext(VkPhysicalDevice phys, const char *name)
+{
+    if (hidden_ext(name)) return false;
+    uint32_t n = 0;
+    vkEnumerateDeviceExtensionProperties(phys, NULL, &n, NULL);
+    VkExtensionProperties *p = calloc(n ? n : 1, sizeof *p);
+    if (!p) return false;
+    vkEnumerateDeviceExtensionProperties(phys, NULL, &n, p);
+    bool found = false;
+    for (uint32_t i = 0; i < n; i++)
+        if (strcmp(p[i].extensionName, name) == 0) found = true;
+    free(p);
+    return found;
+}
+
+static bool force_vulkan12(void)
+{
+    const char *e = getenv("PASSGRAPH_VULKAN_1_2");
+    return e && *e && strcmp(e, "0") != 0;
+}
+
+/* Whether phys is used as 1.2 + extensions; *missing (if given) gets the required extensions it
+ * lacks ("" when none, or when it is too old for even that). Returns false for a 1.3 device. */
+static bool uses_vulkan12(VkPhysicalDevice phys, const VkPhysicalDeviceProperties *p, char *missing, size_t size)
+{
+    if (missing && size) missing[0] = 0;
+    if (p->apiVersion >= VK_API_VERSION_1_3 && !force_vulkan12()) return false;
+    if (p->apiVersion < VK_API_VERSION_1_2) return true;
+    for (size_t i = 0; i < N_EXT12_REQUIRED; i++)
+        if (!has_device_ext(phys, k_ext12_required[i]) && missing) {
+            size_t len = strlen(missing);
+            snprintf(missing + len, size - len, "%s%s", len ? ", " : "", k_ext12_required[i]);
+        }
+    return true;
+}
+
+/* -1: unusable (older than 1.2, or 1.2 without the extensions; why goes to why[]). */
+static int device_score(VkPhysicalDevice phys, const VkPhysicalDeviceProperties *p, char *why, size_t size)
+{
+    char missing[256];
+    if (why && size) why[0] = 0;
+    if (uses_vulkan12(phys, p, missing, sizeof missing)) {
+        if (p->apiVersion < VK_API_VERSION_1_2) {
+            if (why) snprintf(why, size, "too old: needs 1.3, or 1.2 with %s, %s and %s", k_ext12_required[0],
+                              k_ext12_required[1], k_ext12_required[2]);
+            return -1;
+        }
+        if (missing[0]) {
+            if (why) snprintf(why, size, "Vulkan 1.2 without %s (needs 1.3, or 1.2 with these)", missing);
+            return -1;
+        }
+    }
     switch (p->deviceType) {
     case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
     case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
@@ -146,7 +225,9 @@ static pg_result make_instance(pg_gpu *gpu, const pg_gpu_desc *desc, pg_error *e
         .pApplicationName = "passgraph",
         .applicationVersion = VK_MAKE_VERSION(0, 1, 0),
         .pEngineName = "passgraph",
-        .apiVersion = VK_API_VERSION_1_3,
+        /* forced 1.2 path: the instance asks for 1.2 too, so the device is used as a 1.2 one and
+         * the validation layer checks it as such (1.3 commands, structs, SPIR-V 1.6 flagged) */
+        .apiVersion = force_vulkan12() ? VK_API_VERSION_1_2 : VK_API_VERSION_1_3,
     };
     VkValidationFeatureEnableEXT enables[] = {
         VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT,
@@ -222,10 +303,13 @@ pg_result pg_gpu_list_devices(FILE *f, pg_error *err)
     for (uint32_t i = 0; i < n; i++) {
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(devs[i], &p);
-        fprintf(f, "%u: %s (%s, Vulkan %u.%u.%u)%s\n", i, p.deviceName,
+        char why[320];
+        bool v12 = device_score(devs[i], &p, why, sizeof why) >= 0 && uses_vulkan12(devs[i], &p, NULL, 0);
+        fprintf(f, "%u: %s (%s, Vulkan %u.%u.%u)%s%s%s\n", i, p.deviceName,
                 device_type_name(p.deviceType), VK_API_VERSION_MAJOR(p.apiVersion),
                 VK_API_VERSION_MINOR(p.apiVersion), VK_API_VERSION_PATCH(p.apiVersion),
-                p.apiVersion < VK_API_VERSION_1_3 ? " [too old: needs 1.3]" : "");
+                why[0] ? " [" : "", why[0] ? why : (v12 ? " [used as 1.2 + extensions]" : ""),
+                why[0] ? "]" : "");
     }
     vkDestroyInstance(inst, NULL);
     return PG_OK;
@@ -250,13 +334,15 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
     if (n > 16) n = 16;
     vkEnumeratePhysicalDevices(gpu->instance, &n, devs);
     int best = -1, best_score = -1;
+    char why[320] = "", why_i[320];
     for (uint32_t i = 0; i < n; i++) {
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(devs[i], &p);
-        int s = device_score(&p);
         if (desc->device_index >= 0 && (int)i != desc->device_index) continue;
         if (desc->device_match && desc->device_match[0] && !strstr(p.deviceName, desc->device_match))
             continue;
+        int s = device_score(devs[i], &p, why_i, sizeof why_i);
+        if (s < 0 && !why[0]) snprintf(why, sizeof why, "%s: %s", p.deviceName, why_i);
         if (s > best_score) {
             best = (int)i;
             best_score = s;
@@ -264,9 +350,10 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
     }
     if (best < 0 || best_score < 0) {
         res = pg_fail(err, PG_ERR_NO_DEVICE,
-                      "no Vulkan 1.3 device matches (device index %d, name '%s'); run "
+                      "no usable Vulkan device matches (device index %d, name '%s')%s%s; run "
                       "'passgraph devices' to list them",
-                      desc->device_index, desc->device_match ? desc->device_match : "");
+                      desc->device_index, desc->device_match ? desc->device_match : "",
+                      why[0] ? ": " : "", why);
         goto fail;
     }
     gpu->phys = devs[best];
@@ -294,22 +381,53 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
     gpu->queue_family = (uint32_t)fam;
     gpu->timestamp_valid_bits = qf[fam].timestampValidBits;
 
+    gpu->vulkan12 = uses_vulkan12(gpu->phys, &gpu->props, NULL, 0);
+    /* On a 1.2 device the 1.3 feature and property structs are replaced by the extensions' own
+     * (same members); f13/p13 are filled from those so one path follows. */
+    bool has_sgsc = !gpu->vulkan12 || has_device_ext(gpu->phys, VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME);
+    bool has_m4 = !gpu->vulkan12 || has_device_ext(gpu->phys, VK_KHR_MAINTENANCE_4_EXTENSION_NAME);
     VkPhysicalDeviceVulkan13Features f13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceSynchronization2Features fs2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES};
+    VkPhysicalDeviceDynamicRenderingFeatures fdr = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES,
+                                                    .pNext = &fs2};
+    VkPhysicalDeviceExtendedDynamicStateFeaturesEXT feds = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_FEATURES_EXT, .pNext = &fdr};
+    VkPhysicalDeviceSubgroupSizeControlFeatures fsg = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES};
+    VkPhysicalDeviceMaintenance4Features fm4 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES};
+    void *q12 = &feds;
+    if (has_sgsc) { fsg.pNext = q12; q12 = &fsg; }
+    if (has_m4) { fm4.pNext = q12; q12 = &fm4; }
     VkPhysicalDeviceVulkan12Features f12 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
-                                            .pNext = &f13};
+                                            .pNext = gpu->vulkan12 ? q12 : (void *)&f13};
     VkPhysicalDeviceFeatures2 f2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f12};
     vkGetPhysicalDeviceFeatures2(gpu->phys, &f2);
-    if (!f13.synchronization2 || !f13.dynamicRendering) {
-        res = pg_fail(err, PG_ERR_NO_DEVICE, "%s lacks synchronization2 or dynamicRendering",
-                      gpu->props.deviceName);
+    bool eds = true;
+    if (gpu->vulkan12) {
+        f13.synchronization2 = fs2.synchronization2;
+        f13.dynamicRendering = fdr.dynamicRendering;
+        f13.subgroupSizeControl = fsg.subgroupSizeControl;
+        f13.computeFullSubgroups = fsg.computeFullSubgroups;
+        f13.maintenance4 = fm4.maintenance4;
+        eds = feds.extendedDynamicState;
+    }
+    if (!f13.synchronization2 || !f13.dynamicRendering || !eds) {
+        res = pg_fail(err, PG_ERR_NO_DEVICE, "%s lacks the synchronization2, dynamicRendering or%s feature",
+                      gpu->props.deviceName, gpu->vulkan12 ? " extendedDynamicState" : "");
         goto fail;
     }
     {
         VkPhysicalDeviceVulkan13Properties p13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES};
+        VkPhysicalDeviceSubgroupSizeControlProperties psg = {
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_PROPERTIES};
         VkPhysicalDeviceSubgroupProperties sp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
-                                                 .pNext = &p13};
+                                                 .pNext = gpu->vulkan12 ? (has_sgsc ? (void *)&psg : NULL) : (void *)&p13};
         VkPhysicalDeviceProperties2 pp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &sp};
         vkGetPhysicalDeviceProperties2(gpu->phys, &pp);
+        if (gpu->vulkan12) {
+            p13.minSubgroupSize = psg.minSubgroupSize;
+            p13.maxSubgroupSize = psg.maxSubgroupSize;
+            p13.requiredSubgroupSizeStages = psg.requiredSubgroupSizeStages;
+        }
         gpu->subgroup_size = sp.subgroupSize;
         gpu->exact_subgroups = f13.subgroupSizeControl && f13.computeFullSubgroups &&
                                (p13.requiredSubgroupSizeStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
@@ -326,9 +444,39 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
         .subgroupSizeControl = f13.subgroupSizeControl,
         .computeFullSubgroups = f13.computeFullSubgroups,
     };
+    VkPhysicalDeviceSynchronization2Features es2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES,
+                                                    .synchronization2 = VK_TRUE};
+    VkPhysicalDeviceDynamicRenderingFeatures edr = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES,
+                                                    .pNext = &es2, .dynamicRendering = VK_TRUE};
+    VkPhysicalDeviceExtendedDynamicStateFeaturesEXT eeds = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_FEATURES_EXT, .pNext = &edr,
+        .extendedDynamicState = VK_TRUE};
+    VkPhysicalDeviceSubgroupSizeControlFeatures esg = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES,
+                                                       .subgroupSizeControl = f13.subgroupSizeControl,
+                                                       .computeFullSubgroups = f13.computeFullSubgroups};
+    VkPhysicalDeviceMaintenance4Features em4 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES,
+                                                .maintenance4 = f13.maintenance4};
+    const char *dev_exts[8];
+    uint32_t n_dev_ext = 0;
+    if (desc->swapchain) dev_exts[n_dev_ext++] = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+    void *e12_next = &e13;
+    if (gpu->vulkan12) {
+        for (size_t i = 0; i < N_EXT12_REQUIRED; i++) dev_exts[n_dev_ext++] = k_ext12_required[i];
+        e12_next = &eeds;
+        if (has_sgsc && (f13.subgroupSizeControl || f13.computeFullSubgroups)) {
+            dev_exts[n_dev_ext++] = VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME;
+            esg.pNext = e12_next;
+            e12_next = &esg;
+        }
+        if (has_m4 && f13.maintenance4) {
+            dev_exts[n_dev_ext++] = VK_KHR_MAINTENANCE_4_EXTENSION_NAME;
+            em4.pNext = e12_next;
+            e12_next = &em4;
+        }
+    }
     VkPhysicalDeviceVulkan12Features e12 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
-        .pNext = &e13,
+        .pNext = e12_next,
         .hostQueryReset = f12.hostQueryReset,
         .scalarBlockLayout = f12.scalarBlockLayout,
         .shaderSampledImageArrayNonUniformIndexing = f12.shaderSampledImageArrayNonUniformIndexing,
@@ -351,13 +499,12 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
         .queueCount = 1,
         .pQueuePriorities = &prio,
     };
-    const char *dev_exts[1] = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
     VkDeviceCreateInfo dci = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .pNext = &e2,
         .queueCreateInfoCount = 1,
         .pQueueCreateInfos = &qci,
-        .enabledExtensionCount = desc->swapchain ? 1 : 0,
+        .enabledExtensionCount = n_dev_ext,
         .ppEnabledExtensionNames = dev_exts,
     };
     VkResult r = pg_vk_fault_next("vkCreateDevice") ? VK_ERROR_DEVICE_LOST
@@ -367,6 +514,28 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
         goto fail;
     }
     vkGetDeviceQueue(gpu->device, gpu->queue_family, 0, &gpu->queue);
+    {
+        /* the 1.3 commands under their core or their extension names (see vk_context.h) */
+        const char *sfx2 = gpu->vulkan12 ? "KHR" : "", *sfx_eds = gpu->vulkan12 ? "EXT" : "";
+        struct { PFN_vkVoidFunction *fn; const char *name, *suffix; } cmds[] = {
+            {(PFN_vkVoidFunction *)&pg_vk_CmdPipelineBarrier2, "vkCmdPipelineBarrier2", sfx2},
+            {(PFN_vkVoidFunction *)&pg_vk_QueueSubmit2, "vkQueueSubmit2", sfx2},
+            {(PFN_vkVoidFunction *)&pg_vk_CmdWriteTimestamp2, "vkCmdWriteTimestamp2", sfx2},
+            {(PFN_vkVoidFunction *)&pg_vk_CmdBeginRendering, "vkCmdBeginRendering", sfx2},
+            {(PFN_vkVoidFunction *)&pg_vk_CmdEndRendering, "vkCmdEndRendering", sfx2},
+            {(PFN_vkVoidFunction *)&pg_vk_CmdSetCullMode, "vkCmdSetCullMode", sfx_eds},
+        };
+        for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
+            char name[64];
+            snprintf(name, sizeof name, "%s%s", cmds[i].name, cmds[i].suffix);
+            PFN_vkVoidFunction f = vkGetInstanceProcAddr(gpu->instance, name);
+            if (!f) {
+                res = pg_fail(err, PG_ERR_NO_DEVICE, "%s: the loader has no %s", gpu->props.deviceName, name);
+                goto fail;
+            }
+            *cmds[i].fn = f;
+        }
+    }
     VkCommandPoolCreateInfo pci = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
         .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
@@ -378,9 +547,9 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
         goto fail;
     }
     if (!desc->quiet)
-        fprintf(stderr, "passgraph: device %s (%s, Vulkan %u.%u)%s\n", gpu->props.deviceName,
+        fprintf(stderr, "passgraph: device %s (%s, Vulkan %u.%u%s)%s\n", gpu->props.deviceName,
                 device_type_name(gpu->props.deviceType), VK_API_VERSION_MAJOR(gpu->props.apiVersion),
-                VK_API_VERSION_MINOR(gpu->props.apiVersion),
+                VK_API_VERSION_MINOR(gpu->props.apiVersion), gpu->vulkan12 ? ", used as 1.2 + extensions" : "",
                 desc->validation ? ", validation + sync validation on" : "");
     *out = gpu;
     return PG_OK;
@@ -469,6 +638,7 @@ pg_result pg_buffer_create(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags us
     if (host_visible) PG_VK_TRY(err, vkMapMemory(gpu->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped));
     out->size = size;
     pg_gpu_name(gpu, VK_OBJECT_TYPE_BUFFER, (uint64_t)out->buffer, "%s", name);
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)out->memory, "%s.memory", name);
     return PG_OK;
 }
 
@@ -540,6 +710,7 @@ pg_result pg_image_create(pg_gpu *gpu, VkFormat format, uint32_t w, uint32_t h, 
     out->mips = mips;
     pg_gpu_name(gpu, VK_OBJECT_TYPE_IMAGE, (uint64_t)out->image, "%s", name);
     pg_gpu_name(gpu, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)out->view, "%s.view", name);
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)out->memory, "%s.memory", name);
     return PG_OK;
 }
 

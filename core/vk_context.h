@@ -1,6 +1,8 @@
 /* vk_context.h - the Vulkan device passgraph renders with: instance (validation optional),
  * physical device choice, one graphics+compute queue, Vulkan 1.3 with synchronization2 and
- * dynamic rendering, debug names, one-shot command helpers and plain buffer/image allocation.
+ * dynamic rendering (or Vulkan 1.2 with the extensions those came from, e.g. under RenderDoc 1.24,
+ * which reports devices as 1.2), debug names, one-shot command helpers and plain buffer/image
+ * allocation.
  *
  * Validation: with desc.validation the Khronos layer runs with synchronization validation on;
  * every message it sends is printed to stderr and counted (gpu->validation_messages), so tests
@@ -18,6 +20,25 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* The Vulkan 1.3 commands passgraph records, resolved by pg_gpu_create through the loader
+ * (vkGetInstanceProcAddr, so they dispatch per device): the core names on a 1.3 device, the
+ * names of the extensions they were promoted from on a 1.2 device (VK_KHR_synchronization2,
+ * VK_KHR_dynamic_rendering, VK_EXT_extended_dynamic_state). The macros route every call site
+ * that includes this header through them; tests/renderdoc_test.sh checks that the executable
+ * has no direct reference to the core symbols left. */
+extern PFN_vkCmdPipelineBarrier2 pg_vk_CmdPipelineBarrier2;
+extern PFN_vkQueueSubmit2 pg_vk_QueueSubmit2;
+extern PFN_vkCmdWriteTimestamp2 pg_vk_CmdWriteTimestamp2;
+extern PFN_vkCmdBeginRendering pg_vk_CmdBeginRendering;
+extern PFN_vkCmdEndRendering pg_vk_CmdEndRendering;
+extern PFN_vkCmdSetCullMode pg_vk_CmdSetCullMode;
+#define vkCmdPipelineBarrier2 pg_vk_CmdPipelineBarrier2
+#define vkQueueSubmit2 pg_vk_QueueSubmit2
+#define vkCmdWriteTimestamp2 pg_vk_CmdWriteTimestamp2
+#define vkCmdBeginRendering pg_vk_CmdBeginRendering
+#define vkCmdEndRendering pg_vk_CmdEndRendering
+#define vkCmdSetCullMode pg_vk_CmdSetCullMode
 
 typedef struct pg_gpu_desc {
     bool validation;          /* enable VK_LAYER_KHRONOS_validation + sync validation and the
@@ -48,6 +69,9 @@ typedef struct pg_gpu {
     uint32_t timestamp_valid_bits;
     bool debug_utils;
     bool validation;
+    /* true when the device is used as Vulkan 1.2 plus extensions (its API version is 1.2, or
+     * PASSGRAPH_VULKAN_1_2=1 forces this path on a 1.3 device); shaders then target SPIR-V 1.5 */
+    bool vulkan12;
     /* subgroups: size (VkPhysicalDeviceSubgroupProperties) and whether a compute pipeline can
      * require one full subgroup of exactly that size per workgroup (subgroupSizeControl +
      * computeFullSubgroups enabled, compute in requiredSubgroupSizeStages, size in range) */

@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "exr.h"
 #include "image_util.h"
+#include "rdoc.h"
 
 static const char *const render_help =
     "usage: passgraph render [options] --out FILE.png|FILE.jpg|FILE.exr [--hdr-out FILE.exr]\n"
@@ -25,7 +26,11 @@ static const char *const render_out_help =
     "  --out FILE.exr       write the linear HDR image (the pipeline's hdr_output, scene-linear\n"
     "                       Rec.709, RGBA half floats for rgba16f, floats for rgba32f) to FILE.exr\n"
     "                       AND the display image to FILE.png\n"
-    "  --hdr-out FILE.exr   write the linear HDR image to FILE.exr as well (with --out FILE.png)\n";
+    "  --hdr-out FILE.exr   write the linear HDR image to FILE.exr as well (with --out FILE.png)\n"
+    "  --capture FILE.rdc   capture the last frame with RenderDoc's in-application API into\n"
+    "                       FILE.rdc (every pass a labelled region, every resource named); needs\n"
+    "                       passgraph started under RenderDoc: renderdoccmd capture -w passgraph\n"
+    "                       render --capture FILE.rdc ... (else an error, exit status 1)\n";
 
 static bool ends_with_exr(const char *p)
 {
@@ -60,7 +65,7 @@ int pg_cmd_render(int argc, char **argv)
     pg_cli_common opt;
     pg_cli_defaults(&opt);
     pg_error err = {0};
-    const char *hdr_out = NULL;
+    const char *hdr_out = NULL, *capture = NULL;
     for (int i = 0; i < argc; i++) {
         bool used;
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
@@ -75,6 +80,19 @@ int pg_cmd_render(int argc, char **argv)
             hdr_out = argv[++i];
             if (!ends_with_exr(hdr_out)) {
                 fprintf(stderr, "passgraph render: --hdr-out %s: expected a .exr file name\n", hdr_out);
+                return 2;
+            }
+            continue;
+        }
+        if (!strcmp(argv[i], "--capture")) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "passgraph render: --capture: missing value\n");
+                return 2;
+            }
+            capture = argv[++i];
+            size_t n = strlen(capture);
+            if (n < 5 || strcasecmp(capture + n - 4, ".rdc")) {
+                fprintf(stderr, "passgraph render: --capture %s: expected a .rdc file name\n", capture);
                 return 2;
             }
             continue;
@@ -118,6 +136,19 @@ int pg_cmd_render(int argc, char **argv)
             return 2;
         }
     }
+    /* RenderDoc first: without it there is nothing to do, and the device need not be made */
+    pg_rdoc *rdoc = NULL;
+    if (capture) {
+        char why[512];
+        rdoc = pg_rdoc_open(why, sizeof why);
+        if (!rdoc) {
+            fprintf(stderr, "passgraph render: --capture %s: %s\n", capture, why);
+            return 1;
+        }
+        char tmpl[PG_PATH_MAX];
+        snprintf(tmpl, sizeof tmpl, "%.*s", (int)(strlen(capture) - 4), capture);
+        pg_rdoc_set_path_template(rdoc, tmpl);
+    }
     pg_app app;
     if (pg_app_open(&app, &opt, true, &err)) {
         fprintf(stderr, "passgraph render: %s\n", err.msg);
@@ -138,7 +169,15 @@ int pg_cmd_render(int argc, char **argv)
     pg_grow_event grown[4];
     uint32_t n_grown = 0, rerenders = 0;
     for (uint32_t f = 0; f < opt.frames; f++) {
-        if (pg_session_render(s, &fi, f + 1 == opt.frames, &st, &err)) {
+        bool captured = rdoc && f + 1 == opt.frames;
+        if (captured) pg_rdoc_begin(rdoc);
+        pg_result fr = pg_session_render(s, &fi, f + 1 == opt.frames, &st, &err);
+        char why[600];
+        if (captured && !pg_rdoc_end(rdoc, capture, why, sizeof why) && !fr) {
+            pg_fail(&err, PG_ERR_IO, "--capture %s: %s", capture, why);
+            fr = err.code;
+        }
+        if (fr) {
             free(samples);
             goto done;
         }
@@ -213,7 +252,8 @@ int pg_cmd_render(int argc, char **argv)
         printf(" grew %s %.2f->%.2f MiB", grown[k].resource, grown[k].old_bytes / 1048576.0,
                grown[k].new_bytes / 1048576.0);
     if (n_grown) printf(" (%u re-render%s)", rerenders, rerenders == 1 ? "" : "s");
-    printf(" frames=%u -> %s%s%s\n", opt.frames, png_path, exr_path[0] ? ", " : "", exr_path);
+    printf(" frames=%u -> %s%s%s%s%s\n", opt.frames, png_path, exr_path[0] ? ", " : "", exr_path,
+           capture ? ", capture " : "", capture ? capture : "");
     free(samples);
     rc = 0;
     if (app.gpu->validation && app.gpu->validation_messages) {
@@ -225,5 +265,6 @@ done:
     free(hdr);
     pg_session_destroy(s);
     pg_app_close(&app);
+    free(rdoc);
     return rc;
 }

@@ -23,6 +23,7 @@
 #include "ocio.h"
 #include "shader.h"
 #include "ui.h"
+#include "rdoc.h"
 #include "view_window.h"
 
 #define MAX_PIPELINES 64
@@ -89,6 +90,10 @@ typedef struct viewer {
     int64_t mem100;
     const char *screenshot_path;
     bool want_shot;
+    /* RenderDoc: key C, the button or --at N:capture[=FILE.rdc] captures the next frame */
+    pg_rdoc *rdoc;
+    bool want_rdoc, key_c_down;
+    char rdoc_file[PG_PATH_MAX], rdoc_status[640];
     char shot_file[PG_PATH_MAX];
     pg_buffer shot;
     /* the graph's 8-bit output copied (not converted) into an image whose sRGB-ness matches the
@@ -639,7 +644,10 @@ static void build_ui(viewer *v)
                 v->want_shot = true;
                 snprintf(v->shot_file, sizeof v->shot_file, "passgraph-%ld.png", (long)time(NULL));
             }
-            pg_ui_text("WASD/QE fly (shift: faster), right mouse: look");
+            pg_ui_same_line();
+            if (pg_ui_button("RenderDoc capture")) v->want_rdoc = true;
+            pg_ui_text("WASD/QE fly (shift: faster), right mouse: look, C: RenderDoc capture");
+            if (v->rdoc_status[0]) pg_ui_text("%s", v->rdoc_status);
         }
         colour_ui(v);
         if (pl && pg_ui_header("Pipeline parameters", true)) {
@@ -1064,11 +1072,44 @@ static pg_result run_action(viewer *v, const view_action *a, pg_error *err)
     } else if (!strcmp(a->what, "screenshot")) {
         v->want_shot = true;
         pg_strlcpy(v->shot_file, a->arg, sizeof v->shot_file);
+    } else if (!strcmp(a->what, "capture")) {
+        v->want_rdoc = true;
+        pg_strlcpy(v->rdoc_file, a->arg, sizeof v->rdoc_file);
     } else {
-        return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s: unknown action (resize, iconify, restore, copy, set, pipeline, display, ocioview, diff, lights, camera, screenshot)",
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s: unknown action (resize, iconify, restore, copy, set, pipeline, display, ocioview, diff, lights, camera, screenshot, capture)",
                        a->frame, a->what);
     }
     return PG_OK;
+}
+
+/* RenderDoc capture of one viewer frame: found on first use; without it the status line (and
+ * stderr) says why and the viewer goes on. */
+static bool rdoc_ready(viewer *v)
+{
+    if (!v->rdoc) {
+        char why[512];
+        v->rdoc = pg_rdoc_open(why, sizeof why);
+        if (!v->rdoc) {
+            snprintf(v->rdoc_status, sizeof v->rdoc_status, "RenderDoc capture: %s", why);
+            fprintf(stderr, "passgraph view: %s\n", v->rdoc_status);
+            return false;
+        }
+    }
+    return true;
+}
+
+static void rdoc_finish(viewer *v)
+{
+    char why[600], path[PG_PATH_MAX];
+    if (!pg_rdoc_end(v->rdoc, v->rdoc_file[0] ? v->rdoc_file : NULL, why, sizeof why)) {
+        snprintf(v->rdoc_status, sizeof v->rdoc_status, "RenderDoc capture failed: %s", why);
+        fprintf(stderr, "passgraph view: %s\n", v->rdoc_status);
+        return;
+    }
+    if (v->rdoc_file[0]) pg_strlcpy(path, v->rdoc_file, sizeof path);
+    else pg_rdoc_captures(v->rdoc, path, sizeof path);
+    snprintf(v->rdoc_status, sizeof v->rdoc_status, "RenderDoc capture %s", path);
+    printf("view: %s\n", v->rdoc_status);
 }
 
 static const char *const view_help =
@@ -1107,6 +1148,7 @@ int pg_cmd_view(int argc, char **argv)
                    "                       restore, copy=SRC:DST (an edit on disk), set=KEY=VALUE,\n"
                    "                       pipeline=FILE.json, display=NAME, ocioview=NAME (OCIO),\n"
                    "                       diff=on|off, lights=N, screenshot=FILE.png,\n"
+                   "                       capture[=FILE.rdc] (RenderDoc, as the C key),\n"
                    "                       camera=auto|N|NAME (as the camera combo)\n"
                    "  (--frames N          exit after N frames; 0 or absent: run until closed)\n",
                    view_help, pg_cli_common_help);
@@ -1322,7 +1364,15 @@ int pg_cmd_view(int argc, char **argv)
         bool last_frame = v->frames_limit && frame + 1 >= v->frames_limit;
         bool capture = v->want_shot || (last_frame && v->screenshot_path);
         if (last_frame && v->screenshot_path) pg_strlcpy(v->shot_file, v->screenshot_path, sizeof v->shot_file);
+        bool key_c = !pg_ui_want_keyboard() && glfwGetKey(v->window, GLFW_KEY_C) == GLFW_PRESS;
+        if (key_c && !v->key_c_down) v->want_rdoc = true;
+        v->key_c_down = key_c;
+        bool rdoc_now = v->want_rdoc && rdoc_ready(v);
+        if (rdoc_now) pg_rdoc_begin(v->rdoc);
         if (draw_frame(v, capture, &err)) goto fail;
+        if (rdoc_now) rdoc_finish(v);
+        v->want_rdoc = false;
+        v->rdoc_file[0] = 0;
         v->want_shot = false;
         frame++;
         if (frame == 100) {
@@ -1359,6 +1409,7 @@ done:
         pg_buffer_destroy(v->app.gpu, &v->shot);
     }
     pg_ocio_close(v->ocio);
+    free(v->rdoc);
     free(v->diff_rgba);
     free(v->hdr_a);
     free(v->hdr_b);
