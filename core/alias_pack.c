@@ -1,0 +1,131 @@
+/* alias_pack.c - lifetime x size packing (see alias_pack.h).
+ *
+ * Items are first grouped (same klass, a common memory type: greedy, in index order). Inside a
+ * group every item gets the lowest aligned offset at which it shares no byte with an already
+ * placed item it conflicts with (first fit over the ends of those items). Two orders are tried
+ * (largest first; earliest first) and the smaller extent kept; a group whose extent would exceed
+ * the sum of its sizes (alignment padding) falls back to one block per item. */
+#include "alias_pack.h"
+
+#include <string.h>
+
+bool pg_pack_conflict(const pg_pack_item *a, const pg_pack_item *b)
+{
+    if (!(a->last < b->first || b->last < a->first)) return true; /* alive at the same time */
+    const pg_pack_item *later = a->first > b->first ? a : b;
+    return !later->may_inherit;
+}
+
+static uint64_t align_up(uint64_t v, uint64_t a)
+{
+    if (a <= 1) return v;
+    return (v + a - 1) & ~(a - 1);
+}
+
+/* Places the items idx[0..m) in the given order; returns the extent. */
+static uint64_t place_group(const pg_pack_item *items, const uint32_t *idx, uint32_t m, uint64_t *off)
+{
+    uint64_t extent = 0;
+    for (uint32_t k = 0; k < m; k++) {
+        const pg_pack_item *it = &items[idx[k]];
+        const uint64_t al = it->alignment ? it->alignment : 1;
+        /* candidates: 0 and the aligned end of every conflicting placed item; the lowest that
+         * fits wins */
+        uint64_t best = UINT64_MAX;
+        for (uint32_t c = 0; c <= k; c++) {
+            uint64_t cand;
+            if (c == k) cand = 0;
+            else if (pg_pack_conflict(it, &items[idx[c]])) cand = align_up(off[c] + items[idx[c]].size, al);
+            else continue;
+            if (cand >= best) continue;
+            bool fits = true;
+            for (uint32_t j = 0; j < k && fits; j++) {
+                if (!pg_pack_conflict(it, &items[idx[j]])) continue;
+                const uint64_t js = off[j], je = off[j] + items[idx[j]].size;
+                if (cand < je && js < cand + it->size) fits = false;
+            }
+            if (fits) best = cand;
+        }
+        off[k] = best;
+        if (best + it->size > extent) extent = best + it->size;
+    }
+    return extent;
+}
+
+int pg_alias_pack(const pg_pack_item *items, uint32_t n, bool share, pg_pack_place *place,
+                  pg_pack_block *blocks)
+{
+    if (n > PG_PACK_MAX) return -1;
+    int n_blocks = 0;
+    if (!share) {
+        for (uint32_t i = 0; i < n; i++) {
+            blocks[n_blocks] = (pg_pack_block){items[i].klass, items[i].type_bits, items[i].size,
+                                               items[i].alignment ? items[i].alignment : 1};
+            place[i] = (pg_pack_place){n_blocks++, 0};
+        }
+        return n_blocks;
+    }
+    /* groups: klass + common memory type */
+    int group[PG_PACK_MAX];
+    uint32_t gbits[PG_PACK_MAX], gklass[PG_PACK_MAX];
+    uint32_t n_groups = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        group[i] = -1;
+        for (uint32_t g = 0; g < n_groups && items[i].type_bits; g++)
+            if (gklass[g] == items[i].klass && (gbits[g] & items[i].type_bits)) {
+                group[i] = (int)g;
+                gbits[g] &= items[i].type_bits;
+                break;
+            }
+        if (group[i] < 0) {
+            gklass[n_groups] = items[i].klass;
+            gbits[n_groups] = items[i].type_bits;
+            group[i] = (int)n_groups++;
+        }
+    }
+    for (uint32_t g = 0; g < n_groups; g++) {
+        uint32_t idx[2][PG_PACK_MAX], m = 0;
+        uint64_t sum = 0, max_align = 1;
+        for (uint32_t i = 0; i < n; i++)
+            if (group[i] == (int)g) {
+                idx[0][m] = idx[1][m] = i;
+                m++;
+                sum += items[i].size;
+                if (items[i].alignment > max_align) max_align = items[i].alignment;
+            }
+        /* order 0: largest first (ties: earliest first, then index); order 1: earliest first
+         * (ties: largest first, then index); insertion sorts keep it stable */
+        for (int o = 0; o < 2; o++)
+            for (uint32_t a = 1; a < m; a++) {
+                const uint32_t v = idx[o][a];
+                uint32_t b = a;
+                while (b > 0) {
+                    const pg_pack_item *x = &items[idx[o][b - 1]], *y = &items[v];
+                    const bool before = o == 0 ? (y->size > x->size || (y->size == x->size && y->first < x->first))
+                                               : (y->first < x->first || (y->first == x->first && y->size > x->size));
+                    if (!before) break;
+                    idx[o][b] = idx[o][b - 1];
+                    b--;
+                }
+                idx[o][b] = v;
+            }
+        uint64_t off[2][PG_PACK_MAX];
+        const uint64_t e0 = place_group(items, idx[0], m, off[0]);
+        const uint64_t e1 = place_group(items, idx[1], m, off[1]);
+        const int o = e1 < e0 ? 1 : 0;
+        const uint64_t extent = o ? e1 : e0;
+        if (extent > sum) { /* padding made sharing worse than separate blocks */
+            for (uint32_t k = 0; k < m; k++) {
+                const pg_pack_item *it = &items[idx[0][k]];
+                blocks[n_blocks] = (pg_pack_block){it->klass, it->type_bits, it->size,
+                                                   it->alignment ? it->alignment : 1};
+                place[idx[0][k]] = (pg_pack_place){n_blocks++, 0};
+            }
+            continue;
+        }
+        blocks[n_blocks] = (pg_pack_block){gklass[g], gbits[g], extent, max_align};
+        for (uint32_t k = 0; k < m; k++) place[idx[o][k]] = (pg_pack_place){n_blocks, off[o][k]};
+        n_blocks++;
+    }
+    return n_blocks;
+}
