@@ -1135,13 +1135,13 @@ static void walk_frame(compile_ctx *c, bool emit)
             /* first use in the frame (emit pass) */
             if (pr->lifetime == PG_LIFETIME_TRANSIENT) {
                 /* Every earlier member of the block that ended before this use may share bytes
-                 * with it at run time (the runtime re-packs the block with the real memory
+                 * with it at run time, unless it may not inherit (the runtime re-packs the block with the real memory
                  * requirements, only ever inside the block): wait for all their accesses (last
                  * write and the reads since) and discard the contents. alias_prev names the
                  * latest one that overlaps in the planned placement (else the latest one). */
                 int prev = -1, prev_overlap = -1;
                 uint64_t src_stages = 0, src_access = 0;
-                if (pr->block >= 0) {
+                if (pr->block >= 0 && pr->may_inherit) { /* else it shares no earlier byte */
                     const pg_plan_block *bl = &plan->blocks[pr->block];
                     for (uint32_t m = 0; m < bl->n_members; m++) {
                         const int q = bl->members[m];
