@@ -1469,8 +1469,20 @@ static void check_random_plan(const pg_graph_plan *p, int iter)
                         CHECK_MSG(q && q->block == pr->block && q->last_pass < pr->first_pass &&
                                       (!overlapped || bytes_overlap(q, pr)),
                                   "iter %d: alias_prev", iter);
-                        /* it waits for every access of every earlier member */
+                        /* it waits for the last accesses of every earlier member of the block */
                         CHECK_MSG(bar->src_stages != 0, "iter %d: alias barrier waits for nothing", iter);
+                        for (uint32_t m = 0; m < bl->n_members; m++) {
+                            const pg_plan_resource *e = &p->resources[bl->members[m]];
+                            if (bl->members[m] == r || !(e->last_pass < pr->first_pass)) continue;
+                            const pg_plan_pass *lp = &p->passes[p->order[e->last_pass]];
+                            uint64_t st = 0;
+                            for (uint32_t t = 0; t < lp->n_slots; t++)
+                                if (lp->slots[t].resource == bl->members[m] && !lp->slots[t].decl.unused)
+                                    st |= lp->slots[t].sync.stages;
+                            CHECK_MSG((st & ~bar->src_stages) == 0,
+                                      "iter %d: %s's alias barrier does not wait for %s's last use in %s", iter,
+                                      pr->name, e->name, lp->name);
+                        }
                     }
                 } else {
                     CHECK_MSG(!bar, "iter %d: fresh buffer %s has a barrier", iter, pr->name);
