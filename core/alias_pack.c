@@ -3,8 +3,11 @@
  * Items are first grouped (same klass, a common memory type: greedy, in index order). Inside a
  * group every item gets the lowest aligned offset at which it shares no byte with an already
  * placed item it conflicts with (first fit over the ends of those items). Two orders are tried
- * (largest first; earliest first) and the smaller extent kept; a group whose extent would exceed
- * the sum of its sizes (alignment padding) falls back to one block per item. */
+ * (largest first; earliest first), and a third placement: the earlier scheme of passgraph (whole
+ * slots, one resource at a time, each joining the slot of the right size that is free: best fit
+ * by size, in first-use order) with the slots stacked. The smallest extent is kept, so the result
+ * is never worse than that scheme's sum of slot sizes except for alignment padding between
+ * slots; a group whose extent would exceed the sum of its sizes falls back to one block per item. */
 #include "alias_pack.h"
 
 #include <string.h>
@@ -52,6 +55,43 @@ static uint64_t place_group(const pg_pack_item *items, const uint32_t *idx, uint
     return extent;
 }
 
+/* The slot scheme: idx sorted by first use; returns the extent with the slots stacked. */
+static uint64_t place_slots(const pg_pack_item *items, const uint32_t *idx, uint32_t m, uint64_t *off)
+{
+    int slot_of[PG_PACK_MAX], slot_last[PG_PACK_MAX];
+    uint64_t slot_size[PG_PACK_MAX], slot_align[PG_PACK_MAX];
+    uint32_t n_slots = 0;
+    for (uint32_t k = 0; k < m; k++) {
+        const pg_pack_item *it = &items[idx[k]];
+        int best = -1;
+        uint64_t best_diff = 0;
+        for (uint32_t sl = 0; it->may_inherit && sl < n_slots; sl++) {
+            if (!(slot_last[sl] < it->first)) continue;
+            const uint64_t diff = slot_size[sl] > it->size ? slot_size[sl] - it->size : it->size - slot_size[sl];
+            if (best < 0 || diff < best_diff) {
+                best = (int)sl;
+                best_diff = diff;
+            }
+        }
+        if (best < 0) {
+            best = (int)n_slots++;
+            slot_size[best] = 0;
+            slot_align[best] = 1;
+        }
+        slot_of[k] = best;
+        slot_last[best] = it->last; /* it starts after the slot's last member ended */
+        if (it->size > slot_size[best]) slot_size[best] = it->size;
+        if (it->alignment > slot_align[best]) slot_align[best] = it->alignment;
+    }
+    uint64_t end = 0, slot_off[PG_PACK_MAX];
+    for (uint32_t sl = 0; sl < n_slots; sl++) {
+        slot_off[sl] = align_up(end, slot_align[sl]);
+        end = slot_off[sl] + slot_size[sl];
+    }
+    for (uint32_t k = 0; k < m; k++) off[k] = slot_off[slot_of[k]];
+    return end;
+}
+
 int pg_alias_pack(const pg_pack_item *items, uint32_t n, bool share, pg_pack_place *place,
                   pg_pack_block *blocks)
 {
@@ -84,36 +124,41 @@ int pg_alias_pack(const pg_pack_item *items, uint32_t n, bool share, pg_pack_pla
         }
     }
     for (uint32_t g = 0; g < n_groups; g++) {
-        uint32_t idx[2][PG_PACK_MAX], m = 0;
+        uint32_t idx[3][PG_PACK_MAX], m = 0;
         uint64_t sum = 0, max_align = 1;
         for (uint32_t i = 0; i < n; i++)
             if (group[i] == (int)g) {
-                idx[0][m] = idx[1][m] = i;
+                idx[0][m] = idx[1][m] = idx[2][m] = i;
                 m++;
                 sum += items[i].size;
                 if (items[i].alignment > max_align) max_align = items[i].alignment;
             }
         /* order 0: largest first (ties: earliest first, then index); order 1: earliest first
-         * (ties: largest first, then index); insertion sorts keep it stable */
-        for (int o = 0; o < 2; o++)
+         * (ties: largest first, then index); order 2 (slots): earliest first, then index;
+         * insertion sorts keep it stable */
+        for (int o = 0; o < 3; o++)
             for (uint32_t a = 1; a < m; a++) {
                 const uint32_t v = idx[o][a];
                 uint32_t b = a;
                 while (b > 0) {
                     const pg_pack_item *x = &items[idx[o][b - 1]], *y = &items[v];
-                    const bool before = o == 0 ? (y->size > x->size || (y->size == x->size && y->first < x->first))
-                                               : (y->first < x->first || (y->first == x->first && y->size > x->size));
+                    const bool before = o == 0   ? (y->size > x->size || (y->size == x->size && y->first < x->first))
+                                        : o == 1 ? (y->first < x->first || (y->first == x->first && y->size > x->size))
+                                                 : y->first < x->first;
                     if (!before) break;
                     idx[o][b] = idx[o][b - 1];
                     b--;
                 }
                 idx[o][b] = v;
             }
-        uint64_t off[2][PG_PACK_MAX];
-        const uint64_t e0 = place_group(items, idx[0], m, off[0]);
-        const uint64_t e1 = place_group(items, idx[1], m, off[1]);
-        const int o = e1 < e0 ? 1 : 0;
-        const uint64_t extent = o ? e1 : e0;
+        uint64_t off[3][PG_PACK_MAX], e[3];
+        e[0] = place_group(items, idx[0], m, off[0]);
+        e[1] = place_group(items, idx[1], m, off[1]);
+        e[2] = place_slots(items, idx[2], m, off[2]);
+        int o = 0;
+        for (int c = 1; c < 3; c++)
+            if (e[c] < e[o]) o = c;
+        const uint64_t extent = e[o];
         if (extent > sum) { /* padding made sharing worse than separate blocks */
             for (uint32_t k = 0; k < m; k++) {
                 const pg_pack_item *it = &items[idx[0][k]];
