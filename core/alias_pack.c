@@ -5,9 +5,9 @@
  * placed item it conflicts with (first fit over the ends of those items). Two orders are tried
  * (largest first; earliest first), and a third placement: the earlier scheme of passgraph (whole
  * slots, one resource at a time, each joining the slot of the right size that is free: best fit
- * by size, in first-use order) with the slots stacked. The smallest extent is kept, so the result
- * is never worse than that scheme's sum of slot sizes except for alignment padding between
- * slots; a group whose extent would exceed the sum of its sizes falls back to one block per item. */
+ * by size, in first-use order) with the slots stacked. The smallest extent is kept; when the
+ * slots as separate blocks (no padding between them) would take less, they are used instead, so
+ * the result is never worse than that scheme (nor than one block per item, its worst case). */
 #include "alias_pack.h"
 
 #include <string.h>
@@ -55,10 +55,12 @@ static uint64_t place_group(const pg_pack_item *items, const uint32_t *idx, uint
     return extent;
 }
 
-/* The slot scheme: idx sorted by first use; returns the extent with the slots stacked. */
-static uint64_t place_slots(const pg_pack_item *items, const uint32_t *idx, uint32_t m, uint64_t *off)
+/* The slot scheme: idx sorted by first use; returns the extent with the slots stacked, and
+ * each item's slot, the number of slots and the sum of their sizes (as separate blocks). */
+static uint64_t place_slots(const pg_pack_item *items, const uint32_t *idx, uint32_t m, uint64_t *off, int *slot_of,
+                            uint32_t *n_slots_out, uint64_t *slot_sum)
 {
-    int slot_of[PG_PACK_MAX], slot_last[PG_PACK_MAX];
+    int slot_last[PG_PACK_MAX];
     uint64_t slot_size[PG_PACK_MAX], slot_align[PG_PACK_MAX];
     uint32_t n_slots = 0;
     for (uint32_t k = 0; k < m; k++) {
@@ -84,10 +86,13 @@ static uint64_t place_slots(const pg_pack_item *items, const uint32_t *idx, uint
         if (it->alignment > slot_align[best]) slot_align[best] = it->alignment;
     }
     uint64_t end = 0, slot_off[PG_PACK_MAX];
+    *slot_sum = 0;
     for (uint32_t sl = 0; sl < n_slots; sl++) {
         slot_off[sl] = align_up(end, slot_align[sl]);
         end = slot_off[sl] + slot_size[sl];
+        *slot_sum += slot_size[sl];
     }
+    *n_slots_out = n_slots;
     for (uint32_t k = 0; k < m; k++) off[k] = slot_off[slot_of[k]];
     return end;
 }
@@ -154,11 +159,31 @@ int pg_alias_pack(const pg_pack_item *items, uint32_t n, bool share, pg_pack_pla
         uint64_t off[3][PG_PACK_MAX], e[3];
         e[0] = place_group(items, idx[0], m, off[0]);
         e[1] = place_group(items, idx[1], m, off[1]);
-        e[2] = place_slots(items, idx[2], m, off[2]);
+        int slot_of[PG_PACK_MAX];
+        uint32_t n_slots = 0;
+        uint64_t slot_sum = 0;
+        e[2] = place_slots(items, idx[2], m, off[2], slot_of, &n_slots, &slot_sum);
         int o = 0;
         for (int c = 1; c < 3; c++)
             if (e[c] < e[o]) o = c;
         const uint64_t extent = e[o];
+        if (slot_sum < extent && slot_sum <= sum) {
+            /* alignment padding between the slots costs more than it saves: the slots as
+             * blocks of their own (offset 0 each) */
+            const int first = n_blocks;
+            for (uint32_t sl = 0; sl < n_slots; sl++)
+                blocks[first + (int)sl] = (pg_pack_block){gklass[g], gbits[g], 0, 1};
+            for (uint32_t k = 0; k < m; k++) {
+                const pg_pack_item *it = &items[idx[2][k]];
+                pg_pack_block *b = &blocks[first + slot_of[k]];
+                if (it->size > b->size) b->size = it->size;
+                if (it->alignment > b->alignment) b->alignment = it->alignment;
+                b->type_bits = gbits[g];
+                place[idx[2][k]] = (pg_pack_place){first + slot_of[k], 0};
+            }
+            n_blocks += (int)n_slots;
+            continue;
+        }
         if (extent > sum) { /* padding made sharing worse than separate blocks */
             for (uint32_t k = 0; k < m; k++) {
                 const pg_pack_item *it = &items[idx[0][k]];

@@ -12,7 +12,8 @@
  *   - items share a block only when they have the same klass and a common memory type bit
  *     (the block's type_bits is the AND of its members'); an item with type_bits 0 is alone;
  *   - every offset is a multiple of the item's alignment (alignments are powers of two; 0 = 1);
- *   - the sum of the block sizes never exceeds the sum of the item sizes (one block per item).
+ *   - the sum of the block sizes never exceeds the sum of the item sizes (one block per item), nor
+ *     that of passgraph's earlier scheme (one resource per block at a time, best fit by size).
  */
 #ifndef PG_ALIAS_PACK_H
 #define PG_ALIAS_PACK_H
