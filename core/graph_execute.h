@@ -1,7 +1,9 @@
 /* graph_execute.h - runs a compiled plan on a pg_gpu.
  *
- * pg_runtime_set_plan() creates the physical resources (transients of one memory block share one
- * VkDeviceMemory) and one instance of every executed pass. They are kept across frames and
+ * pg_runtime_set_plan() creates the physical resources (each plan block is packed again with the
+ * real memory requirements, core/alias_pack.c, into one VkDeviceMemory, or more when its members
+ * have no memory type in common; resources are bound at their offsets) and one instance of every
+ * executed pass. They are kept across frames and
  * re-created only when the plan's physical signature (sizes, formats, usages, blocks, pass
  * variants) changes. pg_runtime_render() records one command buffer: for each pass in order the
  * plan's barriers, a debug label, the pass's commands and a timestamp; then the final output
