@@ -938,6 +938,7 @@ static void phase_alias(compile_ctx *c)
         list[k] = (int)r;
     }
     /* lifetime x size packing with estimated sizes and alignments (core/alias_pack.c) */
+    _Static_assert(PG_MAX_RESOURCES <= PG_PACK_MAX, "the packer must take every resource");
     pg_pack_item items[PG_MAX_RESOURCES];
     pg_pack_place place[PG_MAX_RESOURCES];
     pg_pack_block blocks[PG_MAX_RESOURCES];
