@@ -9,8 +9,10 @@
  *                 with pg_decl_skip never runs: its reason is its cull reason); every culled pass and
  *                 resource gets a reason
  *   5. lifetimes  first/last executed pass of each resource; outputs live to the end
- *   6. alias      transient resources of the same kind with disjoint lifetimes share a memory
- *                 block, only if their first access fully overwrites them
+ *   6. alias      transients are packed at offsets inside shared memory blocks, one block per
+ *                 kind (core/alias_pack.c, with estimated sizes and alignments); two resources
+ *                 alive at the same time never share a byte, and a resource shares bytes with
+ *                 an earlier one only if its first access fully overwrites it
  *   7. barriers   synchronization2 barriers for RAW, WAR, WAW and layout changes, including the
  *                 first use of an aliased resource (from UNDEFINED, after the previous occupant),
  *                 the frame-to-frame wrap of persistent resources, and the final transition of the
@@ -89,16 +91,25 @@ typedef struct pg_plan_resource {
     int first_pass, last_pass;   /* positions in plan->order; -1 when unused; outputs'
                                   * last_pass is n_order (read back after the last pass) */
     int block;                   /* memory block (transients), -1 otherwise */
-    uint64_t block_offset;       /* always 0 today: a block holds one resource at a time */
+    uint64_t block_offset;       /* offset in the block, from estimated sizes and alignments
+                                  * (PG_ALIAS_EST_*); the runtime re-packs each block with the
+                                  * real memory requirements */
+    bool may_inherit;            /* first access overwrites every byte: may start in bytes an
+                                  * earlier resource of its block used */
     int desc_index;              /* index in pipeline->resources */
 } pg_plan_resource;
 
 typedef struct pg_plan_block {
     pg_res_kind kind;
-    uint64_t size_bytes;         /* max of its members' sizes */
+    uint64_t size_bytes;         /* highest end (offset + size) of its members, estimated */
     uint32_t n_members;
-    int members[PG_MAX_RESOURCES]; /* in lifetime order */
+    int members[PG_MAX_RESOURCES]; /* by first use (ties: declaration index) */
 } pg_plan_block;
+
+/* Alignments the compiler assumes when it places resources without a device (the runtime uses
+ * the real vkGet*MemoryRequirements). */
+#define PG_ALIAS_EST_ALIGN_IMAGE 4096u
+#define PG_ALIAS_EST_ALIGN_BUFFER 256u
 
 typedef struct pg_compile_desc {
     const pg_pipeline *pipeline;

@@ -16,8 +16,10 @@
  *                 reason.
  *   5. lifetimes  sizes are resolved; every used resource has [first, last] positions in
  *                 plan->order (outputs to n_order) and its usage flags.
- *   6. alias      blocks hold transients of one kind with disjoint lifetimes; only the first
- *                 member of a block may start with anything but a full overwrite.
+ *   6. alias      transients are placed at offsets in one block per kind (core/alias_pack.c,
+ *                 estimated sizes and alignments): resources alive at the same time share no
+ *                 byte; only a full overwrite may start in bytes an earlier resource used. The
+ *                 first use of a block member waits for every member that ended before it.
  *   7. barriers   every hazard between two accesses of a resource (and across frames, across
  *                 aliases, and to the readback) has exactly one barrier, placed before the pass.
  *
@@ -25,6 +27,7 @@
  * lives in a second heap block freed before returning, so an error leaks nothing.
  */
 #include "graph.h"
+#include "alias_pack.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -916,13 +919,17 @@ static void phase_alias(compile_ctx *c)
     int list[PG_MAX_RESOURCES];
     int n = 0;
     for (uint32_t r = 0; r < plan->n_resources; r++) {
-        const pg_plan_resource *pr = &plan->resources[r];
+        pg_plan_resource *pr = &plan->resources[r];
         if (pr->lifetime != PG_LIFETIME_TRANSIENT || pr->culled || pr->first_pass < 0) continue;
         if (pr->growable) { /* re-created at run time with a new size: its own memory */
             plan->transient_bytes_unaliased += pr->size_bytes;
             plan->transient_bytes_aliased += pr->size_bytes;
             continue;
         }
+        /* Sharing an earlier resource's bytes means starting from whatever it left: only a
+         * resource whose first access overwrites everything without reading may do that. */
+        const pass_use *fu = first_use(c, (int)r);
+        pr->may_inherit = fu && fu->full_write;
         int k = n++;
         while (k > 0 && plan->resources[list[k - 1]].first_pass > pr->first_pass) {
             list[k] = list[k - 1];
@@ -930,41 +937,39 @@ static void phase_alias(compile_ctx *c)
         }
         list[k] = (int)r;
     }
+    /* lifetime x size packing with estimated sizes and alignments (core/alias_pack.c) */
+    _Static_assert(PG_MAX_RESOURCES <= PG_PACK_MAX, "the packer must take every resource");
+    pg_pack_item items[PG_MAX_RESOURCES];
+    pg_pack_place place[PG_MAX_RESOURCES];
+    pg_pack_block blocks[PG_MAX_RESOURCES];
     for (int i = 0; i < n; i++) {
-        const int r = list[i];
-        pg_plan_resource *pr = &plan->resources[r];
+        const pg_plan_resource *pr = &plan->resources[list[i]];
+        items[i] = (pg_pack_item){
+            .size = pr->size_bytes,
+            .alignment = pr->kind == PG_RES_IMAGE ? PG_ALIAS_EST_ALIGN_IMAGE : PG_ALIAS_EST_ALIGN_BUFFER,
+            .type_bits = ~0u,
+            .klass = (uint32_t)pr->kind,
+            .first = pr->first_pass,
+            .last = pr->last_pass,
+            .may_inherit = pr->may_inherit,
+        };
         plan->transient_bytes_unaliased += pr->size_bytes;
-        /* Joining a block means starting from whatever the previous occupant left: only a
-         * resource whose first access overwrites everything without reading may do that. */
-        const pass_use *fu = first_use(c, r);
-        const bool may_join = !plan->aliasing_disabled && fu && fu->full_write;
-        int best = -1;
-        uint64_t best_diff = 0;
-        for (uint32_t b = 0; may_join && b < plan->n_blocks; b++) {
-            const pg_plan_block *bl = &plan->blocks[b];
-            if (bl->kind != pr->kind) continue;
-            const pg_plan_resource *last = &plan->resources[bl->members[bl->n_members - 1]];
-            if (!(last->last_pass < pr->first_pass)) continue;
-            uint64_t diff = bl->size_bytes > pr->size_bytes ? bl->size_bytes - pr->size_bytes
-                                                            : pr->size_bytes - bl->size_bytes;
-            if (best < 0 || diff < best_diff) {
-                best = (int)b;
-                best_diff = diff;
-            }
-        }
-        if (best < 0) {
-            best = (int)plan->n_blocks++;
-            memset(&plan->blocks[best], 0, sizeof plan->blocks[best]);
-            plan->blocks[best].kind = pr->kind;
-        }
-        pg_plan_block *bl = &plan->blocks[best];
-        bl->members[bl->n_members++] = r;
-        if (pr->size_bytes > bl->size_bytes) bl->size_bytes = pr->size_bytes;
-        pr->block = best;
-        pr->block_offset = 0;
     }
-    for (uint32_t b = 0; b < plan->n_blocks; b++)
-        plan->transient_bytes_aliased += plan->blocks[b].size_bytes;
+    const int nb = pg_alias_pack(items, (uint32_t)n, !plan->aliasing_disabled, place, blocks);
+    plan->n_blocks = nb > 0 ? (uint32_t)nb : 0;
+    for (uint32_t b = 0; b < plan->n_blocks; b++) {
+        memset(&plan->blocks[b], 0, sizeof plan->blocks[b]);
+        plan->blocks[b].kind = (pg_res_kind)blocks[b].klass;
+        plan->blocks[b].size_bytes = blocks[b].size;
+        plan->transient_bytes_aliased += blocks[b].size;
+    }
+    for (int i = 0; i < n && nb > 0; i++) { /* members by first use */
+        pg_plan_resource *pr = &plan->resources[list[i]];
+        pg_plan_block *bl = &plan->blocks[place[i].block];
+        bl->members[bl->n_members++] = list[i];
+        pr->block = place[i].block;
+        pr->block_offset = place[i].offset;
+    }
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -1130,20 +1135,34 @@ static void walk_frame(compile_ctx *c, bool emit)
             }
             /* first use in the frame (emit pass) */
             if (pr->lifetime == PG_LIFETIME_TRANSIENT) {
-                int prev = -1;
-                if (pr->block >= 0) {
+                /* Every earlier member of the block that ended before this use may share bytes
+                 * with it at run time, unless it may not inherit (the runtime re-packs the block with the real memory
+                 * requirements, only ever inside the block): wait for all their accesses (last
+                 * write and the reads since) and discard the contents. alias_prev names the
+                 * latest one that overlaps in the planned placement (else the latest one). */
+                int prev = -1, prev_overlap = -1;
+                uint64_t src_stages = 0, src_access = 0;
+                if (pr->block >= 0 && pr->may_inherit) { /* else it shares no earlier byte */
                     const pg_plan_block *bl = &plan->blocks[pr->block];
-                    for (uint32_t m = 1; m < bl->n_members; m++)
-                        if (bl->members[m] == r) prev = bl->members[m - 1];
+                    for (uint32_t m = 0; m < bl->n_members; m++) {
+                        const int q = bl->members[m];
+                        const pg_plan_resource *qr = &plan->resources[q];
+                        if (q == r || !(qr->last_pass < pr->first_pass)) continue;
+                        src_stages |= c->st[q].w_stages | c->st[q].r_stages;
+                        src_access |= c->st[q].w_access;
+                        if (prev < 0 || qr->last_pass >= plan->resources[prev].last_pass) prev = q;
+                        const bool overlap = qr->block_offset < pr->block_offset + pr->size_bytes &&
+                                             pr->block_offset < qr->block_offset + qr->size_bytes;
+                        if (overlap && (prev_overlap < 0 ||
+                                        qr->last_pass >= plan->resources[prev_overlap].last_pass))
+                            prev_overlap = q;
+                    }
                 }
                 bool placed = false;
                 if (prev >= 0) {
-                    /* after the previous occupant of the memory: wait for all its accesses
-                     * (its last write and the reads since), discard its contents */
-                    const res_state *ps = &c->st[prev];
-                    b.src_stages = ps->w_stages | ps->r_stages;
-                    b.src_access = ps->w_access;
-                    b.alias_prev = prev;
+                    b.src_stages = src_stages;
+                    b.src_access = src_access;
+                    b.alias_prev = prev_overlap >= 0 ? prev_overlap : prev;
                     pg_strlcpy(b.why, "alias first use", sizeof b.why);
                     placed = true;
                 } else if (img) {

@@ -909,15 +909,46 @@ void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline
     const uint32_t n_cols = plan->n_order + 1; /* + "read back" */
     const double grid_w = col_w * plan->n_order + end_w;
     const double top = 104; /* first row */
-    const uint32_t n_rows = plan->n_blocks ? plan->n_blocks : 1;
+    /* a block gets one lane per resource alive at the same time (members sorted by offset, each in
+     * the first lane free at its first pass), so bars never overlap */
+    static int lane_of[PG_MAX_RESOURCES];
+    double row_y[PG_MAX_RESOURCES + 1];
+    uint32_t n_lanes_total = 0, lanes_in[PG_MAX_RESOURCES];
+    for (uint32_t b = 0; b < plan->n_blocks && b < PG_MAX_RESOURCES; b++) {
+        const pg_plan_block *bl = &plan->blocks[b];
+        int order_m[PG_MAX_RESOURCES], lane_end[PG_MAX_RESOURCES];
+        uint32_t n = 0, lanes = 0;
+        for (uint32_t m = 0; m < bl->n_members && m < PG_MAX_RESOURCES; m++) {
+            const int r = bl->members[m];
+            if (!res_ok(plan, r)) continue;
+            uint32_t k = n++;
+            while (k > 0 && plan->resources[order_m[k - 1]].block_offset > plan->resources[r].block_offset) {
+                order_m[k] = order_m[k - 1];
+                k--;
+            }
+            order_m[k] = r;
+        }
+        for (uint32_t i = 0; i < n; i++) {
+            const pg_plan_resource *pr = &plan->resources[order_m[i]];
+            uint32_t l = 0;
+            while (l < lanes && lane_end[l] >= pr->first_pass) l++;
+            if (l == lanes) lanes++;
+            lane_end[l] = pr->last_pass;
+            lane_of[order_m[i]] = (int)l;
+        }
+        lanes_in[b] = lanes ? lanes : 1;
+        row_y[b] = top + row_h * n_lanes_total;
+        n_lanes_total += lanes_in[b];
+    }
+    const uint32_t n_rows = n_lanes_total ? n_lanes_total : 1;
     const double live_h = 84;
     const double rows_bottom = top + row_h * n_rows;
     const double legend_y = rows_bottom + live_h + 38;
     static const char *const legend[3] = {
         "Columns: the executed passes in order; \xe2\x80\x9cread back\xe2\x80\x9d: after the last pass (outputs "
         "live until then).",
-        "Rows: memory blocks; a bar is one transient resource from its first to its last pass. Bars in one row "
-        "share that block's memory (aliasing).",
+        "Rows: memory blocks (one lane per resource alive at once); a bar is one transient resource from its "
+        "first to its last pass, at the offset it names. Bars of one block share its memory.",
         "Colour = memory block (the same colours as the resources in the graph of passgraph dump --format dot). "
         "Persistent and imported resources are not shown.",
     };
@@ -997,14 +1028,14 @@ void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline
                 top + row_h / 2 + 4);
     for (uint32_t b = 0; b < plan->n_blocks; b++) {
         const pg_plan_block *bl = &plan->blocks[b];
-        const double y = top + row_h * b;
+        const double y = row_y[b], block_h = row_h * lanes_in[b];
         const char *fill = k_block_fill[b % N_BLOCK_COLOURS], *stroke = k_block_stroke[b % N_BLOCK_COLOURS];
         char bytes[32];
         fmt_bytes(bl->size_bytes, bytes, sizeof bytes);
-        fprintf(f, "  <line x1=\"16\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#e4e4e4\"/>\n", y + row_h,
-                left + grid_w, y + row_h);
+        fprintf(f, "  <line x1=\"16\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#e4e4e4\"/>\n", y + block_h,
+                left + grid_w, y + block_h);
         fprintf(f, "  <rect x=\"16\" y=\"%.1f\" width=\"10\" height=\"%.1f\" rx=\"2\" fill=\"%s\" stroke=\"%s\"/>\n",
-                y + 8, row_h - 16, fill, stroke);
+                y + 8, block_h - 16, fill, stroke);
         fprintf(f, "  <text x=\"34\" y=\"%.1f\"><tspan font-weight=\"bold\">block #%u</tspan> %s</text>\n", y + 17, b,
                 bytes);
         fprintf(f, "  <text x=\"34\" y=\"%.1f\" font-size=\"10\" fill=\"#666666\">%s%s</text>\n", y + 31,
@@ -1019,13 +1050,14 @@ void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline
             int last = pr->last_pass < first ? first : pr->last_pass;
             if ((uint32_t)last > plan->n_order) last = (int)plan->n_order;
             const double x0 = COL_X(first) + 3, x1 = COL_X(last) + COL_W(last) - 3;
-            const double by = y + (row_h - bar_h) / 2;
-            char rb[32], detail[96];
+            const double by = y + row_h * lane_of[r] + (row_h - bar_h) / 2;
+            char rb[32], ro[32], detail[96];
             fmt_bytes(pr->size_bytes, rb, sizeof rb);
+            fmt_bytes(pr->block_offset, ro, sizeof ro);
             if (pr->kind == PG_RES_IMAGE)
-                snprintf(detail, sizeof detail, "%s \xc2\xb7 %s", pg_format_get(pr->format)->name, rb);
+                snprintf(detail, sizeof detail, "%s \xc2\xb7 %s @ %s", pg_format_get(pr->format)->name, rb, ro);
             else
-                snprintf(detail, sizeof detail, "%s", rb);
+                snprintf(detail, sizeof detail, "%s @ %s", rb, ro);
             fprintf(f,
                     "  <g><title>%s", "");
             xml_esc(f, pr->name);

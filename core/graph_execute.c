@@ -1,6 +1,8 @@
 /* graph_execute.c - physical resources, pass instances, recording and submission of a plan. */
 #include "graph_execute.h"
 
+#include "alias_pack.h"
+
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -270,11 +272,11 @@ static VkMemoryRequirements requirements(pg_runtime *rt, int i)
     return req;
 }
 
-static pg_result bind(pg_runtime *rt, int i, VkDeviceMemory mem, pg_error *err)
+static pg_result bind(pg_runtime *rt, int i, VkDeviceMemory mem, VkDeviceSize offset, pg_error *err)
 {
     pg_phys_resource *r = &rt->res[i];
     if (r->image) {
-        PG_VK_TRY(err, vkBindImageMemory(rt->gpu->device, r->image, mem, 0));
+        PG_VK_TRY(err, vkBindImageMemory(rt->gpu->device, r->image, mem, offset));
         VkImageViewCreateInfo vci = {
             .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
             .image = r->image,
@@ -286,7 +288,7 @@ static pg_result bind(pg_runtime *rt, int i, VkDeviceMemory mem, pg_error *err)
         pg_gpu_name(rt->gpu, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)r->view, "%s.view",
                     rt->plan->resources[i].name);
     } else {
-        PG_VK_TRY(err, vkBindBufferMemory(rt->gpu->device, r->buffer, mem, 0));
+        PG_VK_TRY(err, vkBindBufferMemory(rt->gpu->device, r->buffer, mem, offset));
     }
     return PG_OK;
 }
@@ -344,30 +346,45 @@ static pg_result build(pg_runtime *rt, pg_error *err)
         if (plan->resources[i].culled) continue;
         if ((r = create_unbound(rt, (int)i, err))) return r;
     }
-    /* shared blocks */
+    /* shared blocks: each plan block is packed again with the real memory requirements
+     * (core/alias_pack.c), only among its own members, so two resources share bytes at run time
+     * only if the plan's alias barriers order them; members without a common memory type end up
+     * in separate allocations */
     bool bound[PG_MAX_RESOURCES] = {0};
+    uint32_t n_mem = 0;
     for (uint32_t b = 0; b < plan->n_blocks; b++) {
         const pg_plan_block *blk = &plan->blocks[b];
-        VkDeviceSize size = 0;
-        uint32_t bits = ~0u;
+        pg_pack_item items[PG_MAX_RESOURCES];
+        pg_pack_place place[PG_MAX_RESOURCES];
+        pg_pack_block sub[PG_MAX_RESOURCES];
         for (uint32_t m = 0; m < blk->n_members; m++) {
+            const pg_plan_resource *pr = &plan->resources[blk->members[m]];
             VkMemoryRequirements req = requirements(rt, blk->members[m]);
-            if (req.size > size) size = req.size;
-            bits &= req.memoryTypeBits;
+            items[m] = (pg_pack_item){.size = req.size, .alignment = req.alignment,
+                                      .type_bits = req.memoryTypeBits, .klass = 0,
+                                      .first = pr->first_pass, .last = pr->last_pass,
+                                      .may_inherit = pr->may_inherit};
             rt->stats.memory_bytes_unaliased += req.size;
         }
-        if (!blk->n_members) continue;
-        if (bits == 0) {
-            rt->stats.blocks_fallback++;
-            continue; /* members get their own memory below */
-        }
-        char name[64];
-        snprintf(name, sizeof name, "block%u", b);
-        if ((r = alloc(rt, size, bits, name, &rt->block_memory[b], err))) return r;
-        rt->stats.memory_bytes_transient += size;
-        for (uint32_t m = 0; m < blk->n_members; m++) {
-            if ((r = bind(rt, blk->members[m], rt->block_memory[b], err))) return r;
-            bound[blk->members[m]] = true;
+        const int n_sub = pg_alias_pack(items, blk->n_members, true, place, sub);
+        if (n_sub < 0) return pg_fail(err, PG_ERR_LIMIT, "block%u: too many members", b);
+        if (n_sub > 1) rt->stats.blocks_fallback++;
+        for (int sb = 0; sb < n_sub; sb++) {
+            if (sub[sb].type_bits == 0) continue; /* a member no memory type fits: fails below */
+            if (n_mem >= PG_MAX_RESOURCES) return pg_fail(err, PG_ERR_LIMIT, "too many memory blocks");
+            char name[64];
+            snprintf(name, sizeof name, n_sub > 1 ? "block%u.%d" : "block%u", b, sb);
+            if ((r = alloc(rt, sub[sb].size, sub[sb].type_bits, name, &rt->block_memory[n_mem], err))) return r;
+            rt->stats.memory_bytes_transient += sub[sb].size;
+            for (uint32_t m = 0; m < blk->n_members; m++) {
+                if (place[m].block != sb) continue;
+                rt->res[blk->members[m]].memory = rt->block_memory[n_mem];
+                rt->res[blk->members[m]].memory_offset = place[m].offset;
+                rt->res[blk->members[m]].memory_size = items[m].size;
+                if ((r = bind(rt, blk->members[m], rt->block_memory[n_mem], place[m].offset, err))) return r;
+                bound[blk->members[m]] = true;
+            }
+            n_mem++;
         }
     }
     for (uint32_t i = 0; i < plan->n_resources; i++) {
@@ -379,7 +396,9 @@ static pg_result build(pg_runtime *rt, pg_error *err)
             rt->stats.memory_bytes_transient += req.size;
             rt->stats.memory_bytes_unaliased += req.size; /* e.g. "grow" buffers: never aliased */
         }
-        if ((r = bind(rt, (int)i, rt->res[i].own_memory, err))) return r;
+        rt->res[i].memory = rt->res[i].own_memory;
+        rt->res[i].memory_size = req.size;
+        if ((r = bind(rt, (int)i, rt->res[i].own_memory, 0, err))) return r;
     }
     /* readback buffers */
     int outs[2] = {plan->output, plan->hdr_output};
@@ -484,6 +503,9 @@ static pg_result grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t m
     if (r->own_memory) pg_gpu_free_memory(gpu, r->own_memory);
     r->buffer = nb;
     r->own_memory = nm;
+    r->memory = nm;
+    r->memory_offset = 0;
+    r->memory_size = got;
     r->size = got;
     pg_gpu_name(gpu, VK_OBJECT_TYPE_BUFFER, (uint64_t)nb, "%s", pr->name);
     pg_gpu_name(gpu, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)nm, "%s", pr->name);
@@ -796,4 +818,10 @@ pg_result pg_runtime_read_buffer(pg_runtime *rt, const char *name, uint64_t offs
     if (!res) memcpy(dst, staging.mapped, size);
     pg_buffer_destroy(rt->gpu, &staging);
     return res;
+}
+
+const pg_phys_resource *pg_runtime_resource(const pg_runtime *rt, int index)
+{
+    if (!rt || !rt->plan || index < 0 || (uint32_t)index >= rt->plan->n_resources) return NULL;
+    return &rt->res[index];
 }

@@ -1,7 +1,9 @@
 /* graph_execute.h - runs a compiled plan on a pg_gpu.
  *
- * pg_runtime_set_plan() creates the physical resources (transients of one memory block share one
- * VkDeviceMemory) and one instance of every executed pass. They are kept across frames and
+ * pg_runtime_set_plan() creates the physical resources (each plan block is packed again with the
+ * real memory requirements, core/alias_pack.c, into one VkDeviceMemory, or more when its members
+ * have no memory type in common; resources are bound at their offsets) and one instance of every
+ * executed pass. They are kept across frames and
  * re-created only when the plan's physical signature (sizes, formats, usages, blocks, pass
  * variants) changes. pg_runtime_render() records one command buffer: for each pass in order the
  * plan's barriers, a debug label, the pass's commands and a timestamp; then the final output
@@ -29,6 +31,8 @@ typedef struct pg_phys_resource {
     VkBuffer buffer;
     VkDeviceSize size;
     VkDeviceMemory own_memory; /* non-null when not in a shared block */
+    VkDeviceMemory memory;     /* what it is bound to (own_memory or a shared block) */
+    VkDeviceSize memory_offset, memory_size; /* the bytes it occupies there */
 } pg_phys_resource;
 
 typedef struct pg_pass_create_ctx {
@@ -98,7 +102,8 @@ typedef struct pg_runtime_stats {
     uint32_t resource_creations;      /* times physical resources were (re)built */
     uint64_t memory_bytes_transient;  /* actual VkDeviceMemory for transient blocks */
     uint64_t memory_bytes_unaliased;  /* sum of transient resources' memory requirements */
-    uint32_t blocks_fallback;         /* blocks split because members had no common memory type */
+    uint32_t blocks_fallback;         /* plan blocks split at run time (no common memory
+                                       * type, or alignment padding: alias_pack.h) */
     uint32_t grow_events;             /* "grow" buffers re-created larger, over the runtime's life */
     uint64_t grow_bytes;              /* current bytes of all "grow" buffers */
 } pg_runtime_stats;
@@ -132,6 +137,8 @@ uint64_t pg_runtime_buffer_size(const pg_runtime *rt, const char *name);
 /* The physical image of the output (which 0) or hdr_output (1), in TRANSFER_SRC_OPTIMAL layout
  * after each frame (NULL if none). For the viewer's blit to the window. */
 const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which);
+/* The physical resource of plan->resources[index] (NULL when out of range), for tests. */
+const pg_phys_resource *pg_runtime_resource(const pg_runtime *rt, int index);
 
 #ifdef __cplusplus
 }

@@ -189,6 +189,11 @@ int pg_cmd_render(int argc, char **argv)
     if (opt.explain) {
         printf("explain: %s\nexplain: %s\n", app.camera_why, app.lights_why);
         pg_print_explain(s, stdout);
+        const pg_runtime_stats rs = pg_runtime_get_stats(s->runtime);
+        printf("explain: device transient memory %llu B unaliased -> %llu B aliased (real memory "
+               "requirements; %u block(s) split at run time)\n",
+               (unsigned long long)rs.memory_bytes_unaliased, (unsigned long long)rs.memory_bytes_transient,
+               rs.blocks_fallback);
         for (uint32_t k = 0; k < app.scene->n_warnings; k++)
             printf("explain: scene warning: %s\n", app.scene->warnings[k]);
     }
