@@ -1317,12 +1317,17 @@ int pg_cmd_view(int argc, char **argv)
             }
             printf("view: frame %u: switching to %s\n", frame, v->names[v->requested]);
         }
+        double t_load = now_s();
+        uint32_t loads_before = v->reloads;
         if (v->reload) reload(v);
         camera_update(v, dt);
         bool last_frame = v->frames_limit && frame + 1 >= v->frames_limit;
         bool capture = v->want_shot || (last_frame && v->screenshot_path);
         if (last_frame && v->screenshot_path) pg_strlcpy(v->shot_file, v->screenshot_path, sizeof v->shot_file);
         if (draw_frame(v, capture, &err)) goto fail;
+        if (v->reloads != loads_before) /* the switch as the user waits for it */
+            printf("view: frame %u: %s ready in %.1f ms (load, compile, first frame)\n", frame, v->names[v->current],
+                   (now_s() - t_load) * 1e3);
         v->want_shot = false;
         frame++;
         if (frame == 100) {

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# cache_times.sh PASSGRAPH_BINARY [RUNS] - what the shader and pipeline caches save (pg_cache.h):
+#  1. `passgraph render` of the default scene at 320x180 for each shipped pipeline, wall time,
+#     median of RUNS (default 3): --no-shader-cache (every variant through glslang, no pipeline
+#     cache: what passgraph did before the caches), cold (empty cache folder; compiles and writes)
+#     and warm (the same folder again; glslang runs for nothing).
+#  2. the viewer (under xvfb-run) switching forward_plus -> deferred -> forward_plus: the time from
+#     the switch to the first frame drawn with the new pipeline, without and with the caches.
+set -u
+PG=$1
+RUNS=${2:-3}
+root=$(cd "$(dirname "$0")/.." && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+median() { sort -n | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+t_render() { # cache-dir extra-args... -> seconds
+  local dir=$1; shift
+  local t0 t1
+  t0=$(date +%s.%N)
+  PASSGRAPH_CACHE_DIR=$dir "$PG" render --size 320x180 --out "$tmp/o.png" "$@" >/dev/null 2>"$tmp/err" ||
+    { echo "render failed: $*" >&2; cat "$tmp/err" >&2; }
+  t1=$(date +%s.%N)
+  echo "$t1 - $t0" | bc -l
+}
+printf '%-16s %10s %10s %10s   (passgraph render --size 320x180, wall s, median of %d)\n' pipeline no-cache cold warm "$RUNS"
+for p in naive forward_plus deferred deferred_oct16 deferred_packed reference; do
+  pj=$root/pipelines/$p.json
+  nc=$(for i in $(seq "$RUNS"); do t_render "$tmp/none" --pipeline "$pj" --no-shader-cache; done | median)
+  cold=$(for i in $(seq "$RUNS"); do rm -rf "$tmp/c"; t_render "$tmp/c" --pipeline "$pj"; done | median)
+  warm=$(for i in $(seq "$RUNS"); do t_render "$tmp/c" --pipeline "$pj"; done | median)
+  printf '%-16s %10.3f %10.3f %10.3f\n' "$p" "$nc" "$cold" "$warm"
+done
+if command -v xvfb-run >/dev/null; then
+  for mode in no-cache cached; do
+    extra=()
+    [ "$mode" = no-cache ] && extra=(--no-shader-cache)
+    rm -rf "$tmp/v"
+    # the first run fills the on-disk cache; the second is the one reported (for cached, warm)
+    for k in 1 2; do
+      PASSGRAPH_CACHE_DIR=$tmp/v xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 320x180 --frames 16 \
+        --pipeline "$root/pipelines/forward_plus.json" --at 5:pipeline=deferred.json --at 10:pipeline=forward_plus.json \
+        "${extra[@]}" >"$tmp/vout" 2>"$tmp/verr" || { echo "view failed" >&2; tail -5 "$tmp/verr" >&2; }
+    done
+    echo "viewer $mode: $(grep 'ready in' "$tmp/vout" | sed 's/^view: //' | tr '\n' ';')"
+  done
+fi
