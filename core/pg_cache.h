@@ -49,6 +49,8 @@ typedef struct pg_shader_cache_stats {
     uint32_t disk_hits;   /* loaded from a .spv file */
     uint32_t disk_writes; /* .spv files written */
     uint32_t rejected;    /* .spv files ignored as corrupt */
+    double compile_ms;    /* wall time in glslang (preprocess, parse, link, SPIR-V) */
+    double lookup_ms;     /* wall time finding variants in the caches (hits and misses) */
 } pg_shader_cache_stats;
 void pg_shader_cache_stats_get(pg_shader_cache_stats *out);
 /* Empties the in-memory cache and zeroes the counters (tests: "a new process"). */

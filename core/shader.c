@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "pg_cache.h"
@@ -176,6 +177,20 @@ static pthread_mutex_t g_cache_lock = PTHREAD_MUTEX_INITIALIZER;
 static spv_entry g_mem[SPV_MEMORY_MAX];
 static uint32_t g_n_mem;
 static pg_shader_cache_stats g_stats;
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static void add_ms(double *acc, double ms)
+{
+    pthread_mutex_lock(&g_cache_lock);
+    *acc += ms;
+    pthread_mutex_unlock(&g_cache_lock);
+}
 
 static pg_hash128 spirv_key(const char *src, VkShaderStageFlagBits stage)
 {
@@ -359,7 +374,10 @@ pg_result pg_shader_compile_ex(const char *name, VkShaderStageFlagBits stage, co
     }
 
     pg_hash128 key = spirv_key(src.data, stage);
-    if (pg_cache_enabled() && spirv_cache_get(key, spirv, n_words)) {
+    double t0 = now_ms();
+    bool hit = pg_cache_enabled() && spirv_cache_get(key, spirv, n_words);
+    add_ms(&g_stats.lookup_ms, now_ms() - t0);
+    if (hit) {
         free(src.data);
         return PG_OK;
     }
@@ -382,6 +400,7 @@ pg_result pg_shader_compile_ex(const char *name, VkShaderStageFlagBits stage, co
         .messages = GLSLANG_MSG_DEFAULT_BIT | GLSLANG_MSG_SPV_RULES_BIT | GLSLANG_MSG_VULKAN_RULES_BIT,
         .resource = glslang_default_resource(),
     };
+    t0 = now_ms();
     glslang_shader_t *sh = glslang_shader_create(&input);
     glslang_program_t *prog = NULL;
     if (!sh) {
@@ -412,6 +431,7 @@ pg_result pg_shader_compile_ex(const char *name, VkShaderStageFlagBits stage, co
     *n_words = words;
     r = PG_OK;
     __atomic_fetch_add(&g_stats.compiled, 1, __ATOMIC_RELAXED);
+    add_ms(&g_stats.compile_ms, now_ms() - t0);
     if (pg_cache_enabled()) spirv_cache_put(key, code, words);
 done:
     if (prog) glslang_program_delete(prog);

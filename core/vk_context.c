@@ -391,9 +391,9 @@ void pg_gpu_destroy(pg_gpu *gpu)
             pg_shader_cache_stats st;
             pg_shader_cache_stats_get(&st);
             fprintf(stderr,
-                    "passgraph: cache: %u shader variants compiled, %u from memory, %u from disk, %u written, "
-                    "%u rejected; pipeline cache %zu bytes loaded%s\n",
-                    st.compiled, st.memory_hits, st.disk_hits, st.disk_writes, st.rejected,
+                    "passgraph: cache: %u shader variants compiled (%.1f ms), %u from memory, %u from disk, "
+                    "%u written, %u rejected (lookups %.1f ms); pipeline cache %zu bytes loaded%s\n",
+                    st.compiled, st.compile_ms, st.memory_hits, st.disk_hits, st.disk_writes, st.rejected, st.lookup_ms,
                     gpu->pipeline_cache_loaded, pg_cache_enabled() ? "" : " (caches off)");
         }
         if (gpu->cmd_pool) vkDestroyCommandPool(gpu->device, gpu->cmd_pool, NULL);
