@@ -13,22 +13,26 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 median() { sort -n | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
-t_render() { # cache-dir extra-args... -> seconds
+t_render() { # cache-dir extra-args... -> "wall_s glslang_ms"
   local dir=$1; shift
   local t0 t1
   t0=$(date +%s.%N)
-  PASSGRAPH_CACHE_DIR=$dir "$PG" render --size 320x180 --out "$tmp/o.png" "$@" >/dev/null 2>"$tmp/err" ||
-    { echo "render failed: $*" >&2; cat "$tmp/err" >&2; }
+  PASSGRAPH_CACHE_STATS=1 PASSGRAPH_CACHE_DIR=$dir "$PG" render --size 320x180 --out "$tmp/o.png" "$@" >/dev/null \
+    2>"$tmp/err" || { echo "render failed: $*" >&2; cat "$tmp/err" >&2; }
   t1=$(date +%s.%N)
-  echo "$t1 - $t0" | bc -l
+  echo "$(echo "$t1 - $t0" | bc -l) $(sed -n 's/.*variants compiled (\([0-9.]*\) ms).*/\1/p' "$tmp/err")"
 }
-printf '%-16s %10s %10s %10s   (passgraph render --size 320x180, wall s, median of %d)\n' pipeline no-cache cold warm "$RUNS"
+col() { awk "{print \$$1}" | median; }
+printf '%-16s %9s %9s %9s | %9s %9s %9s\n' "" "wall s" "" "" "glslang" "ms" ""
+printf '%-16s %9s %9s %9s | %9s %9s %9s   (render --size 320x180, median of %d)\n' pipeline no-cache cold warm \
+  no-cache cold warm "$RUNS"
 for p in naive forward_plus deferred deferred_oct16 deferred_packed reference; do
   pj=$root/pipelines/$p.json
-  nc=$(for i in $(seq "$RUNS"); do t_render "$tmp/none" --pipeline "$pj" --no-shader-cache; done | median)
-  cold=$(for i in $(seq "$RUNS"); do rm -rf "$tmp/c"; t_render "$tmp/c" --pipeline "$pj"; done | median)
-  warm=$(for i in $(seq "$RUNS"); do t_render "$tmp/c" --pipeline "$pj"; done | median)
-  printf '%-16s %10.3f %10.3f %10.3f\n' "$p" "$nc" "$cold" "$warm"
+  for i in $(seq "$RUNS"); do t_render "$tmp/none" --pipeline "$pj" --no-shader-cache; done >"$tmp/nc"
+  for i in $(seq "$RUNS"); do rm -rf "$tmp/c"; t_render "$tmp/c" --pipeline "$pj"; done >"$tmp/cold"
+  for i in $(seq "$RUNS"); do t_render "$tmp/c" --pipeline "$pj"; done >"$tmp/warm"
+  printf '%-16s %9.3f %9.3f %9.3f | %9.1f %9.1f %9.1f\n' "$p" "$(col 1 <"$tmp/nc")" "$(col 1 <"$tmp/cold")" \
+    "$(col 1 <"$tmp/warm")" "$(col 2 <"$tmp/nc")" "$(col 2 <"$tmp/cold")" "$(col 2 <"$tmp/warm")"
 done
 if command -v xvfb-run >/dev/null; then
   for mode in no-cache cached; do
@@ -37,10 +41,11 @@ if command -v xvfb-run >/dev/null; then
     rm -rf "$tmp/v"
     # the first run fills the on-disk cache; the second is the one reported (for cached, warm)
     for k in 1 2; do
-      PASSGRAPH_CACHE_DIR=$tmp/v xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 320x180 --frames 16 \
+      PASSGRAPH_CACHE_STATS=1 PASSGRAPH_CACHE_DIR=$tmp/v xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 320x180 --frames 16 \
         --pipeline "$root/pipelines/forward_plus.json" --at 5:pipeline=deferred.json --at 10:pipeline=forward_plus.json \
         "${extra[@]}" >"$tmp/vout" 2>"$tmp/verr" || { echo "view failed" >&2; tail -5 "$tmp/verr" >&2; }
     done
-    echo "viewer $mode: $(grep 'ready in' "$tmp/vout" | sed 's/^view: //' | tr '\n' ';')"
+    echo "viewer $mode: $(grep 'ready in' "$tmp/vout" | sed 's/^view: //; s/ (load.*//' | tr '\n' ';')" \
+      "$(grep -o '[0-9]* shader variants compiled ([0-9.]* ms)' "$tmp/verr")"
   done
 fi
