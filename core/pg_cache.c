@@ -85,7 +85,9 @@ bool pg_cache_write(const char *path, const void *head, size_t head_bytes, const
     if (f && fclose(f)) ok = false;
     if (ok && rename(tmp, path)) ok = false;
     if (!ok) {
-        pg_cache_note("cache file %s not written (%s)", path, strerror(errno));
+        static bool noted; /* once per process */
+        if (!noted) pg_cache_note("cache file %s not written (%s)", path, strerror(errno));
+        noted = true;
         unlink(tmp);
     }
     return ok;

@@ -212,7 +212,9 @@ static bool spirv_path(pg_hash128 key, char *buf, size_t size, bool make_dir)
     if (l + 8 >= sizeof dir) return false;
     memcpy(dir + l, "/spirv", 7);
     if (make_dir && !pg_cache_mkdirs(dir)) {
-        pg_cache_note("shader cache folder %s cannot be made; SPIR-V not saved", dir);
+        static bool noted; /* once per process, not once per variant */
+        if (!noted) pg_cache_note("shader cache folder %s cannot be made; SPIR-V not saved", dir);
+        noted = true;
         return false;
     }
     return snprintf(buf, size, "%s/%016llx%016llx.spv", dir, (unsigned long long)key.a, (unsigned long long)key.b) <

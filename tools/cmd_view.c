@@ -1219,6 +1219,7 @@ int pg_cmd_view(int argc, char **argv)
         .queue = v->app.gpu->queue,
         .render_pass = v->win.pass_present,
         .image_count = v->win.n_images,
+        .pipeline_cache = v->app.gpu->pipeline_cache,
     };
     if (!pg_ui_init(&ui, err.msg, sizeof err.msg)) goto fail;
     v->ui_ready = true;
