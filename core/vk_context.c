@@ -1,6 +1,8 @@
 /* vk_context.c - instance, device, queue, validation, allocation helpers. */
 #include "vk_context.h"
 
+#include "pg_cache.h"
+
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -546,6 +548,7 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
         res = pg_fail(err, PG_ERR_VULKAN, "vkCreateCommandPool failed: %s", pg_vk_result_name(r));
         goto fail;
     }
+    pg_pipeline_cache_open(gpu);
     if (!desc->quiet)
         fprintf(stderr, "passgraph: device %s (%s, Vulkan %u.%u%s)%s\n", gpu->props.deviceName,
                 device_type_name(gpu->props.deviceType), VK_API_VERSION_MAJOR(gpu->props.apiVersion),
@@ -563,6 +566,17 @@ void pg_gpu_destroy(pg_gpu *gpu)
     if (!gpu) return;
     if (gpu->device) {
         vkDeviceWaitIdle(gpu->device);
+        pg_pipeline_cache_close(gpu);
+        const char *cs = getenv("PASSGRAPH_CACHE_STATS");
+        if (cs && cs[0] && strcmp(cs, "0")) {
+            pg_shader_cache_stats st;
+            pg_shader_cache_stats_get(&st);
+            fprintf(stderr,
+                    "passgraph: cache: %u shader variants compiled (%.1f ms), %u from memory, %u from disk, "
+                    "%u written, %u rejected (lookups %.1f ms); pipeline cache %zu bytes loaded%s\n",
+                    st.compiled, st.compile_ms, st.memory_hits, st.disk_hits, st.disk_writes, st.rejected, st.lookup_ms,
+                    gpu->pipeline_cache_loaded, pg_cache_enabled() ? "" : " (caches off)");
+        }
         if (gpu->cmd_pool) vkDestroyCommandPool(gpu->device, gpu->cmd_pool, NULL);
         vkDestroyDevice(gpu->device, NULL);
     }

@@ -82,6 +82,11 @@ typedef struct pg_gpu {
     uint32_t validation_errors;
     uint32_t sync_hazards;        /* of those, synchronization validation's (SYNC-HAZARD-*) */
     int64_t live_memory_objects;  /* VkDeviceMemory allocated through passgraph and not freed */
+    /* every pipeline is created with this cache (core/pipeline_cache.c; VK_NULL_HANDLE when the
+     * caches are off, pg_cache.h); pipeline_cache_loaded: bytes read from its file (0: cold) */
+    VkPipelineCache pipeline_cache;
+    size_t pipeline_cache_loaded;
+    uint64_t pipeline_cache_sum;
     PFN_vkSetDebugUtilsObjectNameEXT set_object_name;
     PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label;
     PFN_vkCmdEndDebugUtilsLabelEXT cmd_end_label;
@@ -89,6 +94,10 @@ typedef struct pg_gpu {
 
 pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err);
 void pg_gpu_destroy(pg_gpu *gpu);
+/* Called by pg_gpu_create / pg_gpu_destroy: load (or start) gpu->pipeline_cache, and save it
+ * when it changed. Failures are notes on stderr. */
+void pg_pipeline_cache_open(pg_gpu *gpu);
+void pg_pipeline_cache_close(pg_gpu *gpu);
 /* Prints the Vulkan devices (index, name, type, API version) to f. */
 pg_result pg_gpu_list_devices(FILE *f, pg_error *err);
 

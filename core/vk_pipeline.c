@@ -115,7 +115,7 @@ pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, con
         .pDynamicState = &dy,
         .layout = d->layout,
     };
-    PG_VK_TRY(err, vkCreateGraphicsPipelines(gpu->device, VK_NULL_HANDLE, 1, &ci, NULL, out));
+    PG_VK_TRY(err, vkCreateGraphicsPipelines(gpu->device, gpu->pipeline_cache, 1, &ci, NULL, out));
     pg_gpu_name(gpu, VK_OBJECT_TYPE_PIPELINE, (uint64_t)*out, "%s", name);
     return PG_OK;
 }
@@ -129,7 +129,7 @@ pg_result pg_compute_pipeline_create(pg_gpu *gpu, VkPipelineLayout layout, VkSha
                   .module = cs, .pName = "main"},
         .layout = layout,
     };
-    PG_VK_TRY(err, vkCreateComputePipelines(gpu->device, VK_NULL_HANDLE, 1, &ci, NULL, out));
+    PG_VK_TRY(err, vkCreateComputePipelines(gpu->device, gpu->pipeline_cache, 1, &ci, NULL, out));
     pg_gpu_name(gpu, VK_OBJECT_TYPE_PIPELINE, (uint64_t)*out, "%s", name);
     return PG_OK;
 }
@@ -159,7 +159,7 @@ pg_result pg_compute_pipeline_create_ex(pg_gpu *gpu, const pg_compute_pipeline_d
                   .pSpecializationInfo = d->n_spec ? &si : NULL},
         .layout = d->layout,
     };
-    PG_VK_TRY(err, vkCreateComputePipelines(gpu->device, VK_NULL_HANDLE, 1, &ci, NULL, out));
+    PG_VK_TRY(err, vkCreateComputePipelines(gpu->device, gpu->pipeline_cache, 1, &ci, NULL, out));
     pg_gpu_name(gpu, VK_OBJECT_TYPE_PIPELINE, (uint64_t)*out, "%s", name);
     return PG_OK;
 }

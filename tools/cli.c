@@ -1,4 +1,5 @@
 #include "cli.h"
+#include "pg_cache.h"
 
 #include "ocio.h"
 
@@ -29,6 +30,9 @@ const char *const pg_cli_common_help =
     "  --validation         enable the Khronos validation layer + synchronization validation;\n"
     "                       any message makes the command fail\n"
     "  --no-aliasing        give every transient its own memory (debugging switch)\n"
+    "  --no-shader-cache    compile every shader with glslang and use no pipeline cache (also\n"
+    "                       PASSGRAPH_NO_SHADER_CACHE=1); caches live in $PASSGRAPH_CACHE_DIR,\n"
+    "                       else $XDG_CACHE_HOME/passgraph, else ~/.cache/passgraph\n"
     "  --explain            print what the compiled graph left out, culled and why\n"
     "  --frames N           frames to render; timings are the median (default 1)\n"
     "  --view NAME          an OCIO view of the display (e.g. \"Standard\", \"Filmic (ACES)\", \"Raw\")\n"
@@ -252,6 +256,8 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         c->validation = true;
     } else if (!strcmp(a, "--no-aliasing")) {
         c->no_aliasing = true;
+    } else if (!strcmp(a, "--no-shader-cache")) {
+        pg_cache_set_enabled(false); /* process-wide: the caches are per process */
     } else if (!strcmp(a, "--explain")) {
         c->explain = true;
     } else if (!strcmp(a, "--quiet")) {

@@ -1261,6 +1261,7 @@ int pg_cmd_view(int argc, char **argv)
         .queue = v->app.gpu->queue,
         .render_pass = v->win.pass_present,
         .image_count = v->win.n_images,
+        .pipeline_cache = v->app.gpu->pipeline_cache,
     };
     if (!pg_ui_init(&ui, err.msg, sizeof err.msg)) goto fail;
     v->ui_ready = true;
@@ -1359,6 +1360,8 @@ int pg_cmd_view(int argc, char **argv)
             }
             printf("view: frame %u: switching to %s\n", frame, v->names[v->requested]);
         }
+        double t_load = now_s();
+        uint32_t loads_before = v->reloads;
         if (v->reload) reload(v);
         camera_update(v, dt);
         bool last_frame = v->frames_limit && frame + 1 >= v->frames_limit;
@@ -1373,6 +1376,9 @@ int pg_cmd_view(int argc, char **argv)
         if (rdoc_now) rdoc_finish(v);
         v->want_rdoc = false;
         v->rdoc_file[0] = 0;
+        if (v->reloads != loads_before) /* the switch as the user waits for it */
+            printf("view: frame %u: %s ready in %.1f ms (load, compile, first frame)\n", frame, v->names[v->current],
+                   (now_s() - t_load) * 1e3);
         v->want_shot = false;
         frame++;
         if (frame == 100) {

@@ -23,6 +23,7 @@ typedef struct pg_ui_init_info {
     VkQueue queue;
     VkRenderPass render_pass;
     uint32_t image_count;
+    VkPipelineCache pipeline_cache; /* the device's (pg_gpu.pipeline_cache), may be VK_NULL_HANDLE */
 } pg_ui_init_info;
 
 /* Returns false with a message in err (size err_size) on failure. */

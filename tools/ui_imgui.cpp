@@ -52,6 +52,7 @@ extern "C" bool pg_ui_init(const pg_ui_init_info *info, char *err, size_t err_si
     ii.QueueFamily = info->queue_family;
     ii.Queue = info->queue;
     ii.DescriptorPool = g_pool;
+    ii.PipelineCache = info->pipeline_cache;
     ii.MinImageCount = info->image_count < 2 ? 2 : info->image_count;
     ii.ImageCount = info->image_count < 2 ? 2 : info->image_count;
     ii.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
