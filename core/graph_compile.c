@@ -53,7 +53,9 @@ typedef struct pass_use {
     uint64_t stages, access;
     uint32_t layout; /* images; UNDEFINED (0) for buffers */
     bool reads, writes;
-    bool full_write; /* some slot fully overwrites it and no slot reads it */
+    bool full_write; /* some slot fully overwrites it and no slot reads it, or a slot is
+                      * marked initializes (the pass writes every element before reading) */
+    bool initializes;
 } pass_use;
 
 /* Synchronization state of one resource while walking the frame. */
@@ -431,6 +433,17 @@ static pg_result validate_slot(compile_ctx *c, int i, int s, const char *res_nam
                            "resource '%s' is %s (not storage-capable)",
                            file, sp, sd->name, pg_access_name(sd->access), rd->name, fi->name);
     }
+    if (sd->initializes && (!is_write || !sync.reads))
+        return pg_fail(c->err, PG_ERR_SCHEMA,
+                       "%s: %s: pass type '%s' marks slot '%s' (%s) as initialized by the pass, "
+                       "which only a write slot whose access reads can be (a bug in the pass type)",
+                       file, sp, pp->type->name, sd->name, pg_access_name(sd->access));
+    if (sd->partial && (!is_write || !sync.full_write))
+        return pg_fail(c->err, PG_ERR_SCHEMA,
+                       "%s: %s: pass type '%s' marks slot '%s' (%s) as a partial write, which only "
+                       "a write slot with a full-write access can be (a bug in the pass type)",
+                       file, sp, pp->type->name, sd->name, pg_access_name(sd->access));
+    if (sd->partial) sync.full_write = false;
     pg_plan_slot *ps = &pp->slots[s];
     ps->resource = r;
     ps->is_write = is_write;
@@ -478,6 +491,7 @@ static pg_result merge_slot(compile_ctx *c, int i, int s)
     u->reads |= ps->sync.reads;
     u->writes |= ps->sync.writes;
     u->full_write |= ps->sync.full_write;
+    u->initializes |= ps->decl.initializes;
     return PG_OK;
 }
 
@@ -500,7 +514,8 @@ static pg_result phase_validate(compile_ctx *c)
             if (!pp->slots[s].decl.unused && (r = merge_slot(c, (int)i, (int)s))) return r;
         for (uint32_t k = 0; k < c->n_uses[i]; k++) {
             pass_use *u = &c->uses[i][k];
-            if (u->reads) u->full_write = false; /* loads what it writes: not a full overwrite */
+            /* loads what it writes: not a full overwrite, unless the pass initializes it */
+            u->full_write = u->initializes || (u->full_write && !u->reads);
             for (uint32_t s = 0; s < pp->n_slots; s++) /* the merged depth read-only layout */
                 if (pp->slots[s].resource == u->res) pp->slots[s].sync.layout = u->layout;
             c->used_at_all[u->res] = true;
@@ -645,10 +660,11 @@ static pg_result phase_order(compile_ctx *c)
         for (int b = 0; b < n; b++)
             if (c->edge[pick][b]) indeg[b]--;
     }
-    /* A transient has no contents at the start of a frame: its first access must write (a pass
-     * that reads and writes it in one go, e.g. a blend onto it, is allowed). Since pure readers
-     * run after every writer, this fails exactly when nothing writes it. Checked over all passes,
-     * culled or not, so a mistake does not hide behind a cull. */
+    /* A transient has no contents at the start of a frame: its first access must write it
+     * without reading it first: a full write, a write declared partial (its readers read only
+     * what it wrote), or a read-modify-write slot the pass marks as initialized by itself. A
+     * blend, a depth load or a storage read-write as the first use would read undefined memory.
+     * Checked over all passes, culled or not, so a mistake does not hide behind a cull. */
     for (uint32_t r = 0; r < pl->n_resources; r++) {
         if (pl->resources[r].lifetime != PG_LIFETIME_TRANSIENT) continue;
         for (int k = 0; k < n; k++) {
@@ -662,6 +678,28 @@ static pg_result phase_order(compile_ctx *c)
                                "%s: %s: pass '%s' reads transient resource '%s' before any pass "
                                "writes it (make a pass write it first, or declare it persistent)",
                                pass_file(c, p), sp, pl->passes[p].name, pl->resources[r].name);
+            }
+            if (u->reads && !u->full_write) {
+                /* name the slot that reads what it writes (else the first reading slot) */
+                const pg_plan_pass *pp = &c->plan->passes[p];
+                int s = -1;
+                for (uint32_t k = 0; k < pp->n_slots; k++) {
+                    const pg_plan_slot *ps = &pp->slots[k];
+                    if (ps->resource != (int)r || ps->decl.unused || !ps->sync.reads) continue;
+                    if (s < 0 || (ps->is_write && !pp->slots[s].is_write)) s = (int)k;
+                }
+                if (s < 0) s = u->slot;
+                char sp[PG_JSON_PATH_MAX + 48];
+                slot_path(c, p, s, sp, sizeof sp);
+                return pg_fail(c->err, PG_ERR_READ_BEFORE_WRITE,
+                               "%s: %s: pass '%s' reads transient resource '%s' before it is fully "
+                               "written: it is the first pass to use it and slot '%s' (%s) reads "
+                               "its contents, undefined at the start of a frame (write it in full "
+                               "first, e.g. clear it, declare it persistent, or, if the pass writes "
+                               "every element before reading any, mark the slot with "
+                               "pg_decl_mark_initializes())",
+                               pass_file(c, p), sp, pl->passes[p].name, pl->resources[r].name,
+                               pp->slots[s].decl.name, pg_access_name(pp->slots[s].decl.access));
             }
             break;
         }

@@ -297,6 +297,8 @@ static cJSON *json_slot(const pg_graph_plan *plan, const pg_plan_slot *sl)
               cJSON_AddStringToObject(o, "slot", sl->decl.name) &&
               cJSON_AddStringToObject(o, "access", pg_access_name(sl->decl.access)) &&
               cJSON_AddBoolToObject(o, "unused", sl->decl.unused) &&
+              cJSON_AddBoolToObject(o, "initializes", sl->decl.initializes) &&
+              cJSON_AddBoolToObject(o, "partial", sl->decl.partial) &&
               add_stage_names(o, "stages", sl->decl.unused ? 0 : sl->sync.stages) &&
               add_str_or_null(o, "layout", image && !sl->decl.unused ? pg_layout_name(sl->sync.layout) : NULL);
     if (!ok) {

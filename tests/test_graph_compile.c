@@ -137,6 +137,45 @@ static pg_result d_storage_rw(const pg_declare_in *in, pg_pass_decl *d, pg_error
     pg_decl_write(d, "img", IMG, PG_ACCESS_STORAGE_RW, COMP, PG_FMTCLASS_ANY_COLOR);
     return PG_OK;
 }
+/* read-modify-write slots the pass initializes itself (a clear, a first store without load) */
+static pg_result d_blend_init(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
+{
+    (void)in, (void)e;
+    pg_decl_read(d, "src", IMG, PG_ACCESS_SAMPLED, FRAG, PG_FMTCLASS_FLOAT);
+    pg_decl_write(d, "dst", IMG, PG_ACCESS_COLOR_RMW, 0, PG_FMTCLASS_FLOAT);
+    pg_decl_mark_initializes(d, 0);
+    return PG_OK;
+}
+static pg_result d_storage_rw_init(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
+{
+    (void)in, (void)e;
+    pg_decl_write(d, "img", IMG, PG_ACCESS_STORAGE_RW, COMP, PG_FMTCLASS_ANY_COLOR);
+    pg_decl_mark_initializes(d, 0);
+    return PG_OK;
+}
+/* a buffer filled only up to a count (the cluster-list pattern) */
+static pg_result d_partial_buf(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
+{
+    (void)in, (void)e;
+    pg_decl_write(d, "buf", BUF, PG_ACCESS_STORAGE_WRITE, COMP, 0);
+    pg_decl_mark_partial(d, 0);
+    return PG_OK;
+}
+/* pass type bugs: initializes on a full write, partial on a read-modify-write */
+static pg_result d_bad_init(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
+{
+    (void)in, (void)e;
+    pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
+    pg_decl_mark_initializes(d, 0);
+    return PG_OK;
+}
+static pg_result d_bad_partial(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
+{
+    (void)in, (void)e;
+    pg_decl_write(d, "img", IMG, PG_ACCESS_STORAGE_RW, COMP, PG_FMTCLASS_ANY_COLOR);
+    pg_decl_mark_partial(d, 0);
+    return PG_OK;
+}
 static pg_result d_storage_write(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
 {
     (void)in, (void)e;
@@ -227,7 +266,8 @@ static pg_result d_rnd(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
 {
     (void)e;
     const char *t = in->desc->type;
-    const bool storage = strcmp(t, "rnd_storage") == 0, rmw = strcmp(t, "rnd_rmw") == 0;
+    const bool storage = strcmp(t, "rnd_storage") == 0, init = strcmp(t, "rnd_init") == 0;
+    const bool rmw = init || strcmp(t, "rnd_rmw") == 0;
     for (uint32_t i = 0; i < in->desc->n_reads; i++) {
         const pg_resource_desc *r = find_res(in->pipeline, in->desc->reads[i]);
         if (r && r->kind == BUF)
@@ -249,6 +289,7 @@ static pg_result d_rnd(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
             pg_decl_write(d, "out", IMG, rmw ? PG_ACCESS_COLOR_RMW : PG_ACCESS_COLOR_WRITE, 0,
                           PG_FMTCLASS_ANY_COLOR);
         }
+        if (init) pg_decl_mark_initializes(d, i);
     }
     return PG_OK;
 }
@@ -282,6 +323,12 @@ static const pg_pass_type g_types[] = {
     TYPE("rnd_color", d_rnd, "any", "any"),
     TYPE("rnd_storage", d_rnd, "any", "any"),
     TYPE("rnd_rmw", d_rnd, "any", "any"),
+    TYPE("rnd_init", d_rnd, "any", "any"),
+    TYPE("fake_blend_init", d_blend_init, "src", "dst"),
+    TYPE("fake_storage_rw_init", d_storage_rw_init, "", "img"),
+    TYPE("fake_partial_buf", d_partial_buf, "", "buf"),
+    TYPE("fake_bad_init", d_bad_init, "", "color"),
+    TYPE("fake_bad_partial", d_bad_partial, "", "img"),
 };
 static pg_pass_registry g_reg;
 
@@ -1222,24 +1269,35 @@ static void test_aliasing(void)
         pg_graph_plan_free(p);
         pl_free(pl);
     }
-    { /* a resource first written by a read-modify-write never joins a block */
+    { /* a transient first used by a read-modify-write reads undefined memory: an error naming
+       * the pass, the slot and the resource; the same pass marked "initializes" is a full write
+       * (it may join a block like any full write) */
         pg_pipeline *pl = chain_pipeline("fake_blend");
+        const char *m = FAIL(pl, PG_ERR_READ_BEFORE_WRITE);
+        CHECK_MSG(strcmp(m, "test.json: passes[2].writes[0]: pass 'C' reads transient resource 't3' "
+                            "before it is fully written: it is the first pass to use it and slot "
+                            "'dst' (color_rmw) reads its contents, undefined at the start of a "
+                            "frame (write it in full first, e.g. clear it, declare it persistent, "
+                            "or, if the pass writes every element before reading any, mark the "
+                            "slot with pg_decl_mark_initializes())") == 0,
+                  "%s", m);
+        pl_free(pl);
+        pl = chain_pipeline("fake_blend_init");
         pg_graph_plan *p = COMPILE(pl);
         if (p) {
             check_blocks(p, __LINE__);
-            const pg_plan_resource *t3 = res(p, "t3");
-            CHECK(p->n_blocks == 3);
-            CHECK(p->blocks[t3->block].n_members == 1 && p->blocks[t3->block].members[0] == ridx(p, "t3"));
-            /* out may join either t1's or t2's block (same size difference): lowest index */
-            CHECK(res(p, "out")->block == 0 && res(p, "t1")->block == 0);
+            const pg_plan_pass *c = &p->passes[pidx(p, "C")];
+            CHECK(c->slots[1].decl.initializes && !c->slots[1].decl.partial);
+            /* t1 and t3 share, t2 and out share: as with a full write (fake_blur above) */
+            CHECK(p->n_blocks == 2 && res(p, "t3")->block == res(p, "t1")->block);
+            CHECK(p->transient_bytes_unaliased == 140000 && p->transient_bytes_aliased == 80000);
             const pg_barrier *b = barrier_for(p, "C", "t3");
-            CHECK_BARRIER(b, 0, 0, S_COLOR, A_CW | A_CR, L_UNDEF, L_COLOR, "first use");
-            CHECK(p->transient_bytes_unaliased == 140000 && p->transient_bytes_aliased == 120000);
+            CHECK(b && b->alias_prev == ridx(p, "t1") && b->old_layout == L_UNDEF &&
+                  b->new_layout == L_COLOR);
         }
         pg_graph_plan_free(p);
         pl_free(pl);
-        /* same with a storage read-write: t2 [2,3] could follow t1 [0,1] but starts with a
-         * read-modify-write, so it gets its own block */
+        /* the same with a storage read-write, a depth load and a blend with no earlier writer */
         pl = pl_new("out");
         img(pl, "t1", PG_FMT_RGBA16F);
         img(pl, "t2", PG_FMT_RGBA16F);
@@ -1249,17 +1307,83 @@ static void test_aliasing(void)
         pass(pl, "B", "fake_blur", "t1", "x");
         pass(pl, "S", "fake_storage_rw", "", "t2");
         pass(pl, "C", "fake_compose2", "x, t2", "out");
+        m = FAIL(pl, PG_ERR_READ_BEFORE_WRITE);
+        HAS(m, "test.json: passes[2].writes[0]: pass 'S' reads transient resource 't2' before it is "
+               "fully written: it is the first pass to use it and slot 'img' (storage_rw) reads");
+        pg_strlcpy(pl->passes[2].type, "fake_storage_rw_init", sizeof pl->passes[2].type);
         p = COMPILE(pl);
         if (p) {
             check_blocks(p, __LINE__);
-            const pg_plan_resource *t1 = res(p, "t1"), *t2 = res(p, "t2");
-            CHECK(t1->last_pass == 1 && t2->first_pass == 2);
-            CHECK(t2->block != t1->block && p->blocks[t2->block].members[0] == ridx(p, "t2"));
-            CHECK(res(p, "out")->block == t1->block); /* out [3,4] fully written: joins */
-            CHECK_BARRIER(barrier_for(p, "S", "t2"), 0, 0, S_COMP, A_SR | A_SW, L_UNDEF, L_GENERAL,
-                          "first use");
+            /* t2 [2,3] follows t1 [0,1] in its block: its first access writes every texel */
+            CHECK(res(p, "t2")->block == res(p, "t1")->block);
+            CHECK_BARRIER(barrier_for(p, "S", "t2"), S_COLOR | S_FRAG, A_CW, S_COMP, A_SR | A_SW,
+                          L_UNDEF, L_GENERAL, "alias first use");
+            CHECK(barrier_for(p, "S", "t2") && barrier_for(p, "S", "t2")->alias_prev == ridx(p, "t1"));
         }
         pg_graph_plan_free(p);
+        /* persistent: the read-modify-write loads last frame's value, which is fine */
+        pl->resources[1].lifetime = PG_LIFETIME_PERSISTENT;
+        pg_strlcpy(pl->passes[2].type, "fake_storage_rw", sizeof pl->passes[2].type);
+        p = COMPILE(pl);
+        pg_graph_plan_free(p);
+        pl_free(pl);
+        pl = pl_new("out");
+        img(pl, "d", PG_FMT_D32F);
+        img(pl, "out", PG_FMT_RGBA8_UNORM);
+        pass(pl, "Z", "fake_rmw", "", "d");
+        pass(pl, "R", "fake_depth_read", "d", "out");
+        m = FAIL(pl, PG_ERR_READ_BEFORE_WRITE);
+        HAS(m, "pass 'Z' reads transient resource 'd' before it is fully written");
+        HAS(m, "slot 'depth' (depth_rmw)");
+        pl_free(pl);
+        pl = pl_new("out");
+        img(pl, "out", PG_FMT_RGBA8_UNORM);
+        pass(pl, "Blend", "fake_color_rmw", "", "out");
+        m = FAIL(pl, PG_ERR_READ_BEFORE_WRITE);
+        HAS(m, "pass 'Blend' reads transient resource 'out' before it is fully written");
+        pl_free(pl);
+    }
+    { /* a partial write is not a full write: accepted as a first use, never joins a block after
+       * another resource; "initializes" and "partial" on the wrong access are pass-type bugs */
+        pg_pipeline *pl = pl_new("out");
+        buf(pl, "b1", 8, 1, PG_COUNT_PIXELS, 0.0);
+        buf(pl, "b2", 8, 1, PG_COUNT_PIXELS, 0.0);
+        img(pl, "c", PG_FMT_RGBA16F);
+        img(pl, "d", PG_FMT_RGBA16F);
+        img(pl, "out", PG_FMT_RGBA8_UNORM);
+        pass(pl, "W1", "fake_compute_buf", "", "b1");
+        pass(pl, "R1", "fake_buf_to_color", "b1", "c");
+        pass(pl, "W2", "fake_partial_buf", "", "b2");
+        pass(pl, "R2", "fake_buf_to_color", "b2", "d");
+        after(&pl->passes[2], "R1");
+        pass(pl, "final", "fake_compose2", "c, d", "out");
+        pg_graph_plan *p = COMPILE(pl);
+        if (p) {
+            check_blocks(p, __LINE__);
+            CHECK(p->passes[pidx(p, "W2")].slots[0].decl.partial);
+            CHECK(!p->passes[pidx(p, "W2")].slots[0].sync.full_write);
+            CHECK(res(p, "b2")->block != res(p, "b1")->block);
+        }
+        pg_graph_plan_free(p);
+        pg_strlcpy(pl->passes[2].type, "fake_compute_buf", sizeof pl->passes[2].type);
+        p = COMPILE(pl); /* a full write shares b1's memory */
+        if (p) CHECK(res(p, "b2")->block == res(p, "b1")->block);
+        pg_graph_plan_free(p);
+        pl_free(pl);
+        pl = pl_new("out");
+        img(pl, "out", PG_FMT_RGBA16F);
+        pass(pl, "A", "fake_bad_init", "", "out");
+        const char *m = FAIL(pl, PG_ERR_SCHEMA);
+        CHECK_MSG(strcmp(m, "test.json: passes[0].writes[0]: pass type 'fake_bad_init' marks slot "
+                            "'color' (color_write) as initialized by the pass, which only a write "
+                            "slot whose access reads can be (a bug in the pass type)") == 0,
+                  "%s", m);
+        pg_strlcpy(pl->passes[0].type, "fake_bad_partial", sizeof pl->passes[0].type);
+        m = FAIL(pl, PG_ERR_SCHEMA);
+        CHECK_MSG(strcmp(m, "test.json: passes[0].writes[0]: pass type 'fake_bad_partial' marks "
+                            "slot 'img' (storage_rw) as a partial write, which only a write slot "
+                            "with a full-write access can be (a bug in the pass type)") == 0,
+                  "%s", m);
         pl_free(pl);
     }
     { /* images never share with buffers; buffers share with buffers; persistent never */
@@ -1372,9 +1496,17 @@ static pg_pipeline *random_pipeline(void)
                 used[r] = true;
                 pg_strlcpy(rl[nr++], pl->resources[r].name, PG_NAME_MAX);
             }
+            /* a read-modify-write first use of a transient is an error unless the pass
+             * initializes it: such passes are declared "rnd_init" */
+            const char *type = types[mode];
+            for (uint32_t k = 0; k < nw && mode == 2; k++) {
+                const pg_resource_desc *rd = find_res(pl, wl[k]);
+                if (writers[rd - pl->resources] < 0 && rd->lifetime == PG_LIFETIME_TRANSIENT)
+                    type = "rnd_init";
+            }
             char name[16];
             snprintf(name, sizeof name, "p%u", pl->n_passes);
-            pg_pass_desc *p = pass(pl, name, types[mode], "", "");
+            pg_pass_desc *p = pass(pl, name, type, "", "");
             for (uint32_t k = 0; k < nw; k++) pg_strlcpy(p->writes[p->n_writes++], wl[k], PG_NAME_MAX);
             for (uint32_t k = 0; k < nr; k++) pg_strlcpy(p->reads[p->n_reads++], rl[k], PG_NAME_MAX);
             for (uint32_t k = 0; k < n_after; k++) after(p, after_name[k]);
@@ -1444,14 +1576,15 @@ static void check_random_plan(const pg_graph_plan *p, int iter)
                 }
                 if (idx) {
                     /* joined a block: its first access fully overwrites it */
-                    bool full = false, reads = false;
+                    bool full = false, reads = false, init = false;
                     for (uint32_t t = 0; t < pp->n_slots; t++)
                         if (pp->slots[t].resource == r) {
                             full |= pp->slots[t].sync.full_write;
                             reads |= pp->slots[t].sync.reads;
+                            init |= pp->slots[t].decl.initializes;
                         }
-                    CHECK_MSG(full && !reads, "iter %d: %s joined a block without a full write",
-                              iter, pr->name);
+                    CHECK_MSG((full && !reads) || init,
+                              "iter %d: %s joined a block without a full write", iter, pr->name);
                 }
             } else if (seen[r]) {
                 const bool need = prev_write[r] || (pr->kind == IMG && prev_layout[r] != layout);
