@@ -106,6 +106,12 @@ typedef struct pg_compile_desc {
     pg_scene_features features;      /* light_count is used for "lights" buffer counts */
     uint32_t output_width, output_height;
     bool disable_aliasing;           /* debugging switch: every transient gets its own memory */
+    bool immediate;                  /* debugging mode (--immediate), for telling a graph bug from
+                                      * a pass bug: passes run in declaration order where the
+                                      * dependencies allow (the stable order phase 3 computes: no
+                                      * other reordering), no aliasing, and before every pass a
+                                      * full barrier (ALL_COMMANDS/MEMORY_WRITE ->
+                                      * ALL_COMMANDS/MEMORY_READ|MEMORY_WRITE); layouts as usual */
     uint32_t output_layout;          /* VkImageLayout the outputs end in; 0 -> TRANSFER_SRC */
     uint64_t output_stages;          /* stages that read the outputs after the graph; 0 -> COPY
                                       * (read-back); the viewer adds BLIT to put it on screen */
@@ -128,6 +134,9 @@ typedef struct pg_graph_plan {
     uint32_t n_explain;                /* what was left out and why (culls, omitted, features) */
     char explain[PG_MAX_EXPLAIN][PG_EXPLAIN_MAX];
     bool aliasing_disabled;
+    bool immediate;                    /* compiled with pg_compile_desc.immediate: every barrier's
+                                        * masks are ALL_COMMANDS/MEMORY_*, and the executor adds a
+                                        * global memory barrier before every pass */
 } pg_graph_plan;
 
 /* Compiles; on success *out is a heap plan to free with pg_graph_plan_free(). */

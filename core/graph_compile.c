@@ -644,7 +644,8 @@ static pg_result phase_order(compile_ctx *c)
         }
     }
     /* Kahn's algorithm, always taking the ready pass declared first: deterministic, and it keeps
-     * declaration order wherever dependencies allow. O(n^2) with n <= 64. */
+     * declaration order wherever dependencies allow (immediate mode runs this order too: the
+     * compiler moves a pass only where a dependency requires it). O(n^2) with n <= 64. */
     int indeg[PG_MAX_PASSES] = {0};
     bool done[PG_MAX_PASSES] = {false};
     for (int a = 0; a < n; a++)
@@ -949,7 +950,7 @@ static const pass_use *first_use(const compile_ctx *c, int r)
 static void phase_alias(compile_ctx *c)
 {
     pg_graph_plan *plan = c->plan;
-    plan->aliasing_disabled = c->desc->disable_aliasing;
+    plan->aliasing_disabled = c->desc->disable_aliasing || c->desc->immediate;
     /* transients that run, by first use (ties: declaration index) */
     int list[PG_MAX_RESOURCES];
     int n = 0;
@@ -1271,6 +1272,26 @@ static void collect_explain(compile_ctx *c)
     }
 }
 
+/* Immediate mode: the inferred barriers keep their resources and layouts, with full masks; the
+ * executor adds a global memory barrier before every pass (pass-internal resources too). */
+static void full_masks(pg_barrier *b)
+{
+    b->src_stages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    b->src_access = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    b->dst_stages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    b->dst_access = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+}
+
+static void make_immediate(pg_graph_plan *plan)
+{
+    plan->immediate = true;
+    for (uint32_t k = 0; k < plan->n_order; k++) {
+        pg_plan_pass *pp = &plan->passes[plan->order[k]];
+        for (uint32_t b = 0; b < pp->n_barriers; b++) full_masks(&pp->barriers[b]);
+    }
+    for (uint32_t b = 0; b < plan->n_final_barriers; b++) full_masks(&plan->final_barriers[b]);
+}
+
 pg_result pg_graph_compile(const pg_compile_desc *desc, pg_graph_plan **out, pg_error *err)
 {
     if (out) *out = NULL;
@@ -1298,6 +1319,7 @@ pg_result pg_graph_compile(const pg_compile_desc *desc, pg_graph_plan **out, pg_
     if (!r) {
         phase_alias(c);
         phase_barriers(c);
+        if (desc->immediate) make_immediate(plan);
         collect_explain(c);
     }
     free(c);

@@ -404,6 +404,7 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
         !add_int_or_null(out, "height", has_out, has_out ? (int)plan->resources[plan->output].height : 0))
         return false;
     if (!cJSON_AddBoolToObject(root, "aliasing", !plan->aliasing_disabled)) return false;
+    if (!cJSON_AddBoolToObject(root, "immediate", plan->immediate)) return false;
 
     /* order */
     cJSON *order = cJSON_AddArrayToObject(root, "order");

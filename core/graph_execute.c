@@ -545,6 +545,22 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
     return r;
 }
 
+/* A global memory barrier before every pass of an immediate-mode plan (pg_graph_plan.immediate):
+ * orders everything, the passes' own resources included. */
+static void emit_full_barrier(VkCommandBuffer cmd)
+{
+    VkMemoryBarrier2 mb = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+        .srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+        .srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT,
+        .dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+        .dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+    };
+    VkDependencyInfo di = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
+                           .pMemoryBarriers = &mb};
+    vkCmdPipelineBarrier2(cmd, &di);
+}
+
 static void emit_barriers(pg_runtime *rt, VkCommandBuffer cmd, uint32_t n, const pg_barrier *bars)
 {
     VkImageMemoryBarrier2 ib[PG_MAX_RESOURCES];
@@ -617,6 +633,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
             VkDebugUtilsLabelEXT label = {.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, .pLabelName = pass->name};
             gpu->cmd_begin_label(cmd, &label);
         }
+        if (plan->immediate) emit_full_barrier(cmd);
         emit_barriers(rt, cmd, pass->n_barriers, pass->barriers);
         pg_pass_record_ctx ctx = {
             .gpu = gpu,
@@ -633,6 +650,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
         if (gpu->cmd_end_label) gpu->cmd_end_label(cmd);
         if (rt->queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, rt->queries, o + 1);
     }
+    if (plan->immediate) emit_full_barrier(cmd);
     emit_barriers(rt, cmd, plan->n_final_barriers, plan->final_barriers);
     int outs[2] = {plan->output, plan->hdr_output};
     for (int k = 0; k < 2; k++) {

@@ -238,6 +238,9 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
             fprintf(f, ", hdr_output '%s'", plan->resources[plan->hdr_output].name);
         fprintf(f, "\n");
     }
+    if (plan->immediate)
+        fprintf(f, "mode: immediate (declaration order, no aliasing, before every pass a full barrier "
+                   "all_commands/memory_write -> all_commands/memory_read|memory_write)\n");
 
     fprintf(f, "\nexecution order (%u passes):\n", plan->n_order);
     for (uint32_t k = 0; k < plan->n_order; k++) {

@@ -29,6 +29,8 @@ const char *const pg_cli_common_help =
     "  --validation         enable the Khronos validation layer + synchronization validation;\n"
     "                       any message makes the command fail\n"
     "  --no-aliasing        give every transient its own memory (debugging switch)\n"
+    "  --immediate          debugging mode: passes in declaration order, no aliasing, a full\n"
+    "                       barrier (all commands, all memory) before every pass\n"
     "  --explain            print what the compiled graph left out, culled and why\n"
     "  --frames N           frames to render; timings are the median (default 1)\n"
     "  --view NAME          an OCIO view of the display (e.g. \"Standard\", \"Filmic (ACES)\", \"Raw\")\n"
@@ -252,6 +254,8 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         c->validation = true;
     } else if (!strcmp(a, "--no-aliasing")) {
         c->no_aliasing = true;
+    } else if (!strcmp(a, "--immediate")) {
+        c->immediate = true;
     } else if (!strcmp(a, "--explain")) {
         c->explain = true;
     } else if (!strcmp(a, "--quiet")) {
