@@ -134,10 +134,38 @@ typedef struct pg_graph_plan {
     uint32_t n_explain;                /* what was left out and why (culls, omitted, features) */
     char explain[PG_MAX_EXPLAIN][PG_EXPLAIN_MAX];
     bool aliasing_disabled;
+    uint64_t generation;               /* hash of the rest of the plan (see pg_res_handle); != 0 */
     bool immediate;                    /* compiled with pg_compile_desc.immediate: every barrier's
                                         * masks are ALL_COMMANDS/MEMORY_*, and the executor adds a
                                         * global memory barrier before every pass */
 } pg_graph_plan;
+
+/* ---- typed, versioned handles (core/graph_handle.c) ----
+ * A handle names a resource or a pass of one plan: its index and that plan's generation, a 64-bit
+ * hash of the plan's contents (pg_graph_plan.generation, never 0). Equal plans share it (the
+ * index means the same thing in both); a handle from any other plan, e.g. one compiled before a
+ * pipeline switch or a resize, is refused with PG_ERR_INVALID_ARG instead of indexing the wrong
+ * thing. The zero handle is invalid. */
+typedef struct pg_res_handle {
+    uint32_t index;
+    uint64_t generation;
+} pg_res_handle;
+typedef struct pg_pass_handle {
+    uint32_t index;
+    uint64_t generation;
+} pg_pass_handle;
+
+/* By name; unknown name: PG_ERR_UNKNOWN_RESOURCE / PG_ERR_UNKNOWN_PASS, *out zeroed. */
+pg_result pg_plan_find_resource(const pg_graph_plan *plan, const char *name, pg_res_handle *out,
+                                pg_error *err);
+pg_result pg_plan_find_pass(const pg_graph_plan *plan, const char *name, pg_pass_handle *out,
+                            pg_error *err);
+/* The entry a handle names; a handle of another plan (or out of range, or zero):
+ * PG_ERR_INVALID_ARG naming the handle and both generations, *out NULL. */
+pg_result pg_plan_resource_get(const pg_graph_plan *plan, pg_res_handle h,
+                               const pg_plan_resource **out, pg_error *err);
+pg_result pg_plan_pass_get(const pg_graph_plan *plan, pg_pass_handle h, const pg_plan_pass **out,
+                           pg_error *err);
 
 /* Compiles; on success *out is a heap plan to free with pg_graph_plan_free(). */
 pg_result pg_graph_compile(const pg_compile_desc *desc, pg_graph_plan **out, pg_error *err);

@@ -1282,6 +1282,8 @@ static void full_masks(pg_barrier *b)
     b->dst_access = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
 }
 
+uint64_t pg_plan_generation(const pg_graph_plan *plan); /* graph_handle.c */
+
 static void make_immediate(pg_graph_plan *plan)
 {
     plan->immediate = true;
@@ -1321,6 +1323,7 @@ pg_result pg_graph_compile(const pg_compile_desc *desc, pg_graph_plan **out, pg_
         phase_barriers(c);
         if (desc->immediate) make_immediate(plan);
         collect_explain(c);
+        plan->generation = pg_plan_generation(plan); /* last: it hashes the rest */
     }
     free(c);
     if (r) {

@@ -757,14 +757,24 @@ const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which)
     return idx >= 0 ? &rt->res[idx] : NULL;
 }
 
+pg_result pg_runtime_resource(const pg_runtime *rt, pg_res_handle h, const pg_phys_resource **out, pg_error *err)
+{
+    if (out) *out = NULL;
+    if (!rt || !rt->built) return pg_fail(err, PG_ERR_INVALID_ARG, "pg_runtime_resource: no plan set");
+    pg_result r = pg_plan_resource_get(rt->plan, h, NULL, err);
+    if (!r && out) *out = &rt->res[h.index];
+    return r;
+}
+
+/* by name, through a handle of the current plan */
 static int buffer_index(const pg_runtime *rt, const char *name)
 {
-    if (!rt->plan || !name) return -1;
-    for (uint32_t i = 0; i < rt->plan->n_resources; i++) {
-        const pg_plan_resource *pr = &rt->plan->resources[i];
-        if (!strcmp(pr->name, name) && pr->kind == PG_RES_BUFFER && !pr->culled && rt->res[i].buffer) return (int)i;
-    }
-    return -1;
+    pg_res_handle h;
+    const pg_plan_resource *pr;
+    if (!rt->plan || !name || pg_plan_find_resource(rt->plan, name, &h, NULL) ||
+        pg_plan_resource_get(rt->plan, h, &pr, NULL))
+        return -1;
+    return pr->kind == PG_RES_BUFFER && !pr->culled && rt->res[h.index].buffer ? (int)h.index : -1;
 }
 
 uint64_t pg_runtime_buffer_size(const pg_runtime *rt, const char *name)

@@ -129,6 +129,11 @@ pg_result pg_runtime_read_buffer(pg_runtime *rt, const char *name, uint64_t offs
 /* Current size in bytes of a buffer resource (a "grow" buffer may exceed the plan's size); 0
  * when unknown or culled. */
 uint64_t pg_runtime_buffer_size(const pg_runtime *rt, const char *name);
+/* The physical resource a handle of the runtime's current plan names (pg_plan_find_resource on
+ * the plan given to pg_runtime_set_plan). A handle of an earlier plan (before a pipeline switch,
+ * a resize, a new light count) is refused: PG_ERR_INVALID_ARG "stale resource handle ...". */
+pg_result pg_runtime_resource(const pg_runtime *rt, pg_res_handle h, const pg_phys_resource **out,
+                              pg_error *err);
 /* The physical image of the output (which 0) or hdr_output (1), in TRANSFER_SRC_OPTIMAL layout
  * after each frame (NULL if none). For the viewer's blit to the window. */
 const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which);

@@ -2129,6 +2129,105 @@ static void test_skip_shipped(void)
     }
 }
 
+/* ------------------------------------------------------------------------------------------ */
+/* typed, versioned handles; immediate mode                                                   */
+
+static void test_handles(void)
+{
+    pg_pipeline *pl = chain_pipeline("fake_blur");
+    pg_graph_plan *a = COMPILE(pl);
+    pg_graph_plan *a2 = COMPILE(pl); /* the same plan again: the same generation */
+    pg_compile_desc d = desc_of(pl);
+    d.output_width = 50; /* another size: another plan */
+    pg_graph_plan *b = compile_d(&d, __LINE__);
+    if (a && a2 && b) {
+        CHECK(a->generation != 0 && a->generation == a2->generation && a->generation != b->generation);
+        pg_error err = {0};
+        pg_res_handle h;
+        pg_pass_handle ph;
+        const pg_plan_resource *r = NULL;
+        const pg_plan_pass *pp = NULL;
+        CHECK(pg_plan_find_resource(a, "t3", &h, &err) == PG_OK && h.index == (uint32_t)ridx(a, "t3") &&
+              h.generation == a->generation);
+        CHECK(pg_plan_resource_get(a, h, &r, &err) == PG_OK && r == &a->resources[ridx(a, "t3")]);
+        CHECK(pg_plan_resource_get(a2, h, &r, &err) == PG_OK && r == &a2->resources[ridx(a2, "t3")]);
+        /* a handle from another plan is caught */
+        CHECK(pg_plan_resource_get(b, h, &r, &err) == PG_ERR_INVALID_ARG && r == NULL);
+        char want[256];
+        snprintf(want, sizeof want,
+                 "stale resource handle #%u: it is from another compiled plan (generation %016llx, this plan's is "
+                 "%016llx); look the name up again in this plan",
+                 h.index, (unsigned long long)a->generation, (unsigned long long)b->generation);
+        CHECK_MSG(strcmp(err.msg, want) == 0, "%s", err.msg);
+        CHECK(pg_plan_find_pass(a, "C", &ph, &err) == PG_OK && ph.index == (uint32_t)pidx(a, "C"));
+        CHECK(pg_plan_pass_get(a, ph, &pp, &err) == PG_OK && pp == &a->passes[pidx(a, "C")]);
+        CHECK(pg_plan_pass_get(b, ph, &pp, &err) == PG_ERR_INVALID_ARG && pp == NULL);
+        HAS(err.msg, "stale pass handle #2: it is from another compiled plan");
+        /* unknown names, the zero handle, out of range */
+        CHECK(pg_plan_find_resource(a, "nope", &h, &err) == PG_ERR_UNKNOWN_RESOURCE && h.generation == 0);
+        CHECK_MSG(strcmp(err.msg, "the compiled graph has no resource 'nope'") == 0, "%s", err.msg);
+        CHECK(pg_plan_find_pass(a, "nope", &ph, &err) == PG_ERR_UNKNOWN_PASS);
+        CHECK(pg_plan_resource_get(a, h, &r, &err) == PG_ERR_INVALID_ARG);
+        HAS(err.msg, "not a handle (generation 0)");
+        h.generation = a->generation;
+        h.index = a->n_resources;
+        CHECK(pg_plan_resource_get(a, h, &r, &err) == PG_ERR_INVALID_ARG);
+        HAS(err.msg, "out of range");
+    }
+    pg_graph_plan_free(a);
+    pg_graph_plan_free(a2);
+    pg_graph_plan_free(b);
+    pl_free(pl);
+}
+
+static void test_immediate(void)
+{
+    pg_pipeline *pl = chain_pipeline("fake_blur");
+    pg_graph_plan *p = COMPILE(pl);
+    pg_compile_desc d = desc_of(pl);
+    d.immediate = true;
+    pg_graph_plan *q = compile_d(&d, __LINE__);
+    if (p && q) {
+        CHECK(!p->immediate && !p->aliasing_disabled && p->transient_bytes_aliased < p->transient_bytes_unaliased);
+        CHECK(q->immediate && q->aliasing_disabled && q->transient_bytes_aliased == q->transient_bytes_unaliased);
+        CHECK(q->n_order == p->n_order && !memcmp(q->order, p->order, sizeof p->order));
+        const uint64_t all = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, A_MW = VK_ACCESS_2_MEMORY_WRITE_BIT,
+                       rw = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+        uint32_t nb = 0;
+        for (uint32_t k = 0; k < q->n_order; k++) {
+            const pg_plan_pass *pp = &q->passes[q->order[k]];
+            for (uint32_t b = 0; b < pp->n_barriers; b++, nb++) {
+                const pg_barrier *x = &pp->barriers[b];
+                CHECK(x->src_stages == all && x->src_access == A_MW && x->dst_stages == all && x->dst_access == rw);
+            }
+        }
+        for (uint32_t b = 0; b < q->n_final_barriers; b++)
+            CHECK(q->final_barriers[b].dst_stages == all && q->final_barriers[b].new_layout == L_TSRC);
+        /* layouts still right: t1 colour attachment in A, sampled in B */
+        const pg_barrier *b = barrier_for(q, "B", "t1");
+        CHECK(b && b->old_layout == L_COLOR && b->new_layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        b = barrier_for(q, "A", "t1");
+        CHECK(b && b->old_layout == L_UNDEF && b->new_layout == L_COLOR);
+        CHECK(nb >= 7);
+        CHECK(p->generation != q->generation);
+        /* the report says so */
+        FILE *f = tmpfile();
+        if (f) {
+            pg_graph_plan_print(q, pl, f);
+            rewind(f);
+            char text[8192];
+            size_t n = fread(text, 1, sizeof text - 1, f);
+            text[n] = 0;
+            fclose(f);
+            HAS(text, "mode: immediate (declaration order, no aliasing, before every pass a full barrier "
+                      "all_commands/memory_write -> all_commands/memory_read|memory_write)");
+        }
+    }
+    pg_graph_plan_free(p);
+    pg_graph_plan_free(q);
+    pl_free(pl);
+}
+
 int main(void)
 {
     for (size_t i = 0; i < sizeof g_types / sizeof g_types[0]; i++) {
@@ -2148,5 +2247,7 @@ int main(void)
     test_unused_slots();
     test_skip();
     test_skip_shipped();
+    test_handles();
+    test_immediate();
     return pg_test_finish("test_graph_compile");
 }
