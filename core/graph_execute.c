@@ -1,5 +1,6 @@
 /* graph_execute.c - physical resources, pass instances, recording and submission of a plan. */
 #include "graph_execute.h"
+#include "vk_pipeline.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -597,6 +598,51 @@ static void emit_barriers(pg_runtime *rt, VkCommandBuffer cmd, uint32_t n, const
     pg_cmd_barriers(cmd, ni, ib, nb, bb);
 }
 
+static void check_load_op(const pg_pass_record_ctx *ctx, uint32_t slot, bool clears)
+{
+    if (!ctx->record_error || ctx->record_error->msg[0] || !ctx->pass || slot >= ctx->pass->n_slots) return;
+    const pg_slot_decl *d = &ctx->pass->slots[slot].decl;
+    const bool full = d->access == PG_ACCESS_COLOR_WRITE || d->access == PG_ACCESS_DEPTH_WRITE;
+    const bool loads = d->access == PG_ACCESS_COLOR_RMW || d->access == PG_ACCESS_DEPTH_RMW ||
+                       d->access == PG_ACCESS_DEPTH_READ;
+    if (!full && !loads)
+        pg_fail(ctx->record_error, PG_ERR_INVALID_ARG,
+                "pass '%s': slot '%s' is declared %s, not an attachment, but rendering begins on it", ctx->pass->name,
+                d->name, pg_access_name(d->access));
+    else if (full && !clears)
+        pg_fail(ctx->record_error, PG_ERR_INVALID_ARG,
+                "pass '%s': slot '%s' is declared %s (a full write) but rendering begins with LOAD_OP_LOAD: "
+                "clear it, or declare a read-modify-write",
+                ctx->pass->name, d->name, pg_access_name(d->access));
+    else if (loads && clears)
+        pg_fail(ctx->record_error, PG_ERR_INVALID_ARG,
+                "pass '%s': slot '%s' is declared %s (it loads the contents) but rendering begins with "
+                "LOAD_OP_CLEAR: load it, or declare a full write",
+                ctx->pass->name, d->name, pg_access_name(d->access));
+}
+
+void pg_pass_begin_rendering(const pg_pass_record_ctx *ctx, uint32_t n_color, const uint32_t *color_slots,
+                             const VkClearColorValue *clears, int depth_slot, bool clear_depth, float depth_clear)
+{
+    VkImageView views[8];
+    uint32_t w = 0, h = 0;
+    if (n_color > 8) n_color = 8;
+    for (uint32_t i = 0; i < n_color; i++) {
+        const pg_phys_resource *r = ctx->slots[color_slots[i]];
+        views[i] = r->view;
+        if (!i) w = r->width, h = r->height;
+        check_load_op(ctx, color_slots[i], clears != NULL);
+    }
+    VkImageView dv = VK_NULL_HANDLE;
+    if (depth_slot >= 0) {
+        const pg_phys_resource *r = ctx->slots[depth_slot];
+        dv = r->view;
+        if (!n_color) w = r->width, h = r->height;
+        check_load_op(ctx, (uint32_t)depth_slot, clear_depth);
+    }
+    pg_cmd_begin_rendering(ctx->cmd, w, h, n_color, views, clears, dv, clear_depth, depth_clear);
+}
+
 static double now_ms(void)
 {
     struct timespec ts;
@@ -626,6 +672,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
         vkCmdResetQueryPool(cmd, rt->queries, 0, rt->n_queries);
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, rt->queries, 0);
     }
+    pg_error record_error = {0};
     for (uint32_t o = 0; o < plan->n_order; o++) {
         int pi = plan->order[o];
         const pg_plan_pass *pass = &plan->passes[pi];
@@ -644,6 +691,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
             .frame = &rt->frame,
             .width = rt->width,
             .height = rt->height,
+            .record_error = &record_error,
         };
         for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->res[pass->slots[s].resource];
         pass->type->record(rt->pass_state[pi], &ctx);
@@ -666,6 +714,10 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
         rt->readback_valid[k] = true;
     }
     PG_VK_TRY(err, vkEndCommandBuffer(cmd));
+    if (record_error.msg[0]) { /* a pass broke its declaration: not submitted */
+        rt->readback_valid[0] = rt->readback_valid[1] = false;
+        return pg_fail(err, record_error.code, "%s", record_error.msg);
+    }
     VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
     VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
                         .pCommandBufferInfos = &cbi};

@@ -59,7 +59,19 @@ typedef struct pg_pass_record_ctx {
     VkDescriptorSet frame_set;
     const pg_frame_uniforms *frame;   /* CPU copy of what set 0 holds */
     uint32_t width, height;
+    pg_error *record_error;           /* the first contract break found while recording (e.g. by
+                                       * pg_pass_begin_rendering); set -> the frame fails with it */
 } pg_pass_record_ctx;
+
+/* Begins dynamic rendering on the pass's attachment slots (indices into ctx->slots: colour
+ * slots, then depth_slot or -1) and checks each load op against the slot's declared access: a
+ * full write (color_write, depth_write) must clear (clears != NULL, clear_depth), a read-modify-
+ * write or read (color_rmw, depth_rmw, depth_read) must load, any other access is not an
+ * attachment. A break is recorded in ctx->record_error ("pass 'P': slot 'S' is declared
+ * color_write (a full write) but rendering begins with LOAD_OP_LOAD ..."); rendering begins
+ * anyway so the command buffer stays valid. The size is the first attachment's. */
+void pg_pass_begin_rendering(const pg_pass_record_ctx *ctx, uint32_t n_color, const uint32_t *color_slots,
+                             const VkClearColorValue *clears, int depth_slot, bool clear_depth, float depth_clear);
 
 typedef struct pg_grow_event {
     char resource[PG_NAME_MAX];

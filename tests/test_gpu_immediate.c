@@ -4,11 +4,17 @@
  * lights and on the lit BLEND scene (so the transparent pass's blend runs too), over 2 frames
  * (the second frame has the frame-to-frame barriers of persistent resources). The immediate plan
  * says so (plan->immediate, aliasing off, every barrier ALL_COMMANDS -> ALL_COMMANDS) and runs
- * the same passes in the same order. */
+ * the same passes in the same order.
+ * Also the record-time check of pg_pass_begin_rendering (core/graph_execute.h): a pass that
+ * declares a full colour write but begins rendering with LOAD_OP_LOAD fails the frame with a
+ * message naming the pass and slot; the same pass clearing renders. And a resource handle of the
+ * plan before a resize is refused by pg_runtime_resource. */
 #include <stdlib.h>
+#include <unistd.h>
 #include <string.h>
 #include <vulkan/vulkan_core.h>
 
+#include "graph_execute.h"
 #include "pass_list.h"
 #include "render_session.h"
 #include "shader.h"
@@ -137,13 +143,101 @@ static void compare_all(const char *label, const pg_scene_gpu *sg, const pg_fram
     }
 }
 
+/* A pass that only begins and ends rendering on its colour_write slot: with LOAD ("t_load_write",
+ * a pass bug: it claims a full write) or CLEAR ("t_clear_write"). */
+static pg_result t_declare(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
+{
+    (void)in, (void)e;
+    pg_decl_write(d, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    d->side_effects = true;
+    return PG_OK;
+}
+static pg_result t_create(void *self, const pg_pass_create_ctx *ctx, pg_error *e)
+{
+    (void)self, (void)ctx, (void)e;
+    return PG_OK;
+}
+static void t_record(void *self, const pg_pass_record_ctx *ctx, bool clear)
+{
+    (void)self;
+    const uint32_t slot = 0;
+    VkClearColorValue c = {{0.25f, 0.5f, 0.75f, 1}};
+    pg_pass_begin_rendering(ctx, 1, &slot, clear ? &c : NULL, -1, false, 0);
+    vkCmdEndRendering(ctx->cmd);
+}
+static void t_record_load(void *self, const pg_pass_record_ctx *ctx) { t_record(self, ctx, false); }
+static void t_record_clear(void *self, const pg_pass_record_ctx *ctx) { t_record(self, ctx, true); }
+static void t_destroy(void *self, pg_gpu *gpu) { (void)self, (void)gpu; }
+static const pg_pass_type k_load_write = {.name = "t_load_write", .summary = "test", .read_slots = "", .write_slots = "color",
+                                          .instance_size = 8, .declare = t_declare, .create = t_create,
+                                          .record = t_record_load, .destroy = t_destroy};
+static const pg_pass_type k_clear_write = {.name = "t_clear_write", .summary = "test", .read_slots = "", .write_slots = "color",
+                                           .instance_size = 8, .declare = t_declare, .create = t_create,
+                                           .record = t_record_clear, .destroy = t_destroy};
+
+static void test_load_op_check(const pg_scene_gpu *sg, const pg_frame_info *fi)
+{
+    static const char *const types[2] = {"t_load_write", "t_clear_write"};
+    for (int k = 0; k < 2; k++) {
+        char path[PG_PATH_MAX];
+        snprintf(path, sizeof path, "/tmp/test_gpu_immediate_%d_%d.json", (int)getpid(), k);
+        FILE *f = fopen(path, "w");
+        if (!f) {
+            CHECK_MSG(0, "cannot write %s", path);
+            return;
+        }
+        fprintf(f, "{\"name\": \"t\", \"resources\": [{\"name\": \"ldr\", \"type\": \"image\", \"format\": \"rgba8\"}],\n"
+                   " \"passes\": [{\"name\": \"fill\", \"type\": \"%s\", \"writes\": [\"ldr\"]}], \"output\": \"ldr\"}\n",
+                types[k]);
+        fclose(f);
+        pg_session_desc sd = {.pipeline_path = path, .registry = &g_reg};
+        pg_session *s = NULL;
+        pg_error err = {0};
+        pg_result r = pg_session_create(g_gpu, sg, &sd, &s, &err);
+        CHECK_MSG(r == PG_OK, "%s: %s", types[k], err.msg);
+        if (!r) {
+            r = pg_session_render(s, fi, true, NULL, &err);
+            printf("load-op check %s: %s\n", types[k], r ? err.msg : "rendered");
+            if (k == 0)
+                CHECK_MSG(r == PG_ERR_INVALID_ARG &&
+                              !strcmp(err.msg, "pass 'fill': slot 'color' is declared color_write (a full write) but "
+                                               "rendering begins with LOAD_OP_LOAD: clear it, or declare a "
+                                               "read-modify-write"),
+                          "%s", err.msg);
+            else
+                CHECK_MSG(r == PG_OK, "%s", err.msg);
+            if (k == 1 && !r) {
+                uint32_t w, h;
+                pg_format fmt;
+                const uint8_t *px = pg_runtime_output(s->runtime, 0, &w, &h, &fmt);
+                CHECK(px && px[0] == 64 && px[1] == 128 && px[2] == 191 && px[3] == 255);
+                /* a handle of this plan, then a resize: the old handle is refused */
+                pg_res_handle hd;
+                const pg_phys_resource *res = NULL;
+                CHECK(pg_plan_find_resource(s->plan, "ldr", &hd, &err) == PG_OK);
+                CHECK(pg_runtime_resource(s->runtime, hd, &res, &err) == PG_OK && res && res->width == W);
+                pg_frame_info f2 = *fi;
+                f2.width = W / 2;
+                f2.height = H / 2;
+                CHECK_MSG(pg_session_render(s, &f2, false, NULL, &err) == PG_OK, "%s", err.msg);
+                CHECK(pg_runtime_resource(s->runtime, hd, &res, &err) == PG_ERR_INVALID_ARG && !res);
+                CHECK_MSG(strstr(err.msg, "stale resource handle #0: it is from another compiled plan"), "%s", err.msg);
+            }
+        }
+        pg_session_destroy(s);
+        remove(path);
+    }
+}
+
 int main(void)
 {
     setvbuf(stdout, NULL, _IOLBF, 0);
     if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_immediate", "PG_TEST_NO_GPU");
-    pg_register_builtin_passes(&g_reg);
-    pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
     pg_error err = {0};
+    pg_register_builtin_passes(&g_reg);
+    pg_registry_add(&g_reg, &k_load_write, &err);
+    pg_registry_add(&g_reg, &k_clear_write, &err);
+    pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
     if (pg_gpu_create(&gd, &g_gpu, &err)) {
         fprintf(stderr, "test_gpu_immediate: %s\n", err.msg);
         return 1;
@@ -160,6 +254,7 @@ int main(void)
         pg_frame_info fi = {.camera = pg_camera_default_for_scene(scene, (float)W / H),
                             .lights = pg_light_setup_default(scene, 64, 7), .time = 0.75f, .width = W, .height = H};
         compare_all(k ? "blend" : "atrium", sg, &fi, k == 1);
+        if (k == 0) test_load_op_check(sg, &fi);
         pg_scene_gpu_destroy(g_gpu, sg);
         pg_scene_free(scene);
     }
