@@ -4,7 +4,9 @@
  *   1. declare    ask each pass type what its slots are (pure); unknown type -> error
  *   2. validate   slot counts, kinds (image/buffer), format class vs access, known resources
  *   3. order      dependency edges (reader after writer, write chains, "after"), stable
- *                 topological sort (ties keep declaration order); cycles reported with their path
+ *                 topological sort (ties keep declaration order); cycles reported with their path;
+ *                 a transient whose first use reads it (read, blend, depth load, storage_rw) is an
+ *                 error unless the slot says the pass initializes it (pg_slot_decl.initializes)
  *   4. cull       walk back from the outputs and side-effect passes (a pass that skipped itself
  *                 with pg_decl_skip never runs: its reason is its cull reason); every culled pass and
  *                 resource gets a reason

@@ -10,7 +10,8 @@
  *                 (one layout per image per pass).
  *   3. order      writers of a resource are explicitly ordered; every pass is placed after the
  *                 passes it depends on; ties keep declaration order; no transient is read before
- *                 it is written.
+ *                 it is fully written (its first use writes without reading, or is a slot the
+ *                 pass initializes itself).
  *   4. cull       the passes that run are exactly those that feed an output or have side effects
  *                 and did not skip themselves (pg_decl_skip); everything left out carries a
  *                 reason.
