@@ -4,7 +4,9 @@
  *   1. declare    ask each pass type what its slots are (pure); unknown type -> error
  *   2. validate   slot counts, kinds (image/buffer), format class vs access, known resources
  *   3. order      dependency edges (reader after writer, write chains, "after"), stable
- *                 topological sort (ties keep declaration order); cycles reported with their path
+ *                 topological sort (ties keep declaration order); cycles reported with their path;
+ *                 a transient whose first use reads it (read, blend, depth load, storage_rw) is an
+ *                 error unless the slot says the pass initializes it (pg_slot_decl.initializes)
  *   4. cull       walk back from the outputs and side-effect passes (a pass that skipped itself
  *                 with pg_decl_skip never runs: its reason is its cull reason); every culled pass and
  *                 resource gets a reason
@@ -117,6 +119,12 @@ typedef struct pg_compile_desc {
     pg_scene_features features;      /* light_count is used for "lights" buffer counts */
     uint32_t output_width, output_height;
     bool disable_aliasing;           /* debugging switch: every transient gets its own memory */
+    bool immediate;                  /* debugging mode (--immediate), for telling a graph bug from
+                                      * a pass bug: passes run in declaration order where the
+                                      * dependencies allow (the stable order phase 3 computes: no
+                                      * other reordering), no aliasing, and before every pass a
+                                      * full barrier (ALL_COMMANDS/MEMORY_WRITE ->
+                                      * ALL_COMMANDS/MEMORY_READ|MEMORY_WRITE); layouts as usual */
     uint32_t output_layout;          /* VkImageLayout the outputs end in; 0 -> TRANSFER_SRC */
     uint64_t output_stages;          /* stages that read the outputs after the graph; 0 -> COPY
                                       * (read-back); the viewer adds BLIT to put it on screen */
@@ -139,7 +147,38 @@ typedef struct pg_graph_plan {
     uint32_t n_explain;                /* what was left out and why (culls, omitted, features) */
     char explain[PG_MAX_EXPLAIN][PG_EXPLAIN_MAX];
     bool aliasing_disabled;
+    uint64_t generation;               /* hash of the rest of the plan (see pg_res_handle); != 0 */
+    bool immediate;                    /* compiled with pg_compile_desc.immediate: every barrier's
+                                        * masks are ALL_COMMANDS/MEMORY_*, and the executor adds a
+                                        * global memory barrier before every pass */
 } pg_graph_plan;
+
+/* ---- typed, versioned handles (core/graph_handle.c) ----
+ * A handle names a resource or a pass of one plan: its index and that plan's generation, a 64-bit
+ * hash of the plan's contents (pg_graph_plan.generation, never 0). Equal plans share it (the
+ * index means the same thing in both); a handle from any other plan, e.g. one compiled before a
+ * pipeline switch or a resize, is refused with PG_ERR_INVALID_ARG instead of indexing the wrong
+ * thing. The zero handle is invalid. */
+typedef struct pg_res_handle {
+    uint32_t index;
+    uint64_t generation;
+} pg_res_handle;
+typedef struct pg_pass_handle {
+    uint32_t index;
+    uint64_t generation;
+} pg_pass_handle;
+
+/* By name; unknown name: PG_ERR_UNKNOWN_RESOURCE / PG_ERR_UNKNOWN_PASS, *out zeroed. */
+pg_result pg_plan_find_resource(const pg_graph_plan *plan, const char *name, pg_res_handle *out,
+                                pg_error *err);
+pg_result pg_plan_find_pass(const pg_graph_plan *plan, const char *name, pg_pass_handle *out,
+                            pg_error *err);
+/* The entry a handle names; a handle of another plan (or out of range, or zero):
+ * PG_ERR_INVALID_ARG naming the handle and both generations, *out NULL. */
+pg_result pg_plan_resource_get(const pg_graph_plan *plan, pg_res_handle h,
+                               const pg_plan_resource **out, pg_error *err);
+pg_result pg_plan_pass_get(const pg_graph_plan *plan, pg_pass_handle h, const pg_plan_pass **out,
+                           pg_error *err);
 
 /* Compiles; on success *out is a heap plan to free with pg_graph_plan_free(). */
 pg_result pg_graph_compile(const pg_compile_desc *desc, pg_graph_plan **out, pg_error *err);

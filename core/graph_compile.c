@@ -10,7 +10,8 @@
  *                 (one layout per image per pass).
  *   3. order      writers of a resource are explicitly ordered; every pass is placed after the
  *                 passes it depends on; ties keep declaration order; no transient is read before
- *                 it is written.
+ *                 it is fully written (its first use writes without reading, or is a slot the
+ *                 pass initializes itself).
  *   4. cull       the passes that run are exactly those that feed an output or have side effects
  *                 and did not skip themselves (pg_decl_skip); everything left out carries a
  *                 reason.
@@ -56,7 +57,9 @@ typedef struct pass_use {
     uint64_t stages, access;
     uint32_t layout; /* images; UNDEFINED (0) for buffers */
     bool reads, writes;
-    bool full_write; /* some slot fully overwrites it and no slot reads it */
+    bool full_write; /* some slot fully overwrites it and no slot reads it, or a slot is
+                      * marked initializes (the pass writes every element before reading) */
+    bool initializes;
 } pass_use;
 
 /* Synchronization state of one resource while walking the frame. */
@@ -434,6 +437,17 @@ static pg_result validate_slot(compile_ctx *c, int i, int s, const char *res_nam
                            "resource '%s' is %s (not storage-capable)",
                            file, sp, sd->name, pg_access_name(sd->access), rd->name, fi->name);
     }
+    if (sd->initializes && (!is_write || !sync.reads))
+        return pg_fail(c->err, PG_ERR_SCHEMA,
+                       "%s: %s: pass type '%s' marks slot '%s' (%s) as initialized by the pass, "
+                       "which only a write slot whose access reads can be (a bug in the pass type)",
+                       file, sp, pp->type->name, sd->name, pg_access_name(sd->access));
+    if (sd->partial && (!is_write || !sync.full_write))
+        return pg_fail(c->err, PG_ERR_SCHEMA,
+                       "%s: %s: pass type '%s' marks slot '%s' (%s) as a partial write, which only "
+                       "a write slot with a full-write access can be (a bug in the pass type)",
+                       file, sp, pp->type->name, sd->name, pg_access_name(sd->access));
+    if (sd->partial) sync.full_write = false;
     pg_plan_slot *ps = &pp->slots[s];
     ps->resource = r;
     ps->is_write = is_write;
@@ -481,6 +495,7 @@ static pg_result merge_slot(compile_ctx *c, int i, int s)
     u->reads |= ps->sync.reads;
     u->writes |= ps->sync.writes;
     u->full_write |= ps->sync.full_write;
+    u->initializes |= ps->decl.initializes;
     return PG_OK;
 }
 
@@ -503,7 +518,8 @@ static pg_result phase_validate(compile_ctx *c)
             if (!pp->slots[s].decl.unused && (r = merge_slot(c, (int)i, (int)s))) return r;
         for (uint32_t k = 0; k < c->n_uses[i]; k++) {
             pass_use *u = &c->uses[i][k];
-            if (u->reads) u->full_write = false; /* loads what it writes: not a full overwrite */
+            /* loads what it writes: not a full overwrite, unless the pass initializes it */
+            u->full_write = u->initializes || (u->full_write && !u->reads);
             for (uint32_t s = 0; s < pp->n_slots; s++) /* the merged depth read-only layout */
                 if (pp->slots[s].resource == u->res) pp->slots[s].sync.layout = u->layout;
             c->used_at_all[u->res] = true;
@@ -632,7 +648,8 @@ static pg_result phase_order(compile_ctx *c)
         }
     }
     /* Kahn's algorithm, always taking the ready pass declared first: deterministic, and it keeps
-     * declaration order wherever dependencies allow. O(n^2) with n <= 64. */
+     * declaration order wherever dependencies allow (immediate mode runs this order too: the
+     * compiler moves a pass only where a dependency requires it). O(n^2) with n <= 64. */
     int indeg[PG_MAX_PASSES] = {0};
     bool done[PG_MAX_PASSES] = {false};
     for (int a = 0; a < n; a++)
@@ -648,10 +665,11 @@ static pg_result phase_order(compile_ctx *c)
         for (int b = 0; b < n; b++)
             if (c->edge[pick][b]) indeg[b]--;
     }
-    /* A transient has no contents at the start of a frame: its first access must write (a pass
-     * that reads and writes it in one go, e.g. a blend onto it, is allowed). Since pure readers
-     * run after every writer, this fails exactly when nothing writes it. Checked over all passes,
-     * culled or not, so a mistake does not hide behind a cull. */
+    /* A transient has no contents at the start of a frame: its first access must write it
+     * without reading it first: a full write, a write declared partial (its readers read only
+     * what it wrote), or a read-modify-write slot the pass marks as initialized by itself. A
+     * blend, a depth load or a storage read-write as the first use would read undefined memory.
+     * Checked over all passes, culled or not, so a mistake does not hide behind a cull. */
     for (uint32_t r = 0; r < pl->n_resources; r++) {
         if (pl->resources[r].lifetime != PG_LIFETIME_TRANSIENT) continue;
         for (int k = 0; k < n; k++) {
@@ -665,6 +683,28 @@ static pg_result phase_order(compile_ctx *c)
                                "%s: %s: pass '%s' reads transient resource '%s' before any pass "
                                "writes it (make a pass write it first, or declare it persistent)",
                                pass_file(c, p), sp, pl->passes[p].name, pl->resources[r].name);
+            }
+            if (u->reads && !u->full_write) {
+                /* name the slot that reads what it writes (else the first reading slot) */
+                const pg_plan_pass *pp = &c->plan->passes[p];
+                int s = -1;
+                for (uint32_t k = 0; k < pp->n_slots; k++) {
+                    const pg_plan_slot *ps = &pp->slots[k];
+                    if (ps->resource != (int)r || ps->decl.unused || !ps->sync.reads) continue;
+                    if (s < 0 || (ps->is_write && !pp->slots[s].is_write)) s = (int)k;
+                }
+                if (s < 0) s = u->slot;
+                char sp[PG_JSON_PATH_MAX + 48];
+                slot_path(c, p, s, sp, sizeof sp);
+                return pg_fail(c->err, PG_ERR_READ_BEFORE_WRITE,
+                               "%s: %s: pass '%s' reads transient resource '%s' before it is fully "
+                               "written: it is the first pass to use it and slot '%s' (%s) reads "
+                               "its contents, undefined at the start of a frame (write it in full "
+                               "first, e.g. clear it, declare it persistent, or, if the pass writes "
+                               "every element before reading any, mark the slot with "
+                               "pg_decl_mark_initializes())",
+                               pass_file(c, p), sp, pl->passes[p].name, pl->resources[r].name,
+                               pp->slots[s].decl.name, pg_access_name(pp->slots[s].decl.access));
             }
             break;
         }
@@ -914,7 +954,7 @@ static const pass_use *first_use(const compile_ctx *c, int r)
 static void phase_alias(compile_ctx *c)
 {
     pg_graph_plan *plan = c->plan;
-    plan->aliasing_disabled = c->desc->disable_aliasing;
+    plan->aliasing_disabled = c->desc->disable_aliasing || c->desc->immediate;
     /* transients that run, by first use (ties: declaration index) */
     int list[PG_MAX_RESOURCES];
     int n = 0;
@@ -1252,6 +1292,28 @@ static void collect_explain(compile_ctx *c)
     }
 }
 
+/* Immediate mode: the inferred barriers keep their resources and layouts, with full masks; the
+ * executor adds a global memory barrier before every pass (pass-internal resources too). */
+static void full_masks(pg_barrier *b)
+{
+    b->src_stages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    b->src_access = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    b->dst_stages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    b->dst_access = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+}
+
+uint64_t pg_plan_generation(const pg_graph_plan *plan); /* graph_handle.c */
+
+static void make_immediate(pg_graph_plan *plan)
+{
+    plan->immediate = true;
+    for (uint32_t k = 0; k < plan->n_order; k++) {
+        pg_plan_pass *pp = &plan->passes[plan->order[k]];
+        for (uint32_t b = 0; b < pp->n_barriers; b++) full_masks(&pp->barriers[b]);
+    }
+    for (uint32_t b = 0; b < plan->n_final_barriers; b++) full_masks(&plan->final_barriers[b]);
+}
+
 pg_result pg_graph_compile(const pg_compile_desc *desc, pg_graph_plan **out, pg_error *err)
 {
     if (out) *out = NULL;
@@ -1279,7 +1341,9 @@ pg_result pg_graph_compile(const pg_compile_desc *desc, pg_graph_plan **out, pg_
     if (!r) {
         phase_alias(c);
         phase_barriers(c);
+        if (desc->immediate) make_immediate(plan);
         collect_explain(c);
+        plan->generation = pg_plan_generation(plan); /* last: it hashes the rest */
     }
     free(c);
     if (r) {

@@ -297,6 +297,8 @@ static cJSON *json_slot(const pg_graph_plan *plan, const pg_plan_slot *sl)
               cJSON_AddStringToObject(o, "slot", sl->decl.name) &&
               cJSON_AddStringToObject(o, "access", pg_access_name(sl->decl.access)) &&
               cJSON_AddBoolToObject(o, "unused", sl->decl.unused) &&
+              cJSON_AddBoolToObject(o, "initializes", sl->decl.initializes) &&
+              cJSON_AddBoolToObject(o, "partial", sl->decl.partial) &&
               add_stage_names(o, "stages", sl->decl.unused ? 0 : sl->sync.stages) &&
               add_str_or_null(o, "layout", image && !sl->decl.unused ? pg_layout_name(sl->sync.layout) : NULL);
     if (!ok) {
@@ -402,6 +404,7 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
         !add_int_or_null(out, "height", has_out, has_out ? (int)plan->resources[plan->output].height : 0))
         return false;
     if (!cJSON_AddBoolToObject(root, "aliasing", !plan->aliasing_disabled)) return false;
+    if (!cJSON_AddBoolToObject(root, "immediate", plan->immediate)) return false;
 
     /* order */
     cJSON *order = cJSON_AddArrayToObject(root, "order");

@@ -1,5 +1,6 @@
 /* graph_execute.c - physical resources, pass instances, recording and submission of a plan. */
 #include "graph_execute.h"
+#include "vk_pipeline.h"
 
 #include "alias_pack.h"
 
@@ -571,6 +572,22 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
     return r;
 }
 
+/* A global memory barrier before every pass of an immediate-mode plan (pg_graph_plan.immediate):
+ * orders everything, the passes' own resources included. */
+static void emit_full_barrier(VkCommandBuffer cmd)
+{
+    VkMemoryBarrier2 mb = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+        .srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+        .srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT,
+        .dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+        .dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+    };
+    VkDependencyInfo di = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
+                           .pMemoryBarriers = &mb};
+    vkCmdPipelineBarrier2(cmd, &di);
+}
+
 static void emit_barriers(pg_runtime *rt, VkCommandBuffer cmd, uint32_t n, const pg_barrier *bars)
 {
     VkImageMemoryBarrier2 ib[PG_MAX_RESOURCES];
@@ -607,6 +624,51 @@ static void emit_barriers(pg_runtime *rt, VkCommandBuffer cmd, uint32_t n, const
     pg_cmd_barriers(cmd, ni, ib, nb, bb);
 }
 
+static void check_load_op(const pg_pass_record_ctx *ctx, uint32_t slot, bool clears)
+{
+    if (!ctx->record_error || ctx->record_error->msg[0] || !ctx->pass || slot >= ctx->pass->n_slots) return;
+    const pg_slot_decl *d = &ctx->pass->slots[slot].decl;
+    const bool full = d->access == PG_ACCESS_COLOR_WRITE || d->access == PG_ACCESS_DEPTH_WRITE;
+    const bool loads = d->access == PG_ACCESS_COLOR_RMW || d->access == PG_ACCESS_DEPTH_RMW ||
+                       d->access == PG_ACCESS_DEPTH_READ;
+    if (!full && !loads)
+        pg_fail(ctx->record_error, PG_ERR_INVALID_ARG,
+                "pass '%s': slot '%s' is declared %s, not an attachment, but rendering begins on it", ctx->pass->name,
+                d->name, pg_access_name(d->access));
+    else if (full && !clears)
+        pg_fail(ctx->record_error, PG_ERR_INVALID_ARG,
+                "pass '%s': slot '%s' is declared %s (a full write) but rendering begins with LOAD_OP_LOAD: "
+                "clear it, or declare a read-modify-write",
+                ctx->pass->name, d->name, pg_access_name(d->access));
+    else if (loads && clears)
+        pg_fail(ctx->record_error, PG_ERR_INVALID_ARG,
+                "pass '%s': slot '%s' is declared %s (it loads the contents) but rendering begins with "
+                "LOAD_OP_CLEAR: load it, or declare a full write",
+                ctx->pass->name, d->name, pg_access_name(d->access));
+}
+
+void pg_pass_begin_rendering(const pg_pass_record_ctx *ctx, uint32_t n_color, const uint32_t *color_slots,
+                             const VkClearColorValue *clears, int depth_slot, bool clear_depth, float depth_clear)
+{
+    VkImageView views[8];
+    uint32_t w = 0, h = 0;
+    if (n_color > 8) n_color = 8;
+    for (uint32_t i = 0; i < n_color; i++) {
+        const pg_phys_resource *r = ctx->slots[color_slots[i]];
+        views[i] = r->view;
+        if (!i) w = r->width, h = r->height;
+        check_load_op(ctx, color_slots[i], clears != NULL);
+    }
+    VkImageView dv = VK_NULL_HANDLE;
+    if (depth_slot >= 0) {
+        const pg_phys_resource *r = ctx->slots[depth_slot];
+        dv = r->view;
+        if (!n_color) w = r->width, h = r->height;
+        check_load_op(ctx, (uint32_t)depth_slot, clear_depth);
+    }
+    pg_cmd_begin_rendering(ctx->cmd, w, h, n_color, views, clears, dv, clear_depth, depth_clear);
+}
+
 static double now_ms(void)
 {
     struct timespec ts;
@@ -636,6 +698,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
         vkCmdResetQueryPool(cmd, rt->queries, 0, rt->n_queries);
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, rt->queries, 0);
     }
+    pg_error record_error = {0};
     for (uint32_t o = 0; o < plan->n_order; o++) {
         int pi = plan->order[o];
         const pg_plan_pass *pass = &plan->passes[pi];
@@ -643,6 +706,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
             VkDebugUtilsLabelEXT label = {.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, .pLabelName = pass->name};
             gpu->cmd_begin_label(cmd, &label);
         }
+        if (plan->immediate) emit_full_barrier(cmd);
         emit_barriers(rt, cmd, pass->n_barriers, pass->barriers);
         pg_pass_record_ctx ctx = {
             .gpu = gpu,
@@ -653,12 +717,14 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
             .frame = &rt->frame,
             .width = rt->width,
             .height = rt->height,
+            .record_error = &record_error,
         };
         for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->res[pass->slots[s].resource];
         pass->type->record(rt->pass_state[pi], &ctx);
         if (gpu->cmd_end_label) gpu->cmd_end_label(cmd);
         if (rt->queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, rt->queries, o + 1);
     }
+    if (plan->immediate) emit_full_barrier(cmd);
     emit_barriers(rt, cmd, plan->n_final_barriers, plan->final_barriers);
     int outs[2] = {plan->output, plan->hdr_output};
     for (int k = 0; k < 2; k++) {
@@ -674,6 +740,10 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
         rt->readback_valid[k] = true;
     }
     PG_VK_TRY(err, vkEndCommandBuffer(cmd));
+    if (record_error.msg[0]) { /* a pass broke its declaration: not submitted */
+        rt->readback_valid[0] = rt->readback_valid[1] = false;
+        return pg_fail(err, record_error.code, "%s", record_error.msg);
+    }
     VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
     VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
                         .pCommandBufferInfos = &cbi};
@@ -765,14 +835,24 @@ const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which)
     return idx >= 0 ? &rt->res[idx] : NULL;
 }
 
+pg_result pg_runtime_resource(const pg_runtime *rt, pg_res_handle h, const pg_phys_resource **out, pg_error *err)
+{
+    if (out) *out = NULL;
+    if (!rt || !rt->built) return pg_fail(err, PG_ERR_INVALID_ARG, "pg_runtime_resource: no plan set");
+    pg_result r = pg_plan_resource_get(rt->plan, h, NULL, err);
+    if (!r && out) *out = &rt->res[h.index];
+    return r;
+}
+
+/* by name, through a handle of the current plan */
 static int buffer_index(const pg_runtime *rt, const char *name)
 {
-    if (!rt->plan || !name) return -1;
-    for (uint32_t i = 0; i < rt->plan->n_resources; i++) {
-        const pg_plan_resource *pr = &rt->plan->resources[i];
-        if (!strcmp(pr->name, name) && pr->kind == PG_RES_BUFFER && !pr->culled && rt->res[i].buffer) return (int)i;
-    }
-    return -1;
+    pg_res_handle h;
+    const pg_plan_resource *pr;
+    if (!rt->plan || !name || pg_plan_find_resource(rt->plan, name, &h, NULL) ||
+        pg_plan_resource_get(rt->plan, h, &pr, NULL))
+        return -1;
+    return pr->kind == PG_RES_BUFFER && !pr->culled && rt->res[h.index].buffer ? (int)h.index : -1;
 }
 
 uint64_t pg_runtime_buffer_size(const pg_runtime *rt, const char *name)
@@ -820,7 +900,7 @@ pg_result pg_runtime_read_buffer(pg_runtime *rt, const char *name, uint64_t offs
     return res;
 }
 
-const pg_phys_resource *pg_runtime_resource(const pg_runtime *rt, int index)
+const pg_phys_resource *pg_runtime_resource_at(const pg_runtime *rt, int index)
 {
     if (!rt || !rt->plan || index < 0 || (uint32_t)index >= rt->plan->n_resources) return NULL;
     return &rt->res[index];

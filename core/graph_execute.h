@@ -63,7 +63,19 @@ typedef struct pg_pass_record_ctx {
     VkDescriptorSet frame_set;
     const pg_frame_uniforms *frame;   /* CPU copy of what set 0 holds */
     uint32_t width, height;
+    pg_error *record_error;           /* the first contract break found while recording (e.g. by
+                                       * pg_pass_begin_rendering); set -> the frame fails with it */
 } pg_pass_record_ctx;
+
+/* Begins dynamic rendering on the pass's attachment slots (indices into ctx->slots: colour
+ * slots, then depth_slot or -1) and checks each load op against the slot's declared access: a
+ * full write (color_write, depth_write) must clear (clears != NULL, clear_depth), a read-modify-
+ * write or read (color_rmw, depth_rmw, depth_read) must load, any other access is not an
+ * attachment. A break is recorded in ctx->record_error ("pass 'P': slot 'S' is declared
+ * color_write (a full write) but rendering begins with LOAD_OP_LOAD ..."); rendering begins
+ * anyway so the command buffer stays valid. The size is the first attachment's. */
+void pg_pass_begin_rendering(const pg_pass_record_ctx *ctx, uint32_t n_color, const uint32_t *color_slots,
+                             const VkClearColorValue *clears, int depth_slot, bool clear_depth, float depth_clear);
 
 typedef struct pg_grow_event {
     char resource[PG_NAME_MAX];
@@ -134,11 +146,16 @@ pg_result pg_runtime_read_buffer(pg_runtime *rt, const char *name, uint64_t offs
 /* Current size in bytes of a buffer resource (a "grow" buffer may exceed the plan's size); 0
  * when unknown or culled. */
 uint64_t pg_runtime_buffer_size(const pg_runtime *rt, const char *name);
+/* The physical resource a handle of the runtime's current plan names (pg_plan_find_resource on
+ * the plan given to pg_runtime_set_plan). A handle of an earlier plan (before a pipeline switch,
+ * a resize, a new light count) is refused: PG_ERR_INVALID_ARG "stale resource handle ...". */
+pg_result pg_runtime_resource(const pg_runtime *rt, pg_res_handle h, const pg_phys_resource **out,
+                              pg_error *err);
 /* The physical image of the output (which 0) or hdr_output (1), in TRANSFER_SRC_OPTIMAL layout
  * after each frame (NULL if none). For the viewer's blit to the window. */
 const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which);
 /* The physical resource of plan->resources[index] (NULL when out of range), for tests. */
-const pg_phys_resource *pg_runtime_resource(const pg_runtime *rt, int index);
+const pg_phys_resource *pg_runtime_resource_at(const pg_runtime *rt, int index);
 
 #ifdef __cplusplus
 }

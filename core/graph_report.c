@@ -238,6 +238,9 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
             fprintf(f, ", hdr_output '%s'", plan->resources[plan->hdr_output].name);
         fprintf(f, "\n");
     }
+    if (plan->immediate)
+        fprintf(f, "mode: immediate (declaration order, no aliasing, before every pass a full barrier "
+                   "all_commands/memory_write -> all_commands/memory_read|memory_write)\n");
 
     fprintf(f, "\nexecution order (%u passes):\n", plan->n_order);
     for (uint32_t k = 0; k < plan->n_order; k++) {
@@ -249,9 +252,13 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
             for (uint32_t s = 0; s < pp->n_slots; s++) {
                 const pg_plan_slot *sl = &pp->slots[s];
                 if (sl->is_write != (w == 1)) continue;
-                fprintf(f, "%s%s %s (%s)", any ? "," : (w ? "      writes:" : "      reads: "),
+                fprintf(f, "%s%s %s (%s%s)", any ? "," : (w ? "      writes:" : "      reads: "),
                         "", plan->resources[sl->resource].name,
-                        sl->decl.unused ? "unused" : pg_access_name(sl->decl.access));
+                        sl->decl.unused ? "unused" : pg_access_name(sl->decl.access),
+                        sl->decl.unused         ? ""
+                        : sl->decl.initializes ? ", initialized by the pass"
+                        : sl->decl.partial     ? ", partial"
+                                               : "");
                 any = true;
             }
             if (any) fprintf(f, "\n");

@@ -57,6 +57,15 @@ typedef struct pg_slot_decl {
     bool unused;              /* bound but not touched in this configuration (e.g. cluster
                                * lists with 0 lights): no dependency, barrier or lifetime, so
                                * the producer can be culled. Set with pg_decl_mark_unused(). */
+    bool initializes;         /* a write slot whose access reads (COLOR_RMW, DEPTH_RMW,
+                               * STORAGE_RW) but the pass itself writes every element before it
+                               * reads any (a clear, a first dispatch that stores without
+                               * loading): a valid first use of a transient, and a full write for
+                               * aliasing. Set with pg_decl_mark_initializes(). */
+    bool partial;             /* a write slot (STORAGE_WRITE, TRANSFER_DST) that leaves part of
+                               * the resource unwritten (e.g. a list filled up to a count); its
+                               * readers read only what it wrote. Not a full write: it never joins
+                               * a memory block after another resource. pg_decl_mark_partial(). */
 } pg_slot_decl;
 
 #define PG_MAX_DEFINES 24
@@ -157,6 +166,10 @@ void pg_decl_write(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_acces
 void pg_decl_define(pg_pass_decl *d, const char *define);
 /* Marks reads[index] (or writes[index]) unused and records why in the explanation. */
 void pg_decl_mark_unused(pg_pass_decl *d, bool is_write, uint32_t index, const char *why);
+/* Marks writes[index] as initialised by the pass itself / as written partially (see
+ * pg_slot_decl.initializes and .partial). */
+void pg_decl_mark_initializes(pg_pass_decl *d, uint32_t index);
+void pg_decl_mark_partial(pg_pass_decl *d, uint32_t index);
 void pg_decl_explain(pg_pass_decl *d, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))

@@ -174,6 +174,16 @@ void pg_decl_mark_unused(pg_pass_decl *d, bool is_write, uint32_t index, const c
     pg_decl_explain(d, "slot '%s' unused: %s", sd->name, why);
 }
 
+void pg_decl_mark_initializes(pg_pass_decl *d, uint32_t index)
+{
+    if (d && index < d->n_writes) d->writes[index].initializes = true;
+}
+
+void pg_decl_mark_partial(pg_pass_decl *d, uint32_t index)
+{
+    if (d && index < d->n_writes) d->writes[index].partial = true;
+}
+
 void pg_report_add(pg_pass_report *r, const char *name, uint64_t value)
 {
     if (r->n >= PG_MAX_PASS_COUNTERS) return;

@@ -60,6 +60,7 @@ pg_result pg_session_compile(pg_session *s, uint32_t light_count, uint32_t width
         .output_width = width,
         .output_height = height,
         .disable_aliasing = s->desc.disable_aliasing,
+        .immediate = s->desc.immediate,
         .output_stages = s->desc.output_stages,
     };
     if (s->scene) cd.features = s->scene->features;

@@ -20,6 +20,7 @@ typedef struct pg_session_desc {
     uint32_t n_overrides;
     const pg_pass_registry *registry;
     bool disable_aliasing;
+    bool immediate;               /* see pg_compile_desc.immediate (--immediate) */
     uint64_t output_stages;       /* see pg_compile_desc.output_stages */
     /* Application settings (key/value strings, not pipeline parameters) handed to every pass's
      * create as pg_pass_create_ctx.settings; the graph core does not read them. Copied by

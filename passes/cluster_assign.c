@@ -114,6 +114,7 @@ static pg_result ca_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
     pg_decl_write(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
     pg_decl_write(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
+    pg_decl_mark_partial(out, 1); /* filled up to each cluster's count; readers read only that */
     char def[PG_NAME_MAX];
     snprintf(def, sizeof def, "GRID_X=%u", o.grid[0]);
     pg_decl_define(out, def);

@@ -281,9 +281,9 @@ out:
 static void do_record(void *self, const pg_pass_record_ctx *ctx)
 {
     display_ocio *p = self;
-    const pg_phys_resource *ldr = ctx->slots[1];
     VkClearColorValue clear = {{0, 0, 0, 1}};
-    pg_cmd_begin_rendering(ctx->cmd, ldr->width, ldr->height, 1, &ldr->view, &clear, VK_NULL_HANDLE, false, 0);
+    const uint32_t ldr_slot = 1;
+    pg_pass_begin_rendering(ctx, 1, &ldr_slot, &clear, -1, false, 0);
     VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->layout, 0, 2, sets, 0, NULL);

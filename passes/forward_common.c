@@ -25,9 +25,9 @@ void pg_forward_record(void *self, const pg_pass_record_ctx *ctx)
 {
     pg_forward_pass *p = self;
     int n_reads = p->clustered ? 3 : 1;
-    const pg_phys_resource *color = ctx->slots[n_reads], *depth = ctx->slots[n_reads + 1];
     VkClearColorValue clear = {{0, 0, 0, 1}};
-    pg_cmd_begin_rendering(ctx->cmd, color->width, color->height, 1, &color->view, &clear, depth->view, true, 1.0f);
+    const uint32_t color_slot = (uint32_t)n_reads;
+    pg_pass_begin_rendering(ctx, 1, &color_slot, &clear, n_reads + 1, true, 1.0f);
     pg_scene_draw_record(&p->draw, ctx, p->lights.set);
     vkCmdEndRendering(ctx->cmd);
 }

@@ -84,14 +84,12 @@ static void gb_record(void *self, const pg_pass_record_ctx *ctx)
 {
     gbuffer_pass *p = self;
     uint32_t n = pg_gbuffer_targets[p->packing];
-    VkImageView views[4];
+    uint32_t color_slots[4];
     VkClearColorValue clears[4];
     memset(clears, 0, sizeof clears);
-    for (uint32_t t = 0; t < n; t++) views[t] = ctx->slots[t]->view;
-    if (p->emissive) views[n] = ctx->slots[n + 1]->view;
-    const pg_phys_resource *depth = ctx->slots[n];
-    pg_cmd_begin_rendering(ctx->cmd, depth->width, depth->height, n + (p->emissive ? 1 : 0), views, clears,
-                           depth->view, true, 1.0f);
+    for (uint32_t t = 0; t < n; t++) color_slots[t] = t;
+    if (p->emissive) color_slots[n] = n + 1;
+    pg_pass_begin_rendering(ctx, n + (p->emissive ? 1 : 0), color_slots, clears, (int)n, true, 1.0f);
     pg_scene_draw_record(&p->draw, ctx, VK_NULL_HANDLE);
     vkCmdEndRendering(ctx->cmd);
 }

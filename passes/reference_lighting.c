@@ -154,9 +154,12 @@ static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
     if ((r = pg_emissive_slot_declare(in, out, false, 4, true, &emissive, err))) return r;
     if (emissive) pg_decl_define(out, "PG_REFERENCE_EMISSIVE");
     pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
-    /* written in full by the first dispatch before any later one reads them */
-    pg_decl_write(out, "accum_diffuse", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
-    pg_decl_write(out, "accum_specular", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    /* read and written by the later dispatches, written in full by the first one before any
+     * later one reads them: the pass initializes them itself */
+    pg_decl_write(out, "accum_diffuse", PG_RES_IMAGE, PG_ACCESS_STORAGE_RW, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    pg_decl_mark_initializes(out, 1);
+    pg_decl_write(out, "accum_specular", PG_RES_IMAGE, PG_ACCESS_STORAGE_RW, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    pg_decl_mark_initializes(out, 2);
     char def[PG_NAME_MAX];
     snprintf(def, sizeof def, "LIGHT_TILE_X=%u", REF_TILE_X);
     pg_decl_define(out, def);

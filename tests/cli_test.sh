@@ -27,7 +27,7 @@ expect_fail() {
 "$PG" --help >"$tmp/h" && grep -q "render" "$tmp/h" && ok || bad "passgraph --help"
 "$PG" render --help >"$tmp/h" || bad "render --help exit"
 for o in --pipeline --scene --scenario --camera --lights --size --time --seed --out --set --device --validation \
-         --no-aliasing --explain --frames --radius --intensity --view --debug-view --ocio-config --display \
+         --no-aliasing --immediate --explain --frames --radius --intensity --view --debug-view --ocio-config --display \
          --ocio-view --hdr-out; do
   grep -qF -- "$o" "$tmp/h" && ok || bad "render --help does not document $o"
 done
@@ -222,7 +222,7 @@ grep -Eq 'overflow=[1-9][0-9]* clusters \([0-9]+ light refs dropped\)' "$tmp/out
 deferred="$root/pipelines/deferred.json"
 "$PG" --help | grep -q "dump" && ok || bad "passgraph --help does not list dump"
 "$PG" dump --help >"$tmp/h" || bad "dump --help exit"
-for o in --pipeline --scene --lights --size --set --no-aliasing --view --format --out text json dot timeline graphviz; do
+for o in --pipeline --scene --lights --size --set --no-aliasing --immediate --view --format --out text json dot timeline graphviz; do
   grep -qF -- "$o" "$tmp/h" && ok || bad "dump --help does not document $o"
 done
 for fmt in text json dot timeline; do
@@ -256,6 +256,21 @@ fi
 PATH=/nonexistent-passgraph "$PG" dump --pipeline "$deferred" --format dot --out "$tmp/nodot.svg" >"$tmp/out" 2>"$tmp/err"
 rc=$?
 [ $rc -ne 0 ] && [ $rc -lt 128 ] && grep -q "graphviz" "$tmp/err" && ok || { bad "dump without dot: rc $rc, no message naming graphviz"; cat "$tmp/err"; }
+# --immediate: the dump says so (text and JSON), with no aliasing and full barriers
+"$PG" dump --pipeline "$deferred" --immediate >"$tmp/imm.txt" 2>"$tmp/err" \
+  && grep -qF "mode: immediate (declaration order, no aliasing, before every pass a full barrier all_commands/memory_write -> all_commands/memory_read|memory_write)" "$tmp/imm.txt" \
+  && grep -q "^memory blocks (aliasing disabled):" "$tmp/imm.txt" \
+  && ! grep -E "^      barrier " "$tmp/imm.txt" | grep -vq "all_commands/memory_write -> all_commands/memory_read|memory_write" \
+  && ok || { bad "dump --immediate text"; cat "$tmp/err"; }
+"$PG" dump --pipeline "$deferred" --format json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["immediate"] is False and d["aliasing"] is True' \
+  && "$PG" dump --pipeline "$deferred" --immediate --format json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["immediate"] is True and d["aliasing"] is False' \
+  && ok || bad "dump --format json: immediate / aliasing fields"
+"$PG" dump --pipeline "$root/pipelines/reference.json" --lights 100000 | grep -qF "accum_diffuse (storage_rw, initialized by the pass)" \
+  && "$PG" dump --pipeline "$deferred" | grep -qF "cluster_lights (storage_write, partial)" \
+  && ok || bad "dump text: initialized / partial slots"
+"$PG" render --immediate --validation --pipeline "$deferred" --size 64x36 --lights 8 --out "$tmp/imm.png" >"$tmp/out" 2>"$tmp/err" \
+  && "$PG" render --validation --pipeline "$deferred" --size 64x36 --lights 8 --out "$tmp/nimm.png" >/dev/null 2>&1 \
+  && cmp -s "$tmp/imm.png" "$tmp/nimm.png" && ok || { bad "render --immediate: failed or a different image"; cat "$tmp/err"; }
 expect_fail "dump: bad pipeline" "passes[0].type" dump --pipeline "$tmp/unknown_type.json"
 expect_fail "dump: missing pipeline" "nope_dump.json" dump --pipeline "$tmp/nope_dump.json"
 expect_fail "dump: bad format" "--format xml" dump --pipeline "$deferred" --format xml

@@ -39,12 +39,12 @@ static uint32_t check_placement(const pg_session *s, const char *label)
     uint32_t pairs = 0;
     for (uint32_t i = 0; i < p->n_resources; i++) {
         const pg_plan_resource *ri = &p->resources[i];
-        const pg_phys_resource *xi = pg_runtime_resource(s->runtime, (int)i);
+        const pg_phys_resource *xi = pg_runtime_resource_at(s->runtime, (int)i);
         if (ri->culled || ri->first_pass < 0 || !xi || !xi->memory) continue;
         CHECK_MSG(xi->memory_size > 0, "%s: %s has no size", label, ri->name);
         for (uint32_t j = 0; j < i; j++) {
             const pg_plan_resource *rj = &p->resources[j];
-            const pg_phys_resource *xj = pg_runtime_resource(s->runtime, (int)j);
+            const pg_phys_resource *xj = pg_runtime_resource_at(s->runtime, (int)j);
             if (rj->culled || rj->first_pass < 0 || !xj || xj->memory != xi->memory) continue;
             const bool bytes = xi->memory_offset < xj->memory_offset + xj->memory_size &&
                                xj->memory_offset < xi->memory_offset + xi->memory_size;
@@ -118,7 +118,7 @@ static bool render(const pg_scene_gpu *sg, const pg_scene *scene, const char *pi
         out->dev_aliased = rs.memory_bytes_transient;
         out->shared_pairs = check_placement(s, pipeline);
         for (uint32_t i = 0; i < s->plan->n_resources; i++) {
-            const pg_phys_resource *x = pg_runtime_resource(s->runtime, (int)i);
+            const pg_phys_resource *x = pg_runtime_resource_at(s->runtime, (int)i);
             out->at_offset += x && x->memory && x->memory_offset > 0;
         }
     }

@@ -398,7 +398,7 @@ static void test_hand_graph_json(void)
     CHECK_MSG(root != NULL, "JSON dump does not parse");
     if (root) {
         /* top-level keys, in this order */
-        static const char *const keys[] = {"format_version", "pipeline", "output", "aliasing", "order",
+        static const char *const keys[] = {"format_version", "pipeline", "output", "aliasing", "immediate", "order",
                                            "passes", "final_barriers", "culled_passes", "omitted", "explain",
                                            "resources", "blocks", "totals", NULL};
         const cJSON *it = root->child;
@@ -416,6 +416,7 @@ static void test_hand_graph_json(void)
         CHECK(streq(jstr(out, "resource"), "out") && jnull(out, "hdr_resource"));
         CHECK(jnum(out, "width") == 100 && jnum(out, "height") == 50);
         CHECK(jtrue(root, "aliasing"));
+        CHECK(cJSON_IsFalse(jget(root, "immediate")));
 
         /* order */
         const cJSON *order = jget(root, "order");

@@ -171,6 +171,7 @@ pg_session_desc pg_app_session_desc(const pg_app *app)
         .n_overrides = app->opt.n_sets,
         .registry = &app->registry,
         .disable_aliasing = app->opt.no_aliasing,
+        .immediate = app->opt.immediate,
         .settings = app->opt.settings,
         .n_settings = app->opt.n_settings,
     };

@@ -33,6 +33,8 @@ const char *const pg_cli_common_help =
     "  --no-shader-cache    compile every shader with glslang and use no pipeline cache (also\n"
     "                       PASSGRAPH_NO_SHADER_CACHE=1); caches live in $PASSGRAPH_CACHE_DIR,\n"
     "                       else $XDG_CACHE_HOME/passgraph, else ~/.cache/passgraph\n"
+    "  --immediate          debugging mode: passes in declaration order, no aliasing, a full\n"
+    "                       barrier (all commands, all memory) before every pass\n"
     "  --explain            print what the compiled graph left out, culled and why\n"
     "  --frames N           frames to render; timings are the median (default 1)\n"
     "  --view NAME          an OCIO view of the display (e.g. \"Standard\", \"Filmic (ACES)\", \"Raw\")\n"
@@ -258,6 +260,8 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         c->no_aliasing = true;
     } else if (!strcmp(a, "--no-shader-cache")) {
         pg_cache_set_enabled(false); /* process-wide: the caches are per process */
+    } else if (!strcmp(a, "--immediate")) {
+        c->immediate = true;
     } else if (!strcmp(a, "--explain")) {
         c->explain = true;
     } else if (!strcmp(a, "--quiet")) {

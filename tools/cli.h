@@ -30,6 +30,7 @@ typedef struct pg_cli_common {
     const char *device_match;    /* --device NAME */
     bool validation;             /* --validation */
     bool no_aliasing;            /* --no-aliasing */
+    bool immediate;              /* --immediate */
     bool explain;                /* --explain */
     uint32_t frames;             /* --frames N */
     const char *view;            /* --view NAME as given: an OCIO view of the display if the config

@@ -776,6 +776,7 @@ static void reference_render(bench *B, pg_app *app, const pg_frame_info *fi0, co
         .n_overrides = rv->ov.n,
         .registry = &app->registry,
         .disable_aliasing = B->opt.no_aliasing,
+        .immediate = B->opt.immediate,
         .settings = app->opt.settings, /* OCIO config / display / view */
         .n_settings = app->opt.n_settings,
     };
@@ -840,6 +841,7 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
         .n_overrides = va->ov.n,
         .registry = &app->registry,
         .disable_aliasing = B->opt.no_aliasing,
+        .immediate = B->opt.immediate,
         .settings = app->opt.settings,
         .n_settings = app->opt.n_settings,
     };
@@ -1174,6 +1176,7 @@ static cJSON *json_meta(const bench *B)
     cJSON_AddNumberToObject(m, "seed", B->opt.seed);
     cJSON_AddBoolToObject(m, "validation", B->opt.validation);
     cJSON_AddBoolToObject(m, "no_aliasing", B->opt.no_aliasing);
+    cJSON_AddBoolToObject(m, "immediate", B->opt.immediate);
     cJSON_AddBoolToObject(m, "interrupted", B->interrupted);
     cJSON *l = cJSON_AddArrayToObject(m, "lights");
     for (uint32_t i = 0; l && i < B->n_lights; i++) cJSON_AddItemToArray(l, cJSON_CreateNumber(B->lights[i]));

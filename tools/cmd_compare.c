@@ -35,7 +35,7 @@ static const char *const compare_help =
     "applies to the pipeline only and --reference-set KEY=VALUE to the reference only, each winning\n"
     "over --set on its side. A debug view (--view NAME of no OCIO view, --debug-view) is the\n"
     "pipeline's only. The first line ('sides:') says which file and overrides each side used.\n"
-    "The other options, --no-aliasing and the OCIO display / view included, apply to both.\n\n"
+    "The other options, --no-aliasing, --immediate and the OCIO display / view included, apply to both.\n\n"
     "options:\n";
 
 static const char *const compare_help_own =
@@ -110,7 +110,7 @@ typedef struct side {
 } side;
 
 static pg_result side_create(side *sd, const char *label, pg_app *app, const char *path, const pg_param_override *sets,
-                             uint32_t n_sets, bool no_aliasing, uint32_t frames, pg_error *err)
+                             uint32_t n_sets, bool no_aliasing, bool immediate, uint32_t frames, pg_error *err)
 {
     memset(sd, 0, sizeof *sd);
     sd->label = label;
@@ -120,6 +120,7 @@ static pg_result side_create(side *sd, const char *label, pg_app *app, const cha
         .n_overrides = n_sets,
         .registry = &app->registry,
         .disable_aliasing = no_aliasing,
+        .immediate = immediate,
         .settings = app->opt.settings, /* both sides: the same display / view */
         .n_settings = app->opt.n_settings,
     };
@@ -393,9 +394,9 @@ int pg_cmd_compare(int argc, char **argv)
     side A, R;
     memset(&A, 0, sizeof A);
     memset(&R, 0, sizeof R);
-    if (side_create(&A, "pipeline", &app, pipe_path, pipe_ov.ov, pipe_ov.n, opt.no_aliasing, opt.frames, &err))
+    if (side_create(&A, "pipeline", &app, pipe_path, pipe_ov.ov, pipe_ov.n, opt.no_aliasing, opt.immediate, opt.frames, &err))
         goto done;
-    if (side_create(&R, "reference", &app, ref_path, ref_ov.ov, ref_ov.n, opt.no_aliasing, opt.frames, &err))
+    if (side_create(&R, "reference", &app, ref_path, ref_ov.ov, ref_ov.n, opt.no_aliasing, opt.immediate, opt.frames, &err))
         goto done;
     print_sides(&A, &pipe_ov, &R, &ref_ov, stdout);
     pg_frame_info fi = pg_app_frame(&app);

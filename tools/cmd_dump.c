@@ -45,6 +45,8 @@ static const char *const dump_help =
     "                       accepted and changes nothing here (colour is applied at render time)\n"
     "  --debug-view NAME    the same, never an OCIO view\n"
     "  --no-aliasing        give every transient its own memory block\n"
+    "  --immediate          the debugging mode: passes in declaration order, no aliasing,\n"
+    "                       full barriers (ALL_COMMANDS -> ALL_COMMANDS) before every pass\n"
     "\n"
     "accepted so that a 'passgraph render' command line can be reused, without effect here:\n"
     "  --time, --seed, --radius, --intensity, --frames, --device, --validation, --explain, --quiet,\n"
@@ -182,6 +184,7 @@ int pg_cmd_dump(int argc, char **argv)
         .output_width = opt.width,
         .output_height = opt.height,
         .disable_aliasing = opt.no_aliasing,
+        .immediate = opt.immediate,
     };
     if (app.scene) cd.features = app.scene->features;
     cd.features.light_count = app.lights.count;
