@@ -19,7 +19,12 @@ FRAME_UNIFORMS_BLOCK
 #ifndef PG_TILE
 #define PG_TILE 8
 #endif
-layout(local_size_x = PG_TILE, local_size_y = PG_TILE) in;
+// One-dimensional workgroup of PG_TILE x PG_TILE invocations (invocation i is pixel (i % PG_TILE,
+// i / PG_TILE) of the tile, the same numbering as a PG_TILE x PG_TILE workgroup's
+// gl_LocalInvocationIndex): with full subgroups required (PG_TILE_SUBGROUPS), Vulkan asks the
+// workgroup's X size to be a multiple of the subgroup size (VUID-...-pNext-02757: 8 is not, on a
+// GPU with 32-wide subgroups; 64 and 256 are).
+layout(local_size_x = PG_TILE * PG_TILE) in;
 layout(set = 1, binding = 0) uniform sampler2D g_depth;
 #if defined(PG_GBUFFER_FLOAT)
 layout(set = 1, binding = 1) uniform sampler2D g_position;
@@ -48,7 +53,8 @@ layout(set = 1, binding = HDR_BINDING + 1) uniform sampler2D g_emissive;
 void main()
 {
     ivec2 size = imageSize(hdr_out);
-    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    uint lin = gl_LocalInvocationIndex;
+    ivec2 px = ivec2(gl_WorkGroupID.xy) * PG_TILE + ivec2(int(lin % uint(PG_TILE)), int(lin / uint(PG_TILE)));
     bool inside = px.x < size.x && px.y < size.y;
     float depth = inside ? texelFetch(g_depth, px, 0).r : 1.0;
     bool lit = depth < 1.0;
