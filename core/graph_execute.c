@@ -36,6 +36,7 @@ struct pg_runtime {
         bool pending;              /* submitted, results not collected yet */
         uint64_t frame_no;
         VkQueryPool queries;
+        pg_buffer timestamps;      /* the query results, copied at the end of the frame */
         pg_buffer readback[2];
     } slot[PG_MAX_FRAMES_IN_FLIGHT];
     uint32_t n_in_flight, cur;     /* cur: the slot of the last submitted frame */
@@ -150,6 +151,7 @@ static void destroy_built(pg_runtime *rt)
     for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
         for (int i = 0; i < 2; i++) pg_buffer_destroy(gpu, &rt->slot[f].readback[i]);
         if (rt->slot[f].queries) vkDestroyQueryPool(gpu->device, rt->slot[f].queries, NULL);
+        pg_buffer_destroy(gpu, &rt->slot[f].timestamps);
         rt->slot[f].queries = VK_NULL_HANDLE;
         rt->slot[f].pending = false; /* the device is idle: every fence has signalled */
     }
@@ -443,6 +445,11 @@ static pg_result build(pg_runtime *rt, pg_error *err)
         for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
             PG_VK_TRY(err, vkCreateQueryPool(gpu->device, &qci, NULL, &rt->slot[f].queries));
             pg_gpu_name(gpu, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)rt->slot[f].queries, "frame%u.timestamps", f);
+            char nm[40];
+            snprintf(nm, sizeof nm, "frame%u.timestamp_results", f);
+            if ((r = pg_buffer_create(gpu, sizeof(uint64_t) * rt->n_queries, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, nm,
+                                      &rt->slot[f].timestamps, err)))
+                return r;
         }
     }
     /* pass instances */
@@ -710,11 +717,11 @@ static void collect_timestamps(pg_runtime *rt, uint32_t f)
     const pg_graph_plan *plan = rt->plan;
     rt->slot[f].pending = false;
     if (!rt->slot[f].queries) return;
+    /* the frame copied its query results to a host-visible buffer (vkGetQueryPoolResults on
+     * lavapipe blocks until the frame submitted after this one is done too) */
+    if (!rt->slot[f].timestamps.mapped) return;
     uint64_t ts[PG_MAX_PASSES + 1];
-    VkResult qr = vkGetQueryPoolResults(gpu->device, rt->slot[f].queries, 0, rt->n_queries,
-                                        sizeof(uint64_t) * rt->n_queries, ts, sizeof(uint64_t),
-                                        VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
-    if (qr != VK_SUCCESS) return;
+    memcpy(ts, rt->slot[f].timestamps.mapped, sizeof(uint64_t) * rt->n_queries);
     uint64_t mask = gpu->timestamp_valid_bits >= 64 ? ~0ull : ((1ull << gpu->timestamp_valid_bits) - 1);
     for (uint32_t o = 0; o < plan->n_order; o++)
         rt->gpu_pass_ms[o] = ((ts[o + 1] - ts[o]) & mask) * (double)gpu->timestamp_period_ns * 1e-6;
@@ -820,6 +827,14 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
     }
     if (plan->immediate) emit_full_barrier(cmd);
     emit_barriers(rt, cmd, plan->n_final_barriers, plan->final_barriers);
+    if (queries) {
+        vkCmdCopyQueryPoolResults(cmd, queries, 0, rt->n_queries, rt->slot[f].timestamps.buffer, 0, sizeof(uint64_t),
+                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+        VkBufferMemoryBarrier2 tb = pg_buffer_barrier(rt->slot[f].timestamps.buffer, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                                      VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                                                      VK_ACCESS_2_HOST_READ_BIT);
+        pg_cmd_barriers(cmd, 0, NULL, 1, &tb);
+    }
     int outs[2] = {plan->output, plan->hdr_output};
     for (int k = 0; k < 2; k++) {
         rt->readback_valid[k] = false;
