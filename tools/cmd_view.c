@@ -218,7 +218,13 @@ static pg_result open_session(viewer *v, const char *path, bool with_overrides, 
         .settings = v->settings,
         .n_settings = v->n_settings,
     };
-    return pg_session_create(v->app.gpu, v->app.scene_gpu, &sd, out, err);
+    pg_result r = pg_session_create(v->app.gpu, v->app.scene_gpu, &sd, out, err);
+    /* the displayed graph keeps two frames in flight; the reference of the diff view reads back */
+    if (!r && with_overrides && (r = pg_session_set_frames_in_flight(*out, 2, err))) {
+        pg_session_destroy(*out);
+        *out = NULL;
+    }
+    return r;
 }
 
 /* Loads the requested pipeline; on failure keeps the running one and shows the error. */
@@ -854,6 +860,8 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
         }
         pg_frame_stats ns;
         if ((r = pg_session_render(v->naive, &fi, true, &ns, err))) return r;
+        /* the diff staging is written by the host: no viewer frame may still read it */
+        PG_VK_TRY(err, vkWaitForFences(gpu->device, PG_VIEW_FRAMES, w->fence, VK_TRUE, UINT64_MAX));
         if ((r = update_diff(v, err))) return r;
         show_diff = true;
     }
@@ -863,8 +871,11 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     v->hist_pos = (v->hist_pos + 1) % HIST;
     v->hist_n++;
 
+    /* this slot's previous frame (two frames ago) must be done with its command buffer and semaphore */
+    const uint32_t fs = w->slot;
+    PG_VK_TRY(err, vkWaitForFences(gpu->device, 1, &w->fence[fs], VK_TRUE, UINT64_MAX));
     uint32_t index;
-    VkResult vr = vkAcquireNextImageKHR(gpu->device, w->swapchain, UINT64_MAX, w->image_ready, VK_NULL_HANDLE, &index);
+    VkResult vr = vkAcquireNextImageKHR(gpu->device, w->swapchain, UINT64_MAX, w->image_ready[fs], VK_NULL_HANDLE, &index);
     if (vr == VK_ERROR_OUT_OF_DATE_KHR) { /* the semaphore was not signalled: rebuild, next frame */
         bool minimised;
         return pg_view_window_resize(w, &minimised, err);
@@ -874,7 +885,7 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
 
     build_ui(v);
 
-    VkCommandBuffer cmd = w->cmd;
+    VkCommandBuffer cmd = w->cmd[fs];
     PG_VK_TRY(err, vkResetCommandBuffer(cmd, 0));
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                    .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
@@ -945,7 +956,7 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     }
     PG_VK_TRY(err, vkEndCommandBuffer(cmd));
     VkSemaphoreSubmitInfo wait = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO,
-                                  .semaphore = w->image_ready,
+                                  .semaphore = w->image_ready[fs],
                                   .stageMask = VK_PIPELINE_STAGE_2_BLIT_BIT};
     VkSemaphoreSubmitInfo signal = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO,
                                     .semaphore = w->render_done[index],
@@ -958,8 +969,9 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
                         .pCommandBufferInfos = &cbi,
                         .signalSemaphoreInfoCount = 1,
                         .pSignalSemaphoreInfos = &signal};
-    PG_VK_TRY(err, vkResetFences(gpu->device, 1, &w->fence));
-    PG_VK_TRY(err, vkQueueSubmit2(gpu->queue, 1, &si, w->fence));
+    PG_VK_TRY(err, vkResetFences(gpu->device, 1, &w->fence[fs]));
+    PG_VK_TRY(err, vkQueueSubmit2(gpu->queue, 1, &si, w->fence[fs]));
+    w->slot = (fs + 1) % PG_VIEW_FRAMES;
     VkPresentInfoKHR pi = {.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR,
                            .waitSemaphoreCount = 1,
                            .pWaitSemaphores = &w->render_done[index],
@@ -967,8 +979,8 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
                            .pSwapchains = &w->swapchain,
                            .pImageIndices = &index};
     vr = vkQueuePresentKHR(gpu->queue, &pi);
-    PG_VK_TRY(err, vkWaitForFences(gpu->device, 1, &w->fence, VK_TRUE, UINT64_MAX));
-    if (shot) {
+    if (shot) { /* the screenshot is read after its own frame */
+        PG_VK_TRY(err, vkWaitForFences(gpu->device, 1, &w->fence[fs], VK_TRUE, UINT64_MAX));
         /* swapchain pixels -> RGBA for the PNG */
         uint32_t n = w->extent.width * w->extent.height;
         uint8_t *px = malloc((size_t)n * 4);
