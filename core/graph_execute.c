@@ -47,6 +47,10 @@ struct pg_runtime {
     double gpu_pass_ms[PG_MAX_PASSES], gpu_total_ms;
     bool gpu_valid;
     uint64_t gpu_frame;
+    /* frames since the pass reports were last read; report_due: read them after the next frame
+     * even if that means waiting (a new plan, a grown buffer) */
+    uint32_t frames_unreported;
+    bool report_due;
     pg_runtime_stats stats;
     const pg_param_override *settings; /* borrowed, see pg_runtime_set_settings */
     uint32_t n_settings;
@@ -122,6 +126,9 @@ static uint64_t plan_signature(const pg_runtime *rt, const pg_graph_plan *plan, 
     }
     return s;
 }
+
+/* With frames in flight, the most frames between two readings of the pass reports. */
+#define PG_REPORT_EVERY 8
 
 static void destroy_built(pg_runtime *rt)
 {
@@ -584,6 +591,7 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
                               const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err)
 {
     uint64_t sig = plan_signature(rt, plan, pipeline, scene, width, height);
+    rt->report_due = true; /* a new light count may need a buffer to grow: read the next report */
     if (rt->built && sig == rt->signature) {
         /* same physical layout: keep every object, adopt the new (identical) plan */
         rt->plan = plan;
@@ -883,6 +891,18 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
         if (fs == VK_SUCCESS) collect_timestamps(rt, g);
         else idle = false;
     }
+    /* Pass reports (overflow counters, growth requests) must still arrive: after a new plan or a
+     * growth, and at least every PG_REPORT_EVERY frames, wait for the frames in flight. */
+    if (!idle && (rt->report_due || rt->frames_unreported + 1 >= PG_REPORT_EVERY)) {
+        double tw = now_ms();
+        pg_result ir = pg_runtime_wait_idle(rt, err);
+        if (ir) return ir;
+        wait_ms += now_ms() - tw;
+        rt->stats.report_waits++;
+        idle = true;
+    }
+    rt->report_due = false;
+    rt->frames_unreported = idle ? 0 : rt->frames_unreported + 1;
 
     pg_frame_stats local_stats;
     if (!stats) stats = &local_stats;
@@ -921,6 +941,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
                 if (rep.grow[k].slot >= pass->n_slots) continue;
                 int ri = pass->slots[rep.grow[k].slot].resource;
                 if (ri < 0 || !plan->resources[ri].growable) continue;
+                rt->report_due = true; /* the frame after a growth shows whether it sufficed */
                 pg_result gr = grow_buffer(rt, ri, rep.grow[k].needed, rep.grow[k].max, stats, err);
                 if (gr) return gr;
                 if (!rt->built) return pg_fail(err, PG_ERR_VULKAN, "runtime lost its plan while growing a buffer");

@@ -96,7 +96,8 @@ typedef struct pg_frame_stats {
      * it (1 in flight, or readback), else the last one seen finished (usually frame - 1) */
     uint64_t gpu_frame;
     /* false: another frame was still in flight, so the pass reports (counters, notes, growth)
-     * were not read this frame */
+     * were not read this frame (they are after a new plan or a growth and at least every 8th
+     * frame: pg_runtime_stats.report_waits) */
     bool reports_valid;
     bool timestamps_valid;
     /* counters reported by passes (pg_pass_type.report), e.g. cluster overflow */
@@ -132,6 +133,9 @@ typedef struct pg_runtime_stats {
     uint32_t fence_waits;             /* waits on an earlier frame's fence that found it unsignalled */
     uint32_t sync_waits;              /* waits for the frame just submitted (1 in flight, readback) */
     uint32_t reports_skipped;         /* frames whose pass reports were not read (see reports_valid) */
+    uint32_t report_waits;            /* waits for the frames in flight so the pass reports could be
+                                       * read: after a new plan or a growth, and at least every 8th
+                                       * frame (with 2 in flight the passes' counters have one copy) */
 } pg_runtime_stats;
 
 typedef struct pg_runtime pg_runtime;
