@@ -17,6 +17,7 @@
 #include <GLFW/glfw3.h>
 
 #include "app.h"
+#include "bench_stats.h"
 #include "commands.h"
 #include "image_compare.h"
 #include "image_util.h"
@@ -83,6 +84,9 @@ typedef struct viewer {
     uint32_t reloads;
     /* scripted mode */
     uint32_t frames_limit, cycle_every;
+    uint32_t frames_in_flight;           /* of the displayed graph: 2 (default) or 1 */
+    double frame_ms[512];                /* host time per drawn frame (the first 512), for the exit line */
+    uint32_t n_frame_ms;
     bool cycle, random_params;
     char cycle_tried[PG_PATH_MAX]; /* the pipeline the last cycling step asked for while it has
                                     * not loaded ("": none, or it loaded) */
@@ -220,7 +224,7 @@ static pg_result open_session(viewer *v, const char *path, bool with_overrides, 
     };
     pg_result r = pg_session_create(v->app.gpu, v->app.scene_gpu, &sd, out, err);
     /* the displayed graph keeps two frames in flight; the reference of the diff view reads back */
-    if (!r && with_overrides && (r = pg_session_set_frames_in_flight(*out, 2, err))) {
+    if (!r && with_overrides && (r = pg_session_set_frames_in_flight(*out, v->frames_in_flight, err))) {
         pg_session_destroy(*out);
         *out = NULL;
     }
@@ -1008,6 +1012,7 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
         return pg_fail(err, PG_ERR_VULKAN, "vkQueuePresentKHR failed: %s", pg_vk_result_name(vr));
     }
     v->cpu_frame_ms = (now_s() - t0) * 1e3;
+    if (v->n_frame_ms < 512) v->frame_ms[v->n_frame_ms++] = v->cpu_frame_ms;
     return PG_OK;
 }
 
@@ -1146,10 +1151,12 @@ int pg_cmd_view(int argc, char **argv)
     viewer *v = calloc(1, sizeof *v);
     if (!v) return 1;
     v->cycle_every = 20;
+    v->frames_in_flight = 2;
     for (int i = 0; i < argc; i++) {
         bool used;
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             printf("%s%s"
+                   "  --frames-in-flight N 2 (default) or 1: frames the displayed graph keeps in flight\n"
                    "  --size WxH           initial window size (default 1280x720)\n"
                    "  --pipelines DIR      also list the pipelines in DIR\n"
                    "  --screenshot FILE    write the window (scene + UI) to FILE (.png, .jpg) at the last frame\n"
@@ -1208,6 +1215,16 @@ int pg_cmd_view(int argc, char **argv)
         }
         if (!strcmp(argv[i], "--cycle-pipelines")) {
             v->cycle = true;
+            continue;
+        }
+        if (!strcmp(argv[i], "--frames-in-flight") && i + 1 < argc) {
+            long k = strtol(argv[++i], NULL, 10);
+            if (k < 1 || k > PG_MAX_FRAMES_IN_FLIGHT) {
+                fprintf(stderr, "passgraph view: --frames-in-flight %s: expected 1 or 2\n", argv[i]);
+                free(v);
+                return 2;
+            }
+            v->frames_in_flight = (uint32_t)k;
             continue;
         }
         if (!strcmp(argv[i], "--cycle-every") && i + 1 < argc) {
@@ -1402,6 +1419,13 @@ int pg_cmd_view(int argc, char **argv)
     }
     printf("view: %u frames, %u pipeline loads, %u swapchain builds, last GPU %.3f ms\n", frame, v->reloads,
            v->win.recreations, v->stats.gpu_total_ms);
+    if (v->n_frame_ms) { /* median host time of draw_frame (render + UI + blit + present) */
+        pg_sample_stats fs;
+        pg_error fe = {0};
+        if (!pg_sample_stats_compute(v->frame_ms, v->n_frame_ms, &fs, &fe))
+            printf("view: host frame time median %.3f ms over %u frames, %u frame(s) in flight\n", fs.median,
+                   v->n_frame_ms, v->frames_in_flight);
+    }
     if (frame > 100)
         printf("view: RSS frame 100 %.1f MiB, end %.1f MiB; VkDeviceMemory objects frame 100 %lld, end %lld\n",
                v->rss100 / 1048576.0, pg_process_rss() / 1048576.0, (long long)v->mem100,
