@@ -47,6 +47,11 @@ struct pg_runtime {
     double gpu_pass_ms[PG_MAX_PASSES], gpu_total_ms;
     bool gpu_valid;
     uint64_t gpu_frame;
+    struct { /* the GPU times of the last frames collected, by frame number % 4 */
+        uint64_t frame;
+        bool valid;
+        double total_ms, pass_ms[PG_MAX_PASSES];
+    } gpu_hist[4];
     /* frames since the pass reports were last read; report_due: read them after the next frame
      * even if that means waiting (a new plan, a grown buffer) */
     uint32_t frames_unreported;
@@ -164,6 +169,7 @@ static void destroy_built(pg_runtime *rt)
     }
     rt->readback_valid[0] = rt->readback_valid[1] = false;
     rt->gpu_valid = false;
+    memset(rt->gpu_hist, 0, sizeof rt->gpu_hist);
     rt->built = false;
 }
 
@@ -736,6 +742,11 @@ static void collect_timestamps(pg_runtime *rt, uint32_t f)
     rt->gpu_total_ms = ((ts[plan->n_order] - ts[0]) & mask) * (double)gpu->timestamp_period_ns * 1e-6;
     rt->gpu_valid = true;
     rt->gpu_frame = rt->slot[f].frame_no;
+    __typeof__(rt->gpu_hist[0]) *h = &rt->gpu_hist[rt->gpu_frame % 4];
+    h->frame = rt->gpu_frame;
+    h->valid = true;
+    h->total_ms = rt->gpu_total_ms;
+    memcpy(h->pass_ms, rt->gpu_pass_ms, sizeof(double) * plan->n_order);
 }
 
 /* Waits for slot f's frame if it is pending; counts a wait that found the fence unsignalled. */
@@ -764,6 +775,15 @@ pg_result pg_runtime_set_frames_in_flight(pg_runtime *rt, uint32_t n, pg_error *
     if (r) return r;
     rt->n_in_flight = n;
     return PG_OK;
+}
+
+bool pg_runtime_gpu_times(const pg_runtime *rt, uint64_t frame, double *total_ms, double *pass_ms)
+{
+    const __typeof__(rt->gpu_hist[0]) *h = &rt->gpu_hist[frame % 4];
+    if (!h->valid || h->frame != frame || !rt->plan) return false;
+    if (total_ms) *total_ms = h->total_ms;
+    if (pass_ms) memcpy(pass_ms, h->pass_ms, sizeof(double) * rt->plan->n_order);
+    return true;
 }
 
 pg_result pg_runtime_wait_idle(pg_runtime *rt, pg_error *err)

@@ -157,6 +157,9 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
  * runs consecutive frames one after the other while the host records ahead. Waits for the
  * device first. */
 pg_result pg_runtime_set_frames_in_flight(pg_runtime *rt, uint32_t n, pg_error *err);
+/* The GPU times of frame `frame` (pg_frame_stats.frame) once its fence was seen signalled, among
+ * the last 4 such frames of the current plan; false otherwise. pass_ms: one per executed pass. */
+bool pg_runtime_gpu_times(const pg_runtime *rt, uint64_t frame, double *total_ms, double *pass_ms);
 /* Waits for every frame in flight (their timestamps become the next stats' GPU times). */
 pg_result pg_runtime_wait_idle(pg_runtime *rt, pg_error *err);
 /* Renders one frame; waits for it when 1 frame is in flight or readback is set (else only for

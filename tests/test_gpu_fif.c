@@ -30,7 +30,7 @@ static bool is_readback(uint32_t k) { return k == 2 || k == 4 || k == 7 || k == 
 typedef struct run {
     uint8_t *img[NF][2];
     size_t bytes[NF][2];
-    uint32_t sync_waits, fence_waits, ahead, frames;
+    uint32_t sync_waits, fence_waits, report_waits, ahead, frames;
 } run;
 
 static pg_session *open_session(const pg_scene_gpu *sg, const char *pipeline, uint32_t fif)
@@ -53,6 +53,7 @@ static void add_counts(run *r, pg_session *s)
     pg_runtime_stats rs = pg_runtime_get_stats(s->runtime);
     r->sync_waits += rs.sync_waits;
     r->fence_waits += rs.fence_waits;
+    r->report_waits += rs.report_waits;
     r->frames += (uint32_t)rs.frames_submitted;
 }
 
@@ -132,8 +133,9 @@ int main(void)
         printf("1 in flight: %u frames, %u waits for the frame just submitted, %u fence waits\n", a.frames,
                a.sync_waits, a.fence_waits);
         printf("2 in flight: %u frames, %u waits for the frame just submitted (read-backs), %u waits on an "
-               "earlier frame's fence, %u calls returned with a frame still running\n",
-               b.frames, b.sync_waits, b.fence_waits, b.ahead);
+               "earlier frame's fence, %u waits to read the pass reports, %u calls returned with a frame still "
+               "running\n",
+               b.frames, b.sync_waits, b.fence_waits, b.report_waits, b.ahead);
         printf("read-back frames identical: %u of %u\n", same, n_readback);
         CHECK_MSG(a.sync_waits == a.frames, "1 in flight must wait every frame (%u of %u)", a.sync_waits, a.frames);
         CHECK_MSG(b.sync_waits <= b.frames - (NF - n_readback),

@@ -797,6 +797,21 @@ static void reference_render(bench *B, pg_app *app, const pg_frame_info *fi0, co
     pg_session_destroy(s);
 }
 
+/* Stores the GPU times of runtime frames first..last that are known and not stored yet. */
+static void fetch_gpu(const bench *B, const pg_runtime *rt, uint64_t first, uint64_t last, uint32_t n_passes,
+                      double *samples)
+{
+    for (uint64_t fr = first; fr <= last && fr - first < B->opt.frames; fr++) {
+        const uint64_t gi = fr - first;
+        if (!isnan(samples[gi])) continue;
+        double total, pass[PG_MAX_PASSES];
+        if (!pg_runtime_gpu_times(rt, fr, &total, pass)) continue;
+        samples[gi] = total;
+        for (uint32_t p = 0; p < PG_MAX_PASSES && p < n_passes; p++)
+            samples[(size_t)(2 + p) * B->opt.frames + gi] = pass[p];
+    }
+}
+
 static void collect_stats(bench_row *row, const double *samples, uint32_t frames, uint32_t n_pass_cols)
 {
     /* samples: [0] gpu total, [1] cpu, [2 + p] pass p, [2 + n_pass_cols] wait; each a run of
@@ -875,11 +890,10 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
         row->grow_events += st.n_grown;
         if (k >= B->warmup) {
             uint32_t f = k - B->warmup;
-            /* GPU times arrive for frame st.gpu_frame (with 2 in flight usually the one before):
-             * each is stored at its own timed index */
+            /* GPU times arrive later with 2 in flight: each timed frame's are fetched by its
+             * frame number (pg_runtime_gpu_times) and stored at its own timed index */
             if (first_timed == UINT64_MAX) first_timed = st.frame;
-            const uint64_t gi = st.timestamps_valid && st.gpu_frame >= first_timed ? st.gpu_frame - first_timed : UINT64_MAX;
-            if (gi < B->opt.frames) samples[gi] = st.gpu_total_ms;
+            fetch_gpu(B, s->runtime, first_timed, st.frame, st.n_passes, samples);
             samples[B->opt.frames + f] = st.cpu_ms;
             samples[(size_t)(2 + PG_MAX_PASSES) * B->opt.frames + f] = st.wait_ms;
             if (f == 0) {
@@ -887,8 +901,6 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
                 for (uint32_t p = 0; p < st.n_passes; p++)
                     pg_strlcpy(row->passes[p].name, st.pass_names[p], sizeof row->passes[p].name);
             }
-            for (uint32_t p = 0; p < st.n_passes && p < row->n_passes && gi < B->opt.frames; p++)
-                samples[(size_t)(2 + p) * B->opt.frames + gi] = st.pass_ms[p];
             if (st.n_counters) {
                 row->has_overflow = true;
                 if (st.overflow_clusters > row->ov_clusters_max) row->ov_clusters_max = st.overflow_clusters;
@@ -897,6 +909,8 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
         }
         progress_draw(B, what, false);
     }
+    if (first_timed != UINT64_MAX && !pg_runtime_wait_idle(s->runtime, &e))
+        fetch_gpu(B, s->runtime, first_timed, first_timed + B->opt.frames - 1, row->n_passes, samples);
     if (s->plan) {
         row->has_memory = true;
         row->plan_unaliased = s->plan->transient_bytes_unaliased;
