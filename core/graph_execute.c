@@ -10,6 +10,12 @@
 
 #include <cjson/cJSON.h>
 
+typedef struct gpu_times {
+    uint64_t frame;
+    bool valid;
+    double total_ms, pass_ms[PG_MAX_PASSES];
+} gpu_times;
+
 struct pg_runtime {
     pg_gpu *gpu;
     const pg_graph_plan *plan;
@@ -47,11 +53,7 @@ struct pg_runtime {
     double gpu_pass_ms[PG_MAX_PASSES], gpu_total_ms;
     bool gpu_valid;
     uint64_t gpu_frame;
-    struct { /* the GPU times of the last frames collected, by frame number % 4 */
-        uint64_t frame;
-        bool valid;
-        double total_ms, pass_ms[PG_MAX_PASSES];
-    } gpu_hist[4];
+    gpu_times gpu_hist[4]; /* the GPU times of the last frames collected, by frame number % 4 */
     /* frames since the pass reports were last read; report_due: read them after the next frame
      * even if that means waiting (a new plan, a grown buffer) */
     uint32_t frames_unreported;
@@ -742,7 +744,7 @@ static void collect_timestamps(pg_runtime *rt, uint32_t f)
     rt->gpu_total_ms = ((ts[plan->n_order] - ts[0]) & mask) * (double)gpu->timestamp_period_ns * 1e-6;
     rt->gpu_valid = true;
     rt->gpu_frame = rt->slot[f].frame_no;
-    __typeof__(rt->gpu_hist[0]) *h = &rt->gpu_hist[rt->gpu_frame % 4];
+    gpu_times *h = &rt->gpu_hist[rt->gpu_frame % 4];
     h->frame = rt->gpu_frame;
     h->valid = true;
     h->total_ms = rt->gpu_total_ms;
@@ -779,7 +781,7 @@ pg_result pg_runtime_set_frames_in_flight(pg_runtime *rt, uint32_t n, pg_error *
 
 bool pg_runtime_gpu_times(const pg_runtime *rt, uint64_t frame, double *total_ms, double *pass_ms)
 {
-    const __typeof__(rt->gpu_hist[0]) *h = &rt->gpu_hist[frame % 4];
+    const gpu_times *h = &rt->gpu_hist[frame % 4];
     if (!h->valid || h->frame != frame || !rt->plan) return false;
     if (total_ms) *total_ms = h->total_ms;
     if (pass_ms) memcpy(pass_ms, h->pass_ms, sizeof(double) * rt->plan->n_order);
