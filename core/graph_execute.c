@@ -10,6 +10,12 @@
 
 #include <cjson/cJSON.h>
 
+typedef struct gpu_times {
+    uint64_t frame;
+    bool valid;
+    double total_ms, pass_ms[PG_MAX_PASSES];
+} gpu_times;
+
 struct pg_runtime {
     pg_gpu *gpu;
     const pg_graph_plan *plan;
@@ -25,15 +31,33 @@ struct pg_runtime {
     /* frame constants */
     VkDescriptorSetLayout frame_layout;
     VkDescriptorPool frame_pool;
-    VkDescriptorSet frame_set;
-    pg_buffer frame_ubo;
-    pg_frame_uniforms frame;
-    VkCommandBuffer cmd;
-    VkFence fence;
-    VkQueryPool queries;
+    /* frames in flight: everything the host writes or reads per frame has one copy per slot;
+     * frame k uses slot k % n_in_flight and waits only for the fence of frame k - n_in_flight */
+    struct {
+        VkDescriptorSet frame_set;
+        pg_buffer frame_ubo;
+        pg_frame_uniforms frame;
+        VkCommandBuffer cmd;
+        VkFence fence;
+        bool pending;              /* submitted, results not collected yet */
+        uint64_t frame_no;
+        VkQueryPool queries;
+        pg_buffer timestamps;      /* the query results, copied at the end of the frame */
+        pg_buffer readback[2];
+    } slot[PG_MAX_FRAMES_IN_FLIGHT];
+    uint32_t n_in_flight, cur;     /* cur: the slot of the last submitted frame */
+    uint64_t frame_no;
     uint32_t n_queries;
-    pg_buffer readback[2];
     bool readback_valid[2];
+    /* GPU times of the last frame whose fence was seen signalled */
+    double gpu_pass_ms[PG_MAX_PASSES], gpu_total_ms;
+    bool gpu_valid;
+    uint64_t gpu_frame;
+    gpu_times gpu_hist[4]; /* the GPU times of the last frames collected, by frame number % 4 */
+    /* frames since the pass reports were last read; report_due: read them after the next frame
+     * even if that means waiting (a new plan, a grown buffer) */
+    uint32_t frames_unreported;
+    bool report_due;
     pg_runtime_stats stats;
     const pg_param_override *settings; /* borrowed, see pg_runtime_set_settings */
     uint32_t n_settings;
@@ -110,6 +134,9 @@ static uint64_t plan_signature(const pg_runtime *rt, const pg_graph_plan *plan, 
     return s;
 }
 
+/* With frames in flight, the most frames between two readings of the pass reports. */
+#define PG_REPORT_EVERY 8
+
 static void destroy_built(pg_runtime *rt)
 {
     pg_gpu *gpu = rt->gpu;
@@ -135,12 +162,16 @@ static void destroy_built(pg_runtime *rt)
         rt->block_memory[i] = VK_NULL_HANDLE;
         rt->persistent_initialized[i] = false;
     }
-    for (int i = 0; i < 2; i++) {
-        pg_buffer_destroy(gpu, &rt->readback[i]);
-        rt->readback_valid[i] = false;
+    for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
+        for (int i = 0; i < 2; i++) pg_buffer_destroy(gpu, &rt->slot[f].readback[i]);
+        if (rt->slot[f].queries) vkDestroyQueryPool(gpu->device, rt->slot[f].queries, NULL);
+        pg_buffer_destroy(gpu, &rt->slot[f].timestamps);
+        rt->slot[f].queries = VK_NULL_HANDLE;
+        rt->slot[f].pending = false; /* the device is idle: every fence has signalled */
     }
-    if (rt->queries) vkDestroyQueryPool(gpu->device, rt->queries, NULL);
-    rt->queries = VK_NULL_HANDLE;
+    rt->readback_valid[0] = rt->readback_valid[1] = false;
+    rt->gpu_valid = false;
+    memset(rt->gpu_hist, 0, sizeof rt->gpu_hist);
     rt->built = false;
 }
 
@@ -150,10 +181,8 @@ pg_result pg_runtime_create(pg_gpu *gpu, pg_runtime **out, pg_error *err)
     pg_runtime *rt = calloc(1, sizeof *rt);
     if (!rt) return pg_fail(err, PG_ERR_OOM, "out of memory");
     rt->gpu = gpu;
+    rt->n_in_flight = 1;
     pg_result r;
-    if ((r = pg_buffer_create(gpu, sizeof(pg_frame_uniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true,
-                              "frame.uniforms", &rt->frame_ubo, err)))
-        goto fail;
     VkDescriptorSetLayoutBinding b = {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
                                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
                                           VK_SHADER_STAGE_COMPUTE_BIT,
@@ -162,32 +191,39 @@ pg_result pg_runtime_create(pg_gpu *gpu, pg_runtime **out, pg_error *err)
                                            .bindingCount = 1, .pBindings = &b};
     VkResult vr = vkCreateDescriptorSetLayout(gpu->device, &lci, NULL, &rt->frame_layout);
     if (vr) goto vkfail;
-    VkDescriptorPoolSize ps = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+    VkDescriptorPoolSize ps = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, PG_MAX_FRAMES_IN_FLIGHT};
     VkDescriptorPoolCreateInfo pci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-                                      .maxSets = 1, .poolSizeCount = 1, .pPoolSizes = &ps};
+                                      .maxSets = PG_MAX_FRAMES_IN_FLIGHT, .poolSizeCount = 1, .pPoolSizes = &ps};
     vr = vkCreateDescriptorPool(gpu->device, &pci, NULL, &rt->frame_pool);
     if (vr) goto vkfail;
-    VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
-                                      .descriptorPool = rt->frame_pool, .descriptorSetCount = 1,
-                                      .pSetLayouts = &rt->frame_layout};
-    vr = vkAllocateDescriptorSets(gpu->device, &ai, &rt->frame_set);
-    if (vr) goto vkfail;
-    VkDescriptorBufferInfo bi = {rt->frame_ubo.buffer, 0, VK_WHOLE_SIZE};
-    VkWriteDescriptorSet w = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = rt->frame_set,
-                              .dstBinding = 0, .descriptorCount = 1,
-                              .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &bi};
-    vkUpdateDescriptorSets(gpu->device, 1, &w, 0, NULL);
-    VkCommandBufferAllocateInfo cai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
-                                       .commandPool = gpu->cmd_pool,
-                                       .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
-                                       .commandBufferCount = 1};
-    vr = vkAllocateCommandBuffers(gpu->device, &cai, &rt->cmd);
-    if (vr) goto vkfail;
-    VkFenceCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    vr = vkCreateFence(gpu->device, &fci, NULL, &rt->fence);
-    if (vr) goto vkfail;
-    pg_gpu_name(gpu, VK_OBJECT_TYPE_COMMAND_BUFFER, (uint64_t)(uintptr_t)rt->cmd, "frame.commands");
-    pg_gpu_name(gpu, VK_OBJECT_TYPE_FENCE, (uint64_t)rt->fence, "frame.fence");
+    for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
+        char nm[32];
+        snprintf(nm, sizeof nm, "frame%u.uniforms", f);
+        if ((r = pg_buffer_create(gpu, sizeof(pg_frame_uniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true, nm,
+                                  &rt->slot[f].frame_ubo, err)))
+            goto fail;
+        VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                          .descriptorPool = rt->frame_pool, .descriptorSetCount = 1,
+                                          .pSetLayouts = &rt->frame_layout};
+        vr = vkAllocateDescriptorSets(gpu->device, &ai, &rt->slot[f].frame_set);
+        if (vr) goto vkfail;
+        VkDescriptorBufferInfo bi = {rt->slot[f].frame_ubo.buffer, 0, VK_WHOLE_SIZE};
+        VkWriteDescriptorSet w = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = rt->slot[f].frame_set,
+                                  .dstBinding = 0, .descriptorCount = 1,
+                                  .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &bi};
+        vkUpdateDescriptorSets(gpu->device, 1, &w, 0, NULL);
+        VkCommandBufferAllocateInfo cai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                           .commandPool = gpu->cmd_pool,
+                                           .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                           .commandBufferCount = 1};
+        vr = vkAllocateCommandBuffers(gpu->device, &cai, &rt->slot[f].cmd);
+        if (vr) goto vkfail;
+        VkFenceCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        vr = vkCreateFence(gpu->device, &fci, NULL, &rt->slot[f].fence);
+        if (vr) goto vkfail;
+        pg_gpu_name(gpu, VK_OBJECT_TYPE_COMMAND_BUFFER, (uint64_t)(uintptr_t)rt->slot[f].cmd, "frame%u.commands", f);
+        pg_gpu_name(gpu, VK_OBJECT_TYPE_FENCE, (uint64_t)rt->slot[f].fence, "frame%u.fence", f);
+    }
     pg_gpu_name(gpu, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, (uint64_t)rt->frame_layout, "frame.layout");
     *out = rt;
     return PG_OK;
@@ -203,11 +239,13 @@ void pg_runtime_destroy(pg_runtime *rt)
     if (!rt) return;
     pg_gpu *gpu = rt->gpu;
     destroy_built(rt);
-    if (rt->fence) vkDestroyFence(gpu->device, rt->fence, NULL);
-    if (rt->cmd) vkFreeCommandBuffers(gpu->device, gpu->cmd_pool, 1, &rt->cmd);
+    for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
+        if (rt->slot[f].fence) vkDestroyFence(gpu->device, rt->slot[f].fence, NULL);
+        if (rt->slot[f].cmd) vkFreeCommandBuffers(gpu->device, gpu->cmd_pool, 1, &rt->slot[f].cmd);
+        pg_buffer_destroy(gpu, &rt->slot[f].frame_ubo);
+    }
     if (rt->frame_pool) vkDestroyDescriptorPool(gpu->device, rt->frame_pool, NULL);
     if (rt->frame_layout) vkDestroyDescriptorSetLayout(gpu->device, rt->frame_layout, NULL);
-    pg_buffer_destroy(gpu, &rt->frame_ubo);
     free(rt);
 }
 
@@ -407,16 +445,27 @@ static pg_result build(pg_runtime *rt, pg_error *err)
         if (outs[k] < 0) continue;
         const pg_plan_resource *pr = &plan->resources[outs[k]];
         VkDeviceSize bytes = (VkDeviceSize)pr->width * pr->height * pg_format_get(pr->format)->bytes_per_pixel;
-        if ((r = pg_buffer_create(gpu, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true,
-                                  k ? "readback.hdr" : "readback.output", &rt->readback[k], err)))
-            return r;
+        for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
+            char nm[40];
+            snprintf(nm, sizeof nm, "frame%u.readback.%s", f, k ? "hdr" : "output");
+            if ((r = pg_buffer_create(gpu, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, nm,
+                                      &rt->slot[f].readback[k], err)))
+                return r;
+        }
     }
     rt->n_queries = plan->n_order + 1;
     if (gpu->timestamp_valid_bits) {
         VkQueryPoolCreateInfo qci = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
                                      .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = rt->n_queries};
-        PG_VK_TRY(err, vkCreateQueryPool(gpu->device, &qci, NULL, &rt->queries));
-        pg_gpu_name(gpu, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)rt->queries, "frame.timestamps");
+        for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
+            PG_VK_TRY(err, vkCreateQueryPool(gpu->device, &qci, NULL, &rt->slot[f].queries));
+            pg_gpu_name(gpu, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)rt->slot[f].queries, "frame%u.timestamps", f);
+            char nm[40];
+            snprintf(nm, sizeof nm, "frame%u.timestamp_results", f);
+            if ((r = pg_buffer_create(gpu, sizeof(uint64_t) * rt->n_queries, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, nm,
+                                      &rt->slot[f].timestamps, err)))
+                return r;
+        }
     }
     /* pass instances */
     for (uint32_t o = 0; o < plan->n_order; o++)
@@ -550,6 +599,7 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
                               const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err)
 {
     uint64_t sig = plan_signature(rt, plan, pipeline, scene, width, height);
+    rt->report_due = true; /* a new light count may need a buffer to grow: read the next report */
     if (rt->built && sig == rt->signature) {
         /* same physical layout: keep every object, adopt the new (identical) plan */
         rt->plan = plan;
@@ -676,27 +726,108 @@ static double now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
+/* Reads the timestamps of slot f (its fence has signalled) into rt->gpu_*. */
+static void collect_timestamps(pg_runtime *rt, uint32_t f)
+{
+    pg_gpu *gpu = rt->gpu;
+    const pg_graph_plan *plan = rt->plan;
+    rt->slot[f].pending = false;
+    if (!rt->slot[f].queries) return;
+    /* the frame copied its query results to a host-visible buffer (vkGetQueryPoolResults on
+     * lavapipe blocks until the frame submitted after this one is done too) */
+    if (!rt->slot[f].timestamps.mapped) return;
+    uint64_t ts[PG_MAX_PASSES + 1];
+    memcpy(ts, rt->slot[f].timestamps.mapped, sizeof(uint64_t) * rt->n_queries);
+    uint64_t mask = gpu->timestamp_valid_bits >= 64 ? ~0ull : ((1ull << gpu->timestamp_valid_bits) - 1);
+    for (uint32_t o = 0; o < plan->n_order; o++)
+        rt->gpu_pass_ms[o] = ((ts[o + 1] - ts[o]) & mask) * (double)gpu->timestamp_period_ns * 1e-6;
+    rt->gpu_total_ms = ((ts[plan->n_order] - ts[0]) & mask) * (double)gpu->timestamp_period_ns * 1e-6;
+    rt->gpu_valid = true;
+    rt->gpu_frame = rt->slot[f].frame_no;
+    gpu_times *h = &rt->gpu_hist[rt->gpu_frame % 4];
+    h->frame = rt->gpu_frame;
+    h->valid = true;
+    h->total_ms = rt->gpu_total_ms;
+    memcpy(h->pass_ms, rt->gpu_pass_ms, sizeof(double) * plan->n_order);
+}
+
+/* Waits for slot f's frame if it is pending; counts a wait that found the fence unsignalled. */
+static pg_result wait_slot(pg_runtime *rt, uint32_t f, double *wait_ms, pg_error *err)
+{
+    if (!rt->slot[f].pending) return PG_OK;
+    VkDevice dev = rt->gpu->device;
+    VkResult st = vkGetFenceStatus(dev, rt->slot[f].fence);
+    if (st == VK_NOT_READY) {
+        rt->stats.fence_waits++;
+        double tw = now_ms();
+        PG_VK_TRY(err, vkWaitForFences(dev, 1, &rt->slot[f].fence, VK_TRUE, UINT64_MAX));
+        *wait_ms += now_ms() - tw;
+    } else if (st != VK_SUCCESS) {
+        return pg_fail(err, PG_ERR_VULKAN, "frame fence: %s", pg_vk_result_name(st));
+    }
+    collect_timestamps(rt, f);
+    return PG_OK;
+}
+
+pg_result pg_runtime_set_frames_in_flight(pg_runtime *rt, uint32_t n, pg_error *err)
+{
+    if (n < 1 || n > PG_MAX_FRAMES_IN_FLIGHT)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "frames in flight: %u (1..%d)", n, PG_MAX_FRAMES_IN_FLIGHT);
+    pg_result r = pg_runtime_wait_idle(rt, err);
+    if (r) return r;
+    rt->n_in_flight = n;
+    return PG_OK;
+}
+
+bool pg_runtime_gpu_times(const pg_runtime *rt, uint64_t frame, double *total_ms, double *pass_ms)
+{
+    const gpu_times *h = &rt->gpu_hist[frame % 4];
+    if (!h->valid || h->frame != frame || !rt->plan) return false;
+    if (total_ms) *total_ms = h->total_ms;
+    if (pass_ms) memcpy(pass_ms, h->pass_ms, sizeof(double) * rt->plan->n_order);
+    return true;
+}
+
+pg_result pg_runtime_wait_idle(pg_runtime *rt, pg_error *err)
+{
+    double w = 0;
+    for (uint32_t k = 1; k <= PG_MAX_FRAMES_IN_FLIGHT; k++) { /* oldest first: the freshest times win */
+        pg_result r = wait_slot(rt, (rt->cur + k) % PG_MAX_FRAMES_IN_FLIGHT, &w, err);
+        if (r) return r;
+    }
+    return PG_OK;
+}
+
 pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool readback, pg_frame_stats *stats,
                             pg_error *err)
 {
     if (!rt->built) return pg_fail(err, PG_ERR_INVALID_ARG, "pg_runtime_render: no plan set");
     pg_gpu *gpu = rt->gpu;
     const pg_graph_plan *plan = rt->plan;
-    double t0 = now_ms();
+    double t0 = now_ms(), wait_ms = 0;
+    const uint32_t n_fif = rt->n_in_flight;
+    const uint32_t f = (uint32_t)(rt->frame_no % n_fif);
+    pg_result wr = wait_slot(rt, f, &wait_ms, err); /* the frame that used this slot n_fif frames ago */
+    if (wr) return wr;
     pg_frame_info fi = *info;
     fi.width = rt->width;
     fi.height = rt->height;
-    pg_frame_uniforms_fill(&fi, &rt->frame);
-    memcpy(rt->frame_ubo.mapped, &rt->frame, sizeof rt->frame);
+    pg_frame_uniforms_fill(&fi, &rt->slot[f].frame);
+    memcpy(rt->slot[f].frame_ubo.mapped, &rt->slot[f].frame, sizeof rt->slot[f].frame);
+    VkQueryPool queries = rt->slot[f].queries;
 
-    VkCommandBuffer cmd = rt->cmd;
+    VkCommandBuffer cmd = rt->slot[f].cmd;
     PG_VK_TRY(err, vkResetCommandBuffer(cmd, 0));
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                    .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     PG_VK_TRY(err, vkBeginCommandBuffer(cmd, &bi));
-    if (rt->queries) {
-        vkCmdResetQueryPool(cmd, rt->queries, 0, rt->n_queries);
-        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, rt->queries, 0);
+    /* With frames in flight the previous frame may still run: the frames share the graph's
+     * resources (persistent and transient bytes), so this frame's work starts after all earlier
+     * work on the queue (one full barrier; submission order makes it cover earlier submits). */
+    if (n_fif > 1) emit_full_barrier(cmd);
+    if (queries) {
+        vkCmdResetQueryPool(cmd, queries, 0, rt->n_queries);
+        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 0);
     }
     pg_error record_error = {0};
     for (uint32_t o = 0; o < plan->n_order; o++) {
@@ -713,8 +844,8 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
             .cmd = cmd,
             .pass = pass,
             .scene = rt->scene,
-            .frame_set = rt->frame_set,
-            .frame = &rt->frame,
+            .frame_set = rt->slot[f].frame_set,
+            .frame = &rt->slot[f].frame,
             .width = rt->width,
             .height = rt->height,
             .record_error = &record_error,
@@ -722,19 +853,27 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
         for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->res[pass->slots[s].resource];
         pass->type->record(rt->pass_state[pi], &ctx);
         if (gpu->cmd_end_label) gpu->cmd_end_label(cmd);
-        if (rt->queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, rt->queries, o + 1);
+        if (queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, o + 1);
     }
     if (plan->immediate) emit_full_barrier(cmd);
     emit_barriers(rt, cmd, plan->n_final_barriers, plan->final_barriers);
+    if (queries) {
+        vkCmdCopyQueryPoolResults(cmd, queries, 0, rt->n_queries, rt->slot[f].timestamps.buffer, 0, sizeof(uint64_t),
+                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+        VkBufferMemoryBarrier2 tb = pg_buffer_barrier(rt->slot[f].timestamps.buffer, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                                      VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                                                      VK_ACCESS_2_HOST_READ_BIT);
+        pg_cmd_barriers(cmd, 0, NULL, 1, &tb);
+    }
     int outs[2] = {plan->output, plan->hdr_output};
     for (int k = 0; k < 2; k++) {
         rt->readback_valid[k] = false;
-        if (!readback || outs[k] < 0 || !rt->readback[k].buffer) continue;
+        if (!readback || outs[k] < 0 || !rt->slot[f].readback[k].buffer) continue;
         const pg_phys_resource *r = &rt->res[outs[k]];
         VkBufferImageCopy c = {.imageSubresource = {pg_vk_aspect(r->format), 0, 0, 1},
                                .imageExtent = {r->width, r->height, 1}};
-        vkCmdCopyImageToBuffer(cmd, r->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, rt->readback[k].buffer, 1, &c);
-        VkBufferMemoryBarrier2 hb = pg_buffer_barrier(rt->readback[k].buffer, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+        vkCmdCopyImageToBuffer(cmd, r->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, rt->slot[f].readback[k].buffer, 1, &c);
+        VkBufferMemoryBarrier2 hb = pg_buffer_barrier(rt->slot[f].readback[k].buffer, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                                   VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
         pg_cmd_barriers(cmd, 0, NULL, 1, &hb);
         rt->readback_valid[k] = true;
@@ -747,12 +886,45 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
     VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
     VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
                         .pCommandBufferInfos = &cbi};
-    PG_VK_TRY(err, vkResetFences(gpu->device, 1, &rt->fence));
-    PG_VK_TRY(err, vkQueueSubmit2(gpu->queue, 1, &si, rt->fence));
-    PG_VK_TRY(err, vkWaitForFences(gpu->device, 1, &rt->fence, VK_TRUE, UINT64_MAX));
+    PG_VK_TRY(err, vkResetFences(gpu->device, 1, &rt->slot[f].fence));
+    PG_VK_TRY(err, vkQueueSubmit2(gpu->queue, 1, &si, rt->slot[f].fence));
+    rt->slot[f].pending = true;
+    rt->slot[f].frame_no = rt->frame_no++;
+    rt->cur = f;
+    rt->stats.frames_submitted++;
+    /* one frame in flight, or a read-back: wait for this frame (its staging is read after its fence) */
+    if (n_fif == 1 || readback) {
+        rt->stats.sync_waits++;
+        double tw = now_ms();
+        PG_VK_TRY(err, vkWaitForFences(gpu->device, 1, &rt->slot[f].fence, VK_TRUE, UINT64_MAX));
+        wait_ms += now_ms() - tw;
+        collect_timestamps(rt, f);
+    }
     for (uint32_t i = 0; i < plan->n_resources; i++)
         if (!plan->resources[i].culled && plan->resources[i].lifetime != PG_LIFETIME_TRANSIENT)
             rt->persistent_initialized[i] = true;
+    /* pass reports read what the passes' host-visible buffers hold: only when no frame is in
+     * flight (checked, never waited for), else the passes may be writing them */
+    bool idle = true;
+    for (uint32_t k = 1; k <= n_fif; k++) {
+        uint32_t g = (f + k) % n_fif; /* oldest first */
+        if (!rt->slot[g].pending) continue;
+        VkResult fs = vkGetFenceStatus(gpu->device, rt->slot[g].fence);
+        if (fs == VK_SUCCESS) collect_timestamps(rt, g);
+        else idle = false;
+    }
+    /* Pass reports (overflow counters, growth requests) must still arrive: after a new plan or a
+     * growth, and at least every PG_REPORT_EVERY frames, wait for the frames in flight. */
+    if (!idle && (rt->report_due || rt->frames_unreported + 1 >= PG_REPORT_EVERY)) {
+        double tw = now_ms();
+        pg_result ir = pg_runtime_wait_idle(rt, err);
+        if (ir) return ir;
+        wait_ms += now_ms() - tw;
+        rt->stats.report_waits++;
+        idle = true;
+    }
+    rt->report_due = false;
+    rt->frames_unreported = idle ? 0 : rt->frames_unreported + 1;
 
     pg_frame_stats local_stats;
     if (!stats) stats = &local_stats;
@@ -761,22 +933,18 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
         stats->n_passes = plan->n_order;
         for (uint32_t o = 0; o < plan->n_order; o++)
             pg_strlcpy(stats->pass_names[o], plan->passes[plan->order[o]].name, PG_NAME_MAX);
-        if (rt->queries) {
-            uint64_t ts[PG_MAX_PASSES + 1];
-            VkResult qr = vkGetQueryPoolResults(gpu->device, rt->queries, 0, rt->n_queries,
-                                                sizeof(uint64_t) * rt->n_queries, ts, sizeof(uint64_t),
-                                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
-            if (qr == VK_SUCCESS) {
-                uint64_t mask = gpu->timestamp_valid_bits >= 64 ? ~0ull : ((1ull << gpu->timestamp_valid_bits) - 1);
-                for (uint32_t o = 0; o < plan->n_order; o++) {
-                    uint64_t d = (ts[o + 1] - ts[o]) & mask;
-                    stats->pass_ms[o] = d * (double)gpu->timestamp_period_ns * 1e-6;
-                }
-                stats->gpu_total_ms = ((ts[plan->n_order] - ts[0]) & mask) * (double)gpu->timestamp_period_ns * 1e-6;
-                stats->timestamps_valid = true;
-            }
+        stats->frame = rt->slot[f].frame_no;
+        stats->in_flight = n_fif;
+        stats->wait_ms = wait_ms;
+        if (rt->gpu_valid) {
+            memcpy(stats->pass_ms, rt->gpu_pass_ms, sizeof(double) * plan->n_order);
+            stats->gpu_total_ms = rt->gpu_total_ms;
+            stats->gpu_frame = rt->gpu_frame;
+            stats->timestamps_valid = true;
         }
-        for (uint32_t o = 0; o < plan->n_order; o++) {
+        stats->reports_valid = idle;
+        if (!idle) rt->stats.reports_skipped++;
+        for (uint32_t o = 0; o < plan->n_order && idle; o++) {
             const pg_plan_pass *pass = &plan->passes[plan->order[o]];
             if (!pass->type->report) continue;
             pg_pass_report rep = {0};
@@ -795,6 +963,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
                 if (rep.grow[k].slot >= pass->n_slots) continue;
                 int ri = pass->slots[rep.grow[k].slot].resource;
                 if (ri < 0 || !plan->resources[ri].growable) continue;
+                rt->report_due = true; /* the frame after a growth shows whether it sufficed */
                 pg_result gr = grow_buffer(rt, ri, rep.grow[k].needed, rep.grow[k].max, stats, err);
                 if (gr) return gr;
                 if (!rt->built) return pg_fail(err, PG_ERR_VULKAN, "runtime lost its plan while growing a buffer");
@@ -802,7 +971,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
         }
         if (rt->grow_note[0] && stats->n_notes < 4)
             pg_strlcpy(stats->notes[stats->n_notes++], rt->grow_note, sizeof stats->notes[0]);
-        stats->cpu_ms = now_ms() - t0;
+        stats->cpu_ms = now_ms() - t0 - wait_ms;
     }
     return PG_OK;
 }
@@ -816,7 +985,7 @@ const void *pg_runtime_output(const pg_runtime *rt, int which, uint32_t *w, uint
     if (w) *w = pr->width;
     if (h) *h = pr->height;
     if (fmt) *fmt = pr->format;
-    return rt->readback[which].mapped;
+    return rt->slot[rt->cur].readback[which].mapped;
 }
 
 pg_runtime_stats pg_runtime_get_stats(const pg_runtime *rt)

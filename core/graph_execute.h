@@ -87,7 +87,18 @@ typedef struct pg_frame_stats {
     char pass_names[PG_MAX_PASSES][PG_NAME_MAX];
     double pass_ms[PG_MAX_PASSES];    /* GPU time from timestamps (includes the pass's barriers) */
     double gpu_total_ms;
-    double cpu_ms;                    /* record + submit + wait */
+    double cpu_ms;                    /* host time of pg_runtime_render less wait_ms: record,
+                                       * submit, reading stats */
+    double wait_ms;                   /* host time blocked on fences in this call */
+    uint64_t frame;                   /* this frame's number (0, 1, ... per runtime) */
+    uint32_t in_flight;               /* frames in flight it was rendered with */
+    /* pass_ms/gpu_total_ms are those of frame gpu_frame: this frame when the call waited for
+     * it (1 in flight, or readback), else the last one seen finished (usually frame - 1) */
+    uint64_t gpu_frame;
+    /* false: another frame was still in flight, so the pass reports (counters, notes, growth)
+     * were not read this frame (they are after a new plan or a growth and at least every 8th
+     * frame: pg_runtime_stats.report_waits) */
+    bool reports_valid;
     bool timestamps_valid;
     /* counters reported by passes (pg_pass_type.report), e.g. cluster overflow */
     uint32_t n_counters;
@@ -118,6 +129,13 @@ typedef struct pg_runtime_stats {
                                        * type, or alignment padding: alias_pack.h) */
     uint32_t grow_events;             /* "grow" buffers re-created larger, over the runtime's life */
     uint64_t grow_bytes;              /* current bytes of all "grow" buffers */
+    uint64_t frames_submitted;
+    uint32_t fence_waits;             /* waits on an earlier frame's fence that found it unsignalled */
+    uint32_t sync_waits;              /* waits for the frame just submitted (1 in flight, readback) */
+    uint32_t reports_skipped;         /* frames whose pass reports were not read (see reports_valid) */
+    uint32_t report_waits;            /* waits for the frames in flight so the pass reports could be
+                                       * read: after a new plan or a growth, and at least every 8th
+                                       * frame (with 2 in flight the passes' counters have one copy) */
 } pg_runtime_stats;
 
 typedef struct pg_runtime pg_runtime;
@@ -131,7 +149,22 @@ void pg_runtime_set_settings(pg_runtime *rt, const pg_param_override *settings, 
 /* plan, pipeline and scene are borrowed and must stay alive until the next set_plan/destroy. */
 pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
                               const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err);
-/* Renders one frame and waits for it. readback: copy the outputs for pg_runtime_output(). */
+#define PG_MAX_FRAMES_IN_FLIGHT 2
+/* Frames in flight (1, the default, or 2). With 2, frame k uses its own command buffer, fence,
+ * frame-uniform buffer and descriptor set, timestamp pool and readback staging (slot k % 2), and
+ * pg_runtime_render waits only for frame k - 2's fence. The frames share the graph's resources
+ * (persistent and transient memory): each frame's commands begin with a full barrier, so the GPU
+ * runs consecutive frames one after the other while the host records ahead. Waits for the
+ * device first. */
+pg_result pg_runtime_set_frames_in_flight(pg_runtime *rt, uint32_t n, pg_error *err);
+/* The GPU times of frame `frame` (pg_frame_stats.frame) once its fence was seen signalled, among
+ * the last 4 such frames of the current plan; false otherwise. pass_ms: one per executed pass. */
+bool pg_runtime_gpu_times(const pg_runtime *rt, uint64_t frame, double *total_ms, double *pass_ms);
+/* Waits for every frame in flight (their timestamps become the next stats' GPU times). */
+pg_result pg_runtime_wait_idle(pg_runtime *rt, pg_error *err);
+/* Renders one frame; waits for it when 1 frame is in flight or readback is set (else only for
+ * the frame that used the same slot, see pg_runtime_set_frames_in_flight). readback: copy the
+ * outputs for pg_runtime_output(). */
 pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool readback,
                             pg_frame_stats *stats, pg_error *err);
 /* Pixels of the last read-back frame: which = 0 the output, 1 the hdr_output (NULL if none). */

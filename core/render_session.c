@@ -111,6 +111,12 @@ pg_result pg_session_render(pg_session *s, const pg_frame_info *info, bool readb
     return PG_OK;
 }
 
+pg_result pg_session_set_frames_in_flight(pg_session *s, uint32_t n, pg_error *err)
+{
+    if (!s->runtime) return pg_fail(err, PG_ERR_INVALID_ARG, "session has no GPU");
+    return pg_runtime_set_frames_in_flight(s->runtime, n, err);
+}
+
 void pg_session_destroy(pg_session *s)
 {
     if (!s) return;

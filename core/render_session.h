@@ -52,6 +52,8 @@ pg_result pg_session_create(pg_gpu *gpu, const pg_scene_gpu *scene, const pg_ses
 /* Compiles for (lights, width, height) if they changed, then renders one frame. */
 pg_result pg_session_render(pg_session *s, const pg_frame_info *info, bool readback,
                             pg_frame_stats *stats, pg_error *err);
+/* Frames in flight of the session's runtime (1 or 2; pg_runtime_set_frames_in_flight). */
+pg_result pg_session_set_frames_in_flight(pg_session *s, uint32_t n, pg_error *err);
 /* Compiles without rendering (for --explain and dumps). */
 pg_result pg_session_compile(pg_session *s, uint32_t light_count, uint32_t width, uint32_t height,
                              pg_error *err);

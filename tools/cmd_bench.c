@@ -35,7 +35,8 @@ static const char *const bench_help =
     "usage: passgraph bench [--pipelines LIST|all] [--lights N,N,...] [--size WxH,WxH,...] --out DIR [options]\n"
     "Renders every pipeline (x every --sweep variant) at every light count and output size and records,\n"
     "per configuration: GPU ms per pass and in total from timestamps (median, mean, min, max, p95 over\n"
-    "--frames timed frames after --warmup), CPU frame time (record + submit + wait), transient memory\n"
+    "--frames timed frames after --warmup), CPU time (cpu_ms: record + submit, host; wait_ms: host\n"
+    "time blocked on fences; --frames-in-flight, default 2), transient memory\n"
     "before/after aliasing (the plan's numbers and the device memory allocated), light overflow of\n"
     "clustered pipelines, and the image error against the reference pipeline at --time (RMSE, PSNR,\n"
     "max abs; linear HDR and 8-bit display). Writes DIR/results.csv, DIR/results.json and the charts\n"
@@ -63,6 +64,7 @@ static const char *const bench_help_options =
     "  --size WxH,WxH,...   output sizes (default 640x360)\n"
     "  --scene FILE,...     one or more scenes (default: the built-in atrium); --scenario applies to each\n"
     "  --warmup N           untimed frames before the timed ones (default 2)\n"
+    "  --frames-in-flight N 1 or 2 (default 2): with 2 the host waits only for the frame two back\n"
     "  --frames N           timed frames per configuration (default 10)\n"
     "  --time T             the error frame's animation time, and the first timed frame's (default 0)\n"
     "  --time-step S        animation time added per frame (default 0.0166667 = 1/60 s; 0: every frame\n"
@@ -143,7 +145,7 @@ typedef struct bench_row {
     row_status status;
     char message[PG_ERROR_MSG_MAX];
     uint32_t frames;                  /* timed frames measured */
-    pg_sample_stats gpu, cpu;
+    pg_sample_stats gpu, cpu, wait;
     uint32_t n_passes;
     pass_stat passes[PG_MAX_PASSES];
     bool has_memory;
@@ -197,6 +199,7 @@ typedef struct bench {
     uint32_t ref_max_lights;
     bool device_known, device_cpu;    /* VK_PHYSICAL_DEVICE_TYPE_CPU: the default limit is a budget */
     uint32_t warmup;
+    uint32_t frames_in_flight;
     double time_step;
     const char *out_dir;
     /* results */
@@ -720,7 +723,7 @@ static bench_row *new_row(bench *B, pg_error *err)
     bench_row *r = &B->rows[B->n_rows++];
     memset(r, 0, sizeof *r);
     r->gpu.median = r->gpu.mean = r->gpu.min = r->gpu.max = r->gpu.p95 = NAN;
-    r->cpu = r->gpu;
+    r->cpu = r->wait = r->gpu;
     return r;
 }
 
@@ -794,11 +797,28 @@ static void reference_render(bench *B, pg_app *app, const pg_frame_info *fi0, co
     pg_session_destroy(s);
 }
 
+/* Stores the GPU times of runtime frames first..last that are known and not stored yet. */
+static void fetch_gpu(const bench *B, const pg_runtime *rt, uint64_t first, uint64_t last, uint32_t n_passes,
+                      double *samples)
+{
+    for (uint64_t fr = first; fr <= last && fr - first < B->opt.frames; fr++) {
+        const uint64_t gi = fr - first;
+        if (!isnan(samples[gi])) continue;
+        double total, pass[PG_MAX_PASSES];
+        if (!pg_runtime_gpu_times(rt, fr, &total, pass)) continue;
+        samples[gi] = total;
+        for (uint32_t p = 0; p < PG_MAX_PASSES && p < n_passes; p++)
+            samples[(size_t)(2 + p) * B->opt.frames + gi] = pass[p];
+    }
+}
+
 static void collect_stats(bench_row *row, const double *samples, uint32_t frames, uint32_t n_pass_cols)
 {
-    /* samples: [0] gpu total, [1] cpu, [2 + p] pass p; each a run of `frames` */
+    /* samples: [0] gpu total, [1] cpu, [2 + p] pass p, [2 + n_pass_cols] wait; each a run of
+     * `frames` */
     pg_sample_stats_compute(samples, row->frames, &row->gpu, NULL);
     pg_sample_stats_compute(samples + frames, row->frames, &row->cpu, NULL);
+    pg_sample_stats_compute(samples + (size_t)(2 + n_pass_cols) * frames, row->frames, &row->wait, NULL);
     for (uint32_t p = 0; p < row->n_passes && p < n_pass_cols; p++)
         pg_sample_stats_compute(samples + (size_t)(2 + p) * frames, row->frames, &row->passes[p].st, NULL);
 }
@@ -850,14 +870,19 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
     double *samples = NULL;
     float *hdr = NULL;
     uint8_t *ldr = NULL;
-    if (pg_session_create(app->gpu, app->scene_gpu, &desc, &s, &e)) goto fail;
-    samples = calloc((size_t)B->opt.frames * (PG_MAX_PASSES + 2), sizeof *samples);
+    if (pg_session_create(app->gpu, app->scene_gpu, &desc, &s, &e) ||
+        pg_session_set_frames_in_flight(s, B->frames_in_flight, &e))
+        goto fail;
+    samples = calloc((size_t)B->opt.frames * (PG_MAX_PASSES + 3), sizeof *samples);
     if (!samples) {
         pg_fail(&e, PG_ERR_OOM, "out of memory");
         goto fail;
     }
     pg_frame_stats st;
     pg_frame_info fi = *fi0;
+    uint64_t first_timed = UINT64_MAX; /* runtime frame number of the first timed frame */
+    for (uint32_t f = 0; f < B->opt.frames; f++) samples[f] = NAN;
+    for (size_t f = 2 * (size_t)B->opt.frames; f < (size_t)B->opt.frames * (PG_MAX_PASSES + 2); f++) samples[f] = NAN;
     for (uint32_t k = 0; k < nf && !g_interrupted; k++) {
         fi.time = (float)(B->opt.time + k * B->time_step);
         if (pg_session_render(s, &fi, false, &st, &e)) goto fail;
@@ -865,15 +890,17 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
         row->grow_events += st.n_grown;
         if (k >= B->warmup) {
             uint32_t f = k - B->warmup;
-            samples[f] = st.timestamps_valid ? st.gpu_total_ms : NAN;
+            /* GPU times arrive later with 2 in flight: each timed frame's are fetched by its
+             * frame number (pg_runtime_gpu_times) and stored at its own timed index */
+            if (first_timed == UINT64_MAX) first_timed = st.frame;
+            fetch_gpu(B, s->runtime, first_timed, st.frame, st.n_passes, samples);
             samples[B->opt.frames + f] = st.cpu_ms;
+            samples[(size_t)(2 + PG_MAX_PASSES) * B->opt.frames + f] = st.wait_ms;
             if (f == 0) {
                 row->n_passes = st.n_passes;
                 for (uint32_t p = 0; p < st.n_passes; p++)
                     pg_strlcpy(row->passes[p].name, st.pass_names[p], sizeof row->passes[p].name);
             }
-            for (uint32_t p = 0; p < st.n_passes && p < row->n_passes; p++)
-                samples[(size_t)(2 + p) * B->opt.frames + f] = st.timestamps_valid ? st.pass_ms[p] : NAN;
             if (st.n_counters) {
                 row->has_overflow = true;
                 if (st.overflow_clusters > row->ov_clusters_max) row->ov_clusters_max = st.overflow_clusters;
@@ -882,6 +909,8 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
         }
         progress_draw(B, what, false);
     }
+    if (first_timed != UINT64_MAX && !pg_runtime_wait_idle(s->runtime, &e))
+        fetch_gpu(B, s->runtime, first_timed, first_timed + B->opt.frames - 1, row->n_passes, samples);
     if (s->plan) {
         row->has_memory = true;
         row->plan_unaliased = s->plan->transient_bytes_unaliased;
@@ -1042,8 +1071,9 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
           "device_transient_bytes_aliased,overflow_clusters,overflow_dropped,overflow_clusters_max,light_refs,list_bytes,"
           "grow_events,reference,"
           "rmse_linear,psnr_linear,max_abs_linear,peak_linear,rmse_display,psnr_display,max_abs_display,"
-          "share_over_1,nonfinite,error_note,pipeline_path,reference_sets",
+          "share_over_1,nonfinite,error_note,pipeline_path,reference_sets,frames_in_flight",
           f);
+    for (int k = 0; k < 5; k++) fprintf(f, ",wait_ms_%s", stat_names[k]);
     for (uint32_t p = 0; p < u->n; p++)
         for (int k = 0; k < 5; k++) fprintf(f, ",pass_%s_ms_%s", u->names[p], stat_names[k]);
     fputc('\n', f);
@@ -1087,6 +1117,8 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
         csv_str(f, r->error_note, false);
         csv_str(f, pe->path, false);
         csv_str(f, B->refs[va->ref].label, false);
+        fprintf(f, ",%u", B->frames_in_flight);
+        for (int k = 0; k < 5; k++) csv_num(f, stat_get(&r->wait, k));
         for (uint32_t p = 0; p < u->n; p++) {
             const pass_stat *ps = NULL;
             for (uint32_t q = 0; q < r->n_passes && !ps; q++)
@@ -1170,6 +1202,7 @@ static cJSON *json_meta(const bench *B)
         cJSON_AddStringToObject(so, B->sides.reference.ov[i].key, B->sides.reference.ov[i].value);
     cJSON_AddStringToObject(m, "reference_sweeps", B->ref_sweeps);
     cJSON_AddNumberToObject(m, "warmup", B->warmup);
+    cJSON_AddNumberToObject(m, "frames_in_flight", B->frames_in_flight);
     cJSON_AddNumberToObject(m, "frames", B->opt.frames);
     cJSON_AddNumberToObject(m, "time", B->opt.time);
     cJSON_AddNumberToObject(m, "time_step", B->time_step);
@@ -1217,6 +1250,7 @@ static cJSON *json_row(const bench *B, const bench_row *r)
     cJSON_AddNumberToObject(o, "frames", r->frames);
     cJSON_AddItemToObject(o, "gpu_ms", jstats(&r->gpu));
     cJSON_AddItemToObject(o, "cpu_ms", jstats(&r->cpu));
+    cJSON_AddItemToObject(o, "wait_ms", jstats(&r->wait));
     cJSON *ps = cJSON_AddArrayToObject(o, "passes");
     for (uint32_t p = 0; ps && p < r->n_passes; p++) {
         cJSON *x = jstats(&r->passes[p].st);
@@ -1717,6 +1751,7 @@ int pg_cmd_bench(int argc, char **argv)
     pg_cli_defaults(&B->opt);
     B->opt.frames = 10;
     B->warmup = 2;
+    B->frames_in_flight = 2;
     B->time_step = 1.0 / 60.0;
     pg_error err = {0};
     char *pipelines = NULL, *lights = NULL, *sizes = NULL, *scenes = NULL;
@@ -1734,6 +1769,7 @@ int pg_cmd_bench(int argc, char **argv)
         }
         bool takes = !strcmp(a, "--pipelines") || !strcmp(a, "--lights") || !strcmp(a, "--size") ||
                      !strcmp(a, "--scene") || !strcmp(a, "--sweep") || !strcmp(a, "--warmup") ||
+                     !strcmp(a, "--frames-in-flight") ||
                      !strcmp(a, "--naive-max-lights") || !strcmp(a, "--reference-max-lights") ||
                      !strcmp(a, "--time-step") || !strcmp(a, "--reference");
         if (takes) {
@@ -1755,6 +1791,10 @@ int pg_cmd_bench(int argc, char **argv)
                 r = parse_sweep(B, v, &err);
             } else if (!strcmp(a, "--warmup")) {
                 r = parse_u32_opt(a, v, 10000, &B->warmup, &err);
+            } else if (!strcmp(a, "--frames-in-flight")) {
+                r = parse_u32_opt(a, v, PG_MAX_FRAMES_IN_FLIGHT, &B->frames_in_flight, &err);
+                if (!r && !B->frames_in_flight)
+                    r = pg_fail(&err, PG_ERR_INVALID_ARG, "--frames-in-flight: 1 or %d", PG_MAX_FRAMES_IN_FLIGHT);
             } else if (!strcmp(a, "--reference-max-lights") || !strcmp(a, "--naive-max-lights")) {
                 if (!strcmp(a, "--naive-max-lights") && !warned_naive) {
                     fprintf(stderr, "passgraph bench: warning: --naive-max-lights is deprecated; use "
@@ -1889,7 +1929,7 @@ int pg_cmd_bench(int argc, char **argv)
                             *row = (bench_row){.scene = sc, .pipe = p, .variant = v, .lights = B->lights[li],
                                                .width = B->widths[si], .height = B->heights[si], .status = ROW_ERROR};
                             row->gpu.median = row->gpu.mean = row->gpu.min = row->gpu.max = row->gpu.p95 = NAN;
-                            row->cpu = row->gpu;
+                            row->cpu = row->wait = row->gpu;
                             snprintf(row->message, sizeof row->message, "%s", ae.msg);
                             B->rows_done++;
                         }

@@ -17,6 +17,7 @@
 #include <GLFW/glfw3.h>
 
 #include "app.h"
+#include "bench_stats.h"
 #include "commands.h"
 #include "image_compare.h"
 #include "image_util.h"
@@ -83,6 +84,9 @@ typedef struct viewer {
     uint32_t reloads;
     /* scripted mode */
     uint32_t frames_limit, cycle_every;
+    uint32_t frames_in_flight;           /* of the displayed graph: 2 (default) or 1 */
+    double frame_ms[512];                /* host time per drawn frame (the first 512), for the exit line */
+    uint32_t n_frame_ms;
     bool cycle, random_params;
     char cycle_tried[PG_PATH_MAX]; /* the pipeline the last cycling step asked for while it has
                                     * not loaded ("": none, or it loaded) */
@@ -218,7 +222,13 @@ static pg_result open_session(viewer *v, const char *path, bool with_overrides, 
         .settings = v->settings,
         .n_settings = v->n_settings,
     };
-    return pg_session_create(v->app.gpu, v->app.scene_gpu, &sd, out, err);
+    pg_result r = pg_session_create(v->app.gpu, v->app.scene_gpu, &sd, out, err);
+    /* the displayed graph keeps two frames in flight; the reference of the diff view reads back */
+    if (!r && with_overrides && (r = pg_session_set_frames_in_flight(*out, v->frames_in_flight, err))) {
+        pg_session_destroy(*out);
+        *out = NULL;
+    }
+    return r;
 }
 
 /* Loads the requested pipeline; on failure keeps the running one and shows the error. */
@@ -854,6 +864,8 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
         }
         pg_frame_stats ns;
         if ((r = pg_session_render(v->naive, &fi, true, &ns, err))) return r;
+        /* the diff staging is written by the host: no viewer frame may still read it */
+        PG_VK_TRY(err, vkWaitForFences(gpu->device, PG_VIEW_FRAMES, w->fence, VK_TRUE, UINT64_MAX));
         if ((r = update_diff(v, err))) return r;
         show_diff = true;
     }
@@ -863,8 +875,11 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     v->hist_pos = (v->hist_pos + 1) % HIST;
     v->hist_n++;
 
+    /* this slot's previous frame (two frames ago) must be done with its command buffer and semaphore */
+    const uint32_t fs = w->slot;
+    PG_VK_TRY(err, vkWaitForFences(gpu->device, 1, &w->fence[fs], VK_TRUE, UINT64_MAX));
     uint32_t index;
-    VkResult vr = vkAcquireNextImageKHR(gpu->device, w->swapchain, UINT64_MAX, w->image_ready, VK_NULL_HANDLE, &index);
+    VkResult vr = vkAcquireNextImageKHR(gpu->device, w->swapchain, UINT64_MAX, w->image_ready[fs], VK_NULL_HANDLE, &index);
     if (vr == VK_ERROR_OUT_OF_DATE_KHR) { /* the semaphore was not signalled: rebuild, next frame */
         bool minimised;
         return pg_view_window_resize(w, &minimised, err);
@@ -874,7 +889,7 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
 
     build_ui(v);
 
-    VkCommandBuffer cmd = w->cmd;
+    VkCommandBuffer cmd = w->cmd[fs];
     PG_VK_TRY(err, vkResetCommandBuffer(cmd, 0));
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                    .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
@@ -945,7 +960,7 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     }
     PG_VK_TRY(err, vkEndCommandBuffer(cmd));
     VkSemaphoreSubmitInfo wait = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO,
-                                  .semaphore = w->image_ready,
+                                  .semaphore = w->image_ready[fs],
                                   .stageMask = VK_PIPELINE_STAGE_2_BLIT_BIT};
     VkSemaphoreSubmitInfo signal = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO,
                                     .semaphore = w->render_done[index],
@@ -958,8 +973,9 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
                         .pCommandBufferInfos = &cbi,
                         .signalSemaphoreInfoCount = 1,
                         .pSignalSemaphoreInfos = &signal};
-    PG_VK_TRY(err, vkResetFences(gpu->device, 1, &w->fence));
-    PG_VK_TRY(err, vkQueueSubmit2(gpu->queue, 1, &si, w->fence));
+    PG_VK_TRY(err, vkResetFences(gpu->device, 1, &w->fence[fs]));
+    PG_VK_TRY(err, vkQueueSubmit2(gpu->queue, 1, &si, w->fence[fs]));
+    w->slot = (fs + 1) % PG_VIEW_FRAMES;
     VkPresentInfoKHR pi = {.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR,
                            .waitSemaphoreCount = 1,
                            .pWaitSemaphores = &w->render_done[index],
@@ -967,8 +983,8 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
                            .pSwapchains = &w->swapchain,
                            .pImageIndices = &index};
     vr = vkQueuePresentKHR(gpu->queue, &pi);
-    PG_VK_TRY(err, vkWaitForFences(gpu->device, 1, &w->fence, VK_TRUE, UINT64_MAX));
-    if (shot) {
+    if (shot) { /* the screenshot is read after its own frame */
+        PG_VK_TRY(err, vkWaitForFences(gpu->device, 1, &w->fence[fs], VK_TRUE, UINT64_MAX));
         /* swapchain pixels -> RGBA for the PNG */
         uint32_t n = w->extent.width * w->extent.height;
         uint8_t *px = malloc((size_t)n * 4);
@@ -996,6 +1012,7 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
         return pg_fail(err, PG_ERR_VULKAN, "vkQueuePresentKHR failed: %s", pg_vk_result_name(vr));
     }
     v->cpu_frame_ms = (now_s() - t0) * 1e3;
+    if (v->n_frame_ms < 512) v->frame_ms[v->n_frame_ms++] = v->cpu_frame_ms;
     return PG_OK;
 }
 
@@ -1134,10 +1151,12 @@ int pg_cmd_view(int argc, char **argv)
     viewer *v = calloc(1, sizeof *v);
     if (!v) return 1;
     v->cycle_every = 20;
+    v->frames_in_flight = 2;
     for (int i = 0; i < argc; i++) {
         bool used;
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             printf("%s%s"
+                   "  --frames-in-flight N 2 (default) or 1: frames the displayed graph keeps in flight\n"
                    "  --size WxH           initial window size (default 1280x720)\n"
                    "  --pipelines DIR      also list the pipelines in DIR\n"
                    "  --screenshot FILE    write the window (scene + UI) to FILE (.png, .jpg) at the last frame\n"
@@ -1196,6 +1215,16 @@ int pg_cmd_view(int argc, char **argv)
         }
         if (!strcmp(argv[i], "--cycle-pipelines")) {
             v->cycle = true;
+            continue;
+        }
+        if (!strcmp(argv[i], "--frames-in-flight") && i + 1 < argc) {
+            long k = strtol(argv[++i], NULL, 10);
+            if (k < 1 || k > PG_MAX_FRAMES_IN_FLIGHT) {
+                fprintf(stderr, "passgraph view: --frames-in-flight %s: expected 1 or 2\n", argv[i]);
+                free(v);
+                return 2;
+            }
+            v->frames_in_flight = (uint32_t)k;
             continue;
         }
         if (!strcmp(argv[i], "--cycle-every") && i + 1 < argc) {
@@ -1390,6 +1419,13 @@ int pg_cmd_view(int argc, char **argv)
     }
     printf("view: %u frames, %u pipeline loads, %u swapchain builds, last GPU %.3f ms\n", frame, v->reloads,
            v->win.recreations, v->stats.gpu_total_ms);
+    if (v->n_frame_ms) { /* median host time of draw_frame (render + UI + blit + present) */
+        pg_sample_stats fs;
+        pg_error fe = {0};
+        if (!pg_sample_stats_compute(v->frame_ms, v->n_frame_ms, &fs, &fe))
+            printf("view: host frame time median %.3f ms over %u frames, %u frame(s) in flight\n", fs.median,
+                   v->n_frame_ms, v->frames_in_flight);
+    }
     if (frame > 100)
         printf("view: RSS frame 100 %.1f MiB, end %.1f MiB; VkDeviceMemory objects frame 100 %lld, end %lld\n",
                v->rss100 / 1048576.0, pg_process_rss() / 1048576.0, (long long)v->mem100,

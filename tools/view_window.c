@@ -103,14 +103,16 @@ pg_result pg_view_window_create(pg_view_window *w, pg_gpu *gpu, GLFWwindow *wind
     if ((res = make_render_pass(gpu, w->format, false, &w->pass_present, err))) return res;
     if ((res = make_render_pass(gpu, w->format, true, &w->pass_capture, err))) return res;
     VkSemaphoreCreateInfo sci = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-    PG_VK_TRY(err, vkCreateSemaphore(gpu->device, &sci, NULL, &w->image_ready));
-    VkFenceCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    PG_VK_TRY(err, vkCreateFence(gpu->device, &fci, NULL, &w->fence));
+    VkFenceCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, .flags = VK_FENCE_CREATE_SIGNALED_BIT};
     VkCommandBufferAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
                                       .commandPool = gpu->cmd_pool,
                                       .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
                                       .commandBufferCount = 1};
-    PG_VK_TRY(err, vkAllocateCommandBuffers(gpu->device, &ai, &w->cmd));
+    for (int f = 0; f < PG_VIEW_FRAMES; f++) {
+        PG_VK_TRY(err, vkCreateSemaphore(gpu->device, &sci, NULL, &w->image_ready[f]));
+        PG_VK_TRY(err, vkCreateFence(gpu->device, &fci, NULL, &w->fence[f]));
+        PG_VK_TRY(err, vkAllocateCommandBuffers(gpu->device, &ai, &w->cmd[f]));
+    }
     return PG_OK;
 }
 
@@ -210,9 +212,11 @@ void pg_view_window_destroy(pg_view_window *w)
     if (w->swapchain) vkDestroySwapchainKHR(dev, w->swapchain, NULL);
     if (w->pass_present) vkDestroyRenderPass(dev, w->pass_present, NULL);
     if (w->pass_capture) vkDestroyRenderPass(dev, w->pass_capture, NULL);
-    if (w->image_ready) vkDestroySemaphore(dev, w->image_ready, NULL);
-    if (w->fence) vkDestroyFence(dev, w->fence, NULL);
-    if (w->cmd) vkFreeCommandBuffers(dev, w->gpu->cmd_pool, 1, &w->cmd);
+    for (int f = 0; f < PG_VIEW_FRAMES; f++) {
+        if (w->image_ready[f]) vkDestroySemaphore(dev, w->image_ready[f], NULL);
+        if (w->fence[f]) vkDestroyFence(dev, w->fence[f], NULL);
+        if (w->cmd[f]) vkFreeCommandBuffers(dev, w->gpu->cmd_pool, 1, &w->cmd[f]);
+    }
     if (w->surface) vkDestroySurfaceKHR(w->gpu->instance, w->surface, NULL);
     memset(w, 0, sizeof *w);
 }

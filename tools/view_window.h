@@ -1,6 +1,6 @@
 /* view_window.h - the viewer's window side: GLFW window, Vulkan surface and swapchain (re-created
  * on resize / out-of-date, skipped while minimised), the UI render passes and per-frame
- * synchronisation (one frame in flight; the graph itself waits for its own fence). */
+ * synchronisation (two frames in flight, like the graph's runtime in the viewer). */
 #ifndef PG_VIEW_WINDOW_H
 #define PG_VIEW_WINDOW_H
 
@@ -13,6 +13,8 @@
 struct GLFWwindow;
 
 #define PG_VIEW_MAX_IMAGES 8
+
+#define PG_VIEW_FRAMES 2
 
 typedef struct pg_view_window {
     struct GLFWwindow *window;
@@ -27,11 +29,13 @@ typedef struct pg_view_window {
     VkImageView views[PG_VIEW_MAX_IMAGES];
     VkFramebuffer framebuffers[PG_VIEW_MAX_IMAGES];
     VkSemaphore render_done[PG_VIEW_MAX_IMAGES];
-    VkSemaphore image_ready;
+    VkSemaphore image_ready[PG_VIEW_FRAMES];
     VkRenderPass pass_present;    /* UI over the blitted frame, ends in PRESENT_SRC */
     VkRenderPass pass_capture;    /* same, ends in TRANSFER_SRC for a screenshot */
-    VkCommandBuffer cmd;
-    VkFence fence;
+    /* two frames in flight: frame k records cmd[k % 2] and waits only for fence[k % 2] */
+    VkCommandBuffer cmd[PG_VIEW_FRAMES];
+    VkFence fence[PG_VIEW_FRAMES];        /* created signalled */
+    uint32_t slot;
     bool usage_transfer_src;      /* swapchain images can be copied (screenshots) */
     uint32_t recreations;
 } pg_view_window;
