@@ -19,6 +19,10 @@ import base64
 import json
 import os
 import struct
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from gltfgen import box  # noqa: E402  (shared geometry, tests/corpus/gltf/gltfgen.py)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -33,25 +37,6 @@ def quad_z(x0, x1, y0, y1, z):
     """Quad in the plane z, facing +Z."""
     pos = [(x0, y0, z), (x1, y0, z), (x1, y1, z), (x0, y1, z)]
     return pos, [(0, 0, 1)] * 4, [0, 1, 2, 0, 2, 3]
-
-
-def box(mn, mx):
-    faces = [
-        ((1, 0, 0), [(1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1)]),
-        ((-1, 0, 0), [(0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 1, 0)]),
-        ((0, 1, 0), [(0, 1, 0), (0, 1, 1), (1, 1, 1), (1, 1, 0)]),
-        ((0, -1, 0), [(0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1)]),
-        ((0, 0, 1), [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]),
-        ((0, 0, -1), [(0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0)]),
-    ]
-    pos, nrm, idx = [], [], []
-    for n, corners in faces:
-        base = len(pos)
-        for c in corners:
-            pos.append(tuple(mn[k] + c[k] * (mx[k] - mn[k]) for k in range(3)))
-            nrm.append(n)
-        idx += [base, base + 1, base + 2, base, base + 2, base + 3]
-    return pos, nrm, idx
 
 
 def material(name, rgba, blend, double_sided=False):

@@ -22,59 +22,17 @@ import json
 import math
 import os
 import struct
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from gltfgen import box, look_rotation  # noqa: E402  (shared geometry, tests/corpus/gltf/gltfgen.py)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def box(mn, mx):
-    """24 vertices (flat normals), 36 indices."""
-    faces = [
-        ((1, 0, 0), [(1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1)]),
-        ((-1, 0, 0), [(0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 1, 0)]),
-        ((0, 1, 0), [(0, 1, 0), (0, 1, 1), (1, 1, 1), (1, 1, 0)]),
-        ((0, -1, 0), [(0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1)]),
-        ((0, 0, 1), [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]),
-        ((0, 0, -1), [(0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0)]),
-    ]
-    pos, nrm, idx = [], [], []
-    for n, corners in faces:
-        base = len(pos)
-        for c in corners:
-            pos.append(tuple(mn[k] + c[k] * (mx[k] - mn[k]) for k in range(3)))
-            nrm.append(n)
-        idx += [base, base + 1, base + 2, base, base + 2, base + 3]
-    return pos, nrm, idx
 
 
 def floor():
     pos = [(-3.5, 0, -1.5), (-3.5, 0, 1.5), (3.5, 0, 1.5), (3.5, 0, -1.5)]
     return pos, [(0, 1, 0)] * 4, [0, 1, 2, 0, 2, 3]
-
-
-def look_rotation(eye, target):
-    """Unit quaternion (x, y, z, w) turning the node's -Z to (target - eye), +Y kept up."""
-    f = [target[k] - eye[k] for k in range(3)]
-    l = math.sqrt(sum(x * x for x in f))
-    f = [x / l for x in f]
-    z = [-x for x in f]
-    up = (0, 1, 0)
-    x = [up[1] * z[2] - up[2] * z[1], up[2] * z[0] - up[0] * z[2], up[0] * z[1] - up[1] * z[0]]
-    xl = math.sqrt(sum(v * v for v in x))
-    x = [v / xl for v in x]
-    y = [z[1] * x[2] - z[2] * x[1], z[2] * x[0] - z[0] * x[2], z[0] * x[1] - z[1] * x[0]]
-    m = [[x[0], y[0], z[0]], [x[1], y[1], z[1]], [x[2], y[2], z[2]]]
-    tr = m[0][0] + m[1][1] + m[2][2]
-    if tr > 0:
-        s = math.sqrt(tr + 1.0) * 2
-        return [(m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s, 0.25 * s]
-    if m[0][0] > m[1][1] and m[0][0] > m[2][2]:
-        s = math.sqrt(1.0 + m[0][0] - m[1][1] - m[2][2]) * 2
-        return [0.25 * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s, (m[2][1] - m[1][2]) / s]
-    if m[1][1] > m[2][2]:
-        s = math.sqrt(1.0 + m[1][1] - m[0][0] - m[2][2]) * 2
-        return [(m[0][1] + m[1][0]) / s, 0.25 * s, (m[1][2] + m[2][1]) / s, (m[0][2] - m[2][0]) / s]
-    s = math.sqrt(1.0 + m[2][2] - m[0][0] - m[1][1]) * 2
-    return [(m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s, (m[1][0] - m[0][1]) / s]
 
 
 def scene(emissive, required=False, hot=False):

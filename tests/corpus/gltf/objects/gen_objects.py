@@ -20,32 +20,12 @@ import json
 import math
 import os
 import struct
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from gltfgen import b64, box, look_rotation  # noqa: E402  (shared geometry, tests/corpus/gltf/gltfgen.py)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def b64(data):
-    return "data:application/octet-stream;base64," + base64.b64encode(data).decode()
-
-
-def box(mn, mx):
-    """24 vertices (flat normals), 36 indices."""
-    faces = [  # normal, four corners (counter-clockwise seen from outside)
-        ((1, 0, 0), [(1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1)]),
-        ((-1, 0, 0), [(0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 1, 0)]),
-        ((0, 1, 0), [(0, 1, 0), (0, 1, 1), (1, 1, 1), (1, 1, 0)]),
-        ((0, -1, 0), [(0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1)]),
-        ((0, 0, 1), [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]),
-        ((0, 0, -1), [(0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0)]),
-    ]
-    pos, nrm, idx = [], [], []
-    for n, corners in faces:
-        base = len(pos)
-        for c in corners:
-            pos.append(tuple(mn[k] + c[k] * (mx[k] - mn[k]) for k in range(3)))
-            nrm.append(n)
-        idx += [base, base + 1, base + 2, base, base + 2, base + 3]
-    return pos, nrm, idx
 
 
 def sphere(center, r, nu=24, nv=12):
@@ -68,34 +48,6 @@ def sphere(center, r, nu=24, nv=12):
 def quad():
     pos = [(-1, 0, -1), (-1, 0, 1), (1, 0, 1), (1, 0, -1)]
     return pos, [(0, 1, 0)] * 4, [0, 1, 2, 0, 2, 3]
-
-
-def look_rotation(eye, target):
-    """Unit quaternion (x, y, z, w) turning the node's -Z to (target - eye), +Y kept up."""
-    f = [target[k] - eye[k] for k in range(3)]
-    l = math.sqrt(sum(x * x for x in f))
-    f = [x / l for x in f]
-    z = [-x for x in f]                       # node +Z = -forward
-    up = (0, 1, 0)
-    x = [up[1] * z[2] - up[2] * z[1], up[2] * z[0] - up[0] * z[2], up[0] * z[1] - up[1] * z[0]]
-    lx = math.sqrt(sum(v * v for v in x))
-    x = [v / lx for v in x]
-    y = [z[1] * x[2] - z[2] * x[1], z[2] * x[0] - z[0] * x[2], z[0] * x[1] - z[1] * x[0]]
-    m00, m01, m02 = x[0], y[0], z[0]
-    m10, m11, m12 = x[1], y[1], z[1]
-    m20, m21, m22 = x[2], y[2], z[2]
-    tr = m00 + m11 + m22
-    if tr > 0:
-        s = math.sqrt(tr + 1.0) * 2
-        return [(m21 - m12) / s, (m02 - m20) / s, (m10 - m01) / s, 0.25 * s]
-    if m00 > m11 and m00 > m22:
-        s = math.sqrt(1.0 + m00 - m11 - m22) * 2
-        return [0.25 * s, (m01 + m10) / s, (m02 + m20) / s, (m21 - m12) / s]
-    if m11 > m22:
-        s = math.sqrt(1.0 + m11 - m00 - m22) * 2
-        return [(m01 + m10) / s, 0.25 * s, (m12 + m21) / s, (m02 - m20) / s]
-    s = math.sqrt(1.0 + m22 - m00 - m11) * 2
-    return [(m02 + m20) / s, (m12 + m21) / s, 0.25 * s, (m10 - m01) / s]
 
 
 def doc(mesh, cameras=None, camera_nodes=None):
