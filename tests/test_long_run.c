@@ -4,8 +4,9 @@
  * count, aliasing on/off), validation + synchronization validation on; with PG_LONG_RUN_FIXED one
  * configuration (deferred_packed, 1000 lights) re-created at every swap. Asserts: no validation
  * message, every frame renders, resident memory and live VkDeviceMemory objects flat (the same
- * configuration at frame 100 and at the end uses the same number of memory objects, and RSS grows
- * by less than RSS_SLACK). */
+ * configuration at frame 100 and at the end uses the same number of memory objects, and RSS stays
+ * within RSS_SLACK / 2 over one of the two quarters of the second half: see the check). */
+#include <math.h>
 #include <malloc.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -103,7 +104,7 @@ int main(void)
     }
     config first = {0}, cur = {0};
     pg_session *s = NULL;
-    uint64_t rss100 = 0, heap100 = 0, rss_mid = 0;
+    uint64_t rss100 = 0, heap100 = 0, rss_mid = 0, rss_q3 = 0;
     int64_t mem100 = 0;
     uint32_t failures = 0, swaps = 0;
     for (uint32_t f = 0; f < frames; f++) {
@@ -133,6 +134,7 @@ int main(void)
             break;
         }
         if (f == frames / 2) rss_mid = pg_process_rss();
+        if (f == frames / 2 + frames / 4) rss_q3 = pg_process_rss();
         if (f == 100) {
             rss100 = pg_process_rss();
             heap100 = mallinfo2().uordblks;
@@ -151,15 +153,23 @@ int main(void)
     CHECK(failures == 0);
     CHECK_MSG(mem_end == mem100, "VkDeviceMemory objects %lld -> %lld", (long long)mem100, (long long)mem_end);
     /* RSS rises while the driver (llvmpipe's JIT code, caches) meets new shader variants, then
-     * plateaus: the second half of the run must stay flat, and the malloc heap must not grow */
-    printf("long run: RSS at frame %u %.1f MiB, second half %+.2f MiB\n", frames / 2, rss_mid / 1048576.0,
-           ((double)rss_end - (double)rss_mid) / 1048576.0);
+     * plateaus; on the way it may take one step of several MiB at any frame (seen: +7 to +8.5 MiB
+     * at a random frame with the malloc heap flat, e.g. a worker thread's arena; 3000 frames end
+     * flat). A leak grows in every stretch, a step in one: so one of the two quarters of the
+     * second half must stay within RSS_SLACK / 2 (the same leak rate as the RSS_SLACK bound over
+     * the whole half), the half within 3 x RSS_SLACK, and the malloc heap must not grow. */
+    double q_a = ((double)rss_q3 - (double)rss_mid) / 1048576.0, q_b = ((double)rss_end - (double)rss_q3) / 1048576.0;
+    printf("long run: RSS at frame %u %.1f MiB, second half %+.2f MiB (quarters %+.2f, %+.2f)\n", frames / 2,
+           rss_mid / 1048576.0, ((double)rss_end - (double)rss_mid) / 1048576.0, q_a, q_b);
 #if defined(__SANITIZE_ADDRESS__)
     /* AddressSanitizer keeps freed memory in quarantine and replaces malloc: RSS and mallinfo say
      * nothing there (LeakSanitizer checks leaks instead) */
     printf("long run: AddressSanitizer build: memory figures not checked\n");
 #else
-    CHECK_MSG(rss_end < rss_mid + RSS_SLACK, "RSS grew %.1f MiB in the second half",
+    double slack = RSS_SLACK / 1048576.0;
+    CHECK_MSG(fmin(q_a, q_b) < slack / 2, "RSS grew in both quarters of the second half: %+.1f, %+.1f MiB (a leak)",
+              q_a, q_b);
+    CHECK_MSG(rss_end < rss_mid + 3 * (uint64_t)RSS_SLACK, "RSS grew %.1f MiB in the second half",
               ((double)rss_end - (double)rss_mid) / 1048576.0);
     CHECK_MSG(heap_end < heap100 + RSS_SLACK, "malloc heap grew %.1f MiB", ((double)heap_end - (double)heap100) / 1048576.0);
 #endif
