@@ -37,6 +37,7 @@
 #include "graph_execute.h"
 #include "pass_api.h"
 #include "shader.h"
+#include "pass_set.h"
 #include "vk_pipeline.h"
 
 enum { SLOT_LIGHTS = 0, SLOT_RECORDS = 1, SLOT_LISTS = 2 }; /* plan slots: reads, then writes */

@@ -2,7 +2,7 @@
  * pass; display_tonemap is the simple alternative).
  *
  * create() opens the OCIO config, builds the processor scene_linear -> (display, view), lets OCIO
- * generate its GLSL (core/ocio.h rewrites it for Vulkan: LUT samplers at set 1, bindings 1..N),
+ * generate its GLSL (core/color/ocio.h rewrites it for Vulkan: LUT samplers at set 1, bindings 1..N),
  * compiles shaders/display_ocio.frag with that code included, and uploads OCIO's LUT textures
  * once (staging buffer, one-shot command buffer with its own barriers, waited for). record()
  * draws one full-screen triangle: exposure (a multiply in scene-linear, push constant), then the
@@ -22,6 +22,7 @@
 #include "ocio.h"
 #include "pass_api.h"
 #include "shader.h"
+#include "pass_set.h"
 #include "vk_pipeline.h"
 
 #define DO_MAX_LUTS 15 /* + the hdr binding = pg_pass_set_create's 16 */

@@ -10,6 +10,7 @@
 #include "graph_execute.h"
 #include "pass_api.h"
 #include "shader.h"
+#include "pass_set.h"
 #include "vk_pipeline.h"
 
 typedef struct display_tonemap {

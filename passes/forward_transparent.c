@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "frame.h"
 #include "scene_draw.h"
 #include "shading_common.h"
 
@@ -124,7 +125,7 @@ static void ft_record(void *self, const pg_pass_record_ctx *ctx)
     pg_transparent_pass *p = self;
     const int depth_slot = p->clustered ? 3 : 1;
     const pg_phys_resource *depth = ctx->slots[depth_slot], *color = ctx->slots[depth_slot + 1];
-    sort_back_to_front(p, ctx->scene, ctx->frame->camera_pos);
+    sort_back_to_front(p, ctx->scene, PG_FRAME_OF(ctx)->camera_pos);
     VkRenderingAttachmentInfo ca = {
         .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
         .imageView = color->view,

@@ -2,9 +2,11 @@
  * the frame time (shaders/light_animate.comp). Slots: writes [lights]. */
 #include <string.h>
 
+#include "frame.h"
 #include "graph_execute.h"
 #include "pass_api.h"
 #include "shader.h"
+#include "pass_set.h"
 #include "vk_pipeline.h"
 
 typedef struct light_animate {
@@ -42,7 +44,7 @@ static pg_result la_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 static void la_record(void *self, const pg_pass_record_ctx *ctx)
 {
     light_animate *p = self;
-    uint32_t n = ctx->frame->counts[0];
+    uint32_t n = PG_FRAME_OF(ctx)->counts[0];
     if (!n) return;
     VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);

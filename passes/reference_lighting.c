@@ -39,6 +39,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "frame.h"
 #include "shader.h"
 #include "shading_common.h"
 
@@ -260,7 +261,7 @@ static void ref_record(void *self, const pg_pass_record_ctx *ctx)
     uint32_t n = 0;
     if (p->has_lights) {
         uint64_t cap = ctx->slots[0]->size / 32; /* never read past the light buffer */
-        n = ctx->frame->counts[0] < cap ? ctx->frame->counts[0] : (uint32_t)cap;
+        n = PG_FRAME_OF(ctx)->counts[0] < cap ? PG_FRAME_OF(ctx)->counts[0] : (uint32_t)cap;
     }
     uint32_t chunk = ref_chunk(p->lights_per_dispatch, ctx->width, ctx->height);
     /* Without the sum images (the graph was compiled for fewer lights than this frame has) the

@@ -7,6 +7,7 @@
 #define PG_SCENE_DRAW_H
 
 #include "graph_execute.h"
+#include "pass_set.h"
 #include "vk_pipeline.h"
 
 typedef struct pg_scene_draw {

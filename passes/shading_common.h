@@ -11,6 +11,7 @@
 
 #include "graph_execute.h"
 #include "pass_api.h"
+#include "pass_set.h"
 #include "vk_pipeline.h"
 
 typedef struct pg_shading_opts {

@@ -1,11 +1,11 @@
 // cluster.glsl - the numerical core of clustered shading: exponential depth slices, cluster
 // coordinates and indices, the view-space AABB of a cluster, and the sphere-vs-AABB light test.
-// No #version; include after common.glsl. core/cluster_math.c is the C twin: same formulas, same
+// No #version; include after common.glsl. passes/cluster_math.c is the C twin: same formulas, same
 // operation order, float32, and tests/test_numeric.c proves them against double-precision
 // references (monotonic slices clamped at both ends, conservative AABBs, no false negatives in the
 // sphere test). Change both files together.
 //
-// Conventions (core/scene.h): view space right-handed, camera looks down -Z, so the positive view
+// Conventions (core/scene/scene.h): view space right-handed, camera looks down -Z, so the positive view
 // depth of a point is -view.z. Vulkan NDC: x -1 = left, y -1 = TOP, z 0 = near, 1 = far (standard
 // Z, not reversed). Tile (0,0) is the top-left one, like gl_FragCoord's origin.
 //

@@ -1,6 +1,6 @@
 // common.glsl - declarations shared by every passgraph shader.
-// FrameUniforms mirrors pg_frame_uniforms (core/frame.h); GpuMaterial mirrors pg_gpu_material
-// (core/scene_gpu.h); Light is the 32-byte record the light_animate pass writes.
+// FrameUniforms mirrors pg_frame_uniforms (passes/frame.h); GpuMaterial mirrors pg_gpu_material
+// (core/runtime/scene_gpu.h); Light is the 32-byte record the light_animate pass writes.
 
 struct Light {
     vec4 pos_radius;   // xyz world position, w range R
@@ -66,7 +66,7 @@ vec3 pg_srgb_decode(vec3 c)
 // world coordinates at 1e5.
 #define PG_REL_TO_VIEW(r) (mat3(frame.view) * (r))
 #define PG_VIEW_TO_REL(v) (mat3(frame.inv_view) * (v))
-// Orthographic camera (core/scene.h pg_camera.ortho_height): a uniform flag, so one shader
+// Orthographic camera (core/scene/scene.h pg_camera.ortho_height): a uniform flag, so one shader
 // variant serves both projections.
 #define PG_ORTHO (frame.clip.w > 0.5)
 // Unit direction from a camera-relative point P to the eye: -P normalized for perspective; the

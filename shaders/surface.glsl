@@ -12,7 +12,7 @@ layout(set = 1, binding = 0, std430) readonly buffer Materials { GpuMaterial mat
 layout(set = 1, binding = 1) uniform sampler2D textures[TEXTURE_COUNT];
 layout(push_constant) uniform DrawPush { uint material; } draw;
 
-// Texture slots (core/scene.h PG_TEXSLOT_*)
+// Texture slots (core/scene/scene.h PG_TEXSLOT_*)
 const int PG_SLOT_BASE = 0;
 const int PG_SLOT_NORMAL = 1;
 const int PG_SLOT_EMISSIVE = 2;

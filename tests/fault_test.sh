@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # fault_test.sh PASSGRAPH_BINARY - device loss and driver errors: PASSGRAPH_FAULT_AT=k makes the
-# k-th checked Vulkan call report VK_ERROR_DEVICE_LOST (core/vk_context.h). For every k until a run
+# k-th checked Vulkan call report VK_ERROR_DEVICE_LOST (core/vk/vk_context.h). For every k until a run
 # no longer reaches k calls, `passgraph render` must exit 1 with a message naming the failed call
 # and the error - never crash, hang or exit 0 with a broken image.
 set -u

@@ -31,7 +31,7 @@ SIZE=160x90
 LIGHTS=64
 
 # no direct reference to any Vulkan 1.3 core command (a 1.2 device has them only under their
-# extension names): a new one must be added to the list in core/vk_context.h
+# extension names): a new one must be added to the list in core/vk/vk_context.h
 if command -v nm >/dev/null; then
   v13='CmdPipelineBarrier2|QueueSubmit2|CmdWriteTimestamp2|CmdBeginRendering|CmdEndRendering|CmdSetCullMode'
   v13+='|CmdSetEvent2|CmdResetEvent2|CmdWaitEvents2|Cmd(Blit|Copy|Resolve)Image2|CmdCopyBuffer2|CmdCopyBufferToImage2'
@@ -40,7 +40,7 @@ if command -v nm >/dev/null; then
   v13+='|CmdSetRasterizerDiscardEnable|CmdSetPrimitiveRestartEnable|GetDevice(Buffer|Image|ImageSparse)MemoryRequirements'
   v13+='|(Create|Destroy)PrivateDataSlot|(Set|Get)PrivateData|GetPhysicalDeviceToolProperties'
   direct=$(nm -u "$PG" | grep -E " vk($v13)\$")
-  [ -z "$direct" ] && ok || bad "direct Vulkan 1.3 calls (route them through core/vk_context.h): $direct"
+  [ -z "$direct" ] && ok || bad "direct Vulkan 1.3 calls (route them through core/vk/vk_context.h): $direct"
 fi
 
 renderdoccmd capture -w "$PG" devices >devices.out 2>&1

@@ -1,4 +1,4 @@
-/* test_alias_pack.c - the lifetime x size packer (core/alias_pack.c) on the CPU: hand cases and
+/* test_alias_pack.c - the lifetime x size packer (core/graph/alias_pack.c) on the CPU: hand cases and
  * random lifetimes. Properties: no two items alive at the same time share a byte; an item that
  * may not inherit shares no byte with one that ended before it; offsets honour alignment; blocks
  * hold one klass with a common memory type; blocks contain their members; the total never

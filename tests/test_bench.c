@@ -1,5 +1,5 @@
-/* test_bench.c - the benchmark's building blocks, CPU only: sample statistics (core/bench_stats.c),
- * the Pareto front of (time, error) points, the SVG chart writer (core/svg_plot.c): tick
+/* test_bench.c - the benchmark's building blocks, CPU only: sample statistics (tools/stats/bench_stats.c),
+ * the Pareto front of (time, error) points, the SVG chart writer (tools/stats/svg_plot.c): tick
  * placement, labels, escaping and a well-formed document; and which overrides each side of a
  * comparison takes (tools/sides.c, shared by compare and bench: --set, --pipeline-set,
  * --reference-set, the debug view, swept values). */

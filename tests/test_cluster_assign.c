@@ -25,6 +25,7 @@
 #include "render_session.h"
 #include "shader.h"
 #include "test_util.h"
+#include "pass_set.h"
 #include "vk_pipeline.h"
 
 #define W 64

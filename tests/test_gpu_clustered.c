@@ -175,13 +175,13 @@ static void sweep_frame_check(const sweep_scene *ss, uint32_t lights, const char
         double usage = 0, need_a = 0;
         if (va->kind != SW_EXACT) pg_th_bound_usage(&f, &ref, peak, va->px_a, va->px_b, &usage, &need_a);
         CHECK(!pg_image_error_compute(f.hdr, ref.hdr, f.ldr, ref.ldr, f.w, f.h, 1.0, &e, &err));
-        bool dropped = f.stats.overflow_clusters || f.stats.overflow_dropped;
+        bool dropped = pg_frame_counter_sum(&f.stats, "overflow_clusters") || pg_frame_counter_sum(&f.stats, "overflow_dropped");
         printf("accuracy: scene=%s size=%ux%u lights=%u shading=%s hdr=%s variant=%s overflow_clusters=%llu "
                "overflow_dropped=%llu identical=%d lit=%.2f%% peak=%.4g max_abs=%.3g max_rel_peak=%.3g "
                "px_usage=%.3g px_need_a=%.3g rmse=%.3g disp_max=%.0f disp_share=%.4f%%%s\n",
                ss->name, f.w, f.h, lights, shading, hdr_format, va->label,
-               (unsigned long long)f.stats.overflow_clusters,
-               (unsigned long long)f.stats.overflow_dropped, identical, 100 * lit_share, peak, m, m / peak, usage,
+               (unsigned long long)pg_frame_counter_sum(&f.stats, "overflow_clusters"),
+               (unsigned long long)pg_frame_counter_sum(&f.stats, "overflow_dropped"), identical, 100 * lit_share, peak, m, m / peak, usage,
                need_a, e.rmse_linear, e.max_abs_display, 100 * e.share_over_threshold,
                dropped ? " (lights dropped: bounds not asserted)" : "");
         CHECK_MSG(f.hdr_format == ref.hdr_format && f.hdr_format == pg_format_from_name(hdr_format),
@@ -191,8 +191,8 @@ static void sweep_frame_check(const sweep_scene *ss, uint32_t lights, const char
         CHECK_MSG(!dropped,
                   "%s %s: NO-OVERFLOW-BY-DEFAULT: %llu clusters overflowed, %llu light refs dropped with the "
                   "shipped defaults (no max_lights set)%s",
-                  where, va->label, (unsigned long long)f.stats.overflow_clusters,
-                  (unsigned long long)f.stats.overflow_dropped,
+                  where, va->label, (unsigned long long)pg_frame_counter_sum(&f.stats, "overflow_clusters"),
+                  (unsigned long long)pg_frame_counter_sum(&f.stats, "overflow_dropped"),
                   lights >= COUNT_OVER_OLD_CAP ? "; this count overflows a cap of " OLD_CAP " lights per cluster" : "");
         if (dropped) {
             wo->not_evaluated++;
@@ -237,9 +237,9 @@ static void sweep_count_exceeds_old_cap(const sweep_scene *ss)
         return;
     }
     printf("capped: scene=%s lights=%u max_lights=" OLD_CAP " overflow_clusters=%llu overflow_dropped=%llu\n",
-           ss->name, COUNT_OVER_OLD_CAP, (unsigned long long)f.stats.overflow_clusters,
-           (unsigned long long)f.stats.overflow_dropped);
-    CHECK_MSG(f.stats.overflow_clusters > 0 && f.stats.overflow_dropped > 0,
+           ss->name, COUNT_OVER_OLD_CAP, (unsigned long long)pg_frame_counter_sum(&f.stats, "overflow_clusters"),
+           (unsigned long long)pg_frame_counter_sum(&f.stats, "overflow_dropped"));
+    CHECK_MSG(pg_frame_counter_sum(&f.stats, "overflow_clusters") > 0 && pg_frame_counter_sum(&f.stats, "overflow_dropped") > 0,
               "%s: %u lights do not exceed %s lights in any cluster: the sweep does not test long lists", ss->name,
               COUNT_OVER_OLD_CAP, OLD_CAP);
     pg_th_release(&f);
@@ -306,12 +306,12 @@ static void overflow(const pg_scene *scene, const pg_scene_gpu *sg)
         if (!ok) continue;
         printf("overflow: pipeline=%s lights=64 max_lights=8 overflow_clusters=%llu overflow_dropped=%llu "
                "deterministic=%d\n",
-               pipes[p], (unsigned long long)a.stats.overflow_clusters, (unsigned long long)a.stats.overflow_dropped,
+               pipes[p], (unsigned long long)pg_frame_counter_sum(&a.stats, "overflow_clusters"), (unsigned long long)pg_frame_counter_sum(&a.stats, "overflow_dropped"),
                pg_th_hdr_identical(&a, &b));
-        CHECK(a.stats.overflow_clusters > 0);
+        CHECK(pg_frame_counter_sum(&a.stats, "overflow_clusters") > 0);
         /* 64 lights: an overflowing cluster holds 9..64 of them and keeps 8 */
-        CHECK(a.stats.overflow_dropped >= a.stats.overflow_clusters &&
-              a.stats.overflow_dropped <= a.stats.overflow_clusters * 56);
+        CHECK(pg_frame_counter_sum(&a.stats, "overflow_dropped") >= pg_frame_counter_sum(&a.stats, "overflow_clusters") &&
+              pg_frame_counter_sum(&a.stats, "overflow_dropped") <= pg_frame_counter_sum(&a.stats, "overflow_clusters") * 56);
         CHECK_MSG(pg_th_hdr_identical(&a, &b), "overflow not deterministic");
         CHECK(pg_count_nonfinite(a.hdr, a.w, a.h) == 0);
         pg_th_release(&a);
@@ -369,9 +369,9 @@ static void light_counts(const pg_scene *scene, const pg_scene_gpu *sg)
     if (pg_th_render(g_gpu, &g_reg, sg, "pipelines/forward_plus.json", sets, 4, &fi, 1, false, &m)) {
         printf("lights: 1,000,000 lights: forward+ %ux%u grid 4x3x4 max_lights=64: %.1f ms, %llu of 48 clusters "
                "overflow, %llu light refs dropped\n",
-               m.w, m.h, m.stats.gpu_total_ms, (unsigned long long)m.stats.overflow_clusters,
-               (unsigned long long)m.stats.overflow_dropped);
-        CHECK(m.stats.overflow_clusters > 0);
+               m.w, m.h, m.stats.gpu_total_ms, (unsigned long long)pg_frame_counter_sum(&m.stats, "overflow_clusters"),
+               (unsigned long long)pg_frame_counter_sum(&m.stats, "overflow_dropped"));
+        CHECK(pg_frame_counter_sum(&m.stats, "overflow_clusters") > 0);
         CHECK(pg_count_nonfinite(m.hdr, m.w, m.h) == 0);
         pg_th_release(&m);
     } else {
@@ -431,7 +431,7 @@ static void far_geometry(void)
             printf("far: offset=1e5 lights=256 size=%ux%u variant=%s identical=%d peak=%.4g max_abs=%.3g "
                    "max_rel_peak=%.3g rmse=%.3g disp_max=%.0f disp_share=%.4f%% overflow_dropped=%llu\n",
                    f.w, f.h, va->label, pg_th_hdr_identical(&f, &ref), peak, m, mrel, e.rmse_linear, e.max_abs_display,
-                   100 * e.share_over_threshold, (unsigned long long)f.stats.overflow_dropped);
+                   100 * e.share_over_threshold, (unsigned long long)pg_frame_counter_sum(&f.stats, "overflow_dropped"));
             if (!strcmp(va->label, "forward_plus"))
                 CHECK_MSG(pg_th_hdr_identical(&f, &ref), "far forward_plus: not byte-identical (max rel %g)", mrel);
             else if (!strcmp(va->label, "deferred_float_rgba16f_position"))

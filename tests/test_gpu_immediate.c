@@ -5,7 +5,7 @@
  * (the second frame has the frame-to-frame barriers of persistent resources). The immediate plan
  * says so (plan->immediate, aliasing off, every barrier ALL_COMMANDS -> ALL_COMMANDS) and runs
  * the same passes in the same order.
- * Also the record-time check of pg_pass_begin_rendering (core/graph_execute.h): a pass that
+ * Also the record-time check of pg_pass_begin_rendering (core/runtime/graph_execute.h): a pass that
  * declares a full colour write but begins rendering with LOAD_OP_LOAD fails the frame with a
  * message naming the pass and slot; the same pass clearing renders. And a resource handle of the
  * plan before a resize is refused by pg_runtime_resource. */

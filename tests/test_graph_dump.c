@@ -1,4 +1,4 @@
-/* test_graph_dump.c - `passgraph dump`'s views of a compiled graph (core/graph_dump.c), no GPU.
+/* test_graph_dump.c - `passgraph dump`'s views of a compiled graph (core/dump/graph_dump.c), no GPU.
  *
  * Hand-built pipelines (JSON strings + fake pass types) with known order, culls, omitted items,
  * lifetimes, blocks and barriers: the JSON dump parses back with exactly those facts and mirrors

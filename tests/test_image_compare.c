@@ -1,4 +1,4 @@
-/* test_image_compare.c - image error metrics (core/image_compare.c) on synthetic images with known
+/* test_image_compare.c - image error metrics (core/image/image_compare.c) on synthetic images with known
  * answers, the error heatmap's colours and the colormap's monotone luminance. CPU only. */
 #include <math.h>
 #include <stdlib.h>

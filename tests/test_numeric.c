@@ -1,5 +1,5 @@
 /* test_numeric.c - the numerical core of clustered shading on the CPU, against double-precision
- * references (no GPU). core/cluster_math.c computes the same float32 formulas in the same order as
+ * references (no GPU). passes/cluster_math.c computes the same float32 formulas in the same order as
  * shaders/cluster.glsl, octahedral.glsl and depth_reconstruct.glsl, so these bounds are what the
  * shaders compute up to the GPU's own float precision.
  *

@@ -1,5 +1,5 @@
-/* test_ocio.c - colour management: the shipped OpenColorIO config, the C shim (core/ocio.h), the
- * display_ocio pass against OCIO's own CPU processor, and OpenEXR output (core/exr.h).
+/* test_ocio.c - colour management: the shipped OpenColorIO config, the C shim (core/color/ocio.h), the
+ * display_ocio pass against OCIO's own CPU processor, and OpenEXR output (core/image/exr.h).
  *
  * (a) CPU only: the shipped config loads; its displays and views; the default display/view;
  *     unknown display / view errors list the available names; a missing, broken or incomplete

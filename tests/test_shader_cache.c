@@ -1,4 +1,4 @@
-/* test_shader_cache.c - the on-disk caches (core/pg_cache.h), in a temporary cache folder and a
+/* test_shader_cache.c - the on-disk caches (core/base/pg_cache.h), in a temporary cache folder and a
  * temporary shaders folder:
  *  - SPIR-V: a cold compile runs glslang and writes one .spv; the same variant again is a memory
  *    hit; after pg_shader_cache_forget ("a new process") it is a disk hit that runs no glslang and
@@ -20,6 +20,7 @@
 #include "shader.h"
 #include "test_util.h"
 #include "vk_context.h"
+#include "pass_set.h"
 #include "vk_pipeline.h"
 
 static char g_root[256], g_cache[320], g_shaders[320];
@@ -288,7 +289,7 @@ static void test_pipeline_cache(void)
     data = pg_cache_read(path, &bytes);
     CHECK(data && bytes > 40);
     if (!data) return;
-    unsigned char *vk = data + 32; /* after pc_file_head (core/pipeline_cache.c): magic, size, hash */
+    unsigned char *vk = data + 32; /* after pc_file_head (core/vk/pipeline_cache.c): magic, size, hash */
     VkPipelineCacheHeaderVersionOne h;
     memcpy(&h, vk, sizeof h);
     h.vendorID ^= 0x5a5a;

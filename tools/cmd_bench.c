@@ -6,7 +6,7 @@
  * and then one frame at exactly --time with read-back, whose images are compared with the
  * reference pipeline's frame at the same time (pg_image_error_compute; the reference takes the
  * overrides sides.h describes, so one block may render it once per swept value it declares).
- * Results go to DIR/results.csv, DIR/results.json and three SVG charts written by core/svg_plot.c.
+ * Results go to DIR/results.csv, DIR/results.json and three SVG charts written by tools/stats/svg_plot.c.
  * SIGINT stops after the current frame and writes what was measured (exit 130). */
 #include <errno.h>
 #include <limits.h>
@@ -903,7 +903,7 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
             }
             if (st.n_counters) {
                 row->has_overflow = true;
-                if (st.overflow_clusters > row->ov_clusters_max) row->ov_clusters_max = st.overflow_clusters;
+                if (pg_frame_counter_sum(&st, "overflow_clusters") > row->ov_clusters_max) row->ov_clusters_max = pg_frame_counter_sum(&st, "overflow_clusters");
             }
             row->frames = f + 1;
         }
@@ -934,8 +934,8 @@ static void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *
     row->grow_events += st.n_grown;
     if (st.n_counters) {
         row->has_overflow = true;
-        row->ov_clusters = st.overflow_clusters;
-        row->ov_dropped = st.overflow_dropped;
+        row->ov_clusters = pg_frame_counter_sum(&st, "overflow_clusters");
+        row->ov_dropped = pg_frame_counter_sum(&st, "overflow_dropped");
         for (uint32_t k = 0; k < st.n_counters; k++) {
             if (!strcmp(st.counters[k].name, "total_refs")) row->light_refs += st.counters[k].value;
             if (!strcmp(st.counters[k].name, "list_bytes")) row->list_bytes += st.counters[k].value;

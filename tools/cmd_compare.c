@@ -182,7 +182,7 @@ static void side_print_overflow(const side *sd, const char *prefix, FILE *f)
 {
     if (!sd->st.n_counters) return;
     fprintf(f, " %soverflow_clusters=%llu %soverflow_dropped=%llu", prefix,
-            (unsigned long long)sd->st.overflow_clusters, prefix, (unsigned long long)sd->st.overflow_dropped);
+            (unsigned long long)pg_frame_counter_sum(&sd->st, "overflow_clusters"), prefix, (unsigned long long)pg_frame_counter_sum(&sd->st, "overflow_dropped"));
 }
 
 static cJSON *side_counters_json(const side *sd)
@@ -256,13 +256,13 @@ static pg_result write_json(const char *path, const side *a, const pg_ov_list *a
     cJSON_AddItemToObject(o, "passes", side_passes_json(a));
     cJSON_AddItemToObject(o, "reference_passes", side_passes_json(r));
     if (a->st.n_counters) {
-        cJSON_AddNumberToObject(o, "overflow_clusters", (double)a->st.overflow_clusters);
-        cJSON_AddNumberToObject(o, "overflow_dropped", (double)a->st.overflow_dropped);
+        cJSON_AddNumberToObject(o, "overflow_clusters", (double)pg_frame_counter_sum(&a->st, "overflow_clusters"));
+        cJSON_AddNumberToObject(o, "overflow_dropped", (double)pg_frame_counter_sum(&a->st, "overflow_dropped"));
         cJSON_AddItemToObject(o, "counters", side_counters_json(a));
     }
     if (r->st.n_counters) {
-        cJSON_AddNumberToObject(o, "reference_overflow_clusters", (double)r->st.overflow_clusters);
-        cJSON_AddNumberToObject(o, "reference_overflow_dropped", (double)r->st.overflow_dropped);
+        cJSON_AddNumberToObject(o, "reference_overflow_clusters", (double)pg_frame_counter_sum(&r->st, "overflow_clusters"));
+        cJSON_AddNumberToObject(o, "reference_overflow_dropped", (double)pg_frame_counter_sum(&r->st, "overflow_dropped"));
         cJSON_AddItemToObject(o, "reference_counters", side_counters_json(r));
     }
     if (heatmap) {

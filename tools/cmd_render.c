@@ -243,8 +243,8 @@ int pg_cmd_render(int argc, char **argv)
     bool clustered = false;
     for (uint32_t k = 0; k < st.n_counters; k++) clustered |= !strcmp(st.counters[k].name, "overflow_clusters");
     if (clustered) {
-        printf(" overflow=%llu clusters (%llu light refs dropped)", (unsigned long long)st.overflow_clusters,
-               (unsigned long long)st.overflow_dropped);
+        printf(" overflow=%llu clusters (%llu light refs dropped)", (unsigned long long)pg_frame_counter_sum(&st, "overflow_clusters"),
+               (unsigned long long)pg_frame_counter_sum(&st, "overflow_dropped"));
         uint64_t list_bytes = 0, refs = 0;
         for (uint32_t k = 0; k < st.n_counters; k++) {
             if (!strcmp(st.counters[k].name, "list_bytes")) list_bytes += st.counters[k].value;

@@ -677,10 +677,10 @@ static void build_ui(viewer *v)
             pg_ui_text("frame %.2f ms CPU, %.3f ms GPU (%s)", v->cpu_frame_ms, st->gpu_total_ms,
                        v->app.gpu->props.deviceName);
             if (st->n_counters) {
-                pg_ui_text_colored(st->overflow_clusters ? 0xffa040ff : 0xa0ffa0ff,
+                pg_ui_text_colored(pg_frame_counter_sum(st, "overflow_clusters") ? 0xffa040ff : 0xa0ffa0ff,
                                    "light overflow: %llu clusters, %llu light refs dropped",
-                                   (unsigned long long)st->overflow_clusters,
-                                   (unsigned long long)st->overflow_dropped);
+                                   (unsigned long long)pg_frame_counter_sum(st, "overflow_clusters"),
+                                   (unsigned long long)pg_frame_counter_sum(st, "overflow_dropped"));
                 uint64_t list_bytes = 0, refs = 0;
                 for (uint32_t k = 0; k < st->n_counters; k++) {
                     if (!strcmp(st->counters[k].name, "list_bytes")) list_bytes += st->counters[k].value;
@@ -854,7 +854,7 @@ static pg_result draw_frame(viewer *v, bool capture, pg_error *err)
                  v->stats.grown[k].old_bytes / 1048576.0, v->stats.grown[k].new_bytes / 1048576.0, v->light_count);
         printf("view: %s\n", v->last_growth);
     }
-    if (v->stats.overflow_dropped && v->stats.n_notes) printf("view: %s\n", v->stats.notes[0]);
+    if (pg_frame_counter_sum(&v->stats, "overflow_dropped") && v->stats.n_notes) printf("view: %s\n", v->stats.notes[0]);
     bool show_diff = false;
     if (v->diff) {
         if (!v->naive) {

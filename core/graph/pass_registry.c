@@ -1,0 +1,212 @@
+/* pass_registry.c - the pass type registry and the slot helpers declare() implementations use.
+ *
+ * The helpers never fail at the call site (declare() code stays short); instead an overflow is
+ * recorded in the declaration and reported by the compiler:
+ *   - more than PG_MAX_SLOTS reads or writes: the count is set to PG_MAX_SLOTS + 1 (nothing is
+ *     written past the arrays) and pg_decl_check_counts() fails with PG_ERR_LIMIT;
+ *   - more than PG_MAX_DEFINES defines, or a define longer than PG_NAME_MAX - 1: n_defines is set
+ *     to PG_MAX_DEFINES + 1 and pg_graph_compile() fails with PG_ERR_LIMIT (a silently dropped
+ *     define would build the wrong shader variant);
+ *   - explanation lines past the 8th are dropped and the last one says so (they are information,
+ *     not behaviour).
+ * The option readers (pg_opt_*) live in core/graph/pass_options.c.
+ */
+#include "pass_api.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+const pg_pass_type *pg_registry_find(const pg_pass_registry *reg, const char *name)
+{
+    if (!reg || !name) return NULL;
+    for (uint32_t i = 0; i < reg->count && i < 64; i++)
+        if (reg->types[i] && reg->types[i]->name && strcmp(reg->types[i]->name, name) == 0)
+            return reg->types[i];
+    return NULL;
+}
+
+pg_result pg_registry_add(pg_pass_registry *reg, const pg_pass_type *type, pg_error *err)
+{
+    if (!reg || !type || !type->name || !type->name[0] || !type->declare)
+        return pg_fail(err, PG_ERR_INVALID_ARG,
+                       "pg_registry_add: a pass type needs a name and a declare function");
+    if (pg_registry_find(reg, type->name))
+        return pg_fail(err, PG_ERR_INVALID_ARG, "pass type '%s' is registered twice", type->name);
+    const uint32_t cap = (uint32_t)(sizeof reg->types / sizeof reg->types[0]);
+    if (reg->count >= cap)
+        return pg_fail(err, PG_ERR_LIMIT, "pass registry full (%u types): cannot add '%s'", cap,
+                       type->name);
+    reg->types[reg->count++] = type;
+    return PG_OK;
+}
+
+static void add_slot(pg_slot_decl *slots, uint32_t *n, const char *name, pg_res_kind kind,
+                     pg_access access, uint32_t stages, uint32_t formats)
+{
+    if (*n >= PG_MAX_SLOTS) { /* overflow marker, see the file comment */
+        *n = PG_MAX_SLOTS + 1;
+        return;
+    }
+    pg_slot_decl *s = &slots[(*n)++];
+    memset(s, 0, sizeof *s);
+    pg_strlcpy(s->name, name ? name : "?", sizeof s->name);
+    s->kind = kind;
+    s->access = access;
+    s->stages = stages;
+    s->formats = formats;
+}
+
+void pg_decl_read(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
+                  uint32_t stages, uint32_t formats)
+{
+    if (d) add_slot(d->reads, &d->n_reads, name, kind, access, stages, formats);
+}
+
+void pg_decl_write(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
+                   uint32_t stages, uint32_t formats)
+{
+    if (d) add_slot(d->writes, &d->n_writes, name, kind, access, stages, formats);
+}
+
+void pg_decl_define(pg_pass_decl *d, const char *define)
+{
+    if (!d || !define) return;
+    if (d->n_defines >= PG_MAX_DEFINES) {
+        d->n_defines = PG_MAX_DEFINES + 1;
+        return;
+    }
+    if (!pg_strlcpy(d->defines[d->n_defines], define, sizeof d->defines[0])) {
+        d->defines[d->n_defines][0] = 0;
+        d->n_defines = PG_MAX_DEFINES + 1;
+        return;
+    }
+    d->n_defines++;
+}
+
+void pg_decl_explain(pg_pass_decl *d, const char *fmt, ...)
+{
+    if (!d || !fmt) return;
+    const uint32_t cap = (uint32_t)(sizeof d->explain / sizeof d->explain[0]);
+    if (d->n_explain >= cap) {
+        pg_strlcpy(d->explain[cap - 1], "(more explanations left out)", sizeof d->explain[0]);
+        return;
+    }
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(d->explain[d->n_explain], sizeof d->explain[0], fmt, ap);
+    va_end(ap);
+    d->n_explain++;
+}
+
+void pg_decl_skip(pg_pass_decl *d, const char *fmt, ...)
+{
+    if (!d || !fmt) return;
+    d->skip = true;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(d->skip_reason, sizeof d->skip_reason, fmt, ap);
+    va_end(ap);
+    if (!d->skip_reason[0]) pg_strlcpy(d->skip_reason, "not needed for this scene", sizeof d->skip_reason);
+}
+
+static void slot_names(const pg_slot_decl *slots, uint32_t n, char *buf, size_t size)
+{
+    size_t len = 0;
+    buf[0] = 0;
+    if (n == 0) {
+        snprintf(buf, size, "none");
+        return;
+    }
+    for (uint32_t i = 0; i < n && i < PG_MAX_SLOTS && len < size; i++) {
+        int w = snprintf(buf + len, size - len, "%s%s", i ? ", " : "", slots[i].name);
+        if (w < 0) break;
+        len += (size_t)w;
+    }
+}
+
+static const char *path_or(const char *p, const char *fallback)
+{
+    return p && p[0] ? p : fallback;
+}
+
+pg_result pg_decl_check_counts(const pg_pass_desc *desc, const pg_pass_decl *d,
+                               const pg_pass_type *type, pg_error *err)
+{
+    const char *file = path_or(desc->file, "<pipeline>");
+    const char *jp = path_or(desc->json_path, "passes[?]");
+    const char *tname = type && type->name ? type->name : desc->type;
+    if (d->n_reads > PG_MAX_SLOTS || d->n_writes > PG_MAX_SLOTS)
+        return pg_fail(err, PG_ERR_LIMIT,
+                       "%s: %s: pass type '%s' declares more than %d %s slots", file, jp, tname,
+                       PG_MAX_SLOTS, d->n_reads > PG_MAX_SLOTS ? "read" : "write");
+    char names[PG_MAX_SLOTS * (PG_NAME_MAX + 2) + 8];
+    if (desc->n_reads != d->n_reads) {
+        slot_names(d->reads, d->n_reads, names, sizeof names);
+        return pg_fail(err, PG_ERR_SCHEMA,
+                       "%s: %s.reads: pass type '%s' expects %u read%s (%s) with these options, "
+                       "got %u; its read slots are: %s",
+                       file, jp, tname, d->n_reads, d->n_reads == 1 ? "" : "s", names,
+                       desc->n_reads,
+                       type && type->read_slots && type->read_slots[0] ? type->read_slots
+                                                                       : "none");
+    }
+    if (desc->n_writes != d->n_writes) {
+        slot_names(d->writes, d->n_writes, names, sizeof names);
+        return pg_fail(err, PG_ERR_SCHEMA,
+                       "%s: %s.writes: pass type '%s' expects %u write%s (%s) with these "
+                       "options, got %u; its write slots are: %s",
+                       file, jp, tname, d->n_writes, d->n_writes == 1 ? "" : "s", names,
+                       desc->n_writes,
+                       type && type->write_slots && type->write_slots[0] ? type->write_slots
+                                                                         : "none");
+    }
+    return PG_OK;
+}
+
+void pg_decl_mark_unused(pg_pass_decl *d, bool is_write, uint32_t index, const char *why)
+{
+    pg_slot_decl *sd = NULL;
+    if (is_write && index < d->n_writes) sd = &d->writes[index];
+    if (!is_write && index < d->n_reads) sd = &d->reads[index];
+    if (!sd) return;
+    sd->unused = true;
+    pg_decl_explain(d, "slot '%s' unused: %s", sd->name, why);
+}
+
+void pg_decl_mark_initializes(pg_pass_decl *d, uint32_t index)
+{
+    if (d && index < d->n_writes) d->writes[index].initializes = true;
+}
+
+void pg_decl_mark_partial(pg_pass_decl *d, uint32_t index)
+{
+    if (d && index < d->n_writes) d->writes[index].partial = true;
+}
+
+void pg_report_add(pg_pass_report *r, const char *name, uint64_t value)
+{
+    if (r->n >= PG_MAX_PASS_COUNTERS) return;
+    pg_strlcpy(r->counters[r->n].name, name, sizeof r->counters[r->n].name);
+    r->counters[r->n].value = value;
+    r->n++;
+}
+
+void pg_report_grow(pg_pass_report *r, uint32_t slot, uint64_t needed, uint64_t max)
+{
+    if (r->n_grow >= PG_MAX_PASS_GROWS) return;
+    r->grow[r->n_grow].slot = slot;
+    r->grow[r->n_grow].needed = needed;
+    r->grow[r->n_grow].max = max;
+    r->n_grow++;
+}
+
+void pg_report_note(pg_pass_report *r, const char *fmt, ...)
+{
+    if (r->n_notes >= PG_MAX_PASS_NOTES) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->notes[r->n_notes], sizeof r->notes[r->n_notes], fmt, ap);
+    va_end(ap);
+    r->n_notes++;
+}

@@ -1,0 +1,202 @@
+/* graph_execute.h - runs a compiled plan on a pg_gpu.
+ *
+ * pg_runtime_set_plan() creates the physical resources (each plan block is packed again with the
+ * real memory requirements, core/graph/alias_pack.c, into one VkDeviceMemory, or more when its members
+ * have no memory type in common; resources are bound at their offsets) and one instance of every
+ * executed pass. They are kept across frames and
+ * re-created only when the plan's physical signature (sizes, formats, usages, blocks, pass
+ * variants) changes. pg_runtime_render() records one command buffer: for each pass in order the
+ * plan's barriers, a debug label, the pass's commands and a timestamp; then the final output
+ * transitions and, if asked, copies of the outputs to host-visible buffers.
+ */
+#ifndef PG_GRAPH_EXECUTE_H
+#define PG_GRAPH_EXECUTE_H
+
+#include "graph.h"
+#include "scene_gpu.h"
+#include "vk_context.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pg_phys_resource {
+    pg_res_kind kind;
+    VkImage image;
+    VkImageView view;
+    VkFormat format;
+    pg_format pg_fmt;
+    uint32_t width, height;
+    VkBuffer buffer;
+    VkDeviceSize size;
+    VkDeviceMemory own_memory; /* non-null when not in a shared block */
+    VkDeviceMemory memory;     /* what it is bound to (own_memory or a shared block) */
+    VkDeviceSize memory_offset, memory_size; /* the bytes it occupies there */
+} pg_phys_resource;
+
+typedef struct pg_pass_create_ctx {
+    pg_gpu *gpu;
+    const pg_graph_plan *plan;
+    const pg_plan_pass *pass;
+    const pg_pass_desc *desc;         /* options etc. */
+    const pg_pipeline *pipeline;
+    const pg_scene_gpu *scene;
+    VkDescriptorSetLayout frame_layout; /* set 0: FrameUniforms */
+    const pg_phys_resource *slots[2 * PG_MAX_SLOTS]; /* same order as pass->slots */
+    uint32_t width, height;           /* output size */
+    /* Application settings: key/value strings the graph forwards to every pass unread (e.g.
+     * "ocio.config"); see pg_session_desc.settings. Read them with pg_ctx_setting(). */
+    const pg_param_override *settings;
+    uint32_t n_settings;
+} pg_pass_create_ctx;
+
+/* The value of an application setting (the last one with that key), or NULL when absent. */
+const char *pg_ctx_setting(const pg_pass_create_ctx *ctx, const char *key);
+
+typedef struct pg_pass_record_ctx {
+    pg_gpu *gpu;
+    VkCommandBuffer cmd;
+    const pg_plan_pass *pass;
+    const pg_phys_resource *slots[2 * PG_MAX_SLOTS];
+    const pg_scene_gpu *scene;
+    VkDescriptorSet frame_set;
+    const void *frame;                /* CPU copy of the per-frame block set 0 holds (opaque to the
+                                       * runtime: its layout is the passes' own, passes/frame.h) */
+    uint32_t frame_size;              /* its bytes (pg_runtime_create's frame_block_size) */
+    uint32_t width, height;
+    pg_error *record_error;           /* the first contract break found while recording (e.g. by
+                                       * pg_pass_begin_rendering); set -> the frame fails with it */
+} pg_pass_record_ctx;
+
+/* Begins dynamic rendering on the pass's attachment slots (indices into ctx->slots: colour
+ * slots, then depth_slot or -1) and checks each load op against the slot's declared access: a
+ * full write (color_write, depth_write) must clear (clears != NULL, clear_depth), a read-modify-
+ * write or read (color_rmw, depth_rmw, depth_read) must load, any other access is not an
+ * attachment. A break is recorded in ctx->record_error ("pass 'P': slot 'S' is declared
+ * color_write (a full write) but rendering begins with LOAD_OP_LOAD ..."); rendering begins
+ * anyway so the command buffer stays valid. The size is the first attachment's. */
+void pg_pass_begin_rendering(const pg_pass_record_ctx *ctx, uint32_t n_color, const uint32_t *color_slots,
+                             const VkClearColorValue *clears, int depth_slot, bool clear_depth, float depth_clear);
+
+typedef struct pg_grow_event {
+    char resource[PG_NAME_MAX];
+    uint64_t old_bytes, new_bytes;
+} pg_grow_event;
+
+typedef struct pg_frame_stats {
+    uint32_t n_passes;
+    char pass_names[PG_MAX_PASSES][PG_NAME_MAX];
+    double pass_ms[PG_MAX_PASSES];    /* GPU time from timestamps (includes the pass's barriers) */
+    double gpu_total_ms;
+    double cpu_ms;                    /* host time of pg_runtime_render less wait_ms: record,
+                                       * submit, reading stats */
+    double wait_ms;                   /* host time blocked on fences in this call */
+    uint64_t frame;                   /* this frame's number (0, 1, ... per runtime) */
+    uint32_t in_flight;               /* frames in flight it was rendered with */
+    /* pass_ms/gpu_total_ms are those of frame gpu_frame: this frame when the call waited for
+     * it (1 in flight, or readback), else the last one seen finished (usually frame - 1) */
+    uint64_t gpu_frame;
+    /* false: another frame was still in flight, so the pass reports (counters, notes, growth)
+     * were not read this frame (they are after a new plan or a growth and at least every 8th
+     * frame: pg_runtime_stats.report_waits) */
+    bool reports_valid;
+    bool timestamps_valid;
+    /* counters reported by passes (pg_pass_type.report), e.g. cluster overflow */
+    uint32_t n_counters;
+    struct {
+        char pass[PG_NAME_MAX];
+        char name[32];
+        uint64_t value;
+    } counters[32];
+    /* "grow" buffers re-created larger after this frame because a pass found them too small
+     * (pg_report_grow): this frame was incomplete and the next one will not be. */
+    uint32_t n_grown;
+    pg_grow_event grown[4];
+    /* notes from passes and from the runtime (e.g. a growth the device refused) */
+    uint32_t n_notes;
+    char notes[4][160];
+    /* pg_session_render: times this frame was rendered again after a growth (the stats are the
+     * last rendering's; n_grown/grown then list every growth of all renderings) */
+    uint32_t rerenders;
+} pg_frame_stats;
+
+/* The sum of every pass's counter of that name in st (pg_pass_report counters are generic: the
+ * runtime does not know what they mean; e.g. "overflow_dropped", the light references the
+ * clustered passes lost). 0 when none. */
+uint64_t pg_frame_counter_sum(const pg_frame_stats *st, const char *name);
+
+typedef struct pg_runtime_stats {
+    uint32_t resource_creations;      /* times physical resources were (re)built */
+    uint64_t memory_bytes_transient;  /* actual VkDeviceMemory for transient blocks */
+    uint64_t memory_bytes_unaliased;  /* sum of transient resources' memory requirements */
+    uint32_t blocks_fallback;         /* plan blocks split at run time (no common memory
+                                       * type, or alignment padding: alias_pack.h) */
+    uint32_t grow_events;             /* "grow" buffers re-created larger, over the runtime's life */
+    uint64_t grow_bytes;              /* current bytes of all "grow" buffers */
+    uint64_t frames_submitted;
+    uint32_t fence_waits;             /* waits on an earlier frame's fence that found it unsignalled */
+    uint32_t sync_waits;              /* waits for the frame just submitted (1 in flight, readback) */
+    uint32_t reports_skipped;         /* frames whose pass reports were not read (see reports_valid) */
+    uint32_t report_waits;            /* waits for the frames in flight so the pass reports could be
+                                       * read: after a new plan or a growth, and at least every 8th
+                                       * frame (with 2 in flight the passes' counters have one copy) */
+} pg_runtime_stats;
+
+typedef struct pg_runtime pg_runtime;
+
+/* frame_block_size: bytes of the per-frame block (set 0, binding 0: a uniform buffer) the
+ * caller hands to every pg_runtime_render; the runtime copies it and never reads it. */
+pg_result pg_runtime_create(pg_gpu *gpu, uint32_t frame_block_size, pg_runtime **out, pg_error *err);
+void pg_runtime_destroy(pg_runtime *rt);
+/* Application settings handed to every pass's create (pg_pass_create_ctx.settings). Borrowed:
+ * they must stay alive until the runtime is destroyed. Call before pg_runtime_set_plan(); they
+ * are part of the physical signature, so a plan set after a change re-creates the passes. */
+void pg_runtime_set_settings(pg_runtime *rt, const pg_param_override *settings, uint32_t n_settings);
+/* plan, pipeline and scene are borrowed and must stay alive until the next set_plan/destroy. */
+pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
+                              const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err);
+#define PG_MAX_FRAMES_IN_FLIGHT 2
+/* Frames in flight (1, the default, or 2). With 2, frame k uses its own command buffer, fence,
+ * frame-uniform buffer and descriptor set, timestamp pool and readback staging (slot k % 2), and
+ * pg_runtime_render waits only for frame k - 2's fence. The frames share the graph's resources
+ * (persistent and transient memory): each frame's commands begin with a full barrier, so the GPU
+ * runs consecutive frames one after the other while the host records ahead. Waits for the
+ * device first. */
+pg_result pg_runtime_set_frames_in_flight(pg_runtime *rt, uint32_t n, pg_error *err);
+/* The GPU times of frame `frame` (pg_frame_stats.frame) once its fence was seen signalled, among
+ * the last 4 such frames of the current plan; false otherwise. pass_ms: one per executed pass. */
+bool pg_runtime_gpu_times(const pg_runtime *rt, uint64_t frame, double *total_ms, double *pass_ms);
+/* Waits for every frame in flight (their timestamps become the next stats' GPU times). */
+pg_result pg_runtime_wait_idle(pg_runtime *rt, pg_error *err);
+/* Renders one frame; waits for it when 1 frame is in flight or readback is set (else only for
+ * the frame that used the same slot, see pg_runtime_set_frames_in_flight). readback: copy the
+ * outputs for pg_runtime_output(). */
+pg_result pg_runtime_render(pg_runtime *rt, const void *frame_block, bool readback,
+                            pg_frame_stats *stats, pg_error *err);
+/* Pixels of the last read-back frame: which = 0 the output, 1 the hdr_output (NULL if none). */
+const void *pg_runtime_output(const pg_runtime *rt, int which, uint32_t *w, uint32_t *h, pg_format *fmt);
+pg_runtime_stats pg_runtime_get_stats(const pg_runtime *rt);
+/* Copies bytes [offset, offset + size) of the buffer resource `name` as the last frame left it
+ * into dst (for tests and debugging; waits for the device). Transient buffers hold what the
+ * frame wrote unless another resource aliased them later in the frame (render with aliasing
+ * off to be sure). Fails for an unknown, culled or image resource or a range past its end. */
+pg_result pg_runtime_read_buffer(pg_runtime *rt, const char *name, uint64_t offset, uint64_t size, void *dst,
+                                 pg_error *err);
+/* Current size in bytes of a buffer resource (a "grow" buffer may exceed the plan's size); 0
+ * when unknown or culled. */
+uint64_t pg_runtime_buffer_size(const pg_runtime *rt, const char *name);
+/* The physical resource a handle of the runtime's current plan names (pg_plan_find_resource on
+ * the plan given to pg_runtime_set_plan). A handle of an earlier plan (before a pipeline switch,
+ * a resize, a new light count) is refused: PG_ERR_INVALID_ARG "stale resource handle ...". */
+pg_result pg_runtime_resource(const pg_runtime *rt, pg_res_handle h, const pg_phys_resource **out,
+                              pg_error *err);
+/* The physical image of the output (which 0) or hdr_output (1), in TRANSFER_SRC_OPTIMAL layout
+ * after each frame (NULL if none). For the viewer's blit to the window. */
+const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which);
+/* The physical resource of plan->resources[index] (NULL when out of range), for tests. */
+const pg_phys_resource *pg_runtime_resource_at(const pg_runtime *rt, int index);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

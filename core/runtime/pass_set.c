@@ -1,0 +1,59 @@
+/* pass_set.c - pass-private descriptor sets (pass_set.h). */
+#include "pass_set.h"
+
+#include <string.h>
+
+pg_result pg_pass_set_create(pg_gpu *gpu, uint32_t n, const pg_set_binding *b, const char *name, pg_pass_set *out,
+                             pg_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (n > 16) return pg_fail(err, PG_ERR_LIMIT, "%s: too many bindings", name);
+    VkDescriptorSetLayoutBinding lb[16];
+    VkDescriptorPoolSize ps[16];
+    for (uint32_t i = 0; i < n; i++) {
+        lb[i] = (VkDescriptorSetLayoutBinding){i, b[i].type, 1,
+                                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
+                                                   VK_SHADER_STAGE_COMPUTE_BIT,
+                                               NULL};
+        ps[i] = (VkDescriptorPoolSize){b[i].type, 1};
+    }
+    VkDescriptorSetLayoutCreateInfo lci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                           .bindingCount = n, .pBindings = lb};
+    PG_VK_TRY(err, vkCreateDescriptorSetLayout(gpu->device, &lci, NULL, &out->layout));
+    VkDescriptorPoolCreateInfo pci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                      .maxSets = 1, .poolSizeCount = n, .pPoolSizes = ps};
+    PG_VK_TRY(err, vkCreateDescriptorPool(gpu->device, &pci, NULL, &out->pool));
+    VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                      .descriptorPool = out->pool, .descriptorSetCount = 1,
+                                      .pSetLayouts = &out->layout};
+    PG_VK_TRY(err, vkAllocateDescriptorSets(gpu->device, &ai, &out->set));
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_DESCRIPTOR_SET, (uint64_t)out->set, "%s", name);
+    VkWriteDescriptorSet w[16];
+    VkDescriptorBufferInfo bi[16];
+    VkDescriptorImageInfo ii[16];
+    for (uint32_t i = 0; i < n; i++) {
+        w[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = out->set,
+                                      .dstBinding = i, .descriptorCount = 1, .descriptorType = b[i].type};
+        if (b[i].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || b[i].type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER) {
+            bi[i] = (VkDescriptorBufferInfo){b[i].res->buffer, 0, VK_WHOLE_SIZE};
+            w[i].pBufferInfo = &bi[i];
+        } else {
+            VkImageLayout l = b[i].layout;
+            if (!l)
+                l = b[i].type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? VK_IMAGE_LAYOUT_GENERAL
+                                                                  : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+            ii[i] = (VkDescriptorImageInfo){b[i].sampler, b[i].res->view, l};
+            w[i].pImageInfo = &ii[i];
+        }
+    }
+    vkUpdateDescriptorSets(gpu->device, n, w, 0, NULL);
+    return PG_OK;
+}
+
+void pg_pass_set_destroy(pg_gpu *gpu, pg_pass_set *s)
+{
+    if (s->pool) vkDestroyDescriptorPool(gpu->device, s->pool, NULL);
+    if (s->layout) vkDestroyDescriptorSetLayout(gpu->device, s->layout, NULL);
+    memset(s, 0, sizeof *s);
+}
+

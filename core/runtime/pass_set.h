@@ -1,0 +1,35 @@
+/* pass_set.h - a pass-private descriptor set over the graph's physical resources (the slots a
+ * pass was given in pg_pass_create_ctx), for passes' create(). */
+#ifndef PG_PASS_SET_H
+#define PG_PASS_SET_H
+
+#include "graph_execute.h"
+#include "vk_context.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* One binding of a pass-private descriptor set. */
+typedef struct pg_set_binding {
+    VkDescriptorType type;          /* STORAGE_BUFFER, UNIFORM_BUFFER, COMBINED_IMAGE_SAMPLER, STORAGE_IMAGE */
+    const pg_phys_resource *res;
+    VkSampler sampler;              /* for COMBINED_IMAGE_SAMPLER */
+    VkImageLayout layout;           /* for images; 0 -> SHADER_READ_ONLY / GENERAL by type */
+} pg_set_binding;
+
+typedef struct pg_pass_set {
+    VkDescriptorSetLayout layout;
+    VkDescriptorPool pool;
+    VkDescriptorSet set;
+} pg_pass_set;
+
+/* Bindings are numbered 0..n-1, visible to all stages. */
+pg_result pg_pass_set_create(pg_gpu *gpu, uint32_t n, const pg_set_binding *bindings, const char *name,
+                             pg_pass_set *out, pg_error *err);
+void pg_pass_set_destroy(pg_gpu *gpu, pg_pass_set *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,262 @@
+/* scene.h - CPU-side scene: one vertex/index soup with node transforms baked in, materials,
+ * decoded textures with their mip chains, bounds, and features. Loaded from glTF 2.0
+ * (core/scene/scene_gltf.cpp, a thin C++ shim over tinygltf) or generated (core/scene/scene_default.c).
+ *
+ * Ownership: a pg_scene owns all its arrays; free with pg_scene_free().
+ */
+#ifndef PG_SCENE_H
+#define PG_SCENE_H
+
+#include "pg_common.h"
+#include "scene_features.h"
+
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pg_vertex {
+    float position[3];
+    float normal[3];
+    float uv[2];
+    float tangent[4]; /* xyz, w = handedness (+-1); zero when the primitive has none */
+} pg_vertex;          /* 48 bytes, the GPU vertex layout */
+
+typedef enum pg_alpha_mode { PG_ALPHA_OPAQUE = 0, PG_ALPHA_MASK = 1, PG_ALPHA_BLEND = 2 } pg_alpha_mode;
+
+/* The texture slots of a material (index into pg_material.tex_coord / uv_transform). */
+enum { PG_TEXSLOT_BASE = 0, PG_TEXSLOT_NORMAL = 1, PG_TEXSLOT_EMISSIVE = 2, PG_TEXSLOT_COUNT = 3 };
+
+typedef struct pg_material {
+    char name[PG_NAME_MAX];
+    float base_color[4];     /* factor, linear */
+    int base_color_tex;      /* index into scene->textures, -1 if none */
+    int normal_tex;          /* -1 if none */
+    float normal_scale;
+    pg_alpha_mode alpha_mode;/* OPAQUE, MASK (discard), BLEND (transparent pass) */
+    float alpha_cutoff;      /* MASK: discard below (default 0.5) */
+    float specular;          /* Blinn-Phong specular strength (from roughness/metallic), 0..1 */
+    float shininess;         /* Blinn-Phong exponent */
+    bool double_sided;
+    float emissive[3];       /* emissiveFactor times KHR_materials_emissive_strength, linear */
+    int emissive_tex;        /* sRGB texture, -1 if none */
+    /* per slot (PG_TEXSLOT_*): which TEXCOORD_n the texture reads (0 or 1) */
+    uint8_t tex_coord[PG_TEXSLOT_COUNT];
+    /* per slot: KHR_texture_transform as a 2x3 row-major matrix, uv' = M * (u, v, 1):
+     * {m00, m01, m02, m10, m11, m12}; identity when the slot has none */
+    float uv_transform[PG_TEXSLOT_COUNT][6];
+    bool has_uv_transform[PG_TEXSLOT_COUNT];
+} pg_material;
+
+/* glTF sampler state of a texture (one pg_texture per (image, colour space, sampler) use) */
+typedef enum pg_wrap { PG_WRAP_REPEAT = 0, PG_WRAP_CLAMP = 1, PG_WRAP_MIRROR = 2 } pg_wrap;
+typedef enum pg_mip_mode { PG_MIP_LINEAR = 0, PG_MIP_NEAREST = 1, PG_MIP_NONE = 2 } pg_mip_mode;
+typedef struct pg_sampler_state {
+    pg_wrap wrap_s, wrap_t;
+    bool mag_nearest, min_nearest; /* false: linear */
+    pg_mip_mode mip;               /* NONE: level 0 only (minFilter NEAREST / LINEAR) */
+} pg_sampler_state;               /* all zero = glTF's default (repeat, linear, trilinear) */
+
+typedef struct pg_mip {
+    uint32_t width, height;
+    uint8_t *rgba;            /* width*height*4 bytes, points into pg_texture.data */
+} pg_mip;
+
+#define PG_MAX_MIPS 16
+typedef struct pg_texture {
+    char name[PG_NAME_MAX];
+    bool srgb;                /* base colour, emissive: sRGB; normal maps: linear */
+    pg_sampler_state sampler;
+    uint32_t n_mips;          /* full chain down to 1x1 */
+    pg_mip mips[PG_MAX_MIPS];
+    uint8_t *data;            /* one allocation holding all mips */
+    size_t data_size;
+} pg_texture;
+
+typedef struct pg_primitive {
+    uint32_t first_index;
+    uint32_t index_count;
+    int32_t vertex_offset;    /* added to each index */
+    uint32_t material;        /* index into scene->materials */
+    float bounds_min[3], bounds_max[3];
+} pg_primitive;
+
+/* A camera of the glTF file, placed by its node's world transform (one entry per camera NODE
+ * reached in the default scene, in depth-first node order; a camera used by two nodes appears
+ * twice). glTF cameras look down their local -Z with +Y up. */
+typedef enum pg_camera_type { PG_CAMERA_PERSPECTIVE = 0, PG_CAMERA_ORTHOGRAPHIC = 1 } pg_camera_type;
+typedef struct pg_scene_camera {
+    char name[PG_NAME_MAX];      /* cameras[i].name, else "cameras[i]" */
+    char node_name[PG_NAME_MAX]; /* nodes[n].name, else "nodes[n]" */
+    int gltf_camera, gltf_node;  /* indices in the file */
+    pg_camera_type type;
+    float yfov_rad;              /* perspective */
+    float aspect_ratio;          /* perspective; 0 when the file gives none */
+    float xmag, ymag;            /* orthographic */
+    float znear;
+    float zfar;                  /* 0 = infinite (perspective without zfar) */
+    float position[3];           /* world */
+    float forward[3], up[3];     /* world, unit length (node -Z and +Y, orthonormalised) */
+} pg_scene_camera;
+
+typedef struct pg_scene {
+    char name[PG_NAME_MAX];
+    char path[PG_PATH_MAX];   /* "default" for the generated scene */
+    pg_vertex *vertices;
+    uint32_t n_vertices;
+    /* Optional per-vertex streams, n_vertices entries each, NULL when no drawn primitive has the
+     * attribute (then no shader path reads it): COLOR_0 as linear RGBA (white where a primitive
+     * has none), TEXCOORD_1 (a copy of TEXCOORD_0 where a primitive has none; warned when its
+     * material reads set 1). */
+    float (*colors)[4];
+    float (*uv1)[2];
+    uint32_t *indices;        /* 16-bit glTF indices are widened */
+    uint32_t n_indices;
+    pg_primitive *primitives;
+    uint32_t n_primitives;
+    pg_material *materials;
+    uint32_t n_materials;
+    pg_texture *textures;
+    uint32_t n_textures;
+    float bounds_min[3], bounds_max[3];
+    pg_scene_features features; /* light_count left 0 here */
+    pg_scene_camera *cameras;   /* owned (freed by pg_scene_free); NULL when n_cameras == 0;
+                                   the built-in atrium has none */
+    uint32_t n_cameras;
+    /* What the loader could not draw as the file asks, one line each, "PATH: cause: what is
+     * drawn instead" (e.g. "x.gltf: 2 skins ignored: rendered in bind pose"); in load order, one
+     * line per kind of feature (one per extensionsUsed entry, the 17th on summed up in one line). Owned by the scene: warnings[i] and the array are
+     * malloc'd and freed by pg_scene_free(); NULL / 0 when there are none (always for the default
+     * scene). The library never prints them: the tools print each once per loaded scene
+     * (pg_scene_print_warnings). */
+    char **warnings;
+    uint32_t n_warnings;
+} pg_scene;
+
+typedef struct pg_camera {
+    float position[3];
+    float target[3];
+    float up[3];
+    float fov_y_deg;
+    float near_z, far_z;
+    float aspect;             /* width / height */
+    float ortho_height;       /* > 0: orthographic, the full view height in scene units (2 x the
+                                 glTF ymag; the width follows the aspect); 0: perspective */
+} pg_camera;
+
+/* Loads a .gltf (JSON + external/embedded buffers and images) or .glb. Errors name the file and
+ * the glTF object, e.g. "x.gltf: accessors[4]: count 100 (...) exceeds bufferView 2 (48 bytes)":
+ * PG_ERR_IO when the file itself cannot be read, PG_ERR_PARSE for JSON syntax / a broken GLB
+ * container, PG_ERR_GLTF for content (missing buffer or image files, ranges, types, indices,
+ * non-finite values, cycles, undecodable, non-PNG/JPEG or > 16384 px images, glTF 1.0, an
+ * extensionsRequired entry other than KHR_texture_transform, bad KHR_texture_transform values), PG_ERR_LIMIT past 2^32 vertices. A directory is
+ * "PATH: is a directory (expected a glTF 2.0 .gltf/.glb file)" (PG_ERR_IO); a file that is neither
+ * JSON nor GLB (an .obj, say) is "PATH: not a glTF 2.0 file (passgraph reads .gltf and .glb
+ * only)" (PG_ERR_PARSE). Features the loader does not draw are listed in scene->warnings (see
+ * the README "Scenes" table): skins and morph targets (bind pose / base geometry), unimplemented
+ * extensions in extensionsUsed, alphaMode BLEND (opaque), COLOR_1+, TEXCOORD_2+ and texCoord >= 2,
+ * sampler values outside the glTF enums, emission, occlusion and metallic-roughness textures,
+ * point/line primitives. Sparse accessors are applied. COLOR_0 fills scene->colors, TEXCOORD_1
+ * scene->uv1 (when a texture reads it), textureInfo texCoord / KHR_texture_transform fill
+ * pg_material.tex_coord / uv_transform, glTF samplers fill pg_texture.sampler.
+ * Details (core/scene/scene_gltf.cpp header): the node hierarchy of `scene` (else scenes[0], else every
+ * root node) is baked into the vertices (normals by the inverse-transpose, a mirroring transform
+ * flips the winding and the tangent handedness); one pg_primitive per drawn (node, primitive)
+ * pair, its indices local (add vertex_offset); TRIANGLES/STRIP/FAN are drawn, points and lines
+ * skipped with a line in scene->warnings; missing normals are computed (area-weighted), missing tangents
+ * are computed for normal-mapped materials; materials keep their glTF indices (a white "default"
+ * material is appended for primitives without one); textures are decoded to RGBA8 with full mip
+ * chains, one pg_texture per (image, sRGB-or-linear, sampler state) use. name = the file stem. Camera nodes of
+ * the same hierarchy fill scene->cameras (pg_scene_camera; bad camera objects are PG_ERR_GLTF
+ * naming "cameras[i].perspective.yfov" etc.). */
+pg_result pg_scene_load_gltf(const char *path, pg_scene **out, pg_error *err);
+/* The built-in atrium (columns, arches, several procedural materials, tens of thousands of
+ * triangles). Deterministic. */
+pg_result pg_scene_create_default(pg_scene **out, pg_error *err);
+/* "default" -> generated scene, else glTF. */
+pg_result pg_scene_load(const char *path_or_default, pg_scene **out, pg_error *err);
+void pg_scene_free(pg_scene *scene);
+/* Appends a copy of `line` to scene->warnings (PG_ERR_OOM when it cannot). */
+pg_result pg_scene_add_warning(pg_scene *scene, const char *line, pg_error *err);
+/* Writes each warning as "PREFIXwarning: LINE\n" to f (prefix e.g. "passgraph render: ", may be
+ * NULL). */
+void pg_scene_print_warnings(const pg_scene *scene, const char *prefix, FILE *f);
+
+/* Builds a full mip chain (box filter; sRGB textures are filtered in linear space) from an
+ * RGBA8 image it copies. */
+pg_result pg_texture_init(pg_texture *tex, const char *name, const uint8_t *rgba, uint32_t w,
+                          uint32_t h, bool srgb, pg_error *err);
+/* A material with glTF's defaults: white, no textures, opaque, cutoff 0.5, normal scale 1, no
+ * emissive, TEXCOORD_0 and identity transforms everywhere, specular 0.04, shininess 1. */
+void pg_material_init(pg_material *m, const char *name);
+void pg_texture_release(pg_texture *tex);
+
+/* ---- helpers shared by the loaders (glTF shim, default scene); usable by tools ----
+ * Indices are local to verts (0..n_verts-1); out-of-range triangles are skipped. */
+/* Area-weighted smooth vertex normals over the triangles that share each vertex; a vertex no
+ * triangle gives a normal gets (0,1,0). */
+void pg_mesh_compute_normals(pg_vertex *verts, uint32_t n_verts, const uint32_t *indices,
+                             uint32_t n_indices);
+/* Tangents from positions, normals and UVs in the glTF convention: tangent.xyz = direction of
+ * increasing u, bitangent = cross(N, T.xyz) * w = direction of DEcreasing v (up in the image, as
+ * glTF's UV origin is the top-left). Per-triangle dP/du, dP/dv accumulated per vertex weighted by
+ * triangle area, then Gram-Schmidt against the normal; w = +-1 from the handedness of the
+ * accumulated bitangent. Normals must be set (unit length) first. */
+void pg_mesh_compute_tangents(pg_vertex *verts, uint32_t n_verts, const uint32_t *indices,
+                              uint32_t n_indices);
+/* Recomputes each primitive's bounds (from the vertices its indices reach), the scene bounds and
+ * the features (from the materials the primitives with triangles actually use). */
+void pg_scene_finalize(pg_scene *scene);
+
+/* A sensible view of the whole scene from its bounds: position (min.x + 0.2*size.x,
+ * min.y + 0.18*size.y, center.z), looking along +X at (max.x, same height, center.z), up +Y,
+ * fov_y 60 deg, near = max(0.01, 0.001*diagonal), far = 2*diagonal. For the atrium-like scenes
+ * this stands inside the nave looking down its length. The tools use it for the built-in atrium
+ * only (tools/app.h pg_app_default_view); loaded glTF get pg_camera_frame_object or a glTF camera. */
+pg_camera pg_camera_default_for_scene(const pg_scene *scene, float aspect);
+
+/* Object framing, the default for loaded glTF without a camera (README "Scenes"): the bounding
+ * sphere of the scene box (center c, radius r = half the box diagonal; r < 1e-30 -> 1) is fitted
+ * into BOTH the vertical and the horizontal field of view: fov_y = 45 deg, half-angle
+ * a = min(fov_y/2, atan(tan(fov_y/2) * aspect)), distance d = 1.1 * r / sin(a). The camera looks
+ * at c from the direction (sin 35 cos 25, sin 25, cos 35 cos 25) (a 3/4 view from above, front =
+ * +Z as glTF models face), up +Y; near = d - 1.05 r (> 0.5 d, as d >= 2.8 r), far = d + 1.05 r, so depth precision follows the object. out_radius / out_distance (may be
+ * NULL) receive r and d. */
+pg_camera pg_camera_frame_object(const pg_scene *scene, float aspect, float *out_radius,
+                                 float *out_distance);
+
+/* The pg_camera of scene->cameras[index] for an output of `aspect` (width / height): perspective
+ * keeps yfov (the file's aspectRatio is not forced: the output size decides the width), znear,
+ * zfar; an infinite zfar becomes the distance from the camera to the farthest corner of the
+ * scene bounds times 2 (at least 1000 * znear). Orthographic: ortho_height = 2 ymag (xmag is not
+ * forced either: the output aspect decides the width), znear, zfar (a znear of 0, which glTF
+ * allows, becomes 1e-6 zfar: the depth slices of the clusters are logarithmic). */
+pg_result pg_camera_from_scene(const pg_scene *scene, uint32_t index, float aspect, pg_camera *out,
+                               pg_error *err);
+
+/* Finds a camera by "N" (index into scene->cameras) or a name (camera name first, then node
+ * name). Not found: PG_ERR_INVALID_ARG "--camera X: no such camera in FILE; available: 0 'a'
+ * (node 'n'), 1 ... , or auto" (or "the scene has no cameras; use --camera auto"). */
+pg_result pg_scene_find_camera(const pg_scene *scene, const char *spec, uint32_t *out_index,
+                               pg_error *err);
+
+/* Column-major 4x4 matrices (element row r, column c at m[c*4 + r]; p' = M * p).
+ * pg_camera_view: right-handed look-at; camera space +X right, +Y up, looking down -Z.
+ * pg_camera_proj: perspective to Vulkan clip space: y_ndc = -1 is the TOP of the image (view +Y
+ * is negated so the image is upright with a positive-height viewport), z_ndc = 0 at near_z and 1
+ * at far_z (standard depth, not reversed), w_clip = -z_view. With ortho_height > 0 the same
+ * conventions orthographically: x_ndc = x / (h/2 * aspect), y_ndc = -y / (h/2),
+ * z_ndc = (-z - near) / (far - near), w_clip = 1 (frame uniforms clip.w = 1 tells the shaders).
+ * pg_mat4_mul: out = a * b (out may alias a or b).
+ * pg_mat4_invert: general inverse (double precision cofactors); returns false and leaves out
+ * untouched when m is singular (|det| <= 1e-12 * max|m_ij|^4) or not finite. */
+void pg_camera_view(const pg_camera *cam, float out_view[16]);
+void pg_camera_proj(const pg_camera *cam, float out_proj[16]);
+void pg_mat4_mul(const float a[16], const float b[16], float out[16]);
+bool pg_mat4_invert(const float m[16], float out[16]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

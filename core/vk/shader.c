@@ -1,0 +1,436 @@
+/* shader.c - glslang C interface wrapper with textual #include expansion. */
+#include "shader.h"
+
+#include <glslang/Include/glslang_c_interface.h>
+#include <glslang/Public/resource_limits_c.h>
+#include <glslang/build_info.h>
+#include <limits.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "pg_cache.h"
+#include "vk_context.h"
+
+/* ---- textual include expansion ---- */
+typedef struct strbuf {
+    char *data;
+    size_t len, cap;
+} strbuf;
+
+static bool sb_append(strbuf *sb, const char *s, size_t n)
+{
+    if (sb->len + n + 1 > sb->cap) {
+        size_t cap = sb->cap ? sb->cap * 2 : 4096;
+        while (cap < sb->len + n + 1) cap *= 2;
+        char *d = realloc(sb->data, cap);
+        if (!d) return false;
+        sb->data = d;
+        sb->cap = cap;
+    }
+    memcpy(sb->data + sb->len, s, n);
+    sb->len += n;
+    sb->data[sb->len] = 0;
+    return true;
+}
+
+typedef struct gen_sources {
+    const pg_shader_source *v;
+    uint32_t n;
+} gen_sources;
+
+static pg_result expand(const char *name, int depth, const gen_sources *gen, strbuf *out, pg_error *err)
+{
+    if (depth > 8) return pg_fail(err, PG_ERR_SHADER, "shaders/%s: #include nested too deep", name);
+    char path[PG_PATH_MAX + 64];
+    snprintf(path, sizeof path, "%s/shaders/%s", pg_data_dir(), name);
+    char *text = NULL;
+    pg_result r = PG_OK;
+    for (uint32_t i = 0; gen && i < gen->n && !text; i++) {
+        if (!gen->v[i].name || strcmp(gen->v[i].name, name)) continue;
+        snprintf(path, sizeof path, "<generated %s>", name);
+        size_t len = gen->v[i].text ? strlen(gen->v[i].text) : 0;
+        text = malloc(len + 1);
+        if (!text) return pg_fail(err, PG_ERR_OOM, "out of memory expanding %s", path);
+        if (len) memcpy(text, gen->v[i].text, len);
+        text[len] = 0;
+    }
+    if (!text && (r = pg_read_file(path, &text, NULL, err))) return r;
+    const char *p = text;
+    int line = 1;
+    while (*p) {
+        const char *eol = strchr(p, '\n');
+        size_t n = eol ? (size_t)(eol - p + 1) : strlen(p);
+        const char *q = p;
+        while (*q == ' ' || *q == '\t') q++;
+        if (strncmp(q, "#include", 8) == 0) {
+            const char *a = strchr(q, '"');
+            const char *b = a ? strchr(a + 1, '"') : NULL;
+            if (!a || !b || b > p + n) {
+                free(text);
+                return pg_fail(err, PG_ERR_SHADER, "%s:%d: malformed #include", path, line);
+            }
+            char inc[PG_NAME_MAX * 2];
+            size_t il = (size_t)(b - a - 1);
+            if (il >= sizeof inc) il = sizeof inc - 1;
+            memcpy(inc, a + 1, il);
+            inc[il] = 0;
+            r = expand(inc, depth + 1, gen, out, err);
+            if (r) {
+                free(text);
+                return r;
+            }
+            if (!sb_append(out, "\n", 1)) goto oom;
+        } else if (!sb_append(out, p, n)) {
+            goto oom;
+        }
+        p += n;
+        line++;
+    }
+    free(text);
+    return PG_OK;
+oom:
+    free(text);
+    return pg_fail(err, PG_ERR_OOM, "out of memory expanding %s", path);
+}
+
+static pthread_mutex_t g_glslang_lock = PTHREAD_MUTEX_INITIALIZER;
+static bool g_glslang_ready;
+
+/* ---- SPIR-V cache: in memory for the process, on disk in <cache dir>/spirv/<key>.spv ----
+ * The key hashes the expanded source (every included file's content and the generated sources
+ * spliced in, the defines inserted after #version), the stage, the glslang version and the
+ * client / target versions glslang is asked for. A .spv file is a spv_file_head and the words. */
+/* the glslang client / SPIR-V target: Vulkan 1.3 / SPIR-V 1.6, or 1.2 / 1.5 for a Vulkan 1.2 device
+ * (gpu->vulkan12) */
+#define SPV_CLIENT(v12) ((v12) ? GLSLANG_TARGET_VULKAN_1_2 : GLSLANG_TARGET_VULKAN_1_3)
+#define SPV_TARGET(v12) ((v12) ? GLSLANG_TARGET_SPV_1_5 : GLSLANG_TARGET_SPV_1_6)
+#define SPV_MAGIC "PGSPV01\n"
+#define SPV_MEMORY_MAX 512
+
+typedef struct spv_file_head {
+    char magic[8];
+    uint64_t key_a, key_b;
+    uint64_t n_words;
+    uint64_t sum_a, sum_b; /* pg_hash128 of the words */
+} spv_file_head;
+
+typedef struct spv_entry {
+    pg_hash128 key;
+    uint32_t *words;
+    size_t n;
+} spv_entry;
+
+static pthread_mutex_t g_cache_lock = PTHREAD_MUTEX_INITIALIZER;
+static spv_entry g_mem[SPV_MEMORY_MAX];
+static uint32_t g_n_mem;
+static pg_shader_cache_stats g_stats;
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static void add_ms(double *acc, double ms)
+{
+    pthread_mutex_lock(&g_cache_lock);
+    *acc += ms;
+    pthread_mutex_unlock(&g_cache_lock);
+}
+
+static pg_hash128 spirv_key(const char *src, VkShaderStageFlagBits stage, bool vulkan12)
+{
+    pg_hash128 h = pg_hash128_init();
+    char ver[160];
+    snprintf(ver, sizeof ver, "passgraph-spirv-1 glslang %d.%d.%d%s client %d target %d stage %d", GLSLANG_VERSION_MAJOR,
+             GLSLANG_VERSION_MINOR, GLSLANG_VERSION_PATCH, GLSLANG_VERSION_FLAVOR, (int)SPV_CLIENT(vulkan12), (int)SPV_TARGET(vulkan12),
+             (int)stage);
+    pg_hash128_add(&h, ver, strlen(ver) + 1);
+    pg_hash128_add(&h, src, strlen(src));
+    return h;
+}
+
+static bool spirv_path(pg_hash128 key, char *buf, size_t size, bool make_dir)
+{
+    char dir[PG_PATH_MAX];
+    if (!pg_cache_dir(dir, sizeof dir)) return false;
+    size_t l = strlen(dir);
+    if (l + 8 >= sizeof dir) return false;
+    memcpy(dir + l, "/spirv", 7);
+    if (make_dir && !pg_cache_mkdirs(dir)) {
+        static bool noted; /* once per process, not once per variant */
+        if (!noted) pg_cache_note("shader cache folder %s cannot be made; SPIR-V not saved", dir);
+        noted = true;
+        return false;
+    }
+    return snprintf(buf, size, "%s/%016llx%016llx.spv", dir, (unsigned long long)key.a, (unsigned long long)key.b) <
+           (int)size;
+}
+
+static bool dup_words(const uint32_t *w, size_t n, uint32_t **out, size_t *n_out)
+{
+    uint32_t *c = malloc(n * sizeof *c);
+    if (!c) return false;
+    memcpy(c, w, n * sizeof *c);
+    *out = c;
+    *n_out = n;
+    return true;
+}
+
+static void memory_put(pg_hash128 key, const uint32_t *w, size_t n)
+{
+    if (g_n_mem >= SPV_MEMORY_MAX) return;
+    spv_entry *e = &g_mem[g_n_mem];
+    if (dup_words(w, n, &e->words, &e->n)) {
+        e->key = key;
+        g_n_mem++;
+    }
+}
+
+static bool spirv_cache_get(pg_hash128 key, uint32_t **out, size_t *n_out)
+{
+    bool hit = false;
+    pthread_mutex_lock(&g_cache_lock);
+    for (uint32_t i = 0; i < g_n_mem && !hit; i++)
+        if (g_mem[i].key.a == key.a && g_mem[i].key.b == key.b) {
+            hit = dup_words(g_mem[i].words, g_mem[i].n, out, n_out);
+            if (hit) g_stats.memory_hits++;
+        }
+    char path[PG_PATH_MAX + 64];
+    if (!hit && spirv_path(key, path, sizeof path, false)) {
+        size_t bytes;
+        unsigned char *data = pg_cache_read(path, &bytes);
+        if (data) {
+            spv_file_head h;
+            bool ok = bytes >= sizeof h;
+            if (ok) memcpy(&h, data, sizeof h);
+            ok = ok && !memcmp(h.magic, SPV_MAGIC, 8) && h.key_a == key.a && h.key_b == key.b && h.n_words > 5 &&
+                 h.n_words <= (bytes - sizeof h) / 4 && bytes == sizeof h + h.n_words * 4;
+            uint32_t *w = ok ? malloc(h.n_words * 4) : NULL;
+            if (w) {
+                memcpy(w, data + sizeof h, h.n_words * 4);
+                pg_hash128 sum = pg_hash128_init();
+                pg_hash128_add(&sum, w, h.n_words * 4);
+                ok = sum.a == h.sum_a && sum.b == h.sum_b && w[0] == 0x07230203u;
+            }
+            if (ok && w) {
+                *out = w;
+                *n_out = h.n_words;
+                hit = true;
+                g_stats.disk_hits++;
+                memory_put(key, w, h.n_words);
+            } else {
+                free(w);
+                g_stats.rejected++;
+                pg_cache_note("shader cache file %s is corrupt; ignored, compiling again", path);
+            }
+            free(data);
+        }
+    }
+    pthread_mutex_unlock(&g_cache_lock);
+    return hit;
+}
+
+static void spirv_cache_put(pg_hash128 key, const uint32_t *w, size_t n)
+{
+    pthread_mutex_lock(&g_cache_lock);
+    memory_put(key, w, n);
+    char path[PG_PATH_MAX + 64];
+    if (spirv_path(key, path, sizeof path, true)) {
+        spv_file_head h = {.key_a = key.a, .key_b = key.b, .n_words = n};
+        memcpy(h.magic, SPV_MAGIC, 8);
+        pg_hash128 sum = pg_hash128_init();
+        pg_hash128_add(&sum, w, n * 4);
+        h.sum_a = sum.a;
+        h.sum_b = sum.b;
+        if (pg_cache_write(path, &h, sizeof h, w, n * 4)) g_stats.disk_writes++;
+    }
+    pthread_mutex_unlock(&g_cache_lock);
+}
+
+void pg_shader_cache_stats_get(pg_shader_cache_stats *out)
+{
+    pthread_mutex_lock(&g_cache_lock);
+    *out = g_stats;
+    pthread_mutex_unlock(&g_cache_lock);
+}
+
+void pg_shader_cache_forget(void)
+{
+    pthread_mutex_lock(&g_cache_lock);
+    for (uint32_t i = 0; i < g_n_mem; i++) free(g_mem[i].words);
+    g_n_mem = 0;
+    memset(&g_stats, 0, sizeof g_stats);
+    pthread_mutex_unlock(&g_cache_lock);
+}
+
+static glslang_stage_t to_glslang_stage(VkShaderStageFlagBits s)
+{
+    switch (s) {
+    case VK_SHADER_STAGE_VERTEX_BIT: return GLSLANG_STAGE_VERTEX;
+    case VK_SHADER_STAGE_FRAGMENT_BIT: return GLSLANG_STAGE_FRAGMENT;
+    default: return GLSLANG_STAGE_COMPUTE;
+    }
+}
+
+pg_result pg_shader_compile(const char *name, VkShaderStageFlagBits stage,
+                            const char *const *defines, uint32_t n_defines, uint32_t **spirv,
+                            size_t *n_words, pg_error *err)
+{
+    return pg_shader_compile_ex(name, stage, defines, n_defines, NULL, 0, spirv, n_words, err);
+}
+
+static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, const char *const *defines,
+                             uint32_t n_defines, const pg_shader_source *sources, uint32_t n_sources,
+                             bool vulkan12, uint32_t **spirv, size_t *n_words, pg_error *err);
+
+pg_result pg_shader_compile_ex(const char *name, VkShaderStageFlagBits stage, const char *const *defines,
+                               uint32_t n_defines, const pg_shader_source *sources, uint32_t n_sources,
+                               uint32_t **spirv, size_t *n_words, pg_error *err)
+{
+    return compile_for(name, stage, defines, n_defines, sources, n_sources, false, spirv, n_words, err);
+}
+
+/* vulkan12: target Vulkan 1.2 / SPIR-V 1.5 (the most a 1.2 device accepts) instead of 1.3 / 1.6 */
+static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, const char *const *defines,
+                             uint32_t n_defines, const pg_shader_source *sources, uint32_t n_sources,
+                             bool vulkan12, uint32_t **spirv, size_t *n_words, pg_error *err)
+{
+    *spirv = NULL;
+    *n_words = 0;
+    strbuf body = {0};
+    gen_sources gen = {sources, n_sources};
+    pg_result r = expand(name, 0, &gen, &body, err);
+    if (r) {
+        free(body.data);
+        return r;
+    }
+    /* put the defines right after the #version line */
+    strbuf src = {0};
+    char *ver = strstr(body.data, "#version");
+    char *ver_end = ver ? strchr(ver, '\n') : NULL;
+    if (!ver || !ver_end) {
+        free(body.data);
+        return pg_fail(err, PG_ERR_SHADER, "shaders/%s: no #version line", name);
+    }
+    bool ok = sb_append(&src, body.data, (size_t)(ver_end - body.data + 1));
+    for (uint32_t i = 0; ok && i < n_defines; i++) {
+        char line[PG_NAME_MAX + 32];
+        const char *eq = strchr(defines[i], '=');
+        if (eq)
+            snprintf(line, sizeof line, "#define %.*s %s\n", (int)(eq - defines[i]), defines[i], eq + 1);
+        else
+            snprintf(line, sizeof line, "#define %s 1\n", defines[i]);
+        ok = sb_append(&src, line, strlen(line));
+    }
+    char lineinfo[64];
+    snprintf(lineinfo, sizeof lineinfo, "#line 2\n");
+    ok = ok && sb_append(&src, lineinfo, strlen(lineinfo)) &&
+         sb_append(&src, ver_end + 1, strlen(ver_end + 1));
+    free(body.data);
+    if (!ok) {
+        free(src.data);
+        return pg_fail(err, PG_ERR_OOM, "out of memory");
+    }
+
+    pg_hash128 key = spirv_key(src.data, stage, vulkan12);
+    double t0 = now_ms();
+    bool hit = pg_cache_enabled() && spirv_cache_get(key, spirv, n_words);
+    add_ms(&g_stats.lookup_ms, now_ms() - t0);
+    if (hit) {
+        free(src.data);
+        return PG_OK;
+    }
+
+    pthread_mutex_lock(&g_glslang_lock);
+    if (!g_glslang_ready) {
+        glslang_initialize_process();
+        g_glslang_ready = true;
+    }
+    glslang_input_t input = {
+        .language = GLSLANG_SOURCE_GLSL,
+        .stage = to_glslang_stage(stage),
+        .client = GLSLANG_CLIENT_VULKAN,
+        .client_version = SPV_CLIENT(vulkan12),
+        .target_language = GLSLANG_TARGET_SPV,
+        .target_language_version = SPV_TARGET(vulkan12),
+        .code = src.data,
+        .default_version = 460,
+        .default_profile = GLSLANG_NO_PROFILE,
+        .messages = GLSLANG_MSG_DEFAULT_BIT | GLSLANG_MSG_SPV_RULES_BIT | GLSLANG_MSG_VULKAN_RULES_BIT,
+        .resource = glslang_default_resource(),
+    };
+    t0 = now_ms();
+    glslang_shader_t *sh = glslang_shader_create(&input);
+    glslang_program_t *prog = NULL;
+    if (!sh) {
+        r = pg_fail(err, PG_ERR_SHADER, "shaders/%s: glslang_shader_create failed", name);
+        goto done;
+    }
+    if (!glslang_shader_preprocess(sh, &input) || !glslang_shader_parse(sh, &input)) {
+        r = pg_fail(err, PG_ERR_SHADER, "shaders/%s: compile failed:\n%s", name,
+                    glslang_shader_get_info_log(sh));
+        goto done;
+    }
+    prog = glslang_program_create();
+    glslang_program_add_shader(prog, sh);
+    if (!glslang_program_link(prog, GLSLANG_MSG_SPV_RULES_BIT | GLSLANG_MSG_VULKAN_RULES_BIT)) {
+        r = pg_fail(err, PG_ERR_SHADER, "shaders/%s: link failed:\n%s", name,
+                    glslang_program_get_info_log(prog));
+        goto done;
+    }
+    glslang_program_SPIRV_generate(prog, input.stage);
+    size_t words = glslang_program_SPIRV_get_size(prog);
+    uint32_t *code = malloc(words * sizeof(uint32_t));
+    if (!code) {
+        r = pg_fail(err, PG_ERR_OOM, "out of memory");
+        goto done;
+    }
+    glslang_program_SPIRV_get(prog, code);
+    *spirv = code;
+    *n_words = words;
+    r = PG_OK;
+    __atomic_fetch_add(&g_stats.compiled, 1, __ATOMIC_RELAXED);
+    add_ms(&g_stats.compile_ms, now_ms() - t0);
+    if (pg_cache_enabled()) spirv_cache_put(key, code, words);
+done:
+    if (prog) glslang_program_delete(prog);
+    if (sh) glslang_shader_delete(sh);
+    pthread_mutex_unlock(&g_glslang_lock);
+    free(src.data);
+    return r;
+}
+
+pg_result pg_shader_module(pg_gpu *gpu, const char *name, VkShaderStageFlagBits stage,
+                           const char *const *defines, uint32_t n_defines, VkShaderModule *out,
+                           pg_error *err)
+{
+    return pg_shader_module_ex(gpu, name, stage, defines, n_defines, NULL, 0, out, err);
+}
+
+pg_result pg_shader_module_ex(pg_gpu *gpu, const char *name, VkShaderStageFlagBits stage,
+                              const char *const *defines, uint32_t n_defines, const pg_shader_source *sources,
+                              uint32_t n_sources, VkShaderModule *out, pg_error *err)
+{
+    uint32_t *code;
+    size_t words;
+    pg_result r = compile_for(name, stage, defines, n_defines, sources, n_sources, gpu->vulkan12, &code, &words, err);
+    if (r) return r;
+    VkShaderModuleCreateInfo ci = {
+        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+        .codeSize = words * sizeof(uint32_t),
+        .pCode = code,
+    };
+    VkResult vr = vkCreateShaderModule(gpu->device, &ci, NULL, out);
+    free(code);
+    if (vr != VK_SUCCESS)
+        return pg_fail(err, PG_ERR_VULKAN, "vkCreateShaderModule(%s) failed: %s", name,
+                       pg_vk_result_name(vr));
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_SHADER_MODULE, (uint64_t)*out, "%s", name);
+    return PG_OK;
+}

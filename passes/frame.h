@@ -1,0 +1,48 @@
+/* frame.h - per-frame inputs shared by every pass: camera, lights set-up, time, output size.
+ * pg_frame_uniforms is the std140 layout of `FrameUniforms` in shaders/common.glsl (set 0,
+ * binding 0 of every pass); keep the two in sync. */
+#ifndef PG_FRAME_H
+#define PG_FRAME_H
+
+#include <assert.h>
+
+#include "pg_common.h"
+#include "scenario.h"
+#include "scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Largest value a shading pass writes to the HDR target (below half-float max 65504). */
+#define PG_HDR_MAX 65000.0f
+
+typedef struct pg_frame_uniforms {
+    float view[16], proj[16], view_proj[16], inv_view[16], inv_proj[16];
+    float camera_pos[4];    /* xyz, w = time (s) */
+    float light_box_min[4]; /* xyz, w = radius */
+    float light_box_max[4]; /* xyz, w = intensity */
+    float light_params[4];  /* saturation, speed, motion (0 noise, 1 static), min distance */
+    uint32_t counts[4];     /* light count, seed, width, height */
+    float clip[4];          /* near, far, ambient (pg_light_setup.ambient), 1 = orthographic */
+} pg_frame_uniforms;
+
+typedef struct pg_frame_info {
+    pg_camera camera;
+    pg_light_setup lights;  /* count and seed included */
+    float time;
+    uint32_t width, height;
+} pg_frame_info;
+
+void pg_frame_uniforms_fill(const pg_frame_info *info, pg_frame_uniforms *u);
+
+/* The frame block a pass's record() was given (pg_pass_record_ctx.frame), seen as the built-in
+ * passes' pg_frame_uniforms: the runtime does not know its layout, so a block of another size
+ * (a runtime created for another frame layout) is a contract break caught here. */
+#define PG_FRAME_OF(ctx) \
+    (assert((ctx)->frame_size == sizeof(pg_frame_uniforms)), (const pg_frame_uniforms *)(ctx)->frame)
+
+#ifdef __cplusplus
+}
+#endif
+#endif

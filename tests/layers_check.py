@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""layers_check.py - the include rules of README "Architecture", checked on the source tree.
+
+1. No include cycle among the project's headers (a header that includes itself through others).
+2. A file of one library includes only headers of that library and of the libraries it may use
+   (LAYERS below, the same picture as CMakeLists.txt's pg_library() calls): the build enforces
+   this too, but only for what a library links, so a layer that links more than it should would
+   pass there and fails here.
+Exit 0 when both hold; else one line per break and exit 1.
+"""
+import os, re, sys
+
+ROOT = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), '..'))
+# folder -> folders whose headers it may include (transitively closed below)
+LAYERS = {
+    'core/base': [],
+    'core/graph': ['core/base'],
+    'core/dump': ['core/graph'],
+    'core/vk': ['core/base'],
+    'core/scene': ['core/base'],
+    'core/image': ['core/base'],
+    'core/color': ['core/base'],
+    'core/runtime': ['core/graph', 'core/vk', 'core/scene'],
+    'passes': ['core/runtime', 'core/color', 'core/image'],
+    'core/session': ['passes'],
+    'tools/stats': ['core/base'],
+    'tools': ['core/session', 'core/dump', 'tools/stats'],
+}
+
+def closure(f, seen=None):
+    seen = set() if seen is None else seen
+    for d in LAYERS[f]:
+        if d not in seen:
+            seen.add(d)
+            closure(d, seen)
+    return seen
+
+def main():
+    headers = {}  # basename -> folder
+    files = []
+    for folder in LAYERS:
+        d = os.path.join(ROOT, folder)
+        for name in sorted(os.listdir(d)):
+            p = os.path.join(d, name)
+            if not os.path.isfile(p) or not re.search(r'\.(c|h|cpp)$', name):
+                continue
+            files.append((folder, name, p))
+            if name.endswith('.h'):
+                if name in headers:
+                    print(f'header {name} is in both {headers[name]} and {folder}')
+                    return 1
+                headers[name] = folder
+    errors = []
+    graph = {}
+    for folder, name, p in files:
+        allowed = closure(folder) | {folder}
+        incs = re.findall(r'^\s*#\s*include\s+"([^"]+)"', open(p, encoding='utf-8').read(), re.M)
+        for inc in incs:
+            if inc not in headers:
+                continue  # a generated name (shader.h's examples) or a system header
+            owner = headers[inc]
+            if owner not in allowed:
+                errors.append(f'{folder}/{name} includes {owner}/{inc}: {folder} may use only '
+                              f'{", ".join(sorted(allowed - {folder})) or "nothing"}')
+            if name.endswith('.h'):
+                graph.setdefault(name, []).append(inc)
+    # cycles among headers: depth-first search with colours
+    colour = {}
+    def dfs(h, stack):
+        colour[h] = 1
+        for n in graph.get(h, []):
+            if colour.get(n) == 1:
+                errors.append('include cycle: ' + ' -> '.join(stack[stack.index(n):] + [n]))
+            elif not colour.get(n):
+                dfs(n, stack + [n])
+        colour[h] = 2
+    for h in sorted(graph):
+        if not colour.get(h):
+            dfs(h, [h])
+    for e in errors:
+        print(e)
+    print(f'layers_check: {len(files)} files, {len(headers)} headers, {len(errors)} breaks')
+    return 1 if errors else 0
+
+if __name__ == '__main__':
+    sys.exit(main())
