@@ -1,0 +1,176 @@
+/* view_pipelines.c - `passgraph view`: the pipeline list (pipelines/ and --pipelines DIR),
+ * parameter overrides, opening and (re)loading sessions, and the signature of the files watched
+ * for hot reload. */
+#include "view.h"
+
+/* ---------------------------------------------------------------- pipelines and parameters */
+
+static int cmp_str(const void *a, const void *b)
+{
+    return strcmp((const char *)a, (const char *)b);
+}
+
+static void scan_dir(viewer *v, const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d) return;
+    char found[MAX_PIPELINES][PG_PATH_MAX];
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) && n < MAX_PIPELINES) {
+        size_t len = strlen(e->d_name);
+        if (len < 6 || strcmp(e->d_name + len - 5, ".json")) continue;
+        snprintf(found[n++], PG_PATH_MAX, "%s/%s", dir, e->d_name);
+    }
+    closedir(d);
+    qsort(found, (size_t)n, PG_PATH_MAX, cmp_str);
+    for (int i = 0; i < n && v->n_pipelines < MAX_PIPELINES; i++) {
+        bool dup = false;
+        for (int k = 0; k < v->n_pipelines; k++) dup |= !strcmp(v->paths[k], found[i]);
+        if (dup) continue;
+        pg_strlcpy(v->paths[v->n_pipelines], found[i], PG_PATH_MAX);
+        const char *base = strrchr(found[i], '/');
+        pg_strlcpy(v->names[v->n_pipelines], base ? base + 1 : found[i], PG_NAME_MAX);
+        v->name_ptrs[v->n_pipelines] = v->names[v->n_pipelines];
+        v->n_pipelines++;
+    }
+}
+
+void scan_pipelines(viewer *v, const char *current_path)
+{
+    v->n_pipelines = 0;
+    char dir[PG_PATH_MAX];
+    pg_data_path(dir, sizeof dir, "pipelines");
+    scan_dir(v, dir);
+    if (v->extra_dir[0]) scan_dir(v, v->extra_dir);
+    v->current = -1;
+    char want[PG_PATH_MAX], have[PG_PATH_MAX];
+    for (int i = 0; current_path && i < v->n_pipelines; i++)
+        if (realpath(current_path, want) && realpath(v->paths[i], have) && !strcmp(want, have)) v->current = i;
+    if (v->current < 0 && current_path && v->n_pipelines < MAX_PIPELINES) { /* a file elsewhere */
+        pg_strlcpy(v->paths[v->n_pipelines], current_path, PG_PATH_MAX);
+        const char *base = strrchr(current_path, '/');
+        pg_strlcpy(v->names[v->n_pipelines], base ? base + 1 : current_path, PG_NAME_MAX);
+        v->name_ptrs[v->n_pipelines] = v->names[v->n_pipelines];
+        v->current = v->n_pipelines++;
+    }
+    if (v->current < 0) v->current = 0;
+}
+
+void set_override(viewer *v, const char *key, const char *value)
+{
+    for (int i = 0; i < v->n_ov; i++)
+        if (!strcmp(v->ov_key[i], key)) {
+            pg_strlcpy(v->ov_val[i], value, PG_NAME_MAX);
+            return;
+        }
+    if (v->n_ov >= MAX_OVERRIDES) return;
+    pg_strlcpy(v->ov_key[v->n_ov], key, PG_NAME_MAX);
+    pg_strlcpy(v->ov_val[v->n_ov], value, PG_NAME_MAX);
+    v->n_ov++;
+}
+
+/* Creates a session for path with the overrides the pipeline declares. */
+pg_result open_session(viewer *v, const char *path, bool with_overrides, pg_session **out, pg_error *err)
+{
+    pg_param_override ov[MAX_OVERRIDES];
+    uint32_t n = 0;
+    if (with_overrides) {
+        pg_pipeline *probe = NULL;
+        pg_result r = pg_pipeline_load(path, NULL, 0, &probe, err);
+        if (r) return r;
+        for (int i = 0; i < v->n_ov; i++)
+            if (pg_pipeline_find_param(probe, v->ov_key[i])) ov[n++] = (pg_param_override){v->ov_key[i], v->ov_val[i]};
+        pg_pipeline_free(probe);
+    }
+    pg_session_desc sd = {
+        .pipeline_path = path,
+        .overrides = ov,
+        .n_overrides = n,
+        .registry = &v->app.registry,
+        .disable_aliasing = v->app.opt.no_aliasing,
+        .immediate = v->app.opt.immediate,
+        .output_stages = VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_BLIT_BIT,
+        .settings = v->settings,
+        .n_settings = v->n_settings,
+    };
+    pg_result r = pg_session_create(v->app.gpu, v->app.scene_gpu, &sd, out, err);
+    /* the displayed graph keeps two frames in flight; the reference of the diff view reads back */
+    if (!r && with_overrides && (r = pg_session_set_frames_in_flight(*out, v->frames_in_flight, err))) {
+        pg_session_destroy(*out);
+        *out = NULL;
+    }
+    return r;
+}
+
+/* Loads the requested pipeline; on failure keeps the running one and shows the error. */
+void reload(viewer *v)
+{
+    v->reload = false;
+    pg_error err = {0};
+    pg_session *s = NULL;
+    int idx = v->requested;
+    if (idx < 0 || idx >= v->n_pipelines) idx = v->current;
+    if (open_session(v, v->paths[idx], true, &s, &err) == PG_OK) {
+        /* compile now so a bad combination shows here and the old graph keeps running */
+        pg_frame_info fi = pg_app_frame(&v->app);
+        if (pg_session_compile(s, (uint32_t)v->light_count, v->win.extent.width, v->win.extent.height, &err)) {
+            pg_session_destroy(s);
+            s = NULL;
+            (void)fi;
+        }
+    }
+    if (!s) {
+        snprintf(v->error, sizeof v->error, "%s", err.msg);
+        fprintf(stderr, "passgraph view: %s\n", err.msg);
+        v->requested = v->current;
+        return;
+    }
+    pg_session_destroy(v->session);
+    v->session = s;
+    v->current = idx;
+    v->requested = idx;
+    v->cycle_tried[0] = 0; /* loaded: the cycle goes on from here */
+    v->error[0] = 0;
+    v->hist_n = 0;
+    v->reloads++;
+}
+
+/* Sum of the modification times of everything a pipeline or shader edit touches. */
+double watch_signature(const viewer *v)
+{
+    const char *dirs[4];
+    char a[PG_PATH_MAX], b[PG_PATH_MAX], c[PG_PATH_MAX];
+    pg_data_path(a, sizeof a, "pipelines");
+    pg_data_path(b, sizeof b, "pipelines/fragments");
+    pg_data_path(c, sizeof c, "shaders");
+    int n = 0;
+    dirs[n++] = a;
+    dirs[n++] = b;
+    dirs[n++] = c;
+    if (v->extra_dir[0]) dirs[n++] = v->extra_dir;
+    double sig = 0;
+    for (int i = 0; i < n; i++) {
+        DIR *d = opendir(dirs[i]);
+        if (!d) continue;
+        struct dirent *e;
+        while ((e = readdir(d))) {
+            if (e->d_name[0] == '.') continue;
+            char p[PG_PATH_MAX * 2];
+            snprintf(p, sizeof p, "%s/%s", dirs[i], e->d_name);
+            struct stat st;
+            if (stat(p, &st) == 0 && S_ISREG(st.st_mode))
+                sig += (double)st.st_mtim.tv_sec + st.st_mtim.tv_nsec * 1e-9 + (double)st.st_size * 1e-3;
+        }
+        closedir(d);
+    }
+    /* listed pipelines outside those folders (a --pipeline elsewhere); independent of which one
+     * is selected, so switching is not mistaken for an edit */
+    for (int i = 0; i < v->n_pipelines; i++) {
+        bool inside = false;
+        for (int k = 0; k < n; k++) inside |= strncmp(v->paths[i], dirs[k], strlen(dirs[k])) == 0;
+        struct stat st;
+        if (!inside && stat(v->paths[i], &st) == 0) sig += (double)st.st_mtim.tv_sec + st.st_mtim.tv_nsec * 1e-9;
+    }
+    return sig;
+}

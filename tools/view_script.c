@@ -1,0 +1,79 @@
+/* view_script.c - `passgraph view`: the scripted actions (--at FRAME:ACTION) of tests and
+ * demos. */
+#include "view.h"
+
+/* Scripted actions (--at FRAME:ACTION) for tests and demos. */
+pg_result run_action(viewer *v, const view_action *a, pg_error *err)
+{
+    printf("view: frame %u: %s %s\n", a->frame, a->what, a->arg);
+    if (!strcmp(a->what, "resize")) {
+        unsigned w = 0, h = 0;
+        if (sscanf(a->arg, "%ux%u", &w, &h) != 2 || !w || !h || w > 16384 || h > 16384)
+            return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:resize=%s: expected WxH", a->frame, a->arg);
+        glfwSetWindowSize(v->window, (int)w, (int)h);
+    } else if (!strcmp(a->what, "iconify")) {
+        glfwIconifyWindow(v->window);
+    } else if (!strcmp(a->what, "restore")) {
+        glfwRestoreWindow(v->window);
+    } else if (!strcmp(a->what, "copy")) { /* simulate an edit on disk: copy SRC over DST */
+        char src[PG_PATH_MAX * 2];
+        pg_strlcpy(src, a->arg, sizeof src);
+        char *colon = strchr(src, ':');
+        if (!colon) return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:copy=%s: expected SRC:DST", a->frame, a->arg);
+        *colon = 0;
+        char *text = NULL;
+        size_t len = 0;
+        pg_result r = pg_read_file(src, &text, &len, err);
+        if (r) return r;
+        FILE *f = fopen(colon + 1, "wb");
+        if (!f) {
+            free(text);
+            return pg_fail(err, PG_ERR_IO, "%s: cannot write", colon + 1);
+        }
+        fwrite(text, 1, len, f);
+        fclose(f);
+        free(text);
+        v->last_watch = 0; /* look at the disk on this frame */
+    } else if (!strcmp(a->what, "set")) {
+        char kv[PG_PATH_MAX];
+        pg_strlcpy(kv, a->arg, sizeof kv);
+        char *eq = strchr(kv, '=');
+        if (!eq) return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:set=%s: expected KEY=VALUE", a->frame, a->arg);
+        *eq = 0;
+        set_override(v, kv, eq + 1);
+        v->reload = true;
+    } else if (!strcmp(a->what, "pipeline")) {
+        for (int i = 0; i < v->n_pipelines; i++)
+            if (!strcmp(v->names[i], a->arg)) v->requested = i;
+        v->reload = true;
+    } else if (!strcmp(a->what, "display") || !strcmp(a->what, "ocioview")) {
+        pg_result r = !strcmp(a->what, "display") ? colour_choose(v, a->arg, NULL, err)
+                                                  : colour_choose(v, NULL, a->arg, err);
+        if (r) return pg_error_prefix(err, "--at %u:%s=%s", a->frame, a->what, a->arg);
+    } else if (!strcmp(a->what, "diff")) {
+        v->diff = !strcmp(a->arg, "on");
+    } else if (!strcmp(a->what, "lights")) {
+        v->light_count = atoi(a->arg);
+    } else if (!strcmp(a->what, "camera")) {
+        if (!strcmp(a->arg, "auto")) {
+            camera_choose(v, 1);
+        } else {
+            uint32_t k = 0;
+            pg_result r = pg_scene_find_camera(v->app.scene, a->arg, &k, err);
+            if (r) return pg_error_prefix(err, "--at %u:camera", a->frame);
+            v->error[0] = 0;
+            camera_choose(v, (int)k + 2);
+            if (v->error[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:camera=%s: %s", a->frame, a->arg, v->error);
+        }
+    } else if (!strcmp(a->what, "screenshot")) {
+        v->want_shot = true;
+        pg_strlcpy(v->shot_file, a->arg, sizeof v->shot_file);
+    } else if (!strcmp(a->what, "capture")) {
+        v->want_rdoc = true;
+        pg_strlcpy(v->rdoc_file, a->arg, sizeof v->rdoc_file);
+    } else {
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s: unknown action (resize, iconify, restore, copy, set, pipeline, display, ocioview, diff, lights, camera, screenshot, capture)",
+                       a->frame, a->what);
+    }
+    return PG_OK;
+}
