@@ -6,7 +6,9 @@
    (LAYERS below, the same picture as CMakeLists.txt's pg_library() calls): the build enforces
    this too, but only for what a library links, so a layer that links more than it should would
    pass there and fails here.
-Exit 0 when both hold; else one line per break and exit 1.
+3. A header named *_internal.h (what the files of one split source share) is included only by files
+   of its own folder: it is no part of its library's interface.
+Exit 0 when all three hold; else one line per break and exit 1.
 """
 import os, re, sys
 
@@ -62,6 +64,9 @@ def main():
             if owner not in allowed:
                 errors.append(f'{folder}/{name} includes {owner}/{inc}: {folder} may use only '
                               f'{", ".join(sorted(allowed - {folder})) or "nothing"}')
+            if inc.endswith('_internal.h') and owner != folder:
+                errors.append(f'{folder}/{name} includes {owner}/{inc}: an internal header is only '
+                              f'for the files of {owner}')
             if name.endswith('.h'):
                 graph.setdefault(name, []).append(inc)
     # cycles among headers: depth-first search with colours

@@ -1,4 +1,4 @@
-/* test_pipeline_json.c - the pipeline JSON loader (core/graph/pipeline_json.c) and the pass option
+/* test_pipeline_json.c - the pipeline JSON loader (core/graph/pipeline_json*.c) and the pass option
  * readers (core/graph/pass_options.c): every field of valid pipelines, includes and their merge order,
  * parameters, --set overrides, "$param" substitution, "when", and the malformed corpus in
  * tests/corpus/pipelines (MANIFEST: file, expected code, expected message substring).

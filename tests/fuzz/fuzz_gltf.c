@@ -1,4 +1,4 @@
-/* fuzz_gltf.c - libFuzzer target for pg_scene_load_gltf (core/scene/scene_gltf.cpp: GLB container,
+/* fuzz_gltf.c - libFuzzer target for pg_scene_load_gltf (core/scene/scene_gltf*.cpp: GLB container,
  * JSON pre-validation, tinygltf, our stb image callback, node walk, accessors, materials, mips).
  *
  * Each input is written to a private temporary directory as input.glb when it starts with the

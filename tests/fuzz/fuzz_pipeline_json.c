@@ -1,4 +1,4 @@
-/* fuzz_pipeline_json.c - libFuzzer target for the pipeline JSON loader (core/graph/pipeline_json.c) and,
+/* fuzz_pipeline_json.c - libFuzzer target for the pipeline JSON loader (core/graph/pipeline_json*.c) and,
  * when a pipeline loads, the pure graph compiler (core/graph/graph_compile.c with every built-in pass
  * type's declare()) and the text/dot/svg reports of the plan.
  *

@@ -1,0 +1,359 @@
+/* scene_camera.c - cameras (the default and framing cameras, the file's cameras) and
+ * camera / matrix math.
+ *
+ * Matrix convention (used everywhere in passgraph): column-major float[16], element (row r,
+ * column c) at m[c*4 + r]; vectors are columns, p' = M * p.
+ *
+ * Camera convention:
+ *   world: right-handed, +Y up.
+ *   view (pg_camera_view): right-handed look-at; camera space has +X right, +Y up and the camera
+ *     looking down -Z (the OpenGL/glTF camera convention).
+ *   projection (pg_camera_proj): perspective into Vulkan clip space: x_ndc -1 = left,
+ *     y_ndc -1 = TOP of the image (the view's +Y is negated, so the image is upright with the
+ *     Vulkan viewport's y-down), depth z_ndc = 0 at near and 1 at far (standard, NOT reversed Z),
+ *     w_clip = -z_view. A viewport with positive height (no VK_KHR_maintenance1 flip) is expected.
+ */
+#include "scene.h"
+#include "scene_internal.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ------------------------------------------------------------------------------------------ */
+/* camera and matrices                                                                         */
+
+pg_camera pg_camera_default_for_scene(const pg_scene *scene, float aspect)
+{
+    float mn[3] = {-1, -1, -1}, mx[3] = {1, 1, 1};
+    if (scene && scene->bounds_min[0] <= scene->bounds_max[0] &&
+        scene->bounds_min[1] <= scene->bounds_max[1] &&
+        scene->bounds_min[2] <= scene->bounds_max[2]) {
+        memcpy(mn, scene->bounds_min, sizeof mn);
+        memcpy(mx, scene->bounds_max, sizeof mx);
+    }
+    float size[3], center[3];
+    for (int k = 0; k < 3; k++) {
+        size[k] = mx[k] - mn[k];
+        center[k] = 0.5f * (mn[k] + mx[k]);
+    }
+    float diag = v3_len(size);
+    if (!(diag > 1e-6f)) diag = 1.0f;
+    if (!(size[0] > 1e-6f)) { /* flat along x: still look along +X from in front of it */
+        mn[0] = center[0] - 0.5f * diag;
+        mx[0] = center[0] + 0.5f * diag;
+        size[0] = diag;
+    }
+    pg_camera c;
+    memset(&c, 0, sizeof c);
+    c.position[0] = mn[0] + 0.2f * size[0];
+    c.position[1] = mn[1] + 0.18f * size[1];
+    c.position[2] = center[2];
+    c.target[0] = mx[0];
+    c.target[1] = c.position[1];
+    c.target[2] = center[2];
+    c.up[0] = 0;
+    c.up[1] = 1;
+    c.up[2] = 0;
+    c.fov_y_deg = 60.0f;
+    c.near_z = fmaxf(0.01f, 0.001f * diag);
+    c.far_z = 2.0f * diag;
+    c.aspect = aspect > 0 && isfinite(aspect) ? aspect : 1.0f;
+    return c;
+}
+
+static bool scene_has_bounds(const pg_scene *scene)
+{
+    return scene && scene->n_indices > 0 && scene->bounds_min[0] <= scene->bounds_max[0] &&
+           scene->bounds_min[1] <= scene->bounds_max[1] && scene->bounds_min[2] <= scene->bounds_max[2];
+}
+
+pg_camera pg_camera_frame_object(const pg_scene *scene, float aspect, float *out_radius, float *out_distance)
+{
+    float mn[3] = {-1, -1, -1}, mx[3] = {1, 1, 1};
+    if (scene_has_bounds(scene)) {
+        memcpy(mn, scene->bounds_min, sizeof mn);
+        memcpy(mx, scene->bounds_max, sizeof mx);
+    }
+    double c[3], h2 = 0;
+    for (int k = 0; k < 3; k++) {
+        c[k] = 0.5 * ((double)mn[k] + (double)mx[k]);
+        double h = 0.5 * ((double)mx[k] - (double)mn[k]);
+        h2 += h * h;
+    }
+    double r = sqrt(h2);
+    if (!(r > 1e-30)) r = 1.0;
+    if (!(aspect > 0) || !isfinite(aspect)) aspect = 1.0f;
+    const double pi = 3.14159265358979323846;
+    double fy = 0.5 * 45.0 * pi / 180.0;
+    double fx = atan(tan(fy) * aspect);
+    double a = fy < fx ? fy : fx;
+    double d = 1.1 * r / sin(a);
+    double az = 35.0 * pi / 180.0, el = 25.0 * pi / 180.0;
+    double dir[3] = {sin(az) * cos(el), sin(el), cos(az) * cos(el)};
+    pg_camera cam;
+    memset(&cam, 0, sizeof cam);
+    for (int k = 0; k < 3; k++) {
+        cam.position[k] = (float)(c[k] + d * dir[k]);
+        cam.target[k] = (float)c[k];
+    }
+    cam.up[1] = 1.0f;
+    cam.fov_y_deg = 45.0f;
+    cam.near_z = (float)(d - 1.05 * r);
+    cam.far_z = (float)(d + 1.05 * r);
+    cam.aspect = aspect;
+    if (out_radius) *out_radius = (float)r;
+    if (out_distance) *out_distance = (float)d;
+    return cam;
+}
+
+pg_result pg_camera_from_scene(const pg_scene *scene, uint32_t index, float aspect, pg_camera *out, pg_error *err)
+{
+    if (!scene || index >= scene->n_cameras)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "camera %u: out of range (%u cameras)", index,
+                       scene ? scene->n_cameras : 0);
+    const pg_scene_camera *sc = &scene->cameras[index];
+    pg_camera cam;
+    memset(&cam, 0, sizeof cam);
+    double dist = 1.0; /* look-at distance: any positive value gives the same view */
+    if (scene_has_bounds(scene)) {
+        double cc = 0, r2 = 0;
+        for (int k = 0; k < 3; k++) {
+            double c = 0.5 * ((double)scene->bounds_min[k] + scene->bounds_max[k]);
+            double h = 0.5 * ((double)scene->bounds_max[k] - scene->bounds_min[k]);
+            cc += (c - sc->position[k]) * sc->forward[k];
+            r2 += h * h;
+        }
+        dist = cc > 1e-6 * sqrt(r2) ? cc : (sqrt(r2) > 0 ? sqrt(r2) : 1.0);
+    }
+    for (int k = 0; k < 3; k++) {
+        cam.position[k] = sc->position[k];
+        cam.target[k] = (float)(sc->position[k] + dist * sc->forward[k]);
+        cam.up[k] = sc->up[k];
+    }
+    cam.fov_y_deg = sc->yfov_rad * (float)(180.0 / 3.14159265358979323846);
+    cam.near_z = sc->znear;
+    float far = sc->zfar;
+    if (!(far > 0)) { /* infinite: to the farthest corner of the bounds, twice */
+        double m = 0;
+        for (int i = 0; i < 8; i++) {
+            double d2 = 0;
+            for (int k = 0; k < 3; k++) {
+                double v = ((i >> k) & 1) ? scene->bounds_max[k] : scene->bounds_min[k];
+                d2 += (v - sc->position[k]) * (v - sc->position[k]);
+            }
+            if (d2 > m) m = d2;
+        }
+        far = (float)(2.0 * sqrt(m));
+        if (far < 1000.0f * sc->znear) far = 1000.0f * sc->znear;
+    }
+    cam.far_z = far;
+    cam.aspect = aspect > 0 && isfinite(aspect) ? aspect : 1.0f;
+    if (sc->type == PG_CAMERA_ORTHOGRAPHIC) {
+        cam.ortho_height = 2.0f * sc->ymag;
+        cam.fov_y_deg = 45.0f; /* unused */
+        if (!(cam.near_z > 1e-6f * cam.far_z)) cam.near_z = 1e-6f * cam.far_z;
+    }
+    *out = cam;
+    return PG_OK;
+}
+
+pg_result pg_scene_find_camera(const pg_scene *scene, const char *spec, uint32_t *out_index, pg_error *err)
+{
+    uint32_t n = scene ? scene->n_cameras : 0;
+    if (spec && spec[0]) {
+        const char *p = spec;
+        bool digits = true;
+        for (; *p; p++)
+            if (*p < '0' || *p > '9') digits = false;
+        if (digits && strlen(spec) < 10) {
+            unsigned long v = strtoul(spec, NULL, 10);
+            if (v < n) {
+                *out_index = (uint32_t)v;
+                return PG_OK;
+            }
+        }
+        for (uint32_t i = 0; i < n; i++)
+            if (!strcmp(scene->cameras[i].name, spec)) {
+                *out_index = i;
+                return PG_OK;
+            }
+        for (uint32_t i = 0; i < n; i++)
+            if (!strcmp(scene->cameras[i].node_name, spec)) {
+                *out_index = i;
+                return PG_OK;
+            }
+    }
+    const char *file = scene ? scene->path : "(no scene)";
+    if (n == 0)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--camera %s: %s has no cameras; use --camera auto", spec ? spec : "",
+                       file);
+    char list[768];
+    size_t len = 0;
+    list[0] = 0;
+    for (uint32_t i = 0; i < n && len + 1 < sizeof list; i++) {
+        int w = snprintf(list + len, sizeof list - len, "%s%u '%s' (node '%s'%s)", i ? ", " : "", i,
+                         scene->cameras[i].name, scene->cameras[i].node_name,
+                         scene->cameras[i].type == PG_CAMERA_ORTHOGRAPHIC ? ", orthographic" : "");
+        if (w < 0) break;
+        len += (size_t)w;
+        if (len >= sizeof list) len = sizeof list - 1;
+    }
+    return pg_fail(err, PG_ERR_INVALID_ARG, "--camera %s: no such camera in %s; available: %s, or auto",
+                   spec ? spec : "", file, list);
+}
+
+void pg_camera_view(const pg_camera *cam, float out[16])
+{
+    float f[3], s[3], u[3];
+    v3_sub(cam->target, cam->position, f);
+    if (!v3_normalize(f)) {
+        f[0] = 0;
+        f[1] = 0;
+        f[2] = -1;
+    }
+    float up[3] = {cam->up[0], cam->up[1], cam->up[2]};
+    if (!v3_normalize(up)) {
+        up[0] = 0;
+        up[1] = 1;
+        up[2] = 0;
+    }
+    v3_cross(f, up, s);
+    if (!v3_normalize(s)) { /* up parallel to the view direction: pick another up */
+        float alt[3] = {0, 0, 1};
+        if (fabsf(f[2]) > 0.9f) {
+            alt[1] = 1;
+            alt[2] = 0;
+        }
+        v3_cross(f, alt, s);
+        v3_normalize(s);
+    }
+    v3_cross(s, f, u);
+    const float *e = cam->position;
+    /* rows: s, u, -f */
+    out[0] = s[0];
+    out[4] = s[1];
+    out[8] = s[2];
+    out[12] = -v3_dot(s, e);
+    out[1] = u[0];
+    out[5] = u[1];
+    out[9] = u[2];
+    out[13] = -v3_dot(u, e);
+    out[2] = -f[0];
+    out[6] = -f[1];
+    out[10] = -f[2];
+    out[14] = v3_dot(f, e);
+    out[3] = 0;
+    out[7] = 0;
+    out[11] = 0;
+    out[15] = 1;
+}
+
+void pg_camera_proj(const pg_camera *cam, float out[16])
+{
+    float fov = cam->fov_y_deg;
+    if (!(fov > 0.0f && fov < 180.0f)) fov = 60.0f;
+    float aspect = cam->aspect > 0 && isfinite(cam->aspect) ? cam->aspect : 1.0f;
+    float n = cam->near_z > 0 ? cam->near_z : 0.01f;
+    float fz = cam->far_z > n ? cam->far_z : n * 1000.0f;
+    memset(out, 0, 16 * sizeof(float));
+    if (cam->ortho_height > 0 && isfinite(cam->ortho_height)) {
+        float hh = 0.5f * cam->ortho_height;
+        out[0] = 1.0f / (hh * aspect);
+        out[5] = -1.0f / hh;             /* Vulkan: clip y down */
+        out[10] = 1.0f / (n - fz);       /* z_ndc = (-z - n) / (f - n) */
+        out[14] = n / (n - fz);
+        out[15] = 1.0f;
+        return;
+    }
+    float t = 1.0f / tanf(fov * PG_PI_F / 360.0f);
+    out[0] = t / aspect;
+    out[5] = -t;                     /* Vulkan: clip y down */
+    out[10] = fz / (n - fz);         /* z_ndc: 0 at near, 1 at far */
+    out[14] = n * fz / (n - fz);
+    out[11] = -1.0f;                 /* w_clip = -z_view */
+}
+
+void pg_mat4_mul(const float a[16], const float b[16], float out[16])
+{
+    float r[16];
+    for (int c = 0; c < 4; c++)
+        for (int row = 0; row < 4; row++) {
+            float acc = 0;
+            for (int k = 0; k < 4; k++) acc += a[k * 4 + row] * b[c * 4 + k];
+            r[c * 4 + row] = acc;
+        }
+    memcpy(out, r, sizeof r);
+}
+
+bool pg_mat4_invert(const float m[16], float out[16])
+{
+    double a[16], inv[16];
+    double maxabs = 0;
+    for (int i = 0; i < 16; i++) {
+        a[i] = m[i];
+        if (!isfinite(a[i])) return false;
+        if (fabs(a[i]) > maxabs) maxabs = fabs(a[i]);
+    }
+    if (maxabs == 0) return false;
+    inv[0] = a[5] * a[10] * a[15] - a[5] * a[11] * a[14] - a[9] * a[6] * a[15] +
+             a[9] * a[7] * a[14] + a[13] * a[6] * a[11] - a[13] * a[7] * a[10];
+    inv[4] = -a[4] * a[10] * a[15] + a[4] * a[11] * a[14] + a[8] * a[6] * a[15] -
+             a[8] * a[7] * a[14] - a[12] * a[6] * a[11] + a[12] * a[7] * a[10];
+    inv[8] = a[4] * a[9] * a[15] - a[4] * a[11] * a[13] - a[8] * a[5] * a[15] +
+             a[8] * a[7] * a[13] + a[12] * a[5] * a[11] - a[12] * a[7] * a[9];
+    inv[12] = -a[4] * a[9] * a[14] + a[4] * a[10] * a[13] + a[8] * a[5] * a[14] -
+              a[8] * a[6] * a[13] - a[12] * a[5] * a[10] + a[12] * a[6] * a[9];
+    inv[1] = -a[1] * a[10] * a[15] + a[1] * a[11] * a[14] + a[9] * a[2] * a[15] -
+             a[9] * a[3] * a[14] - a[13] * a[2] * a[11] + a[13] * a[3] * a[10];
+    inv[5] = a[0] * a[10] * a[15] - a[0] * a[11] * a[14] - a[8] * a[2] * a[15] +
+             a[8] * a[3] * a[14] + a[12] * a[2] * a[11] - a[12] * a[3] * a[10];
+    inv[9] = -a[0] * a[9] * a[15] + a[0] * a[11] * a[13] + a[8] * a[1] * a[15] -
+             a[8] * a[3] * a[13] - a[12] * a[1] * a[11] + a[12] * a[3] * a[9];
+    inv[13] = a[0] * a[9] * a[14] - a[0] * a[10] * a[13] - a[8] * a[1] * a[14] +
+              a[8] * a[2] * a[13] + a[12] * a[1] * a[10] - a[12] * a[2] * a[9];
+    inv[2] = a[1] * a[6] * a[15] - a[1] * a[7] * a[14] - a[5] * a[2] * a[15] +
+             a[5] * a[3] * a[14] + a[13] * a[2] * a[7] - a[13] * a[3] * a[6];
+    inv[6] = -a[0] * a[6] * a[15] + a[0] * a[7] * a[14] + a[4] * a[2] * a[15] -
+             a[4] * a[3] * a[14] - a[12] * a[2] * a[7] + a[12] * a[3] * a[6];
+    inv[10] = a[0] * a[5] * a[15] - a[0] * a[7] * a[13] - a[4] * a[1] * a[15] +
+              a[4] * a[3] * a[13] + a[12] * a[1] * a[7] - a[12] * a[3] * a[5];
+    inv[14] = -a[0] * a[5] * a[14] + a[0] * a[6] * a[13] + a[4] * a[1] * a[14] -
+              a[4] * a[2] * a[13] - a[12] * a[1] * a[6] + a[12] * a[2] * a[5];
+    inv[3] = -a[1] * a[6] * a[11] + a[1] * a[7] * a[10] + a[5] * a[2] * a[11] -
+             a[5] * a[3] * a[10] - a[9] * a[2] * a[7] + a[9] * a[3] * a[6];
+    inv[7] = a[0] * a[6] * a[11] - a[0] * a[7] * a[10] - a[4] * a[2] * a[11] +
+             a[4] * a[3] * a[10] + a[8] * a[2] * a[7] - a[8] * a[3] * a[6];
+    inv[11] = -a[0] * a[5] * a[11] + a[0] * a[7] * a[9] + a[4] * a[1] * a[11] -
+              a[4] * a[3] * a[9] - a[8] * a[1] * a[7] + a[8] * a[3] * a[5];
+    inv[15] = a[0] * a[5] * a[10] - a[0] * a[6] * a[9] - a[4] * a[1] * a[10] +
+              a[4] * a[2] * a[9] + a[8] * a[1] * a[6] - a[8] * a[2] * a[5];
+    double det = a[0] * inv[0] + a[1] * inv[4] + a[2] * inv[8] + a[3] * inv[12];
+    /* Singular (or numerically so) relative to the matrix's scale. Hadamard's inequality bounds
+     * |det| by the product of the row norms and by the product of the column norms; the smaller
+     * one is the right scale: a view matrix with a large translation (camera ~1e5 from the
+     * origin) has det 1 and huge rows but unit columns 0..2, and must stay invertible. */
+    double prod_rows = 1, prod_cols = 1;
+    for (int i = 0; i < 4; i++) {
+        double rn = 0, cn = 0;
+        for (int j = 0; j < 4; j++) {
+            rn += a[j * 4 + i] * a[j * 4 + i];
+            cn += a[i * 4 + j] * a[i * 4 + j];
+        }
+        prod_rows *= sqrt(rn);
+        prod_cols *= sqrt(cn);
+    }
+    double scale = prod_rows < prod_cols ? prod_rows : prod_cols;
+    if (!isfinite(det) || fabs(det) <= 1e-12 * scale) return false;
+    double id = 1.0 / det;
+    float r[16];
+    for (int i = 0; i < 16; i++) {
+        double v = inv[i] * id;
+        if (!isfinite(v) || fabs(v) > FLT_MAX) return false;
+        r[i] = (float)v;
+    }
+    memcpy(out, r, sizeof r);
+    return true;
+}

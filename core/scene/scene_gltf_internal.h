@@ -1,0 +1,152 @@
+/* scene_gltf_internal.h - what the files of the glTF loader (core/scene/scene_gltf*.cpp, C++17 over
+ * tinygltf) share: the load context, the error helpers, the geometry being built and the functions
+ * one file calls in another. C++ only; not part of the scene library's interface (scene.h is).
+ *
+ *   scene_gltf.cpp             the load order (scene_gltf.cpp's header), the GLB container,
+ *                              materials and textures, the hand-out, pg_scene_load_gltf
+ *   scene_gltf_validate.cpp    JSON pre-validation, extensionsRequired and the implemented extensions
+ *   scene_gltf_images.cpp      tinygltf's image callback (PNG/JPEG via stb_image) and file system,
+ *                              samplers, KHR_texture_transform
+ *   scene_gltf_compressed.cpp  EXT_meshopt_compression and KHR_draco_mesh_compression decoding
+ *   scene_gltf_mesh.cpp        accessors (sparse, quantized), primitives -> vertices and indices
+ *   scene_gltf_nodes.cpp       the node hierarchy, transforms, cameras
+ *   scene_gltf_warnings.cpp    the warning lines (pg_scene.warnings)
+ */
+#ifndef PG_SCENE_GLTF_INTERNAL_H
+#define PG_SCENE_GLTF_INTERNAL_H
+
+#include "scene.h"
+
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pg_gltf {
+
+using json = nlohmann::json;
+
+struct LoadFail {
+    pg_result code;
+    std::string msg;
+};
+
+/* scene_gltf.cpp */
+std::string strf(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+[[noreturn]] void fail(pg_result code, std::string msg);
+[[noreturn]] void gfail(std::string msg);
+std::string uri_desc(const std::string &uri);
+std::string url_decode(const std::string &s);
+std::string join_path(const std::string &dir, const std::string &file);
+
+struct Ctx {
+    std::string path;     /* as given (prefix of every message) */
+    std::string base_dir; /* directory of the file ("." when none) */
+    std::string dir_prefix;
+    bool is_glb = false;
+    size_t glb_bin_size = 0;
+    bool glb_has_bin = false;
+    json j;
+    tinygltf::Model model;
+    std::string image_err; /* set by the image callback */
+    bool quantization = false; /* KHR_mesh_quantization in extensionsUsed */
+    unsigned skipped_prims = 0;
+    unsigned color1_prims = 0;   /* drawn primitives with COLOR_1.. (ignored) */
+    unsigned texcoord2_prims = 0;/* drawn primitives with TEXCOORD_2.. (ignored) */
+    std::vector<std::string> warnings; /* without the "PATH: " prefix */
+    /* EXT_meshopt_compression: the compressed bufferViews (checked by prevalidate, decoded by
+     * decode_meshopt into `decoded`, which view_bytes reads instead of the fallback buffer), and
+     * the fallback buffers (never loaded: handed to tinygltf as 4-byte data URIs) */
+    struct Meshopt {
+        int view, buffer;
+        uint64_t offset, length, stride, count;
+        int mode;   /* 0 ATTRIBUTES, 1 TRIANGLES, 2 INDICES */
+        int filter; /* 0 NONE, 1 OCTAHEDRAL, 2 QUATERNION, 3 EXPONENTIAL */
+    };
+    std::vector<Meshopt> meshopt;
+    std::vector<char> view_is_meshopt;  /* per bufferView */
+    std::vector<char> buffer_no_data;   /* per buffer: an EXT_meshopt_compression fallback */
+    std::map<int, std::vector<unsigned char>> decoded;
+    /* KHR_draco_mesh_compression: decoded accessor data (accessor index -> dense bytes in the
+     * accessor's componentType/type) and the bufferView each came from; primitives done */
+    std::map<int, std::vector<unsigned char>> draco_data;
+    std::map<int, int> draco_view;
+    std::map<std::pair<int, int>, bool> draco_done;
+    std::map<int, int> draco_index_fix; /* indices accessor without bufferView -> Draco view */
+    /* dense copies of sparse accessors (accessor index -> data), owned until hand-out */
+    std::map<int, std::vector<unsigned char>> sparse_data;
+};
+
+/* column-major 4x4, double */
+struct Mat4 {
+    double m[16];
+};
+
+struct Out {
+    std::vector<pg_vertex> verts;
+    std::vector<uint32_t> idx;
+    std::vector<pg_primitive> prims;
+    std::vector<uint32_t> prim_gltf_material; /* -1 (UINT32_MAX) = default material */
+    std::vector<char> prim_has_uv1;           /* the primitive has TEXCOORD_1 */
+    std::vector<float> colors;                /* COLOR_0, 4 per vertex; empty when no primitive has it */
+    std::vector<float> uv1;                   /* TEXCOORD_1, 2 per vertex; empty when none has it */
+};
+
+struct Walker {
+    Ctx &c;
+    Out &o;
+    std::vector<char> on_path;
+    size_t visits = 0;
+
+    void visit(int ni, const Mat4 &parent, int depth); /* scene_gltf_nodes.cpp */
+};
+/* scene_gltf_validate.cpp */
+bool extension_implemented(const std::string &e);
+void check_json_depth(const std::string &t);
+const json *opt_object(const json &o, const char *key, const std::string &where);
+uint64_t uint_field(const json &o, const char *key, const std::string &where, bool required,
+                    uint64_t def = 0);
+bool is_regular_file(const std::string &p, uint64_t *size);
+void prevalidate(Ctx &c);
+
+/* scene_gltf_images.cpp */
+bool fs_file_exists(const std::string &abs, void *user);
+std::string image_desc(const Ctx &c, int idx);
+bool load_image_cb(tinygltf::Image *image, const int idx, std::string *, std::string *, int, int,
+                   const unsigned char *bytes, int size, void *user);
+std::string first_lines(const std::string &s);
+pg_sampler_state sampler_state(const tinygltf::Sampler &sm);
+bool texture_transform(const json &ti, const std::string &where, float m[6], int *tex_coord);
+
+/* scene_gltf_compressed.cpp */
+void decode_meshopt(Ctx &c);
+void decode_draco(Ctx &c, int mi, int pi);
+
+/* scene_gltf_mesh.cpp */
+int type_comps(int t);
+const char *ctype_name(int ct);
+size_t ctype_size(int ct);
+std::pair<const unsigned char *, size_t> view_bytes(const Ctx &c, int bvi, const std::string &who);
+const int *find_attr(const tinygltf::Primitive &p, const char *name);
+void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M);
+
+/* scene_gltf_nodes.cpp */
+Mat4 mat_identity();
+void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_camera> &out);
+
+/* scene_gltf_warnings.cpp */
+std::string plural(size_t n, const char *one, const char *many);
+void collect_warnings(Ctx &c);
+
+} // namespace pg_gltf
+
+#endif

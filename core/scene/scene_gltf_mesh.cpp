@@ -1,0 +1,549 @@
+/* scene_gltf_mesh.cpp - step 4 of the glTF load (scene_gltf.cpp): accessors (range-checked views,
+ * sparse, KHR_mesh_quantization types) and primitives baked into vertices and indices under their
+ * node transform.
+ */
+#include "scene_gltf_internal.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+#include <memory>
+
+namespace pg_gltf {
+
+/* ------------------------------------------------------------------------------------------ */
+/* step 4: accessors, nodes, primitives                                                         */
+
+const char *type_name(int t)
+{
+    switch (t) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return "?";
+    }
+}
+int type_comps(int t)
+{
+    switch (t) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT2: return 4;
+    case TINYGLTF_TYPE_MAT3: return 9;
+    case TINYGLTF_TYPE_MAT4: return 16;
+    default: return 0;
+    }
+}
+const char *ctype_name(int ct)
+{
+    switch (ct) {
+    case 5120: return "BYTE";
+    case 5121: return "UNSIGNED_BYTE";
+    case 5122: return "SHORT";
+    case 5123: return "UNSIGNED_SHORT";
+    case 5125: return "UNSIGNED_INT";
+    case 5126: return "FLOAT";
+    default: return "?";
+    }
+}
+size_t ctype_size(int ct)
+{
+    switch (ct) {
+    case 5120:
+    case 5121: return 1;
+    case 5122:
+    case 5123: return 2;
+    case 5125:
+    case 5126: return 4;
+    default: return 0;
+    }
+}
+
+
+struct View {
+    int index = -1;
+    const unsigned char *base = nullptr;
+    size_t stride = 0, count = 0;
+    int type = 0, ctype = 0, ncomp = 0;
+    bool normalized = false;
+};
+
+inline uint32_t read_index(const View &v, size_t i)
+{
+    const unsigned char *p = v.base + i * v.stride;
+    switch (v.ctype) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t x;
+        memcpy(&x, p, 2);
+        return x;
+    }
+    default: {
+        uint32_t x;
+        memcpy(&x, p, 4);
+        return x;
+    }
+    }
+}
+
+/* The bytes of bufferViews[bvi] (range-checked against its buffer). */
+std::pair<const unsigned char *, size_t> view_bytes(const Ctx &c, int bvi, const std::string &who)
+{
+    const tinygltf::Model &m = c.model;
+    if (bvi < 0 || size_t(bvi) >= m.bufferViews.size())
+        gfail(strf("%s: bufferView %d out of range", who.c_str(), bvi));
+    const tinygltf::BufferView &bv = m.bufferViews[size_t(bvi)];
+    auto dec = c.decoded.find(bvi);
+    if (dec != c.decoded.end()) return {dec->second.data(), dec->second.size()};
+    if (bv.buffer < 0 || size_t(bv.buffer) >= m.buffers.size())
+        gfail(strf("bufferViews[%d]: buffer %d out of range", bvi, bv.buffer));
+    const tinygltf::Buffer &buf = m.buffers[size_t(bv.buffer)];
+    uint64_t blen = buf.data.size();
+    if (bv.byteOffset > blen || bv.byteLength > blen - bv.byteOffset)
+        gfail(strf("bufferViews[%d]: byteOffset %zu + byteLength %zu exceeds buffers[%d] "
+                   "(%llu bytes)",
+                   bvi, bv.byteOffset, bv.byteLength, bv.buffer, (unsigned long long)blen));
+    return {buf.data.data() + bv.byteOffset, bv.byteLength};
+}
+
+/* Sparse accessors (core glTF 2.0): a dense copy of the base data (zeros without a bufferView)
+ * with sparse.count elements substituted at sparse.indices (strictly increasing, < count). */
+void apply_sparse(Ctx &c, int ai, const tinygltf::Accessor &a, View &v, size_t elem)
+{
+    auto done = c.sparse_data.find(ai);
+    if (done != c.sparse_data.end()) {
+        v.base = done->second.data();
+        v.stride = elem;
+        return;
+    }
+    const std::string sw = strf("accessors[%d].sparse", ai);
+    constexpr uint64_t kMaxSparseBytes = uint64_t(1) << 30;
+    if (uint64_t(a.count) > kMaxSparseBytes / elem)
+        fail(PG_ERR_LIMIT, strf("accessors[%d]: sparse accessor of %zu elements (%zu bytes each) "
+                                "exceeds 1 GiB",
+                                ai, a.count, elem));
+    std::vector<unsigned char> d(a.count * elem, 0);
+    if (v.base)
+        for (size_t i = 0; i < a.count; i++) memcpy(&d[i * elem], v.base + i * v.stride, elem);
+    const size_t sc = a.sparse.count < 0 ? 0 : size_t(a.sparse.count);
+    if (sc < 1 || sc > a.count)
+        gfail(strf("%s.count: %d is outside 1..%zu (the accessor's count)", sw.c_str(),
+                   a.sparse.count, a.count));
+    const int ict = a.sparse.indices.componentType;
+    const size_t isz = ctype_size(ict);
+    if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        gfail(strf("%s.indices.componentType: %d is not an unsigned integer type", sw.c_str(), ict));
+    auto ib = view_bytes(c, a.sparse.indices.bufferView, sw + ".indices");
+    auto vb = view_bytes(c, a.sparse.values.bufferView, sw + ".values");
+    const uint64_t ioff = uint64_t(a.sparse.indices.byteOffset < 0 ? 0 : a.sparse.indices.byteOffset);
+    const uint64_t voff = uint64_t(a.sparse.values.byteOffset < 0 ? 0 : a.sparse.values.byteOffset);
+    if (ioff > ib.second || sc > (ib.second - ioff) / isz)
+        gfail(strf("%s.indices: %zu indices (byteOffset %llu) exceed bufferView %d (%zu bytes)",
+                   sw.c_str(), sc, (unsigned long long)ioff, a.sparse.indices.bufferView,
+                   ib.second));
+    if (voff > vb.second || sc > (vb.second - voff) / elem)
+        gfail(strf("%s.values: %zu elements of %zu bytes (byteOffset %llu) exceed bufferView %d "
+                   "(%zu bytes)",
+                   sw.c_str(), sc, elem, (unsigned long long)voff, a.sparse.values.bufferView,
+                   vb.second));
+    View iv;
+    iv.base = ib.first + ioff;
+    iv.stride = isz;
+    iv.ctype = ict;
+    uint64_t prev = 0;
+    for (size_t k = 0; k < sc; k++) {
+        uint32_t idx = read_index(iv, k);
+        if (idx >= a.count)
+            gfail(strf("%s.indices: index %u at position %zu is out of range (count %zu)",
+                       sw.c_str(), idx, k, a.count));
+        if (k > 0 && idx <= prev)
+            gfail(strf("%s.indices: index %u at position %zu is not greater than the one before "
+                       "(%llu)",
+                       sw.c_str(), idx, k, (unsigned long long)prev));
+        prev = idx;
+        memcpy(&d[size_t(idx) * elem], vb.first + voff + k * elem, elem);
+    }
+    auto &stored = c.sparse_data[ai];
+    stored.swap(d);
+    v.base = stored.data();
+    v.stride = elem;
+}
+
+View get_view(Ctx &c, int ai)
+{
+    const tinygltf::Model &m = c.model;
+    if (ai < 0 || size_t(ai) >= m.accessors.size())
+        gfail(strf("accessors[%d]: out of range (%zu accessors)", ai, m.accessors.size()));
+    const tinygltf::Accessor &a = m.accessors[size_t(ai)];
+    View v;
+    v.index = ai;
+    v.type = a.type;
+    v.ctype = a.componentType;
+    v.ncomp = type_comps(a.type);
+    v.count = a.count;
+    v.normalized = a.normalized;
+    const bool sparse = a.sparse.isSparse;
+    size_t csize = ctype_size(a.componentType);
+    if (!csize || !v.ncomp)
+        gfail(strf("accessors[%d]: invalid componentType %d or type", ai, a.componentType));
+    size_t elem = csize * size_t(v.ncomp);
+    auto dd = c.draco_data.find(ai);
+    if (dd != c.draco_data.end()) {
+        v.base = dd->second.data();
+        v.stride = elem;
+        return v;
+    }
+    if (a.bufferView < 0 || c.draco_index_fix.count(ai)) {
+        if (!sparse)
+            gfail(strf("accessors[%d]: has no bufferView (zero-filled accessors are not supported "
+                       "without sparse)",
+                       ai));
+        apply_sparse(c, ai, a, v, elem);
+        return v;
+    }
+    if (size_t(a.bufferView) >= m.bufferViews.size())
+        gfail(strf("accessors[%d]: bufferView %d out of range", ai, a.bufferView));
+    const tinygltf::BufferView &bv = m.bufferViews[size_t(a.bufferView)];
+    auto bytes = view_bytes(c, a.bufferView, strf("accessors[%d]", ai));
+    size_t stride = bv.byteStride ? bv.byteStride : elem;
+    if (stride < elem)
+        gfail(strf("accessors[%d]: bufferViews[%d].byteStride %zu is smaller than the element "
+                   "(%zu bytes)",
+                   ai, a.bufferView, stride, elem));
+    if (a.count > 0) {
+        uint64_t len = bv.byteLength;
+        bool ok = a.byteOffset <= len && elem <= len - a.byteOffset &&
+                  uint64_t(a.count - 1) <= (len - a.byteOffset - elem) / stride;
+        if (!ok)
+            gfail(strf("accessors[%d]: count %zu (byteOffset %zu, stride %zu, element %zu bytes) "
+                       "exceeds bufferView %d (%zu bytes)",
+                       ai, a.count, a.byteOffset, stride, elem, a.bufferView, bv.byteLength));
+    }
+    v.base = bytes.first + a.byteOffset;
+    v.stride = stride;
+    if (sparse) apply_sparse(c, ai, a, v, elem);
+    return v;
+}
+
+/* KHR_mesh_quantization: the component types a vertex attribute may have. Core glTF 2.0 allows
+ * FLOAT for POSITION/NORMAL/TANGENT and FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT for
+ * TEXCOORD_n; with KHR_mesh_quantization in extensionsUsed also POSITION: (normalized or not)
+ * BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT; NORMAL and TANGENT: normalized BYTE/SHORT; TEXCOORD_n:
+ * (normalized or not) BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT. */
+enum AttrKind { ATTR_POSITION, ATTR_NORMAL, ATTR_TANGENT, ATTR_TEXCOORD };
+
+bool attr_type_ok(AttrKind k, int ct, bool normalized, bool quantization)
+{
+    const bool i8_16 = ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                       ct == TINYGLTF_COMPONENT_TYPE_SHORT || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    if (ct == TINYGLTF_COMPONENT_TYPE_FLOAT) return !normalized;
+    switch (k) {
+    case ATTR_POSITION: return quantization && i8_16;
+    case ATTR_NORMAL:
+    case ATTR_TANGENT:
+        return quantization && normalized &&
+               (ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_SHORT);
+    case ATTR_TEXCOORD:
+        if (normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                           ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))
+            return true; /* core glTF 2.0 */
+        return quantization && i8_16;
+    }
+    return false;
+}
+
+void expect_attr(const View &v, const char *semantic, int type, AttrKind k, bool quantization)
+{
+    if (v.type == type && attr_type_ok(k, v.ctype, v.normalized, quantization)) return;
+    static const char *const allowed_core[] = {"FLOAT", "FLOAT", "FLOAT",
+                                               "FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT"};
+    static const char *const allowed_q[] = {
+        "FLOAT or (normalized) BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT",
+        "FLOAT or normalized BYTE/SHORT", "FLOAT or normalized BYTE/SHORT",
+        "FLOAT or (normalized) BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT"};
+    const bool would_be_ok = !quantization && v.type == type && attr_type_ok(k, v.ctype, v.normalized, true);
+    gfail(strf("accessors[%d]: %s must be %s %s (got %s %s%s)%s", v.index, semantic,
+               type_name(type), quantization ? allowed_q[k] : allowed_core[k], type_name(v.type),
+               v.normalized ? "normalized " : "",
+               ctype_name(v.ctype),
+               would_be_ok ? "; that type needs KHR_mesh_quantization in extensionsUsed" : ""));
+}
+
+/* Reads element i as floats, converted as glTF 2.0 and KHR_mesh_quantization say: FLOAT as is;
+ * normalized UNSIGNED_BYTE c / 255, UNSIGNED_SHORT c / 65535, BYTE max(c / 127, -1), SHORT
+ * max(c / 32767, -1); not normalized: the integer value. */
+inline void read_floats(const View &v, size_t i, float *out)
+{
+    const unsigned char *p = v.base + i * v.stride;
+    const int n = v.ncomp;
+    switch (v.ctype) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: memcpy(out, p, sizeof(float) * size_t(n)); break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        for (int k = 0; k < n; k++) out[k] = v.normalized ? float(p[k]) / 255.0f : float(p[k]);
+        break;
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+        for (int k = 0; k < n; k++) {
+            float x = float(int8_t(p[k]));
+            out[k] = v.normalized ? std::max(x / 127.0f, -1.0f) : x;
+        }
+        break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        for (int k = 0; k < n; k++) {
+            uint16_t x;
+            memcpy(&x, p + 2 * k, 2);
+            out[k] = v.normalized ? float(x) / 65535.0f : float(x);
+        }
+        break;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+        for (int k = 0; k < n; k++) {
+            int16_t x;
+            memcpy(&x, p + 2 * k, 2);
+            out[k] = v.normalized ? std::max(float(x) / 32767.0f, -1.0f) : float(x);
+        }
+        break;
+    default:
+        for (int k = 0; k < n; k++) out[k] = 0;
+    }
+}
+
+void check_finite(const float *v, int n, const View &view, const char *semantic, size_t i)
+{
+    for (int k = 0; k < n; k++)
+        if (!std::isfinite(v[k]))
+            gfail(strf("accessors[%d]: %s element %zu is not finite (%g)", view.index, semantic, i,
+                       double(v[k])));
+}
+
+const int *find_attr(const tinygltf::Primitive &p, const char *name)
+{
+    auto it = p.attributes.find(name);
+    return it == p.attributes.end() ? nullptr : &it->second;
+}
+
+void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
+{
+    const tinygltf::Primitive &prim = c.model.meshes[size_t(mi)].primitives[size_t(pi)];
+    const std::string pw = strf("meshes[%d].primitives[%d]", mi, pi);
+    int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
+        c.skipped_prims++;
+        return;
+    }
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        gfail(strf("%s.mode: %d is not a glTF primitive mode", pw.c_str(), mode));
+
+    decode_draco(c, mi, pi);
+    const int *pa = find_attr(prim, "POSITION");
+    if (!pa) gfail(pw + ".attributes: POSITION missing (required)");
+    bool has_color1 = false, has_uv2 = false;
+    for (const auto &at : prim.attributes) {
+        has_color1 = has_color1 || (at.first.compare(0, 6, "COLOR_") == 0 && at.first != "COLOR_0");
+        has_uv2 = has_uv2 || (at.first.compare(0, 9, "TEXCOORD_") == 0 && at.first != "TEXCOORD_0" &&
+                              at.first != "TEXCOORD_1");
+    }
+    c.color1_prims += has_color1;
+    c.texcoord2_prims += has_uv2;
+    const bool quant = c.quantization;
+    View pos = get_view(c, *pa);
+    expect_attr(pos, "POSITION", TINYGLTF_TYPE_VEC3, ATTR_POSITION, quant);
+    const size_t n = pos.count;
+
+    auto optional_view = [&](const char *name) -> std::unique_ptr<View> {
+        const int *ai = find_attr(prim, name);
+        if (!ai) return nullptr;
+        std::unique_ptr<View> v(new View(get_view(c, *ai)));
+        if (v->count != n)
+            gfail(strf("%s: %s (accessors[%d]) has %zu elements but POSITION has %zu", pw.c_str(),
+                       name, *ai, v->count, n));
+        return v;
+    };
+    std::unique_ptr<View> nrm = optional_view("NORMAL");
+    if (nrm) expect_attr(*nrm, "NORMAL", TINYGLTF_TYPE_VEC3, ATTR_NORMAL, quant);
+    std::unique_ptr<View> tan = optional_view("TANGENT");
+    if (tan) expect_attr(*tan, "TANGENT", TINYGLTF_TYPE_VEC4, ATTR_TANGENT, quant);
+    /* COLOR_0: FLOAT, or normalized UNSIGNED_BYTE / UNSIGNED_SHORT (core glTF) */
+    auto float_or_unorm = [](const View &v) {
+        return v.ctype == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+               (v.normalized && (v.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                 v.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+    };
+    std::unique_ptr<View> uv = optional_view("TEXCOORD_0");
+    if (uv) expect_attr(*uv, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, ATTR_TEXCOORD, quant);
+    std::unique_ptr<View> uv1 = optional_view("TEXCOORD_1");
+    if (uv1) expect_attr(*uv1, "TEXCOORD_1", TINYGLTF_TYPE_VEC2, ATTR_TEXCOORD, quant);
+    std::unique_ptr<View> col = optional_view("COLOR_0");
+    if (col && !((col->type == TINYGLTF_TYPE_VEC3 || col->type == TINYGLTF_TYPE_VEC4) && float_or_unorm(*col)))
+        gfail(strf("accessors[%d]: COLOR_0 must be VEC3 or VEC4, FLOAT or normalized "
+                   "UNSIGNED_BYTE/UNSIGNED_SHORT (got %s %s%s)",
+                   col->index, type_name(col->type), col->normalized ? "normalized " : "",
+                   ctype_name(col->ctype)));
+
+    /* indices (local to this primitive) */
+    std::vector<uint32_t> ind;
+    if (prim.indices >= 0) {
+        View iv = get_view(c, prim.indices);
+        if (iv.type != TINYGLTF_TYPE_SCALAR ||
+            (iv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+             iv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+             iv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+            gfail(strf("accessors[%d]: indices must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or "
+                       "UNSIGNED_INT (got %s %s)",
+                       iv.index, type_name(iv.type), ctype_name(iv.ctype)));
+        ind.resize(iv.count);
+        for (size_t i = 0; i < iv.count; i++) {
+            uint32_t x = read_index(iv, i);
+            if (x >= n)
+                gfail(strf("%s: index %u at position %zu is out of range (vertex count %zu)",
+                           pw.c_str(), x, i, n));
+            ind[i] = x;
+        }
+    } else {
+        if (n > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, pw + ": too many vertices");
+        ind.resize(n);
+        for (size_t i = 0; i < n; i++) ind[i] = uint32_t(i);
+    }
+
+    /* strips and fans become lists */
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        std::vector<uint32_t> list;
+        for (size_t i = 2; i < ind.size(); i++) {
+            if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+                list.insert(list.end(), {ind[0], ind[i - 1], ind[i]});
+            } else if (i % 2 == 0) {
+                list.insert(list.end(), {ind[i - 2], ind[i - 1], ind[i]});
+            } else {
+                list.insert(list.end(), {ind[i - 1], ind[i - 2], ind[i]});
+            }
+        }
+        ind.swap(list);
+    } else if (ind.size() % 3 != 0) {
+        gfail(strf("%s: %zu indices is not a multiple of 3 (TRIANGLES)", pw.c_str(), ind.size()));
+    }
+    if (ind.empty() || n == 0) return;
+
+    /* transform: positions by M, normals by the inverse-transpose of M's upper 3x3, tangents by
+     * the upper 3x3; a mirroring transform flips the winding and the tangent handedness */
+    const double *m = M.m;
+    double a00 = m[0], a01 = m[4], a02 = m[8], a10 = m[1], a11 = m[5], a12 = m[9], a20 = m[2],
+           a21 = m[6], a22 = m[10];
+    double cof[9] = {a11 * a22 - a12 * a21, a12 * a20 - a10 * a22, a10 * a21 - a11 * a20,
+                     a02 * a21 - a01 * a22, a00 * a22 - a02 * a20, a01 * a20 - a00 * a21,
+                     a01 * a12 - a02 * a11, a02 * a10 - a00 * a12, a00 * a11 - a01 * a10};
+    /* cof[r*3+c] = cofactor(r,c); inverse-transpose = cof / det */
+    double det = a00 * cof[0] + a01 * cof[1] + a02 * cof[2];
+    if (!std::isfinite(det)) gfail(pw + ": node transform is not finite");
+    const double nsign = det < 0 ? -1.0 : 1.0;
+
+    if (o.verts.size() + n > 0xFFFFFFF0ull || o.idx.size() + ind.size() > 0xFFFFFFF0ull ||
+        o.verts.size() > 0x7FFFFFFFull)
+        fail(PG_ERR_LIMIT, pw + ": scene exceeds 2^32 vertices or indices");
+    const size_t base = o.verts.size();
+    o.verts.resize(base + n);
+    /* the optional streams exist from the first primitive that has the attribute on (white /
+     * TEXCOORD_0 for the vertices of primitives without it, below) */
+    if (col || !o.colors.empty()) o.colors.resize((base + n) * 4, 1.0f);
+    const bool uv1_fresh = uv1 && o.uv1.empty();
+    if (uv1 || !o.uv1.empty()) o.uv1.resize((base + n) * 2, 0.0f);
+    pg_vertex *V = o.verts.data() + base;
+    for (size_t i = 0; i < n; i++) {
+        pg_vertex &vx = V[i];
+        float p[3];
+        read_floats(pos, i, p);
+        check_finite(p, 3, pos, "POSITION", i);
+        for (int r = 0; r < 3; r++) {
+            /* finite floats under a finite transform can still leave the float range */
+            double x = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+            if (!(std::fabs(x) <= double(FLT_MAX)))
+                gfail(strf("%s: POSITION element %zu (accessors[%d]) is outside the float range "
+                           "after the node transform",
+                           pw.c_str(), i, pos.index));
+            vx.position[r] = float(x);
+        }
+        if (nrm) {
+            float q[3];
+            read_floats(*nrm, i, q);
+            check_finite(q, 3, *nrm, "NORMAL", i);
+            double t[3];
+            for (int r = 0; r < 3; r++)
+                t[r] = nsign * (cof[r * 3 + 0] * q[0] + cof[r * 3 + 1] * q[1] + cof[r * 3 + 2] * q[2]);
+            double l = std::hypot(t[0], t[1], t[2]); /* no overflow in the squares */
+            if (!std::isfinite(l))
+                gfail(strf("%s: NORMAL element %zu (accessors[%d]) overflows under the node "
+                           "transform",
+                           pw.c_str(), i, nrm->index));
+            if (l > 1e-30) {
+                for (int r = 0; r < 3; r++) vx.normal[r] = float(t[r] / l);
+            } else {
+                vx.normal[0] = 0;
+                vx.normal[1] = 1;
+                vx.normal[2] = 0;
+            }
+        }
+        if (uv) {
+            read_floats(*uv, i, vx.uv);
+            check_finite(vx.uv, 2, *uv, "TEXCOORD_0", i);
+        }
+        if (col) {
+            float q[4] = {1, 1, 1, 1}; /* VEC3: alpha 1 */
+            read_floats(*col, i, q);
+            check_finite(q, col->ncomp, *col, "COLOR_0", i);
+            memcpy(&o.colors[(base + i) * 4], q, sizeof q);
+        }
+        if (uv1) {
+            read_floats(*uv1, i, &o.uv1[(base + i) * 2]);
+            check_finite(&o.uv1[(base + i) * 2], 2, *uv1, "TEXCOORD_1", i);
+        }
+        if (tan) {
+            float q[4];
+            read_floats(*tan, i, q);
+            check_finite(q, 4, *tan, "TANGENT", i);
+            double t[3];
+            for (int r = 0; r < 3; r++) t[r] = m[r] * q[0] + m[4 + r] * q[1] + m[8 + r] * q[2];
+            double l = std::hypot(t[0], t[1], t[2]);
+            if (!std::isfinite(l))
+                gfail(strf("%s: TANGENT element %zu (accessors[%d]) overflows under the node "
+                           "transform",
+                           pw.c_str(), i, tan->index));
+            if (l > 1e-30)
+                for (int r = 0; r < 3; r++) vx.tangent[r] = float(t[r] / l);
+            vx.tangent[3] = float((q[3] < 0 ? -1.0 : 1.0) * nsign);
+        }
+    }
+    /* TEXCOORD_1 of the vertices of primitives without it: a copy of their TEXCOORD_0 (what a
+     * texture reading set 1 then samples, as when no primitive has TEXCOORD_1; warned) */
+    if (!o.uv1.empty()) {
+        const size_t from = uv1_fresh ? 0 : base, to = uv1 ? base : base + n;
+        for (size_t j = from; j < to; j++) memcpy(&o.uv1[j * 2], o.verts[j].uv, sizeof(float[2]));
+    }
+    if (det < 0)
+        for (size_t t = 0; t + 2 < ind.size(); t += 3) std::swap(ind[t + 1], ind[t + 2]);
+
+    if (!nrm) pg_mesh_compute_normals(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
+    bool normal_mapped = prim.material >= 0 &&
+                         c.model.materials[size_t(prim.material)].normalTexture.index >= 0;
+    if (!tan && normal_mapped)
+        pg_mesh_compute_tangents(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
+
+    pg_primitive pr;
+    memset(&pr, 0, sizeof pr);
+    pr.first_index = uint32_t(o.idx.size());
+    pr.index_count = uint32_t(ind.size());
+    pr.vertex_offset = int32_t(base);
+    pr.material = 0;
+    o.idx.insert(o.idx.end(), ind.begin(), ind.end());
+    o.prims.push_back(pr);
+    o.prim_gltf_material.push_back(prim.material >= 0 ? uint32_t(prim.material) : UINT32_MAX);
+    o.prim_has_uv1.push_back(uv1 != nullptr);
+}
+
+} // namespace pg_gltf

@@ -1,0 +1,160 @@
+/* scene_gltf_nodes.cpp - step 4 of the glTF load (scene_gltf.cpp): the node hierarchy from the
+ * scene roots (cycles, depth and instance limits), node transforms, and the cameras it reaches.
+ */
+#include "scene_gltf_internal.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace pg_gltf {
+
+/* ------------------------------------------------------------------------------------------ */
+/* step 4: the node hierarchy                                                                   */
+
+constexpr int kMaxNodeDepth = 1024;
+constexpr size_t kMaxNodeVisits = size_t(1) << 20;
+
+Mat4 mat_identity()
+{
+    Mat4 r{};
+    r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1.0;
+    return r;
+}
+
+Mat4 mat_mul(const Mat4 &a, const Mat4 &b)
+{
+    Mat4 r{};
+    for (int col = 0; col < 4; col++)
+        for (int row = 0; row < 4; row++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++) s += a.m[k * 4 + row] * b.m[col * 4 + k];
+            r.m[col * 4 + row] = s;
+        }
+    return r;
+}
+
+Mat4 node_local(const tinygltf::Node &n, int ni)
+{
+    Mat4 r = mat_identity();
+    if (n.matrix.size() == 16) {
+        for (int i = 0; i < 16; i++) r.m[i] = n.matrix[size_t(i)];
+        return r;
+    }
+    double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
+    if (n.translation.size() == 3)
+        for (int i = 0; i < 3; i++) t[i] = n.translation[size_t(i)];
+    if (n.scale.size() == 3)
+        for (int i = 0; i < 3; i++) s[i] = n.scale[size_t(i)];
+    if (n.rotation.size() == 4) {
+        for (int i = 0; i < 4; i++) q[i] = n.rotation[size_t(i)];
+        double l = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+        if (!(l > 1e-12)) gfail(strf("nodes[%d].rotation: zero-length quaternion", ni));
+        for (double &x : q) x /= l;
+    }
+    double x = q[0], y = q[1], z = q[2], w = q[3];
+    double R[9] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
+                   2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+                   2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y)};
+    /* R is column-major: column c = R[c*3 .. c*3+2]; M = T * R * S */
+    for (int col = 0; col < 3; col++)
+        for (int row = 0; row < 3; row++) r.m[col * 4 + row] = R[col * 3 + row] * s[col];
+    r.m[12] = t[0];
+    r.m[13] = t[1];
+    r.m[14] = t[2];
+    return r;
+}
+
+void Walker::visit(int ni, const Mat4 &parent, int depth)
+{
+    const auto &nodes = c.model.nodes;
+    if (ni < 0 || size_t(ni) >= nodes.size())
+        gfail(strf("nodes[%d]: out of range (%zu nodes)", ni, nodes.size()));
+    if (on_path[size_t(ni)])
+        gfail(strf("nodes[%d]: cyclic node graph (nodes[%d] is its own ancestor)", ni, ni));
+    if (depth > kMaxNodeDepth)
+        fail(PG_ERR_LIMIT, strf("nodes[%d]: node hierarchy deeper than %d", ni, kMaxNodeDepth));
+    if (++visits > kMaxNodeVisits)
+        fail(PG_ERR_LIMIT, strf("nodes: more than %zu node instances", kMaxNodeVisits));
+    const tinygltf::Node &nd = nodes[size_t(ni)];
+    Mat4 world = mat_mul(parent, node_local(nd, ni));
+    for (double x : world.m)
+        if (!std::isfinite(x)) gfail(strf("nodes[%d]: world transform is not finite", ni));
+    on_path[size_t(ni)] = 1;
+    if (nd.mesh >= 0) {
+        if (size_t(nd.mesh) >= c.model.meshes.size())
+            gfail(strf("nodes[%d].mesh: %d out of range", ni, nd.mesh));
+        const tinygltf::Mesh &mesh = c.model.meshes[size_t(nd.mesh)];
+        for (size_t p = 0; p < mesh.primitives.size(); p++)
+            emit_primitive(c, o, nd.mesh, int(p), world);
+    }
+    for (int ch : nd.children) visit(ch, world, depth + 1);
+    on_path[size_t(ni)] = 0;
+}
+
+/* ---- cameras: every camera node reached from the scene roots, depth-first in node order (the
+ * Walker above has already rejected cycles and out-of-range children) ---- */
+void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_camera> &out)
+{
+    const tinygltf::Model &md = c.model;
+    const tinygltf::Node &nd = md.nodes[size_t(ni)];
+    Mat4 world = mat_mul(parent, node_local(nd, ni));
+    if (nd.camera >= 0) {
+        if (size_t(nd.camera) >= md.cameras.size())
+            gfail(strf("nodes[%d].camera: %d out of range (%zu cameras)", ni, nd.camera, md.cameras.size()));
+        const tinygltf::Camera &gc = md.cameras[size_t(nd.camera)];
+        const std::string cw = strf("cameras[%d]", nd.camera);
+        pg_scene_camera sc;
+        memset(&sc, 0, sizeof sc);
+        pg_strlcpy(sc.name, gc.name.empty() ? cw.c_str() : gc.name.c_str(), sizeof sc.name);
+        pg_strlcpy(sc.node_name, nd.name.empty() ? strf("nodes[%d]", ni).c_str() : nd.name.c_str(),
+                   sizeof sc.node_name);
+        sc.gltf_camera = nd.camera;
+        sc.gltf_node = ni;
+        if (gc.type == "perspective") {
+            const auto &p = gc.perspective;
+            if (!(std::isfinite(p.yfov) && p.yfov > 0 && p.yfov < 3.14159))
+                gfail(cw + ".perspective.yfov: expected a finite angle in (0, pi) radians");
+            if (!(std::isfinite(p.znear) && p.znear > 0))
+                gfail(cw + ".perspective.znear: expected a finite number > 0");
+            if (!(std::isfinite(p.zfar) && (p.zfar == 0 || p.zfar > p.znear)))
+                gfail(cw + ".perspective.zfar: expected a finite number > znear (or absent: infinite)");
+            if (!(std::isfinite(p.aspectRatio) && p.aspectRatio >= 0))
+                gfail(cw + ".perspective.aspectRatio: expected a finite number > 0");
+            sc.type = PG_CAMERA_PERSPECTIVE;
+            sc.yfov_rad = float(p.yfov);
+            sc.aspect_ratio = float(p.aspectRatio);
+            sc.znear = float(p.znear);
+            sc.zfar = float(p.zfar);
+        } else if (gc.type == "orthographic") {
+            const auto &o = gc.orthographic;
+            if (!(std::isfinite(o.xmag) && o.xmag != 0 && std::isfinite(o.ymag) && o.ymag != 0))
+                gfail(cw + ".orthographic.xmag/ymag: expected finite non-zero numbers");
+            if (!(std::isfinite(o.znear) && o.znear >= 0 && std::isfinite(o.zfar) && o.zfar > o.znear))
+                gfail(cw + ".orthographic.znear/zfar: expected finite 0 <= znear < zfar");
+            sc.type = PG_CAMERA_ORTHOGRAPHIC;
+            sc.xmag = float(o.xmag);
+            sc.ymag = float(o.ymag);
+            sc.znear = float(o.znear);
+            sc.zfar = float(o.zfar);
+        } else {
+            gfail(cw + ".type: '" + gc.type + "': expected \"perspective\" or \"orthographic\"");
+        }
+        double f[3] = {-world.m[8], -world.m[9], -world.m[10]}, u[3] = {world.m[4], world.m[5], world.m[6]};
+        double fl = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        if (!(fl > 1e-30)) gfail(strf("nodes[%d]: camera node transform is singular", ni));
+        for (double &x : f) x /= fl;
+        double fu = f[0] * u[0] + f[1] * u[1] + f[2] * u[2];
+        for (int k = 0; k < 3; k++) u[k] -= fu * f[k];
+        double ul = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        if (!(ul > 1e-12 * fl)) gfail(strf("nodes[%d]: camera node transform is singular", ni));
+        for (int k = 0; k < 3; k++) {
+            sc.position[k] = float(world.m[12 + k]);
+            sc.forward[k] = float(f[k]);
+            sc.up[k] = float(u[k] / ul);
+        }
+        out.push_back(sc);
+    }
+    for (int ch : nd.children) camera_visit(c, ch, world, out);
+}
+
+} // namespace pg_gltf

@@ -1,0 +1,155 @@
+/* scene_gltf_warnings.cpp - the warning lines of the glTF load (pg_scene.warnings; scene_gltf.cpp
+ * lists what is warned): one line per kind of feature the file uses that is not drawn as it asks.
+ */
+#include "scene_gltf_internal.h"
+
+#include <algorithm>
+
+namespace pg_gltf {
+
+std::string plural(size_t n, const char *one, const char *many)
+{
+    return strf("%zu %s", n, n == 1 ? one : many);
+}
+
+/* "materials[2] 'glass'" */
+std::string material_desc(const tinygltf::Model &md, size_t i)
+{
+    std::string d = strf("materials[%zu]", i);
+    if (i < md.materials.size() && !md.materials[i].name.empty())
+        d += " '" + md.materials[i].name.substr(0, 60) + "'";
+    return d;
+}
+
+/* Up to 3 names, then ", ..." */
+std::string name_list(const std::vector<std::string> &v)
+{
+    std::string r;
+    for (size_t i = 0; i < v.size() && i < 3; i++) r += (i ? ", " : "") + v[i];
+    if (v.size() > 3) r += ", ...";
+    return r;
+}
+
+std::string wrap_name(int w)
+{
+    switch (w) {
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return "CLAMP_TO_EDGE";
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return "MIRRORED_REPEAT";
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return "REPEAT";
+    default: return strf("%d", w);
+    }
+}
+
+std::string filter_name(int f)
+{
+    switch (f) {
+    case TINYGLTF_TEXTURE_FILTER_NEAREST: return "NEAREST";
+    case TINYGLTF_TEXTURE_FILTER_LINEAR: return "LINEAR";
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST: return "NEAREST_MIPMAP_NEAREST";
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: return "LINEAR_MIPMAP_NEAREST";
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR: return "NEAREST_MIPMAP_LINEAR";
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR: return "LINEAR_MIPMAP_LINEAR";
+    default: return strf("%d", f);
+    }
+}
+
+/* What an extension in extensionsUsed (and not in extensionsRequired, which is refused) means
+ * for the image. */
+std::string extension_effect(const std::string &e)
+{
+    if (e == "KHR_texture_transform") return "texture offset/rotation/scale not applied";
+    if (e == "KHR_lights_punctual") return "the file's lights are not used";
+    if (e == "KHR_materials_variants") return "the default material of each primitive is drawn";
+    if (e.compare(0, 14, "KHR_materials_") == 0) return "the core material is drawn without it";
+    return "not supported";
+}
+
+/* Every feature the file uses that is not drawn as the file asks: one line each (see scene.h). */
+void collect_warnings(Ctx &c)
+{
+    const tinygltf::Model &md = c.model;
+    auto &W = c.warnings;
+    if (c.skipped_prims)
+        W.push_back(strf("skipped %u point/line primitive(s) (only triangles are drawn)",
+                         c.skipped_prims));
+    if (!md.skins.empty())
+        W.push_back(plural(md.skins.size(), "skin", "skins") + " ignored: rendered in bind pose");
+    size_t morph_meshes = 0, morph_targets = 0;
+    for (const auto &m : md.meshes) {
+        size_t t = 0;
+        for (const auto &p : m.primitives) t = std::max(t, p.targets.size());
+        morph_meshes += t > 0;
+        morph_targets += t;
+    }
+    if (!md.animations.empty())
+        W.push_back(plural(md.animations.size(), "animation", "animations") +
+                    " ignored: the nodes are drawn at their static transforms");
+    if (morph_meshes)
+        W.push_back(plural(morph_targets, "morph target", "morph targets") + " in " +
+                    plural(morph_meshes, "mesh", "meshes") +
+                    " ignored: rendered with the base geometry (weights not applied)");
+    constexpr size_t kMaxExtensionLines = 16;
+    std::vector<std::string> unimpl;
+    for (const std::string &e : md.extensionsUsed)
+        if (!extension_implemented(e)) unimpl.push_back(e);
+    for (size_t i = 0; i < unimpl.size() && i < kMaxExtensionLines; i++) {
+        const std::string &e = unimpl[i];
+        W.push_back("extensionsUsed: '" + e.substr(0, 80) + "' ignored: " + extension_effect(e));
+    }
+    if (unimpl.size() > kMaxExtensionLines)
+        W.push_back(strf("extensionsUsed: %zu more extensions ignored (not supported)",
+                         unimpl.size() - kMaxExtensionLines));
+
+    std::vector<std::string> occlusion, mr, texcoord;
+    for (size_t i = 0; i < md.materials.size(); i++) {
+        const tinygltf::Material &m = md.materials[i];
+        if ((m.pbrMetallicRoughness.baseColorTexture.index >= 0 &&
+             m.pbrMetallicRoughness.baseColorTexture.texCoord > 1) ||
+            (m.normalTexture.index >= 0 && m.normalTexture.texCoord > 1) ||
+            (m.emissiveTexture.index >= 0 && m.emissiveTexture.texCoord > 1))
+            texcoord.push_back(material_desc(md, i));
+        if (m.occlusionTexture.index >= 0) occlusion.push_back(material_desc(md, i));
+        if (m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
+            mr.push_back(material_desc(md, i));
+    }
+    if (!mr.empty())
+        W.push_back("metallicRoughnessTexture of " + plural(mr.size(), "material", "materials") +
+                    " (" + name_list(mr) + ") ignored: the metallic/roughness factors are used");
+    if (!occlusion.empty())
+        W.push_back("occlusionTexture of " + plural(occlusion.size(), "material", "materials") +
+                    " (" + name_list(occlusion) + ") ignored");
+    if (!texcoord.empty())
+        W.push_back("textures of " + plural(texcoord.size(), "material", "materials") + " (" +
+                    name_list(texcoord) + ") ask for a texCoord other than 0 or 1: read with TEXCOORD_0");
+    if (c.color1_prims)
+        W.push_back("COLOR_1 (and higher) in " +
+                    plural(c.color1_prims, "primitive", "primitives") + " ignored: COLOR_0 is used");
+    if (c.texcoord2_prims)
+        W.push_back("TEXCOORD_2 (and higher) in " +
+                    plural(c.texcoord2_prims, "primitive", "primitives") +
+                    " ignored: textures read TEXCOORD_0 or TEXCOORD_1");
+
+    std::vector<std::string> odd;
+    for (size_t i = 0; i < md.samplers.size(); i++) {
+        const tinygltf::Sampler &sm = md.samplers[i];
+        /* the glTF values are drawn (sampler_state); only values outside the spec are warned */
+        auto wrap_ok = [](int w) {
+            return w == TINYGLTF_TEXTURE_WRAP_REPEAT || w == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE ||
+                   w == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT;
+        };
+        std::string d;
+        if (!wrap_ok(sm.wrapS)) d += " wrapS " + wrap_name(sm.wrapS);
+        if (!wrap_ok(sm.wrapT)) d += " wrapT " + wrap_name(sm.wrapT);
+        if (sm.magFilter >= 0 && sm.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR &&
+            sm.magFilter != TINYGLTF_TEXTURE_FILTER_NEAREST)
+            d += " magFilter " + filter_name(sm.magFilter);
+        if (sm.minFilter >= 0 && filter_name(sm.minFilter) == strf("%d", sm.minFilter))
+            d += " minFilter " + filter_name(sm.minFilter);
+        if (!d.empty()) odd.push_back(strf("samplers[%zu]:", i) + d);
+    }
+    if (!odd.empty())
+        W.push_back(plural(odd.size(), "sampler", "samplers") + " with unknown wrap/filter values (" +
+                    name_list(odd) + ") ignored: REPEAT / LINEAR (trilinear) used for them");
+}
+
+} // namespace pg_gltf
