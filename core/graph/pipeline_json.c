@@ -6,7 +6,7 @@
  *              cyclic, too deep) and every parameter declaration; collect the resource and pass
  *              objects in merge order (an include's items before the includer's own).
  *   2. params  apply the --set overrides (typed, range checked).
- *   3. items   substitute "$param" strings inside every resource and pass, then validate each
+ *   3. items   pj_substitute "$param" strings inside every resource and pass, then validate each
  *              one, evaluate its "when" condition and record what was omitted and why.
  *   4. links   resolve reads/writes/after names and the outputs against the surviving items.
  *   5. build   copy the surviving items into the pg_pipeline; each pass's options object is
@@ -32,17 +32,17 @@ static const char *const k_pass_keys[] = {"name",  "type",         "reads",   "w
                                           "description", NULL};
 
 /* Reads a required identifier field (name / type). */
-pg_result req_ident(loader *L, const src_file *f, const cJSON *obj, const char *ipath,
+pg_result pj_req_ident(loader *L, const src_file *f, const cJSON *obj, const char *ipath,
                     const char *key, char *out)
 {
     char path[PG_JSON_PATH_MAX];
     snprintf(path, sizeof path, "%s.%s", ipath, key);
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
-    if (!v) return fail_at(L, PG_ERR_SCHEMA, f, path, "missing (required)");
-    if (!cJSON_IsString(v) || !valid_ident(v->valuestring)) {
+    if (!v) return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "missing (required)");
+    if (!cJSON_IsString(v) || !pj_valid_ident(v->valuestring)) {
         char got[96];
-        describe(v, got, sizeof got);
-        return fail_at(L, PG_ERR_SCHEMA, f, path,
+        pj_describe(v, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
                        "expected a name matching [A-Za-z0-9_]+ (at most %d characters), got %s",
                        PG_NAME_MAX - 1, got);
     }
@@ -50,15 +50,15 @@ pg_result req_ident(loader *L, const src_file *f, const cJSON *obj, const char *
     return PG_OK;
 }
 
-pg_result opt_description(loader *L, const src_file *f, const cJSON *obj,
+pg_result pj_opt_description(loader *L, const src_file *f, const cJSON *obj,
                           const char *ipath)
 {
     const cJSON *d = cJSON_GetObjectItemCaseSensitive(obj, "description");
     if (!d || cJSON_IsString(d)) return PG_OK;
     char got[96], path[PG_JSON_PATH_MAX];
-    describe(d, got, sizeof got);
+    pj_describe(d, got, sizeof got);
     snprintf(path, sizeof path, "%s.description", ipath);
-    return fail_at(L, PG_ERR_SCHEMA, f, path, "expected a string, got %s", got);
+    return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "expected a string, got %s", got);
 }
 
 
@@ -73,18 +73,18 @@ static pg_result name_list(loader *L, const src_file *f, const cJSON *o, const c
     const cJSON *arr = cJSON_GetObjectItemCaseSensitive(o, key);
     if (!arr) return PG_OK;
     if (!cJSON_IsArray(arr)) {
-        describe(arr, got, sizeof got);
-        return fail_at(L, PG_ERR_SCHEMA, f, path, "expected an array of names, got %s", got);
+        pj_describe(arr, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "expected an array of names, got %s", got);
     }
     int cnt = cJSON_GetArraySize(arr);
     if (cnt > (int)max)
-        return fail_at(L, PG_ERR_LIMIT, f, path, "%d entries, the limit is %u", cnt, max);
+        return pj_fail_at(L, PG_ERR_LIMIT, f, path, "%d entries, the limit is %u", cnt, max);
     uint32_t k = 0;
     for (const cJSON *c = arr->child; c; c = c->next, k++) {
-        if (!cJSON_IsString(c) || !valid_ident(c->valuestring)) {
-            describe(c, got, sizeof got);
+        if (!cJSON_IsString(c) || !pj_valid_ident(c->valuestring)) {
+            pj_describe(c, got, sizeof got);
             snprintf(path, sizeof path, "%s.%s[%u]", ip, key, k);
-            return fail_at(L, PG_ERR_SCHEMA, f, path,
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
                            "expected a name matching [A-Za-z0-9_]+, got %s", got);
         }
         pg_strlcpy(out[k], c->valuestring, PG_NAME_MAX);
@@ -105,15 +105,15 @@ static pg_result parse_pass(loader *L, uint32_t idx)
     pg_strlcpy(d->json_path, ip, sizeof d->json_path);
     cJSON *o = it->node;
     if (!cJSON_IsObject(o)) {
-        describe(o, got, sizeof got);
-        return fail_at(L, PG_ERR_SCHEMA, f, ip, "expected a pass object, got %s", got);
+        pj_describe(o, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, ip, "expected a pass object, got %s", got);
     }
     snprintf(L->jp, sizeof L->jp, "%s", ip);
-    pg_result r = substitute(L, f, o, true);
+    pg_result r = pj_substitute(L, f, o, true);
     if (r) return r;
-    r = check_keys(L, f, o, ip, "a pass", k_pass_keys);
+    r = pj_check_keys(L, f, o, ip, "a pass", k_pass_keys);
     if (r) return r;
-    r = req_ident(L, f, o, ip, "name", d->name);
+    r = pj_req_ident(L, f, o, ip, "name", d->name);
     if (r) return r;
     for (uint32_t j = 0; j < idx; j++) {
         if (strcmp(L->pdesc[j].name, d->name) != 0) continue;
@@ -122,10 +122,10 @@ static pg_result parse_pass(loader *L, uint32_t idx)
             L->pass[j].file == f || strcmp(L->pass[j].file->canon, f->canon) != 0
                 ? ""
                 : " (the same file is included more than once)";
-        return fail_at(L, PG_ERR_SCHEMA, f, path, "pass '%s' is declared twice: first at %s: %s%s",
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "pass '%s' is declared twice: first at %s: %s%s",
                        d->name, L->pdesc[j].file, L->pdesc[j].json_path, twice);
     }
-    r = req_ident(L, f, o, ip, "type", d->type);
+    r = pj_req_ident(L, f, o, ip, "type", d->type);
     if (r) return r;
     r = name_list(L, f, o, ip, "reads", PG_MAX_SLOTS, d->reads, &d->n_reads);
     if (r) return r;
@@ -136,26 +136,26 @@ static pg_result parse_pass(loader *L, uint32_t idx)
     const cJSON *se = cJSON_GetObjectItemCaseSensitive(o, "side_effects");
     if (se) {
         if (!cJSON_IsBool(se)) {
-            describe(se, got, sizeof got);
+            pj_describe(se, got, sizeof got);
             snprintf(path, sizeof path, "%s.side_effects", ip);
-            return fail_at(L, PG_ERR_SCHEMA, f, path, "expected true or false, got %s", got);
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "expected true or false, got %s", got);
         }
         d->side_effects = cJSON_IsTrue(se);
     }
     cJSON *opts = cJSON_GetObjectItemCaseSensitive(o, "options");
     if (opts && !cJSON_IsObject(opts)) {
-        describe(opts, got, sizeof got);
+        pj_describe(opts, got, sizeof got);
         snprintf(path, sizeof path, "%s.options", ip);
-        return fail_at(L, PG_ERR_SCHEMA, f, path, "expected an object, got %s", got);
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "expected an object, got %s", got);
     }
     it->options = opts;
     d->options = opts;
-    r = opt_description(L, f, o, ip);
+    r = pj_opt_description(L, f, o, ip);
     if (r) return r;
 
     bool active;
     char why[sizeof L->p->omitted[0].why];
-    r = eval_when(L, f, o, ip, &active, why, sizeof why);
+    r = pj_eval_when(L, f, o, ip, &active, why, sizeof why);
     if (r) return r;
     if (!active) {
         pg_omitted *om = &L->p->omitted[L->p->n_omitted];
@@ -185,7 +185,7 @@ static void resource_names(const loader *L, char *buf, size_t n)
 {
     buf[0] = 0;
     for (uint32_t i = 0; i < L->n_res; i++)
-        if (!L->res[i].omitted) list_append(buf, n, L->rdesc[i].name);
+        if (!L->res[i].omitted) pj_list_append(buf, n, L->rdesc[i].name);
     if (!buf[0]) snprintf(buf, n, "none");
 }
 
@@ -201,11 +201,11 @@ static pg_result link_slots(loader *L, uint32_t idx, const char *key, char (*nam
         if (j < 0) {
             char list[600];
             resource_names(L, list, sizeof list);
-            return fail_at(L, PG_ERR_UNKNOWN_RESOURCE, it->file, path,
+            return pj_fail_at(L, PG_ERR_UNKNOWN_RESOURCE, it->file, path,
                            "unknown resource '%s' (declared: %s)", names[k], list);
         }
         if (L->res[j].omitted && !it->omitted)
-            return fail_at(L, PG_ERR_UNKNOWN_RESOURCE, it->file, path,
+            return pj_fail_at(L, PG_ERR_UNKNOWN_RESOURCE, it->file, path,
                            "resource '%s' (%s: %s) is omitted: %s", names[k], L->rdesc[j].file,
                            L->rdesc[j].json_path, L->p->omitted[L->res[j].omit_index].why);
     }
@@ -226,7 +226,7 @@ static pg_result link_pass(loader *L, uint32_t idx)
         if (j < 0) {
             char path[PG_JSON_PATH_MAX];
             snprintf(path, sizeof path, "passes[%u].after[%u]", it->index, k);
-            return fail_at(L, PG_ERR_SCHEMA, it->file, path, "unknown pass '%s'", d->after[k]);
+            return pj_fail_at(L, PG_ERR_SCHEMA, it->file, path, "unknown pass '%s'", d->after[k]);
         }
         if (L->pass[j].omitted) continue; /* ordering against a dropped pass is moot */
         bool dup = false;
@@ -249,26 +249,26 @@ static pg_result read_output(loader *L, const char *key, bool required, char *ou
     out[0] = 0;
     if (!v) {
         if (!required) return PG_OK;
-        return fail_at(L, PG_ERR_NO_OUTPUT, f, key,
+        return pj_fail_at(L, PG_ERR_NO_OUTPUT, f, key,
                        "missing: name the image resource to display (\"%s\": \"...\")", key);
     }
     char got[96];
     if (!cJSON_IsString(v)) {
-        describe(v, got, sizeof got);
-        return fail_at(L, PG_ERR_SCHEMA, f, key, "expected an image resource name, got %s", got);
+        pj_describe(v, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, key, "expected an image resource name, got %s", got);
     }
-    int j = valid_ident(v->valuestring) ? find_res(L, v->valuestring) : -1;
+    int j = pj_valid_ident(v->valuestring) ? find_res(L, v->valuestring) : -1;
     if (j < 0) {
         char list[600];
         resource_names(L, list, sizeof list);
-        return fail_at(L, PG_ERR_NO_OUTPUT, f, key, "unknown resource '%.64s' (declared: %s)",
+        return pj_fail_at(L, PG_ERR_NO_OUTPUT, f, key, "unknown resource '%.64s' (declared: %s)",
                        v->valuestring, list);
     }
     if (L->res[j].omitted)
-        return fail_at(L, PG_ERR_NO_OUTPUT, f, key, "resource '%s' is omitted: %s",
+        return pj_fail_at(L, PG_ERR_NO_OUTPUT, f, key, "resource '%s' is omitted: %s",
                        v->valuestring, L->p->omitted[L->res[j].omit_index].why);
     if (L->rdesc[j].kind != PG_RES_IMAGE)
-        return fail_at(L, PG_ERR_NO_OUTPUT, f, key,
+        return pj_fail_at(L, PG_ERR_NO_OUTPUT, f, key,
                        "'%s' is a buffer (%s: %s); the output must be an image", v->valuestring,
                        L->rdesc[j].file, L->rdesc[j].json_path);
     pg_strlcpy(out, v->valuestring, PG_NAME_MAX);
@@ -284,8 +284,8 @@ static pg_result read_header(loader *L)
     if (name) {
         if (!cJSON_IsString(name) || !name->valuestring[0] ||
             strlen(name->valuestring) >= PG_NAME_MAX) {
-            describe(name, got, sizeof got);
-            return fail_at(L, PG_ERR_SCHEMA, f, "name",
+            pj_describe(name, got, sizeof got);
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, "name",
                            "expected a non-empty string of at most %d characters, got %s",
                            PG_NAME_MAX - 1, got);
         }
@@ -302,8 +302,8 @@ static pg_result read_header(loader *L)
     const cJSON *desc = cJSON_GetObjectItemCaseSensitive(f->root, "description");
     if (desc) {
         if (!cJSON_IsString(desc)) {
-            describe(desc, got, sizeof got);
-            return fail_at(L, PG_ERR_SCHEMA, f, "description", "expected a string, got %s", got);
+            pj_describe(desc, got, sizeof got);
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, "description", "expected a string, got %s", got);
         }
         pg_strlcpy(p->description, desc->valuestring, sizeof p->description);
     }
@@ -325,7 +325,7 @@ static pg_result load_all(loader *L, const char *text, size_t len, const char *p
                           const pg_param_override *ov, uint32_t n_ov)
 {
     pg_pipeline *p = L->p;
-    src_file *f = new_file(L, path);
+    src_file *f = pj_new_file(L, path);
     if (!f) return pg_fail(L->err, PG_ERR_OOM, "%s: out of memory", path);
     f->canon = realpath(path, NULL);
     if (!f->canon) f->canon = strdup(path);
@@ -333,17 +333,17 @@ static pg_result load_all(loader *L, const char *text, size_t len, const char *p
     pg_strlcpy(p->path, path, sizeof p->path);
     L->stack[0] = f;
     L->depth = 0;
-    pg_result r = parse_text(L, f, text, len);
+    pg_result r = pj_parse_text(L, f, text, len);
     if (r) return r;
-    r = process_file(L, f);
+    r = pj_process_file(L, f);
     if (r) return r;
     r = read_header(L);
     if (r) return r;
     if (n_ov && !ov) return pg_fail(L->err, PG_ERR_INVALID_ARG, "%s: overrides is NULL", path);
-    r = apply_overrides(L, ov, n_ov);
+    r = pj_apply_overrides(L, ov, n_ov);
     if (r) return r;
     for (uint32_t i = 0; i < L->n_res; i++) {
-        r = parse_resource(L, i);
+        r = pj_parse_resource(L, i);
         if (r) return r;
     }
     for (uint32_t i = 0; i < L->n_pass; i++) {

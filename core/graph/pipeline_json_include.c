@@ -18,7 +18,7 @@
 
 /* ------------------------------------------------------------------ files */
 
-src_file *new_file(loader *L, const char *path)
+src_file *pj_new_file(loader *L, const char *path)
 {
     if (L->n_files == L->cap_files) {
         uint32_t cap = L->cap_files ? L->cap_files * 2 : 8;
@@ -57,7 +57,7 @@ static pg_result load_include(loader *L, const src_file *from, uint32_t idx, con
     char path[PG_PATH_MAX];
     if (rel[0] == '/') {
         if (!pg_strlcpy(path, rel, sizeof path))
-            return fail_at(L, PG_ERR_INCLUDE, from, ipath, "path too long");
+            return pj_fail_at(L, PG_ERR_INCLUDE, from, ipath, "path too long");
     } else {
         const char *slash = strrchr(from->path, '/');
         int dirlen = slash ? (int)(slash - from->path) + (slash == from->path) : 0;
@@ -65,23 +65,23 @@ static pg_result load_include(loader *L, const src_file *from, uint32_t idx, con
                                   from->path[dirlen - 1] == '/' ? "" : "/", rel)
                        : snprintf(path, sizeof path, "%s", rel);
         if (n < 0 || (size_t)n >= sizeof path)
-            return fail_at(L, PG_ERR_INCLUDE, from, ipath, "path too long");
+            return pj_fail_at(L, PG_ERR_INCLUDE, from, ipath, "path too long");
     }
     if (L->depth + 1 > PG_MAX_INCLUDE_DEPTH) {
         char chain[700];
         include_chain(L, path, chain, sizeof chain);
-        return fail_at(L, PG_ERR_INCLUDE, from, ipath, "includes nested deeper than %d levels: %s",
+        return pj_fail_at(L, PG_ERR_INCLUDE, from, ipath, "includes nested deeper than %d levels: %s",
                        PG_MAX_INCLUDE_DEPTH, chain);
     }
     if (L->n_files >= PG_MAX_INCLUDE_FILES)
-        return fail_at(L, PG_ERR_INCLUDE, from, ipath, "more than %d files included in all",
+        return pj_fail_at(L, PG_ERR_INCLUDE, from, ipath, "more than %d files included in all",
                        PG_MAX_INCLUDE_FILES);
     struct stat st;
     if (stat(path, &st) != 0)
-        return fail_at(L, PG_ERR_INCLUDE, from, ipath, "cannot open '%s': %s", path,
+        return pj_fail_at(L, PG_ERR_INCLUDE, from, ipath, "cannot open '%s': %s", path,
                        strerror(errno));
     if (!S_ISREG(st.st_mode))
-        return fail_at(L, PG_ERR_INCLUDE, from, ipath, "'%s' is not a regular file", path);
+        return pj_fail_at(L, PG_ERR_INCLUDE, from, ipath, "'%s' is not a regular file", path);
     char *canon = realpath(path, NULL);
     if (!canon) canon = strdup(path);
     if (!canon) return pg_fail(L->err, PG_ERR_OOM, "%s: out of memory", from->path);
@@ -90,10 +90,10 @@ static pg_result load_include(loader *L, const src_file *from, uint32_t idx, con
             free(canon);
             char chain[700];
             include_chain(L, path, chain, sizeof chain);
-            return fail_at(L, PG_ERR_INCLUDE, from, ipath, "include cycle: %s", chain);
+            return pj_fail_at(L, PG_ERR_INCLUDE, from, ipath, "include cycle: %s", chain);
         }
     }
-    src_file *f = new_file(L, path);
+    src_file *f = pj_new_file(L, path);
     if (!f) {
         free(canon);
         return pg_fail(L->err, PG_ERR_OOM, "%s: out of memory", from->path);
@@ -105,14 +105,14 @@ static pg_result load_include(loader *L, const src_file *from, uint32_t idx, con
     if (r) {
         char cause[PG_ERROR_MSG_MAX];
         pg_strlcpy(cause, L->err ? L->err->msg : "", sizeof cause);
-        return fail_at(L, r == PG_ERR_OOM ? r : PG_ERR_INCLUDE, from, ipath,
+        return pj_fail_at(L, r == PG_ERR_OOM ? r : PG_ERR_INCLUDE, from, ipath,
                        "cannot read '%s': %s", path, cause);
     }
-    r = parse_text(L, f, text, len);
+    r = pj_parse_text(L, f, text, len);
     free(text);
     if (r) return r;
     L->stack[++L->depth] = f;
-    r = process_file(L, f);
+    r = pj_process_file(L, f);
     L->depth--;
     return r;
 }
@@ -124,15 +124,15 @@ static pg_result collect_items(loader *L, const src_file *f, const char *key, it
     if (!arr) return PG_OK;
     if (!cJSON_IsArray(arr)) {
         char got[96];
-        describe(arr, got, sizeof got);
-        return fail_at(L, PG_ERR_SCHEMA, f, key, "expected an array, got %s", got);
+        pj_describe(arr, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, key, "expected an array, got %s", got);
     }
     uint32_t i = 0;
     for (cJSON *c = arr->child; c; c = c->next, i++) {
         if (*n >= max) {
             char path[64];
             snprintf(path, sizeof path, "%s[%u]", key, i);
-            return fail_at(L, PG_ERR_LIMIT, f, path,
+            return pj_fail_at(L, PG_ERR_LIMIT, f, path,
                            "more than %u %s (the pipeline and its includes)", max, key);
         }
         item_ref *it = &items[(*n)++];
@@ -144,10 +144,10 @@ static pg_result collect_items(loader *L, const src_file *f, const char *key, it
     return PG_OK;
 }
 
-pg_result process_file(loader *L, const src_file *f)
+pg_result pj_process_file(loader *L, const src_file *f)
 {
     bool top = L->depth == 0;
-    pg_result r = check_keys(L, f, f->root, "(top level)",
+    pg_result r = pj_check_keys(L, f, f->root, "(top level)",
                              top ? "a pipeline file" : "an included fragment",
                              top ? k_top_keys : k_frag_keys);
     if (r) return r;
@@ -156,17 +156,17 @@ pg_result process_file(loader *L, const src_file *f)
     if (inc) {
         if (!cJSON_IsArray(inc)) {
             char got[96];
-            describe(inc, got, sizeof got);
-            return fail_at(L, PG_ERR_SCHEMA, f, "include",
+            pj_describe(inc, got, sizeof got);
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, "include",
                            "expected an array of relative paths, got %s", got);
         }
         uint32_t i = 0;
         for (const cJSON *c = inc->child; c; c = c->next, i++) {
             if (!cJSON_IsString(c) || !c->valuestring[0]) {
                 char got[96], path[32];
-                describe(c, got, sizeof got);
+                pj_describe(c, got, sizeof got);
                 snprintf(path, sizeof path, "include[%u]", i);
-                return fail_at(L, PG_ERR_SCHEMA, f, path, "expected a file path, got %s", got);
+                return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "expected a file path, got %s", got);
             }
             r = load_include(L, f, i, c->valuestring);
             if (r) return r;
@@ -177,12 +177,12 @@ pg_result process_file(loader *L, const src_file *f)
     if (params) {
         if (!cJSON_IsObject(params)) {
             char got[96];
-            describe(params, got, sizeof got);
-            return fail_at(L, PG_ERR_SCHEMA, f, "parameters",
+            pj_describe(params, got, sizeof got);
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, "parameters",
                            "expected an object of declarations, got %s", got);
         }
         for (const cJSON *c = params->child; c; c = c->next) {
-            r = add_param(L, f, c);
+            r = pj_add_param(L, f, c);
             if (r) return r;
         }
     }

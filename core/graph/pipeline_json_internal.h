@@ -50,44 +50,44 @@ typedef struct loader {
     char jp[JP_MAX]; /* scratch JSON path for the recursive walks */
 } loader;
 /* pipeline_json_text.c */
-pg_result fail_at(loader *L, pg_result code, const src_file *f, const char *path,
+pg_result pj_fail_at(loader *L, pg_result code, const src_file *f, const char *path,
                   const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 5, 6)))
 #endif
     ;
-bool valid_ident(const char *s);
-void fmt_double(double v, char *buf, size_t n);
-void describe(const cJSON *v, char *buf, size_t n);
-void list_append(char *buf, size_t n, const char *item);
-bool json_integer(const cJSON *v, double lo, double hi, double *out);
-size_t jp_push(loader *L, const char *fmt, ...)
+bool pj_valid_ident(const char *s);
+void pj_fmt_double(double v, char *buf, size_t n);
+void pj_describe(const cJSON *v, char *buf, size_t n);
+void pj_list_append(char *buf, size_t n, const char *item);
+bool pj_json_integer(const cJSON *v, double lo, double hi, double *out);
+size_t pj_jp_push(loader *L, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
-void jp_pop(loader *L, size_t mark);
-pg_result check_keys(loader *L, const src_file *f, const cJSON *obj, const char *path,
+void pj_jp_pop(loader *L, size_t mark);
+pg_result pj_check_keys(loader *L, const src_file *f, const cJSON *obj, const char *path,
                      const char *what, const char *const *allowed);
-pg_result parse_text(loader *L, src_file *f, const char *text, size_t len);
+pg_result pj_parse_text(loader *L, src_file *f, const char *text, size_t len);
 
 /* pipeline_json_include.c */
-src_file *new_file(loader *L, const char *path);
-pg_result process_file(loader *L, const src_file *f);
+src_file *pj_new_file(loader *L, const char *path);
+pg_result pj_process_file(loader *L, const src_file *f);
 
 /* pipeline_json_params.c */
-pg_result add_param(loader *L, const src_file *f, const cJSON *decl);
-pg_result apply_overrides(loader *L, const pg_param_override *ov, uint32_t n);
-pg_result substitute(loader *L, const src_file *f, cJSON *node, bool top);
-pg_result eval_when(loader *L, const src_file *f, const cJSON *item, const char *ipath,
+pg_result pj_add_param(loader *L, const src_file *f, const cJSON *decl);
+pg_result pj_apply_overrides(loader *L, const pg_param_override *ov, uint32_t n);
+pg_result pj_substitute(loader *L, const src_file *f, cJSON *node, bool top);
+pg_result pj_eval_when(loader *L, const src_file *f, const cJSON *item, const char *ipath,
                     bool *active, char *why, size_t whyn);
 
 /* pipeline_json_resources.c */
-pg_result parse_resource(loader *L, uint32_t idx);
+pg_result pj_parse_resource(loader *L, uint32_t idx);
 
 /* pipeline_json.c */
-pg_result req_ident(loader *L, const src_file *f, const cJSON *obj, const char *ipath,
+pg_result pj_req_ident(loader *L, const src_file *f, const cJSON *obj, const char *ipath,
                     const char *key, char *out);
-pg_result opt_description(loader *L, const src_file *f, const cJSON *obj, const char *ipath);
+pg_result pj_opt_description(loader *L, const src_file *f, const cJSON *obj, const char *ipath);
 
 #endif

@@ -16,12 +16,12 @@
 /* ------------------------------------------------------------------ parameters */
 
 /* A whole-string parameter reference: "$" followed by an identifier. */
-static bool is_param_ref(const char *s) { return s && s[0] == '$' && valid_ident(s + 1); }
+static bool is_param_ref(const char *s) { return s && s[0] == '$' && pj_valid_ident(s + 1); }
 
 static void param_names(const pg_pipeline *p, char *buf, size_t n)
 {
     buf[0] = 0;
-    for (uint32_t i = 0; i < p->n_params; i++) list_append(buf, n, p->params[i].name);
+    for (uint32_t i = 0; i < p->n_params; i++) pj_list_append(buf, n, p->params[i].name);
     if (!buf[0]) snprintf(buf, n, "none");
 }
 
@@ -34,7 +34,7 @@ void pg_param_format(const pg_param *param, char *buf, size_t buf_size)
     }
     switch (param->type) {
     case PG_PARAM_INT: snprintf(buf, buf_size, "%lld", (long long)param->number); break;
-    case PG_PARAM_FLOAT: fmt_double(param->number, buf, buf_size); break;
+    case PG_PARAM_FLOAT: pj_fmt_double(param->number, buf, buf_size); break;
     case PG_PARAM_BOOL: snprintf(buf, buf_size, "%s", param->boolean ? "true" : "false"); break;
     case PG_PARAM_ENUM: snprintf(buf, buf_size, "%s", param->enum_value); break;
     default: buf[0] = 0; break;
@@ -63,7 +63,7 @@ static const char *param_type_name(pg_param_type t)
 static void enum_values_list(const pg_param *prm, char *buf, size_t n)
 {
     buf[0] = 0;
-    for (uint32_t i = 0; i < prm->n_values; i++) list_append(buf, n, prm->values[i]);
+    for (uint32_t i = 0; i < prm->n_values; i++) pj_list_append(buf, n, prm->values[i]);
 }
 
 static bool text_is_integer(const char *s)
@@ -149,8 +149,8 @@ static bool parse_typed(const pg_param *prm, const char *text, bool check_range,
     }
     if (check_range && (val->number < prm->min || val->number > prm->max)) {
         char lo[40], hi[40];
-        fmt_double(prm->min, lo, sizeof lo);
-        fmt_double(prm->max, hi, sizeof hi);
+        pj_fmt_double(prm->min, lo, sizeof lo);
+        pj_fmt_double(prm->max, hi, sizeof hi);
         snprintf(why, whyn, "%s is out of range [%s, %s]", text, lo, hi);
         return false;
     }
@@ -180,26 +180,26 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
 #define FPATH(field) (snprintf(fpath, sizeof fpath, "%s.%s", path, field), fpath)
     memset(out, 0, sizeof *out);
     snprintf(path, sizeof path, "parameters.%s", name);
-    if (!valid_ident(name))
-        return fail_at(L, PG_ERR_PARAM, f, path,
+    if (!pj_valid_ident(name))
+        return pj_fail_at(L, PG_ERR_PARAM, f, path,
                        "parameter names must match [A-Za-z0-9_]+ (at most %d characters)",
                        PG_NAME_MAX - 1);
     pg_strlcpy(out->name, name, sizeof out->name);
     if (!cJSON_IsObject(decl)) {
-        describe(decl, got, sizeof got);
-        return fail_at(L, PG_ERR_PARAM, f, path,
+        pj_describe(decl, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_PARAM, f, path,
                        "expected a declaration object like {\"type\": \"int\", \"default\": 1}, "
                        "got %s", got);
     }
-    pg_result r = check_keys(L, f, decl, path, "parameter declaration", k_param_keys);
+    pg_result r = pj_check_keys(L, f, decl, path, "parameter declaration", k_param_keys);
     if (r) return r;
 
     const cJSON *type = cJSON_GetObjectItemCaseSensitive(decl, "type");
     if (!type)
-        return fail_at(L, PG_ERR_PARAM, f, FPATH("type"), "missing (int, float, bool or enum)");
+        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("type"), "missing (int, float, bool or enum)");
     if (!cJSON_IsString(type)) {
-        describe(type, got, sizeof got);
-        return fail_at(L, PG_ERR_PARAM, f, FPATH("type"),
+        pj_describe(type, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("type"),
                        "expected \"int\", \"float\", \"bool\" or \"enum\", got %s", got);
     }
     const char *ts = type->valuestring;
@@ -208,7 +208,7 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
     else if (strcmp(ts, "bool") == 0) out->type = PG_PARAM_BOOL;
     else if (strcmp(ts, "enum") == 0) out->type = PG_PARAM_ENUM;
     else
-        return fail_at(L, PG_ERR_PARAM, f, FPATH("type"),
+        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("type"),
                        "unknown parameter type '%.64s' (int, float, bool or enum)", ts);
     bool numeric = out->type == PG_PARAM_INT || out->type == PG_PARAM_FLOAT;
 
@@ -219,15 +219,15 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
         const cJSON *v = cJSON_GetObjectItemCaseSensitive(decl, bound_keys[b]);
         if (!v) continue;
         if (!numeric)
-            return fail_at(L, PG_ERR_PARAM, f, FPATH(bound_keys[b]),
+            return pj_fail_at(L, PG_ERR_PARAM, f, FPATH(bound_keys[b]),
                            "only int and float parameters have min/max");
         double d = 0;
-        bool ok = out->type == PG_PARAM_INT ? json_integer(v, -MAX_SAFE_INT, MAX_SAFE_INT, &d)
+        bool ok = out->type == PG_PARAM_INT ? pj_json_integer(v, -MAX_SAFE_INT, MAX_SAFE_INT, &d)
                                             : (cJSON_IsNumber(v) && isfinite(v->valuedouble));
         if (out->type == PG_PARAM_FLOAT && ok) d = v->valuedouble;
         if (!ok) {
-            describe(v, got, sizeof got);
-            return fail_at(L, PG_ERR_PARAM, f, FPATH(bound_keys[b]), "expected %s, got %s",
+            pj_describe(v, got, sizeof got);
+            return pj_fail_at(L, PG_ERR_PARAM, f, FPATH(bound_keys[b]), "expected %s, got %s",
                            out->type == PG_PARAM_INT ? "an integer" : "a finite number", got);
         }
         if (b == 0) out->min = d;
@@ -235,21 +235,21 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
     }
     if (out->min > out->max) {
         char lo[40], hi[40];
-        fmt_double(out->min, lo, sizeof lo);
-        fmt_double(out->max, hi, sizeof hi);
-        return fail_at(L, PG_ERR_PARAM, f, FPATH("max"), "%s is less than min %s", hi, lo);
+        pj_fmt_double(out->min, lo, sizeof lo);
+        pj_fmt_double(out->max, hi, sizeof hi);
+        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("max"), "%s is less than min %s", hi, lo);
     }
 
     const cJSON *values = cJSON_GetObjectItemCaseSensitive(decl, "values");
     if (values && out->type != PG_PARAM_ENUM)
-        return fail_at(L, PG_ERR_PARAM, f, FPATH("values"), "only enum parameters have values");
+        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("values"), "only enum parameters have values");
     if (out->type == PG_PARAM_ENUM) {
         if (!cJSON_IsArray(values) || !values->child)
-            return fail_at(L, PG_ERR_PARAM, f, FPATH("values"),
+            return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("values"),
                            "an enum needs a non-empty array of strings");
         int nv = cJSON_GetArraySize(values);
         if (nv > PG_MAX_ENUM_VALUES)
-            return fail_at(L, PG_ERR_LIMIT, f, FPATH("values"), "%d values, the limit is %d", nv,
+            return pj_fail_at(L, PG_ERR_LIMIT, f, FPATH("values"), "%d values, the limit is %d", nv,
                            PG_MAX_ENUM_VALUES);
         const cJSON *v;
         uint32_t i = 0;
@@ -259,9 +259,9 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
             for (const char *c = ok ? v->valuestring : ""; *c; c++)
                 if ((unsigned char)*c <= ' ' || *c == 0x7f) ok = false;
             if (!ok) {
-                describe(v, got, sizeof got);
+                pj_describe(v, got, sizeof got);
                 snprintf(fpath, sizeof fpath, "%s.values[%u]", path, i);
-                return fail_at(L, PG_ERR_PARAM, f, fpath,
+                return pj_fail_at(L, PG_ERR_PARAM, f, fpath,
                                "expected a non-empty string without spaces "
                                "(at most %d characters), got %s",
                                PG_NAME_MAX - 1, got);
@@ -269,7 +269,7 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
             for (uint32_t j = 0; j < i; j++)
                 if (strcmp(out->values[j], v->valuestring) == 0) {
                     snprintf(fpath, sizeof fpath, "%s.values[%u]", path, i);
-                    return fail_at(L, PG_ERR_PARAM, f, fpath, "'%s' is listed twice",
+                    return pj_fail_at(L, PG_ERR_PARAM, f, fpath, "'%s' is listed twice",
                                    v->valuestring);
                 }
             pg_strlcpy(out->values[i++], v->valuestring, PG_NAME_MAX);
@@ -280,8 +280,8 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
     const cJSON *desc = cJSON_GetObjectItemCaseSensitive(decl, "description");
     if (desc) {
         if (!cJSON_IsString(desc)) {
-            describe(desc, got, sizeof got);
-            return fail_at(L, PG_ERR_PARAM, f, FPATH("description"), "expected a string, got %s",
+            pj_describe(desc, got, sizeof got);
+            return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("description"), "expected a string, got %s",
                            got);
         }
         pg_strlcpy(out->description, desc->valuestring, sizeof out->description);
@@ -289,23 +289,23 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
 
     const cJSON *def = cJSON_GetObjectItemCaseSensitive(decl, "default");
     if (!def)
-        return fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "missing (every parameter needs one)");
-    describe(def, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "missing (every parameter needs one)");
+    pj_describe(def, got, sizeof got);
     switch (out->type) {
     case PG_PARAM_INT:
-        if (!json_integer(def, -MAX_SAFE_INT, MAX_SAFE_INT, &out->number))
-            return fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "expected an integer, got %s",
+        if (!pj_json_integer(def, -MAX_SAFE_INT, MAX_SAFE_INT, &out->number))
+            return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "expected an integer, got %s",
                            got);
         break;
     case PG_PARAM_FLOAT:
         if (!cJSON_IsNumber(def) || !isfinite(def->valuedouble))
-            return fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "expected a finite number, got %s",
+            return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "expected a finite number, got %s",
                            got);
         out->number = def->valuedouble;
         break;
     case PG_PARAM_BOOL:
         if (!cJSON_IsBool(def))
-            return fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "expected true or false, got %s",
+            return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "expected true or false, got %s",
                            got);
         out->boolean = cJSON_IsTrue(def);
         break;
@@ -317,7 +317,7 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
         if (!found) {
             char vals[512];
             enum_values_list(out, vals, sizeof vals);
-            return fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "%s is not one of the values (%s)",
+            return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "%s is not one of the values (%s)",
                            got, vals);
         }
         pg_strlcpy(out->enum_value, def->valuestring, sizeof out->enum_value);
@@ -326,9 +326,9 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
     }
     if (numeric && (out->number < out->min || out->number > out->max)) {
         char lo[40], hi[40];
-        fmt_double(out->min, lo, sizeof lo);
-        fmt_double(out->max, hi, sizeof hi);
-        return fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "%s is out of range [%s, %s]", got, lo,
+        pj_fmt_double(out->min, lo, sizeof lo);
+        pj_fmt_double(out->max, hi, sizeof hi);
+        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "%s is out of range [%s, %s]", got, lo,
                        hi);
     }
     return PG_OK;
@@ -336,7 +336,7 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
 }
 
 /* Adds a parameter declaration, accepting an identical redeclaration. */
-pg_result add_param(loader *L, const src_file *f, const cJSON *decl)
+pg_result pj_add_param(loader *L, const src_file *f, const cJSON *decl)
 {
     pg_param prm;
     pg_result r = parse_param_decl(L, f, decl, &prm);
@@ -347,14 +347,14 @@ pg_result add_param(loader *L, const src_file *f, const cJSON *decl)
         if (cJSON_Compare(L->param_decl[i], decl, 1)) return PG_OK;
         char path[PG_JSON_PATH_MAX + 16];
         snprintf(path, sizeof path, "parameters.%s", prm.name);
-        return fail_at(L, PG_ERR_PARAM, f, path,
+        return pj_fail_at(L, PG_ERR_PARAM, f, path,
                        "parameter '%s' is already declared differently at %s: parameters.%s",
                        prm.name, L->param_file[i]->path, prm.name);
     }
     if (p->n_params >= PG_MAX_PARAMS) {
         char path[PG_JSON_PATH_MAX + 16];
         snprintf(path, sizeof path, "parameters.%s", prm.name);
-        return fail_at(L, PG_ERR_LIMIT, f, path,
+        return pj_fail_at(L, PG_ERR_LIMIT, f, path,
                        "more than %d parameters (the pipeline and its includes)", PG_MAX_PARAMS);
     }
     L->param_file[p->n_params] = f;
@@ -365,7 +365,7 @@ pg_result add_param(loader *L, const src_file *f, const cJSON *decl)
 
 /* ------------------------------------------------------------------ overrides, substitution */
 
-pg_result apply_overrides(loader *L, const pg_param_override *ov, uint32_t n)
+pg_result pj_apply_overrides(loader *L, const pg_param_override *ov, uint32_t n)
 {
     pg_pipeline *p = L->p;
     const src_file *top = L->files[0];
@@ -378,13 +378,13 @@ pg_result apply_overrides(loader *L, const pg_param_override *ov, uint32_t n)
         if (!prm) {
             char names[640];
             param_names(p, names, sizeof names);
-            return fail_at(L, PG_ERR_PARAM, top, set, "unknown parameter '%.64s' (declared: %s)",
+            return pj_fail_at(L, PG_ERR_PARAM, top, set, "unknown parameter '%.64s' (declared: %s)",
                            key, names);
         }
         pg_param val;
         char why[600];
         if (!parse_typed(prm, value, true, &val, why, sizeof why))
-            return fail_at(L, PG_ERR_PARAM, top, set, "%s parameter '%s': %s",
+            return pj_fail_at(L, PG_ERR_PARAM, top, set, "%s parameter '%s': %s",
                            param_type_name(prm->type), prm->name, why);
         *prm = val;
         prm->overridden = true;
@@ -404,7 +404,7 @@ static cJSON *param_node(const pg_param *prm)
 }
 
 /* Replaces every "$name" string below node (the item's own "when" is skipped at the top). */
-pg_result substitute(loader *L, const src_file *f, cJSON *node, bool top)
+pg_result pj_substitute(loader *L, const src_file *f, cJSON *node, bool top)
 {
     uint32_t i = 0;
     cJSON *next;
@@ -412,14 +412,14 @@ pg_result substitute(loader *L, const src_file *f, cJSON *node, bool top)
         next = c->next;
         bool obj = cJSON_IsObject(node);
         if (top && obj && c->string && strcmp(c->string, "when") == 0) continue;
-        size_t mark = obj ? jp_push(L, ".%s", c->string) : jp_push(L, "[%u]", i);
+        size_t mark = obj ? pj_jp_push(L, ".%s", c->string) : pj_jp_push(L, "[%u]", i);
         pg_result r = PG_OK;
         if (cJSON_IsString(c) && is_param_ref(c->valuestring)) {
             const pg_param *prm = pg_pipeline_find_param(L->p, c->valuestring + 1);
             if (!prm) {
                 char names[640];
                 param_names(L->p, names, sizeof names);
-                r = fail_at(L, PG_ERR_PARAM, f, L->jp,
+                r = pj_fail_at(L, PG_ERR_PARAM, f, L->jp,
                             "unknown parameter '%s' (declared: %s)", c->valuestring, names);
             } else {
                 cJSON *rep = param_node(prm);
@@ -432,16 +432,16 @@ pg_result substitute(loader *L, const src_file *f, cJSON *node, bool top)
                 }
             }
         } else if (cJSON_IsArray(c) || cJSON_IsObject(c)) {
-            r = substitute(L, f, c, false);
+            r = pj_substitute(L, f, c, false);
         }
-        jp_pop(L, mark);
+        pj_jp_pop(L, mark);
         if (r) return r;
     }
     return PG_OK;
 }
 
 /* Evaluates item's optional "when"; *active is false when the item is to be dropped. */
-pg_result eval_when(loader *L, const src_file *f, const cJSON *item, const char *ipath,
+pg_result pj_eval_when(loader *L, const src_file *f, const cJSON *item, const char *ipath,
                     bool *active, char *why, size_t whyn)
 {
     *active = true;
@@ -452,8 +452,8 @@ pg_result eval_when(loader *L, const src_file *f, const cJSON *item, const char 
     const char *expect = "expected \"$param == value\" or \"$param != value\"";
     if (!cJSON_IsString(w)) {
         char got[96];
-        describe(w, got, sizeof got);
-        return fail_at(L, PG_ERR_SCHEMA, f, path, "%s, got %s", expect, got);
+        pj_describe(w, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "%s, got %s", expect, got);
     }
     const char *s = w->valuestring;
     while (*s == ' ' || *s == '\t') s++;
@@ -485,19 +485,19 @@ pg_result eval_when(loader *L, const src_file *f, const cJSON *item, const char 
         ok = ok && n > 0 && *s == 0;
     }
     if (!ok)
-        return fail_at(L, PG_ERR_SCHEMA, f, path, "malformed condition \"%.80s\" (%s)",
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "malformed condition \"%.80s\" (%s)",
                        w->valuestring, expect);
     const pg_param *prm = pg_pipeline_find_param(L->p, name);
     if (!prm) {
         char names[640];
         param_names(L->p, names, sizeof names);
-        return fail_at(L, PG_ERR_PARAM, f, path, "unknown parameter '$%s' (declared: %s)", name,
+        return pj_fail_at(L, PG_ERR_PARAM, f, path, "unknown parameter '$%s' (declared: %s)", name,
                        names);
     }
     pg_param val;
     char bad[600];
     if (!parse_typed(prm, value, false, &val, bad, sizeof bad))
-        return fail_at(L, PG_ERR_SCHEMA, f, path, "cannot compare %s parameter '%s': %s",
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "cannot compare %s parameter '%s': %s",
                        param_type_name(prm->type), prm->name, bad);
     bool same = param_equal(prm, &val);
     *active = eq ? same : !same;

@@ -17,10 +17,10 @@ static const char *const k_res_keys[] = {"name",  "type",     "format", "scale",
 static void format_names(char *buf, size_t n)
 {
     buf[0] = 0;
-    for (int f = 1; f < PG_FMT_COUNT; f++) list_append(buf, n, pg_format_get((pg_format)f)->name);
+    for (int f = 1; f < PG_FMT_COUNT; f++) pj_list_append(buf, n, pg_format_get((pg_format)f)->name);
 }
 
-pg_result parse_resource(loader *L, uint32_t idx)
+pg_result pj_parse_resource(loader *L, uint32_t idx)
 {
     item_ref *it = &L->res[idx];
     pg_resource_desc *d = &L->rdesc[idx];
@@ -32,15 +32,15 @@ pg_result parse_resource(loader *L, uint32_t idx)
     pg_strlcpy(d->json_path, ip, sizeof d->json_path);
     cJSON *o = it->node;
     if (!cJSON_IsObject(o)) {
-        describe(o, got, sizeof got);
-        return fail_at(L, PG_ERR_SCHEMA, f, ip, "expected a resource object, got %s", got);
+        pj_describe(o, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, ip, "expected a resource object, got %s", got);
     }
     snprintf(L->jp, sizeof L->jp, "%s", ip);
-    pg_result r = substitute(L, f, o, true);
+    pg_result r = pj_substitute(L, f, o, true);
     if (r) return r;
-    r = check_keys(L, f, o, ip, "a resource", k_res_keys);
+    r = pj_check_keys(L, f, o, ip, "a resource", k_res_keys);
     if (r) return r;
-    r = req_ident(L, f, o, ip, "name", d->name);
+    r = pj_req_ident(L, f, o, ip, "name", d->name);
     if (r) return r;
     for (uint32_t j = 0; j < idx; j++) {
         if (strcmp(L->rdesc[j].name, d->name) != 0) continue;
@@ -49,21 +49,21 @@ pg_result parse_resource(loader *L, uint32_t idx)
             L->res[j].file == f || strcmp(L->res[j].file->canon, f->canon) != 0
                 ? ""
                 : " (the same file is included more than once)";
-        return fail_at(L, PG_ERR_SCHEMA, f, path,
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
                        "resource '%s' is declared twice: first at %s: %s%s", d->name,
                        L->rdesc[j].file, L->rdesc[j].json_path, twice);
     }
 
     const cJSON *type = cJSON_GetObjectItemCaseSensitive(o, "type");
     snprintf(path, sizeof path, "%s.type", ip);
-    if (!type) return fail_at(L, PG_ERR_SCHEMA, f, path, "missing (\"image\" or \"buffer\")");
+    if (!type) return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "missing (\"image\" or \"buffer\")");
     if (cJSON_IsString(type) && strcmp(type->valuestring, "image") == 0) {
         d->kind = PG_RES_IMAGE;
     } else if (cJSON_IsString(type) && strcmp(type->valuestring, "buffer") == 0) {
         d->kind = PG_RES_BUFFER;
     } else {
-        describe(type, got, sizeof got);
-        return fail_at(L, PG_ERR_SCHEMA, f, path, "expected \"image\" or \"buffer\", got %s",
+        pj_describe(type, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "expected \"image\" or \"buffer\", got %s",
                        got);
     }
 
@@ -76,8 +76,8 @@ pg_result parse_resource(loader *L, uint32_t idx)
         else if (strcmp(s, "persistent") == 0) d->lifetime = PG_LIFETIME_PERSISTENT;
         else if (strcmp(s, "imported") == 0) d->lifetime = PG_LIFETIME_IMPORTED;
         else {
-            describe(lt, got, sizeof got);
-            return fail_at(L, PG_ERR_SCHEMA, f, path,
+            pj_describe(lt, got, sizeof got);
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
                            "expected \"transient\", \"persistent\" or \"imported\", got %s", got);
         }
     }
@@ -88,7 +88,7 @@ pg_result parse_resource(loader *L, uint32_t idx)
     for (; *wrong; wrong++) {
         if (!cJSON_GetObjectItemCaseSensitive(o, *wrong)) continue;
         snprintf(path, sizeof path, "%s.%s", ip, *wrong);
-        return fail_at(L, PG_ERR_SCHEMA, f, path, "'%s' is only for %s resources", *wrong,
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "'%s' is only for %s resources", *wrong,
                        d->kind == PG_RES_IMAGE ? "buffer" : "image");
     }
 
@@ -97,14 +97,14 @@ pg_result parse_resource(loader *L, uint32_t idx)
         snprintf(path, sizeof path, "%s.format", ip);
         char names[400];
         format_names(names, sizeof names);
-        if (!fmt) return fail_at(L, PG_ERR_SCHEMA, f, path, "missing (one of: %s)", names);
+        if (!fmt) return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "missing (one of: %s)", names);
         if (!cJSON_IsString(fmt)) {
-            describe(fmt, got, sizeof got);
-            return fail_at(L, PG_ERR_SCHEMA, f, path, "expected a format name, got %s", got);
+            pj_describe(fmt, got, sizeof got);
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "expected a format name, got %s", got);
         }
         d->format = pg_format_from_name(fmt->valuestring);
         if (d->format == PG_FMT_UNDEFINED)
-            return fail_at(L, PG_ERR_FORMAT, f, path, "unknown format '%.64s' (valid: %s)",
+            return pj_fail_at(L, PG_ERR_FORMAT, f, path, "unknown format '%.64s' (valid: %s)",
                            fmt->valuestring, names);
 
         const cJSON *scale = cJSON_GetObjectItemCaseSensitive(o, "scale");
@@ -113,7 +113,7 @@ pg_result parse_resource(loader *L, uint32_t idx)
         d->scale[0] = d->scale[1] = 1.0f;
         if (scale && ext) {
             snprintf(path, sizeof path, "%s.extent", ip);
-            return fail_at(L, PG_ERR_SCHEMA, f, path,
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
                            "give either \"scale\" (relative to the output) or \"extent\" "
                            "(pixels), not both");
         }
@@ -136,13 +136,13 @@ pg_result parse_resource(loader *L, uint32_t idx)
                 d->scale[k] = (float)v->valuedouble;
             }
             if (!ok) {
-                describe(scale, got, sizeof got);
+                pj_describe(scale, got, sizeof got);
                 if (cJSON_IsArray(scale) && sx) {
                     const cJSON *bad = cJSON_IsNumber(sx) && sx->valuedouble > 0 &&
                                                sx->valuedouble <= 16 ? sy : sx;
-                    describe(bad, got, sizeof got);
+                    pj_describe(bad, got, sizeof got);
                 }
-                return fail_at(L, PG_ERR_SCHEMA, f, path,
+                return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
                                "expected a number or [x, y] in (0, 16], got %s", got);
             }
         }
@@ -151,10 +151,10 @@ pg_result parse_resource(loader *L, uint32_t idx)
             const cJSON *w = cJSON_IsArray(ext) ? ext->child : NULL;
             const cJSON *h = w ? w->next : NULL;
             double dw = 0, dh = 0;
-            if (!w || !h || h->next || !json_integer(w, 1, 16384, &dw) ||
-                !json_integer(h, 1, 16384, &dh)) {
-                describe(ext, got, sizeof got);
-                return fail_at(L, PG_ERR_SCHEMA, f, path,
+            if (!w || !h || h->next || !pj_json_integer(w, 1, 16384, &dw) ||
+                !pj_json_integer(h, 1, 16384, &dh)) {
+                pj_describe(ext, got, sizeof got);
+                return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
                                "expected [width, height], integers in 1..16384, got %s%s", got,
                                cJSON_IsArray(ext) ? " with a bad element" : "");
             }
@@ -166,11 +166,11 @@ pg_result parse_resource(loader *L, uint32_t idx)
         const cJSON *stride = cJSON_GetObjectItemCaseSensitive(o, "stride");
         snprintf(path, sizeof path, "%s.stride", ip);
         if (!stride)
-            return fail_at(L, PG_ERR_SCHEMA, f, path, "missing (bytes per element, 1..65536)");
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "missing (bytes per element, 1..65536)");
         double sv = 0;
-        if (!json_integer(stride, 1, 65536, &sv)) {
-            describe(stride, got, sizeof got);
-            return fail_at(L, PG_ERR_SCHEMA, f, path, "expected an integer in 1..65536, got %s",
+        if (!pj_json_integer(stride, 1, 65536, &sv)) {
+            pj_describe(stride, got, sizeof got);
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "expected an integer in 1..65536, got %s",
                            got);
         }
         d->stride = (uint32_t)sv;
@@ -178,8 +178,8 @@ pg_result parse_resource(loader *L, uint32_t idx)
         if (grow) {
             snprintf(path, sizeof path, "%s.grow", ip);
             if (!cJSON_IsBool(grow)) {
-                describe(grow, got, sizeof got);
-                return fail_at(L, PG_ERR_SCHEMA, f, path, "expected true or false, got %s", got);
+                pj_describe(grow, got, sizeof got);
+                return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "expected true or false, got %s", got);
             }
             d->growable = cJSON_IsTrue(grow);
         }
@@ -192,13 +192,13 @@ pg_result parse_resource(loader *L, uint32_t idx)
         } else {
             int nt = cJSON_IsArray(count) ? cJSON_GetArraySize(count) : 0;
             if (!cJSON_IsArray(count) || nt == 0) {
-                describe(count, got, sizeof got);
-                return fail_at(L, PG_ERR_SCHEMA, f, path,
+                pj_describe(count, got, sizeof got);
+                return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
                                "expected a non-empty array of terms like [\"lights\", 4], got %s",
                                got);
             }
             if (nt > PG_MAX_COUNT_TERMS)
-                return fail_at(L, PG_ERR_LIMIT, f, path, "%d terms, the limit is %d", nt,
+                return pj_fail_at(L, PG_ERR_LIMIT, f, path, "%d terms, the limit is %d", nt,
                                PG_MAX_COUNT_TERMS);
             uint32_t k = 0;
             for (const cJSON *t = count->child; t; t = t->next, k++) {
@@ -208,13 +208,13 @@ pg_result parse_resource(loader *L, uint32_t idx)
                     term->kind = PG_COUNT_LIGHTS;
                 } else if (cJSON_IsString(t) && strcmp(t->valuestring, "pixels") == 0) {
                     term->kind = PG_COUNT_PIXELS;
-                } else if (json_integer(t, 0, 4294967295.0, &v)) {
+                } else if (pj_json_integer(t, 0, 4294967295.0, &v)) {
                     term->kind = PG_COUNT_CONST;
                     term->value = v;
                 } else {
-                    describe(t, got, sizeof got);
+                    pj_describe(t, got, sizeof got);
                     snprintf(path, sizeof path, "%s.count[%u]", ip, k);
-                    return fail_at(L, PG_ERR_SCHEMA, f, path,
+                    return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
                                    "expected a non-negative integer, \"lights\" or "
                                    "\"pixels\", got %s",
                                    got);
@@ -223,12 +223,12 @@ pg_result parse_resource(loader *L, uint32_t idx)
             d->n_count_terms = k;
         }
     }
-    r = opt_description(L, f, o, ip);
+    r = pj_opt_description(L, f, o, ip);
     if (r) return r;
 
     bool active;
     char why[sizeof L->p->omitted[0].why];
-    r = eval_when(L, f, o, ip, &active, why, sizeof why);
+    r = pj_eval_when(L, f, o, ip, &active, why, sizeof why);
     if (r) return r;
     if (!active) {
         pg_omitted *om = &L->p->omitted[L->p->n_omitted];

@@ -12,7 +12,7 @@
 
 /* ------------------------------------------------------------------ small helpers */
 
-pg_result fail_at(loader *L, pg_result code, const src_file *f, const char *path,
+pg_result pj_fail_at(loader *L, pg_result code, const src_file *f, const char *path,
                   const char *fmt, ...)
 {
     char cause[PG_ERROR_MSG_MAX];
@@ -23,7 +23,7 @@ pg_result fail_at(loader *L, pg_result code, const src_file *f, const char *path
     return pg_fail(L->err, code, "%s: %s: %s", f ? f->path : "<pipeline>", path, cause);
 }
 
-bool valid_ident(const char *s)
+bool pj_valid_ident(const char *s)
 {
     if (!s || !*s) return false;
     size_t n = 0;
@@ -37,7 +37,7 @@ bool valid_ident(const char *s)
 }
 
 /* "%.17g" trimmed to the shortest text that reads back as the same double. */
-void fmt_double(double v, char *buf, size_t n)
+void pj_fmt_double(double v, char *buf, size_t n)
 {
     for (int prec = 15; prec <= 17; prec++) {
         snprintf(buf, n, "%.*g", prec, v);
@@ -46,12 +46,12 @@ void fmt_double(double v, char *buf, size_t n)
 }
 
 /* Describes a JSON value for "got ..." in messages. */
-void describe(const cJSON *v, char *buf, size_t n)
+void pj_describe(const cJSON *v, char *buf, size_t n)
 {
     if (!v) {
         snprintf(buf, n, "nothing");
     } else if (cJSON_IsNumber(v)) {
-        fmt_double(v->valuedouble, buf, n);
+        pj_fmt_double(v->valuedouble, buf, n);
     } else if (cJSON_IsString(v)) {
         const char *s = v->valuestring ? v->valuestring : "";
         if (strlen(s) > 40)
@@ -74,7 +74,7 @@ void describe(const cJSON *v, char *buf, size_t n)
 }
 
 /* Appends "a, b, c" to buf (truncating with "..."). */
-void list_append(char *buf, size_t n, const char *item)
+void pj_list_append(char *buf, size_t n, const char *item)
 {
     size_t len = strlen(buf);
     if (len + 4 >= n) return;
@@ -95,7 +95,7 @@ static bool in_list(const char *s, const char *const *list)
 }
 
 /* Integral, finite, within [lo, hi]. */
-bool json_integer(const cJSON *v, double lo, double hi, double *out)
+bool pj_json_integer(const cJSON *v, double lo, double hi, double *out)
 {
     if (!cJSON_IsNumber(v)) return false;
     double d = v->valuedouble;
@@ -105,7 +105,7 @@ bool json_integer(const cJSON *v, double lo, double hi, double *out)
 }
 
 /* JSON path scratch buffer: push appends, pop restores. */
-size_t jp_push(loader *L, const char *fmt, ...)
+size_t pj_jp_push(loader *L, const char *fmt, ...)
 {
     size_t mark = strlen(L->jp);
     if (mark + 1 < sizeof L->jp) {
@@ -116,19 +116,19 @@ size_t jp_push(loader *L, const char *fmt, ...)
     }
     return mark;
 }
-void jp_pop(loader *L, size_t mark) { L->jp[mark] = 0; }
+void pj_jp_pop(loader *L, size_t mark) { L->jp[mark] = 0; }
 
 /* ------------------------------------------------------------------ keys and JSON text */
 
-pg_result check_keys(loader *L, const src_file *f, const cJSON *obj, const char *path,
+pg_result pj_check_keys(loader *L, const src_file *f, const cJSON *obj, const char *path,
                      const char *what, const char *const *allowed)
 {
     const cJSON *c;
     cJSON_ArrayForEach(c, obj) {
         if (in_list(c->string, allowed)) continue;
         char list[400] = "";
-        for (const char *const *a = allowed; *a; a++) list_append(list, sizeof list, *a);
-        return fail_at(L, PG_ERR_SCHEMA, f, path, "unknown key '%.64s' in %s (allowed: %s)",
+        for (const char *const *a = allowed; *a; a++) pj_list_append(list, sizeof list, *a);
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "unknown key '%.64s' in %s (allowed: %s)",
                        c->string, what, list);
     }
     return PG_OK;
@@ -156,7 +156,7 @@ static pg_result check_dup_keys(loader *L, const src_file *f, const cJSON *node)
                 char key[80];
                 pg_strlcpy(key, keys[i]->string, sizeof key);
                 free(keys);
-                return fail_at(L, PG_ERR_SCHEMA, f, L->jp[0] ? L->jp : "(top level)",
+                return pj_fail_at(L, PG_ERR_SCHEMA, f, L->jp[0] ? L->jp : "(top level)",
                                "key '%s' appears more than once", key);
             }
         }
@@ -165,17 +165,17 @@ static pg_result check_dup_keys(loader *L, const src_file *f, const cJSON *node)
     uint32_t i = 0;
     for (const cJSON *c = node->child; c; c = c->next, i++) {
         if (!cJSON_IsObject(c) && !cJSON_IsArray(c)) continue;
-        size_t mark = cJSON_IsObject(node) ? jp_push(L, "%s%s", L->jp[0] ? "." : "", c->string)
-                                           : jp_push(L, "[%u]", i);
+        size_t mark = cJSON_IsObject(node) ? pj_jp_push(L, "%s%s", L->jp[0] ? "." : "", c->string)
+                                           : pj_jp_push(L, "[%u]", i);
         pg_result r = check_dup_keys(L, f, c);
-        jp_pop(L, mark);
+        pj_jp_pop(L, mark);
         if (r) return r;
     }
     return PG_OK;
 }
 
 /* Parses text as f's JSON tree; syntax errors are "FILE:LINE:COL: ...". */
-pg_result parse_text(loader *L, src_file *f, const char *text, size_t len)
+pg_result pj_parse_text(loader *L, src_file *f, const char *text, size_t len)
 {
     const char *end = NULL;
     cJSON *root = len ? cJSON_ParseWithLengthOpts(text, len, &end, 0) : NULL;
@@ -228,8 +228,8 @@ pg_result parse_text(loader *L, src_file *f, const char *text, size_t len)
     f->root = root;
     if (!cJSON_IsObject(root)) {
         char got[96];
-        describe(root, got, sizeof got);
-        return fail_at(L, PG_ERR_SCHEMA, f, "(top level)", "expected a JSON object, got %s", got);
+        pj_describe(root, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, "(top level)", "expected a JSON object, got %s", got);
     }
     L->jp[0] = 0;
     return check_dup_keys(L, f, root);
