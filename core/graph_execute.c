@@ -22,7 +22,7 @@ struct pg_runtime {
     const pg_pipeline *pipeline;
     const pg_scene_gpu *scene;
     uint32_t width, height;
-    uint64_t signature;
+    uint64_t mem_sig, pipe_sig, val_sig; /* see memory_signature, pipeline_signature, value_signature */
     bool built;
     pg_phys_resource res[PG_MAX_RESOURCES];
     bool persistent_initialized[PG_MAX_RESOURCES];
@@ -91,23 +91,46 @@ static uint64_t fnv(uint64_t h, const void *data, size_t n)
     return h;
 }
 
-/* Everything that decides which Vulkan objects exist. Options are hashed as printed JSON. */
-static uint64_t plan_signature(const pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pl,
-                               const pg_scene_gpu *scene, uint32_t w, uint32_t h)
+static bool is_runtime_option(const pg_pass_type *t, const char *key)
+{
+    for (uint32_t i = 0; t->runtime_options && t->runtime_options[i]; i++)
+        if (key && !strcmp(t->runtime_options[i], key)) return true;
+    return false;
+}
+
+/* A pass's options, key by key, as printed JSON; runtime: only (true) or all but (false) the
+ * options its type lists in pg_pass_type.runtime_options. */
+static uint64_t hash_options(uint64_t s, const pg_pass_type *t, const cJSON *options, bool runtime)
+{
+    const cJSON *it;
+    cJSON_ArrayForEach(it, options)
+    {
+        if (is_runtime_option(t, it->string) != runtime) continue;
+        char *txt = cJSON_PrintUnformatted(it);
+        s = fnv(s, it->string ? it->string : "", it->string ? strlen(it->string) + 1 : 1);
+        if (txt) {
+            s = fnv(s, txt, strlen(txt) + 1);
+            cJSON_free(txt);
+        }
+    }
+    return s;
+}
+
+/* (a) What needs new physical resources: the output size, every resource's size, format, usage,
+ * lifetime and memory block with what decides its place there (first and last pass,
+ * may_inherit), and which resources are the outputs (the readback buffers). */
+static uint64_t memory_signature(const pg_graph_plan *plan, uint32_t w, uint32_t h)
 {
     uint64_t s = 1469598103934665603ull;
     s = fnv(s, &w, sizeof w);
     s = fnv(s, &h, sizeof h);
-    s = fnv(s, &scene, sizeof scene);
-    for (uint32_t i = 0; i < rt->n_settings; i++) {
-        const char *k = rt->settings[i].key ? rt->settings[i].key : "";
-        const char *v = rt->settings[i].value ? rt->settings[i].value : "";
-        s = fnv(s, k, strlen(k) + 1);
-        s = fnv(s, v, strlen(v) + 1);
-    }
+    s = fnv(s, &plan->n_resources, sizeof plan->n_resources);
+    s = fnv(s, &plan->n_blocks, sizeof plan->n_blocks);
+    s = fnv(s, &plan->output, sizeof plan->output);
+    s = fnv(s, &plan->hdr_output, sizeof plan->hdr_output);
     for (uint32_t i = 0; i < plan->n_resources; i++) {
         const pg_plan_resource *r = &plan->resources[i];
-        s = fnv(s, r->name, strlen(r->name));
+        s = fnv(s, r->name, strlen(r->name) + 1);
         s = fnv(s, &r->kind, sizeof r->kind);
         s = fnv(s, &r->format, sizeof r->format);
         s = fnv(s, &r->width, sizeof r->width);
@@ -115,33 +138,92 @@ static uint64_t plan_signature(const pg_runtime *rt, const pg_graph_plan *plan, 
         s = fnv(s, &r->size_bytes, sizeof r->size_bytes);
         s = fnv(s, &r->usage, sizeof r->usage);
         s = fnv(s, &r->culled, sizeof r->culled);
+        s = fnv(s, &r->growable, sizeof r->growable);
         s = fnv(s, &r->block, sizeof r->block);
         s = fnv(s, &r->lifetime, sizeof r->lifetime);
+        s = fnv(s, &r->first_pass, sizeof r->first_pass);
+        s = fnv(s, &r->last_pass, sizeof r->last_pass);
+        s = fnv(s, &r->may_inherit, sizeof r->may_inherit);
     }
+    return s;
+}
+
+/* (b) What needs new pass instances: the scene, the settings, the executed passes in order with
+ * their types, shader variants (defines), bound resources and the options that are not run-time
+ * values (pg_pass_type.runtime_options). */
+static uint64_t pipeline_signature(const pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pl,
+                                   const pg_scene_gpu *scene)
+{
+    uint64_t s = 1469598103934665603ull;
+    s = fnv(s, &scene, sizeof scene);
+    for (uint32_t i = 0; i < rt->n_settings; i++) {
+        const char *k = rt->settings[i].key ? rt->settings[i].key : "";
+        const char *v = rt->settings[i].value ? rt->settings[i].value : "";
+        s = fnv(s, k, strlen(k) + 1);
+        s = fnv(s, v, strlen(v) + 1);
+    }
+    s = fnv(s, &plan->n_order, sizeof plan->n_order);
     for (uint32_t i = 0; i < plan->n_order; i++) {
         const pg_plan_pass *p = &plan->passes[plan->order[i]];
-        s = fnv(s, p->name, strlen(p->name));
-        s = fnv(s, p->type->name, strlen(p->type->name));
-        for (uint32_t d = 0; d < p->decl.n_defines; d++) s = fnv(s, p->decl.defines[d], strlen(p->decl.defines[d]));
-        const pg_pass_desc *desc = &pl->passes[p->desc_index];
-        char *txt = desc->options ? cJSON_PrintUnformatted(desc->options) : NULL;
-        if (txt) {
-            s = fnv(s, txt, strlen(txt));
-            cJSON_free(txt);
+        s = fnv(s, &plan->order[i], sizeof plan->order[i]);
+        s = fnv(s, p->name, strlen(p->name) + 1);
+        s = fnv(s, p->type->name, strlen(p->type->name) + 1);
+        for (uint32_t d = 0; d < p->decl.n_defines; d++)
+            s = fnv(s, p->decl.defines[d], strlen(p->decl.defines[d]) + 1);
+        s = hash_options(s, p->type, pl->passes[p->desc_index].options, false);
+        s = fnv(s, &p->n_slots, sizeof p->n_slots);
+        for (uint32_t k = 0; k < p->n_slots; k++) {
+            s = fnv(s, &p->slots[k].resource, sizeof(int));
+            s = fnv(s, &p->slots[k].decl.unused, sizeof(bool));
         }
-        for (uint32_t k = 0; k < p->n_slots; k++) s = fnv(s, &p->slots[k].resource, sizeof(int));
     }
+    return s;
+}
+
+/* (c) The run-time values: the options the pass types list as such (pass.update() gets them). */
+static uint64_t value_signature(const pg_graph_plan *plan, const pg_pipeline *pl)
+{
+    uint64_t s = 1469598103934665603ull;
+    for (uint32_t i = 0; i < plan->n_order; i++) {
+        const pg_plan_pass *p = &plan->passes[plan->order[i]];
+        s = hash_options(s, p->type, pl->passes[p->desc_index].options, true);
+    }
+    return s;
+}
+
+/* The state a persistent resource is assumed to start each frame in (its frame-wrap barriers):
+ * kept contents are only valid for a new plan that assumes the same. */
+static uint64_t wrap_signature(const pg_graph_plan *plan, int ri)
+{
+    uint64_t s = 1469598103934665603ull;
+    for (uint32_t o = 0; o < plan->n_order; o++) {
+        const pg_plan_pass *p = &plan->passes[plan->order[o]];
+        for (uint32_t b = 0; b < p->n_barriers; b++) {
+            const pg_barrier *br = &p->barriers[b];
+            if (br->resource != ri || !br->wrap) continue;
+            s = fnv(s, &o, sizeof o);
+            s = fnv(s, &br->old_layout, sizeof br->old_layout);
+            s = fnv(s, &br->src_stages, sizeof br->src_stages);
+            s = fnv(s, &br->src_access, sizeof br->src_access);
+        }
+    }
+    for (uint32_t o = 0; o < plan->n_order; o++) { /* and the layout of every access */
+        const pg_plan_pass *p = &plan->passes[plan->order[o]];
+        for (uint32_t k = 0; k < p->n_slots; k++)
+            if (p->slots[k].resource == ri) s = fnv(s, &p->slots[k].sync.layout, sizeof(uint32_t));
+    }
+    for (uint32_t b = 0; b < plan->n_final_barriers; b++)
+        if (plan->final_barriers[b].resource == ri) s = fnv(s, &plan->final_barriers[b].new_layout, sizeof(uint32_t));
     return s;
 }
 
 /* With frames in flight, the most frames between two readings of the pass reports. */
 #define PG_REPORT_EVERY 8
 
-static void destroy_built(pg_runtime *rt)
+/* The pass instances and the per-plan query pools (the device must be idle). */
+static void destroy_passes(pg_runtime *rt)
 {
     pg_gpu *gpu = rt->gpu;
-    if (!rt->built && !rt->plan) return;
-    vkDeviceWaitIdle(gpu->device);
     if (rt->plan) {
         for (uint32_t i = 0; i < rt->plan->n_passes; i++) {
             if (rt->pass_state[i]) {
@@ -151,6 +233,22 @@ static void destroy_built(pg_runtime *rt)
             }
         }
     }
+    for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
+        if (rt->slot[f].queries) vkDestroyQueryPool(gpu->device, rt->slot[f].queries, NULL);
+        pg_buffer_destroy(gpu, &rt->slot[f].timestamps);
+        rt->slot[f].queries = VK_NULL_HANDLE;
+        rt->slot[f].pending = false; /* the device is idle: every fence has signalled */
+    }
+    rt->gpu_valid = false;
+    memset(rt->gpu_hist, 0, sizeof rt->gpu_hist);
+}
+
+static void destroy_built(pg_runtime *rt)
+{
+    pg_gpu *gpu = rt->gpu;
+    if (!rt->built && !rt->plan) return;
+    vkDeviceWaitIdle(gpu->device);
+    destroy_passes(rt);
     for (uint32_t i = 0; i < PG_MAX_RESOURCES; i++) {
         pg_phys_resource *r = &rt->res[i];
         if (r->view) vkDestroyImageView(gpu->device, r->view, NULL);
@@ -162,16 +260,9 @@ static void destroy_built(pg_runtime *rt)
         rt->block_memory[i] = VK_NULL_HANDLE;
         rt->persistent_initialized[i] = false;
     }
-    for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
+    for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++)
         for (int i = 0; i < 2; i++) pg_buffer_destroy(gpu, &rt->slot[f].readback[i]);
-        if (rt->slot[f].queries) vkDestroyQueryPool(gpu->device, rt->slot[f].queries, NULL);
-        pg_buffer_destroy(gpu, &rt->slot[f].timestamps);
-        rt->slot[f].queries = VK_NULL_HANDLE;
-        rt->slot[f].pending = false; /* the device is idle: every fence has signalled */
-    }
     rt->readback_valid[0] = rt->readback_valid[1] = false;
-    rt->gpu_valid = false;
-    memset(rt->gpu_hist, 0, sizeof rt->gpu_hist);
     rt->built = false;
 }
 
@@ -373,7 +464,8 @@ static pg_result create_pass(pg_runtime *rt, int pi, pg_error *err)
     return PG_OK;
 }
 
-static pg_result build(pg_runtime *rt, pg_error *err)
+/* The physical resources (memory blocks, own allocations) and the readback buffers. */
+static pg_result build_memory(pg_runtime *rt, pg_error *err)
 {
     const pg_graph_plan *plan = rt->plan;
     pg_gpu *gpu = rt->gpu;
@@ -453,6 +545,15 @@ static pg_result build(pg_runtime *rt, pg_error *err)
                 return r;
         }
     }
+    return PG_OK;
+}
+
+/* The per-plan query pools and the pass instances, on the physical resources built. */
+static pg_result build_passes(pg_runtime *rt, pg_error *err)
+{
+    const pg_graph_plan *plan = rt->plan;
+    pg_gpu *gpu = rt->gpu;
+    pg_result r;
     rt->n_queries = plan->n_order + 1;
     if (gpu->timestamp_valid_bits) {
         VkQueryPoolCreateInfo qci = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
@@ -470,7 +571,6 @@ static pg_result build(pg_runtime *rt, pg_error *err)
     /* pass instances */
     for (uint32_t o = 0; o < plan->n_order; o++)
         if ((r = create_pass(rt, plan->order[o], err))) return r;
-    rt->built = true;
     return PG_OK;
 }
 
@@ -595,31 +695,81 @@ const char *pg_ctx_setting(const pg_pass_create_ctx *ctx, const char *key)
     return found;
 }
 
+/* Only the run-time values changed: every kept pass instance re-reads its options. */
+static pg_result update_values(pg_runtime *rt, pg_error *err)
+{
+    for (uint32_t o = 0; o < rt->plan->n_order; o++) {
+        int pi = rt->plan->order[o];
+        const pg_plan_pass *pass = &rt->plan->passes[pi];
+        if (!pass->type->update || !rt->pass_state[pi]) continue;
+        pg_result r = pass->type->update(rt->pass_state[pi], &rt->pipeline->passes[pass->desc_index], err);
+        if (r) return pg_error_prefix(err, "pass '%s' (%s)", pass->name, pass->type->name);
+    }
+    return PG_OK;
+}
+
 pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
                               const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err)
 {
-    uint64_t sig = plan_signature(rt, plan, pipeline, scene, width, height);
+    const uint64_t msig = memory_signature(plan, width, height);
+    const uint64_t psig = pipeline_signature(rt, plan, pipeline, scene);
+    const uint64_t vsig = value_signature(plan, pipeline);
     rt->report_due = true; /* a new light count may need a buffer to grow: read the next report */
-    if (rt->built && sig == rt->signature) {
-        /* same physical layout: keep every object, adopt the new (identical) plan */
+    pg_result r;
+    if (rt->built && msig == rt->mem_sig && psig == rt->pipe_sig) {
+        /* same resources and pass instances: keep every object, adopt the new plan; only the
+         * run-time values may differ */
         rt->plan = plan;
         rt->pipeline = pipeline;
         rt->scene = scene;
-        return PG_OK;
+        if (vsig == rt->val_sig) {
+            rt->stats.last_rebuild = PG_REBUILD_NONE;
+            return PG_OK;
+        }
+        rt->val_sig = vsig;
+        rt->stats.value_updates++;
+        rt->stats.last_rebuild = PG_REBUILD_VALUES;
+        /* a frame in flight may still read the old values only through its command buffer
+         * (push constants are recorded), so no wait is needed */
+        return update_values(rt, err);
     }
-    destroy_built(rt);
-    rt->plan = plan;
-    rt->pipeline = pipeline;
-    rt->scene = scene;
-    rt->width = width;
-    rt->height = height;
-    rt->signature = sig;
-    pg_result r = build(rt, err);
+    if (rt->built && msig == rt->mem_sig) {
+        /* same resources: keep them (and what persistent ones hold when the new plan assumes
+         * the same state at frame start), re-create the pass instances only */
+        vkDeviceWaitIdle(rt->gpu->device);
+        destroy_passes(rt);
+        for (uint32_t i = 0; i < plan->n_resources; i++)
+            if (wrap_signature(plan, (int)i) != wrap_signature(rt->plan, (int)i)) rt->persistent_initialized[i] = false;
+        rt->plan = plan;
+        rt->pipeline = pipeline;
+        rt->scene = scene;
+        rt->pipe_sig = psig;
+        rt->val_sig = vsig;
+        rt->stats.pipeline_rebuilds++;
+        rt->stats.last_rebuild = PG_REBUILD_PIPELINES;
+        r = build_passes(rt, err);
+    } else {
+        destroy_built(rt);
+        rt->plan = plan;
+        rt->pipeline = pipeline;
+        rt->scene = scene;
+        rt->width = width;
+        rt->height = height;
+        rt->mem_sig = msig;
+        rt->pipe_sig = psig;
+        rt->val_sig = vsig;
+        rt->stats.memory_rebuilds++;
+        rt->stats.last_rebuild = PG_REBUILD_MEMORY;
+        r = build_memory(rt, err);
+        if (!r) r = build_passes(rt, err);
+    }
     if (r) {
         destroy_built(rt);
         rt->plan = NULL;
+        return r;
     }
-    return r;
+    rt->built = true;
+    return PG_OK;
 }
 
 /* A global memory barrier before every pass of an immediate-mode plan (pg_graph_plan.immediate):
@@ -986,6 +1136,12 @@ const void *pg_runtime_output(const pg_runtime *rt, int which, uint32_t *w, uint
     if (h) *h = pr->height;
     if (fmt) *fmt = pr->format;
     return rt->slot[rt->cur].readback[which].mapped;
+}
+
+const char *pg_rebuild_kind_name(pg_rebuild_kind k)
+{
+    static const char *const names[] = {"none", "values", "pipelines", "memory"};
+    return (unsigned)k < 4 ? names[k] : "?";
 }
 
 pg_runtime_stats pg_runtime_get_stats(const pg_runtime *rt)
