@@ -174,6 +174,9 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
  * runs consecutive frames one after the other while the host records ahead. Waits for the
  * device first. */
 pg_result pg_runtime_set_frames_in_flight(pg_runtime *rt, uint32_t n, pg_error *err);
+/* Test-only: leave out that frame-start full barrier (tests/test_gpu_canary.c proves that
+ * synchronization validation then reports the hazard between two frames in flight). */
+void pg_runtime_test_drop_frame_barrier(pg_runtime *rt, bool drop);
 /* The GPU times of frame `frame` (pg_frame_stats.frame) once its fence was seen signalled, among
  * the last 4 such frames of the current plan; false otherwise. pass_ms: one per executed pass. */
 bool pg_runtime_gpu_times(const pg_runtime *rt, uint64_t frame, double *total_ms, double *pass_ms);
