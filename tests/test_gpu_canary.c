@@ -157,13 +157,7 @@ int main(void)
     setvbuf(stdout, NULL, _IOLBF, 0);
     if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_canary", "PG_TEST_NO_GPU set");
     pg_register_builtin_passes(&g_reg);
-    {   /* hazards across submits (two frames in flight): the layer checks them only when asked */
-        const char *q = "VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT";
-        const char *old = getenv("VK_LAYER_ENABLES");
-        char val[512];
-        snprintf(val, sizeof val, "%s%s%s", old && old[0] ? old : "", old && old[0] ? ":" : "", q);
-        if (!old || !strstr(old, q)) setenv("VK_LAYER_ENABLES", val, 1);
-    }
+    pg_test_queue_submit_validation(); /* hazards across submits (two frames in flight) */
     required();
     pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
     pg_error err = {0};
