@@ -727,12 +727,13 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
             rt->stats.last_rebuild = PG_REBUILD_NONE;
             return PG_OK;
         }
-        rt->val_sig = vsig;
         rt->stats.value_updates++;
         rt->stats.last_rebuild = PG_REBUILD_VALUES;
         /* a frame in flight may still read the old values only through its command buffer
          * (push constants are recorded), so no wait is needed */
-        return update_values(rt, err);
+        r = update_values(rt, err);
+        rt->val_sig = r ? 0 : vsig; /* failed: the next plan updates again */
+        return r;
     }
     if (rt->built && msig == rt->mem_sig) {
         /* same resources: keep them (and what persistent ones hold when the new plan assumes
