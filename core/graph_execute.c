@@ -27,6 +27,9 @@ struct pg_runtime {
     pg_phys_resource res[PG_MAX_RESOURCES];
     bool persistent_initialized[PG_MAX_RESOURCES];
     VkDeviceMemory block_memory[PG_MAX_RESOURCES];
+    VkDeviceSize block_memory_size[PG_MAX_RESOURCES];
+    int block_memory_of[PG_MAX_RESOURCES];   /* the plan block each block_memory belongs to */
+    bool block_split[PG_MAX_RESOURCES];      /* plan block split at run time (blocks_fallback) */
     void *pass_state[PG_MAX_PASSES]; /* indexed like plan->passes */
     /* frame constants */
     VkDescriptorSetLayout frame_layout;
@@ -117,9 +120,29 @@ static uint64_t hash_options(uint64_t s, const pg_pass_type *t, const cJSON *opt
     return s;
 }
 
-/* (a) What needs new physical resources: the output size, every resource's size, format, usage,
- * lifetime and memory block with what decides its place there (first and last pass,
- * may_inherit), and which resources are the outputs (the readback buffers). */
+/* One resource's part of the memory signature: its size, format, usage, lifetime, memory block
+ * and what places it there (first and last pass, may_inherit). */
+static uint64_t resource_signature(uint64_t s, const pg_plan_resource *r)
+{
+    s = fnv(s, r->name, strlen(r->name) + 1);
+    s = fnv(s, &r->kind, sizeof r->kind);
+    s = fnv(s, &r->format, sizeof r->format);
+    s = fnv(s, &r->width, sizeof r->width);
+    s = fnv(s, &r->height, sizeof r->height);
+    s = fnv(s, &r->size_bytes, sizeof r->size_bytes);
+    s = fnv(s, &r->usage, sizeof r->usage);
+    s = fnv(s, &r->culled, sizeof r->culled);
+    s = fnv(s, &r->growable, sizeof r->growable);
+    s = fnv(s, &r->block, sizeof r->block);
+    s = fnv(s, &r->lifetime, sizeof r->lifetime);
+    s = fnv(s, &r->first_pass, sizeof r->first_pass);
+    s = fnv(s, &r->last_pass, sizeof r->last_pass);
+    s = fnv(s, &r->may_inherit, sizeof r->may_inherit);
+    return s;
+}
+
+/* (a) What needs new physical resources: the output size, every resource's part
+ * (resource_signature), and which resources are the outputs (the readback buffers). */
 static uint64_t memory_signature(const pg_graph_plan *plan, uint32_t w, uint32_t h)
 {
     uint64_t s = 1469598103934665603ull;
@@ -129,24 +152,45 @@ static uint64_t memory_signature(const pg_graph_plan *plan, uint32_t w, uint32_t
     s = fnv(s, &plan->n_blocks, sizeof plan->n_blocks);
     s = fnv(s, &plan->output, sizeof plan->output);
     s = fnv(s, &plan->hdr_output, sizeof plan->hdr_output);
-    for (uint32_t i = 0; i < plan->n_resources; i++) {
-        const pg_plan_resource *r = &plan->resources[i];
-        s = fnv(s, r->name, strlen(r->name) + 1);
-        s = fnv(s, &r->kind, sizeof r->kind);
-        s = fnv(s, &r->format, sizeof r->format);
-        s = fnv(s, &r->width, sizeof r->width);
-        s = fnv(s, &r->height, sizeof r->height);
-        s = fnv(s, &r->size_bytes, sizeof r->size_bytes);
-        s = fnv(s, &r->usage, sizeof r->usage);
-        s = fnv(s, &r->culled, sizeof r->culled);
-        s = fnv(s, &r->growable, sizeof r->growable);
-        s = fnv(s, &r->block, sizeof r->block);
-        s = fnv(s, &r->lifetime, sizeof r->lifetime);
-        s = fnv(s, &r->first_pass, sizeof r->first_pass);
-        s = fnv(s, &r->last_pass, sizeof r->last_pass);
-        s = fnv(s, &r->may_inherit, sizeof r->may_inherit);
-    }
+    for (uint32_t i = 0; i < plan->n_resources; i++) s = resource_signature(s, &plan->resources[i]);
     return s;
+}
+
+static bool same_members(const pg_plan_block *a, const pg_plan_block *b)
+{
+    return a->n_members == b->n_members && !memcmp(a->members, b->members, sizeof(int) * a->n_members);
+}
+
+/* Which resources of the new plan differ from the built plan's (changed[i]) and which memory
+ * blocks hold one (dirty[b]), when the rest can be kept: same size, outputs, number of resources
+ * and blocks, each changed resource keeps its name, kind and block, a dirty block keeps its
+ * members (all of them are then re-created and the block packed again). E.g. the light buffer
+ * after a new light count. false: nothing changed, or a full memory rebuild is needed. */
+static bool resources_changed(const pg_runtime *rt, const pg_graph_plan *plan, uint32_t w, uint32_t h,
+                              bool *changed, bool *dirty)
+{
+    const pg_graph_plan *old = rt->plan;
+    if (!rt->built || !old || w != rt->width || h != rt->height || plan->n_resources != old->n_resources ||
+        plan->n_blocks != old->n_blocks || plan->output != old->output || plan->hdr_output != old->hdr_output)
+        return false;
+    uint32_t n = 0;
+    memset(dirty, 0, sizeof(bool) * PG_MAX_RESOURCES);
+    for (uint32_t i = 0; i < plan->n_resources; i++) {
+        const pg_plan_resource *a = &old->resources[i], *b = &plan->resources[i];
+        changed[i] = resource_signature(0, a) != resource_signature(0, b);
+        if (!changed[i]) continue;
+        if (a->block != b->block || (int)i == plan->output || (int)i == plan->hdr_output || strcmp(a->name, b->name) ||
+            a->kind != b->kind)
+            return false;
+        if (b->block >= 0) {
+            if (!same_members(&old->blocks[b->block], &plan->blocks[b->block])) return false;
+            dirty[b->block] = true;
+        }
+        n++;
+    }
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        for (uint32_t m = 0; dirty[b] && m < plan->blocks[b].n_members; m++) changed[plan->blocks[b].members[m]] = true;
+    return n > 0;
 }
 
 /* (b) What needs new pass instances: the scene, the settings, the executed passes in order with
@@ -259,6 +303,8 @@ static void destroy_built(pg_runtime *rt)
         memset(r, 0, sizeof *r);
         if (rt->block_memory[i]) pg_gpu_free_memory(gpu, rt->block_memory[i]);
         rt->block_memory[i] = VK_NULL_HANDLE;
+        rt->block_memory_size[i] = 0;
+        rt->block_split[i] = false;
         rt->persistent_initialized[i] = false;
     }
     for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++)
@@ -465,6 +511,69 @@ static pg_result create_pass(pg_runtime *rt, int pi, pg_error *err)
     return PG_OK;
 }
 
+/* Packs plan block b again with the real memory requirements of its members (created unbound),
+ * allocates its memory (one VkDeviceMemory per sub-block, in free block_memory slots) and binds
+ * them; bound[m] is set for each member bound. */
+static pg_result build_block(pg_runtime *rt, uint32_t b, bool *bound, pg_error *err)
+{
+    const pg_graph_plan *plan = rt->plan;
+    const pg_plan_block *blk = &plan->blocks[b];
+    pg_result r;
+    pg_pack_item items[PG_MAX_RESOURCES];
+    pg_pack_place place[PG_MAX_RESOURCES];
+    pg_pack_block sub[PG_MAX_RESOURCES];
+    for (uint32_t m = 0; m < blk->n_members; m++) {
+        const pg_plan_resource *pr = &plan->resources[blk->members[m]];
+        VkMemoryRequirements req = requirements(rt, blk->members[m]);
+        items[m] = (pg_pack_item){.size = req.size, .alignment = req.alignment,
+                                  .type_bits = req.memoryTypeBits, .klass = 0,
+                                  .first = pr->first_pass, .last = pr->last_pass,
+                                  .may_inherit = pr->may_inherit};
+        rt->stats.memory_bytes_unaliased += req.size;
+    }
+    const int n_sub = pg_alias_pack(items, blk->n_members, true, place, sub);
+    if (n_sub < 0) return pg_fail(err, PG_ERR_LIMIT, "block%u: too many members", b);
+    rt->block_split[b] = n_sub > 1;
+    if (n_sub > 1) rt->stats.blocks_fallback++;
+    for (int sb = 0; sb < n_sub; sb++) {
+        if (sub[sb].type_bits == 0) continue; /* a member no memory type fits: fails below */
+        uint32_t slot = 0;
+        while (slot < PG_MAX_RESOURCES && rt->block_memory[slot]) slot++;
+        if (slot >= PG_MAX_RESOURCES) return pg_fail(err, PG_ERR_LIMIT, "too many memory blocks");
+        char name[64];
+        snprintf(name, sizeof name, n_sub > 1 ? "block%u.%d" : "block%u", b, sb);
+        if ((r = alloc(rt, sub[sb].size, sub[sb].type_bits, name, &rt->block_memory[slot], err))) return r;
+        rt->block_memory_size[slot] = sub[sb].size;
+        rt->block_memory_of[slot] = (int)b;
+        rt->stats.memory_bytes_transient += sub[sb].size;
+        for (uint32_t m = 0; m < blk->n_members; m++) {
+            if (place[m].block != sb) continue;
+            rt->res[blk->members[m]].memory = rt->block_memory[slot];
+            rt->res[blk->members[m]].memory_offset = place[m].offset;
+            rt->res[blk->members[m]].memory_size = items[m].size;
+            if ((r = bind(rt, blk->members[m], rt->block_memory[slot], place[m].offset, err))) return r;
+            bound[blk->members[m]] = true;
+        }
+    }
+    return PG_OK;
+}
+
+/* An own allocation for resource i (not in a block, or its block could not hold it). */
+static pg_result build_own(pg_runtime *rt, int i, pg_error *err)
+{
+    const pg_plan_resource *pr = &rt->plan->resources[i];
+    VkMemoryRequirements req = requirements(rt, i);
+    pg_result r = alloc(rt, req.size, req.memoryTypeBits, pr->name, &rt->res[i].own_memory, err);
+    if (r) return r;
+    if (pr->lifetime == PG_LIFETIME_TRANSIENT) {
+        rt->stats.memory_bytes_transient += req.size;
+        rt->stats.memory_bytes_unaliased += req.size; /* e.g. "grow" buffers: never aliased */
+    }
+    rt->res[i].memory = rt->res[i].own_memory;
+    rt->res[i].memory_size = req.size;
+    return bind(rt, i, rt->res[i].own_memory, 0, err);
+}
+
 /* The physical resources (memory blocks, own allocations) and the readback buffers. */
 static pg_result build_memory(pg_runtime *rt, pg_error *err)
 {
@@ -483,54 +592,11 @@ static pg_result build_memory(pg_runtime *rt, pg_error *err)
      * only if the plan's alias barriers order them; members without a common memory type end up
      * in separate allocations */
     bool bound[PG_MAX_RESOURCES] = {0};
-    uint32_t n_mem = 0;
-    for (uint32_t b = 0; b < plan->n_blocks; b++) {
-        const pg_plan_block *blk = &plan->blocks[b];
-        pg_pack_item items[PG_MAX_RESOURCES];
-        pg_pack_place place[PG_MAX_RESOURCES];
-        pg_pack_block sub[PG_MAX_RESOURCES];
-        for (uint32_t m = 0; m < blk->n_members; m++) {
-            const pg_plan_resource *pr = &plan->resources[blk->members[m]];
-            VkMemoryRequirements req = requirements(rt, blk->members[m]);
-            items[m] = (pg_pack_item){.size = req.size, .alignment = req.alignment,
-                                      .type_bits = req.memoryTypeBits, .klass = 0,
-                                      .first = pr->first_pass, .last = pr->last_pass,
-                                      .may_inherit = pr->may_inherit};
-            rt->stats.memory_bytes_unaliased += req.size;
-        }
-        const int n_sub = pg_alias_pack(items, blk->n_members, true, place, sub);
-        if (n_sub < 0) return pg_fail(err, PG_ERR_LIMIT, "block%u: too many members", b);
-        if (n_sub > 1) rt->stats.blocks_fallback++;
-        for (int sb = 0; sb < n_sub; sb++) {
-            if (sub[sb].type_bits == 0) continue; /* a member no memory type fits: fails below */
-            if (n_mem >= PG_MAX_RESOURCES) return pg_fail(err, PG_ERR_LIMIT, "too many memory blocks");
-            char name[64];
-            snprintf(name, sizeof name, n_sub > 1 ? "block%u.%d" : "block%u", b, sb);
-            if ((r = alloc(rt, sub[sb].size, sub[sb].type_bits, name, &rt->block_memory[n_mem], err))) return r;
-            rt->stats.memory_bytes_transient += sub[sb].size;
-            for (uint32_t m = 0; m < blk->n_members; m++) {
-                if (place[m].block != sb) continue;
-                rt->res[blk->members[m]].memory = rt->block_memory[n_mem];
-                rt->res[blk->members[m]].memory_offset = place[m].offset;
-                rt->res[blk->members[m]].memory_size = items[m].size;
-                if ((r = bind(rt, blk->members[m], rt->block_memory[n_mem], place[m].offset, err))) return r;
-                bound[blk->members[m]] = true;
-            }
-            n_mem++;
-        }
-    }
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        if ((r = build_block(rt, b, bound, err))) return r;
     for (uint32_t i = 0; i < plan->n_resources; i++) {
         if (plan->resources[i].culled || bound[i]) continue;
-        VkMemoryRequirements req = requirements(rt, (int)i);
-        if ((r = alloc(rt, req.size, req.memoryTypeBits, plan->resources[i].name, &rt->res[i].own_memory, err)))
-            return r;
-        if (plan->resources[i].lifetime == PG_LIFETIME_TRANSIENT) {
-            rt->stats.memory_bytes_transient += req.size;
-            rt->stats.memory_bytes_unaliased += req.size; /* e.g. "grow" buffers: never aliased */
-        }
-        rt->res[i].memory = rt->res[i].own_memory;
-        rt->res[i].memory_size = req.size;
-        if ((r = bind(rt, (int)i, rt->res[i].own_memory, 0, err))) return r;
+        if ((r = build_own(rt, (int)i, err))) return r;
     }
     /* readback buffers */
     int outs[2] = {plan->output, plan->hdr_output};
@@ -696,6 +762,48 @@ const char *pg_ctx_setting(const pg_pass_create_ctx *ctx, const char *key)
     return found;
 }
 
+/* Re-creates the changed resources of the (new) plan and packs the dirty blocks again (the
+ * passes are destroyed, the device idle); the other resources and blocks are untouched. */
+static pg_result recreate_resources(pg_runtime *rt, const bool *changed, const bool *dirty, pg_error *err)
+{
+    pg_gpu *gpu = rt->gpu;
+    const pg_graph_plan *plan = rt->plan;
+    pg_result r;
+    for (uint32_t i = 0; i < plan->n_resources; i++) {
+        if (!changed[i]) continue;
+        pg_phys_resource *p = &rt->res[i];
+        /* what build_memory counted for it: block members' requirements, transient own allocations */
+        if (plan->resources[i].block >= 0) rt->stats.memory_bytes_unaliased -= p->memory_size;
+        else if (p->own_memory && plan->resources[i].lifetime == PG_LIFETIME_TRANSIENT) {
+            rt->stats.memory_bytes_transient -= p->memory_size;
+            rt->stats.memory_bytes_unaliased -= p->memory_size;
+        }
+        if (p->view) vkDestroyImageView(gpu->device, p->view, NULL);
+        if (p->image) vkDestroyImage(gpu->device, p->image, NULL);
+        if (p->buffer) vkDestroyBuffer(gpu->device, p->buffer, NULL);
+        if (p->own_memory) pg_gpu_free_memory(gpu, p->own_memory);
+        memset(p, 0, sizeof *p);
+        rt->persistent_initialized[i] = false;
+    }
+    for (uint32_t k = 0; k < PG_MAX_RESOURCES; k++) {
+        if (!rt->block_memory[k] || !dirty[rt->block_memory_of[k]]) continue;
+        pg_gpu_free_memory(gpu, rt->block_memory[k]);
+        rt->stats.memory_bytes_transient -= rt->block_memory_size[k];
+        rt->block_memory[k] = VK_NULL_HANDLE;
+        rt->block_memory_size[k] = 0;
+    }
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        if (dirty[b] && rt->block_split[b]) rt->stats.blocks_fallback--;
+    for (uint32_t i = 0; i < plan->n_resources; i++)
+        if (changed[i] && !plan->resources[i].culled && (r = create_unbound(rt, (int)i, err))) return r;
+    bool bound[PG_MAX_RESOURCES] = {0};
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        if (dirty[b] && (r = build_block(rt, b, bound, err))) return r;
+    for (uint32_t i = 0; i < plan->n_resources; i++)
+        if (changed[i] && !plan->resources[i].culled && !bound[i] && (r = build_own(rt, (int)i, err))) return r;
+    return PG_OK;
+}
+
 /* Only the run-time values changed: every kept pass instance re-reads its options. */
 static pg_result update_values(pg_runtime *rt, pg_error *err)
 {
@@ -735,7 +843,9 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
         rt->val_sig = r ? 0 : vsig; /* failed: the next plan updates again */
         return r;
     }
-    if (rt->built && msig == rt->mem_sig) {
+    bool changed[PG_MAX_RESOURCES], dirty[PG_MAX_RESOURCES];
+    const bool some = msig != rt->mem_sig && resources_changed(rt, plan, width, height, changed, dirty);
+    if (rt->built && (msig == rt->mem_sig || some)) {
         /* same resources: keep them (and what persistent ones hold when the new plan assumes
          * the same state at frame start), re-create the pass instances only */
         vkDeviceWaitIdle(rt->gpu->device);
@@ -747,9 +857,17 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
         rt->scene = scene;
         rt->pipe_sig = psig;
         rt->val_sig = vsig;
-        rt->stats.pipeline_rebuilds++;
-        rt->stats.last_rebuild = PG_REBUILD_PIPELINES;
-        r = build_passes(rt, err);
+        if (some) { /* ... but those with their own allocation that changed: re-create them */
+            rt->mem_sig = msig;
+            rt->stats.resource_rebuilds++;
+            rt->stats.last_rebuild = PG_REBUILD_RESOURCES;
+            r = recreate_resources(rt, changed, dirty, err);
+        } else {
+            rt->stats.pipeline_rebuilds++;
+            rt->stats.last_rebuild = PG_REBUILD_PIPELINES;
+            r = PG_OK;
+        }
+        if (!r) r = build_passes(rt, err);
     } else {
         destroy_built(rt);
         rt->plan = plan;
@@ -1152,8 +1270,8 @@ const void *pg_runtime_output(const pg_runtime *rt, int which, uint32_t *w, uint
 
 const char *pg_rebuild_kind_name(pg_rebuild_kind k)
 {
-    static const char *const names[] = {"none", "values", "pipelines", "memory"};
-    return (unsigned)k < 4 ? names[k] : "?";
+    static const char *const names[] = {"none", "values", "pipelines", "resources", "memory"};
+    return (unsigned)k < 5 ? names[k] : "?";
 }
 
 pg_runtime_stats pg_runtime_get_stats(const pg_runtime *rt)

@@ -131,14 +131,18 @@ typedef enum pg_rebuild_kind {
                             * passes' update() re-read them, no Vulkan object re-created */
     PG_REBUILD_PIPELINES,  /* same memory: resources (handles, contents) kept, pass instances
                             * (pipelines, descriptor sets) re-created */
+    PG_REBUILD_RESOURCES,  /* only resources with their own allocation (no memory block, not an
+                            * output) changed, e.g. the light buffer for a new light count: those
+                            * and the pass instances re-created, the rest kept */
     PG_REBUILD_MEMORY,     /* new physical resources and pass instances */
 } pg_rebuild_kind;
-const char *pg_rebuild_kind_name(pg_rebuild_kind k); /* "none", "values", "pipelines", "memory" */
+/* "none", "values", "pipelines", "resources", "memory" */
+const char *pg_rebuild_kind_name(pg_rebuild_kind k);
 
 typedef struct pg_runtime_stats {
     uint32_t resource_creations;      /* times physical resources were (re)built */
     /* pg_runtime_set_plan() outcomes, over the runtime's life (see pg_rebuild_kind) */
-    uint32_t memory_rebuilds, pipeline_rebuilds, value_updates;
+    uint32_t memory_rebuilds, resource_rebuilds, pipeline_rebuilds, value_updates;
     pg_rebuild_kind last_rebuild;     /* the last set_plan's */
     uint64_t memory_bytes_transient;  /* actual VkDeviceMemory for transient blocks */
     uint64_t memory_bytes_unaliased;  /* sum of transient resources' memory requirements */

@@ -10,9 +10,12 @@
  *   3. the same overrides    nothing at all (last_rebuild "none", no counter moves);
  *   4. + shading=blinn_phong a new shader variant: the pass instances only (pipeline_rebuilds + 1),
  *                            the resources are kept;
- *   5. a 128x72 frame        new memory (memory_rebuilds + 1).
+ *   5. 24 lights             a bigger light buffer: it and the other members of its memory block
+ *                            are re-created (the block packed again) with the pass instances, the
+ *                            rest kept (resource_rebuilds + 1);
+ *   6. a 128x72 frame        new memory (memory_rebuilds + 1).
  * After 1, 2 and 4 every resource of the plan still has its VkImage / VkBuffer handle
- * (pg_runtime_resource_at). After every step the read-back display and HDR images are byte-identical
+ * (pg_runtime_resource_at); after 5 every one outside the light buffer's block. After every step the read-back display and HDR images are byte-identical
  * to a fresh runtime's (pg_th_render with the same overrides and size), and steps 1, 2 and 4 change
  * the image (so a value that was not applied would be seen). The validation layer with
  * synchronization validation runs throughout: zero messages. Also: the pass registry refuses a type
@@ -51,22 +54,24 @@ static void get_handles(const pg_session *s, handles *h)
     }
 }
 
-static uint32_t same_handles(const handles *a, const handles *b)
+/* Live resources of a whose handles b still has; *live: live resources of a. */
+static uint32_t same_handles(const handles *a, const handles *b, uint32_t *live)
 {
+    uint32_t kept = 0;
+    *live = 0;
     if (a->n != b->n) return 0;
-    uint32_t kept = 0, live = 0;
     for (uint32_t i = 0; i < a->n; i++) {
         if (!a->image[i] && !a->buffer[i]) continue; /* culled */
-        live++;
+        (*live)++;
         kept += a->image[i] == b->image[i] && a->buffer[i] == b->buffer[i];
     }
-    return kept == live ? live : 0;
+    return kept;
 }
 
-static pg_frame_info frame_info(uint32_t w, uint32_t h)
+static pg_frame_info frame_info(uint32_t w, uint32_t h, uint32_t lights)
 {
     pg_frame_info fi = {.camera = pg_camera_default_for_scene(g_scene, (float)w / h),
-                        .lights = pg_light_setup_default(g_scene, LIGHTS, 7), .time = 0.5f, .width = w, .height = h};
+                        .lights = pg_light_setup_default(g_scene, lights, 7), .time = 0.5f, .width = w, .height = h};
     return fi;
 }
 
@@ -76,9 +81,9 @@ typedef struct image2 {
     size_t bytes[2];
 } image2;
 
-static bool render(pg_session *s, uint32_t w, uint32_t h, image2 *out)
+static bool render(pg_session *s, uint32_t w, uint32_t h, uint32_t lights, image2 *out)
 {
-    pg_frame_info fi = frame_info(w, h);
+    pg_frame_info fi = frame_info(w, h, lights);
     pg_frame_stats st;
     pg_error err = {0};
     memset(out, 0, sizeof *out);
@@ -115,9 +120,9 @@ static bool same_image(const image2 *a, const image2 *b)
 }
 
 /* A fresh runtime's images for the same overrides and size. */
-static bool fresh(const pg_param_override *ov, uint32_t n, uint32_t w, uint32_t h, image2 *out)
+static bool fresh(const pg_param_override *ov, uint32_t n, uint32_t w, uint32_t h, uint32_t lights, image2 *out)
 {
-    pg_frame_info fi = frame_info(w, h);
+    pg_frame_info fi = frame_info(w, h, lights);
     pg_th_frame f;
     memset(out, 0, sizeof *out);
     if (!pg_th_render(g_gpu, &g_reg, g_sg, "pipelines/deferred.json", ov, n, &fi, 1, false, &f)) {
@@ -138,7 +143,7 @@ typedef struct step {
     const char *what;
     pg_param_override ov[3];
     uint32_t n_ov;
-    uint32_t w, h;
+    uint32_t w, h, lights;
     pg_rebuild_kind want;
     bool changes_image;
 } step;
@@ -194,52 +199,87 @@ int main(void)
     }
     image2 prev = {0}, cur = {0}, ref = {0};
     handles h0, h;
-    bool ok = render(s, W, H, &prev);
+    bool ok = render(s, W, H, LIGHTS, &prev);
     if (ok) {
         pg_runtime_stats rs = pg_runtime_get_stats(s->runtime);
         CHECK_MSG(rs.memory_rebuilds == 1 && rs.pipeline_rebuilds == 0 && rs.value_updates == 0 &&
                       rs.last_rebuild == PG_REBUILD_MEMORY,
                   "first plan: memory %u pipelines %u values %u last %s", rs.memory_rebuilds, rs.pipeline_rebuilds,
                   rs.value_updates, pg_rebuild_kind_name(rs.last_rebuild));
-        ok = fresh(NULL, 0, W, H, &ref);
+        ok = fresh(NULL, 0, W, H, LIGHTS, &ref);
         CHECK_MSG(ok && same_image(&prev, &ref), "first frame differs from a fresh runtime's");
         release(&ref);
         get_handles(s, &h0);
     }
+#define OV3 {{"exposure", "0.5"}, {"ambient", "0.05"}, {"shading", "blinn_phong"}}, 3
     const step steps[] = {
-        {"exposure=0.5 (run-time option)", {{"exposure", "0.5"}}, 1, W, H, PG_REBUILD_VALUES, true},
-        {"+ ambient=0.05 (run-time option)", {{"exposure", "0.5"}, {"ambient", "0.05"}}, 2, W, H, PG_REBUILD_VALUES,
-         true},
-        {"the same overrides", {{"exposure", "0.5"}, {"ambient", "0.05"}}, 2, W, H, PG_REBUILD_NONE, false},
-        {"+ shading=blinn_phong (new variant)", {{"exposure", "0.5"}, {"ambient", "0.05"}, {"shading", "blinn_phong"}},
-         3, W, H, PG_REBUILD_PIPELINES, true},
-        {"128x72 (new size)", {{"exposure", "0.5"}, {"ambient", "0.05"}, {"shading", "blinn_phong"}}, 3, 128, 72,
-         PG_REBUILD_MEMORY, true},
+        {"exposure=0.5 (run-time option)", {{"exposure", "0.5"}}, 1, W, H, LIGHTS, PG_REBUILD_VALUES, true},
+        {"+ ambient=0.05 (run-time option)", {{"exposure", "0.5"}, {"ambient", "0.05"}}, 2, W, H, LIGHTS,
+         PG_REBUILD_VALUES, true},
+        {"the same overrides", {{"exposure", "0.5"}, {"ambient", "0.05"}}, 2, W, H, LIGHTS, PG_REBUILD_NONE, false},
+        {"+ shading=blinn_phong (new variant)", OV3, W, H, LIGHTS, PG_REBUILD_PIPELINES, true},
+        {"24 lights (a bigger light buffer)", OV3, W, H, 24, PG_REBUILD_RESOURCES, true},
+        {"128x72 (new size)", OV3, 128, 72, 24, PG_REBUILD_MEMORY, true},
     };
     for (size_t k = 0; ok && k < sizeof steps / sizeof steps[0]; k++) {
         const step *st = &steps[k];
         pg_runtime_stats before = pg_runtime_get_stats(s->runtime);
-        if (st->w == W) {
+        const bool reload = st->w == W && st->lights == LIGHTS;
+        if (reload) {
             ok = !pg_session_reload(s, path, st->ov, st->n_ov, &err);
             CHECK_MSG(ok, "%s: reload: %s", st->what, err.msg);
         }
-        if (ok) ok = render(s, st->w, st->h, &cur);
+        if (ok) ok = render(s, st->w, st->h, st->lights, &cur);
         if (!ok) break;
         pg_runtime_stats rs = pg_runtime_get_stats(s->runtime);
-        uint32_t dm = rs.memory_rebuilds - before.memory_rebuilds, dp = rs.pipeline_rebuilds - before.pipeline_rebuilds,
-                 dv = rs.value_updates - before.value_updates;
+        uint32_t dm = rs.memory_rebuilds - before.memory_rebuilds, dr = rs.resource_rebuilds - before.resource_rebuilds,
+                 dp = rs.pipeline_rebuilds - before.pipeline_rebuilds, dv = rs.value_updates - before.value_updates;
         get_handles(s, &h);
-        uint32_t kept = same_handles(&h0, &h);
-        printf("%-38s -> %-9s (memory +%u, pipelines +%u, values +%u); resources with their handles: %u\n", st->what,
-               pg_rebuild_kind_name(rs.last_rebuild), dm, dp, dv, kept);
+        uint32_t live = 0, kept = same_handles(&h0, &h, &live);
+        printf("%-38s -> %-9s (memory +%u, resources +%u, pipelines +%u, values +%u); handles kept: %u of %u\n",
+               st->what, pg_rebuild_kind_name(rs.last_rebuild), dm, dr, dp, dv, kept, live);
         CHECK_MSG(rs.last_rebuild == st->want, "%s: rebuilt %s, want %s", st->what,
                   pg_rebuild_kind_name(rs.last_rebuild), pg_rebuild_kind_name(st->want));
-        CHECK_MSG(dm == (st->want == PG_REBUILD_MEMORY) && dp == (st->want == PG_REBUILD_PIPELINES) &&
-                      dv == (st->want == PG_REBUILD_VALUES),
-                  "%s: counters moved memory +%u pipelines +%u values +%u", st->what, dm, dp, dv);
-        if (st->want != PG_REBUILD_MEMORY)
-            CHECK_MSG(kept > 0, "%s: a resource lost its VkImage/VkBuffer handle", st->what);
-        ok = fresh(st->ov, st->n_ov, st->w, st->h, &ref);
+        CHECK_MSG(dm == (st->want == PG_REBUILD_MEMORY) && dr == (st->want == PG_REBUILD_RESOURCES) &&
+                      dp == (st->want == PG_REBUILD_PIPELINES) && dv == (st->want == PG_REBUILD_VALUES),
+                  "%s: counters moved memory +%u resources +%u pipelines +%u values +%u", st->what, dm, dr, dp, dv);
+        if (st->want == PG_REBUILD_RESOURCES) {
+            /* the light buffer is new (and bigger), every resource outside its block kept its handle */
+            int li = -1;
+            for (uint32_t i = 0; i < s->plan->n_resources; i++)
+                if (!strcmp(s->plan->resources[i].name, "lights")) li = (int)i;
+            const pg_phys_resource *lr = li >= 0 ? pg_runtime_resource_at(s->runtime, li) : NULL;
+            CHECK_MSG(lr && lr->size >= 24 * 32, "%s: light buffer %llu bytes", st->what,
+                      lr ? (unsigned long long)lr->size : 0ull);
+            const int lb = li >= 0 ? s->plan->resources[li].block : -1;
+            const uint32_t redone = lb >= 0 ? s->plan->blocks[lb].n_members : 1;
+            CHECK_MSG(kept < live && kept == live - redone,
+                      "%s: %u of %u handles kept, want all but the %u of the light buffer's block", st->what, kept,
+                      live, redone);
+            h0 = h; /* the next step compares with these */
+            /* the memory counters match a fresh runtime's for this plan */
+            pg_session *f2 = NULL;
+            image2 tmp;
+            if (!pg_session_create(g_gpu, sg, &sd, &f2, &err) && !pg_session_reload(f2, path, st->ov, st->n_ov, &err) &&
+                render(f2, st->w, st->h, st->lights, &tmp)) {
+                pg_runtime_stats fs = pg_runtime_get_stats(f2->runtime);
+                printf("  device memory: %llu / %llu B (transient / unaliased), fresh runtime %llu / %llu B\n",
+                       (unsigned long long)rs.memory_bytes_transient, (unsigned long long)rs.memory_bytes_unaliased,
+                       (unsigned long long)fs.memory_bytes_transient, (unsigned long long)fs.memory_bytes_unaliased);
+                CHECK_MSG(fs.memory_bytes_transient == rs.memory_bytes_transient &&
+                              fs.memory_bytes_unaliased == rs.memory_bytes_unaliased &&
+                              fs.blocks_fallback == rs.blocks_fallback,
+                          "%s: memory counters differ from a fresh runtime's", st->what);
+                release(&tmp);
+            } else {
+                CHECK_MSG(0, "%s: fresh session: %s", st->what, err.msg);
+            }
+            pg_session_destroy(f2);
+        } else if (st->want != PG_REBUILD_MEMORY) {
+            CHECK_MSG(live > 0 && kept == live, "%s: %u of %u resources kept their VkImage/VkBuffer", st->what,
+                      kept, live);
+        }
+        ok = fresh(st->ov, st->n_ov, st->w, st->h, st->lights, &ref);
         bool same = ok && same_image(&cur, &ref);
         CHECK_MSG(same, "%s: the image differs from a fresh runtime's", st->what);
         if (st->w == W) {

@@ -194,9 +194,10 @@ int pg_cmd_render(int argc, char **argv)
                "requirements; %u block(s) split at run time)\n",
                (unsigned long long)rs.memory_bytes_unaliased, (unsigned long long)rs.memory_bytes_transient,
                rs.blocks_fallback);
-        printf("explain: runtime: plans set: memory %u, pipelines %u, values %u (last: %s); run-time options "
-               "(a new value re-creates nothing):",
-               rs.memory_rebuilds, rs.pipeline_rebuilds, rs.value_updates, pg_rebuild_kind_name(rs.last_rebuild));
+        printf("explain: runtime: plans set: memory %u, resources %u, pipelines %u, values %u (last: %s); run-time "
+               "options (a new value re-creates nothing):",
+               rs.memory_rebuilds, rs.resource_rebuilds, rs.pipeline_rebuilds, rs.value_updates,
+               pg_rebuild_kind_name(rs.last_rebuild));
         uint32_t n_rt = 0;
         for (uint32_t o = 0; o < s->plan->n_order; o++) {
             const pg_plan_pass *pp = &s->plan->passes[s->plan->order[o]];
