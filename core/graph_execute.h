@@ -7,8 +7,10 @@
  * memory (output size; every resource's size, format, usage, lifetime, block), pipelines (scene,
  * settings, passes with their variants, bindings and options other than run-time values) and
  * run-time values (options a pass type lists in runtime_options). A new plan re-creates what its
- * parts need: new memory -> everything; new pipelines -> the pass instances only (resources keep
- * their handles and contents); new values -> nothing (the passes' update() re-reads them). pg_runtime_render() records one command buffer: for each pass in order the
+ * parts need: new memory -> everything, or only the resources that differ (with the other members
+ * of their blocks) when they keep their names and blocks (pg_rebuild_kind); new pipelines -> the
+ * pass instances only (resources keep their handles and contents); new values -> nothing (the
+ * passes' update() re-reads them). pg_runtime_render() records one command buffer: for each pass in order the
  * plan's barriers, a debug label, the pass's commands and a timestamp; then the final output
  * transitions and, if asked, copies of the outputs to host-visible buffers.
  */
