@@ -857,7 +857,7 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
         rt->scene = scene;
         rt->pipe_sig = psig;
         rt->val_sig = vsig;
-        if (some) { /* ... but those with their own allocation that changed: re-create them */
+        if (some) { /* ... but the resources that changed (with their blocks): re-create them */
             rt->mem_sig = msig;
             rt->stats.resource_rebuilds++;
             rt->stats.last_rebuild = PG_REBUILD_RESOURCES;
