@@ -19,6 +19,7 @@
 
 typedef struct deferred_lighting {
     int packing;
+    float ambient;          /* option "ambient" (a run-time value): push constant */
     uint32_t hdr_slot;      /* plan slot of hdr: after the reads (the emissive read is optional) */
     uint32_t tile;          /* workgroup edge in pixels (8 or 16) */
     VkSampler sampler;
@@ -73,6 +74,7 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     if ((r = pg_shading_opts_read(ctx->desc, true, k_extra, &o, err))) return r;
     if ((r = pg_opt_enum(ctx->desc, "packing", pg_gbuffer_packings, 0, &p->packing, err))) return r;
     if ((r = pg_check_cluster_buffers(ctx, &o, 1, err))) return r;
+    if ((r = pg_shading_ambient(ctx->desc, &p->ambient, err))) return r;
     uint32_t n_targets = pg_gbuffer_targets[p->packing];
     p->hdr_slot = ctx->desc->n_reads;
     bool emissive = p->hdr_slot > 4 + n_targets && !ctx->pass->slots[4 + n_targets].decl.unused;
@@ -94,7 +96,7 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     if ((r = pg_pass_set_create(gpu, n, b, name, &p->gbuf, err))) return r;
     if ((r = pg_light_set_create(ctx, true, 0, 1, &p->lights, err))) return r;
     VkDescriptorSetLayout sets[3] = {ctx->frame_layout, p->gbuf.layout, p->lights.layout};
-    if ((r = pg_pipeline_layout_create(gpu, p->lights.layout ? 3 : 2, sets, 0, &p->layout, err))) return r;
+    if ((r = pg_pipeline_layout_create(gpu, p->lights.layout ? 3 : 2, sets, sizeof(float), &p->layout, err))) return r;
     const char *defs[PG_MAX_DEFINES + 3];
     uint32_t nd = 0;
     for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) defs[nd++] = ctx->pass->decl.defines[i];
@@ -128,7 +130,14 @@ static void dl_record(void *self, const pg_pass_record_ctx *ctx)
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, p->lights.set ? 3 : 2, sets, 0,
                             NULL);
+    vkCmdPushConstants(ctx->cmd, p->layout, PG_PUSH_STAGES, 0, sizeof(float), &p->ambient);
     vkCmdDispatch(ctx->cmd, (hdr->width + p->tile - 1) / p->tile, (hdr->height + p->tile - 1) / p->tile, 1);
+}
+
+static pg_result dl_update(void *self, const pg_pass_desc *desc, pg_error *err)
+{
+    deferred_lighting *p = self;
+    return pg_shading_ambient(desc, &p->ambient, err);
 }
 
 static void dl_destroy(void *self, pg_gpu *gpu)
@@ -152,4 +161,6 @@ const pg_pass_type pg_pass_deferred_lighting = {
     .create = dl_create,
     .record = dl_record,
     .destroy = dl_destroy,
+    .runtime_options = pg_shading_runtime_options,
+    .update = dl_update,
 };

@@ -312,6 +312,18 @@ static void do_destroy(void *self, pg_gpu *gpu)
     memset(p, 0, sizeof *p);
 }
 
+/* exposure is a push constant: a new value re-creates nothing (runtime_options) */
+static const char *const k_runtime[] = {"exposure", NULL};
+
+static pg_result do_update(void *self, const pg_pass_desc *desc, pg_error *err)
+{
+    display_ocio *p = self;
+    double exposure = 1.0;
+    pg_result r = pg_opt_float(desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err);
+    if (!r) p->exposure = (float)exposure;
+    return r;
+}
+
 const pg_pass_type pg_pass_display_ocio = {
     .name = "display_ocio",
     .summary = "graphics: HDR -> display image through an OpenColorIO display/view transform (exposure first)",
@@ -322,4 +334,6 @@ const pg_pass_type pg_pass_display_ocio = {
     .create = do_create,
     .record = do_record,
     .destroy = do_destroy,
+    .runtime_options = k_runtime,
+    .update = do_update,
 };

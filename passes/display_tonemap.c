@@ -107,6 +107,18 @@ static void dt_destroy(void *self, pg_gpu *gpu)
     pg_pass_set_destroy(gpu, &p->set);
 }
 
+/* exposure is a push constant: a new value re-creates nothing (runtime_options) */
+static const char *const k_runtime[] = {"exposure", NULL};
+
+static pg_result dt_update(void *self, const pg_pass_desc *desc, pg_error *err)
+{
+    display_tonemap *p = self;
+    double exposure = 1.0;
+    pg_result r = pg_opt_float(desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err);
+    if (!r) p->exposure = (float)exposure;
+    return r;
+}
+
 const pg_pass_type pg_pass_display_tonemap = {
     .name = "display_tonemap",
     .summary = "graphics: HDR -> 8-bit sRGB display image (exposure + clamp/Reinhard/ACES)",
@@ -117,4 +129,6 @@ const pg_pass_type pg_pass_display_tonemap = {
     .create = dt_create,
     .record = dt_record,
     .destroy = dt_destroy,
+    .runtime_options = k_runtime,
+    .update = dt_update,
 };

@@ -18,7 +18,14 @@ pg_result pg_forward_create(pg_forward_pass *p, const pg_pass_create_ctx *ctx, b
         .color_formats = {ctx->slots[n_reads]->format},
         .depth_format = ctx->slots[n_reads + 1]->format,
     };
-    return pg_scene_draw_create(ctx, &d, &p->draw, err);
+    if ((r = pg_scene_draw_create(ctx, &d, &p->draw, err))) return r;
+    return pg_forward_update(p, ctx->desc, err);
+}
+
+pg_result pg_forward_update(void *self, const pg_pass_desc *desc, pg_error *err)
+{
+    pg_forward_pass *p = self;
+    return pg_shading_ambient(desc, &p->draw.ambient, err);
 }
 
 void pg_forward_record(void *self, const pg_pass_record_ctx *ctx)

@@ -14,6 +14,8 @@ typedef struct pg_forward_pass {
 } pg_forward_pass;
 
 pg_result pg_forward_create(pg_forward_pass *p, const pg_pass_create_ctx *ctx, bool clustered, pg_error *err);
+/* update(): the run-time options (pg_shading_runtime_options: ambient) */
+pg_result pg_forward_update(void *self, const pg_pass_desc *desc, pg_error *err);
 void pg_forward_record(void *self, const pg_pass_record_ctx *ctx);
 void pg_forward_destroy(void *self, pg_gpu *gpu);
 

@@ -39,4 +39,6 @@ const pg_pass_type pg_pass_forward_plus = {
     .create = fp_create,
     .record = pg_forward_record,
     .destroy = pg_forward_destroy,
+    .runtime_options = pg_shading_runtime_options,
+    .update = pg_forward_update,
 };

@@ -97,7 +97,14 @@ static pg_result ft_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
         .depth_format = ctx->slots[depth_slot]->format,
         .blend = true,
     };
-    return pg_scene_draw_create(ctx, &d, &p->draw, err);
+    if ((r = pg_scene_draw_create(ctx, &d, &p->draw, err))) return r;
+    return pg_shading_ambient(ctx->desc, &p->draw.ambient, err);
+}
+
+static pg_result ft_update(void *self, const pg_pass_desc *desc, pg_error *err)
+{
+    pg_transparent_pass *p = self;
+    return pg_shading_ambient(desc, &p->draw.ambient, err);
 }
 
 /* Back to front: larger squared distance first; equal distances keep scene draw order. */
@@ -175,4 +182,6 @@ const pg_pass_type pg_pass_forward_transparent = {
     .create = ft_create,
     .record = ft_record,
     .destroy = ft_destroy,
+    .runtime_options = pg_shading_runtime_options,
+    .update = ft_update,
 };

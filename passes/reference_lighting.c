@@ -56,6 +56,7 @@ enum { REF_MODE_LOAD = 1u, REF_MODE_STORE = 2u };
 
 typedef struct reference_lighting {
     uint32_t lights_per_dispatch; /* 0: auto */
+    float ambient;                /* option "ambient" (a run-time value): push constant */
     bool has_lights, has_accum, has_accum_specular, has_emissive;
     uint32_t nr;                  /* read slots bound: 4, or 5 with the emissive target */
     VkSampler sampler;
@@ -195,6 +196,7 @@ static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
     pg_shading_opts o;
     pg_result r;
     if ((r = ref_options(ctx->desc, &o, &p->lights_per_dispatch, err))) return r;
+    if ((r = pg_shading_ambient(ctx->desc, &p->ambient, err))) return r;
     p->has_lights = pg_shading_has_lights(ctx->pass);
     const uint32_t nr = p->nr = ctx->desc->n_reads; /* hdr, accum_diffuse, accum_specular follow the reads */
     p->has_emissive = nr == 5 && !ctx->pass->slots[4].decl.unused;
@@ -268,6 +270,7 @@ static void ref_record(void *self, const pg_pass_record_ctx *ctx)
      * whole loop runs in one dispatch: slower, never wrong. */
     if (n <= chunk || !p->has_accum) {
         uint32_t pc[4] = {0, n, 0, 0};
+        memcpy(&pc[3], &p->ambient, sizeof(float));
         vkCmdPushConstants(cmd, p->layout, PG_PUSH_STAGES,
                            0, sizeof pc, pc);
         vkCmdDispatch(cmd, gx, gy, 1);
@@ -294,11 +297,18 @@ static void ref_record(void *self, const pg_pass_record_ctx *ctx)
         uint32_t end = n - first > chunk ? first + chunk : n;
         uint32_t mode = (first > 0 ? REF_MODE_LOAD : 0u) | (end < n ? REF_MODE_STORE : 0u);
         uint32_t pc[4] = {first, end, mode, 0};
+        memcpy(&pc[3], &p->ambient, sizeof(float));
         vkCmdPushConstants(cmd, p->layout, PG_PUSH_STAGES,
                            0, sizeof pc, pc);
         vkCmdDispatch(cmd, gx, gy, 1);
         if (end < n) pg_cmd_barriers(cmd, nb, b, 0, NULL);
     }
+}
+
+static pg_result ref_update(void *self, const pg_pass_desc *desc, pg_error *err)
+{
+    reference_lighting *p = self;
+    return pg_shading_ambient(desc, &p->ambient, err);
 }
 
 static void ref_destroy(void *self, pg_gpu *gpu)
@@ -323,4 +333,6 @@ const pg_pass_type pg_pass_reference_lighting = {
     .create = ref_create,
     .record = ref_record,
     .destroy = ref_destroy,
+    .runtime_options = pg_shading_runtime_options,
+    .update = ref_update,
 };

@@ -13,7 +13,8 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     pg_result r;
     if (!ctx->scene) return pg_fail(err, PG_ERR_INVALID_ARG, "needs a scene");
     VkDescriptorSetLayout sets[3] = {ctx->frame_layout, ctx->scene->set_layout, d->pass_layout};
-    if ((r = pg_pipeline_layout_create(gpu, d->pass_layout ? 3 : 2, sets, sizeof(uint32_t), &out->layout, err)))
+    /* push constants: DrawPush {uint material; float ambient;} (shaders/surface.glsl) */
+    if ((r = pg_pipeline_layout_create(gpu, d->pass_layout ? 3 : 2, sets, 2 * sizeof(uint32_t), &out->layout, err)))
         return r;
     const char *defs[PG_MAX_DEFINES + 8];
     uint32_t n = 0;
@@ -88,6 +89,13 @@ static void bind_scene(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, V
     vkCmdBindIndexBuffer(cmd, sc->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
 }
 
+static void push_draw(VkCommandBuffer cmd, const pg_scene_draw *sd, const pg_draw *d)
+{
+    uint32_t push[2] = {d->material, 0};
+    memcpy(&push[1], &sd->ambient, sizeof(float));
+    vkCmdPushConstants(cmd, sd->layout, PG_PUSH_STAGES, 0, sizeof push, push);
+}
+
 void pg_scene_draw_record_list(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set,
                                const uint32_t *order, uint32_t n)
 {
@@ -102,7 +110,7 @@ void pg_scene_draw_record_list(const pg_scene_draw *sd, const pg_pass_record_ctx
             vkCmdSetCullMode(cmd, want);
             cull = want;
         }
-        vkCmdPushConstants(cmd, sd->layout, PG_PUSH_STAGES, 0, sizeof(uint32_t), &d->material);
+        push_draw(cmd, sd, d);
         vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, d->vertex_offset, 0);
     }
 }
@@ -125,9 +133,7 @@ void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx
             vkCmdSetCullMode(cmd, want);
             cull = want;
         }
-        vkCmdPushConstants(cmd, sd->layout,
-                           PG_PUSH_STAGES, 0,
-                           sizeof(uint32_t), &d->material);
+        push_draw(cmd, sd, d);
         vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, d->vertex_offset, 0);
     }
 }

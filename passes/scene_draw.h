@@ -13,6 +13,7 @@
 typedef struct pg_scene_draw {
     VkPipelineLayout layout;
     VkPipeline opaque, masked;
+    float ambient;                    /* pushed with each draw's material (DrawPush.ambient) */
     bool vertex_colors, uv1;          /* the pipelines read vertex streams 1 / 2 (PG_VERTEX_COLORS, PG_UV1) */
 } pg_scene_draw;
 

@@ -54,8 +54,6 @@ void pg_shading_declare(const pg_shading_opts *o, const pg_declare_in *in, pg_pa
                         int light_slot, int cluster_slot)
 {
     char def[PG_NAME_MAX];
-    snprintf(def, sizeof def, "PG_AMBIENT=%.9g", o->ambient);
-    pg_decl_define(out, def);
     if (o->shading == 1) pg_decl_define(out, "PG_BLINN_PHONG");
     if (o->view) {
         snprintf(def, sizeof def, "PG_DEBUG_VIEW=%d", o->view);
@@ -84,6 +82,16 @@ void pg_shading_declare(const pg_shading_opts *o, const pg_declare_in *in, pg_pa
             pg_decl_mark_unused(out, false, (uint32_t)cluster_slot + 1, why);
         }
     }
+}
+
+const char *const pg_shading_runtime_options[] = {"ambient", NULL};
+
+pg_result pg_shading_ambient(const pg_pass_desc *desc, float *out, pg_error *err)
+{
+    double a = 0.0;
+    pg_result r = pg_opt_float(desc, "ambient", 0.0, 0.0, 1e6, &a, err);
+    if (!r) *out = (float)a;
+    return r;
 }
 
 bool pg_shading_has_lights(const pg_plan_pass *pass)

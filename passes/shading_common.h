@@ -26,7 +26,12 @@ extern const char *const pg_debug_views[]; /* NULL-terminated */
 /* known: the pass's other option keys (NULL-terminated, may be NULL). */
 pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const char *const *extra_known,
                                pg_shading_opts *o, pg_error *err);
-/* Adds defines (PG_AMBIENT, PG_BLINN_PHONG, PG_DEBUG_VIEW, PG_HAS_LIGHTS, PG_CLUSTERED, GRID_*) and explanations; marks the light slots unused with 0 lights. light_slot and
+/* The options of the shading passes that are run-time values (pg_pass_type.runtime_options):
+ * "ambient", a push constant the shaders add to the frame's ambient (frame.clip.z). */
+extern const char *const pg_shading_runtime_options[];
+/* The option "ambient" of desc (default 0) as the float the shaders get. */
+pg_result pg_shading_ambient(const pg_pass_desc *desc, float *out, pg_error *err);
+/* Adds defines (PG_BLINN_PHONG, PG_DEBUG_VIEW, PG_HAS_LIGHTS, PG_CLUSTERED, GRID_*) and explanations; marks the light slots unused with 0 lights. light_slot and
  * cluster_slot are read-slot indices (cluster_slot: counts, cluster_slot+1: lists; -1 if none). */
 void pg_shading_declare(const pg_shading_opts *o, const pg_declare_in *in, pg_pass_decl *out, bool clustered,
                         int light_slot, int cluster_slot);

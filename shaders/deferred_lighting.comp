@@ -44,6 +44,8 @@ layout(set = 1, binding = HDR_BINDING, PG_HDR_FORMAT) uniform writeonly image2D 
 layout(set = 1, binding = HDR_BINDING + 1) uniform sampler2D g_emissive;
 #endif
 
+layout(push_constant) uniform Push { float ambient; } pc; // the pass option "ambient"
+#define PG_AMBIENT pc.ambient
 #include "shading.glsl"
 
 #if defined(PG_TILE_LIGHTS) && defined(PG_CLUSTERED) && defined(PG_HAS_LIGHTS) && PG_DEBUG_VIEW == 0

@@ -10,6 +10,7 @@ FRAME_UNIFORMS_BLOCK
 #ifdef PG_CLUSTERED
 #include "cluster.glsl"
 #endif
+#define PG_AMBIENT draw.ambient // the pass option, a push constant (surface.glsl)
 #include "shading.glsl"
 layout(location = 0) out vec4 out_color;
 

@@ -49,13 +49,16 @@ layout(set = 1, binding = 5, rgba32f) uniform image2D acc_specular; // running s
 layout(set = 1, binding = EMISSIVE_BINDING) uniform sampler2D g_emissive; // rgb emissive, scene-linear
 #endif
 
-#include "shading.glsl" // the Lights buffer (set 2) and the debug views
-
 layout(push_constant) uniform Push {
     uint first; // first light of this dispatch
     uint end;   // one past its last light
     uint mode;  // 1: load the running sums, 2: store them instead of writing hdr_out
+    float ambient; // the pass option "ambient" (a run-time value)
 } pc;
+#define PG_AMBIENT pc.ambient
+
+#include "shading.glsl" // the Lights buffer (set 2) and the debug views
+
 
 #ifdef PG_HAS_LIGHTS
 shared vec4 s_pos_radius[LIGHT_TILE];

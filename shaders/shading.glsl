@@ -6,6 +6,11 @@
 // Without PG_HAS_LIGHTS (0 lights in the scene) no light buffer is declared or read.
 // Debug views (PG_DEBUG_VIEW): 0 none, 1 cluster_heat, 2 cluster_x, 3 cluster_y, 4 cluster_z,
 // 5 overflow, 6 albedo, 7 normal, 8 depth.
+// PG_AMBIENT: the pass option "ambient", a run-time value: the including shader defines it to its
+// push-constant member (not a define per value, so a new ambient compiles no variant).
+#ifndef PG_AMBIENT
+#error "define PG_AMBIENT (the push-constant member holding the pass's ambient) before shading.glsl"
+#endif
 
 #ifdef PG_HAS_LIGHTS
 layout(set = 2, binding = 0, std430) readonly buffer Lights { Light lights[]; };

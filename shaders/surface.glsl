@@ -10,7 +10,9 @@
 // The fragment inputs come from surface_inputs.glsl (pg_surface_input()).
 layout(set = 1, binding = 0, std430) readonly buffer Materials { GpuMaterial materials[]; };
 layout(set = 1, binding = 1) uniform sampler2D textures[TEXTURE_COUNT];
-layout(push_constant) uniform DrawPush { uint material; } draw;
+// ambient: the pass's option "ambient" (a run-time value, the same for every draw; read by
+// forward.frag as PG_AMBIENT)
+layout(push_constant) uniform DrawPush { uint material; float ambient; } draw;
 
 // Texture slots (core/scene/scene.h PG_TEXSLOT_*)
 const int PG_SLOT_BASE = 0;

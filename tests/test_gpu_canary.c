@@ -7,7 +7,17 @@
  *    scene at 160x90 with 64 lights render with zero validation messages; then, one case per
  *    barrier kind, ONE barrier is removed from the compiled plan (pg_session_desc.test_edit_plan,
  *    after compile, before the runtime is built) and the frame must raise at least one
- *    synchronization-validation message (SYNC-HAZARD-*) counted by the messenger. */
+ *    synchronization-validation message (SYNC-HAZARD-*) counted by the messenger.
+ * 3. The frame-start barrier: with two frames in flight consecutive frames share the graph's
+ *    resources and only the full barrier that begins each frame's commands orders them. This test
+ *    turns on the layer's queue-submit synchronization validation (VK_LAYER_ENABLES +=
+ *    VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT: hazards between command
+ *    buffers of different submits; layer 1.3.239 leaves it off by default). 6 frames with 2 in
+ *    flight (no read-back, so the host does not wait for the frame it just submitted) raise no
+ *    message with the barrier on either pipeline, and on deferred_oct16.json (aliased G-buffer
+ *    transients) at least one SYNC-HAZARD without it (pg_runtime_test_drop_frame_barrier). On
+ *    naive.json the frame's first pass already waits for the previous frame (the light buffer's
+ *    frame-wrap barrier), so nothing is required there without it. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -89,6 +99,40 @@ static bool render(const pg_scene *scene, const pg_scene_gpu *sg, const char *pi
     return ok;
 }
 
+/* 6 frames with 2 in flight, no read-back; drop: without the frame-start barrier. */
+static bool frames_in_flight(const pg_scene *scene, const pg_scene_gpu *sg, const char *pipeline, bool drop,
+                             uint32_t *messages, uint32_t *hazards, uint32_t *overlapped)
+{
+    char path[PG_PATH_MAX];
+    pg_data_path(path, sizeof path, pipeline);
+    pg_session_desc sd = {.pipeline_path = path, .registry = &g_reg};
+    pg_session *s = NULL;
+    pg_error err = {0};
+    if (pg_session_create(g_gpu, sg, &sd, &s, &err) || pg_session_set_frames_in_flight(s, 2, &err)) {
+        CHECK_MSG(0, "%s: %s", pipeline, err.msg);
+        pg_session_destroy(s);
+        return false;
+    }
+    pg_runtime_test_drop_frame_barrier(s->runtime, drop);
+    uint32_t m0 = g_gpu->validation_messages, h0 = g_gpu->sync_hazards;
+    bool ok = true;
+    *overlapped = 0;
+    for (uint32_t k = 0; k < 6 && ok; k++) {
+        pg_frame_info fi = {.camera = pg_camera_default_for_scene(scene, (float)W / H),
+                            .lights = pg_light_setup_default(scene, 64, 7), .time = 0.1f * (float)k, .width = W,
+                            .height = H};
+        pg_frame_stats st;
+        ok = !pg_session_render(s, &fi, false, &st, &err);
+        CHECK_MSG(ok, "%s: frame %u: %s", pipeline, k, err.msg);
+        *overlapped += !st.reports_valid; /* returned with the frame still in flight */
+    }
+    if (ok) ok = !pg_runtime_wait_idle(s->runtime, &err);
+    pg_session_destroy(s);
+    *messages = g_gpu->validation_messages - m0;
+    *hazards = g_gpu->sync_hazards - h0;
+    return ok;
+}
+
 static void required(void)
 {
     /* the loader reads VK_LOADER_LAYERS_DISABLE at every instance creation */
@@ -113,6 +157,7 @@ int main(void)
     setvbuf(stdout, NULL, _IOLBF, 0);
     if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_canary", "PG_TEST_NO_GPU set");
     pg_register_builtin_passes(&g_reg);
+    pg_test_queue_submit_validation(); /* hazards across submits (two frames in flight) */
     required();
     pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
     pg_error err = {0};
@@ -164,6 +209,20 @@ int main(void)
         CHECK_MSG(c->removed == 1, "%s: barrier %s/%s (%s) not found in the plan", cases[i].pipeline, c->pass,
                   c->resource, c->why);
         CHECK_MSG(!ok || h >= 1, "%s: removing the %s raised no SYNC-HAZARD message", cases[i].pipeline, c->what);
+    }
+
+    for (size_t i = 0; i < sizeof pipelines / sizeof pipelines[0]; i++) {
+        for (int drop = 0; drop < 2; drop++) {
+            uint32_t m = 0, h = 0, ov = 0;
+            bool ok = frames_in_flight(scene, sg, pipelines[i], drop, &m, &h, &ov);
+            printf("2 in flight, %s the frame-start barrier: %s: %u validation message(s), %u SYNC-HAZARD "
+                   "(%u of 6 calls returned with the frame in flight)\n",
+                   drop ? "without" : "with", pipelines[i], m, h, ov);
+            CHECK_MSG(ov >= 1, "%s: the frames never overlapped (host never ahead)", pipelines[i]);
+            if (drop && strstr(pipelines[i], "deferred"))
+                CHECK_MSG(!ok || h >= 1, "%s: without the frame-start barrier: no SYNC-HAZARD", pipelines[i]);
+            else CHECK_MSG(ok && m == 0, "%s: with the frame-start barrier: %u validation message(s)", pipelines[i], m);
+        }
     }
 
     pg_scene_gpu_destroy(g_gpu, sg);

@@ -103,6 +103,7 @@ int main(void)
     setvbuf(stdout, NULL, _IOLBF, 0);
     if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_fif", "PG_TEST_NO_GPU set");
     pg_register_builtin_passes(&g_reg);
+    pg_test_queue_submit_validation(); /* hazards between frames in flight too */
     pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
     pg_error err = {0};
     if (pg_gpu_create(&gd, &g_gpu, &err)) {

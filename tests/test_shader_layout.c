@@ -56,7 +56,7 @@ int main(void)
     for (int t = 0; t < 2; t++) {
         const char *defs[] = {"PG_GBUFFER_OCT16", tiles[t], "PG_HDR_FORMAT=rgba16f", "PG_TILE_LIGHTS",
                               "PG_TILE_SUBGROUPS", "PG_CLUSTERED", "PG_HAS_LIGHTS", "GRID_X=16", "GRID_Y=9",
-                              "GRID_Z=24", "PG_AMBIENT=0", "PG_DEBUG_VIEW=0"};
+                              "GRID_Z=24", "PG_DEBUG_VIEW=0"};
         uint32_t *spv = NULL;
         size_t n = 0;
         pg_error err = {0};

@@ -33,5 +33,9 @@ extern int pg_test_passed, pg_test_failed;
 int pg_test_finish(const char *suite);
 /* Returns 77 (ctest SKIP) after printing why. */
 int pg_test_skip(const char *suite, const char *why);
+/* Asks the validation layer (created after this call) to check synchronization across queue
+ * submissions too (VK_LAYER_ENABLES += VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT;
+ * off by default in layer 1.3.239): hazards between frames in flight. */
+void pg_test_queue_submit_validation(void);
 
 #endif

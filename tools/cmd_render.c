@@ -194,6 +194,17 @@ int pg_cmd_render(int argc, char **argv)
                "requirements; %u block(s) split at run time)\n",
                (unsigned long long)rs.memory_bytes_unaliased, (unsigned long long)rs.memory_bytes_transient,
                rs.blocks_fallback);
+        printf("explain: runtime: plans set: memory %u, resources %u, pipelines %u, values %u (last: %s); run-time "
+               "options (a new value re-creates nothing):",
+               rs.memory_rebuilds, rs.resource_rebuilds, rs.pipeline_rebuilds, rs.value_updates,
+               pg_rebuild_kind_name(rs.last_rebuild));
+        uint32_t n_rt = 0;
+        for (uint32_t o = 0; o < s->plan->n_order; o++) {
+            const pg_plan_pass *pp = &s->plan->passes[s->plan->order[o]];
+            for (uint32_t k = 0; pp->type->runtime_options && pp->type->runtime_options[k]; k++, n_rt++)
+                printf(" %s.%s", pp->name, pp->type->runtime_options[k]);
+        }
+        printf("%s\n", n_rt ? "" : " none");
         for (uint32_t k = 0; k < app.scene->n_warnings; k++)
             printf("explain: scene warning: %s\n", app.scene->warnings[k]);
     }

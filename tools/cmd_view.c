@@ -322,8 +322,9 @@ int pg_cmd_view(int argc, char **argv)
         v->want_rdoc = false;
         v->rdoc_file[0] = 0;
         if (v->reloads != loads_before) /* the switch as the user waits for it */
-            printf("view: frame %u: %s ready in %.1f ms (load, compile, first frame)\n", frame, v->names[v->current],
-                   (now_s() - t_load) * 1e3);
+            printf("view: frame %u: %s ready in %.1f ms (load, compile, first frame; rebuilt: %s)\n", frame,
+                   v->names[v->current], (now_s() - t_load) * 1e3,
+                   pg_rebuild_kind_name(pg_runtime_get_stats(v->session->runtime).last_rebuild));
         v->want_shot = false;
         frame++;
         if (frame == 100) {

@@ -103,6 +103,31 @@ pg_result open_session(viewer *v, const char *path, bool with_overrides, pg_sess
     return r;
 }
 
+/* The running session has the viewer's current application settings. */
+static bool same_settings(const viewer *v, const pg_session *s)
+{
+    if (s->desc.n_settings != v->n_settings) return false;
+    for (uint32_t i = 0; i < v->n_settings; i++)
+        if (strcmp(s->desc.settings[i].key, v->settings[i].key) || strcmp(s->desc.settings[i].value, v->settings[i].value))
+            return false;
+    return true;
+}
+
+/* Reloads the running session in place (pg_session_reload: the runtime re-creates only what the
+ * new plan needs, nothing for a run-time option such as exposure or ambient). */
+static pg_result reload_in_place(viewer *v, const char *path, pg_error *err)
+{
+    pg_param_override ov[MAX_OVERRIDES];
+    uint32_t n = 0;
+    pg_pipeline *probe = NULL;
+    pg_result r = pg_pipeline_load(path, NULL, 0, &probe, err);
+    if (r) return r;
+    for (int i = 0; i < v->n_ov; i++)
+        if (pg_pipeline_find_param(probe, v->ov_key[i])) ov[n++] = (pg_param_override){v->ov_key[i], v->ov_val[i]};
+    pg_pipeline_free(probe);
+    return pg_session_reload(v->session, path, ov, n, err);
+}
+
 /* Loads the requested pipeline; on failure keeps the running one and shows the error. */
 void reload(viewer *v)
 {
@@ -111,6 +136,21 @@ void reload(viewer *v)
     pg_session *s = NULL;
     int idx = v->requested;
     if (idx < 0 || idx >= v->n_pipelines) idx = v->current;
+    if (v->session && same_settings(v, v->session)) {
+        if (reload_in_place(v, v->paths[idx], &err)) {
+            snprintf(v->error, sizeof v->error, "%s", err.msg);
+            fprintf(stderr, "passgraph view: %s\n", err.msg);
+            v->requested = v->current;
+            return;
+        }
+        if (idx != v->current) v->hist_n = 0;
+        v->current = idx;
+        v->requested = idx;
+        v->cycle_tried[0] = 0;
+        v->error[0] = 0;
+        v->reloads++;
+        return;
+    }
     if (open_session(v, v->paths[idx], true, &s, &err) == PG_OK) {
         /* compile now so a bad combination shows here and the old graph keeps running */
         pg_frame_info fi = pg_app_frame(&v->app);

@@ -243,6 +243,9 @@ void build_ui(viewer *v)
                        rs.memory_bytes_transient / 1048576.0);
             pg_ui_text("passes run %u, culled %u; resources rebuilt %u times", p->n_order, p->n_passes - p->n_order,
                        rs.resource_creations);
+            pg_ui_text("plan changes: memory %u, resources %u, pipelines %u, values %u; last: %s", rs.memory_rebuilds,
+                       rs.resource_rebuilds, rs.pipeline_rebuilds, rs.value_updates,
+                       pg_rebuild_kind_name(rs.last_rebuild));
             memory_timeline(p);
         }
         if (v->session && v->session->plan && pg_ui_header("Left out and culled", false)) {

@@ -114,6 +114,12 @@ typedef struct pg_pass_type {
     /* Optional: counters the pass measured in the frame that just finished (called after the
      * frame's fence), e.g. cluster overflow. */
     void (*report)(void *self, struct pg_pass_report *out);
+    /* Optional: NULL-terminated option keys that are run-time values (e.g. "exposure"): they
+     * select no shader variant and size nothing, so a new value re-creates no Vulkan object;
+     * pg_runtime_set_plan() keeps the instance and calls update() with the new desc. declare()
+     * still validates them. A type that lists any must have update(). */
+    const char *const *runtime_options;
+    pg_result (*update)(void *self, const pg_pass_desc *desc, pg_error *err);
 } pg_pass_type;
 
 #define PG_MAX_PASS_COUNTERS 12

@@ -31,6 +31,10 @@ pg_result pg_registry_add(pg_pass_registry *reg, const pg_pass_type *type, pg_er
     if (!reg || !type || !type->name || !type->name[0] || !type->declare)
         return pg_fail(err, PG_ERR_INVALID_ARG,
                        "pg_registry_add: a pass type needs a name and a declare function");
+    if (type->runtime_options && type->runtime_options[0] && !type->update)
+        return pg_fail(err, PG_ERR_INVALID_ARG,
+                       "pass type '%s' lists run-time options ('%s', ...) but has no update()", type->name,
+                       type->runtime_options[0]);
     if (pg_registry_find(reg, type->name))
         return pg_fail(err, PG_ERR_INVALID_ARG, "pass type '%s' is registered twice", type->name);
     const uint32_t cap = (uint32_t)(sizeof reg->types / sizeof reg->types[0]);

@@ -23,11 +23,14 @@ struct pg_runtime {
     const pg_scene_gpu *scene;
     uint32_t width, height;
     uint32_t frame_size;             /* bytes of the caller's per-frame block */
-    uint64_t signature;
+    uint64_t mem_sig, pipe_sig, val_sig; /* see memory_signature, pipeline_signature, value_signature */
     bool built;
     pg_phys_resource res[PG_MAX_RESOURCES];
     bool persistent_initialized[PG_MAX_RESOURCES];
     VkDeviceMemory block_memory[PG_MAX_RESOURCES];
+    VkDeviceSize block_memory_size[PG_MAX_RESOURCES];
+    int block_memory_of[PG_MAX_RESOURCES];   /* the plan block each block_memory belongs to */
+    bool block_split[PG_MAX_RESOURCES];      /* plan block split at run time (blocks_fallback) */
     void *pass_state[PG_MAX_PASSES]; /* indexed like plan->passes */
     /* frame constants */
     VkDescriptorSetLayout frame_layout;
@@ -46,6 +49,7 @@ struct pg_runtime {
         pg_buffer timestamps;      /* the query results, copied at the end of the frame */
         pg_buffer readback[2];
     } slot[PG_MAX_FRAMES_IN_FLIGHT];
+    bool test_no_frame_barrier;    /* pg_runtime_test_drop_frame_barrier */
     uint32_t n_in_flight, cur;     /* cur: the slot of the last submitted frame */
     uint64_t frame_no;
     uint32_t n_queries;
@@ -92,13 +96,111 @@ static uint64_t fnv(uint64_t h, const void *data, size_t n)
     return h;
 }
 
-/* Everything that decides which Vulkan objects exist. Options are hashed as printed JSON. */
-static uint64_t plan_signature(const pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pl,
-                               const pg_scene_gpu *scene, uint32_t w, uint32_t h)
+static bool is_runtime_option(const pg_pass_type *t, const char *key)
+{
+    for (uint32_t i = 0; t->runtime_options && t->runtime_options[i]; i++)
+        if (key && !strcmp(t->runtime_options[i], key)) return true;
+    return false;
+}
+
+/* A pass's options, key by key, as printed JSON; runtime: only (true) or all but (false) the
+ * options its type lists in pg_pass_type.runtime_options. */
+static uint64_t hash_options(uint64_t s, const pg_pass_type *t, const cJSON *options, bool runtime)
+{
+    const cJSON *it;
+    cJSON_ArrayForEach(it, options)
+    {
+        if (is_runtime_option(t, it->string) != runtime) continue;
+        char *txt = cJSON_PrintUnformatted(it);
+        s = fnv(s, it->string ? it->string : "", it->string ? strlen(it->string) + 1 : 1);
+        if (txt) {
+            s = fnv(s, txt, strlen(txt) + 1);
+            cJSON_free(txt);
+        }
+    }
+    return s;
+}
+
+/* One resource's part of the memory signature: its size, format, usage, lifetime, memory block
+ * and what places it there (first and last pass, may_inherit). */
+static uint64_t resource_signature(uint64_t s, const pg_plan_resource *r)
+{
+    s = fnv(s, r->name, strlen(r->name) + 1);
+    s = fnv(s, &r->kind, sizeof r->kind);
+    s = fnv(s, &r->format, sizeof r->format);
+    s = fnv(s, &r->width, sizeof r->width);
+    s = fnv(s, &r->height, sizeof r->height);
+    s = fnv(s, &r->size_bytes, sizeof r->size_bytes);
+    s = fnv(s, &r->usage, sizeof r->usage);
+    s = fnv(s, &r->culled, sizeof r->culled);
+    s = fnv(s, &r->growable, sizeof r->growable);
+    s = fnv(s, &r->block, sizeof r->block);
+    s = fnv(s, &r->lifetime, sizeof r->lifetime);
+    s = fnv(s, &r->first_pass, sizeof r->first_pass);
+    s = fnv(s, &r->last_pass, sizeof r->last_pass);
+    s = fnv(s, &r->may_inherit, sizeof r->may_inherit);
+    return s;
+}
+
+/* (a) What needs new physical resources: the output size, every resource's part
+ * (resource_signature), and which resources are the outputs (the readback buffers). */
+static uint64_t memory_signature(const pg_graph_plan *plan, uint32_t w, uint32_t h)
 {
     uint64_t s = 1469598103934665603ull;
     s = fnv(s, &w, sizeof w);
     s = fnv(s, &h, sizeof h);
+    s = fnv(s, &plan->n_resources, sizeof plan->n_resources);
+    s = fnv(s, &plan->n_blocks, sizeof plan->n_blocks);
+    s = fnv(s, &plan->output, sizeof plan->output);
+    s = fnv(s, &plan->hdr_output, sizeof plan->hdr_output);
+    for (uint32_t i = 0; i < plan->n_resources; i++) s = resource_signature(s, &plan->resources[i]);
+    return s;
+}
+
+static bool same_members(const pg_plan_block *a, const pg_plan_block *b)
+{
+    return a->n_members == b->n_members && !memcmp(a->members, b->members, sizeof(int) * a->n_members);
+}
+
+/* Which resources of the new plan differ from the built plan's (changed[i]) and which memory
+ * blocks hold one (dirty[b]), when the rest can be kept: same size, outputs, number of resources
+ * and blocks, each changed resource keeps its name, kind and block, a dirty block keeps its
+ * members (all of them are then re-created and the block packed again). E.g. the light buffer
+ * after a new light count. false: nothing changed, or a full memory rebuild is needed. */
+static bool resources_changed(const pg_runtime *rt, const pg_graph_plan *plan, uint32_t w, uint32_t h,
+                              bool *changed, bool *dirty)
+{
+    const pg_graph_plan *old = rt->plan;
+    if (!rt->built || !old || w != rt->width || h != rt->height || plan->n_resources != old->n_resources ||
+        plan->n_blocks != old->n_blocks || plan->output != old->output || plan->hdr_output != old->hdr_output)
+        return false;
+    uint32_t n = 0;
+    memset(dirty, 0, sizeof(bool) * PG_MAX_RESOURCES);
+    for (uint32_t i = 0; i < plan->n_resources; i++) {
+        const pg_plan_resource *a = &old->resources[i], *b = &plan->resources[i];
+        changed[i] = resource_signature(0, a) != resource_signature(0, b);
+        if (!changed[i]) continue;
+        if (a->block != b->block || (int)i == plan->output || (int)i == plan->hdr_output || strcmp(a->name, b->name) ||
+            a->kind != b->kind)
+            return false;
+        if (b->block >= 0) {
+            if (!same_members(&old->blocks[b->block], &plan->blocks[b->block])) return false;
+            dirty[b->block] = true;
+        }
+        n++;
+    }
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        for (uint32_t m = 0; dirty[b] && m < plan->blocks[b].n_members; m++) changed[plan->blocks[b].members[m]] = true;
+    return n > 0;
+}
+
+/* (b) What needs new pass instances: the scene, the settings, the executed passes in order with
+ * their types, shader variants (defines), bound resources and the options that are not run-time
+ * values (pg_pass_type.runtime_options). */
+static uint64_t pipeline_signature(const pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pl,
+                                   const pg_scene_gpu *scene)
+{
+    uint64_t s = 1469598103934665603ull;
     s = fnv(s, &scene, sizeof scene);
     for (uint32_t i = 0; i < rt->n_settings; i++) {
         const char *k = rt->settings[i].key ? rt->settings[i].key : "";
@@ -106,43 +208,68 @@ static uint64_t plan_signature(const pg_runtime *rt, const pg_graph_plan *plan, 
         s = fnv(s, k, strlen(k) + 1);
         s = fnv(s, v, strlen(v) + 1);
     }
-    for (uint32_t i = 0; i < plan->n_resources; i++) {
-        const pg_plan_resource *r = &plan->resources[i];
-        s = fnv(s, r->name, strlen(r->name));
-        s = fnv(s, &r->kind, sizeof r->kind);
-        s = fnv(s, &r->format, sizeof r->format);
-        s = fnv(s, &r->width, sizeof r->width);
-        s = fnv(s, &r->height, sizeof r->height);
-        s = fnv(s, &r->size_bytes, sizeof r->size_bytes);
-        s = fnv(s, &r->usage, sizeof r->usage);
-        s = fnv(s, &r->culled, sizeof r->culled);
-        s = fnv(s, &r->block, sizeof r->block);
-        s = fnv(s, &r->lifetime, sizeof r->lifetime);
-    }
+    s = fnv(s, &plan->n_order, sizeof plan->n_order);
     for (uint32_t i = 0; i < plan->n_order; i++) {
         const pg_plan_pass *p = &plan->passes[plan->order[i]];
-        s = fnv(s, p->name, strlen(p->name));
-        s = fnv(s, p->type->name, strlen(p->type->name));
-        for (uint32_t d = 0; d < p->decl.n_defines; d++) s = fnv(s, p->decl.defines[d], strlen(p->decl.defines[d]));
-        const pg_pass_desc *desc = &pl->passes[p->desc_index];
-        char *txt = desc->options ? cJSON_PrintUnformatted(desc->options) : NULL;
-        if (txt) {
-            s = fnv(s, txt, strlen(txt));
-            cJSON_free(txt);
+        s = fnv(s, &plan->order[i], sizeof plan->order[i]);
+        s = fnv(s, p->name, strlen(p->name) + 1);
+        s = fnv(s, p->type->name, strlen(p->type->name) + 1);
+        for (uint32_t d = 0; d < p->decl.n_defines; d++)
+            s = fnv(s, p->decl.defines[d], strlen(p->decl.defines[d]) + 1);
+        s = hash_options(s, p->type, pl->passes[p->desc_index].options, false);
+        s = fnv(s, &p->n_slots, sizeof p->n_slots);
+        for (uint32_t k = 0; k < p->n_slots; k++) {
+            s = fnv(s, &p->slots[k].resource, sizeof(int));
+            s = fnv(s, &p->slots[k].decl.unused, sizeof(bool));
         }
-        for (uint32_t k = 0; k < p->n_slots; k++) s = fnv(s, &p->slots[k].resource, sizeof(int));
     }
+    return s;
+}
+
+/* (c) The run-time values: the options the pass types list as such (pass.update() gets them). */
+static uint64_t value_signature(const pg_graph_plan *plan, const pg_pipeline *pl)
+{
+    uint64_t s = 1469598103934665603ull;
+    for (uint32_t i = 0; i < plan->n_order; i++) {
+        const pg_plan_pass *p = &plan->passes[plan->order[i]];
+        s = hash_options(s, p->type, pl->passes[p->desc_index].options, true);
+    }
+    return s;
+}
+
+/* The state a persistent resource is assumed to start each frame in (its frame-wrap barriers):
+ * kept contents are only valid for a new plan that assumes the same. */
+static uint64_t wrap_signature(const pg_graph_plan *plan, int ri)
+{
+    uint64_t s = 1469598103934665603ull;
+    for (uint32_t o = 0; o < plan->n_order; o++) {
+        const pg_plan_pass *p = &plan->passes[plan->order[o]];
+        for (uint32_t b = 0; b < p->n_barriers; b++) {
+            const pg_barrier *br = &p->barriers[b];
+            if (br->resource != ri || !br->wrap) continue;
+            s = fnv(s, &o, sizeof o);
+            s = fnv(s, &br->old_layout, sizeof br->old_layout);
+            s = fnv(s, &br->src_stages, sizeof br->src_stages);
+            s = fnv(s, &br->src_access, sizeof br->src_access);
+        }
+    }
+    for (uint32_t o = 0; o < plan->n_order; o++) { /* and the layout of every access */
+        const pg_plan_pass *p = &plan->passes[plan->order[o]];
+        for (uint32_t k = 0; k < p->n_slots; k++)
+            if (p->slots[k].resource == ri) s = fnv(s, &p->slots[k].sync.layout, sizeof(uint32_t));
+    }
+    for (uint32_t b = 0; b < plan->n_final_barriers; b++)
+        if (plan->final_barriers[b].resource == ri) s = fnv(s, &plan->final_barriers[b].new_layout, sizeof(uint32_t));
     return s;
 }
 
 /* With frames in flight, the most frames between two readings of the pass reports. */
 #define PG_REPORT_EVERY 8
 
-static void destroy_built(pg_runtime *rt)
+/* The pass instances and the per-plan query pools (the device must be idle). */
+static void destroy_passes(pg_runtime *rt)
 {
     pg_gpu *gpu = rt->gpu;
-    if (!rt->built && !rt->plan) return;
-    vkDeviceWaitIdle(gpu->device);
     if (rt->plan) {
         for (uint32_t i = 0; i < rt->plan->n_passes; i++) {
             if (rt->pass_state[i]) {
@@ -152,6 +279,22 @@ static void destroy_built(pg_runtime *rt)
             }
         }
     }
+    for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
+        if (rt->slot[f].queries) vkDestroyQueryPool(gpu->device, rt->slot[f].queries, NULL);
+        pg_buffer_destroy(gpu, &rt->slot[f].timestamps);
+        rt->slot[f].queries = VK_NULL_HANDLE;
+        rt->slot[f].pending = false; /* the device is idle: every fence has signalled */
+    }
+    rt->gpu_valid = false;
+    memset(rt->gpu_hist, 0, sizeof rt->gpu_hist);
+}
+
+static void destroy_built(pg_runtime *rt)
+{
+    pg_gpu *gpu = rt->gpu;
+    if (!rt->built && !rt->plan) return;
+    vkDeviceWaitIdle(gpu->device);
+    destroy_passes(rt);
     for (uint32_t i = 0; i < PG_MAX_RESOURCES; i++) {
         pg_phys_resource *r = &rt->res[i];
         if (r->view) vkDestroyImageView(gpu->device, r->view, NULL);
@@ -161,18 +304,13 @@ static void destroy_built(pg_runtime *rt)
         memset(r, 0, sizeof *r);
         if (rt->block_memory[i]) pg_gpu_free_memory(gpu, rt->block_memory[i]);
         rt->block_memory[i] = VK_NULL_HANDLE;
+        rt->block_memory_size[i] = 0;
+        rt->block_split[i] = false;
         rt->persistent_initialized[i] = false;
     }
-    for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
+    for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++)
         for (int i = 0; i < 2; i++) pg_buffer_destroy(gpu, &rt->slot[f].readback[i]);
-        if (rt->slot[f].queries) vkDestroyQueryPool(gpu->device, rt->slot[f].queries, NULL);
-        pg_buffer_destroy(gpu, &rt->slot[f].timestamps);
-        rt->slot[f].queries = VK_NULL_HANDLE;
-        rt->slot[f].pending = false; /* the device is idle: every fence has signalled */
-    }
     rt->readback_valid[0] = rt->readback_valid[1] = false;
-    rt->gpu_valid = false;
-    memset(rt->gpu_hist, 0, sizeof rt->gpu_hist);
     rt->built = false;
 }
 
@@ -383,7 +521,71 @@ static pg_result create_pass(pg_runtime *rt, int pi, pg_error *err)
     return PG_OK;
 }
 
-static pg_result build(pg_runtime *rt, pg_error *err)
+/* Packs plan block b again with the real memory requirements of its members (created unbound),
+ * allocates its memory (one VkDeviceMemory per sub-block, in free block_memory slots) and binds
+ * them; bound[m] is set for each member bound. */
+static pg_result build_block(pg_runtime *rt, uint32_t b, bool *bound, pg_error *err)
+{
+    const pg_graph_plan *plan = rt->plan;
+    const pg_plan_block *blk = &plan->blocks[b];
+    pg_result r;
+    pg_pack_item items[PG_MAX_RESOURCES];
+    pg_pack_place place[PG_MAX_RESOURCES];
+    pg_pack_block sub[PG_MAX_RESOURCES];
+    for (uint32_t m = 0; m < blk->n_members; m++) {
+        const pg_plan_resource *pr = &plan->resources[blk->members[m]];
+        VkMemoryRequirements req = requirements(rt, blk->members[m]);
+        items[m] = (pg_pack_item){.size = req.size, .alignment = req.alignment,
+                                  .type_bits = req.memoryTypeBits, .klass = 0,
+                                  .first = pr->first_pass, .last = pr->last_pass,
+                                  .may_inherit = pr->may_inherit};
+        rt->stats.memory_bytes_unaliased += req.size;
+    }
+    const int n_sub = pg_alias_pack(items, blk->n_members, true, place, sub);
+    if (n_sub < 0) return pg_fail(err, PG_ERR_LIMIT, "block%u: too many members", b);
+    rt->block_split[b] = n_sub > 1;
+    if (n_sub > 1) rt->stats.blocks_fallback++;
+    for (int sb = 0; sb < n_sub; sb++) {
+        if (sub[sb].type_bits == 0) continue; /* a member no memory type fits: fails below */
+        uint32_t slot = 0;
+        while (slot < PG_MAX_RESOURCES && rt->block_memory[slot]) slot++;
+        if (slot >= PG_MAX_RESOURCES) return pg_fail(err, PG_ERR_LIMIT, "too many memory blocks");
+        char name[64];
+        snprintf(name, sizeof name, n_sub > 1 ? "block%u.%d" : "block%u", b, sb);
+        if ((r = alloc(rt, sub[sb].size, sub[sb].type_bits, name, &rt->block_memory[slot], err))) return r;
+        rt->block_memory_size[slot] = sub[sb].size;
+        rt->block_memory_of[slot] = (int)b;
+        rt->stats.memory_bytes_transient += sub[sb].size;
+        for (uint32_t m = 0; m < blk->n_members; m++) {
+            if (place[m].block != sb) continue;
+            rt->res[blk->members[m]].memory = rt->block_memory[slot];
+            rt->res[blk->members[m]].memory_offset = place[m].offset;
+            rt->res[blk->members[m]].memory_size = items[m].size;
+            if ((r = bind(rt, blk->members[m], rt->block_memory[slot], place[m].offset, err))) return r;
+            bound[blk->members[m]] = true;
+        }
+    }
+    return PG_OK;
+}
+
+/* An own allocation for resource i (not in a block, or its block could not hold it). */
+static pg_result build_own(pg_runtime *rt, int i, pg_error *err)
+{
+    const pg_plan_resource *pr = &rt->plan->resources[i];
+    VkMemoryRequirements req = requirements(rt, i);
+    pg_result r = alloc(rt, req.size, req.memoryTypeBits, pr->name, &rt->res[i].own_memory, err);
+    if (r) return r;
+    if (pr->lifetime == PG_LIFETIME_TRANSIENT) {
+        rt->stats.memory_bytes_transient += req.size;
+        rt->stats.memory_bytes_unaliased += req.size; /* e.g. "grow" buffers: never aliased */
+    }
+    rt->res[i].memory = rt->res[i].own_memory;
+    rt->res[i].memory_size = req.size;
+    return bind(rt, i, rt->res[i].own_memory, 0, err);
+}
+
+/* The physical resources (memory blocks, own allocations) and the readback buffers. */
+static pg_result build_memory(pg_runtime *rt, pg_error *err)
 {
     const pg_graph_plan *plan = rt->plan;
     pg_gpu *gpu = rt->gpu;
@@ -400,54 +602,11 @@ static pg_result build(pg_runtime *rt, pg_error *err)
      * only if the plan's alias barriers order them; members without a common memory type end up
      * in separate allocations */
     bool bound[PG_MAX_RESOURCES] = {0};
-    uint32_t n_mem = 0;
-    for (uint32_t b = 0; b < plan->n_blocks; b++) {
-        const pg_plan_block *blk = &plan->blocks[b];
-        pg_pack_item items[PG_MAX_RESOURCES];
-        pg_pack_place place[PG_MAX_RESOURCES];
-        pg_pack_block sub[PG_MAX_RESOURCES];
-        for (uint32_t m = 0; m < blk->n_members; m++) {
-            const pg_plan_resource *pr = &plan->resources[blk->members[m]];
-            VkMemoryRequirements req = requirements(rt, blk->members[m]);
-            items[m] = (pg_pack_item){.size = req.size, .alignment = req.alignment,
-                                      .type_bits = req.memoryTypeBits, .klass = 0,
-                                      .first = pr->first_pass, .last = pr->last_pass,
-                                      .may_inherit = pr->may_inherit};
-            rt->stats.memory_bytes_unaliased += req.size;
-        }
-        const int n_sub = pg_alias_pack(items, blk->n_members, true, place, sub);
-        if (n_sub < 0) return pg_fail(err, PG_ERR_LIMIT, "block%u: too many members", b);
-        if (n_sub > 1) rt->stats.blocks_fallback++;
-        for (int sb = 0; sb < n_sub; sb++) {
-            if (sub[sb].type_bits == 0) continue; /* a member no memory type fits: fails below */
-            if (n_mem >= PG_MAX_RESOURCES) return pg_fail(err, PG_ERR_LIMIT, "too many memory blocks");
-            char name[64];
-            snprintf(name, sizeof name, n_sub > 1 ? "block%u.%d" : "block%u", b, sb);
-            if ((r = alloc(rt, sub[sb].size, sub[sb].type_bits, name, &rt->block_memory[n_mem], err))) return r;
-            rt->stats.memory_bytes_transient += sub[sb].size;
-            for (uint32_t m = 0; m < blk->n_members; m++) {
-                if (place[m].block != sb) continue;
-                rt->res[blk->members[m]].memory = rt->block_memory[n_mem];
-                rt->res[blk->members[m]].memory_offset = place[m].offset;
-                rt->res[blk->members[m]].memory_size = items[m].size;
-                if ((r = bind(rt, blk->members[m], rt->block_memory[n_mem], place[m].offset, err))) return r;
-                bound[blk->members[m]] = true;
-            }
-            n_mem++;
-        }
-    }
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        if ((r = build_block(rt, b, bound, err))) return r;
     for (uint32_t i = 0; i < plan->n_resources; i++) {
         if (plan->resources[i].culled || bound[i]) continue;
-        VkMemoryRequirements req = requirements(rt, (int)i);
-        if ((r = alloc(rt, req.size, req.memoryTypeBits, plan->resources[i].name, &rt->res[i].own_memory, err)))
-            return r;
-        if (plan->resources[i].lifetime == PG_LIFETIME_TRANSIENT) {
-            rt->stats.memory_bytes_transient += req.size;
-            rt->stats.memory_bytes_unaliased += req.size; /* e.g. "grow" buffers: never aliased */
-        }
-        rt->res[i].memory = rt->res[i].own_memory;
-        rt->res[i].memory_size = req.size;
-        if ((r = bind(rt, (int)i, rt->res[i].own_memory, 0, err))) return r;
+        if ((r = build_own(rt, (int)i, err))) return r;
     }
     /* readback buffers */
     int outs[2] = {plan->output, plan->hdr_output};
@@ -463,6 +622,15 @@ static pg_result build(pg_runtime *rt, pg_error *err)
                 return r;
         }
     }
+    return PG_OK;
+}
+
+/* The per-plan query pools and the pass instances, on the physical resources built. */
+static pg_result build_passes(pg_runtime *rt, pg_error *err)
+{
+    const pg_graph_plan *plan = rt->plan;
+    pg_gpu *gpu = rt->gpu;
+    pg_result r;
     rt->n_queries = plan->n_order + 1;
     if (gpu->timestamp_valid_bits) {
         VkQueryPoolCreateInfo qci = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
@@ -480,7 +648,6 @@ static pg_result build(pg_runtime *rt, pg_error *err)
     /* pass instances */
     for (uint32_t o = 0; o < plan->n_order; o++)
         if ((r = create_pass(rt, plan->order[o], err))) return r;
-    rt->built = true;
     return PG_OK;
 }
 
@@ -613,31 +780,134 @@ const char *pg_ctx_setting(const pg_pass_create_ctx *ctx, const char *key)
     return found;
 }
 
+/* Re-creates the changed resources of the (new) plan and packs the dirty blocks again (the
+ * passes are destroyed, the device idle); the other resources and blocks are untouched. */
+static pg_result recreate_resources(pg_runtime *rt, const bool *changed, const bool *dirty, pg_error *err)
+{
+    pg_gpu *gpu = rt->gpu;
+    const pg_graph_plan *plan = rt->plan;
+    pg_result r;
+    for (uint32_t i = 0; i < plan->n_resources; i++) {
+        if (!changed[i]) continue;
+        pg_phys_resource *p = &rt->res[i];
+        /* what build_memory counted for it: block members' requirements, transient own allocations */
+        if (plan->resources[i].block >= 0) rt->stats.memory_bytes_unaliased -= p->memory_size;
+        else if (p->own_memory && plan->resources[i].lifetime == PG_LIFETIME_TRANSIENT) {
+            rt->stats.memory_bytes_transient -= p->memory_size;
+            rt->stats.memory_bytes_unaliased -= p->memory_size;
+        }
+        if (p->view) vkDestroyImageView(gpu->device, p->view, NULL);
+        if (p->image) vkDestroyImage(gpu->device, p->image, NULL);
+        if (p->buffer) vkDestroyBuffer(gpu->device, p->buffer, NULL);
+        if (p->own_memory) pg_gpu_free_memory(gpu, p->own_memory);
+        memset(p, 0, sizeof *p);
+        rt->persistent_initialized[i] = false;
+    }
+    for (uint32_t k = 0; k < PG_MAX_RESOURCES; k++) {
+        if (!rt->block_memory[k] || !dirty[rt->block_memory_of[k]]) continue;
+        pg_gpu_free_memory(gpu, rt->block_memory[k]);
+        rt->stats.memory_bytes_transient -= rt->block_memory_size[k];
+        rt->block_memory[k] = VK_NULL_HANDLE;
+        rt->block_memory_size[k] = 0;
+    }
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        if (dirty[b] && rt->block_split[b]) rt->stats.blocks_fallback--;
+    for (uint32_t i = 0; i < plan->n_resources; i++)
+        if (changed[i] && !plan->resources[i].culled && (r = create_unbound(rt, (int)i, err))) return r;
+    bool bound[PG_MAX_RESOURCES] = {0};
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        if (dirty[b] && (r = build_block(rt, b, bound, err))) return r;
+    for (uint32_t i = 0; i < plan->n_resources; i++)
+        if (changed[i] && !plan->resources[i].culled && !bound[i] && (r = build_own(rt, (int)i, err))) return r;
+    return PG_OK;
+}
+
+/* Only the run-time values changed: every kept pass instance re-reads its options. */
+static pg_result update_values(pg_runtime *rt, pg_error *err)
+{
+    for (uint32_t o = 0; o < rt->plan->n_order; o++) {
+        int pi = rt->plan->order[o];
+        const pg_plan_pass *pass = &rt->plan->passes[pi];
+        if (!pass->type->update || !rt->pass_state[pi]) continue;
+        pg_result r = pass->type->update(rt->pass_state[pi], &rt->pipeline->passes[pass->desc_index], err);
+        if (r) return pg_error_prefix(err, "pass '%s' (%s)", pass->name, pass->type->name);
+    }
+    return PG_OK;
+}
+
 pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
                               const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err)
 {
-    uint64_t sig = plan_signature(rt, plan, pipeline, scene, width, height);
+    const uint64_t msig = memory_signature(plan, width, height);
+    const uint64_t psig = pipeline_signature(rt, plan, pipeline, scene);
+    const uint64_t vsig = value_signature(plan, pipeline);
     rt->report_due = true; /* a new light count may need a buffer to grow: read the next report */
-    if (rt->built && sig == rt->signature) {
-        /* same physical layout: keep every object, adopt the new (identical) plan */
+    pg_result r;
+    if (rt->built && msig == rt->mem_sig && psig == rt->pipe_sig) {
+        /* same resources and pass instances: keep every object, adopt the new plan; only the
+         * run-time values may differ */
         rt->plan = plan;
         rt->pipeline = pipeline;
         rt->scene = scene;
-        return PG_OK;
+        if (vsig == rt->val_sig) {
+            rt->stats.last_rebuild = PG_REBUILD_NONE;
+            return PG_OK;
+        }
+        rt->stats.value_updates++;
+        rt->stats.last_rebuild = PG_REBUILD_VALUES;
+        /* a frame in flight may still read the old values only through its command buffer
+         * (push constants are recorded), so no wait is needed */
+        r = update_values(rt, err);
+        rt->val_sig = r ? 0 : vsig; /* failed: the next plan updates again */
+        return r;
     }
-    destroy_built(rt);
-    rt->plan = plan;
-    rt->pipeline = pipeline;
-    rt->scene = scene;
-    rt->width = width;
-    rt->height = height;
-    rt->signature = sig;
-    pg_result r = build(rt, err);
+    bool changed[PG_MAX_RESOURCES], dirty[PG_MAX_RESOURCES];
+    const bool some = msig != rt->mem_sig && resources_changed(rt, plan, width, height, changed, dirty);
+    if (rt->built && (msig == rt->mem_sig || some)) {
+        /* same resources: keep them (and what persistent ones hold when the new plan assumes
+         * the same state at frame start), re-create the pass instances only */
+        vkDeviceWaitIdle(rt->gpu->device);
+        destroy_passes(rt);
+        for (uint32_t i = 0; i < plan->n_resources; i++)
+            if (wrap_signature(plan, (int)i) != wrap_signature(rt->plan, (int)i)) rt->persistent_initialized[i] = false;
+        rt->plan = plan;
+        rt->pipeline = pipeline;
+        rt->scene = scene;
+        rt->pipe_sig = psig;
+        rt->val_sig = vsig;
+        if (some) { /* ... but the resources that changed (with their blocks): re-create them */
+            rt->mem_sig = msig;
+            rt->stats.resource_rebuilds++;
+            rt->stats.last_rebuild = PG_REBUILD_RESOURCES;
+            r = recreate_resources(rt, changed, dirty, err);
+        } else {
+            rt->stats.pipeline_rebuilds++;
+            rt->stats.last_rebuild = PG_REBUILD_PIPELINES;
+            r = PG_OK;
+        }
+        if (!r) r = build_passes(rt, err);
+    } else {
+        destroy_built(rt);
+        rt->plan = plan;
+        rt->pipeline = pipeline;
+        rt->scene = scene;
+        rt->width = width;
+        rt->height = height;
+        rt->mem_sig = msig;
+        rt->pipe_sig = psig;
+        rt->val_sig = vsig;
+        rt->stats.memory_rebuilds++;
+        rt->stats.last_rebuild = PG_REBUILD_MEMORY;
+        r = build_memory(rt, err);
+        if (!r) r = build_passes(rt, err);
+    }
     if (r) {
         destroy_built(rt);
         rt->plan = NULL;
+        return r;
     }
-    return r;
+    rt->built = true;
+    return PG_OK;
 }
 
 /* A global memory barrier before every pass of an immediate-mode plan (pg_graph_plan.immediate):
@@ -672,6 +942,11 @@ static void emit_barriers(pg_runtime *rt, VkCommandBuffer cmd, uint32_t n, const
             src_access = 0;
             old_layout = VK_IMAGE_LAYOUT_UNDEFINED;
         }
+        /* With frames in flight a barrier that waits for nothing (a transient's first use) would
+         * not chain to the frame-start barrier: its layout transition could overwrite memory the
+         * previous frame still reads (synchronization validation at queue submit reports it).
+         * Its own stages make the chain. */
+        if (!src_stages && rt->n_in_flight > 1) src_stages = b->dst_stages;
         if (b->is_image) {
             ib[ni++] = pg_image_barrier(r->image, pg_vk_aspect(r->format), src_stages, src_access, b->dst_stages,
                                         b->dst_access, (VkImageLayout)old_layout, (VkImageLayout)b->new_layout);
@@ -787,6 +1062,11 @@ static pg_result wait_slot(pg_runtime *rt, uint32_t f, double *wait_ms, pg_error
     return PG_OK;
 }
 
+void pg_runtime_test_drop_frame_barrier(pg_runtime *rt, bool drop)
+{
+    rt->test_no_frame_barrier = drop;
+}
+
 pg_result pg_runtime_set_frames_in_flight(pg_runtime *rt, uint32_t n, pg_error *err)
 {
     if (n < 1 || n > PG_MAX_FRAMES_IN_FLIGHT)
@@ -839,7 +1119,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const void *frame_block, bool readba
     /* With frames in flight the previous frame may still run: the frames share the graph's
      * resources (persistent and transient bytes), so this frame's work starts after all earlier
      * work on the queue (one full barrier; submission order makes it cover earlier submits). */
-    if (n_fif > 1) emit_full_barrier(cmd);
+    if (n_fif > 1 && !rt->test_no_frame_barrier) emit_full_barrier(cmd);
     if (queries) {
         vkCmdResetQueryPool(cmd, queries, 0, rt->n_queries);
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 0);
@@ -1000,6 +1280,12 @@ const void *pg_runtime_output(const pg_runtime *rt, int which, uint32_t *w, uint
     if (h) *h = pr->height;
     if (fmt) *fmt = pr->format;
     return rt->slot[rt->cur].readback[which].mapped;
+}
+
+const char *pg_rebuild_kind_name(pg_rebuild_kind k)
+{
+    static const char *const names[] = {"none", "values", "pipelines", "resources", "memory"};
+    return (unsigned)k < 5 ? names[k] : "?";
 }
 
 pg_runtime_stats pg_runtime_get_stats(const pg_runtime *rt)

@@ -3,9 +3,14 @@
  * pg_runtime_set_plan() creates the physical resources (each plan block is packed again with the
  * real memory requirements, core/graph/alias_pack.c, into one VkDeviceMemory, or more when its members
  * have no memory type in common; resources are bound at their offsets) and one instance of every
- * executed pass. They are kept across frames and
- * re-created only when the plan's physical signature (sizes, formats, usages, blocks, pass
- * variants) changes. pg_runtime_render() records one command buffer: for each pass in order the
+ * executed pass. They are kept across frames and plans: the plan signature has three parts,
+ * memory (output size; every resource's size, format, usage, lifetime, block), pipelines (scene,
+ * settings, passes with their variants, bindings and options other than run-time values) and
+ * run-time values (options a pass type lists in runtime_options). A new plan re-creates what its
+ * parts need: new memory -> everything, or only the resources that differ (with the other members
+ * of their blocks) when they keep their names and blocks (pg_rebuild_kind); new pipelines -> the
+ * pass instances only (resources keep their handles and contents); new values -> nothing (the
+ * passes' update() re-reads them). pg_runtime_render() records one command buffer: for each pass in order the
  * plan's barriers, a debug label, the pass's commands and a timestamp; then the final output
  * transitions and, if asked, copies of the outputs to host-visible buffers.
  */
@@ -124,9 +129,26 @@ typedef struct pg_frame_stats {
  * runtime does not know what they mean; e.g. "overflow_dropped", the light references the
  * clustered passes lost). 0 when none. */
 uint64_t pg_frame_counter_sum(const pg_frame_stats *st, const char *name);
+/* What a pg_runtime_set_plan() re-created (pg_runtime_stats.last_rebuild). */
+typedef enum pg_rebuild_kind {
+    PG_REBUILD_NONE = 0,   /* same plan signature and values: nothing */
+    PG_REBUILD_VALUES,     /* only run-time option values (pg_pass_type.runtime_options): the
+                            * passes' update() re-read them, no Vulkan object re-created */
+    PG_REBUILD_PIPELINES,  /* same memory: resources (handles, contents) kept, pass instances
+                            * (pipelines, descriptor sets) re-created */
+    PG_REBUILD_RESOURCES,  /* only resources with their own allocation (no memory block, not an
+                            * output) changed, e.g. the light buffer for a new light count: those
+                            * and the pass instances re-created, the rest kept */
+    PG_REBUILD_MEMORY,     /* new physical resources and pass instances */
+} pg_rebuild_kind;
+/* "none", "values", "pipelines", "resources", "memory" */
+const char *pg_rebuild_kind_name(pg_rebuild_kind k);
 
 typedef struct pg_runtime_stats {
     uint32_t resource_creations;      /* times physical resources were (re)built */
+    /* pg_runtime_set_plan() outcomes, over the runtime's life (see pg_rebuild_kind) */
+    uint32_t memory_rebuilds, resource_rebuilds, pipeline_rebuilds, value_updates;
+    pg_rebuild_kind last_rebuild;     /* the last set_plan's */
     uint64_t memory_bytes_transient;  /* actual VkDeviceMemory for transient blocks */
     uint64_t memory_bytes_unaliased;  /* sum of transient resources' memory requirements */
     uint32_t blocks_fallback;         /* plan blocks split at run time (no common memory
@@ -163,6 +185,9 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
  * runs consecutive frames one after the other while the host records ahead. Waits for the
  * device first. */
 pg_result pg_runtime_set_frames_in_flight(pg_runtime *rt, uint32_t n, pg_error *err);
+/* Test-only: leave out that frame-start full barrier (tests/test_gpu_canary.c proves that
+ * synchronization validation then reports the hazard between two frames in flight). */
+void pg_runtime_test_drop_frame_barrier(pg_runtime *rt, bool drop);
 /* The GPU times of frame `frame` (pg_frame_stats.frame) once its fence was seen signalled, among
  * the last 4 such frames of the current plan; false otherwise. pass_ms: one per executed pass. */
 bool pg_runtime_gpu_times(const pg_runtime *rt, uint64_t frame, double *total_ms, double *pass_ms);

@@ -51,11 +51,12 @@ pg_result pg_session_create(pg_gpu *gpu, const pg_scene_gpu *scene, const pg_ses
     return PG_OK;
 }
 
-pg_result pg_session_compile(pg_session *s, uint32_t light_count, uint32_t width, uint32_t height, pg_error *err)
+/* Compiles pipeline for (light_count, width, height) and sets the plan on the runtime. */
+static pg_result compile_plan(pg_session *s, const pg_pipeline *pipeline, uint32_t light_count, uint32_t width,
+                              uint32_t height, pg_graph_plan **out, pg_error *err)
 {
-    if (s->plan && light_count == s->light_count && width == s->width && height == s->height) return PG_OK;
     pg_compile_desc cd = {
-        .pipeline = s->pipeline,
+        .pipeline = pipeline,
         .registry = s->desc.registry,
         .output_width = width,
         .output_height = height,
@@ -70,18 +71,56 @@ pg_result pg_session_compile(pg_session *s, uint32_t light_count, uint32_t width
     if (r) return r;
     if (s->desc.test_edit_plan) s->desc.test_edit_plan(plan, s->desc.test_edit_user);
     if (s->runtime) {
-        r = pg_runtime_set_plan(s->runtime, plan, s->pipeline, s->scene, width, height, err);
+        r = pg_runtime_set_plan(s->runtime, plan, pipeline, s->scene, width, height, err);
         if (r) {
             pg_graph_plan_free(plan);
             return r;
         }
     }
+    *out = plan;
+    return PG_OK;
+}
+
+pg_result pg_session_compile(pg_session *s, uint32_t light_count, uint32_t width, uint32_t height, pg_error *err)
+{
+    if (s->plan && light_count == s->light_count && width == s->width && height == s->height) return PG_OK;
+    pg_graph_plan *plan = NULL;
+    pg_result r = compile_plan(s, s->pipeline, light_count, width, height, &plan, err);
+    if (r) return r;
     pg_graph_plan_free(s->plan);
     s->plan = plan;
     s->light_count = light_count;
     s->width = width;
     s->height = height;
     s->compiles++;
+    return PG_OK;
+}
+
+pg_result pg_session_reload(pg_session *s, const char *pipeline_path, const pg_param_override *overrides,
+                            uint32_t n_overrides, pg_error *err)
+{
+    pg_pipeline *pl = NULL;
+    pg_result r = pg_pipeline_load(pipeline_path, overrides, n_overrides, &pl, err);
+    if (r) return r;
+    pg_graph_plan *plan = NULL;
+    if (s->plan && (r = compile_plan(s, pl, s->light_count, s->width, s->height, &plan, err))) {
+        /* a failed set_plan leaves the runtime without a plan: set the old one again */
+        pg_error e2 = {0};
+        if (s->runtime && !pg_runtime_output_image(s->runtime, 0) &&
+            pg_runtime_set_plan(s->runtime, s->plan, s->pipeline, s->scene, s->width, s->height, &e2)) {
+            pg_graph_plan_free(s->plan);
+            s->plan = NULL; /* the next render compiles again */
+        }
+        pg_pipeline_free(pl);
+        return r;
+    }
+    if (plan) {
+        pg_graph_plan_free(s->plan);
+        s->plan = plan;
+        s->compiles++;
+    }
+    pg_pipeline_free(s->pipeline);
+    s->pipeline = pl;
     return PG_OK;
 }
 

@@ -55,6 +55,13 @@ pg_result pg_session_render(pg_session *s, const pg_frame_info *info, bool readb
                             pg_frame_stats *stats, pg_error *err);
 /* Frames in flight of the session's runtime (1 or 2; pg_runtime_set_frames_in_flight). */
 pg_result pg_session_set_frames_in_flight(pg_session *s, uint32_t n, pg_error *err);
+/* Loads pipeline_path again with these overrides (the path and overrides are not kept) and
+ * compiles it for the current light count and size on the same runtime, so pg_runtime_set_plan
+ * re-creates only what the new plan needs (pg_rebuild_kind; a slider on a run-time option
+ * re-creates nothing). Before the first compile it only loads. On failure the session keeps its
+ * pipeline and plan and still renders. */
+pg_result pg_session_reload(pg_session *s, const char *pipeline_path, const pg_param_override *overrides,
+                            uint32_t n_overrides, pg_error *err);
 /* Compiles without rendering (for --explain and dumps). */
 pg_result pg_session_compile(pg_session *s, uint32_t light_count, uint32_t width, uint32_t height,
                              pg_error *err);
