@@ -86,7 +86,11 @@ typedef struct pg_frame_stats {
     uint32_t n_passes;
     char pass_names[PG_MAX_PASSES][PG_NAME_MAX];
     double pass_ms[PG_MAX_PASSES];    /* GPU time from timestamps (includes the pass's barriers) */
-    double gpu_total_ms;
+    double pass_start_ms[PG_MAX_PASSES]; /* its first timestamp less the frame's first (both
+                                       * queues on one timebase: see README, async compute) */
+    uint8_t pass_queue[PG_MAX_PASSES];/* pg_queue it ran on */
+    uint32_t n_batches;               /* submissions this frame */
+    double gpu_total_ms;              /* first to last timestamp of the frame (both queues) */
     double cpu_ms;                    /* host time of pg_runtime_render less wait_ms: record,
                                        * submit, reading stats */
     double wait_ms;                   /* host time blocked on fences in this call */
@@ -187,6 +191,10 @@ pg_result pg_runtime_resource(const pg_runtime *rt, pg_res_handle h, const pg_ph
 /* The physical image of the output (which 0) or hdr_output (1), in TRANSFER_SRC_OPTIMAL layout
  * after each frame (NULL if none). For the viewer's blit to the window. */
 const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which);
+/* What the runtime's device offers for async compute, for pg_compile_desc.queues: two queues
+ * when pg_gpu has a compute queue (a separate one, or the emulated one) and timeline semaphores;
+ * async_off as given (--async-compute off). */
+pg_queue_caps pg_runtime_queue_caps(const pg_runtime *rt, bool async_off);
 /* The physical resource of plan->resources[index] (NULL when out of range), for tests. */
 const pg_phys_resource *pg_runtime_resource_at(const pg_runtime *rt, int index);
 

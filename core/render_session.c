@@ -64,6 +64,7 @@ pg_result pg_session_compile(pg_session *s, uint32_t light_count, uint32_t width
         .output_stages = s->desc.output_stages,
     };
     if (s->scene) cd.features = s->scene->features;
+    if (s->runtime) cd.queues = pg_runtime_queue_caps(s->runtime, s->desc.async_off);
     cd.features.light_count = light_count;
     pg_graph_plan *plan = NULL;
     pg_result r = pg_graph_compile(&cd, &plan, err);
