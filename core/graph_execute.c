@@ -60,6 +60,8 @@ struct pg_runtime {
     uint64_t prev_batch_value[PG_MAX_BATCHES];
     uint64_t prev_gen;
     bool compute_stamps;           /* the compute family has timestamps */
+    uint32_t qslot[PG_MAX_PASSES]; /* executed pass -> its index among its queue's passes */
+    uint32_t n_on_queue[PG_QUEUE_COUNT];
     uint64_t frame_no;
     uint32_t n_queries;
     bool readback_valid[2];
@@ -479,6 +481,8 @@ static pg_result build(pg_runtime *rt, pg_error *err)
     }
     rt->n_queries = 2 * plan->n_order + 1; /* per queue pool; the +1 keeps it non-empty */
     rt->compute_stamps = plan->async && gpu->compute_timestamp_valid_bits > 0;
+    rt->n_on_queue[0] = rt->n_on_queue[1] = 0;
+    for (uint32_t o = 0; o < plan->n_order; o++) rt->qslot[o] = rt->n_on_queue[plan->passes[plan->order[o]].queue]++;
     if (gpu->timestamp_valid_bits) {
         VkQueryPoolCreateInfo qci = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
                                      .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = rt->n_queries};
@@ -825,7 +829,8 @@ static void collect_timestamps(pg_runtime *rt, uint32_t f)
             continue;
         }
         const uint64_t mask = bits[q] >= 64 ? ~0ull : ((1ull << bits[q]) - 1);
-        const uint64_t b0 = ts[q * rt->n_queries + 2 * o] & mask, b1 = ts[q * rt->n_queries + 2 * o + 1] & mask;
+        const uint64_t b0 = ts[q * rt->n_queries + 2 * rt->qslot[o]] & mask;
+        const uint64_t b1 = ts[q * rt->n_queries + 2 * rt->qslot[o] + 1] & mask;
         rt->gpu_pass_ms[o] = ((b1 - b0) & mask) * (double)gpu->timestamp_period_ns * 1e-6;
         if (b0 < t_min) t_min = b0;
         if (b1 > t_max) t_max = b1;
@@ -834,7 +839,7 @@ static void collect_timestamps(pg_runtime *rt, uint32_t f)
     for (uint32_t o = 0; o < plan->n_order; o++) {
         const pg_queue q = plan->passes[plan->order[o]].queue;
         const uint64_t mask = bits[q] >= 64 ? ~0ull : ((1ull << bits[q]) - 1);
-        const uint64_t b0 = ts[q * rt->n_queries + 2 * o] & mask;
+        const uint64_t b0 = ts[q * rt->n_queries + 2 * rt->qslot[o]] & mask;
         rt->gpu_pass_start_ms[o] = (q == PG_QUEUE_COMPUTE && !rt->compute_stamps) || b0 < t_min
                                        ? 0 : (b0 - t_min) * (double)gpu->timestamp_period_ns * 1e-6;
     }
@@ -955,7 +960,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
         for (uint32_t o = bt->first; o < bt->first + bt->count; o++) {
             int pi = plan->order[o];
             const pg_plan_pass *pass = &plan->passes[pi];
-            if (qpool[q]) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, qpool[q], 2 * o);
+            if (qpool[q]) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, qpool[q], 2 * rt->qslot[o]);
             if (gpu->cmd_begin_label) {
                 VkDebugUtilsLabelEXT label = {.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, .pLabelName = pass->name};
                 gpu->cmd_begin_label(cmd, &label);
@@ -976,15 +981,15 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
             for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->res[pass->slots[s].resource];
             pass->type->record(rt->pass_state[pi], &ctx);
             if (gpu->cmd_end_label) gpu->cmd_end_label(cmd);
-            if (qpool[q]) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, qpool[q], 2 * o + 1);
+            if (qpool[q]) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, qpool[q], 2 * rt->qslot[o] + 1);
         }
         if (bt->last) {
             if (plan->immediate) emit_full_barrier(cmd);
             emit_barriers(rt, cmd, plan->n_final_barriers, plan->final_barriers);
         }
         emit_qfots(rt, cmd, b, true); /* releases */
-        if (qpool[q] && last_of[q] == (int)b) {
-            vkCmdCopyQueryPoolResults(cmd, qpool[q], 0, rt->n_queries, rt->slot[f].timestamps.buffer,
+        if (qpool[q] && last_of[q] == (int)b && rt->n_on_queue[q]) {
+            vkCmdCopyQueryPoolResults(cmd, qpool[q], 0, 2 * rt->n_on_queue[q], rt->slot[f].timestamps.buffer,
                                       (VkDeviceSize)q * rt->n_queries * sizeof(uint64_t), sizeof(uint64_t),
                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
             VkBufferMemoryBarrier2 tb = pg_buffer_barrier(rt->slot[f].timestamps.buffer, VK_PIPELINE_STAGE_2_COPY_BIT,
