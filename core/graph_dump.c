@@ -388,6 +388,72 @@ static bool json_pipeline(cJSON *root, const pg_pipeline *pl)
     return true;
 }
 
+/* "queues": every executed pass's queue and batch, the batches with their waits, and the
+ * ownership transfers (docs/dump-format.md). */
+static bool json_queues(cJSON *root, const pg_graph_plan *plan)
+{
+    cJSON *q = cJSON_AddObjectToObject(root, "queues");
+    if (!q || !cJSON_AddBoolToObject(q, "ownership_transfers", plan->qfot)) return false;
+    cJSON *pa = cJSON_AddArrayToObject(q, "passes");
+    if (!pa) return false;
+    for (uint32_t k = 0; k < plan->n_order; k++) {
+        const pg_plan_pass *pp = &plan->passes[plan->order[k]];
+        cJSON *o = cJSON_CreateObject();
+        if (!o) return false;
+        cJSON_AddItemToArray(pa, o);
+        if (!cJSON_AddStringToObject(o, "name", pp->name) || !cJSON_AddStringToObject(o, "queue", pg_queue_name(pp->queue)) ||
+            !cJSON_AddNumberToObject(o, "batch", pp->batch) || !cJSON_AddStringToObject(o, "why", pp->queue_reason))
+            return false;
+    }
+    cJSON *ba = cJSON_AddArrayToObject(q, "batches");
+    if (!ba) return false;
+    for (uint32_t b = 0; b < plan->n_batches; b++) {
+        const pg_plan_batch *bt = &plan->batches[b];
+        cJSON *o = cJSON_CreateObject(), *names = cJSON_CreateArray();
+        if (!o || !names) {
+            cJSON_Delete(o);
+            cJSON_Delete(names);
+            return false;
+        }
+        cJSON_AddItemToArray(ba, o);
+        cJSON_AddItemToObject(o, "passes", names);
+        for (uint32_t k = bt->first; k < bt->first + bt->count; k++)
+            cJSON_AddItemToArray(names, cJSON_CreateString(plan->passes[plan->order[k]].name));
+        if (!cJSON_AddStringToObject(o, "queue", pg_queue_name(bt->queue)) || !cJSON_AddBoolToObject(o, "last", bt->last) ||
+            !add_int_or_null(o, "waits_previous_frame", bt->prev_frame_wait >= 0, bt->prev_frame_wait))
+            return false;
+        cJSON *wa = cJSON_AddArrayToObject(o, "waits");
+        if (!wa) return false;
+        for (uint32_t w = 0; w < bt->n_waits; w++) {
+            cJSON *x = cJSON_CreateObject();
+            if (!x) return false;
+            cJSON_AddItemToArray(wa, x);
+            if (!cJSON_AddNumberToObject(x, "batch", bt->waits[w].batch) || !add_stage_names(x, "stages", bt->waits[w].stages) ||
+                !cJSON_AddStringToObject(x, "why", bt->waits[w].why))
+                return false;
+        }
+    }
+    cJSON *ta = cJSON_AddArrayToObject(q, "ownership");
+    if (!ta) return false;
+    for (uint32_t i = 0; i < plan->n_qfots; i++) {
+        const pg_qfot *t = &plan->qfots[i];
+        cJSON *x = cJSON_CreateObject();
+        if (!x) return false;
+        cJSON_AddItemToArray(ta, x);
+        if (!cJSON_AddStringToObject(x, "resource", res_name(plan, t->resource)) ||
+            !cJSON_AddStringToObject(x, "from", pg_queue_name(t->src_queue)) ||
+            !cJSON_AddStringToObject(x, "to", pg_queue_name(t->dst_queue)) ||
+            !cJSON_AddNumberToObject(x, "release_batch", t->release_batch) ||
+            !cJSON_AddNumberToObject(x, "acquire_batch", t->acquire_batch) ||
+            !add_stage_names(x, "release_stages", t->src_stages) || !add_access_names(x, "release_access", t->src_access) ||
+            !add_stage_names(x, "acquire_stages", t->dst_stages) || !add_access_names(x, "acquire_access", t->dst_access) ||
+            !add_str_or_null(x, "old_layout", t->is_image ? pg_layout_name(t->old_layout) : NULL) ||
+            !add_str_or_null(x, "new_layout", t->is_image ? pg_layout_name(t->new_layout) : NULL))
+            return false;
+    }
+    return true;
+}
+
 static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline *pl)
 {
     if (!cJSON_AddNumberToObject(root, "format_version", PG_DUMP_FORMAT_VERSION)) return false;
@@ -525,6 +591,9 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
                 return false;
         }
     }
+
+    /* queues (two-queue plans only; a one-queue plan has none of these keys) */
+    if (plan->async && !json_queues(root, plan)) return false;
 
     /* totals */
     uint32_t res_culled = 0;

@@ -187,8 +187,6 @@ pg_result pg_queues_assign(pg_graph_plan *plan, const pg_compile_desc *desc, pg_
         } else if (pd->queue == PG_QUEUE_PREF_COMPUTE) {
             q = PG_QUEUE_COMPUTE;
             snprintf(why, wn, "\"queue\": \"compute\"");
-        } else if (block[0]) {
-            snprintf(why, wn, "auto: %s", block);
         } else {
             /* auto: does it depend on the graphics queue's work of this frame? */
             for (uint32_t r = 0; r < plan->n_resources && !why[0]; r++)
@@ -200,6 +198,7 @@ pg_result pg_queues_assign(pg_graph_plan *plan, const pg_compile_desc *desc, pg_
                 if (qp->queue == PG_QUEUE_GRAPHICS && names_after(pd, qp->name))
                     snprintf(why, wn, "auto: \"after\" names graphics pass '%s'", qp->name);
             }
+            if (!why[0] && block[0]) snprintf(why, wn, "auto: %s", block);
             if (!why[0]) {
                 q = PG_QUEUE_COMPUTE;
                 snprintf(why, wn, "auto: a compute pass whose inputs come from no graphics pass");

@@ -7,11 +7,13 @@
  * no memory block shared across queues, and the single-queue fallback. The shipped pipelines are
  * compiled with the built-in pass types for the same invariants. */
 #include "graph.h"
+#include "graph_dump.h"
 #include "pass_list.h"
 #include "pipeline.h"
 #include "test_util.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <vulkan/vulkan_core.h>
 
@@ -289,6 +291,25 @@ static void test_auto_separate_families(void)
     CHECK(p->resources[res_named(p, "noise")].block < 0);
     CHECK(explains(p, "resource 'noise' is used on the graphics and the compute queue: own memory"));
     check_invariants(p, "p1 separate");
+    /* the dump shows queues, batches, waits and transfers (text and JSON) */
+    char *txt = NULL;
+    size_t txt_n = 0;
+    FILE *mf = open_memstream(&txt, &txt_n);
+    pg_graph_plan_print(p, pl, mf);
+    fclose(mf);
+    CHECK_MSG(txt && strstr(txt, "[0] anim (q_anim) on compute, batch 0") && strstr(txt, "batch 1 on graphics: gbuf\n") &&
+                  strstr(txt, "batch 2 on graphics: light, disp (last") &&
+                  strstr(txt, "waits for batch 0 at fragment_shader|compute_shader (light: clusters; disp: noise)") &&
+                  strstr(txt, "release noise          compute -> graphics  compute_shader/storage_write, general -> shader_read_only") &&
+                  strstr(txt, "acquire noise          compute -> graphics  fragment_shader/sampled_read, general -> shader_read_only") &&
+                  strstr(txt, "waits for batch 2 of the previous frame") && strstr(txt, "own (2 queues)") &&
+                  strstr(txt, "0 anim [compute]"),
+              "%s", txt ? txt : "");
+    free(txt);
+    char *js = pg_dump_json(p, pl);
+    CHECK(js && strstr(js, "\"queues\"") && strstr(js, "\"ownership_transfers\":\ttrue") &&
+          strstr(js, "\"release_batch\":\t0") && strstr(js, "\"old_layout\":\t\"general\""));
+    free(js);
 out:
     pg_graph_plan_free(p);
     pg_pipeline_free(pl);
