@@ -592,14 +592,11 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
         }
     }
 
-    /* queues (two-queue plans only; a one-queue plan has none of these keys) */
-    if (plan->async && !json_queues(root, plan)) return false;
-
     /* totals */
     uint32_t res_culled = 0;
     for (uint32_t r = 0; r < plan->n_resources; r++) res_culled += plan->resources[r].culled;
     cJSON *t = cJSON_AddObjectToObject(root, "totals");
-    return t && cJSON_AddNumberToObject(t, "passes_declared", plan->n_passes) &&
+    const bool ok = t && cJSON_AddNumberToObject(t, "passes_declared", plan->n_passes) &&
            cJSON_AddNumberToObject(t, "passes_run", plan->n_order) &&
            cJSON_AddNumberToObject(t, "passes_culled", count_culled_passes(plan)) &&
            cJSON_AddNumberToObject(t, "resources_declared", plan->n_resources) &&
@@ -611,6 +608,8 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
            add_u64(t, "transient_bytes_unaliased", plan->transient_bytes_unaliased) &&
            add_u64(t, "transient_bytes_aliased", plan->transient_bytes_aliased) &&
            cJSON_AddNumberToObject(t, "saving_percent", (double)(int64_t)(saving_percent(plan) * 10.0 + 0.5) / 10.0);
+    /* queues, after the existing keys (two-queue plans only; a one-queue plan has no such key) */
+    return ok && (!plan->async || json_queues(root, plan));
 }
 
 char *pg_dump_json(const pg_graph_plan *plan, const pg_pipeline *pipeline)
