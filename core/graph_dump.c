@@ -1073,8 +1073,9 @@ void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline
             if (k % 2 == 1)
                 fprintf(f, "  <rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#f7f9fc\"/>\n", x, top,
                         w, row_h * n_rows);
-            fprintf(f, "  <text x=\"%.1f\" y=\"72\" text-anchor=\"middle\" font-size=\"10\" fill=\"#777777\">#%u</text>\n",
-                    x + w / 2, k);
+            const bool on_c = plan->async && plan->passes[plan->order[k]].queue == PG_QUEUE_COMPUTE;
+            fprintf(f, "  <text x=\"%.1f\" y=\"72\" text-anchor=\"middle\" font-size=\"10\" fill=\"#777777\">#%u%s</text>\n",
+                    x + w / 2, k, !plan->async ? "" : on_c ? " compute" : " graphics"); /* its queue, when two */
             fprintf(f, "  <text x=\"%.1f\" y=\"90\" text-anchor=\"middle\" font-weight=\"bold\">", x + w / 2);
             xml_fit(f, plan->passes[plan->order[k]].name, w - 8, 12);
             fputs("</text>\n", f);
