@@ -424,6 +424,33 @@ static void test_join_and_fallback(void)
         check_invariants(p, "p2");
     }
     pg_graph_plan_free(p);
+    /* a compute pass last in the order: the frame ends with an empty graphics batch that joins it */
+    {
+        const char *j3 =
+            "{\"name\": \"p3\", \"output\": \"ldr\",\n"
+            " \"resources\": [{\"name\": \"lights\", \"type\": \"buffer\", \"stride\": 16, \"count\": [64]},\n"
+            "  {\"name\": \"gcol\", \"type\": \"image\", \"format\": \"rgba16f\"},\n"
+            "  {\"name\": \"depth\", \"type\": \"image\", \"format\": \"d32f\"},\n"
+            "  {\"name\": \"ldr\", \"type\": \"image\", \"format\": \"rgba8\"}],\n"
+            " \"passes\": [{\"name\": \"gbuf\", \"type\": \"q_raster\", \"writes\": [\"gcol\", \"depth\"]},\n"
+            "  {\"name\": \"show\", \"type\": \"q_show\", \"reads\": [\"gcol\"], \"writes\": [\"ldr\"]},\n"
+            "  {\"name\": \"anim\", \"type\": \"q_anim\", \"writes\": [\"lights\"], \"side_effects\": true}]}\n";
+        pg_pipeline *p3 = NULL;
+        CHECK_MSG(pg_pipeline_load_string(j3, "p3.json", NULL, 0, &p3, &err) == PG_OK, "%s", err.msg);
+        pg_compile_desc d3 = d;
+        d3.pipeline = p3;
+        pg_graph_plan *q = NULL;
+        if (p3) CHECK_MSG(pg_graph_compile(&d3, &q, &err) == PG_OK, "%s", err.msg);
+        if (q) {
+            CHECK(q->n_batches == 3 && q->batches[0].queue == PG_QUEUE_GRAPHICS && q->batches[1].queue == PG_QUEUE_COMPUTE);
+            CHECK(q->batches[2].queue == PG_QUEUE_GRAPHICS && q->batches[2].count == 0 && q->batches[2].last &&
+                  q->batches[2].n_waits == 1 && q->batches[2].waits[0].batch == 1 &&
+                  !strcmp(q->batches[2].waits[0].why, "join"));
+            check_invariants(q, "p3");
+        }
+        pg_graph_plan_free(q);
+        pg_pipeline_free(p3);
+    }
     /* single-queue fallbacks: everything on graphics, one batch, the dump says why */
     const struct {
         pg_queue_caps caps;
