@@ -1052,7 +1052,13 @@ pg_result pg_runtime_render(pg_runtime *rt, const pg_frame_info *info, bool read
                             .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi,
                             .signalSemaphoreInfoCount = sem ? 1 : 0, .pSignalSemaphoreInfos = &ssi};
         VkQueue queue = q == PG_QUEUE_COMPUTE ? gpu->compute_queue : gpu->queue;
-        PG_VK_TRY(err, vkQueueSubmit2(queue, 1, &si, bt->last ? rt->slot[f].fence : VK_NULL_HANDLE));
+        VkResult sr = pg_vk_fault_next("vkQueueSubmit2(batch)") ? VK_ERROR_DEVICE_LOST
+                                                                 : vkQueueSubmit2(queue, 1, &si, bt->last ? rt->slot[f].fence : VK_NULL_HANDLE);
+        if (sr != VK_SUCCESS) {
+            if (sem) rt->tl_value[q]--; /* never signalled: no later wait may name it */
+            return pg_fail(err, PG_ERR_VULKAN, "vkQueueSubmit2(batch %u of %u, %s queue) failed: %s", b, plan->n_batches,
+                           pg_queue_name((pg_queue)q), pg_vk_result_name(sr));
+        }
     }
     memcpy(rt->prev_batch_value, value, sizeof value);
     rt->prev_gen = plan->generation;
