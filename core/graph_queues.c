@@ -274,6 +274,28 @@ static void add_wait(pg_plan_batch *b, int batch, uint64_t stages, const char *w
     }
 }
 
+/* A compute-only queue family supports these stages and accesses: a barrier recorded there must
+ * not name the graphics stages of work that ran on the other queue (the ownership transfer and
+ * the semaphore ordered that work already). */
+static void compute_family_masks(pg_barrier *b)
+{
+    const uint64_t st = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT |
+                        VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT |
+                        VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_HOST_BIT |
+                        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT |
+                        VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT;
+    const uint64_t ac = VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT |
+                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_UNIFORM_READ_BIT |
+                        VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT |
+                        VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_HOST_WRITE_BIT |
+                        VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    b->src_stages &= st;
+    b->src_access &= ac;
+    b->dst_stages &= st;
+    b->dst_access &= ac;
+}
+
 static void remove_barrier(pg_plan_pass *pp, uint32_t i)
 {
     memmove(&pp->barriers[i], &pp->barriers[i + 1], sizeof pp->barriers[0] * (pp->n_barriers - i - 1));
@@ -415,5 +437,10 @@ void pg_queues_schedule(pg_graph_plan *plan, const pg_compile_desc *desc)
             last_batch[r] = pp->batch;
             layout[r] = u.layout;
         }
+    }
+    for (uint32_t k = 0; k < plan->n_order; k++) {
+        pg_plan_pass *pp = &plan->passes[plan->order[k]];
+        if (pp->queue != PG_QUEUE_COMPUTE) continue;
+        for (uint32_t i = 0; i < pp->n_barriers; i++) compute_family_masks(&pp->barriers[i]);
     }
 }

@@ -358,6 +358,11 @@ static void test_explicit_queues(void)
         CHECK(td && td->src_queue == PG_QUEUE_GRAPHICS && td->dst_queue == PG_QUEUE_COMPUTE &&
               td->old_layout == VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL &&
               td->new_layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        /* barriers on the compute queue (another family) name no graphics stage */
+        for (uint32_t i = 0; i < lp->n_barriers; i++)
+            CHECK(!((lp->barriers[i].src_stages | lp->barriers[i].dst_stages) &
+                    (VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                     VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT)));
         /* hdr back to graphics for disp */
         const pg_qfot *th = qfot_of(p, "hdr");
         CHECK(th && th->src_queue == PG_QUEUE_COMPUTE && th->dst_queue == PG_QUEUE_GRAPHICS);
