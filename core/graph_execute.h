@@ -5,9 +5,12 @@
  * have no memory type in common; resources are bound at their offsets) and one instance of every
  * executed pass. They are kept across frames and
  * re-created only when the plan's physical signature (sizes, formats, usages, blocks, pass
- * variants) changes. pg_runtime_render() records one command buffer: for each pass in order the
- * plan's barriers, a debug label, the pass's commands and a timestamp; then the final output
- * transitions and, if asked, copies of the outputs to host-visible buffers.
+ * variants) changes. pg_runtime_render() records one command buffer per plan batch (one batch
+ * for a one-queue plan; async compute: core/graph_queues.c): for each pass in order the plan's
+ * barriers, a debug label, the pass's commands and timestamps; ownership-transfer halves at the
+ * batch's start and end; in the last batch the final output transitions and, if asked, copies of
+ * the outputs to host-visible buffers. The batches are submitted in order to their queues with
+ * timeline semaphores (pg_plan_batch waits); the last one signals the frame's fence.
  */
 #ifndef PG_GRAPH_EXECUTE_H
 #define PG_GRAPH_EXECUTE_H
