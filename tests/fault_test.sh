@@ -11,16 +11,20 @@ trap 'rm -rf "$tmp"' EXIT
 scene="$root/tests/corpus/gltf/ok_textured.gltf"
 pass=0
 fail=0
-for p in naive forward_plus deferred_packed; do
+# deferred_packed+emulate: the two-queue plan (batches, timeline semaphores) on the one queue
+for pe in naive forward_plus deferred_packed deferred_packed+emulate; do
+  p=${pe%+emulate}
+  extra=()
+  [ "$pe" != "$p" ] && extra=(--async-compute emulate)
   k=1
   while :; do
     PASSGRAPH_FAULT_AT=$k timeout 60 "$PG" render --pipeline "$root/pipelines/$p.json" --scene "$scene" --size 32x18 \
-      --lights 4 --frames 2 --quiet --out "$tmp/x.png" >"$tmp/out" 2>"$tmp/err"
+      --lights 4 --frames 2 "${extra[@]}" --quiet --out "$tmp/x.png" >"$tmp/out" 2>"$tmp/err"
     rc=$?
     if ! grep -q "fault injection" "$tmp/err"; then
       # the run made fewer than k checked calls: it must have succeeded
       [ $rc -eq 0 ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: $p k=$k without fault: rc $rc"; cat "$tmp/err"; }
-      echo "fault_test: $p: $((k - 1)) checked Vulkan calls, each failed once"
+      echo "fault_test: $pe: $((k - 1)) checked Vulkan calls, each failed once"
       break
     fi
     call=$(sed -n 's/.*failing call #[0-9]*: \(vk[A-Za-z0-9]*\).*/\1/p' "$tmp/err" | head -1)

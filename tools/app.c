@@ -87,6 +87,8 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
             .device_index = opt->device_index,
             .device_match = opt->device_match,
             .quiet = opt->quiet,
+            .no_compute_queue = opt->async_compute == PG_ASYNC_OFF,
+            .emulate_compute_queue = opt->async_compute == PG_ASYNC_EMULATE,
         };
         if (window_bits) {
             gd.instance_extensions = window_bits->instance_extensions;
@@ -172,6 +174,7 @@ pg_session_desc pg_app_session_desc(const pg_app *app)
         .registry = &app->registry,
         .disable_aliasing = app->opt.no_aliasing,
         .immediate = app->opt.immediate,
+        .async_off = app->opt.async_compute == PG_ASYNC_OFF,
         .settings = app->opt.settings,
         .n_settings = app->opt.n_settings,
     };

@@ -132,6 +132,7 @@ static void reference_render(bench *B, pg_app *app, const pg_frame_info *fi0, co
         .registry = &app->registry,
         .disable_aliasing = B->opt.no_aliasing,
         .immediate = B->opt.immediate,
+        .async_off = B->opt.async_compute == PG_ASYNC_OFF,
         .settings = app->opt.settings, /* OCIO config / display / view */
         .n_settings = app->opt.n_settings,
     };
@@ -214,6 +215,7 @@ void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *refs, b
         .registry = &app->registry,
         .disable_aliasing = B->opt.no_aliasing,
         .immediate = B->opt.immediate,
+        .async_off = B->opt.async_compute == PG_ASYNC_OFF,
         .settings = app->opt.settings,
         .n_settings = app->opt.n_settings,
     };

@@ -35,6 +35,9 @@ const char *const pg_cli_common_help =
     "                       else $XDG_CACHE_HOME/passgraph, else ~/.cache/passgraph\n"
     "  --immediate          debugging mode: passes in declaration order, no aliasing, a full\n"
     "                       barrier (all commands, all memory) before every pass\n"
+    "  --async-compute MODE on: run compute passes whose inputs come from no raster pass on a\n"
+    "                       second queue (default when the device has one); off: one queue;\n"
+    "                       emulate: the two-queue plan on the one graphics queue (test switch)\n"
     "  --explain            print what the compiled graph left out, culled and why\n"
     "  --frames N           frames to render; timings are the median (default 1)\n"
     "  --view NAME          an OCIO view of the display (e.g. \"Standard\", \"Filmic (ACES)\", \"Raw\")\n"
@@ -262,6 +265,12 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         pg_cache_set_enabled(false); /* process-wide: the caches are per process */
     } else if (!strcmp(a, "--immediate")) {
         c->immediate = true;
+    } else if (!strcmp(a, "--async-compute")) {
+        NEED_VALUE();
+        if (!strcmp(v, "on")) c->async_compute = PG_ASYNC_ON;
+        else if (!strcmp(v, "off")) c->async_compute = PG_ASYNC_OFF;
+        else if (!strcmp(v, "emulate")) c->async_compute = PG_ASYNC_EMULATE;
+        else return pg_fail(err, PG_ERR_INVALID_ARG, "--async-compute: '%s': expected on, off or emulate", v);
     } else if (!strcmp(a, "--explain")) {
         c->explain = true;
     } else if (!strcmp(a, "--quiet")) {

@@ -10,6 +10,8 @@
 #define PG_CLI_MAX_SETS 32
 #define PG_CLI_MAX_SETTINGS 8
 
+enum { PG_ASYNC_AUTO = 0, PG_ASYNC_ON, PG_ASYNC_OFF, PG_ASYNC_EMULATE };
+
 typedef struct pg_cli_common {
     const char *pipeline;        /* --pipeline FILE */
     const char *scene;           /* --scene FILE|default */
@@ -31,6 +33,7 @@ typedef struct pg_cli_common {
     bool validation;             /* --validation */
     bool no_aliasing;            /* --no-aliasing */
     bool immediate;              /* --immediate */
+    int async_compute;           /* --async-compute: PG_ASYNC_AUTO (not given), _ON, _OFF, _EMULATE */
     bool explain;                /* --explain */
     uint32_t frames;             /* --frames N */
     const char *view;            /* --view NAME as given: an OCIO view of the display if the config

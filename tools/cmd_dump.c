@@ -47,6 +47,9 @@ static const char *const dump_help =
     "  --no-aliasing        give every transient its own memory block\n"
     "  --immediate          the debugging mode: passes in declaration order, no aliasing,\n"
     "                       full barriers (ALL_COMMANDS -> ALL_COMMANDS) before every pass\n"
+    "  --async-compute MODE plan for a graphics and a compute queue: on (of different queue\n"
+    "                       families, as on NVIDIA: ownership transfers), emulate (one family:\n"
+    "                       semaphores only), off (one queue; the default here plans for one)\n"
     "\n"
     "accepted so that a 'passgraph render' command line can be reused, without effect here:\n"
     "  --time, --seed, --radius, --intensity, --frames, --device, --validation, --explain, --quiet,\n"
@@ -186,6 +189,14 @@ int pg_cmd_dump(int argc, char **argv)
         .disable_aliasing = opt.no_aliasing,
         .immediate = opt.immediate,
     };
+    /* no device here: --async-compute says which queues to plan for */
+    if (opt.async_compute == PG_ASYNC_ON || opt.async_compute == PG_ASYNC_EMULATE) {
+        cd.queues.n_queues = 2;
+        cd.queues.separate_family = opt.async_compute == PG_ASYNC_ON;
+    } else if (opt.async_compute == PG_ASYNC_OFF) {
+        cd.queues.n_queues = 2;
+        cd.queues.async_off = true;
+    }
     if (app.scene) cd.features = app.scene->features;
     cd.features.light_count = app.lights.count;
     if (pg_graph_compile(&cd, &plan, &err)) goto done;

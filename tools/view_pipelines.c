@@ -90,6 +90,7 @@ pg_result open_session(viewer *v, const char *path, bool with_overrides, pg_sess
         .registry = &v->app.registry,
         .disable_aliasing = v->app.opt.no_aliasing,
         .immediate = v->app.opt.immediate,
+        .async_off = v->app.opt.async_compute == PG_ASYNC_OFF,
         .output_stages = VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_BLIT_BIT,
         .settings = v->settings,
         .n_settings = v->n_settings,

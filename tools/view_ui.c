@@ -212,7 +212,8 @@ void build_ui(viewer *v)
                 pg_ui_table_header(cols, 3);
                 for (uint32_t p = 0; p < st->n_passes; p++) {
                     pg_ui_table_next_row();
-                    pg_ui_table_cell("%s", st->pass_names[p]);
+                    pg_ui_table_cell("%s%s", st->pass_names[p], /* the queue it ran on, when two */
+                                     st->n_batches > 1 ? (st->pass_queue[p] == PG_QUEUE_COMPUTE ? " [compute]" : " [graphics]") : "");
                     pg_ui_table_cell("%.3f", st->pass_ms[p]);
                     pg_ui_table_cell("%.0f%%", st->gpu_total_ms > 0 ? 100 * st->pass_ms[p] / st->gpu_total_ms : 0);
                 }

@@ -388,6 +388,72 @@ static bool json_pipeline(cJSON *root, const pg_pipeline *pl)
     return true;
 }
 
+/* "queues": every executed pass's queue and batch, the batches with their waits, and the
+ * ownership transfers (docs/dump-format.md). */
+static bool json_queues(cJSON *root, const pg_graph_plan *plan)
+{
+    cJSON *q = cJSON_AddObjectToObject(root, "queues");
+    if (!q || !cJSON_AddBoolToObject(q, "ownership_transfers", plan->qfot)) return false;
+    cJSON *pa = cJSON_AddArrayToObject(q, "passes");
+    if (!pa) return false;
+    for (uint32_t k = 0; k < plan->n_order; k++) {
+        const pg_plan_pass *pp = &plan->passes[plan->order[k]];
+        cJSON *o = cJSON_CreateObject();
+        if (!o) return false;
+        cJSON_AddItemToArray(pa, o);
+        if (!cJSON_AddStringToObject(o, "name", pp->name) || !cJSON_AddStringToObject(o, "queue", pg_queue_name(pp->queue)) ||
+            !cJSON_AddNumberToObject(o, "batch", pp->batch) || !cJSON_AddStringToObject(o, "why", pp->queue_reason))
+            return false;
+    }
+    cJSON *ba = cJSON_AddArrayToObject(q, "batches");
+    if (!ba) return false;
+    for (uint32_t b = 0; b < plan->n_batches; b++) {
+        const pg_plan_batch *bt = &plan->batches[b];
+        cJSON *o = cJSON_CreateObject(), *names = cJSON_CreateArray();
+        if (!o || !names) {
+            cJSON_Delete(o);
+            cJSON_Delete(names);
+            return false;
+        }
+        cJSON_AddItemToArray(ba, o);
+        cJSON_AddItemToObject(o, "passes", names);
+        for (uint32_t k = bt->first; k < bt->first + bt->count; k++)
+            cJSON_AddItemToArray(names, cJSON_CreateString(plan->passes[plan->order[k]].name));
+        if (!cJSON_AddStringToObject(o, "queue", pg_queue_name(bt->queue)) || !cJSON_AddBoolToObject(o, "last", bt->last) ||
+            !add_int_or_null(o, "waits_previous_frame", bt->prev_frame_wait >= 0, bt->prev_frame_wait))
+            return false;
+        cJSON *wa = cJSON_AddArrayToObject(o, "waits");
+        if (!wa) return false;
+        for (uint32_t w = 0; w < bt->n_waits; w++) {
+            cJSON *x = cJSON_CreateObject();
+            if (!x) return false;
+            cJSON_AddItemToArray(wa, x);
+            if (!cJSON_AddNumberToObject(x, "batch", bt->waits[w].batch) || !add_stage_names(x, "stages", bt->waits[w].stages) ||
+                !cJSON_AddStringToObject(x, "why", bt->waits[w].why))
+                return false;
+        }
+    }
+    cJSON *ta = cJSON_AddArrayToObject(q, "ownership");
+    if (!ta) return false;
+    for (uint32_t i = 0; i < plan->n_qfots; i++) {
+        const pg_qfot *t = &plan->qfots[i];
+        cJSON *x = cJSON_CreateObject();
+        if (!x) return false;
+        cJSON_AddItemToArray(ta, x);
+        if (!cJSON_AddStringToObject(x, "resource", res_name(plan, t->resource)) ||
+            !cJSON_AddStringToObject(x, "from", pg_queue_name(t->src_queue)) ||
+            !cJSON_AddStringToObject(x, "to", pg_queue_name(t->dst_queue)) ||
+            !cJSON_AddNumberToObject(x, "release_batch", t->release_batch) ||
+            !cJSON_AddNumberToObject(x, "acquire_batch", t->acquire_batch) ||
+            !add_stage_names(x, "release_stages", t->src_stages) || !add_access_names(x, "release_access", t->src_access) ||
+            !add_stage_names(x, "acquire_stages", t->dst_stages) || !add_access_names(x, "acquire_access", t->dst_access) ||
+            !add_str_or_null(x, "old_layout", t->is_image ? pg_layout_name(t->old_layout) : NULL) ||
+            !add_str_or_null(x, "new_layout", t->is_image ? pg_layout_name(t->new_layout) : NULL))
+            return false;
+    }
+    return true;
+}
+
 static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline *pl)
 {
     if (!cJSON_AddNumberToObject(root, "format_version", PG_DUMP_FORMAT_VERSION)) return false;
@@ -530,7 +596,7 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
     uint32_t res_culled = 0;
     for (uint32_t r = 0; r < plan->n_resources; r++) res_culled += plan->resources[r].culled;
     cJSON *t = cJSON_AddObjectToObject(root, "totals");
-    return t && cJSON_AddNumberToObject(t, "passes_declared", plan->n_passes) &&
+    const bool ok = t && cJSON_AddNumberToObject(t, "passes_declared", plan->n_passes) &&
            cJSON_AddNumberToObject(t, "passes_run", plan->n_order) &&
            cJSON_AddNumberToObject(t, "passes_culled", count_culled_passes(plan)) &&
            cJSON_AddNumberToObject(t, "resources_declared", plan->n_resources) &&
@@ -542,6 +608,8 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
            add_u64(t, "transient_bytes_unaliased", plan->transient_bytes_unaliased) &&
            add_u64(t, "transient_bytes_aliased", plan->transient_bytes_aliased) &&
            cJSON_AddNumberToObject(t, "saving_percent", (double)(int64_t)(saving_percent(plan) * 10.0 + 0.5) / 10.0);
+    /* queues, after the existing keys (two-queue plans only; a one-queue plan has no such key) */
+    return ok && (!plan->async || json_queues(root, plan));
 }
 
 char *pg_dump_json(const pg_graph_plan *plan, const pg_pipeline *pipeline)
@@ -1005,8 +1073,9 @@ void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline
             if (k % 2 == 1)
                 fprintf(f, "  <rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#f7f9fc\"/>\n", x, top,
                         w, row_h * n_rows);
-            fprintf(f, "  <text x=\"%.1f\" y=\"72\" text-anchor=\"middle\" font-size=\"10\" fill=\"#777777\">#%u</text>\n",
-                    x + w / 2, k);
+            const bool on_c = plan->async && plan->passes[plan->order[k]].queue == PG_QUEUE_COMPUTE;
+            fprintf(f, "  <text x=\"%.1f\" y=\"72\" text-anchor=\"middle\" font-size=\"10\" fill=\"#777777\">#%u%s</text>\n",
+                    x + w / 2, k, !plan->async ? "" : on_c ? " compute" : " graphics"); /* its queue, when two */
             fprintf(f, "  <text x=\"%.1f\" y=\"90\" text-anchor=\"middle\" font-weight=\"bold\">", x + w / 2);
             xml_fit(f, plan->passes[plan->order[k]].name, w - 8, 12);
             fputs("</text>\n", f);

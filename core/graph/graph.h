@@ -19,6 +19,9 @@
  *                 first use of an aliased resource (from UNDEFINED, after the previous occupant),
  *                 the frame-to-frame wrap of persistent resources, and the final transition of the
  *                 outputs for readback
+ *   8. queues     (core/graph_queues.c; the queue of each pass is chosen between 5 and 6) each
+ *                 pass's queue, submission batches (consecutive passes on one queue), the
+ *                 cross-queue semaphore waits and queue-family ownership transfers
  * The plan makes no Vulkan calls; it only uses Vulkan's enum values so the executor can copy them.
  */
 #ifndef PG_GRAPH_H
@@ -57,6 +60,57 @@ typedef struct pg_barrier {
     char why[48];          /* "RAW", "WAR", "WAW", "layout", "alias first use", "output" ... */
 } pg_barrier;
 
+/* ---- queues (core/graph_queues.c) ---- */
+typedef enum pg_queue { PG_QUEUE_GRAPHICS = 0, PG_QUEUE_COMPUTE = 1 } pg_queue;
+#define PG_QUEUE_COUNT 2
+#define PG_MAX_BATCHES (PG_MAX_PASSES + 1)
+#define PG_MAX_QFOTS (2 * PG_MAX_RESOURCES)
+const char *pg_queue_name(pg_queue q); /* "graphics" / "compute" */
+
+/* What the device offers, given to the compiler (the runtime fills it from the real device,
+ * pg_runtime_queue_caps; zero = one queue). */
+typedef struct pg_queue_caps {
+    uint32_t n_queues;           /* 2: a compute-capable queue besides the graphics one */
+    bool separate_family;        /* that queue is of another queue family: cross-queue uses of a
+                                  * resource (EXCLUSIVE sharing) need ownership transfers */
+    bool async_off;              /* --async-compute off: everything on the graphics queue */
+    char why_single[96];         /* why there is one queue (shown in the dump), optional */
+} pg_queue_caps;
+
+/* One queue-family ownership transfer: a release barrier at the end of release_batch and the
+ * matching acquire at the start of acquire_batch, with the same layouts in both (the Vulkan
+ * rules for QFOT). The executor fills srcQueueFamilyIndex/dstQueueFamilyIndex from the real
+ * families. Only planned when pg_queue_caps.separate_family. */
+typedef struct pg_qfot {
+    int resource;
+    bool is_image;
+    pg_queue src_queue, dst_queue;
+    int release_batch, acquire_batch;
+    int consumer_pass;           /* plan->passes index: first use on the acquiring queue */
+    uint64_t src_stages, src_access; /* release: the accesses on the releasing queue */
+    uint64_t dst_stages, dst_access; /* acquire: the consumer's first access */
+    uint32_t old_layout, new_layout; /* identical in the release and the acquire */
+} pg_qfot;
+
+typedef struct pg_batch_wait {
+    int batch;                   /* waits for this batch's signal (same frame) */
+    uint64_t stages;             /* VkPipelineStageFlags2 of this batch that wait */
+    char why[64];                /* "lights (RAW)", "join", ... */
+} pg_batch_wait;
+
+typedef struct pg_plan_batch {
+    pg_queue queue;
+    uint32_t first, count;       /* plan->order[first .. first + count); count 0: an empty
+                                  * graphics batch that only joins the queues */
+    uint32_t n_waits;
+    pg_batch_wait waits[2];
+    int prev_frame_wait;         /* >= 0: waits (ALL_COMMANDS) for this batch of the previous
+                                  * frame: the first compute batch waits for the last graphics
+                                  * batch that touches a resource the compute queue uses */
+    bool last;                   /* the frame's last batch (graphics): final barriers, readback,
+                                  * fence; it waits for the compute queue's last batch */
+} pg_plan_batch;
+
 typedef struct pg_plan_slot {
     int resource;          /* index into plan->resources */
     bool is_write;
@@ -73,6 +127,9 @@ typedef struct pg_plan_pass {
     pg_pass_decl decl;
     uint32_t n_slots;           /* reads first, then writes */
     pg_plan_slot slots[2 * PG_MAX_SLOTS];
+    pg_queue queue;             /* the queue it runs on */
+    int batch;                  /* index in plan->batches; -1 when culled */
+    char queue_reason[128];
     uint32_t n_barriers;        /* placed before the pass */
     pg_barrier barriers[PG_MAX_BARRIERS_PER_PASS];
 } pg_plan_pass;
@@ -99,10 +156,13 @@ typedef struct pg_plan_resource {
     bool may_inherit;            /* first access overwrites every byte: may start in bytes an
                                   * earlier resource of its block used */
     int desc_index;              /* index in pipeline->resources */
+    uint8_t queues;              /* bit q: used by a pass on queue q; a transient used on both
+                                  * queues gets its own memory (sharing across queues would race) */
 } pg_plan_resource;
 
 typedef struct pg_plan_block {
     pg_res_kind kind;
+    pg_queue queue;              /* every member is used on this queue alone */
     uint64_t size_bytes;         /* highest end (offset + size) of its members, estimated */
     uint32_t n_members;
     int members[PG_MAX_RESOURCES]; /* by first use (ties: declaration index) */
@@ -128,6 +188,7 @@ typedef struct pg_compile_desc {
     uint32_t output_layout;          /* VkImageLayout the outputs end in; 0 -> TRANSFER_SRC */
     uint64_t output_stages;          /* stages that read the outputs after the graph; 0 -> COPY
                                       * (read-back); the viewer adds BLIT to put it on screen */
+    pg_queue_caps queues;            /* zero: one queue */
 } pg_compile_desc;
 
 typedef struct pg_graph_plan {
@@ -148,6 +209,13 @@ typedef struct pg_graph_plan {
     char explain[PG_MAX_EXPLAIN][PG_EXPLAIN_MAX];
     bool aliasing_disabled;
     uint64_t generation;               /* hash of the rest of the plan (see pg_res_handle); != 0 */
+    bool async;                        /* the plan uses the compute queue */
+    bool qfot;                         /* the queues are of different families: qfots[] used */
+    char queue_note[PG_EXPLAIN_MAX];   /* why everything is on one queue, or "" */
+    uint32_t n_batches;
+    pg_plan_batch batches[PG_MAX_BATCHES];
+    uint32_t n_qfots;
+    pg_qfot qfots[PG_MAX_QFOTS];
     bool immediate;                    /* compiled with pg_compile_desc.immediate: every barrier's
                                         * masks are ALL_COMMANDS/MEMORY_*, and the executor adds a
                                         * global memory barrier before every pass */

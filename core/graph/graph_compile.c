@@ -966,6 +966,13 @@ static void phase_alias(compile_ctx *c)
             plan->transient_bytes_aliased += pr->size_bytes;
             continue;
         }
+        if (pr->queues == 3u) { /* used on both queues: sharing its bytes would race across them */
+            plan->transient_bytes_unaliased += pr->size_bytes;
+            plan->transient_bytes_aliased += pr->size_bytes;
+            add_explain(plan, "resource '%s' is used on the graphics and the compute queue: own memory (a "
+                              "memory block is shared only by transients of one queue)", pr->name);
+            continue;
+        }
         /* Sharing an earlier resource's bytes means starting from whatever it left: only a
          * resource whose first access overwrites everything without reading may do that. */
         const pass_use *fu = first_use(c, (int)r);
@@ -988,7 +995,7 @@ static void phase_alias(compile_ctx *c)
             .size = pr->size_bytes,
             .alignment = pr->kind == PG_RES_IMAGE ? PG_ALIAS_EST_ALIGN_IMAGE : PG_ALIAS_EST_ALIGN_BUFFER,
             .type_bits = ~0u,
-            .klass = (uint32_t)pr->kind,
+            .klass = (uint32_t)pr->kind + (pr->queues == 2u ? 2u : 0u), /* one queue per block */
             .first = pr->first_pass,
             .last = pr->last_pass,
             .may_inherit = pr->may_inherit,
@@ -999,7 +1006,8 @@ static void phase_alias(compile_ctx *c)
     plan->n_blocks = nb > 0 ? (uint32_t)nb : 0;
     for (uint32_t b = 0; b < plan->n_blocks; b++) {
         memset(&plan->blocks[b], 0, sizeof plan->blocks[b]);
-        plan->blocks[b].kind = (pg_res_kind)blocks[b].klass;
+        plan->blocks[b].kind = (pg_res_kind)(blocks[b].klass & 1u);
+        plan->blocks[b].queue = blocks[b].klass & 2u ? PG_QUEUE_COMPUTE : PG_QUEUE_GRAPHICS;
         plan->blocks[b].size_bytes = blocks[b].size;
         plan->transient_bytes_aliased += blocks[b].size;
     }
@@ -1275,6 +1283,8 @@ static void collect_explain(compile_ctx *c)
 {
     const pg_pipeline *pl = c->pl;
     pg_graph_plan *plan = c->plan;
+    if (plan->queue_note[0] && (c->desc->queues.n_queues >= 2 || c->desc->queues.why_single[0]))
+        add_explain(plan, "%s", plan->queue_note);
     for (uint32_t i = 0; i < pl->n_omitted && i < PG_MAX_PASSES + PG_MAX_RESOURCES; i++)
         add_explain(plan, "omitted %s: %s", pl->omitted[i].what, pl->omitted[i].why);
     for (uint32_t p = 0; p < pl->n_passes; p++)
@@ -1303,6 +1313,8 @@ static void full_masks(pg_barrier *b)
 }
 
 uint64_t pg_plan_generation(const pg_graph_plan *plan); /* graph_handle.c */
+pg_result pg_queues_assign(pg_graph_plan *plan, const pg_compile_desc *desc, pg_error *err); /* graph_queues.c */
+void pg_queues_schedule(pg_graph_plan *plan, const pg_compile_desc *desc);
 
 static void make_immediate(pg_graph_plan *plan)
 {
@@ -1338,9 +1350,11 @@ pg_result pg_graph_compile(const pg_compile_desc *desc, pg_graph_plan **out, pg_
     if (!r) r = phase_order(c);
     if (!r) r = phase_cull(c);
     if (!r) r = phase_lifetimes(c);
+    if (!r) r = pg_queues_assign(plan, desc, err);
     if (!r) {
         phase_alias(c);
         phase_barriers(c);
+        pg_queues_schedule(plan, desc);
         if (desc->immediate) make_immediate(plan);
         collect_explain(c);
         plan->generation = pg_plan_generation(plan); /* last: it hashes the rest */

@@ -212,8 +212,56 @@ static void print_timeline(FILE *f, const pg_graph_plan *plan)
     }
     fprintf(f, "  passes:");
     for (uint32_t k = 0; k < plan->n_order; k++)
-        fprintf(f, "%s %u %s", k ? "," : "", k, plan->passes[plan->order[k]].name);
+        fprintf(f, "%s %u %s%s", k ? "," : "", k, plan->passes[plan->order[k]].name,
+                !plan->async ? "" : plan->passes[plan->order[k]].queue == PG_QUEUE_COMPUTE ? " [compute]" : " [graphics]");
     fprintf(f, "\n");
+}
+
+/* The submission batches of a two-queue plan: queue, passes, waits, ownership transfers. */
+static void print_queues(FILE *f, const pg_graph_plan *plan)
+{
+    fprintf(f, "\nqueues: graphics + compute (%s); %u submission batches:\n",
+            plan->qfot ? "separate families: ownership transfers" : "one family: semaphores, no ownership transfer",
+            plan->n_batches);
+    char st[256], ac[256];
+    for (uint32_t b = 0; b < plan->n_batches; b++) {
+        const pg_plan_batch *bt = &plan->batches[b];
+        fprintf(f, "  batch %u on %s:", b, pg_queue_name(bt->queue));
+        for (uint32_t o = bt->first; o < bt->first + bt->count; o++)
+            fprintf(f, "%s %s", o == bt->first ? "" : ",", plan->passes[plan->order[o]].name);
+        if (!bt->count) fprintf(f, " (no passes)");
+        fprintf(f, "%s\n", bt->last ? " (last: final barriers, fence)" : "");
+        if (bt->prev_frame_wait >= 0)
+            fprintf(f, "      waits for batch %d of the previous frame at all_commands\n", bt->prev_frame_wait);
+        for (uint32_t w = 0; w < bt->n_waits; w++) {
+            pg_stage_names(bt->waits[w].stages, st, sizeof st);
+            fprintf(f, "      waits for batch %d at %s (%s)\n", bt->waits[w].batch, st, bt->waits[w].why);
+        }
+        for (uint32_t q = 0; q < plan->n_qfots; q++) {
+            const pg_qfot *t = &plan->qfots[q];
+            if (t->acquire_batch == (int)b) {
+                pg_stage_names(t->dst_stages, st, sizeof st);
+                pg_access_mask_names(t->dst_access, ac, sizeof ac);
+                fprintf(f, "      acquire %-14s %s -> %s  %s/%s", plan->resources[t->resource].name,
+                        pg_queue_name(t->src_queue), pg_queue_name(t->dst_queue), st, ac);
+                if (t->is_image)
+                    fprintf(f, ", %s -> %s", pg_layout_name(t->old_layout), pg_layout_name(t->new_layout));
+                fprintf(f, "  (from batch %d, for '%s')\n", t->release_batch, plan->passes[t->consumer_pass].name);
+            }
+        }
+        for (uint32_t q = 0; q < plan->n_qfots; q++) {
+            const pg_qfot *t = &plan->qfots[q];
+            if (t->release_batch == (int)b) {
+                pg_stage_names(t->src_stages, st, sizeof st);
+                pg_access_mask_names(t->src_access, ac, sizeof ac);
+                fprintf(f, "      release %-14s %s -> %s  %s/%s", plan->resources[t->resource].name,
+                        pg_queue_name(t->src_queue), pg_queue_name(t->dst_queue), st, ac);
+                if (t->is_image)
+                    fprintf(f, ", %s -> %s", pg_layout_name(t->old_layout), pg_layout_name(t->new_layout));
+                fprintf(f, "  (at the end, to batch %d)\n", t->acquire_batch);
+            }
+        }
+    }
 }
 
 void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline, void *FILE_ptr)
@@ -245,7 +293,9 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
     fprintf(f, "\nexecution order (%u passes):\n", plan->n_order);
     for (uint32_t k = 0; k < plan->n_order; k++) {
         const pg_plan_pass *pp = &plan->passes[plan->order[k]];
-        fprintf(f, "  [%u] %s (%s)\n", k, pp->name, pp->type && pp->type->name ? pp->type->name : "?");
+        fprintf(f, "  [%u] %s (%s)", k, pp->name, pp->type && pp->type->name ? pp->type->name : "?");
+        if (plan->async) fprintf(f, " on %s, batch %d: %s", pg_queue_name(pp->queue), pp->batch, pp->queue_reason);
+        fprintf(f, "\n");
         for (uint32_t b = 0; b < pp->n_barriers; b++) print_barrier(f, plan, &pp->barriers[b]);
         for (int w = 0; w < 2; w++) {
             bool any = false;
@@ -272,6 +322,8 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
         for (uint32_t b = 0; b < plan->n_final_barriers; b++)
             print_barrier(f, plan, &plan->final_barriers[b]);
     }
+
+    if (plan->async) print_queues(f, plan);
 
     fprintf(f, "\nculled passes:%s\n", n_culled ? "" : " none");
     for (uint32_t i = 0; i < plan->n_passes; i++)
@@ -306,7 +358,9 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
         if (pr->block >= 0)
             snprintf(block, sizeof block, "#%d @ %" PRIu64, pr->block, pr->block_offset);
         else
-            snprintf(block, sizeof block, pr->growable ? "own (grow)" : "-");
+            snprintf(block, sizeof block, pr->growable ? "own (grow)"
+                                          : pr->queues == 3u && pr->lifetime == PG_LIFETIME_TRANSIENT ? "own (2 queues)"
+                                                                                                     : "-");
         fprintf(f, "  %-16s %-6s %-10s %-11s %-12s %-10s %-31s %s%s\n", pr->name,
                 pg_res_kind_name(pr->kind), pg_lifetime_name(pr->lifetime),
                 pr->kind == PG_RES_IMAGE ? pg_format_get(pr->format)->name : "-", size, bytes,
@@ -318,7 +372,8 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
         const pg_plan_block *bl = &plan->blocks[b];
         char bytes[32];
         fmt_bytes(bl->size_bytes, bytes, sizeof bytes);
-        fprintf(f, "  #%u %s %s:", b, pg_res_kind_name(bl->kind), bytes);
+        fprintf(f, "  #%u %s %s%s%s:", b, pg_res_kind_name(bl->kind), bytes, plan->async ? ", queue " : "",
+                plan->async ? pg_queue_name(bl->queue) : "");
         for (uint32_t m = 0; m < bl->n_members && m < PG_MAX_RESOURCES; m++) {
             const pg_plan_resource *pr = &plan->resources[bl->members[m]];
             fprintf(f, "%s %s [%d..%d]", m ? "," : "", pr->name, pr->first_pass, pr->last_pass);

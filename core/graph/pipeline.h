@@ -93,6 +93,13 @@ typedef struct pg_resource_desc {
     char json_path[PG_JSON_PATH_MAX]; /* e.g. "resources[3]" */
 } pg_resource_desc;
 
+/* Which queue a pass asks for (pipeline JSON "queue"; the compiler decides, core/graph_queues.c). */
+typedef enum pg_queue_pref {
+    PG_QUEUE_PREF_AUTO = 0,
+    PG_QUEUE_PREF_GRAPHICS,
+    PG_QUEUE_PREF_COMPUTE,
+} pg_queue_pref;
+
 typedef struct pg_pass_desc {
     char name[PG_NAME_MAX];
     char type[PG_NAME_MAX];
@@ -101,6 +108,7 @@ typedef struct pg_pass_desc {
     char writes[PG_MAX_SLOTS][PG_NAME_MAX];
     char after[PG_MAX_AFTER][PG_NAME_MAX];   /* explicit ordering: run after these passes */
     bool side_effects;                       /* never culled */
+    pg_queue_pref queue;                     /* "queue": "auto" (default), "graphics", "compute" */
     struct cJSON *options;                   /* object, "$param" already substituted; never NULL */
     char file[PG_PATH_MAX];
     char json_path[PG_JSON_PATH_MAX];        /* e.g. "passes[2]" */

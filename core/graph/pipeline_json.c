@@ -29,7 +29,7 @@
 
 static const char *const k_pass_keys[] = {"name",  "type",         "reads",   "writes",
                                           "after", "side_effects", "options", "when",
-                                          "description", NULL};
+                                          "description", "queue", NULL};
 
 /* Reads a required identifier field (name / type). */
 pg_result pj_req_ident(loader *L, const src_file *f, const cJSON *obj, const char *ipath,
@@ -141,6 +141,19 @@ static pg_result parse_pass(loader *L, uint32_t idx)
             return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "expected true or false, got %s", got);
         }
         d->side_effects = cJSON_IsTrue(se);
+    }
+    const cJSON *qu = cJSON_GetObjectItemCaseSensitive(o, "queue");
+    if (qu) {
+        const char *qs = cJSON_IsString(qu) ? qu->valuestring : NULL;
+        if (qs && !strcmp(qs, "auto")) d->queue = PG_QUEUE_PREF_AUTO;
+        else if (qs && !strcmp(qs, "graphics")) d->queue = PG_QUEUE_PREF_GRAPHICS;
+        else if (qs && !strcmp(qs, "compute")) d->queue = PG_QUEUE_PREF_COMPUTE;
+        else {
+            pj_describe(qu, got, sizeof got);
+            snprintf(path, sizeof path, "%s.queue", ip);
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
+                              "expected \"auto\", \"graphics\" or \"compute\", got %s", got);
+        }
     }
     cJSON *opts = cJSON_GetObjectItemCaseSensitive(o, "options");
     if (opts && !cJSON_IsObject(opts)) {

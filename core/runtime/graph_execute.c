@@ -14,6 +14,7 @@ typedef struct gpu_times {
     uint64_t frame;
     bool valid;
     double total_ms, pass_ms[PG_MAX_PASSES];
+    double pass_start_ms[PG_MAX_PASSES]; /* from the frame's first timestamp (both queues) */
 } gpu_times;
 
 struct pg_runtime {
@@ -41,21 +42,37 @@ struct pg_runtime {
         VkDescriptorSet frame_set;
         pg_buffer frame_ubo;
         void *frame;               /* CPU copy of the frame block (frame_size bytes) */
-        VkCommandBuffer cmd;
+        /* one command buffer per plan batch, from the pool of its queue's family (cmd_pool[b]) */
+        VkCommandBuffer cmds[PG_MAX_BATCHES];
+        VkCommandPool cmd_pool[PG_MAX_BATCHES];
         VkFence fence;
         bool pending;              /* submitted, results not collected yet */
         uint64_t frame_no;
-        VkQueryPool queries;
+        /* timestamps: per queue a pool of 2 per executed pass (begin before its barriers, end
+         * after it), reset by the queue's first batch; the last batch of each queue copies its
+         * pool to timestamps (graphics first, then compute) */
+        VkQueryPool queries, cqueries;
         pg_buffer timestamps;      /* the query results, copied at the end of the frame */
         pg_buffer readback[2];
     } slot[PG_MAX_FRAMES_IN_FLIGHT];
     bool test_no_frame_barrier;    /* pg_runtime_test_drop_frame_barrier */
     uint32_t n_in_flight, cur;     /* cur: the slot of the last submitted frame */
+    /* async compute: one timeline semaphore per queue (graphics, compute), the last value each
+     * signalled, and the values the last frame's batches signalled (for the next frame's
+     * prev_frame_wait; prev_gen: the plan they belong to) */
+    VkSemaphore timeline[PG_QUEUE_COUNT];
+    uint64_t tl_value[PG_QUEUE_COUNT];
+    uint64_t prev_batch_value[PG_MAX_BATCHES];
+    uint64_t prev_gen;
+    bool compute_stamps;           /* the compute family has timestamps */
+    uint32_t qslot[PG_MAX_PASSES]; /* executed pass -> its index among its queue's passes */
+    uint32_t n_on_queue[PG_QUEUE_COUNT];
     uint64_t frame_no;
     uint32_t n_queries;
     bool readback_valid[2];
     /* GPU times of the last frame whose fence was seen signalled */
     double gpu_pass_ms[PG_MAX_PASSES], gpu_total_ms;
+    double gpu_pass_start_ms[PG_MAX_PASSES];
     bool gpu_valid;
     uint64_t gpu_frame;
     gpu_times gpu_hist[4]; /* the GPU times of the last frames collected, by frame number % 4 */
@@ -222,6 +239,7 @@ static uint64_t pipeline_signature(const pg_runtime *rt, const pg_graph_plan *pl
             s = fnv(s, &p->slots[k].resource, sizeof(int));
             s = fnv(s, &p->slots[k].decl.unused, sizeof(bool));
         }
+        s = fnv(s, &p->queue, sizeof p->queue); /* pass-owned objects are used on one queue */
     }
     return s;
 }
@@ -281,12 +299,14 @@ static void destroy_passes(pg_runtime *rt)
     }
     for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
         if (rt->slot[f].queries) vkDestroyQueryPool(gpu->device, rt->slot[f].queries, NULL);
+        if (rt->slot[f].cqueries) vkDestroyQueryPool(gpu->device, rt->slot[f].cqueries, NULL);
         pg_buffer_destroy(gpu, &rt->slot[f].timestamps);
-        rt->slot[f].queries = VK_NULL_HANDLE;
+        rt->slot[f].queries = rt->slot[f].cqueries = VK_NULL_HANDLE;
         rt->slot[f].pending = false; /* the device is idle: every fence has signalled */
     }
     rt->gpu_valid = false;
     memset(rt->gpu_hist, 0, sizeof rt->gpu_hist);
+    rt->prev_gen = 0;
 }
 
 static void destroy_built(pg_runtime *rt)
@@ -359,19 +379,22 @@ pg_result pg_runtime_create(pg_gpu *gpu, uint32_t frame_block_size, pg_runtime *
                                   .dstBinding = 0, .descriptorCount = 1,
                                   .descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .pBufferInfo = &bi};
         vkUpdateDescriptorSets(gpu->device, 1, &w, 0, NULL);
-        VkCommandBufferAllocateInfo cai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
-                                           .commandPool = gpu->cmd_pool,
-                                           .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
-                                           .commandBufferCount = 1};
-        vr = vkAllocateCommandBuffers(gpu->device, &cai, &rt->slot[f].cmd);
-        if (vr) goto vkfail;
         VkFenceCreateInfo fci = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
         vr = vkCreateFence(gpu->device, &fci, NULL, &rt->slot[f].fence);
         if (vr) goto vkfail;
-        pg_gpu_name(gpu, VK_OBJECT_TYPE_COMMAND_BUFFER, (uint64_t)(uintptr_t)rt->slot[f].cmd, "frame%u.commands", f);
         pg_gpu_name(gpu, VK_OBJECT_TYPE_FENCE, (uint64_t)rt->slot[f].fence, "frame%u.fence", f);
     }
     pg_gpu_name(gpu, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, (uint64_t)rt->frame_layout, "frame.layout");
+    if (gpu->timeline_semaphores)
+        for (int q = 0; q < PG_QUEUE_COUNT; q++) {
+            VkSemaphoreTypeCreateInfo tci = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO,
+                                             .semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE};
+            VkSemaphoreCreateInfo sci = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, .pNext = &tci};
+            vr = vkCreateSemaphore(gpu->device, &sci, NULL, &rt->timeline[q]);
+            if (vr) goto vkfail;
+            pg_gpu_name(gpu, VK_OBJECT_TYPE_SEMAPHORE, (uint64_t)rt->timeline[q], "timeline.%s",
+                        pg_queue_name((pg_queue)q));
+        }
     *out = rt;
     return PG_OK;
 vkfail:
@@ -388,10 +411,13 @@ void pg_runtime_destroy(pg_runtime *rt)
     destroy_built(rt);
     for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
         if (rt->slot[f].fence) vkDestroyFence(gpu->device, rt->slot[f].fence, NULL);
-        if (rt->slot[f].cmd) vkFreeCommandBuffers(gpu->device, gpu->cmd_pool, 1, &rt->slot[f].cmd);
+        for (uint32_t b = 0; b < PG_MAX_BATCHES; b++)
+            if (rt->slot[f].cmds[b]) vkFreeCommandBuffers(gpu->device, rt->slot[f].cmd_pool[b], 1, &rt->slot[f].cmds[b]);
         pg_buffer_destroy(gpu, &rt->slot[f].frame_ubo);
         free(rt->slot[f].frame);
     }
+    for (int q = 0; q < PG_QUEUE_COUNT; q++)
+        if (rt->timeline[q]) vkDestroySemaphore(gpu->device, rt->timeline[q], NULL);
     if (rt->frame_pool) vkDestroyDescriptorPool(gpu->device, rt->frame_pool, NULL);
     if (rt->frame_layout) vkDestroyDescriptorSetLayout(gpu->device, rt->frame_layout, NULL);
     free(rt);
@@ -631,16 +657,23 @@ static pg_result build_passes(pg_runtime *rt, pg_error *err)
     const pg_graph_plan *plan = rt->plan;
     pg_gpu *gpu = rt->gpu;
     pg_result r;
-    rt->n_queries = plan->n_order + 1;
+    rt->n_queries = 2 * plan->n_order + 1; /* per queue pool; the +1 keeps it non-empty */
+    rt->compute_stamps = plan->async && gpu->compute_timestamp_valid_bits > 0;
+    rt->n_on_queue[0] = rt->n_on_queue[1] = 0;
+    for (uint32_t o = 0; o < plan->n_order; o++) rt->qslot[o] = rt->n_on_queue[plan->passes[plan->order[o]].queue]++;
     if (gpu->timestamp_valid_bits) {
         VkQueryPoolCreateInfo qci = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
                                      .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = rt->n_queries};
         for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
             PG_VK_TRY(err, vkCreateQueryPool(gpu->device, &qci, NULL, &rt->slot[f].queries));
             pg_gpu_name(gpu, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)rt->slot[f].queries, "frame%u.timestamps", f);
+            if (rt->compute_stamps) {
+                PG_VK_TRY(err, vkCreateQueryPool(gpu->device, &qci, NULL, &rt->slot[f].cqueries));
+                pg_gpu_name(gpu, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)rt->slot[f].cqueries, "frame%u.timestamps.compute", f);
+            }
             char nm[40];
             snprintf(nm, sizeof nm, "frame%u.timestamp_results", f);
-            if ((r = pg_buffer_create(gpu, sizeof(uint64_t) * rt->n_queries, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, nm,
+            if ((r = pg_buffer_create(gpu, 2 * sizeof(uint64_t) * rt->n_queries, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, nm,
                                       &rt->slot[f].timestamps, err)))
                 return r;
         }
@@ -838,6 +871,14 @@ static pg_result update_values(pg_runtime *rt, pg_error *err)
 pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
                               const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err)
 {
+    const pg_gpu *g = rt->gpu;
+    if (plan->async && (!g->compute_queue || !rt->timeline[0]))
+        return pg_fail(err, PG_ERR_INVALID_ARG, "the plan uses the compute queue but the device has none (%s)",
+                       g->single_queue_why[0] ? g->single_queue_why : "no timeline semaphores");
+    if (plan->async && plan->qfot != (g->compute_family != g->queue_family))
+        return pg_fail(err, PG_ERR_INVALID_ARG,
+                       "the plan was compiled for queues of %s family, the device's are of %s: compile with "
+                       "pg_runtime_queue_caps()", plan->qfot ? "different" : "one", plan->qfot ? "one" : "different");
     const uint64_t msig = memory_signature(plan, width, height);
     const uint64_t psig = pipeline_signature(rt, plan, pipeline, scene);
     const uint64_t vsig = value_signature(plan, pipeline);
@@ -967,6 +1008,46 @@ static void emit_barriers(pg_runtime *rt, VkCommandBuffer cmd, uint32_t n, const
     pg_cmd_barriers(cmd, ni, ib, nb, bb);
 }
 
+static uint32_t queue_family(const pg_runtime *rt, pg_queue q)
+{
+    return q == PG_QUEUE_COMPUTE ? rt->gpu->compute_family : rt->gpu->queue_family;
+}
+
+/* The release (at the end of batch b) or acquire (at its start) halves of the plan's ownership
+ * transfers: same layouts in both; the release's destination and the acquire's source access
+ * are empty (the semaphore between the batches orders them; the acquire's source stages are its
+ * destination stages, which the batch's semaphore wait covers, so the chain holds). */
+static void emit_qfots(pg_runtime *rt, VkCommandBuffer cmd, uint32_t b, bool release)
+{
+    const pg_graph_plan *plan = rt->plan;
+    VkImageMemoryBarrier2 ib[PG_MAX_RESOURCES];
+    VkBufferMemoryBarrier2 bb[PG_MAX_RESOURCES];
+    uint32_t ni = 0, nb = 0;
+    for (uint32_t i = 0; i < plan->n_qfots; i++) {
+        const pg_qfot *t = &plan->qfots[i];
+        if ((release ? t->release_batch : t->acquire_batch) != (int)b) continue;
+        const pg_phys_resource *r = &rt->res[t->resource];
+        const uint64_t ss = release ? t->src_stages : t->dst_stages, sa = release ? t->src_access : 0;
+        const uint64_t ds = release ? VK_PIPELINE_STAGE_2_NONE : t->dst_stages, da = release ? 0 : t->dst_access;
+        const uint32_t sf = queue_family(rt, t->src_queue), df = queue_family(rt, t->dst_queue);
+        if (t->is_image && ni < PG_MAX_RESOURCES) {
+            VkImageMemoryBarrier2 x = pg_image_barrier(r->image, pg_vk_aspect(r->format), ss, sa, ds, da,
+                                                       (VkImageLayout)t->old_layout, (VkImageLayout)t->new_layout);
+            x.srcQueueFamilyIndex = sf;
+            x.dstQueueFamilyIndex = df;
+            ib[ni++] = x;
+        } else if (!t->is_image && nb < PG_MAX_RESOURCES) {
+            bb[nb++] = (VkBufferMemoryBarrier2){
+                .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
+                .srcStageMask = ss, .srcAccessMask = sa, .dstStageMask = ds, .dstAccessMask = da,
+                .srcQueueFamilyIndex = sf, .dstQueueFamilyIndex = df,
+                .buffer = r->buffer, .size = VK_WHOLE_SIZE,
+            };
+        }
+    }
+    if (ni || nb) pg_cmd_barriers(cmd, ni, ib, nb, bb);
+}
+
 static void check_load_op(const pg_pass_record_ctx *ctx, uint32_t slot, bool clears)
 {
     if (!ctx->record_error || ctx->record_error->msg[0] || !ctx->pass || slot >= ctx->pass->n_slots) return;
@@ -1029,12 +1110,32 @@ static void collect_timestamps(pg_runtime *rt, uint32_t f)
     /* the frame copied its query results to a host-visible buffer (vkGetQueryPoolResults on
      * lavapipe blocks until the frame submitted after this one is done too) */
     if (!rt->slot[f].timestamps.mapped) return;
-    uint64_t ts[PG_MAX_PASSES + 1];
-    memcpy(ts, rt->slot[f].timestamps.mapped, sizeof(uint64_t) * rt->n_queries);
-    uint64_t mask = gpu->timestamp_valid_bits >= 64 ? ~0ull : ((1ull << gpu->timestamp_valid_bits) - 1);
-    for (uint32_t o = 0; o < plan->n_order; o++)
-        rt->gpu_pass_ms[o] = ((ts[o + 1] - ts[o]) & mask) * (double)gpu->timestamp_period_ns * 1e-6;
-    rt->gpu_total_ms = ((ts[plan->n_order] - ts[0]) & mask) * (double)gpu->timestamp_period_ns * 1e-6;
+    uint64_t ts[2 * (2 * PG_MAX_PASSES + 1)];
+    memcpy(ts, rt->slot[f].timestamps.mapped, 2 * sizeof(uint64_t) * rt->n_queries);
+    const uint32_t bits[PG_QUEUE_COUNT] = {gpu->timestamp_valid_bits, gpu->compute_timestamp_valid_bits};
+    /* the two queues' timestamps are taken as one timebase (checked on the GPU, README) */
+    uint64_t t_min = UINT64_MAX, t_max = 0;
+    for (uint32_t o = 0; o < plan->n_order; o++) {
+        const pg_queue q = plan->passes[plan->order[o]].queue;
+        if (q == PG_QUEUE_COMPUTE && !rt->compute_stamps) {
+            rt->gpu_pass_ms[o] = 0;
+            continue;
+        }
+        const uint64_t mask = bits[q] >= 64 ? ~0ull : ((1ull << bits[q]) - 1);
+        const uint64_t b0 = ts[q * rt->n_queries + 2 * rt->qslot[o]] & mask;
+        const uint64_t b1 = ts[q * rt->n_queries + 2 * rt->qslot[o] + 1] & mask;
+        rt->gpu_pass_ms[o] = ((b1 - b0) & mask) * (double)gpu->timestamp_period_ns * 1e-6;
+        if (b0 < t_min) t_min = b0;
+        if (b1 > t_max) t_max = b1;
+    }
+    rt->gpu_total_ms = t_max > t_min ? (t_max - t_min) * (double)gpu->timestamp_period_ns * 1e-6 : 0;
+    for (uint32_t o = 0; o < plan->n_order; o++) {
+        const pg_queue q = plan->passes[plan->order[o]].queue;
+        const uint64_t mask = bits[q] >= 64 ? ~0ull : ((1ull << bits[q]) - 1);
+        const uint64_t b0 = ts[q * rt->n_queries + 2 * rt->qslot[o]] & mask;
+        rt->gpu_pass_start_ms[o] = (q == PG_QUEUE_COMPUTE && !rt->compute_stamps) || b0 < t_min
+                                       ? 0 : (b0 - t_min) * (double)gpu->timestamp_period_ns * 1e-6;
+    }
     rt->gpu_valid = true;
     rt->gpu_frame = rt->slot[f].frame_no;
     gpu_times *h = &rt->gpu_hist[rt->gpu_frame % 4];
@@ -1042,6 +1143,7 @@ static void collect_timestamps(pg_runtime *rt, uint32_t f)
     h->valid = true;
     h->total_ms = rt->gpu_total_ms;
     memcpy(h->pass_ms, rt->gpu_pass_ms, sizeof(double) * plan->n_order);
+    memcpy(h->pass_start_ms, rt->gpu_pass_start_ms, sizeof(double) * plan->n_order);
 }
 
 /* Waits for slot f's frame if it is pending; counts a wait that found the fence unsignalled. */
@@ -1109,81 +1211,153 @@ pg_result pg_runtime_render(pg_runtime *rt, const void *frame_block, bool readba
     if (wr) return wr;
     memcpy(rt->slot[f].frame, frame_block, rt->frame_size);
     memcpy(rt->slot[f].frame_ubo.mapped, rt->slot[f].frame, rt->frame_size);
-    VkQueryPool queries = rt->slot[f].queries;
-
-    VkCommandBuffer cmd = rt->slot[f].cmd;
-    PG_VK_TRY(err, vkResetCommandBuffer(cmd, 0));
-    VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
-                                   .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
-    PG_VK_TRY(err, vkBeginCommandBuffer(cmd, &bi));
-    /* With frames in flight the previous frame may still run: the frames share the graph's
-     * resources (persistent and transient bytes), so this frame's work starts after all earlier
-     * work on the queue (one full barrier; submission order makes it cover earlier submits). */
-    if (n_fif > 1 && !rt->test_no_frame_barrier) emit_full_barrier(cmd);
-    if (queries) {
-        vkCmdResetQueryPool(cmd, queries, 0, rt->n_queries);
-        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 0);
+    VkQueryPool qpool[PG_QUEUE_COUNT] = {rt->slot[f].queries, rt->slot[f].cqueries};
+    /* the first and last batch of each queue (timestamp reset / copy, frames-in-flight barrier) */
+    int first_of[PG_QUEUE_COUNT] = {-1, -1}, last_of[PG_QUEUE_COUNT] = {-1, -1};
+    for (uint32_t b = 0; b < plan->n_batches; b++) {
+        const int q = plan->batches[b].queue;
+        if (first_of[q] < 0) first_of[q] = (int)b;
+        last_of[q] = (int)b;
     }
     pg_error record_error = {0};
-    for (uint32_t o = 0; o < plan->n_order; o++) {
-        int pi = plan->order[o];
-        const pg_plan_pass *pass = &plan->passes[pi];
-        if (gpu->cmd_begin_label) {
-            VkDebugUtilsLabelEXT label = {.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, .pLabelName = pass->name};
-            gpu->cmd_begin_label(cmd, &label);
+    for (uint32_t b = 0; b < plan->n_batches; b++) {
+        const pg_plan_batch *bt = &plan->batches[b];
+        const int q = bt->queue;
+        VkCommandPool pool = q == PG_QUEUE_COMPUTE ? gpu->compute_cmd_pool : gpu->cmd_pool;
+        if (rt->slot[f].cmds[b] && rt->slot[f].cmd_pool[b] != pool) {
+            vkFreeCommandBuffers(gpu->device, rt->slot[f].cmd_pool[b], 1, &rt->slot[f].cmds[b]);
+            rt->slot[f].cmds[b] = VK_NULL_HANDLE;
         }
-        if (plan->immediate) emit_full_barrier(cmd);
-        emit_barriers(rt, cmd, pass->n_barriers, pass->barriers);
-        pg_pass_record_ctx ctx = {
-            .gpu = gpu,
-            .cmd = cmd,
-            .pass = pass,
-            .scene = rt->scene,
-            .frame_set = rt->slot[f].frame_set,
-            .frame = rt->slot[f].frame,
-            .frame_size = rt->frame_size,
-            .width = rt->width,
-            .height = rt->height,
-            .record_error = &record_error,
-        };
-        for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->res[pass->slots[s].resource];
-        pass->type->record(rt->pass_state[pi], &ctx);
-        if (gpu->cmd_end_label) gpu->cmd_end_label(cmd);
-        if (queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, o + 1);
+        if (!rt->slot[f].cmds[b]) {
+            VkCommandBufferAllocateInfo cai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                               .commandPool = pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                               .commandBufferCount = 1};
+            PG_VK_TRY(err, vkAllocateCommandBuffers(gpu->device, &cai, &rt->slot[f].cmds[b]));
+            rt->slot[f].cmd_pool[b] = pool;
+            pg_gpu_name(gpu, VK_OBJECT_TYPE_COMMAND_BUFFER, (uint64_t)(uintptr_t)rt->slot[f].cmds[b],
+                        "frame%u.batch%u.%s", f, b, pg_queue_name((pg_queue)q));
+        }
+        VkCommandBuffer cmd = rt->slot[f].cmds[b];
+        PG_VK_TRY(err, vkResetCommandBuffer(cmd, 0));
+        VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+        PG_VK_TRY(err, vkBeginCommandBuffer(cmd, &bi));
+        if (first_of[q] == (int)b) {
+            /* With frames in flight the previous frame may still run: the frames share the
+             * graph's resources (persistent and transient bytes), so this frame's work on this
+             * queue starts after all earlier work on it (one full barrier; submission order
+             * makes it cover earlier submits). The compute queue's first batch also waits for
+             * the previous frame's graphics work (prev_frame_wait). */
+            if (n_fif > 1 && !rt->test_no_frame_barrier) emit_full_barrier(cmd);
+            if (qpool[q]) vkCmdResetQueryPool(cmd, qpool[q], 0, rt->n_queries);
+        }
+        emit_qfots(rt, cmd, b, false); /* acquires */
+        for (uint32_t o = bt->first; o < bt->first + bt->count; o++) {
+            int pi = plan->order[o];
+            const pg_plan_pass *pass = &plan->passes[pi];
+            if (qpool[q]) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, qpool[q], 2 * rt->qslot[o]);
+            if (gpu->cmd_begin_label) {
+                VkDebugUtilsLabelEXT label = {.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, .pLabelName = pass->name};
+                gpu->cmd_begin_label(cmd, &label);
+            }
+            if (plan->immediate) emit_full_barrier(cmd);
+            emit_barriers(rt, cmd, pass->n_barriers, pass->barriers);
+            pg_pass_record_ctx ctx = {
+                .gpu = gpu,
+                .cmd = cmd,
+                .pass = pass,
+                .scene = rt->scene,
+                .frame_set = rt->slot[f].frame_set,
+                .frame = rt->slot[f].frame,
+                .frame_size = rt->frame_size,
+                .width = rt->width,
+                .height = rt->height,
+                .record_error = &record_error,
+            };
+            for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->res[pass->slots[s].resource];
+            pass->type->record(rt->pass_state[pi], &ctx);
+            if (gpu->cmd_end_label) gpu->cmd_end_label(cmd);
+            if (qpool[q]) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, qpool[q], 2 * rt->qslot[o] + 1);
+        }
+        if (bt->last) {
+            if (plan->immediate) emit_full_barrier(cmd);
+            emit_barriers(rt, cmd, plan->n_final_barriers, plan->final_barriers);
+        }
+        emit_qfots(rt, cmd, b, true); /* releases */
+        if (qpool[q] && last_of[q] == (int)b && rt->n_on_queue[q]) {
+            vkCmdCopyQueryPoolResults(cmd, qpool[q], 0, 2 * rt->n_on_queue[q], rt->slot[f].timestamps.buffer,
+                                      (VkDeviceSize)q * rt->n_queries * sizeof(uint64_t), sizeof(uint64_t),
+                                      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+            VkBufferMemoryBarrier2 tb = pg_buffer_barrier(rt->slot[f].timestamps.buffer, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                                          VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                                                          VK_ACCESS_2_HOST_READ_BIT);
+            pg_cmd_barriers(cmd, 0, NULL, 1, &tb);
+        }
+        if (bt->last) {
+            int outs[2] = {plan->output, plan->hdr_output};
+            for (int k = 0; k < 2; k++) {
+                rt->readback_valid[k] = false;
+                if (!readback || outs[k] < 0 || !rt->slot[f].readback[k].buffer) continue;
+                const pg_phys_resource *r = &rt->res[outs[k]];
+                VkBufferImageCopy c = {.imageSubresource = {pg_vk_aspect(r->format), 0, 0, 1},
+                                       .imageExtent = {r->width, r->height, 1}};
+                vkCmdCopyImageToBuffer(cmd, r->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                       rt->slot[f].readback[k].buffer, 1, &c);
+                VkBufferMemoryBarrier2 hb =
+                    pg_buffer_barrier(rt->slot[f].readback[k].buffer, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                      VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+                pg_cmd_barriers(cmd, 0, NULL, 1, &hb);
+                rt->readback_valid[k] = true;
+            }
+        }
+        PG_VK_TRY(err, vkEndCommandBuffer(cmd));
     }
-    if (plan->immediate) emit_full_barrier(cmd);
-    emit_barriers(rt, cmd, plan->n_final_barriers, plan->final_barriers);
-    if (queries) {
-        vkCmdCopyQueryPoolResults(cmd, queries, 0, rt->n_queries, rt->slot[f].timestamps.buffer, 0, sizeof(uint64_t),
-                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
-        VkBufferMemoryBarrier2 tb = pg_buffer_barrier(rt->slot[f].timestamps.buffer, VK_PIPELINE_STAGE_2_COPY_BIT,
-                                                      VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                                                      VK_ACCESS_2_HOST_READ_BIT);
-        pg_cmd_barriers(cmd, 0, NULL, 1, &tb);
-    }
-    int outs[2] = {plan->output, plan->hdr_output};
-    for (int k = 0; k < 2; k++) {
-        rt->readback_valid[k] = false;
-        if (!readback || outs[k] < 0 || !rt->slot[f].readback[k].buffer) continue;
-        const pg_phys_resource *r = &rt->res[outs[k]];
-        VkBufferImageCopy c = {.imageSubresource = {pg_vk_aspect(r->format), 0, 0, 1},
-                               .imageExtent = {r->width, r->height, 1}};
-        vkCmdCopyImageToBuffer(cmd, r->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, rt->slot[f].readback[k].buffer, 1, &c);
-        VkBufferMemoryBarrier2 hb = pg_buffer_barrier(rt->slot[f].readback[k].buffer, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                                  VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-        pg_cmd_barriers(cmd, 0, NULL, 1, &hb);
-        rt->readback_valid[k] = true;
-    }
-    PG_VK_TRY(err, vkEndCommandBuffer(cmd));
     if (record_error.msg[0]) { /* a pass broke its declaration: not submitted */
         rt->readback_valid[0] = rt->readback_valid[1] = false;
         return pg_fail(err, record_error.code, "%s", record_error.msg);
     }
-    VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
-    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
-                        .pCommandBufferInfos = &cbi};
+    /* submit the batches in plan order: each signals its queue's timeline semaphore; a batch
+     * waits for the newest other-queue batch it depends on (and the first compute batch for the
+     * previous frame's graphics work); the last (graphics) batch signals the fence */
     PG_VK_TRY(err, vkResetFences(gpu->device, 1, &rt->slot[f].fence));
-    PG_VK_TRY(err, vkQueueSubmit2(gpu->queue, 1, &si, rt->slot[f].fence));
+    uint64_t value[PG_MAX_BATCHES] = {0};
+    const uint64_t gfx_before = rt->tl_value[PG_QUEUE_GRAPHICS];
+    for (uint32_t b = 0; b < plan->n_batches; b++) {
+        const pg_plan_batch *bt = &plan->batches[b];
+        const int q = bt->queue, other = 1 - q;
+        uint64_t wv = 0, wst = 0;
+        for (uint32_t w = 0; w < bt->n_waits; w++) {
+            if (value[bt->waits[w].batch] > wv) wv = value[bt->waits[w].batch];
+            wst |= bt->waits[w].stages;
+        }
+        if (bt->prev_frame_wait >= 0 && other == PG_QUEUE_GRAPHICS && gfx_before) {
+            uint64_t v = rt->prev_gen == plan->generation ? rt->prev_batch_value[bt->prev_frame_wait] : gfx_before;
+            if (v > wv) wv = v;
+            wst |= VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        }
+        VkSemaphoreSubmitInfo wsi = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = rt->timeline[other],
+                                     .value = wv, .stageMask = wst};
+        VkSemaphoreSubmitInfo ssi = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = rt->timeline[q],
+                                     .value = 0, .stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT};
+        const bool sem = plan->async && rt->timeline[q];
+        if (sem) value[b] = ssi.value = ++rt->tl_value[q];
+        VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO,
+                                         .commandBuffer = rt->slot[f].cmds[b]};
+        VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2,
+                            .waitSemaphoreInfoCount = sem && wv ? 1 : 0, .pWaitSemaphoreInfos = &wsi,
+                            .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi,
+                            .signalSemaphoreInfoCount = sem ? 1 : 0, .pSignalSemaphoreInfos = &ssi};
+        VkQueue queue = q == PG_QUEUE_COMPUTE ? gpu->compute_queue : gpu->queue;
+        VkResult sr = pg_vk_fault_next("vkQueueSubmit2(batch)") ? VK_ERROR_DEVICE_LOST
+                                                                 : vkQueueSubmit2(queue, 1, &si, bt->last ? rt->slot[f].fence : VK_NULL_HANDLE);
+        if (sr != VK_SUCCESS) {
+            if (sem) rt->tl_value[q]--; /* never signalled: no later wait may name it */
+            return pg_fail(err, PG_ERR_VULKAN, "vkQueueSubmit2(batch %u of %u, %s queue) failed: %s", b, plan->n_batches,
+                           pg_queue_name((pg_queue)q), pg_vk_result_name(sr));
+        }
+    }
+    memcpy(rt->prev_batch_value, value, sizeof value);
+    rt->prev_gen = plan->generation;
     rt->slot[f].pending = true;
     rt->slot[f].frame_no = rt->frame_no++;
     rt->cur = f;
@@ -1227,13 +1401,17 @@ pg_result pg_runtime_render(pg_runtime *rt, const void *frame_block, bool readba
     {
         memset(stats, 0, sizeof *stats);
         stats->n_passes = plan->n_order;
-        for (uint32_t o = 0; o < plan->n_order; o++)
+        for (uint32_t o = 0; o < plan->n_order; o++) {
             pg_strlcpy(stats->pass_names[o], plan->passes[plan->order[o]].name, PG_NAME_MAX);
+            stats->pass_queue[o] = (uint8_t)plan->passes[plan->order[o]].queue;
+        }
+        stats->n_batches = plan->n_batches;
         stats->frame = rt->slot[f].frame_no;
         stats->in_flight = n_fif;
         stats->wait_ms = wait_ms;
         if (rt->gpu_valid) {
             memcpy(stats->pass_ms, rt->gpu_pass_ms, sizeof(double) * plan->n_order);
+            memcpy(stats->pass_start_ms, rt->gpu_pass_start_ms, sizeof(double) * plan->n_order);
             stats->gpu_total_ms = rt->gpu_total_ms;
             stats->gpu_frame = rt->gpu_frame;
             stats->timestamps_valid = true;
@@ -1367,6 +1545,23 @@ pg_result pg_runtime_read_buffer(pg_runtime *rt, const char *name, uint64_t offs
     if (!res) memcpy(dst, staging.mapped, size);
     pg_buffer_destroy(rt->gpu, &staging);
     return res;
+}
+
+pg_queue_caps pg_runtime_queue_caps(const pg_runtime *rt, bool async_off)
+{
+    pg_queue_caps c;
+    memset(&c, 0, sizeof c);
+    const pg_gpu *g = rt->gpu;
+    c.async_off = async_off;
+    if (g->compute_queue && rt->timeline[0]) {
+        c.n_queues = 2;
+        c.separate_family = g->compute_family != g->queue_family;
+    } else {
+        c.n_queues = 1;
+        snprintf(c.why_single, sizeof c.why_single, "%s",
+                 g->single_queue_why[0] ? g->single_queue_why : "the device lacks timelineSemaphore");
+    }
+    return c;
 }
 
 const pg_phys_resource *pg_runtime_resource_at(const pg_runtime *rt, int index)

@@ -10,9 +10,13 @@
  * parts need: new memory -> everything, or only the resources that differ (with the other members
  * of their blocks) when they keep their names and blocks (pg_rebuild_kind); new pipelines -> the
  * pass instances only (resources keep their handles and contents); new values -> nothing (the
- * passes' update() re-reads them). pg_runtime_render() records one command buffer: for each pass in order the
- * plan's barriers, a debug label, the pass's commands and a timestamp; then the final output
- * transitions and, if asked, copies of the outputs to host-visible buffers.
+ * passes' update() re-reads them). pg_runtime_render() records one command buffer per plan batch
+ * (one batch for a one-queue plan; async compute: core/graph/graph_queues.c): for each pass in
+ * order the plan's barriers, a debug label, the pass's commands and timestamps; ownership-transfer
+ * halves at the batch's start and end; in the last batch the final output transitions and, if
+ * asked, copies of the outputs to host-visible buffers. The batches are submitted in order to
+ * their queues with timeline semaphores (pg_plan_batch waits); the last one signals the frame's
+ * fence.
  */
 #ifndef PG_GRAPH_EXECUTE_H
 #define PG_GRAPH_EXECUTE_H
@@ -92,7 +96,11 @@ typedef struct pg_frame_stats {
     uint32_t n_passes;
     char pass_names[PG_MAX_PASSES][PG_NAME_MAX];
     double pass_ms[PG_MAX_PASSES];    /* GPU time from timestamps (includes the pass's barriers) */
-    double gpu_total_ms;
+    double pass_start_ms[PG_MAX_PASSES]; /* its first timestamp less the frame's first (both
+                                       * queues on one timebase: see README, async compute) */
+    uint8_t pass_queue[PG_MAX_PASSES];/* pg_queue it ran on */
+    uint32_t n_batches;               /* submissions this frame */
+    double gpu_total_ms;              /* first to last timestamp of the frame (both queues) */
     double cpu_ms;                    /* host time of pg_runtime_render less wait_ms: record,
                                        * submit, reading stats */
     double wait_ms;                   /* host time blocked on fences in this call */
@@ -218,6 +226,10 @@ pg_result pg_runtime_resource(const pg_runtime *rt, pg_res_handle h, const pg_ph
 /* The physical image of the output (which 0) or hdr_output (1), in TRANSFER_SRC_OPTIMAL layout
  * after each frame (NULL if none). For the viewer's blit to the window. */
 const pg_phys_resource *pg_runtime_output_image(const pg_runtime *rt, int which);
+/* What the runtime's device offers for async compute, for pg_compile_desc.queues: two queues
+ * when pg_gpu has a compute queue (a separate one, or the emulated one) and timeline semaphores;
+ * async_off as given (--async-compute off). */
+pg_queue_caps pg_runtime_queue_caps(const pg_runtime *rt, bool async_off);
 /* The physical resource of plan->resources[index] (NULL when out of range), for tests. */
 const pg_phys_resource *pg_runtime_resource_at(const pg_runtime *rt, int index);
 

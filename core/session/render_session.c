@@ -65,6 +65,7 @@ static pg_result compile_plan(pg_session *s, const pg_pipeline *pipeline, uint32
         .output_stages = s->desc.output_stages,
     };
     if (s->scene) cd.features = s->scene->features;
+    if (s->runtime) cd.queues = pg_runtime_queue_caps(s->runtime, s->desc.async_off);
     cd.features.light_count = light_count;
     pg_graph_plan *plan = NULL;
     pg_result r = pg_graph_compile(&cd, &plan, err);

@@ -23,6 +23,8 @@ typedef struct pg_session_desc {
     bool disable_aliasing;
     bool immediate;               /* see pg_compile_desc.immediate (--immediate) */
     uint64_t output_stages;       /* see pg_compile_desc.output_stages */
+    bool async_off;               /* --async-compute off: plan for one queue (pg_queue_caps);
+                                   * otherwise the runtime's device decides */
     /* Application settings (key/value strings, not pipeline parameters) handed to every pass's
      * create as pg_pass_create_ctx.settings; the graph core does not read them. Copied by
      * pg_session_create. Keys in use: "ocio.config" (an OpenColorIO config file), "ocio.display",

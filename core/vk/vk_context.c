@@ -382,6 +382,26 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
     }
     gpu->queue_family = (uint32_t)fam;
     gpu->timestamp_valid_bits = qf[fam].timestampValidBits;
+    /* async compute: a compute family without graphics, else a second queue of the graphics
+     * family, else none (the compiler then plans for one queue) */
+    int cfam = -1;
+    uint32_t cindex = 0;
+    if (desc->emulate_compute_queue) {
+        cfam = fam;
+    } else if (!desc->no_compute_queue) {
+        for (uint32_t i = 0; i < nq && cfam < 0; i++)
+            if ((qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && !(qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) &&
+                qf[i].queueCount > 0)
+                cfam = (int)i;
+        if (cfam < 0 && qf[fam].queueCount > 1) {
+            cfam = fam;
+            cindex = 1;
+        }
+    }
+    if (cfam < 0)
+        snprintf(gpu->single_queue_why, sizeof gpu->single_queue_why, "%s",
+                 desc->no_compute_queue ? "--async-compute off"
+                                        : "the device has no second compute-capable queue");
 
     gpu->vulkan12 = uses_vulkan12(gpu->phys, &gpu->props, NULL, 0);
     /* On a 1.2 device the 1.3 feature and property structs are replaced by the extensions' own
@@ -480,6 +500,7 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
         .pNext = e12_next,
         .hostQueryReset = f12.hostQueryReset,
+        .timelineSemaphore = f12.timelineSemaphore,
         .scalarBlockLayout = f12.scalarBlockLayout,
         .shaderSampledImageArrayNonUniformIndexing = f12.shaderSampledImageArrayNonUniformIndexing,
         .runtimeDescriptorArray = f12.runtimeDescriptorArray,
@@ -494,18 +515,28 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
             .depthClamp = f2.features.depthClamp,
         },
     };
-    float prio = 1.0f;
-    VkDeviceQueueCreateInfo qci = {
+    gpu->timeline_semaphores = f12.timelineSemaphore;
+    if (cfam >= 0 && !f12.timelineSemaphore) {
+        cfam = -1;
+        snprintf(gpu->single_queue_why, sizeof gpu->single_queue_why, "the device lacks timelineSemaphore");
+    }
+    float prio[2] = {1.0f, 1.0f};
+    VkDeviceQueueCreateInfo qci[2] = {{
         .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
         .queueFamilyIndex = gpu->queue_family,
+        .queueCount = cfam == fam && cindex == 1 ? 2 : 1,
+        .pQueuePriorities = prio,
+    }, {
+        .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+        .queueFamilyIndex = (uint32_t)(cfam >= 0 ? cfam : 0),
         .queueCount = 1,
-        .pQueuePriorities = &prio,
-    };
+        .pQueuePriorities = prio,
+    }};
     VkDeviceCreateInfo dci = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .pNext = &e2,
-        .queueCreateInfoCount = 1,
-        .pQueueCreateInfos = &qci,
+        .queueCreateInfoCount = cfam >= 0 && cfam != fam ? 2 : 1,
+        .pQueueCreateInfos = qci,
         .enabledExtensionCount = n_dev_ext,
         .ppEnabledExtensionNames = dev_exts,
     };
@@ -516,6 +547,13 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
         goto fail;
     }
     vkGetDeviceQueue(gpu->device, gpu->queue_family, 0, &gpu->queue);
+    if (cfam >= 0) {
+        gpu->compute_family = (uint32_t)cfam;
+        gpu->compute_emulated = desc->emulate_compute_queue;
+        gpu->compute_timestamp_valid_bits = qf[cfam].timestampValidBits;
+        if (gpu->compute_emulated) gpu->compute_queue = gpu->queue;
+        else vkGetDeviceQueue(gpu->device, (uint32_t)cfam, cindex, &gpu->compute_queue);
+    }
     {
         /* the 1.3 commands under their core or their extension names (see vk_context.h) */
         const char *sfx2 = gpu->vulkan12 ? "KHR" : "", *sfx_eds = gpu->vulkan12 ? "EXT" : "";
@@ -548,12 +586,26 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
         res = pg_fail(err, PG_ERR_VULKAN, "vkCreateCommandPool failed: %s", pg_vk_result_name(r));
         goto fail;
     }
+    gpu->compute_cmd_pool = gpu->cmd_pool;
+    if (gpu->compute_queue && gpu->compute_family != gpu->queue_family) {
+        pci.queueFamilyIndex = gpu->compute_family;
+        r = vkCreateCommandPool(gpu->device, &pci, NULL, &gpu->compute_cmd_pool);
+        if (r != VK_SUCCESS) {
+            gpu->compute_cmd_pool = VK_NULL_HANDLE;
+            res = pg_fail(err, PG_ERR_VULKAN, "vkCreateCommandPool(compute) failed: %s", pg_vk_result_name(r));
+            goto fail;
+        }
+    }
     pg_pipeline_cache_open(gpu);
     if (!desc->quiet)
         fprintf(stderr, "passgraph: device %s (%s, Vulkan %u.%u%s)%s\n", gpu->props.deviceName,
                 device_type_name(gpu->props.deviceType), VK_API_VERSION_MAJOR(gpu->props.apiVersion),
                 VK_API_VERSION_MINOR(gpu->props.apiVersion), gpu->vulkan12 ? ", used as 1.2 + extensions" : "",
                 desc->validation ? ", validation + sync validation on" : "");
+    if (!desc->quiet && gpu->compute_queue)
+        fprintf(stderr, "passgraph: compute queue: %s (family %u%s)\n",
+                gpu->compute_emulated ? "emulated on the graphics queue" : "separate", gpu->compute_family,
+                gpu->compute_family == gpu->queue_family ? ", the graphics family" : "");
     *out = gpu;
     return PG_OK;
 fail:
@@ -577,6 +629,8 @@ void pg_gpu_destroy(pg_gpu *gpu)
                     st.compiled, st.compile_ms, st.memory_hits, st.disk_hits, st.disk_writes, st.rejected, st.lookup_ms,
                     gpu->pipeline_cache_loaded, pg_cache_enabled() ? "" : " (caches off)");
         }
+        if (gpu->compute_cmd_pool && gpu->compute_cmd_pool != gpu->cmd_pool)
+            vkDestroyCommandPool(gpu->device, gpu->compute_cmd_pool, NULL);
         if (gpu->cmd_pool) vkDestroyCommandPool(gpu->device, gpu->cmd_pool, NULL);
         vkDestroyDevice(gpu->device, NULL);
     }
@@ -626,6 +680,14 @@ pg_result pg_buffer_create(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags us
         .usage = usage,
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
     };
+    /* host-written/read buffers (frame uniforms, staging, timestamps) may be used on both queues
+     * of different families: concurrent sharing, no ownership transfers */
+    const uint32_t fams[2] = {gpu->queue_family, gpu->compute_family};
+    if (host_visible && gpu->compute_queue && gpu->compute_family != gpu->queue_family) {
+        bci.sharingMode = VK_SHARING_MODE_CONCURRENT;
+        bci.queueFamilyIndexCount = 2;
+        bci.pQueueFamilyIndices = fams;
+    }
     PG_VK_TRY(err, vkCreateBuffer(gpu->device, &bci, NULL, &out->buffer));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(gpu->device, out->buffer, &req);

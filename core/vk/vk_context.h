@@ -53,6 +53,12 @@ typedef struct pg_gpu_desc {
     bool swapchain;
     bool (*present_ok)(VkInstance instance, VkPhysicalDevice phys, uint32_t family, void *user);
     void *present_user;
+    /* async compute (--async-compute): no_compute_queue creates none; emulate_compute_queue
+     * (the test switch) uses the graphics VkQueue as the "compute queue" too, so the two-queue
+     * plan (batches, timeline semaphores; one family: no ownership transfer) runs on a device
+     * with one queue, e.g. lavapipe */
+    bool no_compute_queue;
+    bool emulate_compute_queue;
 } pg_gpu_desc;
 
 typedef struct pg_gpu {
@@ -62,6 +68,16 @@ typedef struct pg_gpu {
     VkDevice device;
     VkQueue queue;
     uint32_t queue_family;
+    /* the second, compute-capable queue (VK_NULL_HANDLE: none; then single_queue_why says why):
+     * a queue of a compute family without graphics if the device has one, else a second queue of
+     * the graphics family; with pg_gpu_desc.emulate_compute_queue the graphics queue itself */
+    VkQueue compute_queue;
+    uint32_t compute_family;
+    bool compute_emulated;
+    VkCommandPool compute_cmd_pool;  /* of compute_family (cmd_pool when it is queue_family) */
+    uint32_t compute_timestamp_valid_bits;
+    char single_queue_why[96];
+    bool timeline_semaphores;        /* Vulkan 1.2 timelineSemaphore, enabled */
     VkPhysicalDeviceProperties props;
     VkPhysicalDeviceMemoryProperties mem_props;
     VkCommandPool cmd_pool;      /* for one-shot commands */
