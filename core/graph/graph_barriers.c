@@ -1,11 +1,6 @@
 /* graph_barriers.c - compile phase 7 (barriers); see graph_compile.c. */
 #include "graph_compile_internal.h"
-#include "alias_pack.h"
 
-#include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <vulkan/vulkan_core.h>
 

@@ -28,14 +28,13 @@
  * lives in a second heap block freed before returning, so an error leaks nothing.
  */
 #include "graph_compile_internal.h"
-#include "alias_pack.h"
 
-#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <vulkan/vulkan_core.h>
+
 /* ------------------------------------------------------------------------------------------ */
 /* messages                                                                                   */
 

@@ -3,9 +3,6 @@
 #include "alias_pack.h"
 
 #include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <vulkan/vulkan_core.h>
 

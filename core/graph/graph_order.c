@@ -1,13 +1,8 @@
 /* graph_order.c - compile phases 3 (order) and 4 (cull); see graph_compile.c. */
 #include "graph_compile_internal.h"
-#include "alias_pack.h"
 
-#include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <vulkan/vulkan_core.h>
 
 /* ------------------------------------------------------------------------------------------ */
 /* 3. order                                                                                   */
