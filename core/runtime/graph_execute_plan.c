@@ -1,0 +1,331 @@
+/* graph_execute_plan.c - plan signatures and pg_runtime_set_plan() (rebuild kinds). */
+#include "graph_execute_internal.h"
+
+#include <string.h>
+
+#include <cjson/cJSON.h>
+
+uint32_t pg_rt_capacity_slot(pg_runtime *rt, const char *name, bool add)
+{
+    for (uint32_t i = 0; i < rt->n_capacity; i++)
+        if (!strcmp(rt->capacity[i].name, name)) return i;
+    if (!add || rt->n_capacity >= PG_MAX_RESOURCES) return UINT32_MAX;
+    uint32_t i = rt->n_capacity++;
+    pg_strlcpy(rt->capacity[i].name, name, sizeof rt->capacity[i].name);
+    rt->capacity[i].bytes = 0;
+    rt->capacity[i].limit = UINT64_MAX;
+    return i;
+}
+
+static uint64_t fnv(uint64_t h, const void *data, size_t n)
+{
+    const uint8_t *p = data;
+    for (size_t i = 0; i < n; i++) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
+static bool is_runtime_option(const pg_pass_type *t, const char *key)
+{
+    for (uint32_t i = 0; t->runtime_options && t->runtime_options[i]; i++)
+        if (key && !strcmp(t->runtime_options[i], key)) return true;
+    return false;
+}
+
+/* A pass's options, key by key, as printed JSON; runtime: only (true) or all but (false) the
+ * options its type lists in pg_pass_type.runtime_options. */
+static uint64_t hash_options(uint64_t s, const pg_pass_type *t, const cJSON *options, bool runtime)
+{
+    const cJSON *it;
+    cJSON_ArrayForEach(it, options)
+    {
+        if (is_runtime_option(t, it->string) != runtime) continue;
+        char *txt = cJSON_PrintUnformatted(it);
+        s = fnv(s, it->string ? it->string : "", it->string ? strlen(it->string) + 1 : 1);
+        if (txt) {
+            s = fnv(s, txt, strlen(txt) + 1);
+            cJSON_free(txt);
+        }
+    }
+    return s;
+}
+
+/* One resource's part of the memory signature: its size, format, usage, lifetime, memory block
+ * and what places it there (first and last pass, may_inherit). */
+static uint64_t resource_signature(uint64_t s, const pg_plan_resource *r)
+{
+    s = fnv(s, r->name, strlen(r->name) + 1);
+    s = fnv(s, &r->kind, sizeof r->kind);
+    s = fnv(s, &r->format, sizeof r->format);
+    s = fnv(s, &r->width, sizeof r->width);
+    s = fnv(s, &r->height, sizeof r->height);
+    s = fnv(s, &r->size_bytes, sizeof r->size_bytes);
+    s = fnv(s, &r->usage, sizeof r->usage);
+    s = fnv(s, &r->culled, sizeof r->culled);
+    s = fnv(s, &r->growable, sizeof r->growable);
+    s = fnv(s, &r->block, sizeof r->block);
+    s = fnv(s, &r->lifetime, sizeof r->lifetime);
+    s = fnv(s, &r->first_pass, sizeof r->first_pass);
+    s = fnv(s, &r->last_pass, sizeof r->last_pass);
+    s = fnv(s, &r->may_inherit, sizeof r->may_inherit);
+    return s;
+}
+
+/* (a) What needs new physical resources: the output size, every resource's part
+ * (resource_signature), and which resources are the outputs (the readback buffers). */
+static uint64_t memory_signature(const pg_graph_plan *plan, uint32_t w, uint32_t h)
+{
+    uint64_t s = 1469598103934665603ull;
+    s = fnv(s, &w, sizeof w);
+    s = fnv(s, &h, sizeof h);
+    s = fnv(s, &plan->n_resources, sizeof plan->n_resources);
+    s = fnv(s, &plan->n_blocks, sizeof plan->n_blocks);
+    s = fnv(s, &plan->output, sizeof plan->output);
+    s = fnv(s, &plan->hdr_output, sizeof plan->hdr_output);
+    for (uint32_t i = 0; i < plan->n_resources; i++) s = resource_signature(s, &plan->resources[i]);
+    return s;
+}
+
+static bool same_members(const pg_plan_block *a, const pg_plan_block *b)
+{
+    return a->n_members == b->n_members && !memcmp(a->members, b->members, sizeof(int) * a->n_members);
+}
+
+/* Which resources of the new plan differ from the built plan's (changed[i]) and which memory
+ * blocks hold one (dirty[b]), when the rest can be kept: same size, outputs, number of resources
+ * and blocks, each changed resource keeps its name, kind and block, a dirty block keeps its
+ * members (all of them are then re-created and the block packed again). E.g. the light buffer
+ * after a new light count. false: nothing changed, or a full memory rebuild is needed. */
+static bool resources_changed(const pg_runtime *rt, const pg_graph_plan *plan, uint32_t w, uint32_t h,
+                              bool *changed, bool *dirty)
+{
+    const pg_graph_plan *old = rt->plan;
+    if (!rt->built || !old || w != rt->width || h != rt->height || plan->n_resources != old->n_resources ||
+        plan->n_blocks != old->n_blocks || plan->output != old->output || plan->hdr_output != old->hdr_output)
+        return false;
+    uint32_t n = 0;
+    memset(dirty, 0, sizeof(bool) * PG_MAX_RESOURCES);
+    for (uint32_t i = 0; i < plan->n_resources; i++) {
+        const pg_plan_resource *a = &old->resources[i], *b = &plan->resources[i];
+        changed[i] = resource_signature(0, a) != resource_signature(0, b);
+        if (!changed[i]) continue;
+        if (a->block != b->block || (int)i == plan->output || (int)i == plan->hdr_output || strcmp(a->name, b->name) ||
+            a->kind != b->kind)
+            return false;
+        if (b->block >= 0) {
+            if (!same_members(&old->blocks[b->block], &plan->blocks[b->block])) return false;
+            dirty[b->block] = true;
+        }
+        n++;
+    }
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        for (uint32_t m = 0; dirty[b] && m < plan->blocks[b].n_members; m++) changed[plan->blocks[b].members[m]] = true;
+    return n > 0;
+}
+
+/* (b) What needs new pass instances: the scene, the settings, the executed passes in order with
+ * their types, shader variants (defines), bound resources and the options that are not run-time
+ * values (pg_pass_type.runtime_options). */
+static uint64_t pipeline_signature(const pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pl,
+                                   const pg_scene_gpu *scene)
+{
+    uint64_t s = 1469598103934665603ull;
+    s = fnv(s, &scene, sizeof scene);
+    for (uint32_t i = 0; i < rt->n_settings; i++) {
+        const char *k = rt->settings[i].key ? rt->settings[i].key : "";
+        const char *v = rt->settings[i].value ? rt->settings[i].value : "";
+        s = fnv(s, k, strlen(k) + 1);
+        s = fnv(s, v, strlen(v) + 1);
+    }
+    s = fnv(s, &plan->n_order, sizeof plan->n_order);
+    for (uint32_t i = 0; i < plan->n_order; i++) {
+        const pg_plan_pass *p = &plan->passes[plan->order[i]];
+        s = fnv(s, &plan->order[i], sizeof plan->order[i]);
+        s = fnv(s, p->name, strlen(p->name) + 1);
+        s = fnv(s, p->type->name, strlen(p->type->name) + 1);
+        for (uint32_t d = 0; d < p->decl.n_defines; d++)
+            s = fnv(s, p->decl.defines[d], strlen(p->decl.defines[d]) + 1);
+        s = hash_options(s, p->type, pl->passes[p->desc_index].options, false);
+        s = fnv(s, &p->n_slots, sizeof p->n_slots);
+        for (uint32_t k = 0; k < p->n_slots; k++) {
+            s = fnv(s, &p->slots[k].resource, sizeof(int));
+            s = fnv(s, &p->slots[k].decl.unused, sizeof(bool));
+        }
+        s = fnv(s, &p->queue, sizeof p->queue); /* pass-owned objects are used on one queue */
+    }
+    return s;
+}
+
+/* (c) The run-time values: the options the pass types list as such (pass.update() gets them). */
+static uint64_t value_signature(const pg_graph_plan *plan, const pg_pipeline *pl)
+{
+    uint64_t s = 1469598103934665603ull;
+    for (uint32_t i = 0; i < plan->n_order; i++) {
+        const pg_plan_pass *p = &plan->passes[plan->order[i]];
+        s = hash_options(s, p->type, pl->passes[p->desc_index].options, true);
+    }
+    return s;
+}
+
+/* The state a persistent resource is assumed to start each frame in (its frame-wrap barriers):
+ * kept contents are only valid for a new plan that assumes the same. */
+static uint64_t wrap_signature(const pg_graph_plan *plan, int ri)
+{
+    uint64_t s = 1469598103934665603ull;
+    for (uint32_t o = 0; o < plan->n_order; o++) {
+        const pg_plan_pass *p = &plan->passes[plan->order[o]];
+        for (uint32_t b = 0; b < p->n_barriers; b++) {
+            const pg_barrier *br = &p->barriers[b];
+            if (br->resource != ri || !br->wrap) continue;
+            s = fnv(s, &o, sizeof o);
+            s = fnv(s, &br->old_layout, sizeof br->old_layout);
+            s = fnv(s, &br->src_stages, sizeof br->src_stages);
+            s = fnv(s, &br->src_access, sizeof br->src_access);
+        }
+    }
+    for (uint32_t o = 0; o < plan->n_order; o++) { /* and the layout of every access */
+        const pg_plan_pass *p = &plan->passes[plan->order[o]];
+        for (uint32_t k = 0; k < p->n_slots; k++)
+            if (p->slots[k].resource == ri) s = fnv(s, &p->slots[k].sync.layout, sizeof(uint32_t));
+    }
+    for (uint32_t b = 0; b < plan->n_final_barriers; b++)
+        if (plan->final_barriers[b].resource == ri) s = fnv(s, &plan->final_barriers[b].new_layout, sizeof(uint32_t));
+    return s;
+}
+
+/* Re-creates the changed resources of the (new) plan and packs the dirty blocks again (the
+ * passes are destroyed, the device idle); the other resources and blocks are untouched. */
+static pg_result recreate_resources(pg_runtime *rt, const bool *changed, const bool *dirty, pg_error *err)
+{
+    pg_gpu *gpu = rt->gpu;
+    const pg_graph_plan *plan = rt->plan;
+    pg_result r;
+    for (uint32_t i = 0; i < plan->n_resources; i++) {
+        if (!changed[i]) continue;
+        pg_phys_resource *p = &rt->res[i];
+        /* what pg_rt_build_memory counted for it: block members' pg_rt_requirements, transient own allocations */
+        if (plan->resources[i].block >= 0) rt->stats.memory_bytes_unaliased -= p->memory_size;
+        else if (p->own_memory && plan->resources[i].lifetime == PG_LIFETIME_TRANSIENT) {
+            rt->stats.memory_bytes_transient -= p->memory_size;
+            rt->stats.memory_bytes_unaliased -= p->memory_size;
+        }
+        if (p->view) vkDestroyImageView(gpu->device, p->view, NULL);
+        if (p->image) vkDestroyImage(gpu->device, p->image, NULL);
+        if (p->buffer) vkDestroyBuffer(gpu->device, p->buffer, NULL);
+        if (p->own_memory) pg_gpu_free_memory(gpu, p->own_memory);
+        memset(p, 0, sizeof *p);
+        rt->persistent_initialized[i] = false;
+    }
+    for (uint32_t k = 0; k < PG_MAX_RESOURCES; k++) {
+        if (!rt->block_memory[k] || !dirty[rt->block_memory_of[k]]) continue;
+        pg_gpu_free_memory(gpu, rt->block_memory[k]);
+        rt->stats.memory_bytes_transient -= rt->block_memory_size[k];
+        rt->block_memory[k] = VK_NULL_HANDLE;
+        rt->block_memory_size[k] = 0;
+    }
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        if (dirty[b] && rt->block_split[b]) rt->stats.blocks_fallback--;
+    for (uint32_t i = 0; i < plan->n_resources; i++)
+        if (changed[i] && !plan->resources[i].culled && (r = pg_rt_create_unbound(rt, (int)i, err))) return r;
+    bool bound[PG_MAX_RESOURCES] = {0};
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        if (dirty[b] && (r = pg_rt_build_block(rt, b, bound, err))) return r;
+    for (uint32_t i = 0; i < plan->n_resources; i++)
+        if (changed[i] && !plan->resources[i].culled && !bound[i] && (r = pg_rt_build_own(rt, (int)i, err))) return r;
+    return PG_OK;
+}
+
+/* Only the run-time values changed: every kept pass instance re-reads its options. */
+static pg_result update_values(pg_runtime *rt, pg_error *err)
+{
+    for (uint32_t o = 0; o < rt->plan->n_order; o++) {
+        int pi = rt->plan->order[o];
+        const pg_plan_pass *pass = &rt->plan->passes[pi];
+        if (!pass->type->update || !rt->pass_state[pi]) continue;
+        pg_result r = pass->type->update(rt->pass_state[pi], &rt->pipeline->passes[pass->desc_index], err);
+        if (r) return pg_error_prefix(err, "pass '%s' (%s)", pass->name, pass->type->name);
+    }
+    return PG_OK;
+}
+
+pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
+                              const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err)
+{
+    const pg_gpu *g = rt->gpu;
+    if (plan->async && (!g->compute_queue || !rt->timeline[0]))
+        return pg_fail(err, PG_ERR_INVALID_ARG, "the plan uses the compute queue but the device has none (%s)",
+                       g->single_queue_why[0] ? g->single_queue_why : "no timeline semaphores");
+    if (plan->async && plan->qfot != (g->compute_family != g->queue_family))
+        return pg_fail(err, PG_ERR_INVALID_ARG,
+                       "the plan was compiled for queues of %s family, the device's are of %s: compile with "
+                       "pg_runtime_queue_caps()", plan->qfot ? "different" : "one", plan->qfot ? "one" : "different");
+    const uint64_t msig = memory_signature(plan, width, height);
+    const uint64_t psig = pipeline_signature(rt, plan, pipeline, scene);
+    const uint64_t vsig = value_signature(plan, pipeline);
+    rt->report_due = true; /* a new light count may need a buffer to grow: read the next report */
+    pg_result r;
+    if (rt->built && msig == rt->mem_sig && psig == rt->pipe_sig) {
+        /* same resources and pass instances: keep every object, adopt the new plan; only the
+         * run-time values may differ */
+        rt->plan = plan;
+        rt->pipeline = pipeline;
+        rt->scene = scene;
+        if (vsig == rt->val_sig) {
+            rt->stats.last_rebuild = PG_REBUILD_NONE;
+            return PG_OK;
+        }
+        rt->stats.value_updates++;
+        rt->stats.last_rebuild = PG_REBUILD_VALUES;
+        /* a frame in flight may still read the old values only through its command buffer
+         * (push constants are recorded), so no wait is needed */
+        r = update_values(rt, err);
+        rt->val_sig = r ? 0 : vsig; /* failed: the next plan updates again */
+        return r;
+    }
+    bool changed[PG_MAX_RESOURCES], dirty[PG_MAX_RESOURCES];
+    const bool some = msig != rt->mem_sig && resources_changed(rt, plan, width, height, changed, dirty);
+    if (rt->built && (msig == rt->mem_sig || some)) {
+        /* same resources: keep them (and what persistent ones hold when the new plan assumes
+         * the same state at frame start), re-create the pass instances only */
+        vkDeviceWaitIdle(rt->gpu->device);
+        pg_rt_destroy_passes(rt);
+        for (uint32_t i = 0; i < plan->n_resources; i++)
+            if (wrap_signature(plan, (int)i) != wrap_signature(rt->plan, (int)i)) rt->persistent_initialized[i] = false;
+        rt->plan = plan;
+        rt->pipeline = pipeline;
+        rt->scene = scene;
+        rt->pipe_sig = psig;
+        rt->val_sig = vsig;
+        if (some) { /* ... but the resources that changed (with their blocks): re-create them */
+            rt->mem_sig = msig;
+            rt->stats.resource_rebuilds++;
+            rt->stats.last_rebuild = PG_REBUILD_RESOURCES;
+            r = recreate_resources(rt, changed, dirty, err);
+        } else {
+            rt->stats.pipeline_rebuilds++;
+            rt->stats.last_rebuild = PG_REBUILD_PIPELINES;
+            r = PG_OK;
+        }
+        if (!r) r = pg_rt_build_passes(rt, err);
+    } else {
+        pg_rt_destroy_built(rt);
+        rt->plan = plan;
+        rt->pipeline = pipeline;
+        rt->scene = scene;
+        rt->width = width;
+        rt->height = height;
+        rt->mem_sig = msig;
+        rt->pipe_sig = psig;
+        rt->val_sig = vsig;
+        rt->stats.memory_rebuilds++;
+        rt->stats.last_rebuild = PG_REBUILD_MEMORY;
+        r = pg_rt_build_memory(rt, err);
+        if (!r) r = pg_rt_build_passes(rt, err);
+    }
+    if (r) {
+        pg_rt_destroy_built(rt);
+        rt->plan = NULL;
+        return r;
+    }
+    rt->built = true;
+    return PG_OK;
+}
