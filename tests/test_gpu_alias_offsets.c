@@ -1,7 +1,7 @@
 /* test_gpu_alias_offsets.c - sub-allocated aliasing on the device (lavapipe in CI), with the Khronos
  * validation layer and synchronization validation on (any message fails). For each deferred
  * pipeline: the image with aliasing is byte-identical (LDR and HDR) to the one with
- * --no-aliasing; at run time (real memory requirements, core/runtime/graph_execute.c) two resources bound
+ * --no-aliasing; at run time (real memory requirements, core/runtime/graph_execute_memory.c) two resources bound
  * to overlapping bytes of one VkDeviceMemory are never alive at the same time, belong to one plan
  * block, start with a full overwrite and get an alias barrier; and aliasing saves device memory. */
 #include <stdlib.h>

@@ -1,8 +1,8 @@
 /* alias_pack.h - lifetime x size packing of transient resources into shared memory blocks.
  *
  * Pure (no Vulkan calls, no allocation). The compiler calls it with estimated sizes and
- * alignments (core/graph/graph_compile.c phase 6: the offsets the dump shows); the runtime calls it
- * again, one plan block at a time, with the real vkGet*MemoryRequirements (core/runtime/graph_execute.c),
+ * alignments (core/graph/graph_lifetimes.c, compile phase 6: the offsets the dump shows); the runtime calls it
+ * again, one plan block at a time, with the real vkGet*MemoryRequirements (core/runtime/graph_execute_memory.c),
  * so a run-time block only ever holds members of one plan block.
  *
  * Guarantees of pg_alias_pack():
