@@ -35,8 +35,6 @@ LAYERS = {
 MAX_LINES = 900
 # path -> why it may be longer than MAX_LINES
 LONG_FILES = {
-    'tools/stats/svg_plot.c': 'not split yet (1,008 lines); issue 12 item 7 weighs replacing it '
-                              'with PLplot',
 }
 
 def size_breaks():

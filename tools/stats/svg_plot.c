@@ -1,304 +1,12 @@
-#include "svg_plot.h"
+/* svg_plot.c - the SVG chart writer (svg_plot.h): layout, drawing, the documents; svg_plot_text.c
+ * has the text and tick helpers. */
+#include "svg_plot_internal.h"
 
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Tableau 10: a fixed qualitative palette. */
-static const char *const palette[PG_PLOT_PALETTE_SIZE] = {
-    "#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
-    "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac",
-};
-
-const char *pg_plot_color(int index)
-{
-    if (index < 0) return "#444444";
-    return palette[index % PG_PLOT_PALETTE_SIZE];
-}
-
-/* ---- string builder ---- */
-typedef struct sb {
-    char *p;
-    size_t len, cap;
-    bool oom;
-} sb;
-
-static void sb_put(sb *b, const char *s, size_t n)
-{
-    if (b->oom) return;
-    if (b->len + n + 1 > b->cap) {
-        size_t cap = b->cap ? b->cap : 16384;
-        while (cap < b->len + n + 1) cap *= 2;
-        char *p = realloc(b->p, cap);
-        if (!p) {
-            b->oom = true;
-            return;
-        }
-        b->p = p;
-        b->cap = cap;
-    }
-    memcpy(b->p + b->len, s, n);
-    b->len += n;
-    b->p[b->len] = 0;
-}
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 2, 3)))
-#endif
-static void sb_printf(sb *b, const char *fmt, ...)
-{
-    char small[512];
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(small, sizeof small, fmt, ap);
-    va_end(ap);
-    if (n < 0) return;
-    if ((size_t)n < sizeof small) {
-        sb_put(b, small, (size_t)n);
-        return;
-    }
-    char *big = malloc((size_t)n + 1);
-    if (!big) {
-        b->oom = true;
-        return;
-    }
-    va_start(ap, fmt);
-    vsnprintf(big, (size_t)n + 1, fmt, ap);
-    va_end(ap);
-    sb_put(b, big, (size_t)n);
-    free(big);
-}
-
-static const char *esc_of(char c)
-{
-    switch (c) {
-    case '&': return "&amp;";
-    case '<': return "&lt;";
-    case '>': return "&gt;";
-    case '"': return "&quot;";
-    case '\'': return "&apos;";
-    default: return NULL;
-    }
-}
-
-/* Escaped text; control characters (invalid in XML 1.0) become spaces. */
-static void sb_text(sb *b, const char *s)
-{
-    for (; s && *s; s++) {
-        const char *e = esc_of(*s);
-        if (e) sb_put(b, e, strlen(e));
-        else if ((unsigned char)*s < 0x20) sb_put(b, " ", 1);
-        else sb_put(b, s, 1);
-    }
-}
-
-void pg_svg_escape(const char *s, char *buf, size_t size)
-{
-    if (!size) return;
-    size_t n = 0;
-    for (; s && *s; s++) {
-        const char *e = esc_of(*s);
-        char one[2] = {(unsigned char)*s < 0x20 ? ' ' : *s, 0};
-        const char *piece = e ? e : one;
-        size_t l = strlen(piece);
-        if (n + l + 1 > size) break;
-        memcpy(buf + n, piece, l);
-        n += l;
-    }
-    buf[n] = 0;
-}
-
-/* Approximate width of s in px at a font size, from DejaVu Sans's advance widths (the widest of the
- * fonts the documents name, so layouts err on the roomy side); stops at a newline; UTF-8
- * continuation bytes do not count. */
-static double text_w(const char *s, double font)
-{
-    double n = 0;
-    for (; s && *s && *s != '\n'; s++) {
-        unsigned char c = (unsigned char)*s;
-        if ((c & 0xC0) == 0x80) continue;
-        if (strchr("il.,:;|!'j", c)) n += 0.29;
-        else if (strchr(" ftr()[]-/", c)) n += 0.4;
-        else if ((c >= 'A' && c <= 'Z') || c == 'm' || c == 'w' || c == '@' || c == '%') n += 0.76;
-        else n += 0.62;
-    }
-    return n * font;
-}
-
-/* Lines of s separated by '\n' (at least 1). */
-static uint32_t text_lines(const char *s)
-{
-    uint32_t n = 1;
-    for (; s && *s; s++) n += *s == '\n';
-    return n;
-}
-
-/* Widest line of a multi-line text. */
-static double text_w_lines(const char *s, double font)
-{
-    double w = 0;
-    for (const char *l = s; l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : NULL) w = fmax(w, text_w(l, font));
-    return w;
-}
-
-/* ---- ticks ---- */
-static double nice_step(double raw)
-{
-    if (!(raw > 0) || !isfinite(raw)) return 1;
-    double e = floor(log10(raw));
-    double p = pow(10, e);
-    double f = raw / p;
-    double m = f < 1.5 ? 1 : f < 2.25 ? 2 : f < 3.5 ? 2.5 : f < 7.5 ? 5 : 10;
-    return m * p;
-}
-
-/* Largest 1/2/5 x 10^k <= v (v > 0), and the smallest >= v. */
-static double log_floor125(double v)
-{
-    double p = pow(10, floor(log10(v)));
-    double m = v / p * (1 + 1e-12);
-    return (m >= 5 ? 5 : m >= 2 ? 2 : 1) * p;
-}
-
-static double log_ceil125(double v)
-{
-    double p = pow(10, floor(log10(v)));
-    double m = v / p * (1 - 1e-12);
-    return (m <= 1 ? 1 : m <= 2 ? 2 : m <= 5 ? 5 : 10) * p;
-}
-
-void pg_plot_nice_range(pg_plot_scale scale, double dmin, double dmax, double *lo, double *hi)
-{
-    if (dmin > dmax) {
-        double t = dmin;
-        dmin = dmax;
-        dmax = t;
-    }
-    if (scale == PG_PLOT_LOG10) {
-        if (!(dmin > 0) || !isfinite(dmin)) dmin = dmax > 0 && isfinite(dmax) ? dmax : 1;
-        if (!(dmax > 0) || !isfinite(dmax)) dmax = dmin;
-        if (dmax <= dmin * 1.0001) {
-            dmin /= 1.5;
-            dmax *= 1.5;
-        }
-        *lo = log_floor125(dmin);
-        *hi = log_ceil125(dmax);
-        return;
-    }
-    if (!isfinite(dmin) || !isfinite(dmax)) dmin = 0, dmax = 1;
-    if (dmax - dmin <= 1e-12 * fmax(fabs(dmin), fabs(dmax))) {
-        double w = dmin != 0 ? fabs(dmin) * 0.1 : 1;
-        dmin -= w;
-        dmax += w;
-    }
-    double step = nice_step((dmax - dmin) / 5);
-    *lo = floor(dmin / step + 1e-9) * step;
-    *hi = ceil(dmax / step - 1e-9) * step;
-}
-
-static uint32_t linear_ticks(double lo, double hi, pg_plot_tick *out, uint32_t max_ticks, double *step_out)
-{
-    double step = nice_step((hi - lo) / 5);
-    if (step_out) *step_out = step;
-    uint32_t n = 0;
-    double k0 = ceil(lo / step - 1e-9);
-    for (double k = k0; n < max_ticks && k * step <= hi + step * 1e-9; k++) {
-        double v = k * step;
-        if (fabs(v) < step * 1e-9) v = 0;
-        out[n].value = v;
-        out[n].major = true;
-        n++;
-    }
-    return n;
-}
-
-uint32_t pg_plot_ticks(pg_plot_scale scale, double lo, double hi, pg_plot_tick *out, uint32_t max_ticks)
-{
-    if (!(hi > lo) || !isfinite(lo) || !isfinite(hi) || !max_ticks) return 0;
-    if (scale == PG_PLOT_LINEAR) return linear_ticks(lo, hi, out, max_ticks, NULL);
-    if (!(lo > 0)) return 0;
-    double decades = log10(hi / lo);
-    if (decades < 0.6) return linear_ticks(lo, hi, out, max_ticks, NULL);
-    uint32_t n = 0;
-    int e0 = (int)floor(log10(lo) + 1e-9), e1 = (int)ceil(log10(hi) - 1e-9);
-    int label_every = decades <= 8 ? 1 : (int)ceil(decades / 8);
-    for (int e = e0; e <= e1 && n < max_ticks; e++) {
-        double p = pow(10, e);
-        for (int m = 1; m <= 9 && n < max_ticks; m++) {
-            double v = m * p;
-            if (v < lo * (1 - 1e-9) || v > hi * (1 + 1e-9)) continue;
-            bool major;
-            if (decades <= 2.5) major = m == 1 || m == 2 || m == 5;
-            else if (m == 1) major = ((e % label_every) + label_every) % label_every == 0;
-            else if (decades <= 4) major = false;
-            else continue; /* many decades: powers of ten only */
-            out[n].value = v;
-            out[n].major = major;
-            n++;
-        }
-    }
-    return n;
-}
-
-/* Tick label split as "base" and an optional superscript exponent (then base is "10" or "Mx10"). */
-static void tick_label(pg_plot_scale scale, double v, double step, bool sci, char *base, size_t bsize, char *sup,
-                       size_t ssize)
-{
-    sup[0] = 0;
-    if (!isfinite(v)) {
-        snprintf(base, bsize, "%s", isnan(v) ? "nan" : v > 0 ? "inf" : "-inf");
-        return;
-    }
-    if (scale == PG_PLOT_LINEAR) {
-        if (fabs(v) >= 1e6 || (fabs(v) > 0 && fabs(v) < 1e-4)) {
-            snprintf(base, bsize, "%g", v);
-            return;
-        }
-        int d = 0;
-        double s = fabs(step) > 0 ? fabs(step) : 1;
-        while (d < 8 && fabs(s * pow(10, d) - round(s * pow(10, d))) > 1e-6 * s * pow(10, d)) d++;
-        snprintf(base, bsize, "%.*f", d, v);
-        return;
-    }
-    double a = fabs(v);
-    if (a >= 1e5) {
-        static const char *const suffix[] = {"k", "M", "G", "T", "P"};
-        int i = 0;
-        double s = a / 1e3;
-        while (s >= 1000 * (1 - 1e-9) && i < 4) {
-            s /= 1000;
-            i++;
-        }
-        snprintf(base, bsize, "%s%.3g%s", v < 0 ? "-" : "", s, suffix[i]);
-    } else if (a >= 1 - 1e-9) {
-        if (fabs(a - round(a)) < 1e-9 * a) snprintf(base, bsize, "%.0f", v);
-        else snprintf(base, bsize, "%.4g", v);
-    } else if (a >= 1e-3 * (1 - 1e-9) && !sci) {
-        int d = (int)ceil(-log10(a) - 1e-9);
-        /* 1 significant digit for 1/2/5 ticks, more if the value needs it */
-        while (d < 12 && fabs(a * pow(10, d) - round(a * pow(10, d))) > 1e-6 * a * pow(10, d)) d++;
-        snprintf(base, bsize, "%.*f", d, v);
-    } else if (a > 0) {
-        int e = (int)floor(log10(a) + 1e-9);
-        double m = a / pow(10, e);
-        if (fabs(m - round(m)) < 1e-6 && round(m) == 1) snprintf(base, bsize, "%s10", v < 0 ? "-" : "");
-        else snprintf(base, bsize, "%s%.3g\xc3\x97" "10", v < 0 ? "-" : "", m); /* U+00D7 multiplication sign */
-        snprintf(sup, ssize, "%d", e);
-    } else {
-        snprintf(base, bsize, "0");
-    }
-}
-
-void pg_plot_format_tick(pg_plot_scale scale, double value, double step, char *buf, size_t size)
-{
-    char base[64], sup[16];
-    tick_label(scale, value, step, false, base, sizeof base, sup, sizeof sup);
-    if (sup[0]) snprintf(buf, size, "%s^%s", base, sup);
-    else snprintf(buf, size, "%s", base);
-}
 
 /* ---- layout ---- */
 #define FONT_TITLE 14.0
@@ -408,14 +116,14 @@ static void axis_setup(axis_map *m, const pg_plot_axis *ax, double dmin, double 
     m->sci = false;
     for (uint32_t t = 0; m->scale == PG_PLOT_LOG10 && t < m->n_ticks; t++)
         if (m->ticks[t].major && m->ticks[t].value < 1e-3 * (1 - 1e-9)) m->sci = true;
-    if (m->scale == PG_PLOT_LINEAR || log10(m->hi / m->lo) < 0.6) m->step = nice_step((m->hi - m->lo) / 5);
+    if (m->scale == PG_PLOT_LINEAR || log10(m->hi / m->lo) < 0.6) m->step = pg_plt_nice_step((m->hi - m->lo) / 5);
 }
 
 static double tick_w(const axis_map *m, double v)
 {
     char base[64], sup[16];
-    tick_label(m->scale, v, m->step, m->sci, base, sizeof base, sup, sizeof sup);
-    return text_w(base, FONT_TICK) + text_w(sup, FONT_TICK * 0.75);
+    pg_plt_tick_label(m->scale, v, m->step, m->sci, base, sizeof base, sup, sizeof sup);
+    return pg_plt_text_w(base, FONT_TICK) + pg_plt_text_w(sup, FONT_TICK * 0.75);
 }
 
 static bool bar_stack_used(const pg_plot_bars *b, uint32_t k)
@@ -499,21 +207,21 @@ static pg_result panel_layout(panel *P, const pg_plot *pl, pg_error *err)
     if (bars) {
         for (uint32_t b = 0; b < bars->n_bars; b++) {
             const char *l = bars->bar_labels ? bars->bar_labels[b] : "";
-            double w = text_w(l, FONT_TICK);
-            if (l && strlen(l) > BAR_LABEL_MAX) w = text_w("x", FONT_TICK) * BAR_LABEL_MAX;
+            double w = pg_plt_text_w(l, FONT_TICK);
+            if (l && strlen(l) > BAR_LABEL_MAX) w = pg_plt_text_w("x", FONT_TICK) * BAR_LABEL_MAX;
             if (w > yw) yw = w;
         }
         P->left = 12 + yw + 10;
     } else {
         for (uint32_t t = 0; t < P->ym.n_ticks; t++)
             if (P->ym.ticks[t].major) yw = fmax(yw, tick_w(&P->ym, P->ym.ticks[t].value));
-        if (P->ym.band) yw = fmax(yw, text_w(pl->y.zero_label, FONT_TICK));
+        if (P->ym.band) yw = fmax(yw, pg_plt_text_w(pl->y.zero_label, FONT_TICK));
         P->left = 12 + (pl->y.label ? 20 : 0) + yw + 8;
     }
     double lastx = P->xm.n_ticks ? tick_w(&P->xm, P->xm.ticks[P->xm.n_ticks - 1].value) / 2 : 0;
     if (P->n_legend) {
         double nw = 0;
-        for (uint32_t i = 0; i < P->n_legend; i++) nw = fmax(nw, text_w(P->legend[i].name, FONT_LEGEND));
+        for (uint32_t i = 0; i < P->n_legend; i++) nw = fmax(nw, pg_plt_text_w(P->legend[i].name, FONT_LEGEND));
         P->legend_col_w = 30 + nw + 14;
         P->legend_rows = (uint32_t)floor((P->ph + P->bottom - 10) / LEGEND_ROW);
         if (P->legend_rows < 1) P->legend_rows = 1;
@@ -526,7 +234,7 @@ static pg_result panel_layout(panel *P, const pg_plot *pl, pg_error *err)
     P->w = P->left + P->pw + P->right;
     P->h = P->top + P->ph + P->bottom;
     /* title may be wider than the panel */
-    double tw = fmax(text_w(pl->title, FONT_TITLE) * 1.05, text_w(pl->subtitle, FONT_SUB));
+    double tw = fmax(pg_plt_text_w(pl->title, FONT_TITLE) * 1.05, pg_plt_text_w(pl->subtitle, FONT_SUB));
     if (P->left + tw + 12 > P->w) P->w = P->left + tw + 12;
     return PG_OK;
 }
@@ -554,15 +262,15 @@ static void draw_marker(sb *b, pg_plot_marker m, double x, double y, double r, c
     switch (m) {
     case PG_MARKER_NONE: break;
     case PG_MARKER_CIRCLE:
-        sb_printf(b, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%.1f\" fill=\"%s\" stroke=\"#fff\" stroke-width=\"0.8\"/>\n",
+        pg_plt_sb_printf(b, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%.1f\" fill=\"%s\" stroke=\"#fff\" stroke-width=\"0.8\"/>\n",
                   x, y, r, color);
         break;
     case PG_MARKER_RING:
-        sb_printf(b, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%.1f\" fill=\"none\" stroke=\"%s\" stroke-width=\"1.6\"/>\n",
+        pg_plt_sb_printf(b, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%.1f\" fill=\"none\" stroke=\"%s\" stroke-width=\"1.6\"/>\n",
                   x, y, r, color);
         break;
     case PG_MARKER_SQUARE:
-        sb_printf(b,
+        pg_plt_sb_printf(b,
                   "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"%s\" stroke=\"#fff\" "
                   "stroke-width=\"0.8\"/>\n",
                   x - r * 0.88, y - r * 0.88, r * 1.76, r * 1.76, color);
@@ -570,7 +278,7 @@ static void draw_marker(sb *b, pg_plot_marker m, double x, double y, double r, c
     case PG_MARKER_TRIANGLE:
     case PG_MARKER_TRIANGLE_DOWN: {
         double s = m == PG_MARKER_TRIANGLE ? 1 : -1, rr = r * 1.25;
-        sb_printf(b,
+        pg_plt_sb_printf(b,
                   "<polygon points=\"%.1f,%.1f %.1f,%.1f %.1f,%.1f\" fill=\"%s\" stroke=\"#fff\" stroke-width=\"0.8\"/>\n",
                   x, y - s * rr, x - rr * 0.87, y + s * rr * 0.5, x + rr * 0.87, y + s * rr * 0.5, color);
         break;
@@ -578,7 +286,7 @@ static void draw_marker(sb *b, pg_plot_marker m, double x, double y, double r, c
     case PG_MARKER_DIAMOND:
     default: {
         double rr = r * 1.2;
-        sb_printf(b,
+        pg_plt_sb_printf(b,
                   "<polygon points=\"%.1f,%.1f %.1f,%.1f %.1f,%.1f %.1f,%.1f\" fill=\"%s\" stroke=\"#fff\" "
                   "stroke-width=\"0.8\"/>\n",
                   x, y - rr, x + rr, y, x, y + rr, x - rr, y, color);
@@ -591,16 +299,16 @@ static void draw_marker(sb *b, pg_plot_marker m, double x, double y, double r, c
 static void draw_tick_label(sb *b, const axis_map *m, double v, double x, double y, const char *anchor)
 {
     char base[64], sup[16];
-    tick_label(m->scale, v, m->step, m->sci, base, sizeof base, sup, sizeof sup);
-    sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\" font-size=\"%.0f\" fill=\"#333\">", x, y, anchor,
+    pg_plt_tick_label(m->scale, v, m->step, m->sci, base, sizeof base, sup, sizeof sup);
+    pg_plt_sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\" font-size=\"%.0f\" fill=\"#333\">", x, y, anchor,
               FONT_TICK);
-    sb_text(b, base);
+    pg_plt_sb_text(b, base);
     if (sup[0]) {
-        sb_printf(b, "<tspan dy=\"-5\" font-size=\"%.1f\">", FONT_TICK * 0.75);
-        sb_text(b, sup);
-        sb_put(b, "</tspan>", 8);
+        pg_plt_sb_printf(b, "<tspan dy=\"-5\" font-size=\"%.1f\">", FONT_TICK * 0.75);
+        pg_plt_sb_text(b, sup);
+        pg_plt_sb_put(b, "</tspan>", 8);
     }
-    sb_put(b, "</text>\n", 8);
+    pg_plt_sb_put(b, "</text>\n", 8);
 }
 
 typedef struct rect {
@@ -626,7 +334,7 @@ static void draw_axes(sb *b, const panel *P, double ox, double oy)
             bool ok;
             double px = amap(x, x->ticks[t].value, &ok);
             if (!ok) continue;
-            sb_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"1\"/>\n", px,
+            pg_plt_sb_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"1\"/>\n", px,
                       T, px, B, pass ? "#dddddd" : "#f0f0f0");
         }
         if (pl->bars) continue;
@@ -635,73 +343,73 @@ static void draw_axes(sb *b, const panel *P, double ox, double oy)
             bool ok;
             double py = amap(y, y->ticks[t].value, &ok);
             if (!ok) continue;
-            sb_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"1\"/>\n", L,
+            pg_plt_sb_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"1\"/>\n", L,
                       py, R, py, pass ? "#dddddd" : "#f0f0f0");
         }
     }
     /* zero bands: a shaded strip and a dashed separator */
     if (x->band) {
-        sb_printf(b, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#f6f6f6\"/>\n", L, T,
+        pg_plt_sb_printf(b, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#f6f6f6\"/>\n", L, T,
                   x->band_edge - L, P->ph);
-        sb_printf(b,
+        pg_plt_sb_printf(b,
                   "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#999\" stroke-dasharray=\"3,3\"/>\n",
                   x->band_edge, T, x->band_edge, B);
     }
     if (y->band) {
-        sb_printf(b, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#f6f6f6\"/>\n", L,
+        pg_plt_sb_printf(b, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#f6f6f6\"/>\n", L,
                   y->band_edge, P->pw, B - y->band_edge);
-        sb_printf(b,
+        pg_plt_sb_printf(b,
                   "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#999\" stroke-dasharray=\"3,3\"/>\n", L,
                   y->band_edge, R, y->band_edge);
     }
-    sb_printf(b, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" stroke=\"#888\"/>\n", L, T,
+    pg_plt_sb_printf(b, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" stroke=\"#888\"/>\n", L, T,
               P->pw, P->ph);
     /* tick marks and labels */
     for (uint32_t t = 0; t < x->n_ticks; t++) {
         bool ok;
         double px = amap(x, x->ticks[t].value, &ok);
         if (!ok) continue;
-        sb_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#888\"/>\n", px, B, px,
+        pg_plt_sb_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#888\"/>\n", px, B, px,
                   B + (x->ticks[t].major ? 5 : 3));
         if (x->ticks[t].major) draw_tick_label(b, x, x->ticks[t].value, px, B + 17, "middle");
     }
     if (x->band) {
-        sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\" font-size=\"%.0f\" fill=\"#333\">",
+        pg_plt_sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\" font-size=\"%.0f\" fill=\"#333\">",
                   x->band_pos, B + 17, FONT_TICK);
-        sb_text(b, pl->x.zero_label);
-        sb_put(b, "</text>\n", 8);
+        pg_plt_sb_text(b, pl->x.zero_label);
+        pg_plt_sb_put(b, "</text>\n", 8);
     }
     if (!pl->bars) {
         for (uint32_t t = 0; t < y->n_ticks; t++) {
             bool ok;
             double py = amap(y, y->ticks[t].value, &ok);
             if (!ok) continue;
-            sb_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#888\"/>\n",
+            pg_plt_sb_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#888\"/>\n",
                       L - (y->ticks[t].major ? 5 : 3), py, L, py);
             if (y->ticks[t].major) draw_tick_label(b, y, y->ticks[t].value, L - 7, py + 4, "end");
         }
         if (y->band) {
-            sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" font-size=\"%.0f\" fill=\"#333\">", L - 7,
+            pg_plt_sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" font-size=\"%.0f\" fill=\"#333\">", L - 7,
                       y->band_pos + 4, FONT_TICK);
-            sb_text(b, pl->y.zero_label);
-            sb_put(b, "</text>\n", 8);
+            pg_plt_sb_text(b, pl->y.zero_label);
+            pg_plt_sb_put(b, "</text>\n", 8);
         }
     }
     /* axis titles */
     if (pl->x.label) {
-        sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\" font-size=\"%.0f\" fill=\"#222\">",
+        pg_plt_sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\" font-size=\"%.0f\" fill=\"#222\">",
                   (L + R) / 2, B + 37, FONT_AXIS);
-        sb_text(b, pl->x.label);
-        sb_put(b, "</text>\n", 8);
+        pg_plt_sb_text(b, pl->x.label);
+        pg_plt_sb_put(b, "</text>\n", 8);
     }
     if (pl->y.label && !pl->bars) {
         double cx = ox + 12 + 9, cy = (T + B) / 2;
-        sb_printf(b,
+        pg_plt_sb_printf(b,
                   "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\" font-size=\"%.0f\" fill=\"#222\" "
                   "transform=\"rotate(-90 %.1f %.1f)\">",
                   cx, cy, FONT_AXIS, cx, cy);
-        sb_text(b, pl->y.label);
-        sb_put(b, "</text>\n", 8);
+        pg_plt_sb_text(b, pl->y.label);
+        pg_plt_sb_put(b, "</text>\n", 8);
     }
 }
 
@@ -717,24 +425,24 @@ static pg_result draw_series(sb *b, const panel *P, pg_error *err)
             bool okx, oky;
             double px = amap(&P->xm, se->x[i], &okx), py = amap(&P->ym, se->y[i], &oky);
             if (!okx || !oky) {
-                if (open) sb_put(b, "\"/>\n", 4);
+                if (open) pg_plt_sb_put(b, "\"/>\n", 4);
                 open = false;
                 continue;
             }
             if (!open) {
-                sb_printf(b, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"%.1f\" stroke-linejoin=\"round\"",
+                pg_plt_sb_printf(b, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"%.1f\" stroke-linejoin=\"round\"",
                           pg_plot_color(se->color), se->line_width > 0 ? se->line_width : 1.8);
                 if (series_dash(se)) {
-                    sb_put(b, " stroke-dasharray=\"", 19);
-                    sb_text(b, series_dash(se));
-                    sb_put(b, "\"", 1);
+                    pg_plt_sb_put(b, " stroke-dasharray=\"", 19);
+                    pg_plt_sb_text(b, series_dash(se));
+                    pg_plt_sb_put(b, "\"", 1);
                 }
-                sb_put(b, " points=\"", 9);
+                pg_plt_sb_put(b, " points=\"", 9);
                 open = true;
             }
-            sb_printf(b, "%.1f,%.1f ", px, py);
+            pg_plt_sb_printf(b, "%.1f,%.1f ", px, py);
         }
-        if (open) sb_put(b, "\"/>\n", 4);
+        if (open) pg_plt_sb_put(b, "\"/>\n", 4);
     }
     uint32_t n_pts = 0;
     for (uint32_t s = 0; s < pl->n_series; s++) n_pts += pl->series[s].n;
@@ -762,7 +470,7 @@ static pg_result draw_series(sb *b, const panel *P, pg_error *err)
             bool okx, oky;
             double px = amap(&P->xm, se->x[i], &okx), py = amap(&P->ym, se->y[i], &oky);
             if (!okx || !oky) continue;
-            double w = text_w(se->labels[i], FONT_POINT), h = FONT_POINT;
+            double w = pg_plt_text_w(se->labels[i], FONT_POINT), h = FONT_POINT;
             double o = (se->marker == PG_MARKER_NONE ? 2 : se->marker_size > 0 ? se->marker_size : 4.5) + 3;
             struct {
                 double x, y;
@@ -783,10 +491,10 @@ static pg_result draw_series(sb *b, const panel *P, pg_error *err)
                 rect rr = cand[c].r;
                 if (rr.x0 < L + 1 || rr.x1 > R - 1 || rr.y0 < T + 1 || rr.y1 > B - 1) continue;
                 if (rect_hits(placed, n_placed, rr)) continue;
-                sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\" font-size=\"%.0f\" fill=\"#333\">",
+                pg_plt_sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\" font-size=\"%.0f\" fill=\"#333\">",
                           cand[c].x, cand[c].y, cand[c].anchor, FONT_POINT);
-                sb_text(b, se->labels[i]);
-                sb_put(b, "</text>\n", 8);
+                pg_plt_sb_text(b, se->labels[i]);
+                pg_plt_sb_put(b, "</text>\n", 8);
                 placed[n_placed++] = rr;
                 break;
             }
@@ -811,10 +519,10 @@ static void draw_bars(sb *b, const panel *P, double ox, double oy)
         } else {
             snprintf(lab, sizeof lab, "%s", l);
         }
-        sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" font-size=\"%.0f\" fill=\"#222\">", L - 7,
+        pg_plt_sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" font-size=\"%.0f\" fill=\"#222\">", L - 7,
                   cy + 4, FONT_TICK);
-        sb_text(b, lab);
-        sb_put(b, "</text>\n", 8);
+        pg_plt_sb_text(b, lab);
+        pg_plt_sb_put(b, "</text>\n", 8);
         double acc = 0;
         for (uint32_t j = 0; j < bars->n_stack; j++) {
             uint32_t k = bars->order ? bars->order[(size_t)i * bars->n_stack + j] : j;
@@ -824,12 +532,12 @@ static void draw_bars(sb *b, const panel *P, double ox, double oy)
             bool ok;
             double x0 = amap(&P->xm, acc, &ok), x1 = amap(&P->xm, acc + v, &ok);
             int c = bars->stack_colors ? bars->stack_colors[k] : (int)k;
-            sb_printf(b,
+            pg_plt_sb_printf(b,
                       "<rect x=\"%.2f\" y=\"%.1f\" width=\"%.2f\" height=\"%.1f\" fill=\"%s\" stroke=\"#fff\" "
                       "stroke-width=\"0.5\"><title>",
                       x0, cy - bh / 2, fmax(x1 - x0, 0), bh, pg_plot_color(c));
-            sb_text(b, bars->stack_names ? bars->stack_names[k] : "");
-            sb_printf(b, ": %.4g</title></rect>\n", v);
+            pg_plt_sb_text(b, bars->stack_names ? bars->stack_names[k] : "");
+            pg_plt_sb_printf(b, ": %.4g</title></rect>\n", v);
             acc += v;
         }
         if (bars->show_totals) {
@@ -838,9 +546,9 @@ static void draw_bars(sb *b, const panel *P, double ox, double oy)
             char t[96];
             if (fabs(acc) >= 1000) snprintf(t, sizeof t, "%.0f%s", acc, bars->total_unit ? bars->total_unit : "");
             else snprintf(t, sizeof t, "%.3g%s", acc, bars->total_unit ? bars->total_unit : "");
-            sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"%.0f\" fill=\"#333\">", xe + 4, cy + 3.5, FONT_POINT);
-            sb_text(b, t);
-            sb_put(b, "</text>\n", 8);
+            pg_plt_sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"%.0f\" fill=\"#333\">", xe + 4, cy + 3.5, FONT_POINT);
+            pg_plt_sb_text(b, t);
+            pg_plt_sb_put(b, "</text>\n", 8);
         }
     }
 }
@@ -854,25 +562,25 @@ static void draw_legend(sb *b, const panel *P, double ox, double oy)
         uint32_t col = i / P->legend_rows, row = i % P->legend_rows;
         double x = x0 + col * P->legend_col_w, y = y0 + row * LEGEND_ROW + 8;
         if (e->box) {
-            sb_printf(b, "<rect x=\"%.1f\" y=\"%.1f\" width=\"18\" height=\"10\" fill=\"%s\"/>\n", x + 2, y - 5,
+            pg_plt_sb_printf(b, "<rect x=\"%.1f\" y=\"%.1f\" width=\"18\" height=\"10\" fill=\"%s\"/>\n", x + 2, y - 5,
                       e->color);
         } else {
             if (e->line)
             {
-                sb_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"1.8\"",
+                pg_plt_sb_printf(b, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"1.8\"",
                           x, y, x + 22, y, e->color);
                 if (e->dash) {
-                    sb_put(b, " stroke-dasharray=\"", 19);
-                    sb_text(b, e->dash);
-                    sb_put(b, "\"", 1);
+                    pg_plt_sb_put(b, " stroke-dasharray=\"", 19);
+                    pg_plt_sb_text(b, e->dash);
+                    pg_plt_sb_put(b, "\"", 1);
                 }
-                sb_put(b, "/>\n", 3);
+                pg_plt_sb_put(b, "/>\n", 3);
             }
             draw_marker(b, e->marker, x + 11, y, e->marker == PG_MARKER_RING ? 5.5 : 4.2, e->color);
         }
-        sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"%.0f\" fill=\"#222\">", x + 28, y + 4, FONT_LEGEND);
-        sb_text(b, e->name);
-        sb_put(b, "</text>\n", 8);
+        pg_plt_sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"%.0f\" fill=\"#222\">", x + 28, y + 4, FONT_LEGEND);
+        pg_plt_sb_text(b, e->name);
+        pg_plt_sb_put(b, "</text>\n", 8);
     }
 }
 
@@ -880,35 +588,35 @@ static pg_result draw_panel(sb *b, panel *P, double ox, double oy, pg_error *err
 {
     const pg_plot *pl = P->pl;
     panel_place(P, ox, oy);
-    sb_put(b, "<g>\n", 4);
+    pg_plt_sb_put(b, "<g>\n", 4);
     double y = oy + 12;
     if (pl->title) {
         y += 16;
-        sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"%.0f\" font-weight=\"bold\" fill=\"#111\">",
+        pg_plt_sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"%.0f\" font-weight=\"bold\" fill=\"#111\">",
                   ox + P->left, y, FONT_TITLE);
-        sb_text(b, pl->title);
-        sb_put(b, "</text>\n", 8);
+        pg_plt_sb_text(b, pl->title);
+        pg_plt_sb_put(b, "</text>\n", 8);
     }
     if (pl->subtitle) {
         y += 16;
-        sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"%.1f\" fill=\"#555\">", ox + P->left, y, FONT_SUB);
-        sb_text(b, pl->subtitle);
-        sb_put(b, "</text>\n", 8);
+        pg_plt_sb_printf(b, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"%.1f\" fill=\"#555\">", ox + P->left, y, FONT_SUB);
+        pg_plt_sb_text(b, pl->subtitle);
+        pg_plt_sb_put(b, "</text>\n", 8);
     }
     draw_axes(b, P, ox, oy);
     pg_result r = PG_OK;
     if (pl->bars) draw_bars(b, P, ox, oy);
     else r = draw_series(b, P, err);
     if (!P->has_data && pl->empty_message) {
-        sb_printf(b,
+        pg_plt_sb_printf(b,
                   "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\" font-size=\"%.0f\" fill=\"#777\" "
                   "font-style=\"italic\">",
                   ox + P->left + P->pw / 2, oy + P->top + P->ph / 2, FONT_AXIS);
-        sb_text(b, pl->empty_message);
-        sb_put(b, "</text>\n", 8);
+        pg_plt_sb_text(b, pl->empty_message);
+        pg_plt_sb_put(b, "</text>\n", 8);
     }
     draw_legend(b, P, ox, oy);
-    sb_put(b, "</g>\n", 5);
+    pg_plt_sb_put(b, "</g>\n", 5);
     return r;
 }
 
@@ -934,28 +642,28 @@ pg_result pg_svg_render(const pg_plot *plots, uint32_t n_plots, const pg_svg_doc
     if (cols > n_plots && n_plots) cols = n_plots;
     uint32_t rows = n_plots ? (n_plots + cols - 1) / cols : 0;
     double pad = 10,
-           head = (d.title ? 30 : 0) + (d.subtitle ? 18 * text_lines(d.subtitle) : 0) + (d.title || d.subtitle ? 6 : 0);
+           head = (d.title ? 30 : 0) + (d.subtitle ? 18 * pg_plt_text_lines(d.subtitle) : 0) + (d.title || d.subtitle ? 6 : 0);
     double W = 2 * pad + cols * cw, H = 2 * pad + head + rows * ch;
-    if (d.title) W = fmax(W, 2 * pad + text_w(d.title, 17) * 1.05);
-    if (d.subtitle) W = fmax(W, 2 * pad + text_w_lines(d.subtitle, 12.5) + 8);
+    if (d.title) W = fmax(W, 2 * pad + pg_plt_text_w(d.title, 17) * 1.05);
+    if (d.subtitle) W = fmax(W, 2 * pad + pg_plt_text_w_lines(d.subtitle, 12.5) + 8);
     if (W < 200) W = 200;
     if (H < 60) H = 60;
-    sb_printf(&b,
+    pg_plt_sb_printf(&b,
               "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\" "
               "font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\">\n",
               W, H, W, H);
     if (d.title) {
-        sb_put(&b, "<title>", 7);
-        sb_text(&b, d.title);
-        sb_put(&b, "</title>\n", 9);
+        pg_plt_sb_put(&b, "<title>", 7);
+        pg_plt_sb_text(&b, d.title);
+        pg_plt_sb_put(&b, "</title>\n", 9);
     }
-    sb_printf(&b, "<rect x=\"0\" y=\"0\" width=\"%.0f\" height=\"%.0f\" fill=\"#ffffff\"/>\n", W, H);
+    pg_plt_sb_printf(&b, "<rect x=\"0\" y=\"0\" width=\"%.0f\" height=\"%.0f\" fill=\"#ffffff\"/>\n", W, H);
     double y = pad;
     if (d.title) {
         y += 22;
-        sb_printf(&b, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"17\" font-weight=\"bold\" fill=\"#111\">", pad + 4, y);
-        sb_text(&b, d.title);
-        sb_put(&b, "</text>\n", 8);
+        pg_plt_sb_printf(&b, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"17\" font-weight=\"bold\" fill=\"#111\">", pad + 4, y);
+        pg_plt_sb_text(&b, d.title);
+        pg_plt_sb_put(&b, "</text>\n", 8);
     }
     for (const char *l = d.subtitle; l;) { /* one <text> per line */
         const char *nl = strchr(l, '\n');
@@ -963,16 +671,16 @@ pg_result pg_svg_render(const pg_plot *plots, uint32_t n_plots, const pg_svg_doc
         char line[1024];
         snprintf(line, sizeof line, "%.*s", (int)(len < sizeof line ? len : sizeof line - 1), l);
         y += 18;
-        sb_printf(&b, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"12.5\" fill=\"#555\">", pad + 4, y);
-        sb_text(&b, line);
-        sb_put(&b, "</text>\n", 8);
+        pg_plt_sb_printf(&b, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"12.5\" fill=\"#555\">", pad + 4, y);
+        pg_plt_sb_text(&b, line);
+        pg_plt_sb_put(&b, "</text>\n", 8);
         l = nl ? nl + 1 : NULL;
     }
     for (uint32_t i = 0; i < n_plots && !r; i++) {
         double ox = pad + (i % cols) * cw, oy = pad + head + (i / cols) * ch;
         r = draw_panel(&b, &P[i], ox, oy, err);
     }
-    sb_put(&b, "</svg>\n", 7);
+    pg_plt_sb_put(&b, "</svg>\n", 7);
     if (!r && b.oom) r = pg_fail(err, PG_ERR_OOM, "svg: out of memory");
 done:
     for (uint32_t i = 0; i < n_plots; i++) free(P[i].legend);
