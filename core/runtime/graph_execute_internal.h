@@ -113,7 +113,7 @@ pg_result pg_rt_build_own(pg_runtime *rt, int i, pg_error *err);
 pg_result pg_rt_build_memory(pg_runtime *rt, pg_error *err);
 pg_result pg_rt_build_passes(pg_runtime *rt, pg_error *err);
 pg_result pg_rt_grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t max, pg_frame_stats *st,
-                             pg_error *err);
+                            pg_error *err);
 
 /* graph_execute_record.c */
 uint32_t pg_rt_queue_family(const pg_runtime *rt, pg_queue q);

@@ -271,7 +271,7 @@ pg_result pg_rt_build_passes(pg_runtime *rt, pg_error *err)
  * buffer is made before the old one goes, so a refused allocation keeps the old one (and a note
  * says so); then every pass bound to the buffer is re-created (its descriptors point at it). */
 pg_result pg_rt_grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t max, pg_frame_stats *st,
-                             pg_error *err)
+                            pg_error *err)
 {
     pg_gpu *gpu = rt->gpu;
     pg_phys_resource *r = &rt->res[ri];
