@@ -1,5 +1,5 @@
 /* test_gpu_incremental.c - a new plan re-creates only what it needs (the three parts of the plan
- * signature, core/graph_execute.c), and the images stay right.
+ * signature, core/runtime/graph_execute.c), and the images stay right.
  *
  * One session (deferred.json, default scene, 96x64, 16 lights, 2 frames in flight) is reloaded in
  * place (pg_session_reload) with, in turn:
