@@ -1,4 +1,4 @@
-/* test_graph_queues.c - async compute in the compiler (core/graph_queues.c), no GPU.
+/* test_graph_queues.c - async compute in the compiler (core/graph/graph_queues.c), no GPU.
  *
  * Fake pass types in a local registry, pipelines from JSON strings: queue assignment (auto,
  * "compute", "graphics", the errors), submission batches, semaphore waits (in the frame, the

@@ -19,7 +19,7 @@
  *                 first use of an aliased resource (from UNDEFINED, after the previous occupant),
  *                 the frame-to-frame wrap of persistent resources, and the final transition of the
  *                 outputs for readback
- *   8. queues     (core/graph_queues.c; the queue of each pass is chosen between 5 and 6) each
+ *   8. queues     (core/graph/graph_queues.c; the queue of each pass is chosen between 5 and 6) each
  *                 pass's queue, submission batches (consecutive passes on one queue), the
  *                 cross-queue semaphore waits and queue-family ownership transfers
  * The plan makes no Vulkan calls; it only uses Vulkan's enum values so the executor can copy them.
@@ -60,7 +60,7 @@ typedef struct pg_barrier {
     char why[48];          /* "RAW", "WAR", "WAW", "layout", "alias first use", "output" ... */
 } pg_barrier;
 
-/* ---- queues (core/graph_queues.c) ---- */
+/* ---- queues (core/graph/graph_queues.c) ---- */
 typedef enum pg_queue { PG_QUEUE_GRAPHICS = 0, PG_QUEUE_COMPUTE = 1 } pg_queue;
 #define PG_QUEUE_COUNT 2
 #define PG_MAX_BATCHES (PG_MAX_PASSES + 1)

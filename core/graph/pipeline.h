@@ -93,7 +93,7 @@ typedef struct pg_resource_desc {
     char json_path[PG_JSON_PATH_MAX]; /* e.g. "resources[3]" */
 } pg_resource_desc;
 
-/* Which queue a pass asks for (pipeline JSON "queue"; the compiler decides, core/graph_queues.c). */
+/* Which queue a pass asks for (pipeline JSON "queue"; the compiler decides, core/graph/graph_queues.c). */
 typedef enum pg_queue_pref {
     PG_QUEUE_PREF_AUTO = 0,
     PG_QUEUE_PREF_GRAPHICS,
