@@ -87,6 +87,8 @@ js = json.load(open(t + "/s2/results.json"))
 assert js["meta"]["shard"] == {"k": 2, "n": 2}, js["meta"].get("shard")
 assert "shard" not in jm["meta"] and jm["meta"]["merged_shards"] == 2
 assert jm["meta"]["argv"] == jf["meta"]["argv"] and "--device" not in jm["meta"]["argv"]
+for k in jf["meta"]:   # the merged meta is the unsharded run's, apart from the run time
+    assert k == "elapsed_s" or jm["meta"].get(k) == jf["meta"][k], "meta.%s differs" % k
 print("timing columns left out of the comparison:", len(timed))
 EOF
 
