@@ -78,6 +78,7 @@ typedef struct pass_stat {
 } pass_stat;
 
 typedef struct bench_row {
+    uint32_t index;                   /* configuration index (config_index): --shard, bench-merge */
     uint32_t scene, pipe, variant, lights, width, height;
     row_status status;
     char message[PG_ERROR_MSG_MAX];
@@ -139,6 +140,11 @@ typedef struct bench {
     uint32_t frames_in_flight;
     double time_step;
     const char *out_dir;
+    /* --shard K/N (shard_n 0: the whole sweep); configurations: scenes x sizes x lights x n_vars */
+    uint32_t shard_k, shard_n, n_vars, n_configs;
+    char **args;                      /* the options that define the sweep (meta.argv) */
+    uint32_t n_args;
+    uint32_t merged_shards;           /* bench-merge: how many shards the rows came from */
     /* results */
     bench_row *rows;
     uint32_t n_rows, cap_rows, n_failed;
@@ -164,6 +170,11 @@ static inline double now_s(void)
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
+
+/* cmd_bench.c */
+int bench_setup(bench *B, int argc, char **argv);
+void bench_free(bench *B);
+uint32_t config_index(const bench *B, uint32_t sc, uint32_t si, uint32_t li, uint32_t pipe, uint32_t var);
 
 /* bench_options.c */
 int split_list(char *s, char sep, char **parts, int max);

@@ -233,6 +233,16 @@ static cJSON *json_meta(const bench *B)
         for (uint32_t v = 0; a && v < B->sweeps[k].n; v++) cJSON_AddItemToArray(a, cJSON_CreateString(B->sweeps[k].values[v]));
     }
     cJSON_AddItemToObject(m, "elapsed_s", jnum(now_s() - B->t_start));
+    cJSON_AddBoolToObject(m, "device_cpu", B->device_cpu);
+    cJSON_AddNumberToObject(m, "configs", B->n_configs);
+    cJSON *av = cJSON_AddArrayToObject(m, "argv"); /* what bench-merge parses again */
+    for (uint32_t i = 0; av && i < B->n_args; i++) cJSON_AddItemToArray(av, cJSON_CreateString(B->args[i]));
+    if (B->shard_n) {
+        cJSON *sh = cJSON_AddObjectToObject(m, "shard");
+        cJSON_AddNumberToObject(sh, "k", B->shard_k);
+        cJSON_AddNumberToObject(sh, "n", B->shard_n);
+    }
+    if (B->merged_shards) cJSON_AddNumberToObject(m, "merged_shards", B->merged_shards);
     return m;
 }
 
@@ -242,6 +252,7 @@ static cJSON *json_row(const bench *B, const bench_row *r)
     const variant *va = &pe->variants[r->variant];
     cJSON *o = cJSON_CreateObject();
     if (!o) return NULL;
+    cJSON_AddNumberToObject(o, "index", r->index);
     cJSON_AddStringToObject(o, "scene", B->scene_names[r->scene]);
     cJSON_AddStringToObject(o, "pipeline", pe->name);
     cJSON_AddStringToObject(o, "pipeline_path", pe->path);

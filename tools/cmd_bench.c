@@ -64,6 +64,9 @@ static const char *const bench_help_options =
     "                       lights at 320x180, 5000 at 640x360, 555 at 1920x1080\n"
     "  --naive-max-lights N deprecated name of --reference-max-lights (prints a warning)\n"
     "  --out DIR            output folder (created if missing)\n"
+    "  --shard K/N          run only the configurations (scene x size x light count x pipeline x variant,\n"
+    "                       numbered in run order from 0) whose index % N == K-1, 1 <= K <= N; each\n"
+    "                       shard renders the references its rows need; join with passgraph bench-merge\n"
     "  --quiet              no progress bar\n\n"
     "common options (--lights, --size, --pipeline, --frames as above):\n";
 
@@ -77,12 +80,14 @@ static void on_sigint(int sig)
 
 /* ---------------------------------------------------------------- the command */
 
-static void bench_free(bench *B)
+void bench_free(bench *B)
 {
     for (uint32_t i = 0; i < B->n_pipes; i++) free(B->pipes[i].variants);
     free(B->pipes);
     free(B->refs);
     free(B->rows);
+    for (uint32_t i = 0; i < B->n_args; i++) free(B->args[i]);
+    free(B->args);
 }
 
 /* Position of (pipeline, variant) in a block's run order (what ref_variant.last_use counts). */
@@ -139,13 +144,59 @@ static void print_sides(const bench *B)
     fflush(stdout);
 }
 
-int pg_cmd_bench(int argc, char **argv)
+/* Configuration index of a row: scene x size x light count x pipeline x variant, in run order
+ * (what --shard K/N splits and bench-merge puts back in order). */
+uint32_t config_index(const bench *B, uint32_t sc, uint32_t si, uint32_t li, uint32_t pipe, uint32_t var)
 {
-    bench *B = calloc(1, sizeof *B);
-    if (!B) {
-        fprintf(stderr, "passgraph bench: out of memory\n");
-        return 1;
+    return ((sc * B->n_sizes + si) * B->n_lights + li) * B->n_vars + var_index(B, pipe, var);
+}
+
+static bool in_shard(const bench *B, uint32_t idx)
+{
+    return !B->shard_n || idx % B->shard_n == B->shard_k - 1;
+}
+
+/* --shard K/N: 1 <= K <= N */
+static pg_result parse_shard(bench *B, const char *v, pg_error *err)
+{
+    char *end;
+    errno = 0;
+    unsigned long k = strtoul(v, &end, 10), n = 0;
+    bool ok = !errno && end != v && *end == '/' && v[0] >= '0' && v[0] <= '9';
+    if (ok) {
+        const char *nv = end + 1;
+        n = strtoul(nv, &end, 10);
+        ok = !errno && end != nv && !*end && nv[0] >= '0' && nv[0] <= '9';
     }
+    if (!ok || k < 1 || n < 1 || k > n || n > 100000)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--shard %s: expected K/N with 1 <= K <= N (e.g. 2/4)", v);
+    B->shard_k = (uint32_t)k;
+    B->shard_n = (uint32_t)n;
+    return PG_OK;
+}
+
+/* What results.json's meta.argv keeps: the options that define the sweep, that is all but --shard,
+ * --out, --device and --quiet (bench-merge parses them again to rebuild the sweep). */
+static pg_result save_args(bench *B, int argc, char **argv, pg_error *err)
+{
+    B->args = calloc((size_t)argc + 1, sizeof *B->args);
+    if (!B->args) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--shard") || !strcmp(a, "--out") || !strcmp(a, "--device")) {
+            i++;
+            continue;
+        }
+        if (!strcmp(a, "--quiet")) continue;
+        if (!(B->args[B->n_args++] = strdup(a))) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    }
+    return PG_OK;
+}
+
+/* Options, pipelines and variants: everything before the run. -1 when the bench should run,
+ * else the exit code (0 after --help, 2 on bad options, 1 when a pipeline list fails). */
+int bench_setup(bench *B, int argc, char **argv)
+{
     pg_cli_defaults(&B->opt);
     B->opt.frames = 10;
     B->warmup = 2;
@@ -156,6 +207,10 @@ int pg_cmd_bench(int argc, char **argv)
     const char *ref_arg = NULL;
     bool warned_naive = false;
     int rc = 2;
+    if (save_args(B, argc, argv, &err)) { /* before the parsers split --set KEY=VALUE in place */
+        fprintf(stderr, "passgraph bench: %s\n", err.msg);
+        return 1;
+    }
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -169,7 +224,7 @@ int pg_cmd_bench(int argc, char **argv)
                      !strcmp(a, "--scene") || !strcmp(a, "--sweep") || !strcmp(a, "--warmup") ||
                      !strcmp(a, "--frames-in-flight") ||
                      !strcmp(a, "--naive-max-lights") || !strcmp(a, "--reference-max-lights") ||
-                     !strcmp(a, "--time-step") || !strcmp(a, "--reference");
+                     !strcmp(a, "--time-step") || !strcmp(a, "--reference") || !strcmp(a, "--shard");
         if (takes) {
             if (!v) {
                 fprintf(stderr, "passgraph bench: %s: missing value\n", a);
@@ -203,6 +258,8 @@ int pg_cmd_bench(int argc, char **argv)
                 B->has_ref_max_lights = true;
             } else if (!strcmp(a, "--reference")) {
                 ref_arg = v;
+            } else if (!strcmp(a, "--shard")) {
+                r = parse_shard(B, v, &err);
             } else { /* --time-step */
                 errno = 0;
                 char *end;
@@ -274,17 +331,37 @@ int pg_cmd_bench(int argc, char **argv)
             goto out;
         }
     }
+    for (uint32_t p = 0; p < B->n_pipes; p++) B->n_vars += B->pipes[p].n_variants;
+    B->n_configs = B->n_scenes * B->n_sizes * B->n_lights * B->n_vars;
+    for (uint32_t s = 0; s < B->n_scenes; s++) pg_strlcpy(B->scene_names[s], B->scenes[s], PG_PATH_MAX);
+    return -1;
+out:
+    return rc;
+}
+
+int pg_cmd_bench(int argc, char **argv)
+{
+    bench *B = calloc(1, sizeof *B);
+    if (!B) {
+        fprintf(stderr, "passgraph bench: out of memory\n");
+        return 1;
+    }
+    pg_error err = {0};
+    pg_result r;
+    int rc = bench_setup(B, argc, argv);
+    if (rc >= 0) goto out;
     if ((r = make_dirs(B->out_dir, &err))) {
         fprintf(stderr, "passgraph bench: %s\n", err.msg);
         rc = 1;
         goto out;
     }
-    for (uint32_t s = 0; s < B->n_scenes; s++) pg_strlcpy(B->scene_names[s], B->scenes[s], PG_PATH_MAX);
 
     print_sides(B);
-    uint32_t vars = 0;
-    for (uint32_t p = 0; p < B->n_pipes; p++) vars += B->pipes[p].n_variants;
-    B->rows_total = B->n_scenes * B->n_sizes * B->n_lights * vars;
+    uint32_t vars = B->n_vars;
+    for (uint32_t i = 0; i < B->n_configs; i++) B->rows_total += in_shard(B, i);
+    if (B->shard_n)
+        printf("bench: shard %u/%u: %u of %u configurations (index %% %u == %u)\n", B->shard_k, B->shard_n,
+               B->rows_total, B->n_configs, B->shard_n, B->shard_k - 1);
     B->progress = !B->opt.quiet;
     B->tty = isatty(STDERR_FILENO);
     B->t_start = B->t_last_draw = now_s();
@@ -319,12 +396,14 @@ int pg_cmd_bench(int argc, char **argv)
                 for (uint32_t li = 0; li < B->n_lights && !rc; li++)
                     for (uint32_t p = 0; p < B->n_pipes && !rc; p++)
                         for (uint32_t v = 0; v < B->pipes[p].n_variants; v++) {
+                            uint32_t idx = config_index(B, sc, si, li, p, v);
+                            if (!in_shard(B, idx)) continue;
                             bench_row *row = new_row(B, &err);
                             if (!row) {
                                 rc = 1;
                                 break;
                             }
-                            *row = (bench_row){.scene = sc, .pipe = p, .variant = v, .lights = B->lights[li],
+                            *row = (bench_row){.index = idx, .scene = sc, .pipe = p, .variant = v, .lights = B->lights[li],
                                                .width = B->widths[si], .height = B->heights[si], .status = ROW_ERROR};
                             row->gpu.median = row->gpu.mean = row->gpu.min = row->gpu.max = row->gpu.p95 = NAN;
                             row->cpu = row->wait = row->gpu;
@@ -339,6 +418,7 @@ int pg_cmd_bench(int argc, char **argv)
             B->device_known = true;
             B->device_cpu = app.gpu->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
             estimate_work(B, vars);
+            if (B->n_configs) B->total_work *= (double)B->rows_total / B->n_configs; /* roughly: this shard's share */
         }
         for (uint32_t si = 0; si < B->n_sizes && !g_interrupted && !rc; si++) {
             for (uint32_t li = 0; li < B->n_lights && !g_interrupted && !rc; li++) {
@@ -358,11 +438,14 @@ int pg_cmd_bench(int argc, char **argv)
                 }
                 for (uint32_t p = 0; p < B->n_pipes && !g_interrupted && !rc; p++)
                     for (uint32_t v = 0; v < B->pipes[p].n_variants && !g_interrupted; v++) {
+                        uint32_t idx = config_index(B, sc, si, li, p, v);
+                        if (!in_shard(B, idx)) continue; /* the references it would need are rendered when a row needs them */
                         bench_row *row = new_row(B, &err);
                         if (!row) {
                             rc = 1;
                             break;
                         }
+                        row->index = idx;
                         row->scene = sc;
                         row->pipe = p;
                         row->variant = v;

@@ -21,7 +21,9 @@ static void usage(FILE *f)
             "            error (RMSE, PSNR, max abs; linear HDR and 8-bit display) and GPU timings\n"
             "  bench     render every pipeline over light counts, sizes and parameter sweeps; record GPU\n"
             "            time per pass, memory, overflow and image error against a reference pipeline\n"
-            "            (default pipelines/reference.json) to CSV, JSON and SVG charts\n"
+            "            (default pipelines/reference.json) to CSV, JSON and SVG charts; --shard K/N runs\n"
+            "            every N-th configuration\n"
+            "  bench-merge  join the outputs of 'bench --shard K/N' runs into one sweep's CSV, JSON, charts\n"
             "  dump      print the compiled graph without rendering (no GPU): passes, barriers,\n"
             "            culls and reasons, resources, memory blocks; as text, JSON, Graphviz DOT/SVG\n"
             "            or a memory-timeline SVG\n"
@@ -58,6 +60,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "compare")) return pg_cmd_compare(argc - 2, argv + 2);
     if (!strcmp(cmd, "dump")) return pg_cmd_dump(argc - 2, argv + 2);
     if (!strcmp(cmd, "bench")) return pg_cmd_bench(argc - 2, argv + 2);
+    if (!strcmp(cmd, "bench-merge")) return pg_cmd_bench_merge(argc - 2, argv + 2);
     if (!strcmp(cmd, "devices")) return pg_cmd_devices(argc - 2, argv + 2);
     fprintf(stderr, "passgraph: unknown command '%s'\n", cmd);
     usage(stderr);
