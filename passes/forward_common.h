@@ -9,11 +9,14 @@
 
 typedef struct pg_forward_pass {
     bool clustered;
+    bool prepass;       /* forward_plus option "prepass": depth was drawn by a depth_prepass pass */
     pg_pass_set lights;
     pg_scene_draw draw;
 } pg_forward_pass;
 
-pg_result pg_forward_create(pg_forward_pass *p, const pg_pass_create_ctx *ctx, bool clustered, pg_error *err);
+/* prepass: the depth slot is depth_rmw, loaded and tested EQUAL without writes (pg_scene_draw_desc.depth_equal). */
+pg_result pg_forward_create(pg_forward_pass *p, const pg_pass_create_ctx *ctx, bool clustered, bool prepass,
+                            pg_error *err);
 /* update(): the run-time options (pg_shading_runtime_options: ambient) */
 pg_result pg_forward_update(void *self, const pg_pass_desc *desc, pg_error *err);
 void pg_forward_record(void *self, const pg_pass_record_ctx *ctx);

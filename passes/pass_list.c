@@ -11,6 +11,7 @@ void pg_register_builtin_passes(pg_pass_registry *reg)
         &pg_pass_display_ocio,
         &pg_pass_cluster_assign,
         &pg_pass_forward_plus,
+        &pg_pass_depth_prepass,
         &pg_pass_gbuffer,
         &pg_pass_deferred_lighting,
         &pg_pass_reference_lighting,

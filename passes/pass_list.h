@@ -12,6 +12,7 @@ extern const pg_pass_type pg_pass_display_tonemap;
 extern const pg_pass_type pg_pass_display_ocio;
 extern const pg_pass_type pg_pass_cluster_assign;
 extern const pg_pass_type pg_pass_forward_plus;
+extern const pg_pass_type pg_pass_depth_prepass;
 extern const pg_pass_type pg_pass_gbuffer;
 extern const pg_pass_type pg_pass_deferred_lighting;
 extern const pg_pass_type pg_pass_reference_lighting;

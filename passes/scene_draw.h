@@ -15,6 +15,7 @@ typedef struct pg_scene_draw {
     VkPipeline opaque, masked;
     float ambient;                    /* pushed with each draw's material (DrawPush.ambient) */
     bool vertex_colors, uv1;          /* the pipelines read vertex streams 1 / 2 (PG_VERTEX_COLORS, PG_UV1) */
+    bool depth_equal;                 /* desc.depth_equal: alpha-mask draws use `opaque` too */
 } pg_scene_draw;
 
 typedef struct pg_scene_draw_desc {
@@ -28,6 +29,10 @@ typedef struct pg_scene_draw_desc {
     bool blend;                       /* the pipeline for the BLEND draws (forward_transparent):
                                        * "over" blending, depth test without depth write, no
                                        * alpha-mask pipeline */
+    bool depth_equal;                 /* shading after a depth pre-pass (depth_prepass.c): depth
+                                       * test EQUAL without depth write, and no alpha-mask pipeline
+                                       * (the pre-pass discarded; the masked draws are shaded with
+                                       * the opaque pipeline, where only their kept fragments pass) */
 } pg_scene_draw_desc;
 
 /* Uses ctx->pass->decl.defines (PG_ALPHA_MASK there selects whether the masked pipeline is made)

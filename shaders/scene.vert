@@ -21,6 +21,12 @@ layout(location = 0) out vec3 v_rel; // camera-relative position (world - camera
 layout(location = 1) out vec3 v_normal;
 layout(location = 2) out vec2 v_uv;
 layout(location = 3) out vec4 v_tangent;
+// The depth pre-pass (depth_prepass.c) and the shading pass that tests its depth EQUAL run this
+// shader in two pipelines: the position must come out bit-identical in both. `precise` forbids
+// contracting its arithmetic (FMA fusion that could differ between the two compiled pipelines);
+// `invariant gl_Position` would say the same but glslang puts it on a gl_PerVertex member, which
+// the validation layer's SPIR-V check reports.
+precise gl_Position;
 
 void main()
 {

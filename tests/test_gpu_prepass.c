@@ -1,0 +1,187 @@
+/* test_gpu_prepass.c - forward+ with the depth pre-pass (pipelines/forward_plus.json, parameter
+ * prepass; passes/depth_prepass.c).
+ *
+ * Compile (no GPU): prepass=false omits the pass 'prepass' (pg_pipeline.omitted, "when") and the
+ * shade pass clears and writes depth (depth_write); prepass=true keeps 'prepass' (depth_write, not
+ * culled) and the shade pass loads depth (depth_rmw: tested EQUAL, no write), with the pre-pass
+ * ordered before it.
+ *
+ * Images (lavapipe, validation + synchronization validation: any message fails), 64 lights at
+ * 320x180 (the corpus files with the tools' default view, pg_app_default_view): the built-in atrium (its grille is alpha-masked), tests/corpus/gltf/ok_textured.gltf
+ * (an alpha-mask material), tests/corpus/gltf/blend/blend_lit.gltf (BLEND: the transparent pass
+ * runs after the pre-pass depth), and the Sponza with assets/scenarios/cis565.json (skipped with
+ * the reason printed when absent). Per scene: forward+ with prepass=false and with prepass=true
+ * are each bit-identical to naive in rgba16f (forward+'s accuracy claim, test_gpu_clustered /
+ * test_gpu_scenes: the same bound, exact), so on vs off differ by 0 (HDR bytes and 8-bit display
+ * image identical); the prepass=true run has the passes prepass then shade, the other no
+ * prepass; the image is lit. The atrium and ok_textured must have alpha-mask draws and blend_lit
+ * BLEND draws, or those cases would be vacuous. */
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app.h"
+#include "graph.h"
+#include "gpu_harness.h"
+#include "pass_list.h"
+#include "pipeline.h"
+#include "scenario.h"
+#include "scene_gpu.h"
+#include "test_util.h"
+
+#define W 320
+#define H 180
+#define LIGHTS 64
+
+static pg_gpu *g_gpu;
+static pg_pass_registry g_reg;
+
+static int find_pass(const pg_graph_plan *plan, const char *name)
+{
+    for (uint32_t i = 0; i < plan->n_passes; i++)
+        if (!strcmp(plan->passes[i].name, name)) return (int)i;
+    return -1;
+}
+
+static void check_compile(bool prepass)
+{
+    char path[PG_PATH_MAX];
+    pg_data_path(path, sizeof path, "pipelines/forward_plus.json");
+    pg_param_override set = {"prepass", prepass ? "true" : "false"};
+    pg_pipeline *pl = NULL;
+    pg_error err = {0};
+    CHECK_MSG(pg_pipeline_load(path, &set, 1, &pl, &err) == PG_OK, "load: %s", err.msg);
+    if (!pl) return;
+    bool omitted = false;
+    for (uint32_t i = 0; i < pl->n_omitted; i++)
+        if (!strcmp(pl->omitted[i].what, "pass 'prepass'")) omitted = true;
+    CHECK_MSG(omitted == !prepass, "prepass=%d: pass 'prepass' %s omitted", prepass, omitted ? "is" : "is not");
+    pg_compile_desc d;
+    memset(&d, 0, sizeof d);
+    d.pipeline = pl;
+    d.registry = &g_reg;
+    d.features.light_count = 1000;
+    d.features.has_alpha_mask = d.features.has_textures = true;
+    d.output_width = W;
+    d.output_height = H;
+    pg_graph_plan *plan = NULL;
+    CHECK_MSG(pg_graph_compile(&d, &plan, &err) == PG_OK, "compile: %s", err.msg);
+    if (plan) {
+        int pp = find_pass(plan, "prepass"), sh = find_pass(plan, "shade");
+        CHECK_MSG(sh >= 0 && !plan->passes[sh].culled, "prepass=%d: no shade pass", prepass);
+        CHECK_MSG(prepass ? (pp >= 0 && !plan->passes[pp].culled && pp < sh) : pp < 0,
+                  "prepass=%d: pass 'prepass' at %d, shade at %d", prepass, pp, sh);
+        if (sh >= 0) {
+            const pg_plan_pass *s = &plan->passes[sh];
+            const pg_slot_decl *depth = NULL;
+            for (uint32_t k = 0; k < s->n_slots; k++)
+                if (s->slots[k].is_write && !strcmp(s->slots[k].decl.name, "depth")) depth = &s->slots[k].decl;
+            CHECK_MSG(depth && depth->access == (prepass ? PG_ACCESS_DEPTH_RMW : PG_ACCESS_DEPTH_WRITE),
+                      "prepass=%d: shade's depth access %d", prepass, depth ? (int)depth->access : -1);
+        }
+        if (pp >= 0) {
+            const pg_plan_pass *p = &plan->passes[pp];
+            CHECK_MSG(p->n_slots == 1 && p->slots[0].decl.access == PG_ACCESS_DEPTH_WRITE,
+                      "prepass: slot 0 should clear and write depth");
+        }
+        printf("compile prepass=%s: %u passes, prepass %s\n", prepass ? "true" : "false", plan->n_passes,
+               pp >= 0 ? "kept before shade" : "absent (omitted by when)");
+        pg_graph_plan_free(plan);
+    }
+    pg_pipeline_free(pl);
+}
+
+static void check_scene(const char *label, const char *path, const char *scenario, int need)
+{
+    pg_error err = {0};
+    pg_scene *scene = NULL;
+    pg_scene_gpu *sg = NULL;
+    pg_scenario sc;
+    char sc_path[PG_PATH_MAX];
+    if (scenario) pg_data_path(sc_path, sizeof sc_path, scenario);
+    if ((scenario && pg_scenario_load(sc_path, &sc, &err)) || pg_scene_load(path, &scene, &err) ||
+        pg_scene_gpu_create(g_gpu, scene, &sg, &err)) {
+        CHECK_MSG(0, "%s: %s", label, err.msg);
+        pg_scene_free(scene);
+        return;
+    }
+    uint32_t masked = sg->n_draws - sg->n_blend_draws - sg->n_opaque_draws;
+    if (need == 1) CHECK_MSG(masked > 0, "%s: no alpha-mask draws: the case is vacuous", label);
+    if (need == 2) CHECK_MSG(sg->n_blend_draws > 0, "%s: no BLEND draws: the case is vacuous", label);
+    pg_frame_info fi = {.camera = pg_camera_default_for_scene(scene, (float)W / H),
+                        .lights = pg_light_setup_default(scene, LIGHTS, 7), .time = 0.5f, .width = W, .height = H};
+    if (scenario) pg_scenario_apply(&sc, &fi.lights, &fi.camera);
+    char cw[256], lw[256];
+    if (!scenario && strcmp(path, "default") && /* a corpus file: the tools' view (its camera, object lights) */
+        pg_app_default_view(scene, NULL, (float)W / H, LIGHTS, 5, &fi.camera, &fi.lights, cw, sizeof cw, lw, sizeof lw,
+                            &err)) {
+        CHECK_MSG(0, "%s: default view: %s", label, err.msg);
+        pg_scene_gpu_destroy(g_gpu, sg);
+        pg_scene_free(scene);
+        return;
+    }
+    fi.lights.count = LIGHTS;
+    pg_param_override off = {"prepass", "false"}, on = {"prepass", "true"};
+    pg_th_frame nv, f_off, f_on;
+    bool ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/naive.json", NULL, 0, &fi, 1, false, &nv);
+    ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/forward_plus.json", &off, 1, &fi, 1, false, &f_off) && ok;
+    ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/forward_plus.json", &on, 1, &fi, 1, false, &f_on) && ok;
+    CHECK_MSG(ok, "%s: render failed", label);
+    if (ok) {
+        double peak = 0, d_off = pg_th_max_abs(&f_off, &nv, &peak), d_on = pg_th_max_abs(&f_on, &nv, &peak);
+        double d_onoff = pg_th_max_abs(&f_on, &f_off, &peak);
+        bool off_same = pg_th_hdr_identical(&f_off, &nv), on_same = pg_th_hdr_identical(&f_on, &nv);
+        bool hdr_same = pg_th_hdr_identical(&f_on, &f_off);
+        bool ldr_same = f_on.w == f_off.w && f_on.h == f_off.h &&
+                        !memcmp(f_on.ldr, f_off.ldr, (size_t)f_on.w * f_on.h * 4);
+        printf("%s: %u masked, %u blend draws; passes on: %s | off: %s; vs naive: off %s (max |d| %g), on %s "
+               "(max |d| %g); on vs off: HDR %s (max |d| %g), LDR %s; peak %.4g\n",
+               label, masked, sg->n_blend_draws, f_on.order, f_off.order, off_same ? "identical" : "DIFFERENT", d_off,
+               on_same ? "identical" : "DIFFERENT", d_on, hdr_same ? "identical" : "DIFFERENT", d_onoff,
+               ldr_same ? "identical" : "DIFFERENT", peak);
+        CHECK_MSG(off_same, "%s: forward+ prepass=false != naive (max |d| %g)", label, d_off);
+        CHECK_MSG(on_same, "%s: forward+ prepass=true != naive (max |d| %g)", label, d_on);
+        CHECK_MSG(hdr_same && ldr_same, "%s: prepass on vs off differ (max |d| %g)", label, d_onoff);
+        CHECK_MSG(strstr(f_on.order, "prepass,shade") != NULL, "%s: prepass=true ran %s", label, f_on.order);
+        CHECK_MSG(strstr(f_off.order, "prepass") == NULL, "%s: prepass=false ran %s", label, f_off.order);
+        if (need == 2) CHECK_MSG(strstr(f_on.order, "transparent") != NULL, "%s: no transparent pass", label);
+        CHECK_MSG(peak > 0, "%s: the image is black", label);
+    }
+    pg_th_release(&nv);
+    pg_th_release(&f_off);
+    pg_th_release(&f_on);
+    pg_scene_gpu_destroy(g_gpu, sg);
+    pg_scene_free(scene);
+}
+
+int main(void)
+{
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    pg_register_builtin_passes(&g_reg);
+    check_compile(false);
+    check_compile(true);
+    if (getenv("PG_TEST_NO_GPU")) {
+        printf("test_gpu_prepass: image checks skipped: PG_TEST_NO_GPU set\n");
+        return pg_test_finish("test_gpu_prepass");
+    }
+    pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
+    pg_error err = {0};
+    if (pg_gpu_create(&gd, &g_gpu, &err)) {
+        fprintf(stderr, "test_gpu_prepass: %s\n", err.msg);
+        return 1;
+    }
+    check_scene("default", "default", NULL, 1);
+    char path[PG_PATH_MAX];
+    snprintf(path, sizeof path, "%s/corpus/gltf/ok_textured.gltf", PG_TEST_DIR);
+    check_scene("ok_textured", path, NULL, 1);
+    snprintf(path, sizeof path, "%s/corpus/gltf/blend/blend_lit.gltf", PG_TEST_DIR);
+    check_scene("blend_lit", path, NULL, 2);
+    snprintf(path, sizeof path, "%s/assets/dabrovic-sponza/sponza.gltf", PG_SHARED_DIR);
+    if (getenv("PG_TEST_NO_SPONZA")) printf("test_gpu_prepass: Sponza skipped: PG_TEST_NO_SPONZA is set\n");
+    else if (access(path, R_OK) == 0) check_scene("sponza", path, "assets/scenarios/cis565.json", 0);
+    else printf("test_gpu_prepass: Sponza skipped: %s not found\n", path);
+    printf("validation messages: %u\n", g_gpu->validation_messages);
+    CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);
+    pg_gpu_destroy(g_gpu);
+    return pg_test_finish("test_gpu_prepass");
+}
