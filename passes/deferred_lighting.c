@@ -6,7 +6,11 @@
  *               forward adds it; unused - not allocated - without emissive materials; not bound:
  *               no emission drawn, explain line)]
  *        writes [hdr] (storage image, every pixel written).
- * Options: packing (as gbuffer), shading, ambient, view, grid_x/y/z, tile_size (8 or 16, default
+ * packing "visibility": the one "target" is the visibility pass's triangle id (r32ui); the surface
+ * is rebuilt from the triangle, its vertex streams and its material here (visibility_common.h,
+ * shaders/visibility_surface.glsl; the scene's set is bound as set 3), with the material variant
+ * the scene needs; no emissive slot (the material's emission is evaluated here).
+ * Options: packing (as gbuffer, or visibility), shading, ambient, view, grid_x/y/z, tile_size (8 or 16, default
  * 8: the workgroup is tile_size x tile_size pixels), tile_lights (default true: each tile culls its clusters' lists against the bounding box of its pixels and shares the
  * kept lights through shared memory; bit-identical to false, with far fewer light evaluations). */
 #include <stdio.h>
@@ -14,8 +18,10 @@
 #include <string.h>
 
 #include "gbuffer_layout.h"
+#include "scene_draw.h"
 #include "shader.h"
 #include "shading_common.h"
+#include "visibility_common.h"
 
 typedef struct deferred_lighting {
     int packing;
@@ -26,6 +32,9 @@ typedef struct deferred_lighting {
     pg_pass_set gbuf, lights;
     VkPipelineLayout layout;
     VkPipeline pipeline;
+    pg_vis_geometry vis;            /* packing visibility */
+    VkDescriptorSetLayout empty;    /* packing visibility without lights: set 2 */
+    VkDescriptorSet scene_set;      /* packing visibility: set 3 */
 } deferred_lighting;
 
 static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", NULL};
@@ -43,10 +52,19 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_DEPTH);
     for (uint32_t t = 0; t < pg_gbuffer_targets[packing]; t++)
         pg_decl_read(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE,
-                     packing == PG_GBUFFER_PACKED ? PG_FMTCLASS_UINT : PG_FMTCLASS_FLOAT);
-    bool emissive;
-    if ((r = pg_emissive_slot_declare(in, out, false, 4 + pg_gbuffer_targets[packing], false, &emissive, err)))
+                     packing >= PG_GBUFFER_PACKED ? PG_FMTCLASS_UINT : PG_FMTCLASS_FLOAT);
+    bool emissive = false;
+    if (packing == PG_GBUFFER_VISIBILITY) {
+        if (in->desc->n_reads > 5)
+            return pg_fail(err, PG_ERR_SCHEMA,
+                           "%s: %s.reads[5]: packing \"visibility\" takes no emissive target (the material's "
+                           "emission is evaluated in this pass)",
+                           in->desc->file, in->desc->json_path);
+        pg_scene_draw_declare_features(in, out);
+    } else if ((r = pg_emissive_slot_declare(in, out, false, 4 + pg_gbuffer_targets[packing], false, &emissive,
+                                             err))) {
         return r;
+    }
     pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
     pg_decl_define(out, pg_gbuffer_defines[packing]);
     if (emissive) pg_decl_define(out, "PG_DEFERRED_EMISSIVE");
@@ -77,29 +95,45 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     if ((r = pg_shading_ambient(ctx->desc, &p->ambient, err))) return r;
     uint32_t n_targets = pg_gbuffer_targets[p->packing];
     p->hdr_slot = ctx->desc->n_reads;
-    bool emissive = p->hdr_slot > 4 + n_targets && !ctx->pass->slots[4 + n_targets].decl.unused;
+    bool vis = p->packing == PG_GBUFFER_VISIBILITY;
+    bool emissive = !vis && p->hdr_slot > 4 + n_targets && !ctx->pass->slots[4 + n_targets].decl.unused;
+    if (vis && (r = pg_vis_geometry_create(ctx, 3, &p->vis, err))) return r;
     const pg_phys_resource *hdr = ctx->slots[p->hdr_slot];
     const char *hdr_fmt = pg_format_get(hdr->pg_fmt)->name;
     if (strcmp(hdr_fmt, "rgba16f") && strcmp(hdr_fmt, "rgba32f"))
         return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: deferred lighting writes rgba16f or rgba32f, not %s",
                        ctx->desc->file, ctx->desc->json_path, hdr_fmt);
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
-    pg_set_binding b[6];
+    pg_set_binding b[12];
     uint32_t n = 0;
     for (uint32_t t = 0; t < 1 + n_targets; t++)
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[3 + t], p->sampler, 0};
     b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr, VK_NULL_HANDLE, 0};
     if (emissive) /* binding HDR_BINDING + 1 */
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[4 + n_targets], p->sampler, 0};
+    if (vis) n = pg_vis_geometry_bindings(&p->vis, ctx->scene, b, n); /* binding 3 on */
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.gbuffer", ctx->pass->name);
     if ((r = pg_pass_set_create(gpu, n, b, name, &p->gbuf, err))) return r;
     if ((r = pg_light_set_create(ctx, true, 0, 1, &p->lights, err))) return r;
-    VkDescriptorSetLayout sets[3] = {ctx->frame_layout, p->gbuf.layout, p->lights.layout};
-    if ((r = pg_pipeline_layout_create(gpu, p->lights.layout ? 3 : 2, sets, sizeof(float), &p->layout, err))) return r;
-    const char *defs[PG_MAX_DEFINES + 3];
+    VkDescriptorSetLayout sets[4] = {ctx->frame_layout, p->gbuf.layout, p->lights.layout, VK_NULL_HANDLE};
+    uint32_t n_sets = p->lights.layout ? 3 : 2;
+    if (vis) { /* set 3: the scene's materials and textures (set 2 stays empty without lights) */
+        if (!p->lights.layout) {
+            VkDescriptorSetLayoutCreateInfo eci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+            PG_VK_TRY(err, vkCreateDescriptorSetLayout(gpu->device, &eci, NULL, &p->empty));
+            sets[2] = p->empty;
+        }
+        sets[3] = ctx->scene->set_layout;
+        p->scene_set = ctx->scene->set;
+        n_sets = 4;
+    }
+    if ((r = pg_pipeline_layout_create(gpu, n_sets, sets, sizeof(float), &p->layout, err))) return r;
+    const char *defs[PG_MAX_DEFINES + 16];
     uint32_t nd = 0;
-    for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) defs[nd++] = ctx->pass->decl.defines[i];
+    if (vis) nd = pg_vis_geometry_define_list(&p->vis, defs);
+    else
+        for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) defs[nd++] = ctx->pass->decl.defines[i];
     char fmt_def[48];
     snprintf(fmt_def, sizeof fmt_def, "PG_HDR_FORMAT=%s", hdr_fmt);
     defs[nd++] = fmt_def;
@@ -130,6 +164,8 @@ static void dl_record(void *self, const pg_pass_record_ctx *ctx)
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, p->lights.set ? 3 : 2, sets, 0,
                             NULL);
+    if (p->scene_set)
+        vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 3, 1, &p->scene_set, 0, NULL);
     vkCmdPushConstants(ctx->cmd, p->layout, PG_PUSH_STAGES, 0, sizeof(float), &p->ambient);
     vkCmdDispatch(ctx->cmd, (hdr->width + p->tile - 1) / p->tile, (hdr->height + p->tile - 1) / p->tile, 1);
 }
@@ -147,14 +183,16 @@ static void dl_destroy(void *self, pg_gpu *gpu)
     if (p->layout) vkDestroyPipelineLayout(gpu->device, p->layout, NULL);
     pg_pass_set_destroy(gpu, &p->gbuf);
     pg_pass_set_destroy(gpu, &p->lights);
+    pg_vis_geometry_destroy(gpu, &p->vis);
+    if (p->empty) vkDestroyDescriptorSetLayout(gpu->device, p->empty, NULL);
     if (p->sampler) vkDestroySampler(gpu->device, p->sampler, NULL);
 }
 
 const pg_pass_type pg_pass_deferred_lighting = {
     .name = "deferred_lighting",
     .summary = "compute: shade every pixel from the G-buffer with the lights of its cluster",
-    .read_slots = "lights, cluster_counts, cluster_lights, depth, G-buffer targets (3 float | 2 oct16 | 1 packed), "
-                  "then optionally emissive",
+    .read_slots = "lights, cluster_counts, cluster_lights, depth, G-buffer targets (3 float | 2 oct16 | 1 packed | "
+                  "vis_id for visibility), then optionally emissive (not with visibility)",
     .write_slots = "hdr",
     .instance_size = sizeof(deferred_lighting),
     .declare = dl_declare,

@@ -35,6 +35,11 @@ static pg_result gb_options(const pg_pass_desc *desc, int *packing, int *space, 
     if ((r = pg_opt_check_known(desc, known, err))) return r;
     if ((r = pg_opt_enum(desc, "packing", pg_gbuffer_packings, 0, packing, err))) return r;
     if ((r = pg_opt_enum(desc, "position_space", k_spaces, 0, space, err))) return r;
+    if (*packing == PG_GBUFFER_VISIBILITY)
+        return pg_fail(err, PG_ERR_SCHEMA,
+                       "%s: %s.options.packing: \"visibility\" is written by the visibility pass (type "
+                       "\"visibility\"), not by gbuffer",
+                       desc->file, desc->json_path);
     if (*space == 1 && *packing != PG_GBUFFER_FLOAT)
         return pg_fail(err, PG_ERR_SCHEMA,
                        "%s: %s.options.position_space: \"camera\" needs packing \"float\" (packing \"%s\" stores no "

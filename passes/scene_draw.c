@@ -23,6 +23,8 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     defs[n++] = tc;
     bool has_mask = false;
     out->vertex_colors = out->uv1 = false;
+    out->push_draw_key = false;
+    out->draw_key_shift = 0;
     for (uint32_t i = 0; i < pass->decl.n_defines; i++) {
         if (strcmp(pass->decl.defines[i], "PG_ALPHA_MASK") == 0) {
             has_mask = true;
@@ -91,10 +93,10 @@ static void bind_scene(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, V
     vkCmdBindIndexBuffer(cmd, sc->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
 }
 
-static void push_draw(VkCommandBuffer cmd, const pg_scene_draw *sd, const pg_draw *d)
+static void push_draw(VkCommandBuffer cmd, const pg_scene_draw *sd, const pg_draw *d, uint32_t index)
 {
-    uint32_t push[2] = {d->material, 0};
-    memcpy(&push[1], &sd->ambient, sizeof(float));
+    uint32_t push[2] = {d->material, index << sd->draw_key_shift};
+    if (!sd->push_draw_key) memcpy(&push[1], &sd->ambient, sizeof(float));
     vkCmdPushConstants(cmd, sd->layout, PG_PUSH_STAGES, 0, sizeof push, push);
 }
 
@@ -112,7 +114,7 @@ void pg_scene_draw_record_list(const pg_scene_draw *sd, const pg_pass_record_ctx
             vkCmdSetCullMode(cmd, want);
             cull = want;
         }
-        push_draw(cmd, sd, d);
+        push_draw(cmd, sd, d, order[k]);
         vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, d->vertex_offset, 0);
     }
 }
@@ -135,7 +137,7 @@ void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx
             vkCmdSetCullMode(cmd, want);
             cull = want;
         }
-        push_draw(cmd, sd, d);
+        push_draw(cmd, sd, d, i);
         vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, d->vertex_offset, 0);
     }
 }

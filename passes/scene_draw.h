@@ -16,6 +16,9 @@ typedef struct pg_scene_draw {
     float ambient;                    /* pushed with each draw's material (DrawPush.ambient) */
     bool vertex_colors, uv1;          /* the pipelines read vertex streams 1 / 2 (PG_VERTEX_COLORS, PG_UV1) */
     bool depth_equal;                 /* desc.depth_equal: alpha-mask draws use `opaque` too */
+    bool push_draw_key;               /* the visibility pass: DrawPush's second word is
+                                       * draw index << draw_key_shift instead of the ambient */
+    uint32_t draw_key_shift;
 } pg_scene_draw;
 
 typedef struct pg_scene_draw_desc {

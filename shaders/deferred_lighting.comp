@@ -7,8 +7,15 @@
 // (pg_shade_tile in shading.glsl): the same sum, far fewer light evaluations.
 // PG_DEFERRED_EMISSIVE: the G-buffer's emissive target (binding HDR_BINDING + 1) is the surface's
 // s.emissive, added once by pg_shade_combine as in forward.
+// PG_GBUFFER_VISIBILITY (packing "visibility"): no G-buffer; the pixel's triangle id (binding 1)
+// names the triangle, and the surface is rebuilt from it and the material evaluated here
+// (visibility_surface.glsl, surface.glsl: the scene's materials and textures in set 3, its
+// vertex streams in set 1 after hdr).
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
+#ifdef PG_GBUFFER_VISIBILITY
+#extension GL_EXT_nonuniform_qualifier : require
+#endif
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "lighting.glsl"
@@ -35,6 +42,11 @@ layout(set = 1, binding = 3) uniform sampler2D g_albedo;
 layout(set = 1, binding = 1) uniform sampler2D g_normal;
 layout(set = 1, binding = 2) uniform sampler2D g_albedo;
 #define HDR_BINDING 3
+#elif defined(PG_GBUFFER_VISIBILITY)
+layout(set = 1, binding = 1) uniform usampler2D g_vis;
+#define HDR_BINDING 2
+#define PG_VIS_SET 1
+#define PG_VIS_BINDING 3
 #else
 layout(set = 1, binding = 1) uniform usampler2D g_packed;
 #define HDR_BINDING 2
@@ -47,6 +59,10 @@ layout(set = 1, binding = HDR_BINDING + 1) uniform sampler2D g_emissive;
 layout(push_constant) uniform Push { float ambient; } pc; // the pass option "ambient"
 #define PG_AMBIENT pc.ambient
 #include "shading.glsl"
+#ifdef PG_GBUFFER_VISIBILITY
+#include "surface.glsl"
+#include "visibility_surface.glsl"
+#endif
 
 #if defined(PG_TILE_LIGHTS) && defined(PG_CLUSTERED) && defined(PG_HAS_LIGHTS) && PG_DEBUG_VIEW == 0
 #define PG_TILED 1   // the workgroup shades together (pg_shade_tile): no early return before it
@@ -58,8 +74,13 @@ void main()
     uint lin = gl_LocalInvocationIndex;
     ivec2 px = ivec2(gl_WorkGroupID.xy) * PG_TILE + ivec2(int(lin % uint(PG_TILE)), int(lin / uint(PG_TILE)));
     bool inside = px.x < size.x && px.y < size.y;
+#ifdef PG_GBUFFER_VISIBILITY
+    uint vis = inside ? texelFetch(g_vis, px, 0).r : PG_VIS_NONE;
+    bool lit = vis != PG_VIS_NONE;
+#else
     float depth = inside ? texelFetch(g_depth, px, 0).r : 1.0;
     bool lit = depth < 1.0;
+#endif
 #ifndef PG_TILED
     if (!inside) return;
     if (!lit) {
@@ -87,6 +108,12 @@ void main()
     s.shininess = n.w;
     s.albedo = a.rgb;
     s.specular = a.a;
+    view_depth = -PG_REL_TO_VIEW(P).z;
+#elif defined(PG_GBUFFER_VISIBILITY)
+    SurfaceInput si;
+    uint material;
+    pg_vis_fetch(vis, frag, vec2(size), si, material, P);
+    s = pg_surface_material(si, material);
     view_depth = -PG_REL_TO_VIEW(P).z;
 #elif defined(PG_GBUFFER_OCT16)
     // via the linear view depth: finite for any near/far (unprojecting through inv_proj breaks

@@ -1,4 +1,5 @@
-// surface.glsl - material evaluation shared by forward and G-buffer fragment shaders.
+// surface.glsl - material evaluation shared by forward and G-buffer fragment shaders and by the
+// compute passes that rebuild a surface from a triangle id (visibility_surface.glsl).
 // Variants (each compiled in only when the scene needs it; passes/scene_draw.c picks them):
 //   PG_ALPHA_MASK      discard below the cutoff
 //   PG_NORMAL_MAPS     tangent-space normal maps
@@ -7,12 +8,24 @@
 //   PG_UV_TRANSFORM    KHR_texture_transform matrices per texture slot
 //   PG_EMISSIVE        emissive factor and texture
 //   TEXTURE_COUNT      size of the scene's texture array
+// For compute (no implicit derivatives, a material per pixel):
+//   PG_SURFACE_GRADS   textures are sampled at the mip level that SurfaceInput.duv0/duv1 (the
+//                      screen-space derivatives of TEXCOORD_0/1) give (pg_grad_lod)
+//   PG_NONUNIFORM_TEXTURES  the texture index is nonuniformEXT (device feature); otherwise each
+//                      invocation walks the texture array (pg_slot_sample)
+//   PG_SURFACE_NO_PUSH the includer declares the push constants (DrawPush is not declared)
+//   PG_SCENE_SET       descriptor set of the scene's materials and textures (default 1)
 // The fragment inputs come from surface_inputs.glsl (pg_surface_input()).
-layout(set = 1, binding = 0, std430) readonly buffer Materials { GpuMaterial materials[]; };
-layout(set = 1, binding = 1) uniform sampler2D textures[TEXTURE_COUNT];
+#ifndef PG_SCENE_SET
+#define PG_SCENE_SET 1
+#endif
+layout(set = PG_SCENE_SET, binding = 0, std430) readonly buffer Materials { GpuMaterial materials[]; };
+layout(set = PG_SCENE_SET, binding = 1) uniform sampler2D textures[TEXTURE_COUNT];
+#ifndef PG_SURFACE_NO_PUSH
 // ambient: the pass's option "ambient" (a run-time value, the same for every draw; read by
 // forward.frag as PG_AMBIENT)
 layout(push_constant) uniform DrawPush { uint material; float ambient; } draw;
+#endif
 
 // Texture slots (core/scene/scene.h PG_TEXSLOT_*)
 const int PG_SLOT_BASE = 0;
@@ -33,11 +46,65 @@ vec2 pg_slot_uv(GpuMaterial m, int slot, SurfaceInput si)
     return uv;
 }
 
-Surface pg_surface(SurfaceInput si)
+#ifdef PG_SURFACE_GRADS
+// (the includer enables GL_EXT_nonuniform_qualifier)
+// d(uv)/dx in xy, d(uv)/dy in zw of the coordinate slot reads: the set's derivatives through the
+// linear part of its transform.
+vec4 pg_slot_grad(GpuMaterial m, int slot, SurfaceInput si)
 {
-    GpuMaterial m = materials[draw.material];
+    vec4 d = si.duv0;
+#ifdef PG_UV1
+    if ((m.tex2.y & (1 << slot)) != 0) d = si.duv1;
+#endif
+#ifdef PG_UV_TRANSFORM
+    vec2 r0 = m.uv_xform[2 * slot].xy, r1 = m.uv_xform[2 * slot + 1].xy;
+    d = vec4(dot(r0, d.xy), dot(r1, d.xy), dot(r0, d.zw), dot(r1, d.zw));
+#endif
+    return d;
+}
+
+// The mip level of texture t for derivatives g, as the Vulkan spec's scale factor defines it
+// without anisotropy: lambda = log2(rho), rho = max(|d(uv)/dx| * size, |d(uv)/dy| * size).
+// Sampled with textureLod rather than textureGrad: llvmpipe's LLVM 15 back end aborts on
+// textureGrad with per-invocation gradients in compute ("Cannot emit physreg copy instruction").
+float pg_grad_lod(vec2 size, vec4 g)
+{
+    float rho = max(length(g.xy * size), length(g.zw * size));
+    return rho > 0.0 ? log2(rho) : -1000.0;
+}
+#endif
+
+// Texture t (an index into textures[], t >= 0 when want) of a slot; vec4(1) when !want.
+vec4 pg_slot_sample(bool want, int t, GpuMaterial m, int slot, SurfaceInput si)
+{
+#if defined(PG_SURFACE_GRADS) && defined(PG_NONUNIFORM_TEXTURES)
+    vec4 g = pg_slot_grad(m, slot, si);
+    return want ? textureLod(textures[nonuniformEXT(t)], pg_slot_uv(m, slot, si),
+                             pg_grad_lod(vec2(textureSize(textures[nonuniformEXT(t)], 0)), g))
+                : vec4(1.0);
+#elif defined(PG_SURFACE_GRADS)
+    // Without the device's shaderSampledImageArrayNonUniformIndexing (lavapipe) the index must be
+    // dynamically uniform: every invocation walks the array and samples where the index is its
+    // own (a loop counter is uniform). Costs a compare per texture of the scene per sample.
+    vec4 r = vec4(1.0);
+    vec2 uv = pg_slot_uv(m, slot, si);
+    vec4 g = pg_slot_grad(m, slot, si);
+    if (want)
+        for (int i = 0; i < TEXTURE_COUNT; i++)
+            if (i == t) r = textureLod(textures[i], uv, pg_grad_lod(vec2(textureSize(textures[i], 0)), g));
+    return r;
+#else
+    return want ? texture(textures[t], pg_slot_uv(m, slot, si)) : vec4(1.0);
+#endif
+}
+
+// The material of index `material` at a surface point.
+Surface pg_surface_material(SurfaceInput si, uint material)
+{
+    GpuMaterial m = materials[material];
     vec4 base = m.base_color;
-    if (m.tex.x >= 0) base *= texture(textures[m.tex.x], pg_slot_uv(m, PG_SLOT_BASE, si));
+    vec4 tb = pg_slot_sample(m.tex.x >= 0, m.tex.x, m, PG_SLOT_BASE, si);
+    if (m.tex.x >= 0) base *= tb;
 #ifdef PG_VERTEX_COLORS
     base *= si.color;
 #endif
@@ -49,18 +116,23 @@ Surface pg_surface(SurfaceInput si)
     N = nl > 1e-20 ? N / nl : vec3(0.0, 1.0, 0.0);
 #ifdef PG_NORMAL_MAPS
     vec4 tangent = si.tangent;
-    if (m.tex.y >= 0 && dot(tangent.xyz, tangent.xyz) > 1e-12) {
-        vec3 T = tangent.xyz - N * dot(N, tangent.xyz);
-        float tl = length(T);
-        if (tl > 1e-6) {
-            T /= tl;
-            vec3 B = cross(N, T) * (tangent.w < 0.0 ? -1.0 : 1.0);
-            vec3 tn = texture(textures[m.tex.y], pg_slot_uv(m, PG_SLOT_NORMAL, si)).xyz * 2.0 - 1.0;
-            tn.xy *= m.params.y;
-            vec3 n2 = T * tn.x + B * tn.y + N * tn.z;
-            float l2 = length(n2);
-            if (l2 > 1e-6) N = n2 / l2;
-        }
+    bool mapped = m.tex.y >= 0 && dot(tangent.xyz, tangent.xyz) > 1e-12;
+    vec3 T = vec3(0.0);
+    float tl = 0.0;
+    if (mapped) {
+        T = tangent.xyz - N * dot(N, tangent.xyz);
+        tl = length(T);
+        mapped = tl > 1e-6;
+    }
+    vec4 tn4 = pg_slot_sample(mapped, m.tex.y, m, PG_SLOT_NORMAL, si);
+    if (mapped) {
+        T /= tl;
+        vec3 B = cross(N, T) * (tangent.w < 0.0 ? -1.0 : 1.0);
+        vec3 tn = tn4.xyz * 2.0 - 1.0;
+        tn.xy *= m.params.y;
+        vec3 n2 = T * tn.x + B * tn.y + N * tn.z;
+        float l2 = length(n2);
+        if (l2 > 1e-6) N = n2 / l2;
     }
 #endif
     if (!si.front_facing) N = -N; // light the side the camera sees
@@ -73,7 +145,16 @@ Surface pg_surface(SurfaceInput si)
     s.emissive = vec3(0.0);
 #ifdef PG_EMISSIVE
     s.emissive = m.emissive.rgb;
-    if (m.tex2.x >= 0) s.emissive *= texture(textures[m.tex2.x], pg_slot_uv(m, PG_SLOT_EMISSIVE, si)).rgb;
+    vec4 te = pg_slot_sample(m.tex2.x >= 0, m.tex2.x, m, PG_SLOT_EMISSIVE, si);
+    if (m.tex2.x >= 0) s.emissive *= te.rgb;
 #endif
     return s;
 }
+
+#ifndef PG_SURFACE_NO_PUSH
+// The draw's material (the push constant) at this fragment.
+Surface pg_surface(SurfaceInput si)
+{
+    return pg_surface_material(si, draw.material);
+}
+#endif

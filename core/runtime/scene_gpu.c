@@ -124,20 +124,25 @@ static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg
     }
     for (uint32_t i = 0; i < sg->n_images; i++)
         bars[i] = pg_image_barrier(sg->images[i].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                                   VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                   VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                   VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     VkBufferMemoryBarrier2 bb[5];
     VkBuffer bufs[5] = {sg->vertices.buffer, sg->indices.buffer, sg->materials.buffer, sg->colors.buffer,
                         sg->uv1.buffer};
-    VkAccessFlags2 acc[5] = {VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT, VK_ACCESS_2_INDEX_READ_BIT,
-                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT,
-                             VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT};
-    VkPipelineStageFlags2 st[5] = {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
-                                   VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT,
-                                   VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                                   VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
-                                   VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT};
+    /* the vertex streams and indices are also storage buffers of the compute passes that rebuild
+     * surfaces from triangle ids (visibility_shade, visibility_gbuffer) */
+    const VkAccessFlags2 sr = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+    const VkPipelineStageFlags2 cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    VkAccessFlags2 acc[5] = {VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr, VK_ACCESS_2_INDEX_READ_BIT | sr,
+                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr,
+                             VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr};
+    VkPipelineStageFlags2 st[5] = {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs,
+                                   VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT | cs,
+                                   VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | cs,
+                                   VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs,
+                                   VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs};
     uint32_t n_bb = 0;
     for (int i = 0; i < 5; i++) {
         if (!bufs[i]) continue;
@@ -209,11 +214,15 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
     memcpy(sg->bounds_max, scene->bounds_max, sizeof sg->bounds_max);
     uint32_t n_mat = scene->n_materials ? scene->n_materials : 1;
     if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_vertices * sizeof(pg_vertex),
-                              VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                              VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              false,
                               "scene.vertices", &sg->vertices, err)))
         goto fail;
     if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_indices * sizeof(uint32_t),
-                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              false,
                               "scene.indices", &sg->indices, err)))
         goto fail;
     if ((r = pg_buffer_create(gpu, (VkDeviceSize)n_mat * sizeof(pg_gpu_material),
@@ -228,7 +237,9 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
             goto fail;
         }
         if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_vertices * sizeof(float[4]),
-                                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  false,
                                   "scene.colors", &sg->colors, err)))
             goto fail;
     }
@@ -238,7 +249,9 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
             goto fail;
         }
         if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_vertices * sizeof(float[2]),
-                                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  false,
                                   "scene.uv1", &sg->uv1, err)))
             goto fail;
     }
@@ -287,8 +300,10 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
 
     /* descriptor set */
     VkDescriptorSetLayoutBinding b[2] = {
-        {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_VERTEX_BIT, NULL},
-        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sg->n_images, VK_SHADER_STAGE_FRAGMENT_BIT, NULL},
+        {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+         VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_COMPUTE_BIT, NULL},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sg->n_images,
+         VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, NULL},
     };
     VkDescriptorSetLayoutCreateInfo lci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
                                            .bindingCount = 2, .pBindings = b};

@@ -514,8 +514,12 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
             .fragmentStoresAndAtomics = f2.features.fragmentStoresAndAtomics,
             .shaderInt64 = f2.features.shaderInt64,
             .depthClamp = f2.features.depthClamp,
+            /* gl_PrimitiveID in a fragment shader (the visibility pass's triangle id) */
+            .geometryShader = f2.features.geometryShader,
         },
     };
+    gpu->primitive_id_in_fragment = f2.features.geometryShader;
+    gpu->nonuniform_sampled_arrays = f12.shaderSampledImageArrayNonUniformIndexing;
     gpu->timeline_semaphores = f12.timelineSemaphore;
     if (cfam >= 0 && !f12.timelineSemaphore) {
         cfam = -1;

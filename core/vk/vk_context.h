@@ -93,6 +93,11 @@ typedef struct pg_gpu {
      * computeFullSubgroups enabled, compute in requiredSubgroupSizeStages, size in range) */
     uint32_t subgroup_size;
     bool exact_subgroups;
+    /* geometryShader enabled: fragment shaders may read gl_PrimitiveID (the visibility pass) */
+    bool primitive_id_in_fragment;
+    /* shaderSampledImageArrayNonUniformIndexing enabled: a compute invocation may index the
+     * scene's texture array with its own value (nonuniformEXT) */
+    bool nonuniform_sampled_arrays;
     uint64_t max_storage_buffer_range; /* bytes one storage-buffer binding may span */
     uint32_t validation_messages; /* errors + warnings reported by the validation layer */
     uint32_t validation_errors;

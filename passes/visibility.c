@@ -1,0 +1,86 @@
+/* visibility.c - the raster half of a visibility buffer: draws the opaque and alpha-mask draws
+ * of the scene writing only depth and a 32-bit triangle id per pixel (visibility_common.h:
+ * (draw << tri_bits) | gl_PrimitiveID; 0xFFFFFFFF where nothing is drawn), with the cheapest
+ * fragment shader there is (shaders/visibility.frag: one store). Alpha-mask materials get a second
+ * pipeline that evaluates the material's alpha and discards, made only when the scene has such
+ * draws; BLEND draws are left to forward_transparent. The vertex path is the scene-draw one
+ * (scene_draw.c). A compute pass then rebuilds each pixel's surface from the id
+ * (deferred_lighting with packing "visibility", or visibility_resolve).
+ * Needs gl_PrimitiveID in the fragment stage (the device's geometryShader feature).
+ * Slots: writes [vis_id (r32ui), depth]. No options. */
+#include <string.h>
+
+#include "scene_draw.h"
+#include "visibility_common.h"
+
+typedef struct visibility_pass {
+    pg_scene_draw draw;
+} visibility_pass;
+
+static pg_result vis_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
+{
+    static const char *const known[] = {NULL};
+    pg_result r;
+    if ((r = pg_opt_check_known(in->desc, known, err))) return r;
+    pg_decl_write(out, "vis_id", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_UINT);
+    pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
+    pg_scene_draw_declare_features(in, out);
+    return PG_OK;
+}
+
+static pg_result vis_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
+{
+    visibility_pass *p = self;
+    pg_result r;
+    if (!ctx->gpu->primitive_id_in_fragment)
+        return pg_fail(err, PG_ERR_NO_DEVICE,
+                       "%s: the device cannot read gl_PrimitiveID in a fragment shader (no geometryShader "
+                       "feature); use a G-buffer pipeline (deferred_oct16.json)",
+                       ctx->pass->name);
+    if (!ctx->scene) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: needs a scene", ctx->pass->name);
+    if (ctx->slots[0]->format != VK_FORMAT_R32_UINT)
+        return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: the triangle id target must be r32ui, not %s",
+                       ctx->desc->file, ctx->desc->json_path, pg_format_get(ctx->slots[0]->pg_fmt)->name);
+    uint32_t bits;
+    if ((r = pg_vis_tri_bits(ctx->scene, &bits, err))) return r;
+    pg_scene_draw_desc d = {
+        .fragment_shader = "visibility.frag",
+        .n_color = 1,
+        .color_formats = {ctx->slots[0]->format},
+        .depth_format = ctx->slots[1]->format,
+    };
+    if ((r = pg_scene_draw_create(ctx, &d, &p->draw, err))) return r;
+    p->draw.push_draw_key = true;
+    p->draw.draw_key_shift = bits;
+    return PG_OK;
+}
+
+static void vis_record(void *self, const pg_pass_record_ctx *ctx)
+{
+    visibility_pass *p = self;
+    VkClearColorValue clear;
+    memset(&clear, 0, sizeof clear);
+    clear.uint32[0] = 0xFFFFFFFFu; /* nothing drawn */
+    uint32_t color_slot = 0;
+    pg_pass_begin_rendering(ctx, 1, &color_slot, &clear, 1, true, 1.0f);
+    pg_scene_draw_record(&p->draw, ctx, VK_NULL_HANDLE);
+    vkCmdEndRendering(ctx->cmd);
+}
+
+static void vis_destroy(void *self, pg_gpu *gpu)
+{
+    visibility_pass *p = self;
+    pg_scene_draw_destroy(gpu, &p->draw);
+}
+
+const pg_pass_type pg_pass_visibility = {
+    .name = "visibility",
+    .summary = "graphics: depth and a 32-bit triangle id per pixel (opaque + alpha-mask draws; alpha-mask discards)",
+    .read_slots = "",
+    .write_slots = "vis_id (r32ui), depth",
+    .instance_size = sizeof(visibility_pass),
+    .declare = vis_declare,
+    .create = vis_create,
+    .record = vis_record,
+    .destroy = vis_destroy,
+};

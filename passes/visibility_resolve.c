@@ -1,0 +1,115 @@
+/* visibility_resolve.c - compute pass: rebuilds every pixel's surface from the visibility pass's
+ * triangle id (visibility_common.h, shaders/visibility_surface.glsl), evaluates its material and
+ * writes the packed G-buffer (gbuffer_layout.h "packed") that deferred_lighting reads with packing
+ * "packed": the visibility pipeline's resolve=gbuffer path, against which the fused path
+ * (deferred_lighting with packing "visibility") is measured (shaders/visibility_resolve.comp).
+ * Slots: reads [vis_id (r32ui)]; writes [packed (rgba32ui storage, every pixel written: zeros where
+ *        nothing is drawn), emissive (optional, rgba16f storage; unused - not allocated - without
+ *        emissive materials; not bound: no emission, explain line)].
+ * No options. */
+#include <stdio.h>
+#include <string.h>
+
+#include "scene_draw.h"
+#include "shader.h"
+#include "shading_common.h"
+#include "visibility_common.h"
+
+typedef struct visibility_resolve {
+    bool emissive;
+    VkSampler sampler;
+    pg_vis_geometry vis;
+    pg_pass_set set;
+    VkPipelineLayout layout;
+    VkPipeline pipeline;
+} visibility_resolve;
+
+static pg_result vr_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
+{
+    static const char *const known[] = {NULL};
+    pg_result r;
+    if ((r = pg_opt_check_known(in->desc, known, err))) return r;
+    pg_decl_read(out, "vis_id", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_UINT);
+    pg_decl_write(out, "packed", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_UINT);
+    if (in->desc->n_writes > 1) {
+        pg_decl_write(out, "emissive", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+        const pg_resource_desc *rd = pg_pipeline_find_resource(in->pipeline, in->desc->writes[1]);
+        if (rd && rd->kind == PG_RES_IMAGE && rd->format != PG_FMT_RGBA16F)
+            return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[1]: the emissive target must be rgba16f, resource '%s' is %s",
+                           in->desc->file, in->desc->json_path, rd->name, pg_format_get(rd->format)->name);
+        if (!in->features.has_emissive)
+            pg_decl_mark_unused(out, true, 1, "no emissive materials: emissive target not allocated");
+        else
+            pg_decl_define(out, "PG_RESOLVE_EMISSIVE");
+    } else if (in->features.has_emissive) {
+        pg_decl_explain(out, "no emissive slot bound (writes[1]): emissive materials are not drawn");
+    }
+    pg_scene_draw_declare_features(in, out);
+    return PG_OK;
+}
+
+static pg_result vr_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
+{
+    visibility_resolve *p = self;
+    pg_gpu *gpu = ctx->gpu;
+    pg_result r;
+    if (ctx->slots[1]->format != VK_FORMAT_R32G32B32A32_UINT)
+        return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: the packed G-buffer is rgba32ui", ctx->desc->file,
+                       ctx->desc->json_path);
+    p->emissive = ctx->pass->n_slots > 2 && !ctx->pass->slots[2].decl.unused;
+    if ((r = pg_vis_geometry_create(ctx, 2, &p->vis, err))) return r;
+    if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err)))
+        return r;
+    pg_set_binding b[8];
+    uint32_t n = 0;
+    b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[0], p->sampler, 0};
+    b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[1], VK_NULL_HANDLE, 0};
+    if (p->emissive) b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[2], VK_NULL_HANDLE, 0};
+    n = pg_vis_geometry_bindings(&p->vis, ctx->scene, b, n);
+    char name[PG_NAME_MAX + 16];
+    snprintf(name, sizeof name, "%s.set", ctx->pass->name);
+    if ((r = pg_pass_set_create(gpu, n, b, name, &p->set, err))) return r;
+    VkDescriptorSetLayout sets[3] = {ctx->frame_layout, p->set.layout, ctx->scene->set_layout};
+    if ((r = pg_pipeline_layout_create(gpu, 3, sets, 0, &p->layout, err))) return r;
+    const char *defs[PG_MAX_DEFINES + 16];
+    uint32_t nd = pg_vis_geometry_define_list(&p->vis, defs);
+    VkShaderModule cs;
+    if ((r = pg_shader_module(gpu, "visibility_resolve.comp", VK_SHADER_STAGE_COMPUTE_BIT, defs, nd, &cs, err)))
+        return r;
+    pg_compute_pipeline_desc pd = {.layout = p->layout, .cs = cs};
+    r = pg_compute_pipeline_create_ex(gpu, &pd, ctx->pass->name, &p->pipeline, err);
+    vkDestroyShaderModule(gpu->device, cs, NULL);
+    return r;
+}
+
+static void vr_record(void *self, const pg_pass_record_ctx *ctx)
+{
+    visibility_resolve *p = self;
+    const pg_phys_resource *out = ctx->slots[1];
+    VkDescriptorSet sets[3] = {ctx->frame_set, p->set.set, ctx->scene->set};
+    vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
+    vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 3, sets, 0, NULL);
+    vkCmdDispatch(ctx->cmd, (out->width + 7) / 8, (out->height + 7) / 8, 1);
+}
+
+static void vr_destroy(void *self, pg_gpu *gpu)
+{
+    visibility_resolve *p = self;
+    if (p->pipeline) vkDestroyPipeline(gpu->device, p->pipeline, NULL);
+    if (p->layout) vkDestroyPipelineLayout(gpu->device, p->layout, NULL);
+    pg_pass_set_destroy(gpu, &p->set);
+    pg_vis_geometry_destroy(gpu, &p->vis);
+    if (p->sampler) vkDestroySampler(gpu->device, p->sampler, NULL);
+}
+
+const pg_pass_type pg_pass_visibility_resolve = {
+    .name = "visibility_resolve",
+    .summary = "compute: rebuild every pixel's surface from its triangle id and write the packed G-buffer",
+    .read_slots = "vis_id (r32ui)",
+    .write_slots = "packed (rgba32ui), then optionally emissive (rgba16f)",
+    .instance_size = sizeof(visibility_resolve),
+    .declare = vr_declare,
+    .create = vr_create,
+    .record = vr_record,
+    .destroy = vr_destroy,
+};

@@ -1,0 +1,113 @@
+// visibility_surface.glsl - rebuilds the surface seen at a pixel from its visibility id (the
+// (draw << PG_VIS_TRI_BITS) | triangle that visibility.frag wrote), for compute passes
+// (deferred_lighting with packing "visibility", visibility_resolve). passes/visibility_common.h
+// binds, in set PG_VIS_SET from binding PG_VIS_BINDING on:
+//   +0 the scene's vertices (pg_vertex: 12 floats), +1 its indices, +2 the draw table (uvec4 per
+//   draw: first index, vertex offset, material, 0), then COLOR_0 (vec4 per vertex, only with
+//   PG_VERTEX_COLORS) and TEXCOORD_1 (vec2 per vertex, only with PG_UV1).
+// Include after common.glsl (FRAME_UNIFORMS_BLOCK), depth_reconstruct.glsl and surface.glsl
+// (compiled with PG_SURFACE_GRADS).
+//
+// The attributes are interpolated with the barycentrics of the point where the ray through the
+// pixel centre meets the triangle's plane: perspective-correct by construction, the same point
+// the rasterizer interpolates at. Texture coordinates get analytic screen-space derivatives from
+// the rays through the next pixel to the right and below, intersected with the same plane (a
+// one-pixel difference, as a 2x2 quad's hardware derivative; textureGrad then picks the mip).
+// gl_FrontFacing becomes the side of the triangle the ray arrives from, with glTF's
+// counter-clockwise winding as front, as the rasterizer decides it.
+layout(set = PG_VIS_SET, binding = PG_VIS_BINDING + 0, std430) readonly buffer VisVertices { float vis_vertices[]; };
+layout(set = PG_VIS_SET, binding = PG_VIS_BINDING + 1, std430) readonly buffer VisIndices { uint vis_indices[]; };
+layout(set = PG_VIS_SET, binding = PG_VIS_BINDING + 2, std430) readonly buffer VisDraws { uvec4 vis_draws[]; };
+#ifdef PG_VERTEX_COLORS
+layout(set = PG_VIS_SET, binding = PG_VIS_BINDING + 3, std430) readonly buffer VisColors { vec4 vis_colors[]; };
+#define PG_VIS_UV1_BINDING (PG_VIS_BINDING + 4)
+#else
+#define PG_VIS_UV1_BINDING (PG_VIS_BINDING + 3)
+#endif
+#ifdef PG_UV1
+layout(set = PG_VIS_SET, binding = PG_VIS_UV1_BINDING, std430) readonly buffer VisUv1 { vec2 vis_uv1[]; };
+#endif
+
+const uint PG_VIS_NONE = 0xffffffffu; // cleared id: nothing drawn
+
+vec3 pg_vis_vec3(uint v, uint o) { return vec3(vis_vertices[12u * v + o], vis_vertices[12u * v + o + 1u], vis_vertices[12u * v + o + 2u]); }
+vec2 pg_vis_vec2(uint v, uint o) { return vec2(vis_vertices[12u * v + o], vis_vertices[12u * v + o + 1u]); }
+vec4 pg_vis_vec4(uint v, uint o)
+{
+    return vec4(vis_vertices[12u * v + o], vis_vertices[12u * v + o + 1u], vis_vertices[12u * v + o + 2u],
+                vis_vertices[12u * v + o + 3u]);
+}
+
+// Camera-relative origin and direction of the ray through pixel position `frag` (pixels).
+void pg_vis_ray(vec2 frag, vec2 size, out vec3 o, out vec3 dir)
+{
+    vec2 uv = frag / size;
+    if (PG_ORTHO) {
+        o = PG_VIEW_TO_REL(pg_ortho_view_pos_from_view_depth(uv, 0.0, frame.proj));
+        dir = PG_VIEW_TO_REL(vec3(0.0, 0.0, -1.0));
+    } else {
+        o = vec3(0.0);
+        dir = PG_VIEW_TO_REL(pg_view_pos_from_view_depth(uv, 1.0, frame.proj));
+    }
+}
+
+// Barycentrics (of p0, p1, p2) of the point where the ray meets the plane of the triangle
+// p0, p0 + e1, p0 + e2 (Moller-Trumbore without the inside test); a ray parallel to the plane
+// gets the centroid.
+vec3 pg_vis_bary(vec3 o, vec3 dir, vec3 p0, vec3 e1, vec3 e2)
+{
+    vec3 pv = cross(dir, e2);
+    float det = dot(e1, pv);
+    if (!(abs(det) > 0.0) || isinf(det)) return vec3(1.0 / 3.0);
+    float inv = 1.0 / det;
+    vec3 tv = o - p0;
+    float u = dot(tv, pv) * inv;
+    float v = dot(dir, cross(tv, e1)) * inv;
+    vec3 b = vec3(1.0 - u - v, u, v);
+    return any(isnan(b)) || any(isinf(b)) ? vec3(1.0 / 3.0) : b;
+}
+
+// The surface inputs, material index and camera-relative position at pixel centre `frag` of
+// the triangle `id` names.
+void pg_vis_fetch(uint id, vec2 frag, vec2 size, out SurfaceInput si, out uint material, out vec3 P)
+{
+    uint draw_i = id >> uint(PG_VIS_TRI_BITS);
+    uint tri = id & ((1u << uint(PG_VIS_TRI_BITS)) - 1u);
+    uvec4 d = vis_draws[draw_i];
+    material = d.z;
+    uint base = d.x + 3u * tri;
+    uint v0 = vis_indices[base] + d.y, v1 = vis_indices[base + 1u] + d.y, v2 = vis_indices[base + 2u] + d.y;
+    // camera-relative corners, rounded as scene.vert rounds v_rel
+    vec3 cam = frame.camera_pos.xyz;
+    vec3 p0 = pg_vis_vec3(v0, 0u) - cam, p1 = pg_vis_vec3(v1, 0u) - cam, p2 = pg_vis_vec3(v2, 0u) - cam;
+    vec3 e1 = p1 - p0, e2 = p2 - p0;
+    vec3 o, dir, ox, dx, oy, dy;
+    pg_vis_ray(frag, size, o, dir);
+    pg_vis_ray(frag + vec2(1.0, 0.0), size, ox, dx);
+    pg_vis_ray(frag + vec2(0.0, 1.0), size, oy, dy);
+    vec3 b = pg_vis_bary(o, dir, p0, e1, e2);
+    vec3 bx = pg_vis_bary(ox, dx, p0, e1, e2) - b; // d(barycentrics)/dx over one pixel
+    vec3 by = pg_vis_bary(oy, dy, p0, e1, e2) - b;
+    // the pixel centre is inside the triangle up to rounding: keep the point on it
+    b = clamp(b, 0.0, 1.0);
+    b /= max(b.x + b.y + b.z, 1e-30);
+    P = b.x * p0 + b.y * p1 + b.z * p2;
+    si.normal = b.x * pg_vis_vec3(v0, 3u) + b.y * pg_vis_vec3(v1, 3u) + b.z * pg_vis_vec3(v2, 3u);
+    vec2 t0 = pg_vis_vec2(v0, 6u), t1 = pg_vis_vec2(v1, 6u), t2 = pg_vis_vec2(v2, 6u);
+    si.uv0 = b.x * t0 + b.y * t1 + b.z * t2;
+    si.duv0 = vec4(bx.x * t0 + bx.y * t1 + bx.z * t2, by.x * t0 + by.y * t1 + by.z * t2);
+    si.tangent = b.x * pg_vis_vec4(v0, 8u) + b.y * pg_vis_vec4(v1, 8u) + b.z * pg_vis_vec4(v2, 8u);
+    si.uv1 = vec2(0.0);
+    si.duv1 = vec4(0.0);
+#ifdef PG_UV1
+    vec2 s0 = vis_uv1[v0], s1 = vis_uv1[v1], s2 = vis_uv1[v2];
+    si.uv1 = b.x * s0 + b.y * s1 + b.z * s2;
+    si.duv1 = vec4(bx.x * s0 + bx.y * s1 + bx.z * s2, by.x * s0 + by.y * s1 + by.z * s2);
+#endif
+    si.color = vec4(1.0);
+#ifdef PG_VERTEX_COLORS
+    si.color = b.x * vis_colors[v0] + b.y * vis_colors[v1] + b.z * vis_colors[v2];
+#endif
+    // counter-clockwise as seen along the ray = its normal faces against the ray
+    si.front_facing = dot(cross(e1, e2), dir) < 0.0;
+}
