@@ -1,0 +1,338 @@
+/* test_gpu_visibility.c - the visibility-buffer pipeline (pipelines/visibility.json; passes/
+ * visibility.c, deferred_lighting.c packing "visibility", visibility_resolve.c; shaders/
+ * visibility.frag, visibility_surface.glsl).
+ *
+ * No GPU: pg_vis_tri_bits packs (draw, triangle) into 32 bits and refuses scenes that do not fit;
+ * compile: resolve=shade runs visibility then shade (no G-buffer resource), resolve=gbuffer runs
+ * visibility, resolve, lighting_packed; the visibility pass compiles its alpha-test variant only
+ * for a scene with alpha-mask materials, and the G-buffer path's emissive target is culled without
+ * emissive materials.
+ *
+ * Images (lavapipe, validation + synchronization validation: any message fails): the built-in
+ * atrium (alpha-masked grille), every generated glTF scene of tests/corpus/gltf/{objects,models,
+ * features,emissive,blend} (vertex colours, TEXCOORD_1, texture transforms, emissive, double-sided,
+ * mirrored nodes, normal maps ...) with the tools' default view at 128x72, and the Sponza with
+ * assets/scenarios/cis565.json at 320x180 (skipped with the reason when absent). Each against naive
+ * in the same HDR format (rgba16f), both resolve paths:
+ *   - scenes without textures: every pixel within VIS_PX_A |ref| + VIS_PX_B peak (the surface
+ *     point and attributes come from the pixel ray instead of the rasterizer's interpolation);
+ *   - every scene: RMSE <= VIS_RMSE_REL of the peak, display (8-bit) steps <= VIS_DISPLAY_MAX_STEP
+ *     and the share of pixels more than one step off <= VIS_DISPLAY_SHARE (the mip level comes
+ *     from analytic derivatives instead of the hardware's 2x2 quads: texture filtering differs
+ *     there, tests/accuracy_bounds.h);
+ *   - resolve=gbuffer against deferred_packed (the same packed G-buffer written by raster):
+ *     within the same texture bounds;
+ *   - lit, finite.
+ * Control: naive with half the lights must break the bounds (they can fail). */
+#include <dirent.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "accuracy_bounds.h"
+#include "app.h"
+#include "gpu_harness.h"
+#include "graph.h"
+#include "image_util.h"
+#include "pass_list.h"
+#include "pipeline.h"
+#include "scenario.h"
+#include "scene_gpu.h"
+#include "test_util.h"
+#include "visibility_common.h"
+
+static pg_gpu *g_gpu;
+static pg_pass_registry g_reg;
+static double g_worst_px, g_worst_rmse, g_worst_share;
+static int g_worst_step;
+static uint32_t g_scenes;
+
+/* ---- no GPU ---- */
+
+static void check_tri_bits(void)
+{
+    pg_draw draws[3];
+    memset(draws, 0, sizeof draws);
+    pg_scene_gpu sc;
+    memset(&sc, 0, sizeof sc);
+    sc.draws = draws;
+    sc.n_draws = 3;
+    draws[0].index_count = 3 * 1000;
+    draws[1].index_count = 3 * 1024;
+    draws[2].index_count = 3;
+    pg_error err = {0};
+    uint32_t bits = 0;
+    CHECK_MSG(pg_vis_tri_bits(&sc, &bits, &err) == PG_OK && bits == 10, "1024 triangles: %u bits (%s)", bits, err.msg);
+    draws[1].index_count = 3 * 1025;
+    CHECK_MSG(pg_vis_tri_bits(&sc, &bits, &err) == PG_OK && bits == 11, "1025 triangles: %u bits", bits);
+    /* 3 draws of up to 2^30 triangles: ids up to (2 << 30) | (2^30 - 1) fit */
+    draws[0].index_count = 3u * (1u << 30);
+    CHECK_MSG(pg_vis_tri_bits(&sc, &bits, &err) == PG_OK && bits == 30, "2^30 triangles: %u bits", bits);
+    /* ... 2^30 + 1 need 31 bits: draw 2 << 31 overflows */
+    draws[0].index_count = 3u * ((1u << 30) + 1u);
+    CHECK_MSG(pg_vis_tri_bits(&sc, &bits, &err) == PG_ERR_LIMIT && strstr(err.msg, "3 draws"),
+              "3 draws of 2^30+1 triangles accepted (%s)", err.msg);
+    /* BLEND draws are not drawn by the visibility pass: they do not count */
+    sc.n_blend_draws = 2;
+    CHECK_MSG(pg_vis_tri_bits(&sc, &bits, &err) == PG_OK && bits == 31, "1 drawn draw of 2^30+1: %u bits", bits);
+    printf("tri bits: checked\n");
+}
+
+static int find_pass(const pg_graph_plan *plan, const char *name)
+{
+    for (uint32_t i = 0; i < plan->n_passes; i++)
+        if (!strcmp(plan->passes[i].name, name)) return (int)i;
+    return -1;
+}
+
+static bool has_define(const pg_plan_pass *p, const char *d)
+{
+    for (uint32_t i = 0; i < p->decl.n_defines; i++)
+        if (!strcmp(p->decl.defines[i], d)) return true;
+    return false;
+}
+
+static void check_compile(const char *resolve, bool mask, bool emissive)
+{
+    char path[PG_PATH_MAX];
+    pg_data_path(path, sizeof path, "pipelines/visibility.json");
+    pg_param_override set = {"resolve", resolve};
+    pg_pipeline *pl = NULL;
+    pg_error err = {0};
+    CHECK_MSG(pg_pipeline_load(path, &set, 1, &pl, &err) == PG_OK, "load: %s", err.msg);
+    if (!pl) return;
+    pg_compile_desc d;
+    memset(&d, 0, sizeof d);
+    d.pipeline = pl;
+    d.registry = &g_reg;
+    d.features.light_count = 1000;
+    d.features.has_textures = true;
+    d.features.has_alpha_mask = mask;
+    d.features.has_emissive = emissive;
+    d.output_width = 320;
+    d.output_height = 180;
+    pg_graph_plan *plan = NULL;
+    CHECK_MSG(pg_graph_compile(&d, &plan, &err) == PG_OK, "compile: %s", err.msg);
+    if (plan) {
+        bool shade = !strcmp(resolve, "shade");
+        int v = find_pass(plan, "visibility"), s = find_pass(plan, "shade"), r = find_pass(plan, "resolve"),
+            l = find_pass(plan, "lighting_packed");
+        CHECK_MSG(v >= 0 && !plan->passes[v].culled, "%s: no visibility pass", resolve);
+        CHECK_MSG(shade ? (s > v && r < 0 && l < 0) : (s < 0 && r > v && l > r),
+                  "resolve=%s: passes visibility %d shade %d resolve %d lighting_packed %d", resolve, v, s, r, l);
+        if (v >= 0) {
+            CHECK_MSG(has_define(&plan->passes[v], "PG_ALPHA_MASK") == mask, "%s: alpha-test variant %s with mask=%d",
+                      resolve, mask ? "missing" : "compiled", mask);
+        }
+        bool gb_alloc = false, em_alloc = false;
+        for (uint32_t i = 0; i < plan->n_resources; i++) {
+            if (!strcmp(plan->resources[i].name, "gb_packed")) gb_alloc = !plan->resources[i].culled;
+            if (!strcmp(plan->resources[i].name, "gb_emissive")) em_alloc = !plan->resources[i].culled;
+        }
+        CHECK_MSG(gb_alloc == !shade, "resolve=%s: gb_packed %s", resolve, gb_alloc ? "allocated" : "absent");
+        CHECK_MSG(em_alloc == (!shade && emissive), "resolve=%s emissive=%d: gb_emissive %s", resolve, emissive,
+                  em_alloc ? "allocated" : "absent");
+        printf("compile resolve=%s mask=%d emissive=%d: %u passes, checked\n", resolve, mask, emissive,
+               plan->n_passes);
+        pg_graph_plan_free(plan);
+    }
+    pg_pipeline_free(pl);
+}
+
+/* ---- images ---- */
+
+typedef struct vis_err {
+    double px_usage, rmse_rel, share;
+    int max_step;
+} vis_err;
+
+static vis_err measure(const pg_th_frame *a, const pg_th_frame *ref, double peak)
+{
+    vis_err e = {0};
+    double need_a;
+    pg_th_bound_usage(a, ref, peak, VIS_PX_A, VIS_PX_B, &e.px_usage, &need_a);
+    double sum = 0;
+    size_t n = (size_t)a->w * a->h, over = 0;
+    for (size_t i = 0; i < n * 4; i++) {
+        if (i % 4 == 3) continue;
+        double d = (double)a->hdr[i] - ref->hdr[i];
+        sum += d * d;
+    }
+    e.rmse_rel = peak > 0 ? sqrt(sum / (3.0 * n)) / peak : INFINITY;
+    for (size_t p = 0; p < n; p++) {
+        int worst = 0;
+        for (int c = 0; c < 3; c++) {
+            int d = abs((int)a->ldr[4 * p + c] - (int)ref->ldr[4 * p + c]);
+            if (d > worst) worst = d;
+        }
+        if (worst > e.max_step) e.max_step = worst;
+        if (worst > 1) over++;
+    }
+    e.share = (double)over / (double)n;
+    return e;
+}
+
+/* true when e is inside the bounds (textured: only the texture bounds apply) */
+static bool within(const vis_err *e, bool textured)
+{
+    return (textured || e->px_usage <= 1.0) && e->rmse_rel <= VIS_RMSE_REL && e->max_step <= VIS_DISPLAY_MAX_STEP &&
+           e->share <= VIS_DISPLAY_SHARE;
+}
+
+static void check_frame(const char *label, const pg_scene_gpu *sg, const pg_frame_info *fi, bool control)
+{
+    bool textured = sg->features.has_textures || sg->features.has_normal_maps;
+    pg_param_override shade = {"resolve", "shade"}, gbuf = {"resolve", "gbuffer"};
+    pg_th_frame nv, vs, vg, dp;
+    memset(&dp, 0, sizeof dp);
+    bool ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/naive.json", NULL, 0, fi, 1, false, &nv);
+    ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/visibility.json", &shade, 1, fi, 1, false, &vs) && ok;
+    ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/visibility.json", &gbuf, 1, fi, 1, false, &vg) && ok;
+    ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/deferred_packed.json", NULL, 0, fi, 1, false, &dp) && ok;
+    CHECK_MSG(ok, "%s: render failed", label);
+    if (ok) {
+        double peak = 0;
+        pg_th_max_abs(&vs, &nv, &peak);
+        vis_err es = measure(&vs, &nv, peak), eg = measure(&vg, &dp, peak);
+        printf("%s%s: peak %.4g; shade vs naive: px usage %.3g, rmse %.3g of peak, display max %d, %.3g%% > 1 step; "
+               "gbuffer vs deferred_packed: px usage %.3g, rmse %.3g, display max %d, %.3g%% > 1; passes %s | %s\n",
+               label, textured ? " (textured)" : "", peak, es.px_usage, es.rmse_rel, es.max_step, 100 * es.share,
+               eg.px_usage, eg.rmse_rel, eg.max_step, 100 * eg.share, vs.order, vg.order);
+        CHECK_MSG(peak > 0, "%s: the image is black", label);
+        CHECK_MSG(pg_count_nonfinite(vs.hdr, vs.w, vs.h) == 0 && pg_count_nonfinite(vg.hdr, vg.w, vg.h) == 0,
+                  "%s: non-finite pixels", label);
+        CHECK_MSG(within(&es, textured), "%s: resolve=shade outside its bounds", label);
+        /* packed vs packed: the texture bounds, and the packed G-buffer's own per-pixel bound
+         * without textures (the normal/albedo quantization steps can flip) */
+        CHECK_MSG(within(&eg, true), "%s: resolve=gbuffer outside its bounds against deferred_packed", label);
+        if (!textured) {
+            double u = 0, na = 0;
+            pg_th_bound_usage(&vg, &nv, peak, PACKED_PX_A, PACKED_PX_B, &u, &na);
+            CHECK_MSG(u <= 1.0, "%s: resolve=gbuffer outside the packed bound against naive: usage %g", label, u);
+        }
+        CHECK_MSG(strstr(vs.order, "visibility,shade") != NULL, "%s: resolve=shade ran %s", label, vs.order);
+        CHECK_MSG(strstr(vg.order, "visibility,resolve,lighting_packed") != NULL, "%s: resolve=gbuffer ran %s", label,
+                  vg.order);
+        if (!textured && es.px_usage > g_worst_px) g_worst_px = es.px_usage;
+        if (es.rmse_rel > g_worst_rmse) g_worst_rmse = es.rmse_rel;
+        if (es.share > g_worst_share) g_worst_share = es.share;
+        if (es.max_step > g_worst_step) g_worst_step = es.max_step;
+        if (control) {
+            pg_frame_info half = *fi;
+            half.lights.count /= 2;
+            pg_th_frame h;
+            if (pg_th_render(g_gpu, &g_reg, sg, "pipelines/naive.json", NULL, 0, &half, 1, false, &h)) {
+                vis_err ec = measure(&h, &nv, peak);
+                CHECK_MSG(!within(&ec, false) && !within(&ec, true), "control: half the lights inside the bounds");
+                pg_th_release(&h);
+            }
+        }
+        g_scenes++;
+    }
+    pg_th_release(&nv);
+    pg_th_release(&vs);
+    pg_th_release(&vg);
+    pg_th_release(&dp);
+}
+
+static void check_file(const char *label, const char *path, const char *scenario, uint32_t w, uint32_t h,
+                       uint32_t lights, bool control)
+{
+    pg_error err = {0};
+    pg_scene *scene = NULL;
+    pg_scene_gpu *sg = NULL;
+    pg_scenario sc;
+    char sc_path[PG_PATH_MAX];
+    if (scenario) pg_data_path(sc_path, sizeof sc_path, scenario);
+    if ((scenario && pg_scenario_load(sc_path, &sc, &err)) || pg_scene_load(path, &scene, &err) ||
+        pg_scene_gpu_create(g_gpu, scene, &sg, &err)) {
+        CHECK_MSG(0, "%s: %s", label, err.msg);
+        pg_scene_free(scene);
+        return;
+    }
+    pg_frame_info fi = {.camera = pg_camera_default_for_scene(scene, (float)w / h),
+                        .lights = pg_light_setup_default(scene, lights, 7), .time = 0.5f, .width = w, .height = h};
+    if (scenario) pg_scenario_apply(&sc, &fi.lights, &fi.camera);
+    char cw[256], lw[256];
+    if (!scenario && strcmp(path, "default") &&
+        pg_app_default_view(scene, NULL, (float)w / h, lights, 5, &fi.camera, &fi.lights, cw, sizeof cw, lw, sizeof lw,
+                            &err)) {
+        CHECK_MSG(0, "%s: default view: %s", label, err.msg);
+    } else {
+        fi.lights.count = lights;
+        check_frame(label, sg, &fi, control);
+    }
+    pg_scene_gpu_destroy(g_gpu, sg);
+    pg_scene_free(scene);
+}
+
+static bool ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), k = strlen(suffix);
+    return n >= k && !strcmp(s + n - k, suffix);
+}
+
+static int name_cmp(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+static void check_corpus_dir(const char *sub)
+{
+    char dir[PG_PATH_MAX];
+    snprintf(dir, sizeof dir, "%s/corpus/gltf/%s", PG_TEST_DIR, sub);
+    DIR *dh = opendir(dir);
+    if (!dh) return;
+    char *names[256];
+    uint32_t n = 0;
+    for (struct dirent *e; (e = readdir(dh)) && n < 256;)
+        if ((ends_with(e->d_name, ".gltf") || ends_with(e->d_name, ".glb")) && strncmp(e->d_name, "bad_", 4))
+            names[n++] = strdup(e->d_name);
+    closedir(dh);
+    qsort(names, n, sizeof names[0], name_cmp);
+    for (uint32_t i = 0; i < n; i++) {
+        char path[PG_PATH_MAX], label[PG_PATH_MAX];
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        snprintf(label, sizeof label, "%s/%s", sub, names[i]);
+        pg_scene *probe = NULL;
+        pg_error err = {0};
+        if (pg_scene_load(path, &probe, &err) == PG_OK) /* the loader's error cases: test_scene */
+            check_file(label, path, NULL, 128, 72, 48, false);
+        pg_scene_free(probe);
+        free(names[i]);
+    }
+}
+
+int main(void)
+{
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    pg_register_builtin_passes(&g_reg);
+    check_tri_bits();
+    check_compile("shade", false, false);
+    check_compile("shade", true, true);
+    check_compile("gbuffer", false, false);
+    check_compile("gbuffer", true, true);
+    if (getenv("PG_TEST_NO_GPU")) {
+        printf("test_gpu_visibility: image checks skipped: PG_TEST_NO_GPU set\n");
+        return pg_test_finish("test_gpu_visibility");
+    }
+    pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
+    pg_error err = {0};
+    if (pg_gpu_create(&gd, &g_gpu, &err)) {
+        fprintf(stderr, "test_gpu_visibility: %s\n", err.msg);
+        return 1;
+    }
+    check_file("default", "default", NULL, 320, 180, 64, true);
+    static const char *const dirs[] = {"objects", "models", "features", "emissive", "blend"};
+    for (size_t d = 0; d < sizeof dirs / sizeof dirs[0]; d++) check_corpus_dir(dirs[d]);
+    char path[PG_PATH_MAX];
+    snprintf(path, sizeof path, "%s/assets/dabrovic-sponza/sponza.gltf", PG_SHARED_DIR);
+    if (getenv("PG_TEST_NO_SPONZA")) printf("test_gpu_visibility: Sponza skipped: PG_TEST_NO_SPONZA is set\n");
+    else if (access(path, R_OK) == 0) check_file("sponza", path, "assets/scenarios/cis565.json", 320, 180, 256, false);
+    else printf("test_gpu_visibility: Sponza skipped: %s not found\n", path);
+    printf("scenes: %u; worst: untextured px usage %.3g, rmse %.3g of peak, display step %d, share > 1 step %.3g%%\n",
+           g_scenes, g_worst_px, g_worst_rmse, g_worst_step, 100 * g_worst_share);
+    CHECK_MSG(g_scenes >= 10, "only %u scenes", g_scenes);
+    printf("validation messages: %u\n", g_gpu->validation_messages);
+    CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);
+    pg_gpu_destroy(g_gpu);
+    return pg_test_finish("test_gpu_visibility");
+}
