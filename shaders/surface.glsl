@@ -9,8 +9,8 @@
 //   PG_EMISSIVE        emissive factor and texture
 //   TEXTURE_COUNT      size of the scene's texture array
 // For compute (no implicit derivatives, a material per pixel):
-//   PG_SURFACE_GRADS   textures are sampled at the mip level that SurfaceInput.duv0/duv1 (the
-//                      screen-space derivatives of TEXCOORD_0/1) give (pg_grad_lod)
+//   PG_SURFACE_GRADS   textures are sampled with textureGrad and SurfaceInput.duv0/duv1 (the
+//                      screen-space derivatives of TEXCOORD_0/1): the device picks the mip level
 //   PG_NONUNIFORM_TEXTURES  the texture index is nonuniformEXT (device feature); otherwise each
 //                      invocation walks the texture array (pg_slot_sample)
 //   PG_SURFACE_NO_PUSH the includer declares the push constants (DrawPush is not declared)
@@ -63,15 +63,6 @@ vec4 pg_slot_grad(GpuMaterial m, int slot, SurfaceInput si)
     return d;
 }
 
-// The mip level of texture t for derivatives g, as the Vulkan spec's scale factor defines it
-// without anisotropy: lambda = log2(rho), rho = max(|d(uv)/dx| * size, |d(uv)/dy| * size).
-// Sampled with textureLod rather than textureGrad: llvmpipe's LLVM 15 back end aborts on
-// textureGrad with per-invocation gradients in compute ("Cannot emit physreg copy instruction").
-float pg_grad_lod(vec2 size, vec4 g)
-{
-    float rho = max(length(g.xy * size), length(g.zw * size));
-    return rho > 0.0 ? log2(rho) : -1000.0;
-}
 #endif
 
 // Texture t (an index into textures[], t >= 0 when want) of a slot; vec4(1) when !want.
@@ -79,9 +70,7 @@ vec4 pg_slot_sample(bool want, int t, GpuMaterial m, int slot, SurfaceInput si)
 {
 #if defined(PG_SURFACE_GRADS) && defined(PG_NONUNIFORM_TEXTURES)
     vec4 g = pg_slot_grad(m, slot, si);
-    return want ? textureLod(textures[nonuniformEXT(t)], pg_slot_uv(m, slot, si),
-                             pg_grad_lod(vec2(textureSize(textures[nonuniformEXT(t)], 0)), g))
-                : vec4(1.0);
+    return want ? textureGrad(textures[nonuniformEXT(t)], pg_slot_uv(m, slot, si), g.xy, g.zw) : vec4(1.0);
 #elif defined(PG_SURFACE_GRADS)
     // Without the device's shaderSampledImageArrayNonUniformIndexing (lavapipe) the index must be
     // dynamically uniform: every invocation walks the array and samples where the index is its
@@ -91,7 +80,7 @@ vec4 pg_slot_sample(bool want, int t, GpuMaterial m, int slot, SurfaceInput si)
     vec4 g = pg_slot_grad(m, slot, si);
     if (want)
         for (int i = 0; i < TEXTURE_COUNT; i++)
-            if (i == t) r = textureLod(textures[i], uv, pg_grad_lod(vec2(textureSize(textures[i], 0)), g));
+            if (i == t) r = textureGrad(textures[i], uv, g.xy, g.zw);
     return r;
 #else
     return want ? texture(textures[t], pg_slot_uv(m, slot, si)) : vec4(1.0);

@@ -12,7 +12,7 @@
 // pixel centre meets the triangle's plane: perspective-correct by construction, the same point
 // the rasterizer interpolates at. Texture coordinates get analytic screen-space derivatives from
 // the rays through the pixels of the pixel's 2x2 quad, intersected with the same plane: the
-// differences a rasterizer's coarse derivatives take (pg_grad_lod in surface.glsl picks the mip).
+// differences a rasterizer's fine derivatives take (surface.glsl samples with them).
 // gl_FrontFacing becomes the side of the triangle the ray arrives from, with glTF's
 // counter-clockwise winding as front, as the rasterizer decides it.
 layout(set = PG_VIS_SET, binding = PG_VIS_BINDING + 0, std430) readonly buffer VisVertices { float vis_vertices[]; };
@@ -84,16 +84,17 @@ void pg_vis_fetch(uint id, vec2 frag, vec2 size, out SurfaceInput si, out uint m
     vec3 o, dir, oq, dq, ox, dx, oy, dy;
     pg_vis_ray(frag, size, o, dir);
     vec3 b = pg_vis_bary(o, dir, p0, e1, e2);
-    // d(barycentrics)/dx and /dy over one pixel, as a rasterizer's coarse derivatives: between
-    // the top-left pixel of the pixel's 2x2 quad and its right / lower neighbour, all on this
-    // triangle's plane (helper invocations evaluate the same plane)
-    vec2 q = floor(frag * 0.5) * 2.0 + 0.5;
-    pg_vis_ray(q, size, oq, dq);
-    pg_vis_ray(q + vec2(1.0, 0.0), size, ox, dx);
-    pg_vis_ray(q + vec2(0.0, 1.0), size, oy, dy);
-    vec3 bq = pg_vis_bary(oq, dq, p0, e1, e2);
-    vec3 bx = pg_vis_bary(ox, dx, p0, e1, e2) - bq;
-    vec3 by = pg_vis_bary(oy, dy, p0, e1, e2) - bq;
+    // d(barycentrics)/dx and /dy over one pixel, as a rasterizer's fine derivatives within the
+    // pixel's 2x2 quad: across the quad's pair in the pixel's row (x) and in its column (y), all
+    // on this triangle's plane (helper invocations evaluate the same plane)
+    vec2 q = floor(frag * 0.5) * 2.0 + 0.5; // the quad's top-left pixel centre
+    vec2 fx = vec2(q.x, frag.y), fy = vec2(frag.x, q.y);
+    pg_vis_ray(fx, size, oq, dq);
+    pg_vis_ray(fx + vec2(1.0, 0.0), size, ox, dx);
+    vec3 bx = pg_vis_bary(ox, dx, p0, e1, e2) - pg_vis_bary(oq, dq, p0, e1, e2);
+    pg_vis_ray(fy, size, oq, dq);
+    pg_vis_ray(fy + vec2(0.0, 1.0), size, oy, dy);
+    vec3 by = pg_vis_bary(oy, dy, p0, e1, e2) - pg_vis_bary(oq, dq, p0, e1, e2);
     // the pixel centre is inside the triangle up to rounding: keep the point on it
     b = clamp(b, 0.0, 1.0);
     b /= max(b.x + b.y + b.z, 1e-30);

@@ -1,0 +1,67 @@
+#!/bin/bash
+# issue 13 items 1, 3 and 5 on the GPU (device tool: carry .bundle/final, .bundle/assets, the
+# validation-layer deb and .gl). STEPS (default "valid bench sweep") picks the parts:
+#   valid  the visibility pipeline (both resolve paths, and the path of devices without non-uniform
+#          texture indexing) rendered with --validation at 1920x1080, 1000 lights
+#   bench  every shipped pipeline (forward_plus with prepass=false,true; visibility with
+#          resolve=shade,gbuffer) at 1000, 5000, 100000, 1000000 lights (naive to 100000),
+#          1920x1080, Sponza cis565 (the tables of docs/performance.md)
+#   sweep  item 3: the light loop's knobs on the visibility and deferred_oct16 pipelines
+#          (tile_size 8/16, cluster grid 16x9 / 32x18 / 64x36) at 100000 and 1000000 lights
+set -u
+for f in .gl/*.deb .bundle/vulkan-validationlayers_*.deb; do dpkg -x $f / ; done; ldconfig
+export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+export VK_LAYER_PATH=/usr/share/vulkan/explicit_layer.d
+export PASSGRAPH_CACHE_DIR=/tmp/pgcache
+STEPS=${STEPS:-valid bench sweep}
+nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
+S=.bundle/assets/dabrovic-sponza/sponza.gltf
+F=.bundle/final; SH=$F/share/passgraph; SC=$SH/assets/scenarios/cis565.json
+echo "commit $(cat $F/COMMIT)"
+mkdir -p $OUT/logs
+summary() { # CSV -> one line per row
+  python3 - "$1" <<'PY'
+import csv,sys
+for r in csv.DictReader(open(sys.argv[1])):
+    ps={k[5:-10]:r[k] for k in r if k.startswith('pass_') and k.endswith('_ms_median') and r[k]}
+    print(r['pipeline'], r['variant'], r['lights'], r['status'], 'gpu', r['gpu_ms_median'], 'rmse', r['rmse_linear'], ps)
+PY
+}
+B="--size 1920x1080 --scene $S --scenario $SC --quiet"
+case " $STEPS " in *" valid "*)
+  for args in "--set resolve=shade" "--set resolve=gbuffer" "--set resolve=shade --set tile_lights=false"; do
+    timeout 120 $F/passgraph render --validation $B --lights 1000 --pipeline $SH/pipelines/visibility.json $args \
+      --frames 3 --out $OUT/vis.png > $OUT/logs/v.log 2>&1
+    echo "validation visibility $args rc=$?"; grep -v "^passgraph: device" $OUT/logs/v.log | cut -c1-400
+  done
+  PASSGRAPH_VIS_WORKGROUP_TEXTURES=1 timeout 120 $F/passgraph render --validation $B --lights 1000 \
+    --pipeline $SH/pipelines/visibility.json --frames 3 --out /tmp/vis_loop.png > $OUT/logs/v.log 2>&1
+  echo "validation visibility, texture loop path rc=$?"; grep "^render:" $OUT/logs/v.log | cut -c1-400
+  timeout 120 $F/passgraph compare $B --lights 1000 --pipeline $SH/pipelines/visibility.json \
+    --reference $SH/pipelines/naive.json --frames 3 > $OUT/logs/c.log 2>&1; echo "compare vs naive rc=$?"; tail -1 $OUT/logs/c.log
+  ;; esac
+case " $STEPS " in *" bench "*)
+  P=$SH/pipelines
+  timeout 420 $F/passgraph bench $B --pipelines $P/visibility.json,$P/deferred.json,$P/deferred_oct16.json,$P/deferred_packed.json \
+    --sweep resolve=shade,gbuffer --lights 1000,5000,100000,1000000 --warmup 2 --frames 10 --out $OUT/fast > $OUT/logs/fast.log 2>&1
+  echo "bench fast rc=$?"; summary $OUT/fast/results.csv
+  ;; esac
+case " $STEPS " in *" bench2 "*)
+  P=$SH/pipelines
+  timeout 420 $F/passgraph bench $B --pipelines $P/forward_plus.json --sweep prepass=false,true \
+    --lights 1000,5000,100000,1000000 --reference-max-lights 0 --warmup 1 --frames 3 --out $OUT/fplus > $OUT/logs/fplus.log 2>&1
+  echo "bench forward_plus rc=$?"; summary $OUT/fplus/results.csv
+  timeout 200 $F/passgraph bench $B --pipelines $P/naive.json --lights 1000,5000,100000 --reference-max-lights 0 \
+    --warmup 0 --frames 1 --out $OUT/naive > $OUT/logs/naive.log 2>&1
+  echo "bench naive rc=$?"; summary $OUT/naive/results.csv
+  ;; esac
+case " $STEPS " in *" sweep "*)
+  P=$SH/pipelines
+  for g in "16 9" "32 18" "64 36"; do set -- $g
+    timeout 300 $F/passgraph bench $B --pipelines $P/visibility.json,$P/deferred_oct16.json --set grid_x=$1 --set grid_y=$2 \
+      --sweep tile_size=8,16 --lights 100000,1000000 --reference-max-lights 0 --warmup 2 --frames 10 \
+      --out $OUT/grid_$1x$2 > $OUT/logs/grid_$1.log 2>&1
+    echo "sweep grid $1x$2 rc=$?"; summary $OUT/grid_$1x$2/results.csv
+  done
+  ;; esac
+rm -f $OUT/*/*.svg
