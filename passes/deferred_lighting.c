@@ -11,8 +11,7 @@
  * shaders/visibility_surface.glsl; the scene's set is bound as set 3), with the material variant
  * the scene needs; no emissive slot (the material's emission is evaluated here).
  * Options: packing (as gbuffer, or visibility), shading, ambient, view, grid_x/y/z, tile_size (8 or 16, default
- * 8: the workgroup is tile_size x tile_size pixels), tile_batch (1, 2 or 4, default 1: lights each
- * invocation loads and tests per chunk of the tiled loop; tile_size 16 takes 1 only), tile_lights (default true: each tile culls its clusters' lists against the bounding box of its pixels and shares the
+ * 8: the workgroup is tile_size x tile_size pixels), tile_lights (default true: each tile culls its clusters' lists against the bounding box of its pixels and shares the
  * kept lights through shared memory; bit-identical to false, with far fewer light evaluations). */
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,7 +37,7 @@ typedef struct deferred_lighting {
     VkDescriptorSet scene_set;      /* packing visibility: set 3 */
 } deferred_lighting;
 
-static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", "tile_batch", NULL};
+static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", NULL};
 
 static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
@@ -77,20 +76,9 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     if (tile != 8 && tile != 16)
         return pg_fail(err, PG_ERR_SCHEMA, "%s: %s.options.tile_size: expected 8 or 16, got %lld", in->desc->file,
                        in->desc->json_path, (long long)tile);
-    int64_t batch;
-    if ((r = pg_opt_int(in->desc, "tile_batch", 1, 1, 4, &batch, err))) return r;
-    if (batch == 3 || batch * tile * tile > 256)
-        return pg_fail(err, PG_ERR_SCHEMA,
-                       "%s: %s.options.tile_batch: expected 1, 2 or 4 with tile_size 8 and 1 with tile_size 16 (at "
-                       "most 256 lights a chunk in shared memory), got %lld with tile_size %lld",
-                       in->desc->file, in->desc->json_path, (long long)batch, (long long)tile);
     char def[PG_NAME_MAX];
     snprintf(def, sizeof def, "PG_TILE=%lld", (long long)tile);
     pg_decl_define(out, def);
-    if (batch > 1 && tiled && o.view == 0 && in->features.light_count > 0) {
-        snprintf(def, sizeof def, "PG_TILE_BATCH=%lld", (long long)batch);
-        pg_decl_define(out, def);
-    }
     if (tiled && o.view == 0 && in->features.light_count > 0) pg_decl_define(out, "PG_TILE_LIGHTS");
     return PG_OK;
 }

@@ -108,16 +108,10 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #define PG_TILE 8
 #endif
 #define PG_TILE_N (PG_TILE * PG_TILE)
-// PG_TILE_BATCH (option tile_batch: 1, 2 or 4): lights each invocation loads and tests per chunk,
-// so a chunk of PG_TILE_CHUNK lights costs one set of barriers
-#ifndef PG_TILE_BATCH
-#define PG_TILE_BATCH 1
-#endif
-#define PG_TILE_CHUNK (PG_TILE_N * PG_TILE_BATCH)
 shared uint s_tl_cluster;
 shared uint s_tl_box[6];                     // ordered-uint min xyz, max xyz
-shared vec4 s_tl_light[2 * PG_TILE_CHUNK];   // pos_radius, color of the kept lights
-shared uint s_tl_count[PG_TILE_N * PG_TILE_BATCH]; // per invocation (scan), or per round x subgroup
+shared vec4 s_tl_light[2 * PG_TILE_N];       // pos_radius, color of the kept lights
+shared uint s_tl_count[PG_TILE_N];
 
 uint pg_tl_order(float f)                    // float -> uint with the same order
 {
@@ -171,50 +165,30 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
         vec3 bmin = vec3(pg_tl_unorder(s_tl_box[0]), pg_tl_unorder(s_tl_box[1]), pg_tl_unorder(s_tl_box[2]));
         vec3 bmax = vec3(pg_tl_unorder(s_tl_box[3]), pg_tl_unorder(s_tl_box[4]), pg_tl_unorder(s_tl_box[5]));
         uvec4 rec = cluster_records[c];
-        for (uint base = 0u; base < rec.y; base += uint(PG_TILE_CHUNK)) {
-            // PG_TILE_BATCH lights per invocation per chunk (one set of barriers per chunk)
-            Light L[PG_TILE_BATCH];
-            bool keep[PG_TILE_BATCH];
-            uint pos[PG_TILE_BATCH];
-            uint total = 0u;
-            for (int j = 0; j < PG_TILE_BATCH; j++) {
-#ifdef PG_TILE_SUBGROUPS
-                uint k = base + uint(j) * uint(PG_TILE_N) + slot; // round j, then the slot order
-#else
-                uint k = base + slot * uint(PG_TILE_BATCH) + uint(j); // the invocation's run of lights
-#endif
-                keep[j] = false;
-                L[j].pos_radius = vec4(0.0);
-                L[j].color = vec4(0.0);
-                if (k < rec.y) {
-                    uint li = cluster_lights[rec.x + k];
-                    L[j].pos_radius = lights[li].pos_radius; // the colour only for a kept light
-                    keep[j] = pg_sphere_intersects_aabb(L[j].pos_radius.xyz - cam, L[j].pos_radius.w, bmin, bmax);
-                    if (keep[j]) L[j].color = lights[li].color;
-                }
+        for (uint base = 0u; base < rec.y; base += uint(PG_TILE_N)) {
+            uint k = base + slot;
+            bool keep = false;
+            Light L;
+            L.pos_radius = vec4(0.0);
+            L.color = vec4(0.0);
+            if (k < rec.y) {
+                L = lights[cluster_lights[rec.x + k]]; // whole record: one 32-byte sector anyway
+                keep = pg_sphere_intersects_aabb(L.pos_radius.xyz - cam, L.pos_radius.w, bmin, bmax);
             }
+            uint pos, total;
 #ifdef PG_TILE_SUBGROUPS
-            // kept lights in round-major, then slot order: ballots per round, one barrier
-            uvec4 bal[PG_TILE_BATCH];
-            for (int j = 0; j < PG_TILE_BATCH; j++) {
-                bal[j] = subgroupBallot(keep[j]);
-                if (subgroupElect()) s_tl_count[uint(j) * gl_NumSubgroups + gl_SubgroupID] = subgroupBallotBitCount(bal[j]);
-            }
+            uvec4 bal = subgroupBallot(keep);
+            if (subgroupElect()) s_tl_count[gl_SubgroupID] = subgroupBallotBitCount(bal);
             barrier();
-            for (int j = 0; j < PG_TILE_BATCH; j++) {
-                pos[j] = total + subgroupBallotExclusiveBitCount(bal[j]);
-                for (uint g = 0u; g < gl_NumSubgroups; g++) {
-                    uint n = s_tl_count[uint(j) * gl_NumSubgroups + g];
-                    pos[j] += g < gl_SubgroupID ? n : 0u;
-                    total += n;
-                }
+            pos = subgroupBallotExclusiveBitCount(bal);
+            total = 0u;
+            for (uint g = 0u; g < gl_NumSubgroups; g++) {
+                uint n = s_tl_count[g];
+                pos += g < gl_SubgroupID ? n : 0u;
+                total += n;
             }
 #else
-            // kept lights in invocation order (each invocation's run in list order): a scan of the
-            // per-invocation counts
-            uint mine_n = 0u;
-            for (int j = 0; j < PG_TILE_BATCH; j++) mine_n += keep[j] ? 1u : 0u;
-            s_tl_count[lid] = mine_n;
+            s_tl_count[lid] = keep ? 1u : 0u;
             barrier();
             for (uint d = 1u; d < uint(PG_TILE_N); d <<= 1u) {
                 uint add = lid >= d ? s_tl_count[lid - d] : 0u;
@@ -222,18 +196,12 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                 s_tl_count[lid] += add;
                 barrier();
             }
-            uint first = s_tl_count[lid] - mine_n;
+            pos = s_tl_count[lid] - (keep ? 1u : 0u);
             total = s_tl_count[PG_TILE_N - 1];
-            for (int j = 0; j < PG_TILE_BATCH; j++) {
-                pos[j] = first;
-                first += keep[j] ? 1u : 0u;
-            }
 #endif
-            for (int j = 0; j < PG_TILE_BATCH; j++) {
-                if (keep[j]) {
-                    s_tl_light[2u * pos[j]] = L[j].pos_radius;
-                    s_tl_light[2u * pos[j] + 1u] = L[j].color;
-                }
+            if (keep) {
+                s_tl_light[2u * pos] = L.pos_radius;
+                s_tl_light[2u * pos + 1u] = L.color;
             }
             barrier();
             if (mine) {

@@ -6,6 +6,9 @@
 #   bench  every shipped pipeline (forward_plus with prepass=false,true; visibility with
 #          resolve=shade,gbuffer) at 1000, 5000, 100000, 1000000 lights (naive to 100000),
 #          1920x1080, Sponza cis565 (the tables of docs/performance.md)
+#   batch  item 3: tile_batch 1/2/4 (final bundle) against the bundle before it (.bundle/old, the
+#          same loop with the colour loaded for every light), visibility and deferred_oct16 at
+#          100000 and 1000000 lights, alternated twice
 #   sweep  item 3: the light loop's knobs on the visibility and deferred_oct16 pipelines
 #          (tile_size 8/16, cluster grid 16x9 / 32x18 / 64x36) at 100000 and 1000000 lights
 set -u
@@ -54,6 +57,17 @@ case " $STEPS " in *" bench2 "*)
   timeout 200 $F/passgraph bench $B --pipelines $P/naive.json --lights 1000,5000,100000 --reference-max-lights 0 \
     --warmup 0 --frames 1 --out $OUT/naive > $OUT/logs/naive.log 2>&1
   echo "bench naive rc=$?"; summary $OUT/naive/results.csv
+  ;; esac
+case " $STEPS " in *" batch "*)
+  P=$SH/pipelines; PO=.bundle/old/share/passgraph/pipelines
+  for round in 1 2; do
+    timeout 200 .bundle/old/passgraph bench $B --pipelines $PO/visibility.json,$PO/deferred_oct16.json --lights 100000,1000000 \
+      --reference-max-lights 0 --warmup 2 --frames 10 --out $OUT/old_$round > $OUT/logs/old.log 2>&1
+    echo "batch round $round old rc=$?"; summary $OUT/old_$round/results.csv
+    timeout 200 $F/passgraph bench $B --pipelines $P/visibility.json,$P/deferred_oct16.json --sweep tile_batch=1,2,4 \
+      --lights 100000,1000000 --reference-max-lights 0 --warmup 2 --frames 10 --out $OUT/new_$round > $OUT/logs/new.log 2>&1
+    echo "batch round $round new rc=$?"; summary $OUT/new_$round/results.csv
+  done
   ;; esac
 case " $STEPS " in *" sweep "*)
   P=$SH/pipelines
