@@ -48,8 +48,8 @@ pg_result pg_vis_geometry_create(const pg_pass_create_ctx *ctx, uint32_t scene_s
     snprintf(g->defines[g->n_defines++], PG_NAME_MAX, "PG_SCENE_SET=%u", scene_set);
     snprintf(g->defines[g->n_defines++], PG_NAME_MAX, "PG_SURFACE_GRADS");
     snprintf(g->defines[g->n_defines++], PG_NAME_MAX, "PG_SURFACE_NO_PUSH");
-    /* PASSGRAPH_VIS_WORKGROUP_TEXTURES=1 takes the path of devices without it (tests, benches) */
-    const char *wg = getenv("PASSGRAPH_VIS_WORKGROUP_TEXTURES");
+    /* PASSGRAPH_VIS_TEXTURE_LOOP=1: the path of devices without non-uniform indexing (to test it on a GPU) */
+    const char *wg = getenv("PASSGRAPH_VIS_TEXTURE_LOOP");
     if (ctx->gpu->nonuniform_sampled_arrays && !(wg && !strcmp(wg, "1")))
         snprintf(g->defines[g->n_defines++], PG_NAME_MAX, "PG_NONUNIFORM_TEXTURES");
     uint32_t n = sc->n_draws ? sc->n_draws : 1;

@@ -37,7 +37,7 @@ case " $STEPS " in *" valid "*)
       --frames 3 --out $OUT/vis.png > $OUT/logs/v.log 2>&1
     echo "validation visibility $args rc=$?"; grep -v "^passgraph: device" $OUT/logs/v.log | cut -c1-400
   done
-  PASSGRAPH_VIS_WORKGROUP_TEXTURES=1 timeout 120 $F/passgraph render --validation $B --lights 1000 \
+  PASSGRAPH_VIS_TEXTURE_LOOP=1 timeout 120 $F/passgraph render --validation $B --lights 1000 \
     --pipeline $SH/pipelines/visibility.json --frames 3 --out /tmp/vis_loop.png > $OUT/logs/v.log 2>&1
   echo "validation visibility, texture loop path rc=$?"; grep "^render:" $OUT/logs/v.log | cut -c1-400
   timeout 120 $F/passgraph compare $B --lights 1000 --pipeline $SH/pipelines/visibility.json \
