@@ -9,6 +9,8 @@
 #   batch  item 3: tile_batch 1/2/4 (final bundle) against the bundle before it (.bundle/old, the
 #          same loop with the colour loaded for every light), visibility and deferred_oct16 at
 #          100000 and 1000000 lights, alternated twice
+#   refine item 3: the light_refine pass (refine=false,true; needs the code of
+#          docs/results/issue13_gpu/refine/light_refine.patch, which was measured and not merged)
 #   sweep  item 3: the light loop's knobs on the visibility and deferred_oct16 pipelines
 #          (tile_size 8/16, cluster grid 16x9 / 32x18 / 64x36) at 100000 and 1000000 lights
 set -u
@@ -67,6 +69,20 @@ case " $STEPS " in *" batch "*)
     timeout 200 $F/passgraph bench $B --pipelines $P/visibility.json,$P/deferred_oct16.json --sweep tile_batch=1,2,4 \
       --lights 100000,1000000 --reference-max-lights 0 --warmup 2 --frames 10 --out $OUT/new_$round > $OUT/logs/new.log 2>&1
     echo "batch round $round new rc=$?"; summary $OUT/new_$round/results.csv
+  done
+  ;; esac
+case " $STEPS " in *" refine "*)
+  P=$SH/pipelines
+  for pl in visibility deferred_oct16; do
+    timeout 120 $F/passgraph render --validation $B --lights 100000 --pipeline $P/$pl.json --set refine=true \
+      --frames 3 --out /tmp/r.png > $OUT/logs/r.log 2>&1; echo "validation $pl refine=true rc=$?"; grep "^render:" $OUT/logs/r.log | cut -c1-300
+    timeout 120 $F/passgraph compare $B --lights 100000 --pipeline $P/$pl.json --reference $P/$pl.json --pipeline-set refine=true \
+      --frames 1 > $OUT/logs/rc.log 2>&1; echo "compare $pl refine=true vs false rc=$?"; tail -1 $OUT/logs/rc.log | cut -c1-200
+  done
+  for round in 1 2; do
+    timeout 300 $F/passgraph bench $B --pipelines $P/visibility.json,$P/deferred_oct16.json --sweep refine=false,true \
+      --lights 1000,5000,100000,1000000 --reference-max-lights 0 --warmup 2 --frames 10 --out $OUT/refine_$round > $OUT/logs/refine.log 2>&1
+    echo "refine round $round rc=$?"; summary $OUT/refine_$round/results.csv
   done
   ;; esac
 case " $STEPS " in *" sweep "*)
