@@ -42,16 +42,12 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
         return r;
     }
     for (uint32_t i = 0; i < d->n_extra_defines; i++) defs[n++] = d->extra_defines[i];
-    VkShaderModule vs = VK_NULL_HANDLE, vs_pos = VK_NULL_HANDLE, fs = VK_NULL_HANDLE, fs_mask = VK_NULL_HANDLE;
+    VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE, fs_mask = VK_NULL_HANDLE;
     if ((r = pg_shader_module(gpu, "scene.vert", VK_SHADER_STAGE_VERTEX_BIT, defs, n, &vs, err))) goto out;
-    if (d->position_only) {
-        defs[n] = "PG_POSITION_ONLY";
-        if ((r = pg_shader_module(gpu, "scene.vert", VK_SHADER_STAGE_VERTEX_BIT, defs, n + 1, &vs_pos, err))) goto out;
-    }
     if ((r = pg_shader_module(gpu, d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, &fs, err))) goto out;
     pg_gfx_pipeline_desc gd = {
         .layout = out->layout,
-        .vs = vs_pos ? vs_pos : vs,
+        .vs = vs,
         .fs = fs,
         .n_color = d->n_color,
         .depth_format = d->depth_format,
@@ -72,14 +68,12 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
         if ((r = pg_shader_module(gpu, d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, &fs_mask, err)))
             goto out;
         gd.fs = fs_mask;
-        gd.vs = vs;
         char name[PG_NAME_MAX + 16];
         snprintf(name, sizeof name, "%s.masked", pass->name);
         r = pg_gfx_pipeline_create(gpu, &gd, name, &out->masked, err);
     }
 out:
     if (vs) vkDestroyShaderModule(gpu->device, vs, NULL);
-    if (vs_pos) vkDestroyShaderModule(gpu->device, vs_pos, NULL);
     if (fs) vkDestroyShaderModule(gpu->device, fs, NULL);
     if (fs_mask) vkDestroyShaderModule(gpu->device, fs_mask, NULL);
     return r;

@@ -32,9 +32,6 @@ typedef struct pg_scene_draw_desc {
     bool blend;                       /* the pipeline for the BLEND draws (forward_transparent):
                                        * "over" blending, depth test without depth write, no
                                        * alpha-mask pipeline */
-    bool position_only;               /* the opaque pipeline's vertex shader writes gl_Position
-                                       * alone (PG_POSITION_ONLY: its fragment shader reads no
-                                       * input); the alpha-mask pipeline keeps every output */
     bool depth_equal;                 /* shading after a depth pre-pass (depth_prepass.c): depth
                                        * test EQUAL without depth write, and no alpha-mask pipeline
                                        * (the pre-pass discarded; the masked draws are shaded with

@@ -48,7 +48,6 @@ static pg_result vis_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
         .n_color = 1,
         .color_formats = {ctx->slots[0]->format},
         .depth_format = ctx->slots[1]->format,
-        .position_only = true, /* the opaque fragment shader reads no input */
     };
     if ((r = pg_scene_draw_create(ctx, &d, &p->draw, err))) return r;
     p->draw.push_draw_key = true;

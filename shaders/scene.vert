@@ -3,8 +3,6 @@
 // passes, camera-relative (see common.glsl). Streams: binding 0 pg_vertex (locations 0-3);
 // PG_VERTEX_COLORS: binding 1 COLOR_0 (location 4, vec4); PG_UV1: binding 2 TEXCOORD_1
 // (location 5, vec2). The outputs match surface_inputs.glsl.
-// PG_POSITION_ONLY: gl_Position alone (the visibility pass's opaque pipeline, whose fragment
-// shader reads no input).
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 layout(location = 0) in vec3 in_position;
@@ -13,22 +11,16 @@ layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_tangent;
 #ifdef PG_VERTEX_COLORS
 layout(location = 4) in vec4 in_color;
-#endif
-#ifdef PG_UV1
-layout(location = 5) in vec2 in_uv1;
-#endif
-#ifndef PG_POSITION_ONLY // (the inputs stay declared: every attribute of the pipeline is consumed)
-#ifdef PG_VERTEX_COLORS
 layout(location = 4) out vec4 v_color;
 #endif
 #ifdef PG_UV1
+layout(location = 5) in vec2 in_uv1;
 layout(location = 5) out vec2 v_uv1;
 #endif
 layout(location = 0) out vec3 v_rel; // camera-relative position (world - camera)
 layout(location = 1) out vec3 v_normal;
 layout(location = 2) out vec2 v_uv;
 layout(location = 3) out vec4 v_tangent;
-#endif
 // The depth pre-pass (depth_prepass.c) and the shading pass that tests its depth EQUAL run this
 // shader in two pipelines: the position must come out bit-identical in both. `precise` forbids
 // contracting its arithmetic (FMA fusion that could differ between the two compiled pipelines);
@@ -38,9 +30,6 @@ precise gl_Position;
 
 void main()
 {
-#ifdef PG_POSITION_ONLY
-    vec3 v_rel = in_position - frame.camera_pos.xyz;
-#else
     v_rel = in_position - frame.camera_pos.xyz;
     v_normal = in_normal;
     v_uv = in_uv;
@@ -50,7 +39,6 @@ void main()
 #endif
 #ifdef PG_UV1
     v_uv1 = in_uv1;
-#endif
 #endif
     gl_Position = frame.proj * vec4(PG_REL_TO_VIEW(v_rel), 1.0);
 }
