@@ -9,7 +9,7 @@
  * emissive materials.
  *
  * Images (lavapipe, validation + synchronization validation: any message fails): the built-in
- * atrium (alpha-masked grille), every generated glTF scene of tests/corpus/gltf/{objects,models,
+ * atrium (alpha-masked grille), every generated glTF scene (48) of tests/corpus/gltf/{objects,models,
  * features,emissive,blend} (vertex colours, TEXCOORD_1, texture transforms, emissive, double-sided,
  * mirrored nodes, normal maps ...) with the tools' default view at 128x72, and the Sponza with
  * assets/scenarios/cis565.json at 320x180 (skipped with the reason when absent). Each against naive
