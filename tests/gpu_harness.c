@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "image_util.h"
+#include "scenario.h"
 #include "shader.h"
 
 bool pg_th_render(pg_gpu *gpu, const pg_pass_registry *reg, const pg_scene_gpu *sg, const char *pipeline,
@@ -117,3 +118,35 @@ void pg_th_bound_usage(const pg_th_frame *a, const pg_th_frame *ref, double peak
     *need_a = na;
 }
 
+
+bool pg_th_scene_open(pg_gpu *gpu, const char *label, const char *path, const char *scenario, uint32_t w, uint32_t h,
+                      uint32_t lights, pg_th_scene *out)
+{
+    memset(out, 0, sizeof *out);
+    pg_error err = {0};
+    pg_scenario sc;
+    char sc_path[PG_PATH_MAX];
+    if (scenario) pg_data_path(sc_path, sizeof sc_path, scenario);
+    if ((scenario && pg_scenario_load(sc_path, &sc, &err)) || pg_scene_load(path, &out->scene, &err) ||
+        pg_scene_gpu_create(gpu, out->scene, &out->sg, &err)) {
+        fprintf(stderr, "%s: %s\n", label, err.msg);
+        pg_scene_free(out->scene);
+        memset(out, 0, sizeof *out);
+        return false;
+    }
+    out->fi = (pg_frame_info){.camera = pg_camera_default_for_scene(out->scene, (float)w / (float)h),
+                              .lights = pg_light_setup_default(out->scene, lights, 7),
+                              .time = 0.5f,
+                              .width = w,
+                              .height = h};
+    if (scenario) pg_scenario_apply(&sc, &out->fi.lights, &out->fi.camera);
+    out->fi.lights.count = lights;
+    return true;
+}
+
+void pg_th_scene_close(pg_gpu *gpu, pg_th_scene *s)
+{
+    if (s->sg) pg_scene_gpu_destroy(gpu, s->sg);
+    pg_scene_free(s->scene);
+    memset(s, 0, sizeof *s);
+}

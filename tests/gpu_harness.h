@@ -35,4 +35,17 @@ double pg_th_max_abs(const pg_th_frame *a, const pg_th_frame *b, double *ref_pea
 void pg_th_bound_usage(const pg_th_frame *a, const pg_th_frame *ref, double peak, double A, double B, double *usage,
                        double *need_a);
 
+/* A scene opened for a test: loaded ("default" = the built-in atrium), uploaded, and a frame
+ * set-up: the scene's default camera for w x h, its default lights (seed 7) at time 0.5, then
+ * the scenario (a data-folder path, or NULL) applied over them, and `lights` lights. */
+typedef struct pg_th_scene {
+    pg_scene *scene;
+    pg_scene_gpu *sg;
+    pg_frame_info fi;
+} pg_th_scene;
+/* Prints "label: error" and returns false (nothing left to close) when a step fails. */
+bool pg_th_scene_open(pg_gpu *gpu, const char *label, const char *path, const char *scenario, uint32_t w, uint32_t h,
+                      uint32_t lights, pg_th_scene *out);
+void pg_th_scene_close(pg_gpu *gpu, pg_th_scene *s);
+
 #endif

@@ -59,22 +59,13 @@ static void find_pipelines(void)
 
 static void check_scene(const char *label, const char *path, const char *scenario)
 {
-    pg_error err = {0};
-    pg_scene *scene = NULL;
-    pg_scene_gpu *sg = NULL;
-    pg_scenario sc;
-    char sc_path[PG_PATH_MAX];
-    if (scenario) pg_data_path(sc_path, sizeof sc_path, scenario);
-    if ((scenario && pg_scenario_load(sc_path, &sc, &err)) || pg_scene_load(path, &scene, &err) ||
-        pg_scene_gpu_create(g_gpu, scene, &sg, &err)) {
-        CHECK_MSG(0, "%s: %s", label, err.msg);
-        pg_scene_free(scene);
+    pg_th_scene ts;
+    if (!pg_th_scene_open(g_gpu, label, path, scenario, W, H, LIGHTS, &ts)) {
+        CHECK_MSG(0, "%s: scene", label);
         return;
     }
-    pg_frame_info fi = {.camera = pg_camera_default_for_scene(scene, (float)W / H),
-                        .lights = pg_light_setup_default(scene, LIGHTS, 7), .time = 0.5f, .width = W, .height = H};
-    if (scenario) pg_scenario_apply(&sc, &fi.lights, &fi.camera);
-    fi.lights.count = LIGHTS;
+    const pg_scene_gpu *sg = ts.sg;
+    const pg_frame_info fi = ts.fi;
     for (uint32_t p = 0; p < g_n_pipelines; p++) {
         const char *pipe = g_pipelines[p];
         pg_th_frame on, off;
@@ -104,8 +95,7 @@ static void check_scene(const char *label, const char *path, const char *scenari
         pg_th_release(&on);
         pg_th_release(&off);
     }
-    pg_scene_gpu_destroy(g_gpu, sg);
-    pg_scene_free(scene);
+    pg_th_scene_close(g_gpu, &ts);
 }
 
 int main(void)

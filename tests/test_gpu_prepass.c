@@ -93,31 +93,23 @@ static void check_compile(bool prepass)
 
 static void check_scene(const char *label, const char *path, const char *scenario, int need)
 {
-    pg_error err = {0};
-    pg_scene *scene = NULL;
-    pg_scene_gpu *sg = NULL;
-    pg_scenario sc;
-    char sc_path[PG_PATH_MAX];
-    if (scenario) pg_data_path(sc_path, sizeof sc_path, scenario);
-    if ((scenario && pg_scenario_load(sc_path, &sc, &err)) || pg_scene_load(path, &scene, &err) ||
-        pg_scene_gpu_create(g_gpu, scene, &sg, &err)) {
-        CHECK_MSG(0, "%s: %s", label, err.msg);
-        pg_scene_free(scene);
+    pg_th_scene ts;
+    if (!pg_th_scene_open(g_gpu, label, path, scenario, W, H, LIGHTS, &ts)) {
+        CHECK_MSG(0, "%s: scene", label);
         return;
     }
+    const pg_scene_gpu *sg = ts.sg;
+    pg_frame_info fi = ts.fi;
+    pg_error err = {0};
     uint32_t masked = sg->n_draws - sg->n_blend_draws - sg->n_opaque_draws;
     if (need == 1) CHECK_MSG(masked > 0, "%s: no alpha-mask draws: the case is vacuous", label);
     if (need == 2) CHECK_MSG(sg->n_blend_draws > 0, "%s: no BLEND draws: the case is vacuous", label);
-    pg_frame_info fi = {.camera = pg_camera_default_for_scene(scene, (float)W / H),
-                        .lights = pg_light_setup_default(scene, LIGHTS, 7), .time = 0.5f, .width = W, .height = H};
-    if (scenario) pg_scenario_apply(&sc, &fi.lights, &fi.camera);
     char cw[256], lw[256];
     if (!scenario && strcmp(path, "default") && /* a corpus file: the tools' view (its camera, object lights) */
-        pg_app_default_view(scene, NULL, (float)W / H, LIGHTS, 5, &fi.camera, &fi.lights, cw, sizeof cw, lw, sizeof lw,
-                            &err)) {
+        pg_app_default_view(ts.scene, NULL, (float)W / H, LIGHTS, 5, &fi.camera, &fi.lights, cw, sizeof cw, lw,
+                            sizeof lw, &err)) {
         CHECK_MSG(0, "%s: default view: %s", label, err.msg);
-        pg_scene_gpu_destroy(g_gpu, sg);
-        pg_scene_free(scene);
+        pg_th_scene_close(g_gpu, &ts);
         return;
     }
     fi.lights.count = LIGHTS;
@@ -150,8 +142,7 @@ static void check_scene(const char *label, const char *path, const char *scenari
     pg_th_release(&nv);
     pg_th_release(&f_off);
     pg_th_release(&f_on);
-    pg_scene_gpu_destroy(g_gpu, sg);
-    pg_scene_free(scene);
+    pg_th_scene_close(g_gpu, &ts);
 }
 
 int main(void)

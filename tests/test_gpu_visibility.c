@@ -42,7 +42,6 @@
 #include "image_util.h"
 #include "pass_list.h"
 #include "pipeline.h"
-#include "scenario.h"
 #include "scene_gpu.h"
 #include "test_util.h"
 #include "visibility_common.h"
@@ -244,32 +243,22 @@ static void check_frame(const char *label, const pg_scene_gpu *sg, const pg_fram
 static void check_file(const char *label, const char *path, const char *scenario, uint32_t w, uint32_t h,
                        uint32_t lights, bool control)
 {
-    pg_error err = {0};
-    pg_scene *scene = NULL;
-    pg_scene_gpu *sg = NULL;
-    pg_scenario sc;
-    char sc_path[PG_PATH_MAX];
-    if (scenario) pg_data_path(sc_path, sizeof sc_path, scenario);
-    if ((scenario && pg_scenario_load(sc_path, &sc, &err)) || pg_scene_load(path, &scene, &err) ||
-        pg_scene_gpu_create(g_gpu, scene, &sg, &err)) {
-        CHECK_MSG(0, "%s: %s", label, err.msg);
-        pg_scene_free(scene);
+    pg_th_scene ts;
+    if (!pg_th_scene_open(g_gpu, label, path, scenario, w, h, lights, &ts)) {
+        CHECK_MSG(0, "%s: scene", label);
         return;
     }
-    pg_frame_info fi = {.camera = pg_camera_default_for_scene(scene, (float)w / h),
-                        .lights = pg_light_setup_default(scene, lights, 7), .time = 0.5f, .width = w, .height = h};
-    if (scenario) pg_scenario_apply(&sc, &fi.lights, &fi.camera);
+    pg_error err = {0};
     char cw[256], lw[256];
-    if (!scenario && strcmp(path, "default") &&
-        pg_app_default_view(scene, NULL, (float)w / h, lights, 5, &fi.camera, &fi.lights, cw, sizeof cw, lw, sizeof lw,
-                            &err)) {
+    if (!scenario && strcmp(path, "default") && /* a corpus file: the tools' view (its camera, object lights) */
+        pg_app_default_view(ts.scene, NULL, (float)w / h, lights, 5, &ts.fi.camera, &ts.fi.lights, cw, sizeof cw, lw,
+                            sizeof lw, &err)) {
         CHECK_MSG(0, "%s: default view: %s", label, err.msg);
     } else {
-        fi.lights.count = lights;
-        check_frame(label, sg, &fi, control);
+        ts.fi.lights.count = lights;
+        check_frame(label, ts.sg, &ts.fi, control);
     }
-    pg_scene_gpu_destroy(g_gpu, sg);
-    pg_scene_free(scene);
+    pg_th_scene_close(g_gpu, &ts);
 }
 
 static bool ends_with(const char *s, const char *suffix)
@@ -308,16 +297,13 @@ static void check_corpus_dir(const char *sub)
 
 static void check_light_loop(void)
 {
-    pg_error err = {0};
-    pg_scene *scene = NULL;
-    pg_scene_gpu *sg = NULL;
-    if (pg_scene_load("default", &scene, &err) || pg_scene_gpu_create(g_gpu, scene, &sg, &err)) {
-        CHECK_MSG(0, "light loop: %s", err.msg);
-        pg_scene_free(scene);
+    pg_th_scene ts;
+    if (!pg_th_scene_open(g_gpu, "light loop", "default", NULL, 320, 180, 5000, &ts)) {
+        CHECK_MSG(0, "light loop: scene");
         return;
     }
-    pg_frame_info fi = {.camera = pg_camera_default_for_scene(scene, 320.0f / 180.0f),
-                        .lights = pg_light_setup_default(scene, 5000, 7), .time = 0.5f, .width = 320, .height = 180};
+    const pg_scene_gpu *sg = ts.sg;
+    const pg_frame_info fi = ts.fi;
     static const char *const pipes[] = {"pipelines/visibility.json", "pipelines/deferred_oct16.json"};
     static const pg_param_override variants[][1] = {{{"tile_size", "16"}}, {{"tile_lights", "false"}}};
     for (size_t p = 0; p < 2; p++) {
@@ -341,8 +327,7 @@ static void check_light_loop(void)
         }
         pg_th_release(&base);
     }
-    pg_scene_gpu_destroy(g_gpu, sg);
-    pg_scene_free(scene);
+    pg_th_scene_close(g_gpu, &ts);
 }
 
 int main(void)
