@@ -9,11 +9,18 @@
  * OCIO function. The result is display-encoded, so the target is rgba8 (UNORM) or a float
  * format; rgba8_srgb is refused (it would encode a second time).
  *
- * Slots: reads [hdr] (sampled, fragment); writes [ldr] (colour attachment).
- * Options: exposure (> 0, default 1), display, view (strings; "" = the config's defaults).
+ * Option stage "compute" (default): a compute pass instead of the full-screen triangle
+ * (shaders/display_ocio.comp: the same function, written with imageStore; the ldr image must then
+ * be a storage format: rgba8 or a float one), for GPUs whose raster hardware is a small part of
+ * the chip; "fragment": the full-screen triangle.
+ *
+ * Slots: reads [hdr] (sampled, fragment or compute); writes [ldr] (colour attachment, or storage
+ * image with stage compute).
+ * Options: exposure (> 0, default 1), display, view (strings; "" = the config's defaults), stage.
  * Application settings (pg_ctx_setting) win over the options: "ocio.config" (file; absent: $OCIO,
  * else assets/ocio/config.ocio), "ocio.display", "ocio.view".
  */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -36,6 +43,8 @@ typedef struct do_lut {
 } do_lut;
 
 typedef struct display_ocio {
+    bool compute;           /* option stage "compute" */
+    uint32_t width, height; /* the ldr image (compute) */
     pg_pass_set set;
     VkSampler nearest, linear;
     VkPipelineLayout layout;
@@ -45,7 +54,8 @@ typedef struct display_ocio {
     float exposure;
 } display_ocio;
 
-static const char *const k_known[] = {"exposure", "display", "view", NULL};
+static const char *const k_known[] = {"exposure", "display", "view", "stage", NULL};
+static const char *const k_stages[] = {"compute", "fragment", NULL};
 
 static pg_result do_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
@@ -64,8 +74,15 @@ static pg_result do_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
                            "(the OCIO view encodes for the display): use rgba8 (UNORM) or a float format",
                            in->desc->file, in->desc->json_path, ldr->name, pg_format_get(ldr->format)->name);
     }
-    pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
-    pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    int stage;
+    if ((r = pg_opt_enum(in->desc, "stage", k_stages, 0, &stage, err))) return r;
+    if (stage == 0) {
+        pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+        pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    } else {
+        pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+        pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    }
     return PG_OK;
 }
 
@@ -154,7 +171,7 @@ static void fill_texels(uint8_t *dst, const pg_ocio_texture *t, VkFormat format)
 }
 
 /* Creates the LUT images, uploads every texture's values through one staging buffer and a
- * one-shot command buffer (waited for), and leaves them SHADER_READ_ONLY for the fragment shader. */
+ * one-shot command buffer (waited for), and leaves them SHADER_READ_ONLY for the shader. */
 static pg_result upload_luts(display_ocio *p, pg_gpu *gpu, const pg_ocio_shader *sh, const char *pass_name,
                              pg_error *err)
 {
@@ -203,7 +220,8 @@ static pg_result upload_luts(display_ocio *p, pg_gpu *gpu, const pg_ocio_shader 
         }
         for (uint32_t i = 0; i < sh->n_textures; i++)
             b[i] = pg_image_barrier(p->luts[i].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                                    VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                    VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         pg_cmd_barriers(cmd, sh->n_textures, b, 0, NULL);
@@ -231,6 +249,17 @@ static pg_result do_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     if ((r = pg_opt_string(ctx->desc, "display", "", opt_display, sizeof opt_display, err))) return r;
     if ((r = pg_opt_string(ctx->desc, "view", "", opt_view, sizeof opt_view, err))) return r;
     p->exposure = (float)exposure;
+    int stage;
+    if ((r = pg_opt_enum(ctx->desc, "stage", k_stages, 0, &stage, err))) return r;
+    p->compute = stage == 0;
+    p->width = ctx->slots[1]->width;
+    p->height = ctx->slots[1]->height;
+    const char *ldr_fmt = pg_format_get(ctx->slots[1]->pg_fmt)->name;
+    if (p->compute && !pg_format_get(ctx->slots[1]->pg_fmt)->storage_ok)
+        return pg_fail(err, PG_ERR_FORMAT,
+                       "%s: %s.writes[0]: stage \"compute\" writes the display image as a storage image, and %s is "
+                       "not a storage format: use rgba8 or a float format, or stage \"fragment\"",
+                       ctx->desc->file, ctx->desc->json_path, ldr_fmt);
     const char *display = pg_ctx_setting(ctx, "ocio.display");
     const char *view = pg_ctx_setting(ctx, "ocio.view");
     if (!display || !display[0]) display = opt_display;
@@ -248,15 +277,33 @@ static pg_result do_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     if ((r = upload_luts(p, gpu, sh, ctx->pass->name, err))) goto out;
 
     if ((r = create_samplers(p, gpu, err))) goto out;
-    pg_set_binding b[1 + DO_MAX_LUTS];
+    pg_set_binding b[2 + DO_MAX_LUTS];
     b[0] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[0], p->nearest, 0};
     for (uint32_t i = 0; i < p->n_luts; i++)
         b[1 + i] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &p->luts[i].res,
                                     sh->textures[i].linear ? p->linear : p->nearest, 0};
-    if ((r = pg_pass_set_create(gpu, 1 + p->n_luts, b, ctx->pass->name, &p->set, err))) goto out;
+    uint32_t nb = 1 + p->n_luts;
+    if (p->compute) b[nb++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[1], VK_NULL_HANDLE, 0};
+    if ((r = pg_pass_set_create(gpu, nb, b, ctx->pass->name, &p->set, err))) goto out;
     VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
     if ((r = pg_pipeline_layout_create(gpu, 2, sets, sizeof(float), &p->layout, err))) goto out;
     pg_shader_source gen = {"ocio_display.glsl", sh->glsl};
+    if (p->compute) {
+        char bind_def[40], fmt_def[48];
+        snprintf(bind_def, sizeof bind_def, "PG_LDR_BINDING=%u", 1 + p->n_luts);
+        snprintf(fmt_def, sizeof fmt_def, "PG_LDR_FORMAT=%s", ldr_fmt);
+        const char *defs[2] = {bind_def, fmt_def};
+        VkShaderModule cs = VK_NULL_HANDLE;
+        if ((r = pg_shader_module_ex(gpu, "display_ocio.comp", VK_SHADER_STAGE_COMPUTE_BIT, defs, 2, &gen, 1, &cs,
+                                     err))) {
+            pg_error_prefix(err, "%s: display '%s', view '%s'", path, sh->display, sh->view);
+            goto out;
+        }
+        pg_compute_pipeline_desc cd = {.layout = p->layout, .cs = cs};
+        r = pg_compute_pipeline_create_ex(gpu, &cd, ctx->pass->name, &p->pipeline, err);
+        vkDestroyShaderModule(gpu->device, cs, NULL);
+        goto out;
+    }
     if ((r = pg_shader_module(gpu, "fullscreen.vert", VK_SHADER_STAGE_VERTEX_BIT, NULL, 0, &vs, err))) goto out;
     if ((r = pg_shader_module_ex(gpu, "display_ocio.frag", VK_SHADER_STAGE_FRAGMENT_BIT, NULL, 0, &gen, 1, &fs,
                                  err))) {
@@ -282,10 +329,17 @@ out:
 static void do_record(void *self, const pg_pass_record_ctx *ctx)
 {
     display_ocio *p = self;
+    VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
+    if (p->compute) {
+        vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
+        vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 2, sets, 0, NULL);
+        vkCmdPushConstants(ctx->cmd, p->layout, PG_PUSH_STAGES, 0, sizeof(float), &p->exposure);
+        vkCmdDispatch(ctx->cmd, (p->width + 7) / 8, (p->height + 7) / 8, 1);
+        return;
+    }
     VkClearColorValue clear = {{0, 0, 0, 1}};
     const uint32_t ldr_slot = 1;
     pg_pass_begin_rendering(ctx, 1, &ldr_slot, &clear, -1, false, 0);
-    VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->layout, 0, 2, sets, 0, NULL);
     vkCmdPushConstants(ctx->cmd, p->layout,
@@ -326,7 +380,8 @@ static pg_result do_update(void *self, const pg_pass_desc *desc, pg_error *err)
 
 const pg_pass_type pg_pass_display_ocio = {
     .name = "display_ocio",
-    .summary = "graphics: HDR -> display image through an OpenColorIO display/view transform (exposure first)",
+    .summary = "compute (or graphics): HDR -> display image through an OpenColorIO display/view transform "
+               "(exposure first)",
     .read_slots = "hdr",
     .write_slots = "ldr",
     .instance_size = sizeof(display_ocio),

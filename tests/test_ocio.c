@@ -11,7 +11,9 @@
  *     scene-linear values (0, 1e-6, ..., 0.18, 1, 1e3, 6e4 in every RGB combination) is written
  *     into the hdr image by the test's own pass type and displayed by display_ocio for EVERY view
  *     of every display of the shipped config, and for LUT-based views; the 8-bit result must be
- *     within 1 step of OCIO's CPU processor quantized to 8 bits (bound stated below). Also:
+ *     within 1 step of OCIO's CPU processor quantized to 8 bits (bound stated below), and the
+ *     pass's two stages (compute, the default, and the full-screen fragment pass) give
+ *     byte-identical images. Also:
  *     exposure, pass options vs. settings, errors at create, the EXR of the read-back HDR, and
  *     the default pipeline's Standard view against the display_tonemap clamp on the atrium.
  *
@@ -547,6 +549,17 @@ static void gpu_view(const char *grid, const char *cfg_path, const char *display
     printf("ocio: GPU vs CPU %-9s / %-15s exposure %-5g: max %d 8-bit step(s), %d of %d pixels differ\n", display,
            view, exposure, worst, n_diff, GW * GH);
     CHECK_MSG(worst <= MAX_STEPS, "%s/%s: GPU differs from OCIO's CPU processor by %d steps", display, view, worst);
+    /* the full-screen fragment pass writes the same bytes as the compute pass */
+    pg_param_override frag_sets[2] = {{"exposure", ev}, {"stage", "fragment"}};
+    uint8_t *frag = NULL;
+    ok = render_grid(grid, frag_sets, 2, settings, 3, &frag, NULL, &err);
+    CHECK_MSG(ok, "%s/%s stage fragment: %s", display, view, err.msg);
+    if (ok) {
+        bool same = !memcmp(ldr, frag, (size_t)GW * GH * 4);
+        CHECK_MSG(same, "%s/%s: stage compute and fragment differ", display, view);
+        if (!same) printf("ocio: %s / %s: stage compute and fragment DIFFER\n", display, view);
+    }
+    free(frag);
     free(ldr);
 }
 
