@@ -13,6 +13,9 @@
 #          docs/results/issue13_gpu/refine/light_refine.patch, which was measured and not merged)
 #   pos    the visibility pass with its position-only vertex shader (final bundle) against the
 #          bundle before it (.bundle/old), 1000 and 5000 lights, alternated twice
+#   disp   display_ocio as a compute pass against the full-screen fragment pass
+#          (display_stage=compute,fragment), visibility, deferred_oct16, forward_plus, 1000 lights,
+#          alternated twice
 #   sweep  item 3: the light loop's knobs on the visibility and deferred_oct16 pipelines
 #          (tile_size 8/16, cluster grid 16x9 / 32x18 / 64x36) at 100000 and 1000000 lights
 set -u
@@ -94,6 +97,15 @@ case " $STEPS " in *" pos "*)
         --lights 1000,5000 --reference-max-lights 0 --warmup 3 --frames 20 --out $OUT/pos_${side}_$round > $OUT/logs/pos.log 2>&1
       echo "pos round $round $side ($(cat .bundle/$side/COMMIT)) rc=$?"; summary $OUT/pos_${side}_$round/results.csv
     done
+  done
+  ;; esac
+case " $STEPS " in *" disp "*)
+  P=$SH/pipelines
+  for round in 1 2; do
+    timeout 200 $F/passgraph bench $B --pipelines $P/visibility.json,$P/deferred_oct16.json,$P/forward_plus.json \
+      --sweep display_stage=compute,fragment --lights 1000 --reference-max-lights 0 --warmup 3 --frames 20 \
+      --out $OUT/disp_$round > $OUT/logs/disp.log 2>&1
+    echo "disp round $round rc=$?"; summary $OUT/disp_$round/results.csv
   done
   ;; esac
 case " $STEPS " in *" sweep "*)
