@@ -16,6 +16,8 @@
 #   disp   display_ocio as a compute pass against the full-screen fragment pass
 #          (display_stage=compute,fragment), visibility, deferred_oct16, forward_plus, 1000 lights,
 #          alternated twice
+#   tile   item 3: the tiled light loop against the per-pixel loop (tile_lights=true,false),
+#          visibility and deferred_oct16 at 5000, 100000 and 1000000 lights
 #   sweep  item 3: the light loop's knobs on the visibility and deferred_oct16 pipelines
 #          (tile_size 8/16, cluster grid 16x9 / 32x18 / 64x36) at 100000 and 1000000 lights
 set -u
@@ -107,6 +109,12 @@ case " $STEPS " in *" disp "*)
       --out $OUT/disp_$round > $OUT/logs/disp.log 2>&1
     echo "disp round $round rc=$?"; summary $OUT/disp_$round/results.csv
   done
+  ;; esac
+case " $STEPS " in *" tile "*)
+  P=$SH/pipelines
+  timeout 400 $F/passgraph bench $B --pipelines $P/visibility.json,$P/deferred_oct16.json --sweep tile_lights=true,false \
+    --lights 5000,100000,1000000 --reference-max-lights 0 --warmup 1 --frames 3 --out $OUT/tile > $OUT/logs/tile.log 2>&1
+  echo "tile rc=$?"; summary $OUT/tile/results.csv
   ;; esac
 case " $STEPS " in *" sweep "*)
   P=$SH/pipelines
