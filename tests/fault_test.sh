@@ -9,35 +9,52 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scene="$root/tests/corpus/gltf/ok_textured.gltf"
-pass=0
-fail=0
-# deferred_packed+emulate: the two-queue plan (batches, timeline semaphores) on the one queue
-for pe in naive forward_plus deferred_packed deferred_packed+emulate; do
-  p=${pe%+emulate}
-  extra=()
+# one configuration: walks k until a run no longer reaches k checked calls; prints its counts as
+# the last line "counts PASS FAIL". The four configurations run in two workers (ctest runs the
+# tests one after the other, so this uses the second core).
+run_config() {
+  local pe=$1 dir=$2 p=${1%+emulate} pass=0 fail=0 k=1 rc call
+  local extra=()
   [ "$pe" != "$p" ] && extra=(--async-compute emulate)
-  k=1
   while :; do
     PASSGRAPH_FAULT_AT=$k timeout 60 "$PG" render --pipeline "$root/pipelines/$p.json" --scene "$scene" --size 32x18 \
-      --lights 4 --frames 2 "${extra[@]}" --quiet --out "$tmp/x.png" >"$tmp/out" 2>"$tmp/err"
+      --lights 4 --frames 2 "${extra[@]}" --quiet --out "$dir/x.png" >"$dir/out" 2>"$dir/err"
     rc=$?
-    if ! grep -q "fault injection" "$tmp/err"; then
+    if ! grep -q "fault injection" "$dir/err"; then
       # the run made fewer than k checked calls: it must have succeeded
-      [ $rc -eq 0 ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: $p k=$k without fault: rc $rc"; cat "$tmp/err"; }
+      [ $rc -eq 0 ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: $p k=$k without fault: rc $rc"; cat "$dir/err"; }
       echo "fault_test: $pe: $((k - 1)) checked Vulkan calls, each failed once"
       break
     fi
-    call=$(sed -n 's/.*failing call #[0-9]*: \(vk[A-Za-z0-9]*\).*/\1/p' "$tmp/err" | head -1)
+    call=$(sed -n 's/.*failing call #[0-9]*: \(vk[A-Za-z0-9]*\).*/\1/p' "$dir/err" | head -1)
     if [ $rc -ne 1 ]; then
-      fail=$((fail + 1)); echo "FAIL: $p k=$k ($call): exit $rc"; tail -3 "$tmp/err"
-    elif ! grep -q "VK_ERROR_DEVICE_LOST" "$tmp/err" || ! grep -q -- "$call" "$tmp/err"; then
-      fail=$((fail + 1)); echo "FAIL: $p k=$k: message does not name $call and the error"; tail -3 "$tmp/err"
+      fail=$((fail + 1)); echo "FAIL: $p k=$k ($call): exit $rc"; tail -3 "$dir/err"
+    elif ! grep -q "VK_ERROR_DEVICE_LOST" "$dir/err" || ! grep -q -- "$call" "$dir/err"; then
+      fail=$((fail + 1)); echo "FAIL: $p k=$k: message does not name $call and the error"; tail -3 "$dir/err"
     else
       pass=$((pass + 1))
     fi
     k=$((k + 1))
     [ $k -gt 400 ] && { fail=$((fail + 1)); echo "FAIL: $p: more than 400 checked calls?"; break; }
   done
+  echo "counts $pass $fail"
+}
+# two workers of about the same number of calls (89 + 142 and 113 + 122 at the time of writing)
+configs=(naive deferred_packed+emulate forward_plus deferred_packed)
+for w in 0 2; do
+  (for j in $w $((w + 1)); do
+     mkdir -p "$tmp/$j"
+     run_config "${configs[$j]}" "$tmp/$j" >"$tmp/$j.log" 2>&1
+   done) &
+done
+wait
+pass=0
+fail=0
+for j in 0 1 2 3; do
+  grep -v '^counts ' "$tmp/$j.log"
+  read -r _ p f < <(grep '^counts ' "$tmp/$j.log" || echo "counts 0 1")
+  pass=$((pass + p))
+  fail=$((fail + f))
 done
 echo "fault_test: $pass passed, $fail failed"
 [ $fail -eq 0 ]
