@@ -175,6 +175,9 @@ static inline double now_s(void)
 int bench_setup(bench *B, int argc, char **argv);
 void bench_free(bench *B);
 uint32_t config_index(const bench *B, uint32_t sc, uint32_t si, uint32_t li, uint32_t pipe, uint32_t var);
+/* The inverse: fills r's index, scene, pipe, variant, lights, width and height from
+ * configuration idx (< B->n_configs); the other fields are left as they are. */
+void config_row(const bench *B, uint32_t idx, bench_row *r);
 
 /* bench_options.c */
 int split_list(char *s, char sep, char **parts, int max);

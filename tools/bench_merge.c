@@ -63,23 +63,9 @@ static pg_result row_read(const bench *B, const char *dir, const cJSON *o, bench
     double idx = jget_num(o, "index");
     if (!isfinite(idx) || idx < 0 || idx >= B->n_configs || idx != floor(idx))
         return pg_fail(err, PG_ERR_PARSE, "%s/results.json: a row without a valid configuration index", dir);
-    uint32_t i = (uint32_t)idx, rest = i;
-    uint32_t var_all = rest % B->n_vars;
-    rest /= B->n_vars;
-    uint32_t li = rest % B->n_lights;
-    rest /= B->n_lights;
-    uint32_t si = rest % B->n_sizes;
-    uint32_t sc = rest / B->n_sizes;
-    uint32_t p = 0, v = var_all;
-    while (p < B->n_pipes && v >= B->pipes[p].n_variants) v -= B->pipes[p++].n_variants;
     memset(r, 0, sizeof *r);
-    r->index = i;
-    r->scene = sc;
-    r->pipe = p;
-    r->variant = v;
-    r->lights = B->lights[li];
-    r->width = B->widths[si];
-    r->height = B->heights[si];
+    config_row(B, (uint32_t)idx, r);
+    uint32_t sc = r->scene, p = r->pipe, v = r->variant;
     const char *scene = jget_str(o, "scene"), *pipe = jget_str(o, "pipeline"), *var = jget_str(o, "variant");
     if (!scene || strcmp(scene, B->scene_names[sc]) || !pipe || strcmp(pipe, B->pipes[p].name) || !var ||
         strcmp(var, B->pipes[p].variants[v].label) || jget_num(o, "lights") != r->lights ||
@@ -87,13 +73,13 @@ static pg_result row_read(const bench *B, const char *dir, const cJSON *o, bench
         return pg_fail(err, PG_ERR_PARSE,
                        "%s/results.json: row %u (%s %s '%s') is not configuration %u of the sweep its meta.argv "
                        "describes (%s %s '%s' %ux%u lights=%u)",
-                       dir, i, scene ? scene : "?", pipe ? pipe : "?", var ? var : "?", i, B->scene_names[sc],
+                       dir, r->index, scene ? scene : "?", pipe ? pipe : "?", var ? var : "?", r->index, B->scene_names[sc],
                        B->pipes[p].name, B->pipes[p].variants[v].label, r->width, r->height, r->lights);
     const char *st = jget_str(o, "status");
     int status = -1;
     for (int k = 0; st && k < 4; k++)
         if (!strcmp(st, status_names[k])) status = k;
-    if (status < 0) return pg_fail(err, PG_ERR_PARSE, "%s/results.json: row %u: unknown status '%s'", dir, i, st ? st : "");
+    if (status < 0) return pg_fail(err, PG_ERR_PARSE, "%s/results.json: row %u: unknown status '%s'", dir, r->index, st ? st : "");
     r->status = (row_status)status;
     pg_strlcpy(r->message, jget_str(o, "message") ? jget_str(o, "message") : "", sizeof r->message);
     r->frames = (uint32_t)ju64(o, "frames", NULL);

@@ -151,6 +151,24 @@ uint32_t config_index(const bench *B, uint32_t sc, uint32_t si, uint32_t li, uin
     return ((sc * B->n_sizes + si) * B->n_lights + li) * B->n_vars + var_index(B, pipe, var);
 }
 
+void config_row(const bench *B, uint32_t idx, bench_row *r)
+{
+    uint32_t rest = idx, var_all = rest % B->n_vars;
+    rest /= B->n_vars;
+    uint32_t li = rest % B->n_lights;
+    rest /= B->n_lights;
+    uint32_t si = rest % B->n_sizes, sc = rest / B->n_sizes;
+    uint32_t p = 0, v = var_all;
+    while (p < B->n_pipes && v >= B->pipes[p].n_variants) v -= B->pipes[p++].n_variants;
+    r->index = idx;
+    r->scene = sc;
+    r->pipe = p;
+    r->variant = v;
+    r->lights = B->lights[li];
+    r->width = B->widths[si];
+    r->height = B->heights[si];
+}
+
 static bool in_shard(const bench *B, uint32_t idx)
 {
     return !B->shard_n || idx % B->shard_n == B->shard_k - 1;
@@ -403,8 +421,8 @@ int pg_cmd_bench(int argc, char **argv)
                                 rc = 1;
                                 break;
                             }
-                            *row = (bench_row){.index = idx, .scene = sc, .pipe = p, .variant = v, .lights = B->lights[li],
-                                               .width = B->widths[si], .height = B->heights[si], .status = ROW_ERROR};
+                            config_row(B, idx, row);
+                            row->status = ROW_ERROR;
                             row->gpu.median = row->gpu.mean = row->gpu.min = row->gpu.max = row->gpu.p95 = NAN;
                             row->cpu = row->wait = row->gpu;
                             snprintf(row->message, sizeof row->message, "%s", ae.msg);
@@ -445,13 +463,7 @@ int pg_cmd_bench(int argc, char **argv)
                             rc = 1;
                             break;
                         }
-                        row->index = idx;
-                        row->scene = sc;
-                        row->pipe = p;
-                        row->variant = v;
-                        row->lights = B->lights[li];
-                        row->width = B->widths[si];
-                        row->height = B->heights[si];
+                        config_row(B, idx, row);
                         char what[PG_NAME_MAX + 400];
                         char lab[PG_NAME_MAX + 260];
                         series_label(B, p, v, lab, sizeof lab);
