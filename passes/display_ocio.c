@@ -124,12 +124,7 @@ static pg_result create_lut_image(pg_gpu *gpu, do_lut *l, const pg_ocio_texture 
     pg_gpu_name(gpu, VK_OBJECT_TYPE_IMAGE, (uint64_t)l->image, "%s.%s", pass_name, t->sampler);
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(gpu->device, l->image, &req);
-    uint32_t mt = pg_gpu_memory_type(gpu, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    if (mt == UINT32_MAX) mt = pg_gpu_memory_type(gpu, req.memoryTypeBits, 0);
-    if (mt == UINT32_MAX) return pg_fail(err, PG_ERR_VULKAN, "OCIO LUT '%s': no memory type fits", t->sampler);
-    VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
-                                .memoryTypeIndex = mt};
-    PG_VK_TRY(err, pg_gpu_alloc_memory(gpu, &mai, &l->memory));
+    PG_VK_TRY(err, pg_gpu_alloc_device_memory(gpu, req.size, req.memoryTypeBits, &l->memory));
     PG_VK_TRY(err, vkBindImageMemory(gpu->device, l->image, l->memory, 0));
     VkImageViewCreateInfo vci = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
                                  .image = l->image,

@@ -91,12 +91,7 @@ static pg_result bind(pg_runtime *rt, int i, VkDeviceMemory mem, VkDeviceSize of
 static pg_result alloc(pg_runtime *rt, VkDeviceSize size, uint32_t bits, const char *name, VkDeviceMemory *out,
                        pg_error *err)
 {
-    uint32_t type = pg_gpu_memory_type(rt->gpu, bits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    if (type == UINT32_MAX) type = pg_gpu_memory_type(rt->gpu, bits, 0);
-    if (type == UINT32_MAX) return pg_fail(err, PG_ERR_VULKAN, "%s: no memory type fits", name);
-    VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
-                                .allocationSize = size, .memoryTypeIndex = type};
-    VkResult vr = pg_gpu_alloc_memory(rt->gpu, &mai, out);
+    VkResult vr = pg_gpu_alloc_device_memory(rt->gpu, size, bits, out);
     if (vr != VK_SUCCESS)
         return pg_fail(err, PG_ERR_VULKAN, "%s: vkAllocateMemory(%llu bytes) failed: %s", name,
                        (unsigned long long)size, pg_vk_result_name(vr));
@@ -305,11 +300,7 @@ pg_result pg_rt_grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t ma
         }
         VkMemoryRequirements req;
         vkGetBufferMemoryRequirements(gpu->device, nb, &req);
-        uint32_t type = pg_gpu_memory_type(gpu, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-        if (type == UINT32_MAX) type = pg_gpu_memory_type(gpu, req.memoryTypeBits, 0);
-        VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
-                                    .allocationSize = req.size, .memoryTypeIndex = type};
-        vr = type == UINT32_MAX ? VK_ERROR_OUT_OF_DEVICE_MEMORY : pg_gpu_alloc_memory(gpu, &mai, &nm);
+        vr = pg_gpu_alloc_device_memory(gpu, req.size, req.memoryTypeBits, &nm);
         if (vr == VK_SUCCESS) vr = vkBindBufferMemory(gpu->device, nb, nm, 0);
         if (vr != VK_SUCCESS) {
             if (nm) pg_gpu_free_memory(gpu, nm);

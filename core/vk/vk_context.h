@@ -151,6 +151,9 @@ uint32_t pg_gpu_memory_type(const pg_gpu *gpu, uint32_t type_bits, VkMemoryPrope
  * stays flat). */
 VkResult pg_gpu_alloc_memory(pg_gpu *gpu, const VkMemoryAllocateInfo *info, VkDeviceMemory *out);
 void pg_gpu_free_memory(pg_gpu *gpu, VkDeviceMemory mem);
+/* Memory for a resource only the device touches: a device-local type among type_bits where one
+ * fits, else any that fits; VK_ERROR_OUT_OF_DEVICE_MEMORY when none does. */
+VkResult pg_gpu_alloc_device_memory(pg_gpu *gpu, VkDeviceSize size, uint32_t type_bits, VkDeviceMemory *out);
 /* Resident set size of this process in bytes (0 if unknown). */
 uint64_t pg_process_rss(void);
 

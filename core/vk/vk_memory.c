@@ -12,6 +12,19 @@ uint32_t pg_gpu_memory_type(const pg_gpu *gpu, uint32_t bits, VkMemoryPropertyFl
     return UINT32_MAX;
 }
 
+VkResult pg_gpu_alloc_device_memory(pg_gpu *gpu, VkDeviceSize size, uint32_t type_bits, VkDeviceMemory *out)
+{
+    uint32_t type = pg_gpu_memory_type(gpu, type_bits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (type == UINT32_MAX) type = pg_gpu_memory_type(gpu, type_bits, 0);
+    if (type == UINT32_MAX) return VK_ERROR_OUT_OF_DEVICE_MEMORY;
+    VkMemoryAllocateInfo mai = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+        .allocationSize = size,
+        .memoryTypeIndex = type,
+    };
+    return pg_gpu_alloc_memory(gpu, &mai, out);
+}
+
 pg_result pg_buffer_create(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags usage,
                            bool host_visible, const char *name, pg_buffer *out, pg_error *err)
 {
@@ -101,14 +114,7 @@ pg_result pg_image_create(pg_gpu *gpu, VkFormat format, uint32_t w, uint32_t h, 
     PG_VK_TRY(err, vkCreateImage(gpu->device, &ici, NULL, &out->image));
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(gpu->device, out->image, &req);
-    uint32_t type = pg_gpu_memory_type(gpu, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    if (type == UINT32_MAX) type = pg_gpu_memory_type(gpu, req.memoryTypeBits, 0);
-    VkMemoryAllocateInfo mai = {
-        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
-        .allocationSize = req.size,
-        .memoryTypeIndex = type,
-    };
-    VkResult r = pg_gpu_alloc_memory(gpu, &mai, &out->memory);
+    VkResult r = pg_gpu_alloc_device_memory(gpu, req.size, req.memoryTypeBits, &out->memory);
     if (r != VK_SUCCESS) {
         pg_image_destroy(gpu, out);
         return pg_fail(err, PG_ERR_VULKAN, "image '%s' %ux%u: vkAllocateMemory failed: %s", name,
