@@ -9,13 +9,8 @@
 # exit 2.
 set -u
 PG=$1
-pass=0
-fail=0
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/check_lib.sh"
 
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 
 # expect_fail "description" expected-rc "substring of stderr" args...
 expect_fail() {
@@ -115,5 +110,4 @@ expect_fail "merge: configuration missing" 1 "$tmp/s1copy: configuration 2 (shar
 expect_fail "merge: no --out" 2 "--out DIR is required" bench-merge "$tmp/s1" "$tmp/s2"
 [ ! -e "$tmp/m2" ] && ok || bad "a refused merge wrote $tmp/m2"
 
-echo "bench_shard_test: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+check_finish bench_shard_test

@@ -6,13 +6,8 @@
 # unchanged; an unwritable cache folder is a note and the render succeeds.
 set -u
 PG=$1
+. "$(dirname "$0")/check_lib.sh"
 root=$(cd "$(dirname "$0")/.." && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 export PASSGRAPH_CACHE_STATS=1
 unset PASSGRAPH_NO_SHADER_CACHE
 r() { # cache-dir out-name extra... ; stderr -> $tmp/NAME.err
@@ -52,5 +47,4 @@ grep -q "note: shader cache folder" "$tmp/unwritable.err" && [ -s "$tmp/unwritab
   { bad "unwritable cache folder"; cat "$tmp/unwritable.err"; }
 grep -q "validation message" "$tmp"/*.err && bad "validation messages" || ok
 
-echo "cache_test: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+check_finish cache_test

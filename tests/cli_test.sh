@@ -4,13 +4,8 @@
 # line has the documented shape.
 set -u
 PG=$1
-pass=0
-fail=0
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/check_lib.sh"
 
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 
 # expect_fail "description" "substring of stderr" args...
 expect_fail() {
@@ -527,5 +522,4 @@ for pl in forward_plus deferred_oct16; do
     | grep -qE "defines:.*(PG_UV1|PG_UV_TRANSFORM)" && bad "$pl vcolor_unorm8: UV variants compiled" || ok
 done
 
-echo "cli_test: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+check_finish cli_test

@@ -15,18 +15,13 @@
 # tools/setup.sh installs both.
 set -u
 PG=$(realpath "$1")
+. "$(dirname "$0")/check_lib.sh"
 root=$(cd "$(dirname "$0")/.." && pwd)
 PY=/usr/bin/python3
 [ -x "$PY" ] || PY=python3
 if ! command -v renderdoccmd >/dev/null; then echo "renderdoc_test: skipped: renderdoccmd not installed (Debian renderdoccmd; tools/setup.sh)"; exit 77; fi
 if ! "$PY" -c "import renderdoc" 2>/dev/null; then echo "renderdoc_test: skipped: $PY cannot import renderdoc (Debian python3-renderdoc; tools/setup.sh)"; exit 77; fi
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 cd "$tmp"
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 SIZE=160x90
 LIGHTS=64
 
@@ -103,5 +98,4 @@ else
   echo "renderdoc_test: xvfb-run not installed: viewer capture not checked"
 fi
 
-echo "renderdoc_test: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+check_finish renderdoc_test

@@ -6,16 +6,11 @@
 # and the screenshot (scene + UI) is written. Any validation message fails the run.
 set -u
 PG=$1
+. "$(dirname "$0")/check_lib.sh"
 root=$(cd "$(dirname "$0")/.." && pwd)
 if ! command -v xvfb-run >/dev/null; then echo "view_test: skipped: xvfb-run not installed"; exit 77; fi
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 cp -r "$root/pipelines" "$tmp/"
 printf '{ "name": broken' >"$tmp/broken.json"
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 
 xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --validation --size 320x180 --frames 48 --lights 48 \
   --pipeline "$tmp/pipelines/forward_plus.json" --pipelines "$tmp/pipelines" --cycle-pipelines --cycle-every 6 \
@@ -71,5 +66,4 @@ xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --size 64x36 --frames 2 --ligh
 [ "$(grep -cxF "passgraph: warning: $skins: 2 skins ignored: rendered in bind pose" "$tmp/err4")" = 1 ] \
   && ok || { bad "view: skins warning not printed once"; cat "$tmp/err4"; }
 [ "$(head -c 3 "$tmp/shot.jpg" 2>/dev/null | od -An -tx1 | tr -d ' ')" = "ffd8ff" ] && ok || bad "view --screenshot x.jpg: not a JPEG"
-echo "view_test: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+check_finish view_test
