@@ -81,20 +81,19 @@ void pg_vis_fetch(uint id, vec2 frag, vec2 size, out SurfaceInput si, out uint m
     vec3 cam = frame.camera_pos.xyz;
     vec3 p0 = pg_vis_vec3(v0, 0u) - cam, p1 = pg_vis_vec3(v1, 0u) - cam, p2 = pg_vis_vec3(v2, 0u) - cam;
     vec3 e1 = p1 - p0, e2 = p2 - p0;
-    vec3 o, dir, oq, dq, ox, dx, oy, dy;
+    vec3 o, dir, on, dn;
     pg_vis_ray(frag, size, o, dir);
     vec3 b = pg_vis_bary(o, dir, p0, e1, e2);
     // d(barycentrics)/dx and /dy over one pixel, as a rasterizer's fine derivatives within the
     // pixel's 2x2 quad: across the quad's pair in the pixel's row (x) and in its column (y), all
-    // on this triangle's plane (helper invocations evaluate the same plane)
+    // on this triangle's plane (helper invocations evaluate the same plane). The pixel is one of
+    // each pair, so one more ray per axis: to its partner.
     vec2 q = floor(frag * 0.5) * 2.0 + 0.5; // the quad's top-left pixel centre
-    vec2 fx = vec2(q.x, frag.y), fy = vec2(frag.x, q.y);
-    pg_vis_ray(fx, size, oq, dq);
-    pg_vis_ray(fx + vec2(1.0, 0.0), size, ox, dx);
-    vec3 bx = pg_vis_bary(ox, dx, p0, e1, e2) - pg_vis_bary(oq, dq, p0, e1, e2);
-    pg_vis_ray(fy, size, oq, dq);
-    pg_vis_ray(fy + vec2(0.0, 1.0), size, oy, dy);
-    vec3 by = pg_vis_bary(oy, dy, p0, e1, e2) - pg_vis_bary(oq, dq, p0, e1, e2);
+    vec2 s = vec2(frag.x == q.x ? 1.0 : -1.0, frag.y == q.y ? 1.0 : -1.0);
+    pg_vis_ray(frag + vec2(s.x, 0.0), size, on, dn);
+    vec3 bx = (pg_vis_bary(on, dn, p0, e1, e2) - b) * s.x;
+    pg_vis_ray(frag + vec2(0.0, s.y), size, on, dn);
+    vec3 by = (pg_vis_bary(on, dn, p0, e1, e2) - b) * s.y;
     // the pixel centre is inside the triangle up to rounding: keep the point on it
     b = clamp(b, 0.0, 1.0);
     b /= max(b.x + b.y + b.z, 1e-30);
