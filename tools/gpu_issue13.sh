@@ -11,6 +11,8 @@
 #          100000 and 1000000 lights, alternated twice
 #   refine item 3: the light_refine pass (refine=false,true; needs the code of
 #          docs/results/issue13_gpu/refine/light_refine.patch, which was measured and not merged)
+#   ab     the visibility pipeline of the final bundle against .bundle/old at 1000, 5000 and
+#          100000 lights, alternated twice (before/after of a change to it)
 #   pos    the visibility pass with its position-only vertex shader (final bundle) against the
 #          bundle before it (.bundle/old), 1000 and 5000 lights, alternated twice
 #   disp   display_ocio as a compute pass against the full-screen fragment pass
@@ -90,6 +92,15 @@ case " $STEPS " in *" refine "*)
     timeout 300 $F/passgraph bench $B --pipelines $P/visibility.json,$P/deferred_oct16.json --sweep refine=false,true \
       --lights 1000,5000,100000,1000000 --reference-max-lights 0 --warmup 2 --frames 10 --out $OUT/refine_$round > $OUT/logs/refine.log 2>&1
     echo "refine round $round rc=$?"; summary $OUT/refine_$round/results.csv
+  done
+  ;; esac
+case " $STEPS " in *" ab "*)
+  for round in 1 2; do
+    for side in old final; do
+      timeout 120 .bundle/$side/passgraph bench $B --pipelines .bundle/$side/share/passgraph/pipelines/visibility.json \
+        --lights 1000,5000,100000 --reference-max-lights 0 --warmup 3 --frames 20 --out $OUT/ab_${side}_$round > $OUT/logs/ab.log 2>&1
+      echo "ab round $round $side ($(cat .bundle/$side/COMMIT)) rc=$?"; summary $OUT/ab_${side}_$round/results.csv
+    done
   done
   ;; esac
 case " $STEPS " in *" pos "*)
