@@ -130,6 +130,8 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
     vec3 V = lit ? PG_VIEW_DIR(P) : vec3(0.0, 0.0, 1.0);
     vec3 cam = frame.camera_pos.xyz;
     float min_dist = frame.light_params.w;
+    float md2 = min_dist * min_dist;
+    float inv_md2 = 1.0 / md2;
     PgShade acc;
     acc.diffuse = vec3(0.0);
     acc.specular = vec3(0.0);
@@ -173,7 +175,8 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
             L.color = vec4(0.0);
             if (k < rec.y) {
                 L = lights[cluster_lights[rec.x + k]]; // whole record: one 32-byte sector anyway
-                keep = pg_sphere_intersects_aabb(L.pos_radius.xyz - cam, L.pos_radius.w, bmin, bmax);
+                L.pos_radius.xyz -= cam;
+                keep = pg_sphere_intersects_aabb(L.pos_radius.xyz, L.pos_radius.w, bmin, bmax);
             }
             uint pos, total;
 #ifdef PG_TILE_SUBGROUPS
@@ -199,17 +202,17 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
             pos = s_tl_count[lid] - (keep ? 1u : 0u);
             total = s_tl_count[PG_TILE_N - 1];
 #endif
-            if (keep) {
-                s_tl_light[2u * pos] = L.pos_radius;
-                s_tl_light[2u * pos + 1u] = L.color;
+            if (keep) {   // what pg_accumulate_light_rel reads, computed once per tile
+                float R2 = L.pos_radius.w * L.pos_radius.w;
+                s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(R2));
+                s_tl_light[2u * pos + 1u] = vec4(L.color.rgb, R2);
             }
             barrier();
             if (mine) {
                 for (uint j = 0u; j < total; j++) {
-                    Light T;
-                    T.pos_radius = s_tl_light[2u * j];
-                    T.color = s_tl_light[2u * j + 1u];
-                    pg_accumulate_light(T, cam, P, s.normal, V, s.shininess, min_dist, acc);
+                    vec4 a = s_tl_light[2u * j];
+                    vec4 b = s_tl_light[2u * j + 1u];
+                    pg_accumulate_light_rel(a.xyz, b.w, a.w, b.rgb, P, s.normal, V, s.shininess, md2, inv_md2, acc);
                 }
             }
             barrier();   // before the next chunk overwrites the shared lights and counts

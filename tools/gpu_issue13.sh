@@ -13,6 +13,10 @@
 #          docs/results/issue13_gpu/refine/light_refine.patch, which was measured and not merged)
 #   ab     the visibility pipeline of the final bundle against .bundle/old at 1000, 5000 and
 #          100000 lights, alternated twice (before/after of a change to it)
+#   model  item 3: the light model with one inversesqrt per light (final bundle) against the bundle
+#          before it (.bundle/old: square root and three divisions), visibility and deferred_oct16
+#          at 1000, 5000, 100000 and 1000000 lights, forward_plus at 1000 and 5000, alternated
+#          twice; and the new model's image against naive (compare) at 1000 lights
 #   pos    the visibility pass with its position-only vertex shader (final bundle) against the
 #          bundle before it (.bundle/old), 1000 and 5000 lights, alternated twice
 #   disp   display_ocio as a compute pass against the full-screen fragment pass
@@ -100,6 +104,24 @@ case " $STEPS " in *" ab "*)
       timeout 120 .bundle/$side/passgraph bench $B --pipelines .bundle/$side/share/passgraph/pipelines/visibility.json \
         --lights 1000,5000,100000 --reference-max-lights 0 --warmup 3 --frames 20 --out $OUT/ab_${side}_$round > $OUT/logs/ab.log 2>&1
       echo "ab round $round $side ($(cat .bundle/$side/COMMIT)) rc=$?"; summary $OUT/ab_${side}_$round/results.csv
+    done
+  done
+  ;; esac
+case " $STEPS " in *" model "*)
+  for side in old final; do
+    timeout 120 .bundle/$side/passgraph compare $B --lights 1000 --pipeline .bundle/$side/share/passgraph/pipelines/visibility.json \
+      --reference .bundle/$side/share/passgraph/pipelines/naive.json --frames 1 > $OUT/logs/mc.log 2>&1
+    echo "model compare visibility vs naive, $side rc=$?"; tail -1 $OUT/logs/mc.log | cut -c1-300
+  done
+  for round in 1 2; do
+    for side in old final; do
+      P=.bundle/$side/share/passgraph/pipelines
+      timeout 200 .bundle/$side/passgraph bench $B --pipelines $P/visibility.json,$P/deferred_oct16.json \
+        --lights 1000,5000,100000,1000000 --reference-max-lights 0 --warmup 2 --frames 10 --out $OUT/model_${side}_$round > $OUT/logs/model.log 2>&1
+      echo "model round $round $side ($(cat .bundle/$side/COMMIT)) rc=$?"; summary $OUT/model_${side}_$round/results.csv
+      timeout 100 .bundle/$side/passgraph bench $B --pipelines $P/forward_plus.json \
+        --lights 1000,5000 --reference-max-lights 0 --warmup 1 --frames 5 --out $OUT/modelf_${side}_$round > $OUT/logs/modelf.log 2>&1
+      echo "model fplus round $round $side rc=$?"; summary $OUT/modelf_${side}_$round/results.csv
     done
   done
   ;; esac
