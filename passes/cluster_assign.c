@@ -24,7 +24,7 @@
  *
  * Slots: reads [lights]; writes [cluster_counts (16 bytes per cluster: offset, stored, raw, 0),
  * cluster_lights (grow buffer of uint light indices)].
- * Options: grid_x, grid_y, grid_z (16, 9, 24), max_lights (per-cluster cap, 0 = none: the
+ * Options: grid_x, grid_y, grid_z (16, 9, 32), max_lights (per-cluster cap, 0 = none: the
  * default), budget_mb (list memory budget, default 1024), method ("binned" | "brute_force"),
  * subgroups (bool, default true: one full subgroup per workgroup where the device allows it;
  * false: 64-wide workgroups with shared-memory scans).
@@ -34,6 +34,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cluster_math.h"
 #include "graph_execute.h"
 #include "pass_api.h"
 #include "shader.h"
@@ -86,7 +87,8 @@ static pg_result read_opts(const pg_pass_desc *desc, ca_opts *o, pg_error *err)
     pg_result r;
     int64_t v;
     static const char *const gk[3] = {"grid_x", "grid_y", "grid_z"};
-    static const int64_t gd[3] = {16, 9, 24};
+    static const int64_t gd[3] = {PG_CLUSTER_GRID_DEFAULT_X, PG_CLUSTER_GRID_DEFAULT_Y,
+                                   PG_CLUSTER_GRID_DEFAULT_Z};
     memset(o, 0, sizeof *o);
     if ((r = pg_opt_check_known(desc, k_known, err))) return r;
     for (int k = 0; k < 3; k++) {

@@ -3,6 +3,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cluster_math.h"
+
 const char *const pg_debug_views[] = {"none",     "cluster_heat", "cluster_x", "cluster_y", "cluster_z",
                                       "overflow", "albedo",       "normal",    "depth",     NULL};
 static const char *const k_shading[] = {"lambert", "blinn_phong", NULL};
@@ -37,7 +39,8 @@ pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const c
     if (clustered) {
         int64_t v;
         static const char *const gk[3] = {"grid_x", "grid_y", "grid_z"};
-        static const int64_t gd[3] = {16, 9, 24};
+        static const int64_t gd[3] = {PG_CLUSTER_GRID_DEFAULT_X, PG_CLUSTER_GRID_DEFAULT_Y,
+                                       PG_CLUSTER_GRID_DEFAULT_Z};
         for (int k = 0; k < 3; k++) {
             if ((r = pg_opt_int(desc, gk[k], gd[k], 1, 1024, &v, err))) return r;
             o->grid[k] = (uint32_t)v;

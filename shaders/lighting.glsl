@@ -5,11 +5,16 @@
 // light lying on the surface gives a finite value. Blinn-Phong adds
 //   specular * max(dot(N, H), 0)^shininess * the same attenuation (only where N.L > 0).
 //
-// Evaluated with one transcendental per light in range (issue 13 item 3): (d/R)^4 = (d^2 / R^2)^2
-// with 1/R^2 known per light, and 1/d (for L and for 1/d^2 = (1/d)^2) from one inversesqrt,
-// instead of a square root and three divisions. The same model; only the rounding differs (C twin
-// and its bounds: tests/test_numeric.c att_float). Every shading pass calls
-// pg_accumulate_light_rel with the same operations, so their sums stay bit-identical.
+// Evaluated with one transcendental per light (issue 13 item 3): (d/R)^4 = (d^2 / R^2)^2 with
+// 1/R^2 known per light, 1/max(d^2, dmin^2) = min((1/d)^2, 1/dmin^2) and L = Ld/d from one
+// inversesqrt, instead of a square root and three divisions. The same model; only the rounding
+// differs (C twin and its bounds: tests/test_numeric.c att_float). Two forms share that arithmetic
+// (pg_light_term): pg_accumulate_light_rel returns early for a light out of range (the per-pixel
+// loops, where most lights of a list miss the pixel), pg_accumulate_light_rel_select evaluates
+// every light and adds exactly 0 for one out of range (the tiled loop, whose lights were culled
+// against the tile and mostly reach the pixel: no branch). Adding +0 leaves the sum bit-identical to
+// skipping the light (light colours are finite and >= 0; the select, not a multiply, keeps an Inf
+// or NaN of an out-of-range light out of the sum), so every shading pass sums bit-identically.
 
 struct PgShade {
     vec3 diffuse;
@@ -23,31 +28,63 @@ float pg_light_inv_r2(float R2)
     return min(1.0 / R2, 3.40282347e+38);
 }
 
-// One light, as the inner loops read it: rel = its centre camera-relative (world - cam), R2 = R^2,
-// inv_r2 = pg_light_inv_r2(R2). P camera-relative; md2 = dmin^2, inv_md2 = 1 / dmin^2.
-void pg_accumulate_light_rel(vec3 rel, float R2, float inv_r2, vec3 color, vec3 P, vec3 N, vec3 V,
-                             float shininess, float md2, float inv_md2, inout PgShade acc)
+// The diffuse weight max(dot(N, L), 0) * att of a light at Ld = light - P (d2 = |Ld|^2 < R^2 for a
+// meaningful value), and its attenuation att and direction L (for Blinn-Phong).
+float pg_light_term(vec3 Ld, float d2, float inv_r2, vec3 N, float inv_md2, out float att, out vec3 L)
 {
-    vec3 Ld = rel - P;
-    float d2 = dot(Ld, Ld);
-    if (!(d2 < R2)) return;               // outside range (and R = 0, and NaN)
     float t = d2 * inv_r2;                // (d/R)^2
     float falloff = clamp(1.0 - t * t, 0.0, 1.0);
     float rs = inversesqrt(d2);           // 1/d: +Inf at d = 0 (or d^2 flushed to 0)
     bool dir = rs <= 3.40282347e+38;      // false: the light is on the point, taken as head-on (L = N)
-    float att = falloff * (d2 >= md2 ? rs * rs : inv_md2);
+    att = falloff * min(rs * rs, inv_md2);
 #ifdef PG_BLINN_PHONG
-    vec3 L = dir ? Ld * rs : N;
+    L = dir ? Ld * rs : N;
     float ndl = max(dot(N, L), 0.0);
 #else
+    L = N;                                // unused
     float ndl = dir ? max(dot(N, Ld) * rs, 0.0) : max(dot(N, N), 0.0);
 #endif
-    acc.diffuse += color * (ndl * att);
+    return ndl * att;
+}
+
+void pg_light_specular(vec3 color, float att, vec3 L, vec3 N, vec3 V, float shininess, inout PgShade acc)
+{
 #ifdef PG_BLINN_PHONG
-    if (ndl > 0.0) {
+    if (dot(N, L) > 0.0) {
         vec3 H = normalize(L + V);
         acc.specular += color * (pow(max(dot(N, H), 0.0), shininess) * att);
     }
+#endif
+}
+
+// One light, as the inner loops read it: rel = its centre camera-relative (world - cam), R2 = R^2,
+// inv_r2 = pg_light_inv_r2(R2). P camera-relative; inv_md2 = 1 / dmin^2.
+void pg_accumulate_light_rel(vec3 rel, float R2, float inv_r2, vec3 color, vec3 P, vec3 N, vec3 V,
+                             float shininess, float inv_md2, inout PgShade acc)
+{
+    vec3 Ld = rel - P;
+    float d2 = dot(Ld, Ld);
+    if (!(d2 < R2)) return;               // outside range (and R = 0, and NaN)
+    float att;
+    vec3 L;
+    float w = pg_light_term(Ld, d2, inv_r2, N, inv_md2, att, L);
+    acc.diffuse += color * w;
+    pg_light_specular(color, att, L, N, V, shininess, acc);
+}
+
+// The same sum without a branch: a light out of range adds exactly 0.
+void pg_accumulate_light_rel_select(vec3 rel, float R2, float inv_r2, vec3 color, vec3 P, vec3 N, vec3 V,
+                                    float shininess, float inv_md2, inout PgShade acc)
+{
+    vec3 Ld = rel - P;
+    float d2 = dot(Ld, Ld);
+    bool in_range = d2 < R2;              // false outside range (and for R = 0, and NaN)
+    float att;
+    vec3 L;
+    float w = pg_light_term(Ld, d2, inv_r2, N, inv_md2, att, L);
+    acc.diffuse += color * (in_range ? w : 0.0);
+#ifdef PG_BLINN_PHONG
+    if (in_range) pg_light_specular(color, att, L, N, V, shininess, acc);
 #endif
 }
 
@@ -59,7 +96,7 @@ void pg_accumulate_light(Light light, vec3 cam, vec3 P, vec3 N, vec3 V, float sh
     float R2 = R * R;
     float md2 = min_dist * min_dist;
     pg_accumulate_light_rel(light.pos_radius.xyz - cam, R2, pg_light_inv_r2(R2), light.color.rgb, P, N, V,
-                            shininess, md2, 1.0 / md2, acc);
+                            shininess, 1.0 / md2, acc);
 }
 
 // The colour of a shaded point from its summed light terms: every shading pass ends with this

@@ -130,8 +130,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
     vec3 V = lit ? PG_VIEW_DIR(P) : vec3(0.0, 0.0, 1.0);
     vec3 cam = frame.camera_pos.xyz;
     float min_dist = frame.light_params.w;
-    float md2 = min_dist * min_dist;
-    float inv_md2 = 1.0 / md2;
+    float inv_md2 = 1.0 / (min_dist * min_dist);
     PgShade acc;
     acc.diffuse = vec3(0.0);
     acc.specular = vec3(0.0);
@@ -212,7 +211,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                 for (uint j = 0u; j < total; j++) {
                     vec4 a = s_tl_light[2u * j];
                     vec4 b = s_tl_light[2u * j + 1u];
-                    pg_accumulate_light_rel(a.xyz, b.w, a.w, b.rgb, P, s.normal, V, s.shininess, md2, inv_md2, acc);
+                    pg_accumulate_light_rel_select(a.xyz, b.w, a.w, b.rgb, P, s.normal, V, s.shininess, inv_md2, acc);
                 }
             }
             barrier();   // before the next chunk overwrites the shared lights and counts

@@ -946,8 +946,9 @@ static void test_clusters(void)
 /* 5. attenuation                                                                             */
 
 /* shaders/lighting.glsl pg_accumulate_light_rel's attenuation, float, same order: (d/R)^2 as
- * d^2 * (1/R^2) (1/R^2 capped at FLT_MAX, pg_light_inv_r2), 1/max(d^2, dmin^2) as (1/d)^2 from
- * one inverse square root (here 1/sqrtf: a GPU's inversesqrt is within a few ulp of it) */
+ * d^2 * (1/R^2) (1/R^2 capped at FLT_MAX, pg_light_inv_r2), 1/max(d^2, dmin^2) as
+ * min((1/d)^2, 1/dmin^2) from one inverse square root (here 1/sqrtf: a GPU's inversesqrt is
+ * within a few ulp of it) */
 static float att_float(const float L[3], const float P[3], float R, float min_dist)
 {
     float Ld[3] = {L[0] - P[0], L[1] - P[1], L[2] - P[2]};
@@ -960,8 +961,8 @@ static float att_float(const float L[3], const float P[3], float R, float min_di
     float falloff = 1.0f - t * t;
     falloff = falloff > 0.0f ? (falloff < 1.0f ? falloff : 1.0f) : 0.0f;
     float rs = 1.0f / sqrtf(d2);
-    float md2 = min_dist * min_dist;
-    return falloff * (d2 >= md2 ? rs * rs : 1.0f / md2);
+    float inv_md2 = 1.0f / (min_dist * min_dist);
+    return falloff * (rs * rs < inv_md2 ? rs * rs : inv_md2);
 }
 static double att_double(const float L[3], const float P[3], float R, float min_dist,
                          double *falloff_out, double *denom_out)

@@ -17,6 +17,22 @@
 #          before it (.bundle/old: square root and three divisions), visibility and deferred_oct16
 #          at 1000, 5000, 100000 and 1000000 lights, forward_plus at 1000 and 5000, alternated
 #          twice; and the new model's image against naive (compare) at 1000 lights
+#   var    item 3: variants of the light loop as data folders (.bundle/var/NAME: the final bundle's
+#          shaders with experiment defines), visibility and deferred_oct16 at 5000, 100000 and
+#          1000000 lights, alternated twice
+#   ppt    item 3: tile_pixels=1,2 (final bundle) against the bundle before it (.bundle/old),
+#          visibility and deferred_oct16 at 1000, 5000, 100000 and 1000000 lights, alternated twice
+#   gridz  item 3: depth slices grid_z=24,32,48,64 (final bundle), visibility and deferred_oct16
+#          at 5000, 100000 and 1000000 lights, forward_plus at 5000, alternated twice
+#   sel    item 3: the branch-free light term in the tiled loop and grid_z=24,32 (final bundle)
+#          against the bundle before it (.bundle/old), visibility and deferred_oct16 at 1000, 5000,
+#          100000, 1000000 lights, forward_plus at 1000 and 5000, alternated twice; the tiled loop
+#          against the per-pixel one (compare) at 100000 lights
+#   orig   item 3 before/after: the final bundle's binary with the shaders and pipelines of commit
+#          49cd181 (.bundle/orig, the light loop before issue 13's item 3 work) against the final
+#          bundle, visibility and deferred_oct16 at 1000, 5000, 100000, 1000000 lights,
+#          forward_plus at 1000 and 5000, alternated twice; the tiled loop against the per-pixel
+#          loop (compare) and a --validation render at 100000 lights
 #   pos    the visibility pass with its position-only vertex shader (final bundle) against the
 #          bundle before it (.bundle/old), 1000 and 5000 lights, alternated twice
 #   disp   display_ocio as a compute pass against the full-screen fragment pass
@@ -42,7 +58,8 @@ summary() { # CSV -> one line per row
 import csv,sys
 for r in csv.DictReader(open(sys.argv[1])):
     ps={k[5:-10]:r[k] for k in r if k.startswith('pass_') and k.endswith('_ms_median') and r[k]}
-    print(r['pipeline'], r['variant'], r['lights'], r['status'], 'gpu', r['gpu_ms_median'], 'rmse', r['rmse_linear'], ps)
+    print(r['pipeline'], r['variant'], r['lights'], r['status'], 'gpu', r['gpu_ms_median'], 'rmse', r['rmse_linear'], ps,
+          'refs', r.get('light_refs'), 'dropped', r.get('overflow_dropped'))
 PY
 }
 B="--size 1920x1080 --scene $S --scenario $SC --quiet"
@@ -122,6 +139,84 @@ case " $STEPS " in *" model "*)
       timeout 100 .bundle/$side/passgraph bench $B --pipelines $P/forward_plus.json \
         --lights 1000,5000 --reference-max-lights 0 --warmup 1 --frames 5 --out $OUT/modelf_${side}_$round > $OUT/logs/modelf.log 2>&1
       echo "model fplus round $round $side rc=$?"; summary $OUT/modelf_${side}_$round/results.csv
+    done
+  done
+  ;; esac
+case " $STEPS " in *" var "*)
+  for round in 1 2; do
+    for v in $(ls .bundle/var); do
+      D=.bundle/var/$v
+      PASSGRAPH_DATA_DIR=$D timeout 200 $F/passgraph bench $B --pipelines $D/pipelines/visibility.json,$D/pipelines/deferred_oct16.json \
+        ${VAR_ARGS:-} --lights 5000,100000,1000000 --reference-max-lights 0 --warmup 2 --frames 10 --out $OUT/var_${v}_$round > $OUT/logs/var.log 2>&1
+      echo "var round $round $v rc=$?"; summary $OUT/var_${v}_$round/results.csv
+    done
+  done
+  ;; esac
+case " $STEPS " in *" ppt "*)
+  for round in 1 2; do
+    P=.bundle/old/share/passgraph/pipelines
+    timeout 200 .bundle/old/passgraph bench $B --pipelines $P/visibility.json,$P/deferred_oct16.json \
+      --lights 1000,5000,100000,1000000 --reference-max-lights 0 --warmup 2 --frames 10 --out $OUT/ppt_old_$round > $OUT/logs/ppt.log 2>&1
+    echo "ppt round $round old ($(cat .bundle/old/COMMIT)) rc=$?"; summary $OUT/ppt_old_$round/results.csv
+    P=$SH/pipelines
+    timeout 300 $F/passgraph bench $B --pipelines $P/visibility.json,$P/deferred_oct16.json --sweep tile_pixels=1,2 \
+      --lights 1000,5000,100000,1000000 --reference-max-lights 0 --warmup 2 --frames 10 --out $OUT/ppt_new_$round > $OUT/logs/ppt.log 2>&1
+    echo "ppt round $round new ($(cat $F/COMMIT)) rc=$?"; summary $OUT/ppt_new_$round/results.csv
+  done
+  for pl in visibility deferred_oct16; do
+    timeout 120 $F/passgraph compare $B --lights 100000 --pipeline $SH/pipelines/$pl.json --reference $SH/pipelines/$pl.json \
+      --pipeline-set tile_pixels=2 --reference-set tile_pixels=1 --frames 1 > $OUT/logs/pc.log 2>&1
+    echo "compare $pl tile_pixels 2 vs 1 rc=$?"; tail -1 $OUT/logs/pc.log | cut -c1-200
+    timeout 120 $F/passgraph render --validation $B --lights 5000 --pipeline $SH/pipelines/$pl.json --frames 2 --out /tmp/v.png > $OUT/logs/pv.log 2>&1
+    echo "validation $pl rc=$?"; grep "^render:" $OUT/logs/pv.log | cut -c1-200
+  done
+  ;; esac
+case " $STEPS " in *" gridz "*)
+  P=$SH/pipelines
+  for round in 1 2; do
+    timeout 300 $F/passgraph bench $B --pipelines $P/visibility.json,$P/deferred_oct16.json --sweep grid_z=24,32,48,64 \
+      --lights 5000,100000,1000000 --reference-max-lights 0 --warmup 2 --frames 10 --out $OUT/gridz_$round > $OUT/logs/gz.log 2>&1
+    echo "gridz round $round rc=$?"; summary $OUT/gridz_$round/results.csv
+  done
+  timeout 200 $F/passgraph bench $B --pipelines $P/forward_plus.json --sweep grid_z=24,32,48,64 \
+    --lights 5000 --reference-max-lights 0 --warmup 1 --frames 5 --out $OUT/gridzf > $OUT/logs/gzf.log 2>&1
+  echo "gridz forward_plus rc=$?"; summary $OUT/gridzf/results.csv
+  ;; esac
+case " $STEPS " in *" sel "*)
+  for pl in visibility deferred_oct16; do
+    timeout 120 $F/passgraph compare $B --lights 100000 --pipeline $SH/pipelines/$pl.json --reference $SH/pipelines/$pl.json \
+      --reference-set tile_lights=false --frames 1 > $OUT/logs/sc.log 2>&1
+    echo "compare $pl tiled vs per-pixel rc=$?"; tail -1 $OUT/logs/sc.log | cut -c1-200
+  done
+  for round in 1 2; do
+    for side in old final; do
+      P=.bundle/$side/share/passgraph/pipelines; SW=""; [ $side = final ] && SW="--sweep grid_z=24,32"
+      timeout 250 .bundle/$side/passgraph bench $B --pipelines $P/visibility.json,$P/deferred_oct16.json $SW \
+        --lights 1000,5000,100000,1000000 --reference-max-lights 0 --warmup 2 --frames 10 --out $OUT/sel_${side}_$round > $OUT/logs/sel.log 2>&1
+      echo "sel round $round $side ($(cat .bundle/$side/COMMIT)) rc=$?"; summary $OUT/sel_${side}_$round/results.csv
+      timeout 150 .bundle/$side/passgraph bench $B --pipelines $P/forward_plus.json $SW \
+        --lights 1000,5000 --reference-max-lights 0 --warmup 1 --frames 5 --out $OUT/self_${side}_$round > $OUT/logs/self.log 2>&1
+      echo "sel fplus round $round $side rc=$?"; summary $OUT/self_${side}_$round/results.csv
+    done
+  done
+  ;; esac
+case " $STEPS " in *" orig "*)
+  for pl in visibility deferred_oct16; do
+    timeout 120 $F/passgraph compare $B --lights 100000 --pipeline $SH/pipelines/$pl.json --reference $SH/pipelines/$pl.json \
+      --reference-set tile_lights=false --frames 1 > $OUT/logs/oc.log 2>&1
+    echo "compare $pl tiled vs per-pixel rc=$?"; tail -1 $OUT/logs/oc.log | cut -c1-200
+    timeout 120 $F/passgraph render --validation $B --lights 100000 --pipeline $SH/pipelines/$pl.json --frames 2 --out /tmp/v.png > $OUT/logs/ov.log 2>&1
+    echo "validation $pl rc=$?"; grep -v "^passgraph: device" $OUT/logs/ov.log | cut -c1-300
+  done
+  for round in 1 2; do
+    for side in orig final; do
+      if [ $side = orig ]; then D=.bundle/orig; else D=$SH; fi
+      PASSGRAPH_DATA_DIR=$D timeout 250 $F/passgraph bench $B --pipelines $D/pipelines/visibility.json,$D/pipelines/deferred_oct16.json \
+        --lights 1000,5000,100000,1000000 --reference-max-lights 0 --warmup 2 --frames 10 --out $OUT/orig_${side}_$round > $OUT/logs/orig.log 2>&1
+      echo "orig round $round $side rc=$?"; summary $OUT/orig_${side}_$round/results.csv
+      PASSGRAPH_DATA_DIR=$D timeout 150 $F/passgraph bench $B --pipelines $D/pipelines/forward_plus.json \
+        --lights 1000,5000 --reference-max-lights 0 --warmup 1 --frames 5 --out $OUT/origf_${side}_$round > $OUT/logs/origf.log 2>&1
+      echo "orig fplus round $round $side rc=$?"; summary $OUT/origf_${side}_$round/results.csv
     done
   done
   ;; esac
