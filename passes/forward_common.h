@@ -14,7 +14,8 @@ typedef struct pg_forward_pass {
     pg_scene_draw draw;
 } pg_forward_pass;
 
-/* prepass: the depth slot is depth_rmw, loaded and tested EQUAL without writes (pg_scene_draw_desc.depth_equal). */
+/* prepass: the depth slot is depth_rmw, loaded (the depth_prepass pass's biased depth) and tested
+ * LESS with writes, as without pre-pass. */
 pg_result pg_forward_create(pg_forward_pass *p, const pg_pass_create_ctx *ctx, bool clustered, bool prepass,
                             pg_error *err);
 /* update(): the run-time options (pg_shading_runtime_options: ambient) */

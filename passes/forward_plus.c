@@ -5,8 +5,9 @@
  * Slots: reads [lights, cluster_counts, cluster_lights] (storage buffers, fragment);
  *        writes [color, depth].
  * Options: prepass (bool, default false): depth was drawn by a depth_prepass pass before this
- * one; the depth slot is then depth_rmw (loaded; the pipeline tests EQUAL with depth writes off)
- * and the alpha-mask draws are shaded without discard (the pre-pass discarded them).
+ * one (its opaque draws, one depth-bias step farther); the depth slot is then depth_rmw (loaded,
+ * tested LESS and written as without pre-pass), so the fragments behind the nearest surface fail
+ * early and the ones that win are those that win without it (depth_prepass.c says why).
  * shading, ambient, view (every debug view), grid_x/y/z (must match the
  * cluster_assign pass and the buffer sizes; the shared fragment pipelines/fragments/clusters.json
  * wires all three from the same parameters). */
@@ -29,8 +30,8 @@ static pg_result fp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
                   PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
     pg_scene_draw_declare_features(in, out);
     if (prepass)
-        pg_decl_explain(out, "prepass: depth tested EQUAL against the depth_prepass pass, no depth write, no discard "
-                             "variant");
+        pg_decl_explain(out, "prepass: depth loaded from the depth_prepass pass (one bias step farther) and tested "
+                             "LESS with writes: fragments behind the nearest opaque surface are not shaded");
     pg_shading_declare(&o, in, out, true, 0, 1);
     return PG_OK;
 }

@@ -15,7 +15,7 @@ typedef struct pg_scene_draw {
     VkPipeline opaque, masked;
     float ambient;                    /* pushed with each draw's material (DrawPush.ambient) */
     bool vertex_colors, uv1;          /* the pipelines read vertex streams 1 / 2 (PG_VERTEX_COLORS, PG_UV1) */
-    bool depth_equal;                 /* desc.depth_equal: alpha-mask draws use `opaque` too */
+    bool opaque_only;                 /* desc.opaque_only: the alpha-mask draws are not drawn */
     bool push_draw_key;               /* the visibility pass: DrawPush's second word is
                                        * draw index << draw_key_shift instead of the ambient */
     uint32_t draw_key_shift;
@@ -32,10 +32,10 @@ typedef struct pg_scene_draw_desc {
     bool blend;                       /* the pipeline for the BLEND draws (forward_transparent):
                                        * "over" blending, depth test without depth write, no
                                        * alpha-mask pipeline */
-    bool depth_equal;                 /* shading after a depth pre-pass (depth_prepass.c): depth
-                                       * test EQUAL without depth write, and no alpha-mask pipeline
-                                       * (the pre-pass discarded; the masked draws are shaded with
-                                       * the opaque pipeline, where only their kept fragments pass) */
+    bool opaque_only;                 /* draw only the opaque draws, no alpha-mask pipeline (the
+                                       * depth pre-pass: the shading pass draws the masked ones) */
+    float depth_bias_constant;        /* depth bias of the pipelines (both 0: none) */
+    float depth_bias_slope;
 } pg_scene_draw_desc;
 
 /* Uses ctx->pass->decl.defines (PG_ALPHA_MASK there selects whether the masked pipeline is made)

@@ -64,6 +64,9 @@ pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, con
         .polygonMode = VK_POLYGON_MODE_FILL,
         .cullMode = d->cull,
         .frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE,
+        .depthBiasEnable = d->depth_bias_constant != 0.0f || d->depth_bias_slope != 0.0f,
+        .depthBiasConstantFactor = d->depth_bias_constant,
+        .depthBiasSlopeFactor = d->depth_bias_slope,
         .lineWidth = 1.0f,
     };
     VkPipelineMultisampleStateCreateInfo ms = {.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,

@@ -18,6 +18,8 @@ typedef struct pg_gfx_pipeline_desc {
     VkFormat depth_format;          /* VK_FORMAT_UNDEFINED: none */
     bool depth_test, depth_write;
     VkCompareOp depth_compare;      /* 0 (NEVER) -> LESS */
+    float depth_bias_constant;      /* depth bias (both 0: off): constant * r + slope * max slope */
+    float depth_bias_slope;
     VkCullModeFlags cull;           /* 0 -> none */
     bool dynamic_cull;              /* cull mode set per draw with vkCmdSetCullMode */
     bool scene_vertices;            /* pg_vertex input at binding 0; else no vertex input */
