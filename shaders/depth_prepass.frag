@@ -1,9 +1,8 @@
 #version 460
 // depth_prepass.frag - the fragment stage of the depth pre-pass (passes/depth_prepass.c): no
-// colour output. Opaque draws: empty (depth only). PG_ALPHA_MASK (the masked pipeline, made only
-// when the scene has alpha-mask draws): the same material evaluation as forward/G-buffer
-// (surface.glsl), whose discard is the only effect kept, so the pre-pass depth holds exactly the
-// fragments the shading pass keeps; the shading pass then tests EQUAL and needs no discard.
+// colour output, nothing to compute (the pre-pass draws only the opaque draws; the depth comes
+// from the rasterizer, biased by the pipeline). The scene-draw inputs are declared so that the
+// vertex shader's outputs have a consumer, as in every scene-draw pipeline.
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "surface_inputs.glsl"
@@ -11,7 +10,4 @@ FRAME_UNIFORMS_BLOCK
 
 void main()
 {
-#ifdef PG_ALPHA_MASK
-    Surface s = pg_surface(pg_surface_input());
-#endif
 }
