@@ -80,6 +80,14 @@ static void check_prepass(const pg_scene_gpu *sg, const pg_frame_info *fi, const
     pg_param_override depth_off[2] = {{"prepass", "false"}, {"view", "depth"}};
     pg_th_frame pp, d_on, d_off;
     bool ok = render(sg, "pipelines/forward_plus.json", NULL, 0, fi, &pp);
+#if defined(__SANITIZE_ADDRESS__)
+    /* the sanitizer suite (tools/sanitize.sh) checks memory, not images: the pre-pass runs, the
+     * image checks are the normal suite's */
+    CHECK_MSG(ok, "%s/%s: forward+ with pre-pass renders", dir, file);
+    if (ok) pg_th_release(&pp);
+    (void)fp;
+    return;
+#endif
     ok = render(sg, "pipelines/forward_plus.json", depth_on, 2, fi, &d_on) && ok;
     ok = render(sg, "pipelines/forward_plus.json", depth_off, 2, fi, &d_off) && ok;
     CHECK_MSG(ok, "%s/%s: forward+ with pre-pass renders", dir, file);
