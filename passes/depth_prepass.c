@@ -4,14 +4,14 @@
  * surface: each pixel about once, and exactly the fragments that win without the pre-pass.
  * Why a bias and LESS rather than an EQUAL test: the shading pipeline's depth of a fragment need
  * not be bit-identical to this pipeline's, even with the same vertex shader (llvmpipe interpolates
- * depth in code generated per pipeline: a few ulp apart on some pixels), and EQUAL lets the last
+ * depth in code generated per pipeline: not bit-identical on some pixels), and EQUAL lets the last
  * of two coplanar surfaces win where LESS keeps the first. With the bias (PG_PREPASS_BIAS_*: 16
  * units of the depth's last bit plus one pixel's depth slope, far above that rounding) every
  * fragment that wins without the pre-pass passes the loaded depth; the ones that pass and lose
  * are overwritten as without it (depth written, LESS), so the image is the one without pre-pass.
  * The vertex path is the scene-draw one every raster pass uses (scene_draw.c: scene.vert with the
- * same defines, `precise gl_Position`, the same per-draw cull mode). The alpha-mask draws are not
- * drawn here: the shading pass draws them with their discard as without pre-pass (a discard here
+ * same surface defines, `precise gl_Position`, the same per-draw cull mode). The alpha-mask draws are not
+ * drawn here (the pass declares no PG_ALPHA_MASK, so scene_draw makes no masked pipeline): the shading pass draws them with their discard as without pre-pass (a discard here
  * and one there may disagree on a texel at the alpha cutoff, and a pre-pass depth kept from a
  * texel the shading pass discards would leave a hole). BLEND draws are not drawn either
  * (forward_transparent draws them later against the depth without writing it).
@@ -33,7 +33,7 @@ static pg_result dp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     pg_result r;
     if ((r = pg_opt_check_known(in->desc, known, err))) return r;
     pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
-    pg_scene_draw_declare_features(in, out);
+    pg_scene_draw_declare_vertex_features(in, out);
     if (in->features.has_alpha_mask)
         pg_decl_explain(out, "alpha-mask draws left out of the depth pre-pass: the shading pass draws them with "
                              "their discard");
@@ -47,7 +47,6 @@ static pg_result dp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
         .fragment_shader = "depth_prepass.frag",
         .n_color = 0,
         .depth_format = ctx->slots[0]->format,
-        .opaque_only = true,
         .depth_bias_constant = PG_PREPASS_BIAS_CONSTANT,
         .depth_bias_slope = PG_PREPASS_BIAS_SLOPE,
     };

@@ -63,8 +63,7 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     };
     memcpy(gd.color_formats, d->color_formats, sizeof gd.color_formats);
     if ((r = pg_gfx_pipeline_create(gpu, &gd, pass->name, &out->opaque, err))) goto out;
-    out->opaque_only = d->opaque_only;
-    if (has_mask && !d->blend && !d->opaque_only && ctx->scene->n_draws - ctx->scene->n_blend_draws > ctx->scene->n_opaque_draws) {
+    if (has_mask && !d->blend && ctx->scene->n_draws - ctx->scene->n_blend_draws > ctx->scene->n_opaque_draws) {
         defs[n++] = "PG_ALPHA_MASK";
         if ((r = pg_shader_module(gpu, d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, &fs_mask, err)))
             goto out;
@@ -129,7 +128,7 @@ void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx
     for (uint32_t i = 0; i < sc->n_draws - sc->n_blend_draws; i++) { /* BLEND: the transparent pass */
         const pg_draw *d = &sc->draws[i];
         if (i == sc->n_opaque_draws) {
-            if (!sd->masked || sd->opaque_only) break;
+            if (!sd->masked) break; /* the pass declared no PG_ALPHA_MASK (e.g. depth_prepass) */
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sd->masked);
             cull = ~0u;
         }
@@ -155,6 +154,11 @@ void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out)
 {
     if (in->features.has_alpha_mask) pg_decl_define(out, "PG_ALPHA_MASK");
     else pg_decl_explain(out, "no alpha-mask materials: alpha-test (discard) variant not compiled");
+    pg_scene_draw_declare_vertex_features(in, out);
+}
+
+void pg_scene_draw_declare_vertex_features(const pg_declare_in *in, pg_pass_decl *out)
+{
     if (in->features.has_normal_maps) pg_decl_define(out, "PG_NORMAL_MAPS");
     else pg_decl_explain(out, "no normal maps: tangent-space normal path compiled out");
     if (in->features.has_emissive) pg_decl_define(out, "PG_EMISSIVE");

@@ -15,7 +15,6 @@ typedef struct pg_scene_draw {
     VkPipeline opaque, masked;
     float ambient;                    /* pushed with each draw's material (DrawPush.ambient) */
     bool vertex_colors, uv1;          /* the pipelines read vertex streams 1 / 2 (PG_VERTEX_COLORS, PG_UV1) */
-    bool opaque_only;                 /* desc.opaque_only: the alpha-mask draws are not drawn */
     bool push_draw_key;               /* the visibility pass: DrawPush's second word is
                                        * draw index << draw_key_shift instead of the ambient */
     uint32_t draw_key_shift;
@@ -32,8 +31,6 @@ typedef struct pg_scene_draw_desc {
     bool blend;                       /* the pipeline for the BLEND draws (forward_transparent):
                                        * "over" blending, depth test without depth write, no
                                        * alpha-mask pipeline */
-    bool opaque_only;                 /* draw only the opaque draws, no alpha-mask pipeline (the
-                                       * depth pre-pass: the shading pass draws the masked ones) */
     float depth_bias_constant;        /* depth bias of the pipelines (both 0: none) */
     float depth_bias_slope;
 } pg_scene_draw_desc;
@@ -54,5 +51,8 @@ void pg_scene_draw_destroy(pg_gpu *gpu, pg_scene_draw *sd);
 /* declare(): the surface variant the scene needs (PG_ALPHA_MASK, PG_NORMAL_MAPS, PG_EMISSIVE,
  * PG_VERTEX_COLORS, PG_UV1, PG_UV_TRANSFORM) and, for what it lacks, why that path is left out. */
 void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out);
+/* The same without the alpha-mask variant: the defines that shape the vertex path and the surface
+ * (for a pass that draws no alpha-mask draws but must run the same vertex shader). */
+void pg_scene_draw_declare_vertex_features(const pg_declare_in *in, pg_pass_decl *out);
 
 #endif

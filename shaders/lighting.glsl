@@ -47,6 +47,7 @@ float pg_light_term(vec3 Ld, float d2, float inv_r2, vec3 N, float inv_md2, out 
     return ndl * att;
 }
 
+// Blinn-Phong's term of the light (nothing for Lambert).
 void pg_light_specular(vec3 color, float att, vec3 L, vec3 N, vec3 V, float shininess, inout PgShade acc)
 {
 #ifdef PG_BLINN_PHONG
@@ -83,9 +84,7 @@ void pg_accumulate_light_rel_select(vec3 rel, float R2, float inv_r2, vec3 color
     vec3 L;
     float w = pg_light_term(Ld, d2, inv_r2, N, inv_md2, att, L);
     acc.diffuse += color * (in_range ? w : 0.0);
-#ifdef PG_BLINN_PHONG
     if (in_range) pg_light_specular(color, att, L, N, V, shininess, acc);
-#endif
 }
 
 // P is camera-relative (world - cam); the light is moved into the same frame first.

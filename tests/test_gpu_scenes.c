@@ -68,8 +68,8 @@ static char g_worst_scene[3][96];
  * reject other fragments, changes a 2x2 quad's texture derivatives (forcing the late depth test
  * in forward.frag makes them byte-identical again: README "Depth pre-pass"): at most
  * PREPASS_LOD_PIXELS of the pixels, each within PREPASS_LOD_REL of the peak. */
-#define PREPASS_LOD_PIXELS 0.005
-#define PREPASS_LOD_REL 0.01
+#define PREPASS_LOD_PIXELS 0.001
+#define PREPASS_LOD_REL 0.002
 static uint32_t g_prepass_differ_scenes;
 static double g_prepass_worst_frac;
 
