@@ -1,21 +1,32 @@
-/* depth_prepass.c - draws the opaque draws of the scene into depth only, one depth-bias step
- * farther than they are, so that the shading pass after it (forward_plus with option prepass:
- * depth loaded, tested LESS and written) shades only the fragments at or in front of the nearest
- * surface: each pixel about once, and exactly the fragments that win without the pre-pass.
- * Why a bias and LESS rather than an EQUAL test: the shading pipeline's depth of a fragment need
- * not be bit-identical to this pipeline's, even with the same vertex shader (llvmpipe interpolates
- * depth in code generated per pipeline: not bit-identical on some pixels), and EQUAL lets the last
- * of two coplanar surfaces win where LESS keeps the first. With the bias (PG_PREPASS_BIAS_*: 16
- * units of the depth's last bit plus one pixel's depth slope, far above that rounding) every
- * fragment that wins without the pre-pass passes the loaded depth; the ones that pass and lose
- * are overwritten as without it (depth written, LESS), so the image is the one without pre-pass.
- * The vertex path is the scene-draw one every raster pass uses (scene_draw.c: scene.vert with the
- * same surface defines, `precise gl_Position`, the same per-draw cull mode). The alpha-mask draws are not
- * drawn here (the pass declares no PG_ALPHA_MASK, so scene_draw makes no masked pipeline): the shading pass draws them with their discard as without pre-pass (a discard here
- * and one there may disagree on a texel at the alpha cutoff, and a pre-pass depth kept from a
- * texel the shading pass discards would leave a hole). BLEND draws are not drawn either
- * (forward_transparent draws them later against the depth without writing it).
- * Slots: writes [depth] (cleared to 1, then tested LESS and written). No options. */
+/* depth_prepass.c - draws the scene's depth only, before a shading pass (forward_plus with
+ * option prepass) that then shades each pixel about once. Two ways, option `test`:
+ *
+ * "less" (default, exact): the opaque draws, one depth-bias step farther than they are; the
+ * shading pass loads that depth and tests LESS with writes, as without pre-pass. Every fragment
+ * that wins without the pre-pass passes the biased depth; the ones that pass and lose are
+ * overwritten as without it, so the same fragments win. Why a bias and not EQUAL: the shading
+ * pipeline's depth of a fragment need not be bit-identical to this pipeline's, even with the same
+ * vertex shader (llvmpipe interpolates depth in code generated per pipeline), and EQUAL lets the
+ * last of two coplanar surfaces win where LESS keeps the first. The bias (PG_PREPASS_BIAS_*: 16
+ * units of the depth's last bit plus one pixel's depth slope) is far above that rounding. The
+ * alpha-mask draws are not drawn here (the pass declares no PG_ALPHA_MASK, so scene_draw makes no
+ * masked pipeline): the shading pass draws them with their discard (a discard here and one there
+ * may disagree on a texel at the cutoff, and a depth kept from a texel the shading pass discards
+ * would leave a hole).
+ *
+ * "equal" (an approximation knob, the classic pre-pass): the opaque and alpha-mask draws without
+ * bias, the alpha-mask ones with their discard (depth_prepass.frag with PG_ALPHA_MASK: the same
+ * material evaluation as the shading passes, only the discard kept); the shading pass tests EQUAL
+ * without writes and draws the alpha-mask draws without discard, so this pass alone decides
+ * coverage and the masked draws get early depth tests too. Its error against the pipeline
+ * without pre-pass (pixels whose depth the two pipelines round differently, the last of coplanar
+ * surfaces winning, derivatives at the alpha cutoff) is measured by tests/test_gpu_prepass.c.
+ *
+ * Both: the vertex path is the scene-draw one every raster pass uses (scene_draw.c: scene.vert
+ * with the same surface defines, `precise gl_Position`, the same per-draw cull mode). BLEND draws
+ * are not drawn (forward_transparent draws them later against the depth without writing it).
+ * Slots: writes [depth] (cleared to 1, then tested LESS and written). Options: test ("less",
+ * "equal"; must match the shading pass's prepass_test). */
 #include "scene_draw.h"
 
 /* The depth bias of the pre-pass (Vulkan: constant * 2^(e - 23) for a float depth whose largest
@@ -27,28 +38,41 @@ typedef struct depth_prepass {
     pg_scene_draw draw;
 } depth_prepass;
 
+static const char *const k_dp_tests[] = {"less", "equal", NULL};
+
 static pg_result dp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
-    static const char *const known[] = {NULL};
+    static const char *const known[] = {"test", NULL};
     pg_result r;
+    int test;
     if ((r = pg_opt_check_known(in->desc, known, err))) return r;
+    if ((r = pg_opt_enum(in->desc, "test", k_dp_tests, 0, &test, err))) return r;
     pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
-    pg_scene_draw_declare_vertex_features(in, out);
-    if (in->features.has_alpha_mask)
-        pg_decl_explain(out, "alpha-mask draws left out of the depth pre-pass: the shading pass draws them with "
-                             "their discard");
+    if (test == 1) {
+        pg_scene_draw_declare_features(in, out); /* the alpha-mask draws discard here */
+        pg_decl_explain(out, "test equal: no depth bias; the shading pass tests EQUAL (an approximation: "
+                             "tests/test_gpu_prepass.c measures it)");
+    } else {
+        pg_scene_draw_declare_vertex_features(in, out);
+        if (in->features.has_alpha_mask)
+            pg_decl_explain(out, "alpha-mask draws left out of the depth pre-pass: the shading pass draws them with "
+                                 "their discard");
+    }
     return PG_OK;
 }
 
 static pg_result dp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
     depth_prepass *p = self;
+    int test;
+    pg_result r = pg_opt_enum(ctx->desc, "test", k_dp_tests, 0, &test, err);
+    if (r) return r;
     pg_scene_draw_desc d = {
         .fragment_shader = "depth_prepass.frag",
         .n_color = 0,
         .depth_format = ctx->slots[0]->format,
-        .depth_bias_constant = PG_PREPASS_BIAS_CONSTANT,
-        .depth_bias_slope = PG_PREPASS_BIAS_SLOPE,
+        .depth_bias_constant = test == 0 ? PG_PREPASS_BIAS_CONSTANT : 0.0f,
+        .depth_bias_slope = test == 0 ? PG_PREPASS_BIAS_SLOPE : 0.0f,
     };
     return pg_scene_draw_create(ctx, &d, &p->draw, err);
 }
@@ -69,8 +93,8 @@ static void dp_destroy(void *self, pg_gpu *gpu)
 
 const pg_pass_type pg_pass_depth_prepass = {
     .name = "depth_prepass",
-    .summary = "graphics: depth only of the opaque draws, one depth-bias step farther, for a shading pass that loads "
-               "it and tests LESS",
+    .summary = "graphics: depth only, for a shading pass that loads it: test less (the opaque draws one depth-bias "
+               "step farther, tested LESS) or equal (opaque and alpha-mask draws, tested EQUAL)",
     .read_slots = "",
     .write_slots = "depth",
     .instance_size = sizeof(depth_prepass),

@@ -1,7 +1,7 @@
 #include "forward_common.h"
 
 pg_result pg_forward_create(pg_forward_pass *p, const pg_pass_create_ctx *ctx, bool clustered, bool prepass,
-                            pg_error *err)
+                            bool prepass_equal, pg_error *err)
 {
     p->clustered = clustered;
     p->prepass = prepass;
@@ -9,7 +9,7 @@ pg_result pg_forward_create(pg_forward_pass *p, const pg_pass_create_ctx *ctx, b
     pg_result r;
     if (clustered) {
         pg_shading_opts o;
-        static const char *const extra[] = {"prepass", NULL};
+        static const char *const extra[] = {"prepass", "prepass_test", NULL};
         if ((r = pg_shading_opts_read(ctx->desc, true, extra, &o, err))) return r;
         if ((r = pg_check_cluster_buffers(ctx, &o, 1, err))) return r;
     }
@@ -20,6 +20,7 @@ pg_result pg_forward_create(pg_forward_pass *p, const pg_pass_create_ctx *ctx, b
         .n_color = 1,
         .color_formats = {ctx->slots[n_reads]->format},
         .depth_format = ctx->slots[n_reads + 1]->format,
+        .depth_equal = prepass && prepass_equal,
     };
     if ((r = pg_scene_draw_create(ctx, &d, &p->draw, err))) return r;
     return pg_forward_update(p, ctx->desc, err);

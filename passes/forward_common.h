@@ -14,10 +14,10 @@ typedef struct pg_forward_pass {
     pg_scene_draw draw;
 } pg_forward_pass;
 
-/* prepass: the depth slot is depth_rmw, loaded (the depth_prepass pass's biased depth) and tested
- * LESS with writes, as without pre-pass. */
+/* prepass: the depth slot is depth_rmw, loaded (the depth_prepass pass's depth); tested LESS with
+ * writes as without pre-pass, or with prepass_equal EQUAL without writes (pg_scene_draw_desc.depth_equal). */
 pg_result pg_forward_create(pg_forward_pass *p, const pg_pass_create_ctx *ctx, bool clustered, bool prepass,
-                            pg_error *err);
+                            bool prepass_equal, pg_error *err);
 /* update(): the run-time options (pg_shading_runtime_options: ambient) */
 pg_result pg_forward_update(void *self, const pg_pass_desc *desc, pg_error *err);
 void pg_forward_record(void *self, const pg_pass_record_ctx *ctx);

@@ -22,7 +22,7 @@ static pg_result fn_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
 
 static pg_result fn_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
-    return pg_forward_create(self, ctx, false, false, err);
+    return pg_forward_create(self, ctx, false, false, false, err);
 }
 
 const pg_pass_type pg_pass_forward_naive = {

@@ -5,43 +5,67 @@
  * Slots: reads [lights, cluster_counts, cluster_lights] (storage buffers, fragment);
  *        writes [color, depth].
  * Options: prepass (bool, default false): depth was drawn by a depth_prepass pass before this
- * one (its opaque draws, one depth-bias step farther); the depth slot is then depth_rmw (loaded,
- * tested LESS and written as without pre-pass), so the fragments behind the nearest surface fail
- * early and the ones that win are those that win without it (depth_prepass.c says why).
+ * one; the depth slot is then depth_rmw (loaded). prepass_test (with prepass; must match the
+ * depth_prepass pass's test): "less" (default) - that depth is the opaque draws' one bias step
+ * farther, tested LESS and written as without pre-pass, so the fragments behind the nearest
+ * surface fail early and the ones that win are those that win without it; "equal" - tested EQUAL
+ * without writes, and the alpha-mask draws drawn without discard (the pre-pass discarded them), an
+ * approximation (depth_prepass.c says where it differs).
  * shading, ambient, view (every debug view), grid_x/y/z (must match the
  * cluster_assign pass and the buffer sizes; the shared fragment pipelines/fragments/clusters.json
  * wires all three from the same parameters). */
 #include "forward_common.h"
 
-static const char *const k_fp_options[] = {"prepass", NULL};
+static const char *const k_fp_options[] = {"prepass", "prepass_test", NULL};
+static const char *const k_fp_tests[] = {"less", "equal", NULL};
+
+/* prepass and prepass_test; prepass_test without prepass is refused (it would do nothing). */
+static pg_result fp_prepass_opts(const pg_pass_desc *desc, bool *prepass, bool *equal, pg_error *err)
+{
+    int test;
+    pg_result r = pg_opt_bool(desc, "prepass", false, prepass, err);
+    if (!r) r = pg_opt_enum(desc, "prepass_test", k_fp_tests, 0, &test, err);
+    if (r) return r;
+    *equal = test == 1;
+    if (*equal && !*prepass)
+        return pg_fail(err, PG_ERR_SCHEMA, "%s: %s.options.prepass_test: \"equal\" needs prepass true", desc->file,
+                       desc->json_path);
+    return PG_OK;
+}
 
 static pg_result fp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
     pg_shading_opts o;
     pg_result r = pg_shading_opts_read(in->desc, true, k_fp_options, &o, err);
     if (r) return r;
-    bool prepass;
-    if ((r = pg_opt_bool(in->desc, "prepass", false, &prepass, err))) return r;
+    bool prepass, equal;
+    if ((r = fp_prepass_opts(in->desc, &prepass, &equal, err))) return r;
     pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
     pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
     pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
     pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
     pg_decl_write(out, "depth", PG_RES_IMAGE, prepass ? PG_ACCESS_DEPTH_RMW : PG_ACCESS_DEPTH_WRITE,
                   PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
-    pg_scene_draw_declare_features(in, out);
-    if (prepass)
-        pg_decl_explain(out, "prepass: depth loaded from the depth_prepass pass (one bias step farther) and tested "
-                             "LESS with writes: fragments behind the nearest opaque surface are not shaded");
+    if (equal) {
+        pg_scene_draw_declare_vertex_features(in, out); /* no discard: the pre-pass decided coverage */
+        pg_decl_explain(out, "prepass_test equal: depth loaded from the depth_prepass pass and tested EQUAL without "
+                             "writes; alpha-mask draws shaded without discard (the pre-pass discarded them)");
+    } else {
+        pg_scene_draw_declare_features(in, out);
+        if (prepass)
+            pg_decl_explain(out, "prepass: depth loaded from the depth_prepass pass (one bias step farther) and "
+                                 "tested LESS with writes: fragments behind the nearest opaque surface are not shaded");
+    }
     pg_shading_declare(&o, in, out, true, 0, 1);
     return PG_OK;
 }
 
 static pg_result fp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
-    bool prepass;
-    pg_result r = pg_opt_bool(ctx->desc, "prepass", false, &prepass, err);
+    bool prepass, equal;
+    pg_result r = fp_prepass_opts(ctx->desc, &prepass, &equal, err);
     if (r) return r;
-    return pg_forward_create(self, ctx, true, prepass, err);
+    return pg_forward_create(self, ctx, true, prepass, equal, err);
 }
 
 const pg_pass_type pg_pass_forward_plus = {

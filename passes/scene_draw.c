@@ -52,7 +52,8 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
         .n_color = d->n_color,
         .depth_format = d->depth_format,
         .depth_test = true,
-        .depth_write = !d->blend,
+        .depth_write = !d->blend && !d->depth_equal,
+        .depth_compare = d->depth_equal ? VK_COMPARE_OP_EQUAL : 0,
         .depth_bias_constant = d->depth_bias_constant,
         .depth_bias_slope = d->depth_bias_slope,
         .dynamic_cull = true,
@@ -63,7 +64,8 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     };
     memcpy(gd.color_formats, d->color_formats, sizeof gd.color_formats);
     if ((r = pg_gfx_pipeline_create(gpu, &gd, pass->name, &out->opaque, err))) goto out;
-    if (has_mask && !d->blend && ctx->scene->n_draws - ctx->scene->n_blend_draws > ctx->scene->n_opaque_draws) {
+    out->depth_equal = d->depth_equal;
+    if (has_mask && !d->blend && !d->depth_equal && ctx->scene->n_draws - ctx->scene->n_blend_draws > ctx->scene->n_opaque_draws) {
         defs[n++] = "PG_ALPHA_MASK";
         if ((r = pg_shader_module(gpu, d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, &fs_mask, err)))
             goto out;
@@ -127,8 +129,8 @@ void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx
     VkCullModeFlags cull = ~0u;
     for (uint32_t i = 0; i < sc->n_draws - sc->n_blend_draws; i++) { /* BLEND: the transparent pass */
         const pg_draw *d = &sc->draws[i];
-        if (i == sc->n_opaque_draws) {
-            if (!sd->masked) break; /* the pass declared no PG_ALPHA_MASK (e.g. depth_prepass) */
+        if (i == sc->n_opaque_draws && !sd->depth_equal) { /* depth_equal: the opaque pipeline, no discard */
+            if (!sd->masked) break; /* the pass declared no PG_ALPHA_MASK (e.g. depth_prepass, test less) */
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sd->masked);
             cull = ~0u;
         }

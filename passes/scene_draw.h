@@ -15,6 +15,7 @@ typedef struct pg_scene_draw {
     VkPipeline opaque, masked;
     float ambient;                    /* pushed with each draw's material (DrawPush.ambient) */
     bool vertex_colors, uv1;          /* the pipelines read vertex streams 1 / 2 (PG_VERTEX_COLORS, PG_UV1) */
+    bool depth_equal;                 /* pg_scene_draw_desc.depth_equal */
     bool push_draw_key;               /* the visibility pass: DrawPush's second word is
                                        * draw index << draw_key_shift instead of the ambient */
     uint32_t draw_key_shift;
@@ -31,6 +32,10 @@ typedef struct pg_scene_draw_desc {
     bool blend;                       /* the pipeline for the BLEND draws (forward_transparent):
                                        * "over" blending, depth test without depth write, no
                                        * alpha-mask pipeline */
+    bool depth_equal;                 /* the shading pass after an EQUAL-test depth pre-pass: depth
+                                       * tested EQUAL without writes, and the alpha-mask draws drawn
+                                       * with the opaque pipeline (the pre-pass discarded them; no
+                                       * masked pipeline is made) */
     float depth_bias_constant;        /* depth bias of the pipelines (both 0: none) */
     float depth_bias_slope;
 } pg_scene_draw_desc;

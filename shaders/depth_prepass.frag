@@ -1,8 +1,11 @@
 #version 460
 // depth_prepass.frag - the fragment stage of the depth pre-pass (passes/depth_prepass.c): no
-// colour output, nothing to compute (the pre-pass draws only the opaque draws; the depth comes
-// from the rasterizer, biased by the pipeline). The scene-draw inputs are declared so that the
-// vertex shader's outputs have a consumer, as in every scene-draw pipeline.
+// colour output. Opaque draws: empty (the depth comes from the rasterizer). PG_ALPHA_MASK (the
+// masked pipeline, made only with the pass's test "equal" and only when the scene has alpha-mask
+// draws): the same material evaluation as the shading passes (surface.glsl), whose discard is the
+// only effect kept, so the pre-pass depth holds the fragments the shading pass would keep; the
+// shading pass then tests EQUAL and draws those draws without discard. The scene-draw inputs are
+// declared so that the vertex shader's outputs have a consumer, as in every scene-draw pipeline.
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "surface_inputs.glsl"
@@ -10,4 +13,7 @@ FRAME_UNIFORMS_BLOCK
 
 void main()
 {
+#ifdef PG_ALPHA_MASK
+    Surface s = pg_surface(pg_surface_input());
+#endif
 }

@@ -22,7 +22,9 @@
  * the "far:", "overflow:", "lights:" lines) into the test tables of docs/accuracy.md.
  *
  * Also: far from the origin (~1e5) forward+ stays byte-identical, oct16 and packed (positions
- * rebuilt camera-relative from depth) stay within FAR_REL * peak of naive, the float variant's fp32
+ * rebuilt camera-relative from depth) and forward+ with prepass_test=equal (the EQUAL pre-pass
+ * misses a pixel whose depth the two pipelines round differently there) stay within FAR_REL * peak
+ * of naive, the float variant's fp32
  * world positions (quantized to ~0.008 there) within FAR_FLOAT_REL, and the rgba16f position
  * variant fails (most pixels); overflow with an explicit small max_lights is counted,
  * deterministic, and the frame stays finite; 0 lights culls the light animation and cluster
@@ -388,6 +390,7 @@ typedef struct far_variant {
 } far_variant;
 static const far_variant k_far[] = {
     {"forward_plus", "pipelines/forward_plus.json", {0}, 0},
+    {"forward_plus_prepass_equal", "pipelines/forward_plus.json", {"prepass_test", "equal"}, 1},
     {"deferred_float", "pipelines/deferred.json", {0}, 0},
     {"deferred_float_rgba16f_position", "pipelines/deferred.json", {"position_format", "rgba16f"}, 1},
     {"deferred_oct16", "pipelines/deferred_oct16.json", {0}, 0},

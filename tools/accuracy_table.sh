@@ -53,6 +53,7 @@ get() { sed -n "s/.* $1=\([^ ]*\).*/\1/p" <<<"$2" | head -1; }
 label_of() { # the test's variant names -> the tables' names
   case $1 in
     forward_plus) echo "forward+" ;;
+    forward_plus_prepass_equal) echo "forward+, prepass_test=equal" ;;
     deferred_float) echo "deferred float (rgba32f position)" ;;
     deferred_float_rgba16f_position) echo "deferred float, rgba16f position" ;;
     deferred_oct16) echo "deferred oct16" ;;
