@@ -40,6 +40,9 @@
 #          alternated twice
 #   tile   item 3: the tiled light loop against the per-pixel loop (tile_lights=true,false),
 #          visibility and deferred_oct16 at 5000, 100000 and 1000000 lights
+#   eq     item 2: forward_plus with prepass_test=less,equal and prepass=false at 1000, 5000 and
+#          100000 lights, three rounds; prepass=false,true at 1000000 lights; equal and less
+#          against prepass=false (compare) at 1000 and 5000 lights; a --validation render of equal
 #   sweep  item 3: the light loop's knobs on the visibility and deferred_oct16 pipelines
 #          (tile_size 8/16, cluster grid 16x9 / 32x18 / 64x36) at 100000 and 1000000 lights
 # SIZE (default 1920x1080) sets the image size; off the device machine (no NVIDIA driver) the
@@ -130,6 +133,23 @@ case " $STEPS " in *" refine "*)  # needs docs/results/issue13_gpu/refine/light_
   for round in 1 2; do
     run_bench refine_$round final visibility,deferred_oct16 --sweep refine=false,true --lights 1000,5000,100000,1000000 $HI
   done
+  ;; esac
+case " $STEPS " in *" eq "*)
+  run_validation eq_valid --lights 1000 --pipeline $P/forward_plus.json --set prepass_test=equal --frames 2
+  for n in 1000 5000; do
+    for t in less equal; do
+      run_compare eq_${t}_vs_off_$n --lights $n --pipeline $P/forward_plus.json --reference $P/forward_plus.json \
+        --pipeline-set prepass_test=$t --reference-set prepass=false --frames 3
+    done
+  done
+  for round in 1 2 3; do
+    run_bench eq_test_$round final forward_plus --sweep prepass_test=less,equal --lights 1000,5000,100000 \
+      --reference-max-lights 0 --warmup 1 --frames 5
+    run_bench eq_off_$round final forward_plus --set prepass=false --lights 1000,5000,100000 \
+      --reference-max-lights 0 --warmup 1 --frames 5
+  done
+  run_bench eq_1m final forward_plus --sweep prepass=false,true --lights 1000000 --reference-max-lights 0 --warmup 0 \
+    --frames 3
   ;; esac
 case " $STEPS " in *" ab "*)
   for round in 1 2; do
