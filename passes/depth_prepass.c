@@ -38,17 +38,15 @@ typedef struct depth_prepass {
     pg_scene_draw draw;
 } depth_prepass;
 
-static const char *const k_dp_tests[] = {"less", "equal", NULL};
-
 static pg_result dp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
     static const char *const known[] = {"test", NULL};
     pg_result r;
     int test;
     if ((r = pg_opt_check_known(in->desc, known, err))) return r;
-    if ((r = pg_opt_enum(in->desc, "test", k_dp_tests, 0, &test, err))) return r;
+    if ((r = pg_opt_enum(in->desc, "test", pg_prepass_tests, PG_PREPASS_LESS, &test, err))) return r;
     pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
-    if (test == 1) {
+    if (test == PG_PREPASS_EQUAL) {
         pg_scene_draw_declare_features(in, out); /* the alpha-mask draws discard here */
         pg_decl_explain(out, "test equal: no depth bias; the shading pass tests EQUAL (an approximation: "
                              "tests/test_gpu_prepass.c measures it)");
@@ -65,14 +63,14 @@ static pg_result dp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 {
     depth_prepass *p = self;
     int test;
-    pg_result r = pg_opt_enum(ctx->desc, "test", k_dp_tests, 0, &test, err);
+    pg_result r = pg_opt_enum(ctx->desc, "test", pg_prepass_tests, PG_PREPASS_LESS, &test, err);
     if (r) return r;
     pg_scene_draw_desc d = {
         .fragment_shader = "depth_prepass.frag",
         .n_color = 0,
         .depth_format = ctx->slots[0]->format,
-        .depth_bias_constant = test == 0 ? PG_PREPASS_BIAS_CONSTANT : 0.0f,
-        .depth_bias_slope = test == 0 ? PG_PREPASS_BIAS_SLOPE : 0.0f,
+        .depth_bias_constant = test == PG_PREPASS_LESS ? PG_PREPASS_BIAS_CONSTANT : 0.0f,
+        .depth_bias_slope = test == PG_PREPASS_LESS ? PG_PREPASS_BIAS_SLOPE : 0.0f,
     };
     return pg_scene_draw_create(ctx, &d, &p->draw, err);
 }

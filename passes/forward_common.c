@@ -20,7 +20,7 @@ pg_result pg_forward_create(pg_forward_pass *p, const pg_pass_create_ctx *ctx, b
         .n_color = 1,
         .color_formats = {ctx->slots[n_reads]->format},
         .depth_format = ctx->slots[n_reads + 1]->format,
-        .depth_equal = prepass && prepass_equal,
+        .depth_equal = prepass_equal, /* forward_plus refuses it without prepass */
     };
     if ((r = pg_scene_draw_create(ctx, &d, &p->draw, err))) return r;
     return pg_forward_update(p, ctx->desc, err);

@@ -17,16 +17,15 @@
 #include "forward_common.h"
 
 static const char *const k_fp_options[] = {"prepass", "prepass_test", NULL};
-static const char *const k_fp_tests[] = {"less", "equal", NULL};
 
 /* prepass and prepass_test; prepass_test without prepass is refused (it would do nothing). */
 static pg_result fp_prepass_opts(const pg_pass_desc *desc, bool *prepass, bool *equal, pg_error *err)
 {
     int test;
     pg_result r = pg_opt_bool(desc, "prepass", false, prepass, err);
-    if (!r) r = pg_opt_enum(desc, "prepass_test", k_fp_tests, 0, &test, err);
+    if (!r) r = pg_opt_enum(desc, "prepass_test", pg_prepass_tests, PG_PREPASS_LESS, &test, err);
     if (r) return r;
-    *equal = test == 1;
+    *equal = test == PG_PREPASS_EQUAL;
     if (*equal && !*prepass)
         return pg_fail(err, PG_ERR_SCHEMA, "%s: %s.options.prepass_test: \"equal\" needs prepass true", desc->file,
                        desc->json_path);

@@ -152,6 +152,8 @@ void pg_scene_draw_destroy(pg_gpu *gpu, pg_scene_draw *sd)
     memset(sd, 0, sizeof *sd);
 }
 
+const char *const pg_prepass_tests[] = {"less", "equal", NULL};
+
 void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out)
 {
     if (in->features.has_alpha_mask) pg_decl_define(out, "PG_ALPHA_MASK");

@@ -59,5 +59,10 @@ void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out);
 /* The same without the alpha-mask variant: the defines that shape the vertex path and the surface
  * (for a pass that draws no alpha-mask draws but must run the same vertex shader). */
 void pg_scene_draw_declare_vertex_features(const pg_declare_in *in, pg_pass_decl *out);
+/* The depth tests of a depth pre-pass and the shading pass after it (depth_prepass's option test,
+ * forward_plus's prepass_test): index 0 "less" (biased pre-pass, LESS with writes), 1 "equal"
+ * (pg_scene_draw_desc.depth_equal); NULL-terminated for pg_opt_enum. */
+extern const char *const pg_prepass_tests[];
+enum { PG_PREPASS_LESS = 0, PG_PREPASS_EQUAL = 1 };
 
 #endif

@@ -98,6 +98,14 @@ double pg_th_max_abs(const pg_th_frame *a, const pg_th_frame *b, double *ref_pea
     return m;
 }
 
+uint32_t pg_th_differ_pixels(const pg_th_frame *a, const pg_th_frame *b)
+{
+    uint32_t n = 0;
+    for (size_t i = 0; i < (size_t)a->w * a->h * 4; i += 4)
+        if (memcmp(&a->hdr[i], &b->hdr[i], 3 * sizeof(float)) != 0) n++;
+    return n;
+}
+
 void pg_th_bound_usage(const pg_th_frame *a, const pg_th_frame *ref, double peak, double A, double B, double *usage,
                        double *need_a)
 {

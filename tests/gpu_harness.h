@@ -28,6 +28,8 @@ void pg_th_release(pg_th_frame *f);
 bool pg_th_hdr_identical(const pg_th_frame *a, const pg_th_frame *b);
 /* Largest |a-b| over RGB and the largest reference value (for relative bounds). */
 double pg_th_max_abs(const pg_th_frame *a, const pg_th_frame *b, double *ref_peak);
+/* Pixels whose RGB (the converted HDR floats) are not bit-identical. */
+uint32_t pg_th_differ_pixels(const pg_th_frame *a, const pg_th_frame *b);
 
 /* The per-pixel bound |a - ref| <= A |ref| + B peak (accuracy_bounds.h) over RGB: usage = the
  * worst |a - ref| / (A |ref| + B peak) (<= 1: within the bound; 0 when identical), need_a = the

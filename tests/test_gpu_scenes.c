@@ -98,9 +98,7 @@ static void check_prepass(const pg_scene_gpu *sg, const pg_frame_info *fi, const
               file);
     double peak = 0;
     double d = pg_th_max_abs(&pp, fp, &peak);
-    uint32_t differ = 0;
-    for (size_t i = 0; i < (size_t)pp.w * pp.h * 4; i += 4)
-        if (memcmp(&pp.hdr[i], &fp->hdr[i], 3 * sizeof(float)) != 0) differ++;
+    uint32_t differ = pg_th_differ_pixels(&pp, fp);
     double frac = (double)differ / ((double)pp.w * pp.h);
     if (differ) {
         g_prepass_differ_scenes++;
