@@ -10,6 +10,7 @@
 #include "scenario.h"
 #include "scene.h"
 #include "scene_gpu.h"
+#include "default_view.h"
 #include "vk_context.h"
 
 typedef struct pg_app {
@@ -31,19 +32,6 @@ typedef struct pg_app {
     bool object_lights;           /* the intensity is pg_light_setup_object's (it depends on the
                                      light count): no scenario intensity, no --intensity */
 } pg_app;
-
-/* The default camera and light set-up for a scene (before a scenario is applied), README "Scenes":
- *   camera: --camera auto -> pg_camera_frame_object; --camera N|NAME -> that glTF camera
- *   (pg_scene_find_camera / pg_camera_from_scene; unknown: an error); none given:
- *   the built-in atrium ("default") keeps its interior view (pg_camera_default_for_scene), a glTF
- *   with cameras uses its first one (perspective or orthographic), else auto framing. Every glTF is treated as an object: interiors
- *   (Sponza) take a scenario or --camera.
- *   lights: the atrium -> pg_light_setup_default (inside the bounds); a glTF ->
- *   pg_light_setup_object (around the bounds).
- * camera_why / lights_why (may be NULL) get one line each. */
-pg_result pg_app_default_view(const pg_scene *scene, const char *camera_spec, float aspect, uint32_t count,
-                              uint32_t seed, pg_camera *camera, pg_light_setup *lights, char *camera_why,
-                              size_t camera_why_size, char *lights_why, size_t lights_why_size, pg_error *err);
 
 /* with_gpu false: no device (dump/explain-only paths). */
 pg_result pg_app_open(pg_app *app, const pg_cli_common *opt, bool with_gpu, pg_error *err);

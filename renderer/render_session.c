@@ -51,6 +51,13 @@ pg_result pg_session_create(pg_gpu *gpu, const pg_scene_gpu *scene, const pg_ses
     return PG_OK;
 }
 
+/* The runtime's user block: the session's scene, which does not change over the session's life
+ * (one generation). */
+static pg_user_block session_user(const pg_session *s)
+{
+    return (pg_user_block){.data = s->scene, .generation = 1};
+}
+
 /* Compiles pipeline for (light_count, width, height) and sets the plan on the runtime. */
 static pg_result compile_plan(pg_session *s, const pg_pipeline *pipeline, uint32_t light_count, uint32_t width,
                               uint32_t height, pg_graph_plan **out, pg_error *err)
@@ -72,7 +79,7 @@ static pg_result compile_plan(pg_session *s, const pg_pipeline *pipeline, uint32
     if (r) return r;
     if (s->desc.test_edit_plan) s->desc.test_edit_plan(plan, s->desc.test_edit_user);
     if (s->runtime) {
-        r = pg_runtime_set_plan(s->runtime, plan, pipeline, s->scene, width, height, err);
+        r = pg_runtime_set_plan(s->runtime, plan, pipeline, session_user(s), width, height, err);
         if (r) {
             pg_graph_plan_free(plan);
             return r;
@@ -108,7 +115,7 @@ pg_result pg_session_reload(pg_session *s, const char *pipeline_path, const pg_p
         /* a failed set_plan leaves the runtime without a plan: set the old one again */
         pg_error e2 = {0};
         if (s->runtime && !pg_runtime_output_image(s->runtime, 0) &&
-            pg_runtime_set_plan(s->runtime, s->plan, s->pipeline, s->scene, s->width, s->height, &e2)) {
+            pg_runtime_set_plan(s->runtime, s->plan, s->pipeline, session_user(s), s->width, s->height, &e2)) {
             pg_graph_plan_free(s->plan);
             s->plan = NULL; /* the next render compiles again */
         }

@@ -61,6 +61,10 @@ typedef struct pg_scene_gpu {
     uint64_t bytes;
 } pg_scene_gpu;
 
+/* The uploaded scene of a pass's create or record context: the renderer hands its pg_scene_gpu to
+ * the runtime as the user block (pg_runtime_set_plan), which the runtime passes on unread. */
+#define PG_SCENE_OF(ctx) ((const pg_scene_gpu *)(ctx)->user)
+
 pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu **out, pg_error *err);
 void pg_scene_gpu_destroy(pg_gpu *gpu, pg_scene_gpu *sg);
 /* The VkSampler of a glTF sampler state: wrap S/T, mag/min filter, mipmap mode; PG_MIP_NONE

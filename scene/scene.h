@@ -213,7 +213,7 @@ void pg_scene_finalize(pg_scene *scene);
  * min.y + 0.18*size.y, center.z), looking along +X at (max.x, same height, center.z), up +Y,
  * fov_y 60 deg, near = max(0.01, 0.001*diagonal), far = 2*diagonal. For the atrium-like scenes
  * this stands inside the nave looking down its length. The tools use it for the built-in atrium
- * only (tools/app.h pg_app_default_view); loaded glTF get pg_camera_frame_object or a glTF camera. */
+ * only (tools/app.h pg_scene_default_view); loaded glTF get pg_camera_frame_object or a glTF camera. */
 pg_camera pg_camera_default_for_scene(const pg_scene *scene, float aspect);
 
 /* Object framing, the default for loaded glTF without a camera (README "Scenes"): the bounding

@@ -6,9 +6,9 @@
 # memcheck_* tests (valgrind cannot run ASan binaries; ASan covers what they check).
 # docs/robustness.md ("Sanitizers") lists what runs and how long it takes.
 #
-# Usage: tools/sanitize.sh [extra ctest arguments]     (CI: .ci/run calls it with none)
+# Usage: scripts/sanitize.sh [extra ctest arguments]     (CI: .ci/run calls it with none)
 #   PG_SANITIZE_EXCLUDE   ctest -E regex of tests left out (default: none; "" runs everything)
-# Run tools/setup.sh first (it installs the packages; gcc's libasan/libubsan come with it).
+# Run scripts/setup.sh first (it installs the packages; gcc's libasan/libubsan come with it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${PG_ASAN_BUILD_DIR:-build-asan} # inside the checkout (ignored): a /tmp cache from another checkout would clash

@@ -133,7 +133,7 @@ void build_ui(viewer *v)
                     pg_error verr = {0};
                     float aspect = v->win.extent.height ? (float)v->win.extent.width / (float)v->win.extent.height
                                                         : 16.0f / 9;
-                    if (pg_app_default_view(sc, NULL, aspect, (uint32_t)v->light_count, (uint32_t)v->seed, &v->home,
+                    if (pg_scene_default_view(sc, NULL, aspect, (uint32_t)v->light_count, (uint32_t)v->seed, &v->home,
                                             &ls, cw, sizeof cw, lw, sizeof lw, &verr))
                         snprintf(v->error, sizeof v->error, "%s", verr.msg);
                     printf("view: %s\nview: %s\n", cw, lw);

@@ -22,7 +22,6 @@
 #define PG_GRAPH_EXECUTE_H
 
 #include "graph.h"
-#include "scene_gpu.h"
 #include "vk_context.h"
 
 #ifdef __cplusplus
@@ -49,7 +48,8 @@ typedef struct pg_pass_create_ctx {
     const pg_plan_pass *pass;
     const pg_pass_desc *desc;         /* options etc. */
     const pg_pipeline *pipeline;
-    const pg_scene_gpu *scene;
+    const void *user;                 /* the caller's block (pg_user_block.data; the renderer's
+                                       * uploaded scene), opaque to the runtime */
     VkDescriptorSetLayout frame_layout; /* set 0: FrameUniforms */
     const pg_phys_resource *slots[2 * PG_MAX_SLOTS]; /* same order as pass->slots */
     uint32_t width, height;           /* output size */
@@ -67,7 +67,7 @@ typedef struct pg_pass_record_ctx {
     VkCommandBuffer cmd;
     const pg_plan_pass *pass;
     const pg_phys_resource *slots[2 * PG_MAX_SLOTS];
-    const pg_scene_gpu *scene;
+    const void *user;                 /* as pg_pass_create_ctx.user */
     VkDescriptorSet frame_set;
     const void *frame;                /* CPU copy of the per-frame block set 0 holds (opaque to the
                                        * runtime: its layout is the passes' own, passes/frame.h) */
@@ -182,9 +182,18 @@ void pg_runtime_destroy(pg_runtime *rt);
  * they must stay alive until the runtime is destroyed. Call before pg_runtime_set_plan(); they
  * are part of the physical signature, so a plan set after a change re-creates the passes. */
 void pg_runtime_set_settings(pg_runtime *rt, const pg_param_override *settings, uint32_t n_settings);
-/* plan, pipeline and scene are borrowed and must stay alive until the next set_plan/destroy. */
+/* What the caller hands every pass instance besides the plan (pg_pass_create_ctx.user): an
+ * opaque block (the renderer's uploaded scene) and its generation. The runtime never reads the
+ * block; a new generation re-creates the pass instances (the caller bumps it whenever the block's
+ * contents change), an equal one keeps them. */
+typedef struct pg_user_block {
+    const void *data;
+    uint64_t generation;
+} pg_user_block;
+
+/* plan, pipeline and user.data are borrowed and must stay alive until the next set_plan/destroy. */
 pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
-                              const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err);
+                              pg_user_block user, uint32_t width, uint32_t height, pg_error *err);
 #define PG_MAX_FRAMES_IN_FLIGHT 2
 /* Frames in flight (1, the default, or 2). With 2, frame k uses its own command buffer, fence,
  * frame-uniform buffer and descriptor set, timestamp pool and readback staging (slot k % 2), and

@@ -26,7 +26,7 @@ struct pg_runtime {
     pg_gpu *gpu;
     const pg_graph_plan *plan;
     const pg_pipeline *pipeline;
-    const pg_scene_gpu *scene;
+    pg_user_block user;       /* the caller's block and generation (pg_runtime_set_plan) */
     uint32_t width, height;
     uint32_t frame_size;             /* bytes of the caller's per-frame block */
     uint64_t mem_sig, pipe_sig, val_sig; /* see memory_signature, pipeline_signature, value_signature */

@@ -109,7 +109,7 @@ static pg_result create_pass(pg_runtime *rt, int pi, pg_error *err)
         .pass = pass,
         .desc = &rt->pipeline->passes[pass->desc_index],
         .pipeline = rt->pipeline,
-        .scene = rt->scene,
+        .user = rt->user.data,
         .frame_layout = rt->frame_layout,
         .width = rt->width,
         .height = rt->height,

@@ -122,14 +122,14 @@ static bool resources_changed(const pg_runtime *rt, const pg_graph_plan *plan, u
     return n > 0;
 }
 
-/* (b) What needs new pass instances: the scene, the settings, the executed passes in order with
+/* (b) What needs new pass instances: the caller's block generation, the settings, the executed passes in order with
  * their types, shader variants (defines), bound resources and the options that are not run-time
  * values (pg_pass_type.runtime_options). */
 static uint64_t pipeline_signature(const pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pl,
-                                   const pg_scene_gpu *scene)
+                                   uint64_t user_generation)
 {
     uint64_t s = 1469598103934665603ull;
-    s = fnv(s, &scene, sizeof scene);
+    s = fnv(s, &user_generation, sizeof user_generation);
     for (uint32_t i = 0; i < rt->n_settings; i++) {
         const char *k = rt->settings[i].key ? rt->settings[i].key : "";
         const char *v = rt->settings[i].value ? rt->settings[i].value : "";
@@ -248,7 +248,7 @@ static pg_result update_values(pg_runtime *rt, pg_error *err)
 }
 
 pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
-                              const pg_scene_gpu *scene, uint32_t width, uint32_t height, pg_error *err)
+                              pg_user_block user, uint32_t width, uint32_t height, pg_error *err)
 {
     const pg_gpu *g = rt->gpu;
     if (plan->async && (!g->compute_queue || !rt->timeline[0]))
@@ -259,7 +259,7 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
                        "the plan was compiled for queues of %s family, the device's are of %s: compile with "
                        "pg_runtime_queue_caps()", plan->qfot ? "different" : "one", plan->qfot ? "one" : "different");
     const uint64_t msig = memory_signature(plan, width, height);
-    const uint64_t psig = pipeline_signature(rt, plan, pipeline, scene);
+    const uint64_t psig = pipeline_signature(rt, plan, pipeline, user.generation);
     const uint64_t vsig = value_signature(plan, pipeline);
     rt->report_due = true; /* a new light count may need a buffer to grow: read the next report */
     pg_result r;
@@ -268,7 +268,7 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
          * run-time values may differ */
         rt->plan = plan;
         rt->pipeline = pipeline;
-        rt->scene = scene;
+        rt->user = user;
         if (vsig == rt->val_sig) {
             rt->stats.last_rebuild = PG_REBUILD_NONE;
             return PG_OK;
@@ -292,7 +292,7 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
             if (wrap_signature(plan, (int)i) != wrap_signature(rt->plan, (int)i)) rt->persistent_initialized[i] = false;
         rt->plan = plan;
         rt->pipeline = pipeline;
-        rt->scene = scene;
+        rt->user = user;
         rt->pipe_sig = psig;
         rt->val_sig = vsig;
         if (some) { /* ... but the resources that changed (with their blocks): re-create them */
@@ -310,7 +310,7 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
         pg_rt_destroy_built(rt);
         rt->plan = plan;
         rt->pipeline = pipeline;
-        rt->scene = scene;
+        rt->user = user;
         rt->width = width;
         rt->height = height;
         rt->mem_sig = msig;

@@ -324,7 +324,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const void *frame_block, bool readba
                 .gpu = gpu,
                 .cmd = cmd,
                 .pass = pass,
-                .scene = rt->scene,
+                .user = rt->user.data,
                 .frame_set = rt->slot[f].frame_set,
                 .frame = rt->slot[f].frame,
                 .frame_size = rt->frame_size,

@@ -3,7 +3,6 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "scene.h"
 
 pg_result pg_pipeline_layout_create(pg_gpu *gpu, uint32_t n_sets, const VkDescriptorSetLayout *sets,
                                     uint32_t push_bytes, VkPipelineLayout *out, pg_error *err)
@@ -30,30 +29,12 @@ pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, con
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
          .module = d->fs, .pName = "main"},
     };
-    /* binding 0: pg_vertex; optional streams (pg_scene.colors / uv1): binding 1 COLOR_0, binding 2
-     * TEXCOORD_1, each a tightly packed float array (shaders/scene.vert) */
-    VkVertexInputBindingDescription vb[3] = {{0, sizeof(pg_vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-    VkVertexInputAttributeDescription va[6] = {
-        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(pg_vertex, position)},
-        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(pg_vertex, normal)},
-        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(pg_vertex, uv)},
-        {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(pg_vertex, tangent)},
-    };
-    uint32_t n_vb = 1, n_va = 4;
-    if (d->vertex_colors) {
-        vb[n_vb++] = (VkVertexInputBindingDescription){1, sizeof(float[4]), VK_VERTEX_INPUT_RATE_VERTEX};
-        va[n_va++] = (VkVertexInputAttributeDescription){4, 1, VK_FORMAT_R32G32B32A32_SFLOAT, 0};
-    }
-    if (d->uv1) {
-        vb[n_vb++] = (VkVertexInputBindingDescription){2, sizeof(float[2]), VK_VERTEX_INPUT_RATE_VERTEX};
-        va[n_va++] = (VkVertexInputAttributeDescription){5, 2, VK_FORMAT_R32G32_SFLOAT, 0};
-    }
     VkPipelineVertexInputStateCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    if (d->scene_vertices) {
-        vi.vertexBindingDescriptionCount = n_vb;
-        vi.pVertexBindingDescriptions = vb;
-        vi.vertexAttributeDescriptionCount = n_va;
-        vi.pVertexAttributeDescriptions = va;
+    if (d->vertex_input) {
+        vi.vertexBindingDescriptionCount = d->vertex_input->n_bindings;
+        vi.pVertexBindingDescriptions = d->vertex_input->bindings;
+        vi.vertexAttributeDescriptionCount = d->vertex_input->n_attributes;
+        vi.pVertexAttributeDescriptions = d->vertex_input->attributes;
     }
     VkPipelineInputAssemblyStateCreateInfo ia = {.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
                                                  .topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};

@@ -10,6 +10,14 @@
 extern "C" {
 #endif
 
+/* The vertex streams a graphics pipeline reads (the caller's layout: e.g. the renderer's scene
+ * vertices, renderer/common/scene_draw.c); NULL in pg_gfx_pipeline_desc: no vertex input. */
+typedef struct pg_vertex_input {
+    uint32_t n_bindings, n_attributes;
+    VkVertexInputBindingDescription bindings[4];
+    VkVertexInputAttributeDescription attributes[8];
+} pg_vertex_input;
+
 typedef struct pg_gfx_pipeline_desc {
     VkPipelineLayout layout;
     VkShaderModule vs, fs;
@@ -22,11 +30,9 @@ typedef struct pg_gfx_pipeline_desc {
     float depth_bias_slope;
     VkCullModeFlags cull;           /* 0 -> none */
     bool dynamic_cull;              /* cull mode set per draw with vkCmdSetCullMode */
-    bool scene_vertices;            /* pg_vertex input at binding 0; else no vertex input */
+    const pg_vertex_input *vertex_input; /* NULL: no vertex input */
     bool blend_over;                /* every colour attachment: rgb = src.a*src + (1-src.a)*dst,
                                      * a = src.a + (1-src.a)*dst.a (non-premultiplied "over") */
-    bool vertex_colors;             /* with scene_vertices: COLOR_0 float4 at binding 1, location 4 */
-    bool uv1;                       /* with scene_vertices: TEXCOORD_1 float2 at binding 2, location 5 */
 } pg_gfx_pipeline_desc;
 
 pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, const char *name,

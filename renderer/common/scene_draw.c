@@ -1,9 +1,37 @@
 #include "scene_draw.h"
 
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "shader.h"
+
+/* The scene's vertex streams (shaders/scene.vert): binding 0 pg_vertex; the optional streams of
+ * pg_scene.colors / uv1, each a tightly packed float array: binding 1 COLOR_0 (location 4),
+ * binding 2 TEXCOORD_1 (location 5). */
+static pg_vertex_input scene_vertex_input(bool vertex_colors, bool uv1)
+{
+    pg_vertex_input v = {
+        .n_bindings = 1,
+        .n_attributes = 4,
+        .bindings = {{0, sizeof(pg_vertex), VK_VERTEX_INPUT_RATE_VERTEX}},
+        .attributes = {
+            {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(pg_vertex, position)},
+            {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(pg_vertex, normal)},
+            {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(pg_vertex, uv)},
+            {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(pg_vertex, tangent)},
+        },
+    };
+    if (vertex_colors) {
+        v.bindings[v.n_bindings++] = (VkVertexInputBindingDescription){1, sizeof(float[4]), VK_VERTEX_INPUT_RATE_VERTEX};
+        v.attributes[v.n_attributes++] = (VkVertexInputAttributeDescription){4, 1, VK_FORMAT_R32G32B32A32_SFLOAT, 0};
+    }
+    if (uv1) {
+        v.bindings[v.n_bindings++] = (VkVertexInputBindingDescription){2, sizeof(float[2]), VK_VERTEX_INPUT_RATE_VERTEX};
+        v.attributes[v.n_attributes++] = (VkVertexInputAttributeDescription){5, 2, VK_FORMAT_R32G32_SFLOAT, 0};
+    }
+    return v;
+}
 
 pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_draw_desc *d, pg_scene_draw *out,
                                pg_error *err)
@@ -11,15 +39,15 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     pg_gpu *gpu = ctx->gpu;
     const pg_plan_pass *pass = ctx->pass;
     pg_result r;
-    if (!ctx->scene) return pg_fail(err, PG_ERR_INVALID_ARG, "needs a scene");
-    VkDescriptorSetLayout sets[3] = {ctx->frame_layout, ctx->scene->set_layout, d->pass_layout};
+    if (!PG_SCENE_OF(ctx)) return pg_fail(err, PG_ERR_INVALID_ARG, "needs a scene");
+    VkDescriptorSetLayout sets[3] = {ctx->frame_layout, PG_SCENE_OF(ctx)->set_layout, d->pass_layout};
     /* push constants: DrawPush {uint material; float ambient;} (shaders/surface.glsl) */
     if ((r = pg_pipeline_layout_create(gpu, d->pass_layout ? 3 : 2, sets, 2 * sizeof(uint32_t), &out->layout, err)))
         return r;
     const char *defs[PG_MAX_DEFINES + 8];
     uint32_t n = 0;
     char tc[32];
-    snprintf(tc, sizeof tc, "TEXTURE_COUNT=%u", ctx->scene->n_images);
+    snprintf(tc, sizeof tc, "TEXTURE_COUNT=%u", PG_SCENE_OF(ctx)->n_images);
     defs[n++] = tc;
     bool has_mask = false;
     out->vertex_colors = out->uv1 = false;
@@ -34,9 +62,9 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
         if (strcmp(pass->decl.defines[i], "PG_UV1") == 0) out->uv1 = true;
         defs[n++] = pass->decl.defines[i];
     }
-    if ((out->vertex_colors && !ctx->scene->colors.buffer) || (out->uv1 && !ctx->scene->uv1.buffer)) {
+    if ((out->vertex_colors && !PG_SCENE_OF(ctx)->colors.buffer) || (out->uv1 && !PG_SCENE_OF(ctx)->uv1.buffer)) {
         r = pg_fail(err, PG_ERR_INVALID_ARG, "%s: compiled with %s but the uploaded scene has no such stream",
-                    pass->name, out->vertex_colors && !ctx->scene->colors.buffer ? "PG_VERTEX_COLORS" : "PG_UV1");
+                    pass->name, out->vertex_colors && !PG_SCENE_OF(ctx)->colors.buffer ? "PG_VERTEX_COLORS" : "PG_UV1");
         vkDestroyPipelineLayout(gpu->device, out->layout, NULL);
         out->layout = VK_NULL_HANDLE;
         return r;
@@ -45,6 +73,7 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE, fs_mask = VK_NULL_HANDLE;
     if ((r = pg_shader_module(gpu, "scene.vert", VK_SHADER_STAGE_VERTEX_BIT, defs, n, &vs, err))) goto out;
     if ((r = pg_shader_module(gpu, d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, &fs, err))) goto out;
+    const pg_vertex_input vin = scene_vertex_input(out->vertex_colors, out->uv1);
     pg_gfx_pipeline_desc gd = {
         .layout = out->layout,
         .vs = vs,
@@ -57,15 +86,13 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
         .depth_bias_constant = d->depth_bias_constant,
         .depth_bias_slope = d->depth_bias_slope,
         .dynamic_cull = true,
-        .scene_vertices = true,
+        .vertex_input = &vin,
         .blend_over = d->blend,
-        .vertex_colors = out->vertex_colors,
-        .uv1 = out->uv1,
     };
     memcpy(gd.color_formats, d->color_formats, sizeof gd.color_formats);
     if ((r = pg_gfx_pipeline_create(gpu, &gd, pass->name, &out->opaque, err))) goto out;
     out->depth_equal = d->depth_equal;
-    if (has_mask && !d->blend && !d->depth_equal && ctx->scene->n_draws - ctx->scene->n_blend_draws > ctx->scene->n_opaque_draws) {
+    if (has_mask && !d->blend && !d->depth_equal && PG_SCENE_OF(ctx)->n_draws - PG_SCENE_OF(ctx)->n_blend_draws > PG_SCENE_OF(ctx)->n_opaque_draws) {
         defs[n++] = "PG_ALPHA_MASK";
         if ((r = pg_shader_module(gpu, d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, &fs_mask, err)))
             goto out;
@@ -83,7 +110,7 @@ out:
 
 static void bind_scene(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set)
 {
-    const pg_scene_gpu *sc = ctx->scene;
+    const pg_scene_gpu *sc = PG_SCENE_OF(ctx);
     VkCommandBuffer cmd = ctx->cmd;
     VkDescriptorSet sets[3] = {ctx->frame_set, sc->set, pass_set};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sd->opaque);
@@ -105,7 +132,7 @@ static void push_draw(VkCommandBuffer cmd, const pg_scene_draw *sd, const pg_dra
 void pg_scene_draw_record_list(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set,
                                const uint32_t *order, uint32_t n)
 {
-    const pg_scene_gpu *sc = ctx->scene;
+    const pg_scene_gpu *sc = PG_SCENE_OF(ctx);
     VkCommandBuffer cmd = ctx->cmd;
     bind_scene(sd, ctx, pass_set);
     VkCullModeFlags cull = ~0u;
@@ -123,7 +150,7 @@ void pg_scene_draw_record_list(const pg_scene_draw *sd, const pg_pass_record_ctx
 
 void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set)
 {
-    const pg_scene_gpu *sc = ctx->scene;
+    const pg_scene_gpu *sc = PG_SCENE_OF(ctx);
     VkCommandBuffer cmd = ctx->cmd;
     bind_scene(sd, ctx, pass_set);
     VkCullModeFlags cull = ~0u;

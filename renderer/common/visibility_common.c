@@ -27,7 +27,7 @@ pg_result pg_vis_tri_bits(const pg_scene_gpu *sc, uint32_t *tri_bits, pg_error *
 pg_result pg_vis_geometry_create(const pg_pass_create_ctx *ctx, uint32_t scene_set, pg_vis_geometry *g,
                                  pg_error *err)
 {
-    const pg_scene_gpu *sc = ctx->scene;
+    const pg_scene_gpu *sc = PG_SCENE_OF(ctx);
     pg_result r;
     if (!sc) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: needs a scene", ctx->pass->name);
     if ((r = pg_vis_tri_bits(sc, &g->tri_bits, err))) return r;

@@ -111,7 +111,7 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr, VK_NULL_HANDLE, 0};
     if (emissive) /* binding HDR_BINDING + 1 */
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[4 + n_targets], p->sampler, 0};
-    if (vis) n = pg_vis_geometry_bindings(&p->vis, ctx->scene, b, n); /* binding 3 on */
+    if (vis) n = pg_vis_geometry_bindings(&p->vis, PG_SCENE_OF(ctx), b, n); /* binding 3 on */
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.gbuffer", ctx->pass->name);
     if ((r = pg_pass_set_create(gpu, n, b, name, &p->gbuf, err))) return r;
@@ -124,8 +124,8 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
             PG_VK_TRY(err, vkCreateDescriptorSetLayout(gpu->device, &eci, NULL, &p->empty));
             sets[2] = p->empty;
         }
-        sets[3] = ctx->scene->set_layout;
-        p->scene_set = ctx->scene->set;
+        sets[3] = PG_SCENE_OF(ctx)->set_layout;
+        p->scene_set = PG_SCENE_OF(ctx)->set;
         n_sets = 4;
     }
     if ((r = pg_pipeline_layout_create(gpu, n_sets, sets, sizeof(float), &p->layout, err))) return r;

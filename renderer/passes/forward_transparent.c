@@ -85,7 +85,7 @@ static pg_result ft_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
                        pg_format_get(color->pg_fmt)->name);
     if (p->clustered && (r = pg_check_cluster_buffers(ctx, &o, 1, err))) return r;
     if ((r = pg_light_set_create(ctx, p->clustered, 0, 1, &p->lights, err))) return r;
-    p->n = ctx->scene->n_blend_draws;
+    p->n = PG_SCENE_OF(ctx)->n_blend_draws;
     p->order = calloc(p->n ? p->n : 1, sizeof *p->order);
     p->key = calloc(p->n ? p->n : 1, sizeof *p->key);
     if (!p->order || !p->key) return pg_fail(err, PG_ERR_OOM, "%s: out of memory", ctx->pass->name);
@@ -132,7 +132,7 @@ static void ft_record(void *self, const pg_pass_record_ctx *ctx)
     pg_transparent_pass *p = self;
     const int depth_slot = p->clustered ? 3 : 1;
     const pg_phys_resource *depth = ctx->slots[depth_slot], *color = ctx->slots[depth_slot + 1];
-    sort_back_to_front(p, ctx->scene, PG_FRAME_OF(ctx)->camera_pos);
+    sort_back_to_front(p, PG_SCENE_OF(ctx), PG_FRAME_OF(ctx)->camera_pos);
     VkRenderingAttachmentInfo ca = {
         .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
         .imageView = color->view,

@@ -37,12 +37,12 @@ static pg_result vis_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
                        "%s: the device cannot read gl_PrimitiveID in a fragment shader (no geometryShader "
                        "feature); use a G-buffer pipeline (deferred_oct16.json)",
                        ctx->pass->name);
-    if (!ctx->scene) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: needs a scene", ctx->pass->name);
+    if (!PG_SCENE_OF(ctx)) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: needs a scene", ctx->pass->name);
     if (ctx->slots[0]->format != VK_FORMAT_R32_UINT)
         return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: the triangle id target must be r32ui, not %s",
                        ctx->desc->file, ctx->desc->json_path, pg_format_get(ctx->slots[0]->pg_fmt)->name);
     uint32_t bits;
-    if ((r = pg_vis_tri_bits(ctx->scene, &bits, err))) return r;
+    if ((r = pg_vis_tri_bits(PG_SCENE_OF(ctx), &bits, err))) return r;
     pg_scene_draw_desc d = {
         .fragment_shader = "visibility.frag",
         .n_color = 1,

@@ -65,11 +65,11 @@ static pg_result vr_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[0], p->sampler, 0};
     b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[1], VK_NULL_HANDLE, 0};
     if (p->emissive) b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[2], VK_NULL_HANDLE, 0};
-    n = pg_vis_geometry_bindings(&p->vis, ctx->scene, b, n);
+    n = pg_vis_geometry_bindings(&p->vis, PG_SCENE_OF(ctx), b, n);
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.set", ctx->pass->name);
     if ((r = pg_pass_set_create(gpu, n, b, name, &p->set, err))) return r;
-    VkDescriptorSetLayout sets[3] = {ctx->frame_layout, p->set.layout, ctx->scene->set_layout};
+    VkDescriptorSetLayout sets[3] = {ctx->frame_layout, p->set.layout, PG_SCENE_OF(ctx)->set_layout};
     if ((r = pg_pipeline_layout_create(gpu, 3, sets, 0, &p->layout, err))) return r;
     const char *defs[PG_MAX_DEFINES + 16];
     uint32_t nd = pg_vis_geometry_define_list(&p->vis, defs);
@@ -86,7 +86,7 @@ static void vr_record(void *self, const pg_pass_record_ctx *ctx)
 {
     visibility_resolve *p = self;
     const pg_phys_resource *out = ctx->slots[1];
-    VkDescriptorSet sets[3] = {ctx->frame_set, p->set.set, ctx->scene->set};
+    VkDescriptorSet sets[3] = {ctx->frame_set, p->set.set, PG_SCENE_OF(ctx)->set};
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 3, sets, 0, NULL);
     vkCmdDispatch(ctx->cmd, (out->width + 7) / 8, (out->height + 7) / 8, 1);

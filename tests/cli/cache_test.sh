@@ -7,7 +7,7 @@
 set -u
 PG=$1
 . "$(dirname "$0")/check_lib.sh"
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 export PASSGRAPH_CACHE_STATS=1
 unset PASSGRAPH_NO_SHADER_CACHE
 r() { # cache-dir out-name extra... ; stderr -> $tmp/NAME.err

@@ -55,7 +55,7 @@ grep -q "explain:" "$tmp/out" && ok || bad "--explain printed nothing"
 grep -q "validation" "$tmp/err" && grep -q "validation message" "$tmp/err" && bad "validation messages" || ok
 
 # ---- passgraph compare: image error against a reference pipeline ----
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 naive="$root/pipelines/naive.json"
 "$PG" --help | grep -q "compare" && ok || bad "passgraph --help does not list compare"
 "$PG" compare --help >"$tmp/h" || bad "compare --help exit"
@@ -441,7 +441,7 @@ for m in "$models"/*.gltf "$models"/*.glb; do
   cmp -s "$m" "$tmp/gen/$n" && ok || bad "model $n: committed file differs from gen_models.py's output"
   rm -f "$tmp/m.png" "$tmp/mstat"
   if "$PG" render --scene "$m" --size 96x54 --out "$tmp/m.png" >"$tmp/mout" 2>"$tmp/merr" && [ -s "$tmp/m.png" ] &&
-     python3 "$root/tests/png_stats.py" "$tmp/m.png" >"$tmp/mstat" &&
+     python3 "$root/tests/cli/png_stats.py" "$tmp/m.png" >"$tmp/mstat" &&
      awk '{ exit !($1 == 96 && $2 == 54 && $3 >= 0.03 && $3 <= 0.9 && $4 > 40) }' "$tmp/mstat"; then ok
   else bad "model $n: default render failed or not framed/lit (W H cover mean: $(cat "$tmp/mstat" 2>/dev/null))"; cat "$tmp/merr"; fi
 done

@@ -5,7 +5,7 @@
 # and the error - never crash, hang or exit 0 with a broken image.
 set -u
 PG=$1
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scene="$root/tests/corpus/gltf/ok_textured.gltf"

@@ -16,7 +16,7 @@
 set -u
 PG=$(realpath "$1")
 . "$(dirname "$0")/check_lib.sh"
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 PY=/usr/bin/python3
 [ -x "$PY" ] || PY=python3
 if ! command -v renderdoccmd >/dev/null; then echo "renderdoc_test: skipped: renderdoccmd not installed (Debian renderdoccmd; tools/setup.sh)"; exit 77; fi
@@ -67,7 +67,7 @@ for p in naive forward_plus deferred deferred_packed; do
   "$PG" render --pipeline "$pj" --size $SIZE --lights $LIGHTS --out "$p.png" >/dev/null 2>"$p.err" || bad "$p: plain render"
   cmp -s "$p.png" "$p.rd.png" && ok || bad "$p: image under RenderDoc differs from the plain render"
   "$PG" dump --pipeline "$pj" --size $SIZE --lights $LIGHTS --format json --out "$p.json" || { bad "$p: dump"; continue; }
-  "$PY" "$root/tests/renderdoc_check.py" "$p.rdc" "$p.json" >"$p.check" 2>&1 && ok || { bad "$p: capture check"; cat "$p.check"; }
+  "$PY" "$root/tests/cli/renderdoc_check.py" "$p.rdc" "$p.json" >"$p.check" 2>&1 && ok || { bad "$p: capture check"; cat "$p.check"; }
   sed "s/^/  $p: /" "$p.check"
   PASSGRAPH_VULKAN_1_2=1 "$PG" render --validation --pipeline "$pj" --size $SIZE --lights $LIGHTS --out "$p.v12.png" >"$p.v12.out" 2>&1
   rc=$?
@@ -85,7 +85,7 @@ if command -v xvfb-run >/dev/null; then
   if grep -q "^view: RenderDoc capture $tmp/view.rdc" view.out && [ -s view.rdc ]; then
     ok
     "$PG" dump --pipeline "$pj" --size $SIZE --lights $LIGHTS --format json --out view.json 2>/dev/null
-    "$PY" "$root/tests/renderdoc_check.py" --ui view.rdc view.json >view.check 2>&1 && ok || { bad "view: capture check"; cat view.check; }
+    "$PY" "$root/tests/cli/renderdoc_check.py" --ui view.rdc view.json >view.check 2>&1 && ok || { bad "view: capture check"; cat view.check; }
   else
     bad "view: capture under RenderDoc"; tail -5 view.out
   fi

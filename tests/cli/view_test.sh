@@ -7,7 +7,7 @@
 set -u
 PG=$1
 . "$(dirname "$0")/check_lib.sh"
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 if ! command -v xvfb-run >/dev/null; then echo "view_test: skipped: xvfb-run not installed"; exit 77; fi
 cp -r "$root/pipelines" "$tmp/"
 printf '{ "name": broken' >"$tmp/broken.json"

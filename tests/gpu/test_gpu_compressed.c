@@ -3,14 +3,14 @@
  * its KHR_mesh_quantization twin q_s16n.gltf and its quantized KHR_draco_mesh_compression twin
  * draco_q.gltf are rendered on the Vulkan device (lavapipe)
  * with the validation layer on (zero messages), 160x90, pipelines/naive.json, with one camera
- * and one light set (the tools' default view of twin.gltf: pg_app_default_view). The twins' images must equal the uncompressed one
+ * and one light set (the tools' default view of twin.gltf: pg_scene_default_view). The twins' images must equal the uncompressed one
  * within 1 step of 8 bits per channel (LDR) and 1% of the peak in HDR (their normals differ by
  * <= 4e-5 / 4e-5 / 4.5e-4, their positions by 0 / 1.5e-5 / 6.1e-5), and the image must show the lit mesh (> 8% of the pixels lit). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
+#include "default_view.h"
 #include "gpu_harness.h"
 #include "image_util.h"
 #include "pass_list.h"
@@ -68,7 +68,7 @@ int main(void)
         /* the tools' default view of the twin (auto framing, object lights) */
         pg_frame_info fi = {.time = 0, .width = W, .height = H};
         char cw[256], lw[256];
-        CHECK(pg_app_default_view(twin, NULL, (float)W / H, 64, 1, &fi.camera, &fi.lights, cw, sizeof cw, lw,
+        CHECK(pg_scene_default_view(twin, NULL, (float)W / H, 64, 1, &fi.camera, &fi.lights, cw, sizeof cw, lw,
                                   sizeof lw, &err) == PG_OK);
         pg_th_frame ref, mo, q, dq;
         bool ok_ref = shoot("twin.gltf", &fi, &ref);

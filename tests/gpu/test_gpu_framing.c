@@ -1,7 +1,7 @@
 /* test_gpu_framing.c - any glTF renders framed and lit with the default options (issue 11): the
  * generated objects of tests/corpus/gltf/objects/ (cube, sphere, flat quad, long rod, 1e-3 and
  * 1e4 cubes) are rendered on the Vulkan device (lavapipe) with the default view of the tools
- * (pg_app_default_view: auto framing + object lights) at 160x90, with the validation layer and
+ * (pg_scene_default_view: auto framing + object lights) at 160x90, with the validation layer and
  * synchronization validation on (zero messages). The object's pixels come from the albedo debug
  * view; they must lie fully inside the image, span 20-90% of the shorter image axis, and be lit
  * (>= 90% of them with luma > 10, mean luma 40..220 of 255). The glTF camera is the default for a
@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
+#include "default_view.h"
 #include "accuracy_bounds.h"
 #include "gpu_harness.h"
 #include "pass_list.h"
@@ -112,7 +112,7 @@ static pg_frame_info view_of(const pg_scene *sc, const char *spec, char *why, si
     pg_frame_info fi = {.time = 0, .width = W, .height = H};
     pg_error err = {0};
     char lw[256];
-    if (pg_app_default_view(sc, spec, (float)W / H, 256, 1, &fi.camera, &fi.lights, why, why_size, lw, sizeof lw, &err))
+    if (pg_scene_default_view(sc, spec, (float)W / H, 256, 1, &fi.camera, &fi.lights, why, why_size, lw, sizeof lw, &err))
         CHECK_MSG(0, "default view: %s", err.msg);
     return fi;
 }

@@ -9,7 +9,7 @@
  * with prepass=false is refused with the option's path.
  *
  * Images (lavapipe, validation + synchronization validation: any message fails), 64 lights at
- * 320x180 (the corpus files with the tools' default view, pg_app_default_view): the built-in
+ * 320x180 (the corpus files with the tools' default view, pg_scene_default_view): the built-in
  * atrium (its grille is alpha-masked), tests/corpus/gltf/ok_textured.gltf (an alpha-mask
  * material), tests/corpus/gltf/blend/blend_lit.gltf (BLEND: the transparent pass runs after the
  * pre-pass depth), tests/corpus/gltf/models/tree.gltf (where llvmpipe rounds depth differently
@@ -30,7 +30,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "app.h"
+#include "default_view.h"
 #include "graph.h"
 #include "image_compare.h"
 #include "gpu_harness.h"
@@ -164,7 +164,7 @@ static void check_scene(const char *label, const char *path, const char *scenari
     if (need == 2) CHECK_MSG(sg->n_blend_draws > 0, "%s: no BLEND draws: the case is vacuous", label);
     char cw[256], lw[256];
     if (!scenario && strcmp(path, "default") && /* a corpus file: the tools' view (its camera, object lights) */
-        pg_app_default_view(ts.scene, NULL, (float)W / H, LIGHTS, 5, &fi.camera, &fi.lights, cw, sizeof cw, lw,
+        pg_scene_default_view(ts.scene, NULL, (float)W / H, LIGHTS, 5, &fi.camera, &fi.lights, cw, sizeof cw, lw,
                             sizeof lw, &err)) {
         CHECK_MSG(0, "%s: default view: %s", label, err.msg);
         pg_th_scene_close(g_gpu, &ts);

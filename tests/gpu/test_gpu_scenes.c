@@ -2,7 +2,7 @@
  * scene (issue 11): the objects, the ten models and the feature files under
  * tests/corpus/gltf/<dir>/ (every .gltf / .glb of the folders listed in k_dirs that exist, but the
  * error cases: named bad_* or listed with an error code in tests/corpus/gltf/MANIFEST), each
- * with the tools' default view (pg_app_default_view: its glTF camera or auto framing, the object
+ * with the tools' default view (pg_scene_default_view: its glTF camera or auto framing, the object
  * lights and ambient), 48 lights, at 128x72, on lavapipe with validation + synchronization
  * validation (any message fails).
  *
@@ -21,7 +21,7 @@
 #include <string.h>
 
 #include "accuracy_bounds.h"
-#include "app.h"
+#include "default_view.h"
 #include "gpu_harness.h"
 #include "image_util.h"
 #include "pass_list.h"
@@ -127,7 +127,7 @@ static void check_scene(const char *dir, const char *file, bool control)
     }
     pg_frame_info fi = {.time = 0.5f, .width = W, .height = H};
     char cw[256], lw[256];
-    if (pg_app_default_view(sc, NULL, (float)W / H, LIGHTS, 5, &fi.camera, &fi.lights, cw, sizeof cw, lw, sizeof lw,
+    if (pg_scene_default_view(sc, NULL, (float)W / H, LIGHTS, 5, &fi.camera, &fi.lights, cw, sizeof cw, lw, sizeof lw,
                             &err)) {
         CHECK_MSG(0, "%s/%s: default view: %s", dir, file, err.msg);
         goto out;

@@ -36,7 +36,7 @@
 #include <unistd.h>
 
 #include "accuracy_bounds.h"
-#include "app.h"
+#include "default_view.h"
 #include "gpu_harness.h"
 #include "graph.h"
 #include "image_util.h"
@@ -251,7 +251,7 @@ static void check_file(const char *label, const char *path, const char *scenario
     pg_error err = {0};
     char cw[256], lw[256];
     if (!scenario && strcmp(path, "default") && /* a corpus file: the tools' view (its camera, object lights) */
-        pg_app_default_view(ts.scene, NULL, (float)w / h, lights, 5, &ts.fi.camera, &ts.fi.lights, cw, sizeof cw, lw,
+        pg_scene_default_view(ts.scene, NULL, (float)w / h, lights, 5, &ts.fi.camera, &ts.fi.lights, cw, sizeof cw, lw,
                             sizeof lw, &err)) {
         CHECK_MSG(0, "%s: default view: %s", label, err.msg);
     } else {
