@@ -19,7 +19,7 @@ num() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['totals'
 pct() { python3 -c "import sys; u,a=int(sys.argv[1]),int(sys.argv[2]); print(f'{100*(u-a)/u:.1f}%')" "$1" "$2"; }
 mib() { python3 -c "import sys; print(f'{int(sys.argv[1])/1048576:.2f}')" "$1"; }
 device=$("$PG" devices 2>/dev/null | sed -n "s/^0: //p" | head -1)
-echo "Transient memory at 1920x1080, 256 lights, default scene (\`tools/alias_table.sh${BEFORE:+ $BEFORE}\`, $(git rev-parse --short HEAD), device: ${device:-first Vulkan device}). MiB; saving vs. unaliased in brackets."
+echo "Transient memory at 1920x1080, 256 lights, default scene (\`scripts/tables/alias_table.sh${BEFORE:+ $BEFORE}\`, $(git rev-parse --short HEAD), device: ${device:-first Vulkan device}). MiB; saving vs. unaliased in brackets."
 echo
 if [ -n "$BEFORE" ]; then
   echo "| pipeline | unaliased | before (one per block) | plan (offsets) | device unaliased | device aliased |"

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""bench_before_after.py DIR - the README's before/after table from bench CSVs of two builds.
+"""bench_before_after.py DIR - the before/after table of docs/performance.md from bench CSVs of two builds.
 
 DIR holds results CSVs named {old,final}_ROUND.csv and naive_{old,final}_ROUND.csv (as
-tools/gpu_issue12.sh writes them, one bench per build and round, rounds alternating). Prints a
+a device run writes them, one bench per build and round, rounds alternating). Prints a
 markdown table: per pipeline and light count the median over rounds of each run's median GPU and
 CPU ms, the device transient memory before -> after aliasing, and the RMSE against the reference.
 """
@@ -34,4 +34,4 @@ def main(d):
     return 0
 
 if __name__ == '__main__':
-    sys.exit(main(sys.argv[1] if len(sys.argv) > 1 else 'docs/results/issue12_gpu'))
+    sys.exit(main(sys.argv[1] if len(sys.argv) > 1 else 'docs/results/h200-2026-12-01-2db02e5'))

@@ -4,7 +4,7 @@ count and pipeline the median GPU frame, the pass that dominates it, light assig
 time, references stored, list memory, dropped references and the error against the reference.
 Rows keep the order of the files and of their rows. Used for docs/performance.md:
 
-    tools/results_table.py docs/results/h200/sponza/results.csv docs/results/h200/sponza_naive/results.csv
+    scripts/tables/results_table.py docs/results/h200-2026-12-01-a74bb02/sponza/results.csv docs/results/h200-2026-12-01-a74bb02/sponza_naive/results.csv
 """
 import csv
 import sys
