@@ -1,6 +1,6 @@
 // cluster.glsl - the numerical core of clustered shading: exponential depth slices, cluster
 // coordinates and indices, the view-space AABB of a cluster, and the sphere-vs-AABB light test.
-// No #version; include after common.glsl. passes/cluster_math.c is the C twin: same formulas, same
+// No #version; include after common.glsl. renderer/common/cluster_math.c is the C twin: same formulas, same
 // operation order, float32, and tests/test_numeric.c proves them against double-precision
 // references (monotonic slices clamped at both ends, conservative AABBs, no false negatives in the
 // sphere test). Change both files together.

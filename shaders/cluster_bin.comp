@@ -1,5 +1,5 @@
 #version 460
-// cluster_bin.comp - light assignment, step 1 of 4 (passes/cluster_assign.c): each light finds
+// cluster_bin.comp - light assignment, step 1 of 4 (renderer/passes/cluster_assign.c): each light finds
 // the screen tiles and depth slices its sphere can reach and sets its bit in one mask per tile
 // and one mask per slice (bit i of word i/32: masks stay in light order). Cost: O(lights x
 // (grid_x + grid_y + grid_z)) tests plus one atomicOr per touched tile and slice.

@@ -1,5 +1,5 @@
 #version 460
-// cluster_lists.comp - light assignment, steps 2 and 4 of 4 (passes/cluster_assign.c). One
+// cluster_lists.comp - light assignment, steps 2 and 4 of 4 (renderer/passes/cluster_assign.c). One
 // workgroup per (cluster, segment of seg_words words: many workgroups per cluster at high light
 // counts, so the GPU has enough of them in flight) walks the 32-light words of its candidates (tile mask AND slice mask from
 // cluster_bin.comp; with PG_BRUTE_FORCE every light is a candidate: the oracle), applies the exact

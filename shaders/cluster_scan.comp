@@ -1,5 +1,5 @@
 #version 460
-// cluster_scan.comp - light assignment, step 3 of 4 (passes/cluster_assign.c). One workgroup
+// cluster_scan.comp - light assignment, step 3 of 4 (renderer/passes/cluster_assign.c). One workgroup
 // sums the hits of each cluster's segments (count step) into its raw count (record.z), turns the
 // segment counts into prefixes for the fill step, and the raw counts into list offsets and
 // stored counts:

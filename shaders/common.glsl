@@ -1,5 +1,5 @@
 // common.glsl - declarations shared by every passgraph shader.
-// FrameUniforms mirrors pg_frame_uniforms (passes/frame.h); GpuMaterial mirrors pg_gpu_material
+// FrameUniforms mirrors pg_frame_uniforms (renderer/frame.h); GpuMaterial mirrors pg_gpu_material
 // (core/runtime/scene_gpu.h); Light is the 32-byte record the light_animate pass writes.
 
 struct Light {

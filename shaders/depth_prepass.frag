@@ -1,5 +1,5 @@
 #version 460
-// depth_prepass.frag - the fragment stage of the depth pre-pass (passes/depth_prepass.c): no
+// depth_prepass.frag - the fragment stage of the depth pre-pass (renderer/passes/depth_prepass.c): no
 // colour output. Opaque draws: empty (the depth comes from the rasterizer). PG_ALPHA_MASK (the
 // masked pipeline, made only with the pass's test "equal" and only when the scene has alpha-mask
 // draws): the same material evaluation as the shading passes (surface.glsl), whose discard is the

@@ -1,5 +1,5 @@
 // depth_reconstruct.glsl - view depth and view-space position from a depth-buffer value or from
-// a stored linear view depth. No #version. passes/cluster_math.c is the C twin (same formulas and
+// a stored linear view depth. No #version. renderer/common/cluster_math.c is the C twin (same formulas and
 // order, float32); tests/test_numeric.c measures the errors against a double-precision reference.
 //
 // Standard Z only (core/scene/scene.h pg_camera_proj: z_ndc 0 at near, 1 at far; cleared depth 1.0).

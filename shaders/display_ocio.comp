@@ -1,5 +1,5 @@
 #version 460
-// display_ocio.comp - display_ocio's compute variant (option stage "compute", passes/display_ocio.c):
+// display_ocio.comp - display_ocio's compute variant (option stage "compute", renderer/passes/display_ocio.c):
 // the same exposure, OCIO display/view transform and clamps as display_ocio.frag, one invocation per
 // display pixel, written with imageStore (PG_LDR_FORMAT: the ldr image's format qualifier). On GPUs
 // whose raster hardware is a small part of the chip (H100/H200) a full-screen fragment pass costs

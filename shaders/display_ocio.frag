@@ -1,6 +1,6 @@
 #version 460
 // display_ocio.frag - scene-linear HDR -> display through an OpenColorIO processor
-// (passes/display_ocio.c): exposure (a multiply in scene-linear), then OCIO's display/view
+// (renderer/passes/display_ocio.c): exposure (a multiply in scene-linear), then OCIO's display/view
 // transform, whose GLSL is generated at run time from the config and included below. The output
 // is already encoded for the display: write it to a UNORM (or float) target, not an _srgb one.
 layout(set = 1, binding = 0) uniform sampler2D hdr;

@@ -1,6 +1,6 @@
 #version 460
 // gbuffer.frag - writes the G-buffer of one packing variant (one of PG_GBUFFER_FLOAT,
-// PG_GBUFFER_OCT16, PG_GBUFFER_PACKED); see passes/gbuffer.c for the layouts.
+// PG_GBUFFER_OCT16, PG_GBUFFER_PACKED); see renderer/passes/gbuffer.c for the layouts.
 // PG_GBUFFER_EMISSIVE: the optional emissive target after the variant's targets (rgba16f/rgba32f,
 // scene-linear s.emissive; the pass defines it only when bound and the scene has emissive materials).
 #include "common.glsl"

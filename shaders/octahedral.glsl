@@ -1,6 +1,6 @@
 // octahedral.glsl - octahedral unit-vector encoding (Cigolle et al. 2014, "A Survey of Efficient
 // Representations for Independent Unit Vectors"), for the packed G-buffer normal.
-// No #version. passes/cluster_math.c is the C twin (same formulas and order, float32);
+// No #version. renderer/common/cluster_math.c is the C twin (same formulas and order, float32);
 // tests/test_numeric.c measures the angular error per bit depth over millions of directions.
 //
 // The fold of the lower hemisphere uses a sign that is +1 for +0.0 and -0.0 (never 0), so the

@@ -8,7 +8,7 @@
 // Lights are streamed through shared memory: the workgroup (LIGHT_TILE threads) loads LIGHT_TILE
 // lights cooperatively, one per thread, then every thread walks the tile in order; one barrier
 // pair per tile. A dispatch covers the lights [pc.first, pc.end). The pass splits large light
-// counts over several dispatches (passes/reference_lighting.c); the running sums then wait in
+// counts over several dispatches (renderer/passes/reference_lighting.c); the running sums then wait in
 // rgba32f images (acc_diffuse, and acc_specular for Blinn-Phong), fp32 like the registers they
 // come from, so splitting does not change a bit. pc.mode bits: 1 = start from the sums stored
 // there (else from 0), 2 = store the sums and stop (else combine and write the HDR pixel).

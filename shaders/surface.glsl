@@ -1,6 +1,6 @@
 // surface.glsl - material evaluation shared by forward and G-buffer fragment shaders and by the
 // compute passes that rebuild a surface from a triangle id (visibility_surface.glsl).
-// Variants (each compiled in only when the scene needs it; passes/scene_draw.c picks them):
+// Variants (each compiled in only when the scene needs it; renderer/common/scene_draw.c picks them):
 //   PG_ALPHA_MASK      discard below the cutoff
 //   PG_NORMAL_MAPS     tangent-space normal maps
 //   PG_VERTEX_COLORS   COLOR_0 multiplied into the base colour (vertex stream 1)

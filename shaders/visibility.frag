@@ -1,5 +1,5 @@
 #version 460
-// visibility.frag - the visibility pass (passes/visibility.c): writes the 32-bit id of the
+// visibility.frag - the visibility pass (renderer/passes/visibility.c): writes the 32-bit id of the
 // triangle seen at each pixel, (draw << tri_bits) | gl_PrimitiveID, and nothing else (depth comes
 // from the depth test). The push constant's second word holds draw << tri_bits.
 // PG_ALPHA_MASK (the second pipeline, compiled only when the scene has alpha-mask materials): the

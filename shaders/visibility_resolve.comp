@@ -1,5 +1,5 @@
 #version 460
-// visibility_resolve.comp - the visibility_resolve pass (passes/visibility_resolve.c): rebuilds
+// visibility_resolve.comp - the visibility_resolve pass (renderer/passes/visibility_resolve.c): rebuilds
 // each pixel's surface from its triangle id (visibility_surface.glsl), evaluates the material
 // (surface.glsl) and writes the packed G-buffer that deferred_lighting reads with packing
 // "packed" (gbuffer_layout.h: oct16 normal | sRGB8 albedo + spec8 | shininess f32 | view depth

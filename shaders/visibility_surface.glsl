@@ -1,6 +1,6 @@
 // visibility_surface.glsl - rebuilds the surface seen at a pixel from its visibility id (the
 // (draw << PG_VIS_TRI_BITS) | triangle that visibility.frag wrote), for compute passes
-// (deferred_lighting with packing "visibility", visibility_resolve). passes/visibility_common.h
+// (deferred_lighting with packing "visibility", visibility_resolve). renderer/common/visibility_common.h
 // binds, in set PG_VIS_SET from binding PG_VIS_BINDING on:
 //   +0 the scene's vertices (pg_vertex: 12 floats), +1 its indices, +2 the draw table (uvec4 per
 //   draw: first index, vertex offset, material, 0), then COLOR_0 (vec4 per vertex, only with
