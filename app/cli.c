@@ -2,6 +2,7 @@
 #include "pg_cache.h"
 
 #include "ocio.h"
+#include "pipeline_paths.h"
 
 #include <errno.h>
 #include <math.h>
@@ -10,6 +11,8 @@
 
 const char *const pg_cli_common_help =
     "  --pipeline FILE      pipeline JSON (default: pipelines/naive.json in the data folder)\n"
+    "  --include-dir DIR    a folder the pipeline's includes may come from, besides the\n"
+    "                       including file's folder and the data folder (repeatable)\n"
     "  --scene FILE|default glTF 2.0 scene (.gltf/.glb) or the built-in atrium (default)\n"
     "  --scenario FILE      JSON set-up: camera, light box, count, radius, intensity, motion\n"
     "                       (e.g. assets/scenarios/cis565.json); explicit options override it\n"
@@ -132,6 +135,10 @@ static pg_result set_debug_view(pg_cli_common *c, const char *opt, const char *v
     return PG_OK;
 }
 
+/* --include-dir folders (process-wide, like the loader's list they feed) */
+static const char *g_include_dirs[PG_MAX_INCLUDE_DIRS];
+static uint32_t g_n_include_dirs;
+
 pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, bool *used, pg_error *err)
 {
     const char *a = argv[*i];
@@ -147,6 +154,17 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
     if (!strcmp(a, "--pipeline")) {
         NEED_VALUE();
         c->pipeline = v;
+    } else if (!strcmp(a, "--include-dir")) {
+        NEED_VALUE();
+        if (g_n_include_dirs >= PG_MAX_INCLUDE_DIRS)
+            return pg_fail(err, PG_ERR_INVALID_ARG, "--include-dir: more than %d folders", PG_MAX_INCLUDE_DIRS);
+        g_include_dirs[g_n_include_dirs] = v;
+        r = pg_pipeline_set_include_dirs(g_include_dirs, g_n_include_dirs + 1, err);
+        if (r) {
+            if (err) err->code = PG_ERR_INVALID_ARG;
+            return PG_ERR_INVALID_ARG;
+        }
+        g_n_include_dirs++;
     } else if (!strcmp(a, "--scene")) {
         NEED_VALUE();
         c->scene = v;

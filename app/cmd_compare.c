@@ -1,6 +1,7 @@
 /* cmd_compare.c - `passgraph compare`: renders one frame with a pipeline and with a reference
  * pipeline (same device, scene, camera, lights, time, seed, size) and reports the image error of
  * the pipeline against the reference, linear (HDR) and display (8-bit), with both GPU timings. */
+#include "pg_file.h"
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -384,6 +385,12 @@ int pg_cmd_compare(int argc, char **argv)
         return 2;
     }
 
+    /* the outputs can be written: checked before rendering, with the OS reason */
+    if ((heatmap && pg_file_check_writable(heatmap, "--heatmap", &err)) ||
+        (json && strcmp(json, "-") && pg_file_check_writable(json, "--json", &err))) {
+        fprintf(stderr, "passgraph compare: %s\n", err.msg);
+        return 2;
+    }
     pg_app app;
     if (pg_app_open(&app, &opt, true, &err)) {
         fprintf(stderr, "passgraph compare: %s\n", err.msg);

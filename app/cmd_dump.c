@@ -1,5 +1,7 @@
 /* cmd_dump.c - `passgraph dump`: the compiled graph as text, JSON, Graphviz DOT (or an image
  * Graphviz renders from it) or a memory-timeline SVG, without a GPU and without rendering. */
+#include "pg_file.h"
+#include "size_note.h"
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -170,6 +172,11 @@ int pg_cmd_dump(int argc, char **argv)
         }
     }
 
+    /* the output can be written: checked before any work, with the OS reason */
+    if (!to_stdout(opt.out) && pg_file_check_writable(opt.out, "--out", &err)) {
+        fprintf(stderr, "passgraph dump: %s\n", err.msg);
+        return 2;
+    }
     pg_app app;
     if (pg_app_open(&app, &opt, false /* no GPU */, &err)) {
         fprintf(stderr, "passgraph dump: %s\n", err.msg);
@@ -200,6 +207,7 @@ int pg_cmd_dump(int argc, char **argv)
     if (app.scene) cd.features = app.scene->features;
     cd.features.light_count = app.lights.count;
     if (pg_graph_compile(&cd, &plan, &err)) goto done;
+    pg_size_note_print(stderr, "dump", opt.width, opt.height, plan);
 
     if (gv_format) {
         if (write_graphviz(plan, pl, opt.out, gv_format, &err)) goto done;

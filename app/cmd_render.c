@@ -1,6 +1,8 @@
 /* cmd_render.c - `passgraph render`: one reproducible frame to a PNG (the display image, through
  * the pipeline's display pass) and optionally an OpenEXR file (the linear HDR output), with GPU
  * timings. */
+#include "pg_file.h"
+#include "size_note.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -136,6 +138,18 @@ int pg_cmd_render(int argc, char **argv)
             return 2;
         }
     }
+    /* every output can be written: checked before the device is made, with the OS reason */
+    {
+        const char *outs[3] = {png_path, exr_path[0] ? exr_path : NULL, capture};
+        const char *names[3] = {"--out", exr_path[0] && !hdr_out ? "--out" : "--hdr-out", "--capture"};
+        for (int k = 0; k < 3; k++) {
+            if (!outs[k]) continue;
+            if (pg_file_check_writable(outs[k], names[k], &err)) {
+                fprintf(stderr, "passgraph render: %s\n", err.msg);
+                return 2;
+            }
+        }
+    }
     /* RenderDoc first: without it there is nothing to do, and the device need not be made */
     pg_rdoc *rdoc = NULL;
     if (capture) {
@@ -153,6 +167,13 @@ int pg_cmd_render(int argc, char **argv)
     if (pg_app_open(&app, &opt, true, &err)) {
         fprintf(stderr, "passgraph render: %s\n", err.msg);
         return 1;
+    }
+    /* --size against the device, and a word when the frame is big */
+    if (pg_size_note_check(&app, "passgraph render", stderr, &err)) {
+        fprintf(stderr, "passgraph render: %s\n", err.msg);
+        pg_app_close(&app);
+        free(rdoc);
+        return 2;
     }
     int rc = 1;
     pg_session *s = NULL;

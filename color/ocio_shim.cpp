@@ -7,6 +7,7 @@
  * needs other uniforms (dynamic properties) is refused.
  */
 #include "ocio.h"
+#include "pg_file.h"
 
 #include <OpenColorIO/OpenColorIO.h>
 
@@ -46,6 +47,64 @@ extern "C" const char *pg_ocio_version(void)
     return OCIO::GetVersion();
 }
 
+/* The LUT files a transform names (FileTransform, also inside groups), resolved through the
+ * config's search path and stat-checked like the config before OCIO reads them. A file OCIO
+ * cannot find is left to OCIO's own error. */
+static pg_result check_transform_files(const OCIO::ConstConfigRcPtr &cfg, const OCIO::ConstTransformRcPtr &t,
+                                       const char *config_path, pg_error *err, int depth)
+{
+    if (!t || depth > 16) return PG_OK;
+    if (auto g = OCIO::DynamicPtrCast<const OCIO::GroupTransform>(t)) {
+        for (int i = 0; i < g->getNumTransforms(); i++) {
+            pg_result r = check_transform_files(cfg, g->getTransform(i), config_path, err, depth + 1);
+            if (r) return r;
+        }
+        return PG_OK;
+    }
+    auto f = OCIO::DynamicPtrCast<const OCIO::FileTransform>(t);
+    if (!f || !f->getSrc() || !f->getSrc()[0]) return PG_OK;
+    std::string resolved;
+    try {
+        resolved = cfg->getCurrentContext()->resolveFileLocation(f->getSrc());
+    } catch (...) {
+        return PG_OK;
+    }
+    pg_result r = pg_file_check(resolved.c_str(), "OCIO LUT", PG_FILE_CAP_OCIO, nullptr, err);
+    if (r) pg_error_prefix(err, "%s", config_path);
+    return r;
+}
+
+static pg_result check_luts(const OCIO::ConstConfigRcPtr &cfg, const char *config_path, pg_error *err)
+{
+    const OCIO::ColorSpaceDirection dirs[2] = {OCIO::COLORSPACE_DIR_TO_REFERENCE,
+                                               OCIO::COLORSPACE_DIR_FROM_REFERENCE};
+    for (int i = 0; i < cfg->getNumColorSpaces(OCIO::SEARCH_REFERENCE_SPACE_ALL, OCIO::COLORSPACE_ALL); i++) {
+        const char *name = cfg->getColorSpaceNameByIndex(OCIO::SEARCH_REFERENCE_SPACE_ALL, OCIO::COLORSPACE_ALL, i);
+        OCIO::ConstColorSpaceRcPtr cs = name ? cfg->getColorSpace(name) : nullptr;
+        if (!cs) continue;
+        for (auto d : dirs) {
+            pg_result r = check_transform_files(cfg, cs->getTransform(d), config_path, err, 0);
+            if (r) return r;
+        }
+    }
+    for (int i = 0; i < cfg->getNumLooks(); i++) {
+        OCIO::ConstLookRcPtr lk = cfg->getLook(cfg->getLookNameByIndex(i));
+        if (!lk) continue;
+        pg_result r = check_transform_files(cfg, lk->getTransform(), config_path, err, 0);
+        if (!r) r = check_transform_files(cfg, lk->getInverseTransform(), config_path, err, 0);
+        if (r) return r;
+    }
+    for (int i = 0; i < cfg->getNumViewTransforms(); i++) {
+        OCIO::ConstViewTransformRcPtr vt = cfg->getViewTransform(cfg->getViewTransformNameByIndex(i));
+        if (!vt) continue;
+        for (auto d : {OCIO::VIEWTRANSFORM_DIR_TO_REFERENCE, OCIO::VIEWTRANSFORM_DIR_FROM_REFERENCE}) {
+            pg_result r = check_transform_files(cfg, vt->getTransform(d), config_path, err, 0);
+            if (r) return r;
+        }
+    }
+    return PG_OK;
+}
+
 extern "C" pg_result pg_ocio_open(const char *path, pg_ocio_config **out, pg_error *err)
 {
     *out = nullptr;
@@ -54,14 +113,11 @@ extern "C" pg_result pg_ocio_open(const char *path, pg_ocio_config **out, pg_err
         pg_ocio_resolve_path(nullptr, resolved, sizeof resolved);
         path = resolved;
     }
-    /* OCIO's own message for a missing file does not say why; ask the OS first */
-    FILE *f = fopen(path, "rb");
-    if (!f) return pg_fail(err, PG_ERR_IO, "%s: cannot open OCIO config: %s", path, strerror(errno));
-    fclose(f);
-    struct stat st;
-    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode))
-        return pg_fail(err, PG_ERR_IO, "%s: %s (expected an OCIO config .ocio file)", path,
-                       S_ISDIR(st.st_mode) ? "is a directory" : "is not a regular file");
+    /* stat before OCIO opens it: a FIFO, a device or a directory is refused by name (OCIO would
+     * block on a FIFO), a file over the cap before a byte is read, a missing one with the OS
+     * reason (OCIO's own message does not say why) */
+    pg_result cr = pg_file_check(path, "OCIO config", PG_FILE_CAP_OCIO, nullptr, err);
+    if (cr) return cr;
     try {
         pg_ocio_config *c = new pg_ocio_config;
         c->path = path;
@@ -76,6 +132,11 @@ extern "C" pg_result pg_ocio_open(const char *path, pg_ocio_config **out, pg_err
         } catch (const std::exception &e) {
             delete c;
             return pg_fail(err, PG_ERR_SCHEMA, "%s: invalid OCIO config: %s", path, e.what());
+        }
+        pg_result lr = check_luts(c->config, path, err);
+        if (lr) {
+            delete c;
+            return lr;
         }
         if (!c->config->hasRole(OCIO::ROLE_SCENE_LINEAR)) {
             delete c;

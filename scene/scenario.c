@@ -1,6 +1,7 @@
 /* scenario.c - scenario JSON (assets/scenarios/README.md describes the format), default light
  * set-up for a scene, and applying a scenario over defaults. */
 #include "scenario.h"
+#include "pg_file.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -298,7 +299,7 @@ pg_result pg_scenario_load(const char *path, pg_scenario *out, pg_error *err)
 
     char *text = NULL;
     size_t size = 0;
-    pg_result r = pg_read_file_as(path, "a scenario .json file", &text, &size, err);
+    pg_result r = pg_file_read(path, "scenario", PG_FILE_CAP_SCENARIO, &text, &size, err);
     if (r != PG_OK) return r;
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithOpts(text, &end, 1);

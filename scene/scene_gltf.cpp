@@ -59,6 +59,11 @@
  * the GLB container, materials and textures, the hand-out and pg_scene_load_gltf.
  */
 #include "scene_gltf_internal.h"
+#include "pg_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cfloat>
@@ -210,6 +215,18 @@ std::string image_name(const tinygltf::Image &im, int idx)
     return strf("image%d", idx);
 }
 
+/* whether a (regular) file starts with the GLB magic; opened non-blocking */
+bool starts_with_glb_magic(const char *path)
+{
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return false;
+    struct stat st;
+    char m[4] = {0, 0, 0, 0};
+    bool ok = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && read(fd, m, 4) == 4 && memcmp(m, "glTF", 4) == 0;
+    close(fd);
+    return ok;
+}
+
 pg_scene *load(Ctx &c)
 {
     /* 1. the file */
@@ -217,11 +234,19 @@ pg_scene *load(Ctx &c)
     size_t raw_size = 0;
     pg_error rerr;
     memset(&rerr, 0, sizeof rerr);
-    if (pg_read_file_as(c.path.c_str(), "a glTF 2.0 .gltf/.glb file", &raw, &raw_size, &rerr) !=
-        PG_OK) {
-        /* keep pg_read_file's "PATH: cannot open: ..." message */
+    /* stat first: a regular file under the .glb cap; one over the .gltf cap must be a .glb */
+    uint64_t fsize = 0;
+    if (pg_file_check(c.path.c_str(), "scene", PG_FILE_CAP_GLB, &fsize, &rerr) != PG_OK)
         throw LoadFail{rerr.code, std::string("\x01") + rerr.msg};
+    if (fsize > PG_FILE_CAP_GLTF_JSON && !starts_with_glb_magic(c.path.c_str())) {
+        char got[32];
+        pg_file_fmt_size(fsize, got, sizeof got);
+        throw LoadFail{PG_ERR_LIMIT, strf("\x01scene '%s': is %s, over the %llu MiB cap for glTF JSON files",
+                                          c.path.c_str(), got,
+                                          (unsigned long long)(PG_FILE_CAP_GLTF_JSON / PG_MIB))};
     }
+    if (pg_file_read(c.path.c_str(), "scene", PG_FILE_CAP_GLB, &raw, &raw_size, &rerr) != PG_OK)
+        throw LoadFail{rerr.code, std::string("\x01") + rerr.msg};
     std::unique_ptr<char, decltype(&free)> raw_owner(raw, &free);
     const unsigned char *bytes = reinterpret_cast<const unsigned char *>(raw);
     if (raw_size == 0) fail(PG_ERR_PARSE, "empty file");
@@ -259,7 +284,7 @@ pg_scene *load(Ctx &c)
         tinygltf::FsCallbacks fs;
         fs.FileExists = &fs_file_exists;
         fs.ExpandFilePath = &tinygltf::ExpandFilePath;
-        fs.ReadWholeFile = &tinygltf::ReadWholeFile;
+        fs.ReadWholeFile = &fs_read_whole_file;
         fs.WriteWholeFile = &tinygltf::WriteWholeFile;
         fs.user_data = &c;
         loader.SetFsCallbacks(fs);

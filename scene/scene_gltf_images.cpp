@@ -3,6 +3,7 @@
  * before decoding); the glTF samplers and KHR_texture_transform that materials use.
  */
 #include "scene_gltf_internal.h"
+#include "pg_file.h"
 
 #include <stb_image.h>
 
@@ -27,6 +28,28 @@ bool fs_file_exists(const std::string &abs, void *user)
     const Ctx *c = static_cast<const Ctx *>(user);
     if (abs.compare(0, c->dir_prefix.size(), c->dir_prefix) != 0) return false;
     return is_regular_file(abs, nullptr);
+}
+
+/* tinygltf's file reader, through the same checks (regular file, cap, O_NONBLOCK open) */
+bool fs_read_whole_file(std::vector<unsigned char> *out, std::string *err, const std::string &abs,
+                        void *user)
+{
+    const Ctx *c = static_cast<const Ctx *>(user);
+    if (abs.compare(0, c->dir_prefix.size(), c->dir_prefix) != 0) {
+        if (err) *err = "'" + abs + "' is outside the scene's folder";
+        return false;
+    }
+    char *buf = nullptr;
+    size_t len = 0;
+    pg_error e;
+    memset(&e, 0, sizeof e);
+    if (pg_file_read(abs.c_str(), "glTF resource", PG_FILE_CAP_GLTF_RESOURCE, &buf, &len, &e) != PG_OK) {
+        if (err) *err = e.msg;
+        return false;
+    }
+    out->assign(reinterpret_cast<unsigned char *>(buf), reinterpret_cast<unsigned char *>(buf) + len);
+    free(buf);
+    return true;
 }
 
 std::string image_desc(const Ctx &c, int idx)

@@ -120,6 +120,8 @@ void prevalidate(Ctx &c);
 
 /* scene_gltf_images.cpp */
 bool fs_file_exists(const std::string &abs, void *user);
+bool fs_read_whole_file(std::vector<unsigned char> *out, std::string *err, const std::string &abs,
+                        void *user);
 std::string image_desc(const Ctx &c, int idx);
 bool load_image_cb(tinygltf::Image *image, const int idx, std::string *, std::string *, int, int,
                    const unsigned char *bytes, int size, void *user);

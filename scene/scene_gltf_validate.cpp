@@ -2,8 +2,12 @@
  * that must hold before tinygltf sees the file, and the glTF extensions passgraph implements.
  */
 #include "scene_gltf_internal.h"
+#include "pg_file.h"
 
 #include <sys/stat.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <cmath>
 #include <cstdio>
@@ -119,6 +123,35 @@ uint64_t uint_field(const json &o, const char *key, const std::string &where, bo
     return it->get<uint64_t>();
 }
 
+/* An external buffer or image file: stat-checked (a FIFO, a device, a directory is named as
+ * such; never opened here), each under PG_FILE_CAP_GLTF_RESOURCE and all of them together under
+ * PG_FILE_CAP_GLTF_TOTAL (*total). Missing: "W: cannot open 'URI' (FILE)". */
+uint64_t check_resource_file(const std::string &w, const std::string &uri, const std::string &file,
+                             const char *kind, uint64_t *total)
+{
+    struct stat st;
+    if (stat(file.c_str(), &st) != 0)
+        gfail(strf("%s: cannot open '%s' (%s): %s", w.c_str(), uri.c_str(), file.c_str(), strerror(errno)));
+    pg_error e;
+    memset(&e, 0, sizeof e);
+    uint64_t size = 0;
+    if (pg_file_check(file.c_str(), kind, PG_FILE_CAP_GLTF_RESOURCE, &size, &e) != PG_OK) {
+        std::string m = e.msg;
+        size_t k = m.find("': ");
+        gfail(strf("%s: '%s' (%s) %s", w.c_str(), uri.c_str(), file.c_str(),
+                   k == std::string::npos ? m.c_str() : m.c_str() + k + 3));
+    }
+    *total += size;
+    if (*total > PG_FILE_CAP_GLTF_TOTAL) {
+        char t[32];
+        pg_file_fmt_size(*total, t, sizeof t);
+        gfail(strf("%s: '%s': the external buffers and images come to %s, over the %llu GiB cap "
+                   "for one scene", w.c_str(), uri.c_str(), t,
+                   (unsigned long long)(PG_FILE_CAP_GLTF_TOTAL / (1024ull * PG_MIB))));
+    }
+    return size;
+}
+
 bool is_regular_file(const std::string &p, uint64_t *size)
 {
     struct stat st;
@@ -151,6 +184,7 @@ void check_emissive(const json &o, const std::string &w)
 
 void prevalidate(Ctx &c)
 {
+    uint64_t ext_total = 0; /* bytes of the external buffers and images */
     const json &j = c.j;
     if (!j.is_object()) gfail("root: expected a JSON object");
 
@@ -250,9 +284,7 @@ void prevalidate(Ctx &c)
         }
         if (uri.empty()) gfail(w + ".uri: empty");
         std::string file = join_path(c.base_dir, url_decode(uri));
-        uint64_t fsize = 0;
-        if (!is_regular_file(file, &fsize))
-            gfail(strf("%s: cannot open '%s' (%s)", w.c_str(), uri.c_str(), file.c_str()));
+        uint64_t fsize = check_resource_file(w, uri, file, "glTF buffer", &ext_total);
         if (fsize != len)
             gfail(strf("%s: '%s' has %llu bytes but byteLength is %llu", w.c_str(), uri.c_str(),
                        (unsigned long long)fsize, (unsigned long long)len));
@@ -398,9 +430,7 @@ void prevalidate(Ctx &c)
         }
         if (uri.empty()) gfail(w + ".uri: empty");
         std::string file = join_path(c.base_dir, url_decode(uri));
-        uint64_t fsize = 0;
-        if (!is_regular_file(file, &fsize))
-            gfail(strf("%s: cannot open '%s' (%s)", w.c_str(), uri.c_str(), file.c_str()));
+        uint64_t fsize = check_resource_file(w, uri, file, "glTF image", &ext_total);
         if (fsize == 0) gfail(strf("%s: '%s' is empty", w.c_str(), uri.c_str()));
     });
 

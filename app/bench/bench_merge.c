@@ -8,6 +8,8 @@
  * same pipelines and variants: run it where the pipeline files are), reads the rows back and
  * writes them in the unsharded run's order with the bench's own writers. */
 #include "bench.h"
+#include "bench_merge_check.h"
+#include "pg_file.h"
 
 static const char *const merge_help =
     "usage: passgraph bench-merge --out DIR SHARD_DIR...\n"
@@ -132,27 +134,9 @@ static pg_result shard_load(shard_in *s, pg_error *err)
 {
     char path[PG_PATH_MAX + 32];
     snprintf(path, sizeof path, "%s/results.json", s->dir);
-    FILE *f = fopen(path, "rb");
-    if (!f) return pg_fail(err, PG_ERR_IO, "%s: cannot read results.json: %s", s->dir, strerror(errno));
     char *txt = NULL;
-    size_t len = 0, cap = 0;
-    for (;;) {
-        if (len + 65536 + 1 > cap) {
-            cap = (len + 65536 + 1) * 2;
-            char *t = realloc(txt, cap);
-            if (!t) {
-                free(txt);
-                fclose(f);
-                return pg_fail(err, PG_ERR_OOM, "out of memory");
-            }
-            txt = t;
-        }
-        size_t n = fread(txt + len, 1, 65536, f);
-        len += n;
-        if (n < 65536) break;
-    }
-    fclose(f);
-    txt[len] = 0;
+    pg_result rr = pg_file_read(path, "bench results", PG_FILE_CAP_BENCH_RESULTS, &txt, NULL, err);
+    if (rr) return rr;
     s->root = cJSON_Parse(txt);
     free(txt);
     if (!s->root) return pg_fail(err, PG_ERR_PARSE, "%s/results.json: not valid JSON", s->dir);
@@ -317,9 +301,13 @@ int pg_cmd_bench_merge(int argc, char **argv)
         double el = jget_num(sh[d].meta, "elapsed_s");
         if (isfinite(el) && el > elapsed) elapsed = el;
         const cJSON *o;
+        uint32_t rowno = 0;
         cJSON_ArrayForEach(o, sh[d].rows)
         {
             bench_row r;
+            char file[PG_PATH_MAX + 32];
+            snprintf(file, sizeof file, "%s/results.json", dirs[d]);
+            if (pg_bench_row_check(file, ++rowno, o, &err)) goto fail;
             if (row_read(B, dirs[d], o, &r, &err)) goto fail;
             if (r.index % sh[d].n != sh[d].k - 1) {
                 pg_fail(&err, PG_ERR_INVALID_ARG, "%s: configuration %u does not belong to shard %u/%u", dirs[d], r.index,

@@ -8,6 +8,7 @@
  * overrides sides.h describes, so one block may render it once per swept value it declares).
  * Results go to DIR/results.csv, DIR/results.json and three SVG charts written by tools/stats/svg_plot.c.
  * SIGINT stops after the current frame and writes what was measured (exit 130). */
+#include "pg_file.h"
 #include "bench.h"
 
 static const char *const bench_help =
@@ -368,7 +369,7 @@ int pg_cmd_bench(int argc, char **argv)
     pg_result r;
     int rc = bench_setup(B, argc, argv);
     if (rc >= 0) goto out;
-    if ((r = make_dirs(B->out_dir, &err))) {
+    if ((r = make_dirs(B->out_dir, &err)) || (r = pg_file_check_writable_dir(B->out_dir, "--out", &err))) {
         fprintf(stderr, "passgraph bench: %s\n", err.msg);
         rc = 1;
         goto out;

@@ -20,6 +20,7 @@
 #define _XOPEN_SOURCE 700 /* realpath() */
 #endif
 #include "pipeline_json_internal.h"
+#include "pg_file.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -435,15 +436,9 @@ pg_result pg_pipeline_load(const char *path, const pg_param_override *overrides,
     if (strlen(path) >= PG_PATH_MAX)
         return pg_fail(err, PG_ERR_INVALID_ARG, "%.64s...: path longer than %d characters",
                        path, PG_PATH_MAX - 1);
-    struct stat st;
-    if (stat(path, &st) != 0)
-        return pg_fail(err, PG_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-    if (!S_ISREG(st.st_mode))
-        return pg_fail(err, PG_ERR_IO, "%s: %s (expected a pipeline .json file)", path,
-                       S_ISDIR(st.st_mode) ? "is a directory" : "is not a regular file");
     char *text = NULL;
     size_t len = 0;
-    pg_result r = pg_read_file(path, &text, &len, err);
+    pg_result r = pg_file_read(path, "pipeline", PG_FILE_CAP_PIPELINE, &text, &len, err);
     if (r) return r;
     r = load_common(text, len, path, overrides, n_overrides, out, err);
     free(text);

@@ -7,6 +7,7 @@
 #define _XOPEN_SOURCE 700 /* realpath() */
 #endif
 #include "pipeline_json_internal.h"
+#include "pg_file.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -76,12 +77,16 @@ static pg_result load_include(loader *L, const src_file *from, uint32_t idx, con
     if (L->n_files >= PG_MAX_INCLUDE_FILES)
         return pj_fail_at(L, PG_ERR_INCLUDE, from, ipath, "more than %d files included in all",
                        PG_MAX_INCLUDE_FILES);
+    /* inside the allowed folders (decided on the name, before the file is touched) */
+    pg_result r = pj_include_allowed(L, from, ipath, rel, path);
+    if (r) return r;
     struct stat st;
     if (stat(path, &st) != 0)
         return pj_fail_at(L, PG_ERR_INCLUDE, from, ipath, "cannot open '%s': %s", path,
                        strerror(errno));
     if (!S_ISREG(st.st_mode))
-        return pj_fail_at(L, PG_ERR_INCLUDE, from, ipath, "'%s' is not a regular file", path);
+        return pj_fail_at(L, PG_ERR_INCLUDE, from, ipath, "'%s' is %s, not a regular file", path,
+                          pg_file_kind_name((unsigned)st.st_mode));
     char *canon = realpath(path, NULL);
     if (!canon) canon = strdup(path);
     if (!canon) return pg_fail(L->err, PG_ERR_OOM, "%s: out of memory", from->path);
@@ -101,11 +106,11 @@ static pg_result load_include(loader *L, const src_file *from, uint32_t idx, con
     f->canon = canon;
     char *text = NULL;
     size_t len = 0;
-    pg_result r = pg_read_file_as(path, "a pipeline .json file", &text, &len, L->err);
+    r = pg_file_read(path, "pipeline", PG_FILE_CAP_PIPELINE, &text, &len, L->err);
     if (r) {
         char cause[PG_ERROR_MSG_MAX];
         pg_strlcpy(cause, L->err ? L->err->msg : "", sizeof cause);
-        return pj_fail_at(L, r == PG_ERR_OOM ? r : PG_ERR_INCLUDE, from, ipath,
+        return pj_fail_at(L, r == PG_ERR_OOM || r == PG_ERR_LIMIT ? r : PG_ERR_INCLUDE, from, ipath,
                        "cannot read '%s': %s", path, cause);
     }
     r = pj_parse_text(L, f, text, len);

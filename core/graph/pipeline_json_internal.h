@@ -90,4 +90,8 @@ pg_result pj_req_ident(loader *L, const src_file *f, const cJSON *obj, const cha
                     const char *key, char *out);
 pg_result pj_opt_description(loader *L, const src_file *f, const cJSON *obj, const char *ipath);
 
+/* pipeline_json_paths.c: refuses an include that resolves outside the allowed folders */
+pg_result pj_include_allowed(loader *L, const src_file *from, const char *ipath, const char *rel,
+                             const char *path);
+
 #endif

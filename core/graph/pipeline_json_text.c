@@ -217,13 +217,9 @@ pg_result pj_parse_text(loader *L, src_file *f, const char *text, size_t len)
                 col++;
             }
         }
-        char near[32];
-        size_t k = 0;
-        for (const char *c = bad; c < text + len && k < 24 && *c != '\n'; c++)
-            near[k++] = (*c >= 0x20 && *c < 0x7f && *c != '\'') ? *c : '?';
-        near[k] = 0;
-        return pg_fail(L->err, PG_ERR_PARSE, "%s:%u:%u: JSON syntax error near '%s'%s", f->path,
-                       line, col, near, extra);
+        /* line and column only: the file may not be JSON at all, and its text is never echoed */
+        return pg_fail(L->err, PG_ERR_PARSE, "%s:%u:%u: JSON syntax error%s", f->path, line, col,
+                       extra);
     }
     f->root = root;
     if (!cJSON_IsObject(root)) {

@@ -452,16 +452,16 @@ camline --scene "$models/desk_lamp.gltf" >"$tmp/cl" && \
 # ---- new-user mistakes (issue 11): one clear line each ----
 gcorp="$root/tests/corpus/gltf"
 mkdir -p "$tmp/adir"
-expect_fail "--scene is a directory" "$tmp/adir: is a directory (expected a glTF 2.0 .gltf/.glb file)" \
+expect_fail "--scene is a directory" "scene '$tmp/adir': is a directory, not a regular file" \
   render --scene "$tmp/adir" --size 32x18 --lights 4 --out "$tmp/x.png"
-expect_fail "--scenario is a directory" "$tmp/adir: is a directory (expected a scenario .json file)" \
+expect_fail "--scenario is a directory" "scenario '$tmp/adir': is a directory, not a regular file" \
   render --scenario "$tmp/adir" --size 32x18 --lights 4 --out "$tmp/x.png"
-expect_fail "--pipeline is a directory" "$tmp/adir: is a directory (expected a pipeline .json file)" \
+expect_fail "--pipeline is a directory" "pipeline '$tmp/adir': is a directory, not a regular file" \
   render --pipeline "$tmp/adir" --size 32x18 --lights 4 --out "$tmp/x.png"
 grep -q "out of memory" "$tmp/err" && bad "a directory still reads as 'out of memory'" || ok
-expect_fail "--ocio-config is a directory" "$tmp/adir: is a directory (expected an OCIO config .ocio file)" \
+expect_fail "--ocio-config is a directory" "OCIO config '$tmp/adir': is a directory, not a regular file" \
   render --ocio-config "$tmp/adir" --size 32x18 --lights 4 --out "$tmp/x.png"
-expect_fail "compare --reference is a directory" "reference: $tmp/adir: is a directory (expected a pipeline .json file)" \
+expect_fail "compare --reference is a directory" "reference: pipeline '$tmp/adir': is a directory, not a regular file" \
   compare --reference "$tmp/adir" --size 32x18 --lights 4
 expect_fail "--scene an OBJ file" "$gcorp/cube.obj: not a glTF 2.0 file (passgraph reads .gltf and .glb only)" \
   render --scene "$gcorp/cube.obj" --size 32x18 --lights 4 --out "$tmp/x.png"

@@ -200,7 +200,7 @@ static void test_bad_configs(void)
     char path[PG_PATH_MAX];
     tmp_path(path, sizeof path, "missing.ocio");
     CHECK(pg_ocio_open(path, &cfg, &err) == PG_ERR_IO && !cfg);
-    CHECK_MSG(contains(err.msg, path) && contains(err.msg, "cannot open OCIO config"), "%s", err.msg);
+    CHECK_MSG(contains(err.msg, path) && contains(err.msg, "OCIO config '") && contains(err.msg, "cannot open: No such file"), "%s", err.msg);
     printf("ocio: missing config: %s\n", err.msg);
 
     tmp_path(path, sizeof path, "broken.ocio");

@@ -5,6 +5,7 @@
  * Must stay clean under valgrind --leak-check=full. */
 #include "pass_api.h"
 #include "pipeline.h"
+#include "pipeline_paths.h"
 #include "test_util.h"
 
 #include <cjson/cJSON.h>
@@ -438,9 +439,35 @@ static void test_inline_errors(void)
     const char *abs_inc = "{\"include\": [\"" GOOD "/fragments/lights.json\"],"
                           " \"resources\": [{\"name\": \"o\", \"type\": \"image\", \"format\": \"rgba8\"}],"
                           " \"output\": \"o\"}";
-    CHECK(pg_pipeline_load_string(abs_inc, "/nonexistent/x.json", NULL, 0, &p, &err) == PG_OK);
+    /* outside the including file's folder and the data folder: refused by name ... */
+    CHECK(pg_pipeline_load_string(abs_inc, "/nonexistent/x.json", NULL, 0, &p, &err) == PG_ERR_INCLUDE);
+    CHECK_MSG(!strcmp(err.msg, "/nonexistent/x.json: include[0]: include '" GOOD "/fragments/lights.json'"
+                               " is outside the allowed folders (the including file's folder, the data"
+                               " folder, --include-dir)"), "%s", err.msg);
+    /* ... unless its folder is named (--include-dir) */
+    const char *dirs[] = {GOOD "/fragments"};
+    CHECK(pg_pipeline_set_include_dirs(dirs, 1, &err) == PG_OK);
+    CHECK_MSG(pg_pipeline_load_string(abs_inc, "/nonexistent/x.json", NULL, 0, &p, &err) == PG_OK, "%s", err.msg);
     CHECK(p && p->n_passes == 1 && p->n_resources == 2);
     pg_pipeline_free(p);
+    CHECK(pg_pipeline_set_include_dirs(NULL, 0, &err) == PG_OK);
+    CHECK(pg_pipeline_set_include_dirs(dirs + 0, 1, &err) == PG_OK && pg_pipeline_set_include_dirs(NULL, 0, &err) == PG_OK);
+    const char *not_dir[] = {GOOD "/example.json"};
+    CHECK(pg_pipeline_set_include_dirs(not_dir, 1, &err) == PG_ERR_IO && strstr(err.msg, "not a directory"));
+    /* absolute and ../ escapes are refused before the file is opened */
+    expect_fail("{\"include\": [\"/etc/passwd\"], \"output\": \"o\"}", NULL, 0, PG_ERR_INCLUDE,
+                "include[0]: include '/etc/passwd' is outside the allowed folders");
+    expect_fail("{\"include\": [\"../../../../../../../../etc/passwd\"], \"output\": \"o\"}", NULL, 0,
+                PG_ERR_INCLUDE, "include '../../../../../../../../etc/passwd' is outside the allowed folders");
+    /* ../ that stays inside the including file's folder tree is fine */
+    const char *up = "{\"include\": [\"fragments/../fragments/lights.json\"],"
+                     " \"resources\": [{\"name\": \"o\", \"type\": \"image\", \"format\": \"rgba8\"}],"
+                     " \"output\": \"o\"}";
+    CHECK_MSG(pg_pipeline_load_string(up, GOOD "/up.json", NULL, 0, &p, &err) == PG_OK, "%s", err.msg);
+    pg_pipeline_free(p);
+    /* a file that is not JSON: line and column, never its text */
+    CHECK(pg_pipeline_load_string("root:x:0:0:root:/root:/bin/bash\n", "passwd", NULL, 0, &p, &err) == PG_ERR_PARSE);
+    CHECK_MSG(!strcmp(err.msg, "passwd:1:1: JSON syntax error"), "%s", err.msg);
     /* a syntax error on the second line */
     expect_fail("{\"output\": \"o\",\n \"resources\": [1, 2,,]}", NULL, 0, PG_ERR_PARSE,
                 "inline.json:2:");
@@ -653,7 +680,7 @@ static void test_api_edges(void)
     CHECK(pg_pipeline_load(CORPUS "/no_such_file.json", NULL, 0, &p, &err) == PG_ERR_IO);
     CHECK(p == NULL && strstr(err.msg, "no_such_file.json"));
     CHECK(pg_pipeline_load(CORPUS "/inc", NULL, 0, &p, &err) == PG_ERR_IO);
-    CHECK_MSG(!strcmp(err.msg, CORPUS "/inc: is a directory (expected a pipeline .json file)"), "%s", err.msg);
+    CHECK_MSG(!strcmp(err.msg, "pipeline '" CORPUS "/inc': is a directory, not a regular file"), "%s", err.msg);
     /* the common reader says the same for any path (include files, shaders, scenarios) */
     char *text = (char *)1;
     CHECK(pg_read_file_as(CORPUS "/inc", "a thing", &text, NULL, &err) == PG_ERR_IO && text == NULL);

@@ -123,7 +123,7 @@ write("not_json.gltf", "this is not JSON {\n", "PG_ERR_PARSE",
 # new-user mistakes: another mesh format, a directory
 write("cube.obj", "# an OBJ file\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "PG_ERR_PARSE",
       "cube.obj: not a glTF 2.0 file (passgraph reads .gltf and .glb only)")
-manifest.append(("fuzz", "PG_ERR_IO", "fuzz: is a directory (expected a glTF 2.0 .gltf/.glb file)"))
+manifest.append(("fuzz", "PG_ERR_IO", "fuzz': is a directory, not a regular file"))
 write("empty.gltf", "", "PG_ERR_PARSE", "empty file")
 write("truncated_json.gltf", '{"asset": {"version": "2.0"}, "nodes": [', "PG_ERR_PARSE",
       "JSON syntax error")
