@@ -60,21 +60,16 @@ void pg_shading_declare(pg_shading_params *sp, const pg_declare_in *in, pg_pass_
 {
     const pg_shading_opts *o = &sp->o;
     const bool clustered = sp->clustered;
-    char def[PG_NAME_MAX];
     if (o->shading == 1) pg_decl_define(out, "PG_BLINN_PHONG");
     if (o->view) {
-        snprintf(def, sizeof def, "PG_DEBUG_VIEW=%d", o->view);
-        pg_decl_define(out, def);
+        pg_decl_define_int(out, "PG_DEBUG_VIEW", o->view);
         pg_decl_explain(out, "debug view '%s': output shows it instead of lighting", pg_debug_views[o->view]);
     }
     if (clustered) {
         pg_decl_define(out, "PG_CLUSTERED");
-        snprintf(def, sizeof def, "GRID_X=%u", o->grid[0]);
-        pg_decl_define(out, def);
-        snprintf(def, sizeof def, "GRID_Y=%u", o->grid[1]);
-        pg_decl_define(out, def);
-        snprintf(def, sizeof def, "GRID_Z=%u", o->grid[2]);
-        pg_decl_define(out, def);
+        pg_decl_define_int(out, "GRID_X", o->grid[0]);
+        pg_decl_define_int(out, "GRID_Y", o->grid[1]);
+        pg_decl_define_int(out, "GRID_Z", o->grid[2]);
     }
     /* a debug view that shows no lighting and needs no cluster data reads no lights either */
     bool view_needs_lights = o->view == 0 || (o->view >= 1 && o->view <= 5);

@@ -28,7 +28,6 @@ typedef struct dl_params { /* filled once by declare, read by create/update/reco
     int packing;
     uint32_t tile;              /* option tile_size: workgroup edge in pixels (8 or 16) */
     bool tiled;                 /* PG_TILE_LIGHTS declared */
-    bool emissive;              /* the emissive target is read (bound, and emissive materials) */
     pg_slot depth, targets[4], emissive_slot, hdr;
 } dl_params;
 
@@ -75,7 +74,6 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     } else if ((r = pg_emissive_slot_declare(in, out, false, false, &p->emissive_slot, &emissive, err))) {
         return r;
     }
-    p->emissive = emissive;
     p->hdr = pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
     pg_decl_define(out, pg_gbuffer_defines[packing]);
     if (emissive) pg_decl_define(out, "PG_DEFERRED_EMISSIVE");

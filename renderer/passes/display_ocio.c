@@ -33,7 +33,6 @@
 #include "vk_pipeline.h"
 
 #define DO_MAX_LUTS 15 /* + the hdr binding = pg_pass_set_create's 16 */
-#define DO_NAME_MAX 128
 
 typedef struct do_lut {
     VkImage image;
