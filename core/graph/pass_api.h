@@ -6,9 +6,13 @@
  *   declare  pure: from the options, the scene features and the output size, say what each
  *            read/write slot is (access, shader stages, format classes), which shader variant is
  *            needed, and what was left out and why. No Vulkan. Called by pg_graph_compile().
+ *            It parses the options once into the type's params block (pg_decl_params; the
+ *            slot handles pg_decl_read/pg_decl_write return go there too), which the later
+ *            stages receive as ctx->params: nothing is parsed twice, no slot index is computed.
  *   create   build Vulkan objects (pipelines, samplers, descriptor layouts) for a compiled graph.
  *   record   record commands for one frame; the graph already placed every barrier.
  *   destroy  free what create made. Must accept a partially created instance.
+ * The slot lists a type shows in messages are the ones declare produced (nothing written twice).
  */
 #ifndef PG_PASS_API_H
 #define PG_PASS_API_H
@@ -48,6 +52,18 @@ enum {
     PG_STAGE_COMPUTE = 1u << 2,
 };
 
+/* A slot handle: what pg_decl_read/pg_decl_write return; the pass keeps it in its params block
+ * and resolves it in create/record with pg_ctx_res() (core/runtime/graph_execute.h). The zero
+ * handle (PG_SLOT_NONE) is no slot (e.g. an optional slot the pipeline did not bind). */
+typedef struct pg_slot {
+    uint16_t ref; /* 0: none; else 1 + index, + PG_MAX_SLOTS for a write slot */
+} pg_slot;
+#define PG_SLOT_NONE ((pg_slot){0})
+static inline bool pg_slot_ok(pg_slot s) { return s.ref != 0; }
+static inline bool pg_slot_is_write(pg_slot s) { return s.ref > PG_MAX_SLOTS; }
+/* The slot's index among the pass's reads (or writes). */
+static inline uint32_t pg_slot_index(pg_slot s) { return (uint32_t)(s.ref - 1) % PG_MAX_SLOTS; }
+
 typedef struct pg_slot_decl {
     char name[PG_NAME_MAX];   /* "color", "depth", "lights", ... (for messages and dumps) */
     pg_res_kind kind;         /* image or buffer expected */
@@ -70,6 +86,7 @@ typedef struct pg_slot_decl {
 
 #define PG_MAX_DEFINES 24
 #define PG_MAX_PASS_EXPLAIN 16 /* explanation lines of one pass (declare) */
+#define PG_MAX_PASS_PARAMS 256 /* bytes of a pass type's params block (pg_pass_type.params_size) */
 typedef struct pg_pass_decl {
     uint32_t n_reads, n_writes;
     pg_slot_decl reads[PG_MAX_SLOTS];  /* same order as pg_pass_desc.reads */
@@ -86,6 +103,10 @@ typedef struct pg_pass_decl {
      * of the previous writer and what only it reads is culled too. Set with pg_decl_skip(). */
     bool skip;
     char skip_reason[PG_EXPLAIN_MAX];
+    /* the type's params block (pg_pass_type.params_size bytes, zeroed before declare): the
+     * options parsed once and the slot handles, filled by declare through pg_decl_params(); part
+     * of the plan (pure data), handed to create/update/record as ctx->params */
+    _Alignas(16) unsigned char params[PG_MAX_PASS_PARAMS];
 } pg_pass_decl;
 
 typedef struct pg_declare_in {
@@ -104,9 +125,8 @@ struct pg_pass_report;
 typedef struct pg_pass_type {
     const char *name;        /* the "type" string in pipeline JSON */
     const char *summary;     /* one line for --help / dumps */
-    const char *read_slots;  /* human-readable slot list, e.g. "lights" */
-    const char *write_slots; /* e.g. "color, depth" */
     size_t instance_size;    /* bytes of per-instance state handed to create/record/destroy */
+    size_t params_size;      /* bytes of its params block (<= PG_MAX_PASS_PARAMS; 0: none) */
     pg_result (*declare)(const pg_declare_in *in, pg_pass_decl *out, pg_error *err);
     pg_result (*create)(void *self, const struct pg_pass_create_ctx *ctx, pg_error *err);
     void (*record)(void *self, const struct pg_pass_record_ctx *ctx);
@@ -116,10 +136,10 @@ typedef struct pg_pass_type {
     void (*report)(void *self, struct pg_pass_report *out);
     /* Optional: NULL-terminated option keys that are run-time values (e.g. "exposure"): they
      * select no shader variant and size nothing, so a new value re-creates no Vulkan object;
-     * pg_runtime_set_plan() keeps the instance and calls update() with the new desc. declare()
-     * still validates them. A type that lists any must have update(). */
+     * pg_runtime_set_plan() keeps the instance and calls update() with the new plan's params
+     * block (declare parsed the new values into it). A type that lists any must have update(). */
     const char *const *runtime_options;
-    pg_result (*update)(void *self, const pg_pass_desc *desc, pg_error *err);
+    pg_result (*update)(void *self, const void *params, pg_error *err);
 } pg_pass_type;
 
 #define PG_MAX_PASS_COUNTERS 12
@@ -164,18 +184,30 @@ const pg_pass_type *pg_registry_find(const pg_pass_registry *reg, const char *na
 pg_result pg_registry_add(pg_pass_registry *reg, const pg_pass_type *type, pg_error *err);
 
 /* ---- helpers for declare() implementations (core/graph/pass_options.c) ---- */
-/* Adds a slot; kind, access, stages and format classes as above. */
-void pg_decl_read(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
-                  uint32_t stages, uint32_t formats);
-void pg_decl_write(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
-                   uint32_t stages, uint32_t formats);
+/* Adds a slot (kind, access, stages and format classes as above) and returns its handle (the
+ * zero handle when the pass declares more than PG_MAX_SLOTS; pg_decl_check_counts reports it). */
+pg_slot pg_decl_read(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
+                     uint32_t stages, uint32_t formats);
+pg_slot pg_decl_write(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
+                      uint32_t stages, uint32_t formats);
+/* The declared slot of a handle (NULL for PG_SLOT_NONE or a handle of another declaration). */
+pg_slot_decl *pg_decl_slot(pg_pass_decl *d, pg_slot s);
+/* A shader define NAME (or NAME=VALUE) of the pass's variant, built from values, never parsed
+ * back: create reads its params, and hands the list to the shader compiler (pg_pass_defines). */
 void pg_decl_define(pg_pass_decl *d, const char *define);
-/* Marks reads[index] (or writes[index]) unused and records why in the explanation. */
-void pg_decl_mark_unused(pg_pass_decl *d, bool is_write, uint32_t index, const char *why);
-/* Marks writes[index] as initialised by the pass itself / as written partially (see
+void pg_decl_define_int(pg_pass_decl *d, const char *name, int64_t value);
+/* The pass's params block (size bytes, at most PG_MAX_PASS_PARAMS; NULL when larger):
+ *   my_params *p = pg_decl_params(out, sizeof *p); */
+void *pg_decl_params(pg_pass_decl *d, size_t size);
+/* Marks a slot unused and records why in the explanation. */
+void pg_decl_mark_unused(pg_pass_decl *d, pg_slot s, const char *why);
+/* Marks a write slot as initialised by the pass itself / as written partially (see
  * pg_slot_decl.initializes and .partial). */
-void pg_decl_mark_initializes(pg_pass_decl *d, uint32_t index);
-void pg_decl_mark_partial(pg_pass_decl *d, uint32_t index);
+void pg_decl_mark_initializes(pg_pass_decl *d, pg_slot s);
+void pg_decl_mark_partial(pg_pass_decl *d, pg_slot s);
+/* The shader defines declare chose (NAME or NAME=VALUE), for the shader compiler: fills out
+ * (max entries) and returns how many. */
+uint32_t pg_decl_define_list(const pg_pass_decl *d, const char **out, uint32_t max);
 void pg_decl_explain(pg_pass_decl *d, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))

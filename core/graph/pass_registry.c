@@ -35,6 +35,9 @@ pg_result pg_registry_add(pg_pass_registry *reg, const pg_pass_type *type, pg_er
         return pg_fail(err, PG_ERR_INVALID_ARG,
                        "pass type '%s' lists run-time options ('%s', ...) but has no update()", type->name,
                        type->runtime_options[0]);
+    if (type->params_size > PG_MAX_PASS_PARAMS)
+        return pg_fail(err, PG_ERR_LIMIT, "pass type '%s': its params block is %zu bytes, more than %d",
+                       type->name, type->params_size, PG_MAX_PASS_PARAMS);
     if (pg_registry_find(reg, type->name))
         return pg_fail(err, PG_ERR_INVALID_ARG, "pass type '%s' is registered twice", type->name);
     const uint32_t cap = (uint32_t)(sizeof reg->types / sizeof reg->types[0]);
@@ -45,13 +48,14 @@ pg_result pg_registry_add(pg_pass_registry *reg, const pg_pass_type *type, pg_er
     return PG_OK;
 }
 
-static void add_slot(pg_slot_decl *slots, uint32_t *n, const char *name, pg_res_kind kind,
-                     pg_access access, uint32_t stages, uint32_t formats)
+static pg_slot add_slot(pg_slot_decl *slots, uint32_t *n, bool write, const char *name, pg_res_kind kind,
+                        pg_access access, uint32_t stages, uint32_t formats)
 {
     if (*n >= PG_MAX_SLOTS) { /* overflow marker, see the file comment */
         *n = PG_MAX_SLOTS + 1;
-        return;
+        return PG_SLOT_NONE;
     }
+    const pg_slot h = {(uint16_t)(1 + *n + (write ? PG_MAX_SLOTS : 0))};
     pg_slot_decl *s = &slots[(*n)++];
     memset(s, 0, sizeof *s);
     pg_strlcpy(s->name, name ? name : "?", sizeof s->name);
@@ -59,18 +63,49 @@ static void add_slot(pg_slot_decl *slots, uint32_t *n, const char *name, pg_res_
     s->access = access;
     s->stages = stages;
     s->formats = formats;
+    return h;
 }
 
-void pg_decl_read(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
-                  uint32_t stages, uint32_t formats)
+pg_slot pg_decl_read(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
+                     uint32_t stages, uint32_t formats)
 {
-    if (d) add_slot(d->reads, &d->n_reads, name, kind, access, stages, formats);
+    return d ? add_slot(d->reads, &d->n_reads, false, name, kind, access, stages, formats) : PG_SLOT_NONE;
 }
 
-void pg_decl_write(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
-                   uint32_t stages, uint32_t formats)
+pg_slot pg_decl_write(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_access access,
+                      uint32_t stages, uint32_t formats)
 {
-    if (d) add_slot(d->writes, &d->n_writes, name, kind, access, stages, formats);
+    return d ? add_slot(d->writes, &d->n_writes, true, name, kind, access, stages, formats) : PG_SLOT_NONE;
+}
+
+pg_slot_decl *pg_decl_slot(pg_pass_decl *d, pg_slot s)
+{
+    if (!d || !pg_slot_ok(s)) return NULL;
+    const uint32_t i = pg_slot_index(s);
+    if (pg_slot_is_write(s)) return i < d->n_writes && i < PG_MAX_SLOTS ? &d->writes[i] : NULL;
+    return i < d->n_reads && i < PG_MAX_SLOTS ? &d->reads[i] : NULL;
+}
+
+void *pg_decl_params(pg_pass_decl *d, size_t size)
+{
+    return d && size <= sizeof d->params ? d->params : NULL;
+}
+
+void pg_decl_define_int(pg_pass_decl *d, const char *name, int64_t value)
+{
+    char def[PG_NAME_MAX];
+    if (snprintf(def, sizeof def, "%s=%lld", name, (long long)value) >= (int)sizeof def) {
+        if (d) d->n_defines = PG_MAX_DEFINES + 1; /* too long: the overflow marker */
+        return;
+    }
+    pg_decl_define(d, def);
+}
+
+uint32_t pg_decl_define_list(const pg_pass_decl *d, const char **out, uint32_t max)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < d->n_defines && i < PG_MAX_DEFINES && n < max; i++) out[n++] = d->defines[i];
+    return n;
 }
 
 void pg_decl_define(pg_pass_decl *d, const char *define)
@@ -149,43 +184,39 @@ pg_result pg_decl_check_counts(const pg_pass_desc *desc, const pg_pass_decl *d,
         slot_names(d->reads, d->n_reads, names, sizeof names);
         return pg_fail(err, PG_ERR_SCHEMA,
                        "%s: %s.reads: pass type '%s' expects %u read%s (%s) with these options, "
-                       "got %u; its read slots are: %s",
+                       "got %u",
                        file, jp, tname, d->n_reads, d->n_reads == 1 ? "" : "s", names,
-                       desc->n_reads,
-                       type && type->read_slots && type->read_slots[0] ? type->read_slots
-                                                                       : "none");
+                       desc->n_reads);
     }
     if (desc->n_writes != d->n_writes) {
         slot_names(d->writes, d->n_writes, names, sizeof names);
         return pg_fail(err, PG_ERR_SCHEMA,
                        "%s: %s.writes: pass type '%s' expects %u write%s (%s) with these "
-                       "options, got %u; its write slots are: %s",
+                       "options, got %u",
                        file, jp, tname, d->n_writes, d->n_writes == 1 ? "" : "s", names,
-                       desc->n_writes,
-                       type && type->write_slots && type->write_slots[0] ? type->write_slots
-                                                                         : "none");
+                       desc->n_writes);
     }
     return PG_OK;
 }
 
-void pg_decl_mark_unused(pg_pass_decl *d, bool is_write, uint32_t index, const char *why)
+void pg_decl_mark_unused(pg_pass_decl *d, pg_slot s, const char *why)
 {
-    pg_slot_decl *sd = NULL;
-    if (is_write && index < d->n_writes) sd = &d->writes[index];
-    if (!is_write && index < d->n_reads) sd = &d->reads[index];
+    pg_slot_decl *sd = pg_decl_slot(d, s);
     if (!sd) return;
     sd->unused = true;
     pg_decl_explain(d, "slot '%s' unused: %s", sd->name, why);
 }
 
-void pg_decl_mark_initializes(pg_pass_decl *d, uint32_t index)
+void pg_decl_mark_initializes(pg_pass_decl *d, pg_slot s)
 {
-    if (d && index < d->n_writes) d->writes[index].initializes = true;
+    pg_slot_decl *sd = pg_slot_is_write(s) ? pg_decl_slot(d, s) : NULL;
+    if (sd) sd->initializes = true;
 }
 
-void pg_decl_mark_partial(pg_pass_decl *d, uint32_t index)
+void pg_decl_mark_partial(pg_pass_decl *d, pg_slot s)
 {
-    if (d && index < d->n_writes) d->writes[index].partial = true;
+    pg_slot_decl *sd = pg_slot_is_write(s) ? pg_decl_slot(d, s) : NULL;
+    if (sd) sd->partial = true;
 }
 
 void pg_report_add(pg_pass_report *r, const char *name, uint64_t value)

@@ -59,6 +59,18 @@ typedef struct pg_pass_create_ctx {
     uint32_t n_settings;
 } pg_pass_create_ctx;
 
+/* The plan slot of a handle declare returned (reads first, then writes; see pg_slot). */
+static inline uint32_t pg_plan_slot_of(const pg_plan_pass *pass, pg_slot s)
+{
+    return pg_slot_is_write(s) ? pass->decl.n_reads + pg_slot_index(s) : pg_slot_index(s);
+}
+/* In create and record (either context): the physical resource bound to a slot handle, whether
+ * the slot is unused in this configuration (pg_decl_mark_unused), and the pass's params block
+ * as declare filled it (type T, pg_pass_type.params_size bytes). */
+#define pg_ctx_res(ctx, s) ((ctx)->slots[pg_plan_slot_of((ctx)->pass, (s))])
+#define pg_ctx_unused(ctx, s) ((ctx)->pass->slots[pg_plan_slot_of((ctx)->pass, (s))].decl.unused)
+#define PG_PARAMS(ctx, T) ((const T *)(const void *)(ctx)->pass->decl.params)
+
 /* The value of an application setting (the last one with that key), or NULL when absent. */
 const char *pg_ctx_setting(const pg_pass_create_ctx *ctx, const char *key);
 

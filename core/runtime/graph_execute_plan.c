@@ -234,14 +234,14 @@ static pg_result recreate_resources(pg_runtime *rt, const bool *changed, const b
     return PG_OK;
 }
 
-/* Only the run-time values changed: every kept pass instance re-reads its options. */
+/* Only the run-time values changed: every kept pass instance takes them from its new params. */
 static pg_result update_values(pg_runtime *rt, pg_error *err)
 {
     for (uint32_t o = 0; o < rt->plan->n_order; o++) {
         int pi = rt->plan->order[o];
         const pg_plan_pass *pass = &rt->plan->passes[pi];
         if (!pass->type->update || !rt->pass_state[pi]) continue;
-        pg_result r = pass->type->update(rt->pass_state[pi], &rt->pipeline->passes[pass->desc_index], err);
+        pg_result r = pass->type->update(rt->pass_state[pi], pass->decl.params, err);
         if (r) return pg_error_prefix(err, "pass '%s' (%s)", pass->name, pass->type->name);
     }
     return PG_OK;

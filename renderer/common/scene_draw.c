@@ -49,19 +49,13 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     char tc[32];
     snprintf(tc, sizeof tc, "TEXTURE_COUNT=%u", PG_SCENE_OF(ctx)->n_images);
     defs[n++] = tc;
-    bool has_mask = false;
-    out->vertex_colors = out->uv1 = false;
+    const pg_scene_draw_features *f = d->features;
+    const bool has_mask = f->alpha_mask;
+    out->vertex_colors = f->vertex_colors;
+    out->uv1 = f->uv1;
     out->push_draw_key = false;
     out->draw_key_shift = 0;
-    for (uint32_t i = 0; i < pass->decl.n_defines; i++) {
-        if (strcmp(pass->decl.defines[i], "PG_ALPHA_MASK") == 0) {
-            has_mask = true;
-            continue;
-        }
-        if (strcmp(pass->decl.defines[i], "PG_VERTEX_COLORS") == 0) out->vertex_colors = true;
-        if (strcmp(pass->decl.defines[i], "PG_UV1") == 0) out->uv1 = true;
-        defs[n++] = pass->decl.defines[i];
-    }
+    n += pg_scene_draw_define_list(&pass->decl, f, defs + n, PG_MAX_DEFINES);
     if ((out->vertex_colors && !PG_SCENE_OF(ctx)->colors.buffer) || (out->uv1 && !PG_SCENE_OF(ctx)->uv1.buffer)) {
         r = pg_fail(err, PG_ERR_INVALID_ARG, "%s: compiled with %s but the uploaded scene has no such stream",
                     pass->name, out->vertex_colors && !PG_SCENE_OF(ctx)->colors.buffer ? "PG_VERTEX_COLORS" : "PG_UV1");
@@ -181,15 +175,33 @@ void pg_scene_draw_destroy(pg_gpu *gpu, pg_scene_draw *sd)
 
 const char *const pg_prepass_tests[] = {"less", "equal", NULL};
 
-void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out)
+uint32_t pg_scene_draw_define_list(const pg_pass_decl *decl, const pg_scene_draw_features *f, const char **out,
+                                   uint32_t max)
 {
-    if (in->features.has_alpha_mask) pg_decl_define(out, "PG_ALPHA_MASK");
-    else pg_decl_explain(out, "no alpha-mask materials: alpha-test (discard) variant not compiled");
-    pg_scene_draw_declare_vertex_features(in, out);
+    const char *all[PG_MAX_DEFINES];
+    const uint32_t na = pg_decl_define_list(decl, all, PG_MAX_DEFINES);
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < na && n < max; i++)
+        if (i + 1 != f->mask_define) out[n++] = all[i];
+    return n;
 }
 
-void pg_scene_draw_declare_vertex_features(const pg_declare_in *in, pg_pass_decl *out)
+void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out, pg_scene_draw_features *f)
 {
+    if (in->features.has_alpha_mask) {
+        f->alpha_mask = true;
+        f->mask_define = (uint8_t)(out->n_defines + 1);
+        pg_decl_define(out, "PG_ALPHA_MASK");
+    } else {
+        pg_decl_explain(out, "no alpha-mask materials: alpha-test (discard) variant not compiled");
+    }
+    pg_scene_draw_declare_vertex_features(in, out, f);
+}
+
+void pg_scene_draw_declare_vertex_features(const pg_declare_in *in, pg_pass_decl *out, pg_scene_draw_features *f)
+{
+    f->vertex_colors = in->features.has_vertex_colors;
+    f->uv1 = in->features.has_uv1;
     if (in->features.has_normal_maps) pg_decl_define(out, "PG_NORMAL_MAPS");
     else pg_decl_explain(out, "no normal maps: tangent-space normal path compiled out");
     if (in->features.has_emissive) pg_decl_define(out, "PG_EMISSIVE");

@@ -11,6 +11,16 @@
 #include "pass_set.h"
 #include "vk_pipeline.h"
 
+/* What declare chose for the surface variant (pg_scene_draw_declare_features): kept in the pass's
+ * params block, read by pg_scene_draw_create / pg_vis_geometry_create (nothing parses the defines). */
+typedef struct pg_scene_draw_features {
+    bool alpha_mask;      /* PG_ALPHA_MASK declared: a second pipeline for the alpha-mask draws */
+    bool vertex_colors;   /* PG_VERTEX_COLORS: vertex stream 1 */
+    bool uv1;             /* PG_UV1: vertex stream 2 */
+    uint8_t mask_define;  /* 1 + the position of PG_ALPHA_MASK among the pass's defines (0: none): the
+                           * opaque pipelines compile every other define */
+} pg_scene_draw_features;
+
 typedef struct pg_scene_draw {
     VkPipelineLayout layout;
     VkPipeline opaque, masked;
@@ -24,6 +34,7 @@ typedef struct pg_scene_draw {
 
 typedef struct pg_scene_draw_desc {
     const char *fragment_shader;      /* e.g. "forward.frag" */
+    const pg_scene_draw_features *features; /* what the pass's declare chose (its params) */
     VkDescriptorSetLayout pass_layout;/* set 2 (may be VK_NULL_HANDLE) */
     uint32_t n_color;
     VkFormat color_formats[8];
@@ -41,8 +52,8 @@ typedef struct pg_scene_draw_desc {
     float depth_bias_slope;
 } pg_scene_draw_desc;
 
-/* Uses ctx->pass->decl.defines (PG_ALPHA_MASK there selects whether the masked pipeline is made)
- * plus TEXTURE_COUNT for the scene. */
+/* Compiles the pass's declared defines (d->features->alpha_mask selects whether the masked pipeline
+ * is made) plus TEXTURE_COUNT for the scene. */
 pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_draw_desc *d,
                                pg_scene_draw *out, pg_error *err);
 /* Binds sets 0..2 (pass_set may be VK_NULL_HANDLE when there is no set 2) and draws every
@@ -56,10 +67,14 @@ void pg_scene_draw_record_list(const pg_scene_draw *sd, const pg_pass_record_ctx
 void pg_scene_draw_destroy(pg_gpu *gpu, pg_scene_draw *sd);
 /* declare(): the surface variant the scene needs (PG_ALPHA_MASK, PG_NORMAL_MAPS, PG_EMISSIVE,
  * PG_VERTEX_COLORS, PG_UV1, PG_UV_TRANSFORM) and, for what it lacks, why that path is left out. */
-void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out);
+void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out, pg_scene_draw_features *f);
 /* The same without the alpha-mask variant: the defines that shape the vertex path and the surface
  * (for a pass that draws no alpha-mask draws but must run the same vertex shader). */
-void pg_scene_draw_declare_vertex_features(const pg_declare_in *in, pg_pass_decl *out);
+void pg_scene_draw_declare_vertex_features(const pg_declare_in *in, pg_pass_decl *out, pg_scene_draw_features *f);
+/* The pass's declared defines without PG_ALPHA_MASK (f->mask_define) into out (max entries); returns how
+ * many. */
+uint32_t pg_scene_draw_define_list(const pg_pass_decl *decl, const pg_scene_draw_features *f, const char **out,
+                                   uint32_t max);
 /* The depth tests of a depth pre-pass and the shading pass after it (depth_prepass's option test,
  * forward_plus's prepass_test): index 0 "less" (biased pre-pass, LESS with writes), 1 "equal"
  * (pg_scene_draw_desc.depth_equal); NULL-terminated for pg_opt_enum. */

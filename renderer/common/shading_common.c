@@ -10,8 +10,10 @@ const char *const pg_debug_views[] = {"none",     "cluster_heat", "cluster_x", "
 static const char *const k_shading[] = {"lambert", "blinn_phong", NULL};
 
 pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const char *const *extra_known,
-                               pg_shading_opts *o, pg_error *err)
+                               pg_shading_params *sp, pg_error *err)
 {
+    pg_shading_opts *o = &sp->o;
+    sp->clustered = clustered;
     const char *known[24];
     uint32_t n = 0;
     known[n++] = "shading";
@@ -29,6 +31,7 @@ pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const c
     if ((r = pg_opt_check_known(desc, known, err))) return r;
     if ((r = pg_opt_enum(desc, "shading", k_shading, 0, &o->shading, err))) return r;
     if ((r = pg_opt_float(desc, "ambient", 0.0, 0.0, 1e6, &o->ambient, err))) return r;
+    sp->ambient = (float)o->ambient;
     if ((r = pg_opt_enum(desc, "view", pg_debug_views, 0, &o->view, err))) return r;
     if (!clustered && o->view >= 1 && o->view <= 5) {
         char key[64];
@@ -53,81 +56,64 @@ pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const c
     return PG_OK;
 }
 
-void pg_shading_declare(const pg_shading_opts *o, const pg_declare_in *in, pg_pass_decl *out, bool clustered,
-                        int light_slot, int cluster_slot)
+void pg_shading_declare(pg_shading_params *sp, const pg_declare_in *in, pg_pass_decl *out)
 {
-    char def[PG_NAME_MAX];
+    const pg_shading_opts *o = &sp->o;
+    const bool clustered = sp->clustered;
     if (o->shading == 1) pg_decl_define(out, "PG_BLINN_PHONG");
     if (o->view) {
-        snprintf(def, sizeof def, "PG_DEBUG_VIEW=%d", o->view);
-        pg_decl_define(out, def);
+        pg_decl_define_int(out, "PG_DEBUG_VIEW", o->view);
         pg_decl_explain(out, "debug view '%s': output shows it instead of lighting", pg_debug_views[o->view]);
     }
     if (clustered) {
         pg_decl_define(out, "PG_CLUSTERED");
-        snprintf(def, sizeof def, "GRID_X=%u", o->grid[0]);
-        pg_decl_define(out, def);
-        snprintf(def, sizeof def, "GRID_Y=%u", o->grid[1]);
-        pg_decl_define(out, def);
-        snprintf(def, sizeof def, "GRID_Z=%u", o->grid[2]);
-        pg_decl_define(out, def);
+        pg_decl_define_int(out, "GRID_X", o->grid[0]);
+        pg_decl_define_int(out, "GRID_Y", o->grid[1]);
+        pg_decl_define_int(out, "GRID_Z", o->grid[2]);
     }
     /* a debug view that shows no lighting and needs no cluster data reads no lights either */
     bool view_needs_lights = o->view == 0 || (o->view >= 1 && o->view <= 5);
     if (in->features.light_count > 0 && view_needs_lights) {
         pg_decl_define(out, "PG_HAS_LIGHTS");
+        sp->has_lights = true;
     } else {
+        sp->has_lights = false;
         const char *why = in->features.light_count == 0 ? "0 lights: light loop compiled out"
                                                         : "debug view reads no lights";
-        if (light_slot >= 0) pg_decl_mark_unused(out, false, (uint32_t)light_slot, why);
-        if (clustered && cluster_slot >= 0) {
-            pg_decl_mark_unused(out, false, (uint32_t)cluster_slot, why);
-            pg_decl_mark_unused(out, false, (uint32_t)cluster_slot + 1, why);
+        if (pg_slot_ok(sp->lights)) pg_decl_mark_unused(out, sp->lights, why);
+        if (clustered && pg_slot_ok(sp->cluster_counts)) {
+            pg_decl_mark_unused(out, sp->cluster_counts, why);
+            pg_decl_mark_unused(out, sp->cluster_lists, why);
         }
     }
 }
 
 const char *const pg_shading_runtime_options[] = {"ambient", NULL};
 
-pg_result pg_shading_ambient(const pg_pass_desc *desc, float *out, pg_error *err)
-{
-    double a = 0.0;
-    pg_result r = pg_opt_float(desc, "ambient", 0.0, 0.0, 1e6, &a, err);
-    if (!r) *out = (float)a;
-    return r;
-}
-
-bool pg_shading_has_lights(const pg_plan_pass *pass)
-{
-    for (uint32_t i = 0; i < pass->decl.n_defines; i++)
-        if (!strcmp(pass->decl.defines[i], "PG_HAS_LIGHTS")) return true;
-    return false;
-}
-
-pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, bool clustered, int light_slot, int cluster_slot,
-                              pg_pass_set *out, pg_error *err)
+pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, const pg_shading_params *sp, pg_pass_set *out,
+                              pg_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (!pg_shading_has_lights(ctx->pass)) return PG_OK;
+    if (!sp->has_lights) return PG_OK;
     pg_set_binding b[3] = {
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[light_slot], VK_NULL_HANDLE, 0},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->lights), VK_NULL_HANDLE, 0},
     };
     uint32_t n = 1;
-    if (clustered) {
-        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[cluster_slot], VK_NULL_HANDLE, 0};
-        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[cluster_slot + 1], VK_NULL_HANDLE, 0};
+    if (sp->clustered) {
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->cluster_counts), VK_NULL_HANDLE, 0};
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->cluster_lists), VK_NULL_HANDLE, 0};
     }
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.lights", ctx->pass->name);
     return pg_pass_set_create(ctx->gpu, n, b, name, out, err);
 }
 
-pg_result pg_check_cluster_buffers(const pg_pass_create_ctx *ctx, const pg_shading_opts *o, int cluster_slot,
-                                   pg_error *err)
+pg_result pg_check_cluster_buffers(const pg_pass_create_ctx *ctx, const pg_shading_params *sp, pg_error *err)
 {
-    if (!pg_shading_has_lights(ctx->pass)) return PG_OK;
+    if (!sp->has_lights) return PG_OK;
+    const pg_shading_opts *o = &sp->o;
     uint64_t cells = (uint64_t)o->grid[0] * o->grid[1] * o->grid[2];
-    const pg_phys_resource *counts = ctx->slots[cluster_slot], *lists = ctx->slots[cluster_slot + 1];
+    const pg_phys_resource *counts = pg_ctx_res(ctx, sp->cluster_counts), *lists = pg_ctx_res(ctx, sp->cluster_lists);
     if (counts->size < cells * 16 || lists->size < 4)
         return pg_fail(err, PG_ERR_INVALID_ARG,
                        "%s: %s: cluster buffers (%llu and %llu bytes) do not fit grid %ux%ux%u (cluster_counts needs "
@@ -138,12 +124,14 @@ pg_result pg_check_cluster_buffers(const pg_pass_create_ctx *ctx, const pg_shadi
     return PG_OK;
 }
 
-pg_result pg_emissive_slot_declare(const pg_declare_in *in, pg_pass_decl *out, bool is_write, uint32_t index,
-                                   bool full_precision, bool *used, pg_error *err)
+pg_result pg_emissive_slot_declare(const pg_declare_in *in, pg_pass_decl *out, bool is_write, bool full_precision,
+                                   pg_slot *slot, bool *used, pg_error *err)
 {
     const pg_pass_desc *d = in->desc;
+    const uint32_t index = is_write ? out->n_writes : out->n_reads; /* the desc position it binds */
     const bool bound = (is_write ? d->n_writes : d->n_reads) > index;
     *used = false;
+    *slot = PG_SLOT_NONE;
     if (!bound) {
         if (in->features.has_emissive)
             pg_decl_explain(out, "no emissive slot bound (%s[%u]): emissive materials are not drawn",
@@ -151,9 +139,9 @@ pg_result pg_emissive_slot_declare(const pg_declare_in *in, pg_pass_decl *out, b
         return PG_OK;
     }
     if (is_write)
-        pg_decl_write(out, "emissive", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+        *slot = pg_decl_write(out, "emissive", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
     else
-        pg_decl_read(out, "emissive", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+        *slot = pg_decl_read(out, "emissive", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
     const char *name = is_write ? d->writes[index] : d->reads[index];
     const pg_resource_desc *rd = pg_pipeline_find_resource(in->pipeline, name);
     if (rd && rd->kind == PG_RES_IMAGE &&
@@ -163,7 +151,7 @@ pg_result pg_emissive_slot_declare(const pg_declare_in *in, pg_pass_decl *out, b
                        full_precision ? "rgba32f (full precision, as the rest of this G-buffer)" : "rgba16f or rgba32f",
                        rd->name, pg_format_get(rd->format)->name);
     if (!in->features.has_emissive) {
-        pg_decl_mark_unused(out, is_write, index, "no emissive materials: emissive target not allocated");
+        pg_decl_mark_unused(out, *slot, "no emissive materials: emissive target not allocated");
         return PG_OK;
     }
     *used = true;

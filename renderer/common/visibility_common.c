@@ -24,22 +24,20 @@ pg_result pg_vis_tri_bits(const pg_scene_gpu *sc, uint32_t *tri_bits, pg_error *
     return PG_OK;
 }
 
-pg_result pg_vis_geometry_create(const pg_pass_create_ctx *ctx, uint32_t scene_set, pg_vis_geometry *g,
-                                 pg_error *err)
+pg_result pg_vis_geometry_create(const pg_pass_create_ctx *ctx, const pg_scene_draw_features *f, uint32_t scene_set,
+                                 pg_vis_geometry *g, pg_error *err)
 {
     const pg_scene_gpu *sc = PG_SCENE_OF(ctx);
     pg_result r;
     if (!sc) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: needs a scene", ctx->pass->name);
     if ((r = pg_vis_tri_bits(sc, &g->tri_bits, err))) return r;
     g->n_defines = 0;
-    g->colors = g->uv1 = false;
-    for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) {
-        const char *d = ctx->pass->decl.defines[i];
-        if (!strcmp(d, "PG_ALPHA_MASK")) continue; /* the visibility pass discarded already */
-        if (!strcmp(d, "PG_VERTEX_COLORS")) g->colors = true;
-        if (!strcmp(d, "PG_UV1")) g->uv1 = true;
-        snprintf(g->defines[g->n_defines++], PG_NAME_MAX, "%s", d);
-    }
+    g->colors = f->vertex_colors;
+    g->uv1 = f->uv1;
+    const char *defs[PG_MAX_DEFINES];
+    /* without PG_ALPHA_MASK: the visibility pass discarded already */
+    const uint32_t nd = pg_scene_draw_define_list(&ctx->pass->decl, f, defs, PG_MAX_DEFINES);
+    for (uint32_t i = 0; i < nd; i++) snprintf(g->defines[g->n_defines++], PG_NAME_MAX, "%s", defs[i]);
     if ((g->colors && !sc->colors.buffer) || (g->uv1 && !sc->uv1.buffer))
         return pg_fail(err, PG_ERR_INVALID_ARG, "%s: compiled with %s but the uploaded scene has no such stream",
                        ctx->pass->name, g->colors && !sc->colors.buffer ? "PG_VERTEX_COLORS" : "PG_UV1");

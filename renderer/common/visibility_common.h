@@ -18,6 +18,7 @@
 #include "graph_execute.h"
 #include "pass_set.h"
 #include "scene_gpu.h"
+#include "scene_draw.h"
 
 /* The triangle bits of the scene's ids (1..31); fails when (draws, largest draw) do not fit. */
 pg_result pg_vis_tri_bits(const pg_scene_gpu *sc, uint32_t *tri_bits, pg_error *err);
@@ -34,9 +35,10 @@ typedef struct pg_vis_geometry {
                                 * and PG_SCENE_SET=scene_set */
 } pg_vis_geometry;
 
-/* Checks the device and the scene, writes the draw table and the defines. */
-pg_result pg_vis_geometry_create(const pg_pass_create_ctx *ctx, uint32_t scene_set, pg_vis_geometry *g,
-                                 pg_error *err);
+/* Checks the device and the scene, writes the draw table and the defines (f: the surface variant the
+ * pass's declare chose, kept in its params). */
+pg_result pg_vis_geometry_create(const pg_pass_create_ctx *ctx, const pg_scene_draw_features *f, uint32_t scene_set,
+                                 pg_vis_geometry *g, pg_error *err);
 /* Appends the vertex-stream bindings (3 to 5) at b[n...]; returns the new count. */
 uint32_t pg_vis_geometry_bindings(pg_vis_geometry *g, const pg_scene_gpu *sc, pg_set_binding *b, uint32_t n);
 /* The defines as the const char * array pg_shader_module takes; returns their count. */

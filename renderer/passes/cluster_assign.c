@@ -41,7 +41,6 @@
 #include "pass_set.h"
 #include "vk_pipeline.h"
 
-enum { SLOT_LIGHTS = 0, SLOT_RECORDS = 1, SLOT_LISTS = 2 }; /* plan slots: reads, then writes */
 /* words (32 lights each) one count/fill workgroup walks: 16,384 lights, so 1,000,000 lights give
  * 62 workgroups per cluster (enough in flight on a large GPU) and 4,000 lights one */
 #define SEG_WORDS 512u
@@ -54,6 +53,11 @@ typedef struct ca_opts {
     int method;          /* 0 binned, 1 brute_force */
     bool subgroups;
 } ca_opts;
+
+typedef struct ca_params { /* filled once by declare, read by create */
+    ca_opts o;
+    pg_slot lights, records, lists;
+} ca_params;
 
 typedef struct ca_stats { /* mirrors Stats in cluster_scan.comp */
     uint32_t needed, stored, dropped, overflow_clusters, max_count, dropped_cap, fair_cap, capacity;
@@ -73,6 +77,7 @@ typedef struct cluster_assign {
     VkPipelineLayout layout;
     VkPipeline pipe[PIPE_N];
     uint64_t list_bytes;        /* capacity of the list buffer this instance was created with */
+    uint32_t lists_slot;        /* plan slot of cluster_lights (pg_report_grow) */
     VkQueryPool queries;        /* timestamps around the four steps (when the queue has them) */
     pg_gpu *gpu;                /* borrowed, for report() */
     bool ran;
@@ -111,20 +116,17 @@ static pg_result read_opts(const pg_pass_desc *desc, ca_opts *o, pg_error *err)
 
 static pg_result ca_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
-    ca_opts o;
-    pg_result r = read_opts(in->desc, &o, err);
+    ca_params *p = pg_decl_params(out, sizeof *p);
+    pg_result r = read_opts(in->desc, &p->o, err);
     if (r) return r;
-    pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
-    pg_decl_write(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
-    pg_decl_write(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
-    pg_decl_mark_partial(out, 1); /* filled up to each cluster's count; readers read only that */
-    char def[PG_NAME_MAX];
-    snprintf(def, sizeof def, "GRID_X=%u", o.grid[0]);
-    pg_decl_define(out, def);
-    snprintf(def, sizeof def, "GRID_Y=%u", o.grid[1]);
-    pg_decl_define(out, def);
-    snprintf(def, sizeof def, "GRID_Z=%u", o.grid[2]);
-    pg_decl_define(out, def);
+    const ca_opts o = p->o;
+    p->lights = pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+    p->records = pg_decl_write(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
+    p->lists = pg_decl_write(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
+    pg_decl_mark_partial(out, p->lists); /* filled up to each cluster's count; readers read only that */
+    pg_decl_define_int(out, "GRID_X", o.grid[0]);
+    pg_decl_define_int(out, "GRID_Y", o.grid[1]);
+    pg_decl_define_int(out, "GRID_Z", o.grid[2]);
     if (o.method == 1) {
         pg_decl_define(out, "PG_BRUTE_FORCE");
         pg_decl_explain(out, "method brute_force: every light tested against every cluster (the oracle)");
@@ -139,8 +141,7 @@ static pg_result shader(pg_gpu *gpu, const pg_plan_pass *pass, const char *file,
                         const char *extra2, VkShaderModule *out, pg_error *err)
 {
     const char *defs[PG_MAX_DEFINES + 2];
-    uint32_t n = 0;
-    for (uint32_t i = 0; i < pass->decl.n_defines; i++) defs[n++] = pass->decl.defines[i];
+    uint32_t n = pg_decl_define_list(&pass->decl, defs, PG_MAX_DEFINES);
     if (extra1) defs[n++] = extra1;
     if (extra2) defs[n++] = extra2;
     return pg_shader_module(gpu, file, VK_SHADER_STAGE_COMPUTE_BIT, defs, n, out, err);
@@ -176,17 +177,21 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 {
     cluster_assign *p = self;
     pg_gpu *gpu = ctx->gpu;
+    const ca_params *pa = PG_PARAMS(ctx, ca_params);
+    const pg_phys_resource *lights = pg_ctx_res(ctx, pa->lights), *records = pg_ctx_res(ctx, pa->records),
+                           *lists = pg_ctx_res(ctx, pa->lists);
     pg_result r;
-    if ((r = read_opts(ctx->desc, &p->o, err))) return r;
+    p->o = pa->o;
+    p->lists_slot = pg_plan_slot_of(ctx->pass, pa->lists);
     p->gpu = gpu;
     p->clusters = p->o.grid[0] * p->o.grid[1] * p->o.grid[2];
-    p->light_count = (uint32_t)(ctx->slots[SLOT_LIGHTS]->size / 32);
+    p->light_count = (uint32_t)(lights->size / 32);
     p->words = (p->light_count + 31) / 32;
-    if (ctx->slots[SLOT_RECORDS]->size < (uint64_t)p->clusters * 16)
+    if (records->size < (uint64_t)p->clusters * 16)
         return pg_fail(err, PG_ERR_INVALID_ARG,
                        "%s: %s: cluster_counts (%llu bytes) is smaller than grid %ux%ux%u needs (16 bytes per "
                        "cluster: %llu)",
-                       ctx->desc->file, ctx->desc->json_path, (unsigned long long)ctx->slots[SLOT_RECORDS]->size,
+                       ctx->desc->file, ctx->desc->json_path, (unsigned long long)records->size,
                        p->o.grid[0], p->o.grid[1], p->o.grid[2], (unsigned long long)p->clusters * 16);
     /* the lists' budget, within what one storage-buffer binding can span */
     uint64_t dev_max = gpu->max_storage_buffer_range & ~(uint64_t)255;
@@ -195,7 +200,7 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
         p->budget = dev_max;
         p->budget_clamped = true;
     }
-    p->list_bytes = ctx->slots[SLOT_LISTS]->size;
+    p->list_bytes = lists->size;
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.stats", ctx->pass->name);
     if ((r = pg_buffer_create(gpu, sizeof(ca_stats), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -244,9 +249,9 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     /* one set for every step: 0 lights, 1 records, 2 lists, 3 tile masks, 4 slice masks, 5 stats,
      * 6 spheres, 7 segments (the brute-force method binds the stats buffer in the mask slots) */
     pg_set_binding b[8] = {
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[SLOT_LIGHTS], VK_NULL_HANDLE, 0},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[SLOT_RECORDS], VK_NULL_HANDLE, 0},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[SLOT_LISTS], VK_NULL_HANDLE, 0},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, lights, VK_NULL_HANDLE, 0},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, records, VK_NULL_HANDLE, 0},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, lists, VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binned ? &tm : &stats_res, VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binned ? &sm : &stats_res, VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &stats_res, VK_NULL_HANDLE, 0},
@@ -374,7 +379,7 @@ static void ca_report(void *self, pg_pass_report *out)
     pg_report_add(out, "mask_bytes", p->tile_masks.size + p->slice_masks.size + p->spheres.size);
     uint64_t needed = (uint64_t)s->needed * 4;
     if (needed > p->list_bytes) {
-        pg_report_grow(out, SLOT_LISTS, needed, p->budget);
+        pg_report_grow(out, p->lists_slot, needed, p->budget);
         if (needed > p->budget && p->budget_clamped)
             pg_report_note(out, "light lists need %.1f MiB, over the %.1f MiB one storage buffer can span on this "
                            "device: %u refs dropped (use fewer lights or a coarser grid)", needed / 1048576.0,
@@ -403,9 +408,8 @@ static void ca_destroy(void *self, pg_gpu *gpu)
 const pg_pass_type pg_pass_cluster_assign = {
     .name = "cluster_assign",
     .summary = "compute: per-cluster light lists, exact by default (binned lights, exact test, growing lists)",
-    .read_slots = "lights",
-    .write_slots = "cluster_counts, cluster_lights",
     .instance_size = sizeof(cluster_assign),
+    .params_size = sizeof(ca_params),
     .declare = ca_declare,
     .create = ca_create,
     .record = ca_record,

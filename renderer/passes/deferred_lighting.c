@@ -14,7 +14,6 @@
  * 8: the workgroup is tile_size x tile_size pixels), tile_lights (default true: each tile culls its clusters' lists against the bounding box of its pixels and shares the
  * kept lights through shared memory; bit-identical to false, with far fewer light evaluations). */
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "gbuffer_layout.h"
@@ -23,10 +22,18 @@
 #include "shading_common.h"
 #include "visibility_common.h"
 
-typedef struct deferred_lighting {
+typedef struct dl_params { /* filled once by declare, read by create/update/record */
+    pg_shading_params sh;       /* options, lights and cluster slots */
+    pg_scene_draw_features draw;/* packing visibility: the material variant */
     int packing;
+    uint32_t tile;              /* option tile_size: workgroup edge in pixels (8 or 16) */
+    bool tiled;                 /* PG_TILE_LIGHTS declared */
+    pg_slot depth, targets[4], emissive_slot, hdr;
+} dl_params;
+
+typedef struct deferred_lighting {
     float ambient;          /* option "ambient" (a run-time value): push constant */
-    uint32_t hdr_slot;      /* plan slot of hdr: after the reads (the emissive read is optional) */
+    pg_slot hdr;
     uint32_t tile;          /* workgroup edge in pixels (8 or 16) */
     VkSampler sampler;
     pg_pass_set gbuf, lights;
@@ -41,17 +48,20 @@ static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", NUL
 
 static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
-    pg_shading_opts o;
+    dl_params *p = pg_decl_params(out, sizeof *p);
     int packing;
     pg_result r;
-    if ((r = pg_shading_opts_read(in->desc, true, k_extra, &o, err))) return r;
+    if ((r = pg_shading_opts_read(in->desc, true, k_extra, &p->sh, err))) return r;
     if ((r = pg_opt_enum(in->desc, "packing", pg_gbuffer_packings, 0, &packing, err))) return r;
-    pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
-    pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
-    pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
-    pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_DEPTH);
+    p->packing = packing;
+    p->sh.lights = pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+    p->sh.cluster_counts =
+        pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+    p->sh.cluster_lists =
+        pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+    p->depth = pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_DEPTH);
     for (uint32_t t = 0; t < pg_gbuffer_targets[packing]; t++)
-        pg_decl_read(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE,
+        p->targets[t] = pg_decl_read(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE,
                      packing >= PG_GBUFFER_PACKED ? PG_FMTCLASS_UINT : PG_FMTCLASS_FLOAT);
     bool emissive = false;
     if (packing == PG_GBUFFER_VISIBILITY) {
@@ -60,15 +70,14 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
                            "%s: %s.reads[5]: packing \"visibility\" takes no emissive target (the material's "
                            "emission is evaluated in this pass)",
                            in->desc->file, in->desc->json_path);
-        pg_scene_draw_declare_features(in, out);
-    } else if ((r = pg_emissive_slot_declare(in, out, false, 4 + pg_gbuffer_targets[packing], false, &emissive,
-                                             err))) {
+        pg_scene_draw_declare_features(in, out, &p->draw);
+    } else if ((r = pg_emissive_slot_declare(in, out, false, false, &p->emissive_slot, &emissive, err))) {
         return r;
     }
-    pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    p->hdr = pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
     pg_decl_define(out, pg_gbuffer_defines[packing]);
     if (emissive) pg_decl_define(out, "PG_DEFERRED_EMISSIVE");
-    pg_shading_declare(&o, in, out, true, 0, 1);
+    pg_shading_declare(&p->sh, in, out);
     bool tiled;
     int64_t tile;
     if ((r = pg_opt_bool(in->desc, "tile_lights", true, &tiled, err))) return r;
@@ -76,10 +85,10 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     if (tile != 8 && tile != 16)
         return pg_fail(err, PG_ERR_SCHEMA, "%s: %s.options.tile_size: expected 8 or 16, got %lld", in->desc->file,
                        in->desc->json_path, (long long)tile);
-    char def[PG_NAME_MAX];
-    snprintf(def, sizeof def, "PG_TILE=%lld", (long long)tile);
-    pg_decl_define(out, def);
-    if (tiled && o.view == 0 && in->features.light_count > 0) pg_decl_define(out, "PG_TILE_LIGHTS");
+    p->tile = (uint32_t)tile;
+    pg_decl_define_int(out, "PG_TILE", tile);
+    p->tiled = tiled && p->sh.o.view == 0 && in->features.light_count > 0;
+    if (p->tiled) pg_decl_define(out, "PG_TILE_LIGHTS");
     return PG_OK;
 }
 
@@ -87,18 +96,16 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 {
     deferred_lighting *p = self;
     pg_gpu *gpu = ctx->gpu;
-    pg_shading_opts o;
+    const dl_params *pa = PG_PARAMS(ctx, dl_params);
     pg_result r;
-    if ((r = pg_shading_opts_read(ctx->desc, true, k_extra, &o, err))) return r;
-    if ((r = pg_opt_enum(ctx->desc, "packing", pg_gbuffer_packings, 0, &p->packing, err))) return r;
-    if ((r = pg_check_cluster_buffers(ctx, &o, 1, err))) return r;
-    if ((r = pg_shading_ambient(ctx->desc, &p->ambient, err))) return r;
-    uint32_t n_targets = pg_gbuffer_targets[p->packing];
-    p->hdr_slot = ctx->desc->n_reads;
-    bool vis = p->packing == PG_GBUFFER_VISIBILITY;
-    bool emissive = !vis && p->hdr_slot > 4 + n_targets && !ctx->pass->slots[4 + n_targets].decl.unused;
-    if (vis && (r = pg_vis_geometry_create(ctx, 3, &p->vis, err))) return r;
-    const pg_phys_resource *hdr = ctx->slots[p->hdr_slot];
+    if ((r = pg_check_cluster_buffers(ctx, &pa->sh, err))) return r;
+    p->ambient = pa->sh.ambient;
+    uint32_t n_targets = pg_gbuffer_targets[pa->packing];
+    p->hdr = pa->hdr;
+    bool vis = pa->packing == PG_GBUFFER_VISIBILITY;
+    bool emissive = !vis && pg_slot_ok(pa->emissive_slot) && !pg_ctx_unused(ctx, pa->emissive_slot);
+    if (vis && (r = pg_vis_geometry_create(ctx, &pa->draw, 3, &p->vis, err))) return r;
+    const pg_phys_resource *hdr = pg_ctx_res(ctx, pa->hdr);
     const char *hdr_fmt = pg_format_get(hdr->pg_fmt)->name;
     if (strcmp(hdr_fmt, "rgba16f") && strcmp(hdr_fmt, "rgba32f"))
         return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: deferred lighting writes rgba16f or rgba32f, not %s",
@@ -106,16 +113,18 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
     pg_set_binding b[12];
     uint32_t n = 0;
-    for (uint32_t t = 0; t < 1 + n_targets; t++)
-        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[3 + t], p->sampler, 0};
+    b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pg_ctx_res(ctx, pa->depth), p->sampler, 0};
+    for (uint32_t t = 0; t < n_targets; t++)
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pg_ctx_res(ctx, pa->targets[t]), p->sampler, 0};
     b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr, VK_NULL_HANDLE, 0};
     if (emissive) /* binding HDR_BINDING + 1 */
-        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[4 + n_targets], p->sampler, 0};
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pg_ctx_res(ctx, pa->emissive_slot), p->sampler,
+                                  0};
     if (vis) n = pg_vis_geometry_bindings(&p->vis, PG_SCENE_OF(ctx), b, n); /* binding 3 on */
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.gbuffer", ctx->pass->name);
     if ((r = pg_pass_set_create(gpu, n, b, name, &p->gbuf, err))) return r;
-    if ((r = pg_light_set_create(ctx, true, 0, 1, &p->lights, err))) return r;
+    if ((r = pg_light_set_create(ctx, &pa->sh, &p->lights, err))) return r;
     VkDescriptorSetLayout sets[4] = {ctx->frame_layout, p->gbuf.layout, p->lights.layout, VK_NULL_HANDLE};
     uint32_t n_sets = p->lights.layout ? 3 : 2;
     if (vis) { /* set 3: the scene's materials and textures (set 2 stays empty without lights) */
@@ -132,17 +141,12 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     const char *defs[PG_MAX_DEFINES + 16];
     uint32_t nd = 0;
     if (vis) nd = pg_vis_geometry_define_list(&p->vis, defs);
-    else
-        for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) defs[nd++] = ctx->pass->decl.defines[i];
+    else nd = pg_decl_define_list(&ctx->pass->decl, defs, PG_MAX_DEFINES);
     char fmt_def[48];
     snprintf(fmt_def, sizeof fmt_def, "PG_HDR_FORMAT=%s", hdr_fmt);
     defs[nd++] = fmt_def;
-    bool tiled = false;
-    p->tile = 8;
-    for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) {
-        tiled |= !strcmp(ctx->pass->decl.defines[i], "PG_TILE_LIGHTS");
-        if (!strncmp(ctx->pass->decl.defines[i], "PG_TILE=", 8)) p->tile = (uint32_t)atoi(ctx->pass->decl.defines[i] + 8);
-    }
+    const bool tiled = pa->tiled;
+    p->tile = pa->tile;
     /* the tiled path orders lights within a subgroup by ballots when every subgroup is full */
     uint32_t tile_n = p->tile * p->tile;
     bool subgroups = tiled && gpu->exact_subgroups && gpu->subgroup_size <= tile_n && tile_n % gpu->subgroup_size == 0;
@@ -159,7 +163,7 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 static void dl_record(void *self, const pg_pass_record_ctx *ctx)
 {
     deferred_lighting *p = self;
-    const pg_phys_resource *hdr = ctx->slots[p->hdr_slot];
+    const pg_phys_resource *hdr = pg_ctx_res(ctx, p->hdr);
     VkDescriptorSet sets[3] = {ctx->frame_set, p->gbuf.set, p->lights.set};
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, p->lights.set ? 3 : 2, sets, 0,
@@ -170,10 +174,12 @@ static void dl_record(void *self, const pg_pass_record_ctx *ctx)
     vkCmdDispatch(ctx->cmd, (hdr->width + p->tile - 1) / p->tile, (hdr->height + p->tile - 1) / p->tile, 1);
 }
 
-static pg_result dl_update(void *self, const pg_pass_desc *desc, pg_error *err)
+static pg_result dl_update(void *self, const void *params, pg_error *err)
 {
+    (void)err;
     deferred_lighting *p = self;
-    return pg_shading_ambient(desc, &p->ambient, err);
+    p->ambient = ((const dl_params *)params)->sh.ambient;
+    return PG_OK;
 }
 
 static void dl_destroy(void *self, pg_gpu *gpu)
@@ -191,10 +197,8 @@ static void dl_destroy(void *self, pg_gpu *gpu)
 const pg_pass_type pg_pass_deferred_lighting = {
     .name = "deferred_lighting",
     .summary = "compute: shade every pixel from the G-buffer with the lights of its cluster",
-    .read_slots = "lights, cluster_counts, cluster_lights, depth, G-buffer targets (3 float | 2 oct16 | 1 packed | "
-                  "vis_id for visibility), then optionally emissive (not with visibility)",
-    .write_slots = "hdr",
     .instance_size = sizeof(deferred_lighting),
+    .params_size = sizeof(dl_params),
     .declare = dl_declare,
     .create = dl_create,
     .record = dl_record,

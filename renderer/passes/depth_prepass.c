@@ -34,24 +34,33 @@
 #define PG_PREPASS_BIAS_CONSTANT 16.0f
 #define PG_PREPASS_BIAS_SLOPE 1.0f
 
+typedef struct dp_params { /* filled once by declare, read by create */
+    int test;                    /* PG_PREPASS_LESS or PG_PREPASS_EQUAL */
+    pg_scene_draw_features draw;
+    pg_slot depth;
+} dp_params;
+
 typedef struct depth_prepass {
     pg_scene_draw draw;
+    uint32_t depth_slot; /* plan slot of depth */
 } depth_prepass;
 
 static pg_result dp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
     static const char *const known[] = {"test", NULL};
+    dp_params *p = pg_decl_params(out, sizeof *p);
     pg_result r;
     int test;
     if ((r = pg_opt_check_known(in->desc, known, err))) return r;
     if ((r = pg_opt_enum(in->desc, "test", pg_prepass_tests, PG_PREPASS_LESS, &test, err))) return r;
-    pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
+    p->test = test;
+    p->depth = pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
     if (test == PG_PREPASS_EQUAL) {
-        pg_scene_draw_declare_features(in, out); /* the alpha-mask draws discard here */
+        pg_scene_draw_declare_features(in, out, &p->draw); /* the alpha-mask draws discard here */
         pg_decl_explain(out, "test equal: no depth bias; the shading pass tests EQUAL (an approximation: "
                              "tests/test_gpu_prepass.c measures it)");
     } else {
-        pg_scene_draw_declare_vertex_features(in, out);
+        pg_scene_draw_declare_vertex_features(in, out, &p->draw);
         if (in->features.has_alpha_mask)
             pg_decl_explain(out, "alpha-mask draws left out of the depth pre-pass: the shading pass draws them with "
                                  "their discard");
@@ -62,23 +71,24 @@ static pg_result dp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
 static pg_result dp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
     depth_prepass *p = self;
-    int test;
-    pg_result r = pg_opt_enum(ctx->desc, "test", pg_prepass_tests, PG_PREPASS_LESS, &test, err);
-    if (r) return r;
+    const dp_params *pa = PG_PARAMS(ctx, dp_params);
+    const int test = pa->test;
     pg_scene_draw_desc d = {
         .fragment_shader = "depth_prepass.frag",
+        .features = &pa->draw,
         .n_color = 0,
-        .depth_format = ctx->slots[0]->format,
+        .depth_format = pg_ctx_res(ctx, pa->depth)->format,
         .depth_bias_constant = test == PG_PREPASS_LESS ? PG_PREPASS_BIAS_CONSTANT : 0.0f,
         .depth_bias_slope = test == PG_PREPASS_LESS ? PG_PREPASS_BIAS_SLOPE : 0.0f,
     };
+    p->depth_slot = pg_plan_slot_of(ctx->pass, pa->depth);
     return pg_scene_draw_create(ctx, &d, &p->draw, err);
 }
 
 static void dp_record(void *self, const pg_pass_record_ctx *ctx)
 {
     depth_prepass *p = self;
-    pg_pass_begin_rendering(ctx, 0, NULL, NULL, 0, true, 1.0f);
+    pg_pass_begin_rendering(ctx, 0, NULL, NULL, (int)p->depth_slot, true, 1.0f);
     pg_scene_draw_record(&p->draw, ctx, VK_NULL_HANDLE);
     vkCmdEndRendering(ctx->cmd);
 }
@@ -93,9 +103,8 @@ const pg_pass_type pg_pass_depth_prepass = {
     .name = "depth_prepass",
     .summary = "graphics: depth only, for a shading pass that loads it: test less (the opaque draws one depth-bias "
                "step farther, tested LESS) or equal (opaque and alpha-mask draws, tested EQUAL)",
-    .read_slots = "",
-    .write_slots = "depth",
     .instance_size = sizeof(depth_prepass),
+    .params_size = sizeof(dp_params),
     .declare = dp_declare,
     .create = dp_create,
     .record = dp_record,

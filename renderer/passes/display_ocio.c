@@ -33,7 +33,6 @@
 #include "vk_pipeline.h"
 
 #define DO_MAX_LUTS 15 /* + the hdr binding = pg_pass_set_create's 16 */
-#define DO_NAME_MAX 128
 
 typedef struct do_lut {
     VkImage image;
@@ -41,6 +40,16 @@ typedef struct do_lut {
     VkImageView view;
     pg_phys_resource res; /* only .view is read (pg_pass_set_create) */
 } do_lut;
+
+/* The display and view option strings kept in the params block (the block holds at most
+ * PG_MAX_PASS_PARAMS bytes: two names of DO_OPT_NAME_MAX - 1 characters). */
+#define DO_OPT_NAME_MAX 120
+typedef struct do_params { /* filled once by declare, read by create/update */
+    float exposure;        /* a run-time value: push constant */
+    bool compute;          /* stage "compute" */
+    pg_slot hdr, ldr;
+    char display[DO_OPT_NAME_MAX], view[DO_OPT_NAME_MAX]; /* options ("" unless set) */
+} do_params;
 
 typedef struct display_ocio {
     bool compute;           /* option stage "compute" */
@@ -52,6 +61,7 @@ typedef struct display_ocio {
     uint32_t n_luts;
     do_lut luts[DO_MAX_LUTS];
     float exposure;
+    uint32_t ldr_slot; /* plan slot of ldr (stage fragment: pg_pass_begin_rendering) */
 } display_ocio;
 
 static const char *const k_known[] = {"exposure", "display", "view", "stage", NULL};
@@ -59,13 +69,14 @@ static const char *const k_stages[] = {"compute", "fragment", NULL};
 
 static pg_result do_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
+    do_params *p = pg_decl_params(out, sizeof *p);
     pg_result r;
     double exposure;
-    char name[DO_NAME_MAX];
     if ((r = pg_opt_check_known(in->desc, k_known, err))) return r;
     if ((r = pg_opt_float(in->desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err))) return r;
-    if ((r = pg_opt_string(in->desc, "display", "", name, sizeof name, err))) return r;
-    if ((r = pg_opt_string(in->desc, "view", "", name, sizeof name, err))) return r;
+    p->exposure = (float)exposure;
+    if ((r = pg_opt_string(in->desc, "display", "", p->display, sizeof p->display, err))) return r;
+    if ((r = pg_opt_string(in->desc, "view", "", p->view, sizeof p->view, err))) return r;
     if (in->desc->n_writes >= 1 && in->pipeline) {
         const pg_resource_desc *ldr = pg_pipeline_find_resource(in->pipeline, in->desc->writes[0]);
         if (ldr && ldr->kind == PG_RES_IMAGE && pg_format_get(ldr->format)->srgb)
@@ -76,12 +87,13 @@ static pg_result do_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     }
     int stage;
     if ((r = pg_opt_enum(in->desc, "stage", k_stages, 0, &stage, err))) return r;
+    p->compute = stage == 0;
     if (stage == 0) {
-        pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
-        pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+        p->hdr = pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+        p->ldr = pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
     } else {
-        pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
-        pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+        p->hdr = pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+        p->ldr = pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
     }
     return PG_OK;
 }
@@ -237,20 +249,17 @@ static pg_result do_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 {
     display_ocio *p = self;
     pg_gpu *gpu = ctx->gpu;
+    const do_params *pa = PG_PARAMS(ctx, do_params);
     pg_result r;
-    double exposure = 1.0;
-    char opt_display[DO_NAME_MAX], opt_view[DO_NAME_MAX];
-    if ((r = pg_opt_float(ctx->desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err))) return r;
-    if ((r = pg_opt_string(ctx->desc, "display", "", opt_display, sizeof opt_display, err))) return r;
-    if ((r = pg_opt_string(ctx->desc, "view", "", opt_view, sizeof opt_view, err))) return r;
-    p->exposure = (float)exposure;
-    int stage;
-    if ((r = pg_opt_enum(ctx->desc, "stage", k_stages, 0, &stage, err))) return r;
-    p->compute = stage == 0;
-    p->width = ctx->slots[1]->width;
-    p->height = ctx->slots[1]->height;
-    const char *ldr_fmt = pg_format_get(ctx->slots[1]->pg_fmt)->name;
-    if (p->compute && !pg_format_get(ctx->slots[1]->pg_fmt)->storage_ok)
+    const char *opt_display = pa->display, *opt_view = pa->view;
+    p->exposure = pa->exposure;
+    p->compute = pa->compute;
+    const pg_phys_resource *ldr = pg_ctx_res(ctx, pa->ldr);
+    p->ldr_slot = pg_plan_slot_of(ctx->pass, pa->ldr);
+    p->width = ldr->width;
+    p->height = ldr->height;
+    const char *ldr_fmt = pg_format_get(ldr->pg_fmt)->name;
+    if (p->compute && !pg_format_get(ldr->pg_fmt)->storage_ok)
         return pg_fail(err, PG_ERR_FORMAT,
                        "%s: %s.writes[0]: stage \"compute\" writes the display image as a storage image, and %s is "
                        "not a storage format: use rgba8 or a float format, or stage \"fragment\"",
@@ -273,12 +282,12 @@ static pg_result do_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 
     if ((r = create_samplers(p, gpu, err))) goto out;
     pg_set_binding b[2 + DO_MAX_LUTS];
-    b[0] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[0], p->nearest, 0};
+    b[0] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pg_ctx_res(ctx, pa->hdr), p->nearest, 0};
     for (uint32_t i = 0; i < p->n_luts; i++)
         b[1 + i] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &p->luts[i].res,
                                     sh->textures[i].linear ? p->linear : p->nearest, 0};
     uint32_t nb = 1 + p->n_luts;
-    if (p->compute) b[nb++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[1], VK_NULL_HANDLE, 0};
+    if (p->compute) b[nb++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ldr, VK_NULL_HANDLE, 0};
     if ((r = pg_pass_set_create(gpu, nb, b, ctx->pass->name, &p->set, err))) goto out;
     VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
     if ((r = pg_pipeline_layout_create(gpu, 2, sets, sizeof(float), &p->layout, err))) goto out;
@@ -310,7 +319,7 @@ static pg_result do_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
         .vs = vs,
         .fs = fs,
         .n_color = 1,
-        .color_formats = {ctx->slots[1]->format},
+        .color_formats = {ldr->format},
     };
     r = pg_gfx_pipeline_create(gpu, &d, ctx->pass->name, &p->pipeline, err);
 out:
@@ -333,8 +342,7 @@ static void do_record(void *self, const pg_pass_record_ctx *ctx)
         return;
     }
     VkClearColorValue clear = {{0, 0, 0, 1}};
-    const uint32_t ldr_slot = 1;
-    pg_pass_begin_rendering(ctx, 1, &ldr_slot, &clear, -1, false, 0);
+    pg_pass_begin_rendering(ctx, 1, &p->ldr_slot, &clear, -1, false, 0);
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->layout, 0, 2, sets, 0, NULL);
     vkCmdPushConstants(ctx->cmd, p->layout,
@@ -364,22 +372,20 @@ static void do_destroy(void *self, pg_gpu *gpu)
 /* exposure is a push constant: a new value re-creates nothing (runtime_options) */
 static const char *const k_runtime[] = {"exposure", NULL};
 
-static pg_result do_update(void *self, const pg_pass_desc *desc, pg_error *err)
+static pg_result do_update(void *self, const void *params, pg_error *err)
 {
+    (void)err;
     display_ocio *p = self;
-    double exposure = 1.0;
-    pg_result r = pg_opt_float(desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err);
-    if (!r) p->exposure = (float)exposure;
-    return r;
+    p->exposure = ((const do_params *)params)->exposure;
+    return PG_OK;
 }
 
 const pg_pass_type pg_pass_display_ocio = {
     .name = "display_ocio",
     .summary = "compute (or graphics): HDR -> display image through an OpenColorIO display/view transform "
                "(exposure first)",
-    .read_slots = "hdr",
-    .write_slots = "ldr",
     .instance_size = sizeof(display_ocio),
+    .params_size = sizeof(do_params),
     .declare = do_declare,
     .create = do_create,
     .record = do_record,

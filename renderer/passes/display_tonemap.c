@@ -13,12 +13,18 @@
 #include "pass_set.h"
 #include "vk_pipeline.h"
 
+typedef struct dt_params { /* filled once by declare, read by create/update/record */
+    float exposure;        /* a run-time value: push constant */
+    pg_slot hdr, ldr;
+} dt_params;
+
 typedef struct display_tonemap {
     pg_pass_set set;
     VkSampler sampler;
     VkPipelineLayout layout;
     VkPipeline pipeline;
     float exposure;
+    uint32_t ldr_slot;     /* plan slot of ldr (pg_pass_begin_rendering) */
 } display_tonemap;
 
 static const char *const k_ops[] = {"clamp", "reinhard", "aces", NULL};
@@ -26,17 +32,17 @@ static const char *const k_ops[] = {"clamp", "reinhard", "aces", NULL};
 static pg_result dt_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
     static const char *const known[] = {"exposure", "operator", NULL};
+    dt_params *p = pg_decl_params(out, sizeof *p);
     pg_result r;
     double exposure;
     int op;
     if ((r = pg_opt_check_known(in->desc, known, err))) return r;
     if ((r = pg_opt_float(in->desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err))) return r;
     if ((r = pg_opt_enum(in->desc, "operator", k_ops, 0, &op, err))) return r;
-    pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
-    pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
-    char def[32];
-    snprintf(def, sizeof def, "PG_TONEMAP=%d", op);
-    pg_decl_define(out, def);
+    p->exposure = (float)exposure;
+    p->hdr = pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    p->ldr = pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    pg_decl_define_int(out, "PG_TONEMAP", op);
     const pg_resource_desc *ldr =
         in->desc->n_writes >= 1 && in->pipeline ? pg_pipeline_find_resource(in->pipeline, in->desc->writes[0]) : NULL;
     if (ldr && ldr->kind == PG_RES_IMAGE &&
@@ -52,28 +58,28 @@ static pg_result dt_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 {
     display_tonemap *p = self;
     pg_gpu *gpu = ctx->gpu;
+    const dt_params *pa = PG_PARAMS(ctx, dt_params);
     pg_result r;
-    double exposure = 1.0;
-    if ((r = pg_opt_float(ctx->desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err))) return r;
-    p->exposure = (float)exposure;
+    p->exposure = pa->exposure;
+    p->ldr_slot = pg_plan_slot_of(ctx->pass, pa->ldr);
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
-    pg_set_binding b = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[0], p->sampler, 0};
+    pg_set_binding b = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pg_ctx_res(ctx, pa->hdr), p->sampler, 0};
     if ((r = pg_pass_set_create(gpu, 1, &b, ctx->pass->name, &p->set, err))) return r;
     VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
     if ((r = pg_pipeline_layout_create(gpu, 2, sets, sizeof(float), &p->layout, err))) return r;
     const char *defs[PG_MAX_DEFINES];
-    for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) defs[i] = ctx->pass->decl.defines[i];
+    const uint32_t nd = pg_decl_define_list(&ctx->pass->decl, defs, PG_MAX_DEFINES);
     VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE;
     if ((r = pg_shader_module(gpu, "fullscreen.vert", VK_SHADER_STAGE_VERTEX_BIT, NULL, 0, &vs, err))) goto out;
-    if ((r = pg_shader_module(gpu, "display_tonemap.frag", VK_SHADER_STAGE_FRAGMENT_BIT, defs,
-                              ctx->pass->decl.n_defines, &fs, err)))
+    if ((r = pg_shader_module(gpu, "display_tonemap.frag", VK_SHADER_STAGE_FRAGMENT_BIT, defs, nd, &fs,
+                              err)))
         goto out;
     pg_gfx_pipeline_desc d = {
         .layout = p->layout,
         .vs = vs,
         .fs = fs,
         .n_color = 1,
-        .color_formats = {ctx->slots[1]->format},
+        .color_formats = {pg_ctx_res(ctx, pa->ldr)->format},
     };
     r = pg_gfx_pipeline_create(gpu, &d, ctx->pass->name, &p->pipeline, err);
 out:
@@ -86,8 +92,7 @@ static void dt_record(void *self, const pg_pass_record_ctx *ctx)
 {
     display_tonemap *p = self;
     VkClearColorValue clear = {{0, 0, 0, 1}};
-    const uint32_t ldr_slot = 1;
-    pg_pass_begin_rendering(ctx, 1, &ldr_slot, &clear, -1, false, 0);
+    pg_pass_begin_rendering(ctx, 1, &p->ldr_slot, &clear, -1, false, 0);
     VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->layout, 0, 2, sets, 0, NULL);
@@ -110,21 +115,19 @@ static void dt_destroy(void *self, pg_gpu *gpu)
 /* exposure is a push constant: a new value re-creates nothing (runtime_options) */
 static const char *const k_runtime[] = {"exposure", NULL};
 
-static pg_result dt_update(void *self, const pg_pass_desc *desc, pg_error *err)
+static pg_result dt_update(void *self, const void *params, pg_error *err)
 {
+    (void)err;
     display_tonemap *p = self;
-    double exposure = 1.0;
-    pg_result r = pg_opt_float(desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err);
-    if (!r) p->exposure = (float)exposure;
-    return r;
+    p->exposure = ((const dt_params *)params)->exposure;
+    return PG_OK;
 }
 
 const pg_pass_type pg_pass_display_tonemap = {
     .name = "display_tonemap",
     .summary = "graphics: HDR -> 8-bit sRGB display image (exposure + clamp/Reinhard/ACES)",
-    .read_slots = "hdr",
-    .write_slots = "ldr",
     .instance_size = sizeof(display_tonemap),
+    .params_size = sizeof(dt_params),
     .declare = dt_declare,
     .create = dt_create,
     .record = dt_record,

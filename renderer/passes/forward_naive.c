@@ -9,30 +9,24 @@
 
 static pg_result fn_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
-    pg_shading_opts o;
-    pg_result r = pg_shading_opts_read(in->desc, false, NULL, &o, err);
+    pg_forward_params *p = pg_decl_params(out, sizeof *p);
+    pg_result r = pg_shading_opts_read(in->desc, false, NULL, &p->sh, err);
     if (r) return r;
-    pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
-    pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
-    pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
-    pg_scene_draw_declare_features(in, out);
-    pg_shading_declare(&o, in, out, false, 0, -1);
+    p->sh.lights = pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    p->color = pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    p->depth = pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
+    pg_scene_draw_declare_features(in, out, &p->draw);
+    pg_shading_declare(&p->sh, in, out);
     return PG_OK;
-}
-
-static pg_result fn_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
-{
-    return pg_forward_create(self, ctx, false, false, false, err);
 }
 
 const pg_pass_type pg_pass_forward_naive = {
     .name = "forward_naive",
     .summary = "graphics: draw the scene, every fragment shades with every light (exact reference)",
-    .read_slots = "lights",
-    .write_slots = "color, depth",
     .instance_size = sizeof(pg_forward_pass),
+    .params_size = sizeof(pg_forward_params),
     .declare = fn_declare,
-    .create = fn_create,
+    .create = pg_forward_create,
     .record = pg_forward_record,
     .destroy = pg_forward_destroy,
     .runtime_options = pg_shading_runtime_options,

@@ -34,47 +34,40 @@ static pg_result fp_prepass_opts(const pg_pass_desc *desc, bool *prepass, bool *
 
 static pg_result fp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
-    pg_shading_opts o;
-    pg_result r = pg_shading_opts_read(in->desc, true, k_fp_options, &o, err);
+    pg_forward_params *p = pg_decl_params(out, sizeof *p);
+    pg_result r = pg_shading_opts_read(in->desc, true, k_fp_options, &p->sh, err);
     if (r) return r;
-    bool prepass, equal;
-    if ((r = fp_prepass_opts(in->desc, &prepass, &equal, err))) return r;
-    pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
-    pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
-    pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
-    pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
-    pg_decl_write(out, "depth", PG_RES_IMAGE, prepass ? PG_ACCESS_DEPTH_RMW : PG_ACCESS_DEPTH_WRITE,
+    if ((r = fp_prepass_opts(in->desc, &p->prepass, &p->prepass_equal, err))) return r;
+    const bool prepass = p->prepass, equal = p->prepass_equal;
+    p->sh.lights = pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    p->sh.cluster_counts =
+        pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    p->sh.cluster_lists =
+        pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    p->color = pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    p->depth = pg_decl_write(out, "depth", PG_RES_IMAGE, prepass ? PG_ACCESS_DEPTH_RMW : PG_ACCESS_DEPTH_WRITE,
                   PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
     if (equal) {
-        pg_scene_draw_declare_vertex_features(in, out); /* no discard: the pre-pass decided coverage */
+        pg_scene_draw_declare_vertex_features(in, out, &p->draw); /* no discard: the pre-pass decided coverage */
         pg_decl_explain(out, "prepass_test equal: depth loaded from the depth_prepass pass and tested EQUAL without "
                              "writes; alpha-mask draws shaded without discard (the pre-pass discarded them)");
     } else {
-        pg_scene_draw_declare_features(in, out);
+        pg_scene_draw_declare_features(in, out, &p->draw);
         if (prepass)
             pg_decl_explain(out, "prepass: depth loaded from the depth_prepass pass (one bias step farther) and "
                                  "tested LESS with writes: fragments behind the nearest opaque surface are not shaded");
     }
-    pg_shading_declare(&o, in, out, true, 0, 1);
+    pg_shading_declare(&p->sh, in, out);
     return PG_OK;
-}
-
-static pg_result fp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
-{
-    bool prepass, equal;
-    pg_result r = fp_prepass_opts(ctx->desc, &prepass, &equal, err);
-    if (r) return r;
-    return pg_forward_create(self, ctx, true, prepass, equal, err);
 }
 
 const pg_pass_type pg_pass_forward_plus = {
     .name = "forward_plus",
     .summary = "graphics: clustered forward+ - each fragment shades the lights of its cluster",
-    .read_slots = "lights, cluster_counts, cluster_lights",
-    .write_slots = "color, depth",
     .instance_size = sizeof(pg_forward_pass),
+    .params_size = sizeof(pg_forward_params),
     .declare = fp_declare,
-    .create = fp_create,
+    .create = pg_forward_create,
     .record = pg_forward_record,
     .destroy = pg_forward_destroy,
     .runtime_options = pg_shading_runtime_options,

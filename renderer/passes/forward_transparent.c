@@ -18,8 +18,14 @@
 #include "scene_draw.h"
 #include "shading_common.h"
 
+typedef struct ft_params { /* filled once by declare, read by create/update/record */
+    pg_shading_params sh;          /* options (lights "clusters": clustered), light and cluster slots */
+    pg_scene_draw_features draw;
+    pg_slot depth, color;
+} ft_params;
+
 typedef struct pg_transparent_pass {
-    bool clustered;
+    pg_slot depth, color;
     pg_pass_set lights;
     pg_scene_draw draw;
     uint32_t n;            /* BLEND draws of the scene */
@@ -30,28 +36,29 @@ typedef struct pg_transparent_pass {
 static const char *const k_lights[] = {"all", "clusters", NULL};
 static const char *const k_extra[] = {"lights", NULL};
 
-static pg_result read_opts(const pg_pass_desc *desc, bool *clustered, pg_shading_opts *o, pg_error *err)
+static pg_result read_opts(const pg_pass_desc *desc, pg_shading_params *sp, pg_error *err)
 {
     int mode = 0;
     pg_result r = pg_opt_enum(desc, "lights", k_lights, 0, &mode, err);
     if (r) return r;
-    *clustered = mode == 1;
-    return pg_shading_opts_read(desc, *clustered, k_extra, o, err);
+    return pg_shading_opts_read(desc, mode == 1, k_extra, sp, err);
 }
 
 static pg_result ft_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
-    bool clustered;
-    pg_shading_opts o;
-    pg_result r = read_opts(in->desc, &clustered, &o, err);
+    ft_params *p = pg_decl_params(out, sizeof *p);
+    pg_result r = read_opts(in->desc, &p->sh, err);
     if (r) return r;
-    pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
-    if (clustered) {
-        pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
-        pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    const pg_shading_opts o = p->sh.o;
+    p->sh.lights = pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    if (p->sh.clustered) {
+        p->sh.cluster_counts =
+            pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+        p->sh.cluster_lists =
+            pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
     }
-    pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_READ, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
-    pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_RMW, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
+    p->depth = pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_READ, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
+    p->color = pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_RMW, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
     if (!in->features.has_blend) {
         pg_decl_skip(out, "no BLEND materials: no transparent pass");
         return PG_OK;
@@ -61,20 +68,20 @@ static pg_result ft_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
                      pg_debug_views[o.view]);
         return PG_OK;
     }
-    pg_scene_draw_declare_features(in, out);
+    pg_scene_draw_declare_features(in, out, &p->draw);
     pg_decl_define(out, "PG_TRANSPARENT");
-    pg_shading_declare(&o, in, out, clustered, 0, clustered ? 1 : -1);
+    pg_shading_declare(&p->sh, in, out);
     return PG_OK;
 }
 
 static pg_result ft_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
     pg_transparent_pass *p = self;
-    pg_shading_opts o;
-    pg_result r = read_opts(ctx->desc, &p->clustered, &o, err);
-    if (r) return r;
-    const int depth_slot = p->clustered ? 3 : 1, color_slot = depth_slot + 1;
-    const pg_phys_resource *color = ctx->slots[color_slot];
+    const ft_params *pa = PG_PARAMS(ctx, ft_params);
+    pg_result r;
+    p->depth = pa->depth;
+    p->color = pa->color;
+    const pg_phys_resource *color = pg_ctx_res(ctx, pa->color);
     VkFormatProperties fp;
     vkGetPhysicalDeviceFormatProperties(ctx->gpu->phys, color->format, &fp);
     if (!(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
@@ -83,28 +90,32 @@ static pg_result ft_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
                        "(VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT missing): use rgba16f or rgba32f",
                        ctx->desc->file, ctx->desc->json_path, ctx->desc->writes[0],
                        pg_format_get(color->pg_fmt)->name);
-    if (p->clustered && (r = pg_check_cluster_buffers(ctx, &o, 1, err))) return r;
-    if ((r = pg_light_set_create(ctx, p->clustered, 0, 1, &p->lights, err))) return r;
+    if (pa->sh.clustered && (r = pg_check_cluster_buffers(ctx, &pa->sh, err))) return r;
+    if ((r = pg_light_set_create(ctx, &pa->sh, &p->lights, err))) return r;
     p->n = PG_SCENE_OF(ctx)->n_blend_draws;
     p->order = calloc(p->n ? p->n : 1, sizeof *p->order);
     p->key = calloc(p->n ? p->n : 1, sizeof *p->key);
     if (!p->order || !p->key) return pg_fail(err, PG_ERR_OOM, "%s: out of memory", ctx->pass->name);
     pg_scene_draw_desc d = {
         .fragment_shader = "forward.frag",
+        .features = &pa->draw,
         .pass_layout = p->lights.layout,
         .n_color = 1,
         .color_formats = {color->format},
-        .depth_format = ctx->slots[depth_slot]->format,
+        .depth_format = pg_ctx_res(ctx, pa->depth)->format,
         .blend = true,
     };
     if ((r = pg_scene_draw_create(ctx, &d, &p->draw, err))) return r;
-    return pg_shading_ambient(ctx->desc, &p->draw.ambient, err);
+    p->draw.ambient = pa->sh.ambient;
+    return PG_OK;
 }
 
-static pg_result ft_update(void *self, const pg_pass_desc *desc, pg_error *err)
+static pg_result ft_update(void *self, const void *params, pg_error *err)
 {
+    (void)err;
     pg_transparent_pass *p = self;
-    return pg_shading_ambient(desc, &p->draw.ambient, err);
+    p->draw.ambient = ((const ft_params *)params)->sh.ambient;
+    return PG_OK;
 }
 
 /* Back to front: larger squared distance first; equal distances keep scene draw order. */
@@ -130,8 +141,7 @@ static void sort_back_to_front(pg_transparent_pass *p, const pg_scene_gpu *sc, c
 static void ft_record(void *self, const pg_pass_record_ctx *ctx)
 {
     pg_transparent_pass *p = self;
-    const int depth_slot = p->clustered ? 3 : 1;
-    const pg_phys_resource *depth = ctx->slots[depth_slot], *color = ctx->slots[depth_slot + 1];
+    const pg_phys_resource *depth = pg_ctx_res(ctx, p->depth), *color = pg_ctx_res(ctx, p->color);
     sort_back_to_front(p, PG_SCENE_OF(ctx), PG_FRAME_OF(ctx)->camera_pos);
     VkRenderingAttachmentInfo ca = {
         .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
@@ -175,9 +185,8 @@ static void ft_destroy(void *self, pg_gpu *gpu)
 const pg_pass_type pg_pass_forward_transparent = {
     .name = "forward_transparent",
     .summary = "graphics: alphaMode BLEND draws, back to front, blended onto the lit HDR image",
-    .read_slots = "lights (, cluster_counts, cluster_lights with lights \"clusters\"), depth",
-    .write_slots = "color",
     .instance_size = sizeof(pg_transparent_pass),
+    .params_size = sizeof(ft_params),
     .declare = ft_declare,
     .create = ft_create,
     .record = ft_record,

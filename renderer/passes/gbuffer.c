@@ -19,9 +19,16 @@
 #include "scene_draw.h"
 #include "shading_common.h"
 
-typedef struct gbuffer_pass {
+typedef struct gb_params { /* filled once by declare, read by create */
     int packing;
-    bool emissive;          /* the emissive target is written (bound, and emissive materials) */
+    pg_scene_draw_features draw;
+    pg_slot targets[4], depth, emissive; /* emissive: PG_SLOT_NONE when not bound */
+} gb_params;
+
+typedef struct gbuffer_pass {
+    uint32_t n_color;
+    uint32_t color_slots[4]; /* plan slots of the colour attachments (targets, then emissive when written) */
+    uint32_t depth_slot;
     pg_scene_draw draw;
 } gbuffer_pass;
 
@@ -50,51 +57,56 @@ static pg_result gb_options(const pg_pass_desc *desc, int *packing, int *space, 
 
 static pg_result gb_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
+    gb_params *p = pg_decl_params(out, sizeof *p);
     pg_result r;
     int packing, space;
     if ((r = gb_options(in->desc, &packing, &space, err))) return r;
+    p->packing = packing;
     for (uint32_t t = 0; t < pg_gbuffer_targets[packing]; t++)
-        pg_decl_write(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT,
+        p->targets[t] = pg_decl_write(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT,
                       packing == PG_GBUFFER_PACKED ? PG_FMTCLASS_UINT : PG_FMTCLASS_FLOAT);
-    pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
+    p->depth = pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
     bool emissive;
-    if ((r = pg_emissive_slot_declare(in, out, true, pg_gbuffer_targets[packing] + 1, false, &emissive, err)))
-        return r;
+    if ((r = pg_emissive_slot_declare(in, out, true, false, &p->emissive, &emissive, err))) return r;
     pg_decl_define(out, pg_gbuffer_defines[packing]);
     if (space == 1) pg_decl_define(out, "PG_GBUFFER_CAMERA_POSITION");
     if (emissive) pg_decl_define(out, "PG_GBUFFER_EMISSIVE");
-    pg_scene_draw_declare_features(in, out);
+    pg_scene_draw_declare_features(in, out, &p->draw);
     return PG_OK;
 }
 
 static pg_result gb_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
     gbuffer_pass *p = self;
-    int space;
-    pg_result r = gb_options(ctx->desc, &p->packing, &space, err);
-    if (r) return r;
-    uint32_t n = pg_gbuffer_targets[p->packing];
-    p->emissive = ctx->pass->n_slots > n + 1 && !ctx->pass->slots[n + 1].decl.unused;
+    const gb_params *pa = PG_PARAMS(ctx, gb_params);
+    const uint32_t n = pg_gbuffer_targets[pa->packing];
+    /* the emissive target is written when bound and used (emissive materials) */
+    const bool emissive = pg_slot_ok(pa->emissive) && !pg_ctx_unused(ctx, pa->emissive);
     pg_scene_draw_desc d = {
         .fragment_shader = "gbuffer.frag",
-        .n_color = n + (p->emissive ? 1 : 0),
-        .depth_format = ctx->slots[n]->format,
+        .features = &pa->draw,
+        .depth_format = pg_ctx_res(ctx, pa->depth)->format,
     };
-    for (uint32_t t = 0; t < n; t++) d.color_formats[t] = ctx->slots[t]->format;
-    if (p->emissive) d.color_formats[n] = ctx->slots[n + 1]->format; /* location n (after the targets) */
+    p->n_color = 0;
+    for (uint32_t t = 0; t < n; t++) {
+        d.color_formats[p->n_color] = pg_ctx_res(ctx, pa->targets[t])->format;
+        p->color_slots[p->n_color++] = pg_plan_slot_of(ctx->pass, pa->targets[t]);
+    }
+    if (emissive) { /* location n (after the targets) */
+        d.color_formats[p->n_color] = pg_ctx_res(ctx, pa->emissive)->format;
+        p->color_slots[p->n_color++] = pg_plan_slot_of(ctx->pass, pa->emissive);
+    }
+    d.n_color = p->n_color;
+    p->depth_slot = pg_plan_slot_of(ctx->pass, pa->depth);
     return pg_scene_draw_create(ctx, &d, &p->draw, err);
 }
 
 static void gb_record(void *self, const pg_pass_record_ctx *ctx)
 {
     gbuffer_pass *p = self;
-    uint32_t n = pg_gbuffer_targets[p->packing];
-    uint32_t color_slots[4];
     VkClearColorValue clears[4];
     memset(clears, 0, sizeof clears);
-    for (uint32_t t = 0; t < n; t++) color_slots[t] = t;
-    if (p->emissive) color_slots[n] = n + 1;
-    pg_pass_begin_rendering(ctx, n + (p->emissive ? 1 : 0), color_slots, clears, (int)n, true, 1.0f);
+    pg_pass_begin_rendering(ctx, p->n_color, p->color_slots, clears, (int)p->depth_slot, true, 1.0f);
     pg_scene_draw_record(&p->draw, ctx, VK_NULL_HANDLE);
     vkCmdEndRendering(ctx->cmd);
 }
@@ -108,10 +120,8 @@ static void gb_destroy(void *self, pg_gpu *gpu)
 const pg_pass_type pg_pass_gbuffer = {
     .name = "gbuffer",
     .summary = "graphics: draw the scene into a G-buffer (packing float | oct16 | packed) and depth",
-    .read_slots = "",
-    .write_slots = "float: position, normal, albedo, depth | oct16: normal_oct, albedo, depth | packed: packed, depth; "
-                   "then optionally emissive (rgba16f/rgba32f)",
     .instance_size = sizeof(gbuffer_pass),
+    .params_size = sizeof(gb_params),
     .declare = gb_declare,
     .create = gb_create,
     .record = gb_record,

@@ -1,5 +1,5 @@
 /* light_animate.c - compute pass: writes the light buffer (32 bytes a light) from the seed and
- * the frame time (shaders/light_animate.comp). Slots: writes [lights]. */
+ * the frame time (shaders/light_animate.comp). Slots: writes [lights]. No options. */
 #include <string.h>
 
 #include "frame.h"
@@ -9,7 +9,11 @@
 #include "pass_set.h"
 #include "vk_pipeline.h"
 
-typedef struct light_animate {
+typedef struct la_params { /* filled once by declare, read by create (PG_PARAMS) */
+    pg_slot lights;
+} la_params;
+
+typedef struct light_animate { /* the instance create builds */
     pg_pass_set set;
     VkPipelineLayout layout;
     VkPipeline pipeline;
@@ -20,7 +24,8 @@ static pg_result la_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     static const char *const known[] = {NULL};
     pg_result r = pg_opt_check_known(in->desc, known, err);
     if (r) return r;
-    pg_decl_write(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
+    la_params *p = pg_decl_params(out, sizeof *p);
+    p->lights = pg_decl_write(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
     if (in->features.light_count == 0) pg_decl_explain(out, "0 lights: the animation dispatch records nothing");
     return PG_OK;
 }
@@ -30,7 +35,8 @@ static pg_result la_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     light_animate *p = self;
     pg_gpu *gpu = ctx->gpu;
     pg_result r;
-    pg_set_binding b = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx->slots[0], VK_NULL_HANDLE, 0};
+    const la_params *pa = PG_PARAMS(ctx, la_params);
+    pg_set_binding b = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, pa->lights), VK_NULL_HANDLE, 0};
     if ((r = pg_pass_set_create(gpu, 1, &b, ctx->pass->name, &p->set, err))) return r;
     VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
     if ((r = pg_pipeline_layout_create(gpu, 2, sets, 0, &p->layout, err))) return r;
@@ -67,9 +73,8 @@ static void la_destroy(void *self, pg_gpu *gpu)
 const pg_pass_type pg_pass_light_animate = {
     .name = "light_animate",
     .summary = "compute: animate N point lights from (seed, time) into a buffer",
-    .read_slots = "",
-    .write_slots = "lights",
     .instance_size = sizeof(light_animate),
+    .params_size = sizeof(la_params),
     .declare = la_declare,
     .create = la_create,
     .record = la_record,

@@ -54,11 +54,19 @@
 
 enum { REF_MODE_LOAD = 1u, REF_MODE_STORE = 2u };
 
+typedef struct ref_params { /* filled once by declare, read by create/update/record */
+    pg_shading_params sh;         /* options, the light slot */
+    uint32_t lights_per_dispatch; /* 0: auto */
+    pg_slot surface[3];           /* position, normal, albedo */
+    pg_slot emissive;             /* PG_SLOT_NONE when not bound */
+    pg_slot hdr, accum[2];        /* accum_diffuse, accum_specular */
+} ref_params;
+
 typedef struct reference_lighting {
     uint32_t lights_per_dispatch; /* 0: auto */
     float ambient;                /* option "ambient" (a run-time value): push constant */
     bool has_lights, has_accum, has_accum_specular, has_emissive;
-    uint32_t nr;                  /* read slots bound: 4, or 5 with the emissive target */
+    pg_slot light_slot, hdr, accum[2];
     VkSampler sampler;
     pg_pass_set surface, lights;
     VkPipelineLayout layout;
@@ -68,11 +76,11 @@ typedef struct reference_lighting {
 static const char *const k_extra[] = {"lights_per_dispatch", NULL};
 static const char *const k_surface_slots[3] = {"position", "normal", "albedo"};
 
-static pg_result ref_options(const pg_pass_desc *desc, pg_shading_opts *o, uint32_t *lpd, pg_error *err)
+static pg_result ref_options(const pg_pass_desc *desc, pg_shading_params *sp, uint32_t *lpd, pg_error *err)
 {
     int64_t v;
     pg_result r;
-    if ((r = pg_shading_opts_read(desc, false, k_extra, o, err))) return r;
+    if ((r = pg_shading_opts_read(desc, false, k_extra, sp, err))) return r;
     if ((r = pg_opt_int(desc, "lights_per_dispatch", 0, 0, REF_MAX_LIGHTS_PER_DISPATCH, &v, err))) return r;
     *lpd = (uint32_t)v;
     return PG_OK;
@@ -144,47 +152,48 @@ static uint32_t ref_dispatches(uint32_t lights, uint32_t chunk)
 
 static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
-    pg_shading_opts o;
+    ref_params *p = pg_decl_params(out, sizeof *p);
     uint32_t lpd;
     pg_result r;
-    if ((r = ref_options(in->desc, &o, &lpd, err))) return r;
+    if ((r = ref_options(in->desc, &p->sh, &lpd, err))) return r;
+    const pg_shading_opts o = p->sh.o;
+    p->lights_per_dispatch = lpd;
     if ((r = ref_check_surface(in, err))) return r;
-    pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+    p->sh.lights = pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
     for (uint32_t t = 0; t < 3; t++)
-        pg_decl_read(out, k_surface_slots[t], PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+        p->surface[t] =
+            pg_decl_read(out, k_surface_slots[t], PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
     bool emissive;
-    if ((r = pg_emissive_slot_declare(in, out, false, 4, true, &emissive, err))) return r;
+    if ((r = pg_emissive_slot_declare(in, out, false, true, &p->emissive, &emissive, err))) return r;
     if (emissive) pg_decl_define(out, "PG_REFERENCE_EMISSIVE");
-    pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    p->hdr = pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
     /* read and written by the later dispatches, written in full by the first one before any
      * later one reads them: the pass initializes them itself */
-    pg_decl_write(out, "accum_diffuse", PG_RES_IMAGE, PG_ACCESS_STORAGE_RW, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
-    pg_decl_mark_initializes(out, 1);
-    pg_decl_write(out, "accum_specular", PG_RES_IMAGE, PG_ACCESS_STORAGE_RW, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
-    pg_decl_mark_initializes(out, 2);
-    char def[PG_NAME_MAX];
-    snprintf(def, sizeof def, "LIGHT_TILE_X=%u", REF_TILE_X);
-    pg_decl_define(out, def);
-    snprintf(def, sizeof def, "LIGHT_TILE_Y=%u", REF_TILE_Y);
-    pg_decl_define(out, def);
-    pg_shading_declare(&o, in, out, false, 0, -1);
+    p->accum[0] =
+        pg_decl_write(out, "accum_diffuse", PG_RES_IMAGE, PG_ACCESS_STORAGE_RW, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    pg_decl_mark_initializes(out, p->accum[0]);
+    p->accum[1] =
+        pg_decl_write(out, "accum_specular", PG_RES_IMAGE, PG_ACCESS_STORAGE_RW, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    pg_decl_mark_initializes(out, p->accum[1]);
+    pg_decl_define_int(out, "LIGHT_TILE_X", REF_TILE_X);
+    pg_decl_define_int(out, "LIGHT_TILE_Y", REF_TILE_Y);
+    pg_shading_declare(&p->sh, in, out);
     uint32_t n = in->features.light_count;
-    bool lit = false;
-    for (uint32_t i = 0; i < out->n_defines; i++) lit |= !strcmp(out->defines[i], "PG_HAS_LIGHTS");
+    const bool lit = p->sh.has_lights;
     uint32_t chunk = ref_chunk(lpd, in->output_width, in->output_height);
     uint32_t nd = ref_dispatches(n, chunk);
     if (lit && nd > 1) {
         pg_decl_define(out, "PG_REFERENCE_ACCUM");
         pg_decl_explain(out, "%u lights in %u dispatches of <= %u lights (%s), running sums kept between them", n, nd,
                         chunk, lpd ? "lights_per_dispatch" : "auto: <= 2^34 light evaluations and 32768 lights each");
-        if (o.shading == 0) pg_decl_mark_unused(out, true, 2, "lambert: no specular sum");
+        if (o.shading == 0) pg_decl_mark_unused(out, p->accum[1], "lambert: no specular sum");
     } else {
         char why[160];
         if (!lit) snprintf(why, sizeof why, "%s", n == 0 ? "0 lights" : "debug view reads no lights");
         else snprintf(why, sizeof why, "%u lights fit one dispatch (<= %u lights, %s)", n, chunk,
                       lpd ? "lights_per_dispatch" : "auto: <= 2^34 light evaluations and 32768 lights");
-        pg_decl_mark_unused(out, true, 1, why);
-        pg_decl_mark_unused(out, true, 2, why);
+        pg_decl_mark_unused(out, p->accum[0], why);
+        pg_decl_mark_unused(out, p->accum[1], why);
     }
     return PG_OK;
 }
@@ -193,53 +202,62 @@ static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
 {
     reference_lighting *p = self;
     pg_gpu *gpu = ctx->gpu;
-    pg_shading_opts o;
+    const ref_params *pa = PG_PARAMS(ctx, ref_params);
     pg_result r;
-    if ((r = ref_options(ctx->desc, &o, &p->lights_per_dispatch, err))) return r;
-    if ((r = pg_shading_ambient(ctx->desc, &p->ambient, err))) return r;
-    p->has_lights = pg_shading_has_lights(ctx->pass);
-    const uint32_t nr = p->nr = ctx->desc->n_reads; /* hdr, accum_diffuse, accum_specular follow the reads */
-    p->has_emissive = nr == 5 && !ctx->pass->slots[4].decl.unused;
-    p->has_accum = !ctx->pass->slots[nr + 1].decl.unused;
-    p->has_accum_specular = !ctx->pass->slots[nr + 2].decl.unused;
-    const pg_phys_resource *hdr = ctx->slots[nr];
+    p->lights_per_dispatch = pa->lights_per_dispatch;
+    p->ambient = pa->sh.ambient;
+    p->has_lights = pa->sh.has_lights;
+    p->light_slot = pa->sh.lights;
+    p->hdr = pa->hdr;
+    p->accum[0] = pa->accum[0];
+    p->accum[1] = pa->accum[1];
+    p->has_emissive = pg_slot_ok(pa->emissive) && !pg_ctx_unused(ctx, pa->emissive);
+    p->has_accum = !pg_ctx_unused(ctx, pa->accum[0]);
+    p->has_accum_specular = !pg_ctx_unused(ctx, pa->accum[1]);
+    const pg_phys_resource *hdr = pg_ctx_res(ctx, pa->hdr);
     const char *hdr_fmt = pg_format_get(hdr->pg_fmt)->name;
     if (strcmp(hdr_fmt, "rgba16f") && strcmp(hdr_fmt, "rgba32f"))
         return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: reference lighting writes rgba16f or rgba32f, not %s",
                        ctx->desc->file, ctx->desc->json_path, hdr_fmt);
-    for (uint32_t t = 1; t < nr + 3; t++) {
-        if (t == nr || (t == 4 && nr == 5 && !p->has_emissive) || (t == nr + 1 && !p->has_accum) ||
-            (t == nr + 2 && !p->has_accum_specular))
-            continue;
-        const pg_phys_resource *im = ctx->slots[t];
+    /* the images sized like hdr: the surface, the emissive target, the running sums (those in use) */
+    pg_slot sized[6];
+    uint32_t n_sized = 0;
+    for (uint32_t t = 0; t < 3; t++) sized[n_sized++] = pa->surface[t];
+    if (p->has_emissive) sized[n_sized++] = pa->emissive;
+    if (p->has_accum) sized[n_sized++] = pa->accum[0];
+    if (p->has_accum_specular) sized[n_sized++] = pa->accum[1];
+    for (uint32_t k = 0; k < n_sized; k++) {
+        const pg_phys_resource *im = pg_ctx_res(ctx, sized[k]);
+        const bool w = pg_slot_is_write(sized[k]);
+        const uint32_t i = pg_slot_index(sized[k]);
         if (im->width != hdr->width || im->height != hdr->height)
             return pg_fail(err, PG_ERR_INVALID_ARG, "%s: %s.%s[%u]: '%s' is %ux%u, hdr is %ux%u: the G-buffer and the "
                            "running sums must have the size of the image they are shaded into",
-                           ctx->desc->file, ctx->desc->json_path, t < nr ? "reads" : "writes", t < nr ? t : t - nr,
-                           t < nr ? ctx->desc->reads[t] : ctx->desc->writes[t - nr], im->width, im->height, hdr->width,
+                           ctx->desc->file, ctx->desc->json_path, w ? "writes" : "reads", i,
+                           w ? ctx->desc->writes[i] : ctx->desc->reads[i], im->width, im->height, hdr->width,
                            hdr->height);
     }
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
     pg_set_binding b[7];
     uint32_t n = 0;
-    for (uint32_t t = 1; t < 4; t++)
-        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[t], p->sampler, 0};
+    for (uint32_t t = 0; t < 3; t++)
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pg_ctx_res(ctx, pa->surface[t]), p->sampler, 0};
     b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr, VK_NULL_HANDLE, 0};
-    if (p->has_accum) b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[nr + 1], VK_NULL_HANDLE, 0};
+    if (p->has_accum)
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pg_ctx_res(ctx, pa->accum[0]), VK_NULL_HANDLE, 0};
     if (p->has_accum_specular)
-        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[nr + 2], VK_NULL_HANDLE, 0};
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pg_ctx_res(ctx, pa->accum[1]), VK_NULL_HANDLE, 0};
     if (p->has_emissive) /* the last binding (EMISSIVE_BINDING in the shader) */
-        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[4], p->sampler, 0};
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pg_ctx_res(ctx, pa->emissive), p->sampler, 0};
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.surface", ctx->pass->name);
     if ((r = pg_pass_set_create(gpu, n, b, name, &p->surface, err))) return r;
-    if ((r = pg_light_set_create(ctx, false, 0, -1, &p->lights, err))) return r;
+    if ((r = pg_light_set_create(ctx, &pa->sh, &p->lights, err))) return r;
     VkDescriptorSetLayout sets[3] = {ctx->frame_layout, p->surface.layout, p->lights.layout};
     if ((r = pg_pipeline_layout_create(gpu, p->lights.layout ? 3 : 2, sets, 4 * sizeof(uint32_t), &p->layout, err)))
         return r;
     const char *defs[PG_MAX_DEFINES + 2];
-    uint32_t nd = 0;
-    for (uint32_t i = 0; i < ctx->pass->decl.n_defines; i++) defs[nd++] = ctx->pass->decl.defines[i];
+    uint32_t nd = pg_decl_define_list(&ctx->pass->decl, defs, PG_MAX_DEFINES);
     char fmt_def[48];
     snprintf(fmt_def, sizeof fmt_def, "PG_HDR_FORMAT=%s", hdr_fmt);
     defs[nd++] = fmt_def;
@@ -254,7 +272,7 @@ static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
 static void ref_record(void *self, const pg_pass_record_ctx *ctx)
 {
     reference_lighting *p = self;
-    const pg_phys_resource *hdr = ctx->slots[p->nr];
+    const pg_phys_resource *hdr = pg_ctx_res(ctx, p->hdr);
     VkCommandBuffer cmd = ctx->cmd;
     VkDescriptorSet sets[3] = {ctx->frame_set, p->surface.set, p->lights.set};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
@@ -262,7 +280,7 @@ static void ref_record(void *self, const pg_pass_record_ctx *ctx)
     uint32_t gx = (hdr->width + REF_TILE_X - 1) / REF_TILE_X, gy = (hdr->height + REF_TILE_Y - 1) / REF_TILE_Y;
     uint32_t n = 0;
     if (p->has_lights) {
-        uint64_t cap = ctx->slots[0]->size / 32; /* never read past the light buffer */
+        uint64_t cap = pg_ctx_res(ctx, p->light_slot)->size / 32; /* never read past the light buffer */
         n = PG_FRAME_OF(ctx)->counts[0] < cap ? PG_FRAME_OF(ctx)->counts[0] : (uint32_t)cap;
     }
     uint32_t chunk = ref_chunk(p->lights_per_dispatch, ctx->width, ctx->height);
@@ -290,7 +308,7 @@ static void ref_record(void *self, const pg_pass_record_ctx *ctx)
             .newLayout = VK_IMAGE_LAYOUT_GENERAL,
             .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
             .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-            .image = ctx->slots[p->nr + 1 + k]->image,
+            .image = pg_ctx_res(ctx, p->accum[k])->image,
             .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1},
         };
     for (uint32_t first = 0; first < n; first += chunk) {
@@ -305,10 +323,12 @@ static void ref_record(void *self, const pg_pass_record_ctx *ctx)
     }
 }
 
-static pg_result ref_update(void *self, const pg_pass_desc *desc, pg_error *err)
+static pg_result ref_update(void *self, const void *params, pg_error *err)
 {
+    (void)err;
     reference_lighting *p = self;
-    return pg_shading_ambient(desc, &p->ambient, err);
+    p->ambient = ((const ref_params *)params)->sh.ambient;
+    return PG_OK;
 }
 
 static void ref_destroy(void *self, pg_gpu *gpu)
@@ -325,10 +345,8 @@ const pg_pass_type pg_pass_reference_lighting = {
     .name = "reference_lighting",
     .summary = "compute: shade every pixel of a float G-buffer with every light in index order, tiled through shared "
                "memory and split over dispatches (exact reference, bit-identical to forward_naive)",
-    .read_slots = "lights, position (camera-relative rgba32f), normal, albedo, then optionally emissive (rgba32f)",
-    .write_slots = "hdr, accum_diffuse, accum_specular (rgba32f running sums, used when the lights take several "
-                   "dispatches)",
     .instance_size = sizeof(reference_lighting),
+    .params_size = sizeof(ref_params),
     .declare = ref_declare,
     .create = ref_create,
     .record = ref_record,

@@ -13,24 +13,33 @@
 #include "scene_draw.h"
 #include "visibility_common.h"
 
+typedef struct vis_params { /* filled once by declare, read by create */
+    pg_scene_draw_features draw;
+    pg_slot vis_id, depth;
+} vis_params;
+
 typedef struct visibility_pass {
     pg_scene_draw draw;
+    uint32_t color_slot, depth_slot; /* plan slots of vis_id and depth */
 } visibility_pass;
 
 static pg_result vis_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
     static const char *const known[] = {NULL};
+    vis_params *p = pg_decl_params(out, sizeof *p);
     pg_result r;
     if ((r = pg_opt_check_known(in->desc, known, err))) return r;
-    pg_decl_write(out, "vis_id", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_UINT);
-    pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
-    pg_scene_draw_declare_features(in, out);
+    p->vis_id = pg_decl_write(out, "vis_id", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_UINT);
+    p->depth = pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
+    pg_scene_draw_declare_features(in, out, &p->draw);
     return PG_OK;
 }
 
 static pg_result vis_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
     visibility_pass *p = self;
+    const vis_params *pa = PG_PARAMS(ctx, vis_params);
+    const pg_phys_resource *vis_id = pg_ctx_res(ctx, pa->vis_id);
     pg_result r;
     if (!ctx->gpu->primitive_id_in_fragment)
         return pg_fail(err, PG_ERR_NO_DEVICE,
@@ -38,17 +47,20 @@ static pg_result vis_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
                        "feature); use a G-buffer pipeline (deferred_oct16.json)",
                        ctx->pass->name);
     if (!PG_SCENE_OF(ctx)) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: needs a scene", ctx->pass->name);
-    if (ctx->slots[0]->format != VK_FORMAT_R32_UINT)
+    if (vis_id->format != VK_FORMAT_R32_UINT)
         return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: the triangle id target must be r32ui, not %s",
-                       ctx->desc->file, ctx->desc->json_path, pg_format_get(ctx->slots[0]->pg_fmt)->name);
+                       ctx->desc->file, ctx->desc->json_path, pg_format_get(vis_id->pg_fmt)->name);
     uint32_t bits;
     if ((r = pg_vis_tri_bits(PG_SCENE_OF(ctx), &bits, err))) return r;
     pg_scene_draw_desc d = {
         .fragment_shader = "visibility.frag",
+        .features = &pa->draw,
         .n_color = 1,
-        .color_formats = {ctx->slots[0]->format},
-        .depth_format = ctx->slots[1]->format,
+        .color_formats = {vis_id->format},
+        .depth_format = pg_ctx_res(ctx, pa->depth)->format,
     };
+    p->color_slot = pg_plan_slot_of(ctx->pass, pa->vis_id);
+    p->depth_slot = pg_plan_slot_of(ctx->pass, pa->depth);
     if ((r = pg_scene_draw_create(ctx, &d, &p->draw, err))) return r;
     p->draw.push_draw_key = true;
     p->draw.draw_key_shift = bits;
@@ -61,8 +73,7 @@ static void vis_record(void *self, const pg_pass_record_ctx *ctx)
     VkClearColorValue clear;
     memset(&clear, 0, sizeof clear);
     clear.uint32[0] = 0xFFFFFFFFu; /* nothing drawn */
-    uint32_t color_slot = 0;
-    pg_pass_begin_rendering(ctx, 1, &color_slot, &clear, 1, true, 1.0f);
+    pg_pass_begin_rendering(ctx, 1, &p->color_slot, &clear, (int)p->depth_slot, true, 1.0f);
     pg_scene_draw_record(&p->draw, ctx, VK_NULL_HANDLE);
     vkCmdEndRendering(ctx->cmd);
 }
@@ -76,9 +87,8 @@ static void vis_destroy(void *self, pg_gpu *gpu)
 const pg_pass_type pg_pass_visibility = {
     .name = "visibility",
     .summary = "graphics: depth and a 32-bit triangle id per pixel (opaque + alpha-mask draws; alpha-mask discards)",
-    .read_slots = "",
-    .write_slots = "vis_id (r32ui), depth",
     .instance_size = sizeof(visibility_pass),
+    .params_size = sizeof(vis_params),
     .declare = vis_declare,
     .create = vis_create,
     .record = vis_record,

@@ -15,8 +15,13 @@
 #include "shading_common.h"
 #include "visibility_common.h"
 
+typedef struct vr_params { /* filled once by declare, read by create */
+    pg_scene_draw_features draw;
+    pg_slot vis_id, packed, emissive; /* emissive: PG_SLOT_NONE when not bound */
+} vr_params;
+
 typedef struct visibility_resolve {
-    bool emissive;
+    pg_slot packed;
     VkSampler sampler;
     pg_vis_geometry vis;
     pg_pass_set set;
@@ -27,44 +32,48 @@ typedef struct visibility_resolve {
 static pg_result vr_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
     static const char *const known[] = {NULL};
+    vr_params *p = pg_decl_params(out, sizeof *p);
     pg_result r;
     if ((r = pg_opt_check_known(in->desc, known, err))) return r;
-    pg_decl_read(out, "vis_id", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_UINT);
-    pg_decl_write(out, "packed", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_UINT);
+    p->vis_id = pg_decl_read(out, "vis_id", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_UINT);
+    p->packed = pg_decl_write(out, "packed", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_UINT);
     if (in->desc->n_writes > 1) {
-        pg_decl_write(out, "emissive", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+        p->emissive = pg_decl_write(out, "emissive", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
         const pg_resource_desc *rd = pg_pipeline_find_resource(in->pipeline, in->desc->writes[1]);
         if (rd && rd->kind == PG_RES_IMAGE && rd->format != PG_FMT_RGBA16F)
             return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[1]: the emissive target must be rgba16f, resource '%s' is %s",
                            in->desc->file, in->desc->json_path, rd->name, pg_format_get(rd->format)->name);
         if (!in->features.has_emissive)
-            pg_decl_mark_unused(out, true, 1, "no emissive materials: emissive target not allocated");
+            pg_decl_mark_unused(out, p->emissive, "no emissive materials: emissive target not allocated");
         else
             pg_decl_define(out, "PG_RESOLVE_EMISSIVE");
     } else if (in->features.has_emissive) {
         pg_decl_explain(out, "no emissive slot bound (writes[1]): emissive materials are not drawn");
     }
-    pg_scene_draw_declare_features(in, out);
+    pg_scene_draw_declare_features(in, out, &p->draw);
     return PG_OK;
 }
 
 static pg_result vr_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
     visibility_resolve *p = self;
+    const vr_params *pa = PG_PARAMS(ctx, vr_params);
     pg_gpu *gpu = ctx->gpu;
     pg_result r;
-    if (ctx->slots[1]->format != VK_FORMAT_R32G32B32A32_UINT)
+    p->packed = pa->packed;
+    if (pg_ctx_res(ctx, pa->packed)->format != VK_FORMAT_R32G32B32A32_UINT)
         return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: the packed G-buffer is rgba32ui", ctx->desc->file,
                        ctx->desc->json_path);
-    p->emissive = ctx->pass->n_slots > 2 && !ctx->pass->slots[2].decl.unused;
-    if ((r = pg_vis_geometry_create(ctx, 2, &p->vis, err))) return r;
+    const bool emissive = pg_slot_ok(pa->emissive) && !pg_ctx_unused(ctx, pa->emissive);
+    if ((r = pg_vis_geometry_create(ctx, &pa->draw, 2, &p->vis, err))) return r;
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err)))
         return r;
     pg_set_binding b[8];
     uint32_t n = 0;
-    b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, ctx->slots[0], p->sampler, 0};
-    b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[1], VK_NULL_HANDLE, 0};
-    if (p->emissive) b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, ctx->slots[2], VK_NULL_HANDLE, 0};
+    b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pg_ctx_res(ctx, pa->vis_id), p->sampler, 0};
+    b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pg_ctx_res(ctx, pa->packed), VK_NULL_HANDLE, 0};
+    if (emissive)
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pg_ctx_res(ctx, pa->emissive), VK_NULL_HANDLE, 0};
     n = pg_vis_geometry_bindings(&p->vis, PG_SCENE_OF(ctx), b, n);
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.set", ctx->pass->name);
@@ -85,7 +94,7 @@ static pg_result vr_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 static void vr_record(void *self, const pg_pass_record_ctx *ctx)
 {
     visibility_resolve *p = self;
-    const pg_phys_resource *out = ctx->slots[1];
+    const pg_phys_resource *out = pg_ctx_res(ctx, p->packed);
     VkDescriptorSet sets[3] = {ctx->frame_set, p->set.set, PG_SCENE_OF(ctx)->set};
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 3, sets, 0, NULL);
@@ -105,9 +114,8 @@ static void vr_destroy(void *self, pg_gpu *gpu)
 const pg_pass_type pg_pass_visibility_resolve = {
     .name = "visibility_resolve",
     .summary = "compute: rebuild every pixel's surface from its triangle id and write the packed G-buffer",
-    .read_slots = "vis_id (r32ui)",
-    .write_slots = "packed (rgba32ui), then optionally emissive (rgba16f)",
     .instance_size = sizeof(visibility_resolve),
+    .params_size = sizeof(vr_params),
     .declare = vr_declare,
     .create = vr_create,
     .record = vr_record,

@@ -78,7 +78,6 @@ static void up_destroy(void *self, pg_gpu *gpu)
 static const pg_pass_type k_upload = {
     .name = "test_upload_lights",
     .summary = "test: host light array -> lights",
-    .write_slots = "lights",
     .instance_size = sizeof(upload_pass),
     .declare = up_declare,
     .create = up_create,

@@ -168,10 +168,10 @@ static void t_record(void *self, const pg_pass_record_ctx *ctx, bool clear)
 static void t_record_load(void *self, const pg_pass_record_ctx *ctx) { t_record(self, ctx, false); }
 static void t_record_clear(void *self, const pg_pass_record_ctx *ctx) { t_record(self, ctx, true); }
 static void t_destroy(void *self, pg_gpu *gpu) { (void)self, (void)gpu; }
-static const pg_pass_type k_load_write = {.name = "t_load_write", .summary = "test", .read_slots = "", .write_slots = "color",
+static const pg_pass_type k_load_write = {.name = "t_load_write", .summary = "test",
                                           .instance_size = 8, .declare = t_declare, .create = t_create,
                                           .record = t_record_load, .destroy = t_destroy};
-static const pg_pass_type k_clear_write = {.name = "t_clear_write", .summary = "test", .read_slots = "", .write_slots = "color",
+static const pg_pass_type k_clear_write = {.name = "t_clear_write", .summary = "test",
                                            .instance_size = 8, .declare = t_declare, .create = t_create,
                                            .record = t_record_clear, .destroy = t_destroy};
 

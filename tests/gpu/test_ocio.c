@@ -434,7 +434,6 @@ static void tg_destroy(void *self, pg_gpu *gpu)
 static const pg_pass_type k_test_grid = {
     .name = "test_grid",
     .summary = "test: copies a grid of HDR values into its image",
-    .write_slots = "hdr",
     .instance_size = sizeof(test_grid),
     .declare = tg_declare,
     .create = tg_create,

@@ -47,16 +47,16 @@ static pg_result d_fill(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
 static pg_result d_final(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
 {
     (void)e;
-    pg_decl_read(d, "buf", BUF, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    pg_slot buf = pg_decl_read(d, "buf", BUF, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
     pg_decl_read(d, "src", IMG, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
     pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
     pg_decl_define(d, "FAKE_FINAL");
-    if (in->features.light_count == 0) pg_decl_mark_unused(d, false, 0, "0 lights");
+    if (in->features.light_count == 0) pg_decl_mark_unused(d, buf, "0 lights");
     if (!in->features.has_alpha_mask) pg_decl_explain(d, "no alpha-mask materials: no discard");
     return PG_OK;
 }
 
-#define TYPE(n, fn, rs, ws) {.name = n, .summary = "test type", .read_slots = rs, .write_slots = ws, .declare = fn}
+#define TYPE(n, fn, rs, ws) {.name = n, .summary = "test type", .declare = fn} /* rs, ws: the slots, for the reader */
 static const pg_pass_type g_types[] = {
     TYPE("fake_color", d_color, "", "color"),
     TYPE("fake_blur", d_blur, "src", "dst"),

@@ -78,7 +78,7 @@ static pg_result d_stat(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
     return PG_OK;
 }
 
-#define TYPE(n, fn, rs, ws) {.name = n, .summary = "test type", .read_slots = rs, .write_slots = ws, .declare = fn}
+#define TYPE(n, fn, rs, ws) {.name = n, .summary = "test type", .declare = fn} /* rs, ws: the slots, for the reader */
 static const pg_pass_type g_types[] = {
     TYPE("q_anim", d_anim, "", "lights"),          TYPE("q_assign", d_assign, "lights", "clusters"),
     TYPE("q_noise", d_noise, "", "img"),           TYPE("q_raster", d_raster, "", "color, depth"),
