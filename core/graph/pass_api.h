@@ -86,7 +86,7 @@ typedef struct pg_slot_decl {
 
 #define PG_MAX_DEFINES 24
 #define PG_MAX_PASS_EXPLAIN 16 /* explanation lines of one pass (declare) */
-#define PG_MAX_PASS_PARAMS 256 /* bytes of a pass type's params block (pg_pass_type.params_size) */
+#define PG_MAX_PASS_PARAMS 320 /* bytes of a pass type's params block (pg_pass_type.params_size) */
 typedef struct pg_pass_decl {
     uint32_t n_reads, n_writes;
     pg_slot_decl reads[PG_MAX_SLOTS];  /* same order as pg_pass_desc.reads */

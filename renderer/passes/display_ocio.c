@@ -43,7 +43,7 @@ typedef struct do_lut {
 
 /* The display and view option strings kept in the params block (the block holds at most
  * PG_MAX_PASS_PARAMS bytes: two names of DO_OPT_NAME_MAX - 1 characters). */
-#define DO_OPT_NAME_MAX 120
+#define DO_OPT_NAME_MAX 128
 typedef struct do_params { /* filled once by declare, read by create/update */
     float exposure;        /* a run-time value: push constant */
     bool compute;          /* stage "compute" */
