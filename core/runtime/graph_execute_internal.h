@@ -15,9 +15,10 @@
  *   graph_execute_record.c   pg_runtime_render: recording (barriers,      owns pg_rt_reports
  *                            ownership transfers, passes), pass reports, frame stats
  *
- * The calls go one way (no two files call each other): graph_execute.c and graph_execute_plan.c
- * call memory, frames and timing; record calls memory, frames and timing; memory calls frames
- * and timing; frames calls timing; timing calls none.
+ * The calls go one way (no two files call each other, nor round a longer loop):
+ * graph_execute.c calls memory and frames; plan calls memory and record (pg_rt_reports_due);
+ * record calls memory, frames and timing; memory calls frames and timing; frames calls timing;
+ * timing calls none. (Check: nm -A --defined-only / --undefined-only on libpgruntime.a.)
  *
  * Exception: rt->stats (pg_runtime_stats, a public struct) is shared: each counter is written by
  * the file that does what it counts (memory: bytes, blocks, growths; plan: rebuild kinds; frames:
