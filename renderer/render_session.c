@@ -138,10 +138,6 @@ pg_result pg_session_render(pg_session *s, const pg_frame_info *info, bool readb
     if (!s->runtime) return pg_fail(err, PG_ERR_INVALID_ARG, "session has no GPU");
     pg_result r = pg_session_compile(s, info->lights.count, info->width, info->height, err);
     if (r) return r;
-    /* A frame after which a "grow" buffer was enlarged was incomplete (a pass had less room than
-     * it needed): render it again, so every frame the caller sees is complete unless a budget or
-     * the device said no (then the pass counts what it dropped). Growth is geometric, so this
-     * happens a few times over a session, not every frame. */
     /* the per-frame block every built-in pass reads (set 0): the runtime only copies it */
     pg_frame_info fi = *info;
     fi.width = s->width;
@@ -152,8 +148,16 @@ pg_result pg_session_render(pg_session *s, const pg_frame_info *info, bool readb
     pg_frame_stats *st = stats ? stats : &local;
     uint32_t n_grown = 0, rerenders = 0;
     pg_grow_event grown[4];
+    /* A frame whose pass reports ask a "grow" buffer for more room was incomplete (a pass had
+     * less room than it needed): grow it between frames and render the frame again, so every
+     * frame the caller sees is complete unless a budget or the device said no (then the pass
+     * counts what it dropped). Growth is geometric, so this happens a few times over a session,
+     * not every frame; at most 16 re-renders. */
     for (;;) {
         if ((r = pg_runtime_render(s->runtime, &u, readback, st, err))) return r;
+        if (!pg_runtime_growth_pending(s->runtime)) break;
+        /* between frames: the runtime grows the buffers and re-creates the passes bound to them */
+        if ((r = pg_runtime_apply_growth(s->runtime, st, err))) return r;
         for (uint32_t i = 0; i < st->n_grown && n_grown < 4; i++) grown[n_grown++] = st->grown[i];
         if (!st->n_grown || rerenders >= 16) break;
         rerenders++;

@@ -134,7 +134,8 @@ typedef struct pg_frame_stats {
         uint64_t value;
     } counters[32];
     /* "grow" buffers re-created larger after this frame because a pass found them too small
-     * (pg_report_grow): this frame was incomplete and the next one will not be. */
+     * (pg_report_grow): this frame was incomplete and the next one will not be. Filled by
+     * pg_runtime_apply_growth (pg_runtime_render leaves it empty). */
     uint32_t n_grown;
     pg_grow_event grown[4];
     /* notes from passes and from the runtime (e.g. a growth the device refused) */
@@ -224,9 +225,20 @@ bool pg_runtime_gpu_times(const pg_runtime *rt, uint64_t frame, double *total_ms
 pg_result pg_runtime_wait_idle(pg_runtime *rt, pg_error *err);
 /* Renders one frame; waits for it when 1 frame is in flight or readback is set (else only for
  * the frame that used the same slot, see pg_runtime_set_frames_in_flight). readback: copy the
- * outputs for pg_runtime_output(). */
+ * outputs for pg_runtime_output(). It never allocates memory or re-creates pass instances: when
+ * the pass reports it read ask a "grow" buffer for more room (pg_report_grow), the request is
+ * kept as pending growth (pg_runtime_growth_pending) for pg_runtime_apply_growth. */
 pg_result pg_runtime_render(pg_runtime *rt, const void *frame_block, bool readback,
                             pg_frame_stats *stats, pg_error *err);
+/* true when the last pass reports read asked a "grow" buffer for more room and that growth was
+ * not applied yet (the frame they came from was incomplete: a pass had less room than it needed). */
+bool pg_runtime_growth_pending(const pg_runtime *rt);
+/* Between frames: applies the pending growth (waits for the frames in flight, re-creates each
+ * buffer larger and the pass instances bound to it; a size the device refuses keeps the old
+ * buffer and leaves a note). stats: the stats of the frame the requests came from (or NULL):
+ * each growth is added to its grown list (n_grown), a refusal's note to its notes. Nothing
+ * pending: does nothing. A new plan drops the requests of the old one. */
+pg_result pg_runtime_apply_growth(pg_runtime *rt, pg_frame_stats *stats, pg_error *err);
 /* Pixels of the last read-back frame: which = 0 the output, 1 the hdr_output (NULL if none). */
 const void *pg_runtime_output(const pg_runtime *rt, int which, uint32_t *w, uint32_t *h, pg_format *fmt);
 pg_runtime_stats pg_runtime_get_stats(const pg_runtime *rt);

@@ -1,15 +1,32 @@
-/* graph_execute_memory.c - physical resources, memory blocks, pass instances, growable buffers. */
+/* graph_execute_memory.c - physical resources, memory blocks, pass instances, growable buffers
+ * (owns pg_runtime.mem, graph_execute_internal.h). Calls graph_execute_frames.c (readback
+ * buffers, waits) and graph_execute_timing.c (query pools) only. */
 #include "graph_execute_internal.h"
 
 #include "alias_pack.h"
 
 #include <stdlib.h>
+#include <string.h>
 
-pg_result pg_rt_create_unbound(pg_runtime *rt, int i, pg_error *err)
+/* The capacity entry of the "grow" buffer `name` (added when add is set); UINT32_MAX if none. */
+static uint32_t capacity_slot(pg_runtime *rt, const char *name, bool add)
 {
-    pg_gpu *gpu = rt->gpu;
-    const pg_plan_resource *pr = &rt->plan->resources[i];
-    pg_phys_resource *r = &rt->res[i];
+    pg_rt_memory *m = &rt->mem;
+    for (uint32_t i = 0; i < m->n_capacity; i++)
+        if (!strcmp(m->capacity[i].name, name)) return i;
+    if (!add || m->n_capacity >= PG_MAX_RESOURCES) return UINT32_MAX;
+    uint32_t i = m->n_capacity++;
+    pg_strlcpy(m->capacity[i].name, name, sizeof m->capacity[i].name);
+    m->capacity[i].bytes = 0;
+    m->capacity[i].limit = UINT64_MAX;
+    return i;
+}
+
+static pg_result create_unbound(pg_runtime *rt, int i, pg_error *err)
+{
+    pg_gpu *gpu = rt->cfg.gpu;
+    const pg_plan_resource *pr = &rt->cur.plan->resources[i];
+    pg_phys_resource *r = &rt->mem.res[i];
     r->kind = pr->kind;
     if (pr->kind == PG_RES_IMAGE) {
         const pg_format_info *fi = pg_format_get(pr->format);
@@ -43,8 +60,8 @@ pg_result pg_rt_create_unbound(pg_runtime *rt, int i, pg_error *err)
     } else {
         r->size = pr->size_bytes;
         if (pr->growable) {
-            uint32_t c = pg_rt_capacity_slot(rt, pr->name, false);
-            if (c != UINT32_MAX && rt->capacity[c].bytes > r->size) r->size = rt->capacity[c].bytes;
+            uint32_t c = capacity_slot(rt, pr->name, false);
+            if (c != UINT32_MAX && rt->mem.capacity[c].bytes > r->size) r->size = rt->mem.capacity[c].bytes;
         }
         VkBufferCreateInfo bci = {
             .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
@@ -59,19 +76,19 @@ pg_result pg_rt_create_unbound(pg_runtime *rt, int i, pg_error *err)
     return PG_OK;
 }
 
-VkMemoryRequirements pg_rt_requirements(pg_runtime *rt, int i)
+static VkMemoryRequirements requirements(pg_runtime *rt, int i)
 {
     VkMemoryRequirements req = {0};
-    if (rt->res[i].image) vkGetImageMemoryRequirements(rt->gpu->device, rt->res[i].image, &req);
-    else vkGetBufferMemoryRequirements(rt->gpu->device, rt->res[i].buffer, &req);
+    if (rt->mem.res[i].image) vkGetImageMemoryRequirements(rt->cfg.gpu->device, rt->mem.res[i].image, &req);
+    else vkGetBufferMemoryRequirements(rt->cfg.gpu->device, rt->mem.res[i].buffer, &req);
     return req;
 }
 
 static pg_result bind(pg_runtime *rt, int i, VkDeviceMemory mem, VkDeviceSize offset, pg_error *err)
 {
-    pg_phys_resource *r = &rt->res[i];
+    pg_phys_resource *r = &rt->mem.res[i];
     if (r->image) {
-        PG_VK_TRY(err, vkBindImageMemory(rt->gpu->device, r->image, mem, offset));
+        PG_VK_TRY(err, vkBindImageMemory(rt->cfg.gpu->device, r->image, mem, offset));
         VkImageViewCreateInfo vci = {
             .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
             .image = r->image,
@@ -79,11 +96,11 @@ static pg_result bind(pg_runtime *rt, int i, VkDeviceMemory mem, VkDeviceSize of
             .format = r->format,
             .subresourceRange = {pg_vk_aspect(r->format), 0, 1, 0, 1},
         };
-        PG_VK_TRY(err, vkCreateImageView(rt->gpu->device, &vci, NULL, &r->view));
-        pg_gpu_name(rt->gpu, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)r->view, "%s.view",
-                    rt->plan->resources[i].name);
+        PG_VK_TRY(err, vkCreateImageView(rt->cfg.gpu->device, &vci, NULL, &r->view));
+        pg_gpu_name(rt->cfg.gpu, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)r->view, "%s.view",
+                    rt->cur.plan->resources[i].name);
     } else {
-        PG_VK_TRY(err, vkBindBufferMemory(rt->gpu->device, r->buffer, mem, offset));
+        PG_VK_TRY(err, vkBindBufferMemory(rt->cfg.gpu->device, r->buffer, mem, offset));
     }
     return PG_OK;
 }
@@ -91,45 +108,45 @@ static pg_result bind(pg_runtime *rt, int i, VkDeviceMemory mem, VkDeviceSize of
 static pg_result alloc(pg_runtime *rt, VkDeviceSize size, uint32_t bits, const char *name, VkDeviceMemory *out,
                        pg_error *err)
 {
-    VkResult vr = pg_gpu_alloc_device_memory(rt->gpu, size, bits, out);
+    VkResult vr = pg_gpu_alloc_device_memory(rt->cfg.gpu, size, bits, out);
     if (vr != VK_SUCCESS)
         return pg_fail(err, PG_ERR_VULKAN, "%s: vkAllocateMemory(%llu bytes) failed: %s", name,
                        (unsigned long long)size, pg_vk_result_name(vr));
-    pg_gpu_name(rt->gpu, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)*out, "%s", name);
+    pg_gpu_name(rt->cfg.gpu, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)*out, "%s", name);
     return PG_OK;
 }
 
 static pg_result create_pass(pg_runtime *rt, int pi, pg_error *err)
 {
-    const pg_graph_plan *plan = rt->plan;
+    const pg_graph_plan *plan = rt->cur.plan;
     const pg_plan_pass *pass = &plan->passes[pi];
     pg_pass_create_ctx ctx = {
-        .gpu = rt->gpu,
+        .gpu = rt->cfg.gpu,
         .plan = plan,
         .pass = pass,
-        .desc = &rt->pipeline->passes[pass->desc_index],
-        .pipeline = rt->pipeline,
-        .user = rt->user.data,
-        .frame_layout = rt->frame_layout,
-        .width = rt->width,
-        .height = rt->height,
-        .settings = rt->settings,
-        .n_settings = rt->n_settings,
+        .desc = &rt->cur.pipeline->passes[pass->desc_index],
+        .pipeline = rt->cur.pipeline,
+        .user = rt->cur.user.data,
+        .frame_layout = rt->frames.frame_layout,
+        .width = rt->cur.width,
+        .height = rt->cur.height,
+        .settings = rt->cfg.settings,
+        .n_settings = rt->cfg.n_settings,
     };
-    for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->res[pass->slots[s].resource];
-    rt->pass_state[pi] = calloc(1, pass->type->instance_size ? pass->type->instance_size : 1);
-    if (!rt->pass_state[pi]) return pg_fail(err, PG_ERR_OOM, "out of memory");
-    pg_result r = pass->type->create(rt->pass_state[pi], &ctx, err);
+    for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->mem.res[pass->slots[s].resource];
+    rt->mem.pass_state[pi] = calloc(1, pass->type->instance_size ? pass->type->instance_size : 1);
+    if (!rt->mem.pass_state[pi]) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    pg_result r = pass->type->create(rt->mem.pass_state[pi], &ctx, err);
     if (r) return pg_error_prefix(err, "pass '%s' (%s)", pass->name, pass->type->name);
     return PG_OK;
 }
 
-/* Packs plan block b again with the real memory pg_rt_requirements of its members (created unbound),
+/* Packs plan block b again with the real memory requirements of its members (created unbound),
  * allocates its memory (one VkDeviceMemory per sub-block, in free block_memory slots) and binds
  * them; bound[m] is set for each member bound. */
-pg_result pg_rt_build_block(pg_runtime *rt, uint32_t b, bool *bound, pg_error *err)
+static pg_result build_block(pg_runtime *rt, uint32_t b, bool *bound, pg_error *err)
 {
-    const pg_graph_plan *plan = rt->plan;
+    const pg_graph_plan *plan = rt->cur.plan;
     const pg_plan_block *blk = &plan->blocks[b];
     pg_result r;
     pg_pack_item items[PG_MAX_RESOURCES];
@@ -137,7 +154,7 @@ pg_result pg_rt_build_block(pg_runtime *rt, uint32_t b, bool *bound, pg_error *e
     pg_pack_block sub[PG_MAX_RESOURCES];
     for (uint32_t m = 0; m < blk->n_members; m++) {
         const pg_plan_resource *pr = &plan->resources[blk->members[m]];
-        VkMemoryRequirements req = pg_rt_requirements(rt, blk->members[m]);
+        VkMemoryRequirements req = requirements(rt, blk->members[m]);
         items[m] = (pg_pack_item){.size = req.size, .alignment = req.alignment,
                                   .type_bits = req.memoryTypeBits, .klass = 0,
                                   .first = pr->first_pass, .last = pr->last_pass,
@@ -146,25 +163,25 @@ pg_result pg_rt_build_block(pg_runtime *rt, uint32_t b, bool *bound, pg_error *e
     }
     const int n_sub = pg_alias_pack(items, blk->n_members, true, place, sub);
     if (n_sub < 0) return pg_fail(err, PG_ERR_LIMIT, "block%u: too many members", b);
-    rt->block_split[b] = n_sub > 1;
+    rt->mem.block_split[b] = n_sub > 1;
     if (n_sub > 1) rt->stats.blocks_fallback++;
     for (int sb = 0; sb < n_sub; sb++) {
         if (sub[sb].type_bits == 0) continue; /* a member no memory type fits: fails below */
         uint32_t slot = 0;
-        while (slot < PG_MAX_RESOURCES && rt->block_memory[slot]) slot++;
+        while (slot < PG_MAX_RESOURCES && rt->mem.block_memory[slot]) slot++;
         if (slot >= PG_MAX_RESOURCES) return pg_fail(err, PG_ERR_LIMIT, "too many memory blocks");
         char name[64];
         snprintf(name, sizeof name, n_sub > 1 ? "block%u.%d" : "block%u", b, sb);
-        if ((r = alloc(rt, sub[sb].size, sub[sb].type_bits, name, &rt->block_memory[slot], err))) return r;
-        rt->block_memory_size[slot] = sub[sb].size;
-        rt->block_memory_of[slot] = (int)b;
+        if ((r = alloc(rt, sub[sb].size, sub[sb].type_bits, name, &rt->mem.block_memory[slot], err))) return r;
+        rt->mem.block_memory_size[slot] = sub[sb].size;
+        rt->mem.block_memory_of[slot] = (int)b;
         rt->stats.memory_bytes_transient += sub[sb].size;
         for (uint32_t m = 0; m < blk->n_members; m++) {
             if (place[m].block != sb) continue;
-            rt->res[blk->members[m]].memory = rt->block_memory[slot];
-            rt->res[blk->members[m]].memory_offset = place[m].offset;
-            rt->res[blk->members[m]].memory_size = items[m].size;
-            if ((r = bind(rt, blk->members[m], rt->block_memory[slot], place[m].offset, err))) return r;
+            rt->mem.res[blk->members[m]].memory = rt->mem.block_memory[slot];
+            rt->mem.res[blk->members[m]].memory_offset = place[m].offset;
+            rt->mem.res[blk->members[m]].memory_size = items[m].size;
+            if ((r = bind(rt, blk->members[m], rt->mem.block_memory[slot], place[m].offset, err))) return r;
             bound[blk->members[m]] = true;
         }
     }
@@ -172,165 +189,293 @@ pg_result pg_rt_build_block(pg_runtime *rt, uint32_t b, bool *bound, pg_error *e
 }
 
 /* An own allocation for resource i (not in a block, or its block could not hold it). */
-pg_result pg_rt_build_own(pg_runtime *rt, int i, pg_error *err)
+static pg_result build_own(pg_runtime *rt, int i, pg_error *err)
 {
-    const pg_plan_resource *pr = &rt->plan->resources[i];
-    VkMemoryRequirements req = pg_rt_requirements(rt, i);
-    pg_result r = alloc(rt, req.size, req.memoryTypeBits, pr->name, &rt->res[i].own_memory, err);
+    const pg_plan_resource *pr = &rt->cur.plan->resources[i];
+    VkMemoryRequirements req = requirements(rt, i);
+    pg_result r = alloc(rt, req.size, req.memoryTypeBits, pr->name, &rt->mem.res[i].own_memory, err);
     if (r) return r;
     if (pr->lifetime == PG_LIFETIME_TRANSIENT) {
         rt->stats.memory_bytes_transient += req.size;
         rt->stats.memory_bytes_unaliased += req.size; /* e.g. "grow" buffers: never aliased */
     }
-    rt->res[i].memory = rt->res[i].own_memory;
-    rt->res[i].memory_size = req.size;
-    return bind(rt, i, rt->res[i].own_memory, 0, err);
+    rt->mem.res[i].memory = rt->mem.res[i].own_memory;
+    rt->mem.res[i].memory_size = req.size;
+    return bind(rt, i, rt->mem.res[i].own_memory, 0, err);
 }
 
-/* The physical resources (memory blocks, own allocations) and the readback buffers. */
+/* The physical resources (memory blocks, own allocations) and the readback buffers
+ * (graph_execute_frames.c). */
 pg_result pg_rt_build_memory(pg_runtime *rt, pg_error *err)
 {
-    const pg_graph_plan *plan = rt->plan;
-    pg_gpu *gpu = rt->gpu;
+    const pg_graph_plan *plan = rt->cur.plan;
     pg_result r;
     rt->stats.resource_creations++;
     rt->stats.memory_bytes_transient = 0;
     rt->stats.memory_bytes_unaliased = 0;
     for (uint32_t i = 0; i < plan->n_resources; i++) {
         if (plan->resources[i].culled) continue;
-        if ((r = pg_rt_create_unbound(rt, (int)i, err))) return r;
+        if ((r = create_unbound(rt, (int)i, err))) return r;
     }
-    /* shared blocks: each plan block is packed again with the real memory pg_rt_requirements
+    /* shared blocks: each plan block is packed again with the real memory requirements
      * (core/graph/alias_pack.c), only among its own members, so two resources share bytes at run time
      * only if the plan's alias barriers order them; members without a common memory type end up
      * in separate allocations */
     bool bound[PG_MAX_RESOURCES] = {0};
     for (uint32_t b = 0; b < plan->n_blocks; b++)
-        if ((r = pg_rt_build_block(rt, b, bound, err))) return r;
+        if ((r = build_block(rt, b, bound, err))) return r;
     for (uint32_t i = 0; i < plan->n_resources; i++) {
         if (plan->resources[i].culled || bound[i]) continue;
-        if ((r = pg_rt_build_own(rt, (int)i, err))) return r;
+        if ((r = build_own(rt, (int)i, err))) return r;
     }
-    /* readback buffers */
-    int outs[2] = {plan->output, plan->hdr_output};
-    for (int k = 0; k < 2; k++) {
-        if (outs[k] < 0) continue;
-        const pg_plan_resource *pr = &plan->resources[outs[k]];
-        VkDeviceSize bytes = (VkDeviceSize)pr->width * pr->height * pg_format_get(pr->format)->bytes_per_pixel;
-        for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
-            char nm[40];
-            snprintf(nm, sizeof nm, "frame%u.readback.%s", f, k ? "hdr" : "output");
-            if ((r = pg_buffer_create(gpu, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, nm,
-                                      &rt->slot[f].readback[k], err)))
-                return r;
-        }
-    }
-    return PG_OK;
+    return pg_rt_frames_build_readback(rt, err);
 }
 
-/* The per-plan query pools and the pass instances, on the physical resources built. */
+/* The per-plan query pools (graph_execute_timing.c) and the pass instances, on the physical
+ * resources built; then the runtime is built. */
 pg_result pg_rt_build_passes(pg_runtime *rt, pg_error *err)
 {
-    const pg_graph_plan *plan = rt->plan;
-    pg_gpu *gpu = rt->gpu;
+    const pg_graph_plan *plan = rt->cur.plan;
     pg_result r;
-    rt->n_queries = 2 * plan->n_order + 1; /* per queue pool; the +1 keeps it non-empty */
-    rt->compute_stamps = plan->async && gpu->compute_timestamp_valid_bits > 0;
-    rt->n_on_queue[0] = rt->n_on_queue[1] = 0;
-    for (uint32_t o = 0; o < plan->n_order; o++) rt->qslot[o] = rt->n_on_queue[plan->passes[plan->order[o]].queue]++;
-    if (gpu->timestamp_valid_bits) {
-        VkQueryPoolCreateInfo qci = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
-                                     .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = rt->n_queries};
-        for (uint32_t f = 0; f < PG_MAX_FRAMES_IN_FLIGHT; f++) {
-            PG_VK_TRY(err, vkCreateQueryPool(gpu->device, &qci, NULL, &rt->slot[f].queries));
-            pg_gpu_name(gpu, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)rt->slot[f].queries, "frame%u.timestamps", f);
-            if (rt->compute_stamps) {
-                PG_VK_TRY(err, vkCreateQueryPool(gpu->device, &qci, NULL, &rt->slot[f].cqueries));
-                pg_gpu_name(gpu, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)rt->slot[f].cqueries, "frame%u.timestamps.compute", f);
-            }
-            char nm[40];
-            snprintf(nm, sizeof nm, "frame%u.timestamp_results", f);
-            if ((r = pg_buffer_create(gpu, 2 * sizeof(uint64_t) * rt->n_queries, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, nm,
-                                      &rt->slot[f].timestamps, err)))
-                return r;
-        }
-    }
+    if ((r = pg_rt_timing_build(rt, err))) return r;
     /* pass instances */
     for (uint32_t o = 0; o < plan->n_order; o++)
         if ((r = create_pass(rt, plan->order[o], err))) return r;
+    rt->mem.built = true;
     return PG_OK;
 }
 
-/* Re-creates the growable buffer ri with at least `needed` bytes: twice its size or `needed`,
- * whichever is larger, at most `max` (and below any size the device refused before). The new
- * buffer is made before the old one goes, so a refused allocation keeps the old one (and a note
- * says so); then every pass bound to the buffer is re-created (its descriptors point at it). */
-pg_result pg_rt_grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t max, pg_frame_stats *st,
-                            pg_error *err)
+
+/* The pass instances, the per-plan query pools and what the frame slots know of the plan (the
+ * device must be idle). */
+void pg_rt_destroy_passes(pg_runtime *rt)
 {
-    pg_gpu *gpu = rt->gpu;
-    pg_phys_resource *r = &rt->res[ri];
-    const pg_plan_resource *pr = &rt->plan->resources[ri];
-    uint32_t c = pg_rt_capacity_slot(rt, pr->name, true);
-    if (c == UINT32_MAX) return PG_OK;
-    uint64_t limit = max < rt->capacity[c].limit ? max : rt->capacity[c].limit;
-    if (needed <= r->size || limit <= r->size) return PG_OK; /* at its limit: the pass counts the rest */
-    uint64_t want = r->size > UINT64_MAX / 2 ? UINT64_MAX : r->size * 2;
-    if (want < needed) want = needed;
-    if (want > limit) want = limit;
-    uint64_t exact = needed < limit ? needed : limit;
-    uint64_t tries[2] = {want, exact < want ? exact : 0};
-    VkBuffer nb = VK_NULL_HANDLE;
-    VkDeviceMemory nm = VK_NULL_HANDLE;
-    VkResult vr = VK_SUCCESS;
-    uint64_t got = 0;
-    for (int t = 0; t < 2 && !got; t++) {
-        if (tries[t] <= r->size) continue;
+    pg_gpu *gpu = rt->cfg.gpu;
+    const pg_graph_plan *plan = rt->cur.plan;
+    for (uint32_t i = 0; plan && i < plan->n_passes; i++) {
+        if (rt->mem.pass_state[i]) {
+            plan->passes[i].type->destroy(rt->mem.pass_state[i], gpu);
+            free(rt->mem.pass_state[i]);
+            rt->mem.pass_state[i] = NULL;
+        }
+    }
+    pg_rt_timing_destroy(rt);
+    pg_rt_frames_forget(rt);
+}
+
+/* Everything built for the plan: pass instances, resources, memory blocks, readback buffers. */
+void pg_rt_destroy_built(pg_runtime *rt)
+{
+    pg_gpu *gpu = rt->cfg.gpu;
+    pg_rt_memory *m = &rt->mem;
+    if (!m->built && !rt->cur.plan) return;
+    vkDeviceWaitIdle(gpu->device);
+    pg_rt_destroy_passes(rt);
+    for (uint32_t i = 0; i < PG_MAX_RESOURCES; i++) {
+        pg_phys_resource *r = &m->res[i];
+        if (r->view) vkDestroyImageView(gpu->device, r->view, NULL);
+        if (r->image) vkDestroyImage(gpu->device, r->image, NULL);
+        if (r->buffer) vkDestroyBuffer(gpu->device, r->buffer, NULL);
+        if (r->own_memory) pg_gpu_free_memory(gpu, r->own_memory);
+        memset(r, 0, sizeof *r);
+        if (m->block_memory[i]) pg_gpu_free_memory(gpu, m->block_memory[i]);
+        m->block_memory[i] = VK_NULL_HANDLE;
+        m->block_memory_size[i] = 0;
+        m->block_split[i] = false;
+        m->persistent_initialized[i] = false;
+    }
+    pg_rt_frames_destroy_readback(rt);
+    m->n_pending = 0;
+    m->built = false;
+}
+
+/* Re-creates the changed resources of the (new) plan and packs the dirty blocks again (the
+ * passes are destroyed, the device idle); the other resources and blocks are untouched. */
+pg_result pg_rt_recreate_resources(pg_runtime *rt, const bool *changed, const bool *dirty, pg_error *err)
+{
+    pg_gpu *gpu = rt->cfg.gpu;
+    const pg_graph_plan *plan = rt->cur.plan;
+    pg_result r;
+    for (uint32_t i = 0; i < plan->n_resources; i++) {
+        if (!changed[i]) continue;
+        pg_phys_resource *p = &rt->mem.res[i];
+        /* what pg_rt_build_memory counted for it: block members' requirements, transient own allocations */
+        if (plan->resources[i].block >= 0) rt->stats.memory_bytes_unaliased -= p->memory_size;
+        else if (p->own_memory && plan->resources[i].lifetime == PG_LIFETIME_TRANSIENT) {
+            rt->stats.memory_bytes_transient -= p->memory_size;
+            rt->stats.memory_bytes_unaliased -= p->memory_size;
+        }
+        if (p->view) vkDestroyImageView(gpu->device, p->view, NULL);
+        if (p->image) vkDestroyImage(gpu->device, p->image, NULL);
+        if (p->buffer) vkDestroyBuffer(gpu->device, p->buffer, NULL);
+        if (p->own_memory) pg_gpu_free_memory(gpu, p->own_memory);
+        memset(p, 0, sizeof *p);
+        rt->mem.persistent_initialized[i] = false;
+    }
+    for (uint32_t k = 0; k < PG_MAX_RESOURCES; k++) {
+        if (!rt->mem.block_memory[k] || !dirty[rt->mem.block_memory_of[k]]) continue;
+        pg_gpu_free_memory(gpu, rt->mem.block_memory[k]);
+        rt->stats.memory_bytes_transient -= rt->mem.block_memory_size[k];
+        rt->mem.block_memory[k] = VK_NULL_HANDLE;
+        rt->mem.block_memory_size[k] = 0;
+    }
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        if (dirty[b] && rt->mem.block_split[b]) rt->stats.blocks_fallback--;
+    for (uint32_t i = 0; i < plan->n_resources; i++)
+        if (changed[i] && !plan->resources[i].culled && (r = create_unbound(rt, (int)i, err))) return r;
+    bool bound[PG_MAX_RESOURCES] = {0};
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        if (dirty[b] && (r = build_block(rt, b, bound, err))) return r;
+    for (uint32_t i = 0; i < plan->n_resources; i++)
+        if (changed[i] && !plan->resources[i].culled && !bound[i] && (r = build_own(rt, (int)i, err))) return r;
+    return PG_OK;
+}
+
+/* Only the run-time values changed: every kept pass instance takes them from its new params. */
+pg_result pg_rt_update_values(pg_runtime *rt, pg_error *err)
+{
+    for (uint32_t o = 0; o < rt->cur.plan->n_order; o++) {
+        int pi = rt->cur.plan->order[o];
+        const pg_plan_pass *pass = &rt->cur.plan->passes[pi];
+        if (!pass->type->update || !rt->mem.pass_state[pi]) continue;
+        pg_result r = pass->type->update(rt->mem.pass_state[pi], pass->decl.params, err);
+        if (r) return pg_error_prefix(err, "pass '%s' (%s)", pass->name, pass->type->name);
+    }
+    return PG_OK;
+}
+
+/* A new plan assumes another state of the persistent resource at frame start: its contents
+ * are not kept. */
+void pg_rt_forget_contents(pg_runtime *rt, int resource)
+{
+    rt->mem.persistent_initialized[resource] = false;
+}
+
+/* After a frame: every persistent resource it used holds contents (its next frame-wrap
+ * barriers wait for them). */
+void pg_rt_mark_persistent_written(pg_runtime *rt)
+{
+    const pg_graph_plan *plan = rt->cur.plan;
+    for (uint32_t i = 0; i < plan->n_resources; i++)
+        if (!plan->resources[i].culled && plan->resources[i].lifetime != PG_LIFETIME_TRANSIENT)
+            rt->mem.persistent_initialized[i] = true;
+}
+
+/* ---- "grow" buffers: requested while a frame's pass reports are read, applied between frames */
+
+void pg_rt_clear_growth(pg_runtime *rt)
+{
+    rt->mem.n_pending = 0;
+}
+
+void pg_rt_request_growth(pg_runtime *rt, int resource, uint64_t needed, uint64_t max)
+{
+    pg_rt_memory *m = &rt->mem;
+    if (m->n_pending >= PG_RT_MAX_GROW_REQUESTS) return;
+    m->pending[m->n_pending++] = (pg_rt_grow_request){.resource = resource, .needed = needed, .max = max};
+}
+
+bool pg_runtime_growth_pending(const pg_runtime *rt)
+{
+    return rt->mem.n_pending > 0;
+}
+
+/* vkCreateBuffer, or VK_ERROR_OUT_OF_DEVICE_MEMORY without creating when fault injection picks
+ * this call (pg_vk_fault_next, PASSGRAPH_FAULT_AT: tests/cli/fault_test.sh). */
+static VkResult create_buffer_or_fault(VkDevice dev, const VkBufferCreateInfo *bci, VkBuffer *out)
+{
+    if (pg_vk_fault_next("vkCreateBuffer(grow)")) return VK_ERROR_OUT_OF_DEVICE_MEMORY;
+    return vkCreateBuffer(dev, bci, NULL, out);
+}
+
+/* A new buffer for resource pr with its own memory, trying the sizes tries[] in turn (0 or not
+ * above `above`: skipped); *got: the size made (0: none, *vr says why). */
+static void new_grow_buffer(pg_runtime *rt, const pg_plan_resource *pr, const uint64_t tries[2], uint64_t above,
+                            VkBuffer *nb, VkDeviceMemory *nm, uint64_t *got, VkResult *vr)
+{
+    pg_gpu *gpu = rt->cfg.gpu;
+    *nb = VK_NULL_HANDLE;
+    *nm = VK_NULL_HANDLE;
+    *got = 0;
+    *vr = VK_SUCCESS;
+    for (int t = 0; t < 2 && !*got; t++) {
+        if (tries[t] <= above) continue;
         VkBufferCreateInfo bci = {
             .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
             .size = tries[t],
             .usage = (pr->usage ? pr->usage : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
             .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
         };
-        vr = pg_vk_fault_next("vkCreateBuffer(grow)") ? VK_ERROR_OUT_OF_DEVICE_MEMORY
-                                                       : vkCreateBuffer(gpu->device, &bci, NULL, &nb);
-        if (vr != VK_SUCCESS) {
-            nb = VK_NULL_HANDLE;
+        *vr = create_buffer_or_fault(gpu->device, &bci, nb);
+        if (*vr != VK_SUCCESS) {
+            *nb = VK_NULL_HANDLE;
             continue;
         }
         VkMemoryRequirements req;
-        vkGetBufferMemoryRequirements(gpu->device, nb, &req);
-        vr = pg_gpu_alloc_device_memory(gpu, req.size, req.memoryTypeBits, &nm);
-        if (vr == VK_SUCCESS) vr = vkBindBufferMemory(gpu->device, nb, nm, 0);
-        if (vr != VK_SUCCESS) {
-            if (nm) pg_gpu_free_memory(gpu, nm);
-            vkDestroyBuffer(gpu->device, nb, NULL);
-            nb = VK_NULL_HANDLE;
-            nm = VK_NULL_HANDLE;
+        vkGetBufferMemoryRequirements(gpu->device, *nb, &req);
+        *vr = pg_gpu_alloc_device_memory(gpu, req.size, req.memoryTypeBits, nm);
+        if (*vr == VK_SUCCESS) *vr = vkBindBufferMemory(gpu->device, *nb, *nm, 0);
+        if (*vr != VK_SUCCESS) {
+            if (*nm) pg_gpu_free_memory(gpu, *nm);
+            vkDestroyBuffer(gpu->device, *nb, NULL);
+            *nb = VK_NULL_HANDLE;
+            *nm = VK_NULL_HANDLE;
             continue;
         }
-        got = tries[t];
+        *got = tries[t];
     }
+}
+
+/* Destroys the pass instances bound to resource ri (they hold descriptors of it). */
+static void destroy_passes_using(pg_runtime *rt, int ri)
+{
+    const pg_graph_plan *plan = rt->cur.plan;
+    for (uint32_t o = 0; o < plan->n_order; o++) {
+        int pi = plan->order[o];
+        const pg_plan_pass *pass = &plan->passes[pi];
+        bool uses = false;
+        for (uint32_t k = 0; k < pass->n_slots; k++) uses |= pass->slots[k].resource == ri;
+        if (uses && rt->mem.pass_state[pi]) {
+            pass->type->destroy(rt->mem.pass_state[pi], rt->cfg.gpu);
+            free(rt->mem.pass_state[pi]);
+            rt->mem.pass_state[pi] = NULL;
+        }
+    }
+}
+
+/* Re-creates the growable buffer ri with at least `needed` bytes: twice its size or `needed`,
+ * whichever is larger, at most `max` (and below any size the device refused before). The new
+ * buffer is made before the old one goes, so a refused allocation keeps the old one (and a note
+ * says so); then every pass bound to the buffer is re-created (its descriptors point at it). */
+static pg_result grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t max, pg_frame_stats *st,
+                             pg_error *err)
+{
+    pg_gpu *gpu = rt->cfg.gpu;
+    pg_phys_resource *r = &rt->mem.res[ri];
+    const pg_plan_resource *pr = &rt->cur.plan->resources[ri];
+    uint32_t c = capacity_slot(rt, pr->name, true);
+    if (c == UINT32_MAX) return PG_OK;
+    uint64_t limit = max < rt->mem.capacity[c].limit ? max : rt->mem.capacity[c].limit;
+    if (needed <= r->size || limit <= r->size) return PG_OK; /* at its limit: the pass counts the rest */
+    uint64_t want = r->size > UINT64_MAX / 2 ? UINT64_MAX : r->size * 2;
+    if (want < needed) want = needed;
+    if (want > limit) want = limit;
+    uint64_t exact = needed < limit ? needed : limit;
+    const uint64_t tries[2] = {want, exact < want ? exact : 0};
+    VkBuffer nb;
+    VkDeviceMemory nm;
+    VkResult vr;
+    uint64_t got;
+    new_grow_buffer(rt, pr, tries, r->size, &nb, &nm, &got, &vr);
     if (!got) {
-        rt->capacity[c].limit = r->size;
-        snprintf(rt->grow_note, sizeof rt->grow_note,
+        rt->mem.capacity[c].limit = r->size;
+        snprintf(rt->mem.grow_note, sizeof rt->mem.grow_note,
                  "buffer '%s' could not grow from %llu to %llu bytes (%s): kept; what does not fit is dropped "
                  "and counted",
                  pr->name, (unsigned long long)r->size, (unsigned long long)exact, pg_vk_result_name(vr));
         return PG_OK;
     }
-    /* the passes bound to the buffer hold descriptors of it: destroy them first */
-    for (uint32_t o = 0; o < rt->plan->n_order; o++) {
-        int pi = rt->plan->order[o];
-        const pg_plan_pass *pass = &rt->plan->passes[pi];
-        bool uses = false;
-        for (uint32_t k = 0; k < pass->n_slots; k++) uses |= pass->slots[k].resource == ri;
-        if (uses && rt->pass_state[pi]) {
-            pass->type->destroy(rt->pass_state[pi], gpu);
-            free(rt->pass_state[pi]);
-            rt->pass_state[pi] = NULL;
-        }
-    }
+    destroy_passes_using(rt, ri);
     uint64_t old = r->size;
     vkDestroyBuffer(gpu->device, r->buffer, NULL);
     if (r->own_memory) pg_gpu_free_memory(gpu, r->own_memory);
@@ -342,7 +487,7 @@ pg_result pg_rt_grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t ma
     r->size = got;
     pg_gpu_name(gpu, VK_OBJECT_TYPE_BUFFER, (uint64_t)nb, "%s", pr->name);
     pg_gpu_name(gpu, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)nm, "%s", pr->name);
-    rt->capacity[c].bytes = got;
+    rt->mem.capacity[c].bytes = got;
     rt->stats.grow_events++;
     rt->stats.memory_bytes_transient += got - old;
     rt->stats.memory_bytes_unaliased += got - old;
@@ -352,14 +497,48 @@ pg_result pg_rt_grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t ma
         st->grown[st->n_grown].new_bytes = got;
         st->n_grown++;
     }
-    for (uint32_t o = 0; o < rt->plan->n_order; o++) {
-        int pi = rt->plan->order[o];
-        if (rt->pass_state[pi]) continue;
+    for (uint32_t o = 0; o < rt->cur.plan->n_order; o++) {
+        int pi = rt->cur.plan->order[o];
+        if (rt->mem.pass_state[pi]) continue;
         pg_result res = create_pass(rt, pi, err);
         if (res) {
             pg_rt_destroy_built(rt);
             return res;
         }
     }
+    return PG_OK;
+}
+
+/* The runtime's growth note (a refused growth) changed from `before` while growing: the frame's
+ * stats end with it, as pg_runtime_render would have put it there. */
+static void update_grow_note(const pg_runtime *rt, const char *before, pg_frame_stats *st)
+{
+    const char *note = rt->mem.grow_note;
+    if (!st || !strcmp(before, note)) return;
+    if (before[0] && st->n_notes && !strcmp(st->notes[st->n_notes - 1], before))
+        pg_strlcpy(st->notes[st->n_notes - 1], note, sizeof st->notes[0]);
+    else if (st->n_notes < 4)
+        pg_strlcpy(st->notes[st->n_notes++], note, sizeof st->notes[0]);
+}
+
+pg_result pg_runtime_apply_growth(pg_runtime *rt, pg_frame_stats *stats, pg_error *err)
+{
+    pg_rt_memory *m = &rt->mem;
+    if (!m->n_pending) return PG_OK;
+    if (!m->built) return pg_fail(err, PG_ERR_INVALID_ARG, "pg_runtime_apply_growth: no plan set");
+    /* the requests were read when no frame was in flight; wait anyway in case one was since */
+    pg_result r = pg_runtime_wait_idle(rt, err);
+    if (r) return r;
+    pg_rt_grow_request req[PG_RT_MAX_GROW_REQUESTS];
+    const uint32_t n = m->n_pending;
+    memcpy(req, m->pending, sizeof req[0] * n);
+    m->n_pending = 0;
+    char before[sizeof m->grow_note];
+    pg_strlcpy(before, m->grow_note, sizeof before);
+    for (uint32_t i = 0; i < n; i++) {
+        if ((r = grow_buffer(rt, req[i].resource, req[i].needed, req[i].max, stats, err))) return r;
+        if (!m->built) return pg_fail(err, PG_ERR_VULKAN, "runtime lost its plan while growing a buffer");
+    }
+    update_grow_note(rt, before, stats);
     return PG_OK;
 }

@@ -1,21 +1,11 @@
-/* graph_execute_plan.c - plan signatures and pg_runtime_set_plan() (rebuild kinds). */
+/* graph_execute_plan.c - plan signatures and pg_runtime_set_plan() (rebuild kinds); owns
+ * pg_runtime.cur (graph_execute_internal.h). Calls graph_execute_memory.c (build, re-create,
+ * destroy) and graph_execute_record.c (pg_rt_reports_due). */
 #include "graph_execute_internal.h"
 
 #include <string.h>
 
 #include <cjson/cJSON.h>
-
-uint32_t pg_rt_capacity_slot(pg_runtime *rt, const char *name, bool add)
-{
-    for (uint32_t i = 0; i < rt->n_capacity; i++)
-        if (!strcmp(rt->capacity[i].name, name)) return i;
-    if (!add || rt->n_capacity >= PG_MAX_RESOURCES) return UINT32_MAX;
-    uint32_t i = rt->n_capacity++;
-    pg_strlcpy(rt->capacity[i].name, name, sizeof rt->capacity[i].name);
-    rt->capacity[i].bytes = 0;
-    rt->capacity[i].limit = UINT64_MAX;
-    return i;
-}
 
 static uint64_t fnv(uint64_t h, const void *data, size_t n)
 {
@@ -98,8 +88,8 @@ static bool same_members(const pg_plan_block *a, const pg_plan_block *b)
 static bool resources_changed(const pg_runtime *rt, const pg_graph_plan *plan, uint32_t w, uint32_t h,
                               bool *changed, bool *dirty)
 {
-    const pg_graph_plan *old = rt->plan;
-    if (!rt->built || !old || w != rt->width || h != rt->height || plan->n_resources != old->n_resources ||
+    const pg_graph_plan *old = rt->cur.plan;
+    if (!rt->mem.built || !old || w != rt->cur.width || h != rt->cur.height || plan->n_resources != old->n_resources ||
         plan->n_blocks != old->n_blocks || plan->output != old->output || plan->hdr_output != old->hdr_output)
         return false;
     uint32_t n = 0;
@@ -130,9 +120,9 @@ static uint64_t pipeline_signature(const pg_runtime *rt, const pg_graph_plan *pl
 {
     uint64_t s = 1469598103934665603ull;
     s = fnv(s, &user_generation, sizeof user_generation);
-    for (uint32_t i = 0; i < rt->n_settings; i++) {
-        const char *k = rt->settings[i].key ? rt->settings[i].key : "";
-        const char *v = rt->settings[i].value ? rt->settings[i].value : "";
+    for (uint32_t i = 0; i < rt->cfg.n_settings; i++) {
+        const char *k = rt->cfg.settings[i].key ? rt->cfg.settings[i].key : "";
+        const char *v = rt->cfg.settings[i].value ? rt->cfg.settings[i].value : "";
         s = fnv(s, k, strlen(k) + 1);
         s = fnv(s, v, strlen(v) + 1);
     }
@@ -192,66 +182,11 @@ static uint64_t wrap_signature(const pg_graph_plan *plan, int ri)
     return s;
 }
 
-/* Re-creates the changed resources of the (new) plan and packs the dirty blocks again (the
- * passes are destroyed, the device idle); the other resources and blocks are untouched. */
-static pg_result recreate_resources(pg_runtime *rt, const bool *changed, const bool *dirty, pg_error *err)
-{
-    pg_gpu *gpu = rt->gpu;
-    const pg_graph_plan *plan = rt->plan;
-    pg_result r;
-    for (uint32_t i = 0; i < plan->n_resources; i++) {
-        if (!changed[i]) continue;
-        pg_phys_resource *p = &rt->res[i];
-        /* what pg_rt_build_memory counted for it: block members' pg_rt_requirements, transient own allocations */
-        if (plan->resources[i].block >= 0) rt->stats.memory_bytes_unaliased -= p->memory_size;
-        else if (p->own_memory && plan->resources[i].lifetime == PG_LIFETIME_TRANSIENT) {
-            rt->stats.memory_bytes_transient -= p->memory_size;
-            rt->stats.memory_bytes_unaliased -= p->memory_size;
-        }
-        if (p->view) vkDestroyImageView(gpu->device, p->view, NULL);
-        if (p->image) vkDestroyImage(gpu->device, p->image, NULL);
-        if (p->buffer) vkDestroyBuffer(gpu->device, p->buffer, NULL);
-        if (p->own_memory) pg_gpu_free_memory(gpu, p->own_memory);
-        memset(p, 0, sizeof *p);
-        rt->persistent_initialized[i] = false;
-    }
-    for (uint32_t k = 0; k < PG_MAX_RESOURCES; k++) {
-        if (!rt->block_memory[k] || !dirty[rt->block_memory_of[k]]) continue;
-        pg_gpu_free_memory(gpu, rt->block_memory[k]);
-        rt->stats.memory_bytes_transient -= rt->block_memory_size[k];
-        rt->block_memory[k] = VK_NULL_HANDLE;
-        rt->block_memory_size[k] = 0;
-    }
-    for (uint32_t b = 0; b < plan->n_blocks; b++)
-        if (dirty[b] && rt->block_split[b]) rt->stats.blocks_fallback--;
-    for (uint32_t i = 0; i < plan->n_resources; i++)
-        if (changed[i] && !plan->resources[i].culled && (r = pg_rt_create_unbound(rt, (int)i, err))) return r;
-    bool bound[PG_MAX_RESOURCES] = {0};
-    for (uint32_t b = 0; b < plan->n_blocks; b++)
-        if (dirty[b] && (r = pg_rt_build_block(rt, b, bound, err))) return r;
-    for (uint32_t i = 0; i < plan->n_resources; i++)
-        if (changed[i] && !plan->resources[i].culled && !bound[i] && (r = pg_rt_build_own(rt, (int)i, err))) return r;
-    return PG_OK;
-}
-
-/* Only the run-time values changed: every kept pass instance takes them from its new params. */
-static pg_result update_values(pg_runtime *rt, pg_error *err)
-{
-    for (uint32_t o = 0; o < rt->plan->n_order; o++) {
-        int pi = rt->plan->order[o];
-        const pg_plan_pass *pass = &rt->plan->passes[pi];
-        if (!pass->type->update || !rt->pass_state[pi]) continue;
-        pg_result r = pass->type->update(rt->pass_state[pi], pass->decl.params, err);
-        if (r) return pg_error_prefix(err, "pass '%s' (%s)", pass->name, pass->type->name);
-    }
-    return PG_OK;
-}
-
 pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
                               pg_user_block user, uint32_t width, uint32_t height, pg_error *err)
 {
-    const pg_gpu *g = rt->gpu;
-    if (plan->async && (!g->compute_queue || !rt->timeline[0]))
+    const pg_gpu *g = rt->cfg.gpu;
+    if (plan->async && (!g->compute_queue || !rt->frames.timeline[0]))
         return pg_fail(err, PG_ERR_INVALID_ARG, "the plan uses the compute queue but the device has none (%s)",
                        g->single_queue_why[0] ? g->single_queue_why : "no timeline semaphores");
     if (plan->async && plan->qfot != (g->compute_family != g->queue_family))
@@ -261,15 +196,16 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
     const uint64_t msig = memory_signature(plan, width, height);
     const uint64_t psig = pipeline_signature(rt, plan, pipeline, user.generation);
     const uint64_t vsig = value_signature(plan, pipeline);
-    rt->report_due = true; /* a new light count may need a buffer to grow: read the next report */
+    pg_rt_reports_due(rt); /* a new light count may need a buffer to grow: read the next report */
+    pg_rt_clear_growth(rt); /* requests name resources of the plan being replaced */
     pg_result r;
-    if (rt->built && msig == rt->mem_sig && psig == rt->pipe_sig) {
+    if (rt->mem.built && msig == rt->cur.mem_sig && psig == rt->cur.pipe_sig) {
         /* same resources and pass instances: keep every object, adopt the new plan; only the
          * run-time values may differ */
-        rt->plan = plan;
-        rt->pipeline = pipeline;
-        rt->user = user;
-        if (vsig == rt->val_sig) {
+        rt->cur.plan = plan;
+        rt->cur.pipeline = pipeline;
+        rt->cur.user = user;
+        if (vsig == rt->cur.val_sig) {
             rt->stats.last_rebuild = PG_REBUILD_NONE;
             return PG_OK;
         }
@@ -277,29 +213,29 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
         rt->stats.last_rebuild = PG_REBUILD_VALUES;
         /* a frame in flight may still read the old values only through its command buffer
          * (push constants are recorded), so no wait is needed */
-        r = update_values(rt, err);
-        rt->val_sig = r ? 0 : vsig; /* failed: the next plan updates again */
+        r = pg_rt_update_values(rt, err);
+        rt->cur.val_sig = r ? 0 : vsig; /* failed: the next plan updates again */
         return r;
     }
     bool changed[PG_MAX_RESOURCES], dirty[PG_MAX_RESOURCES];
-    const bool some = msig != rt->mem_sig && resources_changed(rt, plan, width, height, changed, dirty);
-    if (rt->built && (msig == rt->mem_sig || some)) {
+    const bool some = msig != rt->cur.mem_sig && resources_changed(rt, plan, width, height, changed, dirty);
+    if (rt->mem.built && (msig == rt->cur.mem_sig || some)) {
         /* same resources: keep them (and what persistent ones hold when the new plan assumes
          * the same state at frame start), re-create the pass instances only */
-        vkDeviceWaitIdle(rt->gpu->device);
+        vkDeviceWaitIdle(rt->cfg.gpu->device);
         pg_rt_destroy_passes(rt);
         for (uint32_t i = 0; i < plan->n_resources; i++)
-            if (wrap_signature(plan, (int)i) != wrap_signature(rt->plan, (int)i)) rt->persistent_initialized[i] = false;
-        rt->plan = plan;
-        rt->pipeline = pipeline;
-        rt->user = user;
-        rt->pipe_sig = psig;
-        rt->val_sig = vsig;
+            if (wrap_signature(plan, (int)i) != wrap_signature(rt->cur.plan, (int)i)) pg_rt_forget_contents(rt, (int)i);
+        rt->cur.plan = plan;
+        rt->cur.pipeline = pipeline;
+        rt->cur.user = user;
+        rt->cur.pipe_sig = psig;
+        rt->cur.val_sig = vsig;
         if (some) { /* ... but the resources that changed (with their blocks): re-create them */
-            rt->mem_sig = msig;
+            rt->cur.mem_sig = msig;
             rt->stats.resource_rebuilds++;
             rt->stats.last_rebuild = PG_REBUILD_RESOURCES;
-            r = recreate_resources(rt, changed, dirty, err);
+            r = pg_rt_recreate_resources(rt, changed, dirty, err);
         } else {
             rt->stats.pipeline_rebuilds++;
             rt->stats.last_rebuild = PG_REBUILD_PIPELINES;
@@ -308,14 +244,14 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
         if (!r) r = pg_rt_build_passes(rt, err);
     } else {
         pg_rt_destroy_built(rt);
-        rt->plan = plan;
-        rt->pipeline = pipeline;
-        rt->user = user;
-        rt->width = width;
-        rt->height = height;
-        rt->mem_sig = msig;
-        rt->pipe_sig = psig;
-        rt->val_sig = vsig;
+        rt->cur.plan = plan;
+        rt->cur.pipeline = pipeline;
+        rt->cur.user = user;
+        rt->cur.width = width;
+        rt->cur.height = height;
+        rt->cur.mem_sig = msig;
+        rt->cur.pipe_sig = psig;
+        rt->cur.val_sig = vsig;
         rt->stats.memory_rebuilds++;
         rt->stats.last_rebuild = PG_REBUILD_MEMORY;
         r = pg_rt_build_memory(rt, err);
@@ -323,9 +259,8 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
     }
     if (r) {
         pg_rt_destroy_built(rt);
-        rt->plan = NULL;
+        rt->cur.plan = NULL;
         return r;
     }
-    rt->built = true;
-    return PG_OK;
+    return PG_OK; /* pg_rt_build_passes set mem.built */
 }
