@@ -7,6 +7,7 @@
  *   pipeline_json_include.c    source files, includes (missing, cyclic, too deep), per-file keys
  *   pipeline_json_params.c     parameter declarations, --set overrides, "$param", "when"
  *   pipeline_json_resources.c  resource objects
+ *   pipeline_json_common.c     what the item parsers share: preamble, duplicate names, name/type
  */
 #ifndef PG_PIPELINE_JSON_INTERNAL_H
 #define PG_PIPELINE_JSON_INTERNAL_H
@@ -85,9 +86,14 @@ pg_result pj_eval_when(loader *L, const src_file *f, const cJSON *item, const ch
 /* pipeline_json_resources.c */
 pg_result pj_parse_resource(loader *L, uint32_t idx);
 
-/* pipeline_json.c */
+/* pipeline_json_common.c */
 pg_result pj_req_ident(loader *L, const src_file *f, const cJSON *obj, const char *ipath,
                     const char *key, char *out);
 pg_result pj_opt_description(loader *L, const src_file *f, const cJSON *obj, const char *ipath);
+pg_result pj_item_begin(loader *L, const src_file *f, cJSON *o, const char *ip, const char *what,
+                        const char *const *keys, char *name);
+pg_result pj_item_twice(loader *L, const src_file *f, const char *ip, const char *what,
+                        const char *name, const src_file *prev_file, const char *prev_path,
+                        const char *prev_json_path);
 
 #endif

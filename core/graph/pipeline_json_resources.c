@@ -31,28 +31,12 @@ pg_result pj_parse_resource(loader *L, uint32_t idx)
     pg_strlcpy(d->file, f->path, sizeof d->file);
     pg_strlcpy(d->json_path, ip, sizeof d->json_path);
     cJSON *o = it->node;
-    if (!cJSON_IsObject(o)) {
-        pj_describe(o, got, sizeof got);
-        return pj_fail_at(L, PG_ERR_SCHEMA, f, ip, "expected a resource object, got %s", got);
-    }
-    snprintf(L->jp, sizeof L->jp, "%s", ip);
-    pg_result r = pj_substitute(L, f, o, true);
+    pg_result r = pj_item_begin(L, f, o, ip, "resource", k_res_keys, d->name);
     if (r) return r;
-    r = pj_check_keys(L, f, o, ip, "a resource", k_res_keys);
-    if (r) return r;
-    r = pj_req_ident(L, f, o, ip, "name", d->name);
-    if (r) return r;
-    for (uint32_t j = 0; j < idx; j++) {
-        if (strcmp(L->rdesc[j].name, d->name) != 0) continue;
-        snprintf(path, sizeof path, "%s.name", ip);
-        const char *twice =
-            L->res[j].file == f || strcmp(L->res[j].file->canon, f->canon) != 0
-                ? ""
-                : " (the same file is included more than once)";
-        return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
-                       "resource '%s' is declared twice: first at %s: %s%s", d->name,
-                       L->rdesc[j].file, L->rdesc[j].json_path, twice);
-    }
+    for (uint32_t j = 0; j < idx; j++)
+        if (strcmp(L->rdesc[j].name, d->name) == 0)
+            return pj_item_twice(L, f, ip, "resource", d->name, L->res[j].file, L->rdesc[j].file,
+                                 L->rdesc[j].json_path);
 
     const cJSON *type = cJSON_GetObjectItemCaseSensitive(o, "type");
     snprintf(path, sizeof path, "%s.type", ip);

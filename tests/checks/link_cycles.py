@@ -15,10 +15,6 @@ import os, re, subprocess, sys
 
 # "group: a.o <-> b.o" (sorted by name) -> why the cycle stays for now
 EXCEPTIONS = {
-    'libpggraph.a: graph_compile.c.o <-> graph_lifetimes.c.o': 'not yet split (fix follows)',
-    'libpggraph.a: graph_compile.c.o <-> graph_order.c.o': 'not yet split (fix follows)',
-    'libpggraph.a: graph_queues.c.o <-> graph_report.c.o': 'not yet split (fix follows)',
-    'libpggraph.a: pipeline_json.c.o <-> pipeline_json_resources.c.o': 'not yet split (fix follows)',
     'libpgruntime.a: graph_execute_memory.c.o <-> graph_execute_plan.c.o': 'not yet split (fix follows)',
     'libpgscene.a: scene.c.o <-> scene_default.c.o': 'not yet split (fix follows)',
     'libpgscene.a: scene.c.o <-> scene_gltf.cpp.o': 'not yet split (fix follows)',
