@@ -193,8 +193,8 @@ static void tl_bar(FILE *f, const tl_geo *g, uint32_t b, int r, double y, const 
     const double x0 = col_x(g, (uint32_t)first) + 3, x1 = col_x(g, (uint32_t)last) + col_wd(g, (uint32_t)last) - 3;
     const double by = y + row_h * g->lane_of[r] + (row_h - bar_h) / 2;
     char rb[32], ro[32], detail[96];
-    pg_dmp_fmt_bytes(pr->size_bytes, rb, sizeof rb);
-    pg_dmp_fmt_bytes(pr->block_offset, ro, sizeof ro);
+    pg_fmt_bytes(pr->size_bytes, rb, sizeof rb);
+    pg_fmt_bytes(pr->block_offset, ro, sizeof ro);
     if (pr->kind == PG_RES_IMAGE)
         snprintf(detail, sizeof detail, "%s \xc2\xb7 %s @ %s", pg_format_get(pr->format)->name, rb, ro);
     else
@@ -244,7 +244,7 @@ static void tl_blocks(FILE *f, const tl_geo *g)
         const double y = g->row_y[b], block_h = g->row_h * g->lanes_in[b];
         const char *fill = pg_dmp_block_fill[b % PG_DMP_N_BLOCK_COLOURS], *stroke = pg_dmp_block_stroke[b % PG_DMP_N_BLOCK_COLOURS];
         char bytes[32];
-        pg_dmp_fmt_bytes(bl->size_bytes, bytes, sizeof bytes);
+        pg_fmt_bytes(bl->size_bytes, bytes, sizeof bytes);
         fprintf(f, "  <line x1=\"16\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#e4e4e4\"/>\n", y + block_h,
                 g->left + g->grid_w, y + block_h);
         fprintf(f, "  <rect x=\"16\" y=\"%.1f\" width=\"10\" height=\"%.1f\" rx=\"2\" fill=\"%s\" stroke=\"%s\"/>\n",
@@ -291,7 +291,7 @@ static void tl_live(FILE *f, const tl_geo *g, const char *al)
         if (live[k] && h < 1.5) h = 1.5;
         const double base = live_top + live_h - 16;
         char lb[32];
-        pg_dmp_fmt_bytes(live[k], lb, sizeof lb);
+        pg_fmt_bytes(live[k], lb, sizeof lb);
         fprintf(f, "  <rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#9fb6d6\"/>\n", x, base - h, w,
                 h);
         fprintf(f, "  <text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\" font-size=\"10\" fill=\"#333333\">%s</text>\n",
@@ -361,8 +361,8 @@ void pg_dump_timeline_svg(const pg_graph_plan *plan, const pg_pipeline *pipeline
     const double height = legend_y + 3 * 17 + 14;
 
     char un[32], al[32];
-    pg_dmp_fmt_bytes(plan->transient_bytes_unaliased, un, sizeof un);
-    pg_dmp_fmt_bytes(plan->transient_bytes_aliased, al, sizeof al);
+    pg_fmt_bytes(plan->transient_bytes_unaliased, un, sizeof un);
+    pg_fmt_bytes(plan->transient_bytes_aliased, al, sizeof al);
     tl_head(f, g, pipeline, width, height, font, un, al);
     tl_columns(f, g);
     tl_blocks(f, g);

@@ -267,6 +267,9 @@ void pg_access_mask_names(uint64_t access, char *buf, size_t buf_size);
 /* "image" / "buffer"; "transient" / "persistent" / "imported". */
 const char *pg_res_kind_name(pg_res_kind kind);
 const char *pg_lifetime_name(pg_lifetime_kind lifetime);
+/* bytes as "512 B", "12.5 KiB", "3.25 MiB", "1.50 GiB" (the plan report's and the dumps' style).
+ * buf gets at most size bytes, NUL included. */
+void pg_fmt_bytes(uint64_t bytes, char *buf, size_t size);
 
 #ifdef __cplusplus
 }

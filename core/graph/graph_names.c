@@ -1,5 +1,6 @@
 /* graph_names.c - the short names of plan values that reports, dumps and messages share:
- * Vulkan stage/access/layout values, resource kinds, lifetimes and queues (graph.h). A leaf: it
+ * Vulkan stage/access/layout values, resource kinds, lifetimes and queues, and byte sizes
+ * (graph.h). A leaf: it
  * calls no other file of the compiler.
  */
 #include "graph.h"
@@ -131,4 +132,16 @@ const char *pg_lifetime_name(pg_lifetime_kind lifetime)
 const char *pg_queue_name(pg_queue q)
 {
     return q == PG_QUEUE_COMPUTE ? "compute" : "graphics";
+}
+
+void pg_fmt_bytes(uint64_t b, char *buf, size_t size)
+{
+    if (b >= (1ull << 30))
+        snprintf(buf, size, "%.2f GiB", (double)b / (double)(1ull << 30));
+    else if (b >= (1ull << 20))
+        snprintf(buf, size, "%.2f MiB", (double)b / (double)(1ull << 20));
+    else if (b >= 1024)
+        snprintf(buf, size, "%.1f KiB", (double)b / 1024.0);
+    else
+        snprintf(buf, size, "%" PRIu64 " B", b);
 }

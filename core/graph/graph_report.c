@@ -11,19 +11,6 @@
 #include <string.h>
 #include <vulkan/vulkan_core.h>
 
-/* "12.5 MiB" style */
-static void fmt_bytes(uint64_t b, char *buf, size_t size)
-{
-    if (b >= (1ull << 30))
-        snprintf(buf, size, "%.2f GiB", (double)b / (double)(1ull << 30));
-    else if (b >= (1ull << 20))
-        snprintf(buf, size, "%.2f MiB", (double)b / (double)(1ull << 20));
-    else if (b >= 1024)
-        snprintf(buf, size, "%.1f KiB", (double)b / 1024.0);
-    else
-        snprintf(buf, size, "%" PRIu64 " B", b);
-}
-
 static const char *pass_name_at(const pg_graph_plan *plan, int pos)
 {
     if (pos < 0) return "-";
@@ -71,7 +58,7 @@ static void print_timeline(FILE *f, const pg_graph_plan *plan)
     for (uint32_t b = 0; b < plan->n_blocks; b++) {
         const pg_plan_block *bl = &plan->blocks[b];
         char bytes[32];
-        fmt_bytes(bl->size_bytes, bytes, sizeof bytes);
+        pg_fmt_bytes(bl->size_bytes, bytes, sizeof bytes);
         fprintf(f, "  #%u %s %s%s\n", b, pg_res_kind_name(bl->kind), bytes,
                 bl->n_members > 1 ? " (shared)" : "");
         for (uint32_t m = 0; m < bl->n_members && m < PG_MAX_RESOURCES; m++) {
@@ -230,7 +217,7 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
             snprintf(size, sizeof size, "%ux%u", pr->width, pr->height);
         else
             snprintf(size, sizeof size, "-");
-        fmt_bytes(pr->size_bytes, bytes, sizeof bytes);
+        pg_fmt_bytes(pr->size_bytes, bytes, sizeof bytes);
         if (pr->culled)
             snprintf(life, sizeof life, "(culled)");
         else
@@ -252,7 +239,7 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
     for (uint32_t b = 0; b < plan->n_blocks; b++) {
         const pg_plan_block *bl = &plan->blocks[b];
         char bytes[32];
-        fmt_bytes(bl->size_bytes, bytes, sizeof bytes);
+        pg_fmt_bytes(bl->size_bytes, bytes, sizeof bytes);
         fprintf(f, "  #%u %s %s%s%s:", b, pg_res_kind_name(bl->kind), bytes, plan->async ? ", queue " : "",
                 plan->async ? pg_queue_name(bl->queue) : "");
         for (uint32_t m = 0; m < bl->n_members && m < PG_MAX_RESOURCES; m++) {
@@ -265,8 +252,8 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
     print_timeline(f, plan);
 
     char un[32], al[32];
-    fmt_bytes(plan->transient_bytes_unaliased, un, sizeof un);
-    fmt_bytes(plan->transient_bytes_aliased, al, sizeof al);
+    pg_fmt_bytes(plan->transient_bytes_unaliased, un, sizeof un);
+    pg_fmt_bytes(plan->transient_bytes_aliased, al, sizeof al);
     const double saving =
         plan->transient_bytes_unaliased
             ? 100.0 * (double)(plan->transient_bytes_unaliased - plan->transient_bytes_aliased) /

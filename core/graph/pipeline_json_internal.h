@@ -15,6 +15,7 @@
 #include "pipeline.h"
 
 #include <cjson/cJSON.h>
+#include "json_describe.h"
 
 #define PG_MAX_INCLUDE_DEPTH 16  /* include nesting below the top-level file */
 #define JP_MAX 512               /* JSON paths inside error messages */
@@ -59,7 +60,6 @@ pg_result pj_fail_at(loader *L, pg_result code, const src_file *f, const char *p
     ;
 bool pj_valid_ident(const char *s);
 void pj_fmt_double(double v, char *buf, size_t n);
-void pj_describe(const cJSON *v, char *buf, size_t n);
 void pj_list_append(char *buf, size_t n, const char *item);
 bool pj_json_integer(const cJSON *v, double lo, double hi, double *out);
 size_t pj_jp_push(loader *L, const char *fmt, ...)
