@@ -37,9 +37,6 @@ EXCEPTIONS = {
         'pending split: nine jobs, see the frame-path rework (another branch owns this file)',
     'scene/scene_gltf_mesh.cpp:emit_primitive':
         'pending split: one primitive\'s attributes, indices and transform, read in glTF order',
-    'core/graph/pipeline_json_resources.c:pj_parse_resource':
-        'pending split: every field of a resource object in turn (type, format, size, stride, '
-        'count, lifetime, grow)',
     'app/view/view_frame.c:draw_frame':
         'pending split: one viewer frame (acquire, render, colour, UI, present, capture)',
     'renderer/scene_gpu.c:pg_scene_gpu_create':
