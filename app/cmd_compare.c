@@ -11,6 +11,7 @@
 #include <cjson/cJSON.h>
 
 #include "app.h"
+#include "bench_stats.h"
 #include "commands.h"
 #include "image_compare.h"
 #include "image_util.h"
@@ -57,18 +58,6 @@ static const char *const compare_help_own =
     "                       'max' or 0: the largest error\n"
     "  --json FILE          also write the results as a JSON object (the 'compare:' keys, plus\n"
     "                       per-pass times; non-finite numbers as the strings \"inf\", \"-inf\", \"nan\")\n";
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, uint32_t n)
-{
-    qsort(v, n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 static pg_result parse_nonneg(const char *opt, const char *s, double *out, pg_error *err)
 {
@@ -145,8 +134,8 @@ static pg_result side_render(side *sd, const pg_frame_info *fi, uint32_t f, uint
 
 static pg_result side_finish(side *sd, uint32_t frames, pg_error *err)
 {
-    sd->gpu_ms = median(sd->samples, frames);
-    for (uint32_t p = 0; p < sd->st.n_passes; p++) sd->pass_ms[p] = median(sd->samples + (size_t)(p + 1) * frames, frames);
+    sd->gpu_ms = pg_median(sd->samples, frames);
+    for (uint32_t p = 0; p < sd->st.n_passes; p++) sd->pass_ms[p] = pg_median(sd->samples + (size_t)(p + 1) * frames, frames);
     const pg_pipeline *pl = sd->s->pipeline;
     pg_format fmt;
     sd->ldr = pg_runtime_output(sd->s->runtime, 0, &sd->lw, &sd->lh, &fmt);

@@ -9,6 +9,7 @@
 #include <strings.h>
 
 #include "app.h"
+#include "bench_stats.h"
 #include "commands.h"
 #include "exr.h"
 #include "image_util.h"
@@ -38,18 +39,6 @@ static bool ends_with_exr(const char *p)
 {
     size_t n = strlen(p);
     return n >= 4 && !strcasecmp(p + n - 4, ".exr");
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, uint32_t n)
-{
-    qsort(v, n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 void pg_print_explain(const pg_session *s, FILE *f)
@@ -300,9 +289,9 @@ int pg_cmd_render(int argc, char **argv)
     }
     for (uint32_t k = 0; k < st.n_notes; k++) printf("note: %s\n", st.notes[k]);
     printf("render: %s %ux%u lights=%u gpu=%.3f ms [", s->pipeline->name, w, h, fi.lights.count,
-           median(samples, opt.frames));
+           pg_median(samples, opt.frames));
     for (uint32_t p = 0; p < st.n_passes; p++)
-        printf("%s%s %.3f", p ? ", " : "", st.pass_names[p], median(samples + (size_t)(p + 1) * opt.frames, opt.frames));
+        printf("%s%s %.3f", p ? ", " : "", st.pass_names[p], pg_median(samples + (size_t)(p + 1) * opt.frames, opt.frames));
     if (nonfinite >= 0) printf("] nonfinite=%lld", nonfinite);
     else printf("] nonfinite=n/a");
     bool clustered = false;
@@ -328,12 +317,12 @@ int pg_cmd_render(int argc, char **argv)
         printf("queues: %u batches [", st.n_batches);
         for (uint32_t p = 0; p < st.n_passes; p++)
             printf("%s%s %s @%.3f+%.3f", p ? ", " : "", st.pass_names[p], pg_queue_name((pg_queue)st.pass_queue[p]),
-                   median(samples + (size_t)(PG_MAX_PASSES + 1 + p) * opt.frames, opt.frames),
-                   median(samples + (size_t)(p + 1) * opt.frames, opt.frames));
+                   pg_median(samples + (size_t)(PG_MAX_PASSES + 1 + p) * opt.frames, opt.frames),
+                   pg_median(samples + (size_t)(p + 1) * opt.frames, opt.frames));
         printf("] overlap compute/graphics=%.3f ms, assign_lights/gbuffer=%.3f ms; waits ordered on the common "
                "timebase: %u of %u\n",
-               median(samples + (size_t)(2 * PG_MAX_PASSES + 1) * opt.frames, opt.frames),
-               median(samples + (size_t)(2 * PG_MAX_PASSES + 2) * opt.frames, opt.frames),
+               pg_median(samples + (size_t)(2 * PG_MAX_PASSES + 1) * opt.frames, opt.frames),
+               pg_median(samples + (size_t)(2 * PG_MAX_PASSES + 2) * opt.frames, opt.frames),
                waits_checked - waits_unordered, waits_checked);
     }
     free(samples);

@@ -1,5 +1,7 @@
 /* scene.c - scene lifetime, textures with mip chains, mesh helpers and derived data (bounds,
- * features). Camera and matrix math (and their conventions) are in scene_camera.c.
+ * features): what the loaders (scene_default.c, scene_gltf*.cpp) build a scene with; it calls
+ * none of them (pg_scene_load is scene_load.c). Camera and matrix math (and their conventions)
+ * are in scene_camera.c.
  */
 #include "scene.h"
 #include "scene_internal.h"
@@ -12,16 +14,6 @@
 
 /* ------------------------------------------------------------------------------------------ */
 /* scene lifetime                                                                              */
-
-pg_result pg_scene_load(const char *path_or_default, pg_scene **out, pg_error *err)
-{
-    if (!out) return pg_fail(err, PG_ERR_INVALID_ARG, "pg_scene_load: out is NULL");
-    *out = NULL;
-    if (!path_or_default || !path_or_default[0])
-        return pg_fail(err, PG_ERR_INVALID_ARG, "pg_scene_load: empty scene path");
-    if (strcmp(path_or_default, "default") == 0) return pg_scene_create_default(out, err);
-    return pg_scene_load_gltf(path_or_default, out, err);
-}
 
 void pg_material_init(pg_material *m, const char *name)
 {

@@ -56,7 +56,8 @@
  * pg_result at the C boundary; everything is owned by RAII objects until the scene is handed out.
  *
  * The steps live in the files scene_gltf_internal.h lists; this one holds the load order (load()),
- * the GLB container, materials and textures, the hand-out and pg_scene_load_gltf.
+ * the GLB container, materials and textures, the hand-out and pg_scene_load_gltf (the helpers
+ * every step uses are scene_gltf_util.cpp).
  */
 #include "scene_gltf_internal.h"
 #include "pg_file.h"
@@ -81,57 +82,6 @@
 #include <vector>
 
 namespace pg_gltf {
-
-std::string strf(const char *fmt, ...)
-{
-    char buf[1024];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(buf, sizeof buf, fmt, ap);
-    va_end(ap);
-    return buf;
-}
-
-[[noreturn]] void fail(pg_result code, std::string msg) { throw LoadFail{code, std::move(msg)}; }
-[[noreturn]] void gfail(std::string msg) { fail(PG_ERR_GLTF, std::move(msg)); }
-
-/* A short, printable form of a uri for messages (data URIs are not quoted whole). */
-std::string uri_desc(const std::string &uri)
-{
-    if (uri.compare(0, 5, "data:") == 0) return "data URI";
-    std::string s = uri.size() > 200 ? uri.substr(0, 200) + "..." : uri;
-    return "'" + s + "'";
-}
-
-/* tinygltf decodes external uris with dlib::urldecode ('+' -> ' ', %XX); do the same. */
-std::string url_decode(const std::string &s)
-{
-    auto hex = [](unsigned char c) -> unsigned {
-        if (c >= '0' && c <= '9') return c - '0';
-        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-        return 0;
-    };
-    std::string r;
-    for (size_t i = 0; i < s.size(); i++) {
-        if (s[i] == '+') {
-            r += ' ';
-        } else if (s[i] == '%' && s.size() > i + 2) {
-            r += char((hex((unsigned char)s[i + 1]) << 4) | hex((unsigned char)s[i + 2]));
-            i += 2;
-        } else {
-            r += s[i];
-        }
-    }
-    return r;
-}
-
-std::string join_path(const std::string &dir, const std::string &file)
-{
-    if (dir.empty()) return file;
-    if (dir.back() == '/') return dir + file;
-    return dir + "/" + file;
-}
 
 /* ------------------------------------------------------------------------------------------ */
 /* step 1: GLB container                                                                        */

@@ -1,4 +1,4 @@
-/* scene_gltf_internal.h - what the files of the glTF loader (core/scene/scene_gltf*.cpp, C++17 over
+/* scene_gltf_internal.h - what the files of the glTF loader (scene/scene_gltf*.cpp, C++17 over
  * tinygltf) share: the load context, the error helpers, the geometry being built and the functions
  * one file calls in another. C++ only; not part of the scene library's interface (scene.h is).
  *
@@ -11,6 +11,8 @@
  *   scene_gltf_mesh.cpp        accessors (sparse, quantized), primitives -> vertices and indices
  *   scene_gltf_nodes.cpp       the node hierarchy, transforms, cameras
  *   scene_gltf_warnings.cpp    the warning lines (pg_scene.warnings)
+ *   scene_gltf_util.cpp        what every step uses: messages, throwers, uri/path helpers,
+ *                              accessor type sizes, bufferView bytes (a leaf)
  */
 #ifndef PG_SCENE_GLTF_INTERNAL_H
 #define PG_SCENE_GLTF_INTERNAL_H
@@ -36,7 +38,7 @@ struct LoadFail {
     std::string msg;
 };
 
-/* scene_gltf.cpp */
+/* scene_gltf_util.cpp */
 std::string strf(const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 1, 2)))
@@ -133,12 +135,13 @@ bool texture_transform(const json &ti, const std::string &where, float m[6], int
 void decode_meshopt(Ctx &c);
 void decode_draco(Ctx &c, int mi, int pi);
 
-/* scene_gltf_mesh.cpp */
+/* scene_gltf_util.cpp (needs Ctx) */
 int type_comps(int t);
 const char *ctype_name(int ct);
 size_t ctype_size(int ct);
 std::pair<const unsigned char *, size_t> view_bytes(const Ctx &c, int bvi, const std::string &who);
 const int *find_attr(const tinygltf::Primitive &p, const char *name);
+/* scene_gltf_mesh.cpp */
 void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M);
 
 /* scene_gltf_nodes.cpp */

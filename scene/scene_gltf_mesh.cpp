@@ -28,43 +28,6 @@ const char *type_name(int t)
     default: return "?";
     }
 }
-int type_comps(int t)
-{
-    switch (t) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-    default: return 0;
-    }
-}
-const char *ctype_name(int ct)
-{
-    switch (ct) {
-    case 5120: return "BYTE";
-    case 5121: return "UNSIGNED_BYTE";
-    case 5122: return "SHORT";
-    case 5123: return "UNSIGNED_SHORT";
-    case 5125: return "UNSIGNED_INT";
-    case 5126: return "FLOAT";
-    default: return "?";
-    }
-}
-size_t ctype_size(int ct)
-{
-    switch (ct) {
-    case 5120:
-    case 5121: return 1;
-    case 5122:
-    case 5123: return 2;
-    case 5125:
-    case 5126: return 4;
-    default: return 0;
-    }
-}
 
 
 struct View {
@@ -93,25 +56,6 @@ inline uint32_t read_index(const View &v, size_t i)
     }
 }
 
-/* The bytes of bufferViews[bvi] (range-checked against its buffer). */
-std::pair<const unsigned char *, size_t> view_bytes(const Ctx &c, int bvi, const std::string &who)
-{
-    const tinygltf::Model &m = c.model;
-    if (bvi < 0 || size_t(bvi) >= m.bufferViews.size())
-        gfail(strf("%s: bufferView %d out of range", who.c_str(), bvi));
-    const tinygltf::BufferView &bv = m.bufferViews[size_t(bvi)];
-    auto dec = c.decoded.find(bvi);
-    if (dec != c.decoded.end()) return {dec->second.data(), dec->second.size()};
-    if (bv.buffer < 0 || size_t(bv.buffer) >= m.buffers.size())
-        gfail(strf("bufferViews[%d]: buffer %d out of range", bvi, bv.buffer));
-    const tinygltf::Buffer &buf = m.buffers[size_t(bv.buffer)];
-    uint64_t blen = buf.data.size();
-    if (bv.byteOffset > blen || bv.byteLength > blen - bv.byteOffset)
-        gfail(strf("bufferViews[%d]: byteOffset %zu + byteLength %zu exceeds buffers[%d] "
-                   "(%llu bytes)",
-                   bvi, bv.byteOffset, bv.byteLength, bv.buffer, (unsigned long long)blen));
-    return {buf.data.data() + bv.byteOffset, bv.byteLength};
-}
 
 /* Sparse accessors (core glTF 2.0): a dense copy of the base data (zeros without a bufferView)
  * with sparse.count elements substituted at sparse.indices (strictly increasing, < count). */
@@ -323,11 +267,6 @@ void check_finite(const float *v, int n, const View &view, const char *semantic,
                        double(v[k])));
 }
 
-const int *find_attr(const tinygltf::Primitive &p, const char *name)
-{
-    auto it = p.attributes.find(name);
-    return it == p.attributes.end() ? nullptr : &it->second;
-}
 
 void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
 {

@@ -3,7 +3,7 @@
  * one file calls in another. cmd_bench.c: help, option loop, the run; bench_options.c: option
  * values, pipelines, variants and the reference sets; bench_run.c: progress bar and one row's
  * frames; bench_output.c: results.csv, results.json, the output folder; bench_charts.c: the
- * three SVG charts. */
+ * three SVG charts; bench_table.c: the pass columns both read. */
 #ifndef PG_TOOLS_BENCH_H
 #define PG_TOOLS_BENCH_H
 
@@ -40,7 +40,8 @@
 #define CPU_REFERENCE_BUDGET (20000.0 * 320.0 * 180.0)
 #define GPU_REFERENCE_MAX_LIGHTS 1000000u
 
-/* set by the SIGINT handler (cmd_bench.c): finish the current frame, write what was measured */
+/* set by the SIGINT handler (cmd_bench.c; defined in bench_run.c): finish the current frame, write
+ * what was measured */
 extern volatile sig_atomic_t g_interrupted;
 
 typedef struct sweep {
@@ -158,7 +159,7 @@ typedef struct bench {
     uint32_t rows_total, rows_done;
 } bench;
 
-/* the pass columns: every pass name of any row, in first-seen order (bench_output.c) */
+/* the pass columns: every pass name of any row, in first-seen order (bench_table.c) */
 typedef struct pass_union {
     uint32_t n;
     char names[PG_MAX_PASSES * 4][PG_NAME_MAX];
@@ -180,13 +181,13 @@ uint32_t config_index(const bench *B, uint32_t sc, uint32_t si, uint32_t li, uin
 void config_row(const bench *B, uint32_t idx, bench_row *r);
 
 /* bench_options.c */
-int split_list(char *s, char sep, char **parts, int max);
-pg_result parse_lights(bench *B, char *v, pg_error *err);
+int pg_bench_split_list(char *s, char sep, char **parts, int max);
+pg_result pg_bench_parse_lights(bench *B, char *v, pg_error *err);
 pg_result parse_sizes(bench *B, char *v, pg_error *err);
 pg_result parse_sweep(bench *B, char *v, pg_error *err);
 pg_result parse_u32_opt(const char *opt, const char *v, uint32_t max, uint32_t *out, pg_error *err);
 pg_result resolve_pipelines(bench *B, char *list, pg_error *err);
-pg_result plan_variants(bench *B, pg_error *err);
+pg_result pg_bench_plan_variants(bench *B, pg_error *err);
 uint32_t ref_limit(const bench *B, uint32_t w, uint32_t h);
 void ref_skip_note(const bench *B, uint32_t w, uint32_t h, bool brief, char *buf, size_t size);
 
@@ -199,15 +200,17 @@ void reference_free(reference *ref);
 void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *refs, bench_row *row, const char *what);
 void print_row(const bench *B, const bench_row *r);
 
+/* bench_table.c */
+void pg_bench_union_passes(const bench *B, pass_union *u);
+
 /* bench_output.c */
-void union_passes(const bench *B, pass_union *u);
 pg_result write_outputs(const bench *B, pg_error *err);
 pg_result make_dirs(const char *dir, pg_error *err);
 
 /* bench_charts.c */
 void series_label(const bench *B, uint32_t pipe, uint32_t var, char *buf, size_t size);
-pg_result chart_time_vs_lights(const bench *B, const char *path, pg_error *err);
-pg_result chart_passes(const bench *B, const char *path, pg_error *err);
-pg_result chart_error(const bench *B, const char *path, pg_error *err);
+pg_result pg_bench_chart_time_vs_lights(const bench *B, const char *path, pg_error *err);
+pg_result pg_bench_chart_passes(const bench *B, const char *path, pg_error *err);
+pg_result pg_bench_chart_error(const bench *B, const char *path, pg_error *err);
 
 #endif

@@ -81,7 +81,7 @@ static void doc_subtitle(const bench *B, char *buf, size_t size, const char *wha
              B->interrupted ? " | INTERRUPTED: partial results" : "");
 }
 
-pg_result chart_time_vs_lights(const bench *B, const char *path, pg_error *err)
+pg_result pg_bench_chart_time_vs_lights(const bench *B, const char *path, pg_error *err)
 {
     chart_mem m = {0};
     uint32_t n_panels = B->n_scenes * B->n_sizes;
@@ -157,7 +157,7 @@ static bool row_in_block(const bench *B, const bench_row *r, uint32_t sc, uint32
     return r->scene == sc && r->width == B->widths[si] && r->height == B->heights[si] && r->lights == B->lights[li];
 }
 
-pg_result chart_passes(const bench *B, const char *path, pg_error *err)
+pg_result pg_bench_chart_passes(const bench *B, const char *path, pg_error *err)
 {
     chart_mem m = {0};
     pass_union *u = cm_alloc(&m, sizeof *u);
@@ -165,7 +165,7 @@ pg_result chart_passes(const bench *B, const char *path, pg_error *err)
     pg_plot *plots = cm_alloc(&m, (nb ? nb : 1) * sizeof *plots);
     uint32_t np = 0;
     if (!u || !plots) goto oom;
-    union_passes(B, u);
+    pg_bench_union_passes(B, u);
     const char **stack_names = cm_alloc(&m, (u->n ? u->n : 1) * sizeof *stack_names);
     if (!stack_names) goto oom;
     for (uint32_t k = 0; k < u->n; k++) stack_names[k] = u->names[k];
@@ -228,7 +228,7 @@ oom:
     return r;
 }
 
-pg_result chart_error(const bench *B, const char *path, pg_error *err)
+pg_result pg_bench_chart_error(const bench *B, const char *path, pg_error *err)
 {
     chart_mem m = {0};
     uint32_t nb = n_blocks(B);

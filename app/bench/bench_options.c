@@ -5,7 +5,7 @@
 /* ---------------------------------------------------------------- options */
 
 /* Splits s in place at sep; at most max parts. Returns the count, or -1 if there are too many. */
-int split_list(char *s, char sep, char **parts, int max)
+int pg_bench_split_list(char *s, char sep, char **parts, int max)
 {
     int n = 0;
     for (;;) {
@@ -34,10 +34,10 @@ static int cmp_u32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-pg_result parse_lights(bench *B, char *v, pg_error *err)
+pg_result pg_bench_parse_lights(bench *B, char *v, pg_error *err)
 {
     char *parts[MAX_LIST];
-    int n = split_list(v, ',', parts, MAX_LIST);
+    int n = pg_bench_split_list(v, ',', parts, MAX_LIST);
     if (n < 0) return pg_fail(err, PG_ERR_INVALID_ARG, "--lights: at most %d values", MAX_LIST);
     uint32_t tmp[MAX_LIST];
     for (int i = 0; i < n; i++) {
@@ -58,7 +58,7 @@ pg_result parse_lights(bench *B, char *v, pg_error *err)
 pg_result parse_sizes(bench *B, char *v, pg_error *err)
 {
     char *parts[MAX_LIST];
-    int n = split_list(v, ',', parts, MAX_LIST);
+    int n = pg_bench_split_list(v, ',', parts, MAX_LIST);
     if (n < 0) return pg_fail(err, PG_ERR_INVALID_ARG, "--size: at most %d values", MAX_LIST);
     B->n_sizes = 0;
     for (int i = 0; i < n; i++) {
@@ -89,7 +89,7 @@ pg_result parse_sweep(bench *B, char *v, pg_error *err)
     for (uint32_t k = 0; k < B->n_sweeps; k++)
         if (!strcmp(B->sweeps[k].key, v)) return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: key given twice", v);
     char *parts[MAX_SWEEP_VALUES];
-    int n = split_list(eq + 1, ',', parts, MAX_SWEEP_VALUES);
+    int n = pg_bench_split_list(eq + 1, ',', parts, MAX_SWEEP_VALUES);
     if (n < 0) return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: at most %d values", v, MAX_SWEEP_VALUES);
     s->n = 0;
     for (int i = 0; i < n; i++) {
@@ -196,7 +196,7 @@ pg_result resolve_pipelines(bench *B, char *list, pg_error *err)
 {
     if (!list || !strcmp(list, "all")) return list_all_pipelines(B, err);
     char *parts[MAX_LIST];
-    int n = split_list(list, ',', parts, MAX_LIST);
+    int n = pg_bench_split_list(list, ',', parts, MAX_LIST);
     if (n < 0) return pg_fail(err, PG_ERR_INVALID_ARG, "--pipelines: at most %d entries", MAX_LIST);
     for (int i = 0; i < n; i++) {
         const char *t = parts[i];
@@ -256,7 +256,7 @@ static uint32_t find_or_add_ref(bench *B, const pg_ov_list *ov, pg_error *err, b
  * variants with what each side gets (sides.h) and checks that each loads. Bad keys, and values
  * the reference refuses, are option errors (exit 2, returned as PG_ERR_INVALID_ARG); a pipeline
  * that does not load is recorded in its rows, a reference that does not load in every row's note. */
-pg_result plan_variants(bench *B, pg_error *err)
+pg_result pg_bench_plan_variants(bench *B, pg_error *err)
 {
     const pg_side_sets *ss = &B->sides;
     bool set_used[PG_SIDES_MAX_OV] = {0}, pset_used[PG_SIDES_MAX_OV] = {0}, sweep_used[MAX_SWEEPS] = {0};

@@ -4,17 +4,6 @@
 
 /* ---------------------------------------------------------------- output: CSV and JSON */
 
-void union_passes(const bench *B, pass_union *u)
-{
-    u->n = 0;
-    for (uint32_t i = 0; i < B->n_rows; i++)
-        for (uint32_t p = 0; p < B->rows[i].n_passes; p++) {
-            bool found = false;
-            for (uint32_t k = 0; k < u->n && !found; k++) found = !strcmp(u->names[k], B->rows[i].passes[p].name);
-            if (!found && u->n < PG_MAX_PASSES * 4) pg_strlcpy(u->names[u->n++], B->rows[i].passes[p].name, PG_NAME_MAX);
-        }
-}
-
 static void csv_str(FILE *f, const char *s, bool first)
 {
     if (!first) fputc(',', f);
@@ -68,7 +57,7 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
         fclose(f);
         return pg_fail(err, PG_ERR_OOM, "out of memory");
     }
-    union_passes(B, u);
+    pg_bench_union_passes(B, u);
     fputs("scene,pipeline,variant,sets,lights,width,height,status,message,warmup,frames,time,seed", f);
     for (int k = 0; k < 5; k++) fprintf(f, ",gpu_ms_%s", stat_names[k]);
     for (int k = 0; k < 5; k++) fprintf(f, ",cpu_ms_%s", stat_names[k]);
@@ -347,11 +336,11 @@ pg_result write_outputs(const bench *B, pg_error *err)
     snprintf(p, sizeof p, "%s/results.json", B->out_dir);
     if ((r = write_json(B, p, err))) return r;
     snprintf(p, sizeof p, "%s/gpu_time_vs_lights.svg", B->out_dir);
-    if ((r = chart_time_vs_lights(B, p, err))) return r;
+    if ((r = pg_bench_chart_time_vs_lights(B, p, err))) return r;
     snprintf(p, sizeof p, "%s/passes_stacked.svg", B->out_dir);
-    if ((r = chart_passes(B, p, err))) return r;
+    if ((r = pg_bench_chart_passes(B, p, err))) return r;
     snprintf(p, sizeof p, "%s/error_vs_time.svg", B->out_dir);
-    return chart_error(B, p, err);
+    return pg_bench_chart_error(B, p, err);
 }
 
 /* mkdir -p */

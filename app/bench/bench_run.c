@@ -2,6 +2,9 @@
  * (warm-up, timed frames, the error frame) with its statistics and its summary line. */
 #include "bench.h"
 
+/* set by cmd_bench.c's SIGINT handler; the row loop here stops at the next frame */
+volatile sig_atomic_t g_interrupted;
+
 /* ---------------------------------------------------------------- progress */
 
 static void fmt_dur(double s, char *buf, size_t size)

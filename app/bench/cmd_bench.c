@@ -71,8 +71,6 @@ static const char *const bench_help_options =
     "  --quiet              no progress bar\n\n"
     "common options (--lights, --size, --pipeline, --frames as above):\n";
 
-volatile sig_atomic_t g_interrupted;
-
 static void on_sigint(int sig)
 {
     (void)sig;
@@ -306,7 +304,7 @@ int bench_setup(bench *B, int argc, char **argv)
     /* lists (parsed after the loop so that the common parser's single values do not interfere) */
     pg_result r = PG_OK;
     static char def_lights[] = "100,1000,5000";
-    if (!r) r = parse_lights(B, lights ? lights : def_lights, &err);
+    if (!r) r = pg_bench_parse_lights(B, lights ? lights : def_lights, &err);
     if (!r && sizes) r = parse_sizes(B, sizes, &err);
     if (!r && !sizes) {
         B->n_sizes = 1;
@@ -315,7 +313,7 @@ int bench_setup(bench *B, int argc, char **argv)
     }
     if (!r && scenes) {
         char *parts[MAX_LIST];
-        int n = split_list(scenes, ',', parts, MAX_LIST);
+        int n = pg_bench_split_list(scenes, ',', parts, MAX_LIST);
         if (n < 0) r = pg_fail(&err, PG_ERR_INVALID_ARG, "--scene: at most %d scenes", MAX_LIST);
         for (int k = 0; !r && k < n; k++) {
             if (!parts[k][0]) r = pg_fail(&err, PG_ERR_INVALID_ARG, "--scene: empty entry in the list");
@@ -344,7 +342,7 @@ int bench_setup(bench *B, int argc, char **argv)
             pg_strlcpy(one, B->opt.pipeline, sizeof one);
             plist = one;
         }
-        if ((r = resolve_pipelines(B, plist, &err)) || (r = plan_variants(B, &err))) {
+        if ((r = resolve_pipelines(B, plist, &err)) || (r = pg_bench_plan_variants(B, &err))) {
             fprintf(stderr, "passgraph bench: %s\n", err.msg);
             rc = r == PG_ERR_INVALID_ARG ? 2 : 1;
             goto out;

@@ -9,6 +9,12 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+double pg_median(double *v, uint32_t n)
+{
+    qsort(v, n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 uint32_t pg_nearest_rank_pct(uint32_t pct, uint32_t n)
 {
     if (n == 0) return 0;

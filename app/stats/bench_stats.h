@@ -27,6 +27,11 @@ typedef struct pg_sample_stats {
  * that copy cannot be allocated, PG_ERR_INVALID_ARG for NULL v with n > 0. */
 pg_result pg_sample_stats_compute(const double *v, uint32_t n, pg_sample_stats *out, pg_error *err);
 
+/* The median of v[0..n-1] (n > 0), every sample counted: sorts v in place (the single-frame
+ * summaries of render and compare; pg_sample_stats_compute leaves v as it is and skips
+ * non-finite samples). */
+double pg_median(double *v, uint32_t n);
+
 /* 1-based nearest rank of the q-quantile (0 < q <= 1) of n samples: ceil(q * n), at least 1;
  * 0 when n is 0. Exact for q given in percent (pg_nearest_rank_pct(95, n) = ceil(95 n / 100)). */
 uint32_t pg_nearest_rank_pct(uint32_t pct, uint32_t n);

@@ -12,19 +12,6 @@
 /* ------------------------------------------------------------------------------------------ */
 /* shared helpers                                                                             */
 
-/* "12.5 MiB" style, as graph_report.c prints it */
-void pg_dmp_fmt_bytes(uint64_t b, char *buf, size_t size)
-{
-    if (b >= (1ull << 30))
-        snprintf(buf, size, "%.2f GiB", (double)b / (double)(1ull << 30));
-    else if (b >= (1ull << 20))
-        snprintf(buf, size, "%.2f MiB", (double)b / (double)(1ull << 20));
-    else if (b >= 1024)
-        snprintf(buf, size, "%.1f KiB", (double)b / 1024.0);
-    else
-        snprintf(buf, size, "%" PRIu64 " B", b);
-}
-
 bool pg_dmp_res_ok(const pg_graph_plan *plan, int r)
 {
     return r >= 0 && (uint32_t)r < plan->n_resources;

@@ -110,7 +110,7 @@ static void dot_resource_node(FILE *f, const pg_graph_plan *plan, uint32_t r)
 {
     const pg_plan_resource *pr = &plan->resources[r];
     char bytes[32];
-    pg_dmp_fmt_bytes(pr->size_bytes, bytes, sizeof bytes);
+    pg_fmt_bytes(pr->size_bytes, bytes, sizeof bytes);
     fprintf(f, "  r%u [shape=note, ", r);
     if (pr->culled) {
         fputs("style=dashed, color=\"#9a9a9a\", fontcolor=\"#8a8a8a\", ", f);
@@ -237,8 +237,8 @@ void pg_dump_dot(const pg_graph_plan *plan, const pg_pipeline *pipeline, FILE *f
         fprintf(f, " \xc2\xb7 %u\xc3\x97%u", plan->resources[plan->output].width,
                 plan->resources[plan->output].height);
     char un[32], al[32];
-    pg_dmp_fmt_bytes(plan->transient_bytes_unaliased, un, sizeof un);
-    pg_dmp_fmt_bytes(plan->transient_bytes_aliased, al, sizeof al);
+    pg_fmt_bytes(plan->transient_bytes_unaliased, un, sizeof un);
+    pg_fmt_bytes(plan->transient_bytes_aliased, al, sizeof al);
     fprintf(f, "<br/><font point-size=\"10\">%u passes run, %u culled \xc2\xb7 %u barriers (+%u after the last pass) "
                "\xc2\xb7 transient memory %s \xe2\x86\x92 %s %s (saving %.1f%%)</font>",
             plan->n_order, pg_dmp_count_culled_passes(plan), pg_dmp_count_barriers(plan), plan->n_final_barriers, un, al,

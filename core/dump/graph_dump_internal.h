@@ -22,7 +22,6 @@ extern const char *const pg_dmp_block_stroke[12];
 
 
 /* graph_dump.c */
-void pg_dmp_fmt_bytes(uint64_t b, char *buf, size_t size);
 bool pg_dmp_res_ok(const pg_graph_plan *plan, int r);
 const char *pg_dmp_res_name(const pg_graph_plan *plan, int r);
 const char *pg_dmp_type_name(const pg_plan_pass *pp);

@@ -60,7 +60,7 @@ typedef struct pg_barrier {
     char why[48];          /* "RAW", "WAR", "WAW", "layout", "alias first use", "output" ... */
 } pg_barrier;
 
-/* ---- queues (core/graph/graph_queues.c) ---- */
+/* ---- queues (core/graph/graph_queues.c; pg_queue_name in graph_names.c) ---- */
 typedef enum pg_queue { PG_QUEUE_GRAPHICS = 0, PG_QUEUE_COMPUTE = 1 } pg_queue;
 #define PG_QUEUE_COUNT 2
 #define PG_MAX_BATCHES (PG_MAX_PASSES + 1)
@@ -255,7 +255,7 @@ void pg_graph_plan_free(pg_graph_plan *plan);
 /* Human-readable report (order, culls, lifetimes, blocks, barriers, totals). */
 void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline, void *FILE_ptr);
 
-/* ---- short names for reports and dumps (core/graph/graph_report.c) ---- */
+/* ---- short names for reports and dumps (core/graph/graph_names.c) ---- */
 /* VkImageLayout -> "undefined", "general", "color_attachment", "shader_read_only", ...;
  * "?" for a value it does not know. The string is static. */
 const char *pg_layout_name(uint32_t vk_image_layout);
@@ -267,6 +267,9 @@ void pg_access_mask_names(uint64_t access, char *buf, size_t buf_size);
 /* "image" / "buffer"; "transient" / "persistent" / "imported". */
 const char *pg_res_kind_name(pg_res_kind kind);
 const char *pg_lifetime_name(pg_lifetime_kind lifetime);
+/* bytes as "512 B", "12.5 KiB", "3.25 MiB", "1.50 GiB" (the plan report's and the dumps' style).
+ * buf gets at most size bytes, NUL included. */
+void pg_fmt_bytes(uint64_t bytes, char *buf, size_t size);
 
 #ifdef __cplusplus
 }

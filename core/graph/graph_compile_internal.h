@@ -3,7 +3,8 @@
  * include it).
  *
  *   graph_compile.c     pg_graph_compile(): inputs, 1. declare, 2. validate, immediate mode,
- *                       explanations, messages and lookups every phase uses
+ *                       explanations
+ *   graph_compile_ctx.c messages and lookups every phase uses (a leaf: it calls no phase)
  *   graph_order.c       3. order (dependencies, cycles), 4. cull
  *   graph_lifetimes.c   5. sizes and lifetimes, 6. alias (placement in blocks)
  *   graph_barriers.c    7. barriers (the frame walk; graph_sync.c gives the access masks)
@@ -68,7 +69,7 @@ typedef struct compile_ctx {
     res_state end[PG_MAX_RESOURCES]; /* state at the end of the frame (after the output barrier) */
 } compile_ctx;
 
-/* graph_compile.c */
+/* graph_compile_ctx.c */
 const char *pg_gc_pass_file(const compile_ctx *c, int i);
 void pg_gc_pass_path(const compile_ctx *c, int i, char *buf, size_t size);
 void pg_gc_slot_path(const compile_ctx *c, int i, int s, char *buf, size_t size);

@@ -45,11 +45,6 @@
      VK_ACCESS_2_HOST_WRITE_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT |                             \
      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT)
 
-const char *pg_queue_name(pg_queue q)
-{
-    return q == PG_QUEUE_COMPUTE ? "compute" : "graphics";
-}
-
 /* One resource as one pass touches it (its slots merged). */
 typedef struct use {
     bool used, reads, writes;

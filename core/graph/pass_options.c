@@ -4,6 +4,7 @@
  * the choices -> PG_ERR_SCHEMA "FILE: passes[i].options.KEY: expected ..., got ...".
  * (pg_decl_* and pg_registry_* live in core/graph/pass_registry.c.)
  */
+#include "json_describe.h"
 #include "pass_api.h"
 
 #include <cjson/cJSON.h>
@@ -17,32 +18,7 @@ static const cJSON *opt_get(const pg_pass_desc *desc, const char *key)
     return cJSON_GetObjectItemCaseSensitive(desc->options, key);
 }
 
-static void opt_describe(const cJSON *v, char *buf, size_t n)
-{
-    if (cJSON_IsNumber(v)) {
-        for (int prec = 15; prec <= 17; prec++) {
-            snprintf(buf, n, "%.*g", prec, v->valuedouble);
-            double back = 0;
-            if (sscanf(buf, "%lf", &back) == 1 && back == v->valuedouble) break;
-        }
-    } else if (cJSON_IsString(v)) {
-        const char *s = v->valuestring ? v->valuestring : "";
-        if (strlen(s) > 40) snprintf(buf, n, "\"%.40s...\"", s);
-        else snprintf(buf, n, "\"%s\"", s);
-    } else if (cJSON_IsTrue(v)) {
-        snprintf(buf, n, "true");
-    } else if (cJSON_IsFalse(v)) {
-        snprintf(buf, n, "false");
-    } else if (cJSON_IsNull(v)) {
-        snprintf(buf, n, "null");
-    } else if (cJSON_IsArray(v)) {
-        snprintf(buf, n, "an array");
-    } else if (cJSON_IsObject(v)) {
-        snprintf(buf, n, "an object");
-    } else {
-        snprintf(buf, n, "an invalid value");
-    }
-}
+static void opt_describe(const cJSON *v, char *buf, size_t n) { pj_describe(v, buf, n); }
 
 static const char *desc_file(const pg_pass_desc *d) { return d && d->file[0] ? d->file : "<pipeline>"; }
 static const char *desc_path(const pg_pass_desc *d) { return d && d->json_path[0] ? d->json_path : "passes[?]"; }

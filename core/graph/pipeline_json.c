@@ -32,37 +32,6 @@ static const char *const k_pass_keys[] = {"name",  "type",         "reads",   "w
                                           "after", "side_effects", "options", "when",
                                           "description", "queue", NULL};
 
-/* Reads a required identifier field (name / type). */
-pg_result pj_req_ident(loader *L, const src_file *f, const cJSON *obj, const char *ipath,
-                    const char *key, char *out)
-{
-    char path[PG_JSON_PATH_MAX];
-    snprintf(path, sizeof path, "%s.%s", ipath, key);
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
-    if (!v) return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "missing (required)");
-    if (!cJSON_IsString(v) || !pj_valid_ident(v->valuestring)) {
-        char got[96];
-        pj_describe(v, got, sizeof got);
-        return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
-                       "expected a name matching [A-Za-z0-9_]+ (at most %d characters), got %s",
-                       PG_NAME_MAX - 1, got);
-    }
-    pg_strlcpy(out, v->valuestring, PG_NAME_MAX);
-    return PG_OK;
-}
-
-pg_result pj_opt_description(loader *L, const src_file *f, const cJSON *obj,
-                          const char *ipath)
-{
-    const cJSON *d = cJSON_GetObjectItemCaseSensitive(obj, "description");
-    if (!d || cJSON_IsString(d)) return PG_OK;
-    char got[96], path[PG_JSON_PATH_MAX];
-    pj_describe(d, got, sizeof got);
-    snprintf(path, sizeof path, "%s.description", ipath);
-    return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "expected a string, got %s", got);
-}
-
-
 /* ------------------------------------------------------------------ passes */
 
 static pg_result name_list(loader *L, const src_file *f, const cJSON *o, const char *ip,
@@ -105,27 +74,12 @@ static pg_result parse_pass(loader *L, uint32_t idx)
     pg_strlcpy(d->file, f->path, sizeof d->file);
     pg_strlcpy(d->json_path, ip, sizeof d->json_path);
     cJSON *o = it->node;
-    if (!cJSON_IsObject(o)) {
-        pj_describe(o, got, sizeof got);
-        return pj_fail_at(L, PG_ERR_SCHEMA, f, ip, "expected a pass object, got %s", got);
-    }
-    snprintf(L->jp, sizeof L->jp, "%s", ip);
-    pg_result r = pj_substitute(L, f, o, true);
+    pg_result r = pj_item_begin(L, f, o, ip, "pass", k_pass_keys, d->name);
     if (r) return r;
-    r = pj_check_keys(L, f, o, ip, "a pass", k_pass_keys);
-    if (r) return r;
-    r = pj_req_ident(L, f, o, ip, "name", d->name);
-    if (r) return r;
-    for (uint32_t j = 0; j < idx; j++) {
-        if (strcmp(L->pdesc[j].name, d->name) != 0) continue;
-        snprintf(path, sizeof path, "%s.name", ip);
-        const char *twice =
-            L->pass[j].file == f || strcmp(L->pass[j].file->canon, f->canon) != 0
-                ? ""
-                : " (the same file is included more than once)";
-        return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "pass '%s' is declared twice: first at %s: %s%s",
-                       d->name, L->pdesc[j].file, L->pdesc[j].json_path, twice);
-    }
+    for (uint32_t j = 0; j < idx; j++)
+        if (strcmp(L->pdesc[j].name, d->name) == 0)
+            return pj_item_twice(L, f, ip, "pass", d->name, L->pass[j].file, L->pdesc[j].file,
+                                 L->pdesc[j].json_path);
     r = pj_req_ident(L, f, o, ip, "type", d->type);
     if (r) return r;
     r = name_list(L, f, o, ip, "reads", PG_MAX_SLOTS, d->reads, &d->n_reads);

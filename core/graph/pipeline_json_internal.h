@@ -7,6 +7,7 @@
  *   pipeline_json_include.c    source files, includes (missing, cyclic, too deep), per-file keys
  *   pipeline_json_params.c     parameter declarations, --set overrides, "$param", "when"
  *   pipeline_json_resources.c  resource objects
+ *   pipeline_json_common.c     what the item parsers share: preamble, duplicate names, name/type
  */
 #ifndef PG_PIPELINE_JSON_INTERNAL_H
 #define PG_PIPELINE_JSON_INTERNAL_H
@@ -14,6 +15,7 @@
 #include "pipeline.h"
 
 #include <cjson/cJSON.h>
+#include "json_describe.h"
 
 #define PG_MAX_INCLUDE_DEPTH 16  /* include nesting below the top-level file */
 #define JP_MAX 512               /* JSON paths inside error messages */
@@ -58,7 +60,6 @@ pg_result pj_fail_at(loader *L, pg_result code, const src_file *f, const char *p
     ;
 bool pj_valid_ident(const char *s);
 void pj_fmt_double(double v, char *buf, size_t n);
-void pj_describe(const cJSON *v, char *buf, size_t n);
 void pj_list_append(char *buf, size_t n, const char *item);
 bool pj_json_integer(const cJSON *v, double lo, double hi, double *out);
 size_t pj_jp_push(loader *L, const char *fmt, ...)
@@ -85,10 +86,15 @@ pg_result pj_eval_when(loader *L, const src_file *f, const cJSON *item, const ch
 /* pipeline_json_resources.c */
 pg_result pj_parse_resource(loader *L, uint32_t idx);
 
-/* pipeline_json.c */
+/* pipeline_json_common.c */
 pg_result pj_req_ident(loader *L, const src_file *f, const cJSON *obj, const char *ipath,
                     const char *key, char *out);
 pg_result pj_opt_description(loader *L, const src_file *f, const cJSON *obj, const char *ipath);
+pg_result pj_item_begin(loader *L, const src_file *f, cJSON *o, const char *ip, const char *what,
+                        const char *const *keys, char *name);
+pg_result pj_item_twice(loader *L, const src_file *f, const char *ip, const char *what,
+                        const char *name, const src_file *prev_file, const char *prev_path,
+                        const char *prev_json_path);
 
 /* pipeline_json_paths.c: refuses an include that resolves outside the allowed folders */
 pg_result pj_include_allowed(loader *L, const src_file *from, const char *ipath, const char *rel,

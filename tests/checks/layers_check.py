@@ -8,10 +8,8 @@
    pass there and fails here.
 3. A header named *_internal.h (what the files of one split source share) is included only by files
    of its own folder: it is no part of its library's interface.
-4. No .c/.cpp file under core/, passes/ and tools/ is over MAX_LINES lines (split along its seams
-   instead), but those in LONG_FILES, each with its reason; an entry that is no longer over the
-   limit (or no longer exists) is a break too, so the list stays true.
-Exit 0 when all four hold; else one line per break and exit 1.
+(The size rule is per function now: tests/checks/function_size.py.)
+Exit 0 when all three hold; else one line per break and exit 1.
 """
 import os, re, sys
 
@@ -34,34 +32,6 @@ LAYERS = {
     'app/bench': ['app'],
     'app/view': ['app'],
 }
-
-MAX_LINES = 900
-# path -> why it may be longer than MAX_LINES
-LONG_FILES = {
-}
-
-def size_breaks():
-    errors = []
-    for top in ('core', 'scene', 'color', 'image', 'renderer', 'app'):
-        for d, dirs, names in os.walk(os.path.join(ROOT, top)):
-            dirs.sort()
-            for name in sorted(names):
-                if not re.search(r'\.(c|cpp)$', name):
-                    continue
-                p = os.path.join(d, name)
-                rel = os.path.relpath(p, ROOT).replace(os.sep, '/')
-                with open(p, encoding='utf-8') as fh:
-                    n = sum(1 for _ in fh)
-                if n > MAX_LINES and rel not in LONG_FILES:
-                    errors.append(f'{rel}: {n} lines, more than {MAX_LINES}: split it along its '
-                                  f'seams (or list it in LONG_FILES with the reason)')
-                elif n <= MAX_LINES and rel in LONG_FILES:
-                    errors.append(f'{rel}: {n} lines, no longer over {MAX_LINES}: drop it from '
-                                  f'LONG_FILES')
-    for rel in sorted(LONG_FILES):
-        if not os.path.isfile(os.path.join(ROOT, rel)):
-            errors.append(f'{rel}: listed in LONG_FILES but missing')
-    return errors
 
 def closure(f, seen=None):
     seen = set() if seen is None else seen
@@ -116,7 +86,6 @@ def main():
     for h in sorted(graph):
         if not colour.get(h):
             dfs(h, [h])
-    errors += size_breaks()
     for e in errors:
         print(e)
     print(f'layers_check: {len(files)} files, {len(headers)} headers, {len(errors)} breaks')

@@ -1,0 +1,249 @@
+#!/usr/bin/env python3
+"""function_size.py [ROOT] [--list] - no function of the project's C and C++ sources is longer
+than MAX_LINES lines, but those in EXCEPTIONS, each with its reason.
+
+A function's length is counted from the line of its name to its closing brace. The parser is a
+simple one: comments, strings, character literals and preprocessor lines are blanked (newlines
+kept), then braces are matched. A brace block whose header ends in ")" (with C++ qualifiers or a
+trailing return type after it) is a function; namespace, extern "C", struct, class, union and
+enum bodies are looked into (so methods count on their own); anything else (an initializer) is
+skipped. Lambdas and local classes count as part of the function they are in.
+
+Every .c/.cpp under SOURCE_DIRS is read. An entry of EXCEPTIONS that is no longer over the limit
+(or no longer exists) is a break too, so the list stays true. --list prints every function over
+the limit with its length, longest first. Exit 0 when no break; else one line per break and 1.
+"""
+import os, re, sys
+
+MAX_LINES = 120
+SOURCE_DIRS = ('core', 'scene', 'color', 'image', 'renderer', 'app')
+
+# "path:function" -> why it may be longer than MAX_LINES
+EXCEPTIONS = {
+    'scene/scene_gltf_validate.cpp:prevalidate':
+        'pending split: one pass over the glTF JSON checking every array kind in turn (buffers, '
+        'views, accessors, meshes, images, ...); each kind can be its own step',
+    'app/view/cmd_view.c:pg_cmd_view':
+        'pending split: option loop, window and GPU set-up, the frame loop and teardown in one',
+    'scene/scene_gltf.cpp:load':
+        'pending split: the load order (read, validate, tinygltf, nodes, materials, textures, '
+        'hand-out); a path-input branch edits this file',
+    'core/vk/vk_context.c:pg_gpu_create':
+        'pending split: a linear table of Vulkan feature and extension queries, device and queue '
+        'creation; the review moves the pipeline cache out of it',
+    'app/cmd_render.c:pg_cmd_render':
+        'pending split: option loop, session, frames and outputs; the path-input branch edits it',
+    'core/runtime/graph_execute_record.c:pg_runtime_render':
+        'pending split: nine jobs, see the frame-path rework (another branch owns this file)',
+    'scene/scene_gltf_mesh.cpp:emit_primitive':
+        'pending split: one primitive\'s attributes, indices and transform, read in glTF order',
+    'app/view/view_frame.c:draw_frame':
+        'pending split: one viewer frame (acquire, render, colour, UI, present, capture)',
+    'renderer/scene_gpu.c:pg_scene_gpu_create':
+        'pending split: buffers, textures, samplers and the descriptor sets of a scene upload',
+    'app/cmd_compare.c:pg_cmd_compare':
+        'pending split: option loop, both renders and the report; the path-input branch edits it',
+    'app/bench/bench_merge.c:pg_cmd_bench_merge':
+        'pending split: reading and checking every shard; the path-input branch edits it',
+    'app/view/view_ui.c:build_ui':
+        'a linear list of ImGui widgets, one per setting',
+    'app/bench/cmd_bench.c:pg_cmd_bench':
+        'pending split: the nested sweep loops (scenes, sizes, lights, pipelines, variants)',
+    'renderer/scene_gpu.c:upload':
+        'pending split: staging and copying each scene array in turn',
+    'core/graph/pipeline_json_params.c:parse_param_decl':
+        'pending split: each field of a parameter declaration by type (bool, int, float, enum)',
+    'core/dump/graph_dump_json.c:json_body':
+        'a linear list of the plan\'s fields written as JSON, in dump-format.md order',
+    'app/cli.c:pg_cli_parse_common':
+        'a linear list of the common options, one branch each',
+    'app/bench/bench_run.c:run_row':
+        'pending split: warm-up, timed frames, error frame and statistics of one row',
+    'app/bench/bench_options.c:pg_bench_plan_variants':
+        'pending split: sweep keys, reference sets and variant loading in one',
+    'app/bench/cmd_bench.c:bench_setup':
+        'a linear option loop, one branch per bench option',
+    'core/graph/graph_queues.c:pg_queues_schedule':
+        'pending split: batches, queue-family ownership transfers and semaphores in one walk',
+    'core/graph/graph_report.c:pg_graph_plan_print':
+        'the text report, section by section; see the two plan printers in the review (c)8',
+    'image/exr.c:pg_exr_read_rgba':
+        'OpenEXRCore\'s decode sequence (header, channels, chunks), each step checked',
+    'color/ocio_shim.cpp:pg_ocio_shader_create':
+        'OCIO\'s GPU shader sequence (processor, shader desc, textures, uniforms), each checked',
+}
+
+
+def blank(text):
+    """text with comments, strings, char literals and preprocessor lines replaced by spaces
+    (newlines kept, so line numbers hold)."""
+    out = []
+    i, n = 0, len(text)
+    line_start = True
+    while i < n:
+        c = text[i]
+        if line_start and c in ' \t':
+            out.append(c)
+            i += 1
+            continue
+        if line_start and c == '#':  # preprocessor line, with its continuations
+            while i < n and text[i] != '\n':
+                if text[i] == '\\' and i + 1 < n and text[i + 1] == '\n':
+                    out.append(' \n')
+                    i += 2
+                    continue
+                out.append(' ')
+                i += 1
+            continue
+        line_start = False
+        if c == '\n':
+            out.append(c)
+            line_start = True
+            i += 1
+        elif text.startswith('//', i):
+            while i < n and text[i] != '\n':
+                out.append(' ')
+                i += 1
+        elif text.startswith('/*', i):
+            j = text.find('*/', i + 2)
+            j = n if j < 0 else j + 2
+            out.append(re.sub(r'[^\n]', ' ', text[i:j]))
+            i = j
+        elif c == 'R' and text.startswith('"', i + 1) and (i == 0 or not (text[i - 1].isalnum() or text[i - 1] == '_')):
+            m = re.match(r'R"([^(\s]*)\(', text[i:])
+            if not m:
+                out.append(c)
+                i += 1
+                continue
+            end = text.find(')' + m.group(1) + '"', i)
+            j = n if end < 0 else end + len(m.group(1)) + 2
+            out.append(re.sub(r'[^\n]', ' ', text[i:j]))
+            i = j
+        elif c in '"\'':
+            j = i + 1
+            while j < n and text[j] != c and text[j] != '\n':
+                j += 2 if text[j] == '\\' else 1
+            j = min(j + 1, n)
+            out.append(c + ' ' * (j - i - 2) + c if j - i >= 2 else ' ' * (j - i))
+            i = j
+        else:
+            out.append(c)
+            i += 1
+    return ''.join(out)
+
+
+FUNC_TAIL = re.compile(r'\)\s*(?:(?:const|noexcept|override|final|volatile|&|&&|mutable)\s*|'
+                       r'->\s*[\w:<>,\s\*&]+|__attribute__\s*\(\(.*?\)\)\s*)*$', re.S)
+OPEN_BODY = re.compile(r'\b(namespace|struct|class|union|extern|enum)\b')
+
+
+def name_of(header, header_start, text):
+    """(name, line) of the function whose header (text[header_start:]) ends before its body."""
+    end = header.rfind(')')
+    depth = 0
+    for k in range(end, -1, -1):
+        if header[k] == ')':
+            depth += 1
+        elif header[k] == '(':
+            depth -= 1
+            if depth == 0:
+                break
+    m = re.search(r'([~\w:]+(?:operator\s*\S+?)?)\s*$', header[:k])
+    if not m:
+        return '?', text.count('\n', 0, header_start + k) + 1
+    return m.group(1), text.count('\n', 0, header_start + m.start(1)) + 1
+
+
+def functions(text):
+    """[(name, first line, last line)] of the functions in (blanked) text."""
+    found = []
+    n = len(text)
+
+    def skip_block(i):  # i at '{': index after its matching '}'
+        depth = 0
+        while i < n:
+            if text[i] == '{':
+                depth += 1
+            elif text[i] == '}':
+                depth -= 1
+                if depth == 0:
+                    return i + 1
+            i += 1
+        return n
+
+    def scan(i, stop):  # a level whose blocks may be functions: namespace / file / class body
+        head = i
+        while i < stop:
+            c = text[i]
+            if c in ';':
+                head = i + 1
+            elif c == '}':
+                return i + 1
+            elif c == '{':
+                header = text[head:i]
+                if FUNC_TAIL.search(header.rstrip()) and not re.search(r'=\s*$', header):
+                    name, line = name_of(header.rstrip(), head, text)
+                    j = skip_block(i)
+                    found.append((name, line, text.count('\n', 0, j - 1) + 1))
+                    i = j
+                elif OPEN_BODY.search(header) and '=' not in header:
+                    i = scan(i + 1, stop)
+                else:
+                    i = skip_block(i)
+                head = i
+                continue
+            i += 1
+        return i
+
+    scan(0, n)
+    return found
+
+
+def measure(root):
+    """{"path:function": lines} for every function of the sources."""
+    sizes = {}
+    for top in SOURCE_DIRS:
+        for d, dirs, names in os.walk(os.path.join(root, top)):
+            dirs.sort()
+            for name in sorted(names):
+                if not re.search(r'\.(c|cpp)$', name):
+                    continue
+                p = os.path.join(d, name)
+                rel = os.path.relpath(p, root).replace(os.sep, '/')
+                with open(p, encoding='utf-8') as fh:
+                    text = blank(fh.read())
+                for fn, a, b in functions(text):
+                    key = f'{rel}:{fn}'
+                    sizes[key] = max(sizes.get(key, 0), b - a + 1)
+    return sizes
+
+
+def main(argv):
+    args = [a for a in argv if not a.startswith('--')]
+    root = os.path.abspath(args[0] if args else os.path.join(os.path.dirname(__file__), '..', '..'))
+    sizes = measure(root)
+    over = sorted(((n, k) for k, n in sizes.items() if n > MAX_LINES), reverse=True)
+    if '--list' in argv:
+        for n, k in over:
+            print(f'{n:5d} {k}')
+        return 0
+    errors = []
+    for n, k in over:
+        if k not in EXCEPTIONS:
+            errors.append(f'{k}: {n} lines, more than {MAX_LINES}: split it into named steps '
+                          f'(or list it in EXCEPTIONS with the reason)')
+    for k in sorted(EXCEPTIONS):
+        if k not in sizes:
+            errors.append(f'{k}: listed in EXCEPTIONS but no such function: drop it')
+        elif sizes[k] <= MAX_LINES:
+            errors.append(f'{k}: {sizes[k]} lines, no longer over {MAX_LINES}: drop it from '
+                          f'EXCEPTIONS')
+    for e in errors:
+        print(e)
+    print(f'function_size: {len(sizes)} functions, {len(over)} over {MAX_LINES} lines, '
+          f'{len(EXCEPTIONS)} exceptions, {len(errors)} breaks')
+    return 1 if errors else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main(sys.argv[1:]))
