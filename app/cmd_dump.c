@@ -124,6 +124,20 @@ static pg_result write_graphviz(const pg_graph_plan *plan, const pg_pipeline *pl
     return r;
 }
 
+/* No device here: --async-compute says which queues to plan for. */
+static pg_queue_caps queues_for(const pg_cli_common *opt)
+{
+    pg_queue_caps q = {0};
+    if (opt->async_compute == PG_ASYNC_ON || opt->async_compute == PG_ASYNC_EMULATE) {
+        q.n_queues = 2;
+        q.separate_family = opt->async_compute == PG_ASYNC_ON;
+    } else if (opt->async_compute == PG_ASYNC_OFF) {
+        q.n_queues = 2;
+        q.async_off = true;
+    }
+    return q;
+}
+
 int pg_cmd_dump(int argc, char **argv)
 {
     pg_cli_common opt;
@@ -196,14 +210,7 @@ int pg_cmd_dump(int argc, char **argv)
         .disable_aliasing = opt.no_aliasing,
         .immediate = opt.immediate,
     };
-    /* no device here: --async-compute says which queues to plan for */
-    if (opt.async_compute == PG_ASYNC_ON || opt.async_compute == PG_ASYNC_EMULATE) {
-        cd.queues.n_queues = 2;
-        cd.queues.separate_family = opt.async_compute == PG_ASYNC_ON;
-    } else if (opt.async_compute == PG_ASYNC_OFF) {
-        cd.queues.n_queues = 2;
-        cd.queues.async_off = true;
-    }
+    cd.queues = queues_for(&opt);
     if (app.scene) cd.features = app.scene->features;
     cd.features.light_count = app.lights.count;
     if (pg_graph_compile(&cd, &plan, &err)) goto done;

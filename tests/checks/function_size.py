@@ -33,8 +33,6 @@ EXCEPTIONS = {
         'creation; the review moves the pipeline cache out of it',
     'app/cmd_render.c:pg_cmd_render':
         'pending split: option loop, session, frames and outputs; the path-input branch edits it',
-    'core/runtime/graph_execute_record.c:pg_runtime_render':
-        'pending split: nine jobs, see the frame-path rework (another branch owns this file)',
     'scene/scene_gltf_mesh.cpp:emit_primitive':
         'pending split: one primitive\'s attributes, indices and transform, read in glTF order',
     'app/view/view_frame.c:draw_frame':

@@ -15,9 +15,6 @@ import os, re, subprocess, sys
 
 # "group: a.o <-> b.o" (sorted by name) -> why the cycle stays for now
 EXCEPTIONS = {
-    'libpgruntime.a: graph_execute_memory.c.o <-> graph_execute_plan.c.o':
-        'being reworked (frame path): growth applied between frames moves pg_rt_capacity_slot and '
-        'the pg_rt_build_* calls; these files are edited in that branch',
 }
 
 
