@@ -1,6 +1,7 @@
 /* cmd_dump.c - `passgraph dump`: the compiled graph as text, JSON, Graphviz DOT (or an image
  * Graphviz renders from it) or a memory-timeline SVG, without a GPU and without rendering. */
 #include "pg_file.h"
+#include "scene_vars.h"
 #include "size_note.h"
 #include <errno.h>
 #include <stdio.h>
@@ -211,9 +212,9 @@ int pg_cmd_dump(int argc, char **argv)
         .immediate = opt.immediate,
     };
     cd.queues = queues_for(&opt);
-    if (app.scene) cd.features = app.scene->features;
-    cd.features.light_count = app.lights.count;
-    if (pg_graph_compile(&cd, &plan, &err)) goto done;
+    if (pg_scene_vars_set(&cd.vars, app.scene ? &app.scene->features : NULL, app.lights.count, &err) ||
+        pg_graph_compile(&cd, &plan, &err))
+        goto done;
     pg_size_note_print(stderr, "dump", opt.width, opt.height, plan);
 
     if (gv_format) {

@@ -3,6 +3,7 @@
 
 #include "pg_file.h"
 #include "pipeline.h"
+#include "scene_vars.h"
 
 #include <stdlib.h>
 
@@ -60,10 +61,9 @@ pg_result pg_size_note_check(const pg_app *app, const char *cmd, FILE *f, pg_err
         .disable_aliasing = o->no_aliasing,
         .immediate = o->immediate,
     };
-    if (app->scene) cd.features = app->scene->features;
-    cd.features.light_count = app->lights.count;
     pg_graph_plan *plan = NULL;
-    if (!pg_graph_compile(&cd, &plan, &ignored)) {
+    if (!pg_scene_vars_set(&cd.vars, app->scene ? &app->scene->features : NULL, app->lights.count, &ignored) &&
+        !pg_graph_compile(&cd, &plan, &ignored)) {
         pg_size_note_print(f, cmd, o->width, o->height, plan);
         pg_graph_plan_free(plan);
     }

@@ -71,12 +71,11 @@ static pg_result compile_plan(pg_session *s, const pg_pipeline *pipeline, uint32
         .immediate = s->desc.immediate,
         .output_stages = s->desc.output_stages,
     };
-    if (s->scene) cd.features = s->scene->features;
     if (s->runtime) cd.queues = pg_runtime_queue_caps(s->runtime, s->desc.async_off);
-    cd.features.light_count = light_count;
-    pg_graph_plan *plan = NULL;
-    pg_result r = pg_graph_compile(&cd, &plan, err);
+    pg_result r = pg_scene_vars_set(&cd.vars, s->scene ? &s->scene->features : NULL, light_count, err);
     if (r) return r;
+    pg_graph_plan *plan = NULL;
+    if ((r = pg_graph_compile(&cd, &plan, err))) return r;
     if (s->desc.test_edit_plan) s->desc.test_edit_plan(plan, s->desc.test_edit_user);
     if (s->runtime) {
         r = pg_runtime_set_plan(s->runtime, plan, pipeline, session_user(s), width, height, err);

@@ -10,6 +10,7 @@
 #include "graph_execute.h"
 #include "pipeline.h"
 #include "scene_gpu.h"
+#include "scene_vars.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -17,6 +17,8 @@ typedef enum pg_light_motion { PG_MOTION_NOISE = 0, PG_MOTION_STATIC = 1 } pg_li
  * evaluated as 1/max(d^2, PG_LIGHT_MIN_DISTANCE^2), so one light contributes at most
  * intensity / PG_LIGHT_MIN_DISTANCE^2 = intensity * 1e4. */
 #define PG_LIGHT_MIN_DISTANCE 0.01f
+#define PG_MAX_LIGHTS 16777216u /* hard upper bound for --lights and scenario light counts (16M) */
+
 typedef struct pg_light_setup {
     uint32_t count;
     float box_min[3], box_max[3]; /* lights stay inside this box */

@@ -74,7 +74,6 @@ const char *pg_result_name(pg_result r);
 #define PG_MAX_EXPLAIN 128       /* explanation lines in a compiled graph */
 #define PG_EXPLAIN_MAX 256
 #define PG_MAX_BARRIERS_PER_PASS 24
-#define PG_MAX_LIGHTS 16777216u  /* hard upper bound for --lights (16M) */
 
 /* ---- formats ---- */
 typedef enum pg_format {

@@ -30,7 +30,7 @@
 #include "pass_api.h"
 #include "pg_common.h"
 #include "pipeline.h"
-#include "scene_features.h"
+#include "compile_vars.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -176,7 +176,8 @@ typedef struct pg_plan_block {
 typedef struct pg_compile_desc {
     const pg_pipeline *pipeline;
     const pg_pass_registry *registry;
-    pg_scene_features features;      /* light_count is used for "lights" buffer counts */
+    pg_compile_vars vars;            /* the caller's facts, by name: buffer count terms name them
+                                      * (["lights", 32]) and declare() reads them (pg_var) */
     uint32_t output_width, output_height;
     bool disable_aliasing;           /* debugging switch: every transient gets its own memory */
     bool immediate;                  /* debugging mode (--immediate), for telling a graph bug from

@@ -165,7 +165,7 @@ static pg_result phase_declare(compile_ctx *c)
         memset(&in, 0, sizeof in);
         in.desc = pd;
         in.pipeline = pl;
-        in.features = c->desc->features;
+        in.vars = &c->desc->vars;
         in.output_width = c->desc->output_width;
         in.output_height = c->desc->output_height;
         pg_error e;

@@ -3,6 +3,7 @@
 #include "alias_pack.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 #include <vulkan/vulkan_core.h>
 
@@ -55,7 +56,24 @@ static pg_result resolve_size(compile_ctx *c, int r)
             v = (uint64_t)ceil(d);
             break;
         }
-        case PG_COUNT_LIGHTS: v = c->desc->features.light_count; break;
+        case PG_COUNT_VAR: {
+            const pg_compile_var *var = pg_vars_find(&c->desc->vars, rd->count[t].var);
+            if (!var) {
+                char known[PG_MAX_COMPILE_VARS * (PG_VAR_NAME_MAX + 2) + 8] = "none";
+                size_t len = 0;
+                for (uint32_t i = 0; i < c->desc->vars.n && i < PG_MAX_COMPILE_VARS; i++)
+                    len += (size_t)snprintf(known + len, sizeof known - len, "%s%s", i ? ", " : "",
+                                            c->desc->vars.v[i].name);
+                return pg_fail(c->err, PG_ERR_SCHEMA,
+                               "%s: %s.count[%u]: \"%s\" is no compile variable (this compile has: %s)",
+                               pg_gc_res_file(c, r), rp, t, rd->count[t].var, known);
+            }
+            if (var->value < 0 || (uint64_t)var->value > MAX_BYTES)
+                return pg_fail(c->err, PG_ERR_LIMIT, "%s: %s.count[%u]: \"%s\" = %lld is out of range",
+                               pg_gc_res_file(c, r), rp, t, rd->count[t].var, (long long)var->value);
+            v = (uint64_t)var->value;
+            break;
+        }
         case PG_COUNT_PIXELS:
             v = (uint64_t)c->desc->output_width * c->desc->output_height;
             break;

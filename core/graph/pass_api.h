@@ -19,7 +19,7 @@
 
 #include "pg_common.h"
 #include "pipeline.h"
-#include "scene_features.h"
+#include "compile_vars.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -112,9 +112,15 @@ typedef struct pg_pass_decl {
 typedef struct pg_declare_in {
     const pg_pass_desc *desc;          /* name, options (cJSON object), bound reads/writes */
     const pg_pipeline *pipeline;       /* resource formats etc. */
-    pg_scene_features features;
+    const pg_compile_vars *vars;       /* the caller's compile variables (pg_compile_desc.vars) */
     uint32_t output_width, output_height; /* the size the graph is compiled for (>= 1) */
 } pg_declare_in;
+
+/* A compile variable's value in declare(), 0 when the caller did not set it. */
+static inline int64_t pg_var(const pg_declare_in *in, const char *name)
+{
+    return pg_vars_get(in->vars, name, 0);
+}
 
 /* Runtime types (defined in core/vk/vk_context.h, core/runtime/graph_execute.h, core/runtime/scene_gpu.h). */
 struct pg_gpu;

@@ -63,13 +63,14 @@ typedef enum pg_lifetime_kind {
  * quantity known only at compile time. */
 typedef enum pg_count_term_kind {
     PG_COUNT_CONST = 0,
-    PG_COUNT_LIGHTS,   /* "lights": number of lights in the scene */
+    PG_COUNT_VAR,      /* a compile variable by name (e.g. "lights"; pg_compile_desc.vars) */
     PG_COUNT_PIXELS,   /* "pixels": output width * height */
 } pg_count_term_kind;
 
 typedef struct pg_count_term {
     pg_count_term_kind kind;
-    double value; /* for PG_COUNT_CONST */
+    double value;  /* for PG_COUNT_CONST */
+    char var[32];  /* for PG_COUNT_VAR: the variable's name (PG_VAR_NAME_MAX) */
 } pg_count_term;
 
 typedef struct pg_resource_desc {

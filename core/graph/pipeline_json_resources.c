@@ -3,6 +3,7 @@
  * Part of the loader (pipeline_json_internal.h).
  */
 #include "pipeline_json_internal.h"
+#include "compile_vars.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -143,10 +144,11 @@ static pg_result parse_buffer_fields(loader *L, const src_file *f, const cJSON *
         for (const cJSON *t = count->child; t; t = t->next, k++) {
             pg_count_term *term = &d->count[k];
             double v = 0;
-            if (cJSON_IsString(t) && strcmp(t->valuestring, "lights") == 0) {
-                term->kind = PG_COUNT_LIGHTS;
-            } else if (cJSON_IsString(t) && strcmp(t->valuestring, "pixels") == 0) {
+            if (cJSON_IsString(t) && strcmp(t->valuestring, "pixels") == 0) {
                 term->kind = PG_COUNT_PIXELS;
+            } else if (cJSON_IsString(t) && pg_var_name_ok(t->valuestring)) {
+                term->kind = PG_COUNT_VAR;
+                pg_strlcpy(term->var, t->valuestring, sizeof term->var);
             } else if (pj_json_integer(t, 0, 4294967295.0, &v)) {
                 term->kind = PG_COUNT_CONST;
                 term->value = v;
@@ -154,8 +156,8 @@ static pg_result parse_buffer_fields(loader *L, const src_file *f, const cJSON *
                 pj_describe(t, got, sizeof got);
                 snprintf(path, sizeof path, "%s.count[%u]", ip, k);
                 return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
-                               "expected a non-negative integer, \"lights\" or "
-                               "\"pixels\", got %s",
+                               "expected a non-negative integer, \"pixels\" or the name of a "
+                               "compile variable (e.g. \"lights\"), got %s",
                                got);
             }
         }

@@ -188,7 +188,7 @@ uint32_t pg_scene_draw_define_list(const pg_pass_decl *decl, const pg_scene_draw
 
 void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out, pg_scene_draw_features *f)
 {
-    if (in->features.has_alpha_mask) {
+    if (pg_scene_features_of(in).has_alpha_mask) { /* the scene's compile variables */
         f->alpha_mask = true;
         f->mask_define = (uint8_t)(out->n_defines + 1);
         pg_decl_define(out, "PG_ALPHA_MASK");
@@ -200,16 +200,17 @@ void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out, 
 
 void pg_scene_draw_declare_vertex_features(const pg_declare_in *in, pg_pass_decl *out, pg_scene_draw_features *f)
 {
-    f->vertex_colors = in->features.has_vertex_colors;
-    f->uv1 = in->features.has_uv1;
-    if (in->features.has_normal_maps) pg_decl_define(out, "PG_NORMAL_MAPS");
+    const pg_scene_features sf = pg_scene_features_of(in);
+    f->vertex_colors = sf.has_vertex_colors;
+    f->uv1 = sf.has_uv1;
+    if (sf.has_normal_maps) pg_decl_define(out, "PG_NORMAL_MAPS");
     else pg_decl_explain(out, "no normal maps: tangent-space normal path compiled out");
-    if (in->features.has_emissive) pg_decl_define(out, "PG_EMISSIVE");
+    if (sf.has_emissive) pg_decl_define(out, "PG_EMISSIVE");
     else pg_decl_explain(out, "no emissive materials: emissive term compiled out");
-    if (in->features.has_vertex_colors) pg_decl_define(out, "PG_VERTEX_COLORS");
+    if (sf.has_vertex_colors) pg_decl_define(out, "PG_VERTEX_COLORS");
     else pg_decl_explain(out, "no vertex colours: colour attribute path compiled out");
-    if (in->features.has_uv1) pg_decl_define(out, "PG_UV1");
+    if (sf.has_uv1) pg_decl_define(out, "PG_UV1");
     else pg_decl_explain(out, "no texture reads TEXCOORD_1: second UV stream compiled out");
-    if (in->features.has_uv_transform) pg_decl_define(out, "PG_UV_TRANSFORM");
+    if (sf.has_uv_transform) pg_decl_define(out, "PG_UV_TRANSFORM");
     else pg_decl_explain(out, "no KHR_texture_transform: UV transform compiled out");
 }

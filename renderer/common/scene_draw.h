@@ -7,6 +7,7 @@
 #define PG_SCENE_DRAW_H
 
 #include "graph_execute.h"
+#include "scene_vars.h"
 #include "scene_gpu.h"
 #include "pass_set.h"
 #include "vk_pipeline.h"

@@ -73,12 +73,12 @@ void pg_shading_declare(pg_shading_params *sp, const pg_declare_in *in, pg_pass_
     }
     /* a debug view that shows no lighting and needs no cluster data reads no lights either */
     bool view_needs_lights = o->view == 0 || (o->view >= 1 && o->view <= 5);
-    if (in->features.light_count > 0 && view_needs_lights) {
+    if (pg_lights_of(in) > 0 && view_needs_lights) {
         pg_decl_define(out, "PG_HAS_LIGHTS");
         sp->has_lights = true;
     } else {
         sp->has_lights = false;
-        const char *why = in->features.light_count == 0 ? "0 lights: light loop compiled out"
+        const char *why = pg_lights_of(in) == 0 ? "0 lights: light loop compiled out"
                                                         : "debug view reads no lights";
         if (pg_slot_ok(sp->lights)) pg_decl_mark_unused(out, sp->lights, why);
         if (clustered && pg_slot_ok(sp->cluster_counts)) {
@@ -133,7 +133,7 @@ pg_result pg_emissive_slot_declare(const pg_declare_in *in, pg_pass_decl *out, b
     *used = false;
     *slot = PG_SLOT_NONE;
     if (!bound) {
-        if (in->features.has_emissive)
+        if (pg_scene_features_of(in).has_emissive)
             pg_decl_explain(out, "no emissive slot bound (%s[%u]): emissive materials are not drawn",
                             is_write ? "writes" : "reads", index);
         return PG_OK;
@@ -150,7 +150,7 @@ pg_result pg_emissive_slot_declare(const pg_declare_in *in, pg_pass_decl *out, b
                        d->file, d->json_path, is_write ? "writes" : "reads", index,
                        full_precision ? "rgba32f (full precision, as the rest of this G-buffer)" : "rgba16f or rgba32f",
                        rd->name, pg_format_get(rd->format)->name);
-    if (!in->features.has_emissive) {
+    if (!pg_scene_features_of(in).has_emissive) {
         pg_decl_mark_unused(out, *slot, "no emissive materials: emissive target not allocated");
         return PG_OK;
     }

@@ -10,6 +10,7 @@
 #define PG_SHADING_COMMON_H
 
 #include "graph_execute.h"
+#include "scene_vars.h"
 #include "scene_gpu.h"
 #include "pass_api.h"
 #include "pass_set.h"

@@ -18,6 +18,7 @@
 
 #include "gbuffer_layout.h"
 #include "scene_draw.h"
+#include "scene_vars.h"
 #include "shader.h"
 #include "shading_common.h"
 #include "visibility_common.h"
@@ -87,7 +88,7 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
                        in->desc->json_path, (long long)tile);
     p->tile = (uint32_t)tile;
     pg_decl_define_int(out, "PG_TILE", tile);
-    p->tiled = tiled && p->sh.o.view == 0 && in->features.light_count > 0;
+    p->tiled = tiled && p->sh.o.view == 0 && pg_lights_of(in) > 0;
     if (p->tiled) pg_decl_define(out, "PG_TILE_LIGHTS");
     return PG_OK;
 }

@@ -28,6 +28,7 @@
  * Slots: writes [depth] (cleared to 1, then tested LESS and written). Options: test ("less",
  * "equal"; must match the shading pass's prepass_test). */
 #include "scene_draw.h"
+#include "scene_vars.h"
 
 /* The depth bias of the pre-pass (Vulkan: constant * 2^(e - 23) for a float depth whose largest
  * exponent in the triangle is e, plus slope * the triangle's largest depth change per pixel). */
@@ -61,7 +62,7 @@ static pg_result dp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
                              "tests/test_gpu_prepass.c measures it)");
     } else {
         pg_scene_draw_declare_vertex_features(in, out, &p->draw);
-        if (in->features.has_alpha_mask)
+        if (pg_scene_features_of(in).has_alpha_mask)
             pg_decl_explain(out, "alpha-mask draws left out of the depth pre-pass: the shading pass draws them with "
                                  "their discard");
     }

@@ -16,6 +16,7 @@
 
 #include "frame.h"
 #include "scene_draw.h"
+#include "scene_vars.h"
 #include "shading_common.h"
 
 typedef struct ft_params { /* filled once by declare, read by create/update/record */
@@ -59,7 +60,7 @@ static pg_result ft_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     }
     p->depth = pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_READ, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
     p->color = pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_RMW, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
-    if (!in->features.has_blend) {
+    if (!pg_scene_features_of(in).has_blend) {
         pg_decl_skip(out, "no BLEND materials: no transparent pass");
         return PG_OK;
     }

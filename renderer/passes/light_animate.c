@@ -4,6 +4,7 @@
 
 #include "frame.h"
 #include "graph_execute.h"
+#include "scene_vars.h"
 #include "pass_api.h"
 #include "shader.h"
 #include "pass_set.h"
@@ -26,7 +27,7 @@ static pg_result la_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     if (r) return r;
     la_params *p = pg_decl_params(out, sizeof *p);
     p->lights = pg_decl_write(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
-    if (in->features.light_count == 0) pg_decl_explain(out, "0 lights: the animation dispatch records nothing");
+    if (pg_lights_of(in) == 0) pg_decl_explain(out, "0 lights: the animation dispatch records nothing");
     return PG_OK;
 }
 

@@ -37,7 +37,7 @@ static uint64_t lh_buffer_bytes(const pg_declare_in *in, const pg_resource_desc 
     uint64_t n = rd->stride;
     for (uint32_t i = 0; i < rd->n_count_terms; i++) {
         const pg_count_term *t = &rd->count[i];
-        n *= t->kind == PG_COUNT_LIGHTS   ? (uint64_t)in->features.light_count
+        n *= t->kind == PG_COUNT_VAR      ? (uint64_t)pg_var(in, t->var)
              : t->kind == PG_COUNT_PIXELS ? (uint64_t)in->output_width * in->output_height
                                           : (uint64_t)t->value;
     }

@@ -42,6 +42,7 @@
 #include "frame.h"
 #include "shader.h"
 #include "shading_common.h"
+#include "scene_vars.h"
 
 #define REF_TILE_X 16u
 #define REF_TILE_Y 16u
@@ -178,7 +179,7 @@ static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
     pg_decl_define_int(out, "LIGHT_TILE_X", REF_TILE_X);
     pg_decl_define_int(out, "LIGHT_TILE_Y", REF_TILE_Y);
     pg_shading_declare(&p->sh, in, out);
-    uint32_t n = in->features.light_count;
+    uint32_t n = pg_lights_of(in);
     const bool lit = p->sh.has_lights;
     uint32_t chunk = ref_chunk(lpd, in->output_width, in->output_height);
     uint32_t nd = ref_dispatches(n, chunk);

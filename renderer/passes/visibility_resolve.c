@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "scene_draw.h"
+#include "scene_vars.h"
 #include "shader.h"
 #include "shading_common.h"
 #include "visibility_common.h"
@@ -43,11 +44,11 @@ static pg_result vr_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         if (rd && rd->kind == PG_RES_IMAGE && rd->format != PG_FMT_RGBA16F)
             return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[1]: the emissive target must be rgba16f, resource '%s' is %s",
                            in->desc->file, in->desc->json_path, rd->name, pg_format_get(rd->format)->name);
-        if (!in->features.has_emissive)
+        if (!pg_scene_features_of(in).has_emissive)
             pg_decl_mark_unused(out, p->emissive, "no emissive materials: emissive target not allocated");
         else
             pg_decl_define(out, "PG_RESOLVE_EMISSIVE");
-    } else if (in->features.has_emissive) {
+    } else if (pg_scene_features_of(in).has_emissive) {
         pg_decl_explain(out, "no emissive slot bound (writes[1]): emissive materials are not drawn");
     }
     pg_scene_draw_declare_features(in, out, &p->draw);

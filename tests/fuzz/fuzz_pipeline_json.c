@@ -17,6 +17,7 @@
  * err.code equals the result and err.msg is a non-empty terminated string; a loaded pipeline is
  * within its limits and every pass has an options object; a compiled plan's order and output
  * indices are in range. ASan/UBSan/LSan catch the rest. */
+#include "scene_vars.h"
 #include "graph.h"
 #include "graph_dump.h"
 #include "pass_list.h"
@@ -128,11 +129,12 @@ static void check_pipeline(const pg_pipeline *p)
     }
 }
 
-static void compile_one(const pg_pipeline *p, pg_scene_features feat, uint32_t w, uint32_t h,
+static void compile_one(const pg_pipeline *p, pg_scene_features feat, uint32_t lights, uint32_t w, uint32_t h,
                         bool no_alias)
 {
-    pg_compile_desc cd = {.pipeline = p, .registry = &g_reg, .features = feat,
+    pg_compile_desc cd = {.pipeline = p, .registry = &g_reg,
                           .output_width = w, .output_height = h, .disable_aliasing = no_alias};
+    pg_scene_vars_set(&cd.vars, &feat, lights, NULL);
     pg_graph_plan *plan = NULL;
     pg_error err = {0};
     pg_result r = pg_graph_compile(&cd, &plan, &err);
@@ -166,11 +168,10 @@ static pg_pipeline *load_one(const char *text, const char *vpath, const pg_param
     if ((r == PG_OK) != (p != NULL)) fuzz_die("load: result %s, out %p", pg_result_name(r), (void *)p);
     if (!p) return NULL;
     check_pipeline(p);
-    pg_scene_features rich = {.has_textures = true, .has_normal_maps = true, .has_alpha_mask = true,
-                              .light_count = 1000};
-    pg_scene_features bare = {.light_count = 0};
-    compile_one(p, rich, 64, 36, false);
-    compile_one(p, bare, 7, 3, true);
+    pg_scene_features rich = {.has_textures = true, .has_normal_maps = true, .has_alpha_mask = true};
+    pg_scene_features bare = {0};
+    compile_one(p, rich, 1000, 64, 36, false);
+    compile_one(p, bare, 0, 7, 3, true);
     if (keep) return p;
     pg_pipeline_free(p);
     return NULL;

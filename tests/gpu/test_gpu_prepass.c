@@ -38,6 +38,7 @@
 #include "pipeline.h"
 #include "scenario.h"
 #include "scene_gpu.h"
+#include "scene_vars.h"
 #include "test_util.h"
 
 #define W 320
@@ -82,8 +83,7 @@ static void check_compile(bool prepass, bool equal)
     memset(&d, 0, sizeof d);
     d.pipeline = pl;
     d.registry = &g_reg;
-    d.features.light_count = 1000;
-    d.features.has_alpha_mask = d.features.has_textures = true;
+    pg_scene_vars_set(&d.vars, &(pg_scene_features){.has_alpha_mask = true, .has_textures = true}, 1000, NULL);
     d.output_width = W;
     d.output_height = H;
     pg_graph_plan *plan = NULL;
@@ -134,7 +134,7 @@ static void check_equal_without_prepass(void)
     memset(&d, 0, sizeof d);
     d.pipeline = pl;
     d.registry = &g_reg;
-    d.features.light_count = 1000;
+    pg_scene_vars_set(&d.vars, NULL, 1000, NULL);
     d.output_width = W;
     d.output_height = H;
     pg_graph_plan *plan = NULL;

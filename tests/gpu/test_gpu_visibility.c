@@ -43,6 +43,7 @@
 #include "pass_list.h"
 #include "pipeline.h"
 #include "scene_gpu.h"
+#include "scene_vars.h"
 #include "test_util.h"
 #include "visibility_common.h"
 
@@ -110,10 +111,9 @@ static void check_compile(const char *resolve, bool mask, bool emissive)
     memset(&d, 0, sizeof d);
     d.pipeline = pl;
     d.registry = &g_reg;
-    d.features.light_count = 1000;
-    d.features.has_textures = true;
-    d.features.has_alpha_mask = mask;
-    d.features.has_emissive = emissive;
+    pg_scene_vars_set(&d.vars,
+                      &(pg_scene_features){.has_textures = true, .has_alpha_mask = mask, .has_emissive = emissive},
+                      1000, NULL);
     d.output_width = 320;
     d.output_height = 180;
     pg_graph_plan *plan = NULL;

@@ -13,6 +13,7 @@
 #include "graph.h"
 #include "pass_list.h"
 #include "pipeline.h"
+#include "scene_vars.h"
 #include "test_util.h"
 
 static pg_pass_registry g_reg;
@@ -114,10 +115,11 @@ int main(void)
         for (int rich = 0; rich <= 1; rich++) {
             for (int off = 0; off <= 1; off++) {
                 pg_compile_desc cd = {.pipeline = pl, .registry = &g_reg, .output_width = 1920, .output_height = 1080,
-                                      .disable_aliasing = off,
-                                      .features = {.has_textures = true, .light_count = 256}};
-                if (rich)
-                    cd.features = (pg_scene_features){true, true, true, true, true, true, true, true, 256};
+                                      .disable_aliasing = off};
+                pg_scene_vars_set(&cd.vars,
+                                  rich ? &(pg_scene_features){true, true, true, true, true, true, true, true}
+                                       : &(pg_scene_features){.has_textures = true},
+                                  256, NULL);
                 pg_graph_plan *p = NULL;
                 if (pg_graph_compile(&cd, &p, &err)) {
                     CHECK_MSG(0, "%s: %s", e->d_name, err.msg);

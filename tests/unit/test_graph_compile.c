@@ -92,7 +92,7 @@ static pg_result d_buf_maybe(const pg_declare_in *in, pg_pass_decl *d, pg_error 
     (void)e;
     pg_slot buf = pg_decl_read(d, "buf", BUF, PG_ACCESS_STORAGE_READ, FRAG, 0);
     pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
-    if (in->features.light_count == 0) pg_decl_mark_unused(d, buf, "0 lights");
+    if (pg_var(in, "lights") == 0) pg_decl_mark_unused(d, buf, "0 lights");
     return PG_OK;
 }
 static pg_result d_buf_blur(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
@@ -206,7 +206,7 @@ static pg_result d_transparent(const pg_declare_in *in, pg_pass_decl *d, pg_erro
     pg_decl_read(d, "depth", IMG, PG_ACCESS_DEPTH_READ, 0, PG_FMTCLASS_DEPTH);
     pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_RMW, 0, PG_FMTCLASS_FLOAT);
     d->side_effects = true;
-    if (!in->features.has_blend) pg_decl_skip(d, "no BLEND materials: no transparent pass");
+    if (!pg_var(in, "has_blend")) pg_decl_skip(d, "no BLEND materials: no transparent pass");
     return PG_OK;
 }
 /* options.inputs (default 1) sampled inputs, one colour output; explains what it did */
@@ -227,7 +227,7 @@ static pg_result d_opts(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
         pg_decl_read(d, name, IMG, PG_ACCESS_SAMPLED, FRAG, PG_FMTCLASS_FLOAT);
     }
     pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
-    if (!in->features.has_alpha_mask) pg_decl_explain(d, "no alpha-mask materials: no discard");
+    if (!pg_var(in, "has_alpha_mask")) pg_decl_explain(d, "no alpha-mask materials: no discard");
     pg_decl_explain(d, "%d inputs", n);
     return PG_OK;
 }
@@ -390,6 +390,7 @@ static pg_resource_desc *buf(pg_pipeline *pl, const char *name, uint32_t stride,
     for (int i = 0; i < n_terms; i++) {
         r->count[i].kind = (pg_count_term_kind)va_arg(ap, int);
         r->count[i].value = va_arg(ap, double);
+        if (r->count[i].kind == PG_COUNT_VAR) strcpy(r->count[i].var, "lights"); /* the one variable here */
     }
     va_end(ap);
     r->n_count_terms = (uint32_t)n_terms;
@@ -439,7 +440,7 @@ static pg_compile_desc desc_of(const pg_pipeline *pl)
     memset(&d, 0, sizeof d);
     d.pipeline = pl;
     d.registry = &g_reg;
-    d.features.light_count = 100;
+    pg_vars_set(&d.vars, "lights", 100, NULL);
     d.output_width = 100;
     d.output_height = 50;
     return d;
@@ -769,7 +770,7 @@ static void test_errors(void)
     }
     { /* kind mismatch, both ways */
         pg_pipeline *pl = pl_new("out");
-        buf(pl, "lights", 16, 1, PG_COUNT_LIGHTS, 0.0);
+        buf(pl, "lights", 16, 1, PG_COUNT_VAR, 0.0);
         img(pl, "out", PG_FMT_RGBA8_UNORM);
         pass(pl, "A", "fake_color", "", "lights");
         m = FAIL(pl, PG_ERR_FORMAT);
@@ -1071,11 +1072,11 @@ static void test_lifetimes(void)
     fixed->size[1] = 9;
     img(pl, "tiny", PG_FMT_RGBA8_UNORM)->scale[0] = 0.001f;
     pl->resources[5].scale[1] = 0.001f;
-    buf(pl, "lights", 16, 1, PG_COUNT_LIGHTS, 0.0);
+    buf(pl, "lights", 16, 1, PG_COUNT_VAR, 0.0);
     buf(pl, "perpix", 32, 1, PG_COUNT_PIXELS, 0.0);
-    buf(pl, "grid", 4, 2, PG_COUNT_CONST, 3.0, PG_COUNT_LIGHTS, 0.0);
-    buf(pl, "nolights", 48, 1, PG_COUNT_LIGHTS, 0.0);
-    buf(pl, "nolights_small", 4, 1, PG_COUNT_LIGHTS, 0.0);
+    buf(pl, "grid", 4, 2, PG_COUNT_CONST, 3.0, PG_COUNT_VAR, 0.0);
+    buf(pl, "nolights", 48, 1, PG_COUNT_VAR, 0.0);
+    buf(pl, "nolights_small", 4, 1, PG_COUNT_VAR, 0.0);
     pass(pl, "A", "fake_color", "", "t1");
     pass(pl, "B", "fake_blur", "t1", "t2");
     pass(pl, "C", "fake_blur", "t2", "out");
@@ -1106,7 +1107,7 @@ static void test_lifetimes(void)
     pg_compile_desc d = desc_of(pl);
     d.output_width = 900;
     d.output_height = 600;
-    d.features.light_count = 0;
+    pg_vars_set(&d.vars, "lights", 0, NULL);
     p = compile_d(&d, __LINE__);
     if (p) {
         CHECK(res(p, "third")->width == 300 && res(p, "third")->height == 201);
@@ -1738,7 +1739,7 @@ static void test_barriers(void)
     }
     { /* compute storage buffer write then fragment storage read */
         pg_pipeline *pl = pl_new("out");
-        buf(pl, "b", 16, 1, PG_COUNT_LIGHTS, 0.0);
+        buf(pl, "b", 16, 1, PG_COUNT_VAR, 0.0);
         img(pl, "out", PG_FMT_RGBA8_UNORM);
         pass(pl, "A", "fake_compute_buf", "", "b");
         pass(pl, "B", "fake_buf_to_color", "b", "out");
@@ -1983,7 +1984,7 @@ static void test_unused_slots(void)
         pass(pl, "Make", "fake_compute_buf", "", "buf");
         pass(pl, "Use", "fake_buf_maybe", "buf", "out");
         pg_compile_desc d = desc_of(pl);
-        d.features.light_count = (uint32_t)lights;
+        pg_vars_set(&d.vars, "lights", lights, NULL);
         pg_graph_plan *p = compile_d(&d, __LINE__);
         if (p) {
             const pg_plan_pass *make = &p->passes[pidx(p, "Make")], *use = &p->passes[pidx(p, "Use")];
@@ -2020,7 +2021,7 @@ static void test_skip(void)
         pass(pl, "Trans", "fake_transparent", "tbuf, depth", "color");
         pass(pl, "Final", "fake_blur", "color", "out");
         pg_compile_desc d = desc_of(pl);
-        d.features.has_blend = blend == 1;
+        pg_vars_set(&d.vars, "has_blend", blend == 1, NULL);
         pg_graph_plan *p = compile_d(&d, __LINE__);
         if (p) {
             const pg_plan_pass *t = &p->passes[pidx(p, "Trans")];

@@ -9,6 +9,7 @@
 #include "graph.h"
 #include "pass_list.h"
 #include "pipeline.h"
+#include "scene_vars.h"
 #include "test_util.h"
 
 static pg_pass_registry g_reg;
@@ -18,9 +19,10 @@ static pg_result load_compile(const char *path, pg_error *err)
     pg_pipeline *p = NULL;
     pg_result r = pg_pipeline_load(path, NULL, 0, &p, err);
     if (r) return r;
-    pg_compile_desc d = {.pipeline = p, .registry = &g_reg, .output_width = 64, .output_height = 36,
-                         .features = {.has_textures = true, .has_normal_maps = true, .has_alpha_mask = true,
-                                      .light_count = 100}};
+    pg_compile_desc d = {.pipeline = p, .registry = &g_reg, .output_width = 64, .output_height = 36};
+    pg_scene_vars_set(&d.vars,
+                      &(pg_scene_features){.has_textures = true, .has_normal_maps = true, .has_alpha_mask = true},
+                      100, NULL);
     pg_graph_plan *plan = NULL;
     r = pg_graph_compile(&d, &plan, err);
     pg_graph_plan_free(plan);
@@ -92,8 +94,8 @@ int main(void)
             continue;
         }
         for (int lights = 0; lights <= 1; lights++) {
-            pg_compile_desc cd = {.pipeline = p, .registry = &g_reg, .output_width = 64, .output_height = 36,
-                                  .features = {.has_textures = true, .light_count = (uint32_t)lights * 100}};
+            pg_compile_desc cd = {.pipeline = p, .registry = &g_reg, .output_width = 64, .output_height = 36};
+            pg_scene_vars_set(&cd.vars, &(pg_scene_features){.has_textures = true}, (uint32_t)lights * 100, NULL);
             pg_graph_plan *plan = NULL;
             if (pg_graph_compile(&cd, &plan, &err)) {
                 CHECK_MSG(0, "%s", err.msg);

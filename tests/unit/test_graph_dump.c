@@ -9,6 +9,7 @@
 #include "graph.h"
 #include "graph_dump.h"
 #include "pass_list.h"
+#include "scene_vars.h"
 #include "test_util.h"
 
 #include <cjson/cJSON.h>
@@ -51,8 +52,8 @@ static pg_result d_final(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
     pg_decl_read(d, "src", IMG, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
     pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
     pg_decl_define(d, "FAKE_FINAL");
-    if (in->features.light_count == 0) pg_decl_mark_unused(d, buf, "0 lights");
-    if (!in->features.has_alpha_mask) pg_decl_explain(d, "no alpha-mask materials: no discard");
+    if (pg_lights_of(in) == 0) pg_decl_mark_unused(d, buf, "0 lights");
+    if (!pg_scene_features_of(in).has_alpha_mask) pg_decl_explain(d, "no alpha-mask materials: no discard");
     return PG_OK;
 }
 
@@ -105,8 +106,9 @@ static pg_graph_plan *compile(const pg_pipeline *pl, const pg_pass_registry *reg
     memset(&d, 0, sizeof d);
     d.pipeline = pl;
     d.registry = reg;
-    d.features.light_count = lights;
-    d.features.has_alpha_mask = d.features.has_normal_maps = d.features.has_textures = features;
+    pg_scene_vars_set(&d.vars, &(pg_scene_features){.has_alpha_mask = features, .has_normal_maps = features,
+                                                    .has_textures = features},
+                      lights, NULL);
     d.output_width = w;
     d.output_height = h;
     pg_graph_plan *plan = NULL;
@@ -556,7 +558,7 @@ static void test_hand_graph_json(void)
         memset(&d, 0, sizeof d);
         d.pipeline = pl;
         d.registry = &g_reg;
-        d.features.light_count = 100;
+        pg_scene_vars_set(&d.vars, NULL, 100, NULL);
         d.output_width = 100;
         d.output_height = 50;
         d.disable_aliasing = true;

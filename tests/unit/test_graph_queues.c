@@ -10,6 +10,7 @@
 #include "graph_dump.h"
 #include "pass_list.h"
 #include "pipeline.h"
+#include "scene_vars.h"
 #include "test_util.h"
 
 #include <stdio.h>
@@ -115,8 +116,8 @@ static pg_result compile_p1(const char *q_anim, const char *q_gbuf, const char *
     *plan = NULL;
     pg_result r = pg_pipeline_load_string(json, "p1.json", NULL, 0, pl, err);
     if (r) return r;
-    pg_compile_desc d = {.pipeline = *pl, .registry = &g_reg, .output_width = 64, .output_height = 36,
-                         .features = {.light_count = 64}, .queues = caps};
+    pg_compile_desc d = {.pipeline = *pl, .registry = &g_reg, .output_width = 64, .output_height = 36, .queues = caps};
+    pg_scene_vars_set(&d.vars, NULL, 64, NULL);
     return pg_graph_compile(&d, plan, err);
 }
 
@@ -415,7 +416,8 @@ static void test_join_and_fallback(void)
     CHECK_MSG(pg_pipeline_load_string(json, "p2.json", NULL, 0, &pl, &err) == PG_OK, "%s", err.msg);
     if (!pl) return;
     pg_compile_desc d = {.pipeline = pl, .registry = &g_reg, .output_width = 64, .output_height = 36,
-                         .features = {.light_count = 64}, .queues = {.n_queues = 2, .separate_family = true}};
+                         .queues = {.n_queues = 2, .separate_family = true}};
+    pg_scene_vars_set(&d.vars, NULL, 64, NULL);
     pg_graph_plan *p = NULL;
     CHECK_MSG(pg_graph_compile(&d, &p, &err) == PG_OK, "%s", err.msg);
     if (p) {
@@ -500,8 +502,8 @@ static void test_shipped(void)
             CHECK_MSG(pg_pipeline_load(path, NULL, 0, &pl, &err) == PG_OK, "%s", err.msg);
             if (!pl) continue;
             pg_compile_desc d = {.pipeline = pl, .registry = &reg, .output_width = 320, .output_height = 180,
-                                 .features = {.light_count = 1000},
                                  .queues = {.n_queues = 2, .separate_family = fam == 1}};
+            pg_scene_vars_set(&d.vars, NULL, 1000, NULL);
             pg_graph_plan *p = NULL;
             CHECK_MSG(pg_graph_compile(&d, &p, &err) == PG_OK, "%s: %s", names[i], err.msg);
             if (!p) {

@@ -94,7 +94,7 @@ static void test_example_file(void)
     CHECK(strcmp(p->resources[0].name, "lights") == 0);
     const pg_resource_desc *lights = pg_pipeline_find_resource(p, "lights");
     CHECK(lights && lights->kind == PG_RES_BUFFER && lights->stride == 32 &&
-          lights->n_count_terms == 1 && lights->count[0].kind == PG_COUNT_LIGHTS &&
+          lights->n_count_terms == 1 && lights->count[0].kind == PG_COUNT_VAR && !strcmp(lights->count[0].var, "lights") &&
           lights->lifetime == PG_LIFETIME_PERSISTENT);
     CHECK(lights && strcmp(lights->file, GOOD "/fragments/lights.json") == 0 &&
           strcmp(lights->json_path, "resources[0]") == 0);
@@ -211,7 +211,7 @@ static void test_merge(void)
     const pg_resource_desc *big = pg_pipeline_find_resource(p, "big");
     CHECK(big && big->stride == 65536 && big->n_count_terms == 4 &&
           big->count[0].kind == PG_COUNT_PIXELS && big->count[1].kind == PG_COUNT_CONST &&
-          big->count[1].value == 0 && big->count[2].kind == PG_COUNT_LIGHTS &&
+          big->count[1].value == 0 && big->count[2].kind == PG_COUNT_VAR && !strcmp(big->count[2].var, "lights") &&
           big->count[3].value == 4294967295.0);
     const pg_resource_desc *tiles_absent = pg_pipeline_find_resource(p, "tiles");
     CHECK(tiles_absent == NULL);

@@ -138,7 +138,6 @@ static void test_default_scene(void)
     CHECK(s->n_indices / 3 >= 30000 && s->n_indices / 3 <= 80000);
     CHECK(s->n_materials >= 5);
     CHECK(s->features.has_textures && s->features.has_normal_maps && s->features.has_alpha_mask);
-    CHECK(s->features.light_count == 0);
     CHECK(near_f(s->bounds_min[1], 0.0f, 1e-4f));
     CHECK(s->bounds_max[0] - s->bounds_min[0] > 25 && s->bounds_max[0] - s->bounds_min[0] < 40);
     CHECK(s->bounds_max[1] > 8 && s->bounds_max[1] < 20);

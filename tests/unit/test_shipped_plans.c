@@ -9,6 +9,7 @@
 #include "graph.h"
 #include "pass_list.h"
 #include "pipeline.h"
+#include "scene_vars.h"
 #include "test_util.h"
 
 static pg_graph_plan *compile(const pg_compile_desc *d)
@@ -76,8 +77,8 @@ static void test_skip_shipped(void)
             pg_result r = pg_pipeline_load(path, &view, variant == 2 ? 1 : 0, &pl, &err);
             CHECK_MSG(r == PG_OK, "%s: %s", files[f], err.msg);
             if (r) continue;
-            pg_compile_desc d = {.pipeline = pl, .registry = &reg, .output_width = 64, .output_height = 36,
-                                 .features = {.light_count = 100, .has_blend = variant > 0}};
+            pg_compile_desc d = {.pipeline = pl, .registry = &reg, .output_width = 64, .output_height = 36};
+            pg_scene_vars_set(&d.vars, &(pg_scene_features){.has_blend = variant > 0}, 100, NULL);
             pg_graph_plan *p = compile(&d);
             const pg_plan_pass *t = p ? pass_named(p, "transparent") : NULL;
             CHECK_MSG(t && t->type && strcmp(t->type->name, "forward_transparent") == 0, "%s: no transparent pass",

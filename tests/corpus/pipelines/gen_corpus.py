@@ -183,7 +183,7 @@ case("buf_count_negative.json", "PG_ERR_SCHEMA", "resources[2].count[1]: expecte
 case("buf_count_fraction.json", "PG_ERR_SCHEMA", "resources[2].count[0]",
      doc=mod(lambda d: d["resources"][2].update({"count": [2.5]})))
 case("buf_count_unknown_term.json", "PG_ERR_SCHEMA", "resources[2].count[0]",
-     doc=mod(lambda d: d["resources"][2].update({"count": ["texels"]})))
+     doc=mod(lambda d: d["resources"][2].update({"count": ["Texels!"]})))
 case("buf_count_too_many_terms.json", "PG_ERR_LIMIT", "resources[2].count: 5 terms",
      doc=mod(lambda d: d["resources"][2].update({"count": [1, 2, 3, 4, 5]})))
 case("buf_grow_not_bool.json", "PG_ERR_SCHEMA", "resources[2].grow: expected true or false, got",

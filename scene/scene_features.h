@@ -1,5 +1,6 @@
-/* scene_features.h - what a scene (and the frame's settings) can use; passes read it in declare()
- * to leave out shader features and work the scene cannot need. */
+/* scene_features.h - what a scene's materials and streams use; the renderer hands them to the
+ * compiler as compile variables (renderer/common/scene_vars.h) and its passes leave out shader
+ * features and work the scene cannot need. */
 #ifndef PG_SCENE_FEATURES_H
 #define PG_SCENE_FEATURES_H
 
@@ -15,7 +16,6 @@ typedef struct pg_scene_features {
     bool has_vertex_colors; /* scene->colors present (COLOR_0 on a drawn primitive) */
     bool has_uv1;         /* scene->uv1 present and a texture reads TEXCOORD_1 */
     bool has_uv_transform;/* any KHR_texture_transform on a used texture */
-    uint32_t light_count;
 } pg_scene_features;
 
 #endif

@@ -1,0 +1,39 @@
+/* scene_vars.c - the renderer's compile variables (scene_vars.h). */
+#include "scene_vars.h"
+
+#include <stddef.h>
+
+/* one table for both directions: name <-> field of pg_scene_features */
+static const struct {
+    const char *name;
+    size_t offset;
+} k_features[] = {
+    {"has_textures", offsetof(pg_scene_features, has_textures)},
+    {"has_normal_maps", offsetof(pg_scene_features, has_normal_maps)},
+    {"has_alpha_mask", offsetof(pg_scene_features, has_alpha_mask)},
+    {"has_blend", offsetof(pg_scene_features, has_blend)},
+    {"has_emissive", offsetof(pg_scene_features, has_emissive)},
+    {"has_vertex_colors", offsetof(pg_scene_features, has_vertex_colors)},
+    {"has_uv1", offsetof(pg_scene_features, has_uv1)},
+    {"has_uv_transform", offsetof(pg_scene_features, has_uv_transform)},
+};
+#define N_FEATURES (sizeof k_features / sizeof k_features[0])
+
+pg_result pg_scene_vars_set(pg_compile_vars *vars, const pg_scene_features *features, uint32_t lights,
+                            pg_error *err)
+{
+    pg_result r = pg_vars_set(vars, PG_VAR_LIGHTS, lights, err);
+    for (size_t i = 0; !r && i < N_FEATURES; i++) {
+        const bool on = features && *(const bool *)((const char *)features + k_features[i].offset);
+        r = pg_vars_set(vars, k_features[i].name, on, err);
+    }
+    return r;
+}
+
+pg_scene_features pg_scene_features_of(const pg_declare_in *in)
+{
+    pg_scene_features f = {0};
+    for (size_t i = 0; i < N_FEATURES; i++)
+        *(bool *)((char *)&f + k_features[i].offset) = pg_var(in, k_features[i].name) != 0;
+    return f;
+}

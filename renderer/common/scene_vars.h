@@ -1,0 +1,32 @@
+/* scene_vars.h - the renderer's compile variables: the light count and the scene's features,
+ * named, so the graph compiler can size buffers (["lights", 32]) and the pass types' declare()
+ * can leave out what the scene does not use, without the graph knowing lights or scenes. */
+#ifndef PG_SCENE_VARS_H
+#define PG_SCENE_VARS_H
+
+#include "pass_api.h"
+#include "scene_features.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PG_VAR_LIGHTS "lights" /* the number of lights (count terms ["lights", N]) */
+
+/* Sets "lights" and one 0/1 variable per scene feature ("has_textures", "has_normal_maps",
+ * "has_alpha_mask", "has_blend", "has_emissive", "has_vertex_colors", "has_uv1",
+ * "has_uv_transform"); features may be NULL (none). */
+pg_result pg_scene_vars_set(pg_compile_vars *vars, const pg_scene_features *features, uint32_t lights,
+                            pg_error *err);
+/* In declare(): the scene features the caller set (missing variables read as false). */
+pg_scene_features pg_scene_features_of(const pg_declare_in *in);
+/* In declare(): the light count (0 when unset). */
+static inline uint32_t pg_lights_of(const pg_declare_in *in)
+{
+    return (uint32_t)pg_var(in, PG_VAR_LIGHTS);
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif
