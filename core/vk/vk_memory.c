@@ -239,6 +239,24 @@ void pg_cmd_barriers(VkCommandBuffer cmd, uint32_t n_images, const VkImageMemory
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
+void pg_cmd_memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                           VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
+{
+    VkMemoryBarrier2 mb = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+        .srcStageMask = src_stage,
+        .srcAccessMask = src_access,
+        .dstStageMask = dst_stage,
+        .dstAccessMask = dst_access,
+    };
+    VkDependencyInfo dep = {
+        .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+        .memoryBarrierCount = 1,
+        .pMemoryBarriers = &mb,
+    };
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
 VkResult pg_gpu_alloc_memory(pg_gpu *gpu, const VkMemoryAllocateInfo *info, VkDeviceMemory *out)
 {
     VkResult r = vkAllocateMemory(gpu->device, info, NULL, out);
