@@ -409,16 +409,16 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
     cJSON *t = cJSON_AddObjectToObject(root, "totals");
     const bool ok = t && cJSON_AddNumberToObject(t, "passes_declared", plan->n_passes) &&
            cJSON_AddNumberToObject(t, "passes_run", plan->n_order) &&
-           cJSON_AddNumberToObject(t, "passes_culled", pg_dmp_count_culled_passes(plan)) &&
+           cJSON_AddNumberToObject(t, "passes_culled", pg_graph_plan_count_culled(plan)) &&
            cJSON_AddNumberToObject(t, "resources_declared", plan->n_resources) &&
            cJSON_AddNumberToObject(t, "resources_culled", res_culled) &&
            cJSON_AddNumberToObject(t, "omitted", pl ? pl->n_omitted : 0) &&
-           cJSON_AddNumberToObject(t, "barriers", pg_dmp_count_barriers(plan)) &&
+           cJSON_AddNumberToObject(t, "barriers", pg_graph_plan_count_barriers(plan)) &&
            cJSON_AddNumberToObject(t, "final_barriers", plan->n_final_barriers) &&
            cJSON_AddNumberToObject(t, "blocks", plan->n_blocks) &&
            add_u64(t, "transient_bytes_unaliased", plan->transient_bytes_unaliased) &&
            add_u64(t, "transient_bytes_aliased", plan->transient_bytes_aliased) &&
-           cJSON_AddNumberToObject(t, "saving_percent", (double)(int64_t)(pg_dmp_saving_percent(plan) * 10.0 + 0.5) / 10.0);
+           cJSON_AddNumberToObject(t, "saving_percent", (double)(int64_t)(pg_graph_plan_saving_percent(plan) * 10.0 + 0.5) / 10.0);
     /* queues, after the existing keys (two-queue plans only; a one-queue plan has no such key) */
     return ok && (!plan->async || json_queues(root, plan));
 }
