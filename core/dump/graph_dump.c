@@ -43,6 +43,27 @@ int pg_dmp_position_of(const pg_graph_plan *plan, uint32_t p)
     return -1;
 }
 
+void pg_dmp_markup_esc(FILE *f, const char *s, bool dot_label)
+{
+    for (; s && *s; s++) {
+        switch (*s) {
+        case '&': fputs("&amp;", f); break;
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '"': fputs("&quot;", f); break;
+        case '\'':
+            if (dot_label) fputc('\'', f);
+            else fputs("&apos;", f);
+            break;
+        case '\n':
+            if (dot_label) fputs("<br/>", f);
+            else fputc('\n', f);
+            break;
+        default: fputc(*s, f);
+        }
+    }
+}
+
 /* Colours of memory blocks, shared by the DOT graph and the timeline (ColorBrewer Set3: light
  * enough for black text). stroke is a darker shade of the same hue. */
 const char *const pg_dmp_block_fill[] = {"#8dd3c7", "#ffffb3", "#bebada", "#fb8072",

@@ -18,16 +18,7 @@ extern char **environ;
 /* Writes s escaped for a Graphviz HTML-like label ('\n' -> <br/>). */
 static void html_esc(FILE *f, const char *s)
 {
-    for (; s && *s; s++) {
-        switch (*s) {
-        case '&': fputs("&amp;", f); break;
-        case '<': fputs("&lt;", f); break;
-        case '>': fputs("&gt;", f); break;
-        case '"': fputs("&quot;", f); break;
-        case '\n': fputs("<br/>", f); break;
-        default: fputc(*s, f);
-        }
-    }
+    pg_dmp_markup_esc(f, s, true);
 }
 
 /* Writes s escaped for a double-quoted DOT string ('\n' -> "\n", a centred line break). */

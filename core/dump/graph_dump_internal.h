@@ -15,6 +15,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 /* graph_dump.c: colours of memory blocks, shared by the DOT graph and the timeline */
 extern const char *const pg_dmp_block_fill[12];
@@ -28,5 +29,8 @@ const char *pg_dmp_res_name(const pg_graph_plan *plan, int r);
 const char *pg_dmp_type_name(const pg_plan_pass *pp);
 const char *pg_dmp_pass_at(const pg_graph_plan *plan, int pos);
 int pg_dmp_position_of(const pg_graph_plan *plan, uint32_t p);
+/* Writes s with & < > " escaped; dot_label (a Graphviz HTML-like label): '\n' -> <br/>, else
+ * (SVG text and attributes) ' -> &apos;. */
+void pg_dmp_markup_esc(FILE *f, const char *s, bool dot_label);
 
 #endif

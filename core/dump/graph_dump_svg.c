@@ -9,16 +9,7 @@
 
 static void xml_esc(FILE *f, const char *s)
 {
-    for (; s && *s; s++) {
-        switch (*s) {
-        case '&': fputs("&amp;", f); break;
-        case '<': fputs("&lt;", f); break;
-        case '>': fputs("&gt;", f); break;
-        case '"': fputs("&quot;", f); break;
-        case '\'': fputs("&apos;", f); break;
-        default: fputc(*s, f);
-        }
-    }
+    pg_dmp_markup_esc(f, s, false);
 }
 
 /* Rough width of text in a sans-serif font of size px (Helvetica's average advance is ~0.55 em;
