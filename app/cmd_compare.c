@@ -14,6 +14,7 @@
 #include "bench_stats.h"
 #include "commands.h"
 #include "image_compare.h"
+#include "image_error_json.h"
 #include "image_util.h"
 #include "shader.h"
 #include "sides.h"
@@ -82,8 +83,7 @@ static const char *num(char *buf, size_t size, double v)
 
 static cJSON *json_num(double v)
 {
-    char b[16];
-    return isfinite(v) ? cJSON_CreateNumber(v) : cJSON_CreateString(num(b, sizeof b, v));
+    return pg_json_metric(v, false);
 }
 
 /* One side of the comparison: its session, per-frame timings and read-back images. */
@@ -229,15 +229,8 @@ static pg_result write_json(const char *path, const side *a, const pg_ov_list *a
     cJSON_AddNumberToObject(o, "frames", app->opt.frames);
     cJSON_AddStringToObject(o, "hdr_format", pg_format_get(a->hfmt)->name);
     cJSON_AddStringToObject(o, "reference_hdr_format", pg_format_get(r->hfmt)->name);
-    cJSON_AddItemToObject(o, "rmse_linear", json_num(e->rmse_linear));
-    cJSON_AddItemToObject(o, "psnr_linear", json_num(e->psnr_linear));
-    cJSON_AddItemToObject(o, "max_abs_linear", json_num(e->max_abs_linear));
-    cJSON_AddItemToObject(o, "peak_linear", json_num(e->peak_linear));
-    cJSON_AddItemToObject(o, "rmse_display", json_num(e->rmse_display));
-    cJSON_AddItemToObject(o, "psnr_display", json_num(e->psnr_display));
-    cJSON_AddItemToObject(o, "max_abs_display", json_num(e->max_abs_display));
-    cJSON_AddNumberToObject(o, "threshold", threshold);
-    cJSON_AddItemToObject(o, "over_threshold", json_num(e->share_over_threshold));
+    const pg_image_error_json_style style = {.share_key = "over_threshold", .threshold = &threshold};
+    pg_image_error_json_add(o, e, &style);
     cJSON_AddNumberToObject(o, "pixels_over_threshold", (double)e->over_threshold);
     cJSON_AddNumberToObject(o, "nonfinite", (double)e->nonfinite_a);
     cJSON_AddNumberToObject(o, "reference_nonfinite", (double)e->nonfinite_b);

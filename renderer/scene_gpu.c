@@ -146,17 +146,8 @@ static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg
     uint32_t n_bb = 0;
     for (int i = 0; i < 5; i++) {
         if (!bufs[i]) continue;
-        bb[n_bb++] = (VkBufferMemoryBarrier2){
-            .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
-            .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-            .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-            .dstStageMask = st[i],
-            .dstAccessMask = acc[i],
-            .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-            .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-            .buffer = bufs[i],
-            .size = VK_WHOLE_SIZE,
-        };
+        bb[n_bb++] = pg_buffer_barrier(bufs[i], VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, st[i],
+                                       acc[i]);
     }
     pg_cmd_barriers(cmd, sg->n_images, bars, n_bb, bb);
     free(bars);

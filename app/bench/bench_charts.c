@@ -81,6 +81,24 @@ static void doc_subtitle(const bench *B, char *buf, size_t size, const char *wha
              B->interrupted ? " | INTERRUPTED: partial results" : "");
 }
 
+/* The end of every chart: out of memory -> PG_ERR_OOM, else the SVG under title with the subtitle
+ * of what (doc_subtitle); frees m either way. */
+static pg_result chart_finish(const bench *B, chart_mem *m, const char *path, const pg_plot *plots, uint32_t np,
+                              const char *title, const char *what, pg_error *err)
+{
+    pg_result r;
+    if (m->oom) {
+        r = pg_fail(err, PG_ERR_OOM, "out of memory");
+    } else {
+        char sub[700];
+        doc_subtitle(B, sub, sizeof sub, what);
+        pg_svg_doc_desc d = {.title = title, .subtitle = sub};
+        r = pg_svg_write(path, plots, np, &d, err);
+    }
+    cm_free(m);
+    return r;
+}
+
 pg_result pg_bench_chart_time_vs_lights(const bench *B, const char *path, pg_error *err)
 {
     chart_mem m = {0};
@@ -127,16 +145,7 @@ pg_result pg_bench_chart_time_vs_lights(const bench *B, const char *path, pg_err
                 }
         }
 oom:
-    if (m.oom) {
-        cm_free(&m);
-        return pg_fail(err, PG_ERR_OOM, "out of memory");
-    }
-    char sub[512];
-    doc_subtitle(B, sub, sizeof sub, "log-log");
-    pg_svg_doc_desc d = {.title = "passgraph bench: GPU time against light count", .subtitle = sub};
-    pg_result r = pg_svg_write(path, plots, np, &d, err);
-    cm_free(&m);
-    return r;
+    return chart_finish(B, &m, path, plots, np, "passgraph bench: GPU time against light count", "log-log", err);
 }
 
 /* The (scene, size, lights) blocks in run order. */
@@ -216,16 +225,8 @@ pg_result pg_bench_chart_passes(const bench *B, const char *path, pg_error *err)
         pl->empty_message = "no timed configuration";
     }
 oom:
-    if (m.oom) {
-        cm_free(&m);
-        return pg_fail(err, PG_ERR_OOM, "out of memory");
-    }
-    char sub[512];
-    doc_subtitle(B, sub, sizeof sub, "per-pass GPU timestamps (a pass includes its barriers)");
-    pg_svg_doc_desc d = {.title = "passgraph bench: GPU time per pass", .subtitle = sub};
-    pg_result r = pg_svg_write(path, plots, np, &d, err);
-    cm_free(&m);
-    return r;
+    return chart_finish(B, &m, path, plots, np, "passgraph bench: GPU time per pass",
+                        "per-pass GPU timestamps (a pass includes its barriers)", err);
 }
 
 pg_result pg_bench_chart_error(const bench *B, const char *path, pg_error *err)
@@ -302,20 +303,11 @@ pg_result pg_bench_chart_error(const bench *B, const char *path, pg_error *err)
         pl->y = (pg_plot_axis){.label = "RMSE vs reference, linear HDR (log)", .scale = PG_PLOT_LOG10,
                                .zero_label = "0 (exact)"};
     }
-oom:
-    if (m.oom) {
-        cm_free(&m);
-        return pg_fail(err, PG_ERR_OOM, "out of memory");
-    }
-    char sub[700];
+oom:;
     char what[300];
     snprintf(what, sizeof what,
              "RMSE against %s (lower left is better); dashed: the Pareto front (no other point is both faster "
              "and more accurate)",
              B->ref_name);
-    doc_subtitle(B, sub, sizeof sub, what);
-    pg_svg_doc_desc d = {.title = "passgraph bench: image error against GPU time", .subtitle = sub};
-    pg_result r = pg_svg_write(path, plots, np, &d, err);
-    cm_free(&m);
-    return r;
+    return chart_finish(B, &m, path, plots, np, "passgraph bench: image error against GPU time", what, err);
 }

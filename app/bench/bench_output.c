@@ -1,6 +1,7 @@
 /* bench_output.c - `passgraph bench`: DIR/results.csv, DIR/results.json, all outputs at once
  * (the charts from bench_charts.c) and the output folder. */
 #include "bench.h"
+#include "image_error_json.h"
 
 /* ---------------------------------------------------------------- output: CSV and JSON */
 
@@ -129,12 +130,11 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
     return PG_OK;
 }
 
-/* Finite numbers as numbers, inf as "inf" / "-inf" (like `compare --json`), NaN (unknown) as null. */
+/* Finite numbers as numbers, inf as "inf" / "-inf" (like `compare --json`), NaN (unknown) as null
+ * (image_error_json.h). */
 static cJSON *jnum(double v)
 {
-    if (isnan(v)) return cJSON_CreateNull();
-    if (isinf(v)) return cJSON_CreateString(v > 0 ? "inf" : "-inf");
-    return cJSON_CreateNumber(v);
+    return pg_json_metric(v, true);
 }
 
 static cJSON *jstats(const pg_sample_stats *s)
@@ -289,14 +289,8 @@ static cJSON *json_row(const bench *B, const bench_row *r)
     if (r->has_error) {
         const pg_image_error *e = &r->e;
         cJSON *m = cJSON_AddObjectToObject(o, "error");
-        cJSON_AddItemToObject(m, "rmse_linear", jnum(e->rmse_linear));
-        cJSON_AddItemToObject(m, "psnr_linear", jnum(e->psnr_linear));
-        cJSON_AddItemToObject(m, "max_abs_linear", jnum(e->max_abs_linear));
-        cJSON_AddItemToObject(m, "peak_linear", jnum(e->peak_linear));
-        cJSON_AddItemToObject(m, "rmse_display", jnum(e->rmse_display));
-        cJSON_AddItemToObject(m, "psnr_display", jnum(e->psnr_display));
-        cJSON_AddItemToObject(m, "max_abs_display", jnum(e->max_abs_display));
-        cJSON_AddItemToObject(m, "share_over_1", jnum(e->share_over_threshold));
+        const pg_image_error_json_style style = {.share_key = "share_over_1", .nan_as_null = true};
+        pg_image_error_json_add(m, e, &style);
         cJSON_AddNumberToObject(m, "reference_nonfinite", (double)e->nonfinite_b);
     } else {
         cJSON_AddNullToObject(o, "error");

@@ -137,6 +137,21 @@ static void dir_of(const char *path, char *buf, size_t n)
     else snprintf(buf, n, "%.*s", (int)(slash - path), path);
 }
 
+/* The folder that holds entry (its parent) must exist and be writable; messages name path. */
+static pg_result check_parent_dir(const char *entry, const char *path, const char *what, pg_error *err)
+{
+    char dir[PG_PATH_MAX];
+    dir_of(entry, dir, sizeof dir);
+    struct stat st;
+    if (stat(dir, &st) != 0)
+        return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(errno));
+    if (!S_ISDIR(st.st_mode))
+        return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(ENOTDIR));
+    if (access(dir, W_OK | X_OK) != 0)
+        return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(errno));
+    return PG_OK;
+}
+
 pg_result pg_file_check_writable(const char *path, const char *what, pg_error *err)
 {
     if (!what) what = "output";
@@ -145,14 +160,8 @@ pg_result pg_file_check_writable(const char *path, const char *what, pg_error *e
     struct stat st;
     if (path[len - 1] == '/' || (stat(path, &st) == 0 && S_ISDIR(st.st_mode)))
         return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(EISDIR));
-    char dir[PG_PATH_MAX];
-    dir_of(path, dir, sizeof dir);
-    if (stat(dir, &st) != 0)
-        return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(errno));
-    if (!S_ISDIR(st.st_mode))
-        return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(ENOTDIR));
-    if (access(dir, W_OK | X_OK) != 0)
-        return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(errno));
+    pg_result r = check_parent_dir(path, path, what, err);
+    if (r) return r;
     if (access(path, F_OK) == 0 && access(path, W_OK) != 0)
         return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(errno));
     return PG_OK;
@@ -177,13 +186,5 @@ pg_result pg_file_check_writable_dir(const char *path, const char *what, pg_erro
     pg_strlcpy(trimmed, path, sizeof trimmed);
     size_t n = strlen(trimmed);
     while (n > 1 && trimmed[n - 1] == '/') trimmed[--n] = 0;
-    char dir[PG_PATH_MAX];
-    dir_of(trimmed, dir, sizeof dir);
-    if (stat(dir, &st) != 0)
-        return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(errno));
-    if (!S_ISDIR(st.st_mode))
-        return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(ENOTDIR));
-    if (access(dir, W_OK | X_OK) != 0)
-        return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(errno));
-    return PG_OK;
+    return check_parent_dir(trimmed, path, what, err);
 }

@@ -43,26 +43,25 @@ int pg_dmp_position_of(const pg_graph_plan *plan, uint32_t p)
     return -1;
 }
 
-uint32_t pg_dmp_count_barriers(const pg_graph_plan *plan)
+void pg_dmp_markup_esc(FILE *f, const char *s, bool dot_label)
 {
-    uint32_t n = 0;
-    for (uint32_t i = 0; i < plan->n_passes; i++) n += plan->passes[i].n_barriers;
-    return n;
-}
-
-uint32_t pg_dmp_count_culled_passes(const pg_graph_plan *plan)
-{
-    uint32_t n = 0;
-    for (uint32_t i = 0; i < plan->n_passes; i++) n += plan->passes[i].culled;
-    return n;
-}
-
-double pg_dmp_saving_percent(const pg_graph_plan *plan)
-{
-    if (!plan->transient_bytes_unaliased || plan->transient_bytes_aliased > plan->transient_bytes_unaliased)
-        return 0.0;
-    return 100.0 * (double)(plan->transient_bytes_unaliased - plan->transient_bytes_aliased) /
-           (double)plan->transient_bytes_unaliased;
+    for (; s && *s; s++) {
+        switch (*s) {
+        case '&': fputs("&amp;", f); break;
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '"': fputs("&quot;", f); break;
+        case '\'':
+            if (dot_label) fputc('\'', f);
+            else fputs("&apos;", f);
+            break;
+        case '\n':
+            if (dot_label) fputs("<br/>", f);
+            else fputc('\n', f);
+            break;
+        default: fputc(*s, f);
+        }
+    }
 }
 
 /* Colours of memory blocks, shared by the DOT graph and the timeline (ColorBrewer Set3: light
@@ -77,39 +76,46 @@ const char *const pg_dmp_block_stroke[] = {"#3c8c80", "#a6a64d", "#6f6a99", "#b0
 /* ------------------------------------------------------------------------------------------ */
 /* short names for edge labels                                                                */
 
+/* Adds word to the '+'-joined list in buf unless it is there already ("depth_read|depth_write"
+ * -> "depth"). */
+static void add_short_word(char *buf, size_t size, size_t *len, const char *word)
+{
+    for (const char *s = buf; *s;) {
+        size_t n = strcspn(s, "+");
+        if (n == strlen(word) && !strncmp(s, word, n)) return;
+        s += n;
+        if (*s) s++;
+    }
+    if (*len >= size) return;
+    int w = snprintf(buf + *len, size - *len, "%s%s", *len ? "+" : "", word);
+    if (w > 0) *len += (size_t)w;
+}
+
 /* Access mask -> "color", "sampled", "depth", "storage" ... (read/write suffixes dropped: the
  * hazard name says which side writes), joined with '+'; "-" for none. */
 static void short_access(uint64_t access, char *buf, size_t size)
 {
-    char names[256];
-    pg_access_mask_names(access, names, sizeof names);
     buf[0] = 0;
-    if (!strcmp(names, "none")) {
+    if (!access) {
         pg_strlcpy(buf, "-", size);
         return;
     }
+    const char *names[64];
+    uint64_t unnamed = 0;
+    const uint32_t n = pg_access_bit_names(access, names, 64, &unnamed);
     size_t len = 0;
-    char *save = NULL;
-    for (char *t = strtok_r(names, "|", &save); t; t = strtok_r(NULL, "|", &save)) {
+    for (uint32_t i = 0; i < n; i++) {
         char word[64];
-        pg_strlcpy(word, t, sizeof word);
+        pg_strlcpy(word, names[i], sizeof word);
         size_t wl = strlen(word);
         if (wl > 6 && !strcmp(word + wl - 6, "_write")) word[wl - 6] = 0;
         else if (wl > 5 && !strcmp(word + wl - 5, "_read")) word[wl - 5] = 0;
-        /* skip duplicates ("depth_read|depth_write" -> "depth") */
-        bool dup = false;
-        char *s = buf;
-        while (*s) {
-            size_t n = strcspn(s, "+");
-            if (n == strlen(word) && !strncmp(s, word, n)) dup = true;
-            s += n;
-            if (*s) s++;
-        }
-        if (dup) continue;
-        int w = snprintf(buf + len, size > len ? size - len : 0, "%s%s", len ? "+" : "", word);
-        if (w < 0) break;
-        len += (size_t)w;
-        if (len >= size) break;
+        add_short_word(buf, size, &len, word);
+    }
+    if (unnamed) {
+        char word[32];
+        snprintf(word, sizeof word, "0x%" PRIx64, unnamed);
+        add_short_word(buf, size, &len, word);
     }
 }
 

@@ -18,16 +18,7 @@ extern char **environ;
 /* Writes s escaped for a Graphviz HTML-like label ('\n' -> <br/>). */
 static void html_esc(FILE *f, const char *s)
 {
-    for (; s && *s; s++) {
-        switch (*s) {
-        case '&': fputs("&amp;", f); break;
-        case '<': fputs("&lt;", f); break;
-        case '>': fputs("&gt;", f); break;
-        case '"': fputs("&quot;", f); break;
-        case '\n': fputs("<br/>", f); break;
-        default: fputc(*s, f);
-        }
-    }
+    pg_dmp_markup_esc(f, s, true);
 }
 
 /* Writes s escaped for a double-quoted DOT string ('\n' -> "\n", a centred line break). */
@@ -241,8 +232,8 @@ void pg_dump_dot(const pg_graph_plan *plan, const pg_pipeline *pipeline, FILE *f
     pg_fmt_bytes(plan->transient_bytes_aliased, al, sizeof al);
     fprintf(f, "<br/><font point-size=\"10\">%u passes run, %u culled \xc2\xb7 %u barriers (+%u after the last pass) "
                "\xc2\xb7 transient memory %s \xe2\x86\x92 %s %s (saving %.1f%%)</font>",
-            plan->n_order, pg_dmp_count_culled_passes(plan), pg_dmp_count_barriers(plan), plan->n_final_barriers, un, al,
-            plan->aliasing_disabled ? "(aliasing disabled)" : "with aliasing", pg_dmp_saving_percent(plan));
+            plan->n_order, pg_graph_plan_count_culled(plan), pg_graph_plan_count_barriers(plan), plan->n_final_barriers, un, al,
+            plan->aliasing_disabled ? "(aliasing disabled)" : "with aliasing", pg_graph_plan_saving_percent(plan));
     fputs("<br/><font point-size=\"9\" color=\"#555555\">rounded box = pass (type \xc2\xb7 #execution position) "
           "\xc2\xb7 note = resource, colour = memory block \xc2\xb7 arrows: resource \xe2\x86\x92 pass = read, "
           "pass \xe2\x86\x92 resource = write<br/>red edge = barrier before the pass: hazard, access "

@@ -10,10 +10,12 @@
 #define PG_GRAPH_DUMP_INTERNAL_H
 
 #include "graph_dump.h"
+#include "graph_report.h"
 
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 /* graph_dump.c: colours of memory blocks, shared by the DOT graph and the timeline */
 extern const char *const pg_dmp_block_fill[12];
@@ -27,8 +29,8 @@ const char *pg_dmp_res_name(const pg_graph_plan *plan, int r);
 const char *pg_dmp_type_name(const pg_plan_pass *pp);
 const char *pg_dmp_pass_at(const pg_graph_plan *plan, int pos);
 int pg_dmp_position_of(const pg_graph_plan *plan, uint32_t p);
-uint32_t pg_dmp_count_barriers(const pg_graph_plan *plan);
-uint32_t pg_dmp_count_culled_passes(const pg_graph_plan *plan);
-double pg_dmp_saving_percent(const pg_graph_plan *plan);
+/* Writes s with & < > " escaped; dot_label (a Graphviz HTML-like label): '\n' -> <br/>, else
+ * (SVG text and attributes) ' -> &apos;. */
+void pg_dmp_markup_esc(FILE *f, const char *s, bool dot_label);
 
 #endif

@@ -136,29 +136,19 @@ static bool add_slots(cJSON *o, const pg_graph_plan *plan, const pg_plan_pass *p
     return true;
 }
 
-static bool add_string_list(cJSON *o, const char *key, const char (*list)[PG_NAME_MAX], uint32_t n)
+/* n strings of a fixed-size char array (stride bytes apart) as the array o[key] */
+static bool add_strings(cJSON *o, const char *key, const char *first, size_t stride, uint32_t n)
 {
     cJSON *a = cJSON_AddArrayToObject(o, key);
     if (!a) return false;
     for (uint32_t i = 0; i < n; i++) {
-        cJSON *s = cJSON_CreateString(list[i]);
+        cJSON *s = cJSON_CreateString(first + i * stride);
         if (!s) return false;
         cJSON_AddItemToArray(a, s);
     }
     return true;
 }
-
-static bool add_explain_list(cJSON *o, const char *key, const char (*list)[PG_EXPLAIN_MAX], uint32_t n)
-{
-    cJSON *a = cJSON_AddArrayToObject(o, key);
-    if (!a) return false;
-    for (uint32_t i = 0; i < n; i++) {
-        cJSON *s = cJSON_CreateString(list[i]);
-        if (!s) return false;
-        cJSON_AddItemToArray(a, s);
-    }
-    return true;
-}
+#define ADD_STRING_LIST(o, key, list, n) add_strings((o), (key), (list)[0], sizeof (list)[0], (n))
 
 static bool json_pipeline(cJSON *root, const pg_pipeline *pl)
 {
@@ -311,8 +301,8 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
                                                            pl->passes[pp->desc_index].side_effects)) ||
             !add_barriers(o, "barriers", plan, pp->barriers,
                           pp->n_barriers < PG_MAX_BARRIERS_PER_PASS ? pp->n_barriers : PG_MAX_BARRIERS_PER_PASS) ||
-            !add_slots(o, plan, pp, false) || !add_string_list(o, "defines", pp->decl.defines, n_def) ||
-            !add_explain_list(o, "left_out", pp->decl.explain, n_exp))
+            !add_slots(o, plan, pp, false) || !ADD_STRING_LIST(o, "defines", pp->decl.defines, n_def) ||
+            !ADD_STRING_LIST(o, "left_out", pp->decl.explain, n_exp))
             return false;
     }
     if (!add_barriers(root, "final_barriers", plan, plan->final_barriers,
@@ -345,7 +335,7 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
             !cJSON_AddStringToObject(o, "why", pl->omitted[i].why))
             return false;
     }
-    if (!add_explain_list(root, "explain", plan->explain, plan->n_explain < PG_MAX_EXPLAIN ? plan->n_explain : PG_MAX_EXPLAIN))
+    if (!ADD_STRING_LIST(root, "explain", plan->explain, plan->n_explain < PG_MAX_EXPLAIN ? plan->n_explain : PG_MAX_EXPLAIN))
         return false;
 
     /* resources (declaration order) */
@@ -409,16 +399,16 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
     cJSON *t = cJSON_AddObjectToObject(root, "totals");
     const bool ok = t && cJSON_AddNumberToObject(t, "passes_declared", plan->n_passes) &&
            cJSON_AddNumberToObject(t, "passes_run", plan->n_order) &&
-           cJSON_AddNumberToObject(t, "passes_culled", pg_dmp_count_culled_passes(plan)) &&
+           cJSON_AddNumberToObject(t, "passes_culled", pg_graph_plan_count_culled(plan)) &&
            cJSON_AddNumberToObject(t, "resources_declared", plan->n_resources) &&
            cJSON_AddNumberToObject(t, "resources_culled", res_culled) &&
            cJSON_AddNumberToObject(t, "omitted", pl ? pl->n_omitted : 0) &&
-           cJSON_AddNumberToObject(t, "barriers", pg_dmp_count_barriers(plan)) &&
+           cJSON_AddNumberToObject(t, "barriers", pg_graph_plan_count_barriers(plan)) &&
            cJSON_AddNumberToObject(t, "final_barriers", plan->n_final_barriers) &&
            cJSON_AddNumberToObject(t, "blocks", plan->n_blocks) &&
            add_u64(t, "transient_bytes_unaliased", plan->transient_bytes_unaliased) &&
            add_u64(t, "transient_bytes_aliased", plan->transient_bytes_aliased) &&
-           cJSON_AddNumberToObject(t, "saving_percent", (double)(int64_t)(pg_dmp_saving_percent(plan) * 10.0 + 0.5) / 10.0);
+           cJSON_AddNumberToObject(t, "saving_percent", (double)(int64_t)(pg_graph_plan_saving_percent(plan) * 10.0 + 0.5) / 10.0);
     /* queues, after the existing keys (two-queue plans only; a one-queue plan has no such key) */
     return ok && (!plan->async || json_queues(root, plan));
 }

@@ -9,16 +9,7 @@
 
 static void xml_esc(FILE *f, const char *s)
 {
-    for (; s && *s; s++) {
-        switch (*s) {
-        case '&': fputs("&amp;", f); break;
-        case '<': fputs("&lt;", f); break;
-        case '>': fputs("&gt;", f); break;
-        case '"': fputs("&quot;", f); break;
-        case '\'': fputs("&apos;", f); break;
-        default: fputc(*s, f);
-        }
-    }
+    pg_dmp_markup_esc(f, s, false);
 }
 
 /* Rough width of text in a sans-serif font of size px (Helvetica's average advance is ~0.55 em;
@@ -144,7 +135,7 @@ static void tl_head(FILE *f, const tl_geo *g, const pg_pipeline *pipeline, doubl
             "  <text x=\"16\" y=\"46\" fill=\"#333333\">%u transient resources in %u memory blocks: %s unaliased "
             "\xe2\x86\x92 %s %s (saving %.1f%%)</text>\n",
             n_transient, plan->n_blocks, un, al, plan->aliasing_disabled ? "(aliasing disabled)" : "aliased",
-            pg_dmp_saving_percent(plan));
+            pg_graph_plan_saving_percent(plan));
 }
 
 /* column headers and grid */

@@ -4,6 +4,7 @@
  * calls no other file of the compiler.
  */
 #include "graph.h"
+#include "graph_report.h"
 
 #include <inttypes.h>
 #include <stdio.h>
@@ -66,9 +67,10 @@ void pg_stage_names(uint64_t stages, char *buf, size_t buf_size)
     bit_names(t, sizeof t / sizeof t[0], stages, buf, buf_size);
 }
 
-void pg_access_mask_names(uint64_t access, char *buf, size_t buf_size)
+/* The access bits' names in report order (a function: Vulkan's *_2 bits are not constants). */
+static size_t access_table(bit_name *t)
 {
-    const bit_name t[] = {
+    const bit_name table[] = {
         {VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT, "indirect_read"},
         {VK_ACCESS_2_INDEX_READ_BIT, "index_read"},
         {VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT, "vertex_attribute_read"},
@@ -90,7 +92,28 @@ void pg_access_mask_names(uint64_t access, char *buf, size_t buf_size)
         {VK_ACCESS_2_SHADER_STORAGE_READ_BIT, "storage_read"},
         {VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, "storage_write"},
     };
-    bit_names(t, sizeof t / sizeof t[0], access, buf, buf_size);
+    memcpy(t, table, sizeof table);
+    return sizeof table / sizeof table[0];
+}
+
+void pg_access_mask_names(uint64_t access, char *buf, size_t buf_size)
+{
+    bit_name t[32];
+    bit_names(t, access_table(t), access, buf, buf_size);
+}
+
+uint32_t pg_access_bit_names(uint64_t access, const char **names, uint32_t max, uint64_t *unnamed)
+{
+    bit_name t[32];
+    const size_t n = access_table(t);
+    uint32_t count = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!(access & t[i].bit)) continue;
+        if (count < max) names[count++] = t[i].name;
+        access &= ~t[i].bit;
+    }
+    if (unnamed) *unnamed = access;
+    return count;
 }
 
 const char *pg_layout_name(uint32_t layout)

@@ -5,6 +5,7 @@
  * before them, what was culled and why, the resources with their lifetimes and memory blocks, and
  * totals (including what aliasing saved). It reads the plan only. */
 #include "graph.h"
+#include "graph_report.h"
 
 #include <inttypes.h>
 #include <stdio.h>
@@ -16,6 +17,28 @@ static const char *pass_name_at(const pg_graph_plan *plan, int pos)
     if (pos < 0) return "-";
     if ((uint32_t)pos >= plan->n_order) return "(end)";
     return plan->passes[plan->order[pos]].name;
+}
+
+uint32_t pg_graph_plan_count_barriers(const pg_graph_plan *plan)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < plan->n_passes; i++) n += plan->passes[i].n_barriers;
+    return n;
+}
+
+uint32_t pg_graph_plan_count_culled(const pg_graph_plan *plan)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < plan->n_passes; i++) n += plan->passes[i].culled;
+    return n;
+}
+
+double pg_graph_plan_saving_percent(const pg_graph_plan *plan)
+{
+    if (!plan->transient_bytes_unaliased || plan->transient_bytes_aliased > plan->transient_bytes_unaliased)
+        return 0.0;
+    return 100.0 * (double)(plan->transient_bytes_unaliased - plan->transient_bytes_aliased) /
+           (double)plan->transient_bytes_unaliased;
 }
 
 static void print_barrier(FILE *f, const pg_graph_plan *plan, const pg_barrier *b)
@@ -139,11 +162,7 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
         fprintf(f, "(no plan)\n");
         return;
     }
-    uint32_t n_barriers = 0, n_culled = 0;
-    for (uint32_t i = 0; i < plan->n_passes; i++) {
-        n_barriers += plan->passes[i].n_barriers;
-        n_culled += plan->passes[i].culled;
-    }
+    const uint32_t n_culled = pg_graph_plan_count_culled(plan);
     if (pipeline)
         fprintf(f, "pipeline '%s'%s%s%s\n", pipeline->name, pipeline->path[0] ? " (" : "",
                 pipeline->path, pipeline->path[0] ? ")" : "");
@@ -254,14 +273,9 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
     char un[32], al[32];
     pg_fmt_bytes(plan->transient_bytes_unaliased, un, sizeof un);
     pg_fmt_bytes(plan->transient_bytes_aliased, al, sizeof al);
-    const double saving =
-        plan->transient_bytes_unaliased
-            ? 100.0 * (double)(plan->transient_bytes_unaliased - plan->transient_bytes_aliased) /
-                  (double)plan->transient_bytes_unaliased
-            : 0.0;
     fprintf(f, "\ntotals: %u passes run, %u culled; %u barriers (+%u after the last pass); "
                "transient memory %s (%" PRIu64 " B) unaliased -> %s (%" PRIu64
                " B) aliased, saving %.1f%%\n",
-            plan->n_order, n_culled, n_barriers, plan->n_final_barriers, un,
-            plan->transient_bytes_unaliased, al, plan->transient_bytes_aliased, saving);
+            plan->n_order, n_culled, pg_graph_plan_count_barriers(plan), plan->n_final_barriers, un,
+            plan->transient_bytes_unaliased, al, plan->transient_bytes_aliased, pg_graph_plan_saving_percent(plan));
 }

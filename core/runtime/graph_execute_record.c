@@ -14,16 +14,9 @@
  * orders everything, the passes' own resources included. */
 static void emit_full_barrier(VkCommandBuffer cmd)
 {
-    VkMemoryBarrier2 mb = {
-        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-        .srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-        .srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT,
-        .dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-        .dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
-    };
-    VkDependencyInfo di = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
-                           .pMemoryBarriers = &mb};
-    vkCmdPipelineBarrier2(cmd, &di);
+    pg_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                          VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 }
 
 static void emit_barriers(pg_runtime *rt, VkCommandBuffer cmd, uint32_t n, const pg_barrier *bars)
@@ -51,17 +44,7 @@ static void emit_barriers(pg_runtime *rt, VkCommandBuffer cmd, uint32_t n, const
             ib[ni++] = pg_image_barrier(r->image, pg_vk_aspect(r->format), src_stages, src_access, b->dst_stages,
                                         b->dst_access, (VkImageLayout)old_layout, (VkImageLayout)b->new_layout);
         } else {
-            bb[nb++] = (VkBufferMemoryBarrier2){
-                .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
-                .srcStageMask = src_stages,
-                .srcAccessMask = src_access,
-                .dstStageMask = b->dst_stages,
-                .dstAccessMask = b->dst_access,
-                .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                .buffer = r->buffer,
-                .size = VK_WHOLE_SIZE,
-            };
+            bb[nb++] = pg_buffer_barrier(r->buffer, src_stages, src_access, b->dst_stages, b->dst_access);
         }
     }
     pg_cmd_barriers(cmd, ni, ib, nb, bb);
@@ -96,12 +79,10 @@ static void emit_qfots(pg_runtime *rt, VkCommandBuffer cmd, uint32_t b, bool rel
             x.dstQueueFamilyIndex = df;
             ib[ni++] = x;
         } else if (!t->is_image && nb < PG_MAX_RESOURCES) {
-            bb[nb++] = (VkBufferMemoryBarrier2){
-                .sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
-                .srcStageMask = ss, .srcAccessMask = sa, .dstStageMask = ds, .dstAccessMask = da,
-                .srcQueueFamilyIndex = sf, .dstQueueFamilyIndex = df,
-                .buffer = r->buffer, .size = VK_WHOLE_SIZE,
-            };
+            VkBufferMemoryBarrier2 x = pg_buffer_barrier(r->buffer, ss, sa, ds, da);
+            x.srcQueueFamilyIndex = sf;
+            x.dstQueueFamilyIndex = df;
+            bb[nb++] = x;
         }
     }
     if (ni || nb) pg_cmd_barriers(cmd, ni, ib, nb, bb);

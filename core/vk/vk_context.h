@@ -197,6 +197,9 @@ VkImageMemoryBarrier2 pg_image_barrier(VkImage image, VkImageAspectFlags aspect,
                                        VkImageLayout old_layout, VkImageLayout new_layout);
 void pg_cmd_barriers(VkCommandBuffer cmd, uint32_t n_images, const VkImageMemoryBarrier2 *images,
                      uint32_t n_buffers, const VkBufferMemoryBarrier2 *buffers);
+/* One global memory barrier (every resource) from the source stages/access to the destination ones. */
+void pg_cmd_memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                           VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
 
 #ifdef __cplusplus
 }

@@ -225,18 +225,40 @@ VkImageMemoryBarrier2 pg_image_barrier(VkImage image, VkImageAspectFlags aspect,
     return b;
 }
 
-void pg_cmd_barriers(VkCommandBuffer cmd, uint32_t n_images, const VkImageMemoryBarrier2 *images,
-                     uint32_t n_buffers, const VkBufferMemoryBarrier2 *buffers)
+static void cmd_dependency(VkCommandBuffer cmd, const VkMemoryBarrier2 *memory, uint32_t n_images,
+                           const VkImageMemoryBarrier2 *images, uint32_t n_buffers,
+                           const VkBufferMemoryBarrier2 *buffers)
 {
-    if (!n_images && !n_buffers) return;
     VkDependencyInfo dep = {
         .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+        .memoryBarrierCount = memory ? 1 : 0,
+        .pMemoryBarriers = memory,
         .bufferMemoryBarrierCount = n_buffers,
         .pBufferMemoryBarriers = buffers,
         .imageMemoryBarrierCount = n_images,
         .pImageMemoryBarriers = images,
     };
     vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void pg_cmd_barriers(VkCommandBuffer cmd, uint32_t n_images, const VkImageMemoryBarrier2 *images,
+                     uint32_t n_buffers, const VkBufferMemoryBarrier2 *buffers)
+{
+    if (!n_images && !n_buffers) return;
+    cmd_dependency(cmd, NULL, n_images, images, n_buffers, buffers);
+}
+
+void pg_cmd_memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                           VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access)
+{
+    VkMemoryBarrier2 mb = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+        .srcStageMask = src_stage,
+        .srcAccessMask = src_access,
+        .dstStageMask = dst_stage,
+        .dstAccessMask = dst_access,
+    };
+    cmd_dependency(cmd, &mb, 0, NULL, 0, NULL);
 }
 
 VkResult pg_gpu_alloc_memory(pg_gpu *gpu, const VkMemoryAllocateInfo *info, VkDeviceMemory *out)

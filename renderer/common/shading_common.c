@@ -39,20 +39,24 @@ pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const c
         return pg_fail(err, PG_ERR_SCHEMA, "%s: %s: debug view '%s' needs a clustered pass (forward_plus or deferred_lighting)",
                        desc->file, key, pg_debug_views[o->view]);
     }
-    if (clustered) {
+    if (clustered && (r = pg_cluster_grid_read(desc, o->grid, err))) return r;
+    return PG_OK;
+}
+
+pg_result pg_cluster_grid_read(const pg_pass_desc *desc, uint32_t grid[3], pg_error *err)
+{
+    static const char *const gk[3] = {"grid_x", "grid_y", "grid_z"};
+    static const int64_t gd[3] = {PG_CLUSTER_GRID_DEFAULT_X, PG_CLUSTER_GRID_DEFAULT_Y, PG_CLUSTER_GRID_DEFAULT_Z};
+    for (int k = 0; k < 3; k++) {
         int64_t v;
-        static const char *const gk[3] = {"grid_x", "grid_y", "grid_z"};
-        static const int64_t gd[3] = {PG_CLUSTER_GRID_DEFAULT_X, PG_CLUSTER_GRID_DEFAULT_Y,
-                                       PG_CLUSTER_GRID_DEFAULT_Z};
-        for (int k = 0; k < 3; k++) {
-            if ((r = pg_opt_int(desc, gk[k], gd[k], 1, 1024, &v, err))) return r;
-            o->grid[k] = (uint32_t)v;
-        }
-        uint64_t cells = (uint64_t)o->grid[0] * o->grid[1] * o->grid[2];
-        if (cells > (1u << 22))
-            return pg_fail(err, PG_ERR_LIMIT, "%s: %s.options: cluster grid %ux%ux%u has more than 2^22 clusters",
-                           desc->file, desc->json_path, o->grid[0], o->grid[1], o->grid[2]);
+        pg_result r = pg_opt_int(desc, gk[k], gd[k], 1, 1024, &v, err);
+        if (r) return r;
+        grid[k] = (uint32_t)v;
     }
+    uint64_t cells = (uint64_t)grid[0] * grid[1] * grid[2];
+    if (cells > (1u << 22))
+        return pg_fail(err, PG_ERR_LIMIT, "%s: %s.options: cluster grid %ux%ux%u has more than 2^22 clusters",
+                       desc->file, desc->json_path, grid[0], grid[1], grid[2]);
     return PG_OK;
 }
 

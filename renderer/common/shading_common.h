@@ -47,6 +47,9 @@ extern const char *const pg_shading_runtime_options[];
  * the light slots (sp->lights, and sp->cluster_counts/lists when clustered) unused with 0 lights; sets
  * sp->has_lights. */
 void pg_shading_declare(pg_shading_params *sp, const pg_declare_in *in, pg_pass_decl *out);
+/* Options grid_x, grid_y, grid_z (1..1024, defaults PG_CLUSTER_GRID_DEFAULT_*; at most 2^22
+ * clusters): the cluster grid, read alike by the clustered shading passes and cluster_assign. */
+pg_result pg_cluster_grid_read(const pg_pass_desc *desc, uint32_t grid[3], pg_error *err);
 /* Set 2: lights (+ cluster counts and lists). Leaves *out zeroed when the pass has no lights. */
 pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, const pg_shading_params *sp, pg_pass_set *out,
                               pg_error *err);

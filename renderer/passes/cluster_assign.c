@@ -38,6 +38,7 @@
 #include "graph_execute.h"
 #include "pass_api.h"
 #include "shader.h"
+#include "shading_common.h"
 #include "pass_set.h"
 #include "vk_pipeline.h"
 
@@ -91,19 +92,9 @@ static pg_result read_opts(const pg_pass_desc *desc, ca_opts *o, pg_error *err)
 {
     pg_result r;
     int64_t v;
-    static const char *const gk[3] = {"grid_x", "grid_y", "grid_z"};
-    static const int64_t gd[3] = {PG_CLUSTER_GRID_DEFAULT_X, PG_CLUSTER_GRID_DEFAULT_Y,
-                                   PG_CLUSTER_GRID_DEFAULT_Z};
     memset(o, 0, sizeof *o);
     if ((r = pg_opt_check_known(desc, k_known, err))) return r;
-    for (int k = 0; k < 3; k++) {
-        if ((r = pg_opt_int(desc, gk[k], gd[k], 1, 1024, &v, err))) return r;
-        o->grid[k] = (uint32_t)v;
-    }
-    uint64_t cells = (uint64_t)o->grid[0] * o->grid[1] * o->grid[2];
-    if (cells > (1u << 22))
-        return pg_fail(err, PG_ERR_LIMIT, "%s: %s.options: cluster grid %ux%ux%u has more than 2^22 clusters",
-                       desc->file, desc->json_path, o->grid[0], o->grid[1], o->grid[2]);
+    if ((r = pg_cluster_grid_read(desc, o->grid, err))) return r;
     if ((r = pg_opt_int(desc, "max_lights", 0, 0, 16777216, &v, err))) return r;
     o->max_lights = (uint32_t)v;
     double mb;
@@ -274,16 +265,9 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 /* compute -> compute on every buffer the steps share */
 static void step_barrier(VkCommandBuffer cmd)
 {
-    VkMemoryBarrier2 mb = {
-        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-        .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-        .srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-        .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-        .dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-    };
-    VkDependencyInfo di = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
-                           .pMemoryBarriers = &mb};
-    vkCmdPipelineBarrier2(cmd, &di);
+    pg_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 static void dispatch_groups(VkCommandBuffer cmd, uint32_t groups)

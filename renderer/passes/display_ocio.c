@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "display_common.h"
 #include "exr.h"
 #include "graph_execute.h"
 #include "ocio.h"
@@ -333,23 +334,15 @@ out:
 static void do_record(void *self, const pg_pass_record_ctx *ctx)
 {
     display_ocio *p = self;
-    VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
-    if (p->compute) {
-        vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
-        vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 2, sets, 0, NULL);
-        vkCmdPushConstants(ctx->cmd, p->layout, PG_PUSH_STAGES, 0, sizeof(float), &p->exposure);
-        vkCmdDispatch(ctx->cmd, (p->width + 7) / 8, (p->height + 7) / 8, 1);
+    if (!p->compute) {
+        pg_display_record_fullscreen(ctx, p->ldr_slot, p->pipeline, p->layout, p->set.set, p->exposure);
         return;
     }
-    VkClearColorValue clear = {{0, 0, 0, 1}};
-    pg_pass_begin_rendering(ctx, 1, &p->ldr_slot, &clear, -1, false, 0);
-    vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
-    vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->layout, 0, 2, sets, 0, NULL);
-    vkCmdPushConstants(ctx->cmd, p->layout,
-                       PG_PUSH_STAGES, 0,
-                       sizeof(float), &p->exposure);
-    vkCmdDraw(ctx->cmd, 3, 1, 0, 0);
-    vkCmdEndRendering(ctx->cmd);
+    VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
+    vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
+    vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 2, sets, 0, NULL);
+    vkCmdPushConstants(ctx->cmd, p->layout, PG_PUSH_STAGES, 0, sizeof(float), &p->exposure);
+    vkCmdDispatch(ctx->cmd, (p->width + 7) / 8, (p->height + 7) / 8, 1);
 }
 
 static void do_destroy(void *self, pg_gpu *gpu)

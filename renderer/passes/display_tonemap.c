@@ -7,6 +7,7 @@
  * operator. */
 #include <string.h>
 
+#include "display_common.h"
 #include "graph_execute.h"
 #include "pass_api.h"
 #include "shader.h"
@@ -91,16 +92,7 @@ out:
 static void dt_record(void *self, const pg_pass_record_ctx *ctx)
 {
     display_tonemap *p = self;
-    VkClearColorValue clear = {{0, 0, 0, 1}};
-    pg_pass_begin_rendering(ctx, 1, &p->ldr_slot, &clear, -1, false, 0);
-    VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
-    vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
-    vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->layout, 0, 2, sets, 0, NULL);
-    vkCmdPushConstants(ctx->cmd, p->layout,
-                       PG_PUSH_STAGES, 0,
-                       sizeof(float), &p->exposure);
-    vkCmdDraw(ctx->cmd, 3, 1, 0, 0);
-    vkCmdEndRendering(ctx->cmd);
+    pg_display_record_fullscreen(ctx, p->ldr_slot, p->pipeline, p->layout, p->set.set, p->exposure);
 }
 
 static void dt_destroy(void *self, pg_gpu *gpu)

@@ -118,16 +118,9 @@ static void lh_record(void *self, const pg_pass_record_ctx *ctx)
     vkCmdPushConstants(ctx->cmd, p->layout, PG_PUSH_STAGES, 0, sizeof pc, pc);
     vkCmdDispatch(ctx->cmd, 1, 1, 1);
     /* the clear -> the counting dispatch, within the pass: the pass's own barrier */
-    VkMemoryBarrier2 mb = {
-        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-        .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-        .srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-        .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-        .dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-    };
-    VkDependencyInfo di = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
-                           .pMemoryBarriers = &mb};
-    vkCmdPipelineBarrier2(ctx->cmd, &di);
+    pg_cmd_memory_barrier(ctx->cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     pc[2] = 1;
     vkCmdPushConstants(ctx->cmd, p->layout, PG_PUSH_STAGES, 0, sizeof pc, pc);
     vkCmdDispatch(ctx->cmd, (hdr->width + 15) / 16, (hdr->height + 15) / 16, 1);

@@ -299,19 +299,11 @@ static void ref_record(void *self, const pg_pass_record_ctx *ctx)
     VkImageMemoryBarrier2 b[2];
     uint32_t nb = p->has_accum_specular ? 2 : 1;
     for (uint32_t k = 0; k < nb; k++)
-        b[k] = (VkImageMemoryBarrier2){
-            .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
-            .srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-            .srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-            .dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-            .dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-            .oldLayout = VK_IMAGE_LAYOUT_GENERAL,
-            .newLayout = VK_IMAGE_LAYOUT_GENERAL,
-            .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-            .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-            .image = pg_ctx_res(ctx, p->accum[k])->image,
-            .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1},
-        };
+        b[k] = pg_image_barrier(pg_ctx_res(ctx, p->accum[k])->image, VK_IMAGE_ASPECT_COLOR_BIT,
+                                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
     for (uint32_t first = 0; first < n; first += chunk) {
         uint32_t end = n - first > chunk ? first + chunk : n;
         uint32_t mode = (first > 0 ? REF_MODE_LOAD : 0u) | (end < n ? REF_MODE_STORE : 0u);

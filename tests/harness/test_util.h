@@ -37,5 +37,9 @@ int pg_test_skip(const char *suite, const char *why);
  * submissions too (VK_LAYER_ENABLES += VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT;
  * off by default in layer 1.3.239): hazards between frames in flight. */
 void pg_test_queue_submit_validation(void);
+/* The names of the files in folder dir that end in suffix and have more before it, sorted; at
+ * most max, each malloc'd (pg_test_free_names). -1 when dir does not open. */
+int pg_test_list_files(const char *dir, const char *suffix, char **names, int max);
+void pg_test_free_names(char **names, int n);
 
 #endif

@@ -6,7 +6,6 @@
  * of live bytes (the lower bound: no placement can do better with these lifetimes);
  * --no-aliasing gives every transient its own block. Prints the
  * numbers (the README's table comes from tools/alias_table.sh). */
-#include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -96,15 +95,14 @@ int main(void)
     pg_register_builtin_passes(&g_reg);
     char dir[1024];
     snprintf(dir, sizeof dir, "%s/../pipelines", PG_TEST_DIR);
-    DIR *d = opendir(dir);
-    CHECK(d != NULL);
+    char *names[64];
+    const int n_names = pg_test_list_files(dir, ".json", names, 64);
+    CHECK(n_names >= 0);
     int shipped = 0;
-    struct dirent *e;
-    while (d && (e = readdir(d))) {
-        size_t len = strlen(e->d_name);
-        if (len < 6 || strcmp(e->d_name + len - 5, ".json")) continue;
+    for (int i = 0; i < n_names; i++) {
+        const char *name = names[i];
         char path[1400];
-        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        snprintf(path, sizeof path, "%s/%s", dir, name);
         pg_pipeline *pl = NULL;
         pg_error err = {0};
         if (pg_pipeline_load(path, NULL, 0, &pl, &err)) {
@@ -122,11 +120,11 @@ int main(void)
                                   256, NULL);
                 pg_graph_plan *p = NULL;
                 if (pg_graph_compile(&cd, &p, &err)) {
-                    CHECK_MSG(0, "%s: %s", e->d_name, err.msg);
+                    CHECK_MSG(0, "%s: %s", name, err.msg);
                     continue;
                 }
                 char what[128];
-                snprintf(what, sizeof what, "%s%s%s", e->d_name, rich ? " (all features)" : "",
+                snprintf(what, sizeof what, "%s%s%s", name, rich ? " (all features)" : "",
                          off ? " --no-aliasing" : "");
                 check_plan(p, what);
                 if (!off) /* the shipped pipelines pack to the lower bound */
@@ -142,7 +140,7 @@ int main(void)
         }
         pg_pipeline_free(pl);
     }
-    if (d) closedir(d);
+    pg_test_free_names(names, n_names);
     CHECK(shipped >= 6);
     return pg_test_finish("test_alias_plans");
 }

@@ -6,6 +6,7 @@
  * with the built-in pass types: their transparent pass is skipped without BLEND materials. */
 #include "graph.h"
 #include "pipeline.h"
+#include "fake_passes.h"
 #include "test_util.h"
 
 #include <cjson/cJSON.h>
@@ -30,25 +31,12 @@ static const pg_resource_desc *find_res(const pg_pipeline *pl, const char *name)
 #define FRAG PG_STAGE_FRAGMENT
 #define COMP PG_STAGE_COMPUTE
 
-static pg_result d_color(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
-{
-    (void)in, (void)e;
-    pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
-    return PG_OK;
-}
 static pg_result d_depth_color(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
 {
     (void)in, (void)e;
     pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
     pg_decl_write(d, "depth", IMG, PG_ACCESS_DEPTH_WRITE, 0, PG_FMTCLASS_DEPTH);
     pg_decl_define(d, "HAS_DEPTH");
-    return PG_OK;
-}
-static pg_result d_blur(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
-{
-    (void)in, (void)e;
-    pg_decl_read(d, "src", IMG, PG_ACCESS_SAMPLED, FRAG, PG_FMTCLASS_FLOAT);
-    pg_decl_write(d, "dst", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
     return PG_OK;
 }
 static pg_result d_blend(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
@@ -63,20 +51,6 @@ static pg_result d_blur_cs(const pg_declare_in *in, pg_pass_decl *d, pg_error *e
     (void)in, (void)e;
     pg_decl_read(d, "src", IMG, PG_ACCESS_SAMPLED, COMP, PG_FMTCLASS_FLOAT);
     pg_decl_write(d, "dst", IMG, PG_ACCESS_STORAGE_WRITE, COMP, PG_FMTCLASS_ANY_COLOR);
-    return PG_OK;
-}
-static pg_result d_compose2(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
-{
-    (void)in, (void)e;
-    pg_decl_read(d, "a", IMG, PG_ACCESS_SAMPLED, FRAG, PG_FMTCLASS_FLOAT);
-    pg_decl_read(d, "b", IMG, PG_ACCESS_SAMPLED, FRAG, PG_FMTCLASS_FLOAT);
-    pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
-    return PG_OK;
-}
-static pg_result d_compute_buf(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
-{
-    (void)in, (void)e;
-    pg_decl_write(d, "buf", BUF, PG_ACCESS_STORAGE_WRITE, COMP, 0);
     return PG_OK;
 }
 static pg_result d_buf_to_color(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
@@ -173,12 +147,6 @@ static pg_result d_bad_partial(const pg_declare_in *in, pg_pass_decl *d, pg_erro
     (void)in, (void)e;
     pg_slot w = pg_decl_write(d, "img", IMG, PG_ACCESS_STORAGE_RW, COMP, PG_FMTCLASS_ANY_COLOR);
     pg_decl_mark_partial(d, w);
-    return PG_OK;
-}
-static pg_result d_storage_write(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
-{
-    (void)in, (void)e;
-    pg_decl_write(d, "img", IMG, PG_ACCESS_STORAGE_WRITE, COMP, PG_FMTCLASS_ANY_COLOR);
     return PG_OK;
 }
 static pg_result d_storage_read(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
@@ -296,13 +264,13 @@ static pg_result d_rnd(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
 
 #define TYPE(n, fn, rs, ws) {.name = n, .summary = "test type", .declare = fn} /* rs, ws: the slots, for the reader */
 static const pg_pass_type g_types[] = {
-    TYPE("fake_color", d_color, "", "color"),
+    TYPE("fake_color", pg_fake_color, "", "color"),
     TYPE("fake_depth_color", d_depth_color, "", "color, depth"),
-    TYPE("fake_blur", d_blur, "src", "dst"),
+    TYPE("fake_blur", pg_fake_blur, "src", "dst"),
     TYPE("fake_blend", d_blend, "src", "dst"),
     TYPE("fake_blur_cs", d_blur_cs, "src", "dst"),
-    TYPE("fake_compose2", d_compose2, "a, b", "color"),
-    TYPE("fake_compute_buf", d_compute_buf, "", "buf"),
+    TYPE("fake_compose2", pg_fake_compose2, "a, b", "color"),
+    TYPE("fake_compute_buf", pg_fake_fill_buffer, "", "buf"),
     TYPE("fake_buf_to_color", d_buf_to_color, "buf", "color"),
     TYPE("fake_buf_blur", d_buf_blur, "buf, src", "color"),
     TYPE("fake_buf_maybe", d_buf_maybe, "buf", "color"),
@@ -311,7 +279,7 @@ static const pg_pass_type g_types[] = {
     TYPE("fake_depth_read", d_depth_read, "depth", "color"),
     TYPE("fake_depth_sample", d_depth_sample, "depth, depth_tex", "color"),
     TYPE("fake_storage_rw", d_storage_rw, "", "img"),
-    TYPE("fake_storage_write", d_storage_write, "", "img"),
+    TYPE("fake_storage_write", pg_fake_storage_write, "", "img"),
     TYPE("fake_storage_read", d_storage_read, "img, src", "dst"),
     TYPE("fake_side", d_side, "buf", ""),
     TYPE("fake_transparent", d_transparent, "buf, depth", "color"),

@@ -1,7 +1,6 @@
 /* test_graph_corpus.c - pipeline files that parse but must fail to compile against the built-in
  * pass types (tests/corpus/graph/MANIFEST: file, exact pg_result, message fragment), and every
  * shipped pipeline in pipelines/ must load and compile for the default scene's features. */
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -63,21 +62,19 @@ int main(void)
     /* every shipped pipeline compiles */
     char dir[1024];
     snprintf(dir, sizeof dir, "%s/../pipelines", PG_TEST_DIR);
-    DIR *d = opendir(dir);
-    CHECK(d != NULL);
+    char *names[64];
+    const int n_names = pg_test_list_files(dir, ".json", names, 64);
+    CHECK(n_names >= 0);
     int shipped = 0;
-    struct dirent *e;
-    while (d && (e = readdir(d))) {
-        size_t len = strlen(e->d_name);
-        if (len < 6 || strcmp(e->d_name + len - 5, ".json")) continue;
+    for (int i = 0; i < n_names; i++) {
         char path[1400];
-        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
         pg_error err = {0};
         pg_result r = load_compile(path, &err);
-        CHECK_MSG(r == PG_OK, "shipped %s: %s", e->d_name, err.msg);
+        CHECK_MSG(r == PG_OK, "shipped %s: %s", names[i], err.msg);
         shipped++;
     }
-    if (d) closedir(d);
+    pg_test_free_names(names, n_names);
     CHECK(shipped >= 5);
 
     /* leave out what the scene does not need: compile the shipped pipelines for a scene without

@@ -9,6 +9,7 @@
 #include "graph.h"
 #include "graph_dump.h"
 #include "pass_list.h"
+#include "fake_passes.h"
 #include "scene_vars.h"
 #include "test_util.h"
 
@@ -25,25 +26,6 @@
 #define IMG PG_RES_IMAGE
 #define BUF PG_RES_BUFFER
 
-static pg_result d_color(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
-{
-    (void)in, (void)e;
-    pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
-    return PG_OK;
-}
-static pg_result d_blur(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
-{
-    (void)in, (void)e;
-    pg_decl_read(d, "src", IMG, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
-    pg_decl_write(d, "dst", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
-    return PG_OK;
-}
-static pg_result d_fill(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
-{
-    (void)in, (void)e;
-    pg_decl_write(d, "buf", BUF, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
-    return PG_OK;
-}
 /* reads a buffer (unused with 0 lights) and an image; explains what it left out */
 static pg_result d_final(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
 {
@@ -59,9 +41,9 @@ static pg_result d_final(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
 
 #define TYPE(n, fn, rs, ws) {.name = n, .summary = "test type", .declare = fn} /* rs, ws: the slots, for the reader */
 static const pg_pass_type g_types[] = {
-    TYPE("fake_color", d_color, "", "color"),
-    TYPE("fake_blur", d_blur, "src", "dst"),
-    TYPE("fake_fill", d_fill, "", "buf"),
+    TYPE("fake_color", pg_fake_color, "", "color"),
+    TYPE("fake_blur", pg_fake_blur, "src", "dst"),
+    TYPE("fake_fill", pg_fake_fill_buffer, "", "buf"),
     TYPE("fake_final", d_final, "buf, src", "color"),
 };
 static pg_pass_registry g_reg;

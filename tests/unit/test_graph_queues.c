@@ -10,6 +10,7 @@
 #include "graph_dump.h"
 #include "pass_list.h"
 #include "pipeline.h"
+#include "fake_passes.h"
 #include "scene_vars.h"
 #include "test_util.h"
 
@@ -36,12 +37,6 @@ static pg_result d_assign(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
     pg_decl_write(d, "clusters", BUF, PG_ACCESS_STORAGE_WRITE, COMP, 0);
     return PG_OK;
 }
-static pg_result d_noise(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
-{
-    (void)in, (void)e;
-    pg_decl_write(d, "img", IMG, PG_ACCESS_STORAGE_WRITE, COMP, PG_FMTCLASS_ANY_COLOR);
-    return PG_OK;
-}
 static pg_result d_raster(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
 {
     (void)in, (void)e;
@@ -55,14 +50,6 @@ static pg_result d_light_cs(const pg_declare_in *in, pg_pass_decl *d, pg_error *
     pg_decl_read(d, "clusters", BUF, PG_ACCESS_STORAGE_READ, COMP, 0);
     pg_decl_read(d, "depth", IMG, PG_ACCESS_SAMPLED, COMP, PG_FMTCLASS_DEPTH);
     pg_decl_write(d, "hdr", IMG, PG_ACCESS_STORAGE_WRITE, COMP, PG_FMTCLASS_ANY_COLOR);
-    return PG_OK;
-}
-static pg_result d_present2(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
-{
-    (void)in, (void)e;
-    pg_decl_read(d, "a", IMG, PG_ACCESS_SAMPLED, FRAG, PG_FMTCLASS_FLOAT);
-    pg_decl_read(d, "b", IMG, PG_ACCESS_SAMPLED, FRAG, PG_FMTCLASS_FLOAT);
-    pg_decl_write(d, "color", IMG, PG_ACCESS_COLOR_WRITE, 0, PG_FMTCLASS_FLOAT);
     return PG_OK;
 }
 static pg_result d_show(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
@@ -82,9 +69,9 @@ static pg_result d_stat(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
 #define TYPE(n, fn, rs, ws) {.name = n, .summary = "test type", .declare = fn} /* rs, ws: the slots, for the reader */
 static const pg_pass_type g_types[] = {
     TYPE("q_anim", d_anim, "", "lights"),          TYPE("q_assign", d_assign, "lights", "clusters"),
-    TYPE("q_noise", d_noise, "", "img"),           TYPE("q_raster", d_raster, "", "color, depth"),
+    TYPE("q_noise", pg_fake_storage_write, "", "img"),           TYPE("q_raster", d_raster, "", "color, depth"),
     TYPE("q_light_cs", d_light_cs, "clusters, depth", "hdr"),
-    TYPE("q_present2", d_present2, "a, b", "color"), TYPE("q_show", d_show, "a", "color"),
+    TYPE("q_present2", pg_fake_compose2, "a, b", "color"), TYPE("q_show", d_show, "a", "color"),
     TYPE("q_stat", d_stat, "lights", ""),
 };
 static pg_pass_registry g_reg;
