@@ -20,8 +20,6 @@ SOURCE_DIRS = ('core', 'scene', 'color', 'image', 'renderer', 'app')
 
 # "path:function" -> why it may be longer than MAX_LINES
 EXCEPTIONS = {
-    'app/view/cmd_view.c:pg_cmd_view':
-        'pending split: option loop, window and GPU set-up, the frame loop and teardown in one',
     'core/vk/vk_context.c:pg_gpu_create':
         'pending split: a linear table of Vulkan feature and extension queries, device and queue '
         'creation; the review moves the pipeline cache out of it',
