@@ -20,8 +20,6 @@ SOURCE_DIRS = ('core', 'scene', 'color', 'image', 'renderer', 'app')
 
 # "path:function" -> why it may be longer than MAX_LINES
 EXCEPTIONS = {
-    'app/cmd_render.c:pg_cmd_render':
-        'pending split: option loop, session, frames and outputs; the path-input branch edits it',
     'app/view/view_frame.c:draw_frame':
         'pending split: one viewer frame (acquire, render, colour, UI, present, capture)',
     'renderer/scene_gpu.c:pg_scene_gpu_create':
