@@ -22,8 +22,6 @@ SOURCE_DIRS = ('core', 'scene', 'color', 'image', 'renderer', 'app')
 EXCEPTIONS = {
     'app/view/view_frame.c:draw_frame':
         'pending split: one viewer frame (acquire, render, colour, UI, present, capture)',
-    'renderer/scene_gpu.c:pg_scene_gpu_create':
-        'pending split: buffers, textures, samplers and the descriptor sets of a scene upload',
     'app/cmd_compare.c:pg_cmd_compare':
         'pending split: option loop, both renders and the report; the path-input branch edits it',
     'app/bench/bench_merge.c:pg_cmd_bench_merge':
@@ -32,8 +30,6 @@ EXCEPTIONS = {
         'a linear list of ImGui widgets, one per setting',
     'app/bench/cmd_bench.c:pg_cmd_bench':
         'pending split: the nested sweep loops (scenes, sizes, lights, pipelines, variants)',
-    'renderer/scene_gpu.c:upload':
-        'pending split: staging and copying each scene array in turn',
     'core/graph/pipeline_json_params.c:parse_param_decl':
         'pending split: each field of a parameter declaration by type (bool, int, float, enum)',
     'core/dump/graph_dump_json.c:json_body':
