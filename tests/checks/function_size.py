@@ -20,14 +20,10 @@ SOURCE_DIRS = ('core', 'scene', 'color', 'image', 'renderer', 'app')
 
 # "path:function" -> why it may be longer than MAX_LINES
 EXCEPTIONS = {
-    'app/view/view_frame.c:draw_frame':
-        'pending split: one viewer frame (acquire, render, colour, UI, present, capture)',
     'app/cmd_compare.c:pg_cmd_compare':
         'pending split: option loop, both renders and the report; the path-input branch edits it',
     'app/bench/bench_merge.c:pg_cmd_bench_merge':
         'pending split: reading and checking every shard; the path-input branch edits it',
-    'app/view/view_ui.c:build_ui':
-        'a linear list of ImGui widgets, one per setting',
     'app/bench/cmd_bench.c:pg_cmd_bench':
         'pending split: the nested sweep loops (scenes, sizes, lights, pipelines, variants)',
     'core/graph/pipeline_json_params.c:parse_param_decl':
