@@ -30,8 +30,6 @@ EXCEPTIONS = {
         'pending split: each field of a parameter declaration by type (bool, int, float, enum)',
     'core/dump/graph_dump_json.c:json_body':
         'a linear list of the plan\'s fields written as JSON, in dump-format.md order',
-    'app/cli.c:pg_cli_parse_common':
-        'a linear list of the common options, one branch each',
     'app/bench/bench_run.c:run_row':
         'pending split: warm-up, timed frames, error frame and statistics of one row',
     'app/bench/bench_options.c:pg_bench_plan_variants':
