@@ -22,20 +22,10 @@ SOURCE_DIRS = ('core', 'scene', 'color', 'image', 'renderer', 'app')
 EXCEPTIONS = {
     'app/cmd_compare.c:pg_cmd_compare':
         'pending split: option loop, both renders and the report; the path-input branch edits it',
-    'app/bench/bench_merge.c:pg_cmd_bench_merge':
-        'pending split: reading and checking every shard; the path-input branch edits it',
-    'app/bench/cmd_bench.c:pg_cmd_bench':
-        'pending split: the nested sweep loops (scenes, sizes, lights, pipelines, variants)',
     'core/graph/pipeline_json_params.c:parse_param_decl':
         'pending split: each field of a parameter declaration by type (bool, int, float, enum)',
     'core/dump/graph_dump_json.c:json_body':
         'a linear list of the plan\'s fields written as JSON, in dump-format.md order',
-    'app/bench/bench_run.c:run_row':
-        'pending split: warm-up, timed frames, error frame and statistics of one row',
-    'app/bench/bench_options.c:pg_bench_plan_variants':
-        'pending split: sweep keys, reference sets and variant loading in one',
-    'app/bench/cmd_bench.c:bench_setup':
-        'a linear option loop, one branch per bench option',
     'core/graph/graph_queues.c:pg_queues_schedule':
         'pending split: batches, queue-family ownership transfers and semaphores in one walk',
     'core/graph/graph_report.c:pg_graph_plan_print':
