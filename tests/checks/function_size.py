@@ -26,10 +26,6 @@ EXCEPTIONS = {
         'a linear list of the plan\'s fields written as JSON, in dump-format.md order',
     'core/graph/graph_report.c:pg_graph_plan_print':
         'the text report, section by section; see the two plan printers in the review (c)8',
-    'image/exr.c:pg_exr_read_rgba':
-        'OpenEXRCore\'s decode sequence (header, channels, chunks), each step checked',
-    'color/ocio_shim.cpp:pg_ocio_shader_create':
-        'OCIO\'s GPU shader sequence (processor, shader desc, textures, uniforms), each checked',
 }
 
 
