@@ -139,6 +139,116 @@ static pg_result set_debug_view(pg_cli_common *c, const char *opt, const char *v
 static const char *g_include_dirs[PG_MAX_INCLUDE_DIRS];
 static uint32_t g_n_include_dirs;
 
+/* --include-dir DIR: one more folder for the pipeline loader's includes */
+static pg_result add_include_dir(const char *v, pg_error *err)
+{
+    if (g_n_include_dirs >= PG_MAX_INCLUDE_DIRS)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--include-dir: more than %d folders", PG_MAX_INCLUDE_DIRS);
+    g_include_dirs[g_n_include_dirs] = v;
+    pg_result r = pg_pipeline_set_include_dirs(g_include_dirs, g_n_include_dirs + 1, err);
+    if (r) {
+        if (err) err->code = PG_ERR_INVALID_ARG;
+        return PG_ERR_INVALID_ARG;
+    }
+    g_n_include_dirs++;
+    return PG_OK;
+}
+
+/* --size WxH, each side 1..16384 */
+static pg_result parse_size(pg_cli_common *c, const char *v, pg_error *err)
+{
+    const char *x = strchr(v, 'x');
+    if (!x) return pg_fail(err, PG_ERR_INVALID_ARG, "--size %s: expected WxH, e.g. 640x360", v);
+    char wbuf[32];
+    size_t wl = (size_t)(x - v);
+    if (wl == 0 || wl >= sizeof wbuf) return pg_fail(err, PG_ERR_INVALID_ARG, "--size %s: expected WxH", v);
+    memcpy(wbuf, v, wl);
+    wbuf[wl] = 0;
+    uint64_t w, h;
+    pg_result r;
+    if ((r = parse_u64("--size width", wbuf, 1, 16384, &w, err))) return r;
+    if ((r = parse_u64("--size height", x + 1, 1, 16384, &h, err))) return r;
+    c->width = (uint32_t)w;
+    c->height = (uint32_t)h;
+    return PG_OK;
+}
+
+/* --set KEY=VALUE, split in place (argv strings are writable) */
+static pg_result add_set(pg_cli_common *c, char *v, pg_error *err)
+{
+    const char *eq = strchr(v, '=');
+    if (!eq || eq == v) return pg_fail(err, PG_ERR_INVALID_ARG, "--set %s: expected KEY=VALUE", v);
+    if (c->n_sets >= PG_CLI_MAX_SETS) return pg_fail(err, PG_ERR_INVALID_ARG, "--set: at most %d", PG_CLI_MAX_SETS);
+    v[eq - v] = 0;
+    c->sets[c->n_sets].key = v;
+    c->sets[c->n_sets].value = v + (eq - v) + 1;
+    c->n_sets++;
+    return PG_OK;
+}
+
+/* --device N (an index 0..15) or NAME (a part of the device name) */
+static pg_result parse_device(pg_cli_common *c, const char *a, const char *v, pg_error *err)
+{
+    if (v[0] >= '0' && v[0] <= '9') {
+        uint64_t u;
+        pg_result r = parse_u64(a, v, 0, 15, &u, err);
+        if (r) return r;
+        c->device_index = (int)u;
+    } else {
+        c->device_match = v;
+    }
+    return PG_OK;
+}
+
+/* --view NAME: an OCIO view of the chosen display, else a debug view; a config that does not load
+ * is reported by the display pass (or by --ocio-config / --display), not here */
+static pg_result parse_view(pg_cli_common *c, int argc, char **argv, const char *a, const char *v, pg_error *err)
+{
+    c->view = v;
+    pg_ocio_config *cfg = NULL;
+    pg_error ignored = {0};
+    bool is_ocio = false;
+    if (!open_config(argc, argv, &cfg, &ignored)) {
+        is_ocio = pg_ocio_has_view(cfg, prescan(argc, argv, "--display"), v);
+        pg_ocio_close(cfg);
+    }
+    if (!is_ocio) return set_debug_view(c, a, v, err);
+    c->ocio_view = v;
+    rebuild_settings(c);
+    return PG_OK;
+}
+
+/* --ocio-config FILE, --display NAME, --ocio-view NAME: checked against the config now */
+static pg_result parse_ocio_option(pg_cli_common *c, int argc, char **argv, const char *a, const char *v,
+                                   pg_error *err)
+{
+    if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: empty name", a);
+    pg_ocio_config *cfg = NULL;
+    pg_result r;
+    if ((r = open_config(argc, argv, &cfg, err))) return pg_error_prefix(err, "%s", a);
+    const char *display = prescan(argc, argv, "--display");
+    if (!strcmp(a, "--display")) r = pg_ocio_resolve(cfg, v, NULL, NULL, 0, NULL, 0, err);
+    else if (!strcmp(a, "--ocio-view")) r = pg_ocio_resolve(cfg, display, v, NULL, 0, NULL, 0, err);
+    pg_ocio_close(cfg);
+    if (r) return pg_error_prefix(err, "%s %s", a, v);
+    if (!strcmp(a, "--ocio-config")) c->ocio_config = v;
+    else if (!strcmp(a, "--display")) c->display = v;
+    else c->ocio_view = v;
+    rebuild_settings(c);
+    return PG_OK;
+}
+
+/* --async-compute on|off|emulate */
+static pg_result parse_async_compute(pg_cli_common *c, const char *v, pg_error *err)
+{
+    if (!strcmp(v, "on")) c->async_compute = PG_ASYNC_ON;
+    else if (!strcmp(v, "off")) c->async_compute = PG_ASYNC_OFF;
+    else if (!strcmp(v, "emulate")) c->async_compute = PG_ASYNC_EMULATE;
+    else return pg_fail(err, PG_ERR_INVALID_ARG, "--async-compute: '%s': expected on, off or emulate", v);
+    return PG_OK;
+}
+
+/* The common options, one branch each (the longer ones in the helpers above). */
 pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, bool *used, pg_error *err)
 {
     const char *a = argv[*i];
@@ -156,15 +266,7 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         c->pipeline = v;
     } else if (!strcmp(a, "--include-dir")) {
         NEED_VALUE();
-        if (g_n_include_dirs >= PG_MAX_INCLUDE_DIRS)
-            return pg_fail(err, PG_ERR_INVALID_ARG, "--include-dir: more than %d folders", PG_MAX_INCLUDE_DIRS);
-        g_include_dirs[g_n_include_dirs] = v;
-        r = pg_pipeline_set_include_dirs(g_include_dirs, g_n_include_dirs + 1, err);
-        if (r) {
-            if (err) err->code = PG_ERR_INVALID_ARG;
-            return PG_ERR_INVALID_ARG;
-        }
-        g_n_include_dirs++;
+        if ((r = add_include_dir(v, err))) return r;
     } else if (!strcmp(a, "--scene")) {
         NEED_VALUE();
         c->scene = v;
@@ -209,72 +311,22 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         c->has_ambient = true;
     } else if (!strcmp(a, "--size")) {
         NEED_VALUE();
-        const char *x = strchr(v, 'x');
-        if (!x) return pg_fail(err, PG_ERR_INVALID_ARG, "--size %s: expected WxH, e.g. 640x360", v);
-        char wbuf[32];
-        size_t wl = (size_t)(x - v);
-        if (wl == 0 || wl >= sizeof wbuf) return pg_fail(err, PG_ERR_INVALID_ARG, "--size %s: expected WxH", v);
-        memcpy(wbuf, v, wl);
-        wbuf[wl] = 0;
-        uint64_t w, h;
-        if ((r = parse_u64("--size width", wbuf, 1, 16384, &w, err))) return r;
-        if ((r = parse_u64("--size height", x + 1, 1, 16384, &h, err))) return r;
-        c->width = (uint32_t)w;
-        c->height = (uint32_t)h;
+        if ((r = parse_size(c, v, err))) return r;
     } else if (!strcmp(a, "--set")) {
         NEED_VALUE();
-        const char *eq = strchr(v, '=');
-        if (!eq || eq == v) return pg_fail(err, PG_ERR_INVALID_ARG, "--set %s: expected KEY=VALUE", v);
-        if (c->n_sets >= PG_CLI_MAX_SETS) return pg_fail(err, PG_ERR_INVALID_ARG, "--set: at most %d", PG_CLI_MAX_SETS);
-        /* split in place: argv strings are writable */
-        char *mut = argv[*i];
-        mut[eq - v] = 0;
-        c->sets[c->n_sets].key = mut;
-        c->sets[c->n_sets].value = mut + (eq - v) + 1;
-        c->n_sets++;
+        if ((r = add_set(c, argv[*i], err))) return r;
     } else if (!strcmp(a, "--device")) {
         NEED_VALUE();
-        if (v[0] >= '0' && v[0] <= '9') {
-            if ((r = parse_u64(a, v, 0, 15, &u, err))) return r;
-            c->device_index = (int)u;
-        } else {
-            c->device_match = v;
-        }
+        if ((r = parse_device(c, a, v, err))) return r;
     } else if (!strcmp(a, "--view")) {
         NEED_VALUE();
-        c->view = v;
-        /* an OCIO view of the chosen display, else a debug view; a config that does not load is
-         * reported by the display pass (or by --ocio-config / --display), not here */
-        pg_ocio_config *cfg = NULL;
-        pg_error ignored = {0};
-        bool is_ocio = false;
-        if (!open_config(argc, argv, &cfg, &ignored)) {
-            is_ocio = pg_ocio_has_view(cfg, prescan(argc, argv, "--display"), v);
-            pg_ocio_close(cfg);
-        }
-        if (is_ocio) {
-            c->ocio_view = v;
-            rebuild_settings(c);
-        } else if ((r = set_debug_view(c, a, v, err))) {
-            return r;
-        }
+        if ((r = parse_view(c, argc, argv, a, v, err))) return r;
     } else if (!strcmp(a, "--debug-view")) {
         NEED_VALUE();
         if ((r = set_debug_view(c, a, v, err))) return r;
     } else if (!strcmp(a, "--ocio-config") || !strcmp(a, "--display") || !strcmp(a, "--ocio-view")) {
         NEED_VALUE();
-        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: empty name", a);
-        pg_ocio_config *cfg = NULL;
-        if ((r = open_config(argc, argv, &cfg, err))) return pg_error_prefix(err, "%s", a);
-        const char *display = prescan(argc, argv, "--display");
-        if (!strcmp(a, "--display")) r = pg_ocio_resolve(cfg, v, NULL, NULL, 0, NULL, 0, err);
-        else if (!strcmp(a, "--ocio-view")) r = pg_ocio_resolve(cfg, display, v, NULL, 0, NULL, 0, err);
-        pg_ocio_close(cfg);
-        if (r) return pg_error_prefix(err, "%s %s", a, v);
-        if (!strcmp(a, "--ocio-config")) c->ocio_config = v;
-        else if (!strcmp(a, "--display")) c->display = v;
-        else c->ocio_view = v;
-        rebuild_settings(c);
+        if ((r = parse_ocio_option(c, argc, argv, a, v, err))) return r;
     } else if (!strcmp(a, "--validation")) {
         c->validation = true;
     } else if (!strcmp(a, "--no-aliasing")) {
@@ -285,10 +337,7 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         c->immediate = true;
     } else if (!strcmp(a, "--async-compute")) {
         NEED_VALUE();
-        if (!strcmp(v, "on")) c->async_compute = PG_ASYNC_ON;
-        else if (!strcmp(v, "off")) c->async_compute = PG_ASYNC_OFF;
-        else if (!strcmp(v, "emulate")) c->async_compute = PG_ASYNC_EMULATE;
-        else return pg_fail(err, PG_ERR_INVALID_ARG, "--async-compute: '%s': expected on, off or emulate", v);
+        if ((r = parse_async_compute(c, v, err))) return r;
     } else if (!strcmp(a, "--explain")) {
         c->explain = true;
     } else if (!strcmp(a, "--quiet")) {

@@ -304,6 +304,122 @@ struct ShaderOwner { /* frees a half-built pg_ocio_shader on any early return */
 };
 } // namespace
 
+/* texture i of the shader description (3D LUTs first, then 1D/2D ones): its shape, channels,
+ * sampler name, interpolation and values */
+static void describe_texture(const OCIO::GpuShaderDescRcPtr &sd, uint32_t i, uint32_t n3, pg_ocio_texture *t,
+                             const char *&sampler, const float *&values, OCIO::Interpolation &interp)
+{
+    const char *tex_name = nullptr;
+    if (i < n3) {
+        unsigned edge = 0;
+        sd->get3DTexture(i, tex_name, sampler, edge, interp);
+        sd->get3DTextureValues(i, values);
+        t->dim = PG_OCIO_TEX_3D;
+        t->width = t->height = t->depth = edge;
+        t->channels = 3;
+    } else {
+        unsigned w = 0, h = 0;
+        OCIO::GpuShaderDesc::TextureType ch = OCIO::GpuShaderDesc::TEXTURE_RGB_CHANNEL;
+        sd->getTexture(i - n3, tex_name, sampler, w, h, ch, interp);
+        sd->getTextureValues(i - n3, values);
+        t->dim = h > 1 ? PG_OCIO_TEX_2D : PG_OCIO_TEX_1D;
+        t->width = w;
+        t->height = h ? h : 1;
+        t->depth = 1;
+        t->channels = ch == OCIO::GpuShaderDesc::TEXTURE_RED_CHANNEL ? 1 : 3;
+    }
+}
+
+/* the LUT textures copied out of OCIO, bound from desc->first_binding on (throws bad_alloc) */
+static pg_result copy_textures(const OCIO::GpuShaderDescRcPtr &sd, const pg_ocio_shader_desc *desc, const char *path,
+                               pg_ocio_shader *s, pg_error *err)
+{
+    uint32_t n3 = sd->getNum3DTextures(), n12 = sd->getNumTextures();
+    s->n_textures = n3 + n12;
+    if (s->n_textures) {
+        s->textures = (pg_ocio_texture *)calloc(s->n_textures, sizeof(pg_ocio_texture));
+        if (!s->textures) throw std::bad_alloc();
+    }
+    for (uint32_t i = 0; i < s->n_textures; i++) {
+        pg_ocio_texture *t = &s->textures[i];
+        const char *sampler = nullptr;
+        const float *values = nullptr;
+        OCIO::Interpolation interp = OCIO::INTERP_LINEAR;
+        describe_texture(sd, i, n3, t, sampler, values, interp);
+        if (!sampler || !values || !t->width || strlen(sampler) >= sizeof t->sampler)
+            return pg_fail(err, PG_ERR_SCHEMA, "%s: display '%s', view '%s': OCIO gave an unusable LUT texture",
+                           path, s->display, s->view);
+        snprintf(t->sampler, sizeof t->sampler, "%s", sampler);
+        /* OCIO computes tetrahedral / nearest interpolation itself from exact texel fetches */
+        t->linear = interp != OCIO::INTERP_NEAREST && interp != OCIO::INTERP_TETRAHEDRAL;
+        t->binding = desc->first_binding + i;
+        size_t n = (size_t)t->width * t->height * t->depth * t->channels;
+        float *copy = (float *)malloc(n * sizeof(float));
+        if (!copy) throw std::bad_alloc();
+        memcpy(copy, values, n * sizeof(float));
+        t->values = copy;
+    }
+    return PG_OK;
+}
+
+/* a "uniform TYPE NAME;" line of OCIO's shader (from column p): one of the textures' samplers,
+ * given its set and binding; its dimension taken from the declaration */
+static pg_result bind_sampler(const std::string &line, size_t p, const pg_ocio_shader_desc *desc, const char *path,
+                              pg_ocio_shader *s, std::string &glsl, pg_error *err)
+{
+    std::istringstream words(line.substr(p + 8));
+    std::string type, name;
+    words >> type >> name;
+    if (!name.empty() && name.back() == ';') name.pop_back();
+    const pg_ocio_texture *t = nullptr;
+    for (uint32_t i = 0; i < s->n_textures; i++)
+        if (name == s->textures[i].sampler) t = &s->textures[i];
+    if (type.compare(0, 7, "sampler") != 0 || !t)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: display '%s', view '%s': OCIO's shader declares "
+                       "'%s', which passgraph cannot bind", path, s->display, s->view, line.c_str() + p);
+    pg_ocio_texture *tm = &s->textures[t - s->textures];
+    if (type == "sampler1D") tm->dim = PG_OCIO_TEX_1D;
+    else if (type == "sampler2D") tm->dim = PG_OCIO_TEX_2D;
+    else if (type == "sampler3D") tm->dim = PG_OCIO_TEX_3D;
+    else
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: OCIO sampler type '%s' is not supported", path,
+                       type.c_str());
+    if (tm->dim == PG_OCIO_TEX_1D && tm->height != 1)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: OCIO declares '%s' 1D but gives %ux%u texels", path,
+                       tm->sampler, tm->width, tm->height);
+    char decl[256];
+    snprintf(decl, sizeof decl, "layout(set = %u, binding = %u) uniform %s %s;", desc->set, tm->binding,
+             type.c_str(), tm->sampler);
+    glsl += decl;
+    return PG_OK;
+}
+
+/* GLSL 4.0 -> Vulkan GLSL: bind every sampler; any other default-block uniform is refused */
+static pg_result vulkan_glsl(const char *text, const pg_ocio_shader_desc *desc, const char *path, pg_ocio_shader *s,
+                             std::string &glsl, pg_error *err)
+{
+    std::istringstream in(text);
+    std::string line;
+    pg_result r;
+    while (std::getline(in, line)) {
+        size_t p = line.find_first_not_of(" \t");
+        if (p != std::string::npos && line.compare(p, 8, "uniform ") == 0) {
+            if ((r = bind_sampler(line, p, desc, path, s, glsl, err))) return r;
+        } else if (line.compare(0, 6, "const ") == 0 && line.find('[') < line.find('=')) {
+            /* a global constant array (GradingRGBCurve knots, ...): glslang copies a const
+             * array into a temporary at every dynamically indexed read; a private global
+             * is indexed in place (Filmic (ACES) at 320x180 on lavapipe: 2100 ms -> 2.7 ms) */
+            glsl += line.substr(6);
+        } else {
+            glsl += line;
+        }
+        glsl += '\n';
+    }
+    return PG_OK;
+}
+
+/* OCIO's GPU shader sequence: the display/view resolved, its processor, the shader description,
+ * the LUT textures, the shader text made Vulkan GLSL; each step checked */
 extern "C" pg_result pg_ocio_shader_create(const pg_ocio_config *cfg, const pg_ocio_shader_desc *desc,
                                            pg_ocio_shader **out, pg_error *err)
 {
@@ -335,89 +451,9 @@ extern "C" pg_result pg_ocio_shader_create(const pg_ocio_config *cfg, const pg_o
                            "%s: display '%s', view '%s' needs %u shader uniform(s) (OCIO dynamic properties), which "
                            "passgraph's display pass does not support", path, s->display, s->view,
                            sd->getNumUniforms());
-        /* the textures: 3D LUTs first, then 1D/2D ones; bindings in that order */
-        uint32_t n3 = sd->getNum3DTextures(), n12 = sd->getNumTextures();
-        s->n_textures = n3 + n12;
-        if (s->n_textures) {
-            s->textures = (pg_ocio_texture *)calloc(s->n_textures, sizeof(pg_ocio_texture));
-            if (!s->textures) throw std::bad_alloc();
-        }
-        for (uint32_t i = 0; i < s->n_textures; i++) {
-            pg_ocio_texture *t = &s->textures[i];
-            const char *tex_name = nullptr, *sampler = nullptr;
-            const float *values = nullptr;
-            OCIO::Interpolation interp = OCIO::INTERP_LINEAR;
-            if (i < n3) {
-                unsigned edge = 0;
-                sd->get3DTexture(i, tex_name, sampler, edge, interp);
-                sd->get3DTextureValues(i, values);
-                t->dim = PG_OCIO_TEX_3D;
-                t->width = t->height = t->depth = edge;
-                t->channels = 3;
-            } else {
-                unsigned w = 0, h = 0;
-                OCIO::GpuShaderDesc::TextureType ch = OCIO::GpuShaderDesc::TEXTURE_RGB_CHANNEL;
-                sd->getTexture(i - n3, tex_name, sampler, w, h, ch, interp);
-                sd->getTextureValues(i - n3, values);
-                t->dim = h > 1 ? PG_OCIO_TEX_2D : PG_OCIO_TEX_1D;
-                t->width = w;
-                t->height = h ? h : 1;
-                t->depth = 1;
-                t->channels = ch == OCIO::GpuShaderDesc::TEXTURE_RED_CHANNEL ? 1 : 3;
-            }
-            if (!sampler || !values || !t->width || strlen(sampler) >= sizeof t->sampler)
-                return pg_fail(err, PG_ERR_SCHEMA, "%s: display '%s', view '%s': OCIO gave an unusable LUT texture",
-                               path, s->display, s->view);
-            snprintf(t->sampler, sizeof t->sampler, "%s", sampler);
-            /* OCIO computes tetrahedral / nearest interpolation itself from exact texel fetches */
-            t->linear = interp != OCIO::INTERP_NEAREST && interp != OCIO::INTERP_TETRAHEDRAL;
-            t->binding = desc->first_binding + i;
-            size_t n = (size_t)t->width * t->height * t->depth * t->channels;
-            float *copy = (float *)malloc(n * sizeof(float));
-            if (!copy) throw std::bad_alloc();
-            memcpy(copy, values, n * sizeof(float));
-            t->values = copy;
-        }
-        /* GLSL 4.0 -> Vulkan GLSL: bind every sampler; any other default-block uniform is refused */
-        std::istringstream in(sd->getShaderText());
-        std::string glsl, line;
-        while (std::getline(in, line)) {
-            size_t p = line.find_first_not_of(" \t");
-            if (p != std::string::npos && line.compare(p, 8, "uniform ") == 0) {
-                std::istringstream words(line.substr(p + 8));
-                std::string type, name;
-                words >> type >> name;
-                if (!name.empty() && name.back() == ';') name.pop_back();
-                const pg_ocio_texture *t = nullptr;
-                for (uint32_t i = 0; i < s->n_textures; i++)
-                    if (name == s->textures[i].sampler) t = &s->textures[i];
-                if (type.compare(0, 7, "sampler") != 0 || !t)
-                    return pg_fail(err, PG_ERR_INVALID_ARG, "%s: display '%s', view '%s': OCIO's shader declares "
-                                   "'%s', which passgraph cannot bind", path, s->display, s->view, line.c_str() + p);
-                pg_ocio_texture *tm = &s->textures[t - s->textures];
-                if (type == "sampler1D") tm->dim = PG_OCIO_TEX_1D;
-                else if (type == "sampler2D") tm->dim = PG_OCIO_TEX_2D;
-                else if (type == "sampler3D") tm->dim = PG_OCIO_TEX_3D;
-                else
-                    return pg_fail(err, PG_ERR_INVALID_ARG, "%s: OCIO sampler type '%s' is not supported", path,
-                                   type.c_str());
-                if (tm->dim == PG_OCIO_TEX_1D && tm->height != 1)
-                    return pg_fail(err, PG_ERR_INVALID_ARG, "%s: OCIO declares '%s' 1D but gives %ux%u texels", path,
-                                   tm->sampler, tm->width, tm->height);
-                char decl[256];
-                snprintf(decl, sizeof decl, "layout(set = %u, binding = %u) uniform %s %s;", desc->set, tm->binding,
-                         type.c_str(), tm->sampler);
-                glsl += decl;
-            } else if (line.compare(0, 6, "const ") == 0 && line.find('[') < line.find('=')) {
-                /* a global constant array (GradingRGBCurve knots, ...): glslang copies a const
-                 * array into a temporary at every dynamically indexed read; a private global
-                 * is indexed in place (Filmic (ACES) at 320x180 on lavapipe: 2100 ms -> 2.7 ms) */
-                glsl += line.substr(6);
-            } else {
-                glsl += line;
-            }
-            glsl += '\n';
-        }
+        if ((r = copy_textures(sd, desc, path, s, err))) return r;
+        std::string glsl;
+        if ((r = vulkan_glsl(sd->getShaderText(), desc, path, s, glsl, err))) return r;
         s->glsl = (char *)malloc(glsl.size() + 1);
         if (!s->glsl) throw std::bad_alloc();
         memcpy(s->glsl, glsl.c_str(), glsl.size() + 1);

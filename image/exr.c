@@ -132,6 +132,114 @@ pg_result pg_exr_write_rgba(const char *path, const float *rgba, uint32_t w, uin
     return r;
 }
 
+/* the R, G and B channels are present and none of R, G, B, A is subsampled */
+static pg_result check_channels(const char *path, const exr_attr_chlist_t *chl, pg_error *err)
+{
+    int have = 0;
+    for (int i = 0; chl && i < chl->num_channels; i++) {
+        int c = channel_index(chl->entries[i].name.str);
+        if (c >= 0) {
+            if (chl->entries[i].x_sampling != 1 || chl->entries[i].y_sampling != 1)
+                return pg_fail(err, PG_ERR_PARSE, "%s: subsampled channel '%s' is not supported", path,
+                               chl->entries[i].name.str);
+            have |= 1 << c;
+        }
+    }
+    if ((have & 7) != 7) return pg_fail(err, PG_ERR_PARSE, "%s: the EXR has no R, G and B channels", path);
+    return PG_OK;
+}
+
+/* part 0's header: a scanline image, its data window (at most 65536 a side), its scanlines per
+ * chunk and its channels */
+static pg_result read_header(exr_context_t ctx, const char *path, const exr_msg *m, exr_attr_box2i_t *dw,
+                             int32_t *lines, pg_error *err)
+{
+    exr_storage_t storage;
+    const exr_attr_chlist_t *chl = NULL;
+    exr_result_t rv;
+    if ((rv = exr_get_storage(ctx, 0, &storage)) || (rv = exr_get_data_window(ctx, 0, dw)) ||
+        (rv = exr_get_channels(ctx, 0, &chl)) || (rv = exr_get_scanlines_per_chunk(ctx, 0, lines)))
+        return exr_fail(err, path, "cannot read the header", rv, m);
+    if (storage != EXR_STORAGE_SCANLINE) return pg_fail(err, PG_ERR_PARSE, "%s: only scanline EXR images are read", path);
+    int64_t w = (int64_t)dw->max.x - dw->min.x + 1, h = (int64_t)dw->max.y - dw->min.y + 1;
+    if (w < 1 || h < 1 || w > 65536 || h > 65536)
+        return pg_fail(err, PG_ERR_PARSE, "%s: unsupported data window %lldx%lld", path, (long long)w, (long long)h);
+    return check_channels(path, chl, err);
+}
+
+/* each R, G, B, A channel of the chunk decoded in its own type into its plane (c) of `plane`
+ * (plane_px pixels each); the others skipped */
+static void bind_planes(exr_decode_pipeline_t *dec, uint8_t *plane, size_t plane_px, int64_t w)
+{
+    for (int16_t k = 0; k < dec->channel_count; k++) {
+        exr_coding_channel_info_t *ch = &dec->channels[k];
+        int c = channel_index(ch->channel_name);
+        if (c < 0) {
+            ch->decode_to_ptr = NULL; /* skipped */
+            continue;
+        }
+        ch->user_data_type = ch->data_type;
+        ch->user_bytes_per_element = ch->bytes_per_element;
+        ch->user_pixel_stride = ch->bytes_per_element;
+        ch->user_line_stride = (int32_t)(w * ch->bytes_per_element);
+        ch->decode_to_ptr = plane + (size_t)c * plane_px * 4;
+    }
+}
+
+/* the decoded planes converted to floats into dst's RGBA pixels */
+static void planes_to_rgba(const exr_decode_pipeline_t *dec, const uint8_t *plane, size_t plane_px, float *dst)
+{
+    for (int16_t k = 0; k < dec->channel_count; k++) {
+        const exr_coding_channel_info_t *ch = &dec->channels[k];
+        int c = channel_index(ch->channel_name);
+        if (c < 0) continue;
+        const uint8_t *src = plane + (size_t)c * plane_px * 4;
+        for (size_t i = 0; i < plane_px; i++) {
+            float v;
+            if (ch->data_type == EXR_PIXEL_HALF) {
+                uint16_t hv;
+                memcpy(&hv, src + i * 2, 2);
+                v = pg_half_to_float(hv);
+            } else if (ch->data_type == EXR_PIXEL_FLOAT) {
+                memcpy(&v, src + i * 4, 4);
+            } else {
+                uint32_t u;
+                memcpy(&u, src + i * 4, 4);
+                v = (float)u;
+            }
+            dst[i * 4 + (size_t)c] = v;
+        }
+    }
+}
+
+/* Every chunk of the data window dw decoded into px (w pixels a line). Each channel is decoded in
+ * its own type into its own plane of a chunk-sized buffer and converted here: OpenEXRCore 3.1.5's
+ * converting / interleaving unpackers mix up the channels of 4 half channels decoded as
+ * interleaved floats (found by tests/test_ocio.c). */
+static exr_result_t decode_chunks(exr_context_t ctx, exr_decode_pipeline_t *dec, bool *dec_ready,
+                                  const exr_attr_box2i_t *dw, int32_t lines, int64_t w, uint8_t *plane, float *px)
+{
+    exr_result_t rv = EXR_ERR_SUCCESS;
+    for (int64_t y = dw->min.y; y <= dw->max.y; y += lines) {
+        exr_chunk_info_t ci;
+        if ((rv = exr_read_scanline_chunk_info(ctx, 0, (int)y, &ci))) break;
+        rv = *dec_ready ? exr_decoding_update(ctx, 0, &ci, dec) : exr_decoding_initialize(ctx, 0, &ci, dec);
+        if (rv != EXR_ERR_SUCCESS) break;
+        if (ci.height > lines || ci.width != w) {
+            rv = EXR_ERR_BAD_CHUNK_LEADER;
+            break;
+        }
+        size_t plane_px = (size_t)ci.height * (size_t)w;
+        bind_planes(dec, plane, plane_px, w);
+        if ((rv = exr_decoding_choose_default_routines(ctx, 0, dec))) break;
+        *dec_ready = true;
+        if ((rv = exr_decoding_run(ctx, 0, dec))) break;
+        planes_to_rgba(dec, plane, plane_px, px + (size_t)(ci.start_y - dw->min.y) * (size_t)w * 4);
+    }
+    return rv;
+}
+
+/* OpenEXRCore's sequence: open, header, then every chunk decoded; A is 1 where absent */
 pg_result pg_exr_read_rgba(const char *path, float **out, uint32_t *out_w, uint32_t *out_h, pg_error *err)
 {
     *out = NULL;
@@ -151,40 +259,10 @@ pg_result pg_exr_read_rgba(const char *path, float **out, uint32_t *out_w, uint3
         r = exr_fail(err, path, "cannot read", rv, &m);
         goto done;
     }
-    exr_storage_t storage;
     exr_attr_box2i_t dw;
-    const exr_attr_chlist_t *chl = NULL;
     int32_t lines = 1;
-    if ((rv = exr_get_storage(ctx, 0, &storage)) || (rv = exr_get_data_window(ctx, 0, &dw)) ||
-        (rv = exr_get_channels(ctx, 0, &chl)) || (rv = exr_get_scanlines_per_chunk(ctx, 0, &lines))) {
-        r = exr_fail(err, path, "cannot read the header", rv, &m);
-        goto done;
-    }
-    if (storage != EXR_STORAGE_SCANLINE) {
-        r = pg_fail(err, PG_ERR_PARSE, "%s: only scanline EXR images are read", path);
-        goto done;
-    }
+    if ((r = read_header(ctx, path, &m, &dw, &lines, err))) goto done;
     int64_t w = (int64_t)dw.max.x - dw.min.x + 1, h = (int64_t)dw.max.y - dw.min.y + 1;
-    if (w < 1 || h < 1 || w > 65536 || h > 65536) {
-        r = pg_fail(err, PG_ERR_PARSE, "%s: unsupported data window %lldx%lld", path, (long long)w, (long long)h);
-        goto done;
-    }
-    int have = 0;
-    for (int i = 0; chl && i < chl->num_channels; i++) {
-        int c = channel_index(chl->entries[i].name.str);
-        if (c >= 0) {
-            if (chl->entries[i].x_sampling != 1 || chl->entries[i].y_sampling != 1) {
-                r = pg_fail(err, PG_ERR_PARSE, "%s: subsampled channel '%s' is not supported", path,
-                            chl->entries[i].name.str);
-                goto done;
-            }
-            have |= 1 << c;
-        }
-    }
-    if ((have & 7) != 7) {
-        r = pg_fail(err, PG_ERR_PARSE, "%s: the EXR has no R, G and B channels", path);
-        goto done;
-    }
     px = malloc((size_t)w * h * 4 * sizeof(float));
     if (!px) {
         r = pg_fail(err, PG_ERR_OOM, "%s: out of memory", path);
@@ -192,63 +270,12 @@ pg_result pg_exr_read_rgba(const char *path, float **out, uint32_t *out_w, uint3
     }
     for (size_t i = 0; i < (size_t)w * h; i++) px[i * 4 + 3] = 1.0f;
     if (lines < 1) lines = 1;
-    /* Each channel is decoded in its own type into its own plane of a chunk-sized buffer and
-     * converted here: OpenEXRCore 3.1.5's converting / interleaving unpackers mix up the channels
-     * of 4 half channels decoded as interleaved floats (found by tests/test_ocio.c). */
     plane = malloc((size_t)lines * (size_t)w * 4 * 4);
     if (!plane) {
         r = pg_fail(err, PG_ERR_OOM, "%s: out of memory", path);
         goto done;
     }
-    for (int64_t y = dw.min.y; y <= dw.max.y; y += lines) {
-        exr_chunk_info_t ci;
-        if ((rv = exr_read_scanline_chunk_info(ctx, 0, (int)y, &ci))) break;
-        rv = dec_ready ? exr_decoding_update(ctx, 0, &ci, &dec) : exr_decoding_initialize(ctx, 0, &ci, &dec);
-        if (rv != EXR_ERR_SUCCESS) break;
-        if (ci.height > lines || ci.width != w) {
-            rv = EXR_ERR_BAD_CHUNK_LEADER;
-            break;
-        }
-        size_t plane_px = (size_t)ci.height * (size_t)w;
-        for (int16_t k = 0; k < dec.channel_count; k++) {
-            exr_coding_channel_info_t *ch = &dec.channels[k];
-            int c = channel_index(ch->channel_name);
-            if (c < 0) {
-                ch->decode_to_ptr = NULL; /* skipped */
-                continue;
-            }
-            ch->user_data_type = ch->data_type;
-            ch->user_bytes_per_element = ch->bytes_per_element;
-            ch->user_pixel_stride = ch->bytes_per_element;
-            ch->user_line_stride = (int32_t)(w * ch->bytes_per_element);
-            ch->decode_to_ptr = plane + (size_t)c * plane_px * 4;
-        }
-        if ((rv = exr_decoding_choose_default_routines(ctx, 0, &dec))) break;
-        dec_ready = true;
-        if ((rv = exr_decoding_run(ctx, 0, &dec))) break;
-        float *dst = px + (size_t)(ci.start_y - dw.min.y) * (size_t)w * 4;
-        for (int16_t k = 0; k < dec.channel_count; k++) {
-            const exr_coding_channel_info_t *ch = &dec.channels[k];
-            int c = channel_index(ch->channel_name);
-            if (c < 0) continue;
-            const uint8_t *src = plane + (size_t)c * plane_px * 4;
-            for (size_t i = 0; i < plane_px; i++) {
-                float v;
-                if (ch->data_type == EXR_PIXEL_HALF) {
-                    uint16_t hv;
-                    memcpy(&hv, src + i * 2, 2);
-                    v = pg_half_to_float(hv);
-                } else if (ch->data_type == EXR_PIXEL_FLOAT) {
-                    memcpy(&v, src + i * 4, 4);
-                } else {
-                    uint32_t u;
-                    memcpy(&u, src + i * 4, 4);
-                    v = (float)u;
-                }
-                dst[i * 4 + (size_t)c] = v;
-            }
-        }
-    }
+    rv = decode_chunks(ctx, &dec, &dec_ready, &dw, lines, w, plane, px);
     if (rv != EXR_ERR_SUCCESS) {
         r = exr_fail(err, path, "cannot decode", rv, &m);
         goto done;

@@ -4,124 +4,141 @@
 #include <stdlib.h>
 #include <string.h>
 
-static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg_error *err)
+/* Where each part lies in the one staging buffer: vertices | colours | uv1 | indices | materials |
+ * white texel | every mip of every texture (16-byte aligned from the white texel on). */
+typedef struct staging_layout {
+    VkDeviceSize vb, cb, ub, ib, mb; /* bytes of vertices, colours, uv1, indices, materials */
+    uint32_t n_mat;                  /* materials (1, the default, when the scene has none) */
+    VkDeviceSize v_off, c_off, u_off, i_off, m_off, white_off;
+    VkDeviceSize *tex_off; /* per texture */
+} staging_layout;
+
+/* the byte counts of L and the staging buffer's size */
+static VkDeviceSize staging_size(const pg_scene_gpu *sg, const pg_scene *scene, staging_layout *L)
 {
-    /* one staging buffer: vertices | indices | materials | every mip of every texture */
-    VkDeviceSize vb = (VkDeviceSize)scene->n_vertices * sizeof(pg_vertex);
-    VkDeviceSize cb = sg->colors.buffer ? (VkDeviceSize)scene->n_vertices * sizeof(float[4]) : 0;
-    VkDeviceSize ub = sg->uv1.buffer ? (VkDeviceSize)scene->n_vertices * sizeof(float[2]) : 0;
-    VkDeviceSize ib = (VkDeviceSize)scene->n_indices * sizeof(uint32_t);
-    uint32_t n_mat = scene->n_materials ? scene->n_materials : 1;
-    VkDeviceSize mb = (VkDeviceSize)n_mat * sizeof(pg_gpu_material);
-    VkDeviceSize total = vb + cb + ub + ib + mb + 16;
+    L->vb = (VkDeviceSize)scene->n_vertices * sizeof(pg_vertex);
+    L->cb = sg->colors.buffer ? (VkDeviceSize)scene->n_vertices * sizeof(float[4]) : 0;
+    L->ub = sg->uv1.buffer ? (VkDeviceSize)scene->n_vertices * sizeof(float[2]) : 0;
+    L->ib = (VkDeviceSize)scene->n_indices * sizeof(uint32_t);
+    L->n_mat = scene->n_materials ? scene->n_materials : 1;
+    L->mb = (VkDeviceSize)L->n_mat * sizeof(pg_gpu_material);
+    VkDeviceSize total = L->vb + L->cb + L->ub + L->ib + L->mb + 16;
     for (uint32_t t = 0; t < scene->n_textures; t++) total += (scene->textures[t].data_size + 15) & ~(VkDeviceSize)15;
     total += 16; /* white texel */
+    return total;
+}
 
-    pg_result r;
-    pg_buffer staging;
-    if ((r = pg_buffer_create(gpu, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, "scene.staging", &staging, err)))
-        return r;
-    uint8_t *dst = staging.mapped;
+/* a material as the shaders read it */
+static void gpu_material(const pg_material *s, pg_gpu_material *out)
+{
+    pg_gpu_material g;
+    memset(&g, 0, sizeof g);
+    memcpy(g.base_color, s->base_color, sizeof g.base_color);
+    /* texture i of the scene is image i+1 on the GPU (0 is white) */
+    g.tex[0] = s->base_color_tex >= 0 ? s->base_color_tex + 1 : -1;
+    g.tex[1] = s->normal_tex >= 0 ? s->normal_tex + 1 : -1;
+    g.tex[2] = (int32_t)s->alpha_mode;
+    g.tex[3] = s->double_sided ? 1 : 0;
+    g.params[0] = s->alpha_cutoff;
+    g.params[1] = s->normal_scale;
+    g.params[2] = s->specular;
+    g.params[3] = s->shininess;
+    memcpy(g.emissive, s->emissive, sizeof s->emissive);
+    g.tex2[0] = s->emissive_tex >= 0 ? s->emissive_tex + 1 : -1;
+    for (int t = 0; t < PG_TEXSLOT_COUNT; t++) {
+        if (s->tex_coord[t] == 1) g.tex2[1] |= 1 << t;
+        for (int k = 0; k < 3; k++) {
+            g.uv_xform[t][0][k] = s->uv_transform[t][k];
+            g.uv_xform[t][1][k] = s->uv_transform[t][3 + k];
+        }
+    }
+    memcpy(out, &g, sizeof g);
+}
+
+/* the scene's arrays, materials and textures written to the staging memory; offsets into L */
+static void fill_staging(uint8_t *dst, const pg_scene *scene, staging_layout *L)
+{
     VkDeviceSize off = 0;
-    memcpy(dst + off, scene->vertices, vb);
-    VkDeviceSize v_off = off;
-    off += vb;
-    VkDeviceSize c_off = off;
-    if (cb) memcpy(dst + off, scene->colors, cb);
-    off += cb;
-    VkDeviceSize u_off = off;
-    if (ub) memcpy(dst + off, scene->uv1, ub);
-    off += ub;
-    VkDeviceSize i_off = off;
-    memcpy(dst + off, scene->indices, ib);
-    off += ib;
-    VkDeviceSize m_off = off;
+    memcpy(dst + off, scene->vertices, L->vb);
+    L->v_off = off;
+    off += L->vb;
+    L->c_off = off;
+    if (L->cb) memcpy(dst + off, scene->colors, L->cb);
+    off += L->cb;
+    L->u_off = off;
+    if (L->ub) memcpy(dst + off, scene->uv1, L->ub);
+    off += L->ub;
+    L->i_off = off;
+    memcpy(dst + off, scene->indices, L->ib);
+    off += L->ib;
+    L->m_off = off;
     pg_gpu_material *gm = (pg_gpu_material *)(dst + off);
-    for (uint32_t m = 0; m < n_mat; m++) {
+    for (uint32_t m = 0; m < L->n_mat; m++) {
         pg_material dm;
         pg_material_init(&dm, "default");
-        const pg_material *s = scene->n_materials ? &scene->materials[m] : &dm;
-        pg_gpu_material g;
-        memset(&g, 0, sizeof g);
-        memcpy(g.base_color, s->base_color, sizeof g.base_color);
-        /* texture i of the scene is image i+1 on the GPU (0 is white) */
-        g.tex[0] = s->base_color_tex >= 0 ? s->base_color_tex + 1 : -1;
-        g.tex[1] = s->normal_tex >= 0 ? s->normal_tex + 1 : -1;
-        g.tex[2] = (int32_t)s->alpha_mode;
-        g.tex[3] = s->double_sided ? 1 : 0;
-        g.params[0] = s->alpha_cutoff;
-        g.params[1] = s->normal_scale;
-        g.params[2] = s->specular;
-        g.params[3] = s->shininess;
-        memcpy(g.emissive, s->emissive, sizeof s->emissive);
-        g.tex2[0] = s->emissive_tex >= 0 ? s->emissive_tex + 1 : -1;
-        for (int t = 0; t < PG_TEXSLOT_COUNT; t++) {
-            if (s->tex_coord[t] == 1) g.tex2[1] |= 1 << t;
-            for (int k = 0; k < 3; k++) {
-                g.uv_xform[t][0][k] = s->uv_transform[t][k];
-                g.uv_xform[t][1][k] = s->uv_transform[t][3 + k];
-            }
-        }
-        memcpy(&gm[m], &g, sizeof g);
+        gpu_material(scene->n_materials ? &scene->materials[m] : &dm, &gm[m]);
     }
-    off += mb;
+    off += L->mb;
     off = (off + 15) & ~(VkDeviceSize)15;
-    VkDeviceSize white_off = off;
+    L->white_off = off;
     static const uint8_t white[4] = {255, 255, 255, 255};
     memcpy(dst + off, white, 4);
     off += 16;
-    VkDeviceSize *tex_off = calloc(scene->n_textures + 1, sizeof *tex_off);
-    if (!tex_off) {
-        pg_buffer_destroy(gpu, &staging);
-        return pg_fail(err, PG_ERR_OOM, "out of memory");
-    }
     for (uint32_t t = 0; t < scene->n_textures; t++) {
-        tex_off[t] = off;
+        L->tex_off[t] = off;
         memcpy(dst + off, scene->textures[t].data, scene->textures[t].data_size);
         off += (scene->textures[t].data_size + 15) & ~(VkDeviceSize)15;
     }
+}
 
-    VkCommandBuffer cmd;
-    if ((r = pg_gpu_begin_once(gpu, &cmd, err))) goto out;
-    VkBufferCopy c0 = {v_off, 0, vb};
-    if (vb) vkCmdCopyBuffer(cmd, staging.buffer, sg->vertices.buffer, 1, &c0);
-    VkBufferCopy c1 = {i_off, 0, ib};
-    if (ib) vkCmdCopyBuffer(cmd, staging.buffer, sg->indices.buffer, 1, &c1);
-    VkBufferCopy c2 = {m_off, 0, mb};
-    vkCmdCopyBuffer(cmd, staging.buffer, sg->materials.buffer, 1, &c2);
-    VkBufferCopy c3 = {c_off, 0, cb}, c4 = {u_off, 0, ub};
-    if (cb) vkCmdCopyBuffer(cmd, staging.buffer, sg->colors.buffer, 1, &c3);
-    if (ub) vkCmdCopyBuffer(cmd, staging.buffer, sg->uv1.buffer, 1, &c4);
+/* staging -> the buffers */
+static void copy_buffers(VkCommandBuffer cmd, VkBuffer staging, const pg_scene_gpu *sg, const staging_layout *L)
+{
+    VkBufferCopy c0 = {L->v_off, 0, L->vb};
+    if (L->vb) vkCmdCopyBuffer(cmd, staging, sg->vertices.buffer, 1, &c0);
+    VkBufferCopy c1 = {L->i_off, 0, L->ib};
+    if (L->ib) vkCmdCopyBuffer(cmd, staging, sg->indices.buffer, 1, &c1);
+    VkBufferCopy c2 = {L->m_off, 0, L->mb};
+    vkCmdCopyBuffer(cmd, staging, sg->materials.buffer, 1, &c2);
+    VkBufferCopy c3 = {L->c_off, 0, L->cb}, c4 = {L->u_off, 0, L->ub};
+    if (L->cb) vkCmdCopyBuffer(cmd, staging, sg->colors.buffer, 1, &c3);
+    if (L->ub) vkCmdCopyBuffer(cmd, staging, sg->uv1.buffer, 1, &c4);
+}
 
-    VkImageMemoryBarrier2 *bars = calloc(sg->n_images, sizeof *bars);
-    if (!bars) {
-        vkEndCommandBuffer(cmd);
-        vkFreeCommandBuffers(gpu->device, gpu->cmd_pool, 1, &cmd);
-        r = pg_fail(err, PG_ERR_OOM, "out of memory");
-        goto out;
-    }
+/* staging -> the images (the white texel, then every mip of every texture), each image made a
+ * transfer destination first (bars: one barrier per image) */
+static void copy_images(VkCommandBuffer cmd, VkBuffer staging, const pg_scene_gpu *sg, const pg_scene *scene,
+                        const staging_layout *L, VkImageMemoryBarrier2 *bars)
+{
     for (uint32_t i = 0; i < sg->n_images; i++)
         bars[i] = pg_image_barrier(sg->images[i].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0,
                                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                    VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     pg_cmd_barriers(cmd, sg->n_images, bars, 0, NULL);
-    VkBufferImageCopy wc = {.bufferOffset = white_off,
+    VkBufferImageCopy wc = {.bufferOffset = L->white_off,
                             .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                             .imageExtent = {1, 1, 1}};
-    vkCmdCopyBufferToImage(cmd, staging.buffer, sg->images[0].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &wc);
+    vkCmdCopyBufferToImage(cmd, staging, sg->images[0].image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &wc);
     for (uint32_t t = 0; t < scene->n_textures; t++) {
         const pg_texture *tex = &scene->textures[t];
         VkBufferImageCopy regions[PG_MAX_MIPS];
         for (uint32_t m = 0; m < tex->n_mips; m++) {
             regions[m] = (VkBufferImageCopy){
-                .bufferOffset = tex_off[t] + (VkDeviceSize)(tex->mips[m].rgba - tex->data),
+                .bufferOffset = L->tex_off[t] + (VkDeviceSize)(tex->mips[m].rgba - tex->data),
                 .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1},
                 .imageExtent = {tex->mips[m].width, tex->mips[m].height, 1},
             };
         }
-        vkCmdCopyBufferToImage(cmd, staging.buffer, sg->images[t + 1].image,
+        vkCmdCopyBufferToImage(cmd, staging, sg->images[t + 1].image,
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, tex->n_mips, regions);
     }
+}
+
+/* after the copies: the images to shader reads, the buffers to their readers (the vertex streams
+ * and indices are also storage buffers of the compute passes that rebuild surfaces from triangle
+ * ids: visibility_shade, visibility_gbuffer) */
+static void release_to_shaders(VkCommandBuffer cmd, const pg_scene_gpu *sg, VkImageMemoryBarrier2 *bars)
+{
     for (uint32_t i = 0; i < sg->n_images; i++)
         bars[i] = pg_image_barrier(sg->images[i].image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
                                    VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -131,8 +148,6 @@ static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg
     VkBufferMemoryBarrier2 bb[5];
     VkBuffer bufs[5] = {sg->vertices.buffer, sg->indices.buffer, sg->materials.buffer, sg->colors.buffer,
                         sg->uv1.buffer};
-    /* the vertex streams and indices are also storage buffers of the compute passes that rebuild
-     * surfaces from triangle ids (visibility_shade, visibility_gbuffer) */
     const VkAccessFlags2 sr = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
     const VkPipelineStageFlags2 cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     VkAccessFlags2 acc[5] = {VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr, VK_ACCESS_2_INDEX_READ_BIT | sr,
@@ -150,10 +165,40 @@ static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg
                                        acc[i]);
     }
     pg_cmd_barriers(cmd, sg->n_images, bars, n_bb, bb);
+}
+
+/* the scene's data to the buffers and images, through one staging buffer and one submit */
+static pg_result upload(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg_error *err)
+{
+    staging_layout L = {0};
+    VkDeviceSize total = staging_size(sg, scene, &L);
+    pg_result r;
+    pg_buffer staging;
+    if ((r = pg_buffer_create(gpu, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, "scene.staging", &staging, err)))
+        return r;
+    L.tex_off = calloc(scene->n_textures + 1, sizeof *L.tex_off);
+    if (!L.tex_off) {
+        pg_buffer_destroy(gpu, &staging);
+        return pg_fail(err, PG_ERR_OOM, "out of memory");
+    }
+    fill_staging(staging.mapped, scene, &L);
+
+    VkCommandBuffer cmd;
+    if ((r = pg_gpu_begin_once(gpu, &cmd, err))) goto out;
+    copy_buffers(cmd, staging.buffer, sg, &L);
+    VkImageMemoryBarrier2 *bars = calloc(sg->n_images, sizeof *bars);
+    if (!bars) {
+        vkEndCommandBuffer(cmd);
+        vkFreeCommandBuffers(gpu->device, gpu->cmd_pool, 1, &cmd);
+        r = pg_fail(err, PG_ERR_OOM, "out of memory");
+        goto out;
+    }
+    copy_images(cmd, staging.buffer, sg, scene, &L, bars);
+    release_to_shaders(cmd, sg, bars);
     free(bars);
     r = pg_gpu_end_once(gpu, cmd, err);
 out:
-    free(tex_off);
+    free(L.tex_off);
     pg_buffer_destroy(gpu, &staging);
     return r;
 }
@@ -193,69 +238,55 @@ static int draw_cmp(const void *a, const void *b)
     return x->first_index < y->first_index ? -1 : (x->first_index > y->first_index);
 }
 
-pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu **out, pg_error *err)
+/* a device-local buffer of the scene, filled by upload (its usage plus TRANSFER_DST) */
+static pg_result scene_buffer(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags usage, const char *name,
+                              pg_buffer *out, pg_error *err)
 {
-    *out = NULL;
-    pg_scene_gpu *sg = calloc(1, sizeof *sg);
-    if (!sg) return pg_fail(err, PG_ERR_OOM, "out of memory");
-    pg_result r;
-    uint32_t *tex_sampler = NULL; /* texture -> index into sg->samplers */
-    sg->features = scene->features;
-    memcpy(sg->bounds_min, scene->bounds_min, sizeof sg->bounds_min);
-    memcpy(sg->bounds_max, scene->bounds_max, sizeof sg->bounds_max);
+    return pg_buffer_create(gpu, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false, name, out, err);
+}
+
+/* vertices, indices, materials, and the optional streams only for a scene that uses them (the
+ * draw passes compile their paths from the same features) */
+static pg_result create_buffers(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg_error *err)
+{
+    const VkBufferUsageFlags vs = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     uint32_t n_mat = scene->n_materials ? scene->n_materials : 1;
-    if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_vertices * sizeof(pg_vertex),
-                              VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                              false,
-                              "scene.vertices", &sg->vertices, err)))
-        goto fail;
-    if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_indices * sizeof(uint32_t),
-                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                              false,
-                              "scene.indices", &sg->indices, err)))
-        goto fail;
-    if ((r = pg_buffer_create(gpu, (VkDeviceSize)n_mat * sizeof(pg_gpu_material),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
-                              "scene.materials", &sg->materials, err)))
-        goto fail;
-    /* the optional streams only for a scene that uses them (the draw passes compile their paths
-     * from the same features) */
+    pg_result r;
+    if ((r = scene_buffer(gpu, (VkDeviceSize)scene->n_vertices * sizeof(pg_vertex), vs, "scene.vertices",
+                          &sg->vertices, err)) ||
+        (r = scene_buffer(gpu, (VkDeviceSize)scene->n_indices * sizeof(uint32_t),
+                          VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene.indices",
+                          &sg->indices, err)) ||
+        (r = scene_buffer(gpu, (VkDeviceSize)n_mat * sizeof(pg_gpu_material), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                          "scene.materials", &sg->materials, err)))
+        return r;
     if (scene->features.has_vertex_colors) {
-        if (!scene->colors) {
-            r = pg_fail(err, PG_ERR_INVALID_ARG, "scene '%s': has_vertex_colors without colors", scene->name);
-            goto fail;
-        }
-        if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_vertices * sizeof(float[4]),
-                                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                  false,
-                                  "scene.colors", &sg->colors, err)))
-            goto fail;
+        if (!scene->colors)
+            return pg_fail(err, PG_ERR_INVALID_ARG, "scene '%s': has_vertex_colors without colors", scene->name);
+        if ((r = scene_buffer(gpu, (VkDeviceSize)scene->n_vertices * sizeof(float[4]), vs, "scene.colors",
+                              &sg->colors, err)))
+            return r;
     }
     if (scene->features.has_uv1) {
-        if (!scene->uv1) {
-            r = pg_fail(err, PG_ERR_INVALID_ARG, "scene '%s': has_uv1 without uv1", scene->name);
-            goto fail;
-        }
-        if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_vertices * sizeof(float[2]),
-                                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                  false,
-                                  "scene.uv1", &sg->uv1, err)))
-            goto fail;
+        if (!scene->uv1) return pg_fail(err, PG_ERR_INVALID_ARG, "scene '%s': has_uv1 without uv1", scene->name);
+        if ((r = scene_buffer(gpu, (VkDeviceSize)scene->n_vertices * sizeof(float[2]), vs, "scene.uv1", &sg->uv1,
+                              err)))
+            return r;
     }
     sg->bytes = sg->vertices.size + sg->indices.size + sg->materials.size + sg->colors.size + sg->uv1.size;
+    return PG_OK;
+}
+
+/* image 0 the white texel, image t + 1 texture t (sRGB or linear, every mip) */
+static pg_result create_images(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, pg_error *err)
+{
     sg->n_images = scene->n_textures + 1;
     sg->images = calloc(sg->n_images, sizeof *sg->images);
-    if (!sg->images) {
-        r = pg_fail(err, PG_ERR_OOM, "out of memory");
-        goto fail;
-    }
+    if (!sg->images) return pg_fail(err, PG_ERR_OOM, "out of memory");
     VkImageUsageFlags iu = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    pg_result r;
     if ((r = pg_image_create(gpu, VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1, iu, "scene.white", &sg->images[0], err)))
-        goto fail;
+        return r;
     for (uint32_t t = 0; t < scene->n_textures; t++) {
         const pg_texture *tex = &scene->textures[t];
         char name[PG_NAME_MAX + 16];
@@ -263,17 +294,21 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
         if ((r = pg_image_create(gpu, tex->srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM,
                                  tex->mips[0].width, tex->mips[0].height, tex->n_mips, iu, name,
                                  &sg->images[t + 1], err)))
-            goto fail;
+            return r;
         sg->bytes += tex->data_size;
     }
-    /* one sampler per distinct state; [0] is the default (the white texture's) */
-    tex_sampler = calloc(scene->n_textures + 1, sizeof *tex_sampler);
+    return PG_OK;
+}
+
+/* one sampler per distinct state; [0] is the default (the white texture's); *tex_sampler (made
+ * here, n_textures + 1 entries, freed by the caller): image i's sampler */
+static pg_result create_samplers(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *scene, uint32_t **tex_sampler,
+                                 pg_error *err)
+{
+    *tex_sampler = calloc(scene->n_textures + 1, sizeof **tex_sampler);
     sg->samplers = calloc(scene->n_textures + 1, sizeof *sg->samplers);
     sg->sampler_states = calloc(scene->n_textures + 1, sizeof *sg->sampler_states);
-    if (!tex_sampler || !sg->samplers || !sg->sampler_states) {
-        r = pg_fail(err, PG_ERR_OOM, "out of memory");
-        goto fail;
-    }
+    if (!*tex_sampler || !sg->samplers || !sg->sampler_states) return pg_fail(err, PG_ERR_OOM, "out of memory");
     memset(&sg->sampler_states[0], 0, sizeof sg->sampler_states[0]);
     sg->n_samplers = 1;
     for (uint32_t t = 0; t < scene->n_textures; t++) {
@@ -281,15 +316,18 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
         uint32_t k = 0;
         while (k < sg->n_samplers && !same_state(&sg->sampler_states[k], ss)) k++;
         if (k == sg->n_samplers) sg->sampler_states[sg->n_samplers++] = *ss;
-        tex_sampler[t + 1] = k;
+        (*tex_sampler)[t + 1] = k;
     }
-    VkResult vr;
+    pg_result r;
     for (uint32_t k = 0; k < sg->n_samplers; k++) {
-        if ((r = pg_scene_sampler_create(gpu, &sg->sampler_states[k], &sg->samplers[k], err))) goto fail;
+        if ((r = pg_scene_sampler_create(gpu, &sg->sampler_states[k], &sg->samplers[k], err))) return r;
     }
-    if ((r = upload(gpu, sg, scene, err))) goto fail;
+    return PG_OK;
+}
 
-    /* descriptor set */
+/* the scene's descriptor set: binding 0 the materials, binding 1 every image with its sampler */
+static pg_result create_descriptor_set(pg_gpu *gpu, pg_scene_gpu *sg, const uint32_t *tex_sampler, pg_error *err)
+{
     VkDescriptorSetLayoutBinding b[2] = {
         {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
          VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_COMPUTE_BIT, NULL},
@@ -298,38 +336,27 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
     };
     VkDescriptorSetLayoutCreateInfo lci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
                                            .bindingCount = 2, .pBindings = b};
-    vr = vkCreateDescriptorSetLayout(gpu->device, &lci, NULL, &sg->set_layout);
-    if (vr != VK_SUCCESS) {
-        r = pg_fail(err, PG_ERR_VULKAN, "vkCreateDescriptorSetLayout failed: %s", pg_vk_result_name(vr));
-        goto fail;
-    }
+    VkResult vr = vkCreateDescriptorSetLayout(gpu->device, &lci, NULL, &sg->set_layout);
+    if (vr != VK_SUCCESS)
+        return pg_fail(err, PG_ERR_VULKAN, "vkCreateDescriptorSetLayout failed: %s", pg_vk_result_name(vr));
     VkDescriptorPoolSize ps[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sg->n_images}};
     VkDescriptorPoolCreateInfo pci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
                                       .maxSets = 1, .poolSizeCount = 2, .pPoolSizes = ps};
     vr = vkCreateDescriptorPool(gpu->device, &pci, NULL, &sg->pool);
-    if (vr != VK_SUCCESS) {
-        r = pg_fail(err, PG_ERR_VULKAN, "vkCreateDescriptorPool failed: %s", pg_vk_result_name(vr));
-        goto fail;
-    }
+    if (vr != VK_SUCCESS)
+        return pg_fail(err, PG_ERR_VULKAN, "vkCreateDescriptorPool failed: %s", pg_vk_result_name(vr));
     VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
                                       .descriptorPool = sg->pool, .descriptorSetCount = 1,
                                       .pSetLayouts = &sg->set_layout};
     vr = vkAllocateDescriptorSets(gpu->device, &ai, &sg->set);
-    if (vr != VK_SUCCESS) {
-        r = pg_fail(err, PG_ERR_VULKAN, "vkAllocateDescriptorSets failed: %s", pg_vk_result_name(vr));
-        goto fail;
-    }
+    if (vr != VK_SUCCESS)
+        return pg_fail(err, PG_ERR_VULKAN, "vkAllocateDescriptorSets failed: %s", pg_vk_result_name(vr));
     VkDescriptorImageInfo *ii = calloc(sg->n_images, sizeof *ii);
-    if (!ii) {
-        r = pg_fail(err, PG_ERR_OOM, "out of memory");
-        goto fail;
-    }
+    if (!ii) return pg_fail(err, PG_ERR_OOM, "out of memory");
     for (uint32_t i = 0; i < sg->n_images; i++)
         ii[i] = (VkDescriptorImageInfo){sg->samplers[tex_sampler[i]], sg->images[i].view,
                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    free(tex_sampler);
-    tex_sampler = NULL;
     VkDescriptorBufferInfo bi = {sg->materials.buffer, 0, VK_WHOLE_SIZE};
     VkWriteDescriptorSet w[2] = {
         {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = sg->set, .dstBinding = 0,
@@ -340,12 +367,16 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
     };
     vkUpdateDescriptorSets(gpu->device, 2, w, 0, NULL);
     free(ii);
+    return PG_OK;
+}
 
+/* one draw per primitive with triangles, sorted: opaque, then alpha-masked, then blended, each by
+ * material */
+static pg_result build_draws(pg_scene_gpu *sg, const pg_scene *scene, pg_error *err)
+{
+    uint32_t n_mat = scene->n_materials ? scene->n_materials : 1;
     sg->draws = calloc(scene->n_primitives ? scene->n_primitives : 1, sizeof *sg->draws);
-    if (!sg->draws) {
-        r = pg_fail(err, PG_ERR_OOM, "out of memory");
-        goto fail;
-    }
+    if (!sg->draws) return pg_fail(err, PG_ERR_OOM, "out of memory");
     for (uint32_t p = 0; p < scene->n_primitives; p++) {
         const pg_primitive *pr = &scene->primitives[p];
         if (!pr->index_count) continue;
@@ -360,6 +391,26 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
         else if (!mask) sg->n_opaque_draws++;
     }
     qsort(sg->draws, sg->n_draws, sizeof *sg->draws, draw_cmp);
+    return PG_OK;
+}
+
+pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu **out, pg_error *err)
+{
+    *out = NULL;
+    pg_scene_gpu *sg = calloc(1, sizeof *sg);
+    if (!sg) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    uint32_t *tex_sampler = NULL; /* texture -> index into sg->samplers */
+    sg->features = scene->features;
+    memcpy(sg->bounds_min, scene->bounds_min, sizeof sg->bounds_min);
+    memcpy(sg->bounds_max, scene->bounds_max, sizeof sg->bounds_max);
+    pg_result r;
+    if ((r = create_buffers(gpu, sg, scene, err)) || (r = create_images(gpu, sg, scene, err)) ||
+        (r = create_samplers(gpu, sg, scene, &tex_sampler, err)) || (r = upload(gpu, sg, scene, err)) ||
+        (r = create_descriptor_set(gpu, sg, tex_sampler, err)))
+        goto fail;
+    free(tex_sampler);
+    tex_sampler = NULL;
+    if ((r = build_draws(sg, scene, err))) goto fail;
     *out = sg;
     return PG_OK;
 fail:

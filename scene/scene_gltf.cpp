@@ -177,14 +177,22 @@ bool starts_with_glb_magic(const char *path)
     return ok;
 }
 
-pg_scene *load(Ctx &c)
+/* the file's bytes, owned (freed by free) */
+struct RawFile {
+    std::unique_ptr<char, decltype(&free)> owner{nullptr, &free};
+    size_t size = 0;
+    const unsigned char *bytes() const { return reinterpret_cast<const unsigned char *>(owner.get()); }
+};
+
+/* step 1: read the file under its cap (stat first: a regular file under the .glb cap; one over
+ * the .gltf cap must be a .glb); sets c.is_glb. A .gltf is a JSON object: anything else (an
+ * .obj, .fbx, .ply, a PNG...) is another format, said plainly instead of a JSON syntax error. */
+static void read_file(Ctx &c, RawFile &f)
 {
-    /* 1. the file */
     char *raw = nullptr;
     size_t raw_size = 0;
     pg_error rerr;
     memset(&rerr, 0, sizeof rerr);
-    /* stat first: a regular file under the .glb cap; one over the .gltf cap must be a .glb */
     uint64_t fsize = 0;
     if (pg_file_check(c.path.c_str(), "scene", PG_FILE_CAP_GLB, &fsize, &rerr) != PG_OK)
         throw LoadFail{rerr.code, std::string("\x01") + rerr.msg};
@@ -197,144 +205,140 @@ pg_scene *load(Ctx &c)
     }
     if (pg_file_read(c.path.c_str(), "scene", PG_FILE_CAP_GLB, &raw, &raw_size, &rerr) != PG_OK)
         throw LoadFail{rerr.code, std::string("\x01") + rerr.msg};
-    std::unique_ptr<char, decltype(&free)> raw_owner(raw, &free);
-    const unsigned char *bytes = reinterpret_cast<const unsigned char *>(raw);
+    f.owner.reset(raw);
+    f.size = raw_size;
     if (raw_size == 0) fail(PG_ERR_PARSE, "empty file");
     c.is_glb = raw_size >= 4 && memcmp(raw, "glTF", 4) == 0;
+    if (c.is_glb) return;
+    size_t k = 0;
+    if (raw_size >= 3 && memcmp(raw, "\xEF\xBB\xBF", 3) == 0) k = 3; /* UTF-8 BOM */
+    while (k < raw_size && (raw[k] == ' ' || raw[k] == '\t' || raw[k] == '\r' || raw[k] == '\n'))
+        k++;
+    if (k == raw_size) fail(PG_ERR_PARSE, "empty file");
+    if (raw[k] != '{' && raw[k] != '[')
+        fail(PG_ERR_PARSE, "not a glTF 2.0 file (passgraph reads .gltf and .glb only)");
+}
+
+/* step 2: the JSON (of the GLB's JSON chunk) into c.j, its nesting bounded first */
+static void parse_json(Ctx &c, const RawFile &f)
+{
+    std::string text = c.is_glb ? glb_json(c, f.bytes(), f.size) : std::string(f.owner.get(), f.size);
+    check_json_depth(text);
+    try {
+        c.j = json::parse(text);
+    } catch (const json::parse_error &e) {
+        std::string w = e.what();
+        size_t k = w.find("] ");
+        if (k != std::string::npos) w = w.substr(k + 2);
+        fail(PG_ERR_PARSE, "JSON syntax error: " + w);
+    }
+}
+
+/* The file as tinygltf is to see it, when it must differ (else empty): EXT_meshopt_compression
+ * fallback buffers are not loaded: tinygltf would look for a file (or refuse a missing uri), so
+ * it gets a copy of the file in which each is a 4-byte data URI (never read: only compressed
+ * bufferViews use it, and those are read from their decoded data); Draco indices accessors
+ * without a bufferView get one (see prevalidate). A GLB keeps its BIN chunk after the new JSON. */
+static std::vector<unsigned char> rewrite_for_tinygltf(const Ctx &c, const unsigned char *bytes)
+{
+    std::vector<unsigned char> rewritten;
+    if (std::find(c.buffer_no_data.begin(), c.buffer_no_data.end(), 1) == c.buffer_no_data.end() &&
+        c.draco_index_fix.empty())
+        return rewritten;
+    json j2 = c.j;
+    for (const auto &fx : c.draco_index_fix)
+        j2["accessors"][size_t(fx.first)]["bufferView"] = fx.second;
+    for (size_t i = 0; i < c.buffer_no_data.size(); i++)
+        if (c.buffer_no_data[i]) {
+            j2["buffers"][i]["uri"] = "data:application/octet-stream;base64,AAAAAA==";
+            j2["buffers"][i]["byteLength"] = 4;
+        }
+    std::string t = j2.dump();
     if (!c.is_glb) {
-        /* a .gltf is a JSON object: anything else (an .obj, .fbx, .ply, a PNG...) is another
-         * format, said plainly instead of a JSON syntax error */
-        size_t k = 0;
-        if (raw_size >= 3 && memcmp(raw, "\xEF\xBB\xBF", 3) == 0) k = 3; /* UTF-8 BOM */
-        while (k < raw_size && (raw[k] == ' ' || raw[k] == '\t' || raw[k] == '\r' || raw[k] == '\n'))
-            k++;
-        if (k == raw_size) fail(PG_ERR_PARSE, "empty file");
-        if (raw[k] != '{' && raw[k] != '[')
-            fail(PG_ERR_PARSE, "not a glTF 2.0 file (passgraph reads .gltf and .glb only)");
+        rewritten.assign(t.begin(), t.end());
+        return rewritten;
     }
+    while ((20 + t.size()) % 4) t += ' ';
+    const size_t old_json_end = 20 + size_t(rd_u32(bytes + 12));
+    const size_t old_len = rd_u32(bytes + 8);
+    const size_t total = 20 + t.size() + (old_len - old_json_end);
+    if (total > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
+    rewritten.resize(total);
+    auto put32 = [&](size_t at, uint32_t v) {
+        for (int k = 0; k < 4; k++) rewritten[at + size_t(k)] = (unsigned char)(v >> (8 * k));
+    };
+    memcpy(rewritten.data(), bytes, 8); /* magic, version */
+    put32(8, uint32_t(total));
+    put32(12, uint32_t(t.size()));
+    put32(16, 0x4E4F534Au);
+    memcpy(rewritten.data() + 20, t.data(), t.size());
+    memcpy(rewritten.data() + 20 + t.size(), bytes + old_json_end, old_len - old_json_end);
+    return rewritten;
+}
 
-    /* 2. JSON + pre-validation */
-    {
-        std::string text = c.is_glb ? glb_json(c, bytes, raw_size) : std::string(raw, raw_size);
-        check_json_depth(text);
-        try {
-            c.j = json::parse(text);
-        } catch (const json::parse_error &e) {
-            std::string w = e.what();
-            size_t k = w.find("] ");
-            if (k != std::string::npos) w = w.substr(k + 2);
-            fail(PG_ERR_PARSE, "JSON syntax error: " + w);
-        }
+/* step 3: tinygltf builds c.model over our file system and image callbacks; every image decoded */
+static void tinygltf_load(Ctx &c, const RawFile &f)
+{
+    tinygltf::TinyGLTF loader;
+    tinygltf::FsCallbacks fs;
+    fs.FileExists = &fs_file_exists;
+    fs.ExpandFilePath = &tinygltf::ExpandFilePath;
+    fs.ReadWholeFile = &fs_read_whole_file;
+    fs.WriteWholeFile = &tinygltf::WriteWholeFile;
+    fs.user_data = &c;
+    loader.SetFsCallbacks(fs);
+    loader.SetImageLoader(&load_image_cb, &c);
+    std::string terr, twarn;
+    if (f.size > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
+    std::vector<unsigned char> rewritten = rewrite_for_tinygltf(c, f.bytes());
+    const unsigned char *tbytes = rewritten.empty() ? f.bytes() : rewritten.data();
+    const size_t tsize = rewritten.empty() ? f.size : rewritten.size();
+    if (tsize > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
+    bool ok = c.is_glb ? loader.LoadBinaryFromMemory(&c.model, &terr, &twarn, tbytes,
+                                                     unsigned(tsize), c.base_dir)
+                       : loader.LoadASCIIFromString(&c.model, &terr, &twarn,
+                                                    reinterpret_cast<const char *>(tbytes),
+                                                    unsigned(tsize), c.base_dir);
+    if (!c.image_err.empty()) gfail(c.image_err);
+    if (!ok) {
+        std::string why = first_lines(terr.empty() ? twarn : terr);
+        gfail("tinygltf: " + (why.empty() ? std::string("load failed") : why));
     }
-    prevalidate(c);
-
-    /* 3. tinygltf */
-    {
-        tinygltf::TinyGLTF loader;
-        tinygltf::FsCallbacks fs;
-        fs.FileExists = &fs_file_exists;
-        fs.ExpandFilePath = &tinygltf::ExpandFilePath;
-        fs.ReadWholeFile = &fs_read_whole_file;
-        fs.WriteWholeFile = &tinygltf::WriteWholeFile;
-        fs.user_data = &c;
-        loader.SetFsCallbacks(fs);
-        loader.SetImageLoader(&load_image_cb, &c);
-        std::string terr, twarn;
-        if (raw_size > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
-        /* EXT_meshopt_compression fallback buffers are not loaded: tinygltf would look for a
-         * file (or refuse a missing uri), so it gets a copy of the file in which each is a
-         * 4-byte data URI (never read: only
-         * compressed bufferViews use it, and those are read from their decoded data); Draco
-         * indices accessors without a bufferView get one (see prevalidate) */
-        std::vector<unsigned char> rewritten;
-        if (std::find(c.buffer_no_data.begin(), c.buffer_no_data.end(), 1) != c.buffer_no_data.end() ||
-            !c.draco_index_fix.empty()) {
-            json j2 = c.j;
-            for (const auto &fx : c.draco_index_fix)
-                j2["accessors"][size_t(fx.first)]["bufferView"] = fx.second;
-            for (size_t i = 0; i < c.buffer_no_data.size(); i++)
-                if (c.buffer_no_data[i]) {
-                    j2["buffers"][i]["uri"] = "data:application/octet-stream;base64,AAAAAA==";
-                    j2["buffers"][i]["byteLength"] = 4;
-                }
-            std::string t = j2.dump();
-            if (!c.is_glb) {
-                rewritten.assign(t.begin(), t.end());
-            } else {
-                while ((20 + t.size()) % 4) t += ' ';
-                const size_t old_json_end = 20 + size_t(rd_u32(bytes + 12));
-                const size_t old_len = rd_u32(bytes + 8);
-                const size_t total = 20 + t.size() + (old_len - old_json_end);
-                if (total > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
-                rewritten.resize(total);
-                auto put32 = [&](size_t at, uint32_t v) {
-                    for (int k = 0; k < 4; k++) rewritten[at + size_t(k)] = (unsigned char)(v >> (8 * k));
-                };
-                memcpy(rewritten.data(), bytes, 8); /* magic, version */
-                put32(8, uint32_t(total));
-                put32(12, uint32_t(t.size()));
-                put32(16, 0x4E4F534Au);
-                memcpy(rewritten.data() + 20, t.data(), t.size());
-                memcpy(rewritten.data() + 20 + t.size(), bytes + old_json_end, old_len - old_json_end);
-            }
-        }
-        const unsigned char *tbytes = rewritten.empty() ? bytes : rewritten.data();
-        const size_t tsize = rewritten.empty() ? raw_size : rewritten.size();
-        if (tsize > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, "file larger than 4 GiB");
-        bool ok = c.is_glb ? loader.LoadBinaryFromMemory(&c.model, &terr, &twarn, tbytes,
-                                                         unsigned(tsize), c.base_dir)
-                           : loader.LoadASCIIFromString(&c.model, &terr, &twarn,
-                                                        reinterpret_cast<const char *>(tbytes),
-                                                        unsigned(tsize), c.base_dir);
-        if (!c.image_err.empty()) gfail(c.image_err);
-        if (!ok) {
-            std::string why = first_lines(terr.empty() ? twarn : terr);
-            gfail("tinygltf: " + (why.empty() ? std::string("load failed") : why));
-        }
-        for (size_t i = 0; i < c.model.images.size(); i++) {
-            const tinygltf::Image &im = c.model.images[i];
-            if (im.image.empty() || im.width < 1 || im.height < 1 ||
-                im.image.size() != size_t(im.width) * size_t(im.height) * 4)
-                gfail(image_desc(c, int(i)) + ": could not be loaded");
-        }
+    for (size_t i = 0; i < c.model.images.size(); i++) {
+        const tinygltf::Image &im = c.model.images[i];
+        if (im.image.empty() || im.width < 1 || im.height < 1 ||
+            im.image.size() != size_t(im.width) * size_t(im.height) * 4)
+            gfail(image_desc(c, int(i)) + ": could not be loaded");
     }
-    raw_owner.reset();
-    for (const std::string &e : c.model.extensionsUsed)
-        c.quantization = c.quantization || e == "KHR_mesh_quantization";
-    decode_meshopt(c);
-    const tinygltf::Model &md = c.model;
+}
 
-    /* 4. node hierarchy -> geometry */
-    Out o;
-    std::vector<pg_scene_camera> cams;
-    {
-        std::vector<int> roots;
-        if (md.defaultScene >= 0 && size_t(md.defaultScene) < md.scenes.size()) {
-            roots = md.scenes[size_t(md.defaultScene)].nodes;
-        } else if (!md.scenes.empty()) {
-            roots = md.scenes[0].nodes;
-        } else {
-            std::vector<char> is_child(md.nodes.size(), 0);
-            for (const auto &nd : md.nodes)
-                for (int ch : nd.children)
-                    if (ch >= 0 && size_t(ch) < md.nodes.size()) is_child[size_t(ch)] = 1;
-            for (size_t i = 0; i < md.nodes.size(); i++)
-                if (!is_child[i]) roots.push_back(int(i));
-            if (roots.empty() && !md.nodes.empty())
-                gfail("nodes: cyclic node graph (every node is some node's child)");
-        }
-        Walker w{c, o, std::vector<char>(md.nodes.size(), 0), 0};
-        for (int r : roots) w.visit(r, mat_identity(), 0);
-        for (int r : roots) camera_visit(c, r, mat_identity(), cams);
-    }
-    if (o.idx.empty()) gfail("the scene has no triangles");
-    collect_warnings(c);
+/* the root nodes drawn: those of `scene`, else of scenes[0], else every node nobody's child */
+static std::vector<int> root_nodes(const tinygltf::Model &md)
+{
+    if (md.defaultScene >= 0 && size_t(md.defaultScene) < md.scenes.size())
+        return md.scenes[size_t(md.defaultScene)].nodes;
+    if (!md.scenes.empty()) return md.scenes[0].nodes;
+    std::vector<int> roots;
+    std::vector<char> is_child(md.nodes.size(), 0);
+    for (const auto &nd : md.nodes)
+        for (int ch : nd.children)
+            if (ch >= 0 && size_t(ch) < md.nodes.size()) is_child[size_t(ch)] = 1;
+    for (size_t i = 0; i < md.nodes.size(); i++)
+        if (!is_child[i]) roots.push_back(int(i));
+    if (roots.empty() && !md.nodes.empty())
+        gfail("nodes: cyclic node graph (every node is some node's child)");
+    return roots;
+}
 
-    /* 5. materials and textures */
-    std::vector<pg_material> mats;
+/* The pg_textures the materials use, one per TexKey, numbered in first-use order. */
+struct TextureTable {
+    const tinygltf::Model &md;
     std::map<TexKey, uint32_t> tex_of;
-    std::vector<TexKey> tex_order;
-    auto texture_for = [&](int tex_index, bool srgb, const std::string &where) -> int {
+    std::vector<TexKey> order;
+
+    /* the pg_texture index of glTF texture `tex_index` read as sRGB or linear; -1 for none */
+    int texture_for(int tex_index, bool srgb, const std::string &where)
+    {
         if (tex_index < 0) return -1;
         if (size_t(tex_index) >= md.textures.size())
             gfail(strf("%s: texture %d out of range", where.c_str(), tex_index));
@@ -346,83 +350,107 @@ pg_scene *load(Ctx &c)
         if (smp >= 0 && size_t(smp) < md.samplers.size()) k.sampler = sampler_state(md.samplers[size_t(smp)]);
         auto it = tex_of.find(k);
         if (it != tex_of.end()) return int(it->second);
-        uint32_t id = uint32_t(tex_order.size());
+        uint32_t id = uint32_t(order.size());
         tex_of[k] = id;
-        tex_order.push_back(k);
+        order.push_back(k);
         return int(id);
-    };
-    for (size_t i = 0; i < md.materials.size(); i++) {
-        const tinygltf::Material &gm = md.materials[i];
-        const std::string mw = strf("materials[%zu]", i);
-        pg_material pm;
-        pg_material_init(&pm, gm.name.empty() ? mw.c_str() : gm.name.c_str());
-        const auto &pbr = gm.pbrMetallicRoughness;
-        if (pbr.baseColorFactor.size() != 4)
-            gfail(mw + ".pbrMetallicRoughness.baseColorFactor: expected 4 numbers");
-        for (int k = 0; k < 4; k++) {
-            double x = pbr.baseColorFactor[size_t(k)];
-            if (!std::isfinite(x))
-                gfail(mw + ".pbrMetallicRoughness.baseColorFactor: not finite");
-            pm.base_color[k] = clamp01(x);
-        }
-        pm.base_color_tex = texture_for(pbr.baseColorTexture.index, true,
-                                        mw + ".pbrMetallicRoughness.baseColorTexture");
-        pm.normal_tex = texture_for(gm.normalTexture.index, false, mw + ".normalTexture");
-        pm.emissive_tex = texture_for(gm.emissiveTexture.index, true, mw + ".emissiveTexture");
-        /* per slot: texCoord (0 or 1; higher is warned and reads TEXCOORD_0) and
-         * KHR_texture_transform (whose texCoord overrides the textureInfo's) */
-        {
-            const json &jm = c.j.at("materials").at(i);
-            const json *jpbr = opt_object(jm, "pbrMetallicRoughness", mw);
-            const struct {
-                int slot, index, tex_coord;
-                const json *ti;
-                std::string where;
-            } slots[] = {
-                {PG_TEXSLOT_BASE, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
-                 jpbr ? opt_object(*jpbr, "baseColorTexture", mw) : nullptr,
-                 mw + ".pbrMetallicRoughness.baseColorTexture"},
-                {PG_TEXSLOT_NORMAL, gm.normalTexture.index, gm.normalTexture.texCoord,
-                 opt_object(jm, "normalTexture", mw), mw + ".normalTexture"},
-                {PG_TEXSLOT_EMISSIVE, gm.emissiveTexture.index, gm.emissiveTexture.texCoord,
-                 opt_object(jm, "emissiveTexture", mw), mw + ".emissiveTexture"},
-            };
-            for (const auto &sl : slots) {
-                if (sl.index < 0 || !sl.ti) continue;
-                int tc = sl.tex_coord;
-                pm.has_uv_transform[sl.slot] =
-                    texture_transform(*sl.ti, sl.where, pm.uv_transform[sl.slot], &tc);
-                pm.tex_coord[sl.slot] = uint8_t(tc == 1 ? 1 : 0);
-            }
-        }
-        pm.normal_scale = float(std::isfinite(gm.normalTexture.scale) ? gm.normalTexture.scale : 1.0);
-        if (gm.alphaMode == "MASK") pm.alpha_mode = PG_ALPHA_MASK;
-        else if (gm.alphaMode == "BLEND") pm.alpha_mode = PG_ALPHA_BLEND;
-        else pm.alpha_mode = PG_ALPHA_OPAQUE;
-        if (!std::isfinite(gm.alphaCutoff) || gm.alphaCutoff < 0)
-            gfail(mw + ".alphaCutoff: expected a finite number >= 0");
-        pm.alpha_cutoff = float(gm.alphaCutoff);
-        double metal = std::isfinite(pbr.metallicFactor) ? clamp01(pbr.metallicFactor) : 1.0;
-        double rough = std::isfinite(pbr.roughnessFactor) ? clamp01(pbr.roughnessFactor) : 1.0;
-        pm.specular = float(0.04 + 0.5 * (1.0 - rough) * (1.0 - metal));
-        double r4 = rough * rough * rough * rough;
-        double sh = 2.0 / (r4 + 1e-4) - 2.0;
-        pm.shininess = float(sh < 1 ? 1 : sh > 512 ? 512 : sh);
-        pm.double_sided = gm.doubleSided;
-        /* emissive = emissiveFactor x emissiveStrength (both checked finite >= 0 by prevalidate) */
-        double strength = 1.0;
-        auto es = gm.extensions.find("KHR_materials_emissive_strength");
-        if (es != gm.extensions.end() && es->second.Has("emissiveStrength"))
-            strength = es->second.Get("emissiveStrength").GetNumberAsDouble();
-        for (int k = 0; k < 3 && size_t(k) < gm.emissiveFactor.size(); k++) {
-            double e = gm.emissiveFactor[size_t(k)] * strength;
-            if (!(e <= FLT_MAX))
-                gfail(strf("%s.emissiveFactor: %g x emissiveStrength %g is outside the float range", mw.c_str(),
-                           gm.emissiveFactor[size_t(k)], strength));
-            pm.emissive[k] = float(e);
-        }
-        mats.push_back(pm);
     }
+};
+
+/* per slot of materials[i]: texCoord (0 or 1; higher is warned and reads TEXCOORD_0) and
+ * KHR_texture_transform (whose texCoord overrides the textureInfo's) */
+static void material_tex_coords(const Ctx &c, const tinygltf::Material &gm, size_t i,
+                                const std::string &mw, pg_material &pm)
+{
+    const auto &pbr = gm.pbrMetallicRoughness;
+    const json &jm = c.j.at("materials").at(i);
+    const json *jpbr = opt_object(jm, "pbrMetallicRoughness", mw);
+    const struct {
+        int slot, index, tex_coord;
+        const json *ti;
+        std::string where;
+    } slots[] = {
+        {PG_TEXSLOT_BASE, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+         jpbr ? opt_object(*jpbr, "baseColorTexture", mw) : nullptr,
+         mw + ".pbrMetallicRoughness.baseColorTexture"},
+        {PG_TEXSLOT_NORMAL, gm.normalTexture.index, gm.normalTexture.texCoord,
+         opt_object(jm, "normalTexture", mw), mw + ".normalTexture"},
+        {PG_TEXSLOT_EMISSIVE, gm.emissiveTexture.index, gm.emissiveTexture.texCoord,
+         opt_object(jm, "emissiveTexture", mw), mw + ".emissiveTexture"},
+    };
+    for (const auto &sl : slots) {
+        if (sl.index < 0 || !sl.ti) continue;
+        int tc = sl.tex_coord;
+        pm.has_uv_transform[sl.slot] =
+            texture_transform(*sl.ti, sl.where, pm.uv_transform[sl.slot], &tc);
+        pm.tex_coord[sl.slot] = uint8_t(tc == 1 ? 1 : 0);
+    }
+}
+
+/* metallic-roughness -> Blinn-Phong specular and shininess (the mapping in this file's header) */
+static void material_specular(const tinygltf::PbrMetallicRoughness &pbr, pg_material &pm)
+{
+    double metal = std::isfinite(pbr.metallicFactor) ? clamp01(pbr.metallicFactor) : 1.0;
+    double rough = std::isfinite(pbr.roughnessFactor) ? clamp01(pbr.roughnessFactor) : 1.0;
+    pm.specular = float(0.04 + 0.5 * (1.0 - rough) * (1.0 - metal));
+    double r4 = rough * rough * rough * rough;
+    double sh = 2.0 / (r4 + 1e-4) - 2.0;
+    pm.shininess = float(sh < 1 ? 1 : sh > 512 ? 512 : sh);
+}
+
+/* emissive = emissiveFactor x emissiveStrength (both checked finite >= 0 by prevalidate) */
+static void material_emissive(const tinygltf::Material &gm, const std::string &mw, pg_material &pm)
+{
+    double strength = 1.0;
+    auto es = gm.extensions.find("KHR_materials_emissive_strength");
+    if (es != gm.extensions.end() && es->second.Has("emissiveStrength"))
+        strength = es->second.Get("emissiveStrength").GetNumberAsDouble();
+    for (int k = 0; k < 3 && size_t(k) < gm.emissiveFactor.size(); k++) {
+        double e = gm.emissiveFactor[size_t(k)] * strength;
+        if (!(e <= FLT_MAX))
+            gfail(strf("%s.emissiveFactor: %g x emissiveStrength %g is outside the float range", mw.c_str(),
+                       gm.emissiveFactor[size_t(k)], strength));
+        pm.emissive[k] = float(e);
+    }
+}
+
+/* step 5: materials[i] as a pg_material; its textures numbered in `tex` */
+static pg_material material_from_gltf(const Ctx &c, size_t i, TextureTable &tex)
+{
+    const tinygltf::Material &gm = c.model.materials[i];
+    const std::string mw = strf("materials[%zu]", i);
+    pg_material pm;
+    pg_material_init(&pm, gm.name.empty() ? mw.c_str() : gm.name.c_str());
+    const auto &pbr = gm.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() != 4)
+        gfail(mw + ".pbrMetallicRoughness.baseColorFactor: expected 4 numbers");
+    for (int k = 0; k < 4; k++) {
+        double x = pbr.baseColorFactor[size_t(k)];
+        if (!std::isfinite(x))
+            gfail(mw + ".pbrMetallicRoughness.baseColorFactor: not finite");
+        pm.base_color[k] = clamp01(x);
+    }
+    pm.base_color_tex = tex.texture_for(pbr.baseColorTexture.index, true,
+                                        mw + ".pbrMetallicRoughness.baseColorTexture");
+    pm.normal_tex = tex.texture_for(gm.normalTexture.index, false, mw + ".normalTexture");
+    pm.emissive_tex = tex.texture_for(gm.emissiveTexture.index, true, mw + ".emissiveTexture");
+    material_tex_coords(c, gm, i, mw, pm);
+    pm.normal_scale = float(std::isfinite(gm.normalTexture.scale) ? gm.normalTexture.scale : 1.0);
+    if (gm.alphaMode == "MASK") pm.alpha_mode = PG_ALPHA_MASK;
+    else if (gm.alphaMode == "BLEND") pm.alpha_mode = PG_ALPHA_BLEND;
+    else pm.alpha_mode = PG_ALPHA_OPAQUE;
+    if (!std::isfinite(gm.alphaCutoff) || gm.alphaCutoff < 0)
+        gfail(mw + ".alphaCutoff: expected a finite number >= 0");
+    pm.alpha_cutoff = float(gm.alphaCutoff);
+    material_specular(pbr, pm);
+    pm.double_sided = gm.doubleSided;
+    material_emissive(gm, mw, pm);
+    return pm;
+}
+
+/* each primitive's material index; primitives without one get an appended "default" material */
+static void assign_materials(const tinygltf::Model &md, Out &o, std::vector<pg_material> &mats)
+{
     bool need_default = false;
     for (size_t p = 0; p < o.prims.size(); p++) {
         uint32_t gmat = o.prim_gltf_material[p];
@@ -438,31 +466,14 @@ pg_scene *load(Ctx &c)
         pg_material_init(&pm, "default");
         mats.push_back(pm);
     }
+}
 
-    /* 6. hand out */
-    std::unique_ptr<pg_scene, SceneDeleter> s(static_cast<pg_scene *>(calloc(1, sizeof(pg_scene))));
-    if (!s) throw std::bad_alloc();
-    pg_strlcpy(s->name, file_stem(c.path).c_str(), sizeof s->name);
-    pg_strlcpy(s->path, c.path.c_str(), sizeof s->path);
-    s->vertices = copy_out(o.verts);
-    s->n_vertices = uint32_t(o.verts.size());
-    s->indices = copy_out(o.idx);
-    s->n_indices = uint32_t(o.idx.size());
-    s->primitives = copy_out(o.prims);
-    s->n_primitives = uint32_t(o.prims.size());
-    s->materials = copy_out(mats);
-    s->n_materials = uint32_t(mats.size());
-    s->cameras = copy_out(cams);
-    s->n_cameras = uint32_t(cams.size());
-    /* COLOR_0 when a drawn primitive has it; TEXCOORD_1 when a drawn primitive has it and a
-     * texture of its material reads it */
-    if (!o.colors.empty()) {
-        s->colors = static_cast<float(*)[4]>(malloc(o.colors.size() * sizeof(float)));
-        if (!s->colors) throw std::bad_alloc();
-        memcpy(s->colors, o.colors.data(), o.colors.size() * sizeof(float));
-    }
+/* TEXCOORD_1 is handed out when a drawn primitive has it and a texture of its material reads it;
+ * drawn primitives whose material reads a TEXCOORD_1 they lack are warned */
+static void hand_out_uv1(Ctx &c, const Out &o, const std::vector<pg_material> &mats, pg_scene *s)
+{
     bool uv1_read = false;
-    unsigned uv1_missing = 0; /* drawn primitives whose material reads TEXCOORD_1 they lack */
+    unsigned uv1_missing = 0;
     for (size_t p = 0; p < o.prims.size(); p++) {
         if (!o.prims[p].index_count) continue;
         const pg_material &pm = mats[o.prims[p].material];
@@ -480,21 +491,53 @@ pg_scene *load(Ctx &c)
         if (!s->uv1) throw std::bad_alloc();
         memcpy(s->uv1, o.uv1.data(), o.uv1.size() * sizeof(float));
     }
-    if (!tex_order.empty()) {
-        s->textures = static_cast<pg_texture *>(calloc(tex_order.size(), sizeof(pg_texture)));
-        if (!s->textures) throw std::bad_alloc();
-        for (const TexKey &k : tex_order) {
-            const tinygltf::Image &im = md.images[size_t(k.image)];
-            pg_error terr;
-            memset(&terr, 0, sizeof terr);
-            if (pg_texture_init(&s->textures[s->n_textures], image_name(im, k.image).c_str(),
-                                im.image.data(), uint32_t(im.width), uint32_t(im.height), k.srgb,
-                                &terr) != PG_OK)
-                fail(terr.code, image_desc(c, k.image) + ": " + terr.msg);
-            s->textures[s->n_textures].sampler = k.sampler;
-            s->n_textures++;
-        }
+}
+
+/* one pg_texture per TexKey, in `order` */
+static void hand_out_textures(const Ctx &c, const std::vector<TexKey> &order, pg_scene *s)
+{
+    if (order.empty()) return;
+    s->textures = static_cast<pg_texture *>(calloc(order.size(), sizeof(pg_texture)));
+    if (!s->textures) throw std::bad_alloc();
+    for (const TexKey &k : order) {
+        const tinygltf::Image &im = c.model.images[size_t(k.image)];
+        pg_error terr;
+        memset(&terr, 0, sizeof terr);
+        if (pg_texture_init(&s->textures[s->n_textures], image_name(im, k.image).c_str(),
+                            im.image.data(), uint32_t(im.width), uint32_t(im.height), k.srgb,
+                            &terr) != PG_OK)
+            fail(terr.code, image_desc(c, k.image) + ": " + terr.msg);
+        s->textures[s->n_textures].sampler = k.sampler;
+        s->n_textures++;
     }
+}
+
+/* step 6: the pg_scene, owning copies of everything built; the warnings prefixed with the path */
+static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &mats,
+                          const std::vector<pg_scene_camera> &cams, const std::vector<TexKey> &tex_order)
+{
+    std::unique_ptr<pg_scene, SceneDeleter> s(static_cast<pg_scene *>(calloc(1, sizeof(pg_scene))));
+    if (!s) throw std::bad_alloc();
+    pg_strlcpy(s->name, file_stem(c.path).c_str(), sizeof s->name);
+    pg_strlcpy(s->path, c.path.c_str(), sizeof s->path);
+    s->vertices = copy_out(o.verts);
+    s->n_vertices = uint32_t(o.verts.size());
+    s->indices = copy_out(o.idx);
+    s->n_indices = uint32_t(o.idx.size());
+    s->primitives = copy_out(o.prims);
+    s->n_primitives = uint32_t(o.prims.size());
+    s->materials = copy_out(mats);
+    s->n_materials = uint32_t(mats.size());
+    s->cameras = copy_out(cams);
+    s->n_cameras = uint32_t(cams.size());
+    /* COLOR_0 when a drawn primitive has it */
+    if (!o.colors.empty()) {
+        s->colors = static_cast<float(*)[4]>(malloc(o.colors.size() * sizeof(float)));
+        if (!s->colors) throw std::bad_alloc();
+        memcpy(s->colors, o.colors.data(), o.colors.size() * sizeof(float));
+    }
+    hand_out_uv1(c, o, mats, s.get());
+    hand_out_textures(c, tex_order, s.get());
     for (const std::string &wline : c.warnings) {
         pg_error werr;
         memset(&werr, 0, sizeof werr);
@@ -503,6 +546,42 @@ pg_scene *load(Ctx &c)
     }
     pg_scene_finalize(s.get());
     return s.release();
+}
+
+/* The load order of this file's header: each step a call. */
+pg_scene *load(Ctx &c)
+{
+    {
+        RawFile f;
+        read_file(c, f);  /* 1 */
+        parse_json(c, f); /* 2 */
+        prevalidate(c);
+        tinygltf_load(c, f); /* 3 */
+    }
+    for (const std::string &e : c.model.extensionsUsed)
+        c.quantization = c.quantization || e == "KHR_mesh_quantization";
+    decode_meshopt(c);
+    const tinygltf::Model &md = c.model;
+
+    /* 4. node hierarchy -> geometry */
+    Out o;
+    std::vector<pg_scene_camera> cams;
+    {
+        std::vector<int> roots = root_nodes(md);
+        Walker w{c, o, std::vector<char>(md.nodes.size(), 0), 0};
+        for (int r : roots) w.visit(r, mat_identity(), 0);
+        for (int r : roots) camera_visit(c, r, mat_identity(), cams);
+    }
+    if (o.idx.empty()) gfail("the scene has no triangles");
+    collect_warnings(c);
+
+    /* 5. materials and textures */
+    std::vector<pg_material> mats;
+    TextureTable tex{md, {}, {}};
+    for (size_t i = 0; i < md.materials.size(); i++) mats.push_back(material_from_gltf(c, i, tex));
+    assign_materials(md, o, mats);
+
+    return hand_out(c, o, mats, cams, tex.order); /* 6 */
 }
 
 } // namespace pg_gltf

@@ -268,22 +268,17 @@ void check_finite(const float *v, int n, const View &view, const char *semantic,
 }
 
 
-void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
-{
-    const tinygltf::Primitive &prim = c.model.meshes[size_t(mi)].primitives[size_t(pi)];
-    const std::string pw = strf("meshes[%d].primitives[%d]", mi, pi);
-    int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-    if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
-        c.skipped_prims++;
-        return;
-    }
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-        mode != TINYGLTF_MODE_TRIANGLE_FAN)
-        gfail(strf("%s.mode: %d is not a glTF primitive mode", pw.c_str(), mode));
+/* a primitive's vertex attributes: POSITION, and the optional ones (null when absent), each with
+ * POSITION's element count n */
+struct PrimAttrs {
+    View pos;
+    size_t n = 0;
+    std::unique_ptr<View> nrm, tan, uv, uv1, col;
+};
 
-    decode_draco(c, mi, pi);
-    const int *pa = find_attr(prim, "POSITION");
-    if (!pa) gfail(pw + ".attributes: POSITION missing (required)");
+/* COLOR_1.. and TEXCOORD_2.. are ignored: the primitives that have them are counted (warned) */
+static void count_ignored_attributes(Ctx &c, const tinygltf::Primitive &prim)
+{
     bool has_color1 = false, has_uv2 = false;
     for (const auto &at : prim.attributes) {
         has_color1 = has_color1 || (at.first.compare(0, 6, "COLOR_") == 0 && at.first != "COLOR_0");
@@ -292,67 +287,89 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
     }
     c.color1_prims += has_color1;
     c.texcoord2_prims += has_uv2;
-    const bool quant = c.quantization;
-    View pos = get_view(c, *pa);
-    expect_attr(pos, "POSITION", TINYGLTF_TYPE_VEC3, ATTR_POSITION, quant);
-    const size_t n = pos.count;
+}
 
-    auto optional_view = [&](const char *name) -> std::unique_ptr<View> {
-        const int *ai = find_attr(prim, name);
-        if (!ai) return nullptr;
-        std::unique_ptr<View> v(new View(get_view(c, *ai)));
-        if (v->count != n)
-            gfail(strf("%s: %s (accessors[%d]) has %zu elements but POSITION has %zu", pw.c_str(),
-                       name, *ai, v->count, n));
-        return v;
-    };
-    std::unique_ptr<View> nrm = optional_view("NORMAL");
-    if (nrm) expect_attr(*nrm, "NORMAL", TINYGLTF_TYPE_VEC3, ATTR_NORMAL, quant);
-    std::unique_ptr<View> tan = optional_view("TANGENT");
-    if (tan) expect_attr(*tan, "TANGENT", TINYGLTF_TYPE_VEC4, ATTR_TANGENT, quant);
-    /* COLOR_0: FLOAT, or normalized UNSIGNED_BYTE / UNSIGNED_SHORT (core glTF) */
-    auto float_or_unorm = [](const View &v) {
-        return v.ctype == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-               (v.normalized && (v.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                 v.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
-    };
-    std::unique_ptr<View> uv = optional_view("TEXCOORD_0");
-    if (uv) expect_attr(*uv, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, ATTR_TEXCOORD, quant);
-    std::unique_ptr<View> uv1 = optional_view("TEXCOORD_1");
-    if (uv1) expect_attr(*uv1, "TEXCOORD_1", TINYGLTF_TYPE_VEC2, ATTR_TEXCOORD, quant);
-    std::unique_ptr<View> col = optional_view("COLOR_0");
+/* the attribute NAME's view, null when absent; as many elements as POSITION (n) */
+static std::unique_ptr<View> optional_view(Ctx &c, const tinygltf::Primitive &prim, const char *name,
+                                           size_t n, const std::string &pw)
+{
+    const int *ai = find_attr(prim, name);
+    if (!ai) return nullptr;
+    std::unique_ptr<View> v(new View(get_view(c, *ai)));
+    if (v->count != n)
+        gfail(strf("%s: %s (accessors[%d]) has %zu elements but POSITION has %zu", pw.c_str(),
+                   name, *ai, v->count, n));
+    return v;
+}
+
+/* COLOR_0: FLOAT, or normalized UNSIGNED_BYTE / UNSIGNED_SHORT (core glTF) */
+static bool float_or_unorm(const View &v)
+{
+    return v.ctype == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+           (v.normalized && (v.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                             v.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+}
+
+/* the attributes drawn, each checked for its glTF (and KHR_mesh_quantization) types */
+static void read_attributes(Ctx &c, const tinygltf::Primitive &prim, const std::string &pw, PrimAttrs &a)
+{
+    const int *pa = find_attr(prim, "POSITION");
+    if (!pa) gfail(pw + ".attributes: POSITION missing (required)");
+    count_ignored_attributes(c, prim);
+    const bool quant = c.quantization;
+    a.pos = get_view(c, *pa);
+    expect_attr(a.pos, "POSITION", TINYGLTF_TYPE_VEC3, ATTR_POSITION, quant);
+    a.n = a.pos.count;
+    a.nrm = optional_view(c, prim, "NORMAL", a.n, pw);
+    if (a.nrm) expect_attr(*a.nrm, "NORMAL", TINYGLTF_TYPE_VEC3, ATTR_NORMAL, quant);
+    a.tan = optional_view(c, prim, "TANGENT", a.n, pw);
+    if (a.tan) expect_attr(*a.tan, "TANGENT", TINYGLTF_TYPE_VEC4, ATTR_TANGENT, quant);
+    a.uv = optional_view(c, prim, "TEXCOORD_0", a.n, pw);
+    if (a.uv) expect_attr(*a.uv, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, ATTR_TEXCOORD, quant);
+    a.uv1 = optional_view(c, prim, "TEXCOORD_1", a.n, pw);
+    if (a.uv1) expect_attr(*a.uv1, "TEXCOORD_1", TINYGLTF_TYPE_VEC2, ATTR_TEXCOORD, quant);
+    a.col = optional_view(c, prim, "COLOR_0", a.n, pw);
+    const View *col = a.col.get();
     if (col && !((col->type == TINYGLTF_TYPE_VEC3 || col->type == TINYGLTF_TYPE_VEC4) && float_or_unorm(*col)))
         gfail(strf("accessors[%d]: COLOR_0 must be VEC3 or VEC4, FLOAT or normalized "
                    "UNSIGNED_BYTE/UNSIGNED_SHORT (got %s %s%s)",
                    col->index, type_name(col->type), col->normalized ? "normalized " : "",
                    ctype_name(col->ctype)));
+}
 
-    /* indices (local to this primitive) */
+/* the primitive's indices (local to it, each < n), or 0..n-1 without an indices accessor */
+static std::vector<uint32_t> read_indices(Ctx &c, const tinygltf::Primitive &prim, size_t n,
+                                          const std::string &pw)
+{
     std::vector<uint32_t> ind;
-    if (prim.indices >= 0) {
-        View iv = get_view(c, prim.indices);
-        if (iv.type != TINYGLTF_TYPE_SCALAR ||
-            (iv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-             iv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-             iv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-            gfail(strf("accessors[%d]: indices must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or "
-                       "UNSIGNED_INT (got %s %s)",
-                       iv.index, type_name(iv.type), ctype_name(iv.ctype)));
-        ind.resize(iv.count);
-        for (size_t i = 0; i < iv.count; i++) {
-            uint32_t x = read_index(iv, i);
-            if (x >= n)
-                gfail(strf("%s: index %u at position %zu is out of range (vertex count %zu)",
-                           pw.c_str(), x, i, n));
-            ind[i] = x;
-        }
-    } else {
+    if (prim.indices < 0) {
         if (n > 0xFFFFFFFFull) fail(PG_ERR_LIMIT, pw + ": too many vertices");
         ind.resize(n);
         for (size_t i = 0; i < n; i++) ind[i] = uint32_t(i);
+        return ind;
     }
+    View iv = get_view(c, prim.indices);
+    if (iv.type != TINYGLTF_TYPE_SCALAR ||
+        (iv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+         iv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+         iv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+        gfail(strf("accessors[%d]: indices must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or "
+                   "UNSIGNED_INT (got %s %s)",
+                   iv.index, type_name(iv.type), ctype_name(iv.ctype)));
+    ind.resize(iv.count);
+    for (size_t i = 0; i < iv.count; i++) {
+        uint32_t x = read_index(iv, i);
+        if (x >= n)
+            gfail(strf("%s: index %u at position %zu is out of range (vertex count %zu)",
+                       pw.c_str(), x, i, n));
+        ind[i] = x;
+    }
+    return ind;
+}
 
-    /* strips and fans become lists */
+/* strips and fans become lists; a list must be whole triangles */
+static void to_triangle_list(int mode, std::vector<uint32_t> &ind, const std::string &pw)
+{
     if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) {
         std::vector<uint32_t> list;
         for (size_t i = 2; i < ind.size(); i++) {
@@ -368,109 +385,169 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
     } else if (ind.size() % 3 != 0) {
         gfail(strf("%s: %zu indices is not a multiple of 3 (TRIANGLES)", pw.c_str(), ind.size()));
     }
-    if (ind.empty() || n == 0) return;
+}
 
-    /* transform: positions by M, normals by the inverse-transpose of M's upper 3x3, tangents by
-     * the upper 3x3; a mirroring transform flips the winding and the tangent handedness */
-    const double *m = M.m;
+/* transform: positions by M, normals by the inverse-transpose of M's upper 3x3, tangents by the
+ * upper 3x3; a mirroring transform (det < 0) flips the winding and the tangent handedness */
+struct Xform {
+    const double *m;
+    double cof[9]; /* cof[r*3+c] = cofactor(r,c); inverse-transpose = cof / det */
+    double det, nsign;
+};
+
+static Xform node_xform(const Mat4 &M, const std::string &pw)
+{
+    Xform x;
+    const double *m = x.m = M.m;
     double a00 = m[0], a01 = m[4], a02 = m[8], a10 = m[1], a11 = m[5], a12 = m[9], a20 = m[2],
            a21 = m[6], a22 = m[10];
-    double cof[9] = {a11 * a22 - a12 * a21, a12 * a20 - a10 * a22, a10 * a21 - a11 * a20,
-                     a02 * a21 - a01 * a22, a00 * a22 - a02 * a20, a01 * a20 - a00 * a21,
-                     a01 * a12 - a02 * a11, a02 * a10 - a00 * a12, a00 * a11 - a01 * a10};
-    /* cof[r*3+c] = cofactor(r,c); inverse-transpose = cof / det */
-    double det = a00 * cof[0] + a01 * cof[1] + a02 * cof[2];
-    if (!std::isfinite(det)) gfail(pw + ": node transform is not finite");
-    const double nsign = det < 0 ? -1.0 : 1.0;
+    const double cof[9] = {a11 * a22 - a12 * a21, a12 * a20 - a10 * a22, a10 * a21 - a11 * a20,
+                           a02 * a21 - a01 * a22, a00 * a22 - a02 * a20, a01 * a20 - a00 * a21,
+                           a01 * a12 - a02 * a11, a02 * a10 - a00 * a12, a00 * a11 - a01 * a10};
+    memcpy(x.cof, cof, sizeof cof);
+    x.det = a00 * cof[0] + a01 * cof[1] + a02 * cof[2];
+    if (!std::isfinite(x.det)) gfail(pw + ": node transform is not finite");
+    x.nsign = x.det < 0 ? -1.0 : 1.0;
+    return x;
+}
 
-    if (o.verts.size() + n > 0xFFFFFFF0ull || o.idx.size() + ind.size() > 0xFFFFFFF0ull ||
-        o.verts.size() > 0x7FFFFFFFull)
-        fail(PG_ERR_LIMIT, pw + ": scene exceeds 2^32 vertices or indices");
-    const size_t base = o.verts.size();
+/* POSITION element i under the transform (finite floats under a finite transform can still leave
+ * the float range) */
+static void emit_position(const PrimAttrs &a, const Xform &x, size_t i, const std::string &pw,
+                          pg_vertex &vx)
+{
+    const double *m = x.m;
+    float p[3];
+    read_floats(a.pos, i, p);
+    check_finite(p, 3, a.pos, "POSITION", i);
+    for (int r = 0; r < 3; r++) {
+        double v = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+        if (!(std::fabs(v) <= double(FLT_MAX)))
+            gfail(strf("%s: POSITION element %zu (accessors[%d]) is outside the float range "
+                       "after the node transform",
+                       pw.c_str(), i, a.pos.index));
+        vx.position[r] = float(v);
+    }
+}
+
+/* NORMAL element i under the inverse-transpose, normalized (+Y when it vanishes) */
+static void emit_normal(const View &nrm, const Xform &x, size_t i, const std::string &pw, pg_vertex &vx)
+{
+    float q[3];
+    read_floats(nrm, i, q);
+    check_finite(q, 3, nrm, "NORMAL", i);
+    double t[3];
+    for (int r = 0; r < 3; r++)
+        t[r] = x.nsign * (x.cof[r * 3 + 0] * q[0] + x.cof[r * 3 + 1] * q[1] + x.cof[r * 3 + 2] * q[2]);
+    double l = std::hypot(t[0], t[1], t[2]); /* no overflow in the squares */
+    if (!std::isfinite(l))
+        gfail(strf("%s: NORMAL element %zu (accessors[%d]) overflows under the node "
+                   "transform",
+                   pw.c_str(), i, nrm.index));
+    if (l > 1e-30) {
+        for (int r = 0; r < 3; r++) vx.normal[r] = float(t[r] / l);
+    } else {
+        vx.normal[0] = 0;
+        vx.normal[1] = 1;
+        vx.normal[2] = 0;
+    }
+}
+
+/* TANGENT element i under the upper 3x3, normalized; handedness flipped by a mirroring transform */
+static void emit_tangent(const View &tan, const Xform &x, size_t i, const std::string &pw, pg_vertex &vx)
+{
+    const double *m = x.m;
+    float q[4];
+    read_floats(tan, i, q);
+    check_finite(q, 4, tan, "TANGENT", i);
+    double t[3];
+    for (int r = 0; r < 3; r++) t[r] = m[r] * q[0] + m[4 + r] * q[1] + m[8 + r] * q[2];
+    double l = std::hypot(t[0], t[1], t[2]);
+    if (!std::isfinite(l))
+        gfail(strf("%s: TANGENT element %zu (accessors[%d]) overflows under the node "
+                   "transform",
+                   pw.c_str(), i, tan.index));
+    if (l > 1e-30)
+        for (int r = 0; r < 3; r++) vx.tangent[r] = float(t[r] / l);
+    vx.tangent[3] = float((q[3] < 0 ? -1.0 : 1.0) * x.nsign);
+}
+
+/* the n vertices appended to o at `base` (the optional streams exist from the first primitive
+ * that has the attribute on: white / TEXCOORD_0 for the vertices of primitives without it) */
+static void emit_vertices(Out &o, const PrimAttrs &a, const Xform &x, const std::string &pw)
+{
+    const size_t n = a.n, base = o.verts.size();
     o.verts.resize(base + n);
-    /* the optional streams exist from the first primitive that has the attribute on (white /
-     * TEXCOORD_0 for the vertices of primitives without it, below) */
-    if (col || !o.colors.empty()) o.colors.resize((base + n) * 4, 1.0f);
-    const bool uv1_fresh = uv1 && o.uv1.empty();
-    if (uv1 || !o.uv1.empty()) o.uv1.resize((base + n) * 2, 0.0f);
+    if (a.col || !o.colors.empty()) o.colors.resize((base + n) * 4, 1.0f);
+    const bool uv1_fresh = a.uv1 && o.uv1.empty();
+    if (a.uv1 || !o.uv1.empty()) o.uv1.resize((base + n) * 2, 0.0f);
     pg_vertex *V = o.verts.data() + base;
     for (size_t i = 0; i < n; i++) {
         pg_vertex &vx = V[i];
-        float p[3];
-        read_floats(pos, i, p);
-        check_finite(p, 3, pos, "POSITION", i);
-        for (int r = 0; r < 3; r++) {
-            /* finite floats under a finite transform can still leave the float range */
-            double x = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
-            if (!(std::fabs(x) <= double(FLT_MAX)))
-                gfail(strf("%s: POSITION element %zu (accessors[%d]) is outside the float range "
-                           "after the node transform",
-                           pw.c_str(), i, pos.index));
-            vx.position[r] = float(x);
+        emit_position(a, x, i, pw, vx);
+        if (a.nrm) emit_normal(*a.nrm, x, i, pw, vx);
+        if (a.uv) {
+            read_floats(*a.uv, i, vx.uv);
+            check_finite(vx.uv, 2, *a.uv, "TEXCOORD_0", i);
         }
-        if (nrm) {
-            float q[3];
-            read_floats(*nrm, i, q);
-            check_finite(q, 3, *nrm, "NORMAL", i);
-            double t[3];
-            for (int r = 0; r < 3; r++)
-                t[r] = nsign * (cof[r * 3 + 0] * q[0] + cof[r * 3 + 1] * q[1] + cof[r * 3 + 2] * q[2]);
-            double l = std::hypot(t[0], t[1], t[2]); /* no overflow in the squares */
-            if (!std::isfinite(l))
-                gfail(strf("%s: NORMAL element %zu (accessors[%d]) overflows under the node "
-                           "transform",
-                           pw.c_str(), i, nrm->index));
-            if (l > 1e-30) {
-                for (int r = 0; r < 3; r++) vx.normal[r] = float(t[r] / l);
-            } else {
-                vx.normal[0] = 0;
-                vx.normal[1] = 1;
-                vx.normal[2] = 0;
-            }
-        }
-        if (uv) {
-            read_floats(*uv, i, vx.uv);
-            check_finite(vx.uv, 2, *uv, "TEXCOORD_0", i);
-        }
-        if (col) {
+        if (a.col) {
             float q[4] = {1, 1, 1, 1}; /* VEC3: alpha 1 */
-            read_floats(*col, i, q);
-            check_finite(q, col->ncomp, *col, "COLOR_0", i);
+            read_floats(*a.col, i, q);
+            check_finite(q, a.col->ncomp, *a.col, "COLOR_0", i);
             memcpy(&o.colors[(base + i) * 4], q, sizeof q);
         }
-        if (uv1) {
-            read_floats(*uv1, i, &o.uv1[(base + i) * 2]);
-            check_finite(&o.uv1[(base + i) * 2], 2, *uv1, "TEXCOORD_1", i);
+        if (a.uv1) {
+            read_floats(*a.uv1, i, &o.uv1[(base + i) * 2]);
+            check_finite(&o.uv1[(base + i) * 2], 2, *a.uv1, "TEXCOORD_1", i);
         }
-        if (tan) {
-            float q[4];
-            read_floats(*tan, i, q);
-            check_finite(q, 4, *tan, "TANGENT", i);
-            double t[3];
-            for (int r = 0; r < 3; r++) t[r] = m[r] * q[0] + m[4 + r] * q[1] + m[8 + r] * q[2];
-            double l = std::hypot(t[0], t[1], t[2]);
-            if (!std::isfinite(l))
-                gfail(strf("%s: TANGENT element %zu (accessors[%d]) overflows under the node "
-                           "transform",
-                           pw.c_str(), i, tan->index));
-            if (l > 1e-30)
-                for (int r = 0; r < 3; r++) vx.tangent[r] = float(t[r] / l);
-            vx.tangent[3] = float((q[3] < 0 ? -1.0 : 1.0) * nsign);
-        }
+        if (a.tan) emit_tangent(*a.tan, x, i, pw, vx);
     }
     /* TEXCOORD_1 of the vertices of primitives without it: a copy of their TEXCOORD_0 (what a
      * texture reading set 1 then samples, as when no primitive has TEXCOORD_1; warned) */
     if (!o.uv1.empty()) {
-        const size_t from = uv1_fresh ? 0 : base, to = uv1 ? base : base + n;
+        const size_t from = uv1_fresh ? 0 : base, to = a.uv1 ? base : base + n;
         for (size_t j = from; j < to; j++) memcpy(&o.uv1[j * 2], o.verts[j].uv, sizeof(float[2]));
     }
-    if (det < 0)
+}
+
+/* meshes[mi].primitives[pi] under the node transform M appended to o: its mode (points and lines
+ * skipped, counted), attributes, indices as a triangle list, vertices, missing normals and
+ * tangents computed, the pg_primitive */
+void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
+{
+    const tinygltf::Primitive &prim = c.model.meshes[size_t(mi)].primitives[size_t(pi)];
+    const std::string pw = strf("meshes[%d].primitives[%d]", mi, pi);
+    int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
+        c.skipped_prims++;
+        return;
+    }
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        gfail(strf("%s.mode: %d is not a glTF primitive mode", pw.c_str(), mode));
+
+    decode_draco(c, mi, pi);
+    PrimAttrs a;
+    read_attributes(c, prim, pw, a);
+    const size_t n = a.n;
+    std::vector<uint32_t> ind = read_indices(c, prim, n, pw);
+    to_triangle_list(mode, ind, pw);
+    if (ind.empty() || n == 0) return;
+
+    const Xform x = node_xform(M, pw);
+    if (o.verts.size() + n > 0xFFFFFFF0ull || o.idx.size() + ind.size() > 0xFFFFFFF0ull ||
+        o.verts.size() > 0x7FFFFFFFull)
+        fail(PG_ERR_LIMIT, pw + ": scene exceeds 2^32 vertices or indices");
+    const size_t base = o.verts.size();
+    emit_vertices(o, a, x, pw);
+    if (x.det < 0)
         for (size_t t = 0; t + 2 < ind.size(); t += 3) std::swap(ind[t + 1], ind[t + 2]);
 
-    if (!nrm) pg_mesh_compute_normals(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
+    pg_vertex *V = o.verts.data() + base;
+    if (!a.nrm) pg_mesh_compute_normals(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
     bool normal_mapped = prim.material >= 0 &&
                          c.model.materials[size_t(prim.material)].normalTexture.index >= 0;
-    if (!tan && normal_mapped)
+    if (!a.tan && normal_mapped)
         pg_mesh_compute_tangents(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
 
     pg_primitive pr;
@@ -482,7 +559,7 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
     o.idx.insert(o.idx.end(), ind.begin(), ind.end());
     o.prims.push_back(pr);
     o.prim_gltf_material.push_back(prim.material >= 0 ? uint32_t(prim.material) : UINT32_MAX);
-    o.prim_has_uv1.push_back(uv1 != nullptr);
+    o.prim_has_uv1.push_back(a.uv1 != nullptr);
 }
 
 } // namespace pg_gltf

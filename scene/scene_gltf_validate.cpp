@@ -182,12 +182,9 @@ void check_emissive(const json &o, const std::string &w)
               st->dump().substr(0, 80));
 }
 
-void prevalidate(Ctx &c)
+/* asset.version 2.x (and minVersion 2.0 when given) */
+static void check_asset(const json &j)
 {
-    uint64_t ext_total = 0; /* bytes of the external buffers and images */
-    const json &j = c.j;
-    if (!j.is_object()) gfail("root: expected a JSON object");
-
     auto ait = j.find("asset");
     if (ait == j.end() || !ait->is_object()) gfail("asset: missing (required)");
     auto vit = ait->find("version");
@@ -201,359 +198,451 @@ void prevalidate(Ctx &c)
     if (mvit != ait->end() && mvit->is_string() && mvit->get<std::string>() != "2.0")
         gfail(strf("asset.minVersion: '%s' is not supported",
                    mvit->get<std::string>().c_str()));
+}
 
-    /* a required extension passgraph does not implement is refused, naming each */
-    if (const json *req = opt_array(j, "extensionsRequired", "")) {
-        std::string names;
-        size_t n_unsup = 0;
-        for (const json &e : *req) {
-            if (e.is_string() && extension_implemented(e.get<std::string>())) continue;
-            if (!names.empty()) names += ", ";
-            names += "'" + (e.is_string() ? e.get<std::string>() : e.dump()) + "'";
-            n_unsup++;
+/* a required extension passgraph does not implement is refused, naming each */
+static void check_required_extensions(const json &j)
+{
+    const json *req = opt_array(j, "extensionsRequired", "");
+    if (!req) return;
+    std::string names;
+    size_t n_unsup = 0;
+    for (const json &e : *req) {
+        if (e.is_string() && extension_implemented(e.get<std::string>())) continue;
+        if (!names.empty()) names += ", ";
+        names += "'" + (e.is_string() ? e.get<std::string>() : e.dump()) + "'";
+        n_unsup++;
+    }
+    if (n_unsup) {
+        std::string impl;
+        for (const char *x : kImplementedExtensions) impl += std::string(impl.empty() ? "" : ", ") + x;
+        gfail(strf("extensionsRequired: %s %s not supported (passgraph implements only these glTF "
+                   "extensions: %s)",
+                   names.c_str(), n_unsup == 1 ? "is" : "are", impl.c_str()));
+    }
+}
+
+/* The root's arrays (null when absent), and what the earlier steps learnt for the later ones. */
+struct Arrays {
+    const json *buffers, *views, *accessors, *meshes, *nodes, *scenes, *materials, *textures,
+        *images, *samplers;
+    std::vector<uint64_t> buf_len; /* byteLength per buffer */
+    uint64_t ext_total = 0;        /* bytes of the external buffers and images */
+};
+
+/* fn(object, "NAME[i]", i) for each element of the array `a` (if any), each an object */
+template <typename Fn> static void each_object(const json *a, const char *name, Fn fn)
+{
+    if (!a) return;
+    for (size_t i = 0; i < a->size(); i++) {
+        const json &o = (*a)[i];
+        std::string where = strf("%s[%zu]", name, i);
+        if (!o.is_object()) gfail(where + ": expected an object");
+        fn(o, where, i);
+    }
+}
+
+/* buffers[i].extensions.EXT_meshopt_compression.fallback (false when absent) */
+static bool buffer_is_fallback(const json &o, const std::string &w)
+{
+    if (const json *ex = opt_object(o, "extensions", w))
+        if (const json *mo = opt_object(*ex, "EXT_meshopt_compression", w + ".extensions")) {
+            auto fb = mo->find("fallback");
+            if (fb != mo->end() && !fb->is_boolean())
+                gfail(w + ".extensions.EXT_meshopt_compression.fallback: expected true or false");
+            return fb != mo->end() && fb->get<bool>();
         }
-        if (n_unsup) {
-            std::string impl;
-            for (const char *x : kImplementedExtensions) impl += std::string(impl.empty() ? "" : ", ") + x;
-            gfail(strf("extensionsRequired: %s %s not supported (passgraph implements only these glTF "
-                       "extensions: %s)",
-                       names.c_str(), n_unsup == 1 ? "is" : "are", impl.c_str()));
+    return false;
+}
+
+/* buffers: present with exactly byteLength bytes */
+static void check_buffer(Ctx &c, Arrays &a, const json &o, const std::string &w)
+{
+    uint64_t len = uint_field(o, "byteLength", w, true);
+    a.buf_len.push_back(len);
+    auto uit = o.find("uri");
+    bool fallback = buffer_is_fallback(o, w);
+    /* a fallback buffer is never loaded (only compressed bufferViews may use it, and those
+     * are read from their decoded data), so its uri may be missing or name no file */
+    c.buffer_no_data.push_back(fallback);
+    if (fallback) return;
+    if (uit == o.end()) {
+        if (!c.is_glb) gfail(w + ".uri: missing (required outside .glb files)");
+        if (!c.glb_has_bin) gfail(w + ": refers to the GLB BIN chunk, but there is none");
+        if (len > c.glb_bin_size)
+            gfail(strf("%s: byteLength %llu exceeds the GLB BIN chunk (%zu bytes)", w.c_str(),
+                       (unsigned long long)len, c.glb_bin_size));
+        return;
+    }
+    if (!uit->is_string()) gfail(w + ".uri: expected a string");
+    std::string uri = uit->get<std::string>();
+    if (uri.compare(0, 5, "data:") == 0) {
+        if (!tinygltf::IsDataURI(uri))
+            gfail(w + ".uri: unsupported data URI (need ;base64 and a known media type)");
+        std::vector<unsigned char> tmp;
+        std::string mime;
+        if (!tinygltf::DecodeDataURI(&tmp, mime, uri, 0, false))
+            gfail(w + ".uri: data URI holds no data");
+        if (tmp.size() != len)
+            gfail(strf("%s: data URI holds %zu bytes but byteLength is %llu", w.c_str(),
+                       tmp.size(), (unsigned long long)len));
+        return;
+    }
+    if (uri.empty()) gfail(w + ".uri: empty");
+    std::string file = join_path(c.base_dir, url_decode(uri));
+    uint64_t fsize = check_resource_file(w, uri, file, "glTF buffer", &a.ext_total);
+    if (fsize != len)
+        gfail(strf("%s: '%s' has %llu bytes but byteLength is %llu", w.c_str(), uri.c_str(),
+                   (unsigned long long)fsize, (unsigned long long)len));
+}
+
+/* EXT_meshopt_compression's mode and filter names (the indices of Ctx::Meshopt::mode/filter) */
+static const char *const kMeshoptModes[] = {"ATTRIBUTES", "TRIANGLES", "INDICES"};
+static const char *const kMeshoptFilters[] = {"NONE", "OCTAHEDRAL", "QUATERNION", "EXPONENTIAL"};
+
+/* the string field KEY of the extension object `mo` (at `mw`); "NONE" when absent and optional */
+static std::string meshopt_string(const json &mo, const std::string &mw, const char *key,
+                                  bool required)
+{
+    auto it = mo.find(key);
+    if (it == mo.end()) {
+        if (required) gfail(strf("%s.%s: missing (required)", mw.c_str(), key));
+        return "NONE";
+    }
+    if (!it->is_string()) gfail(strf("%s.%s: expected a string", mw.c_str(), key));
+    return it->get<std::string>();
+}
+
+/* mode and filter: known names, and the byteStride and count each needs; count * byteStride is
+ * the compressed view's byteLength `len` */
+static void check_meshopt_mode(Ctx::Meshopt &m, const json &mo, const std::string &mw,
+                               uint64_t len)
+{
+    const std::string mode = meshopt_string(mo, mw, "mode", true);
+    const std::string filter = meshopt_string(mo, mw, "filter", false);
+    m.mode = m.filter = -1;
+    for (int k = 0; k < 3; k++)
+        if (mode == kMeshoptModes[k]) m.mode = k;
+    for (int k = 0; k < 4; k++)
+        if (filter == kMeshoptFilters[k]) m.filter = k;
+    if (m.mode < 0)
+        gfail(strf("%s.mode: '%s' is not ATTRIBUTES, TRIANGLES or INDICES", mw.c_str(),
+                   mode.substr(0, 40).c_str()));
+    if (m.filter < 0)
+        gfail(strf("%s.filter: '%s' is not NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL",
+                   mw.c_str(), filter.substr(0, 40).c_str()));
+    const uint64_t st = m.stride;
+    if (m.mode == 0 && (st < 4 || st > 256 || st % 4))
+        gfail(strf("%s.byteStride: %llu is not a multiple of 4 in 4..256 (ATTRIBUTES)",
+                   mw.c_str(), (unsigned long long)st));
+    if (m.mode != 0 && st != 2 && st != 4)
+        gfail(strf("%s.byteStride: %llu is not 2 or 4 (%s)", mw.c_str(),
+                   (unsigned long long)st, kMeshoptModes[m.mode]));
+    if (m.mode == 1 && m.count % 3)
+        gfail(strf("%s.count: %llu is not a multiple of 3 (TRIANGLES)", mw.c_str(),
+                   (unsigned long long)m.count));
+    if (m.filter != 0 && m.mode != 0)
+        gfail(strf("%s.filter: %s needs mode ATTRIBUTES", mw.c_str(), kMeshoptFilters[m.filter]));
+    if ((m.filter == 1 && st != 4 && st != 8) || (m.filter == 2 && st != 8))
+        gfail(strf("%s.filter: %s needs byteStride %s (got %llu)", mw.c_str(),
+                   kMeshoptFilters[m.filter], m.filter == 1 ? "4 or 8" : "8",
+                   (unsigned long long)st));
+    if (m.count > UINT64_MAX / st || m.count * st != len)
+        gfail(strf("%s: count %llu * byteStride %llu is not the bufferView's byteLength %llu",
+                   mw.c_str(), (unsigned long long)m.count, (unsigned long long)st,
+                   (unsigned long long)len));
+}
+
+/* bufferViews[vi].extensions.EXT_meshopt_compression (`mo`): its source range inside a loaded
+ * buffer, its mode and filter; recorded in c.meshopt */
+static void check_meshopt_view(Ctx &c, const Arrays &a, const json &mo, const std::string &w,
+                               size_t vi, uint64_t len)
+{
+    const std::string mw = w + ".extensions.EXT_meshopt_compression";
+    Ctx::Meshopt m;
+    m.view = int(vi);
+    m.buffer = int(ref(mo, "buffer", arr_size(a.buffers), "buffers", mw, true));
+    m.offset = uint_field(mo, "byteOffset", mw, false, 0);
+    m.length = uint_field(mo, "byteLength", mw, true);
+    m.stride = uint_field(mo, "byteStride", mw, true);
+    m.count = uint_field(mo, "count", mw, true);
+    if (c.buffer_no_data[size_t(m.buffer)])
+        gfail(strf("%s.buffer: buffers[%d] is a fallback buffer (never loaded)", mw.c_str(),
+                   m.buffer));
+    const uint64_t sl = a.buf_len[size_t(m.buffer)];
+    if (m.offset > sl || m.length > sl - m.offset)
+        gfail(strf("%s: byteOffset %llu + byteLength %llu exceeds buffers[%d] (%llu bytes)",
+                   mw.c_str(), (unsigned long long)m.offset, (unsigned long long)m.length,
+                   m.buffer, (unsigned long long)sl));
+    check_meshopt_mode(m, mo, mw, len);
+    c.meshopt.push_back(m);
+}
+
+/* bufferViews inside their buffers; EXT_meshopt_compression parameters */
+static void check_buffer_view(Ctx &c, const Arrays &a, const json &o, const std::string &w,
+                              size_t vi)
+{
+    long long b = ref(o, "buffer", arr_size(a.buffers), "buffers", w, true);
+    uint64_t off = uint_field(o, "byteOffset", w, false, 0);
+    uint64_t len = uint_field(o, "byteLength", w, true);
+    if (off > a.buf_len[(size_t)b] || len > a.buf_len[(size_t)b] - off)
+        gfail(strf("%s: byteOffset %llu + byteLength %llu exceeds buffers[%lld] (%llu bytes)",
+                   w.c_str(), (unsigned long long)off, (unsigned long long)len, b,
+                   (unsigned long long)a.buf_len[(size_t)b]));
+    if (o.contains("byteStride")) {
+        uint64_t s = uint_field(o, "byteStride", w, false, 0);
+        if (s < 4 || s > 252 || s % 4)
+            gfail(strf("%s.byteStride: %llu is not a multiple of 4 in 4..252", w.c_str(),
+                       (unsigned long long)s));
+    }
+    const json *mo = nullptr;
+    if (const json *ex = opt_object(o, "extensions", w))
+        mo = opt_object(*ex, "EXT_meshopt_compression", w + ".extensions");
+    c.view_is_meshopt.push_back(mo != nullptr);
+    if (!mo) {
+        if (c.buffer_no_data[(size_t)b])
+            gfail(strf("%s: uses buffers[%lld], an EXT_meshopt_compression fallback buffer "
+                       "(never loaded), but is not compressed",
+                       w.c_str(), b));
+        return;
+    }
+    check_meshopt_view(c, a, *mo, w, vi, len);
+}
+
+/* accessors[i].sparse: count, indices and values (ranges are checked when a primitive uses the
+ * accessor, in get_view) */
+static void check_sparse(const Arrays &a, const json &sp, const std::string &sw)
+{
+    uint_field(sp, "count", sw, true);
+    const json *si = opt_object(sp, "indices", sw);
+    const json *sv = opt_object(sp, "values", sw);
+    if (!si) gfail(sw + ".indices: missing (required)");
+    if (!sv) gfail(sw + ".values: missing (required)");
+    ref(*si, "bufferView", arr_size(a.views), "bufferViews", sw + ".indices", true);
+    uint_field(*si, "byteOffset", sw + ".indices", false, 0);
+    uint64_t ict = uint_field(*si, "componentType", sw + ".indices", true);
+    if (ict != 5121 && ict != 5123 && ict != 5125)
+        gfail(strf("%s.indices.componentType: %llu is not UNSIGNED_BYTE, UNSIGNED_SHORT or "
+                   "UNSIGNED_INT",
+                   sw.c_str(), (unsigned long long)ict));
+    ref(*sv, "bufferView", arr_size(a.views), "bufferViews", sw + ".values", true);
+    uint_field(*sv, "byteOffset", sw + ".values", false, 0);
+}
+
+static void check_accessor(const Arrays &a, const json &o, const std::string &w)
+{
+    ref(o, "bufferView", arr_size(a.views), "bufferViews", w, false);
+    uint_field(o, "byteOffset", w, false, 0);
+    uint_field(o, "count", w, true);
+    uint64_t ct = uint_field(o, "componentType", w, true);
+    if (!(ct == 5120 || ct == 5121 || ct == 5122 || ct == 5123 || ct == 5125 || ct == 5126))
+        gfail(strf("%s.componentType: %llu is not a glTF component type", w.c_str(),
+                   (unsigned long long)ct));
+    auto t = o.find("type");
+    static const char *types[] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
+    bool ok = false;
+    if (t != o.end() && t->is_string())
+        for (const char *ty : types) ok = ok || t->get<std::string>() == ty;
+    if (!ok) gfail(w + ".type: missing or not SCALAR/VEC2/VEC3/VEC4/MAT2/MAT3/MAT4");
+    if (const json *sp = opt_object(o, "sparse", w)) check_sparse(a, *sp, w + ".sparse");
+}
+
+/* images: a bufferView (not a compressed one) or a uri (a data URI, or a non-empty file) */
+static void check_image(Ctx &c, Arrays &a, const json &o, const std::string &w)
+{
+    long long bv = ref(o, "bufferView", arr_size(a.views), "bufferViews", w, false);
+    auto uit = o.find("uri");
+    if (bv >= 0 && uit != o.end()) gfail(w + ": has both uri and bufferView");
+    if (bv >= 0 && c.view_is_meshopt[size_t(bv)])
+        gfail(strf("%s.bufferView: bufferViews[%lld] is EXT_meshopt_compression compressed "
+                   "(images cannot be)",
+                   w.c_str(), bv));
+    if (bv < 0 && uit == o.end()) gfail(w + ": has neither uri nor bufferView");
+    if (uit == o.end()) return;
+    if (!uit->is_string()) gfail(w + ".uri: expected a string");
+    std::string uri = uit->get<std::string>();
+    if (uri.compare(0, 5, "data:") == 0) {
+        if (!tinygltf::IsDataURI(uri)) gfail(w + ".uri: unsupported data URI media type");
+        return;
+    }
+    if (uri.empty()) gfail(w + ".uri: empty");
+    std::string file = join_path(c.base_dir, url_decode(uri));
+    uint64_t fsize = check_resource_file(w, uri, file, "glTF image", &a.ext_total);
+    if (fsize == 0) gfail(strf("%s: '%s' is empty", w.c_str(), uri.c_str()));
+}
+
+static void check_material(const Arrays &a, const json &o, const std::string &w)
+{
+    const size_t nt = arr_size(a.textures);
+    if (const json *pbr = opt_object(o, "pbrMetallicRoughness", w)) {
+        std::string pw = w + ".pbrMetallicRoughness";
+        if (const json *ti = opt_object(*pbr, "baseColorTexture", pw))
+            ref(*ti, "index", nt, "textures", pw + ".baseColorTexture", true);
+        if (const json *ti = opt_object(*pbr, "metallicRoughnessTexture", pw))
+            ref(*ti, "index", nt, "textures", pw + ".metallicRoughnessTexture", true);
+    }
+    if (const json *ti = opt_object(o, "normalTexture", w))
+        ref(*ti, "index", nt, "textures", w + ".normalTexture", true);
+    if (const json *ti = opt_object(o, "occlusionTexture", w))
+        ref(*ti, "index", nt, "textures", w + ".occlusionTexture", true);
+    if (const json *ti = opt_object(o, "emissiveTexture", w))
+        ref(*ti, "index", nt, "textures", w + ".emissiveTexture", true);
+    check_emissive(o, w);
+    auto am = o.find("alphaMode");
+    if (am != o.end()) {
+        std::string s = am->is_string() ? am->get<std::string>() : "";
+        if (s != "OPAQUE" && s != "MASK" && s != "BLEND")
+            gfail(w + ".alphaMode: expected \"OPAQUE\", \"MASK\" or \"BLEND\"");
+    }
+}
+
+/* a primitive's KHR_draco_mesh_compression (`dr`, at `pw`): its bufferView, attribute ids that
+ * the primitive's attributes (`attrs`) name, and indices */
+static void check_draco(Ctx &c, const Arrays &a, const json &pr, const json &attrs,
+                        const json &dr, const std::string &pw)
+{
+    const std::string dw = pw + ".extensions.KHR_draco_mesh_compression";
+    ref(dr, "bufferView", arr_size(a.views), "bufferViews", dw, true);
+    const json *da = opt_object(dr, "attributes", dw);
+    if (!da) gfail(dw + ".attributes: missing (required)");
+    for (auto it = da->begin(); it != da->end(); ++it) {
+        if (!it->is_number_unsigned() || it->get<uint64_t>() > 0x7FFFFFFFu)
+            gfail(strf("%s.attributes.%s: expected a Draco attribute id (a "
+                       "non-negative integer)",
+                       dw.c_str(), it.key().substr(0, 40).c_str()));
+        if (!attrs.contains(it.key()))
+            gfail(strf("%s.attributes.%s: the primitive has no %s attribute",
+                       dw.c_str(), it.key().substr(0, 40).c_str(),
+                       it.key().substr(0, 40).c_str()));
+    }
+    if (!pr.contains("indices"))
+        gfail(pw + ".indices: missing (required with KHR_draco_mesh_compression)");
+    /* tinygltf 2.7 refuses an indices accessor without a bufferView, which is
+     * how a required Draco primitive's indices look: tinygltf is told it is the
+     * Draco bufferView (never read: get_view serves the decoded faces) */
+    const size_t ia = pr["indices"].get<size_t>();
+    if (!(*a.accessors)[ia].contains("bufferView"))
+        c.draco_index_fix[int(ia)] = int(dr["bufferView"].get<size_t>());
+}
+
+/* meshes[i].primitives[p] (at `pw`): attributes, indices, material, Draco, mode, targets */
+static void check_primitive(Ctx &c, const Arrays &a, const json &pr, const std::string &pw)
+{
+    if (!pr.is_object()) gfail(pw + ": expected an object");
+    const json *attrs = opt_object(pr, "attributes", pw);
+    if (!attrs) gfail(pw + ".attributes: missing (required)");
+    for (auto it = attrs->begin(); it != attrs->end(); ++it)
+        ref(*attrs, it.key().c_str(), arr_size(a.accessors), "accessors", pw + ".attributes", true);
+    ref(pr, "indices", arr_size(a.accessors), "accessors", pw, false);
+    ref(pr, "material", arr_size(a.materials), "materials", pw, false);
+    if (const json *ex = opt_object(pr, "extensions", pw))
+        if (const json *dr = opt_object(*ex, "KHR_draco_mesh_compression", pw + ".extensions"))
+            check_draco(c, a, pr, *attrs, *dr, pw);
+    auto mit = pr.find("mode");
+    if (mit != pr.end() && (!mit->is_number_unsigned() || mit->get<uint64_t>() > 6))
+        gfail(pw + ".mode: " + mit->dump() + " is not a glTF primitive mode (0..6)");
+    if (const json *targets = opt_array(pr, "targets", pw)) {
+        for (size_t t = 0; t < targets->size(); t++) {
+            const json &tg = (*targets)[t];
+            std::string tw = strf("%s.targets[%zu]", pw.c_str(), t);
+            if (!tg.is_object()) gfail(tw + ": expected an object");
+            for (auto it = tg.begin(); it != tg.end(); ++it)
+                ref(tg, it.key().c_str(), arr_size(a.accessors), "accessors", tw, true);
         }
     }
+}
 
-    const json *buffers = opt_array(j, "buffers", "");
-    const json *views = opt_array(j, "bufferViews", "");
-    const json *accessors = opt_array(j, "accessors", "");
-    const json *meshes = opt_array(j, "meshes", "");
-    const json *nodes = opt_array(j, "nodes", "");
-    const json *scenes = opt_array(j, "scenes", "");
-    const json *materials = opt_array(j, "materials", "");
-    const json *textures = opt_array(j, "textures", "");
-    const json *images = opt_array(j, "images", "");
-    const json *samplers = opt_array(j, "samplers", "");
+static void check_mesh(Ctx &c, const Arrays &a, const json &o, const std::string &w)
+{
+    const json *prims = opt_array(o, "primitives", w);
+    if (!prims) gfail(w + ".primitives: missing (required)");
+    for (size_t p = 0; p < prims->size(); p++)
+        check_primitive(c, a, (*prims)[p], strf("%s.primitives[%zu]", w.c_str(), p));
+}
 
-    auto each_object = [](const json *a, const char *name, auto fn) {
-        if (!a) return;
-        for (size_t i = 0; i < a->size(); i++) {
-            const json &o = (*a)[i];
-            std::string where = strf("%s[%zu]", name, i);
-            if (!o.is_object()) gfail(where + ": expected an object");
-            fn(o, where, i);
-        }
-    };
+/* the array KEY of `o` (at `w`), if any, holds valid node indices */
+static void check_node_list(const Arrays &a, const json &o, const char *key, const std::string &w)
+{
+    const json *ns = opt_array(o, key, w);
+    if (!ns) return;
+    for (size_t k = 0; k < ns->size(); k++) {
+        const json &v = (*ns)[k];
+        if (!v.is_number_unsigned() || v.get<uint64_t>() >= arr_size(a.nodes))
+            gfail(strf("%s.%s[%zu]: not a valid node index (%zu nodes)", w.c_str(), key, k,
+                       arr_size(a.nodes)));
+    }
+}
 
-    /* buffers: present with exactly byteLength bytes */
-    std::vector<uint64_t> buf_len;
-    each_object(buffers, "buffers", [&](const json &o, const std::string &w, size_t) {
-        uint64_t len = uint_field(o, "byteLength", w, true);
-        buf_len.push_back(len);
-        auto uit = o.find("uri");
-        bool fallback = false;
-        if (const json *ex = opt_object(o, "extensions", w))
-            if (const json *mo = opt_object(*ex, "EXT_meshopt_compression", w + ".extensions")) {
-                auto fb = mo->find("fallback");
-                if (fb != mo->end() && !fb->is_boolean())
-                    gfail(w + ".extensions.EXT_meshopt_compression.fallback: expected true or false");
-                fallback = fb != mo->end() && fb->get<bool>();
-            }
-        /* a fallback buffer is never loaded (only compressed bufferViews may use it, and those
-         * are read from their decoded data), so its uri may be missing or name no file */
-        c.buffer_no_data.push_back(fallback);
-        if (fallback) return;
-        if (uit == o.end()) {
-            if (!c.is_glb) gfail(w + ".uri: missing (required outside .glb files)");
-            if (!c.glb_has_bin) gfail(w + ": refers to the GLB BIN chunk, but there is none");
-            if (len > c.glb_bin_size)
-                gfail(strf("%s: byteLength %llu exceeds the GLB BIN chunk (%zu bytes)", w.c_str(),
-                           (unsigned long long)len, c.glb_bin_size));
-            return;
-        }
-        if (!uit->is_string()) gfail(w + ".uri: expected a string");
-        std::string uri = uit->get<std::string>();
-        if (uri.compare(0, 5, "data:") == 0) {
-            if (!tinygltf::IsDataURI(uri))
-                gfail(w + ".uri: unsupported data URI (need ;base64 and a known media type)");
-            std::vector<unsigned char> tmp;
-            std::string mime;
-            if (!tinygltf::DecodeDataURI(&tmp, mime, uri, 0, false))
-                gfail(w + ".uri: data URI holds no data");
-            if (tmp.size() != len)
-                gfail(strf("%s: data URI holds %zu bytes but byteLength is %llu", w.c_str(),
-                           tmp.size(), (unsigned long long)len));
-            return;
-        }
-        if (uri.empty()) gfail(w + ".uri: empty");
-        std::string file = join_path(c.base_dir, url_decode(uri));
-        uint64_t fsize = check_resource_file(w, uri, file, "glTF buffer", &ext_total);
-        if (fsize != len)
-            gfail(strf("%s: '%s' has %llu bytes but byteLength is %llu", w.c_str(), uri.c_str(),
-                       (unsigned long long)fsize, (unsigned long long)len));
+/* nodes: mesh, children and finite transforms */
+static void check_node(const Arrays &a, const json &o, const std::string &w)
+{
+    ref(o, "mesh", arr_size(a.meshes), "meshes", w, false);
+    check_node_list(a, o, "children", w);
+    static const struct {
+        const char *key;
+        size_t n;
+    } tf[] = {{"matrix", 16}, {"translation", 3}, {"rotation", 4}, {"scale", 3}};
+    for (const auto &f : tf) {
+        auto it = o.find(f.key);
+        if (it == o.end()) continue;
+        bool ok = it->is_array() && it->size() == f.n;
+        if (ok)
+            for (const auto &x : *it) ok = ok && x.is_number() && std::isfinite(x.get<double>());
+        if (!ok) gfail(strf("%s.%s: expected %zu finite numbers", w.c_str(), f.key, f.n));
+    }
+}
+
+/* The JSON checks before tinygltf sees the file: the asset, extensionsRequired, then each array
+ * kind in turn, each after the kinds it refers to (their sizes and facts are known by then). */
+void prevalidate(Ctx &c)
+{
+    const json &j = c.j;
+    if (!j.is_object()) gfail("root: expected a JSON object");
+    check_asset(j);
+    check_required_extensions(j);
+
+    Arrays a;
+    a.buffers = opt_array(j, "buffers", "");
+    a.views = opt_array(j, "bufferViews", "");
+    a.accessors = opt_array(j, "accessors", "");
+    a.meshes = opt_array(j, "meshes", "");
+    a.nodes = opt_array(j, "nodes", "");
+    a.scenes = opt_array(j, "scenes", "");
+    a.materials = opt_array(j, "materials", "");
+    a.textures = opt_array(j, "textures", "");
+    a.images = opt_array(j, "images", "");
+    a.samplers = opt_array(j, "samplers", "");
+
+    each_object(a.buffers, "buffers", [&](const json &o, const std::string &w, size_t) {
+        check_buffer(c, a, o, w);
     });
-
-    /* bufferViews inside their buffers; EXT_meshopt_compression parameters */
-    each_object(views, "bufferViews", [&](const json &o, const std::string &w, size_t vi) {
-        long long b = ref(o, "buffer", arr_size(buffers), "buffers", w, true);
-        uint64_t off = uint_field(o, "byteOffset", w, false, 0);
-        uint64_t len = uint_field(o, "byteLength", w, true);
-        if (off > buf_len[(size_t)b] || len > buf_len[(size_t)b] - off)
-            gfail(strf("%s: byteOffset %llu + byteLength %llu exceeds buffers[%lld] (%llu bytes)",
-                       w.c_str(), (unsigned long long)off, (unsigned long long)len, b,
-                       (unsigned long long)buf_len[(size_t)b]));
-        if (o.contains("byteStride")) {
-            uint64_t s = uint_field(o, "byteStride", w, false, 0);
-            if (s < 4 || s > 252 || s % 4)
-                gfail(strf("%s.byteStride: %llu is not a multiple of 4 in 4..252", w.c_str(),
-                           (unsigned long long)s));
-        }
-        const json *mo = nullptr;
-        if (const json *ex = opt_object(o, "extensions", w))
-            mo = opt_object(*ex, "EXT_meshopt_compression", w + ".extensions");
-        c.view_is_meshopt.push_back(mo != nullptr);
-        if (!mo) {
-            if (c.buffer_no_data[(size_t)b])
-                gfail(strf("%s: uses buffers[%lld], an EXT_meshopt_compression fallback buffer "
-                           "(never loaded), but is not compressed",
-                           w.c_str(), b));
-            return;
-        }
-        const std::string mw = w + ".extensions.EXT_meshopt_compression";
-        Ctx::Meshopt m;
-        m.view = int(vi);
-        m.buffer = int(ref(*mo, "buffer", arr_size(buffers), "buffers", mw, true));
-        m.offset = uint_field(*mo, "byteOffset", mw, false, 0);
-        m.length = uint_field(*mo, "byteLength", mw, true);
-        m.stride = uint_field(*mo, "byteStride", mw, true);
-        m.count = uint_field(*mo, "count", mw, true);
-        if (c.buffer_no_data[size_t(m.buffer)])
-            gfail(strf("%s.buffer: buffers[%d] is a fallback buffer (never loaded)", mw.c_str(),
-                       m.buffer));
-        const uint64_t sl = buf_len[size_t(m.buffer)];
-        if (m.offset > sl || m.length > sl - m.offset)
-            gfail(strf("%s: byteOffset %llu + byteLength %llu exceeds buffers[%d] (%llu bytes)",
-                       mw.c_str(), (unsigned long long)m.offset, (unsigned long long)m.length,
-                       m.buffer, (unsigned long long)sl));
-        auto str = [&](const char *key, bool required) -> std::string {
-            auto it = mo->find(key);
-            if (it == mo->end()) {
-                if (required) gfail(strf("%s.%s: missing (required)", mw.c_str(), key));
-                return "NONE";
-            }
-            if (!it->is_string()) gfail(strf("%s.%s: expected a string", mw.c_str(), key));
-            return it->get<std::string>();
-        };
-        const std::string mode = str("mode", true), filter = str("filter", false);
-        static const char *const modes[] = {"ATTRIBUTES", "TRIANGLES", "INDICES"};
-        static const char *const filters[] = {"NONE", "OCTAHEDRAL", "QUATERNION", "EXPONENTIAL"};
-        m.mode = m.filter = -1;
-        for (int k = 0; k < 3; k++)
-            if (mode == modes[k]) m.mode = k;
-        for (int k = 0; k < 4; k++)
-            if (filter == filters[k]) m.filter = k;
-        if (m.mode < 0)
-            gfail(strf("%s.mode: '%s' is not ATTRIBUTES, TRIANGLES or INDICES", mw.c_str(),
-                       mode.substr(0, 40).c_str()));
-        if (m.filter < 0)
-            gfail(strf("%s.filter: '%s' is not NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL",
-                       mw.c_str(), filter.substr(0, 40).c_str()));
-        const uint64_t st = m.stride;
-        if (m.mode == 0 && (st < 4 || st > 256 || st % 4))
-            gfail(strf("%s.byteStride: %llu is not a multiple of 4 in 4..256 (ATTRIBUTES)",
-                       mw.c_str(), (unsigned long long)st));
-        if (m.mode != 0 && st != 2 && st != 4)
-            gfail(strf("%s.byteStride: %llu is not 2 or 4 (%s)", mw.c_str(),
-                       (unsigned long long)st, modes[m.mode]));
-        if (m.mode == 1 && m.count % 3)
-            gfail(strf("%s.count: %llu is not a multiple of 3 (TRIANGLES)", mw.c_str(),
-                       (unsigned long long)m.count));
-        if (m.filter != 0 && m.mode != 0)
-            gfail(strf("%s.filter: %s needs mode ATTRIBUTES", mw.c_str(), filters[m.filter]));
-        if ((m.filter == 1 && st != 4 && st != 8) || (m.filter == 2 && st != 8))
-            gfail(strf("%s.filter: %s needs byteStride %s (got %llu)", mw.c_str(),
-                       filters[m.filter], m.filter == 1 ? "4 or 8" : "8",
-                       (unsigned long long)st));
-        if (m.count > UINT64_MAX / st || m.count * st != len)
-            gfail(strf("%s: count %llu * byteStride %llu is not the bufferView's byteLength %llu",
-                       mw.c_str(), (unsigned long long)m.count, (unsigned long long)st,
-                       (unsigned long long)len));
-        c.meshopt.push_back(m);
+    each_object(a.views, "bufferViews", [&](const json &o, const std::string &w, size_t vi) {
+        check_buffer_view(c, a, o, w, vi);
     });
-
-    each_object(accessors, "accessors", [&](const json &o, const std::string &w, size_t) {
-        ref(o, "bufferView", arr_size(views), "bufferViews", w, false);
-        uint_field(o, "byteOffset", w, false, 0);
-        uint_field(o, "count", w, true);
-        uint64_t ct = uint_field(o, "componentType", w, true);
-        if (!(ct == 5120 || ct == 5121 || ct == 5122 || ct == 5123 || ct == 5125 || ct == 5126))
-            gfail(strf("%s.componentType: %llu is not a glTF component type", w.c_str(),
-                       (unsigned long long)ct));
-        auto t = o.find("type");
-        static const char *types[] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
-        bool ok = false;
-        if (t != o.end() && t->is_string())
-            for (const char *ty : types) ok = ok || t->get<std::string>() == ty;
-        if (!ok) gfail(w + ".type: missing or not SCALAR/VEC2/VEC3/VEC4/MAT2/MAT3/MAT4");
-        if (const json *sp = opt_object(o, "sparse", w)) {
-            /* ranges are checked when a primitive uses the accessor (get_view) */
-            std::string sw = w + ".sparse";
-            uint_field(*sp, "count", sw, true);
-            const json *si = opt_object(*sp, "indices", sw);
-            const json *sv = opt_object(*sp, "values", sw);
-            if (!si) gfail(sw + ".indices: missing (required)");
-            if (!sv) gfail(sw + ".values: missing (required)");
-            ref(*si, "bufferView", arr_size(views), "bufferViews", sw + ".indices", true);
-            uint_field(*si, "byteOffset", sw + ".indices", false, 0);
-            uint64_t ict = uint_field(*si, "componentType", sw + ".indices", true);
-            if (ict != 5121 && ict != 5123 && ict != 5125)
-                gfail(strf("%s.indices.componentType: %llu is not UNSIGNED_BYTE, UNSIGNED_SHORT or "
-                           "UNSIGNED_INT",
-                           sw.c_str(), (unsigned long long)ict));
-            ref(*sv, "bufferView", arr_size(views), "bufferViews", sw + ".values", true);
-            uint_field(*sv, "byteOffset", sw + ".values", false, 0);
-        }
+    each_object(a.accessors, "accessors", [&](const json &o, const std::string &w, size_t) {
+        check_accessor(a, o, w);
     });
-
-    each_object(images, "images", [&](const json &o, const std::string &w, size_t) {
-        long long bv = ref(o, "bufferView", arr_size(views), "bufferViews", w, false);
-        auto uit = o.find("uri");
-        if (bv >= 0 && uit != o.end()) gfail(w + ": has both uri and bufferView");
-        if (bv >= 0 && c.view_is_meshopt[size_t(bv)])
-            gfail(strf("%s.bufferView: bufferViews[%lld] is EXT_meshopt_compression compressed "
-                       "(images cannot be)",
-                       w.c_str(), bv));
-        if (bv < 0 && uit == o.end()) gfail(w + ": has neither uri nor bufferView");
-        if (uit == o.end()) return;
-        if (!uit->is_string()) gfail(w + ".uri: expected a string");
-        std::string uri = uit->get<std::string>();
-        if (uri.compare(0, 5, "data:") == 0) {
-            if (!tinygltf::IsDataURI(uri)) gfail(w + ".uri: unsupported data URI media type");
-            return;
-        }
-        if (uri.empty()) gfail(w + ".uri: empty");
-        std::string file = join_path(c.base_dir, url_decode(uri));
-        uint64_t fsize = check_resource_file(w, uri, file, "glTF image", &ext_total);
-        if (fsize == 0) gfail(strf("%s: '%s' is empty", w.c_str(), uri.c_str()));
+    each_object(a.images, "images", [&](const json &o, const std::string &w, size_t) {
+        check_image(c, a, o, w);
     });
-
-    each_object(samplers, "samplers", [&](const json &, const std::string &, size_t) {});
-
-    each_object(textures, "textures", [&](const json &o, const std::string &w, size_t) {
-        ref(o, "source", arr_size(images), "images", w, false);
-        ref(o, "sampler", arr_size(samplers), "samplers", w, false);
+    each_object(a.samplers, "samplers", [&](const json &, const std::string &, size_t) {});
+    each_object(a.textures, "textures", [&](const json &o, const std::string &w, size_t) {
+        ref(o, "source", arr_size(a.images), "images", w, false);
+        ref(o, "sampler", arr_size(a.samplers), "samplers", w, false);
     });
-
-    each_object(materials, "materials", [&](const json &o, const std::string &w, size_t) {
-        if (const json *pbr = opt_object(o, "pbrMetallicRoughness", w)) {
-            std::string pw = w + ".pbrMetallicRoughness";
-            if (const json *ti = opt_object(*pbr, "baseColorTexture", pw))
-                ref(*ti, "index", arr_size(textures), "textures", pw + ".baseColorTexture", true);
-            if (const json *ti = opt_object(*pbr, "metallicRoughnessTexture", pw))
-                ref(*ti, "index", arr_size(textures), "textures",
-                    pw + ".metallicRoughnessTexture", true);
-        }
-        if (const json *ti = opt_object(o, "normalTexture", w))
-            ref(*ti, "index", arr_size(textures), "textures", w + ".normalTexture", true);
-        if (const json *ti = opt_object(o, "occlusionTexture", w))
-            ref(*ti, "index", arr_size(textures), "textures", w + ".occlusionTexture", true);
-        if (const json *ti = opt_object(o, "emissiveTexture", w))
-            ref(*ti, "index", arr_size(textures), "textures", w + ".emissiveTexture", true);
-        check_emissive(o, w);
-        auto am = o.find("alphaMode");
-        if (am != o.end()) {
-            std::string s = am->is_string() ? am->get<std::string>() : "";
-            if (s != "OPAQUE" && s != "MASK" && s != "BLEND")
-                gfail(w + ".alphaMode: expected \"OPAQUE\", \"MASK\" or \"BLEND\"");
-        }
+    each_object(a.materials, "materials", [&](const json &o, const std::string &w, size_t) {
+        check_material(a, o, w);
     });
-
-    each_object(meshes, "meshes", [&](const json &o, const std::string &w, size_t) {
-        const json *prims = opt_array(o, "primitives", w);
-        if (!prims) gfail(w + ".primitives: missing (required)");
-        for (size_t p = 0; p < prims->size(); p++) {
-            const json &pr = (*prims)[p];
-            std::string pw = strf("%s.primitives[%zu]", w.c_str(), p);
-            if (!pr.is_object()) gfail(pw + ": expected an object");
-            const json *attrs = opt_object(pr, "attributes", pw);
-            if (!attrs) gfail(pw + ".attributes: missing (required)");
-            for (auto it = attrs->begin(); it != attrs->end(); ++it)
-                ref(*attrs, it.key().c_str(), arr_size(accessors), "accessors",
-                    pw + ".attributes", true);
-            ref(pr, "indices", arr_size(accessors), "accessors", pw, false);
-            ref(pr, "material", arr_size(materials), "materials", pw, false);
-            if (const json *ex = opt_object(pr, "extensions", pw))
-                if (const json *dr = opt_object(*ex, "KHR_draco_mesh_compression", pw + ".extensions")) {
-                    const std::string dw = pw + ".extensions.KHR_draco_mesh_compression";
-                    ref(*dr, "bufferView", arr_size(views), "bufferViews", dw, true);
-                    const json *da = opt_object(*dr, "attributes", dw);
-                    if (!da) gfail(dw + ".attributes: missing (required)");
-                    for (auto it = da->begin(); it != da->end(); ++it) {
-                        if (!it->is_number_unsigned() || it->get<uint64_t>() > 0x7FFFFFFFu)
-                            gfail(strf("%s.attributes.%s: expected a Draco attribute id (a "
-                                       "non-negative integer)",
-                                       dw.c_str(), it.key().substr(0, 40).c_str()));
-                        if (!attrs->contains(it.key()))
-                            gfail(strf("%s.attributes.%s: the primitive has no %s attribute",
-                                       dw.c_str(), it.key().substr(0, 40).c_str(),
-                                       it.key().substr(0, 40).c_str()));
-                    }
-                    if (!pr.contains("indices"))
-                        gfail(pw + ".indices: missing (required with KHR_draco_mesh_compression)");
-                    /* tinygltf 2.7 refuses an indices accessor without a bufferView, which is
-                     * how a required Draco primitive's indices look: tinygltf is told it is the
-                     * Draco bufferView (never read: get_view serves the decoded faces) */
-                    const size_t ia = pr["indices"].get<size_t>();
-                    if (!(*accessors)[ia].contains("bufferView"))
-                        c.draco_index_fix[int(ia)] = int((*dr)["bufferView"].get<size_t>());
-                }
-            auto mit = pr.find("mode");
-            if (mit != pr.end() && (!mit->is_number_unsigned() || mit->get<uint64_t>() > 6))
-                gfail(pw + ".mode: " + mit->dump() + " is not a glTF primitive mode (0..6)");
-            if (const json *targets = opt_array(pr, "targets", pw)) {
-                for (size_t t = 0; t < targets->size(); t++) {
-                    const json &tg = (*targets)[t];
-                    std::string tw = strf("%s.targets[%zu]", pw.c_str(), t);
-                    if (!tg.is_object()) gfail(tw + ": expected an object");
-                    for (auto it = tg.begin(); it != tg.end(); ++it)
-                        ref(tg, it.key().c_str(), arr_size(accessors), "accessors", tw, true);
-                }
-            }
-        }
+    each_object(a.meshes, "meshes", [&](const json &o, const std::string &w, size_t) {
+        check_mesh(c, a, o, w);
     });
-
-    each_object(nodes, "nodes", [&](const json &o, const std::string &w, size_t) {
-        ref(o, "mesh", arr_size(meshes), "meshes", w, false);
-        if (const json *ch = opt_array(o, "children", w)) {
-            for (size_t k = 0; k < ch->size(); k++) {
-                const json &v = (*ch)[k];
-                if (!v.is_number_unsigned() || v.get<uint64_t>() >= arr_size(nodes))
-                    gfail(strf("%s.children[%zu]: not a valid node index (%zu nodes)", w.c_str(),
-                               k, arr_size(nodes)));
-            }
-        }
-        static const struct {
-            const char *key;
-            size_t n;
-        } tf[] = {{"matrix", 16}, {"translation", 3}, {"rotation", 4}, {"scale", 3}};
-        for (const auto &f : tf) {
-            auto it = o.find(f.key);
-            if (it == o.end()) continue;
-            bool ok = it->is_array() && it->size() == f.n;
-            if (ok)
-                for (const auto &x : *it) ok = ok && x.is_number() && std::isfinite(x.get<double>());
-            if (!ok) gfail(strf("%s.%s: expected %zu finite numbers", w.c_str(), f.key, f.n));
-        }
+    each_object(a.nodes, "nodes", [&](const json &o, const std::string &w, size_t) {
+        check_node(a, o, w);
     });
-
-    each_object(scenes, "scenes", [&](const json &o, const std::string &w, size_t) {
-        if (const json *ns = opt_array(o, "nodes", w)) {
-            for (size_t k = 0; k < ns->size(); k++) {
-                const json &v = (*ns)[k];
-                if (!v.is_number_unsigned() || v.get<uint64_t>() >= arr_size(nodes))
-                    gfail(strf("%s.nodes[%zu]: not a valid node index (%zu nodes)", w.c_str(), k,
-                               arr_size(nodes)));
-            }
-        }
+    each_object(a.scenes, "scenes", [&](const json &o, const std::string &w, size_t) {
+        check_node_list(a, o, "nodes", w);
     });
-    ref(j, "scene", arr_size(scenes), "scenes", "", false);
+    ref(j, "scene", arr_size(a.scenes), "scenes", "", false);
 }
 
 } // namespace pg_gltf

@@ -178,6 +178,156 @@ static const char *meta_diff(const cJSON *a, const cJSON *b)
     return NULL;
 }
 
+/* --out DIR and the shard folders; -1 to go on, else the exit code (0 after --help, 2 after a
+ * message on stderr) */
+static int parse_merge_options(int argc, char **argv, const char **dirs, int *nd, const char **out)
+{
+    for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            fputs(merge_help, stdout);
+            return 0;
+        } else if (!strcmp(argv[i], "--out")) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "passgraph bench-merge: --out: missing value\n");
+                return 2;
+            }
+            *out = argv[++i];
+        } else if (argv[i][0] == '-') {
+            fprintf(stderr, "passgraph bench-merge: unknown option '%s' (see passgraph bench-merge --help)\n", argv[i]);
+            return 2;
+        } else {
+            dirs[(*nd)++] = argv[i];
+        }
+    }
+    if (!*out || !*nd) {
+        fprintf(stderr, "passgraph bench-merge: %s\n%s", !*out ? "--out DIR is required" : "no shard folder given",
+                merge_help);
+        return 2;
+    }
+    return -1;
+}
+
+/* the shards loaded: one sweep, each shard K of 1..N once */
+static pg_result load_shards(shard_in *sh, const char **dirs, int nd, pg_error *err)
+{
+    for (int d = 0; d < nd; d++) {
+        sh[d].dir = dirs[d];
+        pg_result r = shard_load(&sh[d], err);
+        if (r) return r;
+        if (d == 0) continue;
+        const char *key = meta_diff(sh[0].meta, sh[d].meta);
+        if (key)
+            return pg_fail(err, PG_ERR_INVALID_ARG, "%s: not the same sweep as %s: meta.%s differs", dirs[d], dirs[0],
+                           key);
+        if (sh[d].n != sh[0].n)
+            return pg_fail(err, PG_ERR_INVALID_ARG, "%s: shard %u/%u of a sweep in %u shards, %s is %u/%u", dirs[d],
+                           sh[d].k, sh[d].n, sh[d].n, dirs[0], sh[0].k, sh[0].n);
+        for (int e = 0; e < d; e++)
+            if (sh[e].k == sh[d].k)
+                return pg_fail(err, PG_ERR_INVALID_ARG, "%s: shard %u/%u given twice (also %s)", dirs[d], sh[d].k,
+                               sh[d].n, dirs[e]);
+    }
+    for (uint32_t k = 1; k <= sh[0].n; k++) {
+        bool found = false;
+        for (int d = 0; d < nd && !found; d++) found = sh[d].k == k;
+        if (!found)
+            return pg_fail(err, PG_ERR_INVALID_ARG, "shard %u/%u missing (have %d of %u shard folders)", k, sh[0].n,
+                           nd, sh[0].n);
+    }
+    return PG_OK;
+}
+
+/* the sweep's options (meta.argv of the first shard) with --out OUT: *args has *na + 2 strings
+ * (freed by the caller, also on failure) */
+static pg_result sweep_args(const shard_in *s0, const char *out, char ***args, int *na, pg_error *err)
+{
+    const cJSON *av = cJSON_GetObjectItemCaseSensitive(s0->meta, "argv");
+    *na = cJSON_GetArraySize(av);
+    char **a = *args = calloc((size_t)*na + 3, sizeof *a);
+    if (!a) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    for (int i = 0; i < *na; i++) {
+        const cJSON *x = cJSON_GetArrayItem(av, i);
+        if (!cJSON_IsString(x) || !(a[i] = strdup(x->valuestring)))
+            return pg_fail(err, PG_ERR_PARSE, "%s/results.json: meta.argv: expected strings", s0->dir);
+    }
+    a[*na] = strdup("--out");
+    a[*na + 1] = strdup(out);
+    if (!a[*na] || !a[*na + 1]) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    return PG_OK;
+}
+
+/* the first shard's meta against the sweep set up again (its configuration count), and its device */
+static pg_result adopt_meta(bench *B, const shard_in *s0, pg_error *err)
+{
+    if (jget_num(s0->meta, "configs") != B->n_configs)
+        return pg_fail(err, PG_ERR_INVALID_ARG,
+                       "%s: meta.configs is %g but its options give %u configurations here (other pipeline files?)",
+                       s0->dir, jget_num(s0->meta, "configs"), B->n_configs);
+    B->opt.quiet = true;
+    const char *dev = jget_str(s0->meta, "device");
+    pg_strlcpy(B->device, dev ? dev : "(no device)", sizeof B->device);
+    B->device_known = dev && strcmp(dev, "(no device)");
+    B->device_cpu = cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(s0->meta, "device_cpu"));
+    B->validation_messages = 0;
+    B->merged_shards = s0->n;
+    return PG_OK;
+}
+
+/* shard d's rows into B->rows at their configuration index (each its shard's, each once) */
+static pg_result read_shard_rows(bench *B, const shard_in *s, uint8_t *seen_cfg, pg_error *err)
+{
+    const cJSON *o;
+    uint32_t rowno = 0;
+    pg_result r;
+    cJSON_ArrayForEach(o, s->rows)
+    {
+        bench_row row;
+        char file[PG_PATH_MAX + 32];
+        snprintf(file, sizeof file, "%s/results.json", s->dir);
+        if ((r = pg_bench_row_check(file, ++rowno, o, err))) return r;
+        if ((r = row_read(B, s->dir, o, &row, err))) return r;
+        if (row.index % s->n != s->k - 1)
+            return pg_fail(err, PG_ERR_INVALID_ARG, "%s: configuration %u does not belong to shard %u/%u", s->dir,
+                           row.index, s->k, s->n);
+        if (seen_cfg[row.index])
+            return pg_fail(err, PG_ERR_INVALID_ARG, "%s: configuration %u given twice", s->dir, row.index);
+        seen_cfg[row.index] = 1;
+        B->rows[row.index] = row;
+    }
+    return PG_OK;
+}
+
+/* the rows, each configuration once, in index order; *elapsed the longest shard's elapsed_s */
+static pg_result read_rows(bench *B, const shard_in *sh, int nd, double *elapsed, pg_error *err)
+{
+    B->rows = calloc(B->n_configs ? B->n_configs : 1, sizeof *B->rows);
+    uint8_t *seen_cfg = calloc(B->n_configs ? B->n_configs : 1, 1);
+    pg_result r = PG_OK;
+    if (!B->rows || !seen_cfg) {
+        r = pg_fail(err, PG_ERR_OOM, "out of memory");
+        goto out;
+    }
+    B->cap_rows = B->n_configs;
+    for (int d = 0; d < nd; d++) {
+        double el = jget_num(sh[d].meta, "elapsed_s");
+        if (isfinite(el) && el > *elapsed) *elapsed = el;
+        if ((r = read_shard_rows(B, &sh[d], seen_cfg, err))) goto out;
+    }
+    for (uint32_t i = 0; i < B->n_configs; i++)
+        if (!seen_cfg[i]) {
+            int d = 0;
+            while (d < nd && sh[d].k - 1 != i % sh[0].n) d++;
+            r = pg_fail(err, PG_ERR_INVALID_ARG, "%s: configuration %u (shard %u/%u) missing from its results.json",
+                        d < nd ? sh[d].dir : "?", i, i % sh[0].n + 1, sh[0].n);
+            goto out;
+        }
+    B->n_rows = B->n_configs;
+    for (uint32_t i = 0; i < B->n_rows; i++) B->n_failed += B->rows[i].status == ROW_ERROR;
+out:
+    free(seen_cfg);
+    return r;
+}
+
 int pg_cmd_bench_merge(int argc, char **argv)
 {
     const char *out = NULL;
@@ -185,7 +335,6 @@ int pg_cmd_bench_merge(int argc, char **argv)
     shard_in *sh = calloc((size_t)argc + 1, sizeof *sh);
     bench *B = calloc(1, sizeof *B);
     char **args = NULL;
-    uint8_t *seen_cfg = NULL;
     int nd = 0, rc = 2, na = 0;
     pg_error err = {0};
     if (!dirs || !sh || !B) {
@@ -193,145 +342,18 @@ int pg_cmd_bench_merge(int argc, char **argv)
         rc = 1;
         goto done;
     }
-    for (int i = 0; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            fputs(merge_help, stdout);
-            rc = 0;
-            goto done;
-        } else if (!strcmp(argv[i], "--out")) {
-            if (i + 1 >= argc) {
-                fprintf(stderr, "passgraph bench-merge: --out: missing value\n");
-                goto done;
-            }
-            out = argv[++i];
-        } else if (argv[i][0] == '-') {
-            fprintf(stderr, "passgraph bench-merge: unknown option '%s' (see passgraph bench-merge --help)\n", argv[i]);
-            goto done;
-        } else {
-            dirs[nd++] = argv[i];
-        }
-    }
-    if (!out || !nd) {
-        fprintf(stderr, "passgraph bench-merge: %s\n%s", !out ? "--out DIR is required" : "no shard folder given",
-                merge_help);
-        goto done;
-    }
+    rc = parse_merge_options(argc, argv, dirs, &nd, &out);
+    if (rc >= 0) goto done;
     rc = 1;
-    /* the shards: one sweep, each shard once */
-    for (int d = 0; d < nd; d++) {
-        sh[d].dir = dirs[d];
-        if (shard_load(&sh[d], &err)) goto fail;
-        if (d == 0) continue;
-        const char *key = meta_diff(sh[0].meta, sh[d].meta);
-        if (key) {
-            pg_fail(&err, PG_ERR_INVALID_ARG, "%s: not the same sweep as %s: meta.%s differs", dirs[d], dirs[0], key);
-            goto fail;
-        }
-        if (sh[d].n != sh[0].n) {
-            pg_fail(&err, PG_ERR_INVALID_ARG, "%s: shard %u/%u of a sweep in %u shards, %s is %u/%u", dirs[d], sh[d].k,
-                    sh[d].n, sh[d].n, dirs[0], sh[0].k, sh[0].n);
-            goto fail;
-        }
-        for (int e = 0; e < d; e++)
-            if (sh[e].k == sh[d].k) {
-                pg_fail(&err, PG_ERR_INVALID_ARG, "%s: shard %u/%u given twice (also %s)", dirs[d], sh[d].k, sh[d].n,
-                        dirs[e]);
-                goto fail;
-            }
-    }
-    for (uint32_t k = 1; k <= sh[0].n; k++) {
-        bool found = false;
-        for (int d = 0; d < nd && !found; d++) found = sh[d].k == k;
-        if (!found) {
-            pg_fail(&err, PG_ERR_INVALID_ARG, "shard %u/%u missing (have %d of %u shard folders)", k, sh[0].n, nd, sh[0].n);
-            goto fail;
-        }
-    }
+    if (load_shards(sh, dirs, nd, &err) || sweep_args(&sh[0], out, &args, &na, &err)) goto fail;
     /* the sweep again, from the options the shards ran with */
-    const cJSON *av = cJSON_GetObjectItemCaseSensitive(sh[0].meta, "argv");
-    na = cJSON_GetArraySize(av);
-    args = calloc((size_t)na + 3, sizeof *args);
-    if (!args) {
-        pg_fail(&err, PG_ERR_OOM, "out of memory");
-        goto fail;
-    }
-    for (int i = 0; i < na; i++) {
-        const cJSON *x = cJSON_GetArrayItem(av, i);
-        if (!cJSON_IsString(x) || !(args[i] = strdup(x->valuestring))) {
-            pg_fail(&err, PG_ERR_PARSE, "%s/results.json: meta.argv: expected strings", dirs[0]);
-            goto fail;
-        }
-    }
-    args[na] = strdup("--out");
-    args[na + 1] = strdup(out);
-    if (!args[na] || !args[na + 1]) {
-        pg_fail(&err, PG_ERR_OOM, "out of memory");
-        goto fail;
-    }
-    int src = bench_setup(B, na + 2, args);
-    if (src >= 0) {
+    if (bench_setup(B, na + 2, args) >= 0) {
         fprintf(stderr, "passgraph bench-merge: %s: the sweep's options (meta.argv) do not parse here (see above)\n",
                 dirs[0]);
-        rc = 1;
         goto done;
     }
-    if (jget_num(sh[0].meta, "configs") != B->n_configs) {
-        pg_fail(&err, PG_ERR_INVALID_ARG,
-                "%s: meta.configs is %g but its options give %u configurations here (other pipeline files?)", dirs[0],
-                jget_num(sh[0].meta, "configs"), B->n_configs);
-        goto fail;
-    }
-    B->opt.quiet = true;
-    const char *dev = jget_str(sh[0].meta, "device");
-    pg_strlcpy(B->device, dev ? dev : "(no device)", sizeof B->device);
-    B->device_known = dev && strcmp(dev, "(no device)");
-    B->device_cpu = cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(sh[0].meta, "device_cpu"));
-    B->validation_messages = 0;
-    B->merged_shards = sh[0].n;
     double elapsed = 0;
-    /* the rows, each configuration once, in index order */
-    B->rows = calloc(B->n_configs ? B->n_configs : 1, sizeof *B->rows);
-    seen_cfg = calloc(B->n_configs ? B->n_configs : 1, 1);
-    if (!B->rows || !seen_cfg) {
-        pg_fail(&err, PG_ERR_OOM, "out of memory");
-        goto fail;
-    }
-    B->cap_rows = B->n_configs;
-    for (int d = 0; d < nd; d++) {
-        double el = jget_num(sh[d].meta, "elapsed_s");
-        if (isfinite(el) && el > elapsed) elapsed = el;
-        const cJSON *o;
-        uint32_t rowno = 0;
-        cJSON_ArrayForEach(o, sh[d].rows)
-        {
-            bench_row r;
-            char file[PG_PATH_MAX + 32];
-            snprintf(file, sizeof file, "%s/results.json", dirs[d]);
-            if (pg_bench_row_check(file, ++rowno, o, &err)) goto fail;
-            if (row_read(B, dirs[d], o, &r, &err)) goto fail;
-            if (r.index % sh[d].n != sh[d].k - 1) {
-                pg_fail(&err, PG_ERR_INVALID_ARG, "%s: configuration %u does not belong to shard %u/%u", dirs[d], r.index,
-                        sh[d].k, sh[d].n);
-                goto fail;
-            }
-            if (seen_cfg[r.index]) {
-                pg_fail(&err, PG_ERR_INVALID_ARG, "%s: configuration %u given twice", dirs[d], r.index);
-                goto fail;
-            }
-            seen_cfg[r.index] = 1;
-            B->rows[r.index] = r;
-        }
-    }
-    for (uint32_t i = 0; i < B->n_configs; i++)
-        if (!seen_cfg[i]) {
-            int d = 0;
-            while (d < nd && sh[d].k - 1 != i % sh[0].n) d++;
-            pg_fail(&err, PG_ERR_INVALID_ARG, "%s: configuration %u (shard %u/%u) missing from its results.json",
-                    d < nd ? dirs[d] : "?", i, i % sh[0].n + 1, sh[0].n);
-            goto fail;
-        }
-    B->n_rows = B->n_configs;
-    for (uint32_t i = 0; i < B->n_rows; i++) B->n_failed += B->rows[i].status == ROW_ERROR;
+    if (adopt_meta(B, &sh[0], &err) || read_rows(B, sh, nd, &elapsed, &err)) goto fail;
     B->t_start = now_s() - elapsed; /* meta.elapsed_s: the longest shard's */
     if (make_dirs(B->out_dir, &err) || write_outputs(B, &err)) goto fail;
     printf("bench-merge: %u rows (%u failed) from %u shards -> %s/results.csv, results.json, gpu_time_vs_lights.svg, "
@@ -348,7 +370,6 @@ done:
     if (args)
         for (int i = 0; i < na + 2; i++) free(args[i]);
     free(args);
-    free(seen_cfg);
     if (B) bench_free(B);
     free(B);
     free(sh);

@@ -251,17 +251,15 @@ static uint32_t find_or_add_ref(bench *B, const pg_ov_list *ov, pg_error *err, b
     return B->n_refs++;
 }
 
-/* Loads every pipeline once (names, declared parameters), checks that each --set / --pipeline-set /
- * --sweep key is declared somewhere and each --reference-set key by the reference, builds the
- * variants with what each side gets (sides.h) and checks that each loads. Bad keys, and values
- * the reference refuses, are option errors (exit 2, returned as PG_ERR_INVALID_ARG); a pipeline
- * that does not load is recorded in its rows, a reference that does not load in every row's note. */
-pg_result pg_bench_plan_variants(bench *B, pg_error *err)
+/* which --set, --pipeline-set and --sweep keys some pipeline (or the reference) declares */
+typedef struct key_use {
+    bool set[PG_SIDES_MAX_OV], pset[PG_SIDES_MAX_OV], sweep[MAX_SWEEPS];
+} key_use;
+
+/* a swept key may not be given with --set or --pipeline-set too */
+static pg_result check_sweep_keys(const bench *B, pg_error *err)
 {
     const pg_side_sets *ss = &B->sides;
-    bool set_used[PG_SIDES_MAX_OV] = {0}, pset_used[PG_SIDES_MAX_OV] = {0}, sweep_used[MAX_SWEEPS] = {0};
-    bool any_loaded = false;
-    pg_result r = PG_OK;
     for (uint32_t k = 0; k < B->n_sweeps; k++) {
         if (pg_ov_list_get(&ss->set, B->sweeps[k].key))
             return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: the same key is given with --set", B->sweeps[k].key);
@@ -270,124 +268,170 @@ pg_result pg_bench_plan_variants(bench *B, pg_error *err)
                 return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: the same key is given with %s", B->sweeps[k].key,
                                ss->pipeline.from[s]);
     }
-    /* the reference: its declared parameters decide which --set and swept values it takes */
-    pg_pipeline *ref = NULL;
+    return PG_OK;
+}
+
+/* The reference (*ref, NULL when it does not load): its declared parameters decide which --set
+ * and swept values it takes; its name, and the sweeps it takes (ref_sweeps). */
+static pg_result load_reference(bench *B, pg_pipeline **ref, key_use *use, pg_error *err)
+{
+    const pg_side_sets *ss = &B->sides;
     pg_error re = {0};
-    if (!pg_pipeline_load(B->ref_path, NULL, 0, &ref, &re)) {
-        pg_strlcpy(B->ref_name, ref->name, sizeof B->ref_name);
-        if ((r = pg_sides_check_keys(&ss->reference, ref, "reference", err))) goto done;
-        for (uint32_t s = 0; s < ss->set.n; s++) set_used[s] |= pg_pipeline_find_param(ref, ss->set.ov[s].key) != NULL;
-        size_t l = 0;
-        for (uint32_t k = 0; k < B->n_sweeps; k++)
-            if (pg_pipeline_find_param(ref, B->sweeps[k].key) && !pg_ov_list_get(&ss->reference, B->sweeps[k].key)) {
-                l += (size_t)snprintf(B->ref_sweeps + l, l < sizeof B->ref_sweeps ? sizeof B->ref_sweeps - l : 0, "%s%s",
-                                      l ? "," : "", B->sweeps[k].key);
-                if (l >= sizeof B->ref_sweeps) l = sizeof B->ref_sweeps - 1;
-            }
-    } else {
-        ref = NULL;
+    if (pg_pipeline_load(B->ref_path, NULL, 0, ref, &re)) {
+        *ref = NULL;
         file_stem(B->ref_path, B->ref_name, sizeof B->ref_name);
+        return PG_OK;
     }
+    pg_strlcpy(B->ref_name, (*ref)->name, sizeof B->ref_name);
+    pg_result r = pg_sides_check_keys(&ss->reference, *ref, "reference", err);
+    if (r) return r;
+    for (uint32_t s = 0; s < ss->set.n; s++) use->set[s] |= pg_pipeline_find_param(*ref, ss->set.ov[s].key) != NULL;
+    size_t l = 0;
+    for (uint32_t k = 0; k < B->n_sweeps; k++)
+        if (pg_pipeline_find_param(*ref, B->sweeps[k].key) && !pg_ov_list_get(&ss->reference, B->sweeps[k].key)) {
+            l += (size_t)snprintf(B->ref_sweeps + l, l < sizeof B->ref_sweeps ? sizeof B->ref_sweeps - l : 0, "%s%s",
+                                  l ? "," : "", B->sweeps[k].key);
+            if (l >= sizeof B->ref_sweeps) l = sizeof B->ref_sweeps - 1;
+        }
+    return PG_OK;
+}
+
+/* A loaded pipeline: the keys it declares, its fixed overrides (without the swept values), the
+ * sweeps it declares and so its variant count (at most MAX_VARIANTS). */
+static pg_result pipeline_sweeps(const bench *B, pipe_entry *pe, const pg_pipeline *pl, key_use *use,
+                                 bool declares[MAX_SWEEPS], uint32_t *n_var, pg_ov_list *fixed, pg_error *err)
+{
+    const pg_side_sets *ss = &B->sides;
+    pg_strlcpy(pe->name, pl->name, sizeof pe->name);
+    for (uint32_t s = 0; s < ss->set.n; s++) use->set[s] |= pg_pipeline_find_param(pl, ss->set.ov[s].key) != NULL;
+    for (uint32_t s = 0; s < ss->pipeline.n; s++)
+        use->pset[s] |= pg_pipeline_find_param(pl, ss->pipeline.ov[s].key) != NULL;
+    pg_sides_pipeline(ss, pl, NULL, 0, fixed);
+    for (uint32_t k = 0; k < B->n_sweeps; k++)
+        if (pg_pipeline_find_param(pl, B->sweeps[k].key)) {
+            declares[k] = use->sweep[k] = true;
+            *n_var *= B->sweeps[k].n;
+            if (*n_var > MAX_VARIANTS)
+                return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep: more than %d variants of %s", MAX_VARIANTS, pe->path);
+        }
+    return PG_OK;
+}
+
+/* Variant v of a pipeline (pl NULL when it did not load): its swept values (the last declared
+ * sweep varies fastest) and label, its overrides and its reference's; whether it loads. */
+static pg_result plan_variant(bench *B, pipe_entry *pe, const pg_pipeline *pl, const pg_pipeline *ref,
+                              const bool declares[MAX_SWEEPS], const pg_ov_list *fixed, uint32_t v, pg_error *err)
+{
+    const pg_side_sets *ss = &B->sides;
+    variant *va = &pe->variants[v];
+    pg_ov_list_format(fixed, va->sets_label, sizeof va->sets_label);
+    pg_param_override swept[MAX_SWEEPS];
+    uint32_t n_swept = 0, rest = v, ll = 0;
+    for (uint32_t k = 0; k < B->n_sweeps; k++) {
+        if (!declares[k]) continue;
+        uint32_t div = 1;
+        for (uint32_t k2 = k + 1; k2 < B->n_sweeps; k2++)
+            if (declares[k2]) div *= B->sweeps[k2].n;
+        const char *val = B->sweeps[k].values[(rest / div) % B->sweeps[k].n];
+        swept[n_swept++] = (pg_param_override){B->sweeps[k].key, val};
+        ll += (uint32_t)snprintf(va->label + ll, ll < sizeof va->label ? sizeof va->label - ll : 0, "%s%s=%s",
+                                 ll ? ";" : "", B->sweeps[k].key, val);
+        if (ll >= sizeof va->label) ll = sizeof va->label - 1;
+    }
+    if (pl) pg_sides_pipeline(ss, pl, swept, n_swept, &va->ov); /* else it is never run */
+    pg_ov_list rov;
+    pg_sides_reference(ss, ref, swept, n_swept, &rov);
+    bool oom = false;
+    va->ref = find_or_add_ref(B, &rov, err, &oom);
+    if (oom) return PG_ERR_OOM;
+    if (!pe->loaded) {
+        pg_strlcpy(va->msg, pe->msg, sizeof va->msg);
+        return PG_OK;
+    }
+    pg_error ve = {0};
+    pg_pipeline *vp = NULL;
+    if (pg_pipeline_load(pe->path, va->ov.ov, va->ov.n, &vp, &ve)) {
+        pg_strlcpy(va->msg, ve.msg, sizeof va->msg);
+    } else {
+        va->ok = true;
+        pg_pipeline_free(vp);
+    }
+    return PG_OK;
+}
+
+/* pipeline pi's variants (one when it declares no swept key or does not load), numbered from
+ * *series on */
+static pg_result plan_pipeline(bench *B, uint32_t pi, const pg_pipeline *ref, key_use *use, uint32_t *series,
+                               bool *any_loaded, pg_error *err)
+{
+    pipe_entry *pe = &B->pipes[pi];
+    pe->is_reference = same_file(pe->path, B->ref_path);
+    pg_pipeline *pl = NULL;
+    pg_error le = {0};
+    uint32_t n_var = 1;
+    bool declares[MAX_SWEEPS] = {0};
+    pg_ov_list fixed; /* this pipeline's overrides without the swept values */
+    memset(&fixed, 0, sizeof fixed);
+    pg_result r = PG_OK;
+    if (pg_pipeline_load(pe->path, NULL, 0, &pl, &le)) {
+        pg_strlcpy(pe->msg, le.msg, sizeof pe->msg);
+    } else {
+        pe->loaded = *any_loaded = true;
+        if ((r = pipeline_sweeps(B, pe, pl, use, declares, &n_var, &fixed, err))) goto out;
+    }
+    pe->variants = calloc(n_var, sizeof *pe->variants);
+    if (!pe->variants) {
+        r = pg_fail(err, PG_ERR_OOM, "out of memory");
+        goto out;
+    }
+    pe->n_variants = n_var;
+    for (uint32_t v = 0; v < n_var; v++) {
+        pe->variants[v].series = (*series)++;
+        if ((r = plan_variant(B, pe, pl, ref, declares, &fixed, v, err))) goto out;
+    }
+out:
+    pg_pipeline_free(pl);
+    return r;
+}
+
+/* every --set, --pipeline-set and --sweep key is declared by some pipeline (or the reference) */
+static pg_result check_keys_used(const bench *B, const key_use *use, pg_error *err)
+{
+    const pg_side_sets *ss = &B->sides;
+    for (uint32_t s = 0; s < ss->set.n; s++)
+        if (!use->set[s])
+            return pg_fail(err, PG_ERR_INVALID_ARG, "--set %s=%s: no selected pipeline (nor the reference) declares '%s'",
+                           ss->set.ov[s].key, ss->set.ov[s].value, ss->set.ov[s].key);
+    for (uint32_t s = 0; s < ss->pipeline.n; s++)
+        if (!use->pset[s])
+            return pg_fail(err, PG_ERR_INVALID_ARG, "%s %s=%s: no selected pipeline declares '%s'", ss->pipeline.from[s],
+                           ss->pipeline.ov[s].key, ss->pipeline.ov[s].value, ss->pipeline.ov[s].key);
+    for (uint32_t k = 0; k < B->n_sweeps; k++)
+        if (!use->sweep[k])
+            return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: no selected pipeline declares '%s'", B->sweeps[k].key,
+                           B->sweeps[k].key);
+    return PG_OK;
+}
+
+/* Loads every pipeline once (names, declared parameters), checks that each --set / --pipeline-set /
+ * --sweep key is declared somewhere and each --reference-set key by the reference, builds the
+ * variants with what each side gets (sides.h) and checks that each loads. Bad keys, and values
+ * the reference refuses, are option errors (exit 2, returned as PG_ERR_INVALID_ARG); a pipeline
+ * that does not load is recorded in its rows, a reference that does not load in every row's note. */
+pg_result pg_bench_plan_variants(bench *B, pg_error *err)
+{
+    key_use use;
+    memset(&use, 0, sizeof use);
+    bool any_loaded = false;
+    pg_result r = check_sweep_keys(B, err);
+    if (r) return r;
+    pg_pipeline *ref = NULL;
+    if ((r = load_reference(B, &ref, &use, err))) goto done;
     uint32_t series = 0;
-    for (uint32_t pi = 0; pi < B->n_pipes; pi++) {
-        pipe_entry *pe = &B->pipes[pi];
-        pe->is_reference = same_file(pe->path, B->ref_path);
-        pg_pipeline *pl = NULL;
-        pg_error le = {0};
-        uint32_t n_var = 1;
-        bool declares[MAX_SWEEPS] = {0};
-        pg_ov_list fixed; /* this pipeline's overrides without the swept values */
-        memset(&fixed, 0, sizeof fixed);
-        if (pg_pipeline_load(pe->path, NULL, 0, &pl, &le)) {
-            pg_strlcpy(pe->msg, le.msg, sizeof pe->msg);
-        } else {
-            pe->loaded = any_loaded = true;
-            pg_strlcpy(pe->name, pl->name, sizeof pe->name);
-            for (uint32_t s = 0; s < ss->set.n; s++) set_used[s] |= pg_pipeline_find_param(pl, ss->set.ov[s].key) != NULL;
-            for (uint32_t s = 0; s < ss->pipeline.n; s++)
-                pset_used[s] |= pg_pipeline_find_param(pl, ss->pipeline.ov[s].key) != NULL;
-            pg_sides_pipeline(ss, pl, NULL, 0, &fixed);
-            for (uint32_t k = 0; k < B->n_sweeps; k++)
-                if (pg_pipeline_find_param(pl, B->sweeps[k].key)) {
-                    declares[k] = sweep_used[k] = true;
-                    n_var *= B->sweeps[k].n;
-                    if (n_var > MAX_VARIANTS) {
-                        pg_pipeline_free(pl);
-                        r = pg_fail(err, PG_ERR_INVALID_ARG, "--sweep: more than %d variants of %s", MAX_VARIANTS, pe->path);
-                        goto done;
-                    }
-                }
-        }
-        pe->variants = calloc(n_var, sizeof *pe->variants);
-        if (!pe->variants) {
-            pg_pipeline_free(pl);
-            r = pg_fail(err, PG_ERR_OOM, "out of memory");
-            goto done;
-        }
-        pe->n_variants = n_var;
-        for (uint32_t v = 0; v < n_var; v++) {
-            variant *va = &pe->variants[v];
-            va->series = series++;
-            pg_ov_list_format(&fixed, va->sets_label, sizeof va->sets_label);
-            pg_param_override swept[MAX_SWEEPS];
-            uint32_t n_swept = 0, rest = v, ll = 0;
-            for (uint32_t k = 0; k < B->n_sweeps; k++) { /* the last declared sweep varies fastest */
-                if (!declares[k]) continue;
-                uint32_t div = 1;
-                for (uint32_t k2 = k + 1; k2 < B->n_sweeps; k2++)
-                    if (declares[k2]) div *= B->sweeps[k2].n;
-                const char *val = B->sweeps[k].values[(rest / div) % B->sweeps[k].n];
-                swept[n_swept++] = (pg_param_override){B->sweeps[k].key, val};
-                ll += (uint32_t)snprintf(va->label + ll, ll < sizeof va->label ? sizeof va->label - ll : 0, "%s%s=%s",
-                                         ll ? ";" : "", B->sweeps[k].key, val);
-                if (ll >= sizeof va->label) ll = sizeof va->label - 1;
-            }
-            if (pl) pg_sides_pipeline(ss, pl, swept, n_swept, &va->ov); /* else it is never run */
-            pg_ov_list rov;
-            pg_sides_reference(ss, ref, swept, n_swept, &rov);
-            bool oom = false;
-            va->ref = find_or_add_ref(B, &rov, err, &oom);
-            if (oom) {
-                pg_pipeline_free(pl);
-                r = PG_ERR_OOM;
-                goto done;
-            }
-            if (!pe->loaded) {
-                pg_strlcpy(va->msg, pe->msg, sizeof va->msg);
-                continue;
-            }
-            pg_error ve = {0};
-            pg_pipeline *vp = NULL;
-            if (pg_pipeline_load(pe->path, va->ov.ov, va->ov.n, &vp, &ve)) {
-                pg_strlcpy(va->msg, ve.msg, sizeof va->msg);
-            } else {
-                va->ok = true;
-                pg_pipeline_free(vp);
-            }
-        }
-        pg_pipeline_free(pl);
-    }
+    for (uint32_t pi = 0; pi < B->n_pipes; pi++)
+        if ((r = plan_pipeline(B, pi, ref, &use, &series, &any_loaded, err))) goto done;
     B->n_series = series;
-    if (any_loaded) {
-        for (uint32_t s = 0; s < ss->set.n; s++)
-            if (!set_used[s]) {
-                r = pg_fail(err, PG_ERR_INVALID_ARG, "--set %s=%s: no selected pipeline (nor the reference) declares '%s'",
-                            ss->set.ov[s].key, ss->set.ov[s].value, ss->set.ov[s].key);
-                goto done;
-            }
-        for (uint32_t s = 0; s < ss->pipeline.n; s++)
-            if (!pset_used[s]) {
-                r = pg_fail(err, PG_ERR_INVALID_ARG, "%s %s=%s: no selected pipeline declares '%s'", ss->pipeline.from[s],
-                            ss->pipeline.ov[s].key, ss->pipeline.ov[s].value, ss->pipeline.ov[s].key);
-                goto done;
-            }
-        for (uint32_t k = 0; k < B->n_sweeps; k++)
-            if (!sweep_used[k]) {
-                r = pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: no selected pipeline declares '%s'", B->sweeps[k].key,
-                            B->sweeps[k].key);
-                goto done;
-            }
-    }
+    if (any_loaded && (r = check_keys_used(B, &use, err))) goto done;
     /* a value the reference refuses is a bad option, not a failure of every row */
     for (uint32_t k = 0; ref && k < B->n_refs; k++)
         if (pg_sides_check_values(B->ref_path, &B->refs[k].ov, "reference", err) == PG_ERR_INVALID_ARG) {

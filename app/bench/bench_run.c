@@ -179,6 +179,140 @@ static void collect_stats(bench_row *row, const double *samples, uint32_t frames
         pg_sample_stats_compute(samples + (size_t)(2 + p) * frames, row->frames, &row->passes[p].st, NULL);
 }
 
+/* the session of one row: its pipeline with the variant's overrides, the bench's options */
+static pg_result open_row_session(const bench *B, pg_app *app, const pipe_entry *pe, const variant *va,
+                                  pg_session **s, pg_error *e)
+{
+    pg_session_desc desc = {
+        .pipeline_path = pe->path,
+        .overrides = va->ov.ov,
+        .n_overrides = va->ov.n,
+        .registry = &app->registry,
+        .disable_aliasing = B->opt.no_aliasing,
+        .immediate = B->opt.immediate,
+        .async_off = B->opt.async_compute == PG_ASYNC_OFF,
+        .settings = app->opt.settings,
+        .n_settings = app->opt.n_settings,
+    };
+    pg_result r = pg_session_create(app->gpu, app->scene_gpu, &desc, s, e);
+    if (r) return r;
+    return pg_session_set_frames_in_flight(*s, B->frames_in_flight, e);
+}
+
+/* timed frame f (runtime frame st->frame): CPU and wait times, the GPU times known so far (they
+ * arrive later with 2 in flight: each timed frame's are fetched by its frame number and stored at
+ * its own timed index), the pass names, the worst overflow */
+static void record_timed_frame(const bench *B, const pg_session *s, const pg_frame_stats *st, uint32_t f,
+                               uint64_t *first_timed, bench_row *row, double *samples)
+{
+    if (*first_timed == UINT64_MAX) *first_timed = st->frame;
+    fetch_gpu(B, s->runtime, *first_timed, st->frame, st->n_passes, samples);
+    samples[B->opt.frames + f] = st->cpu_ms;
+    samples[(size_t)(2 + PG_MAX_PASSES) * B->opt.frames + f] = st->wait_ms;
+    if (f == 0) {
+        row->n_passes = st->n_passes;
+        for (uint32_t p = 0; p < st->n_passes; p++)
+            pg_strlcpy(row->passes[p].name, st->pass_names[p], sizeof row->passes[p].name);
+    }
+    if (st->n_counters) {
+        row->has_overflow = true;
+        if (pg_frame_counter_sum(st, "overflow_clusters") > row->ov_clusters_max)
+            row->ov_clusters_max = pg_frame_counter_sum(st, "overflow_clusters");
+    }
+    row->frames = f + 1;
+}
+
+/* the warm-up and timed frames (until interrupted), then the GPU times still to come */
+static pg_result timed_frames(bench *B, pg_session *s, pg_frame_info *fi, double fw, bench_row *row,
+                              double *samples, const char *what, pg_error *e)
+{
+    const uint32_t nf = B->warmup + B->opt.frames;
+    pg_frame_stats st;
+    uint64_t first_timed = UINT64_MAX; /* runtime frame number of the first timed frame */
+    for (uint32_t f = 0; f < B->opt.frames; f++) samples[f] = NAN;
+    for (size_t f = 2 * (size_t)B->opt.frames; f < (size_t)B->opt.frames * (PG_MAX_PASSES + 2); f++) samples[f] = NAN;
+    for (uint32_t k = 0; k < nf && !g_interrupted; k++) {
+        fi->time = (float)(B->opt.time + k * B->time_step);
+        pg_result r = pg_session_render(s, fi, false, &st, e);
+        if (r) return r;
+        B->done_work += fw;
+        row->grow_events += st.n_grown;
+        if (k >= B->warmup) record_timed_frame(B, s, &st, k - B->warmup, &first_timed, row, samples);
+        progress_draw(B, what, false);
+    }
+    if (first_timed != UINT64_MAX && !pg_runtime_wait_idle(s->runtime, e))
+        fetch_gpu(B, s->runtime, first_timed, first_timed + B->opt.frames - 1, row->n_passes, samples);
+    return PG_OK;
+}
+
+/* the plan's and the device's transient bytes */
+static void record_memory(const pg_session *s, bench_row *row)
+{
+    if (!s->plan) return;
+    row->has_memory = true;
+    row->plan_unaliased = s->plan->transient_bytes_unaliased;
+    row->plan_aliased = s->plan->transient_bytes_aliased;
+    pg_runtime_stats rs = pg_runtime_get_stats(s->runtime);
+    row->dev_unaliased = rs.memory_bytes_unaliased;
+    row->dev_aliased = rs.memory_bytes_transient;
+}
+
+/* the error frame's counters: overflow, light references, list bytes */
+static void record_error_frame_counters(const pg_frame_stats *st, bench_row *row)
+{
+    if (!st->n_counters) return;
+    row->has_overflow = true;
+    row->ov_clusters = pg_frame_counter_sum(st, "overflow_clusters");
+    row->ov_dropped = pg_frame_counter_sum(st, "overflow_dropped");
+    for (uint32_t k = 0; k < st->n_counters; k++) {
+        if (!strcmp(st->counters[k].name, "total_refs")) row->light_refs += st->counters[k].value;
+        if (!strcmp(st->counters[k].name, "list_bytes")) row->list_bytes += st->counters[k].value;
+    }
+}
+
+/* the error frame's images: non-finite pixels, and the error against the reference (or the note
+ * that says why there is none) */
+static void compare_to_reference(const pg_session *s, const reference *ref, bool ref_skipped, bench_row *row,
+                                 float **hdr, uint8_t **ldr)
+{
+    uint32_t w = 0, h = 0;
+    pg_error ie = {0};
+    if (grab_images(s, hdr, ldr, &w, &h, &ie)) {
+        snprintf(row->error_note, sizeof row->error_note, "%s", ie.msg);
+        return;
+    }
+    row->has_nonfinite = true;
+    row->nonfinite = pg_count_nonfinite(*hdr, w, h);
+    if (ref_skipped) {
+        /* note already says so */
+    } else if (!ref->ok) {
+        snprintf(row->error_note, sizeof row->error_note, "reference failed: %s", ref->msg);
+    } else if (pg_image_sizes_match("image vs reference", w, h, ref->w, ref->h, &ie) ||
+               pg_image_error_compute(*hdr, ref->hdr, *ldr, ref->ldr, w, h, 1.0, &row->e, &ie)) {
+        snprintf(row->error_note, sizeof row->error_note, "%s", ie.msg);
+    } else {
+        row->has_error = true;
+    }
+}
+
+/* a row that is not run: its variant did not load, or it is the reference past its light limit;
+ * false when the row is to be run */
+static bool row_not_run(bench *B, const pipe_entry *pe, const variant *va, bool ref_skipped, double work,
+                        bench_row *row)
+{
+    if (!va->ok) {
+        row->status = ROW_ERROR;
+        snprintf(row->message, sizeof row->message, "%s", va->msg);
+    } else if (pe->is_reference && ref_skipped) {
+        row->status = ROW_SKIPPED;
+        snprintf(row->message, sizeof row->message, "the reference pipeline itself is not run: %s", row->error_note);
+    } else {
+        return false;
+    }
+    B->done_work += work;
+    return true;
+}
+
 /* One configuration: its timed frames, then the error frame. Fills row; failures are recorded in
  * it (status, message), never returned: only OOM of the row table stops the bench. */
 void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *refs, bench_row *row, const char *what)
@@ -191,18 +325,7 @@ void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *refs, b
     uint32_t limit = ref_limit(B, row->width, row->height);
     bool ref_skipped = row->lights > limit;
     if (ref_skipped) ref_skip_note(B, row->width, row->height, false, row->error_note, sizeof row->error_note);
-    if (!va->ok) {
-        row->status = ROW_ERROR;
-        snprintf(row->message, sizeof row->message, "%s", va->msg);
-        B->done_work += fw * (nf + 1);
-        return;
-    }
-    if (pe->is_reference && ref_skipped) {
-        row->status = ROW_SKIPPED;
-        snprintf(row->message, sizeof row->message, "the reference pipeline itself is not run: %s", row->error_note);
-        B->done_work += fw * (nf + 1);
-        return;
-    }
+    if (row_not_run(B, pe, va, ref_skipped, fw * (nf + 1), row)) return;
     /* the reference first, so that only one session holds device memory at a time */
     if (!ref_skipped && !ref->tried) {
         char rw[PG_NAME_MAX + 64];
@@ -211,71 +334,20 @@ void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *refs, b
         reference_render(B, app, fi0, &B->refs[va->ref], ref);
         B->done_work += frame_work(row->width, row->height, row->lights) * 4;
     }
-    pg_session_desc desc = {
-        .pipeline_path = pe->path,
-        .overrides = va->ov.ov,
-        .n_overrides = va->ov.n,
-        .registry = &app->registry,
-        .disable_aliasing = B->opt.no_aliasing,
-        .immediate = B->opt.immediate,
-        .async_off = B->opt.async_compute == PG_ASYNC_OFF,
-        .settings = app->opt.settings,
-        .n_settings = app->opt.n_settings,
-    };
     pg_session *s = NULL;
     pg_error e = {0};
     double *samples = NULL;
     float *hdr = NULL;
     uint8_t *ldr = NULL;
-    if (pg_session_create(app->gpu, app->scene_gpu, &desc, &s, &e) ||
-        pg_session_set_frames_in_flight(s, B->frames_in_flight, &e))
-        goto fail;
+    if (open_row_session(B, app, pe, va, &s, &e)) goto fail;
     samples = calloc((size_t)B->opt.frames * (PG_MAX_PASSES + 3), sizeof *samples);
     if (!samples) {
         pg_fail(&e, PG_ERR_OOM, "out of memory");
         goto fail;
     }
-    pg_frame_stats st;
     pg_frame_info fi = *fi0;
-    uint64_t first_timed = UINT64_MAX; /* runtime frame number of the first timed frame */
-    for (uint32_t f = 0; f < B->opt.frames; f++) samples[f] = NAN;
-    for (size_t f = 2 * (size_t)B->opt.frames; f < (size_t)B->opt.frames * (PG_MAX_PASSES + 2); f++) samples[f] = NAN;
-    for (uint32_t k = 0; k < nf && !g_interrupted; k++) {
-        fi.time = (float)(B->opt.time + k * B->time_step);
-        if (pg_session_render(s, &fi, false, &st, &e)) goto fail;
-        B->done_work += fw;
-        row->grow_events += st.n_grown;
-        if (k >= B->warmup) {
-            uint32_t f = k - B->warmup;
-            /* GPU times arrive later with 2 in flight: each timed frame's are fetched by its
-             * frame number (pg_runtime_gpu_times) and stored at its own timed index */
-            if (first_timed == UINT64_MAX) first_timed = st.frame;
-            fetch_gpu(B, s->runtime, first_timed, st.frame, st.n_passes, samples);
-            samples[B->opt.frames + f] = st.cpu_ms;
-            samples[(size_t)(2 + PG_MAX_PASSES) * B->opt.frames + f] = st.wait_ms;
-            if (f == 0) {
-                row->n_passes = st.n_passes;
-                for (uint32_t p = 0; p < st.n_passes; p++)
-                    pg_strlcpy(row->passes[p].name, st.pass_names[p], sizeof row->passes[p].name);
-            }
-            if (st.n_counters) {
-                row->has_overflow = true;
-                if (pg_frame_counter_sum(&st, "overflow_clusters") > row->ov_clusters_max) row->ov_clusters_max = pg_frame_counter_sum(&st, "overflow_clusters");
-            }
-            row->frames = f + 1;
-        }
-        progress_draw(B, what, false);
-    }
-    if (first_timed != UINT64_MAX && !pg_runtime_wait_idle(s->runtime, &e))
-        fetch_gpu(B, s->runtime, first_timed, first_timed + B->opt.frames - 1, row->n_passes, samples);
-    if (s->plan) {
-        row->has_memory = true;
-        row->plan_unaliased = s->plan->transient_bytes_unaliased;
-        row->plan_aliased = s->plan->transient_bytes_aliased;
-        pg_runtime_stats rs = pg_runtime_get_stats(s->runtime);
-        row->dev_unaliased = rs.memory_bytes_unaliased;
-        row->dev_aliased = rs.memory_bytes_transient;
-    }
+    if (timed_frames(B, s, &fi, fw, row, samples, what, &e)) goto fail;
+    record_memory(s, row);
     collect_stats(row, samples, B->opt.frames, PG_MAX_PASSES);
     if (g_interrupted) {
         row->status = ROW_INTERRUPTED;
@@ -285,37 +357,13 @@ void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *refs, b
         goto out;
     }
     /* the error frame: fixed time, read back */
+    pg_frame_stats st;
     fi.time = B->opt.time;
     if (pg_session_render(s, &fi, true, &st, &e)) goto fail;
     B->done_work += fw;
     row->grow_events += st.n_grown;
-    if (st.n_counters) {
-        row->has_overflow = true;
-        row->ov_clusters = pg_frame_counter_sum(&st, "overflow_clusters");
-        row->ov_dropped = pg_frame_counter_sum(&st, "overflow_dropped");
-        for (uint32_t k = 0; k < st.n_counters; k++) {
-            if (!strcmp(st.counters[k].name, "total_refs")) row->light_refs += st.counters[k].value;
-            if (!strcmp(st.counters[k].name, "list_bytes")) row->list_bytes += st.counters[k].value;
-        }
-    }
-    uint32_t w = 0, h = 0;
-    pg_error ie = {0};
-    if (grab_images(s, &hdr, &ldr, &w, &h, &ie)) {
-        snprintf(row->error_note, sizeof row->error_note, "%s", ie.msg);
-    } else {
-        row->has_nonfinite = true;
-        row->nonfinite = pg_count_nonfinite(hdr, w, h);
-        if (ref_skipped) {
-            /* note already says so */
-        } else if (!ref->ok) {
-            snprintf(row->error_note, sizeof row->error_note, "reference failed: %s", ref->msg);
-        } else if (pg_image_sizes_match("image vs reference", w, h, ref->w, ref->h, &ie) ||
-                   pg_image_error_compute(hdr, ref->hdr, ldr, ref->ldr, w, h, 1.0, &row->e, &ie)) {
-            snprintf(row->error_note, sizeof row->error_note, "%s", ie.msg);
-        } else {
-            row->has_error = true;
-        }
-    }
+    record_error_frame_counters(&st, row);
+    compare_to_reference(s, ref, ref_skipped, row, &hdr, &ldr);
     row->status = ROW_OK;
     goto out;
 fail:

@@ -210,6 +210,155 @@ static pg_result save_args(bench *B, int argc, char **argv, pg_error *err)
     return PG_OK;
 }
 
+/* the list and single-value options bench_setup reads after its loop */
+typedef struct setup_args {
+    char *pipelines, *lights, *sizes, *scenes;
+    const char *ref_arg;
+    bool warned_naive;
+} setup_args;
+
+/* the bench options that take a value */
+static bool takes_value(const char *a)
+{
+    return !strcmp(a, "--pipelines") || !strcmp(a, "--lights") || !strcmp(a, "--size") ||
+           !strcmp(a, "--scene") || !strcmp(a, "--sweep") || !strcmp(a, "--warmup") ||
+           !strcmp(a, "--frames-in-flight") ||
+           !strcmp(a, "--naive-max-lights") || !strcmp(a, "--reference-max-lights") ||
+           !strcmp(a, "--time-step") || !strcmp(a, "--reference") || !strcmp(a, "--shard");
+}
+
+/* --time-step S: a finite number in [0, 10000] */
+static pg_result parse_time_step(bench *B, const char *v, pg_error *err)
+{
+    pg_result r = PG_OK;
+    errno = 0;
+    char *end;
+    double t = strtod(v, &end);
+    if (errno || *end || !*v || !isfinite(t) || t < 0 || t > 1e4)
+        r = pg_fail(err, PG_ERR_INVALID_ARG, "--time-step %s: expected a finite number in [0, 10000]", v);
+    B->time_step = t;
+    return r;
+}
+
+/* one bench option A (takes_value) with its value V: parsed now, or kept in sa for after the loop */
+static pg_result parse_value_option(bench *B, setup_args *sa, const char *a, char *v, pg_error *err)
+{
+    pg_result r = PG_OK;
+    if (!strcmp(a, "--pipelines")) {
+        if (sa->pipelines) r = pg_fail(err, PG_ERR_INVALID_ARG, "--pipelines: given twice");
+        sa->pipelines = v;
+    } else if (!strcmp(a, "--lights")) {
+        sa->lights = v;
+    } else if (!strcmp(a, "--size")) {
+        sa->sizes = v;
+    } else if (!strcmp(a, "--scene")) {
+        sa->scenes = v;
+    } else if (!strcmp(a, "--sweep")) {
+        r = parse_sweep(B, v, err);
+    } else if (!strcmp(a, "--warmup")) {
+        r = parse_u32_opt(a, v, 10000, &B->warmup, err);
+    } else if (!strcmp(a, "--frames-in-flight")) {
+        r = parse_u32_opt(a, v, PG_MAX_FRAMES_IN_FLIGHT, &B->frames_in_flight, err);
+        if (!r && !B->frames_in_flight)
+            r = pg_fail(err, PG_ERR_INVALID_ARG, "--frames-in-flight: 1 or %d", PG_MAX_FRAMES_IN_FLIGHT);
+    } else if (!strcmp(a, "--reference-max-lights") || !strcmp(a, "--naive-max-lights")) {
+        if (!strcmp(a, "--naive-max-lights") && !sa->warned_naive) {
+            fprintf(stderr, "passgraph bench: warning: --naive-max-lights is deprecated; use "
+                            "--reference-max-lights (same meaning)\n");
+            sa->warned_naive = true;
+        }
+        r = parse_u32_opt(a, v, PG_MAX_LIGHTS, &B->ref_max_lights, err);
+        B->has_ref_max_lights = true;
+    } else if (!strcmp(a, "--reference")) {
+        sa->ref_arg = v;
+    } else if (!strcmp(a, "--shard")) {
+        r = parse_shard(B, v, err);
+    } else { /* --time-step */
+        r = parse_time_step(B, v, err);
+    }
+    return r;
+}
+
+/* the option loop: -1 when it went through, else the exit code (0 after --help, 2 after a
+ * message on stderr) */
+static int parse_bench_options(bench *B, setup_args *sa, int argc, char **argv)
+{
+    pg_error err = {0};
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        pg_result r = PG_OK;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            printf("%s%s%s", bench_help, bench_help_options, pg_cli_common_help);
+            return 0;
+        }
+        if (takes_value(a)) {
+            if (!v) {
+                fprintf(stderr, "passgraph bench: %s: missing value\n", a);
+                return 2;
+            }
+            i++;
+            r = parse_value_option(B, sa, a, v, &err);
+        } else if (!strcmp(a, "--explain") || !strcmp(a, "--view")) {
+            r = pg_fail(&err, PG_ERR_INVALID_ARG, "%s: not supported by bench (use passgraph render %s)", a, a);
+        } else {
+            bool used;
+            r = pg_sides_parse(&B->sides, argc, argv, &i, &used, &err); /* --pipeline-set, --reference-set */
+            if (!r && !used) r = pg_cli_parse_common(&B->opt, argc, argv, &i, &used, &err);
+            if (!r && !used) {
+                fprintf(stderr, "passgraph bench: unknown option '%s' (see passgraph bench --help)\n", a);
+                return 2;
+            }
+        }
+        if (r) {
+            fprintf(stderr, "passgraph bench: %s\n", err.msg);
+            return 2;
+        }
+    }
+    return -1;
+}
+
+/* --scene FILE,...: the scenes (else --scene of the common options, else the built-in one) */
+static pg_result parse_scenes(bench *B, char *scenes, pg_error *err)
+{
+    pg_result r = PG_OK;
+    if (!scenes) {
+        B->scenes[0] = B->opt.scene ? B->opt.scene : "default";
+        B->n_scenes = 1;
+        return PG_OK;
+    }
+    char *parts[MAX_LIST];
+    int n = pg_bench_split_list(scenes, ',', parts, MAX_LIST);
+    if (n < 0) r = pg_fail(err, PG_ERR_INVALID_ARG, "--scene: at most %d scenes", MAX_LIST);
+    for (int k = 0; !r && k < n; k++) {
+        if (!parts[k][0]) r = pg_fail(err, PG_ERR_INVALID_ARG, "--scene: empty entry in the list");
+        B->scenes[k] = parts[k];
+    }
+    if (!r) B->n_scenes = (uint32_t)n;
+    return r;
+}
+
+/* the lists (parsed after the loop so that the common parser's single values do not interfere)
+ * and the checks between options */
+static pg_result parse_lists(bench *B, const setup_args *sa, pg_error *err)
+{
+    pg_result r = PG_OK;
+    static char def_lights[] = "100,1000,5000";
+    if (!r) r = pg_bench_parse_lights(B, sa->lights ? sa->lights : def_lights, err);
+    if (!r && sa->sizes) r = parse_sizes(B, sa->sizes, err);
+    if (!r && !sa->sizes) {
+        B->n_sizes = 1;
+        B->widths[0] = 640;
+        B->heights[0] = 360;
+    }
+    if (!r) r = parse_scenes(B, sa->scenes, err);
+    if (!r && !B->opt.out) r = pg_fail(err, PG_ERR_INVALID_ARG, "--out DIR is required");
+    if (!r && sa->pipelines && B->opt.pipeline)
+        r = pg_fail(err, PG_ERR_INVALID_ARG, "--pipeline and --pipelines: give one of them");
+    if (!r && !pg_sides_from_common(&B->sides, &B->opt)) r = pg_fail(err, PG_ERR_INVALID_ARG, "--set: too many overrides");
+    return r;
+}
+
 /* Options, pipelines and variants: everything before the run. -1 when the bench should run,
  * else the exit code (0 after --help, 2 on bad options, 1 when a pipeline list fails). */
 int bench_setup(bench *B, int argc, char **argv)
@@ -220,161 +369,40 @@ int bench_setup(bench *B, int argc, char **argv)
     B->frames_in_flight = 2;
     B->time_step = 1.0 / 60.0;
     pg_error err = {0};
-    char *pipelines = NULL, *lights = NULL, *sizes = NULL, *scenes = NULL;
-    const char *ref_arg = NULL;
-    bool warned_naive = false;
-    int rc = 2;
+    setup_args sa = {0};
     if (save_args(B, argc, argv, &err)) { /* before the parsers split --set KEY=VALUE in place */
         fprintf(stderr, "passgraph bench: %s\n", err.msg);
         return 1;
     }
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        pg_result r = PG_OK;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            printf("%s%s%s", bench_help, bench_help_options, pg_cli_common_help);
-            rc = 0;
-            goto out;
-        }
-        bool takes = !strcmp(a, "--pipelines") || !strcmp(a, "--lights") || !strcmp(a, "--size") ||
-                     !strcmp(a, "--scene") || !strcmp(a, "--sweep") || !strcmp(a, "--warmup") ||
-                     !strcmp(a, "--frames-in-flight") ||
-                     !strcmp(a, "--naive-max-lights") || !strcmp(a, "--reference-max-lights") ||
-                     !strcmp(a, "--time-step") || !strcmp(a, "--reference") || !strcmp(a, "--shard");
-        if (takes) {
-            if (!v) {
-                fprintf(stderr, "passgraph bench: %s: missing value\n", a);
-                goto out;
-            }
-            i++;
-            if (!strcmp(a, "--pipelines")) {
-                if (pipelines) r = pg_fail(&err, PG_ERR_INVALID_ARG, "--pipelines: given twice");
-                pipelines = v;
-            } else if (!strcmp(a, "--lights")) {
-                lights = v;
-            } else if (!strcmp(a, "--size")) {
-                sizes = v;
-            } else if (!strcmp(a, "--scene")) {
-                scenes = v;
-            } else if (!strcmp(a, "--sweep")) {
-                r = parse_sweep(B, v, &err);
-            } else if (!strcmp(a, "--warmup")) {
-                r = parse_u32_opt(a, v, 10000, &B->warmup, &err);
-            } else if (!strcmp(a, "--frames-in-flight")) {
-                r = parse_u32_opt(a, v, PG_MAX_FRAMES_IN_FLIGHT, &B->frames_in_flight, &err);
-                if (!r && !B->frames_in_flight)
-                    r = pg_fail(&err, PG_ERR_INVALID_ARG, "--frames-in-flight: 1 or %d", PG_MAX_FRAMES_IN_FLIGHT);
-            } else if (!strcmp(a, "--reference-max-lights") || !strcmp(a, "--naive-max-lights")) {
-                if (!strcmp(a, "--naive-max-lights") && !warned_naive) {
-                    fprintf(stderr, "passgraph bench: warning: --naive-max-lights is deprecated; use "
-                                    "--reference-max-lights (same meaning)\n");
-                    warned_naive = true;
-                }
-                r = parse_u32_opt(a, v, PG_MAX_LIGHTS, &B->ref_max_lights, &err);
-                B->has_ref_max_lights = true;
-            } else if (!strcmp(a, "--reference")) {
-                ref_arg = v;
-            } else if (!strcmp(a, "--shard")) {
-                r = parse_shard(B, v, &err);
-            } else { /* --time-step */
-                errno = 0;
-                char *end;
-                double t = strtod(v, &end);
-                if (errno || *end || !*v || !isfinite(t) || t < 0 || t > 1e4)
-                    r = pg_fail(&err, PG_ERR_INVALID_ARG, "--time-step %s: expected a finite number in [0, 10000]", v);
-                B->time_step = t;
-            }
-        } else if (!strcmp(a, "--explain") || !strcmp(a, "--view")) {
-            r = pg_fail(&err, PG_ERR_INVALID_ARG, "%s: not supported by bench (use passgraph render %s)", a, a);
-        } else {
-            bool used;
-            r = pg_sides_parse(&B->sides, argc, argv, &i, &used, &err); /* --pipeline-set, --reference-set */
-            if (!r && !used) r = pg_cli_parse_common(&B->opt, argc, argv, &i, &used, &err);
-            if (!r && !used) {
-                fprintf(stderr, "passgraph bench: unknown option '%s' (see passgraph bench --help)\n", a);
-                goto out;
-            }
-        }
-        if (r) {
-            fprintf(stderr, "passgraph bench: %s\n", err.msg);
-            goto out;
-        }
-    }
-    /* lists (parsed after the loop so that the common parser's single values do not interfere) */
-    pg_result r = PG_OK;
-    static char def_lights[] = "100,1000,5000";
-    if (!r) r = pg_bench_parse_lights(B, lights ? lights : def_lights, &err);
-    if (!r && sizes) r = parse_sizes(B, sizes, &err);
-    if (!r && !sizes) {
-        B->n_sizes = 1;
-        B->widths[0] = 640;
-        B->heights[0] = 360;
-    }
-    if (!r && scenes) {
-        char *parts[MAX_LIST];
-        int n = pg_bench_split_list(scenes, ',', parts, MAX_LIST);
-        if (n < 0) r = pg_fail(&err, PG_ERR_INVALID_ARG, "--scene: at most %d scenes", MAX_LIST);
-        for (int k = 0; !r && k < n; k++) {
-            if (!parts[k][0]) r = pg_fail(&err, PG_ERR_INVALID_ARG, "--scene: empty entry in the list");
-            B->scenes[k] = parts[k];
-        }
-        if (!r) B->n_scenes = (uint32_t)n;
-    } else if (!r) {
-        B->scenes[0] = B->opt.scene ? B->opt.scene : "default";
-        B->n_scenes = 1;
-    }
-    if (!r && !B->opt.out) r = pg_fail(&err, PG_ERR_INVALID_ARG, "--out DIR is required");
-    if (!r && pipelines && B->opt.pipeline)
-        r = pg_fail(&err, PG_ERR_INVALID_ARG, "--pipeline and --pipelines: give one of them");
-    if (!r && !pg_sides_from_common(&B->sides, &B->opt)) r = pg_fail(&err, PG_ERR_INVALID_ARG, "--set: too many overrides");
+    int rc = parse_bench_options(B, &sa, argc, argv);
+    if (rc >= 0) return rc;
+    pg_result r = parse_lists(B, &sa, &err);
     if (r) {
         fprintf(stderr, "passgraph bench: %s\n", err.msg);
-        goto out;
+        return 2;
     }
     B->out_dir = B->opt.out;
-    if (ref_arg) pg_strlcpy(B->ref_path, ref_arg, sizeof B->ref_path);
+    if (sa.ref_arg) pg_strlcpy(B->ref_path, sa.ref_arg, sizeof B->ref_path);
     else pg_data_path(B->ref_path, sizeof B->ref_path, "pipelines/reference.json");
-    {
-        char one[PG_PATH_MAX];
-        char *plist = pipelines;
-        if (!plist && B->opt.pipeline) {
-            pg_strlcpy(one, B->opt.pipeline, sizeof one);
-            plist = one;
-        }
-        if ((r = resolve_pipelines(B, plist, &err)) || (r = pg_bench_plan_variants(B, &err))) {
-            fprintf(stderr, "passgraph bench: %s\n", err.msg);
-            rc = r == PG_ERR_INVALID_ARG ? 2 : 1;
-            goto out;
-        }
+    char one[PG_PATH_MAX];
+    char *plist = sa.pipelines;
+    if (!plist && B->opt.pipeline) {
+        pg_strlcpy(one, B->opt.pipeline, sizeof one);
+        plist = one;
+    }
+    if ((r = resolve_pipelines(B, plist, &err)) || (r = pg_bench_plan_variants(B, &err))) {
+        fprintf(stderr, "passgraph bench: %s\n", err.msg);
+        return r == PG_ERR_INVALID_ARG ? 2 : 1;
     }
     for (uint32_t p = 0; p < B->n_pipes; p++) B->n_vars += B->pipes[p].n_variants;
     B->n_configs = B->n_scenes * B->n_sizes * B->n_lights * B->n_vars;
     for (uint32_t s = 0; s < B->n_scenes; s++) pg_strlcpy(B->scene_names[s], B->scenes[s], PG_PATH_MAX);
     return -1;
-out:
-    return rc;
 }
 
-int pg_cmd_bench(int argc, char **argv)
+/* the shard's row count (said when sharded), progress, and no device yet */
+static void bench_start(bench *B)
 {
-    bench *B = calloc(1, sizeof *B);
-    if (!B) {
-        fprintf(stderr, "passgraph bench: out of memory\n");
-        return 1;
-    }
-    pg_error err = {0};
-    pg_result r;
-    int rc = bench_setup(B, argc, argv);
-    if (rc >= 0) goto out;
-    if ((r = make_dirs(B->out_dir, &err)) || (r = pg_file_check_writable_dir(B->out_dir, "--out", &err))) {
-        fprintf(stderr, "passgraph bench: %s\n", err.msg);
-        rc = 1;
-        goto out;
-    }
-
-    print_sides(B);
-    uint32_t vars = B->n_vars;
     for (uint32_t i = 0; i < B->n_configs; i++) B->rows_total += in_shard(B, i);
     if (B->shard_n)
         printf("bench: shard %u/%u: %u of %u configurations (index %% %u == %u)\n", B->shard_k, B->shard_n,
@@ -383,115 +411,141 @@ int pg_cmd_bench(int argc, char **argv)
     B->tty = isatty(STDERR_FILENO);
     B->t_start = B->t_last_draw = now_s();
     pg_strlcpy(B->device, "(no device)", sizeof B->device);
+}
 
-    struct sigaction sa, old_sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESTART | SA_RESETHAND; /* a second Ctrl-C kills as usual */
-    g_interrupted = 0;
-    sigaction(SIGINT, &sa, &old_sa);
+/* A scene that does not load: each of its rows (in this shard) fails with the message. 1 when the
+ * row table cannot grow, else 0. */
+static int fail_scene_rows(bench *B, uint32_t sc, const char *msg, pg_error *err)
+{
+    int rc = 0;
+    for (uint32_t si = 0; si < B->n_sizes && !rc; si++)
+        for (uint32_t li = 0; li < B->n_lights && !rc; li++)
+            for (uint32_t p = 0; p < B->n_pipes && !rc; p++)
+                for (uint32_t v = 0; v < B->pipes[p].n_variants; v++) {
+                    uint32_t idx = config_index(B, sc, si, li, p, v);
+                    if (!in_shard(B, idx)) continue;
+                    bench_row *row = new_row(B, err);
+                    if (!row) {
+                        rc = 1;
+                        break;
+                    }
+                    config_row(B, idx, row);
+                    row->status = ROW_ERROR;
+                    row->gpu.median = row->gpu.mean = row->gpu.min = row->gpu.max = row->gpu.p95 = NAN;
+                    row->cpu = row->wait = row->gpu;
+                    snprintf(row->message, sizeof row->message, "%s", msg);
+                    B->rows_done++;
+                }
+    return rc;
+}
 
-    rc = 0;
-    for (uint32_t sc = 0; sc < B->n_scenes && !g_interrupted && rc == 0; sc++) {
-        pg_cli_common o = B->opt;
-        o.scene = B->scenes[sc];
-        o.width = B->widths[0];
-        o.height = B->heights[0];
-        pg_app app;
-        pg_error ae = {0};
-        if (pg_app_open(&app, &o, true, &ae)) {
-            pg_app_close(&app);
-            progress_clear(B);
-            /* no device is fatal; a scene that does not load fails its rows */
-            if (ae.code == PG_ERR_NO_DEVICE || ae.code == PG_ERR_VULKAN || ae.code == PG_ERR_INVALID_ARG) {
-                fprintf(stderr, "passgraph bench: %s\n", ae.msg);
+/* the first device seen: its name, whether it is a CPU (the default reference limit depends on
+ * the device type), and the work estimate (roughly: this shard's share) */
+static void note_device(bench *B, const pg_app *app)
+{
+    if (B->device_known) return;
+    snprintf(B->device, sizeof B->device, "%s", app->gpu->props.deviceName);
+    B->device_known = true;
+    B->device_cpu = app->gpu->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    estimate_work(B, B->n_vars);
+    if (B->n_configs) B->total_work *= (double)B->rows_total / B->n_configs;
+}
+
+/* the frame of the block (size si, light count li) */
+static pg_frame_info block_frame(const bench *B, const pg_app *app, uint32_t si, uint32_t li)
+{
+    pg_frame_info fi = pg_app_frame(app);
+    fi.width = B->widths[si];
+    fi.height = B->heights[si];
+    fi.camera.aspect = (float)fi.width / (float)fi.height;
+    fi.lights.count = B->lights[li];
+    if (app->object_lights) /* the object rule keeps the total over the lights: per count */
+        fi.lights.intensity = pg_light_setup_object(app->scene, B->lights[li], fi.lights.seed).intensity;
+    fi.time = B->opt.time;
+    return fi;
+}
+
+/* One block (scene sc, size si, light count li): every pipeline and variant of this shard, the
+ * references rendered when a row needs them and freed when no later row does. 1 when the row
+ * table cannot grow, else 0 (an interrupt ends the block early). */
+static int run_block(bench *B, pg_app *app, uint32_t sc, uint32_t si, uint32_t li, pg_error *err)
+{
+    pg_frame_info fi = block_frame(B, app, si, li);
+    reference *refs = calloc(B->n_refs ? B->n_refs : 1, sizeof *refs);
+    if (!refs) {
+        pg_fail(err, PG_ERR_OOM, "out of memory");
+        return 1;
+    }
+    int rc = 0;
+    for (uint32_t p = 0; p < B->n_pipes && !g_interrupted && !rc; p++)
+        for (uint32_t v = 0; v < B->pipes[p].n_variants && !g_interrupted; v++) {
+            uint32_t idx = config_index(B, sc, si, li, p, v);
+            if (!in_shard(B, idx)) continue; /* the references it would need are rendered when a row needs them */
+            bench_row *row = new_row(B, err);
+            if (!row) {
                 rc = 1;
                 break;
             }
-            for (uint32_t si = 0; si < B->n_sizes && !rc; si++)
-                for (uint32_t li = 0; li < B->n_lights && !rc; li++)
-                    for (uint32_t p = 0; p < B->n_pipes && !rc; p++)
-                        for (uint32_t v = 0; v < B->pipes[p].n_variants; v++) {
-                            uint32_t idx = config_index(B, sc, si, li, p, v);
-                            if (!in_shard(B, idx)) continue;
-                            bench_row *row = new_row(B, &err);
-                            if (!row) {
-                                rc = 1;
-                                break;
-                            }
-                            config_row(B, idx, row);
-                            row->status = ROW_ERROR;
-                            row->gpu.median = row->gpu.mean = row->gpu.min = row->gpu.max = row->gpu.p95 = NAN;
-                            row->cpu = row->wait = row->gpu;
-                            snprintf(row->message, sizeof row->message, "%s", ae.msg);
-                            B->rows_done++;
-                        }
-            fprintf(stderr, "passgraph bench: %s\n", ae.msg);
-            continue;
-        }
-        if (!B->device_known) { /* the default reference limit depends on the device type */
-            snprintf(B->device, sizeof B->device, "%s", app.gpu->props.deviceName);
-            B->device_known = true;
-            B->device_cpu = app.gpu->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-            estimate_work(B, vars);
-            if (B->n_configs) B->total_work *= (double)B->rows_total / B->n_configs; /* roughly: this shard's share */
-        }
-        for (uint32_t si = 0; si < B->n_sizes && !g_interrupted && !rc; si++) {
-            for (uint32_t li = 0; li < B->n_lights && !g_interrupted && !rc; li++) {
-                pg_frame_info fi = pg_app_frame(&app);
-                fi.width = B->widths[si];
-                fi.height = B->heights[si];
-                fi.camera.aspect = (float)fi.width / (float)fi.height;
-                fi.lights.count = B->lights[li];
-                if (app.object_lights) /* the object rule keeps the total over the lights: per count */
-                    fi.lights.intensity = pg_light_setup_object(app.scene, B->lights[li], fi.lights.seed).intensity;
-                fi.time = B->opt.time;
-                reference *refs = calloc(B->n_refs ? B->n_refs : 1, sizeof *refs);
-                if (!refs) {
-                    pg_fail(&err, PG_ERR_OOM, "out of memory");
-                    rc = 1;
-                    break;
-                }
-                for (uint32_t p = 0; p < B->n_pipes && !g_interrupted && !rc; p++)
-                    for (uint32_t v = 0; v < B->pipes[p].n_variants && !g_interrupted; v++) {
-                        uint32_t idx = config_index(B, sc, si, li, p, v);
-                        if (!in_shard(B, idx)) continue; /* the references it would need are rendered when a row needs them */
-                        bench_row *row = new_row(B, &err);
-                        if (!row) {
-                            rc = 1;
-                            break;
-                        }
-                        config_row(B, idx, row);
-                        char what[PG_NAME_MAX + 400];
-                        char lab[PG_NAME_MAX + 260];
-                        series_label(B, p, v, lab, sizeof lab);
-                        snprintf(what, sizeof what, "%s %ux%u lights=%u", lab, row->width, row->height, row->lights);
-                        run_row(B, &app, &fi, refs, row, what);
-                        for (uint32_t k = 0; k < B->n_refs; k++) /* needed by no later row of this block */
-                            if (B->refs[k].last_use <= var_index(B, p, v)) reference_free(&refs[k]);
-                        if (row->status == ROW_INTERRUPTED && row->frames == 0) {
-                            B->n_rows--; /* nothing measured */
-                            break;
-                        }
-                        if (row->status == ROW_ERROR) B->n_failed++;
-                        B->rows_done++;
-                        progress_clear(B);
-                        print_row(B, row);
-                        snprintf(what, sizeof what, "%s %ux%u lights=%u", lab, row->width, row->height, row->lights);
-                        progress_draw(B, what, true);
-                    }
-                for (uint32_t k = 0; k < B->n_refs; k++) reference_free(&refs[k]);
-                free(refs);
+            config_row(B, idx, row);
+            char what[PG_NAME_MAX + 400];
+            char lab[PG_NAME_MAX + 260];
+            series_label(B, p, v, lab, sizeof lab);
+            snprintf(what, sizeof what, "%s %ux%u lights=%u", lab, row->width, row->height, row->lights);
+            run_row(B, app, &fi, refs, row, what);
+            for (uint32_t k = 0; k < B->n_refs; k++) /* needed by no later row of this block */
+                if (B->refs[k].last_use <= var_index(B, p, v)) reference_free(&refs[k]);
+            if (row->status == ROW_INTERRUPTED && row->frames == 0) {
+                B->n_rows--; /* nothing measured */
+                break;
             }
+            if (row->status == ROW_ERROR) B->n_failed++;
+            B->rows_done++;
+            progress_clear(B);
+            print_row(B, row);
+            snprintf(what, sizeof what, "%s %ux%u lights=%u", lab, row->width, row->height, row->lights);
+            progress_draw(B, what, true);
         }
-        if (app.gpu->validation) B->validation_messages += app.gpu->validation_messages;
+    for (uint32_t k = 0; k < B->n_refs; k++) reference_free(&refs[k]);
+    free(refs);
+    return rc;
+}
+
+/* One scene: its app (no device is fatal; a scene that does not load fails its rows), then every
+ * block. The exit code so far: 0, or 1 to stop. */
+static int run_scene(bench *B, uint32_t sc, pg_error *err)
+{
+    pg_cli_common o = B->opt;
+    o.scene = B->scenes[sc];
+    o.width = B->widths[0];
+    o.height = B->heights[0];
+    pg_app app;
+    pg_error ae = {0};
+    if (pg_app_open(&app, &o, true, &ae)) {
         pg_app_close(&app);
+        progress_clear(B);
+        if (ae.code == PG_ERR_NO_DEVICE || ae.code == PG_ERR_VULKAN || ae.code == PG_ERR_INVALID_ARG) {
+            fprintf(stderr, "passgraph bench: %s\n", ae.msg);
+            return 1;
+        }
+        int rc = fail_scene_rows(B, sc, ae.msg, err);
+        fprintf(stderr, "passgraph bench: %s\n", ae.msg);
+        return rc;
     }
-    sigaction(SIGINT, &old_sa, NULL);
-    progress_clear(B);
+    note_device(B, &app);
+    int rc = 0;
+    for (uint32_t si = 0; si < B->n_sizes && !g_interrupted && !rc; si++)
+        for (uint32_t li = 0; li < B->n_lights && !g_interrupted && !rc; li++) rc = run_block(B, &app, sc, si, li, err);
+    if (app.gpu->validation) B->validation_messages += app.gpu->validation_messages;
+    pg_app_close(&app);
+    return rc;
+}
+
+/* the results written and the closing lines; the exit code (1 on failures or validation
+ * messages, 130 when interrupted) */
+static int bench_finish(bench *B, int rc, const pg_error *err)
+{
     B->interrupted = g_interrupted != 0;
-    if (rc && err.code == PG_ERR_OOM) fprintf(stderr, "passgraph bench: %s\n", err.msg);
+    if (rc && err->code == PG_ERR_OOM) fprintf(stderr, "passgraph bench: %s\n", err->msg);
     pg_error we = {0};
     if (write_outputs(B, &we)) {
         fprintf(stderr, "passgraph bench: %s\n", we.msg);
@@ -514,6 +568,40 @@ int pg_cmd_bench(int argc, char **argv)
         fprintf(stderr, "passgraph bench: interrupted; wrote the %u configuration(s) measured so far\n", B->n_rows);
         rc = 130;
     }
+    return rc;
+}
+
+int pg_cmd_bench(int argc, char **argv)
+{
+    bench *B = calloc(1, sizeof *B);
+    if (!B) {
+        fprintf(stderr, "passgraph bench: out of memory\n");
+        return 1;
+    }
+    pg_error err = {0};
+    pg_result r;
+    int rc = bench_setup(B, argc, argv);
+    if (rc >= 0) goto out;
+    if ((r = make_dirs(B->out_dir, &err)) || (r = pg_file_check_writable_dir(B->out_dir, "--out", &err))) {
+        fprintf(stderr, "passgraph bench: %s\n", err.msg);
+        rc = 1;
+        goto out;
+    }
+    print_sides(B);
+    bench_start(B);
+
+    struct sigaction sa, old_sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_sigint;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART | SA_RESETHAND; /* a second Ctrl-C kills as usual */
+    g_interrupted = 0;
+    sigaction(SIGINT, &sa, &old_sa);
+    rc = 0;
+    for (uint32_t sc = 0; sc < B->n_scenes && !g_interrupted && rc == 0; sc++) rc = run_scene(B, sc, &err);
+    sigaction(SIGINT, &old_sa, NULL);
+    progress_clear(B);
+    rc = bench_finish(B, rc, &err);
 out:
     bench_free(B);
     free(B);

@@ -56,38 +56,71 @@ static const char *const view_help =
     "Scripted mode for tests and demos: --frames N [--screenshot FILE.png] [--cycle-pipelines].\n\n"
     "options:\n";
 
-int pg_cmd_view(int argc, char **argv)
+static void print_view_help(void)
 {
-    pg_cli_common opt;
-    pg_cli_defaults(&opt);
-    opt.width = 1280;
-    opt.height = 720;
+    printf("%s%s"
+           "  --frames-in-flight N 2 (default) or 1: frames the displayed graph keeps in flight\n"
+           "  --size WxH           initial window size (default 1280x720)\n"
+           "  --pipelines DIR      also list the pipelines in DIR\n"
+           "  --screenshot FILE    write the window (scene + UI) to FILE (.png, .jpg) at the last frame\n"
+           "  --cycle-pipelines    switch to the next pipeline every --cycle-every frames\n"
+           "  --cycle-every K      frames between switches (default 20)\n"
+           "  --random-params      with --cycle-pipelines: random shading, HDR format, cluster\n"
+           "                       capacity and depth slices, G-buffer packing, light count\n"
+           "  --at FRAME:ACTION    scripted action at a frame (repeatable): resize=WxH, iconify,\n"
+           "                       restore, copy=SRC:DST (an edit on disk), set=KEY=VALUE,\n"
+           "                       pipeline=FILE.json, display=NAME, ocioview=NAME (OCIO),\n"
+           "                       diff=on|off, lights=N, screenshot=FILE.png,\n"
+           "                       capture[=FILE.rdc] (RenderDoc, as the C key),\n"
+           "                       camera=auto|N|NAME (as the camera combo)\n"
+           "  (--frames N          exit after N frames; 0 or absent: run until closed)\n",
+           view_help, pg_cli_common_help);
+}
+
+/* --at FRAME:ACTION[=ARG] appended to v->actions; false (said on stderr) when malformed */
+static bool parse_at(viewer *v, const char *spec, pg_error *err)
+{
+    view_action *a = &v->actions[v->n_actions];
+    char what[64] = {0};
+    int used_chars = 0;
+    if (v->n_actions >= MAX_ACTIONS || sscanf(spec, "%u:%15[a-z]%n", &a->frame, what, &used_chars) < 2) {
+        fprintf(stderr, "passgraph view: --at %s: expected FRAME:ACTION[=ARG]\n", spec);
+        return false;
+    }
+    pg_strlcpy(a->what, what, sizeof a->what);
+    const char *rest = spec + used_chars;
+    pg_strlcpy(a->arg, *rest == '=' ? rest + 1 : "", sizeof a->arg);
+    if (!strcmp(a->what, "screenshot") && pg_image_path_check(a->arg, false, err)) {
+        fprintf(stderr, "passgraph view: --at %s: %s\n", spec, err->msg);
+        return false;
+    }
+    v->n_actions++;
+    return true;
+}
+
+/* a whole-number option value in lo..hi; false (said on stderr as "OPTION VALUE: expected
+ * WANT") otherwise */
+static bool parse_count(const char *option, const char *value, long lo, long hi, const char *want,
+                        uint32_t *out)
+{
+    long k = strtol(value, NULL, 10);
+    if (k < lo || k > hi) {
+        fprintf(stderr, "passgraph view: %s %s: expected %s\n", option, value, want);
+        return false;
+    }
+    *out = (uint32_t)k;
+    return true;
+}
+
+/* the view options, then the common ones (pg_cli_parse_common); -1 to go on, else the exit
+ * code (0 after --help, 2 after a message on stderr) */
+static int parse_view_options(viewer *v, pg_cli_common *opt, int argc, char **argv)
+{
     pg_error err = {0};
-    viewer *v = calloc(1, sizeof *v);
-    if (!v) return 1;
-    v->cycle_every = 20;
-    v->frames_in_flight = 2;
     for (int i = 0; i < argc; i++) {
         bool used;
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("%s%s"
-                   "  --frames-in-flight N 2 (default) or 1: frames the displayed graph keeps in flight\n"
-                   "  --size WxH           initial window size (default 1280x720)\n"
-                   "  --pipelines DIR      also list the pipelines in DIR\n"
-                   "  --screenshot FILE    write the window (scene + UI) to FILE (.png, .jpg) at the last frame\n"
-                   "  --cycle-pipelines    switch to the next pipeline every --cycle-every frames\n"
-                   "  --cycle-every K      frames between switches (default 20)\n"
-                   "  --random-params      with --cycle-pipelines: random shading, HDR format, cluster\n"
-                   "                       capacity and depth slices, G-buffer packing, light count\n"
-                   "  --at FRAME:ACTION    scripted action at a frame (repeatable): resize=WxH, iconify,\n"
-                   "                       restore, copy=SRC:DST (an edit on disk), set=KEY=VALUE,\n"
-                   "                       pipeline=FILE.json, display=NAME, ocioview=NAME (OCIO),\n"
-                   "                       diff=on|off, lights=N, screenshot=FILE.png,\n"
-                   "                       capture[=FILE.rdc] (RenderDoc, as the C key),\n"
-                   "                       camera=auto|N|NAME (as the camera combo)\n"
-                   "  (--frames N          exit after N frames; 0 or absent: run until closed)\n",
-                   view_help, pg_cli_common_help);
-            free(v);
+            print_view_help();
             return 0;
         }
         if (!strcmp(argv[i], "--pipelines") && i + 1 < argc) {
@@ -98,30 +131,12 @@ int pg_cmd_view(int argc, char **argv)
             v->screenshot_path = argv[++i];
             if (pg_image_path_check(v->screenshot_path, false, &err)) {
                 fprintf(stderr, "passgraph view: --screenshot %s\n", err.msg);
-                free(v);
                 return 2;
             }
             continue;
         }
         if (!strcmp(argv[i], "--at") && i + 1 < argc) {
-            const char *spec = argv[++i];
-            view_action *a = &v->actions[v->n_actions];
-            char what[64] = {0};
-            int used_chars = 0;
-            if (v->n_actions >= MAX_ACTIONS || sscanf(spec, "%u:%15[a-z]%n", &a->frame, what, &used_chars) < 2) {
-                fprintf(stderr, "passgraph view: --at %s: expected FRAME:ACTION[=ARG]\n", spec);
-                free(v);
-                return 2;
-            }
-            pg_strlcpy(a->what, what, sizeof a->what);
-            const char *rest = spec + used_chars;
-            pg_strlcpy(a->arg, *rest == '=' ? rest + 1 : "", sizeof a->arg);
-            if (!strcmp(a->what, "screenshot") && pg_image_path_check(a->arg, false, &err)) {
-                fprintf(stderr, "passgraph view: --at %s: %s\n", spec, err.msg);
-                free(v);
-                return 2;
-            }
-            v->n_actions++;
+            if (!parse_at(v, argv[++i], &err)) return 2;
             continue;
         }
         if (!strcmp(argv[i], "--random-params")) {
@@ -133,70 +148,66 @@ int pg_cmd_view(int argc, char **argv)
             continue;
         }
         if (!strcmp(argv[i], "--frames-in-flight") && i + 1 < argc) {
-            long k = strtol(argv[++i], NULL, 10);
-            if (k < 1 || k > PG_MAX_FRAMES_IN_FLIGHT) {
-                fprintf(stderr, "passgraph view: --frames-in-flight %s: expected 1 or 2\n", argv[i]);
-                free(v);
+            if (!parse_count("--frames-in-flight", argv[++i], 1, PG_MAX_FRAMES_IN_FLIGHT, "1 or 2",
+                             &v->frames_in_flight))
                 return 2;
-            }
-            v->frames_in_flight = (uint32_t)k;
             continue;
         }
         if (!strcmp(argv[i], "--cycle-every") && i + 1 < argc) {
-            long k = strtol(argv[++i], NULL, 10);
-            if (k < 1 || k > 100000) {
-                fprintf(stderr, "passgraph view: --cycle-every %s: expected 1..100000\n", argv[i]);
-                free(v);
+            if (!parse_count("--cycle-every", argv[++i], 1, 100000, "1..100000", &v->cycle_every))
                 return 2;
-            }
-            v->cycle_every = (uint32_t)k;
             continue;
         }
         bool frames_given = !strcmp(argv[i], "--frames");
-        if (pg_cli_parse_common(&opt, argc, argv, &i, &used, &err)) {
+        if (pg_cli_parse_common(opt, argc, argv, &i, &used, &err)) {
             fprintf(stderr, "passgraph view: %s\n", err.msg);
-            free(v);
             return 2;
         }
         if (!used) {
             fprintf(stderr, "passgraph view: unknown option '%s' (see passgraph view --help)\n", argv[i]);
-            free(v);
             return 2;
         }
-        if (frames_given) v->frames_limit = opt.frames;
+        if (frames_given) v->frames_limit = opt->frames;
     }
-    if (!glfwInit()) {
-        fprintf(stderr, "passgraph view: cannot open a window (no display? try xvfb-run)\n");
-        free(v);
-        return 1;
-    }
-    int rc = 1;
+    return -1;
+}
+
+/* the window (no client API: Vulkan draws into it); false (said on stderr) when there is none */
+static bool open_window(viewer *v, const pg_cli_common *opt)
+{
     if (!glfwVulkanSupported()) {
         fprintf(stderr, "passgraph view: GLFW finds no Vulkan loader\n");
-        goto out_glfw;
+        return false;
     }
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-    v->window = glfwCreateWindow((int)opt.width, (int)opt.height, "passgraph", NULL, NULL);
+    v->window = glfwCreateWindow((int)opt->width, (int)opt->height, "passgraph", NULL, NULL);
     if (!v->window) {
         fprintf(stderr, "passgraph view: cannot create a window\n");
-        goto out_glfw;
+        return false;
     }
+    return true;
+}
+
+/* the app (scene, lights, camera) on a GPU that can present to the window */
+static pg_result open_app(viewer *v, const pg_cli_common *opt, pg_error *err)
+{
     uint32_t n_ext = 0;
     const char **exts = glfwGetRequiredInstanceExtensions(&n_ext);
-    /* the device must be able to present to this window */
     pg_gpu_desc win_bits = {
         .instance_extensions = exts,
         .n_instance_extensions = n_ext,
         .swapchain = true,
         .present_ok = present_ok,
     };
-    if (pg_app_open_ex(&v->app, &opt, true, &win_bits, &err)) {
-        fprintf(stderr, "passgraph view: %s\n", err.msg);
-        goto out_window;
-    }
-    if (pg_view_window_create(&v->win, v->app.gpu, v->window, &err)) goto fail;
+    return pg_app_open_ex(&v->app, opt, true, &win_bits, err);
+}
+
+/* the swapchain and the UI (ImGui over the present render pass, its fonts uploaded) */
+static bool open_window_ui(viewer *v, pg_error *err)
+{
+    if (pg_view_window_create(&v->win, v->app.gpu, v->window, err)) return false;
     bool minimised = false;
-    if (pg_view_window_resize(&v->win, &minimised, &err)) goto fail;
+    if (pg_view_window_resize(&v->win, &minimised, err)) return false;
     pg_ui_init_info ui = {
         .window = v->window,
         .instance = v->app.gpu->instance,
@@ -208,23 +219,27 @@ int pg_cmd_view(int argc, char **argv)
         .image_count = v->win.n_images,
         .pipeline_cache = v->app.gpu->pipeline_cache,
     };
-    if (!pg_ui_init(&ui, err.msg, sizeof err.msg)) goto fail;
+    if (!pg_ui_init(&ui, err->msg, sizeof err->msg)) return false;
     v->ui_ready = true;
-    {
-        VkCommandBuffer cmd;
-        if (pg_gpu_begin_once(v->app.gpu, &cmd, &err)) goto fail;
-        pg_ui_upload_fonts(cmd);
-        if (pg_gpu_end_once(v->app.gpu, cmd, &err)) goto fail;
-        pg_ui_upload_fonts_done();
-    }
-    /* initial state */
+    VkCommandBuffer cmd;
+    if (pg_gpu_begin_once(v->app.gpu, &cmd, err)) return false;
+    pg_ui_upload_fonts(cmd);
+    if (pg_gpu_end_once(v->app.gpu, cmd, err)) return false;
+    pg_ui_upload_fonts_done();
+    return true;
+}
+
+/* the viewer's starting state (lights, camera, overrides, colour, pipelines) and the first
+ * pipeline loaded; false when it did not load (v->error says why) */
+static bool initial_state(viewer *v, const pg_cli_common *opt)
+{
     v->light_count = (int)v->app.lights.count;
     v->radius = v->app.lights.radius;
     v->intensity = v->app.lights.intensity;
     v->ambient = v->app.lights.ambient;
     v->speed = v->app.lights.speed;
     v->seed = (int)v->app.lights.seed;
-    v->time = opt.time;
+    v->time = opt->time;
     v->camera = v->home = v->app.camera;
     camera_angles(v);
     printf("view: %s\nview: %s\n", v->app.camera_why, v->app.lights_why);
@@ -233,20 +248,101 @@ int pg_cmd_view(int argc, char **argv)
                     v->app.scene->bounds_max[1] - v->app.scene->bounds_min[1],
                     v->app.scene->bounds_max[2] - v->app.scene->bounds_min[2]};
     v->move_speed = fmaxf(0.1f, 0.15f * sqrtf(ext[0] * ext[0] + ext[1] * ext[1] + ext[2] * ext[2]));
-    for (uint32_t i = 0; i < opt.n_sets; i++) set_override(v, opt.sets[i].key, opt.sets[i].value);
+    for (uint32_t i = 0; i < opt->n_sets; i++) set_override(v, opt->sets[i].key, opt->sets[i].value);
     colour_init(v);
     scan_pipelines(v, v->app.pipeline_path);
     v->requested = v->current;
     reload(v);
-    if (!v->session) goto fail_msg;
+    if (!v->session) return false;
     v->watch_sig = watch_signature(v);
     v->last_watch = now_s();
+    return true;
+}
+
+/* every 0.5 s: a change on disk (pipeline JSON or shader) rescans and reloads the current one */
+static void watch_disk(viewer *v, double t)
+{
+    if (t - v->last_watch <= 0.5) return;
+    v->last_watch = t;
+    double sig = watch_signature(v);
+    if (sig == v->watch_sig) return;
+    v->watch_sig = sig;
+    printf("view: change on disk, reloading %s\n", v->paths[v->current]);
+    char cur[PG_PATH_MAX];
+    pg_strlcpy(cur, v->paths[v->current], sizeof cur);
+    scan_pipelines(v, cur);
+    v->requested = v->current;
+    pg_session_destroy(v->naive);
+    v->naive = NULL;
+    v->reload = true;
+}
+
+/* --cycle-pipelines: every cycle_every frames, the next pipeline (with --random-params, random
+ * values for the common parameters too) */
+static void cycle_pipelines(viewer *v, uint32_t frame)
+{
+    if (!(v->cycle && frame > 0 && frame % v->cycle_every == 0 && v->n_pipelines > 1)) return;
+    /* continue after the last one asked for even if it did not load (e.g. a --set value it
+     * does not declare), so one pipeline that fails does not stop the cycle there */
+    int from = v->current;
+    for (int i = 0; i < v->n_pipelines && v->cycle_tried[0]; i++)
+        if (!strcmp(v->paths[i], v->cycle_tried)) from = i;
+    v->requested = (from + 1) % v->n_pipelines;
+    pg_strlcpy(v->cycle_tried, v->paths[v->requested], sizeof v->cycle_tried);
+    v->reload = true;
+    if (v->random_params) { /* long-run soak: random values for the common parameters */
+        static const char *const sh[] = {"lambert", "blinn_phong"}, *const hf[] = {"rgba16f", "rgba32f"},
+                                 *const ml[] = {"0", "32", "512"}, *const gz[] = {"8", "24", "32"},
+                                 *const gb[] = {"float", "oct16", "packed"};
+        uint32_t r = frame * 2654435761u;
+        set_override(v, "shading", sh[(r >> 3) % 2]);
+        set_override(v, "hdr_format", hf[(r >> 7) % 2]);
+        set_override(v, "max_lights", ml[(r >> 11) % 3]);
+        set_override(v, "grid_z", gz[(r >> 15) % 3]);
+        set_override(v, "gbuffer", gb[(r >> 19) % 3]);
+        v->light_count = (int)((r >> 23) % 500);
+    }
+    printf("view: frame %u: switching to %s\n", frame, v->names[v->requested]);
+}
+
+/* one drawn frame: a pending reload, the camera, draw_frame (with a screenshot at the last
+ * scripted frame or when asked, and a RenderDoc capture on C); the reload's time said */
+static bool draw_one(viewer *v, uint32_t frame, float dt, pg_error *err)
+{
+    double t_load = now_s();
+    uint32_t loads_before = v->reloads;
+    if (v->reload) reload(v);
+    camera_update(v, dt);
+    bool last_frame = v->frames_limit && frame + 1 >= v->frames_limit;
+    bool capture = v->want_shot || (last_frame && v->screenshot_path);
+    if (last_frame && v->screenshot_path) pg_strlcpy(v->shot_file, v->screenshot_path, sizeof v->shot_file);
+    bool key_c = !pg_ui_want_keyboard() && glfwGetKey(v->window, GLFW_KEY_C) == GLFW_PRESS;
+    if (key_c && !v->key_c_down) v->want_rdoc = true;
+    v->key_c_down = key_c;
+    bool rdoc_now = v->want_rdoc && rdoc_ready(v);
+    if (rdoc_now) pg_rdoc_begin(v->rdoc);
+    if (draw_frame(v, capture, err)) return false;
+    if (rdoc_now) rdoc_finish(v);
+    v->want_rdoc = false;
+    v->rdoc_file[0] = 0;
+    if (v->reloads != loads_before) /* the switch as the user waits for it */
+        printf("view: frame %u: %s ready in %.1f ms (load, compile, first frame; rebuilt: %s)\n", frame,
+               v->names[v->current], (now_s() - t_load) * 1e3,
+               pg_rebuild_kind_name(pg_runtime_get_stats(v->session->runtime).last_rebuild));
+    v->want_shot = false;
+    return true;
+}
+
+/* frames until the window closes or --frames is reached: scripted actions, minimised and resized
+ * windows, time, disk changes, pipeline cycling, the frame; *frames counts them */
+static bool frame_loop(viewer *v, uint32_t *frames, pg_error *err)
+{
     double last = now_s();
     uint32_t frame = 0;
     while (!glfwWindowShouldClose(v->window)) {
         glfwPollEvents();
         for (int k = 0; k < v->n_actions; k++)
-            if (v->actions[k].frame == frame && run_action(v, &v->actions[k], &err)) goto fail;
+            if (v->actions[k].frame == frame && run_action(v, &v->actions[k], err)) return false;
         int fw, fh;
         glfwGetFramebufferSize(v->window, &fw, &fh);
         if (fw == 0 || fh == 0) { /* minimised: nothing to draw into; scripted runs still count */
@@ -258,7 +354,8 @@ int pg_cmd_view(int argc, char **argv)
             continue;
         }
         if ((uint32_t)fw != v->win.extent.width || (uint32_t)fh != v->win.extent.height) {
-            if (pg_view_window_resize(&v->win, &minimised, &err)) goto fail;
+            bool minimised = false;
+            if (pg_view_window_resize(&v->win, &minimised, err)) return false;
             pg_ui_set_min_image_count(v->win.min_images);
             if (minimised) continue;
         }
@@ -267,65 +364,9 @@ int pg_cmd_view(int argc, char **argv)
         last = t;
         /* scripted runs advance a fixed 1/30 s a frame so they are reproducible */
         if (!v->paused) v->time += v->frames_limit ? 1.0f / 30.0f : dt;
-        if (t - v->last_watch > 0.5) {
-            v->last_watch = t;
-            double sig = watch_signature(v);
-            if (sig != v->watch_sig) {
-                v->watch_sig = sig;
-                printf("view: change on disk, reloading %s\n", v->paths[v->current]);
-                char cur[PG_PATH_MAX];
-                pg_strlcpy(cur, v->paths[v->current], sizeof cur);
-                scan_pipelines(v, cur);
-                v->requested = v->current;
-                pg_session_destroy(v->naive);
-                v->naive = NULL;
-                v->reload = true;
-            }
-        }
-        if (v->cycle && frame > 0 && frame % v->cycle_every == 0 && v->n_pipelines > 1) {
-            /* continue after the last one asked for even if it did not load (e.g. a --set value it
-             * does not declare), so one pipeline that fails does not stop the cycle there */
-            int from = v->current;
-            for (int i = 0; i < v->n_pipelines && v->cycle_tried[0]; i++)
-                if (!strcmp(v->paths[i], v->cycle_tried)) from = i;
-            v->requested = (from + 1) % v->n_pipelines;
-            pg_strlcpy(v->cycle_tried, v->paths[v->requested], sizeof v->cycle_tried);
-            v->reload = true;
-            if (v->random_params) { /* long-run soak: random values for the common parameters */
-                static const char *const sh[] = {"lambert", "blinn_phong"}, *const hf[] = {"rgba16f", "rgba32f"},
-                                         *const ml[] = {"0", "32", "512"}, *const gz[] = {"8", "24", "32"},
-                                         *const gb[] = {"float", "oct16", "packed"};
-                uint32_t r = frame * 2654435761u;
-                set_override(v, "shading", sh[(r >> 3) % 2]);
-                set_override(v, "hdr_format", hf[(r >> 7) % 2]);
-                set_override(v, "max_lights", ml[(r >> 11) % 3]);
-                set_override(v, "grid_z", gz[(r >> 15) % 3]);
-                set_override(v, "gbuffer", gb[(r >> 19) % 3]);
-                v->light_count = (int)((r >> 23) % 500);
-            }
-            printf("view: frame %u: switching to %s\n", frame, v->names[v->requested]);
-        }
-        double t_load = now_s();
-        uint32_t loads_before = v->reloads;
-        if (v->reload) reload(v);
-        camera_update(v, dt);
-        bool last_frame = v->frames_limit && frame + 1 >= v->frames_limit;
-        bool capture = v->want_shot || (last_frame && v->screenshot_path);
-        if (last_frame && v->screenshot_path) pg_strlcpy(v->shot_file, v->screenshot_path, sizeof v->shot_file);
-        bool key_c = !pg_ui_want_keyboard() && glfwGetKey(v->window, GLFW_KEY_C) == GLFW_PRESS;
-        if (key_c && !v->key_c_down) v->want_rdoc = true;
-        v->key_c_down = key_c;
-        bool rdoc_now = v->want_rdoc && rdoc_ready(v);
-        if (rdoc_now) pg_rdoc_begin(v->rdoc);
-        if (draw_frame(v, capture, &err)) goto fail;
-        if (rdoc_now) rdoc_finish(v);
-        v->want_rdoc = false;
-        v->rdoc_file[0] = 0;
-        if (v->reloads != loads_before) /* the switch as the user waits for it */
-            printf("view: frame %u: %s ready in %.1f ms (load, compile, first frame; rebuilt: %s)\n", frame,
-                   v->names[v->current], (now_s() - t_load) * 1e3,
-                   pg_rebuild_kind_name(pg_runtime_get_stats(v->session->runtime).last_rebuild));
-        v->want_shot = false;
+        watch_disk(v, t);
+        cycle_pipelines(v, frame);
+        if (!draw_one(v, frame, dt, err)) return false;
         frame++;
         if (frame == 100) {
             v->rss100 = pg_process_rss();
@@ -333,6 +374,13 @@ int pg_cmd_view(int argc, char **argv)
         }
         if (v->frames_limit && frame >= v->frames_limit) break;
     }
+    *frames = frame;
+    return true;
+}
+
+/* the closing lines (frames, loads, host frame time, memory growth); 1 when validation spoke */
+static int report(const viewer *v, uint32_t frame)
+{
     printf("view: %u frames, %u pipeline loads, %u swapchain builds, last GPU %.3f ms\n", frame, v->reloads,
            v->win.recreations, v->stats.gpu_total_ms);
     if (v->n_frame_ms) { /* median host time of draw_frame (render + UI + blit + present) */
@@ -346,18 +394,16 @@ int pg_cmd_view(int argc, char **argv)
         printf("view: RSS frame 100 %.1f MiB, end %.1f MiB; VkDeviceMemory objects frame 100 %lld, end %lld\n",
                v->rss100 / 1048576.0, pg_process_rss() / 1048576.0, (long long)v->mem100,
                (long long)v->app.gpu->live_memory_objects);
-    rc = 0;
     if (v->app.gpu->validation && v->app.gpu->validation_messages) {
         fprintf(stderr, "passgraph view: %u validation message(s)\n", v->app.gpu->validation_messages);
-        rc = 1;
+        return 1;
     }
-    goto done;
-fail:
-    fprintf(stderr, "passgraph view: %s\n", err.msg);
-    goto done;
-fail_msg:
-    fprintf(stderr, "passgraph view: cannot start: %s\n", v->error);
-done:
+    return 0;
+}
+
+/* everything the viewer made on the app's GPU, the UI, the swapchain and the app */
+static void close_viewer(viewer *v)
+{
     if (v->app.gpu) vkDeviceWaitIdle(v->app.gpu->device);
     pg_session_destroy(v->session);
     pg_session_destroy(v->naive);
@@ -375,9 +421,56 @@ done:
     if (v->ui_ready) pg_ui_shutdown();
     pg_view_window_destroy(&v->win);
     pg_app_close(&v->app);
-out_window:
-    glfwDestroyWindow(v->window);
-out_glfw:
+}
+
+/* the viewer on an open app: UI, first pipeline, the frames, the report; the exit code */
+static int run_viewer(viewer *v, const pg_cli_common *opt)
+{
+    pg_error err = {0};
+    uint32_t frames = 0;
+    if (!open_window_ui(v, &err)) goto fail;
+    if (!initial_state(v, opt)) {
+        fprintf(stderr, "passgraph view: cannot start: %s\n", v->error);
+        return 1;
+    }
+    if (!frame_loop(v, &frames, &err)) goto fail;
+    return report(v, frames);
+fail:
+    fprintf(stderr, "passgraph view: %s\n", err.msg);
+    return 1;
+}
+
+int pg_cmd_view(int argc, char **argv)
+{
+    pg_cli_common opt;
+    pg_cli_defaults(&opt);
+    opt.width = 1280;
+    opt.height = 720;
+    viewer *v = calloc(1, sizeof *v);
+    if (!v) return 1;
+    v->cycle_every = 20;
+    v->frames_in_flight = 2;
+    int rc = parse_view_options(v, &opt, argc, argv);
+    if (rc >= 0) {
+        free(v);
+        return rc;
+    }
+    if (!glfwInit()) {
+        fprintf(stderr, "passgraph view: cannot open a window (no display? try xvfb-run)\n");
+        free(v);
+        return 1;
+    }
+    rc = 1;
+    if (open_window(v, &opt)) {
+        pg_error err = {0};
+        if (open_app(v, &opt, &err)) {
+            fprintf(stderr, "passgraph view: %s\n", err.msg);
+        } else {
+            rc = run_viewer(v, &opt);
+            close_viewer(v);
+        }
+        glfwDestroyWindow(v->window);
+    }
     glfwTerminate();
     free(v);
     return rc;

@@ -95,11 +95,9 @@ static pg_result present_source(viewer *v, VkCommandBuffer cmd, const pg_phys_re
     return PG_OK;
 }
 
-pg_result draw_frame(viewer *v, bool capture, pg_error *err)
+/* the frame the viewer's settings describe, at the window's size */
+static pg_frame_info viewer_frame_info(const viewer *v)
 {
-    pg_gpu *gpu = v->app.gpu;
-    pg_view_window *w = &v->win;
-    double t0 = now_s();
     pg_frame_info fi = pg_app_frame(&v->app);
     fi.camera = v->camera;
     fi.lights.count = (uint32_t)v->light_count;
@@ -109,9 +107,15 @@ pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     fi.lights.speed = v->speed;
     fi.lights.seed = (uint32_t)v->seed;
     fi.time = v->time;
-    fi.width = w->extent.width;
-    fi.height = w->extent.height;
-    pg_result r = pg_session_render(v->session, &fi, v->diff, &v->stats, err);
+    fi.width = v->win.extent.width;
+    fi.height = v->win.extent.height;
+    return fi;
+}
+
+/* the displayed graph's frame; growth and light overflow said on stdout */
+static pg_result render_graph(viewer *v, const pg_frame_info *fi, pg_error *err)
+{
+    pg_result r = pg_session_render(v->session, fi, v->diff, &v->stats, err);
     if (r) return r;
     for (uint32_t k = 0; k < v->stats.n_grown; k++) {
         v->growths++;
@@ -120,25 +124,169 @@ pg_result draw_frame(viewer *v, bool capture, pg_error *err)
         printf("view: %s\n", v->last_growth);
     }
     if (pg_frame_counter_sum(&v->stats, "overflow_dropped") && v->stats.n_notes) printf("view: %s\n", v->stats.notes[0]);
-    bool show_diff = false;
-    if (v->diff) {
-        if (!v->naive) {
-            char naive[PG_PATH_MAX];
-            pg_data_path(naive, sizeof naive, "pipelines/reference.json"); /* exact, fast at any count */
-            if ((r = open_session(v, naive, false, &v->naive, err))) return r;
-        }
-        pg_frame_stats ns;
-        if ((r = pg_session_render(v->naive, &fi, true, &ns, err))) return r;
-        /* the diff staging is written by the host: no viewer frame may still read it */
-        PG_VK_TRY(err, vkWaitForFences(gpu->device, PG_VIEW_FRAMES, w->fence, VK_TRUE, UINT64_MAX));
-        if ((r = update_diff(v, err))) return r;
-        show_diff = true;
+    return PG_OK;
+}
+
+/* with the difference view on: the reference pipeline's frame and the heatmap in diff_staging */
+static pg_result render_diff(viewer *v, const pg_frame_info *fi, pg_error *err)
+{
+    pg_result r;
+    if (!v->naive) {
+        char naive[PG_PATH_MAX];
+        pg_data_path(naive, sizeof naive, "pipelines/reference.json"); /* exact, fast at any count */
+        if ((r = open_session(v, naive, false, &v->naive, err))) return r;
     }
-    /* statistics history */
+    pg_frame_stats ns;
+    if ((r = pg_session_render(v->naive, fi, true, &ns, err))) return r;
+    /* the diff staging is written by the host: no viewer frame may still read it */
+    PG_VK_TRY(err, vkWaitForFences(v->app.gpu->device, PG_VIEW_FRAMES, v->win.fence, VK_TRUE, UINT64_MAX));
+    return update_diff(v, err);
+}
+
+/* statistics history */
+static void record_history(viewer *v)
+{
     v->hist_total[v->hist_pos] = (float)v->stats.gpu_total_ms;
     for (uint32_t p = 0; p < v->stats.n_passes && p < PG_MAX_PASSES; p++) v->hist_pass[p][v->hist_pos] = (float)v->stats.pass_ms[p];
     v->hist_pos = (v->hist_pos + 1) % HIST;
     v->hist_n++;
+}
+
+/* the image blitted to the swapchain: the heatmap (uploaded from diff_staging) or the graph's
+ * display output; *src ready as a transfer source of sw x sh */
+static pg_result blit_source(viewer *v, VkCommandBuffer cmd, bool show_diff, VkImage *src, uint32_t *sw,
+                             uint32_t *sh, pg_error *err)
+{
+    if (!show_diff) {
+        const pg_phys_resource *out = pg_runtime_output_image(v->session->runtime, 0);
+        pg_result r = present_source(v, cmd, out, src, err);
+        if (r) return r;
+        *sw = out->width;
+        *sh = out->height;
+        return PG_OK;
+    }
+    VkImageMemoryBarrier2 b = pg_image_barrier(v->diff_image.image, VK_IMAGE_ASPECT_COLOR_BIT,
+                                               VK_PIPELINE_STAGE_2_BLIT_BIT, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                               VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    pg_cmd_barriers(cmd, 1, &b, 0, NULL);
+    VkBufferImageCopy c = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                           .imageExtent = {v->diff_image.width, v->diff_image.height, 1}};
+    vkCmdCopyBufferToImage(cmd, v->diff_staging.buffer, v->diff_image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &c);
+    b = pg_image_barrier(v->diff_image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                         VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    pg_cmd_barriers(cmd, 1, &b, 0, NULL);
+    *src = v->diff_image.image;
+    *sw = v->diff_image.width;
+    *sh = v->diff_image.height;
+    return PG_OK;
+}
+
+/* src (sw x sh) scaled onto swapchain image `index`; the acquire semaphore is waited at the blit
+ * stage, the transition chains after it */
+static void blit_to_swapchain(VkCommandBuffer cmd, const pg_view_window *w, uint32_t index, VkImage src, uint32_t sw,
+                              uint32_t sh)
+{
+    VkImageMemoryBarrier2 to_dst = pg_image_barrier(w->images[index], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                                                    0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                                    VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    pg_cmd_barriers(cmd, 1, &to_dst, 0, NULL);
+    VkImageBlit blit = {
+        .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+        .srcOffsets = {{0, 0, 0}, {(int32_t)sw, (int32_t)sh, 1}},
+        .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+        .dstOffsets = {{0, 0, 0}, {(int32_t)w->extent.width, (int32_t)w->extent.height, 1}},
+    };
+    vkCmdBlitImage(cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, w->images[index], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                   &blit, VK_FILTER_NEAREST);
+}
+
+/* swapchain image `index` copied to the screenshot buffer (grown as needed), then to present */
+static pg_result record_screenshot(viewer *v, VkCommandBuffer cmd, uint32_t index, pg_error *err)
+{
+    pg_gpu *gpu = v->app.gpu;
+    const pg_view_window *w = &v->win;
+    VkDeviceSize bytes = (VkDeviceSize)w->extent.width * w->extent.height * 4;
+    if (v->shot.size < bytes) {
+        pg_buffer_destroy(gpu, &v->shot);
+        pg_result r = pg_buffer_create(gpu, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, "view.screenshot", &v->shot, err);
+        if (r) return r;
+    }
+    VkBufferImageCopy c = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                           .imageExtent = {w->extent.width, w->extent.height, 1}};
+    vkCmdCopyImageToBuffer(cmd, w->images[index], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, v->shot.buffer, 1, &c);
+    VkImageMemoryBarrier2 to_present = pg_image_barrier(
+        w->images[index], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, 0, VK_PIPELINE_STAGE_2_NONE, 0,
+        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    VkBufferMemoryBarrier2 host = pg_buffer_barrier(v->shot.buffer, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                                    VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    pg_cmd_barriers(cmd, 1, &to_present, 1, &host);
+    return PG_OK;
+}
+
+/* cmd waits for the acquired image (blit stage), signals render_done[index], fences slot fs */
+static pg_result submit_frame(pg_gpu *gpu, pg_view_window *w, VkCommandBuffer cmd, uint32_t fs, uint32_t index,
+                              pg_error *err)
+{
+    VkSemaphoreSubmitInfo wait = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO,
+                                  .semaphore = w->image_ready[fs],
+                                  .stageMask = VK_PIPELINE_STAGE_2_BLIT_BIT};
+    VkSemaphoreSubmitInfo signal = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO,
+                                    .semaphore = w->render_done[index],
+                                    .stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT};
+    VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
+    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2,
+                        .waitSemaphoreInfoCount = 1,
+                        .pWaitSemaphoreInfos = &wait,
+                        .commandBufferInfoCount = 1,
+                        .pCommandBufferInfos = &cbi,
+                        .signalSemaphoreInfoCount = 1,
+                        .pSignalSemaphoreInfos = &signal};
+    PG_VK_TRY(err, vkResetFences(gpu->device, 1, &w->fence[fs]));
+    PG_VK_TRY(err, vkQueueSubmit2(gpu->queue, 1, &si, w->fence[fs]));
+    return PG_OK;
+}
+
+/* the screenshot, read after its own frame (slot fs): swapchain pixels -> RGBA for the PNG */
+static pg_result save_screenshot(viewer *v, uint32_t fs, pg_error *err)
+{
+    pg_view_window *w = &v->win;
+    PG_VK_TRY(err, vkWaitForFences(v->app.gpu->device, 1, &w->fence[fs], VK_TRUE, UINT64_MAX));
+    uint32_t n = w->extent.width * w->extent.height;
+    uint8_t *px = malloc((size_t)n * 4);
+    if (!px) return PG_OK;
+    memcpy(px, v->shot.mapped, (size_t)n * 4);
+    if (w->format == VK_FORMAT_B8G8R8A8_SRGB || w->format == VK_FORMAT_B8G8R8A8_UNORM)
+        for (uint32_t i = 0; i < n; i++) {
+            uint8_t t = px[i * 4];
+            px[i * 4] = px[i * 4 + 2];
+            px[i * 4 + 2] = t;
+        }
+    for (uint32_t i = 0; i < n; i++) px[i * 4 + 3] = 255;
+    pg_result r = pg_write_image(v->shot_file, px, w->extent.width, w->extent.height, err);
+    free(px);
+    if (r) return r;
+    printf("view: screenshot %s (%ux%u)\n", v->shot_file, w->extent.width, w->extent.height);
+    return PG_OK;
+}
+
+/* One viewer frame: the graph (and the reference for the difference view), the history, acquire,
+ * one command buffer (source, blit, UI, screenshot copy), submit, present, the screenshot. */
+pg_result draw_frame(viewer *v, bool capture, pg_error *err)
+{
+    pg_gpu *gpu = v->app.gpu;
+    pg_view_window *w = &v->win;
+    double t0 = now_s();
+    pg_frame_info fi = viewer_frame_info(v);
+    pg_result r;
+    if ((r = render_graph(v, &fi, err))) return r;
+    bool show_diff = false;
+    if (v->diff) {
+        if ((r = render_diff(v, &fi, err))) return r;
+        show_diff = true;
+    }
+    record_history(v);
 
     /* this slot's previous frame (two frames ago) must be done with its command buffer and semaphore */
     const uint32_t fs = w->slot;
@@ -161,41 +309,8 @@ pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     PG_VK_TRY(err, vkBeginCommandBuffer(cmd, &bi));
     VkImage src = VK_NULL_HANDLE;
     uint32_t sw = 0, sh = 0;
-    if (show_diff) {
-        VkImageMemoryBarrier2 b = pg_image_barrier(v->diff_image.image, VK_IMAGE_ASPECT_COLOR_BIT,
-                                                   VK_PIPELINE_STAGE_2_BLIT_BIT, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
-                                                   VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                                                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-        pg_cmd_barriers(cmd, 1, &b, 0, NULL);
-        VkBufferImageCopy c = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                               .imageExtent = {v->diff_image.width, v->diff_image.height, 1}};
-        vkCmdCopyBufferToImage(cmd, v->diff_staging.buffer, v->diff_image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &c);
-        b = pg_image_barrier(v->diff_image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                             VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
-                             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        pg_cmd_barriers(cmd, 1, &b, 0, NULL);
-        src = v->diff_image.image;
-        sw = v->diff_image.width;
-        sh = v->diff_image.height;
-    } else {
-        const pg_phys_resource *out = pg_runtime_output_image(v->session->runtime, 0);
-        if ((r = present_source(v, cmd, out, &src, err))) return r;
-        sw = out->width;
-        sh = out->height;
-    }
-    /* the acquire semaphore is waited at the blit stage; the transition chains after it */
-    VkImageMemoryBarrier2 to_dst = pg_image_barrier(w->images[index], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
-                                                    0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                                    VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-    pg_cmd_barriers(cmd, 1, &to_dst, 0, NULL);
-    VkImageBlit blit = {
-        .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-        .srcOffsets = {{0, 0, 0}, {(int32_t)sw, (int32_t)sh, 1}},
-        .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-        .dstOffsets = {{0, 0, 0}, {(int32_t)w->extent.width, (int32_t)w->extent.height, 1}},
-    };
-    vkCmdBlitImage(cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, w->images[index], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
-                   &blit, VK_FILTER_NEAREST);
+    if ((r = blit_source(v, cmd, show_diff, &src, &sw, &sh, err))) return r;
+    blit_to_swapchain(cmd, w, index, src, sw, sh);
     bool shot = capture && w->usage_transfer_src;
     VkRenderPassBeginInfo rp = {
         .sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO,
@@ -206,40 +321,9 @@ pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
     pg_ui_render(cmd);
     vkCmdEndRenderPass(cmd);
-    if (shot) {
-        VkDeviceSize bytes = (VkDeviceSize)w->extent.width * w->extent.height * 4;
-        if (v->shot.size < bytes) {
-            pg_buffer_destroy(gpu, &v->shot);
-            if ((r = pg_buffer_create(gpu, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, "view.screenshot", &v->shot, err)))
-                return r;
-        }
-        VkBufferImageCopy c = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                               .imageExtent = {w->extent.width, w->extent.height, 1}};
-        vkCmdCopyImageToBuffer(cmd, w->images[index], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, v->shot.buffer, 1, &c);
-        VkImageMemoryBarrier2 to_present = pg_image_barrier(
-            w->images[index], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, 0, VK_PIPELINE_STAGE_2_NONE, 0,
-            VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
-        VkBufferMemoryBarrier2 host = pg_buffer_barrier(v->shot.buffer, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                                  VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-        pg_cmd_barriers(cmd, 1, &to_present, 1, &host);
-    }
+    if (shot && (r = record_screenshot(v, cmd, index, err))) return r;
     PG_VK_TRY(err, vkEndCommandBuffer(cmd));
-    VkSemaphoreSubmitInfo wait = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO,
-                                  .semaphore = w->image_ready[fs],
-                                  .stageMask = VK_PIPELINE_STAGE_2_BLIT_BIT};
-    VkSemaphoreSubmitInfo signal = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO,
-                                    .semaphore = w->render_done[index],
-                                    .stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT};
-    VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
-    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2,
-                        .waitSemaphoreInfoCount = 1,
-                        .pWaitSemaphoreInfos = &wait,
-                        .commandBufferInfoCount = 1,
-                        .pCommandBufferInfos = &cbi,
-                        .signalSemaphoreInfoCount = 1,
-                        .pSignalSemaphoreInfos = &signal};
-    PG_VK_TRY(err, vkResetFences(gpu->device, 1, &w->fence[fs]));
-    PG_VK_TRY(err, vkQueueSubmit2(gpu->queue, 1, &si, w->fence[fs]));
+    if ((r = submit_frame(gpu, w, cmd, fs, index, err))) return r;
     w->slot = (fs + 1) % PG_VIEW_FRAMES;
     VkPresentInfoKHR pi = {.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR,
                            .waitSemaphoreCount = 1,
@@ -248,25 +332,8 @@ pg_result draw_frame(viewer *v, bool capture, pg_error *err)
                            .pSwapchains = &w->swapchain,
                            .pImageIndices = &index};
     vr = vkQueuePresentKHR(gpu->queue, &pi);
-    if (shot) { /* the screenshot is read after its own frame */
-        PG_VK_TRY(err, vkWaitForFences(gpu->device, 1, &w->fence[fs], VK_TRUE, UINT64_MAX));
-        /* swapchain pixels -> RGBA for the PNG */
-        uint32_t n = w->extent.width * w->extent.height;
-        uint8_t *px = malloc((size_t)n * 4);
-        if (px) {
-            memcpy(px, v->shot.mapped, (size_t)n * 4);
-            if (w->format == VK_FORMAT_B8G8R8A8_SRGB || w->format == VK_FORMAT_B8G8R8A8_UNORM)
-                for (uint32_t i = 0; i < n; i++) {
-                    uint8_t t = px[i * 4];
-                    px[i * 4] = px[i * 4 + 2];
-                    px[i * 4 + 2] = t;
-                }
-            for (uint32_t i = 0; i < n; i++) px[i * 4 + 3] = 255;
-            r = pg_write_image(v->shot_file, px, w->extent.width, w->extent.height, err);
-            free(px);
-            if (r) return r;
-            printf("view: screenshot %s (%ux%u)\n", v->shot_file, w->extent.width, w->extent.height);
-        }
+    if (shot) {
+        if ((r = save_screenshot(v, fs, err))) return r;
     } else if (capture) {
         fprintf(stderr, "passgraph view: this surface cannot be read back; screenshot skipped\n");
     }

@@ -297,60 +297,84 @@ static void remove_barrier(pg_plan_pass *pp, uint32_t i)
     pp->n_barriers--;
 }
 
-void pg_queues_schedule(pg_graph_plan *plan, const pg_compile_desc *desc);
-void pg_queues_schedule(pg_graph_plan *plan, const pg_compile_desc *desc)
+/* the newest batch of the other queue that pass order[k] depends on (-1: none) */
+static int needed_batch(const pg_graph_plan *plan, const pg_compile_desc *desc, uint32_t k)
 {
-    plan->n_batches = 0;
-    plan->n_qfots = 0;
-    const bool qfot = plan->qfot;
+    const int p = plan->order[k];
+    const pg_plan_pass *pp = &plan->passes[p];
+    int need = -1;
+    for (uint32_t j = 0; j < k; j++) {
+        const int a = plan->order[j];
+        if (plan->passes[a].queue == pp->queue) continue;
+        if (plan->passes[a].batch > need && depends(plan, desc, a, p, plan->qfot)) need = plan->passes[a].batch;
+    }
+    return need;
+}
+
+/* a new batch on `queue` from order[k] on; a batch after a cut on the same queue already waited
+ * for what the earlier batch did (waited[]: newest batch of the other queue each batch waits for) */
+static pg_plan_batch *open_batch(pg_graph_plan *plan, uint32_t k, pg_queue queue, int *waited)
+{
+    pg_plan_batch *cur = &plan->batches[plan->n_batches];
+    memset(cur, 0, sizeof *cur);
+    cur->queue = queue;
+    cur->first = k;
+    cur->prev_frame_wait = -1;
+    waited[plan->n_batches] = -1;
+    for (int b = (int)plan->n_batches - 1; b >= 0; b--)
+        if (plan->batches[b].queue == queue) {
+            waited[plan->n_batches] = waited[b];
+            break;
+        }
+    plan->n_batches++;
+    return cur;
+}
+
+/* batch `cur` waits for batch `need` at the stages of pass order[k] that wait, for every
+ * other-queue pass it depends on */
+static void add_pass_wait(const pg_graph_plan *plan, const pg_compile_desc *desc, uint32_t k, pg_plan_batch *cur,
+                          int need)
+{
+    const int p = plan->order[k];
+    const pg_plan_pass *pp = &plan->passes[p];
+    char why[64] = "";
+    uint64_t st = 0;
+    for (uint32_t j = 0; j < k; j++) {
+        const int a = plan->order[j];
+        if (plan->passes[a].queue != pp->queue && depends(plan, desc, a, p, plan->qfot))
+            st |= wait_stages(plan, a, p, why, sizeof why);
+    }
+    char w2[64];
+    snprintf(w2, sizeof w2, "%s: %s", pp->name, why);
+    add_wait(cur, need, st, w2);
+}
+
+/* the passes in order cut into batches: a new one at a queue change, or when a pass needs a
+ * newer batch of the other queue than its batch waits for */
+static void cut_batches(pg_graph_plan *plan, const pg_compile_desc *desc)
+{
     /* newest batch of the other queue each batch waits for (-1: none) */
     int waited[PG_MAX_BATCHES];
     for (uint32_t k = 0; k < plan->n_order; k++) {
-        const int p = plan->order[k];
-        pg_plan_pass *pp = &plan->passes[p];
-        /* the newest batch of the other queue this pass depends on */
-        int need = -1;
-        for (uint32_t j = 0; j < k; j++) {
-            const int a = plan->order[j];
-            if (plan->passes[a].queue == pp->queue) continue;
-            if (plan->passes[a].batch > need && depends(plan, desc, a, p, qfot)) need = plan->passes[a].batch;
-        }
+        pg_plan_pass *pp = &plan->passes[plan->order[k]];
+        const int need = needed_batch(plan, desc, k);
         pg_plan_batch *cur = plan->n_batches ? &plan->batches[plan->n_batches - 1] : NULL;
-        const bool new_batch = !cur || cur->queue != pp->queue || (need >= 0 && need > waited[plan->n_batches - 1]);
-        if (new_batch) {
-            cur = &plan->batches[plan->n_batches];
-            memset(cur, 0, sizeof *cur);
-            cur->queue = pp->queue;
-            cur->first = k;
-            cur->prev_frame_wait = -1;
-            waited[plan->n_batches] = -1;
-            /* a batch after a cut on the same queue already waited for what the earlier batch did */
-            for (int b = (int)plan->n_batches - 1; b >= 0; b--)
-                if (plan->batches[b].queue == pp->queue) {
-                    waited[plan->n_batches] = waited[b];
-                    break;
-                }
-            plan->n_batches++;
-        }
+        if (!cur || cur->queue != pp->queue || (need >= 0 && need > waited[plan->n_batches - 1]))
+            cur = open_batch(plan, k, pp->queue, waited);
         const int bi = (int)plan->n_batches - 1;
         cur->count++;
         pp->batch = bi;
-        /* the stages of this pass that wait, for every other-queue pass it depends on */
         if (need >= 0) {
-            char why[64] = "";
-            uint64_t st = 0;
-            for (uint32_t j = 0; j < k; j++) {
-                const int a = plan->order[j];
-                if (plan->passes[a].queue != pp->queue && depends(plan, desc, a, p, qfot))
-                    st |= wait_stages(plan, a, p, why, sizeof why);
-            }
-            char w2[64];
-            snprintf(w2, sizeof w2, "%s: %s", pp->name, why);
-            add_wait(cur, need, st, w2);
+            add_pass_wait(plan, desc, k, cur, need);
             if (need > waited[bi]) waited[bi] = need;
         }
     }
-    /* the frame ends on the graphics queue, joined with the compute queue's last batch */
+}
+
+/* the frame ends on the graphics queue (an empty batch when the last is a compute one), joined
+ * with the compute queue's last batch */
+static void end_on_graphics(pg_graph_plan *plan)
+{
     int last_compute = -1;
     for (uint32_t b = 0; b < plan->n_batches; b++)
         if (plan->batches[b].queue == PG_QUEUE_COMPUTE) last_compute = (int)b;
@@ -360,7 +384,6 @@ void pg_queues_schedule(pg_graph_plan *plan, const pg_compile_desc *desc)
         e->queue = PG_QUEUE_GRAPHICS;
         e->first = plan->n_order;
         e->prev_frame_wait = -1;
-        waited[plan->n_batches - 1] = -1;
     }
     pg_plan_batch *lastb = &plan->batches[plan->n_batches - 1];
     lastb->last = true;
@@ -368,7 +391,12 @@ void pg_queues_schedule(pg_graph_plan *plan, const pg_compile_desc *desc)
     for (uint32_t i = 0; i < lastb->n_waits; i++)
         if (lastb->waits[i].batch > lw) lw = lastb->waits[i].batch;
     if (last_compute >= 0 && lw < last_compute) add_wait(lastb, last_compute, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, "join");
-    /* frame k + 1's compute work after frame k's graphics work on the shared resources */
+}
+
+/* frame k + 1's compute work after frame k's graphics work on the shared resources: the first
+ * compute batch waits for the last graphics batch that uses a resource of both queues */
+static void wait_previous_frame(pg_graph_plan *plan)
+{
     int first_compute = -1, prev = -1;
     for (uint32_t b = 0; b < plan->n_batches; b++) {
         const pg_plan_batch *bt = &plan->batches[b];
@@ -382,55 +410,70 @@ void pg_queues_schedule(pg_graph_plan *plan, const pg_compile_desc *desc)
                     prev = (int)b;
     }
     if (first_compute >= 0) plan->batches[first_compute].prev_frame_wait = prev;
+}
 
-    if (!qfot) return;
-    /* ownership transfers: walk the frame with each resource's owning queue */
+/* each resource's owning queue, its last batch, its accesses since it changed hands, its layout */
+typedef struct ownership {
     int owner[PG_MAX_RESOURCES], last_batch[PG_MAX_RESOURCES];
     uint64_t acc_st[PG_MAX_RESOURCES], acc_ac[PG_MAX_RESOURCES];
     uint32_t layout[PG_MAX_RESOURCES];
-    for (uint32_t r = 0; r < plan->n_resources; r++) owner[r] = -1;
+} ownership;
+
+/* resource r changes hands at pass p (use u): a transfer released after its last batch on the
+ * old queue and acquired by p, whose barrier on r it replaces */
+static void add_qfot(pg_graph_plan *plan, const ownership *ow, int p, uint32_t r, const use *u)
+{
+    pg_plan_pass *pp = &plan->passes[p];
+    pg_qfot *t = &plan->qfots[plan->n_qfots++];
+    memset(t, 0, sizeof *t);
+    t->resource = (int)r;
+    t->is_image = plan->resources[r].kind == PG_RES_IMAGE;
+    t->src_queue = (pg_queue)ow->owner[r];
+    t->dst_queue = pp->queue;
+    t->release_batch = ow->last_batch[r];
+    t->acquire_batch = pp->batch;
+    t->consumer_pass = p;
+    t->src_stages = ow->acc_st[r];
+    t->src_access = ow->acc_ac[r] & WRITE_BITS;
+    t->dst_stages = u->stages;
+    t->dst_access = u->access;
+    t->old_layout = t->new_layout = t->is_image ? ow->layout[r] : 0;
+    if (t->is_image) t->new_layout = u->layout;
+    /* the acquire is the consumer's barrier on r */
+    for (uint32_t i = 0; i < pp->n_barriers; i++)
+        if (pp->barriers[i].resource == (int)r) {
+            if (t->is_image) t->old_layout = pp->barriers[i].old_layout;
+            remove_barrier(pp, i);
+            break;
+        }
+}
+
+/* ownership transfers: walk the frame with each resource's owning queue */
+static void ownership_transfers(pg_graph_plan *plan)
+{
+    ownership ow;
+    for (uint32_t r = 0; r < plan->n_resources; r++) ow.owner[r] = -1;
     for (uint32_t k = 0; k < plan->n_order; k++) {
         const int p = plan->order[k];
-        pg_plan_pass *pp = &plan->passes[p];
+        const pg_plan_pass *pp = &plan->passes[p];
         for (uint32_t r = 0; r < plan->n_resources; r++) {
             const use u = use_of(pp, (int)r);
             if (!u.used) continue;
-            if (owner[r] >= 0 && owner[r] != (int)pp->queue && plan->n_qfots < PG_MAX_QFOTS) {
-                pg_qfot *t = &plan->qfots[plan->n_qfots++];
-                memset(t, 0, sizeof *t);
-                t->resource = (int)r;
-                t->is_image = plan->resources[r].kind == PG_RES_IMAGE;
-                t->src_queue = (pg_queue)owner[r];
-                t->dst_queue = pp->queue;
-                t->release_batch = last_batch[r];
-                t->acquire_batch = pp->batch;
-                t->consumer_pass = p;
-                t->src_stages = acc_st[r];
-                t->src_access = acc_ac[r] & WRITE_BITS;
-                t->dst_stages = u.stages;
-                t->dst_access = u.access;
-                t->old_layout = t->new_layout = t->is_image ? layout[r] : 0;
-                if (t->is_image) t->new_layout = u.layout;
-                /* the acquire is the consumer's barrier on r */
-                for (uint32_t i = 0; i < pp->n_barriers; i++)
-                    if (pp->barriers[i].resource == (int)r) {
-                        if (t->is_image) t->old_layout = pp->barriers[i].old_layout;
-                        remove_barrier(pp, i);
-                        break;
-                    }
-                owner[r] = (int)pp->queue;
-                acc_st[r] = u.stages;
-                acc_ac[r] = u.access;
-            } else if (owner[r] < 0) {
-                owner[r] = (int)pp->queue;
-                acc_st[r] = u.stages;
-                acc_ac[r] = u.access;
+            if (ow.owner[r] >= 0 && ow.owner[r] != (int)pp->queue && plan->n_qfots < PG_MAX_QFOTS) {
+                add_qfot(plan, &ow, p, r, &u);
+                ow.owner[r] = (int)pp->queue;
+                ow.acc_st[r] = u.stages;
+                ow.acc_ac[r] = u.access;
+            } else if (ow.owner[r] < 0) {
+                ow.owner[r] = (int)pp->queue;
+                ow.acc_st[r] = u.stages;
+                ow.acc_ac[r] = u.access;
             } else {
-                acc_st[r] |= u.stages;
-                acc_ac[r] |= u.access;
+                ow.acc_st[r] |= u.stages;
+                ow.acc_ac[r] |= u.access;
             }
-            last_batch[r] = pp->batch;
-            layout[r] = u.layout;
+            ow.last_batch[r] = pp->batch;
+            ow.layout[r] = u.layout;
         }
     }
     for (uint32_t k = 0; k < plan->n_order; k++) {
@@ -438,4 +481,17 @@ void pg_queues_schedule(pg_graph_plan *plan, const pg_compile_desc *desc)
         if (pp->queue != PG_QUEUE_COMPUTE) continue;
         for (uint32_t i = 0; i < pp->n_barriers; i++) compute_family_masks(&pp->barriers[i]);
     }
+}
+
+void pg_queues_schedule(pg_graph_plan *plan, const pg_compile_desc *desc);
+/* The two-queue schedule: batches and their semaphore waits, the frame's end and the wait on the
+ * previous frame, then (separate families) the ownership transfers. */
+void pg_queues_schedule(pg_graph_plan *plan, const pg_compile_desc *desc)
+{
+    plan->n_batches = 0;
+    plan->n_qfots = 0;
+    cut_batches(plan, desc);
+    end_on_graphics(plan);
+    wait_previous_frame(plan);
+    if (plan->qfot) ownership_transfers(plan);
 }

@@ -171,29 +171,14 @@ static bool param_equal(const pg_param *a, const pg_param *b)
 static const char *const k_param_keys[] = {"type", "default", "min", "max", "values",
                                            "description", NULL};
 
-/* Parses one declaration "parameters.NAME" into out. */
-static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *decl, pg_param *out)
-{
-    const char *name = decl->string ? decl->string : "";
-    char path[PG_JSON_PATH_MAX + 32], fpath[PG_JSON_PATH_MAX + 96];
-    char got[96];
+/* "PATH.FIELD" in the caller's fpath buffer (PATH: "parameters.NAME") */
 #define FPATH(field) (snprintf(fpath, sizeof fpath, "%s.%s", path, field), fpath)
-    memset(out, 0, sizeof *out);
-    snprintf(path, sizeof path, "parameters.%s", name);
-    if (!pj_valid_ident(name))
-        return pj_fail_at(L, PG_ERR_PARAM, f, path,
-                       "parameter names must match [A-Za-z0-9_]+ (at most %d characters)",
-                       PG_NAME_MAX - 1);
-    pg_strlcpy(out->name, name, sizeof out->name);
-    if (!cJSON_IsObject(decl)) {
-        pj_describe(decl, got, sizeof got);
-        return pj_fail_at(L, PG_ERR_PARAM, f, path,
-                       "expected a declaration object like {\"type\": \"int\", \"default\": 1}, "
-                       "got %s", got);
-    }
-    pg_result r = pj_check_keys(L, f, decl, path, "parameter declaration", k_param_keys);
-    if (r) return r;
+#define FPATH_MAX (PG_JSON_PATH_MAX + 96)
 
+/* "type": int, float, bool or enum */
+static pg_result decl_type(loader *L, const src_file *f, const cJSON *decl, const char *path, pg_param *out)
+{
+    char fpath[FPATH_MAX], got[96];
     const cJSON *type = cJSON_GetObjectItemCaseSensitive(decl, "type");
     if (!type)
         return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("type"), "missing (int, float, bool or enum)");
@@ -210,8 +195,14 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
     else
         return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("type"),
                        "unknown parameter type '%.64s' (int, float, bool or enum)", ts);
-    bool numeric = out->type == PG_PARAM_INT || out->type == PG_PARAM_FLOAT;
+    return PG_OK;
+}
 
+/* "min" and "max" (int and float only; -inf and +inf when absent), min <= max */
+static pg_result decl_bounds(loader *L, const src_file *f, const cJSON *decl, const char *path, pg_param *out)
+{
+    char fpath[FPATH_MAX], got[96];
+    bool numeric = out->type == PG_PARAM_INT || out->type == PG_PARAM_FLOAT;
     out->min = -INFINITY;
     out->max = INFINITY;
     static const char *const bound_keys[2] = {"min", "max"};
@@ -239,54 +230,71 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
         pj_fmt_double(out->max, hi, sizeof hi);
         return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("max"), "%s is less than min %s", hi, lo);
     }
+    return PG_OK;
+}
 
+/* "values" (enum only, required there): distinct non-empty names without spaces */
+static pg_result decl_values(loader *L, const src_file *f, const cJSON *decl, const char *path, pg_param *out)
+{
+    char fpath[FPATH_MAX], got[96];
     const cJSON *values = cJSON_GetObjectItemCaseSensitive(decl, "values");
     if (values && out->type != PG_PARAM_ENUM)
         return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("values"), "only enum parameters have values");
-    if (out->type == PG_PARAM_ENUM) {
-        if (!cJSON_IsArray(values) || !values->child)
-            return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("values"),
-                           "an enum needs a non-empty array of strings");
-        int nv = cJSON_GetArraySize(values);
-        if (nv > PG_MAX_ENUM_VALUES)
-            return pj_fail_at(L, PG_ERR_LIMIT, f, FPATH("values"), "%d values, the limit is %d", nv,
-                           PG_MAX_ENUM_VALUES);
-        const cJSON *v;
-        uint32_t i = 0;
-        cJSON_ArrayForEach(v, values) {
-            bool ok = cJSON_IsString(v) && v->valuestring[0] &&
-                      strlen(v->valuestring) < PG_NAME_MAX;
-            for (const char *c = ok ? v->valuestring : ""; *c; c++)
-                if ((unsigned char)*c <= ' ' || *c == 0x7f) ok = false;
-            if (!ok) {
-                pj_describe(v, got, sizeof got);
+    if (out->type != PG_PARAM_ENUM) return PG_OK;
+    if (!cJSON_IsArray(values) || !values->child)
+        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("values"),
+                       "an enum needs a non-empty array of strings");
+    int nv = cJSON_GetArraySize(values);
+    if (nv > PG_MAX_ENUM_VALUES)
+        return pj_fail_at(L, PG_ERR_LIMIT, f, FPATH("values"), "%d values, the limit is %d", nv,
+                       PG_MAX_ENUM_VALUES);
+    const cJSON *v;
+    uint32_t i = 0;
+    cJSON_ArrayForEach(v, values) {
+        bool ok = cJSON_IsString(v) && v->valuestring[0] &&
+                  strlen(v->valuestring) < PG_NAME_MAX;
+        for (const char *c = ok ? v->valuestring : ""; *c; c++)
+            if ((unsigned char)*c <= ' ' || *c == 0x7f) ok = false;
+        if (!ok) {
+            pj_describe(v, got, sizeof got);
+            snprintf(fpath, sizeof fpath, "%s.values[%u]", path, i);
+            return pj_fail_at(L, PG_ERR_PARAM, f, fpath,
+                           "expected a non-empty string without spaces "
+                           "(at most %d characters), got %s",
+                           PG_NAME_MAX - 1, got);
+        }
+        for (uint32_t j = 0; j < i; j++)
+            if (strcmp(out->values[j], v->valuestring) == 0) {
                 snprintf(fpath, sizeof fpath, "%s.values[%u]", path, i);
-                return pj_fail_at(L, PG_ERR_PARAM, f, fpath,
-                               "expected a non-empty string without spaces "
-                               "(at most %d characters), got %s",
-                               PG_NAME_MAX - 1, got);
+                return pj_fail_at(L, PG_ERR_PARAM, f, fpath, "'%s' is listed twice",
+                               v->valuestring);
             }
-            for (uint32_t j = 0; j < i; j++)
-                if (strcmp(out->values[j], v->valuestring) == 0) {
-                    snprintf(fpath, sizeof fpath, "%s.values[%u]", path, i);
-                    return pj_fail_at(L, PG_ERR_PARAM, f, fpath, "'%s' is listed twice",
-                                   v->valuestring);
-                }
-            pg_strlcpy(out->values[i++], v->valuestring, PG_NAME_MAX);
-        }
-        out->n_values = i;
+        pg_strlcpy(out->values[i++], v->valuestring, PG_NAME_MAX);
     }
+    out->n_values = i;
+    return PG_OK;
+}
 
+/* "description": a string, when given */
+static pg_result decl_description(loader *L, const src_file *f, const cJSON *decl, const char *path,
+                                  pg_param *out)
+{
+    char fpath[FPATH_MAX], got[96];
     const cJSON *desc = cJSON_GetObjectItemCaseSensitive(decl, "description");
-    if (desc) {
-        if (!cJSON_IsString(desc)) {
-            pj_describe(desc, got, sizeof got);
-            return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("description"), "expected a string, got %s",
-                           got);
-        }
-        pg_strlcpy(out->description, desc->valuestring, sizeof out->description);
+    if (!desc) return PG_OK;
+    if (!cJSON_IsString(desc)) {
+        pj_describe(desc, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("description"), "expected a string, got %s",
+                       got);
     }
+    pg_strlcpy(out->description, desc->valuestring, sizeof out->description);
+    return PG_OK;
+}
 
+/* "default" (required): a value of the type, one of the values of an enum, within min..max */
+static pg_result decl_default(loader *L, const src_file *f, const cJSON *decl, const char *path, pg_param *out)
+{
+    char fpath[FPATH_MAX], got[96];
     const cJSON *def = cJSON_GetObjectItemCaseSensitive(decl, "default");
     if (!def)
         return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "missing (every parameter needs one)");
@@ -324,6 +332,7 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
         break;
     }
     }
+    bool numeric = out->type == PG_PARAM_INT || out->type == PG_PARAM_FLOAT;
     if (numeric && (out->number < out->min || out->number > out->max)) {
         char lo[40], hi[40];
         pj_fmt_double(out->min, lo, sizeof lo);
@@ -332,7 +341,37 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
                        hi);
     }
     return PG_OK;
+}
 #undef FPATH
+#undef FPATH_MAX
+
+/* Parses one declaration "parameters.NAME" into out: the name, then each field in turn (type
+ * first: the others depend on it). */
+static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *decl, pg_param *out)
+{
+    const char *name = decl->string ? decl->string : "";
+    char path[PG_JSON_PATH_MAX + 32];
+    char got[96];
+    memset(out, 0, sizeof *out);
+    snprintf(path, sizeof path, "parameters.%s", name);
+    if (!pj_valid_ident(name))
+        return pj_fail_at(L, PG_ERR_PARAM, f, path,
+                       "parameter names must match [A-Za-z0-9_]+ (at most %d characters)",
+                       PG_NAME_MAX - 1);
+    pg_strlcpy(out->name, name, sizeof out->name);
+    if (!cJSON_IsObject(decl)) {
+        pj_describe(decl, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_PARAM, f, path,
+                       "expected a declaration object like {\"type\": \"int\", \"default\": 1}, "
+                       "got %s", got);
+    }
+    pg_result r;
+    if ((r = pj_check_keys(L, f, decl, path, "parameter declaration", k_param_keys)) ||
+        (r = decl_type(L, f, decl, path, out)) || (r = decl_bounds(L, f, decl, path, out)) ||
+        (r = decl_values(L, f, decl, path, out)) || (r = decl_description(L, f, decl, path, out)) ||
+        (r = decl_default(L, f, decl, path, out)))
+        return r;
+    return PG_OK;
 }
 
 /* Adds a parameter declaration, accepting an identical redeclaration. */

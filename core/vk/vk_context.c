@@ -302,21 +302,12 @@ pg_result pg_gpu_list_devices(FILE *f, pg_error *err)
     return PG_OK;
 }
 
-pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
+/* the physical device: the best-scoring one that desc's index and name allow */
+static pg_result pick_device(pg_gpu *gpu, const pg_gpu_desc *desc, pg_error *err)
 {
-    *out = NULL;
-    pg_gpu *gpu = calloc(1, sizeof *gpu);
-    if (!gpu) return pg_fail(err, PG_ERR_OOM, "out of memory");
-    gpu->validation = desc->validation;
-    pg_result res = make_instance(gpu, desc, err);
-    if (res) goto fail;
-
     uint32_t n = 0;
     vkEnumeratePhysicalDevices(gpu->instance, &n, NULL);
-    if (n == 0) {
-        res = pg_fail(err, PG_ERR_NO_DEVICE, "no Vulkan device found");
-        goto fail;
-    }
+    if (n == 0) return pg_fail(err, PG_ERR_NO_DEVICE, "no Vulkan device found");
     VkPhysicalDevice devs[16];
     if (n > 16) n = 16;
     vkEnumeratePhysicalDevices(gpu->instance, &n, devs);
@@ -335,64 +326,87 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
             best_score = s;
         }
     }
-    if (best < 0 || best_score < 0) {
-        res = pg_fail(err, PG_ERR_NO_DEVICE,
-                      "no usable Vulkan device matches (device index %d, name '%s')%s%s; run "
-                      "'passgraph devices' to list them",
-                      desc->device_index, desc->device_match ? desc->device_match : "",
-                      why[0] ? ": " : "", why);
-        goto fail;
-    }
+    if (best < 0 || best_score < 0)
+        return pg_fail(err, PG_ERR_NO_DEVICE,
+                       "no usable Vulkan device matches (device index %d, name '%s')%s%s; run "
+                       "'passgraph devices' to list them",
+                       desc->device_index, desc->device_match ? desc->device_match : "",
+                       why[0] ? ": " : "", why);
     gpu->phys = devs[best];
     vkGetPhysicalDeviceProperties(gpu->phys, &gpu->props);
     vkGetPhysicalDeviceMemoryProperties(gpu->phys, &gpu->mem_props);
     gpu->timestamp_period_ns = gpu->props.limits.timestampPeriod;
+    return PG_OK;
+}
 
-    uint32_t nq = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(gpu->phys, &nq, NULL);
+/* the queue families chosen: the graphics+compute one (fam) and the async compute queue
+ * (cfam, -1 for none; cindex its index in its family) */
+typedef struct queue_choice {
     VkQueueFamilyProperties qf[16];
-    if (nq > 16) nq = 16;
-    vkGetPhysicalDeviceQueueFamilyProperties(gpu->phys, &nq, qf);
+    uint32_t nq;
+    int fam, cfam;
+    uint32_t cindex;
+} queue_choice;
+
+static pg_result pick_queues(pg_gpu *gpu, const pg_gpu_desc *desc, queue_choice *q, pg_error *err)
+{
+    q->nq = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(gpu->phys, &q->nq, NULL);
+    if (q->nq > 16) q->nq = 16;
+    vkGetPhysicalDeviceQueueFamilyProperties(gpu->phys, &q->nq, q->qf);
+    const VkQueueFamilyProperties *qf = q->qf;
     int fam = -1;
-    for (uint32_t i = 0; i < nq; i++)
+    for (uint32_t i = 0; i < q->nq; i++)
         if ((qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT) &&
             (!desc->present_ok || desc->present_ok(gpu->instance, gpu->phys, i, desc->present_user))) {
             fam = (int)i;
             break;
         }
-    if (fam < 0) {
-        res = pg_fail(err, PG_ERR_NO_DEVICE, "%s: no graphics+compute queue%s", gpu->props.deviceName,
-                      desc->present_ok ? " that can present to the window" : "");
-        goto fail;
-    }
+    if (fam < 0)
+        return pg_fail(err, PG_ERR_NO_DEVICE, "%s: no graphics+compute queue%s", gpu->props.deviceName,
+                       desc->present_ok ? " that can present to the window" : "");
+    q->fam = fam;
     gpu->queue_family = (uint32_t)fam;
     gpu->timestamp_valid_bits = qf[fam].timestampValidBits;
     /* async compute: a compute family without graphics, else a second queue of the graphics
      * family, else none (the compiler then plans for one queue) */
-    int cfam = -1;
-    uint32_t cindex = 0;
+    q->cfam = -1;
+    q->cindex = 0;
     if (desc->emulate_compute_queue) {
-        cfam = fam;
+        q->cfam = fam;
     } else if (!desc->no_compute_queue) {
-        for (uint32_t i = 0; i < nq && cfam < 0; i++)
+        for (uint32_t i = 0; i < q->nq && q->cfam < 0; i++)
             if ((qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && !(qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) &&
                 qf[i].queueCount > 0)
-                cfam = (int)i;
-        if (cfam < 0 && qf[fam].queueCount > 1) {
-            cfam = fam;
-            cindex = 1;
+                q->cfam = (int)i;
+        if (q->cfam < 0 && qf[fam].queueCount > 1) {
+            q->cfam = fam;
+            q->cindex = 1;
         }
     }
-    if (cfam < 0)
+    if (q->cfam < 0)
         snprintf(gpu->single_queue_why, sizeof gpu->single_queue_why, "%s",
                  desc->no_compute_queue ? "--async-compute off"
                                         : "the device has no second compute-capable queue");
+    return PG_OK;
+}
 
+/* What the device supports. On a 1.2 device the 1.3 feature and property structs are replaced by
+ * the extensions' own (same members); f13 is filled from those so one path follows. The pNext
+ * chains the query used are gone (NULL). */
+typedef struct dev_features {
+    bool has_sgsc, has_m4; /* VK_EXT_subgroup_size_control, VK_KHR_maintenance4 (always on 1.3) */
+    VkPhysicalDeviceVulkan13Features f13;
+    VkPhysicalDeviceVulkan12Features f12;
+    VkPhysicalDeviceFeatures2 f2;
+} dev_features;
+
+static pg_result query_features(pg_gpu *gpu, dev_features *df, pg_error *err)
+{
     gpu->vulkan12 = uses_vulkan12(gpu->phys, &gpu->props, NULL, 0);
-    /* On a 1.2 device the 1.3 feature and property structs are replaced by the extensions' own
-     * (same members); f13/p13 are filled from those so one path follows. */
-    bool has_sgsc = !gpu->vulkan12 || has_device_ext(gpu->phys, VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME);
-    bool has_m4 = !gpu->vulkan12 || has_device_ext(gpu->phys, VK_KHR_MAINTENANCE_4_EXTENSION_NAME);
+    bool has_sgsc = df->has_sgsc =
+        !gpu->vulkan12 || has_device_ext(gpu->phys, VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME);
+    bool has_m4 = df->has_m4 = !gpu->vulkan12 || has_device_ext(gpu->phys, VK_KHR_MAINTENANCE_4_EXTENSION_NAME);
     VkPhysicalDeviceVulkan13Features f13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceSynchronization2Features fs2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES};
     VkPhysicalDeviceDynamicRenderingFeatures fdr = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES,
@@ -417,103 +431,142 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
         f13.maintenance4 = fm4.maintenance4;
         eds = feds.extendedDynamicState;
     }
-    if (!f13.synchronization2 || !f13.dynamicRendering || !eds) {
-        res = pg_fail(err, PG_ERR_NO_DEVICE, "%s lacks the synchronization2, dynamicRendering or%s feature",
-                      gpu->props.deviceName, gpu->vulkan12 ? " extendedDynamicState" : "");
-        goto fail;
+    df->f13 = f13;
+    df->f12 = f12;
+    df->f2 = f2;
+    df->f13.pNext = df->f12.pNext = df->f2.pNext = NULL;
+    if (!f13.synchronization2 || !f13.dynamicRendering || !eds)
+        return pg_fail(err, PG_ERR_NO_DEVICE, "%s lacks the synchronization2, dynamicRendering or%s feature",
+                       gpu->props.deviceName, gpu->vulkan12 ? " extendedDynamicState" : "");
+    return PG_OK;
+}
+
+/* the subgroup size, whether compute dispatches can require it exactly, the storage range */
+static void query_subgroups(pg_gpu *gpu, const dev_features *df)
+{
+    const VkPhysicalDeviceVulkan13Features *f13 = &df->f13;
+    VkPhysicalDeviceVulkan13Properties p13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES};
+    VkPhysicalDeviceSubgroupSizeControlProperties psg = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_PROPERTIES};
+    VkPhysicalDeviceSubgroupProperties sp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
+                                             .pNext = gpu->vulkan12 ? (df->has_sgsc ? (void *)&psg : NULL) : (void *)&p13};
+    VkPhysicalDeviceProperties2 pp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &sp};
+    vkGetPhysicalDeviceProperties2(gpu->phys, &pp);
+    if (gpu->vulkan12) {
+        p13.minSubgroupSize = psg.minSubgroupSize;
+        p13.maxSubgroupSize = psg.maxSubgroupSize;
+        p13.requiredSubgroupSizeStages = psg.requiredSubgroupSizeStages;
     }
-    {
-        VkPhysicalDeviceVulkan13Properties p13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES};
-        VkPhysicalDeviceSubgroupSizeControlProperties psg = {
-            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_PROPERTIES};
-        VkPhysicalDeviceSubgroupProperties sp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
-                                                 .pNext = gpu->vulkan12 ? (has_sgsc ? (void *)&psg : NULL) : (void *)&p13};
-        VkPhysicalDeviceProperties2 pp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &sp};
-        vkGetPhysicalDeviceProperties2(gpu->phys, &pp);
-        if (gpu->vulkan12) {
-            p13.minSubgroupSize = psg.minSubgroupSize;
-            p13.maxSubgroupSize = psg.maxSubgroupSize;
-            p13.requiredSubgroupSizeStages = psg.requiredSubgroupSizeStages;
-        }
-        gpu->subgroup_size = sp.subgroupSize;
-        gpu->exact_subgroups = f13.subgroupSizeControl && f13.computeFullSubgroups &&
-                               (p13.requiredSubgroupSizeStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
-                               sp.subgroupSize >= p13.minSubgroupSize && sp.subgroupSize <= p13.maxSubgroupSize &&
-                               sp.subgroupSize >= 4 && sp.subgroupSize <= 128 &&
-                               sp.subgroupSize <= gpu->props.limits.maxComputeWorkGroupSize[0];
-        gpu->max_storage_buffer_range = gpu->props.limits.maxStorageBufferRange;
-    }
-    VkPhysicalDeviceVulkan13Features e13 = {
+    gpu->subgroup_size = sp.subgroupSize;
+    gpu->exact_subgroups = f13->subgroupSizeControl && f13->computeFullSubgroups &&
+                           (p13.requiredSubgroupSizeStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+                           sp.subgroupSize >= p13.minSubgroupSize && sp.subgroupSize <= p13.maxSubgroupSize &&
+                           sp.subgroupSize >= 4 && sp.subgroupSize <= 128 &&
+                           sp.subgroupSize <= gpu->props.limits.maxComputeWorkGroupSize[0];
+    gpu->max_storage_buffer_range = gpu->props.limits.maxStorageBufferRange;
+}
+
+/* The features and extensions the device is created with (a pNext chain inside the struct: it
+ * is filled in place and must not move before vkCreateDevice). */
+typedef struct dev_enable {
+    VkPhysicalDeviceVulkan13Features e13;
+    VkPhysicalDeviceSynchronization2Features es2;
+    VkPhysicalDeviceDynamicRenderingFeatures edr;
+    VkPhysicalDeviceExtendedDynamicStateFeaturesEXT eeds;
+    VkPhysicalDeviceSubgroupSizeControlFeatures esg;
+    VkPhysicalDeviceMaintenance4Features em4;
+    VkPhysicalDeviceVulkan12Features e12;
+    VkPhysicalDeviceFeatures2 e2;
+    const char *exts[8];
+    uint32_t n_ext;
+} dev_enable;
+
+static void fill_enable(const pg_gpu *gpu, const pg_gpu_desc *desc, const dev_features *df, dev_enable *e)
+{
+    const VkPhysicalDeviceVulkan13Features *f13 = &df->f13;
+    const VkPhysicalDeviceVulkan12Features *f12 = &df->f12;
+    const VkPhysicalDeviceFeatures2 *f2 = &df->f2;
+    e->e13 = (VkPhysicalDeviceVulkan13Features){
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
         .synchronization2 = VK_TRUE,
         .dynamicRendering = VK_TRUE,
-        .maintenance4 = f13.maintenance4,
-        .subgroupSizeControl = f13.subgroupSizeControl,
-        .computeFullSubgroups = f13.computeFullSubgroups,
+        .maintenance4 = f13->maintenance4,
+        .subgroupSizeControl = f13->subgroupSizeControl,
+        .computeFullSubgroups = f13->computeFullSubgroups,
     };
-    VkPhysicalDeviceSynchronization2Features es2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES,
-                                                    .synchronization2 = VK_TRUE};
-    VkPhysicalDeviceDynamicRenderingFeatures edr = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES,
-                                                    .pNext = &es2, .dynamicRendering = VK_TRUE};
-    VkPhysicalDeviceExtendedDynamicStateFeaturesEXT eeds = {
-        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_FEATURES_EXT, .pNext = &edr,
+    e->es2 = (VkPhysicalDeviceSynchronization2Features){
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES, .synchronization2 = VK_TRUE};
+    e->edr = (VkPhysicalDeviceDynamicRenderingFeatures){
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES, .pNext = &e->es2,
+        .dynamicRendering = VK_TRUE};
+    e->eeds = (VkPhysicalDeviceExtendedDynamicStateFeaturesEXT){
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTENDED_DYNAMIC_STATE_FEATURES_EXT, .pNext = &e->edr,
         .extendedDynamicState = VK_TRUE};
-    VkPhysicalDeviceSubgroupSizeControlFeatures esg = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES,
-                                                       .subgroupSizeControl = f13.subgroupSizeControl,
-                                                       .computeFullSubgroups = f13.computeFullSubgroups};
-    VkPhysicalDeviceMaintenance4Features em4 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES,
-                                                .maintenance4 = f13.maintenance4};
-    const char *dev_exts[8];
-    uint32_t n_dev_ext = 0;
-    if (desc->swapchain) dev_exts[n_dev_ext++] = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
-    void *e12_next = &e13;
+    e->esg = (VkPhysicalDeviceSubgroupSizeControlFeatures){
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES,
+        .subgroupSizeControl = f13->subgroupSizeControl,
+        .computeFullSubgroups = f13->computeFullSubgroups};
+    e->em4 = (VkPhysicalDeviceMaintenance4Features){
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES, .maintenance4 = f13->maintenance4};
+    e->n_ext = 0;
+    if (desc->swapchain) e->exts[e->n_ext++] = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+    void *e12_next = &e->e13;
     if (gpu->vulkan12) {
-        for (size_t i = 0; i < N_EXT12_REQUIRED; i++) dev_exts[n_dev_ext++] = k_ext12_required[i];
-        e12_next = &eeds;
-        if (has_sgsc && (f13.subgroupSizeControl || f13.computeFullSubgroups)) {
-            dev_exts[n_dev_ext++] = VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME;
-            esg.pNext = e12_next;
-            e12_next = &esg;
+        for (size_t i = 0; i < N_EXT12_REQUIRED; i++) e->exts[e->n_ext++] = k_ext12_required[i];
+        e12_next = &e->eeds;
+        if (df->has_sgsc && (f13->subgroupSizeControl || f13->computeFullSubgroups)) {
+            e->exts[e->n_ext++] = VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME;
+            e->esg.pNext = e12_next;
+            e12_next = &e->esg;
         }
-        if (has_m4 && f13.maintenance4) {
-            dev_exts[n_dev_ext++] = VK_KHR_MAINTENANCE_4_EXTENSION_NAME;
-            em4.pNext = e12_next;
-            e12_next = &em4;
+        if (df->has_m4 && f13->maintenance4) {
+            e->exts[e->n_ext++] = VK_KHR_MAINTENANCE_4_EXTENSION_NAME;
+            e->em4.pNext = e12_next;
+            e12_next = &e->em4;
         }
     }
-    VkPhysicalDeviceVulkan12Features e12 = {
+    e->e12 = (VkPhysicalDeviceVulkan12Features){
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
         .pNext = e12_next,
-        .hostQueryReset = f12.hostQueryReset,
-        .timelineSemaphore = f12.timelineSemaphore,
-        .scalarBlockLayout = f12.scalarBlockLayout,
-        .shaderSampledImageArrayNonUniformIndexing = f12.shaderSampledImageArrayNonUniformIndexing,
-        .runtimeDescriptorArray = f12.runtimeDescriptorArray,
+        .hostQueryReset = f12->hostQueryReset,
+        .timelineSemaphore = f12->timelineSemaphore,
+        .scalarBlockLayout = f12->scalarBlockLayout,
+        .shaderSampledImageArrayNonUniformIndexing = f12->shaderSampledImageArrayNonUniformIndexing,
+        .runtimeDescriptorArray = f12->runtimeDescriptorArray,
     };
-    VkPhysicalDeviceFeatures2 e2 = {
+    e->e2 = (VkPhysicalDeviceFeatures2){
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
-        .pNext = &e12,
+        .pNext = &e->e12,
         .features = {
-            .samplerAnisotropy = f2.features.samplerAnisotropy,
-            .fragmentStoresAndAtomics = f2.features.fragmentStoresAndAtomics,
-            .shaderInt64 = f2.features.shaderInt64,
-            .depthClamp = f2.features.depthClamp,
+            .samplerAnisotropy = f2->features.samplerAnisotropy,
+            .fragmentStoresAndAtomics = f2->features.fragmentStoresAndAtomics,
+            .shaderInt64 = f2->features.shaderInt64,
+            .depthClamp = f2->features.depthClamp,
             /* gl_PrimitiveID in a fragment shader (the visibility pass's triangle id) */
-            .geometryShader = f2.features.geometryShader,
+            .geometryShader = f2->features.geometryShader,
         },
     };
-    gpu->primitive_id_in_fragment = f2.features.geometryShader;
-    gpu->nonuniform_sampled_arrays = f12.shaderSampledImageArrayNonUniformIndexing;
-    gpu->timeline_semaphores = f12.timelineSemaphore;
-    if (cfam >= 0 && !f12.timelineSemaphore) {
-        cfam = -1;
+}
+
+/* the logical device with its queues (the async compute one only with timeline semaphores) */
+static pg_result create_device(pg_gpu *gpu, const pg_gpu_desc *desc, const dev_features *df,
+                               queue_choice *q, pg_error *err)
+{
+    dev_enable e;
+    fill_enable(gpu, desc, df, &e);
+    gpu->primitive_id_in_fragment = df->f2.features.geometryShader;
+    gpu->nonuniform_sampled_arrays = df->f12.shaderSampledImageArrayNonUniformIndexing;
+    gpu->timeline_semaphores = df->f12.timelineSemaphore;
+    if (q->cfam >= 0 && !df->f12.timelineSemaphore) {
+        q->cfam = -1;
         snprintf(gpu->single_queue_why, sizeof gpu->single_queue_why, "the device lacks timelineSemaphore");
     }
+    const int fam = q->fam, cfam = q->cfam;
     float prio[2] = {1.0f, 1.0f};
     VkDeviceQueueCreateInfo qci[2] = {{
         .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
         .queueFamilyIndex = gpu->queue_family,
-        .queueCount = cfam == fam && cindex == 1 ? 2 : 1,
+        .queueCount = cfam == fam && q->cindex == 1 ? 2 : 1,
         .pQueuePriorities = prio,
     }, {
         .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
@@ -523,78 +576,101 @@ pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
     }};
     VkDeviceCreateInfo dci = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
-        .pNext = &e2,
+        .pNext = &e.e2,
         .queueCreateInfoCount = cfam >= 0 && cfam != fam ? 2 : 1,
         .pQueueCreateInfos = qci,
-        .enabledExtensionCount = n_dev_ext,
-        .ppEnabledExtensionNames = dev_exts,
+        .enabledExtensionCount = e.n_ext,
+        .ppEnabledExtensionNames = e.exts,
     };
     VkResult r = pg_vk_fault_next("vkCreateDevice") ? VK_ERROR_DEVICE_LOST
                                                     : vkCreateDevice(gpu->phys, &dci, NULL, &gpu->device);
-    if (r != VK_SUCCESS) {
-        res = pg_fail(err, PG_ERR_VULKAN, "vkCreateDevice failed: %s", pg_vk_result_name(r));
-        goto fail;
-    }
+    if (r != VK_SUCCESS) return pg_fail(err, PG_ERR_VULKAN, "vkCreateDevice failed: %s", pg_vk_result_name(r));
     vkGetDeviceQueue(gpu->device, gpu->queue_family, 0, &gpu->queue);
     if (cfam >= 0) {
         gpu->compute_family = (uint32_t)cfam;
         gpu->compute_emulated = desc->emulate_compute_queue;
-        gpu->compute_timestamp_valid_bits = qf[cfam].timestampValidBits;
+        gpu->compute_timestamp_valid_bits = q->qf[cfam].timestampValidBits;
         if (gpu->compute_emulated) gpu->compute_queue = gpu->queue;
-        else vkGetDeviceQueue(gpu->device, (uint32_t)cfam, cindex, &gpu->compute_queue);
+        else vkGetDeviceQueue(gpu->device, (uint32_t)cfam, q->cindex, &gpu->compute_queue);
     }
-    {
-        /* the 1.3 commands under their core or their extension names (see vk_context.h) */
-        const char *sfx2 = gpu->vulkan12 ? "KHR" : "", *sfx_eds = gpu->vulkan12 ? "EXT" : "";
-        struct { PFN_vkVoidFunction *fn; const char *name, *suffix; } cmds[] = {
-            {(PFN_vkVoidFunction *)&pg_vk_CmdPipelineBarrier2, "vkCmdPipelineBarrier2", sfx2},
-            {(PFN_vkVoidFunction *)&pg_vk_QueueSubmit2, "vkQueueSubmit2", sfx2},
-            {(PFN_vkVoidFunction *)&pg_vk_CmdWriteTimestamp2, "vkCmdWriteTimestamp2", sfx2},
-            {(PFN_vkVoidFunction *)&pg_vk_CmdBeginRendering, "vkCmdBeginRendering", sfx2},
-            {(PFN_vkVoidFunction *)&pg_vk_CmdEndRendering, "vkCmdEndRendering", sfx2},
-            {(PFN_vkVoidFunction *)&pg_vk_CmdSetCullMode, "vkCmdSetCullMode", sfx_eds},
-        };
-        for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
-            char name[64];
-            snprintf(name, sizeof name, "%s%s", cmds[i].name, cmds[i].suffix);
-            PFN_vkVoidFunction f = vkGetInstanceProcAddr(gpu->instance, name);
-            if (!f) {
-                res = pg_fail(err, PG_ERR_NO_DEVICE, "%s: the loader has no %s", gpu->props.deviceName, name);
-                goto fail;
-            }
-            *cmds[i].fn = f;
-        }
+    return PG_OK;
+}
+
+/* the 1.3 commands under their core or their extension names (see vk_context.h) */
+static pg_result load_commands(pg_gpu *gpu, pg_error *err)
+{
+    const char *sfx2 = gpu->vulkan12 ? "KHR" : "", *sfx_eds = gpu->vulkan12 ? "EXT" : "";
+    struct { PFN_vkVoidFunction *fn; const char *name, *suffix; } cmds[] = {
+        {(PFN_vkVoidFunction *)&pg_vk_CmdPipelineBarrier2, "vkCmdPipelineBarrier2", sfx2},
+        {(PFN_vkVoidFunction *)&pg_vk_QueueSubmit2, "vkQueueSubmit2", sfx2},
+        {(PFN_vkVoidFunction *)&pg_vk_CmdWriteTimestamp2, "vkCmdWriteTimestamp2", sfx2},
+        {(PFN_vkVoidFunction *)&pg_vk_CmdBeginRendering, "vkCmdBeginRendering", sfx2},
+        {(PFN_vkVoidFunction *)&pg_vk_CmdEndRendering, "vkCmdEndRendering", sfx2},
+        {(PFN_vkVoidFunction *)&pg_vk_CmdSetCullMode, "vkCmdSetCullMode", sfx_eds},
+    };
+    for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
+        char name[64];
+        snprintf(name, sizeof name, "%s%s", cmds[i].name, cmds[i].suffix);
+        PFN_vkVoidFunction f = vkGetInstanceProcAddr(gpu->instance, name);
+        if (!f) return pg_fail(err, PG_ERR_NO_DEVICE, "%s: the loader has no %s", gpu->props.deviceName, name);
+        *cmds[i].fn = f;
     }
+    return PG_OK;
+}
+
+/* the command pool of the graphics family, and one of the compute family when it differs */
+static pg_result create_command_pools(pg_gpu *gpu, pg_error *err)
+{
     VkCommandPoolCreateInfo pci = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
         .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
         .queueFamilyIndex = gpu->queue_family,
     };
-    r = vkCreateCommandPool(gpu->device, &pci, NULL, &gpu->cmd_pool);
-    if (r != VK_SUCCESS) {
-        res = pg_fail(err, PG_ERR_VULKAN, "vkCreateCommandPool failed: %s", pg_vk_result_name(r));
-        goto fail;
-    }
+    VkResult r = vkCreateCommandPool(gpu->device, &pci, NULL, &gpu->cmd_pool);
+    if (r != VK_SUCCESS) return pg_fail(err, PG_ERR_VULKAN, "vkCreateCommandPool failed: %s", pg_vk_result_name(r));
     gpu->compute_cmd_pool = gpu->cmd_pool;
     if (gpu->compute_queue && gpu->compute_family != gpu->queue_family) {
         pci.queueFamilyIndex = gpu->compute_family;
         r = vkCreateCommandPool(gpu->device, &pci, NULL, &gpu->compute_cmd_pool);
         if (r != VK_SUCCESS) {
             gpu->compute_cmd_pool = VK_NULL_HANDLE;
-            res = pg_fail(err, PG_ERR_VULKAN, "vkCreateCommandPool(compute) failed: %s", pg_vk_result_name(r));
-            goto fail;
+            return pg_fail(err, PG_ERR_VULKAN, "vkCreateCommandPool(compute) failed: %s", pg_vk_result_name(r));
         }
     }
-    pg_pipeline_cache_open(gpu);
-    if (!desc->quiet)
-        fprintf(stderr, "passgraph: device %s (%s, Vulkan %u.%u%s)%s\n", gpu->props.deviceName,
-                device_type_name(gpu->props.deviceType), VK_API_VERSION_MAJOR(gpu->props.apiVersion),
-                VK_API_VERSION_MINOR(gpu->props.apiVersion), gpu->vulkan12 ? ", used as 1.2 + extensions" : "",
-                desc->validation ? ", validation + sync validation on" : "");
-    if (!desc->quiet && gpu->compute_queue)
+    return PG_OK;
+}
+
+/* the device line (and the compute queue line) on stderr */
+static void print_device(const pg_gpu *gpu, const pg_gpu_desc *desc)
+{
+    fprintf(stderr, "passgraph: device %s (%s, Vulkan %u.%u%s)%s\n", gpu->props.deviceName,
+            device_type_name(gpu->props.deviceType), VK_API_VERSION_MAJOR(gpu->props.apiVersion),
+            VK_API_VERSION_MINOR(gpu->props.apiVersion), gpu->vulkan12 ? ", used as 1.2 + extensions" : "",
+            desc->validation ? ", validation + sync validation on" : "");
+    if (gpu->compute_queue)
         fprintf(stderr, "passgraph: compute queue: %s (family %u%s)\n",
                 gpu->compute_emulated ? "emulated on the graphics queue" : "separate", gpu->compute_family,
                 gpu->compute_family == gpu->queue_family ? ", the graphics family" : "");
+}
+
+pg_result pg_gpu_create(const pg_gpu_desc *desc, pg_gpu **out, pg_error *err)
+{
+    *out = NULL;
+    pg_gpu *gpu = calloc(1, sizeof *gpu);
+    if (!gpu) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    gpu->validation = desc->validation;
+    queue_choice q;
+    dev_features df;
+    pg_result res;
+    if ((res = make_instance(gpu, desc, err)) || (res = pick_device(gpu, desc, err)) ||
+        (res = pick_queues(gpu, desc, &q, err)) || (res = query_features(gpu, &df, err)))
+        goto fail;
+    query_subgroups(gpu, &df);
+    if ((res = create_device(gpu, desc, &df, &q, err)) || (res = load_commands(gpu, err)) ||
+        (res = create_command_pools(gpu, err)))
+        goto fail;
+    pg_pipeline_cache_open(gpu);
+    if (!desc->quiet) print_device(gpu, desc);
     *out = gpu;
     return PG_OK;
 fail:

@@ -20,55 +20,13 @@ SOURCE_DIRS = ('core', 'scene', 'color', 'image', 'renderer', 'app')
 
 # "path:function" -> why it may be longer than MAX_LINES
 EXCEPTIONS = {
-    'scene/scene_gltf_validate.cpp:prevalidate':
-        'pending split: one pass over the glTF JSON checking every array kind in turn (buffers, '
-        'views, accessors, meshes, images, ...); each kind can be its own step',
-    'app/view/cmd_view.c:pg_cmd_view':
-        'pending split: option loop, window and GPU set-up, the frame loop and teardown in one',
-    'scene/scene_gltf.cpp:load':
-        'pending split: the load order (read, validate, tinygltf, nodes, materials, textures, '
-        'hand-out); a path-input branch edits this file',
-    'core/vk/vk_context.c:pg_gpu_create':
-        'pending split: a linear table of Vulkan feature and extension queries, device and queue '
-        'creation; the review moves the pipeline cache out of it',
-    'app/cmd_render.c:pg_cmd_render':
-        'pending split: option loop, session, frames and outputs; the path-input branch edits it',
-    'scene/scene_gltf_mesh.cpp:emit_primitive':
-        'pending split: one primitive\'s attributes, indices and transform, read in glTF order',
-    'app/view/view_frame.c:draw_frame':
-        'pending split: one viewer frame (acquire, render, colour, UI, present, capture)',
-    'renderer/scene_gpu.c:pg_scene_gpu_create':
-        'pending split: buffers, textures, samplers and the descriptor sets of a scene upload',
     'app/cmd_compare.c:pg_cmd_compare':
-        'pending split: option loop, both renders and the report; the path-input branch edits it',
-    'app/bench/bench_merge.c:pg_cmd_bench_merge':
-        'pending split: reading and checking every shard; the path-input branch edits it',
-    'app/view/view_ui.c:build_ui':
-        'a linear list of ImGui widgets, one per setting',
-    'app/bench/cmd_bench.c:pg_cmd_bench':
-        'pending split: the nested sweep loops (scenes, sizes, lights, pipelines, variants)',
-    'renderer/scene_gpu.c:upload':
-        'pending split: staging and copying each scene array in turn',
-    'core/graph/pipeline_json_params.c:parse_param_decl':
-        'pending split: each field of a parameter declaration by type (bool, int, float, enum)',
+        'pending split: option loop, both renders and the report; the duplicates branch edits this '
+        'file (the image-error JSON)',
     'core/dump/graph_dump_json.c:json_body':
         'a linear list of the plan\'s fields written as JSON, in dump-format.md order',
-    'app/cli.c:pg_cli_parse_common':
-        'a linear list of the common options, one branch each',
-    'app/bench/bench_run.c:run_row':
-        'pending split: warm-up, timed frames, error frame and statistics of one row',
-    'app/bench/bench_options.c:pg_bench_plan_variants':
-        'pending split: sweep keys, reference sets and variant loading in one',
-    'app/bench/cmd_bench.c:bench_setup':
-        'a linear option loop, one branch per bench option',
-    'core/graph/graph_queues.c:pg_queues_schedule':
-        'pending split: batches, queue-family ownership transfers and semaphores in one walk',
     'core/graph/graph_report.c:pg_graph_plan_print':
         'the text report, section by section; see the two plan printers in the review (c)8',
-    'image/exr.c:pg_exr_read_rgba':
-        'OpenEXRCore\'s decode sequence (header, channels, chunks), each step checked',
-    'color/ocio_shim.cpp:pg_ocio_shader_create':
-        'OCIO\'s GPU shader sequence (processor, shader desc, textures, uniforms), each checked',
 }
 
 
