@@ -10,7 +10,7 @@
  * is rebuilt from the triangle, its vertex streams and its material here (visibility_common.h,
  * shaders/visibility_surface.glsl; the scene's set is bound as set 3), with the material variant
  * the scene needs; no emissive slot (the material's emission is evaluated here).
- * Options: packing (as gbuffer, or visibility), shading, ambient, view, grid_x/y/z, tile_size (8 or 16, default
+ * Options: packing (as gbuffer, or visibility), shading, ambient, view, tile_size (8 or 16, default
  * 8: the workgroup is tile_size x tile_size pixels), tile_lights (default true: each tile culls its clusters' lists against the bounding box of its pixels and shares the
  * kept lights through shared memory; bit-identical to false, with far fewer light evaluations). */
 #include <stdio.h>
@@ -60,6 +60,7 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
     p->sh.cluster_lists =
         pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+    if ((r = pg_shading_grid_declare(&p->sh, in, err))) return r;
     p->depth = pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_DEPTH);
     for (uint32_t t = 0; t < pg_gbuffer_targets[packing]; t++)
         p->targets[t] = pg_decl_read(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE,
@@ -99,7 +100,6 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     pg_gpu *gpu = ctx->gpu;
     const dl_params *pa = PG_PARAMS(ctx, dl_params);
     pg_result r;
-    if ((r = pg_check_cluster_buffers(ctx, &pa->sh, err))) return r;
     p->ambient = pa->sh.ambient;
     uint32_t n_targets = pg_gbuffer_targets[pa->packing];
     p->hdr = pa->hdr;
