@@ -6,20 +6,6 @@
 
 #include "cluster_math.h"
 
-/* The pass's resource bound to slot s (NULL: not bound, unknown, or no buffer: the graph reports it);
- * where gets "reads[i]" or "writes[i]". */
-static const pg_resource_desc *slot_resource(const pg_declare_in *in, pg_slot s, char *where, size_t where_size)
-{
-    if (!pg_slot_ok(s)) return NULL;
-    const pg_pass_desc *d = in->desc;
-    uint32_t i = pg_slot_index(s);
-    bool w = pg_slot_is_write(s);
-    if (i >= (w ? d->n_writes : d->n_reads)) return NULL;
-    snprintf(where, where_size, "%s[%u]", w ? "writes" : "reads", i);
-    const pg_resource_desc *rd = pg_pipeline_find_resource(in->pipeline, w ? d->writes[i] : d->reads[i]);
-    return rd && rd->kind == PG_RES_BUFFER ? rd : NULL;
-}
-
 /* A count term as the pipeline wrote it after substitution ("16", "pixels", "lights"). */
 static void term_text(const pg_count_term *t, char *out, size_t size)
 {
@@ -39,7 +25,7 @@ pg_result pg_cluster_grid_declare(const pg_declare_in *in, pg_slot counts, pg_sl
     grid[1] = PG_CLUSTER_GRID_DEFAULT_Y;
     grid[2] = PG_CLUSTER_GRID_DEFAULT_Z;
     char where[32], text[48];
-    const pg_resource_desc *rc = slot_resource(in, counts, where, sizeof where);
+    const pg_resource_desc *rc = pg_decl_slot_resource(in, counts, PG_RES_BUFFER, where, sizeof where);
     if (!rc) return PG_OK;
     if (rc->n_count_terms != 3)
         return pg_fail(err, PG_ERR_SCHEMA,
@@ -70,7 +56,7 @@ pg_result pg_cluster_grid_declare(const pg_declare_in *in, pg_slot counts, pg_sl
                        "%s: %s.%s: pass '%s' slot cluster_counts: cluster grid %ux%ux%u (resource '%s', %s: "
                        "%s.count) has more than 2^22 clusters",
                        d->file, d->json_path, where, d->name, g[0], g[1], g[2], rc->name, rc->file, rc->json_path);
-    const pg_resource_desc *rl = slot_resource(in, lists, where, sizeof where);
+    const pg_resource_desc *rl = pg_decl_slot_resource(in, lists, PG_RES_BUFFER, where, sizeof where);
     if (rl) {
         bool agree = rl->n_count_terms >= 3;
         for (uint32_t k = 0; agree && k < 3; k++)
