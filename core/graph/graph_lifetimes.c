@@ -23,16 +23,8 @@ static pg_result resolve_size(compile_ctx *c, int r)
             if (!isfinite(sx) || !isfinite(sy) || sx < 0 || sy < 0 || sx > 16 || sy > 16)
                 return pg_fail(c->err, PG_ERR_LIMIT, "%s: %s.scale: [%g, %g] is out of range",
                                pg_gc_res_file(c, r), rp, sx, sy);
-            /* scale is a float: 1/3 is 0.33333334f, and 900 * that is 300.0000...6. Without the
-             * small tolerance ceil() would give 301. */
-            w = (uint64_t)ceil(c->desc->output_width * sx - 1e-4);
-            h = (uint64_t)ceil(c->desc->output_height * sy - 1e-4);
-        } else {
-            w = rd->size[0];
-            h = rd->size[1];
         }
-        if (w < 1) w = 1;
-        if (h < 1) h = 1;
+        pg_resource_extent(rd, c->desc->output_width, c->desc->output_height, &w, &h);
         if (w > MAX_EXTENT || h > MAX_EXTENT)
             return pg_fail(c->err, PG_ERR_LIMIT, "%s: %s: image '%s' would be %llux%llu, at most %u a side",
                            pg_gc_res_file(c, r), rp, rd->name, (unsigned long long)w,

@@ -198,6 +198,12 @@ pg_slot pg_decl_write(pg_pass_decl *d, const char *name, pg_res_kind kind, pg_ac
                       uint32_t stages, uint32_t formats);
 /* The declared slot of a handle (NULL for PG_SLOT_NONE or a handle of another declaration). */
 pg_slot_decl *pg_decl_slot(pg_pass_decl *d, pg_slot s);
+/* declare(): the pipeline resource bound to a declared slot, for checks that need only the plan (a
+ * format, a buffer's count) and belong in declare, not create. NULL when the slot is not bound, names no
+ * resource of the pipeline or one of another kind: the graph's own checks report those. where (may be
+ * NULL) gets the slot's JSON key, "reads[i]" or "writes[i]". */
+const pg_resource_desc *pg_decl_slot_resource(const pg_declare_in *in, pg_slot s, pg_res_kind kind, char *where,
+                                              size_t where_size);
 /* A shader define NAME (or NAME=VALUE) of the pass's variant, built from values, never parsed
  * back: create reads its params, and hands the list to the shader compiler (pg_pass_defines). */
 void pg_decl_define(pg_pass_decl *d, const char *define);

@@ -86,6 +86,19 @@ pg_slot_decl *pg_decl_slot(pg_pass_decl *d, pg_slot s)
     return i < d->n_reads && i < PG_MAX_SLOTS ? &d->reads[i] : NULL;
 }
 
+const pg_resource_desc *pg_decl_slot_resource(const pg_declare_in *in, pg_slot s, pg_res_kind kind, char *where,
+                                              size_t where_size)
+{
+    if (!in || !in->desc || !in->pipeline || !pg_slot_ok(s)) return NULL;
+    const pg_pass_desc *d = in->desc;
+    const uint32_t i = pg_slot_index(s);
+    const bool w = pg_slot_is_write(s);
+    if (i >= (w ? d->n_writes : d->n_reads)) return NULL;
+    if (where && where_size) snprintf(where, where_size, "%s[%u]", w ? "writes" : "reads", i);
+    const pg_resource_desc *rd = pg_pipeline_find_resource(in->pipeline, w ? d->writes[i] : d->reads[i]);
+    return rd && rd->kind == kind ? rd : NULL;
+}
+
 void *pg_decl_params(pg_pass_decl *d, size_t size)
 {
     return d && size <= sizeof d->params ? d->params : NULL;

@@ -144,6 +144,10 @@ pg_result pg_pipeline_load_string(const char *json_text, const char *virtual_pat
 void pg_pipeline_free(pg_pipeline *p);
 
 const pg_resource_desc *pg_pipeline_find_resource(const pg_pipeline *p, const char *name);
+/* An image's extent for an output of output_width x output_height: scale (rounded up) or size, at
+ * least 1 a side; the compiler refuses a scale out of range and an extent over its limit. */
+void pg_resource_extent(const pg_resource_desc *rd, uint32_t output_width, uint32_t output_height, uint64_t *w,
+                        uint64_t *h);
 const pg_param *pg_pipeline_find_param(const pg_pipeline *p, const char *name);
 /* Value of a parameter formatted as text ("16", "0.5", "true", "packed"). */
 void pg_param_format(const pg_param *param, char *buf, size_t buf_size);

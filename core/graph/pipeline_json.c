@@ -23,6 +23,7 @@
 #include "pg_file.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -405,6 +406,22 @@ void pg_pipeline_free(pg_pipeline *p)
     for (uint32_t i = 0; i < p->n_passes && i < PG_MAX_PASSES; i++)
         cJSON_Delete(p->passes[i].options);
     free(p);
+}
+
+void pg_resource_extent(const pg_resource_desc *rd, uint32_t output_width, uint32_t output_height, uint64_t *w,
+                        uint64_t *h)
+{
+    if (rd->extent_mode == PG_EXTENT_RELATIVE) {
+        /* scale is a float: 1/3 is 0.33333334f, and 900 * that is 300.0000...6. Without the
+         * small tolerance ceil() would give 301. */
+        *w = (uint64_t)ceil(output_width * (double)rd->scale[0] - 1e-4);
+        *h = (uint64_t)ceil(output_height * (double)rd->scale[1] - 1e-4);
+    } else {
+        *w = rd->size[0];
+        *h = rd->size[1];
+    }
+    if (*w < 1) *w = 1;
+    if (*h < 1) *h = 1;
 }
 
 const pg_resource_desc *pg_pipeline_find_resource(const pg_pipeline *p, const char *name)

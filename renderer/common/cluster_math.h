@@ -28,9 +28,9 @@ typedef struct pg_vec2 { float x, y; } pg_vec2;
 typedef struct pg_vec3 { float x, y, z; } pg_vec3;
 typedef struct pg_uvec3 { uint32_t x, y, z; } pg_uvec3;
 
-/* The default cluster grid (pass options grid_x/y/z, pipelines/fragments/clusters.json): 16x9
- * screen tiles x 32 exponential depth slices (32, not 24, since issue 13: shorter lists for the
- * tiled light loop; measured in docs/performance.md). */
+/* The default cluster grid (parameters grid_x/y/z, the count of cluster_counts in
+ * pipelines/fragments/clusters.json): 16x9 screen tiles x 32 exponential depth slices (32, not 24,
+ * since issue 13: shorter lists for the tiled light loop; measured in docs/performance.md). */
 #define PG_CLUSTER_GRID_DEFAULT_X 16
 #define PG_CLUSTER_GRID_DEFAULT_Y 9
 #define PG_CLUSTER_GRID_DEFAULT_Z 32

@@ -8,7 +8,6 @@ pg_result pg_forward_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
     p->color_slot = pg_plan_slot_of(ctx->pass, pa->color);
     p->depth_slot = pg_plan_slot_of(ctx->pass, pa->depth);
     pg_result r;
-    if (pa->sh.clustered && (r = pg_check_cluster_buffers(ctx, &pa->sh, err))) return r;
     if ((r = pg_light_set_create(ctx, &pa->sh, &p->lights, err))) return r;
     pg_scene_draw_desc d = {
         .fragment_shader = "forward.frag",

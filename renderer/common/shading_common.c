@@ -3,7 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "cluster_math.h"
+#include "cluster_grid.h"
 
 const char *const pg_debug_views[] = {"none",     "cluster_heat", "cluster_x", "cluster_y", "cluster_z",
                                       "overflow", "albedo",       "normal",    "depth",     NULL};
@@ -19,11 +19,6 @@ pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const c
     known[n++] = "shading";
     known[n++] = "ambient";
     known[n++] = "view";
-    if (clustered) {
-        known[n++] = "grid_x";
-        known[n++] = "grid_y";
-        known[n++] = "grid_z";
-    }
     for (uint32_t i = 0; extra_known && extra_known[i] && n < 23; i++) known[n++] = extra_known[i];
     known[n] = NULL;
     pg_result r;
@@ -39,25 +34,13 @@ pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const c
         return pg_fail(err, PG_ERR_SCHEMA, "%s: %s: debug view '%s' needs a clustered pass (forward_plus or deferred_lighting)",
                        desc->file, key, pg_debug_views[o->view]);
     }
-    if (clustered && (r = pg_cluster_grid_read(desc, o->grid, err))) return r;
     return PG_OK;
 }
 
-pg_result pg_cluster_grid_read(const pg_pass_desc *desc, uint32_t grid[3], pg_error *err)
+pg_result pg_shading_grid_declare(pg_shading_params *sp, const pg_declare_in *in, pg_error *err)
 {
-    static const char *const gk[3] = {"grid_x", "grid_y", "grid_z"};
-    static const int64_t gd[3] = {PG_CLUSTER_GRID_DEFAULT_X, PG_CLUSTER_GRID_DEFAULT_Y, PG_CLUSTER_GRID_DEFAULT_Z};
-    for (int k = 0; k < 3; k++) {
-        int64_t v;
-        pg_result r = pg_opt_int(desc, gk[k], gd[k], 1, 1024, &v, err);
-        if (r) return r;
-        grid[k] = (uint32_t)v;
-    }
-    uint64_t cells = (uint64_t)grid[0] * grid[1] * grid[2];
-    if (cells > (1u << 22))
-        return pg_fail(err, PG_ERR_LIMIT, "%s: %s.options: cluster grid %ux%ux%u has more than 2^22 clusters",
-                       desc->file, desc->json_path, grid[0], grid[1], grid[2]);
-    return PG_OK;
+    if (!sp->clustered) return PG_OK;
+    return pg_cluster_grid_declare(in, sp->cluster_counts, sp->cluster_lists, sp->o.grid, err);
 }
 
 void pg_shading_declare(pg_shading_params *sp, const pg_declare_in *in, pg_pass_decl *out)
@@ -110,22 +93,6 @@ pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, const pg_shading_pa
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.lights", ctx->pass->name);
     return pg_pass_set_create(ctx->gpu, n, b, name, out, err);
-}
-
-pg_result pg_check_cluster_buffers(const pg_pass_create_ctx *ctx, const pg_shading_params *sp, pg_error *err)
-{
-    if (!sp->has_lights) return PG_OK;
-    const pg_shading_opts *o = &sp->o;
-    uint64_t cells = (uint64_t)o->grid[0] * o->grid[1] * o->grid[2];
-    const pg_phys_resource *counts = pg_ctx_res(ctx, sp->cluster_counts), *lists = pg_ctx_res(ctx, sp->cluster_lists);
-    if (counts->size < cells * 16 || lists->size < 4)
-        return pg_fail(err, PG_ERR_INVALID_ARG,
-                       "%s: %s: cluster buffers (%llu and %llu bytes) do not fit grid %ux%ux%u (cluster_counts needs "
-                       "16 bytes per cluster: %llu): size them from the same parameters",
-                       ctx->desc->file, ctx->desc->json_path, (unsigned long long)counts->size,
-                       (unsigned long long)lists->size, o->grid[0], o->grid[1], o->grid[2],
-                       (unsigned long long)(cells * 16));
-    return PG_OK;
 }
 
 pg_result pg_emissive_slot_declare(const pg_declare_in *in, pg_pass_decl *out, bool is_write, bool full_precision,

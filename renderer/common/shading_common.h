@@ -2,8 +2,9 @@
  * shading passes (forward_naive, forward_plus, deferred_lighting).
  *
  * Options: shading "lambert" | "blinn_phong"; ambient >= 0; view (debug view: none,
- * cluster_heat, cluster_x, cluster_y, cluster_z, overflow, albedo, normal, depth); clustered
- * passes also grid_x, grid_y, grid_z (cluster grid; must match cluster_assign's).
+ * cluster_heat, cluster_x, cluster_y, cluster_z, overflow, albedo, normal, depth). The cluster
+ * grid of a clustered pass is no option: it is the count of the resource bound to its
+ * cluster_counts slot (pg_shading_grid_declare).
  * With 0 lights the light slots are declared unused (so light animation and cluster assignment
  * are culled) and the light loop is compiled out. */
 #ifndef PG_SHADING_COMMON_H
@@ -20,7 +21,7 @@ typedef struct pg_shading_opts {
     int shading;         /* 0 lambert, 1 blinn_phong */
     double ambient;
     int view;            /* index into pg_debug_views */
-    uint32_t grid[3];
+    uint32_t grid[3];    /* clustered: the cluster grid (pg_shading_grid_declare) */
 } pg_shading_opts;
 
 extern const char *const pg_debug_views[]; /* NULL-terminated */
@@ -43,19 +44,17 @@ pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const c
 /* The options of the shading passes that are run-time values (pg_pass_type.runtime_options):
  * "ambient", a push constant the shaders add to the frame's ambient (frame.clip.z). */
 extern const char *const pg_shading_runtime_options[];
+/* Clustered passes, after declaring the cluster slots (sp->cluster_counts, sp->cluster_lists): the grid
+ * sp->o.grid from the cluster_counts resource's count, checked against cluster_lights'
+ * (pg_cluster_grid_declare, renderer/common/cluster_grid.h). Does nothing for an unclustered pass. */
+pg_result pg_shading_grid_declare(pg_shading_params *sp, const pg_declare_in *in, pg_error *err);
 /* Adds defines (PG_BLINN_PHONG, PG_DEBUG_VIEW, PG_HAS_LIGHTS, PG_CLUSTERED, GRID_*) and explanations; marks
  * the light slots (sp->lights, and sp->cluster_counts/lists when clustered) unused with 0 lights; sets
  * sp->has_lights. */
 void pg_shading_declare(pg_shading_params *sp, const pg_declare_in *in, pg_pass_decl *out);
-/* Options grid_x, grid_y, grid_z (1..1024, defaults PG_CLUSTER_GRID_DEFAULT_*; at most 2^22
- * clusters): the cluster grid, read alike by the clustered shading passes and cluster_assign. */
-pg_result pg_cluster_grid_read(const pg_pass_desc *desc, uint32_t grid[3], pg_error *err);
 /* Set 2: lights (+ cluster counts and lists). Leaves *out zeroed when the pass has no lights. */
 pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, const pg_shading_params *sp, pg_pass_set *out,
                               pg_error *err);
-/* Checks cluster buffers are big enough for the grid (a mismatch between the pipeline's buffer
- * sizes and the pass options would read out of bounds). */
-pg_result pg_check_cluster_buffers(const pg_pass_create_ctx *ctx, const pg_shading_params *sp, pg_error *err);
 /* The optional emissive G-buffer slot (gb_emissive): the last write of a gbuffer pass, the last read of
  * deferred_lighting and reference_lighting, declared next (after the slots declared so far). Bound when the
  * pass desc has a slot there: declared (colour attachment written in the fragment stage, or sampled in

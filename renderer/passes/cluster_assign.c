@@ -24,7 +24,9 @@
  *
  * Slots: reads [lights]; writes [cluster_counts (16 bytes per cluster: offset, stored, raw, 0),
  * cluster_lights (grow buffer of uint light indices)].
- * Options: grid_x, grid_y, grid_z (16, 9, 32), max_lights (per-cluster cap, 0 = none: the
+ * The grid (x tiles, y tiles, z slices) is the count of the resource bound to cluster_counts (three
+ * constants; cluster_lights' count starts with the same three: renderer/common/cluster_grid.h).
+ * Options: max_lights (per-cluster cap, 0 = none: the
  * default), budget_mb (list memory budget, default 1024), method ("binned" | "brute_force"),
  * subgroups (bool, default true: one full subgroup per workgroup where the device allows it;
  * false: 64-wide workgroups with shared-memory scans).
@@ -34,6 +36,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cluster_grid.h"
 #include "cluster_math.h"
 #include "graph_execute.h"
 #include "pass_api.h"
@@ -84,8 +87,7 @@ typedef struct cluster_assign {
     bool ran;
 } cluster_assign;
 
-static const char *const k_known[] = {"grid_x", "grid_y", "grid_z", "max_lights", "budget_mb", "method",
-                                      "subgroups", NULL};
+static const char *const k_known[] = {"max_lights", "budget_mb", "method", "subgroups", NULL};
 static const char *const k_methods[] = {"binned", "brute_force", NULL};
 
 static pg_result read_opts(const pg_pass_desc *desc, ca_opts *o, pg_error *err)
@@ -94,7 +96,6 @@ static pg_result read_opts(const pg_pass_desc *desc, ca_opts *o, pg_error *err)
     int64_t v;
     memset(o, 0, sizeof *o);
     if ((r = pg_opt_check_known(desc, k_known, err))) return r;
-    if ((r = pg_cluster_grid_read(desc, o->grid, err))) return r;
     if ((r = pg_opt_int(desc, "max_lights", 0, 0, 16777216, &v, err))) return r;
     o->max_lights = (uint32_t)v;
     double mb;
@@ -110,11 +111,12 @@ static pg_result ca_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     ca_params *p = pg_decl_params(out, sizeof *p);
     pg_result r = read_opts(in->desc, &p->o, err);
     if (r) return r;
-    const ca_opts o = p->o;
     p->lights = pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
     p->records = pg_decl_write(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
     p->lists = pg_decl_write(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
     pg_decl_mark_partial(out, p->lists); /* filled up to each cluster's count; readers read only that */
+    if ((r = pg_cluster_grid_declare(in, p->records, p->lists, p->o.grid, err))) return r;
+    const ca_opts o = p->o;
     pg_decl_define_int(out, "GRID_X", o.grid[0]);
     pg_decl_define_int(out, "GRID_Y", o.grid[1]);
     pg_decl_define_int(out, "GRID_Z", o.grid[2]);
@@ -178,12 +180,6 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     p->clusters = p->o.grid[0] * p->o.grid[1] * p->o.grid[2];
     p->light_count = (uint32_t)(lights->size / 32);
     p->words = (p->light_count + 31) / 32;
-    if (records->size < (uint64_t)p->clusters * 16)
-        return pg_fail(err, PG_ERR_INVALID_ARG,
-                       "%s: %s: cluster_counts (%llu bytes) is smaller than grid %ux%ux%u needs (16 bytes per "
-                       "cluster: %llu)",
-                       ctx->desc->file, ctx->desc->json_path, (unsigned long long)records->size,
-                       p->o.grid[0], p->o.grid[1], p->o.grid[2], (unsigned long long)p->clusters * 16);
     /* the lists' budget, within what one storage-buffer binding can span */
     uint64_t dev_max = gpu->max_storage_buffer_range & ~(uint64_t)255;
     p->budget = p->o.budget_bytes;

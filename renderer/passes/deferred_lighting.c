@@ -10,7 +10,7 @@
  * is rebuilt from the triangle, its vertex streams and its material here (visibility_common.h,
  * shaders/visibility_surface.glsl; the scene's set is bound as set 3), with the material variant
  * the scene needs; no emissive slot (the material's emission is evaluated here).
- * Options: packing (as gbuffer, or visibility), shading, ambient, view, grid_x/y/z, tile_size (8 or 16, default
+ * Options: packing (as gbuffer, or visibility), shading, ambient, view, tile_size (8 or 16, default
  * 8: the workgroup is tile_size x tile_size pixels), tile_lights (default true: each tile culls its clusters' lists against the bounding box of its pixels and shares the
  * kept lights through shared memory; bit-identical to false, with far fewer light evaluations). */
 #include <stdio.h>
@@ -60,6 +60,7 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
     p->sh.cluster_lists =
         pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+    if ((r = pg_shading_grid_declare(&p->sh, in, err))) return r;
     p->depth = pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_DEPTH);
     for (uint32_t t = 0; t < pg_gbuffer_targets[packing]; t++)
         p->targets[t] = pg_decl_read(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE,
@@ -76,6 +77,14 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         return r;
     }
     p->hdr = pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    char where[32];
+    const pg_resource_desc *hdr = pg_decl_slot_resource(in, p->hdr, PG_RES_IMAGE, where, sizeof where);
+    if (hdr && hdr->format != PG_FMT_RGBA16F && hdr->format != PG_FMT_RGBA32F)
+        return pg_fail(err, PG_ERR_FORMAT,
+                       "%s: %s.%s: pass '%s' slot hdr: deferred lighting writes rgba16f or rgba32f, not %s "
+                       "(resource '%s')",
+                       in->desc->file, in->desc->json_path, where, in->desc->name, pg_format_get(hdr->format)->name,
+                       hdr->name);
     pg_decl_define(out, pg_gbuffer_defines[packing]);
     if (emissive) pg_decl_define(out, "PG_DEFERRED_EMISSIVE");
     pg_shading_declare(&p->sh, in, out);
@@ -99,18 +108,14 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     pg_gpu *gpu = ctx->gpu;
     const dl_params *pa = PG_PARAMS(ctx, dl_params);
     pg_result r;
-    if ((r = pg_check_cluster_buffers(ctx, &pa->sh, err))) return r;
     p->ambient = pa->sh.ambient;
     uint32_t n_targets = pg_gbuffer_targets[pa->packing];
     p->hdr = pa->hdr;
     bool vis = pa->packing == PG_GBUFFER_VISIBILITY;
     bool emissive = !vis && pg_slot_ok(pa->emissive_slot) && !pg_ctx_unused(ctx, pa->emissive_slot);
     if (vis && (r = pg_vis_geometry_create(ctx, &pa->draw, 3, &p->vis, err))) return r;
-    const pg_phys_resource *hdr = pg_ctx_res(ctx, pa->hdr);
+    const pg_phys_resource *hdr = pg_ctx_res(ctx, pa->hdr); /* rgba16f or rgba32f (declare) */
     const char *hdr_fmt = pg_format_get(hdr->pg_fmt)->name;
-    if (strcmp(hdr_fmt, "rgba16f") && strcmp(hdr_fmt, "rgba32f"))
-        return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: deferred lighting writes rgba16f or rgba32f, not %s",
-                       ctx->desc->file, ctx->desc->json_path, hdr_fmt);
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
     pg_set_binding b[12];
     uint32_t n = 0;

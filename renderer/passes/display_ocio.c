@@ -92,6 +92,15 @@ static pg_result do_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     if (stage == 0) {
         p->hdr = pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
         p->ldr = pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+        char where[32];
+        const pg_resource_desc *ldr = pg_decl_slot_resource(in, p->ldr, PG_RES_IMAGE, where, sizeof where);
+        if (ldr && !pg_format_get(ldr->format)->storage_ok)
+            return pg_fail(err, PG_ERR_FORMAT,
+                           "%s: %s.%s: pass '%s' slot ldr: stage \"compute\" writes the display image as a storage "
+                           "image, and %s (resource '%s') is not a storage format: use rgba8 or a float format, or "
+                           "stage \"fragment\"",
+                           in->desc->file, in->desc->json_path, where, in->desc->name,
+                           pg_format_get(ldr->format)->name, ldr->name);
     } else {
         p->hdr = pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
         p->ldr = pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
@@ -260,11 +269,6 @@ static pg_result do_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     p->width = ldr->width;
     p->height = ldr->height;
     const char *ldr_fmt = pg_format_get(ldr->pg_fmt)->name;
-    if (p->compute && !pg_format_get(ldr->pg_fmt)->storage_ok)
-        return pg_fail(err, PG_ERR_FORMAT,
-                       "%s: %s.writes[0]: stage \"compute\" writes the display image as a storage image, and %s is "
-                       "not a storage format: use rgba8 or a float format, or stage \"fragment\"",
-                       ctx->desc->file, ctx->desc->json_path, ldr_fmt);
     const char *display = pg_ctx_setting(ctx, "ocio.display");
     const char *view = pg_ctx_setting(ctx, "ocio.view");
     if (!display || !display[0]) display = opt_display;

@@ -11,9 +11,8 @@
  * surface fail early and the ones that win are those that win without it; "equal" - tested EQUAL
  * without writes, and the alpha-mask draws drawn without discard (the pre-pass discarded them), an
  * approximation (depth_prepass.c says where it differs).
- * shading, ambient, view (every debug view), grid_x/y/z (must match the
- * cluster_assign pass and the buffer sizes; the shared fragment pipelines/fragments/clusters.json
- * wires all three from the same parameters). */
+ * shading, ambient, view (every debug view). The cluster grid is the count of the resource bound to
+ * cluster_counts (renderer/common/cluster_grid.h), as cluster_assign reads it. */
 #include "forward_common.h"
 
 static const char *const k_fp_options[] = {"prepass", "prepass_test", NULL};
@@ -44,6 +43,7 @@ static pg_result fp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
     p->sh.cluster_lists =
         pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+    if ((r = pg_shading_grid_declare(&p->sh, in, err))) return r;
     p->color = pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
     p->depth = pg_decl_write(out, "depth", PG_RES_IMAGE, prepass ? PG_ACCESS_DEPTH_RMW : PG_ACCESS_DEPTH_WRITE,
                   PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);

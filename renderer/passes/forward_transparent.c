@@ -8,7 +8,7 @@
  *        lights "clusters": reads [lights, cluster_counts, cluster_lights, depth], writes [color]
  * (depth: depth attachment, read-only; color: colour attachment, loaded and blended).
  * Options: lights ("all": every light, as forward_naive; "clusters": the cluster lists, as
- * forward_plus, with grid_x/y/z), shading, ambient, view.
+ * forward_plus: the grid is the cluster_counts resource's count), shading, ambient, view.
  * Not needed (pg_decl_skip, so the graph culls it and what only it reads) when the scene has no
  * BLEND material, and with a debug view (the views show the opaque surfaces). */
 #include <stdlib.h>
@@ -57,6 +57,7 @@ static pg_result ft_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
             pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
         p->sh.cluster_lists =
             pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_FRAGMENT, 0);
+        if ((r = pg_shading_grid_declare(&p->sh, in, err))) return r;
     }
     p->depth = pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_READ, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
     p->color = pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_RMW, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
@@ -91,7 +92,6 @@ static pg_result ft_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
                        "(VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT missing): use rgba16f or rgba32f",
                        ctx->desc->file, ctx->desc->json_path, ctx->desc->writes[0],
                        pg_format_get(color->pg_fmt)->name);
-    if (pa->sh.clustered && (r = pg_check_cluster_buffers(ctx, &pa->sh, err))) return r;
     if ((r = pg_light_set_create(ctx, &pa->sh, &p->lights, err))) return r;
     p->n = PG_SCENE_OF(ctx)->n_blend_draws;
     p->order = calloc(p->n ? p->n : 1, sizeof *p->order);

@@ -151,6 +151,38 @@ static uint32_t ref_dispatches(uint32_t lights, uint32_t chunk)
     return lights ? (uint32_t)(((uint64_t)lights + chunk - 1) / chunk) : 1;
 }
 
+/* The images sized like hdr (the surface, the emissive target, the running sums: those in use) must have
+ * its extent for the output size the graph is compiled for. */
+static pg_result ref_check_sizes(const pg_declare_in *in, pg_pass_decl *out, const ref_params *p, bool emissive,
+                                 pg_error *err)
+{
+    const pg_resource_desc *hdr = pg_decl_slot_resource(in, p->hdr, PG_RES_IMAGE, NULL, 0);
+    if (!hdr) return PG_OK;
+    uint64_t hw, hh;
+    pg_resource_extent(hdr, in->output_width, in->output_height, &hw, &hh);
+    pg_slot sized[6];
+    uint32_t n_sized = 0;
+    for (uint32_t t = 0; t < 3; t++) sized[n_sized++] = p->surface[t];
+    if (emissive) sized[n_sized++] = p->emissive;
+    for (uint32_t t = 0; t < 2; t++)
+        if (pg_decl_slot(out, p->accum[t]) && !pg_decl_slot(out, p->accum[t])->unused) sized[n_sized++] = p->accum[t];
+    for (uint32_t k = 0; k < n_sized; k++) {
+        char where[32];
+        const pg_resource_desc *im = pg_decl_slot_resource(in, sized[k], PG_RES_IMAGE, where, sizeof where);
+        if (!im) continue;
+        uint64_t w, h;
+        pg_resource_extent(im, in->output_width, in->output_height, &w, &h);
+        if (w != hw || h != hh)
+            return pg_fail(err, PG_ERR_INVALID_ARG,
+                           "%s: %s.%s: pass '%s' slot %s: '%s' is %llux%llu, hdr is %llux%llu: the G-buffer and the "
+                           "running sums must have the size of the image they are shaded into",
+                           in->desc->file, in->desc->json_path, where, in->desc->name, pg_decl_slot(out, sized[k])->name,
+                           im->name, (unsigned long long)w, (unsigned long long)h, (unsigned long long)hw,
+                           (unsigned long long)hh);
+    }
+    return PG_OK;
+}
+
 static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
     ref_params *p = pg_decl_params(out, sizeof *p);
@@ -168,6 +200,14 @@ static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
     if ((r = pg_emissive_slot_declare(in, out, false, true, &p->emissive, &emissive, err))) return r;
     if (emissive) pg_decl_define(out, "PG_REFERENCE_EMISSIVE");
     p->hdr = pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    char where[32];
+    const pg_resource_desc *hdr = pg_decl_slot_resource(in, p->hdr, PG_RES_IMAGE, where, sizeof where);
+    if (hdr && hdr->format != PG_FMT_RGBA16F && hdr->format != PG_FMT_RGBA32F)
+        return pg_fail(err, PG_ERR_FORMAT,
+                       "%s: %s.%s: pass '%s' slot hdr: reference lighting writes rgba16f or rgba32f, not %s "
+                       "(resource '%s')",
+                       in->desc->file, in->desc->json_path, where, in->desc->name, pg_format_get(hdr->format)->name,
+                       hdr->name);
     /* read and written by the later dispatches, written in full by the first one before any
      * later one reads them: the pass initializes them itself */
     p->accum[0] =
@@ -196,7 +236,7 @@ static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
         pg_decl_mark_unused(out, p->accum[0], why);
         pg_decl_mark_unused(out, p->accum[1], why);
     }
-    return PG_OK;
+    return ref_check_sizes(in, out, p, emissive, err);
 }
 
 static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
@@ -215,29 +255,9 @@ static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
     p->has_emissive = pg_slot_ok(pa->emissive) && !pg_ctx_unused(ctx, pa->emissive);
     p->has_accum = !pg_ctx_unused(ctx, pa->accum[0]);
     p->has_accum_specular = !pg_ctx_unused(ctx, pa->accum[1]);
-    const pg_phys_resource *hdr = pg_ctx_res(ctx, pa->hdr);
+    const pg_phys_resource *hdr = pg_ctx_res(ctx, pa->hdr); /* rgba16f or rgba32f (declare) */
     const char *hdr_fmt = pg_format_get(hdr->pg_fmt)->name;
-    if (strcmp(hdr_fmt, "rgba16f") && strcmp(hdr_fmt, "rgba32f"))
-        return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: reference lighting writes rgba16f or rgba32f, not %s",
-                       ctx->desc->file, ctx->desc->json_path, hdr_fmt);
-    /* the images sized like hdr: the surface, the emissive target, the running sums (those in use) */
-    pg_slot sized[6];
-    uint32_t n_sized = 0;
-    for (uint32_t t = 0; t < 3; t++) sized[n_sized++] = pa->surface[t];
-    if (p->has_emissive) sized[n_sized++] = pa->emissive;
-    if (p->has_accum) sized[n_sized++] = pa->accum[0];
-    if (p->has_accum_specular) sized[n_sized++] = pa->accum[1];
-    for (uint32_t k = 0; k < n_sized; k++) {
-        const pg_phys_resource *im = pg_ctx_res(ctx, sized[k]);
-        const bool w = pg_slot_is_write(sized[k]);
-        const uint32_t i = pg_slot_index(sized[k]);
-        if (im->width != hdr->width || im->height != hdr->height)
-            return pg_fail(err, PG_ERR_INVALID_ARG, "%s: %s.%s[%u]: '%s' is %ux%u, hdr is %ux%u: the G-buffer and the "
-                           "running sums must have the size of the image they are shaded into",
-                           ctx->desc->file, ctx->desc->json_path, w ? "writes" : "reads", i,
-                           w ? ctx->desc->writes[i] : ctx->desc->reads[i], im->width, im->height, hdr->width,
-                           hdr->height);
-    }
+    /* the images sized like hdr have its extent (declare) */
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
     pg_set_binding b[7];
     uint32_t n = 0;

@@ -31,6 +31,13 @@ static pg_result vis_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
     if ((r = pg_opt_check_known(in->desc, known, err))) return r;
     p->vis_id = pg_decl_write(out, "vis_id", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_UINT);
     p->depth = pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
+    char where[32];
+    const pg_resource_desc *id = pg_decl_slot_resource(in, p->vis_id, PG_RES_IMAGE, where, sizeof where);
+    if (id && id->format != PG_FMT_R32UI)
+        return pg_fail(err, PG_ERR_FORMAT,
+                       "%s: %s.%s: pass '%s' slot vis_id: the triangle id target must be r32ui, not %s (resource '%s')",
+                       in->desc->file, in->desc->json_path, where, in->desc->name, pg_format_get(id->format)->name,
+                       id->name);
     pg_scene_draw_declare_features(in, out, &p->draw);
     return PG_OK;
 }
@@ -47,9 +54,6 @@ static pg_result vis_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
                        "feature); use a G-buffer pipeline (deferred_oct16.json)",
                        ctx->pass->name);
     if (!PG_SCENE_OF(ctx)) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: needs a scene", ctx->pass->name);
-    if (vis_id->format != VK_FORMAT_R32_UINT)
-        return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: the triangle id target must be r32ui, not %s",
-                       ctx->desc->file, ctx->desc->json_path, pg_format_get(vis_id->pg_fmt)->name);
     uint32_t bits;
     if ((r = pg_vis_tri_bits(PG_SCENE_OF(ctx), &bits, err))) return r;
     pg_scene_draw_desc d = {

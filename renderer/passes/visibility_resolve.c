@@ -38,6 +38,13 @@ static pg_result vr_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     if ((r = pg_opt_check_known(in->desc, known, err))) return r;
     p->vis_id = pg_decl_read(out, "vis_id", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_UINT);
     p->packed = pg_decl_write(out, "packed", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_UINT);
+    char where[32];
+    const pg_resource_desc *packed = pg_decl_slot_resource(in, p->packed, PG_RES_IMAGE, where, sizeof where);
+    if (packed && packed->format != PG_FMT_RGBA32UI)
+        return pg_fail(err, PG_ERR_FORMAT,
+                       "%s: %s.%s: pass '%s' slot packed: the packed G-buffer is rgba32ui, resource '%s' is %s",
+                       in->desc->file, in->desc->json_path, where, in->desc->name, packed->name,
+                       pg_format_get(packed->format)->name);
     if (in->desc->n_writes > 1) {
         p->emissive = pg_decl_write(out, "emissive", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
         const pg_resource_desc *rd = pg_pipeline_find_resource(in->pipeline, in->desc->writes[1]);
@@ -62,9 +69,6 @@ static pg_result vr_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     pg_gpu *gpu = ctx->gpu;
     pg_result r;
     p->packed = pa->packed;
-    if (pg_ctx_res(ctx, pa->packed)->format != VK_FORMAT_R32G32B32A32_UINT)
-        return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[0]: the packed G-buffer is rgba32ui", ctx->desc->file,
-                       ctx->desc->json_path);
     const bool emissive = pg_slot_ok(pa->emissive) && !pg_ctx_unused(ctx, pa->emissive);
     if ((r = pg_vis_geometry_create(ctx, &pa->draw, 2, &p->vis, err))) return r;
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err)))

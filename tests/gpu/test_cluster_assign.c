@@ -218,14 +218,13 @@ static const char *k_pipeline_fmt =
     "  {\"name\": \"upload\", \"type\": \"test_upload_lights\", \"writes\": [\"lights\"]},\n"
     "  {\"name\": \"assign\", \"type\": \"cluster_assign\", \"reads\": [\"lights\"], \"writes\": [\"cluster_counts\", "
     "\"cluster_lights\"],\n"
-    "   \"options\": {\"grid_x\": %u, \"grid_y\": %u, \"grid_z\": %u, \"max_lights\": %u, \"budget_mb\": %g, "
+    "   \"options\": {\"max_lights\": %u, \"budget_mb\": %g, "
     "\"subgroups\": %s}},\n"
     "  {\"name\": \"oracle\", \"type\": \"cluster_assign\", \"reads\": [\"lights\"], \"writes\": [\"oracle_counts\", "
     "\"oracle_lights\"], \"side_effects\": true,\n"
-    "   \"options\": {\"grid_x\": %u, \"grid_y\": %u, \"grid_z\": %u, \"method\": \"brute_force\"}},\n"
+    "   \"options\": {\"method\": \"brute_force\"}},\n"
     "  {\"name\": \"shade\", \"type\": \"forward_plus\", \"reads\": [\"lights\", \"cluster_counts\", \"cluster_lights\"], "
-    "\"writes\": [\"hdr\", \"depth\"],\n"
-    "   \"options\": {\"grid_x\": %u, \"grid_y\": %u, \"grid_z\": %u}}],\n"
+    "\"writes\": [\"hdr\", \"depth\"]}],\n"
     " \"output\": \"hdr\"}\n";
 
 typedef struct run_desc {
@@ -245,8 +244,8 @@ static run_result run(const pg_scene_gpu *sg, const run_desc *d)
     int fd = mkstemps(path, 5);
     if (fd < 0) return res;
     FILE *f = fdopen(fd, "w");
-    fprintf(f, k_pipeline_fmt, g[0], g[1], g[2], g[0], g[1], g[2], g[0], g[1], g[2], g[0], g[1], g[2], g[0], g[1], g[2],
-            d->max_lights, d->budget_mb, d->subgroups ? "true" : "false", g[0], g[1], g[2], g[0], g[1], g[2]);
+    fprintf(f, k_pipeline_fmt, g[0], g[1], g[2], g[0], g[1], g[2], g[0], g[1], g[2], g[0], g[1], g[2], d->max_lights,
+            d->budget_mb, d->subgroups ? "true" : "false");
     fclose(f);
     pg_session_desc sd = {.pipeline_path = path, .registry = &g_reg, .disable_aliasing = true};
     pg_session *s = NULL;
