@@ -25,8 +25,6 @@ EXCEPTIONS = {
         'file (the image-error JSON)',
     'core/dump/graph_dump_json.c:json_body':
         'a linear list of the plan\'s fields written as JSON, in dump-format.md order',
-    'core/graph/graph_report.c:pg_graph_plan_print':
-        'the text report, section by section; see the two plan printers in the review (c)8',
 }
 
 
