@@ -23,8 +23,6 @@ EXCEPTIONS = {
     'app/cmd_compare.c:pg_cmd_compare':
         'pending split: option loop, both renders and the report; the duplicates branch edits this '
         'file (the image-error JSON)',
-    'core/dump/graph_dump_json.c:json_body':
-        'a linear list of the plan\'s fields written as JSON, in dump-format.md order',
 }
 
 
