@@ -20,9 +20,6 @@ SOURCE_DIRS = ('core', 'scene', 'color', 'image', 'renderer', 'app')
 
 # "path:function" -> why it may be longer than MAX_LINES
 EXCEPTIONS = {
-    'app/cmd_compare.c:pg_cmd_compare':
-        'pending split: option loop, both renders and the report; the duplicates branch edits this '
-        'file (the image-error JSON)',
 }
 
 
