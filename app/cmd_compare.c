@@ -299,182 +299,277 @@ static void print_sides(const side *a, const pg_ov_list *aov, const side *r, con
     fflush(f);
 }
 
-int pg_cmd_compare(int argc, char **argv)
-{
+/* What the command line asked for, and the two sides it resolves to. */
+typedef struct compare_job {
     pg_cli_common opt;
-    pg_cli_defaults(&opt);
-    pg_error err = {0};
-    const char *reference = NULL, *heatmap = NULL, *json = NULL;
-    double threshold = 1.0, heat_scale_arg = -1.0; /* < 0: 99th percentile; 0: max */
     pg_side_sets ss;
-    memset(&ss, 0, sizeof ss);
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        bool own = true;
-        pg_result r = PG_OK;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            printf("%s%s%s", compare_help, pg_cli_common_help, compare_help_own);
-            return 0;
-        }
-        if (!strcmp(a, "--reference") || !strcmp(a, "--heatmap") || !strcmp(a, "--heatmap-scale") ||
-            !strcmp(a, "--threshold") || !strcmp(a, "--json")) {
-            if (!v) {
-                fprintf(stderr, "passgraph compare: %s: missing value\n", a);
-                return 2;
-            }
-            i++;
-            if (!strcmp(a, "--reference")) {
-                reference = v;
-            } else if (!strcmp(a, "--heatmap")) {
-                heatmap = v;
-                if ((r = pg_image_path_check(v, false, &err))) pg_error_prefix(&err, "--heatmap");
-            } else if (!strcmp(a, "--json")) {
-                json = v;
-            } else if (!strcmp(a, "--threshold")) {
-                r = parse_nonneg(a, v, &threshold, &err);
-            } else { /* --heatmap-scale */
-                if (!strcmp(v, "max")) heat_scale_arg = 0;
-                else r = parse_nonneg(a, v, &heat_scale_arg, &err);
-            }
-        } else if (!strcmp(a, "--out")) {
-            own = false; /* compare writes no display image: --heatmap / --json */
-        } else {
-            r = pg_sides_parse(&ss, argc, argv, &i, &own, &err); /* --pipeline-set, --reference-set */
-            if (!r && !own) r = pg_cli_parse_common(&opt, argc, argv, &i, &own, &err);
-        }
-        if (r) {
-            fprintf(stderr, "passgraph compare: %s\n", err.msg);
-            return 2;
-        }
-        if (!own) {
-            fprintf(stderr, "passgraph compare: unknown option '%s' (see passgraph compare --help)\n", a);
-            return 2;
-        }
+    const char *reference, *heatmap, *json;
+    double threshold, heat_scale_arg; /* heat_scale_arg < 0: 99th percentile; 0: max */
+    char ref_path[PG_PATH_MAX], pipe_path[PG_PATH_MAX];
+    pg_ov_list pipe_ov, ref_ov;
+} compare_job;
+
+/* The heatmap's scale as used, and how it was chosen (for the report). */
+typedef struct heat_scale_used {
+    double scale;
+    char how[64];
+} heat_scale_used;
+
+static bool is_valued_option(const char *a)
+{
+    return !strcmp(a, "--reference") || !strcmp(a, "--heatmap") || !strcmp(a, "--heatmap-scale") ||
+           !strcmp(a, "--threshold") || !strcmp(a, "--json");
+}
+
+/* The value v of one of compare's own options (is_valued_option). */
+static pg_result parse_valued_option(compare_job *job, const char *a, const char *v, pg_error *err)
+{
+    pg_result r = PG_OK;
+    if (!strcmp(a, "--reference")) {
+        job->reference = v;
+    } else if (!strcmp(a, "--heatmap")) {
+        job->heatmap = v;
+        if ((r = pg_image_path_check(v, false, err))) pg_error_prefix(err, "--heatmap");
+    } else if (!strcmp(a, "--json")) {
+        job->json = v;
+    } else if (!strcmp(a, "--threshold")) {
+        r = parse_nonneg(a, v, &job->threshold, err);
+    } else { /* --heatmap-scale */
+        if (!strcmp(v, "max")) job->heat_scale_arg = 0;
+        else r = parse_nonneg(a, v, &job->heat_scale_arg, err);
     }
-    if (!pg_sides_from_common(&ss, &opt)) {
+    return r;
+}
+
+/* The option at argv[*i] (and its value, advancing *i): -1 to go on, else the exit status. */
+static int parse_option(compare_job *job, int argc, char **argv, int *i, pg_error *err)
+{
+    const char *a = argv[*i];
+    const char *v = *i + 1 < argc ? argv[*i + 1] : NULL;
+    bool own = true;
+    pg_result r = PG_OK;
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+        printf("%s%s%s", compare_help, pg_cli_common_help, compare_help_own);
+        return 0;
+    }
+    if (is_valued_option(a)) {
+        if (!v) {
+            fprintf(stderr, "passgraph compare: %s: missing value\n", a);
+            return 2;
+        }
+        (*i)++;
+        r = parse_valued_option(job, a, v, err);
+    } else if (!strcmp(a, "--out")) {
+        own = false; /* compare writes no display image: --heatmap / --json */
+    } else {
+        r = pg_sides_parse(&job->ss, argc, argv, i, &own, err); /* --pipeline-set, --reference-set */
+        if (!r && !own) r = pg_cli_parse_common(&job->opt, argc, argv, i, &own, err);
+    }
+    if (r) {
+        fprintf(stderr, "passgraph compare: %s\n", err->msg);
+        return 2;
+    }
+    if (!own) {
+        fprintf(stderr, "passgraph compare: unknown option '%s' (see passgraph compare --help)\n", a);
+        return 2;
+    }
+    return -1;
+}
+
+/* The command line into job: -1 to go on, else the exit status. */
+static int parse_args(compare_job *job, int argc, char **argv, pg_error *err)
+{
+    pg_cli_defaults(&job->opt);
+    job->reference = job->heatmap = job->json = NULL;
+    job->threshold = 1.0;
+    job->heat_scale_arg = -1.0;
+    memset(&job->ss, 0, sizeof job->ss);
+    for (int i = 0; i < argc; i++) {
+        const int rc = parse_option(job, argc, argv, &i, err);
+        if (rc >= 0) return rc;
+    }
+    if (!pg_sides_from_common(&job->ss, &job->opt)) {
         fprintf(stderr, "passgraph compare: --set: too many overrides\n");
         return 2;
     }
-    char ref_path[PG_PATH_MAX], pipe_path[PG_PATH_MAX];
-    if (reference) pg_strlcpy(ref_path, reference, sizeof ref_path);
-    else pg_data_path(ref_path, sizeof ref_path, "pipelines/reference.json");
-    if (opt.pipeline) pg_strlcpy(pipe_path, opt.pipeline, sizeof pipe_path);
-    else pg_data_path(pipe_path, sizeof pipe_path, "pipelines/naive.json"); /* pg_app_open's default */
-    pg_ov_list pipe_ov, ref_ov;
-    if (plan_sides(&ss, pipe_path, ref_path, &pipe_ov, &ref_ov, &err)) {
-        fprintf(stderr, "passgraph compare: %s\n", err.msg);
+    return -1;
+}
+
+/* The two pipelines' paths and overrides, and the outputs checked writable, all before any device
+ * is opened: -1 to go on, else the exit status. */
+static int resolve_sides(compare_job *job, pg_error *err)
+{
+    if (job->reference) pg_strlcpy(job->ref_path, job->reference, sizeof job->ref_path);
+    else pg_data_path(job->ref_path, sizeof job->ref_path, "pipelines/reference.json");
+    if (job->opt.pipeline) pg_strlcpy(job->pipe_path, job->opt.pipeline, sizeof job->pipe_path);
+    else pg_data_path(job->pipe_path, sizeof job->pipe_path, "pipelines/naive.json"); /* pg_app_open's default */
+    if (plan_sides(&job->ss, job->pipe_path, job->ref_path, &job->pipe_ov, &job->ref_ov, err)) {
+        fprintf(stderr, "passgraph compare: %s\n", err->msg);
         return 2;
     }
 
     /* the outputs can be written: checked before rendering, with the OS reason */
-    if ((heatmap && pg_file_check_writable(heatmap, "--heatmap", &err)) ||
-        (json && strcmp(json, "-") && pg_file_check_writable(json, "--json", &err))) {
-        fprintf(stderr, "passgraph compare: %s\n", err.msg);
+    if ((job->heatmap && pg_file_check_writable(job->heatmap, "--heatmap", err)) ||
+        (job->json && strcmp(job->json, "-") && pg_file_check_writable(job->json, "--json", err))) {
+        fprintf(stderr, "passgraph compare: %s\n", err->msg);
         return 2;
     }
-    pg_app app;
-    if (pg_app_open(&app, &opt, true, &err)) {
-        fprintf(stderr, "passgraph compare: %s\n", err.msg);
-        return 1;
+    return -1;
+}
+
+/* Both sides created and rendered, frame by frame interleaved, then read back; the explain lines
+ * between the two when asked for. */
+static pg_result render_sides(const compare_job *job, pg_app *app, side *A, side *R, pg_frame_info *fi,
+                              pg_error *err)
+{
+    const pg_cli_common *opt = &job->opt;
+    pg_result r;
+    if ((r = side_create(A, "pipeline", app, job->pipe_path, job->pipe_ov.ov, job->pipe_ov.n, opt->no_aliasing,
+                         opt->immediate, opt->frames, err)))
+        return r;
+    if ((r = side_create(R, "reference", app, job->ref_path, job->ref_ov.ov, job->ref_ov.n, opt->no_aliasing,
+                         opt->immediate, opt->frames, err)))
+        return r;
+    print_sides(A, &job->pipe_ov, R, &job->ref_ov, stdout);
+    *fi = pg_app_frame(app);
+    for (uint32_t f = 0; f < opt->frames; f++) { /* interleaved: both see the same device state */
+        if ((r = side_render(A, fi, f, opt->frames, err))) return r;
+        if ((r = side_render(R, fi, f, opt->frames, err))) return r;
     }
+    if (opt->explain) {
+        printf("explain: %s\nexplain: %s\n", app->camera_why, app->lights_why);
+        pg_print_explain(A->s, stdout);
+        pg_print_explain(R->s, stdout);
+        for (uint32_t k = 0; k < app->scene->n_warnings; k++)
+            printf("explain: scene warning: %s\n", app->scene->warnings[k]);
+    }
+    if ((r = side_finish(A, opt->frames, err))) return r;
+    return side_finish(R, opt->frames, err);
+}
+
+/* The image error of the pipeline against the reference, once the sizes agree. */
+static pg_result measure_error(const side *A, const side *R, double threshold, pg_image_error *e, pg_error *err)
+{
+    pg_result r;
+    if ((r = pg_image_sizes_match("output (display)", A->lw, A->lh, R->lw, R->lh, err)) ||
+        (r = pg_image_sizes_match("hdr_output", A->hw, A->hh, R->hw, R->hh, err)) ||
+        (r = pg_image_sizes_match("hdr_output vs output", A->hw, A->hh, A->lw, A->lh, err)))
+        return r;
+    return pg_image_error_compute(A->hdr, R->hdr, A->ldr, R->ldr, A->lw, A->lh, threshold, e, err);
+}
+
+/* The heatmap of the linear error, its scale chosen by --heatmap-scale (or the 99th percentile). */
+static pg_result write_heatmap(const compare_job *job, const side *A, const side *R, const pg_image_error *e,
+                               heat_scale_used *used, pg_error *err)
+{
+    uint8_t *heat = malloc((size_t)e->width * e->height * 4);
+    if (!heat) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    const char *how = job->heat_scale_arg > 0 ? "--heatmap-scale" : "the largest error";
+    double heat_scale;
+    if (job->heat_scale_arg < 0) {
+        heat_scale = pg_error_quantile(A->hdr, R->hdr, e->width, e->height, 0.99);
+        if (heat_scale > 0) how = "99th percentile of the differing pixels' errors";
+    } else {
+        heat_scale = job->heat_scale_arg;
+    }
+    heat_scale = pg_error_heatmap_scale(A->hdr, R->hdr, e->width, e->height, heat_scale);
+    used->scale = heat_scale;
+    snprintf(used->how, sizeof used->how, "%s", how);
+    pg_error_heatmap(A->hdr, R->hdr, e->width, e->height, heat_scale, heat);
+    pg_result r = pg_write_image(job->heatmap, heat, e->width, e->height, err);
+    if (r) pg_error_prefix(err, "--heatmap");
+    free(heat);
+    return r;
+}
+
+/* The report for people: both sides, the frame, the linear and display errors, the threshold,
+ * the files written. */
+static void print_report(const compare_job *job, const pg_app *app, const side *A, const side *R,
+                         const pg_frame_info *fi, const pg_image_error *e, const heat_scale_used *heat)
+{
+    char b1[32], b2[32], b3[32], b4[32];
+    side_print(A, stdout);
+    side_print(R, stdout);
+    printf("%-10s %s %ux%u lights=%u time=%g seed=%u frames=%u\n", "frame", app->scene_path, e->width, e->height,
+           fi->lights.count, (double)job->opt.time, job->opt.seed, job->opt.frames);
+    printf("%-10s rmse=%s psnr=%s dB max_abs=%s (HDR RGB; PSNR peak %s = reference max; %llu pixels compared;"
+           " nonfinite pixels: pipeline %llu, reference %llu)\n",
+           "linear", num(b1, sizeof b1, e->rmse_linear), num(b2, sizeof b2, e->psnr_linear),
+           num(b3, sizeof b3, e->max_abs_linear), num(b4, sizeof b4, e->peak_linear),
+           (unsigned long long)e->compared_linear, (unsigned long long)e->nonfinite_a,
+           (unsigned long long)e->nonfinite_b);
+    printf("%-10s rmse=%s psnr=%s dB max_abs=%s (8-bit RGB, 0..255; PSNR peak 255)\n", "display",
+           num(b1, sizeof b1, e->rmse_display), num(b2, sizeof b2, e->psnr_display),
+           num(b3, sizeof b3, e->max_abs_display));
+    printf("%-10s %llu of %llu pixels (%.4f%%) differ by more than %g in some display channel\n", "threshold",
+           (unsigned long long)e->over_threshold, (unsigned long long)e->width * e->height,
+           100.0 * e->share_over_threshold, job->threshold);
+    if (job->heatmap)
+        printf("%-10s %s (max RGB |linear error| over [0, %s]: %s)\n", "heatmap", job->heatmap,
+               num(b1, sizeof b1, heat->scale), heat->how);
+    if (job->json) printf("%-10s %s\n", "json", job->json);
+}
+
+/* The one-line summary for scripts: "compare: key=value ...". */
+static void print_summary_line(const side *A, const side *R, const pg_frame_info *fi, const pg_image_error *e)
+{
+    char b1[32], b2[32], b3[32];
+    printf("compare: pipeline=%s reference=%s lights=%u size=%ux%u", A->s->pipeline->name, R->s->pipeline->name,
+           fi->lights.count, e->width, e->height);
+    printf(" rmse_linear=%s psnr_linear=%s max_abs_linear=%s", num(b1, sizeof b1, e->rmse_linear),
+           num(b2, sizeof b2, e->psnr_linear), num(b3, sizeof b3, e->max_abs_linear));
+    printf(" rmse_display=%s psnr_display=%s max_abs_display=%s", num(b1, sizeof b1, e->rmse_display),
+           num(b2, sizeof b2, e->psnr_display), num(b3, sizeof b3, e->max_abs_display));
+    printf(" over_threshold=%s nonfinite=%llu reference_nonfinite=%llu gpu_ms=%.3f reference_gpu_ms=%.3f",
+           num(b1, sizeof b1, e->share_over_threshold), (unsigned long long)e->nonfinite_a,
+           (unsigned long long)e->nonfinite_b, A->gpu_ms, R->gpu_ms);
+    side_print_overflow(A, "", stdout);
+    side_print_overflow(R, "reference_", stdout);
+    printf("\n");
+}
+
+/* Render both sides, measure, write the heatmap and JSON, report: the exit status (0 or 1). */
+static int run_compare(const compare_job *job, pg_app *app, pg_error *err)
+{
     int rc = 1;
-    uint8_t *heat = NULL;
     side A, R;
     memset(&A, 0, sizeof A);
     memset(&R, 0, sizeof R);
-    if (side_create(&A, "pipeline", &app, pipe_path, pipe_ov.ov, pipe_ov.n, opt.no_aliasing, opt.immediate, opt.frames, &err))
-        goto done;
-    if (side_create(&R, "reference", &app, ref_path, ref_ov.ov, ref_ov.n, opt.no_aliasing, opt.immediate, opt.frames, &err))
-        goto done;
-    print_sides(&A, &pipe_ov, &R, &ref_ov, stdout);
-    pg_frame_info fi = pg_app_frame(&app);
-    for (uint32_t f = 0; f < opt.frames; f++) { /* interleaved: both see the same device state */
-        if (side_render(&A, &fi, f, opt.frames, &err)) goto done;
-        if (side_render(&R, &fi, f, opt.frames, &err)) goto done;
-    }
-    if (opt.explain) {
-        printf("explain: %s\nexplain: %s\n", app.camera_why, app.lights_why);
-        pg_print_explain(A.s, stdout);
-        pg_print_explain(R.s, stdout);
-        for (uint32_t k = 0; k < app.scene->n_warnings; k++)
-            printf("explain: scene warning: %s\n", app.scene->warnings[k]);
-    }
-    if (side_finish(&A, opt.frames, &err) || side_finish(&R, opt.frames, &err)) goto done;
-    if (pg_image_sizes_match("output (display)", A.lw, A.lh, R.lw, R.lh, &err) ||
-        pg_image_sizes_match("hdr_output", A.hw, A.hh, R.hw, R.hh, &err) ||
-        pg_image_sizes_match("hdr_output vs output", A.hw, A.hh, A.lw, A.lh, &err))
-        goto done;
+    pg_frame_info fi;
     pg_image_error e;
-    if (pg_image_error_compute(A.hdr, R.hdr, A.ldr, R.ldr, A.lw, A.lh, threshold, &e, &err)) goto done;
-
-    double heat_scale = 0;
-    char heat_how[64] = "";
-    if (heatmap) {
-        heat = malloc((size_t)e.width * e.height * 4);
-        if (!heat) {
-            pg_fail(&err, PG_ERR_OOM, "out of memory");
-            goto done;
-        }
-        const char *how = heat_scale_arg > 0 ? "--heatmap-scale" : "the largest error";
-        if (heat_scale_arg < 0) {
-            heat_scale = pg_error_quantile(A.hdr, R.hdr, e.width, e.height, 0.99);
-            if (heat_scale > 0) how = "99th percentile of the differing pixels' errors";
-        } else {
-            heat_scale = heat_scale_arg;
-        }
-        heat_scale = pg_error_heatmap_scale(A.hdr, R.hdr, e.width, e.height, heat_scale);
-        snprintf(heat_how, sizeof heat_how, "%s", how);
-        pg_error_heatmap(A.hdr, R.hdr, e.width, e.height, heat_scale, heat);
-        if (pg_write_image(heatmap, heat, e.width, e.height, &err)) {
-            pg_error_prefix(&err, "--heatmap");
-            goto done;
-        }
-    }
-    if (json && write_json(json, &A, &pipe_ov, &R, &ref_ov, &app, threshold, heat_scale, heatmap, &e, &err)) goto done;
-
-    char b1[32], b2[32], b3[32], b4[32];
-    side_print(&A, stdout);
-    side_print(&R, stdout);
-    printf("%-10s %s %ux%u lights=%u time=%g seed=%u frames=%u\n", "frame", app.scene_path, e.width, e.height,
-           fi.lights.count, (double)opt.time, opt.seed, opt.frames);
-    printf("%-10s rmse=%s psnr=%s dB max_abs=%s (HDR RGB; PSNR peak %s = reference max; %llu pixels compared;"
-           " nonfinite pixels: pipeline %llu, reference %llu)\n",
-           "linear", num(b1, sizeof b1, e.rmse_linear), num(b2, sizeof b2, e.psnr_linear),
-           num(b3, sizeof b3, e.max_abs_linear), num(b4, sizeof b4, e.peak_linear),
-           (unsigned long long)e.compared_linear, (unsigned long long)e.nonfinite_a,
-           (unsigned long long)e.nonfinite_b);
-    printf("%-10s rmse=%s psnr=%s dB max_abs=%s (8-bit RGB, 0..255; PSNR peak 255)\n", "display",
-           num(b1, sizeof b1, e.rmse_display), num(b2, sizeof b2, e.psnr_display), num(b3, sizeof b3, e.max_abs_display));
-    printf("%-10s %llu of %llu pixels (%.4f%%) differ by more than %g in some display channel\n", "threshold",
-           (unsigned long long)e.over_threshold, (unsigned long long)e.width * e.height,
-           100.0 * e.share_over_threshold, threshold);
-    if (heatmap)
-        printf("%-10s %s (max RGB |linear error| over [0, %s]: %s)\n", "heatmap", heatmap,
-               num(b1, sizeof b1, heat_scale), heat_how);
-    if (json) printf("%-10s %s\n", "json", json);
-    printf("compare: pipeline=%s reference=%s lights=%u size=%ux%u", A.s->pipeline->name, R.s->pipeline->name,
-           fi.lights.count, e.width, e.height);
-    printf(" rmse_linear=%s psnr_linear=%s max_abs_linear=%s", num(b1, sizeof b1, e.rmse_linear),
-           num(b2, sizeof b2, e.psnr_linear), num(b3, sizeof b3, e.max_abs_linear));
-    printf(" rmse_display=%s psnr_display=%s max_abs_display=%s", num(b1, sizeof b1, e.rmse_display),
-           num(b2, sizeof b2, e.psnr_display), num(b3, sizeof b3, e.max_abs_display));
-    printf(" over_threshold=%s nonfinite=%llu reference_nonfinite=%llu gpu_ms=%.3f reference_gpu_ms=%.3f",
-           num(b1, sizeof b1, e.share_over_threshold), (unsigned long long)e.nonfinite_a,
-           (unsigned long long)e.nonfinite_b, A.gpu_ms, R.gpu_ms);
-    side_print_overflow(&A, "", stdout);
-    side_print_overflow(&R, "reference_", stdout);
-    printf("\n");
+    heat_scale_used heat = {0, ""};
+    if (render_sides(job, app, &A, &R, &fi, err) || measure_error(&A, &R, job->threshold, &e, err) ||
+        (job->heatmap && write_heatmap(job, &A, &R, &e, &heat, err)) ||
+        (job->json && write_json(job->json, &A, &job->pipe_ov, &R, &job->ref_ov, app, job->threshold, heat.scale,
+                                 job->heatmap, &e, err)))
+        goto done;
+    print_report(job, app, &A, &R, &fi, &e, &heat);
+    print_summary_line(&A, &R, &fi, &e);
     rc = 0;
-    if (app.gpu->validation && app.gpu->validation_messages) {
-        fprintf(stderr, "passgraph compare: %u validation message(s)\n", app.gpu->validation_messages);
+    if (app->gpu->validation && app->gpu->validation_messages) {
+        fprintf(stderr, "passgraph compare: %u validation message(s)\n", app->gpu->validation_messages);
         rc = 1;
     }
 done:
-    if (rc && err.code) fprintf(stderr, "passgraph compare: %s\n", err.msg);
-    free(heat);
+    if (rc && err->code) fprintf(stderr, "passgraph compare: %s\n", err->msg);
     side_free(&A);
     side_free(&R);
+    return rc;
+}
+
+int pg_cmd_compare(int argc, char **argv)
+{
+    compare_job job;
+    pg_error err = {0};
+    int rc = parse_args(&job, argc, argv, &err);
+    if (rc < 0) rc = resolve_sides(&job, &err);
+    if (rc >= 0) return rc;
+    pg_app app;
+    if (pg_app_open(&app, &job.opt, true, &err)) {
+        fprintf(stderr, "passgraph compare: %s\n", err.msg);
+        return 1;
+    }
+    rc = run_compare(&job, &app, &err);
     pg_app_close(&app);
     return rc;
 }

@@ -255,12 +255,9 @@ static bool json_queues(cJSON *root, const pg_graph_plan *plan)
     return true;
 }
 
-static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline *pl)
+/* "output" (the output image, or nulls), then the "aliasing" and "immediate" flags. */
+static bool json_output(cJSON *root, const pg_graph_plan *plan)
 {
-    if (!cJSON_AddNumberToObject(root, "format_version", PG_DUMP_FORMAT_VERSION)) return false;
-    if (!json_pipeline(root, pl)) return false;
-
-    /* output */
     cJSON *out = cJSON_AddObjectToObject(root, "output");
     if (!out) return false;
     const bool has_out = pg_dmp_res_ok(plan, plan->output);
@@ -271,9 +268,12 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
         !add_int_or_null(out, "height", has_out, has_out ? (int)plan->resources[plan->output].height : 0))
         return false;
     if (!cJSON_AddBoolToObject(root, "aliasing", !plan->aliasing_disabled)) return false;
-    if (!cJSON_AddBoolToObject(root, "immediate", plan->immediate)) return false;
+    return cJSON_AddBoolToObject(root, "immediate", plan->immediate) != NULL;
+}
 
-    /* order */
+/* "order": the executed passes' names in execution order. */
+static bool json_order(cJSON *root, const pg_graph_plan *plan)
+{
     cJSON *order = cJSON_AddArrayToObject(root, "order");
     if (!order) return false;
     for (uint32_t k = 0; k < plan->n_order; k++) {
@@ -281,35 +281,45 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
         if (!s) return false;
         cJSON_AddItemToArray(order, s);
     }
+    return true;
+}
 
-    /* executed passes */
+/* One executed pass: position, name, type, barriers before it, slots, defines, left-out lines. */
+static bool json_executed_pass(cJSON *passes, const pg_graph_plan *plan, const pg_pipeline *pl, uint32_t k)
+{
+    const pg_plan_pass *pp = &plan->passes[plan->order[k]];
+    cJSON *o = cJSON_CreateObject();
+    if (!o) return false;
+    cJSON_AddItemToArray(passes, o);
+    const uint32_t n_def = pp->decl.n_defines < PG_MAX_DEFINES ? pp->decl.n_defines : PG_MAX_DEFINES;
+    const uint32_t n_exp = pp->decl.n_explain < PG_MAX_PASS_EXPLAIN ? pp->decl.n_explain : PG_MAX_PASS_EXPLAIN;
+    return cJSON_AddNumberToObject(o, "position", k) && cJSON_AddStringToObject(o, "name", pp->name) &&
+           cJSON_AddStringToObject(o, "type", pg_dmp_type_name(pp)) &&
+           cJSON_AddNumberToObject(o, "declared_index", pp->desc_index) &&
+           cJSON_AddBoolToObject(o, "side_effects", pp->decl.side_effects ||
+                                                        (pl && pp->desc_index >= 0 &&
+                                                         (uint32_t)pp->desc_index < pl->n_passes &&
+                                                         pl->passes[pp->desc_index].side_effects)) &&
+           add_barriers(o, "barriers", plan, pp->barriers,
+                        pp->n_barriers < PG_MAX_BARRIERS_PER_PASS ? pp->n_barriers : PG_MAX_BARRIERS_PER_PASS) &&
+           add_slots(o, plan, pp, false) && ADD_STRING_LIST(o, "defines", pp->decl.defines, n_def) &&
+           ADD_STRING_LIST(o, "left_out", pp->decl.explain, n_exp);
+}
+
+/* "passes" (the executed ones, in execution order), then "final_barriers". */
+static bool json_passes(cJSON *root, const pg_graph_plan *plan, const pg_pipeline *pl)
+{
     cJSON *passes = cJSON_AddArrayToObject(root, "passes");
     if (!passes) return false;
-    for (uint32_t k = 0; k < plan->n_order; k++) {
-        const pg_plan_pass *pp = &plan->passes[plan->order[k]];
-        cJSON *o = cJSON_CreateObject();
-        if (!o) return false;
-        cJSON_AddItemToArray(passes, o);
-        const uint32_t n_def = pp->decl.n_defines < PG_MAX_DEFINES ? pp->decl.n_defines : PG_MAX_DEFINES;
-        const uint32_t n_exp = pp->decl.n_explain < PG_MAX_PASS_EXPLAIN ? pp->decl.n_explain : PG_MAX_PASS_EXPLAIN;
-        if (!cJSON_AddNumberToObject(o, "position", k) || !cJSON_AddStringToObject(o, "name", pp->name) ||
-            !cJSON_AddStringToObject(o, "type", pg_dmp_type_name(pp)) ||
-            !cJSON_AddNumberToObject(o, "declared_index", pp->desc_index) ||
-            !cJSON_AddBoolToObject(o, "side_effects", pp->decl.side_effects ||
-                                                          (pl && pp->desc_index >= 0 &&
-                                                           (uint32_t)pp->desc_index < pl->n_passes &&
-                                                           pl->passes[pp->desc_index].side_effects)) ||
-            !add_barriers(o, "barriers", plan, pp->barriers,
-                          pp->n_barriers < PG_MAX_BARRIERS_PER_PASS ? pp->n_barriers : PG_MAX_BARRIERS_PER_PASS) ||
-            !add_slots(o, plan, pp, false) || !ADD_STRING_LIST(o, "defines", pp->decl.defines, n_def) ||
-            !ADD_STRING_LIST(o, "left_out", pp->decl.explain, n_exp))
-            return false;
-    }
-    if (!add_barriers(root, "final_barriers", plan, plan->final_barriers,
-                      plan->n_final_barriers < PG_MAX_RESOURCES ? plan->n_final_barriers : PG_MAX_RESOURCES))
-        return false;
+    for (uint32_t k = 0; k < plan->n_order; k++)
+        if (!json_executed_pass(passes, plan, pl, k)) return false;
+    return add_barriers(root, "final_barriers", plan, plan->final_barriers,
+                        plan->n_final_barriers < PG_MAX_RESOURCES ? plan->n_final_barriers : PG_MAX_RESOURCES);
+}
 
-    /* culled passes (declaration order) */
+/* "culled_passes", in declaration order, each with its reason and the names of its slots. */
+static bool json_culled_passes(cJSON *root, const pg_graph_plan *plan)
+{
     cJSON *culled = cJSON_AddArrayToObject(root, "culled_passes");
     if (!culled) return false;
     for (uint32_t i = 0; i < plan->n_passes; i++) {
@@ -323,8 +333,12 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
             !cJSON_AddStringToObject(o, "reason", pp->cull_reason) || !add_slots(o, plan, pp, true))
             return false;
     }
+    return true;
+}
 
-    /* omitted by "when" */
+/* "omitted" (what the pipeline's "when" left out, and why), then the plan's "explain" lines. */
+static bool json_omitted(cJSON *root, const pg_graph_plan *plan, const pg_pipeline *pl)
+{
     cJSON *omitted = cJSON_AddArrayToObject(root, "omitted");
     if (!omitted) return false;
     for (uint32_t i = 0; pl && i < pl->n_omitted && i < PG_MAX_PASSES + PG_MAX_RESOURCES; i++) {
@@ -335,69 +349,88 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
             !cJSON_AddStringToObject(o, "why", pl->omitted[i].why))
             return false;
     }
-    if (!ADD_STRING_LIST(root, "explain", plan->explain, plan->n_explain < PG_MAX_EXPLAIN ? plan->n_explain : PG_MAX_EXPLAIN))
-        return false;
+    return ADD_STRING_LIST(root, "explain", plan->explain, plan->n_explain < PG_MAX_EXPLAIN ? plan->n_explain : PG_MAX_EXPLAIN);
+}
 
-    /* resources (declaration order) */
+/* One resource: kind, lifetime, format and size, culling, live range, memory block and offset. */
+static bool json_resource(cJSON *res, const pg_graph_plan *plan, const pg_plan_resource *pr)
+{
+    const bool image = pr->kind == PG_RES_IMAGE;
+    const bool live = !pr->culled && pr->first_pass >= 0;
+    cJSON *o = cJSON_CreateObject();
+    if (!o) return false;
+    cJSON_AddItemToArray(res, o);
+    if (!cJSON_AddStringToObject(o, "name", pr->name) ||
+        !cJSON_AddStringToObject(o, "kind", pg_res_kind_name(pr->kind)) ||
+        !cJSON_AddStringToObject(o, "lifetime", pg_lifetime_name(pr->lifetime)) ||
+        !add_str_or_null(o, "format", image ? pg_format_get(pr->format)->name : NULL) ||
+        !add_int_or_null(o, "width", image, (int)pr->width) ||
+        !add_int_or_null(o, "height", image, (int)pr->height) || !add_u64(o, "size_bytes", pr->size_bytes) ||
+        !cJSON_AddBoolToObject(o, "output", pr->is_output) || !cJSON_AddBoolToObject(o, "grow", pr->growable) ||
+        !cJSON_AddBoolToObject(o, "culled", pr->culled) ||
+        !add_str_or_null(o, "cull_reason", pr->culled ? pr->cull_reason : NULL) ||
+        !add_str_or_null(o, "first_pass", live ? pg_dmp_pass_at(plan, pr->first_pass) : NULL) ||
+        !add_str_or_null(o, "last_pass", live ? pg_dmp_pass_at(plan, pr->last_pass) : NULL) ||
+        !add_int_or_null(o, "first_position", live, pr->first_pass) ||
+        !add_int_or_null(o, "last_position", live, pr->last_pass) ||
+        !add_int_or_null(o, "block", pr->block >= 0, pr->block))
+        return false;
+    return pr->block >= 0 ? add_u64(o, "offset", pr->block_offset) : cJSON_AddNullToObject(o, "offset") != NULL;
+}
+
+/* "resources", in declaration order. */
+static bool json_resources(cJSON *root, const pg_graph_plan *plan)
+{
     cJSON *res = cJSON_AddArrayToObject(root, "resources");
     if (!res) return false;
-    for (uint32_t r = 0; r < plan->n_resources; r++) {
-        const pg_plan_resource *pr = &plan->resources[r];
-        const bool image = pr->kind == PG_RES_IMAGE;
-        const bool live = !pr->culled && pr->first_pass >= 0;
-        cJSON *o = cJSON_CreateObject();
-        if (!o) return false;
-        cJSON_AddItemToArray(res, o);
-        if (!cJSON_AddStringToObject(o, "name", pr->name) ||
-            !cJSON_AddStringToObject(o, "kind", pg_res_kind_name(pr->kind)) ||
-            !cJSON_AddStringToObject(o, "lifetime", pg_lifetime_name(pr->lifetime)) ||
-            !add_str_or_null(o, "format", image ? pg_format_get(pr->format)->name : NULL) ||
-            !add_int_or_null(o, "width", image, (int)pr->width) ||
-            !add_int_or_null(o, "height", image, (int)pr->height) || !add_u64(o, "size_bytes", pr->size_bytes) ||
-            !cJSON_AddBoolToObject(o, "output", pr->is_output) || !cJSON_AddBoolToObject(o, "grow", pr->growable) ||
-            !cJSON_AddBoolToObject(o, "culled", pr->culled) ||
-            !add_str_or_null(o, "cull_reason", pr->culled ? pr->cull_reason : NULL) ||
-            !add_str_or_null(o, "first_pass", live ? pg_dmp_pass_at(plan, pr->first_pass) : NULL) ||
-            !add_str_or_null(o, "last_pass", live ? pg_dmp_pass_at(plan, pr->last_pass) : NULL) ||
-            !add_int_or_null(o, "first_position", live, pr->first_pass) ||
-            !add_int_or_null(o, "last_position", live, pr->last_pass) ||
-            !add_int_or_null(o, "block", pr->block >= 0, pr->block))
-            return false;
-        if (pr->block >= 0 ? !add_u64(o, "offset", pr->block_offset) : !cJSON_AddNullToObject(o, "offset"))
+    for (uint32_t r = 0; r < plan->n_resources; r++)
+        if (!json_resource(res, plan, &plan->resources[r])) return false;
+    return true;
+}
+
+/* One memory block: index, kind, size and its members with their offsets and live ranges. */
+static bool json_block(cJSON *blocks, const pg_graph_plan *plan, uint32_t b)
+{
+    const pg_plan_block *bl = &plan->blocks[b];
+    cJSON *o = cJSON_CreateObject();
+    if (!o) return false;
+    cJSON_AddItemToArray(blocks, o);
+    cJSON *members;
+    if (!cJSON_AddNumberToObject(o, "index", b) || !cJSON_AddStringToObject(o, "kind", pg_res_kind_name(bl->kind)) ||
+        !add_u64(o, "size_bytes", bl->size_bytes) || !(members = cJSON_AddArrayToObject(o, "members")))
+        return false;
+    for (uint32_t m = 0; m < bl->n_members && m < PG_MAX_RESOURCES; m++) {
+        const int r = bl->members[m];
+        const pg_plan_resource *pr = pg_dmp_res_ok(plan, r) ? &plan->resources[r] : NULL;
+        cJSON *mo = cJSON_CreateObject();
+        if (!mo) return false;
+        cJSON_AddItemToArray(members, mo);
+        if (!cJSON_AddStringToObject(mo, "resource", pg_dmp_res_name(plan, r)) ||
+            !add_u64(mo, "offset", pr ? pr->block_offset : 0) || !add_u64(mo, "size_bytes", pr ? pr->size_bytes : 0) ||
+            !cJSON_AddNumberToObject(mo, "first_position", pr ? pr->first_pass : -1) ||
+            !cJSON_AddNumberToObject(mo, "last_position", pr ? pr->last_pass : -1))
             return false;
     }
+    return true;
+}
 
-    /* memory blocks */
+/* "blocks": the memory blocks. */
+static bool json_blocks(cJSON *root, const pg_graph_plan *plan)
+{
     cJSON *blocks = cJSON_AddArrayToObject(root, "blocks");
     if (!blocks) return false;
-    for (uint32_t b = 0; b < plan->n_blocks; b++) {
-        const pg_plan_block *bl = &plan->blocks[b];
-        cJSON *o = cJSON_CreateObject();
-        if (!o) return false;
-        cJSON_AddItemToArray(blocks, o);
-        cJSON *members;
-        if (!cJSON_AddNumberToObject(o, "index", b) || !cJSON_AddStringToObject(o, "kind", pg_res_kind_name(bl->kind)) ||
-            !add_u64(o, "size_bytes", bl->size_bytes) || !(members = cJSON_AddArrayToObject(o, "members")))
-            return false;
-        for (uint32_t m = 0; m < bl->n_members && m < PG_MAX_RESOURCES; m++) {
-            const int r = bl->members[m];
-            const pg_plan_resource *pr = pg_dmp_res_ok(plan, r) ? &plan->resources[r] : NULL;
-            cJSON *mo = cJSON_CreateObject();
-            if (!mo) return false;
-            cJSON_AddItemToArray(members, mo);
-            if (!cJSON_AddStringToObject(mo, "resource", pg_dmp_res_name(plan, r)) ||
-                !add_u64(mo, "offset", pr ? pr->block_offset : 0) || !add_u64(mo, "size_bytes", pr ? pr->size_bytes : 0) ||
-                !cJSON_AddNumberToObject(mo, "first_position", pr ? pr->first_pass : -1) ||
-                !cJSON_AddNumberToObject(mo, "last_position", pr ? pr->last_pass : -1))
-                return false;
-        }
-    }
+    for (uint32_t b = 0; b < plan->n_blocks; b++)
+        if (!json_block(blocks, plan, b)) return false;
+    return true;
+}
 
-    /* totals */
+/* "totals": counts, transient memory before and after aliasing, the saving. */
+static bool json_totals(cJSON *root, const pg_graph_plan *plan, const pg_pipeline *pl)
+{
     uint32_t res_culled = 0;
     for (uint32_t r = 0; r < plan->n_resources; r++) res_culled += plan->resources[r].culled;
     cJSON *t = cJSON_AddObjectToObject(root, "totals");
-    const bool ok = t && cJSON_AddNumberToObject(t, "passes_declared", plan->n_passes) &&
+    return t && cJSON_AddNumberToObject(t, "passes_declared", plan->n_passes) &&
            cJSON_AddNumberToObject(t, "passes_run", plan->n_order) &&
            cJSON_AddNumberToObject(t, "passes_culled", pg_graph_plan_count_culled(plan)) &&
            cJSON_AddNumberToObject(t, "resources_declared", plan->n_resources) &&
@@ -409,8 +442,17 @@ static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline 
            add_u64(t, "transient_bytes_unaliased", plan->transient_bytes_unaliased) &&
            add_u64(t, "transient_bytes_aliased", plan->transient_bytes_aliased) &&
            cJSON_AddNumberToObject(t, "saving_percent", (double)(int64_t)(pg_graph_plan_saving_percent(plan) * 10.0 + 0.5) / 10.0);
-    /* queues, after the existing keys (two-queue plans only; a one-queue plan has no such key) */
-    return ok && (!plan->async || json_queues(root, plan));
+}
+
+/* The dump's keys in docs/dump-format.md order; the first that fails stops it. */
+static bool json_body(cJSON *root, const pg_graph_plan *plan, const pg_pipeline *pl)
+{
+    return cJSON_AddNumberToObject(root, "format_version", PG_DUMP_FORMAT_VERSION) && json_pipeline(root, pl) &&
+           json_output(root, plan) && json_order(root, plan) && json_passes(root, plan, pl) &&
+           json_culled_passes(root, plan) && json_omitted(root, plan, pl) && json_resources(root, plan) &&
+           json_blocks(root, plan) && json_totals(root, plan, pl) &&
+           /* queues, after the existing keys (two-queue plans only; a one-queue plan has no such key) */
+           (!plan->async || json_queues(root, plan));
 }
 
 char *pg_dump_json(const pg_graph_plan *plan, const pg_pipeline *pipeline)

@@ -155,14 +155,9 @@ static void print_queues(FILE *f, const pg_graph_plan *plan)
     }
 }
 
-void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline, void *FILE_ptr)
+/* The heading: the pipeline, the output image and the immediate mode, each when there is one. */
+static void print_heading(FILE *f, const pg_graph_plan *plan, const pg_pipeline *pipeline)
 {
-    FILE *f = FILE_ptr ? (FILE *)FILE_ptr : stdout;
-    if (!plan) {
-        fprintf(f, "(no plan)\n");
-        return;
-    }
-    const uint32_t n_culled = pg_graph_plan_count_culled(plan);
     if (pipeline)
         fprintf(f, "pipeline '%s'%s%s%s\n", pipeline->name, pipeline->path[0] ? " (" : "",
                 pipeline->path, pipeline->path[0] ? ")" : "");
@@ -176,42 +171,57 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
     if (plan->immediate)
         fprintf(f, "mode: immediate (declaration order, no aliasing, before every pass a full barrier "
                    "all_commands/memory_write -> all_commands/memory_read|memory_write)\n");
+}
 
-    fprintf(f, "\nexecution order (%u passes):\n", plan->n_order);
-    for (uint32_t k = 0; k < plan->n_order; k++) {
-        const pg_plan_pass *pp = &plan->passes[plan->order[k]];
-        fprintf(f, "  [%u] %s (%s)", k, pp->name, pp->type && pp->type->name ? pp->type->name : "?");
-        if (plan->async) fprintf(f, " on %s, batch %d: %s", pg_queue_name(pp->queue), pp->batch, pp->queue_reason);
-        fprintf(f, "\n");
-        for (uint32_t b = 0; b < pp->n_barriers; b++) print_barrier(f, plan, &pp->barriers[b]);
-        for (int w = 0; w < 2; w++) {
-            bool any = false;
-            for (uint32_t s = 0; s < pp->n_slots; s++) {
-                const pg_plan_slot *sl = &pp->slots[s];
-                if (sl->is_write != (w == 1)) continue;
-                fprintf(f, "%s%s %s (%s%s)", any ? "," : (w ? "      writes:" : "      reads: "),
-                        "", plan->resources[sl->resource].name,
-                        sl->decl.unused ? "unused" : pg_access_name(sl->decl.access),
-                        sl->decl.unused         ? ""
-                        : sl->decl.initializes ? ", initialized by the pass"
-                        : sl->decl.partial     ? ", partial"
-                                               : "");
-                any = true;
-            }
-            if (any) fprintf(f, "\n");
-        }
-        for (uint32_t d = 0; d < pp->decl.n_defines && d < PG_MAX_DEFINES; d++)
-            fprintf(f, "%s%s", d ? " " : "      defines: ", pp->decl.defines[d]);
-        if (pp->decl.n_defines) fprintf(f, "\n");
+/* A pass's "reads:" (writes == false) or "writes:" line; nothing when it has no such slot. */
+static void print_pass_slots(FILE *f, const pg_graph_plan *plan, const pg_plan_pass *pp, bool writes)
+{
+    bool any = false;
+    for (uint32_t s = 0; s < pp->n_slots; s++) {
+        const pg_plan_slot *sl = &pp->slots[s];
+        if (sl->is_write != writes) continue;
+        fprintf(f, "%s%s %s (%s%s)", any ? "," : (writes ? "      writes:" : "      reads: "),
+                "", plan->resources[sl->resource].name,
+                sl->decl.unused ? "unused" : pg_access_name(sl->decl.access),
+                sl->decl.unused         ? ""
+                : sl->decl.initializes ? ", initialized by the pass"
+                : sl->decl.partial     ? ", partial"
+                                       : "");
+        any = true;
     }
+    if (any) fprintf(f, "\n");
+}
+
+/* One executed pass: its line, the barriers before it, what it reads and writes, its defines. */
+static void print_executed_pass(FILE *f, const pg_graph_plan *plan, uint32_t k)
+{
+    const pg_plan_pass *pp = &plan->passes[plan->order[k]];
+    fprintf(f, "  [%u] %s (%s)", k, pp->name, pp->type && pp->type->name ? pp->type->name : "?");
+    if (plan->async) fprintf(f, " on %s, batch %d: %s", pg_queue_name(pp->queue), pp->batch, pp->queue_reason);
+    fprintf(f, "\n");
+    for (uint32_t b = 0; b < pp->n_barriers; b++) print_barrier(f, plan, &pp->barriers[b]);
+    print_pass_slots(f, plan, pp, false);
+    print_pass_slots(f, plan, pp, true);
+    for (uint32_t d = 0; d < pp->decl.n_defines && d < PG_MAX_DEFINES; d++)
+        fprintf(f, "%s%s", d ? " " : "      defines: ", pp->decl.defines[d]);
+    if (pp->decl.n_defines) fprintf(f, "\n");
+}
+
+/* The passes in execution order, then the barriers after the last one. */
+static void print_execution_order(FILE *f, const pg_graph_plan *plan)
+{
+    fprintf(f, "\nexecution order (%u passes):\n", plan->n_order);
+    for (uint32_t k = 0; k < plan->n_order; k++) print_executed_pass(f, plan, k);
     if (plan->n_final_barriers) {
         fprintf(f, "  after the last pass:\n");
         for (uint32_t b = 0; b < plan->n_final_barriers; b++)
             print_barrier(f, plan, &plan->final_barriers[b]);
     }
+}
 
-    if (plan->async) print_queues(f, plan);
-
+/* The culled passes and resources with their reasons, then the explain lines. */
+static void print_culled(FILE *f, const pg_graph_plan *plan, uint32_t n_culled)
+{
     fprintf(f, "\nculled passes:%s\n", n_culled ? "" : " none");
     for (uint32_t i = 0; i < plan->n_passes; i++)
         if (plan->passes[i].culled)
@@ -225,35 +235,46 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
     fprintf(f, "\nexplain (left out, culled, and why):%s\n", plan->n_explain ? "" : " nothing");
     for (uint32_t e = 0; e < plan->n_explain && e < PG_MAX_EXPLAIN; e++)
         fprintf(f, "  %s\n", plan->explain[e]);
+}
 
+/* One row of the resource table. */
+static void print_resource_row(FILE *f, const pg_graph_plan *plan, const pg_plan_resource *pr)
+{
+    char size[32], bytes[32], life[2 * PG_NAME_MAX + 8], block[48];
+    if (pr->kind == PG_RES_IMAGE)
+        snprintf(size, sizeof size, "%ux%u", pr->width, pr->height);
+    else
+        snprintf(size, sizeof size, "-");
+    pg_fmt_bytes(pr->size_bytes, bytes, sizeof bytes);
+    if (pr->culled)
+        snprintf(life, sizeof life, "(culled)");
+    else
+        snprintf(life, sizeof life, "%s..%s", pass_name_at(plan, pr->first_pass),
+                 pass_name_at(plan, pr->last_pass));
+    if (pr->block >= 0)
+        snprintf(block, sizeof block, "#%d @ %" PRIu64, pr->block, pr->block_offset);
+    else
+        snprintf(block, sizeof block, pr->growable ? "own (grow)"
+                                      : pr->queues == 3u && pr->lifetime == PG_LIFETIME_TRANSIENT ? "own (2 queues)"
+                                                                                                 : "-");
+    fprintf(f, "  %-16s %-6s %-10s %-11s %-12s %-10s %-31s %s%s\n", pr->name,
+            pg_res_kind_name(pr->kind), pg_lifetime_name(pr->lifetime),
+            pr->kind == PG_RES_IMAGE ? pg_format_get(pr->format)->name : "-", size, bytes,
+            life, block, pr->is_output ? " (output)" : "");
+}
+
+/* The resource table: kind, lifetime, format, size, bytes, live range, memory block. */
+static void print_resources(FILE *f, const pg_graph_plan *plan)
+{
     fprintf(f, "\nresources:\n");
     fprintf(f, "  %-16s %-6s %-10s %-11s %-12s %-10s %-31s %s\n", "name", "kind", "lifetime",
             "format", "size", "bytes", "lifetime (first..last)", "block @ offset");
-    for (uint32_t r = 0; r < plan->n_resources; r++) {
-        const pg_plan_resource *pr = &plan->resources[r];
-        char size[32], bytes[32], life[2 * PG_NAME_MAX + 8], block[48];
-        if (pr->kind == PG_RES_IMAGE)
-            snprintf(size, sizeof size, "%ux%u", pr->width, pr->height);
-        else
-            snprintf(size, sizeof size, "-");
-        pg_fmt_bytes(pr->size_bytes, bytes, sizeof bytes);
-        if (pr->culled)
-            snprintf(life, sizeof life, "(culled)");
-        else
-            snprintf(life, sizeof life, "%s..%s", pass_name_at(plan, pr->first_pass),
-                     pass_name_at(plan, pr->last_pass));
-        if (pr->block >= 0)
-            snprintf(block, sizeof block, "#%d @ %" PRIu64, pr->block, pr->block_offset);
-        else
-            snprintf(block, sizeof block, pr->growable ? "own (grow)"
-                                          : pr->queues == 3u && pr->lifetime == PG_LIFETIME_TRANSIENT ? "own (2 queues)"
-                                                                                                     : "-");
-        fprintf(f, "  %-16s %-6s %-10s %-11s %-12s %-10s %-31s %s%s\n", pr->name,
-                pg_res_kind_name(pr->kind), pg_lifetime_name(pr->lifetime),
-                pr->kind == PG_RES_IMAGE ? pg_format_get(pr->format)->name : "-", size, bytes,
-                life, block, pr->is_output ? " (output)" : "");
-    }
+    for (uint32_t r = 0; r < plan->n_resources; r++) print_resource_row(f, plan, &plan->resources[r]);
+}
 
+/* The memory blocks with their members, live ranges and offsets. */
+static void print_blocks(FILE *f, const pg_graph_plan *plan)
+{
     fprintf(f, "\nmemory blocks%s:\n", plan->aliasing_disabled ? " (aliasing disabled)" : "");
     for (uint32_t b = 0; b < plan->n_blocks; b++) {
         const pg_plan_block *bl = &plan->blocks[b];
@@ -268,8 +289,11 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
         }
         fprintf(f, "\n");
     }
-    print_timeline(f, plan);
+}
 
+/* The totals line: passes, culled, barriers, transient memory before and after aliasing. */
+static void print_totals(FILE *f, const pg_graph_plan *plan, uint32_t n_culled)
+{
     char un[32], al[32];
     pg_fmt_bytes(plan->transient_bytes_unaliased, un, sizeof un);
     pg_fmt_bytes(plan->transient_bytes_aliased, al, sizeof al);
@@ -278,4 +302,22 @@ void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline,
                " B) aliased, saving %.1f%%\n",
             plan->n_order, n_culled, pg_graph_plan_count_barriers(plan), plan->n_final_barriers, un,
             plan->transient_bytes_unaliased, al, plan->transient_bytes_aliased, pg_graph_plan_saving_percent(plan));
+}
+
+void pg_graph_plan_print(const pg_graph_plan *plan, const pg_pipeline *pipeline, void *FILE_ptr)
+{
+    FILE *f = FILE_ptr ? (FILE *)FILE_ptr : stdout;
+    if (!plan) {
+        fprintf(f, "(no plan)\n");
+        return;
+    }
+    const uint32_t n_culled = pg_graph_plan_count_culled(plan);
+    print_heading(f, plan, pipeline);
+    print_execution_order(f, plan);
+    if (plan->async) print_queues(f, plan);
+    print_culled(f, plan, n_culled);
+    print_resources(f, plan);
+    print_blocks(f, plan);
+    print_timeline(f, plan);
+    print_totals(f, plan, n_culled);
 }

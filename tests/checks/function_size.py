@@ -20,13 +20,6 @@ SOURCE_DIRS = ('core', 'scene', 'color', 'image', 'renderer', 'app')
 
 # "path:function" -> why it may be longer than MAX_LINES
 EXCEPTIONS = {
-    'app/cmd_compare.c:pg_cmd_compare':
-        'pending split: option loop, both renders and the report; the duplicates branch edits this '
-        'file (the image-error JSON)',
-    'core/dump/graph_dump_json.c:json_body':
-        'a linear list of the plan\'s fields written as JSON, in dump-format.md order',
-    'core/graph/graph_report.c:pg_graph_plan_print':
-        'the text report, section by section; see the two plan printers in the review (c)8',
 }
 
 
