@@ -230,6 +230,8 @@ static void parse_json(Ctx &c, const RawFile &f)
         std::string w = e.what();
         size_t k = w.find("] ");
         if (k != std::string::npos) w = w.substr(k + 2);
+        size_t lr = w.find("; last read:"); /* the file's own text: never echoed */
+        if (lr != std::string::npos) w = w.substr(0, lr);
         fail(PG_ERR_PARSE, "JSON syntax error: " + w);
     }
 }

@@ -116,6 +116,10 @@ grep -q "root:x\|daemon" "$tmp/err" && bad "not JSON: the file's text was printe
 expect_fail "not JSON as --scenario" "$tmp/passwd.json:1:1: JSON syntax error" \
   render --scenario "$tmp/passwd.json" "${SMALL[@]}" --out "$tmp/x.png"
 grep -q "root:x\|daemon" "$tmp/err" && bad "not JSON scenario: the file's text was printed" || ok
+printf '{"asset": {"version": "2.0"}, "x": root:x:0:0:root }' >"$tmp/passwd.gltf"
+expect_fail "broken JSON as a .gltf scene" "JSON syntax error: parse error at line 1, column 36" \
+  dump --scene "$tmp/passwd.gltf"
+grep -q "root:x\|\"x\"" "$tmp/err" && bad "broken glTF: the file's text was printed: $(cat "$tmp/err")" || ok
 
 # ---- outputs that cannot be written: at once, with the OS reason ----
 t0=$(date +%s%N)
