@@ -10,6 +10,7 @@
  * SIGINT stops after the current frame and writes what was measured (exit 130). */
 #include "pg_file.h"
 #include "bench.h"
+#include "size_note.h"
 
 static const char *const bench_help =
     "usage: passgraph bench [--pipelines LIST|all] [--lights N,N,...] [--size WxH,WxH,...] --out DIR [options]\n"
@@ -510,6 +511,26 @@ static int run_block(bench *B, pg_app *app, uint32_t sc, uint32_t si, uint32_t l
     return rc;
 }
 
+/* Every size of the sweep against the device's largest image side, and the plan's memory
+ * estimate printed for each size over the threshold (app/size_note.h), before any row runs. */
+static int size_notes(const bench *B, pg_app *app)
+{
+    const uint32_t w = app->opt.width, h = app->opt.height;
+    int rc = 0;
+    for (uint32_t si = 0; si < B->n_sizes && !rc; si++) {
+        app->opt.width = B->widths[si];
+        app->opt.height = B->heights[si];
+        pg_error e = {0};
+        if (pg_size_note_check(app, "passgraph bench", stderr, &e)) {
+            fprintf(stderr, "passgraph bench: %s\n", e.msg);
+            rc = 1;
+        }
+    }
+    app->opt.width = w;
+    app->opt.height = h;
+    return rc;
+}
+
 /* One scene: its app (no device is fatal; a scene that does not load fails its rows), then every
  * block. The exit code so far: 0, or 1 to stop. */
 static int run_scene(bench *B, uint32_t sc, pg_error *err)
@@ -532,6 +553,10 @@ static int run_scene(bench *B, uint32_t sc, pg_error *err)
         return rc;
     }
     note_device(B, &app);
+    if (size_notes(B, &app)) {
+        pg_app_close(&app);
+        return 1;
+    }
     int rc = 0;
     for (uint32_t si = 0; si < B->n_sizes && !g_interrupted && !rc; si++)
         for (uint32_t li = 0; li < B->n_lights && !g_interrupted && !rc; li++) rc = run_block(B, &app, sc, si, li, err);

@@ -175,5 +175,10 @@ grep -q "needs about" "$tmp/err" && bad "estimate printed for 640x360" || ok
 PASSGRAPH_SIZE_NOTE_MIB=0 timeout 60 "$PG" render "${SMALL[@]}" --out "$tmp/x.png" >"$tmp/out" 2>"$tmp/err"
 grep -q "^passgraph render: 32x18 needs about .* of device memory (plan estimate)" "$tmp/err" && ok \
   || { bad "render: no estimate line with PASSGRAPH_SIZE_NOTE_MIB=0"; cat "$tmp/err"; }
+# bench too, for every size of its sweep, before any row runs
+PASSGRAPH_SIZE_NOTE_MIB=0 timeout 120 "$PG" bench --pipelines naive --lights 4 --size 32x18 --frames 1 --warmup 0 \
+  --quiet --out "$tmp/bench" >"$tmp/out" 2>"$tmp/err"
+grep -q "^passgraph bench: 32x18 needs about .* of device memory (plan estimate)" "$tmp/err" && ok \
+  || { bad "bench: no estimate line with PASSGRAPH_SIZE_NOTE_MIB=0"; cat "$tmp/err"; }
 
 check_finish input_paths_test
