@@ -185,6 +185,15 @@ static pg_result phase_declare(compile_ctx *c)
                            "%s: %s: pass type '%s' declares more than %d shader defines (or one "
                            "longer than %d characters)",
                            pg_gc_pass_file(c, (int)i), jp, t->name, PG_MAX_DEFINES, PG_NAME_MAX - 1);
+        /* a skipped pass gets no instance, so no update() */
+        const bool lists_runtime = t->runtime_options && t->runtime_options[0] && !pp->decl.skip;
+        if (pp->decl.n_runtime_params > PG_MAX_RUNTIME_PARAMS || (lists_runtime && !pp->decl.n_runtime_params))
+            return pg_fail(c->err, PG_ERR_INVALID_ARG,
+                           "%s: %s: pass type '%s' %s (a bug in the pass type: pg_decl_runtime_param)",
+                           pg_gc_pass_file(c, (int)i), jp, t->name,
+                           lists_runtime && !pp->decl.n_runtime_params
+                               ? "lists run-time options but marks no run-time field of its params"
+                               : "marks more run-time fields than PG_MAX_RUNTIME_PARAMS");
         if (pp->decl.n_explain > 8) pp->decl.n_explain = 8;
     }
     return PG_OK;

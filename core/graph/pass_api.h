@@ -87,6 +87,7 @@ typedef struct pg_slot_decl {
 #define PG_MAX_DEFINES 24
 #define PG_MAX_PASS_EXPLAIN 16 /* explanation lines of one pass (declare) */
 #define PG_MAX_PASS_PARAMS 320 /* bytes of a pass type's params block (pg_pass_type.params_size) */
+#define PG_MAX_RUNTIME_PARAMS 4 /* run-time value fields of one params block (pg_decl_runtime_param) */
 typedef struct pg_pass_decl {
     uint32_t n_reads, n_writes;
     pg_slot_decl reads[PG_MAX_SLOTS];  /* same order as pg_pass_desc.reads */
@@ -107,6 +108,13 @@ typedef struct pg_pass_decl {
      * options parsed once and the slot handles, filled by declare through pg_decl_params(); part
      * of the plan (pure data), handed to create/update/record as ctx->params */
     _Alignas(16) unsigned char params[PG_MAX_PASS_PARAMS];
+    /* the fields of params that hold run-time values (pg_pass_type.runtime_options): the
+     * runtime's pass signature hashes the params block without them, its value signature only
+     * them, so a new value reaches update() and re-creates nothing */
+    uint32_t n_runtime_params;
+    struct {
+        uint16_t offset, size;
+    } runtime_params[PG_MAX_RUNTIME_PARAMS];
 } pg_pass_decl;
 
 typedef struct pg_declare_in {
@@ -211,6 +219,9 @@ void pg_decl_define_int(pg_pass_decl *d, const char *name, int64_t value);
 /* The pass's params block (size bytes, at most PG_MAX_PASS_PARAMS; NULL when larger):
  *   my_params *p = pg_decl_params(out, sizeof *p); */
 void *pg_decl_params(pg_pass_decl *d, size_t size);
+/* Marks a field of the params block as a run-time value (see pg_pass_decl.runtime_params): every
+ * option a type lists in runtime_options is parsed into such a field. */
+void pg_decl_runtime_param(pg_pass_decl *d, const void *field, size_t size);
 /* Marks a slot unused and records why in the explanation. */
 void pg_decl_mark_unused(pg_pass_decl *d, pg_slot s, const char *why);
 /* Marks a write slot as initialised by the pass itself / as written partially (see

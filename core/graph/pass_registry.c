@@ -104,6 +104,19 @@ void *pg_decl_params(pg_pass_decl *d, size_t size)
     return d && size <= sizeof d->params ? d->params : NULL;
 }
 
+void pg_decl_runtime_param(pg_pass_decl *d, const void *field, size_t size)
+{
+    const unsigned char *f = field;
+    if (!d || f < d->params || f + size > d->params + sizeof d->params) return;
+    if (d->n_runtime_params >= PG_MAX_RUNTIME_PARAMS) {
+        d->n_runtime_params = PG_MAX_RUNTIME_PARAMS + 1; /* the overflow marker: a compile error */
+        return;
+    }
+    d->runtime_params[d->n_runtime_params].offset = (uint16_t)(f - d->params);
+    d->runtime_params[d->n_runtime_params].size = (uint16_t)size;
+    d->n_runtime_params++;
+}
+
 void pg_decl_define_int(pg_pass_decl *d, const char *name, int64_t value)
 {
     char def[PG_NAME_MAX];

@@ -112,6 +112,24 @@ static bool resources_changed(const pg_runtime *rt, const pg_graph_plan *plan, u
     return n > 0;
 }
 
+/* A pass's params block (what declare parsed, pg_pass_type.params_size bytes): runtime false,
+ * everything but the run-time value fields (those zeroed); true, only those fields. */
+static uint64_t hash_params(uint64_t s, const pg_plan_pass *p, bool runtime)
+{
+    const size_t n = p->type->params_size <= PG_MAX_PASS_PARAMS ? p->type->params_size : PG_MAX_PASS_PARAMS;
+    const pg_pass_decl *d = &p->decl;
+    if (runtime) {
+        for (uint32_t i = 0; i < d->n_runtime_params && i < PG_MAX_RUNTIME_PARAMS; i++)
+            s = fnv(s, d->params + d->runtime_params[i].offset, d->runtime_params[i].size);
+        return s;
+    }
+    unsigned char fixed[PG_MAX_PASS_PARAMS];
+    memcpy(fixed, d->params, n);
+    for (uint32_t i = 0; i < d->n_runtime_params && i < PG_MAX_RUNTIME_PARAMS; i++)
+        memset(fixed + d->runtime_params[i].offset, 0, d->runtime_params[i].size);
+    return fnv(s, fixed, n);
+}
+
 /* (b) What needs new pass instances: the caller's block generation, the settings, the executed passes in order with
  * their types, shader variants (defines), bound resources and the options that are not run-time
  * values (pg_pass_type.runtime_options). */
@@ -135,6 +153,7 @@ static uint64_t pipeline_signature(const pg_runtime *rt, const pg_graph_plan *pl
         for (uint32_t d = 0; d < p->decl.n_defines; d++)
             s = fnv(s, p->decl.defines[d], strlen(p->decl.defines[d]) + 1);
         s = hash_options(s, p->type, pl->passes[p->desc_index].options, false);
+        s = hash_params(s, p, false);
         s = fnv(s, &p->n_slots, sizeof p->n_slots);
         for (uint32_t k = 0; k < p->n_slots; k++) {
             s = fnv(s, &p->slots[k].resource, sizeof(int));
@@ -152,6 +171,7 @@ static uint64_t value_signature(const pg_graph_plan *plan, const pg_pipeline *pl
     for (uint32_t i = 0; i < plan->n_order; i++) {
         const pg_plan_pass *p = &plan->passes[plan->order[i]];
         s = hash_options(s, p->type, pl->passes[p->desc_index].options, true);
+        s = hash_params(s, p, true);
     }
     return s;
 }

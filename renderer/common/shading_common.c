@@ -47,6 +47,8 @@ void pg_shading_declare(pg_shading_params *sp, const pg_declare_in *in, pg_pass_
 {
     const pg_shading_opts *o = &sp->o;
     const bool clustered = sp->clustered;
+    pg_decl_runtime_param(out, &sp->ambient, sizeof sp->ambient); /* pg_shading_runtime_options */
+    pg_decl_runtime_param(out, &sp->o.ambient, sizeof sp->o.ambient);
     if (o->shading == 1) pg_decl_define(out, "PG_BLINN_PHONG");
     if (o->view) {
         pg_decl_define_int(out, "PG_DEBUG_VIEW", o->view);

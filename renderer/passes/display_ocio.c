@@ -76,6 +76,7 @@ static pg_result do_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     if ((r = pg_opt_check_known(in->desc, k_known, err))) return r;
     if ((r = pg_opt_float(in->desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err))) return r;
     p->exposure = (float)exposure;
+    pg_decl_runtime_param(out, &p->exposure, sizeof p->exposure);
     if ((r = pg_opt_string(in->desc, "display", "", p->display, sizeof p->display, err))) return r;
     if ((r = pg_opt_string(in->desc, "view", "", p->view, sizeof p->view, err))) return r;
     if (in->desc->n_writes >= 1 && in->pipeline) {

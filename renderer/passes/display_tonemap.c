@@ -41,6 +41,7 @@ static pg_result dt_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     if ((r = pg_opt_float(in->desc, "exposure", 1.0, 1e-6, 1e6, &exposure, err))) return r;
     if ((r = pg_opt_enum(in->desc, "operator", k_ops, 0, &op, err))) return r;
     p->exposure = (float)exposure;
+    pg_decl_runtime_param(out, &p->exposure, sizeof p->exposure);
     p->hdr = pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
     p->ldr = pg_decl_write(out, "ldr", PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
     pg_decl_define_int(out, "PG_TONEMAP", op);

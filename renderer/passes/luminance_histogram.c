@@ -62,6 +62,8 @@ static pg_result lh_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     p->bins = (uint32_t)bins;
     p->min_ev = (float)min_ev;
     p->max_ev = (float)max_ev;
+    pg_decl_runtime_param(out, &p->min_ev, sizeof p->min_ev);
+    pg_decl_runtime_param(out, &p->max_ev, sizeof p->max_ev);
     p->hdr = pg_decl_read(out, "hdr", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
     /* the first dispatch clears every bin, the second adds to them: read and written, but
      * initialized by the pass itself */

@@ -2129,6 +2129,55 @@ static void test_immediate(void)
     pl_free(pl);
 }
 
+/* A pass type that lists run-time options must mark where its params hold them
+ * (pg_decl_runtime_param): else the runtime could not tell a new value from a new pipeline. */
+static pg_result rt_update(void *self, const void *params, pg_error *err)
+{
+    (void)self, (void)params, (void)err;
+    return PG_OK;
+}
+static pg_result d_rt_marked(const pg_declare_in *in, pg_pass_decl *d, pg_error *e)
+{
+    pg_result r = pg_fake_color(in, d, e);
+    float *gain = pg_decl_params(d, sizeof *gain);
+    *gain = 2.0f;
+    pg_decl_runtime_param(d, gain, sizeof *gain);
+    return r;
+}
+static void test_runtime_params(void)
+{
+    static const char *const rt_opts[] = {"gain", NULL};
+    static const pg_pass_type unmarked = {.name = "fake_rt_unmarked", .summary = "test", .declare = pg_fake_color,
+                                          .runtime_options = rt_opts, .update = rt_update};
+    static const pg_pass_type marked = {.name = "fake_rt_marked", .summary = "test", .declare = d_rt_marked,
+                                        .params_size = sizeof(float), .runtime_options = rt_opts,
+                                        .update = rt_update};
+    pg_pass_registry reg = g_reg;
+    pg_error err = {0};
+    CHECK(pg_registry_add(&reg, &unmarked, &err) == PG_OK && pg_registry_add(&reg, &marked, &err) == PG_OK);
+    for (int m = 0; m < 2; m++) {
+        pg_pipeline *pl = pl_new("color");
+        img(pl, "color", PG_FMT_RGBA8_UNORM);
+        pass(pl, "A", m ? "fake_rt_marked" : "fake_rt_unmarked", "", "color");
+        pg_compile_desc d = desc_of(pl);
+        d.registry = &reg;
+        pg_graph_plan *p = NULL;
+        memset(&err, 0, sizeof err);
+        pg_result r = pg_graph_compile(&d, &p, &err);
+        if (m) {
+            CHECK_MSG(r == PG_OK, "marked: %s", err.msg);
+            CHECK(p && p->passes[0].decl.n_runtime_params == 1 && p->passes[0].decl.runtime_params[0].offset == 0 &&
+                  p->passes[0].decl.runtime_params[0].size == sizeof(float));
+        } else {
+            CHECK_MSG(r == PG_ERR_INVALID_ARG &&
+                          strstr(err.msg, "lists run-time options but marks no run-time field of its params"),
+                      "unmarked: %s %s", pg_result_name(r), err.msg);
+        }
+        pg_graph_plan_free(p);
+        pl_free(pl);
+    }
+}
+
 int main(void)
 {
     for (size_t i = 0; i < sizeof g_types / sizeof g_types[0]; i++) {
@@ -2136,6 +2185,7 @@ int main(void)
         CHECK_MSG(pg_registry_add(&g_reg, &g_types[i], &err) == PG_OK, "%s", err.msg);
     }
     test_registry();
+    test_runtime_params();
     test_order();
     test_errors();
     test_culling();
