@@ -129,3 +129,16 @@ pg_session_desc pg_app_session_desc(const pg_app *app)
     };
     return sd;
 }
+
+uint64_t pg_app_check_exact(const char *cmd, const char *what, const pg_frame_stats *st, bool require_exact)
+{
+    uint64_t dropped = pg_frame_counter_sum(st, "overflow_dropped");
+    if (!dropped) return 0;
+    uint64_t cap = pg_frame_counter_sum(st, "dropped_cap");
+    fprintf(stderr,
+            "%s: %s: %s is not exact: %llu light references dropped (%llu by max_lights, %llu past the list "
+            "budget: raise list_budget_mb, 0 = half the device-local heap)%s\n",
+            cmd, require_exact ? "error" : "warning", what, (unsigned long long)dropped, (unsigned long long)cap,
+            (unsigned long long)(dropped - cap), require_exact ? " (--require-exact)" : "");
+    return dropped;
+}

@@ -44,5 +44,9 @@ pg_frame_info pg_app_frame(const pg_app *app);
  * application settings (--ocio-config, --display, --ocio-view / --view) and --no-aliasing.
  * Borrowed pointers into app->opt: valid while app is. */
 pg_session_desc pg_app_session_desc(const pg_app *app);
+/* The light references a frame dropped (the passes' "overflow_dropped" counters; 0: the frame
+ * is exact). When some were dropped, prints one line to stderr: "<cmd>: warning: <what> is not
+ * exact: N light references dropped ..." (an "error:" line when require_exact is set). */
+uint64_t pg_app_check_exact(const char *cmd, const char *what, const pg_frame_stats *st, bool require_exact);
 
 #endif

@@ -32,6 +32,8 @@ const char *const pg_cli_common_help =
     "  --device N|NAME      Vulkan device index or name substring ('passgraph devices')\n"
     "  --validation         enable the Khronos validation layer + synchronization validation;\n"
     "                       any message makes the command fail\n"
+    "  --require-exact      fail (exit 1) when a frame dropped light references (a light\n"
+    "                       list past its budget or max_lights): the image is not exact\n"
     "  --no-aliasing        give every transient its own memory (debugging switch)\n"
     "  --no-shader-cache    compile every shader with glslang and use no pipeline cache (also\n"
     "                       PASSGRAPH_NO_SHADER_CACHE=1); caches live in $PASSGRAPH_CACHE_DIR,\n"
@@ -329,6 +331,8 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         if ((r = parse_ocio_option(c, argc, argv, a, v, err))) return r;
     } else if (!strcmp(a, "--validation")) {
         c->validation = true;
+    } else if (!strcmp(a, "--require-exact")) {
+        c->require_exact = true;
     } else if (!strcmp(a, "--no-aliasing")) {
         c->no_aliasing = true;
     } else if (!strcmp(a, "--no-shader-cache")) {

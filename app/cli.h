@@ -31,6 +31,7 @@ typedef struct pg_cli_common {
     int device_index;            /* --device N */
     const char *device_match;    /* --device NAME */
     bool validation;             /* --validation */
+    bool require_exact;          /* --require-exact: a frame that dropped light references fails */
     bool no_aliasing;            /* --no-aliasing */
     bool immediate;              /* --immediate */
     int async_compute;           /* --async-compute: PG_ASYNC_AUTO (not given), _ON, _OFF, _EMULATE */

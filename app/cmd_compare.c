@@ -545,7 +545,9 @@ static int run_compare(const compare_job *job, pg_app *app, pg_error *err)
         goto done;
     print_report(job, app, &A, &R, &fi, &e, &heat);
     print_summary_line(&A, &R, &fi, &e);
-    rc = 0;
+    bool inexact = pg_app_check_exact("passgraph compare", "the pipeline's image", &A.st, job->opt.require_exact);
+    inexact |= pg_app_check_exact("passgraph compare", "the reference image", &R.st, job->opt.require_exact) != 0;
+    rc = inexact && job->opt.require_exact;
     if (app->gpu->validation && app->gpu->validation_messages) {
         fprintf(stderr, "passgraph compare: %u validation message(s)\n", app->gpu->validation_messages);
         rc = 1;

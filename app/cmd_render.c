@@ -383,7 +383,7 @@ static int render_on_app(pg_app *app, const render_opts *ro, pg_rdoc *rdoc)
     if (ro->opt.explain) print_render_explain(app, s);
     if (write_outputs(s, ro, &im, &err)) goto done;
     print_summary(s, ro, &fi, r, &im);
-    rc = 0;
+    rc = pg_app_check_exact("passgraph render", "the image", &r->st, ro->opt.require_exact) && ro->opt.require_exact;
     if (app->gpu->validation && app->gpu->validation_messages) {
         fprintf(stderr, "passgraph render: %u validation message(s)\n", app->gpu->validation_messages);
         rc = 1;

@@ -35,7 +35,7 @@ struct SurfaceInput {
     vec4 tangent;
     vec4 color;     // COLOR_0 (1 without PG_VERTEX_COLORS)
     bool front_facing;
-    vec4 duv0, duv1; // PG_SURFACE_GRADS (compute): d(uv)/dx in xy, d(uv)/dy in zw; unset otherwise
+    vec4 duv0, duv1; // screen-space derivatives of uv0/uv1: d(uv)/dx in xy, d(uv)/dy in zw
 };
 
 vec3 pg_srgb_encode(vec3 c)

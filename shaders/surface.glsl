@@ -8,9 +8,14 @@
 //   PG_UV_TRANSFORM    KHR_texture_transform matrices per texture slot
 //   PG_EMISSIVE        emissive factor and texture
 //   TEXTURE_COUNT      size of the scene's texture array
-// For compute (no implicit derivatives, a material per pixel):
-//   PG_SURFACE_GRADS   textures are sampled with textureGrad and SurfaceInput.duv0/duv1 (the
-//                      screen-space derivatives of TEXCOORD_0/1): the device picks the mip level
+// Every texture is sampled with textureGrad and SurfaceInput.duv0/duv1, the screen-space
+// derivatives of TEXCOORD_0/1 taken before any branch (fragment shaders: dFdx/dFdy in
+// pg_surface_input(); compute: from the triangle, visibility_surface.glsl), carried through the
+// slot's transform. Implicit derivatives of a coordinate computed inside the material's branches
+// are not reliable: on lavapipe a transformed or TEXCOORD_1 coordinate sampled that way gave noise
+// and seams along triangle edges (tests/gpu/test_gpu_surface.c check_boxes).
+// For compute (a material per pixel):
+//   PG_SURFACE_GRADS   the material index varies per invocation
 //   PG_NONUNIFORM_TEXTURES  the texture index is nonuniformEXT (device feature); otherwise each
 //                      invocation walks the texture array (pg_slot_sample)
 //   PG_SURFACE_NO_PUSH the includer declares the push constants (DrawPush is not declared)
@@ -46,8 +51,6 @@ vec2 pg_slot_uv(GpuMaterial m, int slot, SurfaceInput si)
     return uv;
 }
 
-#ifdef PG_SURFACE_GRADS
-// (the includer enables GL_EXT_nonuniform_qualifier)
 // d(uv)/dx in xy, d(uv)/dy in zw of the coordinate slot reads: the set's derivatives through the
 // linear part of its transform.
 vec4 pg_slot_grad(GpuMaterial m, int slot, SurfaceInput si)
@@ -62,8 +65,6 @@ vec4 pg_slot_grad(GpuMaterial m, int slot, SurfaceInput si)
 #endif
     return d;
 }
-
-#endif
 
 // Texture t (an index into textures[], t >= 0 when want) of a slot; vec4(1) when !want.
 vec4 pg_slot_sample(bool want, int t, GpuMaterial m, int slot, SurfaceInput si)
@@ -83,7 +84,9 @@ vec4 pg_slot_sample(bool want, int t, GpuMaterial m, int slot, SurfaceInput si)
             if (i == t) r = textureGrad(textures[i], uv, g.xy, g.zw);
     return r;
 #else
-    return want ? texture(textures[t], pg_slot_uv(m, slot, si)) : vec4(1.0);
+    // a fragment shader: t is the draw's (dynamically uniform)
+    vec4 g = pg_slot_grad(m, slot, si);
+    return want ? textureGrad(textures[t], pg_slot_uv(m, slot, si), g.xy, g.zw) : vec4(1.0);
 #endif
 }
 

@@ -26,5 +26,11 @@ SurfaceInput pg_surface_input()
     si.color = v_color;
 #endif
     si.front_facing = gl_FrontFacing;
+    // derivatives here, in the shader's uniform control flow (see surface.glsl)
+    si.duv0 = vec4(dFdx(v_uv), dFdy(v_uv));
+    si.duv1 = vec4(0.0);
+#ifdef PG_UV1
+    si.duv1 = vec4(dFdx(v_uv1), dFdy(v_uv1));
+#endif
     return si;
 }

@@ -70,8 +70,11 @@ typedef struct pipe_entry {
     variant *variants;
 } pipe_entry;
 
-typedef enum row_status { ROW_OK = 0, ROW_ERROR, ROW_SKIPPED, ROW_INTERRUPTED } row_status;
-static const char *const status_names[] = {"ok", "error", "skipped", "interrupted"};
+/* ROW_INEXACT: ran, but its error frame dropped light references (not the exact image) */
+typedef enum row_status { ROW_OK = 0, ROW_ERROR, ROW_SKIPPED, ROW_INTERRUPTED, ROW_INEXACT } row_status;
+static const char *const status_names[] = {"ok", "error", "skipped", "interrupted", "inexact"};
+/* a row whose timed frames and error frame ran */
+#define ROW_RAN(r) ((r)->status == ROW_OK || (r)->status == ROW_INEXACT)
 
 typedef struct pass_stat {
     char name[PG_NAME_MAX];

@@ -19,7 +19,7 @@ void series_label(const bench *B, uint32_t pipe, uint32_t var, char *buf, size_t
 
 static bool row_timed(const bench_row *r)
 {
-    return (r->status == ROW_OK || r->status == ROW_INTERRUPTED) && r->gpu.n > 0;
+    return (ROW_RAN(r) || r->status == ROW_INTERRUPTED) && r->gpu.n > 0;
 }
 
 /* Colour and marker of a pipeline/variant in every chart: up to 10 series each has its own colour

@@ -90,13 +90,13 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
         csv_u64(f, r->has_memory, r->plan_aliased);
         csv_u64(f, r->has_memory, r->dev_unaliased);
         csv_u64(f, r->has_memory, r->dev_aliased);
-        bool ov_now = r->has_overflow && r->status == ROW_OK;
+        bool ov_now = r->has_overflow && ROW_RAN(r);
         csv_u64(f, ov_now, r->ov_clusters);
         csv_u64(f, ov_now, r->ov_dropped);
         csv_u64(f, r->has_overflow, r->ov_clusters_max);
         csv_u64(f, ov_now, r->light_refs);
         csv_u64(f, ov_now, r->list_bytes);
-        csv_u64(f, r->status == ROW_OK || r->status == ROW_INTERRUPTED, r->grow_events);
+        csv_u64(f, ROW_RAN(r) || r->status == ROW_INTERRUPTED, r->grow_events);
         csv_str(f, B->ref_name, false);
         const pg_image_error *e = &r->e;
         bool he = r->has_error;
@@ -273,7 +273,7 @@ static cJSON *json_row(const bench *B, const bench_row *r)
     }
     if (r->has_overflow) {
         cJSON *m = cJSON_AddObjectToObject(o, "overflow");
-        if (r->status == ROW_OK) {
+        if (ROW_RAN(r)) {
             cJSON_AddNumberToObject(m, "clusters", (double)r->ov_clusters);
             cJSON_AddNumberToObject(m, "dropped", (double)r->ov_dropped);
             cJSON_AddNumberToObject(m, "light_refs", (double)r->light_refs);

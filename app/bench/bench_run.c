@@ -364,7 +364,10 @@ void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *refs, b
     row->grow_events += st.n_grown;
     record_error_frame_counters(&st, row);
     compare_to_reference(s, ref, ref_skipped, row, &hdr, &ldr);
-    row->status = ROW_OK;
+    row->status = row->ov_dropped ? ROW_INEXACT : ROW_OK;
+    if (row->ov_dropped)
+        snprintf(row->message, sizeof row->message, "not exact: %llu light references dropped (list budget or "
+                 "max_lights)", (unsigned long long)row->ov_dropped);
     goto out;
 fail:
     row->status = ROW_ERROR;

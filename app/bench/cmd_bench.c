@@ -26,7 +26,8 @@ static const char *const bench_help =
     "--time-step, so the lights move; the error frame is rendered at exactly --time, after them.\n"
     "Progress and ETA go to stderr; Ctrl-C finishes the current frame, writes what was measured and\n"
     "exits 130. Exit 0 when every configuration ran, 1 when one failed (its rows say why in 'status'\n"
-    "and 'message'; the others still run) or validation reported a message, 2 on bad options.\n\n"
+    "and 'message'; the others still run) or validation reported a message, 2 on bad options. A row\n"
+    "that dropped light references reads status 'inexact' (a failure with --require-exact).\n\n"
     "What each side takes: --set KEY=VALUE goes to every pipeline that declares KEY and to the reference\n"
     "when it declares KEY; --pipeline-set KEY=VALUE to the pipelines only, --reference-set KEY=VALUE to\n"
     "the reference only (each wins over --set on its side); a --sweep value goes to the pipeline and,\n"
@@ -499,7 +500,7 @@ static int run_block(bench *B, pg_app *app, uint32_t sc, uint32_t si, uint32_t l
                 B->n_rows--; /* nothing measured */
                 break;
             }
-            if (row->status == ROW_ERROR) B->n_failed++;
+            if (row->status == ROW_ERROR || (row->status == ROW_INEXACT && B->opt.require_exact)) B->n_failed++;
             B->rows_done++;
             progress_clear(B);
             print_row(B, row);

@@ -443,10 +443,13 @@ static void destroy_passes_using(pg_runtime *rt, int ri)
     }
 }
 
-/* Re-creates the growable buffer ri with at least `needed` bytes: twice its size or `needed`,
- * whichever is larger, at most `max` (and below any size the device refused before). The new
+/* Re-creates the growable buffer ri with at least `needed` bytes: `needed` plus 1/8 of headroom
+ * (PG_GROW_HEADROOM_DIV; so a buffer holds at most 1.125x what its last growth needed, after any
+ * number of growths), at most `max` (and below any size the device refused before). The new
  * buffer is made before the old one goes, so a refused allocation keeps the old one (and a note
  * says so); then every pass bound to the buffer is re-created (its descriptors point at it). */
+#define PG_GROW_HEADROOM_DIV 8
+
 static pg_result grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t max, pg_frame_stats *st,
                              pg_error *err)
 {
@@ -457,8 +460,9 @@ static pg_result grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t m
     if (c == UINT32_MAX) return PG_OK;
     uint64_t limit = max < rt->mem.capacity[c].limit ? max : rt->mem.capacity[c].limit;
     if (needed <= r->size || limit <= r->size) return PG_OK; /* at its limit: the pass counts the rest */
-    uint64_t want = r->size > UINT64_MAX / 2 ? UINT64_MAX : r->size * 2;
-    if (want < needed) want = needed;
+    uint64_t headroom = needed / PG_GROW_HEADROOM_DIV;
+    uint64_t want = needed > UINT64_MAX - headroom ? UINT64_MAX : needed + headroom;
+    if (want < UINT64_MAX - 255) want = (want + 255) & ~(uint64_t)255;
     if (want > limit) want = limit;
     uint64_t exact = needed < limit ? needed : limit;
     const uint64_t tries[2] = {want, exact < want ? exact : 0};

@@ -153,6 +153,8 @@ VkResult pg_gpu_alloc_memory(pg_gpu *gpu, const VkMemoryAllocateInfo *info, VkDe
 void pg_gpu_free_memory(pg_gpu *gpu, VkDeviceMemory mem);
 /* Memory for a resource only the device touches: a device-local type among type_bits where one
  * fits, else any that fits; VK_ERROR_OUT_OF_DEVICE_MEMORY when none does. */
+/* The size of the device's largest DEVICE_LOCAL memory heap (0 if none). */
+uint64_t pg_gpu_device_local_bytes(const pg_gpu *gpu);
 VkResult pg_gpu_alloc_device_memory(pg_gpu *gpu, VkDeviceSize size, uint32_t type_bits, VkDeviceMemory *out);
 /* Resident set size of this process in bytes (0 if unknown). */
 uint64_t pg_process_rss(void);

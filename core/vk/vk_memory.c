@@ -12,6 +12,16 @@ uint32_t pg_gpu_memory_type(const pg_gpu *gpu, uint32_t bits, VkMemoryPropertyFl
     return UINT32_MAX;
 }
 
+uint64_t pg_gpu_device_local_bytes(const pg_gpu *gpu)
+{
+    uint64_t best = 0;
+    for (uint32_t i = 0; i < gpu->mem_props.memoryHeapCount; i++)
+        if ((gpu->mem_props.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) &&
+            gpu->mem_props.memoryHeaps[i].size > best)
+            best = gpu->mem_props.memoryHeaps[i].size;
+    return best;
+}
+
 VkResult pg_gpu_alloc_device_memory(pg_gpu *gpu, VkDeviceSize size, uint32_t type_bits, VkDeviceMemory *out)
 {
     uint32_t type = pg_gpu_memory_type(gpu, type_bits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);

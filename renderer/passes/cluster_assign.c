@@ -18,16 +18,18 @@
  * The list buffer (slot cluster_lights) is a "grow" buffer: when the lists need more room than
  * it has, the pass keeps a deterministic subset this frame, counts the rest, and asks the runtime
  * (pg_report_grow) for the size it needs; the session renders the frame again with the larger
- * buffer. Growth stops at the memory budget (option budget_mb, clamped to the device's storage
- * buffer range): past it the clusters keep their first k lights for the largest k that fits and
- * the dropped references are counted (counters overflow_clusters, overflow_dropped).
+ * buffer. Growth stops at the memory budget (option budget_mb; 0, the default: PG_AUTO_BUDGET_SHARE
+ * of the device's largest device-local heap; either clamped to the device's storage buffer
+ * range): past it the clusters keep their first k lights for the largest k that fits and the
+ * dropped references are counted (counters overflow_clusters, overflow_dropped) and the frame is
+ * inexact (pg_frame_stats.refs_dropped; bench status "inexact").
  *
  * Slots: reads [lights]; writes [cluster_counts (16 bytes per cluster: offset, stored, raw, 0),
  * cluster_lights (grow buffer of uint light indices)].
  * The grid (x tiles, y tiles, z slices) is the count of the resource bound to cluster_counts (three
  * constants; cluster_lights' count starts with the same three: renderer/common/cluster_grid.h).
  * Options: max_lights (per-cluster cap, 0 = none: the
- * default), budget_mb (list memory budget, default 1024), method ("binned" | "brute_force"),
+ * default), budget_mb (list memory budget in MiB, 0 = auto: the default), method ("binned" | "brute_force"),
  * subgroups (bool, default true: one full subgroup per workgroup where the device allows it;
  * false: 64-wide workgroups with shared-memory scans).
  * Counters: overflow_clusters, overflow_dropped, dropped_cap, total_refs, needed_refs,
@@ -48,12 +50,16 @@
 /* words (32 lights each) one count/fill workgroup walks: 16,384 lights, so 1,000,000 lights give
  * 62 workgroups per cluster (enough in flight on a large GPU) and 4,000 lights one */
 #define SEG_WORDS 512u
+/* the automatic list budget: half the device's largest device-local heap (lists are the one
+ * buffer that scales with lights x clusters; the other half is left to images, the scene and
+ * other processes) */
+#define PG_AUTO_BUDGET_SHARE 0.5
 enum { PIPE_BIN, PIPE_COUNT, PIPE_SCAN, PIPE_FILL, PIPE_N };
 
 typedef struct ca_opts {
     uint32_t grid[3];
     uint32_t max_lights; /* 0: no cap */
-    uint64_t budget_bytes;
+    uint64_t budget_bytes; /* 0: auto (PG_AUTO_BUDGET_SHARE of the device-local heap) */
     int method;          /* 0 binned, 1 brute_force */
     bool subgroups;
 } ca_opts;
@@ -99,7 +105,7 @@ static pg_result read_opts(const pg_pass_desc *desc, ca_opts *o, pg_error *err)
     if ((r = pg_opt_int(desc, "max_lights", 0, 0, 16777216, &v, err))) return r;
     o->max_lights = (uint32_t)v;
     double mb;
-    if ((r = pg_opt_float(desc, "budget_mb", 1024.0, 1.0, 1048576.0, &mb, err))) return r;
+    if ((r = pg_opt_float(desc, "budget_mb", 0.0, 0.0, 1048576.0, &mb, err))) return r;
     o->budget_bytes = (uint64_t)(mb * 1048576.0) & ~(uint64_t)255;
     if ((r = pg_opt_enum(desc, "method", k_methods, 0, &o->method, err))) return r;
     if ((r = pg_opt_bool(desc, "subgroups", true, &o->subgroups, err))) return r;
@@ -183,6 +189,8 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     /* the lists' budget, within what one storage-buffer binding can span */
     uint64_t dev_max = gpu->max_storage_buffer_range & ~(uint64_t)255;
     p->budget = p->o.budget_bytes;
+    if (!p->budget) p->budget = (uint64_t)(pg_gpu_device_local_bytes(gpu) * PG_AUTO_BUDGET_SHARE) & ~(uint64_t)255;
+    if (!p->budget) p->budget = 1024ull << 20; /* a device without a device-local heap */
     if (dev_max && p->budget > dev_max) {
         p->budget = dev_max;
         p->budget_clamped = true;
@@ -366,7 +374,7 @@ static void ca_report(void *self, pg_pass_report *out)
                            p->budget / 1048576.0, s->dropped - s->dropped_cap);
         else if (needed > p->budget)
             pg_report_note(out, "light lists need %.1f MiB, over the %.1f MiB budget: %u refs dropped (raise "
-                           "list_budget_mb)", needed / 1048576.0, p->budget / 1048576.0, s->dropped - s->dropped_cap);
+                           "list_budget_mb; 0 = half the device-local heap)", needed / 1048576.0, p->budget / 1048576.0, s->dropped - s->dropped_cap);
     }
 }
 

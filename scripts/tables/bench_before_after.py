@@ -16,7 +16,7 @@ def main(d):
         if not m:
             continue
         for r in csv.DictReader(open(p)):
-            if r['status'] == 'ok':
+            if r['status'] in ('ok', 'inexact'):
                 rows[(r['pipeline'], int(r['lights']))][m.group(1)].append(r)
     med = lambda rs, c: statistics.median(float(x[c]) for x in rs)
     mib = lambda rs, c: float(rs[0][c]) / 1048576

@@ -202,6 +202,28 @@ grep -Eq 'overflow=0 clusters \(0 light refs dropped\) refs=[0-9]+ lists=[0-9.]+
 "$PG" render --pipeline "$root/pipelines/deferred.json" --lights 20000 --radius 6 --set list_budget_mb=1 --size 64x36 --out "$tmp/o.png" >"$tmp/out" 2>&1
 grep -Eq 'overflow=[1-9][0-9]* clusters \([1-9][0-9]* light refs dropped\)' "$tmp/out" && grep -q '^note: light lists need .* over the 1.0 MiB budget' "$tmp/out" \
   && ok || { bad "budget overflow not reported"; cat "$tmp/out"; }
+# a frame that dropped references is not exact: a warning line (exit 0), --require-exact fails,
+# the bench row reads status=inexact (a failure with --require-exact)
+grep -q 'render: warning: the image is not exact: [1-9][0-9]* light references dropped' "$tmp/out" \
+  && ok || { bad "render: no inexact warning"; cat "$tmp/out"; }
+"$PG" render --pipeline "$root/pipelines/deferred.json" --lights 20000 --radius 6 --set list_budget_mb=1 --size 64x36 --require-exact --out "$tmp/o.png" >"$tmp/out" 2>&1
+rc=$?
+[ $rc -eq 1 ] && grep -q 'error: the image is not exact.*(--require-exact)' "$tmp/out" \
+  && ok || { bad "render --require-exact: exit $rc"; cat "$tmp/out"; }
+"$PG" render --pipeline "$root/pipelines/deferred.json" --lights 64 --size 64x36 --require-exact --out "$tmp/o.png" >"$tmp/out" 2>&1 \
+  && ! grep -q 'not exact' "$tmp/out" && ok || { bad "render --require-exact on an exact frame"; cat "$tmp/out"; }
+"$PG" compare --pipeline "$root/pipelines/deferred.json" --lights 20000 --radius 6 --set list_budget_mb=1 --size 64x36 --require-exact >"$tmp/out" 2>&1
+rc=$?
+[ $rc -eq 1 ] && grep -q "compare: error: the pipeline's image is not exact" "$tmp/out" \
+  && ok || { bad "compare --require-exact: exit $rc"; cat "$tmp/out"; }
+for re in "" --require-exact; do
+  "$PG" bench --pipelines "$root/pipelines/deferred.json" --lights 20000 --radius 6 --set list_budget_mb=1 --size 64x36 \
+    --frames 1 --warmup 0 --reference-max-lights 0 $re --out "$tmp/bi" >"$tmp/out" 2>&1
+  rc=$?
+  want=0; [ -n "$re" ] && want=1
+  [ $rc -eq $want ] && grep -q '^bench: deferred .* inexact' "$tmp/out" && grep -q ',deferred,.*,inexact,not exact: [1-9]' "$tmp/bi/results.csv" \
+    && ok || { bad "bench $re: inexact row (exit $rc, want $want)"; cat "$tmp/out"; }
+done
 # an allocation the device refuses while the lists grow: a note, the overflow reported, exit 0, no crash
 PASSGRAPH_FAULT_CALL="(grow)" "$PG" render --pipeline "$root/pipelines/forward_plus.json" --lights 3000 --radius 6 --size 64x36 \
   --out "$tmp/o.png" >"$tmp/out" 2>&1

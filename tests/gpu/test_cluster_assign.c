@@ -37,9 +37,12 @@ static float *g_lights;  /* 8 floats per light: position, radius, colour, 0 */
 static uint32_t g_count;
 
 /* ---- a pass that copies g_lights into its "lights" slot every frame ---- */
+static uint32_t g_lights_gen; /* bumped (with the device idle) when g_lights changes between frames */
+
 typedef struct upload_pass {
     pg_buffer staging;
     uint64_t bytes;
+    uint32_t gen;
 } upload_pass;
 
 static pg_result up_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
@@ -60,12 +63,18 @@ static pg_result up_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     memset(p->staging.mapped, 0, p->bytes);
     uint64_t n = (uint64_t)g_count * 32 < p->bytes ? (uint64_t)g_count * 32 : p->bytes;
     memcpy(p->staging.mapped, g_lights, n);
+    p->gen = g_lights_gen;
     return PG_OK;
 }
 
 static void up_record(void *self, const pg_pass_record_ctx *ctx)
 {
     upload_pass *p = self;
+    if (p->gen != g_lights_gen) { /* the lights changed while the device was idle */
+        uint64_t n = (uint64_t)g_count * 32 < p->bytes ? (uint64_t)g_count * 32 : p->bytes;
+        memcpy(p->staging.mapped, g_lights, n);
+        p->gen = g_lights_gen;
+    }
     VkBufferCopy c = {0, 0, p->bytes};
     vkCmdCopyBuffer(ctx->cmd, p->staging.buffer, ctx->slots[0]->buffer, 1, &c);
 }
@@ -178,6 +187,8 @@ typedef struct lists {
 typedef struct run_result {
     lists binned, oracle;
     pg_frame_stats st;
+    uint32_t growths;        /* frames whose lists grew (run_desc.grow) */
+    double worst_headroom;   /* max over frames of list_bytes / (4 x needed_refs) after growing */
     bool ok;
 } run_result;
 
@@ -234,7 +245,10 @@ typedef struct run_desc {
     bool subgroups;
     pg_camera cam;
     uint32_t frames;
+    float grow;          /* > 0: every light's radius times this before each frame after the first */
 } run_desc;
+
+static uint64_t counter(const pg_frame_stats *st, const char *pass, const char *name);
 
 static run_result run(const pg_scene_gpu *sg, const run_desc *d)
 {
@@ -258,11 +272,22 @@ static run_result run(const pg_scene_gpu *sg, const run_desc *d)
     pg_frame_info fi = {.camera = d->cam, .width = W, .height = H};
     fi.lights.count = g_count;
     bool ok = true;
-    for (uint32_t k = 0; k < (d->frames ? d->frames : 1) && ok; k++)
+    for (uint32_t k = 0; k < (d->frames ? d->frames : 1) && ok; k++) {
+        if (k && d->grow > 0) {
+            vkDeviceWaitIdle(g_gpu->device);
+            for (uint32_t i = 0; i < g_count; i++) g_lights[(size_t)i * 8 + 3] *= d->grow;
+            g_lights_gen++;
+        }
         if (pg_session_render(s, &fi, false, &res.st, &err)) {
             fprintf(stderr, "render: %s\n", err.msg);
             ok = false;
+        } else if (res.st.n_grown) {
+            res.growths++;
+            double need = 4.0 * (double)counter(&res.st, "assign", "needed_refs");
+            double have = (double)counter(&res.st, "assign", "list_bytes");
+            if (need > 0 && have / need > res.worst_headroom) res.worst_headroom = have / need;
         }
+    }
     uint32_t clusters = g[0] * g[1] * g[2];
     ok = ok && read_lists(s, "cluster_counts", "cluster_lights", clusters, &res.binned) &&
          read_lists(s, "oracle_counts", "oracle_lights", clusters, &res.oracle);
@@ -434,6 +459,23 @@ static void knob_cases(const pg_scene_gpu *sg)
     }
     run_free(&b1);
     run_free(&b2);
+
+    /* growth: every radius x1.3 on each of 4 frames, so the lists grow several times in one
+     * session; the buffer must stay within 1.25x the references the frame needs (it grows to
+     * needed + 1/8; it grew to twice its size before: 2.00x after two growths) */
+    run_desc gr = base;
+    gr.frames = 5;
+    gr.grow = 1.3f;
+    light_clear();
+    random_set(3000, 0.5f, 1000, 0.5f, 8.0f);
+    run_result g = run(sg, &gr);
+    CHECK(g.ok);
+    printf("  %-28s %u frames grew the lists, list bytes at most %.3fx the needed references\n", "knobs: growth",
+           g.growths, g.worst_headroom);
+    CHECK_MSG(g.growths >= 3, "growth: only %u growths (the case needs several)", g.growths);
+    CHECK_MSG(g.worst_headroom <= 1.25, "growth: the lists hold %.3fx the bytes they need", g.worst_headroom);
+    if (g.ok) check_equal("knobs: after growth", &g);
+    run_free(&g);
     run_free(&exact);
 }
 

@@ -237,6 +237,55 @@ for i in range(9):
     doc.primitive(quad_attrs(doc, UV01, x0=-1 + 0.2 * i, x1=-0.9 + 0.2 * i), QUAD_IDX, i)
 doc.write("samplers.gltf")
 
+# ---- textured boxes: one 16x16 checker texture (trilinear, REPEAT) over the six faces of a unit
+# box seen at an angle (the default camera frames it), so minification and triangle edges both
+# show. box_plain reads TEXCOORD_0; box_xform an identity KHR_texture_transform; box_uv1 reads
+# TEXCOORD_1 (= box_plain's UVs; its TEXCOORD_0 is scrambled). All three must render alike.
+def box_doc(tex_info, uv_scramble, extensions=None):
+    doc = Doc()
+    n = 16
+    doc.d["images"] = [{"uri": png_uri(n, n, sum([(W if ((x // 2 + y // 2) % 2) else [200, 40, 20, 255])
+                                                   for y in range(n) for x in range(n)], []))}]
+    doc.d["samplers"] = [{"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}]
+    doc.d["textures"] = [{"source": 0, "sampler": 0}]
+    ti = {"index": 0}
+    ti.update(tex_info)
+    doc.d["materials"] = [{"name": "box", "pbrMetallicRoughness": {"baseColorTexture": ti, "metallicFactor": 0}}]
+    if extensions:
+        doc.d["extensionsUsed"] = extensions
+    pos, nrm, uv, idx = [], [], [], []
+    for axis in range(3):
+        for sign in (-1.0, 1.0):
+            u_ax, v_ax = [a for a in range(3) if a != axis]
+            base = len(pos)
+            for (cu, cv) in ((-1, -1), (1, -1), (-1, 1), (1, 1)):
+                p = [0.0, 0.0, 0.0]
+                p[axis], p[u_ax], p[v_ax] = sign, cu * sign, cv
+                q = [0.0, 0.0, 0.0]
+                q[axis] = sign
+                pos.append(p)
+                nrm.append(q)
+                uv.append(((cu + 1) * 2.0, (cv + 1) * 2.0))
+            idx += [base + i for i in (0, 1, 3, 0, 3, 2)]
+    cnt = len(pos)
+    attrs = {"POSITION": doc.accessor(f32(*[c for p in pos for c in p]), 5126, cnt, "VEC3"),
+             "NORMAL": doc.accessor(f32(*[c for p in nrm for c in p]), 5126, cnt, "VEC3")}
+    if uv_scramble:
+        attrs["TEXCOORD_0"] = doc.accessor(f32(*[c for k, t in enumerate(uv) for c in (0.37 * k, 0.11 * k * k)]),
+                                           5126, cnt, "VEC2")
+        attrs["TEXCOORD_1"] = doc.accessor(f32(*[c for t in uv for c in t]), 5126, cnt, "VEC2")
+    else:
+        attrs["TEXCOORD_0"] = doc.accessor(f32(*[c for t in uv for c in t]), 5126, cnt, "VEC2")
+    doc.primitive(attrs, idx, 0)
+    doc.d["nodes"][0]["rotation"] = [0.2, 0.35, 0.1, 0.9092]
+    return doc
+
+
+box_doc({}, False).write("box_plain.gltf")
+box_doc({"extensions": {"KHR_texture_transform": {"offset": [0, 0], "rotation": 0, "scale": [1, 1]}}}, False,
+        ["KHR_texture_transform"]).write("box_xform.gltf")
+box_doc({"texCoord": 1}, True).write("box_uv1.gltf")
+
 # errors
 doc = Doc()
 attrs = quad_attrs(doc)
