@@ -32,4 +32,8 @@ void pg_frame_uniforms_fill(const pg_frame_info *info, pg_frame_uniforms *u)
     u->clip[1] = cam.far_z;
     u->clip[2] = info->lights.ambient;
     u->clip[3] = cam.ortho_height > 0 ? 1.0f : 0.0f;
+    u->noise[0] = info->sample;
+    u->noise[1] = info->lights.seed;
+    u->noise[2] = 0;
+    u->noise[3] = 0;
 }

@@ -25,6 +25,7 @@ typedef struct pg_frame_uniforms {
     float light_params[4];  /* saturation, speed, motion (0 noise, 1 static), min distance */
     uint32_t counts[4];     /* light count, seed, width, height */
     float clip[4];          /* near, far, ambient (pg_light_setup.ambient), 1 = orthographic */
+    uint32_t noise[4];      /* sample index, seed (pg_frame_info.sample, lights.seed), 0, 0 */
 } pg_frame_uniforms;
 
 typedef struct pg_frame_info {
@@ -32,6 +33,9 @@ typedef struct pg_frame_info {
     pg_light_setup lights;  /* count and seed included */
     float time;
     uint32_t width, height;
+    /* the random stream of stochastic passes (hash of pixel, sample, seed): frames with one
+     * sample index and seed give one image; accumulation and temporal measures step it */
+    uint32_t sample;
 } pg_frame_info;
 
 void pg_frame_uniforms_fill(const pg_frame_info *info, pg_frame_uniforms *u);

@@ -58,6 +58,7 @@ vec3 pg_srgb_decode(vec3 c)
         vec4 light_params;  /* saturation, speed, motion (0 noise, 1 static), min distance */    \
         uvec4 counts;       /* light count, seed, width, height */                               \
         vec4 clip;          /* near, far, ambient (light set-up, run time), 1 = orthographic */                                                      \
+        uvec4 noise;        /* sample index, seed (stochastic passes' random stream), 0, 0 */    \
     } frame;
 
 // Camera-relative rendering (use after FRAME_UNIFORMS_BLOCK): shading works on positions

@@ -38,6 +38,79 @@ vec3 pg_index_color(uint i)
     return vec3(float((h >> 8) & 255u), float((h >> 16) & 255u), float((h >> 24) & 255u)) / 255.0 * 0.8 + 0.2;
 }
 
+#if defined(PG_RIS) && defined(PG_CLUSTERED) && defined(PG_HAS_LIGHTS)
+// ---- resampled importance sampling of the cluster's list (approximation knob, PG_RIS) --------
+// RIS (Talbot, Cline, Egbert 2005; the per-pixel resampling of ReSTIR DI, Bitterli et al. 2020,
+// without spatial or temporal reuse). Per sample: PG_RIS_M candidates drawn uniformly from the
+// pixel's cluster list (n lights, source pdf 1/n), target p^ = luminance of the light's
+// unshadowed contribution to the final colour (albedo x diffuse term + specular x specular
+// term, the exact model of lighting.glsl), one candidate y kept by weighted reservoir sampling
+// with weights w = p^ n; estimate f(y) / p^(y) x (1/M) sum w. E[estimate] = sum over the list of f,
+// the exact sum, wherever p^ > 0 where f != 0 (true: f >= 0 per channel, luminance weights > 0)
+// and the list holds every light that reaches the pixel (exact lists: no overflow). PG_RIS_S
+// independent samples are averaged. Random numbers: PCG hash of pixel, frame.noise.x (sample
+// index) and frame.noise.y (seed): the same inputs give the same image.
+uint pg_pcg(uint v)
+{
+    uint s = v * 747796405u + 2891336453u;
+    uint w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;
+    return (w >> 22u) ^ w;
+}
+
+float pg_rand01(inout uint st) // [0, 1), 24 bits
+{
+    st = pg_pcg(st);
+    return float(st >> 8u) * (1.0 / 16777216.0);
+}
+
+float pg_luminance(vec3 c)
+{
+    return dot(c, vec3(0.2126, 0.7152, 0.0722));
+}
+
+// The light's contribution to the pixel's colour (no ambient, no emissive).
+vec3 pg_light_contribution(Surface s, uint li, vec3 cam, vec3 P, vec3 V, float inv_md2)
+{
+    Light L = lights[li];
+    float R2 = L.pos_radius.w * L.pos_radius.w;
+    PgShade one;
+    one.diffuse = vec3(0.0);
+    one.specular = vec3(0.0);
+    pg_accumulate_light_rel(L.pos_radius.xyz - cam, R2, pg_light_inv_r2(R2), L.color.rgb, P, s.normal, V, s.shininess,
+                            inv_md2, one);
+    return s.albedo * one.diffuse + s.specular * one.specular;
+}
+
+vec3 pg_ris_estimate(Surface s, uvec4 rec, vec3 P, vec3 V, vec2 frag_xy)
+{
+    uint n = rec.y;
+    if (n == 0u) return vec3(0.0);
+    vec3 cam = frame.camera_pos.xyz;
+    float md = frame.light_params.w;
+    float inv_md2 = 1.0 / (md * md);
+    uvec2 px = uvec2(frag_xy);
+    uint st = pg_pcg(px.x + pg_pcg(px.y + pg_pcg(frame.noise.x + pg_pcg(frame.noise.y))));
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < PG_RIS_S; k++) {
+        float wsum = 0.0, p_y = 0.0;
+        vec3 f_y = vec3(0.0);
+        for (int m = 0; m < PG_RIS_M; m++) {
+            uint i = min(uint(pg_rand01(st) * float(n)), n - 1u);
+            vec3 f = pg_light_contribution(s, cluster_lights[rec.x + i], cam, P, V, inv_md2);
+            float ph = pg_luminance(f);
+            float w = ph * float(n);
+            wsum += w;
+            if (w > 0.0 && pg_rand01(st) * wsum < w) {
+                f_y = f;
+                p_y = ph;
+            }
+        }
+        if (p_y > 0.0) sum += f_y * (wsum / (float(PG_RIS_M) * p_y));
+    }
+    return sum / float(PG_RIS_S);
+}
+#endif
+
 // Shades one visible point. P: camera-relative position (world - camera); frag_xy: pixel centre
 // (gl_FragCoord.xy); view_depth: positive distance along the view axis.
 vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
@@ -75,6 +148,9 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #elif defined(PG_CLUSTERED) && PG_DEBUG_VIEW == 5
     return rec.y < raw ? vec3(1.0, 0.0, 0.0) : s.albedo * 0.25;
 #else
+#if defined(PG_RIS) && defined(PG_CLUSTERED) && defined(PG_HAS_LIGHTS)
+    return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z)) + pg_ris_estimate(s, rec, P, V, frag_xy);
+#endif
 #ifdef PG_HAS_LIGHTS
     float min_dist = frame.light_params.w;
 #ifdef PG_CLUSTERED

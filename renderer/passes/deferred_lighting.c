@@ -12,7 +12,10 @@
  * the scene needs; no emissive slot (the material's emission is evaluated here).
  * Options: packing (as gbuffer, or visibility), shading, ambient, view, tile_size (8 or 16, default
  * 8: the workgroup is tile_size x tile_size pixels), tile_lights (default true: each tile culls its clusters' lists against the bounding box of its pixels and shares the
- * kept lights through shared memory; bit-identical to false, with far fewer light evaluations). */
+ * kept lights through shared memory; bit-identical to false, with far fewer light evaluations),
+ * ris_candidates (0, the default: every light of the list, exact; M > 0: the approximation knob of
+ * shaders/shading.glsl pg_ris_estimate, M candidates a sample, resampled importance sampling of
+ * the list; no tiling), ris_samples (1..64, default 1: independent RIS samples averaged a pixel). */
 #include <stdio.h>
 #include <string.h>
 
@@ -45,7 +48,7 @@ typedef struct deferred_lighting {
     VkDescriptorSet scene_set;      /* packing visibility: set 3 */
 } deferred_lighting;
 
-static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", NULL};
+static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", "ris_candidates", "ris_samples", NULL};
 
 static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
@@ -97,7 +100,19 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
                        in->desc->json_path, (long long)tile);
     p->tile = (uint32_t)tile;
     pg_decl_define_int(out, "PG_TILE", tile);
-    p->tiled = tiled && p->sh.o.view == 0 && pg_lights_of(in) > 0;
+    int64_t ris_m, ris_s;
+    if ((r = pg_opt_int(in->desc, "ris_candidates", 0, 0, 4096, &ris_m, err))) return r;
+    if ((r = pg_opt_int(in->desc, "ris_samples", 1, 1, 64, &ris_s, err))) return r;
+    bool ris = ris_m > 0 && p->sh.o.view == 0 && pg_lights_of(in) > 0;
+    if (ris) {
+        pg_decl_define(out, "PG_RIS");
+        pg_decl_define_int(out, "PG_RIS_M", ris_m);
+        pg_decl_define_int(out, "PG_RIS_S", ris_s);
+        pg_decl_explain(out, "ris_candidates %lld, ris_samples %lld: an approximation (unbiased): %lld light "
+                        "evaluations a pixel instead of its whole cluster list", (long long)ris_m, (long long)ris_s,
+                        (long long)(ris_m * ris_s));
+    }
+    p->tiled = tiled && !ris && p->sh.o.view == 0 && pg_lights_of(in) > 0;
     if (p->tiled) pg_decl_define(out, "PG_TILE_LIGHTS");
     return PG_OK;
 }
