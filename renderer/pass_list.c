@@ -19,6 +19,7 @@ void pg_register_builtin_passes(pg_pass_registry *reg)
         &pg_pass_visibility,
         &pg_pass_visibility_resolve,
         &pg_pass_luminance_histogram,
+        &pg_pass_light_tree,
     };
     memset(reg, 0, sizeof *reg);
     for (size_t i = 0; i < sizeof builtin / sizeof builtin[0]; i++) reg->types[reg->count++] = builtin[i];

@@ -12,7 +12,10 @@
 #error "define PG_AMBIENT (the push-constant member holding the pass's ambient) before shading.glsl"
 #endif
 
-#ifdef PG_HAS_LIGHTS
+#if defined(PG_HAS_LIGHTS) && defined(PG_LIGHTCUT)
+// the light tree (shaders/light_tree.comp: 4 vec4 a node, root 1, leaves np .. 2np - 1)
+layout(set = 2, binding = 0, std430) readonly buffer LightTree { vec4 tree[]; };
+#elif defined(PG_HAS_LIGHTS)
 layout(set = 2, binding = 0, std430) readonly buffer Lights { Light lights[]; };
 #ifdef PG_CLUSTERED
 layout(set = 2, binding = 1, std430) readonly buffer ClusterRecords { uvec4 cluster_records[]; };
@@ -111,6 +114,102 @@ vec3 pg_ris_estimate(Surface s, uvec4 rec, vec3 P, vec3 V, vec2 frag_xy)
 }
 #endif
 
+#if defined(PG_LIGHTCUT) && defined(PG_HAS_LIGHTS)
+// ---- lightcut over the light tree (approximation knob with a per-pixel bound, PG_LIGHTCUT) ----
+// A depth-first walk of the tree, nearer child first. A node's contribution lies in [0, U] per
+// channel, U = summed colour x min(1/dmin^2, 1/dmin_light^2) x (albedo + specular) where dmin is the
+// distance from the point to the box of the node's light centres; U = 0 (skipped: exact) when
+// dmin >= the node's largest radius (every light's falloff is 0) or every light centre lies behind
+// the surface's tangent plane (every N.L <= 0). A leaf is summed exactly (the model of
+// lighting.glsl) into E; a node may instead be approximated by its representative light (summed
+// colour at the weighted centroid, largest radius) clamped to [0, U], with error bound
+// b = max(U - est, est), only while B + b <= eps E in every channel (B: the bounds spent so far).
+// E only grows and every contribution is >= 0, so the result's error is at most B <= eps E <= eps x
+// the exact sum, per channel and pixel: the stated bound (float rounding aside; tests/gpu/
+// test_gpu_lightcut.c). PG_LC_EPS_PPM: eps in parts per million. The walk needs no random numbers.
+#ifndef PG_LC_STACK
+#define PG_LC_STACK 64
+#endif
+float pg_lc_box_d2(vec3 lo, vec3 hi, vec3 P)
+{
+    vec3 d = max(lo - P, vec3(0.0)) + max(P - hi, vec3(0.0));
+    return dot(d, d);
+}
+
+// The node's bound U (rgb); dmin2_out: the (shrunk) squared box distance, to order the children.
+vec3 pg_lc_upper(uint n, Surface s, vec3 P, vec3 cam, float inv_md2, out float dmin2_out)
+{
+    vec4 lo = tree[4u * n], hi = tree[4u * n + 1u];
+    vec3 c = tree[4u * n + 2u].rgb;
+    vec3 rl = lo.xyz - cam, rh = hi.xyz - cam;
+    float d2 = pg_lc_box_d2(rl, rh, P);
+    // float margins: never above a light's true distance (the rounding of camera-relative values)
+    float scale = length(P) + max(length(rl), length(rh));
+    float dm = max(sqrt(d2) * (1.0 - 1e-4) - 1e-6 * scale, 0.0);
+    dmin2_out = dm * dm;
+    if (!(rh.x >= rl.x) || dm >= lo.w * (1.0 + 1e-4)) return vec3(0.0); // empty, or out of every range
+    float behind = -3.0e38;                                               // max over corners of N.(c - P)
+    for (int k = 0; k < 8; k++) {
+        vec3 corner = vec3((k & 1) != 0 ? rh.x : rl.x, (k & 2) != 0 ? rh.y : rl.y, (k & 4) != 0 ? rh.z : rl.z);
+        behind = max(behind, dot(s.normal, corner - P));
+    }
+    if (behind < -(1e-5 * scale + 1e-6)) return vec3(0.0);
+    float att = min(dm > 0.0 ? 1.0 / dmin2_out : 3.0e38, inv_md2);
+    return c * (att * (s.albedo + vec3(s.specular)));
+}
+
+vec3 pg_lc_light(Surface s, vec3 pos, float R, vec3 color, vec3 cam, vec3 P, vec3 V, float inv_md2)
+{
+    float R2 = R * R;
+    PgShade one;
+    one.diffuse = vec3(0.0);
+    one.specular = vec3(0.0);
+    pg_accumulate_light_rel(pos - cam, R2, pg_light_inv_r2(R2), color, P, s.normal, V, s.shininess, inv_md2, one);
+    return s.albedo * one.diffuse + s.specular * one.specular;
+}
+
+vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
+{
+    uint count = frame.counts.x;
+    uint np = count <= 1u ? 1u : 1u << uint(findMSB(count - 1u) + 1);
+    vec3 cam = frame.camera_pos.xyz;
+    float md = frame.light_params.w;
+    float inv_md2 = 1.0 / (md * md);
+    const float eps = float(PG_LC_EPS_PPM) * 1e-6;
+    vec3 E = vec3(0.0), A = vec3(0.0), B = vec3(0.0);
+    uint stack[PG_LC_STACK];
+    int sp = 0;
+    stack[sp++] = 1u;
+    while (sp > 0) {
+        uint n = stack[--sp];
+        if (n >= np) { // a leaf: one light, exactly
+            vec4 pr = tree[4u * n];
+            E += pg_lc_light(s, pr.xyz, pr.w, tree[4u * n + 2u].rgb, cam, P, V, inv_md2);
+            continue;
+        }
+        float d2;
+        vec3 U = pg_lc_upper(n, s, P, cam, inv_md2, d2);
+        if (U == vec3(0.0)) continue;
+        vec3 est = clamp(pg_lc_light(s, tree[4u * n + 3u].xyz, tree[4u * n].w, tree[4u * n + 2u].rgb, cam, P, V, inv_md2),
+                         vec3(0.0), U);
+        vec3 b = max(U - est, est);
+        if (all(lessThanEqual(B + b, eps * E))) {
+            A += est;
+            B += b;
+            continue;
+        }
+        uint c0 = 2u * n, c1 = c0 + 1u;
+        float d0, d1;
+        pg_lc_upper(c0, s, P, cam, inv_md2, d0);
+        pg_lc_upper(c1, s, P, cam, inv_md2, d1);
+        uint nearer = d0 <= d1 ? c0 : c1, farther = d0 <= d1 ? c1 : c0;
+        stack[sp++] = farther; // depth <= log2(np) + 1 entries: never past PG_LC_STACK (np <= 2^32)
+        stack[sp++] = nearer;
+    }
+    return E + A;
+}
+#endif
+
 // Shades one visible point. P: camera-relative position (world - camera); frag_xy: pixel centre
 // (gl_FragCoord.xy); view_depth: positive distance along the view axis.
 vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
@@ -156,6 +255,8 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #ifdef PG_CLUSTERED
     for (uint k = 0u; k < rec.y; k++)
         pg_accumulate_light(lights[cluster_lights[rec.x + k]], cam, P, s.normal, V, s.shininess, min_dist, acc);
+#elif defined(PG_LIGHTCUT)
+    return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z)) + pg_lightcut(s, P, V);
 #else
     uint count = frame.counts.x;
     for (uint i = 0u; i < count; i++)

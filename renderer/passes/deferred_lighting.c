@@ -48,33 +48,42 @@ typedef struct deferred_lighting {
     VkDescriptorSet scene_set;      /* packing visibility: set 3 */
 } deferred_lighting;
 
-static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", "ris_candidates", "ris_samples", NULL};
+static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", "ris_candidates", "ris_samples",
+                                     "lights", "lightcut_error", NULL};
+static const char *const k_light_sources[] = {"clusters", "tree", NULL};
 
 static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
     dl_params *p = pg_decl_params(out, sizeof *p);
-    int packing;
+    int packing, source;
     pg_result r;
-    if ((r = pg_shading_opts_read(in->desc, true, k_extra, &p->sh, err))) return r;
+    if ((r = pg_opt_enum(in->desc, "lights", k_light_sources, 0, &source, err))) return r;
+    if ((r = pg_shading_opts_read(in->desc, source == 0, k_extra, &p->sh, err))) return r;
     if ((r = pg_opt_enum(in->desc, "packing", pg_gbuffer_packings, 0, &packing, err))) return r;
     p->packing = packing;
-    p->sh.lights = pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
-    p->sh.cluster_counts =
-        pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
-    p->sh.cluster_lists =
-        pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
-    if ((r = pg_shading_grid_declare(&p->sh, in, err))) return r;
+    if (source == 1) { /* lightcut: reads [light_tree, depth, targets...] */
+        p->sh.lights = pg_decl_read(out, "light_tree", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+        p->sh.cluster_counts = p->sh.cluster_lists = PG_SLOT_NONE;
+    } else {
+        p->sh.lights = pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+        p->sh.cluster_counts =
+            pg_decl_read(out, "cluster_counts", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+        p->sh.cluster_lists =
+            pg_decl_read(out, "cluster_lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+        if ((r = pg_shading_grid_declare(&p->sh, in, err))) return r;
+    }
     p->depth = pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_DEPTH);
     for (uint32_t t = 0; t < pg_gbuffer_targets[packing]; t++)
         p->targets[t] = pg_decl_read(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE,
                      packing >= PG_GBUFFER_PACKED ? PG_FMTCLASS_UINT : PG_FMTCLASS_FLOAT);
     bool emissive = false;
+    const uint32_t light_reads = source == 1 ? 1 : 3;
     if (packing == PG_GBUFFER_VISIBILITY) {
-        if (in->desc->n_reads > 5)
+        if (in->desc->n_reads > light_reads + 2)
             return pg_fail(err, PG_ERR_SCHEMA,
-                           "%s: %s.reads[5]: packing \"visibility\" takes no emissive target (the material's "
+                           "%s: %s.reads[%u]: packing \"visibility\" takes no emissive target (the material's "
                            "emission is evaluated in this pass)",
-                           in->desc->file, in->desc->json_path);
+                           in->desc->file, in->desc->json_path, light_reads + 2);
         pg_scene_draw_declare_features(in, out, &p->draw);
     } else if ((r = pg_emissive_slot_declare(in, out, false, false, &p->emissive_slot, &emissive, err))) {
         return r;
@@ -103,6 +112,9 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     int64_t ris_m, ris_s;
     if ((r = pg_opt_int(in->desc, "ris_candidates", 0, 0, 4096, &ris_m, err))) return r;
     if ((r = pg_opt_int(in->desc, "ris_samples", 1, 1, 64, &ris_s, err))) return r;
+    if (ris_m > 0 && source == 1)
+        return pg_fail(err, PG_ERR_SCHEMA, "%s: %s.options.ris_candidates: resampling draws from cluster lists: it "
+                       "needs lights \"clusters\", not \"tree\"", in->desc->file, in->desc->json_path);
     bool ris = ris_m > 0 && p->sh.o.view == 0 && pg_lights_of(in) > 0;
     if (ris) {
         pg_decl_define(out, "PG_RIS");
@@ -112,7 +124,15 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
                         "evaluations a pixel instead of its whole cluster list", (long long)ris_m, (long long)ris_s,
                         (long long)(ris_m * ris_s));
     }
-    p->tiled = tiled && !ris && p->sh.o.view == 0 && pg_lights_of(in) > 0;
+    double lc_eps;
+    if ((r = pg_opt_float(in->desc, "lightcut_error", 0.02, 1e-6, 1.0, &lc_eps, err))) return r;
+    if (source == 1 && pg_lights_of(in) > 0 && p->sh.o.view == 0) {
+        pg_decl_define(out, "PG_LIGHTCUT");
+        pg_decl_define_int(out, "PG_LC_EPS_PPM", (int64_t)(lc_eps * 1e6 + 0.5));
+        pg_decl_explain(out, "lights tree: a lightcut a pixel, every pixel within %g of its exact value (relative, "
+                        "per channel)", lc_eps);
+    }
+    p->tiled = tiled && !ris && source == 0 && p->sh.o.view == 0 && pg_lights_of(in) > 0;
     if (p->tiled) pg_decl_define(out, "PG_TILE_LIGHTS");
     return PG_OK;
 }

@@ -1,0 +1,150 @@
+/* test_gpu_lightcut.c - the lightcut pipeline's stated bound (pipelines/lightcut.json,
+ * shaders/shading.glsl pg_lightcut, renderer/passes/light_tree.c) on lavapipe with validation on
+ * (zero messages). For every light set below and lightcut_error eps in {0.02, 0.2}, every pixel
+ * and HDR channel (rgba32f) of lightcut must hold
+ *     |lightcut - exact| <= eps |exact| + 1e-4 |exact| + 1e-6 peak
+ * against pipelines/visibility.json (the same surfaces, every light of the cluster lists summed);
+ * the second and third terms are float rounding (the two sum the same lights in another order).
+ * Light sets (the default atrium, 96x54, seeds vary): the scene's default lights; a dense clump
+ * (every light in a box 2% of the atrium's size); huge radii (every light reaches everything);
+ * tiny radii; lights spread over the floor's height (on the surfaces); 2,000 lights. A light
+ * tree of one light and of 0 lights renders too.
+ * Also: the frame is deterministic (rendered twice, bit-identical); eps 0.2 approximates (its
+ * image differs from exact by more than rounding: the knob does something); and the checker
+ * itself can fail: the eps 0.2 image against the eps 0.02 bound is outside it somewhere. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu_harness.h"
+#include "image_util.h"
+#include "pass_list.h"
+#include "test_util.h"
+
+#define W 96
+#define H 54
+
+static pg_gpu *g_gpu;
+static pg_pass_registry g_reg;
+
+/* worst |a - exact| / (eps |exact| + 1e-4 |exact| + 1e-6 peak) over pixels and RGB (<= 1: inside) */
+static double usage(const pg_th_frame *a, const pg_th_frame *exact, double eps, double peak)
+{
+    double worst = 0;
+    for (size_t i = 0; i < (size_t)W * H * 4; i++) {
+        if (i % 4 == 3) continue;
+        double e = exact->hdr[i], d = fabs((double)a->hdr[i] - e);
+        double bound = eps * fabs(e) + 1e-4 * fabs(e) + 1e-6 * peak;
+        if (!(d <= bound)) worst = fmax(worst, d / bound);
+        else if (bound > 0) worst = fmax(worst, d / bound);
+    }
+    return worst;
+}
+
+static void check_set(const char *label, const pg_th_scene *ts, const pg_light_setup *ls)
+{
+    pg_frame_info fi = ts->fi;
+    fi.lights = *ls;
+    pg_param_override f32 = {"hdr_format", "rgba32f"};
+    pg_th_frame ex;
+    if (!pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/visibility.json", &f32, 1, &fi, 1, false, &ex)) {
+        CHECK_MSG(0, "%s: exact render", label);
+        return;
+    }
+    double peak = 0;
+    pg_th_max_abs(&ex, &ex, &peak);
+    CHECK_MSG(peak > 0 || ls->count == 0, "%s: the exact image is black (the case tests nothing)", label);
+    const char *eps_s[2] = {"0.02", "0.2"};
+    const double eps[2] = {0.02, 0.2};
+    pg_th_frame lc[2];
+    bool ok[2];
+    for (int k = 0; k < 2; k++) {
+        pg_param_override sets[2] = {{"hdr_format", "rgba32f"}, {"lightcut_error", eps_s[k]}};
+        ok[k] = pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/lightcut.json", sets, 2, &fi, 1, false, &lc[k]);
+        CHECK_MSG(ok[k], "%s: lightcut render (eps %s)", label, eps_s[k]);
+        if (!ok[k]) continue;
+        double u = usage(&lc[k], &ex, eps[k], peak);
+        printf("%-22s lights %7u peak %9.4g  eps %-4s bound usage %.4f  differing pixels %u\n", label, ls->count, peak,
+               eps_s[k], u, pg_th_differ_pixels(&lc[k], &ex));
+        CHECK_MSG(u <= 1.0, "%s: eps %s: outside the bound (usage %.4f)", label, eps_s[k], u);
+        CHECK_MSG(pg_count_nonfinite(lc[k].hdr, W, H) == 0, "%s: non-finite pixels", label);
+    }
+    if (ok[0] && ok[1] && ls->count > 1 && peak > 0) {
+        double loose = usage(&lc[1], &ex, 0.0, peak); /* eps 0.2 against rounding alone */
+        printf("%-22s eps 0.2 against exact with no approximation allowed: usage %.3g; against the 0.02 bound: %.3g\n",
+               label, loose, usage(&lc[1], &ex, 0.02, peak));
+        if (!strcmp(label, "default lights")) {
+            CHECK_MSG(loose > 1.0, "%s: eps 0.2 approximates nothing (the knob does nothing)", label);
+            CHECK_MSG(usage(&lc[1], &ex, 0.02, peak) > 1.0, "%s: the checker cannot fail", label);
+        }
+    }
+    for (int k = 0; k < 2; k++)
+        if (ok[k]) pg_th_release(&lc[k]);
+    pg_th_release(&ex);
+}
+
+static void check_deterministic(const pg_th_scene *ts)
+{
+    pg_param_override f32 = {"hdr_format", "rgba32f"};
+    pg_th_frame a, b;
+    bool ok = pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/lightcut.json", &f32, 1, &ts->fi, 1, false, &a);
+    ok = pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/lightcut.json", &f32, 1, &ts->fi, 1, false, &b) && ok;
+    CHECK_MSG(ok && pg_th_hdr_identical(&a, &b), "lightcut: two renders of one frame differ");
+    pg_th_release(&a);
+    pg_th_release(&b);
+}
+
+int main(void)
+{
+    if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_lightcut", "PG_TEST_NO_GPU set");
+    pg_register_builtin_passes(&g_reg);
+    pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
+    pg_error err = {0};
+    if (pg_gpu_create(&gd, &g_gpu, &err)) {
+        fprintf(stderr, "test_gpu_lightcut: %s\n", err.msg);
+        return 1;
+    }
+    pg_th_scene ts;
+    if (!pg_th_scene_open(g_gpu, "atrium", "default", NULL, W, H, 400, &ts)) {
+        CHECK_MSG(0, "scene");
+        pg_gpu_destroy(g_gpu);
+        return pg_test_finish("test_gpu_lightcut");
+    }
+    const pg_light_setup base = ts.fi.lights;
+    float ext[3], mid[3];
+    for (int a = 0; a < 3; a++) ext[a] = base.box_max[a] - base.box_min[a], mid[a] = 0.5f * (base.box_max[a] + base.box_min[a]);
+    check_set("default lights", &ts, &base);
+    pg_light_setup s = base;
+    for (int a = 0; a < 3; a++) s.box_min[a] = mid[a] - 0.01f * ext[a], s.box_max[a] = mid[a] + 0.01f * ext[a];
+    s.seed = 3;
+    check_set("dense clump", &ts, &s);
+    s = base;
+    s.radius = base.radius * 50;
+    s.intensity = base.intensity / 50;
+    s.seed = 4;
+    check_set("huge radii", &ts, &s);
+    s = base;
+    s.radius = base.radius * 0.25f;
+    s.intensity = base.intensity * 16;
+    s.seed = 5;
+    check_set("tiny radii", &ts, &s);
+    s = base;
+    s.box_max[1] = base.box_min[1] + 0.02f * ext[1]; /* a thin layer at the floor */
+    s.seed = 6;
+    check_set("on the floor", &ts, &s);
+    s = base;
+    s.count = 2000;
+    s.seed = 7;
+    check_set("2000 lights", &ts, &s);
+    s = base;
+    s.count = 1;
+    check_set("one light", &ts, &s);
+    s.count = 0;
+    check_set("no lights", &ts, &s);
+    check_deterministic(&ts);
+    pg_th_scene_close(g_gpu, &ts);
+    printf("validation messages: %u\n", g_gpu->validation_messages);
+    CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);
+    pg_gpu_destroy(g_gpu);
+    return pg_test_finish("test_gpu_lightcut");
+}
