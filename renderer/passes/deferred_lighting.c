@@ -19,6 +19,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "frame.h"
 #include "gbuffer_layout.h"
 #include "scene_draw.h"
 #include "scene_vars.h"
@@ -37,6 +38,8 @@ typedef struct dl_params { /* filled once by declare, read by create/update/reco
 
 typedef struct deferred_lighting {
     float ambient;          /* option "ambient" (a run-time value): push constant */
+    int packing;
+    double far_over_near;   /* the last recorded frame's (oct16: its depth precision, dl_report) */
     pg_slot hdr;
     uint32_t tile;          /* workgroup edge in pixels (8 or 16) */
     VkSampler sampler;
@@ -144,6 +147,7 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     const dl_params *pa = PG_PARAMS(ctx, dl_params);
     pg_result r;
     p->ambient = pa->sh.ambient;
+    p->packing = pa->packing;
     uint32_t n_targets = pg_gbuffer_targets[pa->packing];
     p->hdr = pa->hdr;
     bool vis = pa->packing == PG_GBUFFER_VISIBILITY;
@@ -212,7 +216,24 @@ static void dl_record(void *self, const pg_pass_record_ctx *ctx)
     if (p->scene_set)
         vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 3, 1, &p->scene_set, 0, NULL);
     vkCmdPushConstants(ctx->cmd, p->layout, PG_PUSH_STAGES, 0, sizeof(float), &p->ambient);
+    const pg_frame_uniforms *fu = PG_FRAME_OF(ctx);
+    p->far_over_near = fu->clip[0] > 0 ? (double)fu->clip[1] / fu->clip[0] : 0;
     vkCmdDispatch(ctx->cmd, (hdr->width + p->tile - 1) / p->tile, (hdr->height + p->tile - 1) / p->tile, 1);
+}
+
+/* oct16 rebuilds positions from the D32 depth, whose relative view-depth error near the far plane
+ * is about 2^-25 far/near (docs/accuracy.md, "Position from depth"): past far/near = 1e5 the
+ * documented display bound no longer holds (test_gpu_framing check_near_plane), and the frame says so */
+#define PG_OCT16_MAX_DEPTH_RATIO 1e5
+
+static void dl_report(void *self, pg_pass_report *out)
+{
+    deferred_lighting *p = self;
+    if (p->packing == PG_GBUFFER_OCT16 && p->far_over_near > PG_OCT16_MAX_DEPTH_RATIO * 1.001)
+        pg_report_note(out, "gbuffer oct16 rebuilds positions from D32 depth: far/near = %.3g (past %.0e) gives "
+                       "view depths off by up to %.2g%% near the far plane, beyond the documented oct16 bounds; "
+                       "gbuffer=packed stores the view depth", p->far_over_near, PG_OCT16_MAX_DEPTH_RATIO,
+                       100.0 * p->far_over_near / 33554432.0);
 }
 
 static pg_result dl_update(void *self, const void *params, pg_error *err)
@@ -244,6 +265,7 @@ const pg_pass_type pg_pass_deferred_lighting = {
     .create = dl_create,
     .record = dl_record,
     .destroy = dl_destroy,
+    .report = dl_report,
     .runtime_options = pg_shading_runtime_options,
     .update = dl_update,
 };
