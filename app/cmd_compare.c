@@ -13,6 +13,7 @@
 #include "app.h"
 #include "bench_stats.h"
 #include "commands.h"
+#include "frame_metrics.h"
 #include "image_compare.h"
 #include "image_error_json.h"
 #include "image_util.h"
@@ -26,7 +27,9 @@ static const char *const compare_help =
     "RMSE, PSNR and max abs difference over RGB of the scene-linear HDR outputs (hdr_output; PSNR peak\n"
     "= the reference's largest RGB value; pixels with NaN/Inf are left out and counted) and of the\n"
     "8-bit display outputs (0..255 units, PSNR peak 255), the share of pixels whose display RGB differs\n"
-    "by more than --threshold, and both pipelines' GPU ms (total and per pass; median over --frames).\n"
+    "by more than --threshold, the perceptual metrics LDR-FLIP (display images), HDR-FLIP (HDR images)\n"
+    "and SSIM, the flicker of the pipeline over --flicker-frames frames, and both pipelines' GPU ms\n"
+    "(total and per pass; median over --frames).\n"
     "The last line starts with 'compare:' and holds key=value pairs; PSNR of identical images is 'inf'.\n"
     "Counters the passes report (e.g. light overflow of a clustered pipeline) are printed too.\n"
     "Frames are rendered alternately (pipeline, reference, ...); the first frame of each includes\n"
@@ -58,7 +61,18 @@ static const char *const compare_help_own =
     "                       (HDR errors are heavy-tailed: the largest one leaves the rest black);\n"
     "                       'max' or 0: the largest error\n"
     "  --json FILE          also write the results as a JSON object (the 'compare:' keys, plus\n"
-    "                       per-pass times; non-finite numbers as the strings \"inf\", \"-inf\", \"nan\")\n";
+    "                       per-pass times; non-finite numbers as the strings \"inf\", \"-inf\", \"nan\")\n"
+    "  --flip-map FILE.png  write the LDR-FLIP map (per-pixel perceptual error of the display images)\n"
+    "                       in the heatmap's colormap over the fixed range 0..1, so maps compare\n"
+    "  --no-hdr-flip        skip HDR-FLIP (it runs LDR-FLIP at 2..14+ exposures: seconds at 1080p);\n"
+    "                       hdr_flip reads nan\n"
+    "  --accumulate N       the pipeline's measured image is the mean of N frames with sample index\n"
+    "                       0..N-1 (HDR averaged in float, display images averaged per channel and\n"
+    "                       rounded); the error of a stochastic pipeline after N frames (default 1)\n"
+    "  --flicker-frames K   render K frames of the pipeline (sample 0..K-1, same time, camera and\n"
+    "                       lights) and report flicker = mean |frame k - frame k-1| over RGB (linear)\n"
+    "                       / mean RGB of the reference: 0 for a deterministic pipeline (default 4;\n"
+    "                       0: off, flicker reads nan)\n";
 
 static pg_result parse_nonneg(const char *opt, const char *s, double *out, pg_error *err)
 {
@@ -94,6 +108,7 @@ typedef struct side {
     pg_frame_stats st;       /* of the last frame */
     double gpu_ms, pass_ms[PG_MAX_PASSES];
     const uint8_t *ldr;
+    uint8_t *ldr_own;        /* the accumulated display image, when ldr points at it */
     float *hdr;
     uint32_t lw, lh, hw, hh;
     pg_format hfmt;
@@ -197,8 +212,48 @@ static void side_free(side *sd)
 {
     free(sd->samples);
     free(sd->hdr);
+    free(sd->ldr_own);
     pg_session_destroy(sd->s);
     memset(sd, 0, sizeof *sd);
+}
+
+/* What the command line asked for, and the two sides it resolves to. */
+typedef struct compare_job {
+    pg_cli_common opt;
+    pg_side_sets ss;
+    const char *reference, *heatmap, *json, *flip_map;
+    double threshold, heat_scale_arg; /* heat_scale_arg < 0: 99th percentile; 0: max */
+    uint32_t accumulate, flicker_frames;
+    bool no_hdr_flip;
+    char ref_path[PG_PATH_MAX], pipe_path[PG_PATH_MAX];
+    pg_ov_list pipe_ov, ref_ov;
+} compare_job;
+
+/* What compare measures besides pg_image_error (frame_metrics.h). */
+typedef struct extra_measures {
+    pg_perceptual pm;
+    pg_flicker fl;
+    double flicker;          /* NaN when --flicker-frames 0 */
+    uint32_t extra_frames;   /* the pipeline's frames rendered for accumulation and flicker */
+} extra_measures;
+
+/* The perceptual and temporal numbers (and the options that shaped them) into compare's JSON. */
+static void json_add_measures(cJSON *o, const compare_job *job, const extra_measures *m, double gpu_ms)
+{
+    cJSON_AddItemToObject(o, "flip", json_num(m->pm.flip));
+    cJSON_AddItemToObject(o, "hdr_flip", json_num(m->pm.hdr_flip));
+    if (!job->no_hdr_flip) {
+        cJSON_AddItemToObject(o, "hdr_flip_start_exposure", json_num(m->pm.hdr.start_exposure));
+        cJSON_AddItemToObject(o, "hdr_flip_stop_exposure", json_num(m->pm.hdr.stop_exposure));
+        cJSON_AddNumberToObject(o, "hdr_flip_exposures", m->pm.hdr.exposures);
+    }
+    cJSON_AddItemToObject(o, "ssim", json_num(m->pm.ssim));
+    cJSON_AddItemToObject(o, "flicker", json_num(m->flicker));
+    cJSON_AddNumberToObject(o, "flicker_frames", job->flicker_frames);
+    cJSON_AddNumberToObject(o, "accumulate", job->accumulate);
+    cJSON_AddItemToObject(o, "accumulated_gpu_ms", json_num(gpu_ms * job->accumulate));
+    cJSON_AddItemToObject(o, "metrics_cpu_ms", json_num(m->pm.cpu_ms));
+    if (job->flip_map) cJSON_AddStringToObject(o, "flip_map", job->flip_map);
 }
 
 static cJSON *ov_json(const pg_ov_list *l)
@@ -208,10 +263,12 @@ static cJSON *ov_json(const pg_ov_list *l)
     return o;
 }
 
-static pg_result write_json(const char *path, const side *a, const pg_ov_list *aov, const side *r,
-                            const pg_ov_list *rov, const pg_app *app, double threshold, double heat_scale,
-                            const char *heatmap, const pg_image_error *e, pg_error *err)
+static pg_result write_json(const compare_job *job, const side *a, const side *r, const pg_app *app,
+                            double heat_scale, const pg_image_error *e, const extra_measures *m, pg_error *err)
 {
+    const char *path = job->json, *heatmap = job->heatmap;
+    const pg_ov_list *aov = &job->pipe_ov, *rov = &job->ref_ov;
+    double threshold = job->threshold;
     cJSON *o = cJSON_CreateObject();
     if (!o) return pg_fail(err, PG_ERR_OOM, "out of memory");
     cJSON_AddStringToObject(o, "pipeline", a->s->pipeline->name);
@@ -234,6 +291,7 @@ static pg_result write_json(const char *path, const side *a, const pg_ov_list *a
     cJSON_AddNumberToObject(o, "pixels_over_threshold", (double)e->over_threshold);
     cJSON_AddNumberToObject(o, "nonfinite", (double)e->nonfinite_a);
     cJSON_AddNumberToObject(o, "reference_nonfinite", (double)e->nonfinite_b);
+    json_add_measures(o, job, m, a->gpu_ms);
     cJSON_AddItemToObject(o, "gpu_ms", json_num(a->gpu_ms));
     cJSON_AddItemToObject(o, "reference_gpu_ms", json_num(r->gpu_ms));
     cJSON_AddItemToObject(o, "passes", side_passes_json(a));
@@ -299,15 +357,6 @@ static void print_sides(const side *a, const pg_ov_list *aov, const side *r, con
     fflush(f);
 }
 
-/* What the command line asked for, and the two sides it resolves to. */
-typedef struct compare_job {
-    pg_cli_common opt;
-    pg_side_sets ss;
-    const char *reference, *heatmap, *json;
-    double threshold, heat_scale_arg; /* heat_scale_arg < 0: 99th percentile; 0: max */
-    char ref_path[PG_PATH_MAX], pipe_path[PG_PATH_MAX];
-    pg_ov_list pipe_ov, ref_ov;
-} compare_job;
 
 /* The heatmap's scale as used, and how it was chosen (for the report). */
 typedef struct heat_scale_used {
@@ -318,7 +367,8 @@ typedef struct heat_scale_used {
 static bool is_valued_option(const char *a)
 {
     return !strcmp(a, "--reference") || !strcmp(a, "--heatmap") || !strcmp(a, "--heatmap-scale") ||
-           !strcmp(a, "--threshold") || !strcmp(a, "--json");
+           !strcmp(a, "--threshold") || !strcmp(a, "--json") || !strcmp(a, "--flip-map") ||
+           !strcmp(a, "--accumulate") || !strcmp(a, "--flicker-frames");
 }
 
 /* The value v of one of compare's own options (is_valued_option). */
@@ -332,6 +382,13 @@ static pg_result parse_valued_option(compare_job *job, const char *a, const char
         if ((r = pg_image_path_check(v, false, err))) pg_error_prefix(err, "--heatmap");
     } else if (!strcmp(a, "--json")) {
         job->json = v;
+    } else if (!strcmp(a, "--flip-map")) {
+        job->flip_map = v;
+        if ((r = pg_image_path_check(v, false, err))) pg_error_prefix(err, "--flip-map");
+    } else if (!strcmp(a, "--accumulate")) {
+        r = pg_parse_accumulate(a, v, &job->accumulate, err);
+    } else if (!strcmp(a, "--flicker-frames")) {
+        r = pg_parse_flicker_frames(a, v, &job->flicker_frames, err);
     } else if (!strcmp(a, "--threshold")) {
         r = parse_nonneg(a, v, &job->threshold, err);
     } else { /* --heatmap-scale */
@@ -359,6 +416,8 @@ static int parse_option(compare_job *job, int argc, char **argv, int *i, pg_erro
         }
         (*i)++;
         r = parse_valued_option(job, a, v, err);
+    } else if (!strcmp(a, "--no-hdr-flip")) {
+        job->no_hdr_flip = true;
     } else if (!strcmp(a, "--out")) {
         own = false; /* compare writes no display image: --heatmap / --json */
     } else {
@@ -380,8 +439,11 @@ static int parse_option(compare_job *job, int argc, char **argv, int *i, pg_erro
 static int parse_args(compare_job *job, int argc, char **argv, pg_error *err)
 {
     pg_cli_defaults(&job->opt);
-    job->reference = job->heatmap = job->json = NULL;
+    job->reference = job->heatmap = job->json = job->flip_map = NULL;
     job->threshold = 1.0;
+    job->accumulate = 1;
+    job->flicker_frames = PG_FLICKER_FRAMES_DEFAULT;
+    job->no_hdr_flip = false;
     job->heat_scale_arg = -1.0;
     memset(&job->ss, 0, sizeof job->ss);
     for (int i = 0; i < argc; i++) {
@@ -410,6 +472,7 @@ static int resolve_sides(compare_job *job, pg_error *err)
 
     /* the outputs can be written: checked before rendering, with the OS reason */
     if ((job->heatmap && pg_file_check_writable(job->heatmap, "--heatmap", err)) ||
+        (job->flip_map && pg_file_check_writable(job->flip_map, "--flip-map", err)) ||
         (job->json && strcmp(job->json, "-") && pg_file_check_writable(job->json, "--json", err))) {
         fprintf(stderr, "passgraph compare: %s\n", err->msg);
         return 2;
@@ -456,6 +519,79 @@ static pg_result measure_error(const side *A, const side *R, double threshold, p
         (r = pg_image_sizes_match("hdr_output vs output", A->hw, A->hh, A->lw, A->lh, err)))
         return r;
     return pg_image_error_compute(A->hdr, R->hdr, A->ldr, R->ldr, A->lw, A->lh, threshold, e, err);
+}
+
+/* The pipeline's frames beyond frame 0 (frame_metrics.h): its measured image becomes the mean of
+ * --accumulate frames (sample 0..N-1), and the flicker sums of --flicker-frames frames are taken. */
+static pg_result sample_pipeline(const compare_job *job, side *A, const pg_frame_info *fi, extra_measures *m,
+                                 pg_error *err)
+{
+    if (job->accumulate <= 1 && job->flicker_frames < 2) return PG_OK;
+    pg_result r = pg_image_sizes_match("hdr_output vs output", A->hw, A->hh, A->lw, A->lh, err);
+    if (r) return r;
+    const size_t n = (size_t)A->lw * A->lh * 4;
+    uint8_t *ldr0 = malloc(n), *ldr = malloc(n);
+    float *hdr = malloc(n * sizeof(float));
+    if (!ldr0 || !ldr || !hdr) {
+        r = pg_fail(err, PG_ERR_OOM, "out of memory");
+    } else {
+        memcpy(ldr0, A->ldr, n); /* the runtime's read-back memory: the next frame overwrites it */
+        r = pg_sample_frames(A->s, fi, job->accumulate, job->flicker_frames, A->hdr, ldr0, A->lw, A->lh, hdr, ldr,
+                             &m->fl, &m->extra_frames, err);
+        if (r) pg_error_prefix(err, "pipeline");
+    }
+    free(ldr0);
+    if (r) {
+        free(ldr);
+        free(hdr);
+        return r;
+    }
+    free(A->hdr);
+    A->hdr = hdr;
+    free(A->ldr_own);
+    A->ldr = A->ldr_own = ldr;
+    return PG_OK;
+}
+
+/* The perceptual metrics and the flicker of the measured image, and the FLIP map (--flip-map). */
+static pg_result measure_extra(const compare_job *job, const side *A, const side *R, const pg_image_error *e,
+                               extra_measures *m, pg_error *err)
+{
+    const size_t px = (size_t)e->width * e->height;
+    float *map = job->flip_map ? malloc(px * sizeof(float)) : NULL;
+    uint8_t *rgba = job->flip_map ? malloc(px * 4) : NULL;
+    pg_result r = PG_OK;
+    if (job->flip_map && (!map || !rgba)) r = pg_fail(err, PG_ERR_OOM, "out of memory");
+    if (!r) r = pg_perceptual_compute(A->hdr, R->hdr, A->ldr, R->ldr, e->width, e->height, !job->no_hdr_flip, map,
+                                      &m->pm, err);
+    m->flicker = job->flicker_frames >= 2 ? pg_flicker_value(&m->fl, R->hdr, e->width, e->height) : NAN;
+    if (!r && job->flip_map) {
+        pg_flip_map_rgba(map, e->width, e->height, rgba);
+        if ((r = pg_write_image(job->flip_map, rgba, e->width, e->height, err))) pg_error_prefix(err, "--flip-map");
+    }
+    free(map);
+    free(rgba);
+    return r;
+}
+
+/* The report's perceptual and temporal lines. */
+static void print_measures(const compare_job *job, const side *A, const extra_measures *m)
+{
+    char b1[32], b2[32], b3[32];
+    printf("%-10s flip=%s (LDR-FLIP mean of the display images, %.4g ppd) ssim=%s (display luma)", "perceptual",
+           num(b1, sizeof b1, m->pm.flip), PG_FLIP_DEFAULT_PPD, num(b2, sizeof b2, m->pm.ssim));
+    if (job->no_hdr_flip) printf(" hdr_flip=nan (--no-hdr-flip)");
+    else
+        printf(" hdr_flip=%s (HDR-FLIP over %u exposures, %s .. %s stops)", num(b1, sizeof b1, m->pm.hdr_flip),
+               m->pm.hdr.exposures, num(b2, sizeof b2, m->pm.hdr.start_exposure),
+               num(b3, sizeof b3, m->pm.hdr.stop_exposure));
+    printf("; %.0f ms CPU\n", m->pm.cpu_ms);
+    printf("%-10s flicker=%s (%u frames, sample 0..%u; mean |frame k - frame k-1| / reference mean RGB)"
+           " accumulate=%u (the measured image is the mean of %u frames: %.3f GPU ms)\n",
+           "temporal", num(b1, sizeof b1, m->flicker), job->flicker_frames,
+           job->flicker_frames ? job->flicker_frames - 1 : 0, job->accumulate, job->accumulate,
+           A->gpu_ms * job->accumulate);
+    if (job->flip_map) printf("%-10s %s (LDR-FLIP per pixel over [0, 1])\n", "flip map", job->flip_map);
 }
 
 /* The heatmap of the linear error, its scale chosen by --heatmap-scale (or the 99th percentile). */
@@ -511,9 +647,10 @@ static void print_report(const compare_job *job, const pg_app *app, const side *
 }
 
 /* The one-line summary for scripts: "compare: key=value ...". */
-static void print_summary_line(const side *A, const side *R, const pg_frame_info *fi, const pg_image_error *e)
+static void print_summary_line(const side *A, const side *R, const pg_frame_info *fi, const pg_image_error *e,
+                               const extra_measures *m, uint32_t accumulate)
 {
-    char b1[32], b2[32], b3[32];
+    char b1[32], b2[32], b3[32], b4[32];
     printf("compare: pipeline=%s reference=%s lights=%u size=%ux%u", A->s->pipeline->name, R->s->pipeline->name,
            fi->lights.count, e->width, e->height);
     printf(" rmse_linear=%s psnr_linear=%s max_abs_linear=%s", num(b1, sizeof b1, e->rmse_linear),
@@ -525,7 +662,9 @@ static void print_summary_line(const side *A, const side *R, const pg_frame_info
            (unsigned long long)e->nonfinite_b, A->gpu_ms, R->gpu_ms);
     side_print_overflow(A, "", stdout);
     side_print_overflow(R, "reference_", stdout);
-    printf("\n");
+    printf(" flip=%s hdr_flip=%s ssim=%s flicker=%s accumulate=%u\n", num(b1, sizeof b1, m->pm.flip),
+           num(b2, sizeof b2, m->pm.hdr_flip), num(b3, sizeof b3, m->pm.ssim), num(b4, sizeof b4, m->flicker),
+           accumulate);
 }
 
 /* Render both sides, measure, write the heatmap and JSON, report: the exit status (0 or 1). */
@@ -538,13 +677,17 @@ static int run_compare(const compare_job *job, pg_app *app, pg_error *err)
     pg_frame_info fi;
     pg_image_error e;
     heat_scale_used heat = {0, ""};
-    if (render_sides(job, app, &A, &R, &fi, err) || measure_error(&A, &R, job->threshold, &e, err) ||
+    extra_measures m;
+    memset(&m, 0, sizeof m);
+    m.flicker = m.pm.flip = m.pm.hdr_flip = m.pm.ssim = NAN;
+    if (render_sides(job, app, &A, &R, &fi, err) || sample_pipeline(job, &A, &fi, &m, err) ||
+        measure_error(&A, &R, job->threshold, &e, err) || measure_extra(job, &A, &R, &e, &m, err) ||
         (job->heatmap && write_heatmap(job, &A, &R, &e, &heat, err)) ||
-        (job->json && write_json(job->json, &A, &job->pipe_ov, &R, &job->ref_ov, app, job->threshold, heat.scale,
-                                 job->heatmap, &e, err)))
+        (job->json && write_json(job, &A, &R, app, heat.scale, &e, &m, err)))
         goto done;
     print_report(job, app, &A, &R, &fi, &e, &heat);
-    print_summary_line(&A, &R, &fi, &e);
+    print_measures(job, &A, &m);
+    print_summary_line(&A, &R, &fi, &e, &m, job->accumulate);
     bool inexact = pg_app_check_exact("passgraph compare", "the pipeline's image", &A.st, job->opt.require_exact);
     inexact |= pg_app_check_exact("passgraph compare", "the reference image", &R.st, job->opt.require_exact) != 0;
     rc = inexact && job->opt.require_exact;

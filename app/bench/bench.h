@@ -24,6 +24,7 @@
 #include "app.h"
 #include "bench_stats.h"
 #include "commands.h"
+#include "frame_metrics.h"
 #include "image_compare.h"
 #include "image_util.h"
 #include "shader.h"
@@ -100,6 +101,8 @@ typedef struct bench_row {
     uint32_t grow_events;
     bool has_error;
     pg_image_error e;
+    pg_perceptual pm;                 /* with has_error: FLIP, HDR-FLIP, SSIM of the measured image */
+    double flicker;                   /* with has_error: NaN when --flicker-frames 0 */
     bool has_nonfinite;
     uint64_t nonfinite;
     char error_note[256];
@@ -142,6 +145,9 @@ typedef struct bench {
     bool device_known, device_cpu;    /* VK_PHYSICAL_DEVICE_TYPE_CPU: the default limit is a budget */
     uint32_t warmup;
     uint32_t frames_in_flight;
+    uint32_t accumulate;              /* --accumulate N: the measured image is the mean of N frames */
+    uint32_t flicker_frames;          /* --flicker-frames K (0: no flicker) */
+    bool no_hdr_flip;                 /* --no-hdr-flip */
     double time_step;
     const char *out_dir;
     /* --shard K/N (shard_n 0: the whole sweep); configurations: scenes x sizes x lights x n_vars */
@@ -214,6 +220,8 @@ pg_result make_dirs(const char *dir, pg_error *err);
 void series_label(const bench *B, uint32_t pipe, uint32_t var, char *buf, size_t size);
 pg_result pg_bench_chart_time_vs_lights(const bench *B, const char *path, pg_error *err);
 pg_result pg_bench_chart_passes(const bench *B, const char *path, pg_error *err);
-pg_result pg_bench_chart_error(const bench *B, const char *path, pg_error *err);
+/* the error axis of pg_bench_chart_error */
+typedef enum bench_metric { BENCH_METRIC_RMSE, BENCH_METRIC_FLIP } bench_metric;
+pg_result pg_bench_chart_error(const bench *B, const char *path, bench_metric metric, pg_error *err);
 
 #endif

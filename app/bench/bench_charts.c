@@ -229,7 +229,30 @@ oom:
                         "per-pass GPU timestamps (a pass includes its barriers)", err);
 }
 
-pg_result pg_bench_chart_error(const bench *B, const char *path, pg_error *err)
+/* the row's value on the error axis */
+static double row_metric(const bench_row *r, bench_metric metric)
+{
+    return metric == BENCH_METRIC_FLIP ? r->pm.flip : r->e.rmse_linear;
+}
+
+/* the chart's error axis, and its subtitle */
+static void error_axis(const bench *B, bench_metric metric, pg_plot_axis *y, char *what, size_t size)
+{
+    const bool flip = metric == BENCH_METRIC_FLIP;
+    *y = (pg_plot_axis){.label = flip ? "LDR-FLIP mean vs reference, display images (log)"
+                                      : "RMSE vs reference, linear HDR (log)",
+                        .scale = PG_PLOT_LOG10, .zero_label = "0 (exact)"};
+    char acc[96] = "";
+    if (B->accumulate > 1)
+        snprintf(acc, sizeof acc, "; each image the mean of %u frames, its time %u x the frame's", B->accumulate,
+                 B->accumulate);
+    snprintf(what, size,
+             "%s against %s (lower left is better); dashed: the Pareto front (no other point is both faster "
+             "and more accurate)%s",
+             flip ? "LDR-FLIP" : "RMSE", B->ref_name, acc);
+}
+
+pg_result pg_bench_chart_error(const bench *B, const char *path, bench_metric metric, pg_error *err)
 {
     chart_mem m = {0};
     uint32_t nb = n_blocks(B);
@@ -245,7 +268,7 @@ pg_result pg_bench_chart_error(const bench *B, const char *path, pg_error *err)
             const bench_row *r = &B->rows[i];
             if (!row_in_block(B, r, sc, si, li)) continue;
             any_row = true;
-            n += row_timed(r) && r->has_error;
+            n += row_timed(r) && r->has_error && !isnan(row_metric(r, metric));
         }
         if (!any_row) continue;
         pg_plot *pl = &plots[np++];
@@ -258,9 +281,10 @@ pg_result pg_bench_chart_error(const bench *B, const char *path, pg_error *err)
         uint32_t k = 0;
         for (uint32_t i = 0; i < B->n_rows; i++) {
             const bench_row *r = &B->rows[i];
-            if (!row_in_block(B, r, sc, si, li) || !row_timed(r) || !r->has_error) continue;
-            xs[k] = r->gpu.median;
-            ys[k] = r->e.rmse_linear;
+            if (!row_in_block(B, r, sc, si, li) || !row_timed(r) || !r->has_error || isnan(row_metric(r, metric)))
+                continue;
+            xs[k] = r->gpu.median * B->accumulate;
+            ys[k] = row_metric(r, metric);
             char lab[PG_NAME_MAX + 260];
             series_label(B, r->pipe, r->variant, lab, sizeof lab);
             int color;
@@ -299,15 +323,17 @@ pg_result pg_bench_chart_error(const bench *B, const char *path, pg_error *err)
             snprintf(note, sizeof note, "no error measured%s%s", en ? ": " : "", en ? en : "");
         pl->empty_message = cm_str(&m, note);
         pl->series = ser;
-        pl->x = (pg_plot_axis){.label = "GPU ms per frame, median (log)", .scale = PG_PLOT_LOG10};
-        pl->y = (pg_plot_axis){.label = "RMSE vs reference, linear HDR (log)", .scale = PG_PLOT_LOG10,
-                               .zero_label = "0 (exact)"};
+        pl->x = (pg_plot_axis){.label = B->accumulate > 1 ? "GPU ms per image (accumulate x median frame, log)"
+                                                          : "GPU ms per frame, median (log)",
+                               .scale = PG_PLOT_LOG10};
+        error_axis(B, metric, &pl->y, NULL, 0);
     }
 oom:;
-    char what[300];
-    snprintf(what, sizeof what,
-             "RMSE against %s (lower left is better); dashed: the Pareto front (no other point is both faster "
-             "and more accurate)",
-             B->ref_name);
-    return chart_finish(B, &m, path, plots, np, "passgraph bench: image error against GPU time", what, err);
+    char what[400];
+    pg_plot_axis unused;
+    error_axis(B, metric, &unused, what, sizeof what);
+    return chart_finish(B, &m, path, plots, np,
+                        metric == BENCH_METRIC_FLIP ? "passgraph bench: perceptual error (FLIP) against GPU time"
+                                                    : "passgraph bench: image error against GPU time",
+                        what, err);
 }

@@ -79,7 +79,7 @@ static pg_result row_read(const bench *B, const char *dir, const cJSON *o, bench
                        B->pipes[p].name, B->pipes[p].variants[v].label, r->width, r->height, r->lights);
     const char *st = jget_str(o, "status");
     int status = -1;
-    for (int k = 0; st && k < 4; k++)
+    for (int k = 0; st && k < (int)(sizeof status_names / sizeof status_names[0]); k++)
         if (!strcmp(st, status_names[k])) status = k;
     if (status < 0) return pg_fail(err, PG_ERR_PARSE, "%s/results.json: row %u: unknown status '%s'", dir, r->index, st ? st : "");
     r->status = (row_status)status;
@@ -124,6 +124,13 @@ static pg_result row_read(const bench *B, const char *dir, const cJSON *o, bench
         e->max_abs_display = jget_num(x, "max_abs_display");
         e->share_over_threshold = jget_num(x, "share_over_1");
         e->nonfinite_b = ju64(x, "reference_nonfinite", NULL);
+        r->pm.flip = jget_num(x, "flip");
+        r->pm.hdr_flip = jget_num(x, "hdr_flip");
+        r->pm.hdr.start_exposure = jget_num(x, "hdr_flip_start_exposure");
+        r->pm.hdr.stop_exposure = jget_num(x, "hdr_flip_stop_exposure");
+        r->pm.hdr.exposures = (uint32_t)ju64(x, "hdr_flip_exposures", NULL);
+        r->pm.ssim = jget_num(x, "ssim");
+        r->flicker = jget_num(x, "flicker");
     }
     r->nonfinite = ju64(o, "nonfinite", &r->has_nonfinite);
     pg_strlcpy(r->error_note, jget_str(o, "error_note") ? jget_str(o, "error_note") : "", sizeof r->error_note);
@@ -357,7 +364,7 @@ int pg_cmd_bench_merge(int argc, char **argv)
     B->t_start = now_s() - elapsed; /* meta.elapsed_s: the longest shard's */
     if (make_dirs(B->out_dir, &err) || write_outputs(B, &err)) goto fail;
     printf("bench-merge: %u rows (%u failed) from %u shards -> %s/results.csv, results.json, gpu_time_vs_lights.svg, "
-           "passes_stacked.svg, error_vs_time.svg\n",
+           "passes_stacked.svg, error_vs_time.svg, flip_vs_time.svg\n",
            B->n_rows, B->n_failed, sh[0].n, B->out_dir);
     rc = 0;
     goto done;

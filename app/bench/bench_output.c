@@ -66,7 +66,8 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
           "device_transient_bytes_aliased,overflow_clusters,overflow_dropped,overflow_clusters_max,light_refs,list_bytes,"
           "grow_events,reference,"
           "rmse_linear,psnr_linear,max_abs_linear,peak_linear,rmse_display,psnr_display,max_abs_display,"
-          "share_over_1,nonfinite,error_note,pipeline_path,reference_sets,frames_in_flight",
+          "share_over_1,nonfinite,error_note,pipeline_path,reference_sets,frames_in_flight,"
+          "flip,hdr_flip,ssim,flicker,flicker_frames,accumulate,accumulated_ms_median",
           f);
     for (int k = 0; k < 5; k++) fprintf(f, ",wait_ms_%s", stat_names[k]);
     for (uint32_t p = 0; p < u->n; p++)
@@ -113,6 +114,12 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
         csv_str(f, pe->path, false);
         csv_str(f, B->refs[va->ref].label, false);
         fprintf(f, ",%u", B->frames_in_flight);
+        csv_num(f, he ? r->pm.flip : NAN);
+        csv_num(f, he ? r->pm.hdr_flip : NAN);
+        csv_num(f, he ? r->pm.ssim : NAN);
+        csv_num(f, he ? r->flicker : NAN);
+        fprintf(f, ",%u,%u", B->flicker_frames, B->accumulate);
+        csv_num(f, r->gpu.n ? B->accumulate * r->gpu.median : NAN);
         for (int k = 0; k < 5; k++) csv_num(f, stat_get(&r->wait, k));
         for (uint32_t p = 0; p < u->n; p++) {
             const pass_stat *ps = NULL;
@@ -197,6 +204,9 @@ static cJSON *json_meta(const bench *B)
     cJSON_AddStringToObject(m, "reference_sweeps", B->ref_sweeps);
     cJSON_AddNumberToObject(m, "warmup", B->warmup);
     cJSON_AddNumberToObject(m, "frames_in_flight", B->frames_in_flight);
+    cJSON_AddNumberToObject(m, "accumulate", B->accumulate);
+    cJSON_AddNumberToObject(m, "flicker_frames", B->flicker_frames);
+    cJSON_AddBoolToObject(m, "hdr_flip", !B->no_hdr_flip);
     cJSON_AddNumberToObject(m, "frames", B->opt.frames);
     cJSON_AddNumberToObject(m, "time", B->opt.time);
     cJSON_AddNumberToObject(m, "time_step", B->time_step);
@@ -284,6 +294,7 @@ static cJSON *json_row(const bench *B, const bench_row *r)
         cJSON_AddNullToObject(o, "overflow");
     }
     cJSON_AddNumberToObject(o, "grow_events", r->grow_events);
+    cJSON_AddNumberToObject(o, "accumulate", B->accumulate);
     cJSON_AddStringToObject(o, "reference", B->ref_name);
     cJSON_AddStringToObject(o, "reference_sets", B->refs[va->ref].label);
     if (r->has_error) {
@@ -292,6 +303,14 @@ static cJSON *json_row(const bench *B, const bench_row *r)
         const pg_image_error_json_style style = {.share_key = "share_over_1", .nan_as_null = true};
         pg_image_error_json_add(m, e, &style);
         cJSON_AddNumberToObject(m, "reference_nonfinite", (double)e->nonfinite_b);
+        cJSON_AddItemToObject(m, "flip", jnum(r->pm.flip));
+        cJSON_AddItemToObject(m, "hdr_flip", jnum(r->pm.hdr_flip));
+        const bool hf = !isnan(r->pm.hdr_flip);
+        cJSON_AddItemToObject(m, "hdr_flip_start_exposure", jnum(hf ? r->pm.hdr.start_exposure : NAN));
+        cJSON_AddItemToObject(m, "hdr_flip_stop_exposure", jnum(hf ? r->pm.hdr.stop_exposure : NAN));
+        cJSON_AddItemToObject(m, "hdr_flip_exposures", jnum(hf ? r->pm.hdr.exposures : NAN));
+        cJSON_AddItemToObject(m, "ssim", jnum(r->pm.ssim));
+        cJSON_AddItemToObject(m, "flicker", jnum(r->flicker));
     } else {
         cJSON_AddNullToObject(o, "error");
     }
@@ -334,7 +353,9 @@ pg_result write_outputs(const bench *B, pg_error *err)
     snprintf(p, sizeof p, "%s/passes_stacked.svg", B->out_dir);
     if ((r = pg_bench_chart_passes(B, p, err))) return r;
     snprintf(p, sizeof p, "%s/error_vs_time.svg", B->out_dir);
-    return pg_bench_chart_error(B, p, err);
+    if ((r = pg_bench_chart_error(B, p, BENCH_METRIC_RMSE, err))) return r;
+    snprintf(p, sizeof p, "%s/flip_vs_time.svg", B->out_dir);
+    return pg_bench_chart_error(B, p, BENCH_METRIC_FLIP, err);
 }
 
 /* mkdir -p */

@@ -270,16 +270,48 @@ static void record_error_frame_counters(const pg_frame_stats *st, bench_row *row
     }
 }
 
+/* The measured image (the mean of --accumulate frames from the error frame hdr / ldr on) and the
+ * flicker of --flicker-frames frames (frame_metrics.h), then its error, perceptual metrics and
+ * flicker against the reference. A frame that does not render is returned (the row fails); a
+ * metric that cannot be computed leaves the note. */
+static pg_result measure_error(bench *B, pg_session *s, const pg_frame_info *fi, const reference *ref,
+                               bench_row *row, const float *hdr, const uint8_t *ldr, uint32_t w, uint32_t h,
+                               pg_error *e)
+{
+    const size_t n = (size_t)w * h * 4;
+    float *hm = malloc(n * sizeof *hm);
+    uint8_t *lm = malloc(n);
+    pg_flicker fl;
+    uint32_t extra = 0;
+    pg_result r = !hm || !lm ? pg_fail(e, PG_ERR_OOM, "out of memory")
+                             : pg_sample_frames(s, fi, B->accumulate, B->flicker_frames, hdr, ldr, w, h, hm, lm, &fl,
+                                                &extra, e);
+    B->done_work += extra * frame_work(w, h, row->lights);
+    pg_error ie = {0};
+    if (!r) {
+        if (pg_image_error_compute(hm, ref->hdr, lm, ref->ldr, w, h, 1.0, &row->e, &ie) ||
+            pg_perceptual_compute(hm, ref->hdr, lm, ref->ldr, w, h, !B->no_hdr_flip, NULL, &row->pm, &ie)) {
+            snprintf(row->error_note, sizeof row->error_note, "%s", ie.msg);
+        } else {
+            row->flicker = B->flicker_frames >= 2 ? pg_flicker_value(&fl, ref->hdr, w, h) : NAN;
+            row->has_error = true;
+        }
+    }
+    free(hm);
+    free(lm);
+    return r;
+}
+
 /* the error frame's images: non-finite pixels, and the error against the reference (or the note
- * that says why there is none) */
-static void compare_to_reference(const pg_session *s, const reference *ref, bool ref_skipped, bench_row *row,
-                                 float **hdr, uint8_t **ldr)
+ * that says why there is none); a failure to render the frames the measure needs is returned */
+static pg_result compare_to_reference(bench *B, pg_session *s, const pg_frame_info *fi, const reference *ref,
+                                      bool ref_skipped, bench_row *row, float **hdr, uint8_t **ldr, pg_error *e)
 {
     uint32_t w = 0, h = 0;
     pg_error ie = {0};
     if (grab_images(s, hdr, ldr, &w, &h, &ie)) {
         snprintf(row->error_note, sizeof row->error_note, "%s", ie.msg);
-        return;
+        return PG_OK;
     }
     row->has_nonfinite = true;
     row->nonfinite = pg_count_nonfinite(*hdr, w, h);
@@ -287,12 +319,12 @@ static void compare_to_reference(const pg_session *s, const reference *ref, bool
         /* note already says so */
     } else if (!ref->ok) {
         snprintf(row->error_note, sizeof row->error_note, "reference failed: %s", ref->msg);
-    } else if (pg_image_sizes_match("image vs reference", w, h, ref->w, ref->h, &ie) ||
-               pg_image_error_compute(*hdr, ref->hdr, *ldr, ref->ldr, w, h, 1.0, &row->e, &ie)) {
+    } else if (pg_image_sizes_match("image vs reference", w, h, ref->w, ref->h, &ie)) {
         snprintf(row->error_note, sizeof row->error_note, "%s", ie.msg);
     } else {
-        row->has_error = true;
+        return measure_error(B, s, fi, ref, row, *hdr, *ldr, w, h, e);
     }
+    return PG_OK;
 }
 
 /* a row that is not run: its variant did not load, or it is the reference past its light limit;
@@ -363,7 +395,7 @@ void run_row(bench *B, pg_app *app, const pg_frame_info *fi0, reference *refs, b
     B->done_work += fw;
     row->grow_events += st.n_grown;
     record_error_frame_counters(&st, row);
-    compare_to_reference(s, ref, ref_skipped, row, &hdr, &ldr);
+    if (compare_to_reference(B, s, &fi, ref, ref_skipped, row, &hdr, &ldr, &e)) goto fail;
     row->status = row->ov_dropped ? ROW_INEXACT : ROW_OK;
     if (row->ov_dropped)
         snprintf(row->message, sizeof row->message, "not exact: %llu light references dropped (list budget or "
@@ -390,6 +422,12 @@ void print_row(const bench *B, const bench_row *r)
     if (r->has_error) {
         if (isinf(r->e.psnr_linear)) printf(" rmse=%.4g psnr=inf", r->e.rmse_linear);
         else printf(" rmse=%.4g psnr=%.2f dB", r->e.rmse_linear, r->e.psnr_linear);
+        printf(" flip=%.4g", r->pm.flip);
+        if (!isnan(r->pm.hdr_flip)) printf(" hdr_flip=%.4g", r->pm.hdr_flip);
+        printf(" ssim=%.4g", r->pm.ssim);
+        if (!isnan(r->flicker)) printf(" flicker=%.4g", r->flicker);
+        if (B->accumulate > 1) printf(" accumulate=%u", B->accumulate);
+        printf(" (metrics %.0f ms CPU)", r->pm.cpu_ms);
     }
     if (r->has_overflow)
         printf(" overflow=%llu dropped=%llu refs=%llu lists=%.1fMiB", (unsigned long long)r->ov_clusters,

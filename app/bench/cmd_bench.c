@@ -20,9 +20,10 @@ static const char *const bench_help =
     "time blocked on fences; --frames-in-flight, default 2), transient memory\n"
     "before/after aliasing (the plan's numbers and the device memory allocated), light overflow of\n"
     "clustered pipelines, and the image error against the reference pipeline at --time (RMSE, PSNR,\n"
-    "max abs; linear HDR and 8-bit display). Writes DIR/results.csv, DIR/results.json and the charts\n"
-    "DIR/gpu_time_vs_lights.svg, DIR/passes_stacked.svg, DIR/error_vs_time.svg (docs/performance.md\n"
-    "documents every column). Timed frame k (warm-up frames included) renders at --time + k *\n"
+    "max abs; linear HDR and 8-bit display; LDR-FLIP, HDR-FLIP, SSIM; the flicker over\n"
+    "--flicker-frames frames). Writes DIR/results.csv, DIR/results.json and the charts\n"
+    "DIR/gpu_time_vs_lights.svg, DIR/passes_stacked.svg, DIR/error_vs_time.svg (RMSE) and\n"
+    "DIR/flip_vs_time.svg (LDR-FLIP) (docs/performance.md documents every column). Timed frame k (warm-up frames included) renders at --time + k *\n"
     "--time-step, so the lights move; the error frame is rendered at exactly --time, after them.\n"
     "Progress and ETA go to stderr; Ctrl-C finishes the current frame, writes what was measured and\n"
     "exits 130. Exit 0 when every configuration ran, 1 when one failed (its rows say why in 'status'\n"
@@ -67,6 +68,12 @@ static const char *const bench_help_options =
     "                       lights at 320x180, 5000 at 640x360, 555 at 1920x1080\n"
     "  --naive-max-lights N deprecated name of --reference-max-lights (prints a warning)\n"
     "  --out DIR            output folder (created if missing)\n"
+    "  --accumulate N       the measured image of a row is the mean of N frames at --time with sample\n"
+    "                       index 0..N-1 (a stochastic pipeline's error after N frames; default 1);\n"
+    "                       accumulated_ms_median = N x gpu_ms_median\n"
+    "  --flicker-frames K   flicker of each row: K frames at --time with sample 0..K-1, mean |frame k -\n"
+    "                       frame k-1| over RGB (linear) / the reference's mean RGB (default 4; 0: off)\n"
+    "  --no-hdr-flip        skip HDR-FLIP (LDR-FLIP at 2..14+ exposures: seconds a row at 1080p)\n"
     "  --shard K/N          run only the configurations (scene x size x light count x pipeline x variant,\n"
     "                       numbered in run order from 0) whose index % N == K-1, 1 <= K <= N; each\n"
     "                       shard renders the references its rows need; join with passgraph bench-merge\n"
@@ -108,7 +115,9 @@ static void estimate_work(bench *B, uint32_t vars)
         for (uint32_t li = 0; li < B->n_lights; li++) {
             double fw = frame_work(B->widths[si], B->heights[si], B->lights[li]);
             bool ref = B->lights[li] <= ref_limit(B, B->widths[si], B->heights[si]);
-            B->total_work += B->n_scenes * (vars * fw * (B->warmup + B->opt.frames + 1) + (ref ? 4 * fw * B->n_refs : 0));
+            const uint32_t extra = (B->accumulate > B->flicker_frames ? B->accumulate : B->flicker_frames) - 1;
+            B->total_work += B->n_scenes * (vars * fw * (B->warmup + B->opt.frames + 1 + (ref && extra > 0 ? extra : 0)) +
+                                            (ref ? 4 * fw * B->n_refs : 0));
         }
 }
 
@@ -226,7 +235,8 @@ static bool takes_value(const char *a)
            !strcmp(a, "--scene") || !strcmp(a, "--sweep") || !strcmp(a, "--warmup") ||
            !strcmp(a, "--frames-in-flight") ||
            !strcmp(a, "--naive-max-lights") || !strcmp(a, "--reference-max-lights") ||
-           !strcmp(a, "--time-step") || !strcmp(a, "--reference") || !strcmp(a, "--shard");
+           !strcmp(a, "--time-step") || !strcmp(a, "--reference") || !strcmp(a, "--shard") ||
+           !strcmp(a, "--accumulate") || !strcmp(a, "--flicker-frames");
 }
 
 /* --time-step S: a finite number in [0, 10000] */
@@ -275,6 +285,10 @@ static pg_result parse_value_option(bench *B, setup_args *sa, const char *a, cha
         sa->ref_arg = v;
     } else if (!strcmp(a, "--shard")) {
         r = parse_shard(B, v, err);
+    } else if (!strcmp(a, "--accumulate")) {
+        r = pg_parse_accumulate(a, v, &B->accumulate, err);
+    } else if (!strcmp(a, "--flicker-frames")) {
+        r = pg_parse_flicker_frames(a, v, &B->flicker_frames, err);
     } else { /* --time-step */
         r = parse_time_step(B, v, err);
     }
@@ -301,6 +315,8 @@ static int parse_bench_options(bench *B, setup_args *sa, int argc, char **argv)
             }
             i++;
             r = parse_value_option(B, sa, a, v, &err);
+        } else if (!strcmp(a, "--no-hdr-flip")) {
+            B->no_hdr_flip = true;
         } else if (!strcmp(a, "--explain") || !strcmp(a, "--view")) {
             r = pg_fail(&err, PG_ERR_INVALID_ARG, "%s: not supported by bench (use passgraph render %s)", a, a);
         } else {
@@ -370,6 +386,8 @@ int bench_setup(bench *B, int argc, char **argv)
     B->warmup = 2;
     B->frames_in_flight = 2;
     B->time_step = 1.0 / 60.0;
+    B->accumulate = 1;
+    B->flicker_frames = PG_FLICKER_FRAMES_DEFAULT;
     pg_error err = {0};
     setup_args sa = {0};
     if (save_args(B, argc, argv, &err)) { /* before the parsers split --set KEY=VALUE in place */
@@ -578,7 +596,7 @@ static int bench_finish(bench *B, int rc, const pg_error *err)
         rc = 1;
     } else {
         printf("bench: %u rows (%u failed)%s -> %s/results.csv, results.json, gpu_time_vs_lights.svg, "
-               "passes_stacked.svg, error_vs_time.svg\n",
+               "passes_stacked.svg, error_vs_time.svg, flip_vs_time.svg\n",
                B->n_rows, B->n_failed, B->interrupted ? " INTERRUPTED" : "", B->out_dir);
     }
     if (B->validation_messages) {

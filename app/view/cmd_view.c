@@ -70,7 +70,7 @@ static void print_view_help(void)
            "  --at FRAME:ACTION    scripted action at a frame (repeatable): resize=WxH, iconify,\n"
            "                       restore, copy=SRC:DST (an edit on disk), set=KEY=VALUE,\n"
            "                       pipeline=FILE.json, display=NAME, ocioview=NAME (OCIO),\n"
-           "                       diff=on|off, lights=N, screenshot=FILE.png,\n"
+           "                       diff=on|off|flip, lights=N, screenshot=FILE.png,\n"
            "                       capture[=FILE.rdc] (RenderDoc, as the C key),\n"
            "                       camera=auto|N|NAME (as the camera combo)\n"
            "  (--frames N          exit after N frames; 0 or absent: run until closed)\n",
@@ -418,6 +418,7 @@ static void close_viewer(viewer *v)
     free(v->diff_rgba);
     free(v->hdr_a);
     free(v->hdr_b);
+    free(v->flip_map);
     if (v->ui_ready) pg_ui_shutdown();
     pg_view_window_destroy(&v->win);
     pg_app_close(&v->app);

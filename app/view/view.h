@@ -22,6 +22,7 @@
 #include "app.h"
 #include "bench_stats.h"
 #include "commands.h"
+#include "frame_metrics.h"
 #include "image_compare.h"
 #include "image_util.h"
 #include "ocio.h"
@@ -81,6 +82,10 @@ typedef struct viewer {
     uint8_t *diff_rgba;
     float *hdr_a, *hdr_b;
     double diff_scale, diff_rmse;
+    /* the FLIP mode of the difference view: LDR-FLIP of the two display images on the CPU */
+    bool diff_flip, flip_said;
+    float *flip_map;
+    double flip_mean, flip_ms;
     /* hot reload */
     double watch_sig;
     double last_watch;

@@ -5,6 +5,31 @@
 
 /* ---------------------------------------------------------------- difference view */
 
+/* FLIP mode: the LDR-FLIP map of the two display outputs (w x h) in diff_rgba, its mean and cost
+ * (said once on stdout after the mode is chosen) */
+static pg_result update_flip(viewer *v, uint32_t w, uint32_t h, pg_error *err)
+{
+    uint32_t lw, lh, rw, rh;
+    pg_format fa, fb;
+    const uint8_t *a = pg_runtime_output(v->session->runtime, 0, &lw, &lh, &fa);
+    const uint8_t *b = pg_runtime_output(v->naive->runtime, 0, &rw, &rh, &fb);
+    if (!a || !b || lw != w || lh != h || rw != w || rh != h || (fa != PG_FMT_RGBA8_UNORM && fa != PG_FMT_RGBA8_SRGB) ||
+        (fb != PG_FMT_RGBA8_UNORM && fb != PG_FMT_RGBA8_SRGB))
+        return pg_fail(err, PG_ERR_INVALID_ARG, "FLIP view needs both pipelines' 8-bit display outputs at %ux%u", w, h);
+    float *map = realloc(v->flip_map, (size_t)w * h * sizeof *map);
+    if (!map) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    v->flip_map = map;
+    const double t0 = now_s();
+    pg_result r = pg_flip_ldr(a, b, w, h, NULL, map, &v->flip_mean, err);
+    if (r) return pg_error_prefix(err, "FLIP view");
+    v->flip_ms = (now_s() - t0) * 1e3;
+    pg_flip_map_rgba(map, w, h, v->diff_rgba);
+    if (!v->flip_said)
+        printf("view: FLIP against the reference: mean %.6g (%ux%u, %.1f ms CPU)\n", v->flip_mean, w, h, v->flip_ms);
+    v->flip_said = true;
+    return PG_OK;
+}
+
 static pg_result update_diff(viewer *v, pg_error *err)
 {
     uint32_t w, h, rw, rh;
@@ -37,8 +62,12 @@ static pg_result update_diff(viewer *v, pg_error *err)
     }
     pg_result r;
     if ((r = pg_hdr_to_float(a, fa, w, h, v->hdr_a, err)) || (r = pg_hdr_to_float(b, fb, w, h, v->hdr_b, err))) return r;
-    v->diff_scale = pg_error_quantile(v->hdr_a, v->hdr_b, w, h, 0.99);
-    pg_error_heatmap(v->hdr_a, v->hdr_b, w, h, v->diff_scale, v->diff_rgba);
+    if (v->diff_flip) {
+        if ((r = update_flip(v, w, h, err))) return r;
+    } else {
+        v->diff_scale = pg_error_quantile(v->hdr_a, v->hdr_b, w, h, 0.99);
+        pg_error_heatmap(v->hdr_a, v->hdr_b, w, h, v->diff_scale, v->diff_rgba);
+    }
     double se = 0;
     for (size_t i = 0; i < px * 4; i++)
         if (i % 4 != 3) se += (double)(v->hdr_a[i] - v->hdr_b[i]) * (v->hdr_a[i] - v->hdr_b[i]);

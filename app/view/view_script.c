@@ -51,7 +51,11 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
                                                   : colour_choose(v, NULL, a->arg, err);
         if (r) return pg_error_prefix(err, "--at %u:%s=%s", a->frame, a->what, a->arg);
     } else if (!strcmp(a->what, "diff")) {
-        v->diff = !strcmp(a->arg, "on");
+        if (strcmp(a->arg, "on") && strcmp(a->arg, "off") && strcmp(a->arg, "flip"))
+            return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:diff=%s: expected on, off or flip", a->frame, a->arg);
+        v->diff = strcmp(a->arg, "off") != 0;
+        v->diff_flip = !strcmp(a->arg, "flip");
+        v->flip_said = false;
     } else if (!strcmp(a->what, "lights")) {
         v->light_count = atoi(a->arg);
     } else if (!strcmp(a->what, "camera")) {

@@ -189,8 +189,13 @@ static void settings_window(viewer *v)
     if (pl && pg_ui_header("Pipeline parameters", true)) {
         for (uint32_t i = 0; i < pl->n_params; i++) param_widget(v, &pl->params[i]);
         if (pg_ui_checkbox("difference to the reference (heatmap)", &v->diff)) v->hist_n = 0;
-        if (v->diff)
-            pg_ui_text("linear RMSE %.4g, colour scale 0..%.4g", v->diff_rmse, v->diff_scale);
+        if (v->diff) {
+            if (pg_ui_checkbox("FLIP (perceptual, display images) instead", &v->diff_flip)) v->flip_said = false;
+            if (v->diff_flip)
+                pg_ui_text("LDR-FLIP mean %.4g, colour scale 0..1; %.0f ms CPU", v->flip_mean, v->flip_ms);
+            else
+                pg_ui_text("linear RMSE %.4g, colour scale 0..%.4g", v->diff_rmse, v->diff_scale);
+        }
     }
 }
 

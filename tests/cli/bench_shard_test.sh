@@ -35,7 +35,7 @@ grep -q "shard 1/2: 3 of 6 configurations" "$tmp/s1.log" && ok || bad "shard 1/2
 
 if "$PG" bench-merge --out "$tmp/merged" "$tmp/s2" "$tmp/s1" >"$tmp/m.log" 2>&1; then ok; else bad "bench-merge: exit $?"; cat "$tmp/m.log"; fi
 for d in s1 s2 merged; do
-  for f in gpu_time_vs_lights passes_stacked error_vs_time; do
+  for f in gpu_time_vs_lights passes_stacked error_vs_time flip_vs_time; do
     [ "$(head -c 5 "$tmp/$d/$f.svg" 2>/dev/null)" = "<svg " ] && tail -1 "$tmp/$d/$f.svg" | grep -q '</svg>' \
       && ok || bad "$d/$f.svg missing or not an SVG"
   done
@@ -60,7 +60,7 @@ for a, b in zip(full, merged):
     da = [a[i] for i in keep]; db = [b[i] for i in keep]
     assert da == db, "row differs:\n%s\n%s" % (list(zip([hf[i] for i in keep], da, db)),)
 # the error columns are compared too, and are not empty (each row has a reference frame)
-for c in ("rmse_linear", "psnr_display", "max_abs_linear"):
+for c in ("rmse_linear", "psnr_display", "max_abs_linear", "flip", "hdr_flip", "ssim", "flicker"):
     k = hf.index(c)
     assert all(r[k] != "" for r in full), c
     assert [r[k] for r in full] == [r[k] for r in merged], c
@@ -78,6 +78,8 @@ def untimed(row):
 jf = json.load(open(t + "/full/results.json")); jm = json.load(open(t + "/merged/results.json"))
 assert [untimed(r) for r in jf["rows"]] == [untimed(r) for r in jm["rows"]], "results.json rows differ"
 assert [r["index"] for r in jm["rows"]] == list(range(6))
+# deterministic pipelines: no flicker; the merged rows keep the perceptual numbers
+assert all(r["error"]["flicker"] == 0 for r in jm["rows"]) and all(r["accumulate"] == 1 for r in jm["rows"])
 js = json.load(open(t + "/s2/results.json"))
 assert js["meta"]["shard"] == {"k": 2, "n": 2}, js["meta"].get("shard")
 assert "shard" not in jm["meta"] and jm["meta"]["merged_shards"] == 2

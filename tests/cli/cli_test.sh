@@ -60,7 +60,8 @@ naive="$root/pipelines/naive.json"
 "$PG" --help | grep -q "compare" && ok || bad "passgraph --help does not list compare"
 "$PG" compare --help >"$tmp/h" || bad "compare --help exit"
 for o in --pipeline --reference --reference-set --pipeline-set --scene --scenario --lights --size --time --seed --set \
-         --device --validation --frames --heatmap --heatmap-scale --threshold --json pipelines/reference.json; do
+         --device --validation --frames --heatmap --heatmap-scale --threshold --json pipelines/reference.json \
+         --flip-map --no-hdr-flip --accumulate --flicker-frames; do
   grep -qF -- "$o" "$tmp/h" && ok || bad "compare --help does not document $o"
 done
 # compare_value KEY: the value of KEY= on the 'compare:' line of $tmp/out
@@ -78,6 +79,46 @@ grep -Eq '^compare: pipeline=naive reference=naive lights=8 size=64x36 rmse_line
 grep -q "validation message" "$tmp/err" && bad "compare: validation messages" || ok
 grep -Eq '"rmse_linear":[[:space:]]*0,' "$tmp/c.json" && grep -q '"psnr_linear":[[:space:]]*"inf"' "$tmp/c.json" \
   && ok || { bad "compare --json content"; cat "$tmp/c.json"; }
+# the perceptual and temporal numbers: printed on the compare: line and in --json (HDR-FLIP with its exposures)
+for k in flip hdr_flip ssim flicker accumulate; do
+  [ -n "$(compare_value $k)" ] && ok || { bad "compare: line lacks $k="; grep '^compare:' "$tmp/out"; }
+done
+[ "$(compare_value flip)" = 0 ] && [ "$(compare_value hdr_flip)" = 0 ] && [ "$(compare_value ssim)" = 1 ] \
+  && [ "$(compare_value flicker)" = 0 ] && ok || { bad "same pipeline twice: want flip=0 hdr_flip=0 ssim=1 flicker=0"; grep '^compare:' "$tmp/out"; }
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["flip"] == 0 and d["hdr_flip"] == 0 and d["ssim"] == 1 and d["flicker"] == 0, d
+assert d["hdr_flip_exposures"] >= 2 and d["hdr_flip_start_exposure"] <= d["hdr_flip_stop_exposure"] and d["accumulate"] == 1 and d["flicker_frames"] == 4, d' \
+  "$tmp/c.json" && ok || bad "compare --json: flip / hdr_flip (exposures) / ssim / flicker"
+# forward_plus and naive give bit-identical images: every perceptual and temporal number is exact
+"$PG" compare --pipeline "$root/pipelines/forward_plus.json" --reference "$naive" --size 64x36 --lights 64 --quiet \
+  --flip-map "$tmp/flip0.png" >"$tmp/out" 2>"$tmp/err" && ok || { bad "compare forward_plus: exit"; cat "$tmp/err"; }
+[ "$(compare_value rmse_linear)" = 0 ] && [ "$(compare_value flip)" = 0 ] && [ "$(compare_value ssim)" = 1 ] \
+  && [ "$(compare_value flicker)" = 0 ] && [ "$(compare_value hdr_flip)" = 0 ] && ok \
+  || { bad "forward_plus vs naive: want rmse 0, flip 0, hdr_flip 0, ssim 1, flicker 0"; grep '^compare:' "$tmp/out"; }
+# ris is stochastic: its image differs from the exact one (flip > 0) and changes with the sample (flicker > 0);
+# the mean of 16 frames is closer to the reference than one frame; --flip-map is a PNG of the image's size
+"$PG" compare --pipeline "$root/pipelines/ris.json" --reference "$naive" --size 64x36 --lights 64 --quiet --validation \
+  --flip-map "$tmp/flip.png" --json "$tmp/ris.json" >"$tmp/out" 2>"$tmp/err" && ok || { bad "compare ris: exit"; cat "$tmp/err"; }
+grep -q "validation message" "$tmp/err" && bad "compare ris: validation messages" || ok
+ris_rmse1=$(compare_value rmse_linear)
+awk -v f="$(compare_value flip)" -v k="$(compare_value flicker)" -v h="$(compare_value hdr_flip)" -v s="$(compare_value ssim)" \
+  'BEGIN { exit !(f > 0 && f < 1 && k > 0 && h > 0 && s < 1) }' && ok \
+  || { bad "ris vs naive: want flip > 0, hdr_flip > 0, ssim < 1, flicker > 0"; grep '^compare:' "$tmp/out"; }
+python3 "$root/tests/cli/png_stats.py" "$tmp/flip.png" | grep -q '^64 36 ' && ok || bad "compare --flip-map: not a 64x36 PNG"
+"$PG" compare --pipeline "$root/pipelines/ris.json" --reference "$naive" --size 64x36 --lights 64 --quiet --accumulate 16 \
+  --flicker-frames 0 >"$tmp/out" 2>"$tmp/err" && ok || { bad "compare ris --accumulate 16: exit"; cat "$tmp/err"; }
+awk -v a="$(compare_value rmse_linear)" -v b="$ris_rmse1" 'BEGIN { exit !(a > 0 && a < 0.7 * b) }' && ok \
+  || bad "ris: --accumulate 16 must cut the RMSE: rmse_linear=$(compare_value rmse_linear) against $ris_rmse1 for one frame"
+[ "$(compare_value accumulate)" = 16 ] && [ "$(compare_value flicker)" = nan ] && ok || { bad "compare --accumulate 16 --flicker-frames 0: line"; grep '^compare:' "$tmp/out"; }
+"$PG" compare --pipeline "$root/pipelines/ris.json" --reference "$naive" --size 64x36 --lights 64 --quiet --no-hdr-flip \
+  >"$tmp/out" 2>"$tmp/err" && [ "$(compare_value hdr_flip)" = nan ] && ok || { bad "compare --no-hdr-flip"; cat "$tmp/out" "$tmp/err"; }
+for v in 0 x -1 1.5 4097; do
+  expect_fail "compare --accumulate $v" "--accumulate $v: expected a whole number of frames in [1, 4096]" compare --accumulate "$v"
+  "$PG" compare --accumulate "$v" >/dev/null 2>&1; [ $? -eq 2 ] && ok || bad "compare --accumulate $v: want exit 2"
+done
+expect_fail "compare --flicker-frames 1" "--flicker-frames 1: flicker compares consecutive frames" compare --flicker-frames 1
+expect_fail "compare --flicker-frames y" "--flicker-frames y: expected 0 (off)" compare --flicker-frames y
+expect_fail "compare --flip-map .bmp" "--flip-map: $tmp/f.bmp: unsupported image extension" compare --flip-map "$tmp/f.bmp"
+expect_fail "compare: unwritable flip map" "cannot write" compare --reference "$naive" --size 32x18 --lights 4 --flip-map "$tmp/no/such/dir/f.png"
 # --pipeline-set: the reference declares hdr_format too, so --set would give both sides rgba32f
 "$PG" compare --pipeline "$naive" --reference "$naive" --pipeline-set hdr_format=rgba32f --size 64x36 --lights 8 --validation \
   --heatmap "$tmp/heat.png" >"$tmp/out" 2>"$tmp/err"
@@ -299,7 +340,8 @@ expect_fail "dump: unwritable out" "cannot write" dump --pipeline "$deferred" --
 "$PG" --help | grep -q "bench" && ok || bad "passgraph --help does not list bench"
 "$PG" bench --help >"$tmp/h" || bad "bench --help exit"
 for o in --pipelines --lights --size --warmup --frames --seed --out --set --sweep --reference --reference-max-lights \
-         --pipeline-set --reference-set --naive-max-lights --time-step --validation pipelines/reference.json; do
+         --pipeline-set --reference-set --naive-max-lights --time-step --validation pipelines/reference.json \
+         --accumulate --flicker-frames --no-hdr-flip flip_vs_time.svg; do
   grep -qF -- "$o" "$tmp/h" && ok || bad "bench --help does not document $o"
 done
 n_pipes=$(ls "$root"/pipelines/*.json | wc -l)
@@ -315,10 +357,48 @@ head -1 "$tmp/bench/results.csv" | grep -q '^scene,pipeline,variant,.*gpu_ms_med
 [ "$(grep -c ',ok,' "$tmp/bench/results.csv")" -eq $((n_pipes * 2)) ] && ok || bad "bench: not every row has status ok"
 python3 -c 'import json,sys;d=json.load(open(sys.argv[1]));assert len(d["rows"])==int(sys.argv[2])' \
   "$tmp/bench/results.json" $((n_pipes * 2)) && ok || bad "bench results.json does not parse or has the wrong row count"
-for f in gpu_time_vs_lights passes_stacked error_vs_time; do
+for f in gpu_time_vs_lights passes_stacked error_vs_time flip_vs_time; do
   [ "$(head -c 5 "$tmp/bench/$f.svg" 2>/dev/null)" = "<svg " ] && tail -1 "$tmp/bench/$f.svg" | grep -q '</svg>' \
     && ok || bad "bench did not write $f.svg"
 done
+# every row carries flip, hdr_flip, ssim, flicker, accumulate; deterministic pipelines flicker exactly 0, ris does not
+python3 - "$tmp/bench/results.csv" "$tmp/bench/results.json" <<'PYEOF' && ok || bad "bench: perceptual / temporal columns"
+import csv, json, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+for x in rows:
+    for c in ("flip", "hdr_flip", "ssim", "flicker"):
+        assert x[c] != "", (x["pipeline"], x["lights"], c)
+    assert x["accumulate"] == "1" and x["flicker_frames"] == "4" and float(x["accumulated_ms_median"]) == float(x["gpu_ms_median"]), x
+    if x["pipeline"] == "ris":
+        assert float(x["flicker"]) > 0 or x["lights"] == "0", x
+    else:
+        assert float(x["flicker"]) == 0, (x["pipeline"], x["lights"], x["flicker"])
+    assert 0 <= float(x["flip"]) <= 1 and float(x["ssim"]) <= 1, x
+assert any(x["pipeline"] == "ris" for x in rows)
+d = json.load(open(sys.argv[2]))
+for r in d["rows"]:
+    e = r["error"]
+    assert r["accumulate"] == 1 and all(k in e for k in ("flip", "hdr_flip", "hdr_flip_start_exposure", "hdr_flip_stop_exposure", "ssim", "flicker")), r
+assert d["meta"]["accumulate"] == 1 and d["meta"]["flicker_frames"] == 4 and d["meta"]["hdr_flip"] is True
+PYEOF
+grep -Eq '^bench: ris .* flip=[0-9.e-]+ hdr_flip=.* ssim=.* flicker=' "$tmp/out" && ok || { bad "bench: row line lacks flip / flicker"; grep '^bench: ris' "$tmp/out"; }
+# --accumulate in bench: the mean of 8 frames of ris is closer to the reference than one frame
+"$PG" bench --pipelines ris --reference "$naive" --lights 64 --size 64x36 --frames 1 --warmup 0 --quiet --accumulate 8 \
+  --flicker-frames 0 --no-hdr-flip --out "$tmp/bench_acc" >"$tmp/out" 2>"$tmp/err" && ok || { bad "bench --accumulate 8: exit"; cat "$tmp/err"; }
+"$PG" bench --pipelines ris --reference "$naive" --lights 64 --size 64x36 --frames 1 --warmup 0 --quiet \
+  --out "$tmp/bench_acc1" >"$tmp/out" 2>"$tmp/err" && ok || { bad "bench ris: exit"; cat "$tmp/err"; }
+python3 - "$tmp/bench_acc/results.csv" "$tmp/bench_acc1/results.csv" <<'PYEOF' && ok || bad "bench --accumulate 8: columns or error"
+import csv, sys
+a = list(csv.DictReader(open(sys.argv[1])))[0]; b = list(csv.DictReader(open(sys.argv[2])))[0]
+assert a["accumulate"] == "8" and abs(float(a["accumulated_ms_median"]) - 8 * float(a["gpu_ms_median"])) < 1e-3 * float(a["accumulated_ms_median"]), a
+assert a["flicker"] == "" and a["hdr_flip"] == "" and a["flip"] != "", a
+assert float(a["rmse_linear"]) < 0.7 * float(b["rmse_linear"]) and float(a["flip"]) < float(b["flip"]), (a["rmse_linear"], b["rmse_linear"], a["flip"], b["flip"])
+PYEOF
+for v in 0 x; do
+  expect_fail "bench --accumulate $v" "--accumulate $v: expected a whole number" bench --accumulate "$v" --out "$tmp/bx"
+  "$PG" bench --accumulate "$v" --out "$tmp/bx" >/dev/null 2>&1; [ $? -eq 2 ] && ok || bad "bench --accumulate $v: want exit 2"
+done
+expect_fail "bench --flicker-frames 1" "--flicker-frames 1:" bench --flicker-frames 1 --out "$tmp/bx"
 "$PG" bench --pipelines all --lights 16 --size 64x36 --frames 1 --warmup 0 --sweep gbuffer=float,packed \
   --out "$tmp/bench2" >"$tmp/out" 2>"$tmp/err"
 rc=$?

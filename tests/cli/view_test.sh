@@ -2,7 +2,8 @@
 # view_test.sh PASSGRAPH_BINARY - the viewer under Xvfb with lavapipe, validation and
 # synchronization validation on: every pipeline is cycled through, the window is resized, a
 # pipeline file is broken on disk (the error is reported, the last good graph keeps running) and
-# mended (it reloads), parameters, the OCIO view and display and the difference view are switched,
+# mended (it reloads), parameters, the OCIO view and display and the difference view (linear error,
+# then FLIP) are switched,
 # and the screenshot (scene + UI) is written. Any validation message fails the run.
 set -u
 PG=$1
@@ -12,25 +13,27 @@ if ! command -v xvfb-run >/dev/null; then echo "view_test: skipped: xvfb-run not
 cp -r "$root/pipelines" "$tmp/"
 printf '{ "name": broken' >"$tmp/broken.json"
 
-xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --validation --size 320x180 --frames 48 --lights 48 \
+xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --validation --size 320x180 --frames 54 --lights 48 \
   --pipeline "$tmp/pipelines/forward_plus.json" --pipelines "$tmp/pipelines" --cycle-pipelines --cycle-every 6 \
   --at 3:resize=400x240 --at 9:set=view=cluster_heat --at 13:copy="$tmp/broken.json:$tmp/pipelines/naive.json" \
   --at 15:pipeline=naive.json --at 20:copy="$root/pipelines/naive.json:$tmp/pipelines/naive.json" \
-  --at 25:diff=on --at 30:diff=off --at 33:resize=320x180 --at 35:lights=0 --at 40:lights=64 \
+  --at 25:diff=on --at 27:diff=flip --at 30:diff=off --at 33:resize=320x180 --at 35:lights=0 --at 40:lights=64 \
   --at "42:ocioview=Filmic (ACES)" --at 44:display=Rec.1886 \
   --screenshot "$tmp/shot.png" >"$tmp/out" 2>"$tmp/err"
 rc=$?
 [ $rc -eq 0 ] && ok || { bad "view exit $rc"; tail -20 "$tmp/err"; }
 grep -q "validation message" "$tmp/err" && { bad "validation messages"; grep -m3 "validation" "$tmp/err"; } || ok
 grep -q "switching to" "$tmp/out" && ok || bad "no pipeline cycling"
+grep -Eq '^view: FLIP against the reference: mean [0-9.e+-]+ \([0-9]+x[0-9]+, ' "$tmp/out" && ok || bad "diff=flip: no FLIP map computed"
 grep -q "JSON syntax error" "$tmp/err" && ok || bad "broken pipeline error not reported"
 [ "$(grep -c 'change on disk' "$tmp/out")" -ge 2 ] && ok || bad "edits on disk not reloaded"
-grep -Eq '^view: 48 frames' "$tmp/out" && ok || { bad "did not run 48 frames"; tail -3 "$tmp/out"; }
+grep -Eq '^view: 54 frames' "$tmp/out" && ok || { bad "did not run 54 frames"; tail -3 "$tmp/out"; }
 grep -q "frame 42: ocioview Filmic (ACES)" "$tmp/out" && grep -q "frame 44: display Rec.1886" "$tmp/out" \
   && ok || bad "OCIO view / display not switched"
 grep -Eq 'swapchain builds' "$tmp/out" && ! grep -q '1 swapchain builds' "$tmp/out" && ok || bad "resize did not rebuild the swapchain"
 [ "$(head -c 4 "$tmp/shot.png" 2>/dev/null | tail -c 3)" = PNG ] && ok || bad "no screenshot"
-for p in naive forward_plus deferred deferred_oct16 deferred_packed reference; do
+# 8 pipelines, one every 6 frames: frame 48 comes back to the first
+for p in naive forward_plus deferred deferred_oct16 deferred_packed reference ris visibility; do
   grep -q "switching to $p.json\|pipeline $p.json" "$tmp/out" && ok || bad "pipeline $p.json never shown"
 done
 
