@@ -58,6 +58,20 @@ void pg_light_specular(vec3 color, float att, vec3 L, vec3 N, vec3 V, float shin
 #endif
 }
 
+#ifdef PG_STOCHASTIC_CULL
+// Stochastic light culling (shaders/stochastic_lights.comp): a kept light counts 1/p times, p =
+// min(1, lum(colour) att / tau) its probability of being kept at this point (the lists and the range
+// test use the light's random range; att uses its true range). Unbiased: E = p x f/p = f.
+float pg_sc_rescale(vec3 color, float att)
+{
+    float p = min(1.0, dot(color, vec3(0.2126, 0.7152, 0.0722)) * att / (float(PG_SC_TAU_MICRO) * 1e-6));
+    return p > 0.0 ? 1.0 / p : 0.0;
+}
+#define PG_SC_COLOR(c, att) ((c) * pg_sc_rescale((c), (att)))
+#else
+#define PG_SC_COLOR(c, att) (c)
+#endif
+
 // One light, as the inner loops read it: rel = its centre camera-relative (world - cam), R2 = R^2,
 // inv_r2 = pg_light_inv_r2(R2). P camera-relative; inv_md2 = 1 / dmin^2.
 void pg_accumulate_light_rel(vec3 rel, float R2, float inv_r2, vec3 color, vec3 P, vec3 N, vec3 V,
@@ -69,8 +83,9 @@ void pg_accumulate_light_rel(vec3 rel, float R2, float inv_r2, vec3 color, vec3 
     float att;
     vec3 L;
     float w = pg_light_term(Ld, d2, inv_r2, N, inv_md2, att, L);
-    acc.diffuse += color * w;
-    pg_light_specular(color, att, L, N, V, shininess, acc);
+    vec3 c = PG_SC_COLOR(color, att);
+    acc.diffuse += c * w;
+    pg_light_specular(c, att, L, N, V, shininess, acc);
 }
 
 // The same sum without a branch: a light out of range adds exactly 0.
@@ -83,8 +98,9 @@ void pg_accumulate_light_rel_select(vec3 rel, float R2, float inv_r2, vec3 color
     float att;
     vec3 L;
     float w = pg_light_term(Ld, d2, inv_r2, N, inv_md2, att, L);
-    acc.diffuse += color * (in_range ? w : 0.0);
-    if (in_range) pg_light_specular(color, att, L, N, V, shininess, acc);
+    vec3 c = PG_SC_COLOR(color, att);
+    acc.diffuse += c * (in_range ? w : 0.0);
+    if (in_range) pg_light_specular(c, att, L, N, V, shininess, acc);
 }
 
 // P is camera-relative (world - cam); the light is moved into the same frame first.
@@ -94,8 +110,14 @@ void pg_accumulate_light(Light light, vec3 cam, vec3 P, vec3 N, vec3 V, float sh
     float R = light.pos_radius.w;
     float R2 = R * R;
     float md2 = min_dist * min_dist;
-    pg_accumulate_light_rel(light.pos_radius.xyz - cam, R2, pg_light_inv_r2(R2), light.color.rgb, P, N, V,
-                            shininess, 1.0 / md2, acc);
+#ifdef PG_STOCHASTIC_CULL
+    float Rt = light.color.w; // the true range: the falloff's (pos_radius.w is the random one)
+    float inv_r2 = pg_light_inv_r2(Rt * Rt);
+#else
+    float inv_r2 = pg_light_inv_r2(R2);
+#endif
+    pg_accumulate_light_rel(light.pos_radius.xyz - cam, R2, inv_r2, light.color.rgb, P, N, V, shininess, 1.0 / md2,
+                            acc);
 }
 
 // The colour of a shaded point from its summed light terms: every shading pass ends with this

@@ -380,7 +380,11 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #endif
             if (keep) {   // what pg_accumulate_light_rel reads, computed once per tile
                 float R2 = L.pos_radius.w * L.pos_radius.w;
+#ifdef PG_STOCHASTIC_CULL
+                s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(L.color.w * L.color.w)); // true range
+#else
                 s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(R2));
+#endif
                 s_tl_light[2u * pos + 1u] = vec4(L.color.rgb, R2);
             }
             barrier();

@@ -15,7 +15,11 @@
  * kept lights through shared memory; bit-identical to false, with far fewer light evaluations),
  * ris_candidates (0, the default: every light of the list, exact; M > 0: the approximation knob of
  * shaders/shading.glsl pg_ris_estimate, M candidates a sample, resampled importance sampling of
- * the list; no tiling), ris_samples (1..64, default 1: independent RIS samples averaged a pixel). */
+ * the list; no tiling), ris_samples (1..64, default 1: independent RIS samples averaged a pixel),
+ * lights ("clusters", the default, or "tree": reads [light_tree, depth, ...] and shades a lightcut
+ * a pixel, shaders/shading.glsl pg_lightcut), lightcut_error (0.02: its per-pixel relative bound),
+ * stochastic_threshold (0 = off; > 0: the lights were culled by a stochastic_lights pass with that
+ * threshold, and each kept light counts 1/p times, lighting.glsl PG_STOCHASTIC_CULL). */
 #include <stdio.h>
 #include <string.h>
 
@@ -52,7 +56,7 @@ typedef struct deferred_lighting {
 } deferred_lighting;
 
 static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", "ris_candidates", "ris_samples",
-                                     "lights", "lightcut_error", NULL};
+                                     "lights", "lightcut_error", "stochastic_threshold", NULL};
 static const char *const k_light_sources[] = {"clusters", "tree", NULL};
 
 static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
@@ -126,6 +130,14 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         pg_decl_explain(out, "ris_candidates %lld, ris_samples %lld: an approximation (unbiased): %lld light "
                         "evaluations a pixel instead of its whole cluster list", (long long)ris_m, (long long)ris_s,
                         (long long)(ris_m * ris_s));
+    }
+    double sc_tau;
+    if ((r = pg_opt_float(in->desc, "stochastic_threshold", 0.0, 0.0, 1e6, &sc_tau, err))) return r;
+    if (sc_tau > 0 && source == 0 && pg_lights_of(in) > 0) {
+        pg_decl_define(out, "PG_STOCHASTIC_CULL");
+        pg_decl_define_int(out, "PG_SC_TAU_MICRO", (int64_t)(sc_tau * 1e6 + 0.5));
+        pg_decl_explain(out, "stochastic_threshold %g: the lights (culled by a stochastic_lights pass with the same "
+                        "threshold) count 1/p times: unbiased, noisy", sc_tau);
     }
     double lc_eps;
     if ((r = pg_opt_float(in->desc, "lightcut_error", 0.02, 1e-6, 1.0, &lc_eps, err))) return r;

@@ -13,7 +13,7 @@ if ! command -v xvfb-run >/dev/null; then echo "view_test: skipped: xvfb-run not
 cp -r "$root/pipelines" "$tmp/"
 printf '{ "name": broken' >"$tmp/broken.json"
 
-xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --validation --size 320x180 --frames 54 --lights 48 \
+xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --validation --size 320x180 --frames 66 --lights 48 \
   --pipeline "$tmp/pipelines/forward_plus.json" --pipelines "$tmp/pipelines" --cycle-pipelines --cycle-every 6 \
   --at 3:resize=400x240 --at 9:set=view=cluster_heat --at 13:copy="$tmp/broken.json:$tmp/pipelines/naive.json" \
   --at 15:pipeline=naive.json --at 20:copy="$root/pipelines/naive.json:$tmp/pipelines/naive.json" \
@@ -27,13 +27,13 @@ grep -q "switching to" "$tmp/out" && ok || bad "no pipeline cycling"
 grep -Eq '^view: FLIP against the reference: mean [0-9.e+-]+ \([0-9]+x[0-9]+, ' "$tmp/out" && ok || bad "diff=flip: no FLIP map computed"
 grep -q "JSON syntax error" "$tmp/err" && ok || bad "broken pipeline error not reported"
 [ "$(grep -c 'change on disk' "$tmp/out")" -ge 2 ] && ok || bad "edits on disk not reloaded"
-grep -Eq '^view: 54 frames' "$tmp/out" && ok || { bad "did not run 54 frames"; tail -3 "$tmp/out"; }
+grep -Eq '^view: 66 frames' "$tmp/out" && ok || { bad "did not run 66 frames"; tail -3 "$tmp/out"; }
 grep -q "frame 42: ocioview Filmic (ACES)" "$tmp/out" && grep -q "frame 44: display Rec.1886" "$tmp/out" \
   && ok || bad "OCIO view / display not switched"
 grep -Eq 'swapchain builds' "$tmp/out" && ! grep -q '1 swapchain builds' "$tmp/out" && ok || bad "resize did not rebuild the swapchain"
 [ "$(head -c 4 "$tmp/shot.png" 2>/dev/null | tail -c 3)" = PNG ] && ok || bad "no screenshot"
-# 8 pipelines, one every 6 frames: frame 48 comes back to the first
-for p in naive forward_plus deferred deferred_oct16 deferred_packed reference ris visibility; do
+# 10 pipelines, one every 6 frames: frame 60 comes back to the first
+for p in naive forward_plus deferred deferred_oct16 deferred_packed reference ris visibility lightcut stochastic; do
   grep -q "switching to $p.json\|pipeline $p.json" "$tmp/out" && ok || bad "pipeline $p.json never shown"
 done
 

@@ -18,10 +18,17 @@
  * - Planted biases fail: (a) every frame scaled by M / (M + 1) (the reservoir's weight sum divided by
  *   M + 1 instead of M: a 11% bias at M = 8); (b) max_lights 4, lists that miss lights the exact
  *   image has (an explicit knob: RIS over an incomplete list is biased). Both must break the
- *   region bound somewhere, so the test can fail. */
+ *   region bound somewhere, so the test can fail.
+ * - Stochastic light culling (pipelines/stochastic.json, stochastic_threshold 0.02): the same region
+ *   test over 64 frames, the RMSE of 1 frame over that of 16 near 4, and a planted bias (a copy
+ *   of the pipeline whose shading pass rescales with twice the culling pass's threshold) that must
+ *   break the region bound. Per pixel, culling's estimate is far from normal with 64 frames (a few
+ *   lights switch on or off together over a whole region of pixels), so only regions are asserted. */
+#define _DEFAULT_SOURCE /* mkdtemp, symlink */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "gpu_harness.h"
 #include "image_util.h"
@@ -46,7 +53,8 @@ static bool render_frames(const char *pipeline, const pg_param_override *sets, u
                           uint32_t n, float *imgs)
 {
     char path[PG_PATH_MAX];
-    pg_data_path(path, sizeof path, pipeline);
+    if (pipeline[0] == '/') snprintf(path, sizeof path, "%s", pipeline);
+    else pg_data_path(path, sizeof path, pipeline);
     pg_session_desc sd = {.pipeline_path = path, .registry = &g_reg, .overrides = sets, .n_overrides = n_sets};
     pg_session *s = NULL;
     pg_error err = {0};
@@ -211,6 +219,75 @@ static void check_ris(void)
     free(capped);
 }
 
+/* A copy of pipelines/stochastic.json whose shading pass rescales with twice the culling pass's
+ * threshold (a planted bias: the kept lights count 1/p' times with p' != p) at path. */
+static bool write_mismatched(const char *path)
+{
+    char src[PG_PATH_MAX];
+    pg_data_path(src, sizeof src, "pipelines/stochastic.json");
+    FILE *f = fopen(src, "rb");
+    if (!f) return false;
+    char buf[16384];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = 0;
+    /* the shading pass's option (the second "$stochastic_threshold" reference; the first is the
+     * culling pass's) becomes a literal 0.04 while the parameter stays 0.02 */
+    char *first = strstr(buf, "\"threshold\": \"$stochastic_threshold\"");
+    char *second = first ? strstr(buf, "\"stochastic_threshold\": \"$stochastic_threshold\"") : NULL;
+    if (!second) return false;
+    FILE *o = fopen(path, "wb");
+    if (!o) return false;
+    fwrite(buf, 1, (size_t)(second - buf), o);
+    fputs("\"stochastic_threshold\": 0.04", o);
+    fputs(second + strlen("\"stochastic_threshold\": \"$stochastic_threshold\""), o);
+    fclose(o);
+    return true;
+}
+
+/* Stochastic light culling (pipelines/stochastic.json, threshold 0.02 on this set-up): the same
+ * region test over 64 frames (each frame its own random ranges), the 1/sqrt(n) fall, and a planted
+ * bias (the shading pass rescaling with another threshold than the culling pass) that must fail. */
+static void check_culling(void)
+{
+    const size_t px = (size_t)W * H * 4;
+    float *exact = malloc(px * sizeof(float)), *imgs = malloc(K * px * sizeof(float));
+    pg_param_override f32 = {"hdr_format", "rgba32f"};
+    pg_param_override sc[2] = {{"hdr_format", "rgba32f"}, {"stochastic_threshold", "0.02"}};
+    bool ok = exact && imgs && render_frames("pipelines/visibility.json", &f32, 1, 0, 1, exact) &&
+              render_frames("pipelines/stochastic.json", sc, 2, 0, K, imgs);
+    if (ok) {
+        CHECK_MSG(memcmp(imgs, imgs + px, px * sizeof(float)) != 0, "culling: samples 0 and 1 give one image");
+        bias_result b = bias_test(imgs, K, 1.0, exact);
+        printf("culling unbiased: %u of %d regions outside 4 SE (worst %.2f SE); pixels: %u of %u channels outside "
+               "4 SE\n", b.bad_regions, NREG, b.worst_z, b.px_outside, b.px_total);
+        CHECK_MSG(b.bad_regions == 0, "culling biased: %u regions outside 4 SE (worst %.2f)", b.bad_regions, b.worst_z);
+        double r1 = rmse_groups(imgs, K, 1, exact), r16 = rmse_groups(imgs, K, 16, exact);
+        printf("culling rmse of the mean: 1 frame %.4g, 16 frames %.4g (ratio %.2f, expected 4)\n", r1, r16, r1 / r16);
+        CHECK_MSG(r1 > 0 && r1 / r16 > 3.0 && r1 / r16 < 5.3, "culling: rmse 1 -> 16 frames fell by %.2f", r1 / r16);
+    }
+    /* the copy lives in a folder of its own with a link to the shipped fragments (includes are
+     * resolved next to the including file) */
+    char dir[] = "/tmp/pg_stochastic_XXXXXX", bad[PG_PATH_MAX], frag[PG_PATH_MAX], link_path[PG_PATH_MAX];
+    if (ok && mkdtemp(dir)) {
+        snprintf(bad, sizeof bad, "%s/mismatch.json", dir);
+        snprintf(link_path, sizeof link_path, "%s/fragments", dir);
+        pg_data_path(frag, sizeof frag, "pipelines/fragments");
+        CHECK_MSG(symlink(frag, link_path) == 0 && write_mismatched(bad), "could not write the planted-bias pipeline");
+        if (render_frames(bad, sc, 2, 0, K, imgs)) {
+            bias_result pb = bias_test(imgs, K, 1.0, exact);
+            printf("planted bias (rescale with 2x the threshold): %u of %d regions outside 4 SE (worst %.2f SE)\n",
+                   pb.bad_regions, NREG, pb.worst_z);
+            CHECK_MSG(pb.bad_regions > 0, "the test does not see a mismatched rescale");
+        }
+        unlink(bad);
+        unlink(link_path);
+        rmdir(dir);
+    }
+    free(exact);
+    free(imgs);
+}
+
 int main(void)
 {
     if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_stochastic", "PG_TEST_NO_GPU set");
@@ -223,6 +300,7 @@ int main(void)
     }
     if (pg_th_scene_open(g_gpu, "atrium", "default", NULL, W, H, LIGHTS, &g_scene)) {
         check_ris();
+        check_culling();
         pg_th_scene_close(g_gpu, &g_scene);
     } else {
         CHECK_MSG(0, "scene");
