@@ -117,10 +117,12 @@ vec3 pg_ris_estimate(Surface s, uvec4 rec, vec3 P, vec3 V, vec2 frag_xy)
 #if defined(PG_LIGHTCUT) && defined(PG_HAS_LIGHTS)
 // ---- lightcut over the light tree (approximation knob with a per-pixel bound, PG_LIGHTCUT) ----
 // A depth-first walk of the tree, nearer child first. A node's contribution lies in [0, U] per
-// channel, U = summed colour x min(1/dmin^2, 1/dmin_light^2) x (albedo + specular) where dmin is the
-// distance from the point to the box of the node's light centres; U = 0 (skipped: exact) when
-// dmin >= the node's largest radius (every light's falloff is 0) or every light centre lies behind
-// the surface's tangent plane (every N.L <= 0). A leaf is summed exactly (the model of
+// channel, U = summed colour x min(1/dmin^2, 1/dmin_light^2) x falloff(dmin / Rmax) x (albedo x
+// cos_max (+ specular with Blinn-Phong)) where dmin is the distance from the point to the box of
+// the node's light centres, Rmax the node's largest radius and cos_max = min(1, max over the box's
+// corners of N.(c - P) / dmin) bounds N.L; U = 0 (skipped: exact) when dmin >= Rmax (every
+// light's falloff is 0) or every light centre lies behind the surface's tangent plane (every
+// N.L <= 0). A leaf is summed exactly (the model of
 // lighting.glsl) into E; a node may instead be approximated by its representative light (summed
 // colour at the weighted centroid, largest radius) clamped to [0, U], with error bound
 // b = max(U - est, est), only while B + b <= eps E in every channel (B: the bounds spent so far).
@@ -148,14 +150,24 @@ vec3 pg_lc_upper(uint n, Surface s, vec3 P, vec3 cam, float inv_md2, out float d
     float dm = max(sqrt(d2) * (1.0 - 1e-4) - 1e-6 * scale, 0.0);
     dmin2_out = dm * dm;
     if (!(rh.x >= rl.x) || dm >= lo.w * (1.0 + 1e-4)) return vec3(0.0); // empty, or out of every range
-    float behind = -3.0e38;                                               // max over corners of N.(c - P)
+    float front = -3.0e38;                                                // max over corners of N.(c - P)
     for (int k = 0; k < 8; k++) {
         vec3 corner = vec3((k & 1) != 0 ? rh.x : rl.x, (k & 2) != 0 ? rh.y : rl.y, (k & 4) != 0 ? rh.z : rl.z);
-        behind = max(behind, dot(s.normal, corner - P));
+        front = max(front, dot(s.normal, corner - P));
     }
-    if (behind < -(1e-5 * scale + 1e-6)) return vec3(0.0);
-    float att = min(dm > 0.0 ? 1.0 / dmin2_out : 3.0e38, inv_md2);
-    return c * (att * (s.albedo + vec3(s.specular)));
+    float slack = 1e-5 * scale + 1e-6;
+    if (front < -slack) return vec3(0.0);
+    // N.L <= N.(x - P) / |x - P| <= (front + slack) / dm for every centre x of the box
+    float cos_max = dm > 0.0 ? min(1.0, (front + slack) / dm) : 1.0;
+    // falloff(d / R) <= falloff(dm / Rmax): it falls with d and rises with R
+    float t = dmin2_out / (lo.w * lo.w);
+    float falloff = clamp(1.0 - t * t, 0.0, 1.0) * (1.0 + 1e-5) + 1e-6;
+    float att = min(dm > 0.0 ? 1.0 / dmin2_out : 3.0e38, inv_md2) * min(falloff, 1.0);
+#ifdef PG_BLINN_PHONG
+    return c * (att * (s.albedo * cos_max + vec3(s.specular)));
+#else
+    return c * (att * cos_max) * s.albedo;
+#endif
 }
 
 vec3 pg_lc_light(Surface s, vec3 pos, float R, vec3 color, vec3 cam, vec3 P, vec3 V, float inv_md2)
