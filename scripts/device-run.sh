@@ -13,6 +13,14 @@
 #                  of less / equal / none, and 1,000,000 lights once
 #   ab             the same bench with two bundles (OLD_BUNDLE against BUNDLE), two rounds
 #   sweep          cluster grid and tile size of visibility and deferred_oct16
+#   manylight      every pipeline, exact and approximate, 1,000 / 100,000 / 1,000,000 lights: time
+#                  per pass, RMSE, FLIP, SSIM, flicker against the reference (naive at 1,000 only:
+#                  it takes about 70 s a frame at 1,000,000)
+#   knobs          the approximation knobs at 1,000,000 lights (stochastic_threshold,
+#                  ris_candidates, lightcut_error) and the accumulation curve of the stochastic
+#                  pipeline (--accumulate 1, 4, 16, 64)
+#   stress         radius 6 at 1,000,000 lights (exact? list memory), a dense clump of lights
+#                  (assets/scenarios/clump.json), 3840x2160 at 100,000 lights
 #
 # Inputs (environment, with defaults):
 #   BUNDLE=.bundle/final        the bundle to measure (its COMMIT file names the commit)
@@ -116,10 +124,37 @@ for step in "${STEPS[@]}"; do
         --sweep tile_size=8,16 --lights 100000,1000000 "${TIMING[@]}"
     done
     ;;
+  manylight)
+    ERR=(--warmup 2 --frames 10 --no-hdr-flip --flicker-frames 4)
+    bench manylight "$BUNDLE" forward_plus,deferred,deferred_oct16,deferred_packed,visibility,stochastic,ris,lightcut \
+      --lights 1000,100000,1000000 "${ERR[@]}"
+    bench manylight_naive "$BUNDLE" naive --lights 1000 "${ERR[@]}"
+    ;;
+  knobs)
+    ERR=(--warmup 2 --frames 10 --no-hdr-flip --flicker-frames 4 --lights 1000000)
+    bench knob_stochastic "$BUNDLE" stochastic --sweep stochastic_threshold=0.005,0.02,0.08,0.3 "${ERR[@]}"
+    bench knob_ris "$BUNDLE" ris --sweep ris_candidates=4,16,64 "${ERR[@]}"
+    bench knob_lightcut "$BUNDLE" lightcut --sweep lightcut_error=0.005,0.05,0.2 "${ERR[@]}"
+    for n in 1 4 16 64; do
+      bench "accumulate_$n" "$BUNDLE" stochastic,ris --accumulate $n --warmup 1 --frames 3 --no-hdr-flip \
+        --flicker-frames 0 --lights 1000000
+    done
+    ;;
+  stress)
+    ERR=(--warmup 2 --frames 5 --no-hdr-flip --flicker-frames 4)
+    bench radius6 "$BUNDLE" visibility,stochastic --radius 6 --lights 1000000 "${ERR[@]}"
+    SAVED=("${COMMON[@]}")
+    COMMON=(--size "$SIZE" --scene "$SCENE" --scenario "$BUNDLE/share/passgraph/assets/scenarios/clump.json" --quiet)
+    bench clump "$BUNDLE" visibility,stochastic,ris,lightcut --lights 100000 "${ERR[@]}"
+    COMMON=(--size 3840x2160 --scene "$SCENE" --scenario "$SCENARIO" --quiet)
+    bench uhd "$BUNDLE" visibility,stochastic,ris,lightcut --lights 100000 "${ERR[@]}"
+    COMMON=("${SAVED[@]}")
+    ;;
   *)
-    echo "device-run.sh: unknown step '$step' (validate, bench, bench-forward, prepass, ab, sweep)" >&2
+    echo "device-run.sh: unknown step '$step' (validate, bench, bench-forward, prepass, ab, sweep, manylight, knobs," \
+      "stress)" >&2
     exit 2
     ;;
   esac
 done
-[ "$DRY_RUN" = 1 ] || rm -f "$OUT"/*/*.svg
+[ "$DRY_RUN" = 1 ] || [ -n "${KEEP_SVG:-}" ] || rm -f "$OUT"/*/*.svg
