@@ -125,23 +125,23 @@ for step in "${STEPS[@]}"; do
     done
     ;;
   manylight)
-    ERR=(--warmup 2 --frames 5 --no-hdr-flip --flicker-frames 4)
+    ERR=(--warmup 2 --warmup-ms 400 --frames 5 --no-hdr-flip --flicker-frames 4)
     bench manylight "$BUNDLE" forward_plus,deferred,deferred_oct16,deferred_packed,visibility,stochastic,ris,lightcut \
       --lights 1000,100000,1000000 "${ERR[@]}"
     bench manylight_naive "$BUNDLE" naive --lights 1000 "${ERR[@]}"
     ;;
   knobs)
-    ERR=(--warmup 1 --frames 3 --no-hdr-flip --flicker-frames 4 --lights 1000000)
+    ERR=(--warmup 1 --warmup-ms 300 --frames 3 --no-hdr-flip --flicker-frames 4 --lights 1000000)
     bench knob_stochastic "$BUNDLE" stochastic --sweep stochastic_threshold=0.005,0.02,0.08,0.3 "${ERR[@]}"
     bench knob_ris "$BUNDLE" ris --sweep ris_candidates=4,16,64 "${ERR[@]}"
     bench knob_lightcut "$BUNDLE" lightcut --sweep lightcut_error=0.005,0.05,0.2 "${ERR[@]}"
     for n in 1 4 16 64; do
-      bench "accumulate_$n" "$BUNDLE" stochastic,ris --accumulate $n --warmup 1 --frames 3 --no-hdr-flip \
+      bench "accumulate_$n" "$BUNDLE" stochastic,ris --accumulate $n --warmup 1 --warmup-ms 300 --frames 3 --no-hdr-flip \
         --flicker-frames 0 --lights 1000000
     done
     ;;
   stress)
-    ERR=(--warmup 2 --frames 5 --no-hdr-flip --flicker-frames 4)
+    ERR=(--warmup 2 --warmup-ms 300 --frames 5 --no-hdr-flip --flicker-frames 4)
     bench radius6 "$BUNDLE" visibility,stochastic --radius 6 --lights 1000000 "${ERR[@]}"
     SAVED=("${COMMON[@]}")
     COMMON=(--size "$SIZE" --scene "$SCENE" --scenario "$BUNDLE/share/passgraph/assets/scenarios/clump.json" --quiet)

@@ -144,6 +144,7 @@ typedef struct bench {
     uint32_t ref_max_lights;
     bool device_known, device_cpu;    /* VK_PHYSICAL_DEVICE_TYPE_CPU: the default limit is a budget */
     uint32_t warmup;
+    uint32_t warmup_ms;               /* --warmup-ms: warm up at least this long too (GPU clocks) */
     uint32_t frames_in_flight;
     uint32_t accumulate;              /* --accumulate N: the measured image is the mean of N frames */
     uint32_t flicker_frames;          /* --flicker-frames K (0: no flicker) */

@@ -203,6 +203,7 @@ static cJSON *json_meta(const bench *B)
         cJSON_AddStringToObject(so, B->sides.reference.ov[i].key, B->sides.reference.ov[i].value);
     cJSON_AddStringToObject(m, "reference_sweeps", B->ref_sweeps);
     cJSON_AddNumberToObject(m, "warmup", B->warmup);
+    cJSON_AddNumberToObject(m, "warmup_ms", B->warmup_ms);
     cJSON_AddNumberToObject(m, "frames_in_flight", B->frames_in_flight);
     cJSON_AddNumberToObject(m, "accumulate", B->accumulate);
     cJSON_AddNumberToObject(m, "flicker_frames", B->flicker_frames);

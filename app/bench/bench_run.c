@@ -222,22 +222,38 @@ static void record_timed_frame(const bench *B, const pg_session *s, const pg_fra
     row->frames = f + 1;
 }
 
+/* frame k of a row (its time: --time + k x --time-step) */
+static pg_result one_frame(bench *B, pg_session *s, pg_frame_info *fi, uint32_t k, double fw, bench_row *row,
+                           pg_frame_stats *st, pg_error *e)
+{
+    fi->time = (float)(B->opt.time + k * B->time_step);
+    pg_result r = pg_session_render(s, fi, false, st, e);
+    if (r) return r;
+    B->done_work += fw;
+    row->grow_events += st->n_grown;
+    return PG_OK;
+}
+
 /* the warm-up and timed frames (until interrupted), then the GPU times still to come */
 static pg_result timed_frames(bench *B, pg_session *s, pg_frame_info *fi, double fw, bench_row *row,
                               double *samples, const char *what, pg_error *e)
 {
-    const uint32_t nf = B->warmup + B->opt.frames;
     pg_frame_stats st;
     uint64_t first_timed = UINT64_MAX; /* runtime frame number of the first timed frame */
     for (uint32_t f = 0; f < B->opt.frames; f++) samples[f] = NAN;
     for (size_t f = 2 * (size_t)B->opt.frames; f < (size_t)B->opt.frames * (PG_MAX_PASSES + 2); f++) samples[f] = NAN;
-    for (uint32_t k = 0; k < nf && !g_interrupted; k++) {
-        fi->time = (float)(B->opt.time + k * B->time_step);
-        pg_result r = pg_session_render(s, fi, false, &st, e);
+    /* warm-up: --warmup frames, and on until --warmup-ms have passed (at most 100,000 frames) */
+    const double t0 = now_s();
+    uint32_t k = 0;
+    for (; !g_interrupted && (k < B->warmup || (k < 100000 && (now_s() - t0) * 1000.0 < B->warmup_ms)); k++) {
+        pg_result r = one_frame(B, s, fi, k, fw, row, &st, e);
         if (r) return r;
-        B->done_work += fw;
-        row->grow_events += st.n_grown;
-        if (k >= B->warmup) record_timed_frame(B, s, &st, k - B->warmup, &first_timed, row, samples);
+        progress_draw(B, what, false);
+    }
+    for (uint32_t j = 0; j < B->opt.frames && !g_interrupted; j++, k++) {
+        pg_result r = one_frame(B, s, fi, k, fw, row, &st, e);
+        if (r) return r;
+        record_timed_frame(B, s, &st, j, &first_timed, row, samples);
         progress_draw(B, what, false);
     }
     if (first_timed != UINT64_MAX && !pg_runtime_wait_idle(s->runtime, e))

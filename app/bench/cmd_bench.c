@@ -47,6 +47,8 @@ static const char *const bench_help_options =
     "  --size WxH,WxH,...   output sizes (default 640x360)\n"
     "  --scene FILE,...     one or more scenes (default: the built-in atrium); --scenario applies to each\n"
     "  --warmup N           untimed frames before the timed ones (default 2)\n"
+    "  --warmup-ms T        and keep warming up until T ms have passed in the row (default 0): a\n"
+    "                       GPU idle during the CPU-side error metrics clocks down\n"
     "  --frames-in-flight N 1 or 2 (default 2): with 2 the host waits only for the frame two back\n"
     "  --frames N           timed frames per configuration (default 10)\n"
     "  --time T             the error frame's animation time, and the first timed frame's (default 0)\n"
@@ -232,7 +234,7 @@ typedef struct setup_args {
 static bool takes_value(const char *a)
 {
     return !strcmp(a, "--pipelines") || !strcmp(a, "--lights") || !strcmp(a, "--size") ||
-           !strcmp(a, "--scene") || !strcmp(a, "--sweep") || !strcmp(a, "--warmup") ||
+           !strcmp(a, "--scene") || !strcmp(a, "--sweep") || !strcmp(a, "--warmup") || !strcmp(a, "--warmup-ms") ||
            !strcmp(a, "--frames-in-flight") ||
            !strcmp(a, "--naive-max-lights") || !strcmp(a, "--reference-max-lights") ||
            !strcmp(a, "--time-step") || !strcmp(a, "--reference") || !strcmp(a, "--shard") ||
@@ -269,6 +271,8 @@ static pg_result parse_value_option(bench *B, setup_args *sa, const char *a, cha
         r = parse_sweep(B, v, err);
     } else if (!strcmp(a, "--warmup")) {
         r = parse_u32_opt(a, v, 10000, &B->warmup, err);
+    } else if (!strcmp(a, "--warmup-ms")) {
+        r = parse_u32_opt(a, v, 600000, &B->warmup_ms, err);
     } else if (!strcmp(a, "--frames-in-flight")) {
         r = parse_u32_opt(a, v, PG_MAX_FRAMES_IN_FLIGHT, &B->frames_in_flight, err);
         if (!r && !B->frames_in_flight)

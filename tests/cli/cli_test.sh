@@ -400,6 +400,7 @@ for v in 0 x; do
   "$PG" bench --accumulate "$v" --out "$tmp/bx" >/dev/null 2>&1; [ $? -eq 2 ] && ok || bad "bench --accumulate $v: want exit 2"
 done
 expect_fail "bench --flicker-frames 1" "--flicker-frames 1:" bench --flicker-frames 1 --out "$tmp/bx"
+expect_fail "bench --warmup-ms x" "--warmup-ms" bench --warmup-ms x --out "$tmp/bx"
 "$PG" bench --pipelines all --lights 16 --size 64x36 --frames 1 --warmup 0 --sweep gbuffer=float,packed \
   --out "$tmp/bench2" >"$tmp/out" 2>"$tmp/err"
 rc=$?
