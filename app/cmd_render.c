@@ -353,6 +353,12 @@ static void print_summary(const pg_session *s, const render_opts *ro, const pg_f
     if (im->nonfinite >= 0) printf("] nonfinite=%lld", im->nonfinite);
     else printf("] nonfinite=n/a");
     print_cluster_counters(st);
+    bool evals = false;
+    for (uint32_t k = 0; k < st->n_counters; k++) evals |= !strcmp(st->counters[k].name, "light_evals");
+    if (evals) {
+        uint64_t ev = pg_frame_counter_sum(st, "light_evals");
+        printf(" light_evals=%llu (%.1f a pixel)", (unsigned long long)ev, (double)ev / ((double)im->w * im->h));
+    }
     /* buffers that grew while rendering (the frames were rendered again: see pg_session_render) */
     for (uint32_t k = 0; k < r->n_grown; k++)
         printf(" grew %s %.2f->%.2f MiB", r->grown[k].resource, r->grown[k].old_bytes / 1048576.0,

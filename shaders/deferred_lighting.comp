@@ -13,6 +13,7 @@
 // vertex streams in set 1 after hdr).
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #ifdef PG_GBUFFER_VISIBILITY
 #extension GL_EXT_nonuniform_qualifier : require
 #endif
@@ -67,6 +68,18 @@ layout(push_constant) uniform Push { float ambient; } pc; // the pass option "am
 #if defined(PG_TILE_LIGHTS) && defined(PG_CLUSTERED) && defined(PG_HAS_LIGHTS) && PG_DEBUG_VIEW == 0
 #define PG_TILED 1   // the workgroup shades together (pg_shade_tile): no early return before it
 #endif
+
+// the invocation's light evaluations into the frame's 64-bit count: one atomic per subgroup
+void pg_count_flush()
+{
+#if defined(PG_COUNT_EVALS) && defined(PG_HAS_LIGHTS)
+    uint s = subgroupAdd(pg_evals);
+    if (subgroupElect() && s != 0u) {
+        uint old = atomicAdd(evals_lo, s);
+        if (old > 0xFFFFFFFFu - s) atomicAdd(evals_hi, 1u);
+    }
+#endif
+}
 
 void main()
 {
@@ -152,4 +165,5 @@ void main()
     vec3 c = pg_shade_point(s, P, view_depth, frag);
     imageStore(hdr_out, px, vec4(pg_hdr_sanitize(c), 1.0));
 #endif
+    pg_count_flush();
 }

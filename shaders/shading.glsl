@@ -27,6 +27,17 @@ layout(set = 2, binding = 2, std430) readonly buffer ClusterLights { uint cluste
 #define PG_DEBUG_VIEW 0
 #endif
 
+// PG_COUNT_EVALS (deferred_lighting): pg_evals counts the light evaluations of this invocation
+// (every light of a list a pixel walks, RIS candidates, lightcut leaves and representatives); the
+// pass sums them per frame into the buffer at set 2, binding PG_EVALS_BINDING (64-bit: low, high).
+#if defined(PG_COUNT_EVALS) && defined(PG_HAS_LIGHTS)
+layout(set = 2, binding = PG_EVALS_BINDING, std430) buffer Evals { uint evals_lo; uint evals_hi; };
+uint pg_evals = 0u;
+#define PG_COUNT(n) (pg_evals += uint(n))
+#else
+#define PG_COUNT(n)
+#endif
+
 vec3 pg_heat(float t)
 {
     // blue -> cyan -> green -> yellow -> red -> white for t in [0,1], > 1 stays white
@@ -94,6 +105,7 @@ vec3 pg_ris_estimate(Surface s, uvec4 rec, vec3 P, vec3 V, vec2 frag_xy)
     uvec2 px = uvec2(frag_xy);
     uint st = pg_pcg(px.x + pg_pcg(px.y + pg_pcg(frame.noise.x + pg_pcg(frame.noise.y))));
     vec3 sum = vec3(0.0);
+    PG_COUNT(PG_RIS_M * PG_RIS_S);
     for (int k = 0; k < PG_RIS_S; k++) {
         float wsum = 0.0, p_y = 0.0;
         vec3 f_y = vec3(0.0);
@@ -195,6 +207,7 @@ vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
     while (sp > 0) {
         uint n = stack[--sp];
         if (n >= np) { // a leaf: one light, exactly
+            PG_COUNT(1);
             vec4 pr = tree[4u * n];
             E += pg_lc_light(s, pr.xyz, pr.w, tree[4u * n + 2u].rgb, cam, P, V, inv_md2);
             continue;
@@ -202,6 +215,7 @@ vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
         float d2;
         vec3 U = pg_lc_upper(n, s, P, cam, inv_md2, d2);
         if (U == vec3(0.0)) continue;
+        PG_COUNT(1);
         vec3 est = clamp(pg_lc_light(s, tree[4u * n + 3u].xyz, tree[4u * n].w, tree[4u * n + 2u].rgb, cam, P, V, inv_md2),
                          vec3(0.0), U);
         vec3 b = max(U - est, est);
@@ -265,12 +279,14 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #ifdef PG_HAS_LIGHTS
     float min_dist = frame.light_params.w;
 #ifdef PG_CLUSTERED
+    PG_COUNT(rec.y);
     for (uint k = 0u; k < rec.y; k++)
         pg_accumulate_light(lights[cluster_lights[rec.x + k]], cam, P, s.normal, V, s.shininess, min_dist, acc);
 #elif defined(PG_LIGHTCUT)
     return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z)) + pg_lightcut(s, P, V);
 #else
     uint count = frame.counts.x;
+    PG_COUNT(count);
     for (uint i = 0u; i < count; i++)
         pg_accumulate_light(lights[i], cam, P, s.normal, V, s.shininess, min_dist, acc);
 #endif
@@ -401,6 +417,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
             }
             barrier();
             if (mine) {
+                PG_COUNT(total);
                 for (uint j = 0u; j < total; j++) {
                     vec4 a = s_tl_light[2u * j];
                     vec4 b = s_tl_light[2u * j + 1u];

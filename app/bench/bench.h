@@ -98,6 +98,8 @@ typedef struct bench_row {
     /* light lists of clustered pipelines: references stored, bytes of the list buffers, and how
      * often a "grow" buffer was enlarged over the row's frames (each such frame rendered again) */
     uint64_t light_refs, list_bytes;
+    bool has_evals;                   /* the error frame counted light evaluations (light_evals) */
+    uint64_t light_evals;
     uint32_t grow_events;
     bool has_error;
     pg_image_error e;

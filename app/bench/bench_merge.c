@@ -112,6 +112,7 @@ static pg_result row_read(const bench *B, const char *dir, const cJSON *o, bench
         r->ov_clusters_max = ju64(x, "clusters_max", NULL);
     }
     r->grow_events = (uint32_t)ju64(o, "grow_events", NULL);
+    r->light_evals = ju64(o, "light_evals", &r->has_evals);
     if (cJSON_IsObject(x = cJSON_GetObjectItemCaseSensitive(o, "error"))) {
         r->has_error = true;
         pg_image_error *e = &r->e;

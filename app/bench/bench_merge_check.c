@@ -19,7 +19,7 @@ static const field k_fields[] = {
     {"gpu_ms", T_STATS},     {"cpu_ms", T_STATS},     {"wait_ms", T_STATS},   {"passes", T_PASSES},
     {"memory", T_NUMOBJ},    {"overflow", T_NUMOBJ},  {"grow_events", T_NUM}, {"reference", T_STR},
     {"reference_sets", T_STR}, {"error", T_NUMOBJ},   {"nonfinite", T_NUM},   {"error_note", T_STR},
-    {"accumulate", T_NUM},
+    {"accumulate", T_NUM},   {"light_evals", T_NUM},
 };
 
 static const char *const k_expected[] = {"a number", "a string", "an object of statistics",

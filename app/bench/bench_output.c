@@ -67,7 +67,7 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
           "grow_events,reference,"
           "rmse_linear,psnr_linear,max_abs_linear,peak_linear,rmse_display,psnr_display,max_abs_display,"
           "share_over_1,nonfinite,error_note,pipeline_path,reference_sets,frames_in_flight,"
-          "flip,hdr_flip,ssim,flicker,flicker_frames,accumulate,accumulated_ms_median",
+          "flip,hdr_flip,ssim,flicker,flicker_frames,accumulate,accumulated_ms_median,light_evals,evals_per_pixel",
           f);
     for (int k = 0; k < 5; k++) fprintf(f, ",wait_ms_%s", stat_names[k]);
     for (uint32_t p = 0; p < u->n; p++)
@@ -120,6 +120,8 @@ static pg_result write_csv(const bench *B, const char *path, pg_error *err)
         csv_num(f, he ? r->flicker : NAN);
         fprintf(f, ",%u,%u", B->flicker_frames, B->accumulate);
         csv_num(f, r->gpu.n ? B->accumulate * r->gpu.median : NAN);
+        csv_u64(f, r->has_evals, r->light_evals);
+        csv_num(f, r->has_evals ? (double)r->light_evals / ((double)r->width * r->height) : NAN);
         for (int k = 0; k < 5; k++) csv_num(f, stat_get(&r->wait, k));
         for (uint32_t p = 0; p < u->n; p++) {
             const pass_stat *ps = NULL;
@@ -295,6 +297,8 @@ static cJSON *json_row(const bench *B, const bench_row *r)
         cJSON_AddNullToObject(o, "overflow");
     }
     cJSON_AddNumberToObject(o, "grow_events", r->grow_events);
+    if (r->has_evals) cJSON_AddNumberToObject(o, "light_evals", (double)r->light_evals);
+    else cJSON_AddNullToObject(o, "light_evals");
     cJSON_AddNumberToObject(o, "accumulate", B->accumulate);
     cJSON_AddStringToObject(o, "reference", B->ref_name);
     cJSON_AddStringToObject(o, "reference_sets", B->refs[va->ref].label);

@@ -282,6 +282,7 @@ static void record_error_frame_counters(const pg_frame_stats *st, bench_row *row
     row->ov_dropped = pg_frame_counter_sum(st, "overflow_dropped");
     for (uint32_t k = 0; k < st->n_counters; k++) {
         if (!strcmp(st->counters[k].name, "total_refs")) row->light_refs += st->counters[k].value;
+        if (!strcmp(st->counters[k].name, "light_evals")) row->has_evals = true, row->light_evals += st->counters[k].value;
         if (!strcmp(st->counters[k].name, "list_bytes")) row->list_bytes += st->counters[k].value;
     }
 }

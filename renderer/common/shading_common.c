@@ -82,9 +82,15 @@ const char *const pg_shading_runtime_options[] = {"ambient", NULL};
 pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, const pg_shading_params *sp, pg_pass_set *out,
                               pg_error *err)
 {
+    return pg_light_set_create_ex(ctx, sp, NULL, out, err);
+}
+
+pg_result pg_light_set_create_ex(const pg_pass_create_ctx *ctx, const pg_shading_params *sp,
+                                 const pg_phys_resource *extra, pg_pass_set *out, pg_error *err)
+{
     memset(out, 0, sizeof *out);
     if (!sp->has_lights) return PG_OK;
-    pg_set_binding b[3] = {
+    pg_set_binding b[4] = {
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->lights), VK_NULL_HANDLE, 0},
     };
     uint32_t n = 1;
@@ -92,6 +98,7 @@ pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, const pg_shading_pa
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->cluster_counts), VK_NULL_HANDLE, 0};
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->cluster_lists), VK_NULL_HANDLE, 0};
     }
+    if (extra) b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, extra, VK_NULL_HANDLE, 0};
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.lights", ctx->pass->name);
     return pg_pass_set_create(ctx->gpu, n, b, name, out, err);

@@ -55,6 +55,9 @@ void pg_shading_declare(pg_shading_params *sp, const pg_declare_in *in, pg_pass_
 /* Set 2: lights (+ cluster counts and lists). Leaves *out zeroed when the pass has no lights. */
 pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, const pg_shading_params *sp, pg_pass_set *out,
                               pg_error *err);
+/* The same with one more storage buffer after them (binding 1, or 3 when clustered), if extra. */
+pg_result pg_light_set_create_ex(const pg_pass_create_ctx *ctx, const pg_shading_params *sp,
+                                 const pg_phys_resource *extra, pg_pass_set *out, pg_error *err);
 /* The optional emissive G-buffer slot (gb_emissive): the last write of a gbuffer pass, the last read of
  * deferred_lighting and reference_lighting, declared next (after the slots declared so far). Bound when the
  * pass desc has a slot there: declared (colour attachment written in the fragment stage, or sampled in

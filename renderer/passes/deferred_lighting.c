@@ -43,7 +43,9 @@ typedef struct dl_params { /* filled once by declare, read by create/update/reco
 typedef struct deferred_lighting {
     float ambient;          /* option "ambient" (a run-time value): push constant */
     int packing;
-    double far_over_near;   /* the last recorded frame's (oct16: its depth precision, dl_report) */
+    double far_over_near;
+    pg_buffer evals;        /* host-visible 64-bit count of light evaluations (PG_COUNT_EVALS) */
+    bool counted;   /* the last recorded frame's (oct16: its depth precision, dl_report) */
     pg_slot hdr;
     uint32_t tile;          /* workgroup edge in pixels (8 or 16) */
     VkSampler sampler;
@@ -147,6 +149,10 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         pg_decl_explain(out, "lights tree: a lightcut a pixel, every pixel within %g of its exact value (relative, "
                         "per channel)", lc_eps);
     }
+    if (p->sh.has_lights && p->sh.o.view == 0) { /* light evaluations counted (counter light_evals) */
+        pg_decl_define(out, "PG_COUNT_EVALS");
+        pg_decl_define_int(out, "PG_EVALS_BINDING", source == 0 ? 3 : 1);
+    }
     p->tiled = tiled && !ris && source == 0 && p->sh.o.view == 0 && pg_lights_of(in) > 0;
     if (p->tiled) pg_decl_define(out, "PG_TILE_LIGHTS");
     return PG_OK;
@@ -181,7 +187,17 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.gbuffer", ctx->pass->name);
     if ((r = pg_pass_set_create(gpu, n, b, name, &p->gbuf, err))) return r;
-    if ((r = pg_light_set_create(ctx, &pa->sh, &p->lights, err))) return r;
+    p->counted = pa->sh.has_lights && pa->sh.o.view == 0;
+    pg_phys_resource ev = {0};
+    if (p->counted) {
+        snprintf(name, sizeof name, "%s.evals", ctx->pass->name);
+        if ((r = pg_buffer_create(gpu, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true,
+                                  name, &p->evals, err)))
+            return r;
+        memset(p->evals.mapped, 0, 16);
+        ev = (pg_phys_resource){.kind = PG_RES_BUFFER, .buffer = p->evals.buffer, .size = p->evals.size};
+    }
+    if ((r = pg_light_set_create_ex(ctx, &pa->sh, p->counted ? &ev : NULL, &p->lights, err))) return r;
     VkDescriptorSetLayout sets[4] = {ctx->frame_layout, p->gbuf.layout, p->lights.layout, VK_NULL_HANDLE};
     uint32_t n_sets = p->lights.layout ? 3 : 2;
     if (vis) { /* set 3: the scene's materials and textures (set 2 stays empty without lights) */
@@ -221,6 +237,13 @@ static void dl_record(void *self, const pg_pass_record_ctx *ctx)
 {
     deferred_lighting *p = self;
     const pg_phys_resource *hdr = pg_ctx_res(ctx, p->hdr);
+    if (p->counted) { /* the count is the pass's own: zeroed, then written by the dispatch */
+        vkCmdFillBuffer(ctx->cmd, p->evals.buffer, 0, VK_WHOLE_SIZE, 0);
+        VkBufferMemoryBarrier2 bb = pg_buffer_barrier(p->evals.buffer, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                                                      VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        pg_cmd_barriers(ctx->cmd, 0, NULL, 1, &bb);
+    }
     VkDescriptorSet sets[3] = {ctx->frame_set, p->gbuf.set, p->lights.set};
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, p->lights.set ? 3 : 2, sets, 0,
@@ -231,6 +254,12 @@ static void dl_record(void *self, const pg_pass_record_ctx *ctx)
     const pg_frame_uniforms *fu = PG_FRAME_OF(ctx);
     p->far_over_near = fu->clip[0] > 0 ? (double)fu->clip[1] / fu->clip[0] : 0;
     vkCmdDispatch(ctx->cmd, (hdr->width + p->tile - 1) / p->tile, (hdr->height + p->tile - 1) / p->tile, 1);
+    if (p->counted) {
+        VkBufferMemoryBarrier2 bb = pg_buffer_barrier(p->evals.buffer, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                                                      VK_ACCESS_2_HOST_READ_BIT);
+        pg_cmd_barriers(ctx->cmd, 0, NULL, 1, &bb);
+    }
 }
 
 /* oct16 rebuilds positions from the D32 depth, whose relative view-depth error near the far plane
@@ -241,6 +270,10 @@ static void dl_record(void *self, const pg_pass_record_ctx *ctx)
 static void dl_report(void *self, pg_pass_report *out)
 {
     deferred_lighting *p = self;
+    if (p->counted) {
+        const uint32_t *c = p->evals.mapped;
+        pg_report_add(out, "light_evals", ((uint64_t)c[1] << 32) | c[0]);
+    }
     if (p->packing == PG_GBUFFER_OCT16 && p->far_over_near > PG_OCT16_MAX_DEPTH_RATIO * 1.001)
         pg_report_note(out, "gbuffer oct16 rebuilds positions from D32 depth: far/near = %.3g (past %.0e) gives "
                        "view depths off by up to %.2g%% near the far plane, beyond the documented oct16 bounds; "
@@ -266,6 +299,7 @@ static void dl_destroy(void *self, pg_gpu *gpu)
     pg_vis_geometry_destroy(gpu, &p->vis);
     if (p->empty) vkDestroyDescriptorSetLayout(gpu->device, p->empty, NULL);
     if (p->sampler) vkDestroySampler(gpu->device, p->sampler, NULL);
+    pg_buffer_destroy(gpu, &p->evals);
 }
 
 const pg_pass_type pg_pass_deferred_lighting = {

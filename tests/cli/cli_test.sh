@@ -401,6 +401,16 @@ for v in 0 x; do
 done
 expect_fail "bench --flicker-frames 1" "--flicker-frames 1:" bench --flicker-frames 1 --out "$tmp/bx"
 expect_fail "bench --warmup-ms x" "--warmup-ms" bench --warmup-ms x --out "$tmp/bx"
+# light evaluations: RIS evaluates candidates x samples a lit pixel (doubling the samples doubles
+# the count exactly); visibility's tiled loop evaluates fewer lights than its per-pixel loop
+evals() { "$PG" render --size 64x36 --lights 64 --out "$tmp/ev.png" "$@" 2>/dev/null | grep -o 'light_evals=[0-9]*' | cut -d= -f2; }
+e1=$(evals --pipeline "$root/pipelines/ris.json" --set ris_candidates=8 --set ris_samples=1)
+e2=$(evals --pipeline "$root/pipelines/ris.json" --set ris_candidates=8 --set ris_samples=2)
+[ -n "$e1" ] && [ "$e1" -gt 0 ] && [ $((e1 % 8)) -eq 0 ] && [ "$e2" -eq $((2 * e1)) ] && [ "$e1" -le $((8 * 64 * 36)) ] \
+  && ok || bad "ris light_evals: $e1, $e2"
+t1=$(evals --pipeline "$root/pipelines/visibility.json")
+t0=$(evals --pipeline "$root/pipelines/visibility.json" --set tile_lights=false)
+[ -n "$t1" ] && [ -n "$t0" ] && [ "$t1" -gt 0 ] && [ "$t1" -lt "$t0" ] && ok || bad "visibility light_evals: tiled $t1, per pixel $t0"
 "$PG" bench --pipelines all --lights 16 --size 64x36 --frames 1 --warmup 0 --sweep gbuffer=float,packed \
   --out "$tmp/bench2" >"$tmp/out" 2>"$tmp/err"
 rc=$?
