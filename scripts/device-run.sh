@@ -19,6 +19,8 @@
 #   knobs          the approximation knobs at 1,000,000 lights (stochastic_threshold,
 #                  ris_candidates, lightcut_error) and the accumulation curve of the stochastic
 #                  pipeline (--accumulate 1, 4, 16, 64)
+#   evals          light evaluations a pixel of the compute-shaded pipelines (exact and
+#                  approximate) at 100,000 and 1,000,000 lights, with their shading time
 #   stress         radius 6 at 1,000,000 lights (exact? list memory), a dense clump of lights
 #                  (assets/scenarios/clump.json), 3840x2160 at 100,000 lights
 #
@@ -140,6 +142,10 @@ for step in "${STEPS[@]}"; do
         --flicker-frames 0 --lights 1000000
     done
     ;;
+  evals)
+    bench evals "$BUNDLE" visibility,deferred,stochastic,ris,lightcut --lights 100000,1000000 --warmup 2 \
+      --warmup-ms 400 --frames 5 --no-hdr-flip --flicker-frames 0
+    ;;
   stress)
     ERR=(--warmup 2 --warmup-ms 300 --frames 5 --no-hdr-flip --flicker-frames 4)
     bench radius6 "$BUNDLE" visibility,stochastic --radius 6 --lights 1000000 "${ERR[@]}"
@@ -152,7 +158,7 @@ for step in "${STEPS[@]}"; do
     ;;
   *)
     echo "device-run.sh: unknown step '$step' (validate, bench, bench-forward, prepass, ab, sweep, manylight, knobs," \
-      "stress)" >&2
+      "evals, stress)" >&2
     exit 2
     ;;
   esac
