@@ -15,6 +15,17 @@
 // Background pixels (position.w == 0) are black with alpha 1, as forward clears them.
 // PG_REFERENCE_EMISSIVE: the G-buffer's emissive target (rgba32f, the last binding) is s.emissive,
 // added once by pg_shade_combine as forward adds it.
+// PG_REFERENCE_CULL (option cull_lights, default on): the workgroup first takes the bounding box of
+// its covered pixels' camera-relative positions; each light of a tile is kept only if its sphere
+// reaches that box (pg_sphere_intersects_aabb, conservative), and the kept lights are packed in
+// ascending index order (subgroup ballots, subgroups in order of gl_SubgroupID) before the pixels
+// walk them. A light that is not kept reaches no pixel of the workgroup and would have added
+// exactly +0 (pg_accumulate_light returns before adding for d >= R), so the sums and the image are
+// bit-identical to walking every light; only the evaluations are fewer.
+#ifdef PG_REFERENCE_CULL
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#endif
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "lighting.glsl"
@@ -58,11 +69,29 @@ layout(push_constant) uniform Push {
 #define PG_AMBIENT pc.ambient
 
 #include "shading.glsl" // the Lights buffer (set 2) and the debug views
+#ifdef PG_REFERENCE_CULL
+#include "cluster.glsl"     // pg_sphere_intersects_aabb
+#endif
 
 
 #ifdef PG_HAS_LIGHTS
 shared vec4 s_pos_radius[LIGHT_TILE];
 shared vec4 s_color[LIGHT_TILE];
+#ifdef PG_REFERENCE_CULL
+shared uint s_box[6];              // ordered-uint min xyz, max xyz of the covered pixels
+shared uint s_sg_count[LIGHT_TILE]; // kept lights per subgroup of the current tile
+
+uint pg_ref_order(float f) // float -> uint with the same order
+{
+    uint b = floatBitsToUint(f);
+    return (b & 0x80000000u) != 0u ? ~b : b | 0x80000000u;
+}
+
+float pg_ref_unorder(uint u)
+{
+    return uintBitsToFloat((u & 0x80000000u) != 0u ? u & 0x7fffffffu : ~u);
+}
+#endif
 #endif
 
 void main()
@@ -108,12 +137,54 @@ void main()
     vec3 cam = frame.camera_pos.xyz;
     float min_dist = frame.light_params.w;
     uint lid = gl_LocalInvocationIndex;
+#ifdef PG_REFERENCE_CULL
+    if (lid == 0u) {
+        for (int i = 0; i < 3; i++) {
+            s_box[i] = pg_ref_order(3.0e38);
+            s_box[3 + i] = pg_ref_order(-3.0e38);
+        }
+    }
+    barrier();
+    if (covered)
+        for (int i = 0; i < 3; i++) {
+            atomicMin(s_box[i], pg_ref_order(P[i]));
+            atomicMax(s_box[3 + i], pg_ref_order(P[i]));
+        }
+    barrier();
+    vec3 bmin = vec3(pg_ref_unorder(s_box[0]), pg_ref_unorder(s_box[1]), pg_ref_unorder(s_box[2]));
+    vec3 bmax = vec3(pg_ref_unorder(s_box[3]), pg_ref_unorder(s_box[4]), pg_ref_unorder(s_box[5]));
+    // the light slot of this invocation: subgroups in order, so kept lights stay in index order
+    uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID;
+#endif
     for (uint base = pc.first; base < pc.end; base += uint(LIGHT_TILE)) {
         uint count = min(uint(LIGHT_TILE), pc.end - base);
+#ifdef PG_REFERENCE_CULL
+        Light lt;
+        bool keep = false;
+        if (slot < count) {
+            lt = lights[base + slot];
+            keep = bmin.x <= bmax.x && pg_sphere_intersects_aabb(lt.pos_radius.xyz - cam, lt.pos_radius.w, bmin, bmax);
+        }
+        uvec4 bal = subgroupBallot(keep);
+        if (subgroupElect()) s_sg_count[gl_SubgroupID] = subgroupBallotBitCount(bal);
+        barrier();
+        uint pos = subgroupBallotExclusiveBitCount(bal), total = 0u;
+        for (uint g = 0u; g < gl_NumSubgroups; g++) {
+            uint c = s_sg_count[g];
+            pos += g < gl_SubgroupID ? c : 0u;
+            total += c;
+        }
+        if (keep) {
+            s_pos_radius[pos] = lt.pos_radius;
+            s_color[pos] = lt.color;
+        }
+        count = total;
+#else
         if (lid < count) {
             s_pos_radius[lid] = lights[base + lid].pos_radius;
             s_color[lid] = lights[base + lid].color;
         }
+#endif
         memoryBarrierShared();
         barrier();
         if (covered) {

@@ -74,7 +74,7 @@ typedef struct reference_lighting {
     VkPipeline pipeline;
 } reference_lighting;
 
-static const char *const k_extra[] = {"lights_per_dispatch", NULL};
+static const char *const k_extra[] = {"lights_per_dispatch", "cull_lights", NULL};
 static const char *const k_surface_slots[3] = {"position", "normal", "albedo"};
 
 static pg_result ref_options(const pg_pass_desc *desc, pg_shading_params *sp, uint32_t *lpd, pg_error *err)
@@ -219,6 +219,9 @@ static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
     pg_decl_define_int(out, "LIGHT_TILE_X", REF_TILE_X);
     pg_decl_define_int(out, "LIGHT_TILE_Y", REF_TILE_Y);
     pg_shading_declare(&p->sh, in, out);
+    bool cull;
+    if ((r = pg_opt_bool(in->desc, "cull_lights", true, &cull, err))) return r;
+    if (cull && p->sh.has_lights && o.view == 0) pg_decl_define(out, "PG_REFERENCE_CULL");
     uint32_t n = pg_lights_of(in);
     const bool lit = p->sh.has_lights;
     uint32_t chunk = ref_chunk(lpd, in->output_width, in->output_height);
