@@ -468,7 +468,7 @@ void ref_skip_note(const bench *B, uint32_t w, uint32_t h, bool brief, char *buf
     else if (B->device_cpu)
         snprintf(buf, size,
                  "%s skipped above %u lights on a CPU device (%.48s) at %ux%u, the default budget of %.4g light x "
-                 "pixel evaluations per reference frame (about 10 s on lavapipe): set --reference-max-lights",
+                 "pixel evaluations per reference frame: set --reference-max-lights",
                  B->ref_name, n, B->device, w, h, CPU_REFERENCE_BUDGET);
     else
         snprintf(buf, size, "%s skipped above %u lights (the default on a GPU): set --reference-max-lights", B->ref_name, n);

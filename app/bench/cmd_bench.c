@@ -66,7 +66,7 @@ static const char *const bench_help_options =
     "  --reference-max-lights N  above N lights the reference is not rendered (error columns empty,\n"
     "                       'error_note' says why) and the reference pipeline's own rows are skipped.\n"
     "                       Default: 1000000 on a GPU; on a CPU device (lavapipe) what keeps a reference\n"
-    "                       frame under 1.152e9 light x pixel evaluations (about 10 s there): 20000\n"
+    "                       frame under 1.152e9 light x pixel evaluations: 20000\n"
     "                       lights at 320x180, 5000 at 640x360, 555 at 1920x1080\n"
     "  --naive-max-lights N deprecated name of --reference-max-lights (prints a warning)\n"
     "  --out DIR            output folder (created if missing)\n"
