@@ -5,24 +5,16 @@
  * [lights_stochastic] (same layout: position and random range; colour and the true range in w).
  * Options: threshold (luminance of one light's attenuated colour below which it is kept at random;
  * > 0). The random numbers come from the frame's sample index and seed. */
-#include <string.h>
-
-#include "frame.h"
-#include "graph_execute.h"
-#include "scene_vars.h"
+#include "light_compute.h"
 #include "pass_api.h"
-#include "shader.h"
-#include "pass_set.h"
-#include "vk_pipeline.h"
+#include "scene_vars.h"
 
 typedef struct sl_params { /* filled once by declare, read by create (PG_PARAMS) */
     pg_slot lights, out;
 } sl_params;
 
 typedef struct stochastic_lights { /* the instance create builds */
-    pg_pass_set set;
-    VkPipelineLayout layout;
-    VkPipeline pipeline;
+    pg_light_compute lc;
 } stochastic_lights;
 
 static pg_result sl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
@@ -44,44 +36,19 @@ static pg_result sl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
 static pg_result sl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
     stochastic_lights *p = self;
-    pg_gpu *gpu = ctx->gpu;
-    pg_result r;
     const sl_params *pa = PG_PARAMS(ctx, sl_params);
-    pg_set_binding b[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, pa->lights), VK_NULL_HANDLE, 0},
-                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, pa->out), VK_NULL_HANDLE, 0}};
-    if ((r = pg_pass_set_create(gpu, 2, b, ctx->pass->name, &p->set, err))) return r;
-    VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
-    if ((r = pg_pipeline_layout_create(gpu, 2, sets, 0, &p->layout, err))) return r;
-    VkShaderModule cs;
-    const char *defs[PG_MAX_DEFINES];
-    uint32_t nd = pg_decl_define_list(&ctx->pass->decl, defs, PG_MAX_DEFINES);
-    if ((r = pg_shader_module(gpu, "stochastic_lights.comp", VK_SHADER_STAGE_COMPUTE_BIT, defs, nd, &cs, err))) return r;
-    r = pg_compute_pipeline_create(gpu, p->layout, cs, ctx->pass->name, &p->pipeline, err);
-    vkDestroyShaderModule(gpu->device, cs, NULL);
-    return r;
+    const pg_phys_resource *buffers[2] = {pg_ctx_res(ctx, pa->lights), pg_ctx_res(ctx, pa->out)};
+    return pg_light_compute_create(ctx, "stochastic_lights.comp", buffers, 2, &p->lc, err);
 }
 
 static void sl_record(void *self, const pg_pass_record_ctx *ctx)
 {
-    stochastic_lights *p = self;
-    uint32_t n = PG_FRAME_OF(ctx)->counts[0];
-    if (!n) return;
-    VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
-    vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
-    vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 2, sets, 0, NULL);
-    /* 2D dispatch so any count fits the guaranteed 65535 groups per dimension */
-    uint32_t groups = (n + 63) / 64;
-    uint32_t gx = groups < 65535 ? groups : 65535;
-    uint32_t gy = (groups + gx - 1) / gx;
-    vkCmdDispatch(ctx->cmd, gx, gy, 1);
+    pg_light_compute_record(&((stochastic_lights *)self)->lc, ctx);
 }
 
 static void sl_destroy(void *self, pg_gpu *gpu)
 {
-    stochastic_lights *p = self;
-    if (p->pipeline) vkDestroyPipeline(gpu->device, p->pipeline, NULL);
-    if (p->layout) vkDestroyPipelineLayout(gpu->device, p->layout, NULL);
-    pg_pass_set_destroy(gpu, &p->set);
+    pg_light_compute_destroy(&((stochastic_lights *)self)->lc, gpu);
 }
 
 const pg_pass_type pg_pass_stochastic_lights = {
