@@ -38,6 +38,20 @@ struct SurfaceInput {
     vec4 duv0, duv1; // screen-space derivatives of uv0/uv1: d(uv)/dx in xy, d(uv)/dy in zw
 };
 
+// Rec.709 luminance of a linear colour.
+float pg_luminance(vec3 c)
+{
+    return dot(c, vec3(0.2126, 0.7152, 0.0722));
+}
+
+// PCG hash (a 32-bit permutation): the random streams of the stochastic passes.
+uint pg_pcg(uint v)
+{
+    uint s = v * 747796405u + 2891336453u;
+    uint w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;
+    return (w >> 22u) ^ w;
+}
+
 vec3 pg_srgb_encode(vec3 c)
 {
     c = clamp(c, 0.0, 1.0);

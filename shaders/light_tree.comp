@@ -50,11 +50,6 @@ void write_node(uint n, vec4 a, vec4 b, vec4 c, vec4 d)
     tree[4u * n + 3u] = d;
 }
 
-float lum(vec3 c)
-{
-    return dot(c, vec3(0.2126, 0.7152, 0.0722));
-}
-
 void main()
 {
     uint i = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u;
@@ -95,7 +90,7 @@ void main()
         uint n = pc.k + i, a = 2u * n, b = a + 1u;
         vec4 amin = tree[4u * a], amax = tree[4u * a + 1u], ac = tree[4u * a + 2u], ar = tree[4u * a + 3u];
         vec4 bmin = tree[4u * b], bmax = tree[4u * b + 1u], bc = tree[4u * b + 2u], br = tree[4u * b + 3u];
-        float la = lum(ac.rgb), lb = lum(bc.rgb);
+        float la = pg_luminance(ac.rgb), lb = pg_luminance(bc.rgb);
         vec3 rep = la + lb > 0.0 ? (la * ar.xyz + lb * br.xyz) / (la + lb) : 0.5 * (ar.xyz + br.xyz);
         write_node(n, vec4(min(amin.xyz, bmin.xyz), max(amin.w, bmin.w)), vec4(max(amax.xyz, bmax.xyz), amax.w + bmax.w),
                    vec4(ac.rgb + bc.rgb, 0.0), vec4(rep, 0.0));

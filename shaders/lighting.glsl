@@ -64,7 +64,7 @@ void pg_light_specular(vec3 color, float att, vec3 L, vec3 N, vec3 V, float shin
 // test use the light's random range; att uses its true range). Unbiased: E = p x f/p = f.
 float pg_sc_rescale(vec3 color, float att)
 {
-    float p = min(1.0, dot(color, vec3(0.2126, 0.7152, 0.0722)) * att / (float(PG_SC_TAU_MICRO) * 1e-6));
+    float p = min(1.0, pg_luminance(color) * att / (float(PG_SC_TAU_MICRO) * 1e-6));
     return p > 0.0 ? 1.0 / p : 0.0;
 }
 #define PG_SC_COLOR(c, att) ((c) * pg_sc_rescale((c), (att)))

@@ -64,22 +64,10 @@ vec3 pg_index_color(uint i)
 // and the list holds every light that reaches the pixel (exact lists: no overflow). PG_RIS_S
 // independent samples are averaged. Random numbers: PCG hash of pixel, frame.noise.x (sample
 // index) and frame.noise.y (seed): the same inputs give the same image.
-uint pg_pcg(uint v)
-{
-    uint s = v * 747796405u + 2891336453u;
-    uint w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;
-    return (w >> 22u) ^ w;
-}
-
 float pg_rand01(inout uint st) // [0, 1), 24 bits
 {
     st = pg_pcg(st);
     return float(st >> 8u) * (1.0 / 16777216.0);
-}
-
-float pg_luminance(vec3 c)
-{
-    return dot(c, vec3(0.2126, 0.7152, 0.0722));
 }
 
 // The light's contribution to the pixel's colour (no ambient, no emissive).

@@ -18,13 +18,6 @@ layout(local_size_x = 64) in;
 layout(set = 1, binding = 0, std430) readonly buffer Lights { Light lights[]; };
 layout(set = 1, binding = 1, std430) writeonly buffer Culled { Light culled[]; };
 
-uint pcg(uint v)
-{
-    uint s = v * 747796405u + 2891336453u;
-    uint w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;
-    return (w >> 22u) ^ w;
-}
-
 float attenuation(float d, float R, float md)
 {
     float t = (d * d) / (R * R);
@@ -37,11 +30,11 @@ void main()
     if (i >= frame.counts.x) return;
     Light L = lights[i];
     float R = L.pos_radius.w;
-    float I = dot(L.color.rgb, vec3(0.2126, 0.7152, 0.0722));
+    float I = pg_luminance(L.color.rgb);
     float tau = float(PG_SC_TAU_MICRO) * 1e-6;
     float md = frame.light_params.w;
     // xi in (0, 1]
-    float xi = float((pcg(i + pcg(frame.noise.x + pcg(frame.noise.y ^ 0x5bd1e995u))) >> 8) + 1u) * (1.0 / 16777216.0);
+    float xi = float((pg_pcg(i + pg_pcg(frame.noise.x + pg_pcg(frame.noise.y ^ 0x5bd1e995u))) >> 8) + 1u) * (1.0 / 16777216.0);
     float r = R;
     if (R > 0.0 && I > 0.0 && !isinf(R) && !isnan(R)) {
         float want = xi * tau / I; // keep where A(d) >= want
