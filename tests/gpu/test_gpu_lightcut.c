@@ -35,8 +35,8 @@ static double usage(const pg_th_frame *a, const pg_th_frame *exact, double eps, 
         if (i % 4 == 3) continue;
         double e = exact->hdr[i], d = fabs((double)a->hdr[i] - e);
         double bound = eps * fabs(e) + 1e-4 * fabs(e) + 1e-6 * peak;
-        if (!(d <= bound)) worst = fmax(worst, d / bound);
-        else if (bound > 0) worst = fmax(worst, d / bound);
+        if (bound > 0) worst = fmax(worst, d / bound);
+        else if (d != 0) worst = INFINITY; /* also NaN */
     }
     return worst;
 }

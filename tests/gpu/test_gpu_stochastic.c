@@ -72,9 +72,6 @@ static bool render_frames(const char *pipeline, const pg_param_override *sets, u
         ok = pg_session_render(s, &fi, true, &st, &err) == PG_OK;
         const void *px = ok ? pg_runtime_output(s->runtime, 1, &w, &h, &fmt) : NULL;
         ok = px && w == W && h == H && pg_hdr_to_float(px, fmt, w, h, imgs + (size_t)k * W * H * 4, &err) == PG_OK;
-        if (ok && pg_frame_counter_sum(&st, "overflow_dropped") && strstr(pipeline, "ris") && n_sets < 3)
-            printf("  (%s dropped %llu light references)\n", pipeline,
-                   (unsigned long long)pg_frame_counter_sum(&st, "overflow_dropped"));
     }
     CHECK_MSG(ok, "%s: render: %s", pipeline, err.msg);
     pg_session_destroy(s);
