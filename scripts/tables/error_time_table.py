@@ -13,12 +13,7 @@ import csv
 import os
 import sys
 
-
-def num(row, key):
-    try:
-        return float(row.get(key, ""))
-    except ValueError:
-        return None
+from results_table import fmt_ms, num, passes
 
 
 def fmt(v, digits=3):
@@ -29,20 +24,9 @@ def fmt(v, digits=3):
     return "%.*g" % (digits, v)
 
 
-def fmt_ms(v):
-    if v is None:
-        return "-"
-    return "%.3f" % v if v < 10 else "%.1f" % v
-
-
 def dominant(row):
-    best = None
-    for k, v in row.items():
-        if k.startswith("pass_") and k.endswith("_ms_median") and v not in ("", None):
-            ms = float(v)
-            if best is None or ms > best[1]:
-                best = (k[len("pass_"):-len("_ms_median")], ms)
-    return best
+    ps = passes(row)
+    return max(ps, key=lambda x: x[1]) if ps else None
 
 
 def main(paths):

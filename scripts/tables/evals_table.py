@@ -10,12 +10,9 @@ docs/performance.md:
 import csv
 import sys
 
+from results_table import num, passes
 
-def num(row, key):
-    try:
-        return float(row.get(key, ""))
-    except ValueError:
-        return None
+SHADING_PASSES = ("shade", "lighting", "lighting_oct16", "lighting_packed")
 
 
 def main(paths):
@@ -28,12 +25,7 @@ def main(paths):
     print("|---:|---|---:|---:|---|---:|---:|---:|")
     for r in rows:
         ev, pp = num(r, "light_evals"), num(r, "evals_per_pixel")
-        name, ms = None, None
-        for k in ("pass_shade_ms_median", "pass_lighting_ms_median", "pass_lighting_oct16_ms_median",
-                  "pass_lighting_packed_ms_median"):
-            if num(r, k) is not None:
-                name, ms = k[len("pass_"):-len("_ms_median")], num(r, k)
-                break
+        name, ms = next(((n, t) for n, t in passes(r) if n in SHADING_PASSES), (None, None))
         rate = ev / ms / 1e6 if ev is not None and ms else None
         print("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
             r["lights"], r["pipeline"], "%.1f" % pp if pp is not None else "-",
