@@ -177,12 +177,6 @@ typedef struct pass_union {
     char names[PG_MAX_PASSES * 4][PG_NAME_MAX];
 } pass_union;
 
-static inline double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 /* cmd_bench.c */
 int bench_setup(bench *B, int argc, char **argv);

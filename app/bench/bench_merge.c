@@ -362,7 +362,7 @@ int pg_cmd_bench_merge(int argc, char **argv)
     }
     double elapsed = 0;
     if (adopt_meta(B, &sh[0], &err) || read_rows(B, sh, nd, &elapsed, &err)) goto fail;
-    B->t_start = now_s() - elapsed; /* meta.elapsed_s: the longest shard's */
+    B->t_start = pg_time_s() - elapsed; /* meta.elapsed_s: the longest shard's */
     if (make_dirs(B->out_dir, &err) || write_outputs(B, &err)) goto fail;
     printf("bench-merge: %u rows (%u failed) from %u shards -> %s/results.csv, results.json, gpu_time_vs_lights.svg, "
            "passes_stacked.svg, error_vs_time.svg, flip_vs_time.svg\n",

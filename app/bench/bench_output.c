@@ -234,7 +234,7 @@ static cJSON *json_meta(const bench *B)
         cJSON *a = cJSON_AddArrayToObject(sw, B->sweeps[k].key);
         for (uint32_t v = 0; a && v < B->sweeps[k].n; v++) cJSON_AddItemToArray(a, cJSON_CreateString(B->sweeps[k].values[v]));
     }
-    cJSON_AddItemToObject(m, "elapsed_s", jnum(now_s() - B->t_start));
+    cJSON_AddItemToObject(m, "elapsed_s", jnum(pg_time_s() - B->t_start));
     cJSON_AddBoolToObject(m, "device_cpu", B->device_cpu);
     cJSON_AddNumberToObject(m, "configs", B->n_configs);
     cJSON *av = cJSON_AddArrayToObject(m, "argv"); /* what bench-merge parses again */

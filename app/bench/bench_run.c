@@ -28,7 +28,7 @@ double frame_work(uint32_t w, uint32_t h, uint32_t lights)
 void progress_draw(bench *B, const char *what, bool row_done)
 {
     if (!B->progress) return;
-    double t = now_s();
+    double t = pg_time_s();
     if (B->tty && !row_done && t - B->t_last_draw < 0.1) return;
     B->t_last_draw = t;
     double el = t - B->t_start;
@@ -243,9 +243,9 @@ static pg_result timed_frames(bench *B, pg_session *s, pg_frame_info *fi, double
     for (uint32_t f = 0; f < B->opt.frames; f++) samples[f] = NAN;
     for (size_t f = 2 * (size_t)B->opt.frames; f < (size_t)B->opt.frames * (PG_MAX_PASSES + 2); f++) samples[f] = NAN;
     /* warm-up: --warmup frames, and on until --warmup-ms have passed (at most 100,000 frames) */
-    const double t0 = now_s();
+    const double t0 = pg_time_s();
     uint32_t k = 0;
-    for (; !g_interrupted && (k < B->warmup || (k < 100000 && (now_s() - t0) * 1000.0 < B->warmup_ms)); k++) {
+    for (; !g_interrupted && (k < B->warmup || (k < 100000 && (pg_time_s() - t0) * 1000.0 < B->warmup_ms)); k++) {
         pg_result r = one_frame(B, s, fi, k, fw, row, &st, e);
         if (r) return r;
         progress_draw(B, what, false);

@@ -433,7 +433,7 @@ static void bench_start(bench *B)
                B->rows_total, B->n_configs, B->shard_n, B->shard_k - 1);
     B->progress = !B->opt.quiet;
     B->tty = isatty(STDERR_FILENO);
-    B->t_start = B->t_last_draw = now_s();
+    B->t_start = B->t_last_draw = pg_time_s();
     pg_strlcpy(B->device, "(no device)", sizeof B->device);
 }
 

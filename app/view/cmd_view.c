@@ -255,7 +255,7 @@ static bool initial_state(viewer *v, const pg_cli_common *opt)
     reload(v);
     if (!v->session) return false;
     v->watch_sig = watch_signature(v);
-    v->last_watch = now_s();
+    v->last_watch = pg_time_s();
     return true;
 }
 
@@ -309,7 +309,7 @@ static void cycle_pipelines(viewer *v, uint32_t frame)
  * scripted frame or when asked, and a RenderDoc capture on C); the reload's time said */
 static bool draw_one(viewer *v, uint32_t frame, float dt, pg_error *err)
 {
-    double t_load = now_s();
+    double t_load = pg_time_s();
     uint32_t loads_before = v->reloads;
     if (v->reload) reload(v);
     camera_update(v, dt);
@@ -327,7 +327,7 @@ static bool draw_one(viewer *v, uint32_t frame, float dt, pg_error *err)
     v->rdoc_file[0] = 0;
     if (v->reloads != loads_before) /* the switch as the user waits for it */
         printf("view: frame %u: %s ready in %.1f ms (load, compile, first frame; rebuilt: %s)\n", frame,
-               v->names[v->current], (now_s() - t_load) * 1e3,
+               v->names[v->current], (pg_time_s() - t_load) * 1e3,
                pg_rebuild_kind_name(pg_runtime_get_stats(v->session->runtime).last_rebuild));
     v->want_shot = false;
     return true;
@@ -337,7 +337,7 @@ static bool draw_one(viewer *v, uint32_t frame, float dt, pg_error *err)
  * windows, time, disk changes, pipeline cycling, the frame; *frames counts them */
 static bool frame_loop(viewer *v, uint32_t *frames, pg_error *err)
 {
-    double last = now_s();
+    double last = pg_time_s();
     uint32_t frame = 0;
     while (!glfwWindowShouldClose(v->window)) {
         glfwPollEvents();
@@ -359,7 +359,7 @@ static bool frame_loop(viewer *v, uint32_t *frames, pg_error *err)
             pg_ui_set_min_image_count(v->win.min_images);
             if (minimised) continue;
         }
-        double t = now_s();
+        double t = pg_time_s();
         float dt = (float)(t - last);
         last = t;
         /* scripted runs advance a fixed 1/30 s a frame so they are reproducible */

@@ -132,12 +132,6 @@ typedef struct viewer {
     char last_growth[160];
 } viewer;
 
-static inline double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 /* view_pipelines.c */
 void scan_pipelines(viewer *v, const char *current_path);

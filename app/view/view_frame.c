@@ -19,10 +19,10 @@ static pg_result update_flip(viewer *v, uint32_t w, uint32_t h, pg_error *err)
     float *map = realloc(v->flip_map, (size_t)w * h * sizeof *map);
     if (!map) return pg_fail(err, PG_ERR_OOM, "out of memory");
     v->flip_map = map;
-    const double t0 = now_s();
+    const double t0 = pg_time_s();
     pg_result r = pg_flip_ldr(a, b, w, h, NULL, map, &v->flip_mean, err);
     if (r) return pg_error_prefix(err, "FLIP view");
-    v->flip_ms = (now_s() - t0) * 1e3;
+    v->flip_ms = (pg_time_s() - t0) * 1e3;
     pg_flip_map_rgba(map, w, h, v->diff_rgba);
     if (!v->flip_said)
         printf("view: FLIP against the reference: mean %.6g (%ux%u, %.1f ms CPU)\n", v->flip_mean, w, h, v->flip_ms);
@@ -306,7 +306,7 @@ pg_result draw_frame(viewer *v, bool capture, pg_error *err)
 {
     pg_gpu *gpu = v->app.gpu;
     pg_view_window *w = &v->win;
-    double t0 = now_s();
+    double t0 = pg_time_s();
     pg_frame_info fi = viewer_frame_info(v);
     pg_result r;
     if ((r = render_graph(v, &fi, err))) return r;
@@ -372,7 +372,7 @@ pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     } else if (vr != VK_SUCCESS) {
         return pg_fail(err, PG_ERR_VULKAN, "vkQueuePresentKHR failed: %s", pg_vk_result_name(vr));
     }
-    v->cpu_frame_ms = (now_s() - t0) * 1e3;
+    v->cpu_frame_ms = (pg_time_s() - t0) * 1e3;
     if (v->n_frame_ms < 512) v->frame_ms[v->n_frame_ms++] = v->cpu_frame_ms;
     return PG_OK;
 }

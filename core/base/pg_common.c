@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <vulkan/vulkan_core.h>
 
 pg_result pg_fail(pg_error *err, pg_result code, const char *fmt, ...)
@@ -143,4 +144,11 @@ pg_result pg_read_file_as(const char *path, const char *expected, char **out_tex
     *out_text = buf;
     if (out_size) *out_size = (size_t)len;
     return PG_OK;
+}
+
+double pg_time_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }

@@ -132,6 +132,8 @@ pg_result pg_read_file_as(const char *path, const char *expected, char **out_tex
  * (../share/passgraph for an installed bundle), else the source tree. Never NULL. */
 const char *pg_data_dir(void);
 /* Joins pg_data_dir() and rel into buf. */
+/* Seconds on the monotonic clock (for durations). */
+double pg_time_s(void);
 void pg_data_path(char *buf, size_t size, const char *rel);
 
 #ifdef __cplusplus

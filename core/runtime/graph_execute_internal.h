@@ -161,9 +161,7 @@ struct pg_runtime {
 
 static inline double pg_rt_now_ms(void)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+    return pg_time_s() * 1e3;
 }
 
 /* graph_execute_memory.c */

@@ -131,9 +131,7 @@ static pg_shader_cache_stats g_stats;
 
 static double now_ms(void)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+    return pg_time_s() * 1e3;
 }
 
 static void add_ms(double *acc, double ms)
