@@ -16,6 +16,8 @@
 #   manylight      every pipeline, exact and approximate, 1,000 / 100,000 / 1,000,000 lights: time
 #                  per pass, RMSE, FLIP, SSIM, flicker against the reference (naive at 1,000 only:
 #                  it takes about 70 s a frame at 1,000,000)
+#   tiling         the tiled shading loop's tile_batch x tile_sort at 1,000 / 100,000 / 1,000,000
+#                  lights (visibility, times only), and the stochastic pipeline's threshold x tile_batch
 #   knobs          the approximation knobs at 1,000,000 lights (stochastic_threshold,
 #                  ris_candidates, lightcut_error) and the accumulation curve of the stochastic
 #                  pipeline (--accumulate 1, 4, 16, 64)
@@ -126,6 +128,12 @@ for step in "${STEPS[@]}"; do
         --sweep tile_size=8,16 --lights 100000,1000000 "${TIMING[@]}"
     done
     ;;
+  tiling)
+    bench tiling "$BUNDLE" visibility --lights 1000,100000,1000000 --sweep tile_batch=1,2,4,8 --sweep tile_backface=false,true \
+      --sweep tile_sort=false,true --reference-max-lights 0 --warmup 3 --warmup-ms 300 --frames 10
+    bench tiling_stochastic "$BUNDLE" stochastic --lights 1000000 --sweep tile_batch=1,4 --sweep tile_backface=false,true \
+      --sweep stochastic_threshold=0.08,0.3,1 --warmup 2 --warmup-ms 300 --frames 5 --no-hdr-flip --flicker-frames 0
+    ;;
   manylight)
     ERR=(--warmup 2 --warmup-ms 400 --frames 5 --no-hdr-flip --flicker-frames 4)
     bench manylight "$BUNDLE" forward_plus,deferred,deferred_oct16,deferred_packed,visibility,stochastic,ris,lightcut \
@@ -157,7 +165,7 @@ for step in "${STEPS[@]}"; do
     COMMON=("${SAVED[@]}")
     ;;
   *)
-    echo "device-run.sh: unknown step '$step' (validate, bench, bench-forward, prepass, ab, sweep, manylight, knobs," \
+    echo "device-run.sh: unknown step '$step' (validate, bench, bench-forward, prepass, ab, sweep, tiling, manylight, knobs," \
       "evals, stress)" >&2
     exit 2
     ;;
