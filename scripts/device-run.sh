@@ -16,8 +16,8 @@
 #   manylight      every pipeline, exact and approximate, 1,000 / 100,000 / 1,000,000 lights: time
 #                  per pass, RMSE, FLIP, SSIM, flicker against the reference (naive at 1,000 only:
 #                  it takes about 70 s a frame at 1,000,000)
-#   tiling         the tiled shading loop's tile_batch x tile_sort at 1,000 / 100,000 / 1,000,000
-#                  lights (visibility, times only), and the stochastic pipeline's threshold x tile_batch
+#   tiling         the tiled shading loop with and without its back-face test (tile_backface) at
+#                  1,000 / 100,000 / 1,000,000 lights (visibility, deferred_oct16; times only)
 #   knobs          the approximation knobs at 1,000,000 lights (stochastic_threshold,
 #                  ris_candidates, lightcut_error) and the accumulation curve of the stochastic
 #                  pipeline (--accumulate 1, 4, 16, 64)
@@ -129,20 +129,18 @@ for step in "${STEPS[@]}"; do
     done
     ;;
   tiling)
-    bench tiling "$BUNDLE" visibility --lights 1000,100000,1000000 --sweep tile_batch=1,2,4,8 --sweep tile_backface=false,true \
-      --sweep tile_sort=false,true --reference-max-lights 0 --warmup 3 --warmup-ms 300 --frames 10
-    bench tiling_stochastic "$BUNDLE" stochastic --lights 1000000 --sweep tile_batch=1,4 --sweep tile_backface=false,true \
-      --sweep stochastic_threshold=0.08,0.3,1 --warmup 2 --warmup-ms 300 --frames 5 --no-hdr-flip --flicker-frames 0
+    bench tiling "$BUNDLE" visibility,deferred_oct16 --lights 1000,100000,1000000 --sweep tile_backface=false,true \
+      --reference-max-lights 0 --warmup 3 --warmup-ms 500 --frames 10
     ;;
   manylight)
-    ERR=(--warmup 2 --warmup-ms 400 --frames 5 --no-hdr-flip --flicker-frames 4)
+    ERR=(--warmup 2 --warmup-ms 1000 --frames 5 --no-hdr-flip --flicker-frames 4)
     bench manylight "$BUNDLE" forward_plus,deferred,deferred_oct16,deferred_packed,visibility,stochastic,ris,lightcut \
       --lights 1000,100000,1000000 "${ERR[@]}"
     bench manylight_naive "$BUNDLE" naive --lights 1000 "${ERR[@]}"
     ;;
   knobs)
-    ERR=(--warmup 1 --warmup-ms 300 --frames 3 --no-hdr-flip --flicker-frames 4 --lights 1000000)
-    bench knob_stochastic "$BUNDLE" stochastic --sweep stochastic_threshold=0.005,0.02,0.08,0.3 "${ERR[@]}"
+    ERR=(--warmup 1 --warmup-ms 1000 --frames 5 --no-hdr-flip --flicker-frames 4 --lights 1000000)
+    bench knob_stochastic "$BUNDLE" stochastic --sweep stochastic_threshold=0.005,0.02,0.08,0.3,1,3,10 "${ERR[@]}"
     bench knob_ris "$BUNDLE" ris --sweep ris_candidates=4,16,64 "${ERR[@]}"
     bench knob_lightcut "$BUNDLE" lightcut --sweep lightcut_error=0.005,0.05,0.2 "${ERR[@]}"
     for n in 1 4 16 64; do

@@ -287,21 +287,14 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 // Tile-refined clustered shading for a compute workgroup of PG_TILE x PG_TILE invocations (one per
 // pixel of a tile; every invocation of the workgroup must call it, in uniform control flow). For
 // each distinct cluster among the tile's lit pixels (smallest index first), the workgroup streams
-// the cluster's list through shared memory PG_TILE_CHUNK lights at a time, keeps only the lights
-// whose sphere reaches the bounding box of the tile's pixels in that cluster (their camera-relative
+// the cluster's list through shared memory PG_TILE_N lights at a time, keeps only the lights whose
+// sphere reaches the bounding box of the tile's pixels in that cluster (their camera-relative
 // positions: a light that reaches a pixel reaches that box), and the pixels of the cluster sum
 // the kept lights in list order. Lights dropped by the box test would have added exactly nothing
 // (pg_accumulate_light_rel_select adds exactly 0 for d >= R), so the sum is bit-identical to
 // the per-pixel loop of pg_shade_point, with far fewer evaluations and each light read once per
 // tile instead of once per pixel. Three barriers a chunk (one shared buffer: measured faster on an
 // H200 than two alternating buffers with two barriers, 3.5 vs 4.4 ms at 100,000 lights).
-// PG_TILE_BATCH (option tile_batch): each invocation reads PG_TILE_BATCH list entries a chunk
-// (all loads issued before the first is used), so a chunk holds PG_TILE_BATCH x PG_TILE_N
-// candidates and the barriers and waits for memory are shared by that many lights.
-// PG_TILE_SORT (option tile_sort): the tile's pixels are handed to invocations in cluster order
-// (surface terms through shared memory, the sums back to their pixels after the loop), so the
-// pixels of one cluster fill whole subgroups instead of leaving lanes idle in every subgroup;
-// each pixel's sum is the same sequence of operations, bit-identical.
 // PG_TILE_BACKFACE (option tile_backface): a light also leaves the chunk when it lies behind every
 // pixel of the cluster's part of the tile: dot(N_i, light - P_i) < 0 for all of them, bounded by
 // dot(a, r) + E |r| + H < -tol with a the normal of one of the pixels, E = max |N_i - a|,
@@ -313,25 +306,15 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #ifndef PG_TILE
 #define PG_TILE 8
 #endif
-#ifndef PG_TILE_BATCH
-#define PG_TILE_BATCH 1
-#endif
 #define PG_TILE_N (PG_TILE * PG_TILE)
-#define PG_TILE_CHUNK (PG_TILE_N * PG_TILE_BATCH)
 shared uint s_tl_cluster;
 shared uint s_tl_box[6];                     // ordered-uint min xyz, max xyz
-shared vec4 s_tl_light[2 * PG_TILE_CHUNK];   // pos_radius, color of the kept lights
-shared uint s_tl_count[PG_TILE_N * PG_TILE_BATCH];
+shared vec4 s_tl_light[2 * PG_TILE_N];       // pos_radius, color of the kept lights
+shared uint s_tl_count[PG_TILE_N];
 #ifdef PG_TILE_BACKFACE
 shared uint s_tb_first;                      // the lowest invocation of the cluster: its normal is the axis
 shared uint s_tb_e, s_tb_h;                  // E (float bits, >= 0) and H (ordered uint)
 shared float s_tb_axis[3];
-#endif
-#ifdef PG_TILE_SORT
-shared uint s_ts_cluster[PG_TILE_N];         // each pixel's cluster (pixel order)
-shared uint s_ts_owner[PG_TILE_N];           // the pixel at each sorted position
-shared vec4 s_ts_a[PG_TILE_N];               // P, shininess at the sorted position; then the diffuse sum
-shared vec4 s_ts_b[PG_TILE_N];               // N at the sorted position; then the specular sum
 #endif
 
 uint pg_tl_order(float f)                    // float -> uint with the same order
@@ -343,46 +326,6 @@ uint pg_tl_order(float f)                    // float -> uint with the same orde
 float pg_tl_unorder(uint u)
 {
     return uintBitsToFloat((u & 0x80000000u) != 0u ? u & 0x7fffffffu : ~u);
-}
-
-// Each invocation's position among the kept lights of the chunk (candidate j of this invocation
-// is list entry base + j x PG_TILE_N + slot; kept lights in list order) and their number. Every
-// invocation calls it (barriers); the counts of block j live at s_tl_count[j x PG_TILE_N ...], so
-// the chunk's closing barriers protect them.
-void pg_tl_compact(bool keep[PG_TILE_BATCH], uint lid, out uint pos[PG_TILE_BATCH], out uint total)
-{
-    total = 0u;
-#ifdef PG_TILE_SUBGROUPS
-    uvec4 bal[PG_TILE_BATCH];
-    for (int j = 0; j < PG_TILE_BATCH; j++) {
-        bal[j] = subgroupBallot(keep[j]);
-        if (subgroupElect()) s_tl_count[uint(j * PG_TILE_N) + gl_SubgroupID] = subgroupBallotBitCount(bal[j]);
-    }
-    barrier();
-    for (int j = 0; j < PG_TILE_BATCH; j++) {
-        uint p = total + subgroupBallotExclusiveBitCount(bal[j]);
-        for (uint g = 0u; g < gl_NumSubgroups; g++) {
-            uint n = s_tl_count[uint(j * PG_TILE_N) + g];
-            p += g < gl_SubgroupID ? n : 0u;
-            total += n;
-        }
-        pos[j] = p;
-    }
-#else
-    for (int j = 0; j < PG_TILE_BATCH; j++) {
-        uint o = uint(j * PG_TILE_N);
-        s_tl_count[o + lid] = keep[j] ? 1u : 0u;
-        barrier();
-        for (uint d = 1u; d < uint(PG_TILE_N); d <<= 1u) {
-            uint add = lid >= d ? s_tl_count[o + lid - d] : 0u;
-            barrier();
-            s_tl_count[o + lid] += add;
-            barrier();
-        }
-        pos[j] = total + s_tl_count[o + lid] - (keep[j] ? 1u : 0u);
-        total += s_tl_count[o + PG_TILE_N - 1];
-    }
-#endif
 }
 
 vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
@@ -398,33 +341,8 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
     uint ci = 0xffffffffu;
     if (lit) ci = pg_cluster_index(pg_cluster_coord(frag_xy, vec2(frame.counts.zw), view_depth, frame.clip.x,
                                                     frame.clip.y, grid), grid);
-#ifdef PG_TILE_SORT
-    // rank = place of (cluster, pixel) among the tile's pixels: this invocation shades the pixel
-    // ranked lid (wP, wN, wsh, wci) and hands its sums back to that pixel's invocation
-    s_ts_cluster[lid] = ci;
-    barrier();
-    uint rank = 0u;
-    for (uint i = 0u; i < uint(PG_TILE_N); i++) {
-        uint k = s_ts_cluster[i];
-        rank += (k < ci || (k == ci && i < lid)) ? 1u : 0u;
-    }
-    s_ts_owner[rank] = lid;
-    s_ts_a[rank] = vec4(P, s.shininess);
-    s_ts_b[rank] = vec4(s.normal, 0.0);
-    barrier();
-    uint owner = s_ts_owner[lid];
-    uint wci = s_ts_cluster[owner];
-    vec3 wP = s_ts_a[lid].xyz, wN = s_ts_b[lid].xyz;
-    float wsh = s_ts_a[lid].w;
-    bool wlit = wci != 0xffffffffu;
-#else
-    uint wci = ci;
-    vec3 wP = P, wN = s.normal;
-    float wsh = s.shininess;
-    bool wlit = lit;
-#endif
-    vec3 V = wlit ? PG_VIEW_DIR(wP) : vec3(0.0, 0.0, 1.0);
-    bool pending = wlit;
+    vec3 V = lit ? PG_VIEW_DIR(P) : vec3(0.0, 0.0, 1.0);
+    bool pending = lit;
 #ifdef PG_TILE_SUBGROUPS
     uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; // a permutation of the tile
 #else
@@ -442,15 +360,15 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #endif
         }
         barrier();
-        if (pending) atomicMin(s_tl_cluster, wci);
+        if (pending) atomicMin(s_tl_cluster, ci);
         barrier();
         uint c = s_tl_cluster;
         if (c == 0xffffffffu) break;                  // uniform: every invocation read the same
-        bool mine = pending && wci == c;
+        bool mine = pending && ci == c;
         if (mine) {
             for (int k = 0; k < 3; k++) {
-                atomicMin(s_tl_box[k], pg_tl_order(wP[k]));
-                atomicMax(s_tl_box[3 + k], pg_tl_order(wP[k]));
+                atomicMin(s_tl_box[k], pg_tl_order(P[k]));
+                atomicMax(s_tl_box[3 + k], pg_tl_order(P[k]));
             }
 #ifdef PG_TILE_BACKFACE
             atomicMin(s_tb_first, lid);
@@ -461,16 +379,16 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
         vec3 bmax = vec3(pg_tl_unorder(s_tl_box[3]), pg_tl_unorder(s_tl_box[4]), pg_tl_unorder(s_tl_box[5]));
 #ifdef PG_TILE_BACKFACE
         if (lid == s_tb_first) {
-            s_tb_axis[0] = wN.x;
-            s_tb_axis[1] = wN.y;
-            s_tb_axis[2] = wN.z;
+            s_tb_axis[0] = s.normal.x;
+            s_tb_axis[1] = s.normal.y;
+            s_tb_axis[2] = s.normal.z;
         }
         barrier();
         vec3 tb_a = vec3(s_tb_axis[0], s_tb_axis[1], s_tb_axis[2]);
         vec3 tb_c = 0.5 * (bmin + bmax);
         if (mine) {
-            atomicMax(s_tb_e, floatBitsToUint(length(wN - tb_a)));
-            atomicMax(s_tb_h, pg_tl_order(dot(wN, tb_c - wP)));
+            atomicMax(s_tb_e, floatBitsToUint(length(s.normal - tb_a)));
+            atomicMax(s_tb_h, pg_tl_order(dot(s.normal, tb_c - P)));
         }
         barrier();
         float tb_e = uintBitsToFloat(s_tb_e) * (1.0 + 1e-5);
@@ -479,42 +397,55 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
         float tb_tol = 1e-5 * (4.0 + length(tb_c) + length(bmax - bmin)) + abs(tb_h) * 1e-5;
 #endif
         uvec4 rec = cluster_records[c];
-        for (uint base = 0u; base < rec.y; base += uint(PG_TILE_CHUNK)) {
-            uint idx[PG_TILE_BATCH];
-            Light L[PG_TILE_BATCH];
-            bool keep[PG_TILE_BATCH];
-            for (int j = 0; j < PG_TILE_BATCH; j++) {   // every load of the chunk in flight at once
-                uint k = base + uint(j * PG_TILE_N) + slot;
-                idx[j] = k < rec.y ? cluster_lights[rec.x + k] : 0xffffffffu;
-            }
-            for (int j = 0; j < PG_TILE_BATCH; j++) {
-                keep[j] = false;
-                L[j].pos_radius = vec4(0.0);
-                L[j].color = vec4(0.0);
-                if (idx[j] != 0xffffffffu) {
-                    L[j] = lights[idx[j]]; // whole record: one 32-byte sector anyway
-                    L[j].pos_radius.xyz -= cam;
-                    keep[j] = pg_sphere_intersects_aabb(L[j].pos_radius.xyz, L[j].pos_radius.w, bmin, bmax);
+        for (uint base = 0u; base < rec.y; base += uint(PG_TILE_N)) {
+            uint k = base + slot;
+            bool keep = false;
+            Light L;
+            L.pos_radius = vec4(0.0);
+            L.color = vec4(0.0);
+            if (k < rec.y) {
+                L = lights[cluster_lights[rec.x + k]]; // whole record: one 32-byte sector anyway
+                L.pos_radius.xyz -= cam;
+                keep = pg_sphere_intersects_aabb(L.pos_radius.xyz, L.pos_radius.w, bmin, bmax);
 #ifdef PG_TILE_BACKFACE
-                    vec3 r = L[j].pos_radius.xyz - tb_c;
-                    float lr = length(r);
-                    keep[j] = keep[j] && !(dot(tb_a, r) + tb_e * lr * (1.0 + 1e-5) + tb_h
-                                           < -(tb_tol + 1e-5 * (lr + length(L[j].pos_radius.xyz))));
+                vec3 r = L.pos_radius.xyz - tb_c;
+                float lr = length(r);
+                keep = keep && !(dot(tb_a, r) + tb_e * lr * (1.0 + 1e-5) + tb_h
+                                 < -(tb_tol + 1e-5 * (lr + length(L.pos_radius.xyz))));
 #endif
-                }
             }
-            uint pos[PG_TILE_BATCH], total;
-            pg_tl_compact(keep, lid, pos, total);
-            for (int j = 0; j < PG_TILE_BATCH; j++) {
-                if (keep[j]) {   // what pg_accumulate_light_rel reads, computed once per tile
-                    float R2 = L[j].pos_radius.w * L[j].pos_radius.w;
-#ifdef PG_STOCHASTIC_CULL
-                    s_tl_light[2u * pos[j]] = vec4(L[j].pos_radius.xyz, pg_light_inv_r2(L[j].color.w * L[j].color.w)); // true range
+            uint pos, total;
+#ifdef PG_TILE_SUBGROUPS
+            uvec4 bal = subgroupBallot(keep);
+            if (subgroupElect()) s_tl_count[gl_SubgroupID] = subgroupBallotBitCount(bal);
+            barrier();
+            pos = subgroupBallotExclusiveBitCount(bal);
+            total = 0u;
+            for (uint g = 0u; g < gl_NumSubgroups; g++) {
+                uint n = s_tl_count[g];
+                pos += g < gl_SubgroupID ? n : 0u;
+                total += n;
+            }
 #else
-                    s_tl_light[2u * pos[j]] = vec4(L[j].pos_radius.xyz, pg_light_inv_r2(R2));
+            s_tl_count[lid] = keep ? 1u : 0u;
+            barrier();
+            for (uint d = 1u; d < uint(PG_TILE_N); d <<= 1u) {
+                uint add = lid >= d ? s_tl_count[lid - d] : 0u;
+                barrier();
+                s_tl_count[lid] += add;
+                barrier();
+            }
+            pos = s_tl_count[lid] - (keep ? 1u : 0u);
+            total = s_tl_count[PG_TILE_N - 1];
 #endif
-                    s_tl_light[2u * pos[j] + 1u] = vec4(L[j].color.rgb, R2);
-                }
+            if (keep) {   // what pg_accumulate_light_rel reads, computed once per tile
+                float R2 = L.pos_radius.w * L.pos_radius.w;
+#ifdef PG_STOCHASTIC_CULL
+                s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(L.color.w * L.color.w)); // true range
+#else
+                s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(R2));
+#endif
+                s_tl_light[2u * pos + 1u] = vec4(L.color.rgb, R2);
             }
             barrier();
             if (mine) {
@@ -522,21 +453,14 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                 for (uint j = 0u; j < total; j++) {
                     vec4 a = s_tl_light[2u * j];
                     vec4 b = s_tl_light[2u * j + 1u];
-                    pg_accumulate_light_rel_select(a.xyz, b.w, a.w, b.rgb, wP, wN, V, wsh, inv_md2, acc);
+                    pg_accumulate_light_rel_select(a.xyz, b.w, a.w, b.rgb, P, s.normal, V, s.shininess, inv_md2, acc);
                 }
             }
-            barrier();   // before the next chunk overwrites the shared lights
+            barrier();   // before the next chunk overwrites the shared lights and counts
         }
         pending = pending && !mine;
         barrier();       // before the next round resets the cluster and box (a cluster may have no chunk)
     }
-#ifdef PG_TILE_SORT
-    s_ts_a[owner] = vec4(acc.diffuse, 0.0);   // the sums back to their pixel (the surface terms were read)
-    s_ts_b[owner] = vec4(acc.specular, 0.0);
-    barrier();
-    acc.diffuse = s_ts_a[lid].xyz;
-    acc.specular = s_ts_b[lid].xyz;
-#endif
     return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z));
 }
 #endif

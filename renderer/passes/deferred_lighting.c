@@ -57,8 +57,8 @@ typedef struct deferred_lighting {
     VkDescriptorSet scene_set;      /* packing visibility: set 3 */
 } deferred_lighting;
 
-static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", "tile_batch", "tile_sort", "tile_backface",
-                                     "ris_candidates", "ris_samples",
+static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", "tile_backface", "ris_candidates",
+                                     "ris_samples",
                                      "lights", "lightcut_error", "stochastic_threshold", NULL};
 static const char *const k_light_sources[] = {"clusters", "tree", NULL};
 
@@ -119,16 +119,8 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
                        in->desc->json_path, (long long)tile);
     p->tile = (uint32_t)tile;
     pg_decl_define_int(out, "PG_TILE", tile);
-    int64_t batch;
-    bool sort;
-    if ((r = pg_opt_int(in->desc, "tile_batch", 1, 1, 8, &batch, err))) return r;
-    if (batch * tile * tile > 512) /* shared memory: 32 bytes a staged light */
-        return pg_fail(err, PG_ERR_SCHEMA, "%s: %s.options.tile_batch: %lld x tile_size^2 (%lld) stages %lld lights "
-                       "a chunk, more than the 512 that fit the shared memory every device has", in->desc->file,
-                       in->desc->json_path, (long long)batch, (long long)(tile * tile), (long long)(batch * tile * tile));
-    if ((r = pg_opt_bool(in->desc, "tile_sort", false, &sort, err))) return r;
     bool backface;
-    if ((r = pg_opt_bool(in->desc, "tile_backface", false, &backface, err))) return r;
+    if ((r = pg_opt_bool(in->desc, "tile_backface", true, &backface, err))) return r;
     int64_t ris_m, ris_s;
     if ((r = pg_opt_int(in->desc, "ris_candidates", 0, 0, 4096, &ris_m, err))) return r;
     if ((r = pg_opt_int(in->desc, "ris_samples", 1, 1, 64, &ris_s, err))) return r;
@@ -167,8 +159,6 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     p->tiled = tiled && !ris && source == 0 && p->sh.o.view == 0 && pg_lights_of(in) > 0;
     if (p->tiled) {
         pg_decl_define(out, "PG_TILE_LIGHTS");
-        pg_decl_define_int(out, "PG_TILE_BATCH", batch);
-        if (sort) pg_decl_define(out, "PG_TILE_SORT");
         if (backface) pg_decl_define(out, "PG_TILE_BACKFACE");
     }
     return PG_OK;

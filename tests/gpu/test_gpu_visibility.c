@@ -26,9 +26,10 @@
  * Control: naive with half the lights must break the bounds (they can fail).
  *
  * The tiled light loop (shading.glsl pg_shade_tile) of visibility and deferred_oct16: with
- * tile_lights=false (the per-pixel loop) and with tile_size 16 the HDR image is byte-identical to
- * the default, on the atrium with 5000 lights (cluster lists of thousands: many chunks, and
- * partial last chunks). */
+ * tile_lights=false (the per-pixel loop), with tile_size 16 and with tile_backface=false the HDR
+ * image is byte-identical to the default, on the atrium with 5000 lights (cluster lists of
+ * thousands: many chunks, and partial last chunks), and the default's back-face test evaluates
+ * fewer lights than tile_backface=false (counter light_evals). */
 #include <dirent.h>
 #include <math.h>
 #include <stdlib.h>
@@ -305,7 +306,8 @@ static void check_light_loop(void)
     const pg_scene_gpu *sg = ts.sg;
     const pg_frame_info fi = ts.fi;
     static const char *const pipes[] = {"pipelines/visibility.json", "pipelines/deferred_oct16.json"};
-    static const pg_param_override variants[][1] = {{{"tile_size", "16"}}, {{"tile_lights", "false"}}};
+    static const pg_param_override variants[][1] = {
+        {{"tile_size", "16"}}, {{"tile_lights", "false"}}, {{"tile_backface", "false"}}};
     for (size_t p = 0; p < 2; p++) {
         pg_th_frame base;
         if (!pg_th_render(g_gpu, &g_reg, sg, pipes[p], NULL, 0, &fi, 1, false, &base)) {
@@ -313,7 +315,8 @@ static void check_light_loop(void)
             continue;
         }
         uint64_t refs = (uint64_t)pg_frame_counter_sum(&base.stats, "total_refs");
-        for (size_t v = 0; v < 2; v++) {
+        uint64_t evals = (uint64_t)pg_frame_counter_sum(&base.stats, "light_evals");
+        for (size_t v = 0; v < 3; v++) {
             pg_th_frame f;
             if (!pg_th_render(g_gpu, &g_reg, sg, pipes[p], variants[v], 1, &fi, 1, false, &f)) {
                 CHECK_MSG(0, "%s %s=%s renders", pipes[p], variants[v][0].key, variants[v][0].value);
@@ -323,6 +326,13 @@ static void check_light_loop(void)
             printf("light loop: %s %s=%s vs default: %s (%llu light references)\n", pipes[p], variants[v][0].key,
                    variants[v][0].value, same ? "byte-identical" : "DIFFERENT", (unsigned long long)refs);
             CHECK_MSG(same, "%s: %s=%s changes the image", pipes[p], variants[v][0].key, variants[v][0].value);
+            if (v == 2) {
+                uint64_t all = (uint64_t)pg_frame_counter_sum(&f.stats, "light_evals");
+                printf("light loop: %s light evaluations %llu, %llu without the back-face test\n", pipes[p],
+                       (unsigned long long)evals, (unsigned long long)all);
+                CHECK_MSG(evals > 0 && evals < all, "%s: the back-face test drops no light (%llu vs %llu)", pipes[p],
+                          (unsigned long long)evals, (unsigned long long)all);
+            }
             pg_th_release(&f);
         }
         pg_th_release(&base);
