@@ -39,6 +39,12 @@ layout(set = 1, binding = 4, std430) readonly buffer SliceMasks { uint slice_mas
 #endif
 layout(push_constant) uniform Push { uint words; uint segments; uint seg_words; } pc;
 
+// candidates of a word tested per round: their sphere loads are issued together (a lane's
+// candidates were loaded one after another, each waiting for the last)
+#ifndef PG_CANDIDATE_LOADS
+#define PG_CANDIDATE_LOADS 4
+#endif
+
 #ifndef PG_ONE_SUBGROUP
 shared uint s_scan[64];
 #endif
@@ -104,11 +110,18 @@ void main()
 #else
             uint m = tile_masks[tile_base + w] & slice_masks[slice_base + w];
 #endif
-            while (m != 0u) {
-                int b = findLSB(m);
-                m &= m - 1u;
-                vec4 sph = spheres[w * 32u + uint(b)];
-                if (pg_sphere_intersects_aabb(sph.xyz, sph.w, bmin, bmax)) hits |= 1u << uint(b);
+            while (m != 0u) {   // PG_CANDIDATE_LOADS candidates at a time: their loads in flight together
+                uint bits[PG_CANDIDATE_LOADS];
+                vec4 sph[PG_CANDIDATE_LOADS];
+                for (int q = 0; q < PG_CANDIDATE_LOADS; q++) {
+                    bits[q] = m != 0u ? uint(findLSB(m)) : 32u;
+                    m &= m - 1u;   // m = 0 stays 0
+                }
+                for (int q = 0; q < PG_CANDIDATE_LOADS; q++)
+                    sph[q] = bits[q] < 32u ? spheres[w * 32u + bits[q]] : vec4(0.0);
+                for (int q = 0; q < PG_CANDIDATE_LOADS; q++)
+                    if (bits[q] < 32u && pg_sphere_intersects_aabb(sph[q].xyz, sph[q].w, bmin, bmax))
+                        hits |= 1u << bits[q];
             }
         }
         uint excl, total;
