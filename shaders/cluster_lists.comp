@@ -44,6 +44,11 @@ layout(push_constant) uniform Push { uint words; uint segments; uint seg_words; 
 #ifndef PG_CANDIDATE_LOADS
 #define PG_CANDIDATE_LOADS 4
 #endif
+// consecutive mask words a lane walks per round (lanes in order, so the lists stay ascending):
+// fewer rounds, each waiting once for PG_LANE_WORDS words instead of once per word
+#ifndef PG_LANE_WORDS
+#define PG_LANE_WORDS 4
+#endif
 
 #ifndef PG_ONE_SUBGROUP
 shared uint s_scan[64];
@@ -100,39 +105,50 @@ void main()
 #else
     uint running = 0u;
 #endif
-    for (uint w0 = w_begin; w0 < w_end; w0 += width) {
-        uint w = w0 + lane;
-        uint hits = 0u;
-        if (w < w_end) {
+    for (uint w0 = w_begin; w0 < w_end; w0 += width * PG_LANE_WORDS) {
+        uint wl = w0 + lane * PG_LANE_WORDS;        // this lane's words: wl .. wl + PG_LANE_WORDS - 1
+        uint m[PG_LANE_WORDS], hits[PG_LANE_WORDS];
+        for (int j = 0; j < PG_LANE_WORDS; j++) {   // every mask load of the round in flight together
+            uint w = wl + uint(j);
 #ifdef PG_BRUTE_FORCE
             uint n = min(count - min(count, w * 32u), 32u);
-            uint m = n >= 32u ? ~0u : ((1u << n) - 1u);
+            m[j] = w >= w_end ? 0u : n >= 32u ? ~0u : ((1u << n) - 1u);
 #else
-            uint m = tile_masks[tile_base + w] & slice_masks[slice_base + w];
+            m[j] = w < w_end ? tile_masks[tile_base + w] & slice_masks[slice_base + w] : 0u;
 #endif
-            while (m != 0u) {   // PG_CANDIDATE_LOADS candidates at a time: their loads in flight together
+        }
+        uint n_hits = 0u;
+        for (int j = 0; j < PG_LANE_WORDS; j++) {
+            uint w = wl + uint(j);
+            uint mm = m[j];
+            hits[j] = 0u;
+            while (mm != 0u) {   // PG_CANDIDATE_LOADS candidates at a time: their loads in flight together
                 uint bits[PG_CANDIDATE_LOADS];
                 vec4 sph[PG_CANDIDATE_LOADS];
                 for (int q = 0; q < PG_CANDIDATE_LOADS; q++) {
-                    bits[q] = m != 0u ? uint(findLSB(m)) : 32u;
-                    m &= m - 1u;   // m = 0 stays 0
+                    bits[q] = mm != 0u ? uint(findLSB(mm)) : 32u;
+                    mm &= mm - 1u;   // 0 stays 0
                 }
                 for (int q = 0; q < PG_CANDIDATE_LOADS; q++)
                     sph[q] = bits[q] < 32u ? spheres[w * 32u + bits[q]] : vec4(0.0);
                 for (int q = 0; q < PG_CANDIDATE_LOADS; q++)
                     if (bits[q] < 32u && pg_sphere_intersects_aabb(sph[q].xyz, sph[q].w, bmin, bmax))
-                        hits |= 1u << bits[q];
+                        hits[j] |= 1u << bits[q];
             }
+            n_hits += bitCount(hits[j]);
         }
         uint excl, total;
-        scan(bitCount(hits), excl, total);
+        scan(n_hits, excl, total);
 #ifdef PG_FILL
         uint slot = running + excl;
-        while (hits != 0u && slot < keep) {
-            int b = findLSB(hits);
-            hits &= hits - 1u;
-            lists[rec.x + slot] = w * 32u + uint(b);
-            slot++;
+        for (int j = 0; j < PG_LANE_WORDS; j++) {
+            uint h = hits[j];
+            while (h != 0u && slot < keep) {
+                int b = findLSB(h);
+                h &= h - 1u;
+                lists[rec.x + slot] = (wl + uint(j)) * 32u + uint(b);
+                slot++;
+            }
         }
 #endif
         running += total;

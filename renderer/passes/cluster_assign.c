@@ -54,7 +54,7 @@
  * buffer that scales with lights x clusters; the other half is left to images, the scene and
  * other processes) */
 #define PG_AUTO_BUDGET_SHARE 0.5
-enum { PIPE_BIN, PIPE_COUNT, PIPE_SCAN, PIPE_FILL, PIPE_N };
+enum { PIPE_BIN, PIPE_COUNT, PIPE_SEGSCAN, PIPE_SCAN, PIPE_FILL, PIPE_N };
 
 typedef struct ca_opts {
     uint32_t grid[3];
@@ -149,12 +149,13 @@ static pg_result shader(pg_gpu *gpu, const pg_plan_pass *pass, const char *file,
 static pg_result make_pipe(cluster_assign *p, pg_gpu *gpu, const pg_plan_pass *pass, int which, pg_error *err)
 {
     static const char *const files[PIPE_N] = {"cluster_bin.comp", "cluster_lists.comp", "cluster_scan.comp",
-                                              "cluster_lists.comp"};
-    static const char *const suffix[PIPE_N] = {"bin", "count", "scan", "fill"};
+                                              "cluster_scan.comp", "cluster_lists.comp"};
+    static const char *const suffix[PIPE_N] = {"bin", "count", "segscan", "scan", "fill"};
     bool lists = which == PIPE_COUNT || which == PIPE_FILL;
     bool one_sg = lists && p->o.subgroups && gpu->exact_subgroups;
     VkShaderModule cs;
-    pg_result r = shader(gpu, pass, files[which], which == PIPE_FILL ? "PG_FILL" : NULL,
+    pg_result r = shader(gpu, pass, files[which],
+                         which == PIPE_FILL ? "PG_FILL" : which == PIPE_SEGSCAN ? "PG_SEGMENT_SCAN" : NULL,
                          one_sg ? "PG_ONE_SUBGROUP" : NULL, &cs, err);
     if (r) return r;
     uint32_t spec[1] = {gpu->subgroup_size};
@@ -327,6 +328,10 @@ static void ca_record(void *self, const pg_pass_record_ctx *ctx)
     step_barrier(cmd);
     STAMP(2);
     uint32_t scan_push[4] = {p->clusters, capacity, p->o.max_lights, p->n_segments};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_SEGSCAN]);
+    vkCmdPushConstants(cmd, p->layout, PG_PUSH_STAGES, 0, 16, scan_push);
+    dispatch_groups(cmd, p->clusters);
+    step_barrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_SCAN]);
     vkCmdPushConstants(cmd, p->layout, PG_PUSH_STAGES, 0, 16, scan_push);
     vkCmdDispatch(cmd, 1, 1, 1);
