@@ -18,7 +18,9 @@ static const char *const merge_help =
     "(exit 1, naming the folder and the cause) shards of different sweeps (any meta field apart from\n"
     "shard and elapsed_s differs, device included), a shard given twice, a missing shard or\n"
     "configuration, and interrupted shards. Run it where the pipeline files of the sweep are (it\n"
-    "parses the sweep's options again); it opens no device. Exit 2 on bad options.\n";
+    "parses the sweep's options again); it opens no device. Exit 2 on bad options. A folder of an\n"
+    "unsharded run counts as the one shard of 1: 'bench-merge --out DIR RUN_DIR' writes the run's\n"
+    "table and charts again (e.g. after the charts were left out).\n";
 
 typedef struct shard_in {
     const char *dir;
@@ -154,9 +156,13 @@ static pg_result shard_load(shard_in *s, pg_error *err)
         return pg_fail(err, PG_ERR_PARSE, "%s/results.json: not a passgraph bench result (passgraph_bench 1, meta, rows)",
                        s->dir);
     const cJSON *sh = cJSON_GetObjectItemCaseSensitive(s->meta, "shard");
-    double k = jget_num(sh, "k"), n = jget_num(sh, "n");
-    if (!cJSON_IsObject(sh) || !(k >= 1 && n >= k))
-        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: not a shard (results.json has no meta.shard; run bench with --shard K/N)",
+    double k = 1, n = 1; /* no meta.shard: a whole run, the one shard of 1 */
+    if (sh) {
+        k = jget_num(sh, "k");
+        n = jget_num(sh, "n");
+    }
+    if ((sh && !cJSON_IsObject(sh)) || !(k >= 1 && n >= k))
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s/results.json: meta.shard: expected {\"k\": K, \"n\": N} with 1 <= K <= N",
                        s->dir);
     s->k = (uint32_t)k;
     s->n = (uint32_t)n;

@@ -28,7 +28,7 @@ def main(paths):
         name, ms = next(((n, t) for n, t in passes(r) if n in SHADING_PASSES), (None, None))
         rate = ev / ms / 1e6 if ev is not None and ms else None
         print("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            r["lights"], r["pipeline"], "%.1f" % pp if pp is not None else "-",
+            r["lights"], (r["pipeline"] + (" " + r["variant"] if r.get("variant") else "")), "%.1f" % pp if pp is not None else "-",
             "%.3g" % ev if ev is not None else "-", name or "-", "%.3f" % ms if ms is not None else "-",
             "%.1f" % rate if rate is not None else "-", "%.3f" % num(r, "gpu_ms_median")))
 

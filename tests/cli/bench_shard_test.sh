@@ -5,7 +5,8 @@
 # *_ms_min, *_ms_max, *_ms_p95: gpu_ms_*, cpu_ms_*, wait_ms_*, pass_<name>_ms_*), and the same
 # results.json rows apart from those times; the error columns (deterministic) must be equal and
 # present. bench-merge must refuse a missing shard, a shard given twice, shards of different
-# sweeps, a folder that is not a shard and a shard lacking a configuration; bad --shard values
+# sweeps, an unsharded run given with a shard (and merged alone: its table and charts again) and a
+# shard lacking a configuration; bad --shard values
 # exit 2.
 set -u
 PG=$1
@@ -97,7 +98,15 @@ expect_fail "merge: missing shard" 1 "shard 2/2 missing" bench-merge --out "$tmp
 cp -r "$tmp/s1" "$tmp/s1copy"
 expect_fail "merge: shard twice" 1 "$tmp/s1copy: shard 1/2 given twice (also $tmp/s1)" \
   bench-merge --out "$tmp/m2" "$tmp/s1" "$tmp/s2" "$tmp/s1copy"
-expect_fail "merge: not a shard" 1 "$tmp/full: not a shard" bench-merge --out "$tmp/m2" "$tmp/full" "$tmp/s2"
+# an unsharded run is the one shard of 1: not part of a sweep in 2 shards, but merged alone it is
+# the same run again
+expect_fail "merge: whole run with a shard" 1 "$tmp/full is 1/1" bench-merge --out "$tmp/m2" "$tmp/full" "$tmp/s2"
+"$PG" bench-merge --out "$tmp/again" "$tmp/full" >"$tmp/again.log" 2>&1 || bad "bench-merge of the unsharded run: exit $?"
+for f in results.csv results.json gpu_time_vs_lights.svg flip_vs_time.svg; do
+  [ -s "$tmp/again/$f" ] || bad "bench-merge of the unsharded run wrote no $f"
+done
+cmp -s <(cut -d, -f1-12 "$tmp/full/results.csv") <(cut -d, -f1-12 "$tmp/again/results.csv") ||
+  bad "bench-merge of the unsharded run: results.csv rows differ from the run's"
 "$PG" bench --pipelines forward_plus,deferred --sweep gbuffer=float,packed --lights 16,32 --size 160x90 --frames 2 \
   --warmup 1 --validation --quiet --shard 2/2 --out "$tmp/other" >"$tmp/other.log" 2>&1 || bad "bench (other sweep): exit $?"
 expect_fail "merge: different sweeps" 1 "$tmp/other: not the same sweep as $tmp/s1: meta.lights differs" \
