@@ -18,9 +18,6 @@
 //    cluster's box lies inside, since ray * depth is linear in depth.
 // The radius is grown by 1e-4 relative plus 1e-5 of the distance: 10x the test's slack and
 // float rounding. tests/test_cluster_assign.c checks the lists against the brute-force oracle.
-// Each mask buffer ends with a summary (bit w % 32 of word w / 32: mask word w is not 0), so the
-// list steps load only the mask words that can hold candidates (sparse masks: few lights, small
-// or stochastic ranges).
 // Every light's sphere is also stored (spheres[]), so the list steps test candidates without
 // transforming lights again; with PG_BRUTE_FORCE only that is done.
 #include "common.glsl"
@@ -125,17 +122,8 @@ void main()
     if (x0 < 0 || y0 < 0) return;
 
     uint w = i >> 5u, bit = 1u << (i & 31u);
-    // the summaries after the masks: the first light of a word also sets the word's summary bit
-    uint swords = (pc.words + 31u) >> 5u, sbit = 1u << (w & 31u);
-    uint slice_sum = grid.z * pc.words, tile_sum = grid.x * grid.y * pc.words;
-    for (int k = k0; k <= k1; k++)
-        if (atomicOr(slice_masks[uint(k) * pc.words + w], bit) == 0u)
-            atomicOr(slice_masks[slice_sum + uint(k) * swords + (w >> 5u)], sbit);
+    for (int k = k0; k <= k1; k++) atomicOr(slice_masks[uint(k) * pc.words + w], bit);
     for (int y = y0; y <= y1; y++)
-        for (int x = x0; x <= x1; x++) {
-            uint t = uint(y) * grid.x + uint(x);
-            if (atomicOr(tile_masks[t * pc.words + w], bit) == 0u)
-                atomicOr(tile_masks[tile_sum + t * swords + (w >> 5u)], sbit);
-        }
+        for (int x = x0; x <= x1; x++) atomicOr(tile_masks[(uint(y) * grid.x + uint(x)) * pc.words + w], bit);
 #endif
 }

@@ -105,31 +105,16 @@ void main()
 #else
     uint running = 0u;
 #endif
-#ifndef PG_BRUTE_FORCE
-    // the summaries (cluster_bin.comp): a lane loads only the mask words both summaries mark, and
-    // the next round's summary bits are loaded before this round's words are walked
-    uint swords = (words + 31u) >> 5u;
-    uint tile_sum = GRID_X * GRID_Y * words + (c.y * grid.x + c.x) * swords;
-    uint slice_sum = GRID_Z * words + c.z * swords;
-    uint wl0 = w_begin + lane * PG_LANE_WORDS;
-    uint s_next = wl0 < w_end ? tile_masks[tile_sum + (wl0 >> 5u)] & slice_masks[slice_sum + (wl0 >> 5u)] : 0u;
-#endif
     for (uint w0 = w_begin; w0 < w_end; w0 += width * PG_LANE_WORDS) {
         uint wl = w0 + lane * PG_LANE_WORDS;        // this lane's words: wl .. wl + PG_LANE_WORDS - 1
         uint m[PG_LANE_WORDS], hits[PG_LANE_WORDS];
-#ifndef PG_BRUTE_FORCE
-        uint marked = s_next >> (wl & 31u);          // the lane's words lie in one summary word
-        uint wn = wl + width * PG_LANE_WORDS;
-        s_next = wn < w_end ? tile_masks[tile_sum + (wn >> 5u)] & slice_masks[slice_sum + (wn >> 5u)] : 0u;
-#endif
         for (int j = 0; j < PG_LANE_WORDS; j++) {   // every mask load of the round in flight together
             uint w = wl + uint(j);
 #ifdef PG_BRUTE_FORCE
             uint n = min(count - min(count, w * 32u), 32u);
             m[j] = w >= w_end ? 0u : n >= 32u ? ~0u : ((1u << n) - 1u);
 #else
-            m[j] = w < w_end && (marked & (1u << uint(j))) != 0u
-                 ? tile_masks[tile_base + w] & slice_masks[slice_base + w] : 0u;
+            m[j] = w < w_end ? tile_masks[tile_base + w] & slice_masks[slice_base + w] : 0u;
 #endif
         }
         uint n_hits = 0u;

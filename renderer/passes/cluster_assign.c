@@ -203,10 +203,8 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
                               true, name, &p->stats, err)))
         return r;
     const bool binned = p->o.method == 0;
-    /* each mask buffer ends with its summary: bit w % 32 of word w / 32 set when mask word w is not 0 */
-    uint64_t mask_words = p->words + (p->words + 31) / 32;
-    uint64_t tile_bytes = (uint64_t)p->o.grid[0] * p->o.grid[1] * mask_words * 4;
-    uint64_t slice_bytes = (uint64_t)p->o.grid[2] * mask_words * 4;
+    uint64_t tile_bytes = (uint64_t)p->o.grid[0] * p->o.grid[1] * p->words * 4;
+    uint64_t slice_bytes = (uint64_t)p->o.grid[2] * p->words * 4;
     if (binned) {
         if (tile_bytes > gpu->max_storage_buffer_range)
             return pg_fail(err, PG_ERR_LIMIT,
