@@ -15,7 +15,7 @@ pg_result pg_perceptual_compute(const float *hdr_a, const float *hdr_b, const ui
                                 uint32_t w, uint32_t h, bool with_hdr_flip, float *flip_map, pg_perceptual *out,
                                 pg_error *err)
 {
-    const double t0 = (pg_time_s() * 1e3);
+    const double t0 = pg_time_s() * 1e3;
     memset(out, 0, sizeof *out);
     out->hdr_flip = out->ssim = NAN;
     pg_result r = pg_flip_ldr(ldr_a, ldr_b, w, h, NULL, flip_map, &out->flip, err);
@@ -26,7 +26,7 @@ pg_result pg_perceptual_compute(const float *hdr_a, const float *hdr_b, const ui
     }
     if (w >= PG_SSIM_WINDOW && h >= PG_SSIM_WINDOW && (r = pg_ssim(ldr_a, ldr_b, w, h, &out->ssim, err)))
         return pg_error_prefix(err, "SSIM");
-    out->cpu_ms = (pg_time_s() * 1e3) - t0;
+    out->cpu_ms = pg_time_s() * 1e3 - t0;
     return PG_OK;
 }
 

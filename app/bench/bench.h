@@ -177,7 +177,6 @@ typedef struct pass_union {
     char names[PG_MAX_PASSES * 4][PG_NAME_MAX];
 } pass_union;
 
-
 /* cmd_bench.c */
 int bench_setup(bench *B, int argc, char **argv);
 void bench_free(bench *B);

@@ -132,7 +132,6 @@ typedef struct viewer {
     char last_growth[160];
 } viewer;
 
-
 /* view_pipelines.c */
 void scan_pipelines(viewer *v, const char *current_path);
 void set_override(viewer *v, const char *key, const char *value);

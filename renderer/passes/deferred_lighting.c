@@ -13,6 +13,8 @@
  * Options: packing (as gbuffer, or visibility), shading, ambient, view, tile_size (8 or 16, default
  * 8: the workgroup is tile_size x tile_size pixels), tile_lights (default true: each tile culls its clusters' lists against the bounding box of its pixels and shares the
  * kept lights through shared memory; bit-identical to false, with far fewer light evaluations),
+ * tile_backface (default true: the tile also drops the lights behind all its pixels' surfaces;
+ * bit-identical, fewer evaluations),
  * ris_candidates (0, the default: every light of the list, exact; M > 0: the approximation knob of
  * shaders/shading.glsl pg_ris_estimate, M candidates a sample, resampled importance sampling of
  * the list; no tiling), ris_samples (1..64, default 1: independent RIS samples averaged a pixel),
@@ -57,9 +59,9 @@ typedef struct deferred_lighting {
     VkDescriptorSet scene_set;      /* packing visibility: set 3 */
 } deferred_lighting;
 
-static const char *const k_extra[] = {"packing", "tile_lights", "tile_size", "tile_backface", "ris_candidates",
-                                     "ris_samples",
-                                     "lights", "lightcut_error", "stochastic_threshold", NULL};
+static const char *const k_extra[] = {"packing",        "tile_lights", "tile_size",      "tile_backface",
+                                     "ris_candidates", "ris_samples", "lights",         "lightcut_error",
+                                     "stochastic_threshold", NULL};
 static const char *const k_light_sources[] = {"clusters", "tree", NULL};
 
 static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
