@@ -18,6 +18,9 @@
 #                  it takes about 70 s a frame at 1,000,000)
 #   tiling         the tiled shading loop with and without its back-face test (tile_backface) at
 #                  1,000 / 100,000 / 1,000,000 lights (visibility, deferred_oct16; times only)
+#   tile-size      the exact tiled loop with 8x8 and 16x16 tiles at 1,000 / 100,000 / 1,000,000
+#                  lights (visibility; times only)
+#   knob-stochastic  the stochastic_threshold x tile_size sweep of `knobs` alone
 #   knobs          the approximation knobs at 1,000,000 lights (stochastic_threshold,
 #                  ris_candidates, lightcut_error) and the accumulation curve of the stochastic
 #                  pipeline (--accumulate 1, 4, 16, 64)
@@ -138,9 +141,15 @@ for step in "${STEPS[@]}"; do
       --lights 1000,100000,1000000 "${ERR[@]}"
     bench manylight_naive "$BUNDLE" naive --lights 1000 "${ERR[@]}"
     ;;
-  knobs)
+  tile-size)
+    bench tile_size "$BUNDLE" visibility --lights 1000,100000,1000000 --sweep tile_size=8,16 \
+      --reference-max-lights 0 --warmup 2 --warmup-ms 500 --frames 10
+    ;;
+  knobs | knob-stochastic)
     ERR=(--warmup 1 --warmup-ms 1000 --frames 5 --no-hdr-flip --flicker-frames 4 --lights 1000000)
-    bench knob_stochastic "$BUNDLE" stochastic --sweep stochastic_threshold=0.005,0.02,0.08,0.3,1,3,10 "${ERR[@]}"
+    bench knob_stochastic "$BUNDLE" stochastic --sweep stochastic_threshold=0.005,0.02,0.08,0.3,1,3,10,30,100 \
+      --sweep tile_size=8,16 "${ERR[@]}"
+    [ "$step" = knob-stochastic ] && continue
     bench knob_ris "$BUNDLE" ris --sweep ris_candidates=4,16,64 "${ERR[@]}"
     bench knob_lightcut "$BUNDLE" lightcut --sweep lightcut_error=0.005,0.05,0.2 "${ERR[@]}"
     for n in 1 4 16 64; do
@@ -163,7 +172,7 @@ for step in "${STEPS[@]}"; do
     COMMON=("${SAVED[@]}")
     ;;
   *)
-    echo "device-run.sh: unknown step '$step' (validate, bench, bench-forward, prepass, ab, sweep, tiling, manylight, knobs," \
+    echo "device-run.sh: unknown step '$step' (validate, bench, bench-forward, prepass, ab, sweep, tiling, tile-size, manylight, knobs, knob-stochastic," \
       "evals, stress)" >&2
     exit 2
     ;;
