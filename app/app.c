@@ -28,8 +28,12 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     if (app->has_scenario && app->scenario.scene[0] && (!opt->scene || !strcmp(opt->scene, "default")))
         scene = app->scenario.scene;
     pg_strlcpy(app->scene_path, scene, sizeof app->scene_path);
-    if ((r = pg_scene_load(scene, &app->scene, err))) return r;
+    pg_scene_load_opts lo = {.gltf_scene = opt->gltf_scene};
+    if ((r = pg_scene_load_ex(scene, &lo, &app->scene, err))) return r;
     pg_scene_print_warnings(app->scene, "passgraph: ", stderr); /* once per loaded scene */
+    char choice[PG_PATH_MAX + 160];
+    if (pg_scene_choice_line(app->scene, choice, sizeof choice) && !opt->quiet)
+        fprintf(stderr, "passgraph: %s\n", choice);
     if (with_gpu) {
         pg_gpu_desc gd = {
             .validation = opt->validation,
@@ -65,7 +69,7 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
             snprintf(app->camera_why, sizeof app->camera_why, "camera: scenario %s (its camera fields over the default)",
                      app->scenario.path);
         if (app->scenario.has_light_box || app->scenario.has_radius || app->scenario.has_intensity)
-            snprintf(app->lights_why, sizeof app->lights_why, "lights: scenario %s: box (%g,%g,%g)..(%g,%g,%g), radius %g, intensity %g",
+            snprintf(app->lights_why, sizeof app->lights_why, "lights: generated point lights, scenario %s: box (%g,%g,%g)..(%g,%g,%g), radius %g, intensity %g",
                      app->scenario.path, app->lights.box_min[0], app->lights.box_min[1], app->lights.box_min[2],
                      app->lights.box_max[0], app->lights.box_max[1], app->lights.box_max[2], app->lights.radius,
                      app->lights.intensity);
@@ -90,6 +94,31 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
 fail:
     pg_app_close(app);
     return r;
+}
+
+void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const char *label, FILE *f)
+{
+    if (!label) {
+        fprintf(f, "explain: %s\nexplain: %s\n", app->camera_why, app->lights_why);
+        char choice[PG_PATH_MAX + 160];
+        if (pg_scene_choice_line(app->scene, choice, sizeof choice)) fprintf(f, "explain: scene: %s\n", choice);
+        bool file_lights = false;
+        for (uint32_t k = 0; k < app->scene->n_warnings; k++)
+            file_lights = file_lights || strstr(app->scene->warnings[k], "KHR_lights_punctual") != NULL;
+        if (file_lights)
+            fprintf(f, "explain: lights: the file's KHR_lights_punctual lights are not used yet; the %u lights above "
+                       "are generated\n",
+                    app->lights.count);
+        fprintf(f, "explain: environment: none (passgraph has no environment light yet; surfaces no light reaches "
+                   "get the ambient term, %g x albedo)\n",
+                app->lights.ambient);
+    }
+    if (!s) return;
+    const pg_param *sh = s->pipeline ? pg_pipeline_find_param(s->pipeline, "shading") : NULL;
+    char v[64] = "";
+    if (sh) pg_param_format(sh, v, sizeof v);
+    fprintf(f, "explain: shading%s%s: %s\n", label ? " of " : "", label ? label : "",
+            sh ? v : "the pipeline has no `shading` parameter (its passes' own model)");
 }
 
 void pg_app_close(pg_app *app)

@@ -47,6 +47,12 @@ pg_session_desc pg_app_session_desc(const pg_app *app);
 /* The light references a frame dropped (the passes' "overflow_dropped" counters; 0: the frame
  * is exact). When some were dropped, prints one line to stderr: "<cmd>: warning: <what> is not
  * exact: N light references dropped ..." (an "error:" line when require_exact is set). */
+/* --explain's lines on what lights the frame and how, "explain: " each, to f: the camera, the
+ * lights (their source: generated, a scenario, the command line; a file's KHR_lights_punctual
+ * lights are named as not used yet), the glTF scene drawn when the file has several, the shading
+ * model of the session's pipeline (its `shading` parameter, when it has one; `label` names the
+ * side, may be NULL) and the environment (none: passgraph has no environment light yet). */
+void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const char *label, FILE *f);
 uint64_t pg_app_check_exact(const char *cmd, const char *what, const pg_frame_stats *st, bool require_exact);
 
 #endif

@@ -14,6 +14,8 @@ const char *const pg_cli_common_help =
     "  --include-dir DIR    a folder the pipeline's includes may come from, besides the\n"
     "                       including file's folder and the data folder (repeatable)\n"
     "  --scene FILE|default glTF 2.0 scene (.gltf/.glb) or the built-in atrium (default)\n"
+    "  --gltf-scene N       the glTF scene (scenes[N]) to draw (default: the file's `scene`,\n"
+    "                       else scenes[0]); a line says so when a file has several\n"
     "  --scenario FILE      JSON set-up: camera, light box, count, radius, intensity, motion\n"
     "                       (e.g. assets/scenarios/cis565.json); explicit options override it\n"
     "  --camera N|NAME|auto a glTF camera (index among the scene's camera nodes, camera or node\n"
@@ -58,6 +60,7 @@ void pg_cli_defaults(pg_cli_common *c)
 {
     memset(c, 0, sizeof *c);
     c->scene = "default";
+    c->gltf_scene = -1;
     c->lights = 256;
     c->width = 640;
     c->height = 360;
@@ -272,6 +275,10 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
     } else if (!strcmp(a, "--scene")) {
         NEED_VALUE();
         c->scene = v;
+    } else if (!strcmp(a, "--gltf-scene")) {
+        NEED_VALUE();
+        if ((r = parse_u64(a, v, 0, 1000000, &u, err))) return r;
+        c->gltf_scene = (int)u;
     } else if (!strcmp(a, "--scenario")) {
         NEED_VALUE();
         c->scenario = v;

@@ -17,6 +17,7 @@ typedef struct pg_cli_common {
     const char *scene;           /* --scene FILE|default */
     const char *scenario;        /* --scenario FILE */
     const char *camera;          /* --camera N|NAME|auto (NULL: the default choice, app.h) */
+    int gltf_scene;              /* --gltf-scene N (-1: the file's default scene) */
     bool has_lights;             /* --lights N given */
     uint32_t lights;
     uint32_t width, height;      /* --size WxH */

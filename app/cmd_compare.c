@@ -500,7 +500,9 @@ static pg_result render_sides(const compare_job *job, pg_app *app, side *A, side
         if ((r = side_render(R, fi, f, opt->frames, err))) return r;
     }
     if (opt->explain) {
-        printf("explain: %s\nexplain: %s\n", app->camera_why, app->lights_why);
+        pg_app_print_explain_lighting(app, NULL, NULL, stdout);
+        pg_app_print_explain_lighting(app, A->s, "the pipeline", stdout);
+        pg_app_print_explain_lighting(app, R->s, "the reference", stdout);
         pg_print_explain(A->s, stdout);
         pg_print_explain(R->s, stdout);
         for (uint32_t k = 0; k < app->scene->n_warnings; k++)

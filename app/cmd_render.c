@@ -246,7 +246,7 @@ static pg_result render_frames(pg_session *s, const pg_frame_info *fi, pg_rdoc *
 /* --explain: the camera, lights, plan, device memory, run-time options and scene warnings */
 static void print_render_explain(const pg_app *app, const pg_session *s)
 {
-    printf("explain: %s\nexplain: %s\n", app->camera_why, app->lights_why);
+    pg_app_print_explain_lighting(app, s, NULL, stdout);
     pg_print_explain(s, stdout);
     const pg_runtime_stats rs = pg_runtime_get_stats(s->runtime);
     printf("explain: device transient memory %llu B unaliased -> %llu B aliased (real memory "

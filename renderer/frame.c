@@ -36,4 +36,9 @@ void pg_frame_uniforms_fill(const pg_frame_info *info, pg_frame_uniforms *u)
     u->noise[1] = info->lights.seed;
     u->noise[2] = 0;
     u->noise[3] = 0;
+    for (int i = 0; i < 3; i++) {
+        u->light_keep_min[i] = info->lights.keep_min[i];
+        u->light_keep_max[i] = info->lights.keep_max[i];
+    }
+    u->light_keep_min[3] = info->lights.keep_out ? 1.0f : 0.0f;
 }

@@ -26,6 +26,8 @@ typedef struct pg_frame_uniforms {
     uint32_t counts[4];     /* light count, seed, width, height */
     float clip[4];          /* near, far, ambient (pg_light_setup.ambient), 1 = orthographic */
     uint32_t noise[4];      /* sample index, seed (pg_frame_info.sample, lights.seed), 0, 0 */
+    float light_keep_min[4]; /* pg_light_setup.keep_min, w = 1 when keep_out */
+    float light_keep_max[4]; /* pg_light_setup.keep_max, w = 0 */
 } pg_frame_uniforms;
 
 typedef struct pg_frame_info {

@@ -40,13 +40,14 @@ pg_result pg_scene_default_view(const pg_scene *scene, const char *camera_spec, 
     pg_light_setup ls;
     if (atrium) {
         ls = pg_light_setup_default(scene, count, seed);
-        snprintf(lw, sizeof lw, "lights: interior box (bounds shrunk by 2%%), radius %.3g, intensity %.3g", ls.radius,
-                 ls.intensity);
+        snprintf(lw, sizeof lw, "lights: generated point lights, interior box (bounds shrunk by 2%%), radius %.3g, "
+                 "intensity %.3g", ls.radius, ls.intensity);
     } else {
         ls = pg_light_setup_object(scene, count, seed);
         snprintf(lw, sizeof lw,
-                 "lights: object box (bounds grown by 0.6 x radius per side), radius %.3g, intensity %.3g, ambient %.3g",
-                 ls.radius, ls.intensity, ls.ambient);
+                 "lights: generated point lights, object box (bounds grown by 0.6 x radius per side, none within "
+                 "%.2g x radius of the bounds), radius %.3g, intensity %.3g, ambient %.3g",
+                 (double)PG_OBJECT_LIGHT_GAP, ls.radius, ls.intensity, ls.ambient);
     }
     *camera = cam;
     *lights = ls;

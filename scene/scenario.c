@@ -377,6 +377,11 @@ pg_light_setup pg_light_setup_object(const pg_scene *scene, uint32_t count, uint
     L.intensity = (float)(PG_OBJECT_LIGHT_K * s * s * 256.0 / (count > 0 ? count : 1));
     L.saturation = 0.3f;
     L.ambient = PG_OBJECT_AMBIENT;
+    L.keep_out = true;
+    for (int k = 0; k < 3; k++) {
+        L.keep_min[k] = (float)(mn[k] - PG_OBJECT_LIGHT_GAP * r);
+        L.keep_max[k] = (float)(mx[k] + PG_OBJECT_LIGHT_GAP * r);
+    }
     return L;
 }
 
@@ -389,6 +394,7 @@ void pg_scenario_apply(const pg_scenario *sc, pg_light_setup *setup, pg_camera *
         if (sc->has_light_box) {
             memcpy(setup->box_min, s->box_min, sizeof setup->box_min);
             memcpy(setup->box_max, s->box_max, sizeof setup->box_max);
+            setup->keep_out = false; /* the scenario's box is the user's: lights fill all of it */
         }
         if (sc->has_radius) setup->radius = s->radius;
         if (sc->has_intensity) setup->intensity = s->intensity;

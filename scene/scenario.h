@@ -31,6 +31,11 @@ typedef struct pg_light_setup {
     pg_light_motion motion;
     float speed;                  /* noise frequency scale (1 = default) */
     uint32_t seed;
+    bool keep_out;                /* true: lights are kept out of keep_min..keep_max (a box inside
+                                     box_min..box_max with the same centre): light_animate maps the
+                                     light box onto the shell between the two, so no light comes
+                                     near the surfaces inside (pg_light_setup_object) */
+    float keep_min[3], keep_max[3];
 } pg_light_setup;
 
 typedef struct pg_scenario {
@@ -64,8 +69,11 @@ pg_light_setup pg_light_setup_default(const pg_scene *scene, uint32_t count, uin
  * = PG_OBJECT_LIGHT_K * s^2 * 256 / max(count, 1) (the point-light falloff is 1/d^2 in scene
  * units and d ~ r here, so brightness does not depend on the object's size, and the total over
  * all lights does not depend on the count); saturation 0.3; motion noise; speed 1; ambient
- * PG_OBJECT_AMBIENT (so no surface of an object is pure black, whatever the lights reach). */
-#define PG_OBJECT_LIGHT_K 0.007f
+ * PG_OBJECT_AMBIENT (so no surface of an object is pure black, whatever the lights reach); keep_out
+ * the bounds grown by PG_OBJECT_LIGHT_GAP r on every side (no light nearer than that to the
+ * object's surfaces: no hot spots). A scenario's light box turns keep_out off. */
+#define PG_OBJECT_LIGHT_GAP 0.15f
+#define PG_OBJECT_LIGHT_K 0.014f
 #define PG_OBJECT_AMBIENT 0.02f
 pg_light_setup pg_light_setup_object(const pg_scene *scene, uint32_t count, uint32_t seed);
 /* Applies the scenario's fields over setup/camera (either may be NULL): only fields present in

@@ -132,7 +132,21 @@ typedef struct pg_scene {
      * (pg_scene_print_warnings). */
     char **warnings;
     uint32_t n_warnings;
+    /* glTF `scenes`: how many the file has, and which one is drawn (-1: none was, every root node
+     * is: a file without `scenes`) with its name ("scenes[i]" when it has none); 0 / -1 for the
+     * built-in atrium */
+    uint32_t n_gltf_scenes;
+    int gltf_scene;
+    bool gltf_scene_chosen;   /* picked by pg_scene_load_opts.gltf_scene, not the file's default */
+    char gltf_scene_name[PG_NAME_MAX];
 } pg_scene;
+
+/* What a load may choose (pg_scene_load_ex). */
+typedef struct pg_scene_load_opts {
+    int gltf_scene; /* the glTF scene to draw: -1 = the file's `scene`, else scenes[0] (the
+                       default); N >= 0: scenes[N] (out of range: PG_ERR_INVALID_ARG naming the
+                       count; refused for the built-in atrium) */
+} pg_scene_load_opts;
 
 typedef struct pg_camera {
     float position[3];
@@ -171,11 +185,19 @@ typedef struct pg_camera {
  * the same hierarchy fill scene->cameras (pg_scene_camera; bad camera objects are PG_ERR_GLTF
  * naming "cameras[i].perspective.yfov" etc.). */
 pg_result pg_scene_load_gltf(const char *path, pg_scene **out, pg_error *err);
+/* The same with load options (NULL: the defaults). */
+pg_result pg_scene_load_gltf_ex(const char *path, const pg_scene_load_opts *opts, pg_scene **out, pg_error *err);
 /* The built-in atrium (columns, arches, several procedural materials, tens of thousands of
  * triangles). Deterministic. */
 pg_result pg_scene_create_default(pg_scene **out, pg_error *err);
 /* "default" -> generated scene, else glTF. */
 pg_result pg_scene_load(const char *path_or_default, pg_scene **out, pg_error *err);
+pg_result pg_scene_load_ex(const char *path_or_default, const pg_scene_load_opts *opts, pg_scene **out,
+                           pg_error *err);
+/* One line saying which glTF scene is drawn when the file has several ("x.gltf has 3 scenes;
+ * drawing scene 0 'day' (the file's default); --gltf-scene N draws another"), else "" (returns
+ * false). */
+bool pg_scene_choice_line(const pg_scene *scene, char *buf, size_t size);
 void pg_scene_free(pg_scene *scene);
 /* Appends a copy of `line` to scene->warnings (PG_ERR_OOM when it cannot). */
 pg_result pg_scene_add_warning(pg_scene *scene, const char *line, pg_error *err);
@@ -216,13 +238,18 @@ void pg_scene_finalize(pg_scene *scene);
  * only (tools/app.h pg_scene_default_view); loaded glTF get pg_camera_frame_object or a glTF camera. */
 pg_camera pg_camera_default_for_scene(const pg_scene *scene, float aspect);
 
-/* Object framing, the default for loaded glTF without a camera (README "Scenes"): the bounding
- * sphere of the scene box (center c, radius r = half the box diagonal; r < 1e-30 -> 1) is fitted
- * into BOTH the vertical and the horizontal field of view: fov_y = 45 deg, half-angle
- * a = min(fov_y/2, atan(tan(fov_y/2) * aspect)), distance d = 1.1 * r / sin(a). The camera looks
- * at c from the direction (sin 35 cos 25, sin 25, cos 35 cos 25) (a 3/4 view from above, front =
- * +Z as glTF models face), up +Y; near = d - 1.05 r (> 0.5 d, as d >= 2.8 r), far = d + 1.05 r, so depth precision follows the object. out_radius / out_distance (may be
- * NULL) receive r and d. */
+/* Object framing, the default for loaded glTF without a camera (README "Scenes"), fov_y 45 deg:
+ * - direction: a flat scene (its thinnest bounds extent under 0.1 x the middle one: a plate, not a
+ *   rod) is seen from the
+ *   front, along that axis from the side its triangles' area-weighted normals face (a floor from
+ *   above with -Z at the top of the image; a wall or panel with +Y up); any other from the 3/4
+ *   view (sin 35 cos 25, sin 25, cos 35 cos 25) (from above, front = +Z as glTF models face), up +Y;
+ * - distance: every vertex (the box corners of a scene without vertices; the unit box without
+ *   bounds) projects inside 90% of both the vertical and horizontal half-angles, and the target is
+ *   moved so the vertices' screen box is centred (five correction steps, within 1% of the image);
+ * - near / far hug the vertices' depth range (5% padding), so depth precision follows the object.
+ * out_radius gets r = half the box diagonal (1 without bounds), out_distance d (camera to
+ * target); both may be NULL. */
 pg_camera pg_camera_frame_object(const pg_scene *scene, float aspect, float *out_radius,
                                  float *out_distance);
 

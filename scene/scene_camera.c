@@ -70,39 +70,123 @@ static bool scene_has_bounds(const pg_scene *scene)
            scene->bounds_min[1] <= scene->bounds_max[1] && scene->bounds_min[2] <= scene->bounds_max[2];
 }
 
+/* The axis a flat scene is thin along (its extent under PG_FLAT_RATIO of the middle one: a plate,
+ * not a rod), -1 when it is not flat; *side = +1 / -1: the side the triangles' area-weighted normals face along it (+1 on
+ * a tie). */
+#define PG_FLAT_RATIO 0.1
+static int flat_axis(const pg_scene *scene, const double ext[3], int *side)
+{
+    int k = 0;
+    for (int a = 1; a < 3; a++)
+        if (ext[a] < ext[k]) k = a;
+    double mid = ext[0] + ext[1] + ext[2] - ext[k] - fmax(ext[0], fmax(ext[1], ext[2])); /* middle extent */
+    *side = 1;
+    if (!(ext[k] < PG_FLAT_RATIO * mid)) return -1; /* a rod (two thin axes) is not flat */
+    double sum = 0;
+    for (uint32_t p = 0; p < scene->n_primitives; p++) {
+        const pg_primitive *pr = &scene->primitives[p];
+        for (uint32_t t = 0; t + 2 < pr->index_count; t += 3) {
+            const uint32_t *ix = &scene->indices[pr->first_index + t];
+            int64_t i0 = (int64_t)ix[0] + pr->vertex_offset, i1 = (int64_t)ix[1] + pr->vertex_offset,
+                    i2 = (int64_t)ix[2] + pr->vertex_offset;
+            if (i0 < 0 || i1 < 0 || i2 < 0 || i0 >= scene->n_vertices || i1 >= scene->n_vertices ||
+                i2 >= scene->n_vertices)
+                continue;
+            float e1[3], e2[3], n[3];
+            v3_sub(scene->vertices[i1].position, scene->vertices[i0].position, e1);
+            v3_sub(scene->vertices[i2].position, scene->vertices[i0].position, e2);
+            v3_cross(e1, e2, n); /* twice the area times the face normal (counter-clockwise front) */
+            sum += n[k];
+        }
+    }
+    *side = sum < 0 ? -1 : 1;
+    return k;
+}
+
 pg_camera pg_camera_frame_object(const pg_scene *scene, float aspect, float *out_radius, float *out_distance)
 {
     float mn[3] = {-1, -1, -1}, mx[3] = {1, 1, 1};
-    if (scene_has_bounds(scene)) {
+    bool has = scene_has_bounds(scene);
+    if (has) {
         memcpy(mn, scene->bounds_min, sizeof mn);
         memcpy(mx, scene->bounds_max, sizeof mx);
     }
-    double c[3], h2 = 0;
+    double c[3], ext[3], h2 = 0;
     for (int k = 0; k < 3; k++) {
         c[k] = 0.5 * ((double)mn[k] + (double)mx[k]);
-        double h = 0.5 * ((double)mx[k] - (double)mn[k]);
-        h2 += h * h;
+        ext[k] = (double)mx[k] - (double)mn[k];
+        h2 += 0.25 * ext[k] * ext[k];
     }
     double r = sqrt(h2);
     if (!(r > 1e-30)) r = 1.0;
     if (!(aspect > 0) || !isfinite(aspect)) aspect = 1.0f;
     const double pi = 3.14159265358979323846;
-    double fy = 0.5 * 45.0 * pi / 180.0;
-    double fx = atan(tan(fy) * aspect);
-    double a = fy < fx ? fy : fx;
-    double d = 1.1 * r / sin(a);
-    double az = 35.0 * pi / 180.0, el = 25.0 * pi / 180.0;
-    double dir[3] = {sin(az) * cos(el), sin(el), cos(az) * cos(el)};
+    double ty = tan(0.5 * 45.0 * pi / 180.0), tx = ty * aspect;
+    /* direction from the target to the camera, and up */
+    double dir[3], up[3] = {0, 1, 0};
+    int side = 1, k = has ? flat_axis(scene, ext, &side) : -1;
+    if (k >= 0) { /* flat: seen from the front, along its normal */
+        dir[0] = dir[1] = dir[2] = 0;
+        dir[k] = side;
+        if (k == 1) { /* a floor (or ceiling): from above (below), far edge at the top */
+            up[1] = 0;
+            up[2] = -side;
+        }
+    } else {
+        double az = 35.0 * pi / 180.0, el = 25.0 * pi / 180.0;
+        dir[0] = sin(az) * cos(el), dir[1] = sin(el), dir[2] = cos(az) * cos(el);
+    }
+    /* camera basis: right = up x dir, true up = dir x right */
+    double rt[3] = {up[1] * dir[2] - up[2] * dir[1], up[2] * dir[0] - up[0] * dir[2], up[0] * dir[1] - up[1] * dir[0]};
+    double rl = sqrt(rt[0] * rt[0] + rt[1] * rt[1] + rt[2] * rt[2]);
+    for (int a = 0; a < 3; a++) rt[a] /= rl;
+    double uv[3] = {dir[1] * rt[2] - dir[2] * rt[1], dir[2] * rt[0] - dir[0] * rt[2], dir[0] * rt[1] - dir[1] * rt[0]};
+    /* Fit the points (every vertex; the box corners without geometry) into m = 90% of both
+     * half-angles: a point at lateral offsets (x, y) and depth z towards the camera is inside when
+     * |x| <= m tx (d - z) and |y| <= m ty (d - z). Each pass after the first aims at the middle of
+     * the previous pass's screen box (perspective moves it again a little: six passes bring the centre
+     * within 1% of the image), so an object that fills one side of its bounds is centred. */
+    const double m = 0.9;
+    double d = 0, zmin = 0, zmax = 0;
+    uint32_t nv = has && scene->vertices ? scene->n_vertices : 0;
+    for (int pass = 0; pass < 6; pass++) {
+        d = 0, zmin = 1e300, zmax = -1e300;
+        for (uint32_t i = 0; i < (nv ? nv : 8u); i++) {
+            double q[3];
+            for (int a = 0; a < 3; a++)
+                q[a] = (nv ? (double)scene->vertices[i].position[a] : ((i >> a) & 1) ? mx[a] : mn[a]) - c[a];
+            double x = q[0] * rt[0] + q[1] * rt[1] + q[2] * rt[2];
+            double y = q[0] * uv[0] + q[1] * uv[1] + q[2] * uv[2];
+            double z = q[0] * dir[0] + q[1] * dir[1] + q[2] * dir[2];
+            d = fmax(d, fmax(z + fabs(x) / (m * tx), z + fabs(y) / (m * ty)));
+            zmin = fmin(zmin, z), zmax = fmax(zmax, z);
+        }
+        d = fmax(d, zmax + 0.05 * r);
+        if (pass == 5) break;
+        double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300; /* screen box, tangent units */
+        for (uint32_t i = 0; i < (nv ? nv : 8u); i++) {
+            double q[3];
+            for (int a = 0; a < 3; a++)
+                q[a] = (nv ? (double)scene->vertices[i].position[a] : ((i >> a) & 1) ? mx[a] : mn[a]) - c[a];
+            double z = q[0] * dir[0] + q[1] * dir[1] + q[2] * dir[2];
+            double x = (q[0] * rt[0] + q[1] * rt[1] + q[2] * rt[2]) / (d - z);
+            double y = (q[0] * uv[0] + q[1] * uv[1] + q[2] * uv[2]) / (d - z);
+            x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
+        }
+        double sx = 0.5 * (x0 + x1) * d, sy = 0.5 * (y0 + y1) * d; /* shift at the target's depth */
+        for (int a = 0; a < 3; a++) c[a] += sx * rt[a] + sy * uv[a];
+    }
     pg_camera cam;
     memset(&cam, 0, sizeof cam);
-    for (int k = 0; k < 3; k++) {
-        cam.position[k] = (float)(c[k] + d * dir[k]);
-        cam.target[k] = (float)c[k];
+    for (int a = 0; a < 3; a++) {
+        cam.position[a] = (float)(c[a] + d * dir[a]);
+        cam.target[a] = (float)c[a];
+        cam.up[a] = (float)up[a];
     }
-    cam.up[1] = 1.0f;
     cam.fov_y_deg = 45.0f;
-    cam.near_z = (float)(d - 1.05 * r);
-    cam.far_z = (float)(d + 1.05 * r);
+    double depth = zmax - zmin, pad = 0.05 * fmax(depth, 0.02 * r);
+    cam.near_z = (float)fmax(d - zmax - pad, 0.5 * (d - zmax));
+    cam.far_z = (float)(d - zmin + pad);
     cam.aspect = aspect;
     if (out_radius) *out_radius = (float)r;
     if (out_distance) *out_distance = (float)d;

@@ -314,12 +314,32 @@ static void tinygltf_load(Ctx &c, const RawFile &f)
     }
 }
 
-/* the root nodes drawn: those of `scene`, else of scenes[0], else every node nobody's child */
-static std::vector<int> root_nodes(const tinygltf::Model &md)
+/* the root nodes drawn: those of the chosen scene (c.want_scene), else of `scene`, else of
+ * scenes[0], else every node nobody's child; c.drawn_scene says which */
+static std::vector<int> root_nodes(Ctx &c)
 {
-    if (md.defaultScene >= 0 && size_t(md.defaultScene) < md.scenes.size())
+    const tinygltf::Model &md = c.model;
+    if (c.want_scene >= 0) {
+        if (size_t(c.want_scene) >= md.scenes.size()) {
+            std::string names;
+            for (size_t i = 0; i < md.scenes.size() && i < 8; i++)
+                names += strf("%s%zu '%s'", i ? ", " : ": ", i,
+                              md.scenes[i].name.empty() ? strf("scenes[%zu]", i).c_str() : md.scenes[i].name.c_str());
+            throw LoadFail{PG_ERR_INVALID_ARG, strf("--gltf-scene %d: out of range (the file has %zu scene%s%s)",
+                                                    c.want_scene, md.scenes.size(),
+                                                    md.scenes.size() == 1 ? "" : "s", names.c_str())};
+        }
+        c.drawn_scene = c.want_scene;
+        return md.scenes[size_t(c.want_scene)].nodes;
+    }
+    if (md.defaultScene >= 0 && size_t(md.defaultScene) < md.scenes.size()) {
+        c.drawn_scene = md.defaultScene;
         return md.scenes[size_t(md.defaultScene)].nodes;
-    if (!md.scenes.empty()) return md.scenes[0].nodes;
+    }
+    if (!md.scenes.empty()) {
+        c.drawn_scene = 0;
+        return md.scenes[0].nodes;
+    }
     std::vector<int> roots;
     std::vector<char> is_child(md.nodes.size(), 0);
     for (const auto &nd : md.nodes)
@@ -522,6 +542,14 @@ static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &
     if (!s) throw std::bad_alloc();
     pg_strlcpy(s->name, file_stem(c.path).c_str(), sizeof s->name);
     pg_strlcpy(s->path, c.path.c_str(), sizeof s->path);
+    s->n_gltf_scenes = uint32_t(c.model.scenes.size());
+    s->gltf_scene = c.drawn_scene;
+    s->gltf_scene_chosen = c.want_scene >= 0;
+    if (c.drawn_scene >= 0) {
+        const std::string &nm = c.model.scenes[size_t(c.drawn_scene)].name;
+        pg_strlcpy(s->gltf_scene_name, nm.empty() ? strf("scenes[%d]", c.drawn_scene).c_str() : nm.c_str(),
+                   sizeof s->gltf_scene_name);
+    }
     s->vertices = copy_out(o.verts);
     s->n_vertices = uint32_t(o.verts.size());
     s->indices = copy_out(o.idx);
@@ -569,7 +597,7 @@ pg_scene *load(Ctx &c)
     Out o;
     std::vector<pg_scene_camera> cams;
     {
-        std::vector<int> roots = root_nodes(md);
+        std::vector<int> roots = root_nodes(c);
         Walker w{c, o, std::vector<char>(md.nodes.size(), 0), 0};
         for (int r : roots) w.visit(r, mat_identity(), 0);
         for (int r : roots) camera_visit(c, r, mat_identity(), cams);
@@ -592,6 +620,12 @@ using namespace pg_gltf;
 
 extern "C" pg_result pg_scene_load_gltf(const char *path, pg_scene **out, pg_error *err)
 {
+    return pg_scene_load_gltf_ex(path, nullptr, out, err);
+}
+
+extern "C" pg_result pg_scene_load_gltf_ex(const char *path, const pg_scene_load_opts *opts, pg_scene **out,
+                                           pg_error *err)
+{
     if (!out) return pg_fail(err, PG_ERR_INVALID_ARG, "pg_scene_load_gltf: out is NULL");
     *out = nullptr;
     if (!path || !path[0])
@@ -602,6 +636,7 @@ extern "C" pg_result pg_scene_load_gltf(const char *path, pg_scene **out, pg_err
         size_t slash = c.path.find_last_of('/');
         c.base_dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : c.path.substr(0, slash));
         c.dir_prefix = join_path(c.base_dir, "");
+        if (opts) c.want_scene = opts->gltf_scene;
         *out = load(c);
         return PG_OK;
     } catch (const LoadFail &f) {

@@ -61,6 +61,8 @@ struct Ctx {
     tinygltf::Model model;
     std::string image_err; /* set by the image callback */
     bool quantization = false; /* KHR_mesh_quantization in extensionsUsed */
+    int want_scene = -1;       /* pg_scene_load_opts.gltf_scene */
+    int drawn_scene = -1;      /* the scenes[] index drawn (-1: every root node) */
     unsigned skipped_prims = 0;
     unsigned color1_prims = 0;   /* drawn primitives with COLOR_1.. (ignored) */
     unsigned texcoord2_prims = 0;/* drawn primitives with TEXCOORD_2.. (ignored) */

@@ -73,6 +73,8 @@ vec3 pg_srgb_decode(vec3 c)
         uvec4 counts;       /* light count, seed, width, height */                               \
         vec4 clip;          /* near, far, ambient (light set-up, run time), 1 = orthographic */                                                      \
         uvec4 noise;        /* sample index, seed (stochastic passes' random stream), 0, 0 */    \
+        vec4 light_keep_min; /* the box lights stay out of, w = 1 when they do */                \
+        vec4 light_keep_max;                                                                     \
     } frame;
 
 // Camera-relative rendering (use after FRAME_UNIFORMS_BLOCK): shading works on positions

@@ -1,10 +1,14 @@
 /* test_gpu_framing.c - any glTF renders framed and lit with the default options (issue 11): the
- * generated objects of tests/corpus/gltf/objects/ (cube, sphere, flat quad, long rod, 1e-3 and
- * 1e4 cubes) are rendered on the Vulkan device (lavapipe) with the default view of the tools
+ * generated objects of tests/corpus/gltf/objects/ (cube, sphere, long rod, 1e-3 and 1e4 cubes, a
+ * standing box, and the flat ones: a floor quad, three side-by-side panels, a panel and a wall
+ * facing -Z / -X) are rendered on the Vulkan device (lavapipe) with the default view of the tools
  * (pg_scene_default_view: auto framing + object lights) at 160x90, with the validation layer and
  * synchronization validation on (zero messages). The object's pixels come from the albedo debug
- * view; they must lie fully inside the image, span 20-90% of the shorter image axis, and be lit
- * (>= 90% of them with luma > 10, mean luma 40..220 of 255). The glTF camera is the default for a
+ * view; they must lie fully inside the image and fill 75-92% of its width or of its height
+ * (whichever the object meets first: framing fits 90%), the median object's box at least 80% of
+ * the shorter image axis (docs/scenes.md), and be lit (>= 90% of them with luma > 10, mean luma
+ * 40..220 of 255) without hot spots (no more than 0.5% of them with a channel >= 250: the object
+ * lights keep PG_OBJECT_LIGHT_GAP away from the surfaces). The glTF camera is the default for a
  * file that has one: its image equals a render with the camera given explicitly, and differs
  * from --camera auto, which frames the object. The object default ambient (PG_OBJECT_AMBIENT, a
  * run-time value of the light set-up): with 0 lights every object pixel is albedo x 0.02 (within 0.2%: oct16 stores the albedo in sRGB8)
@@ -32,6 +36,7 @@ typedef struct shot {
     uint32_t n_obj;                /* object pixels (albedo view not black) */
     int x0, y0, x1, y1;            /* their bounding box */
     double lit_fraction, mean_luma;/* over the object pixels, in the lit image */
+    double hot_fraction;           /* object pixels with a channel >= 250 */
     uint8_t *ldr;                  /* the lit image */
 } shot;
 
@@ -68,9 +73,11 @@ static shot take(const char *label, const pg_scene_gpu *sg, const pg_frame_info 
             if ((int)y > s.y1) s.y1 = (int)y;
             double lu = luma(pl);
             sum += lu;
+            if (pl[0] >= 250 || pl[1] >= 250 || pl[2] >= 250) s.hot_fraction += 1;
             if (lu > 10) lit++;
         }
     s.lit_fraction = s.n_obj ? (double)lit / s.n_obj : 0;
+    s.hot_fraction = s.n_obj ? s.hot_fraction / s.n_obj : 0;
     s.mean_luma = s.n_obj ? sum / s.n_obj : 0;
     s.ldr = malloc((size_t)W * H * 4);
     if (s.ldr) memcpy(s.ldr, l.ldr, (size_t)W * H * 4);
@@ -80,17 +87,35 @@ static shot take(const char *label, const pg_scene_gpu *sg, const pg_frame_info 
     return s;
 }
 
-static void check_framed_lit(const char *label, const shot *s)
+/* returns the object box's larger side over the shorter image axis; auto_framed: the default
+ * framing's fill is checked (a file's camera frames as its author chose: 20-90% of the shorter
+ * axis) */
+static double check_framed_lit(const char *label, const shot *s, bool auto_framed)
 {
     CHECK_MSG(s->ok && s->n_obj > 0, "%s: object not visible", label);
-    if (!s->ok || !s->n_obj) return;
+    if (!s->ok || !s->n_obj) return 0;
     double span = fmax(s->x1 - s->x0 + 1, s->y1 - s->y0 + 1) / (double)(W < H ? W : H);
-    printf("%s: object %u px, box x %d..%d y %d..%d (%.0f%% of the shorter axis), lit %.1f%%, mean luma %.1f\n",
-           label, s->n_obj, s->x0, s->x1, s->y0, s->y1, 100 * span, 100 * s->lit_fraction, s->mean_luma);
+    double fill = fmax((s->x1 - s->x0 + 1) / (double)W, (s->y1 - s->y0 + 1) / (double)H);
+    printf("%s: object %u px, box x %d..%d y %d..%d (%.0f%% of the shorter axis, fills %.0f%%), lit %.1f%%, mean "
+           "luma %.1f, hot %.2f%%\n",
+           label, s->n_obj, s->x0, s->x1, s->y0, s->y1, 100 * span, 100 * fill, 100 * s->lit_fraction, s->mean_luma,
+           100 * s->hot_fraction);
     CHECK_MSG(s->x0 > 0 && s->y0 > 0 && s->x1 < W - 1 && s->y1 < H - 1, "%s: object touches the border", label);
-    CHECK_MSG(span >= 0.2 && span <= 0.9, "%s: object spans %.0f%% of the shorter axis", label, 100 * span);
+    if (auto_framed)
+        CHECK_MSG(fill >= 0.75 && fill <= 0.92, "%s: object fills %.0f%% of the image", label, 100 * fill);
+    else
+        CHECK_MSG(span >= 0.2 && span <= 0.9, "%s: object spans %.0f%% of the shorter axis", label, 100 * span);
+    CHECK_MSG(s->hot_fraction <= 0.005, "%s: %.2f%% of the object saturated (hot spots)", label,
+              100 * s->hot_fraction);
     CHECK_MSG(s->lit_fraction >= 0.9, "%s: only %.1f%% of the object lit", label, 100 * s->lit_fraction);
     CHECK_MSG(s->mean_luma >= 40 && s->mean_luma <= 220, "%s: mean luma %.1f", label, s->mean_luma);
+    return span;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
 }
 
 static bool open_scene(const char *file, pg_scene **sc, pg_scene_gpu **sg)
@@ -121,8 +146,12 @@ static pg_frame_info view_of(const pg_scene *sc, const char *spec, char *why, si
 
 static void check_objects(void)
 {
-    const char *files[] = {"cube.gltf", "sphere.gltf", "quad.gltf", "rod.gltf", "tiny.gltf", "huge.gltf"};
-    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+    const char *files[] = {"cube.gltf", "sphere.gltf", "quad.gltf",  "rod.gltf",        "tiny.gltf",
+                           "huge.gltf", "tall.gltf",   "panels.gltf", "panel_back.gltf", "wall_x.gltf"};
+    enum { N_FILES = sizeof files / sizeof files[0] };
+    double spans[N_FILES];
+    size_t n_spans = 0;
+    for (size_t i = 0; i < N_FILES; i++) {
         pg_scene *sc;
         pg_scene_gpu *sg;
         if (!open_scene(files[i], &sc, &sg)) continue;
@@ -130,10 +159,16 @@ static void check_objects(void)
         pg_frame_info fi = view_of(sc, NULL, why, sizeof why);
         CHECK_MSG(strstr(why, "auto framing") != NULL, "%s: %s", files[i], why);
         shot s = take(files[i], sg, &fi);
-        check_framed_lit(files[i], &s);
+        spans[n_spans++] = check_framed_lit(files[i], &s, true);
         free(s.ldr);
         pg_scene_gpu_destroy(g_gpu, sg);
         pg_scene_free(sc);
+    }
+    if (n_spans == N_FILES) {
+        qsort(spans, n_spans, sizeof spans[0], cmp_double);
+        printf("objects: median box %.0f%% of the shorter axis, smallest %.0f%%\n", 100 * spans[n_spans / 2],
+               100 * spans[0]);
+        CHECK_MSG(spans[n_spans / 2] >= 0.8, "median object box %.0f%% of the shorter axis", 100 * spans[n_spans / 2]);
     }
 }
 
@@ -246,8 +281,8 @@ static void check_cameras(void)
         CHECK_MSG(fabs(cx - W / 2.0) < 0.1 * W && fabs(cy - H / 2.0) < 0.1 * H, "glTF camera: cube centre at %.1f, %.1f",
                   cx, cy);
     }
-    check_framed_lit("camera.gltf default (glTF camera)", &a);
-    check_framed_lit("camera.gltf --camera auto", &d);
+    check_framed_lit("camera.gltf default (glTF camera)", &a, false);
+    check_framed_lit("camera.gltf --camera auto", &d, true);
     free(a.ldr);
     free(b.ldr);
     free(c.ldr);
@@ -259,7 +294,7 @@ static void check_cameras(void)
     pg_frame_info side = view_of(sc, NULL, why, sizeof why);
     CHECK_MSG(strstr(why, "'side'") != NULL, "two_cameras.gltf default: %s", why);
     shot s = take("two_cameras.gltf default ('side', infinite zfar)", sg, &side);
-    check_framed_lit("two_cameras.gltf default ('side', infinite zfar)", &s);
+    check_framed_lit("two_cameras.gltf default ('side', infinite zfar)", &s, false);
     free(s.ldr);
     /* the orthographic camera 'top' (ymag 1, 5 units above the unit cube, looking down): the
      * cube's top face is a square of exactly H/2 pixels (1 unit of a 2-unit view height), the same
@@ -267,7 +302,7 @@ static void check_cameras(void)
     pg_frame_info top = view_of(sc, "top", why, sizeof why);
     CHECK_MSG(strstr(why, "'top' (node 'top_node', orthographic)") != NULL, "two_cameras --camera top: %s", why);
     shot t = take("two_cameras.gltf --camera top (orthographic)", sg, &top);
-    check_framed_lit("two_cameras.gltf --camera top (orthographic)", &t);
+    check_framed_lit("two_cameras.gltf --camera top (orthographic)", &t, false);
     if (t.ok)
         CHECK_MSG(t.x1 - t.x0 + 1 == H / 2 && t.y1 - t.y0 + 1 == H / 2, "orthographic top view: %dx%d px, want %dx%d",
                   t.x1 - t.x0 + 1, t.y1 - t.y0 + 1, H / 2, H / 2);
@@ -282,7 +317,7 @@ static void check_cameras(void)
     CHECK_MSG(strstr(why, "glTF camera 0 'plan' (node 'plan_node', orthographic), the scene's first camera"),
               "ortho_first: %s", why);
     shot o = take("ortho_first.gltf default (orthographic 'plan')", sg, &of);
-    check_framed_lit("ortho_first.gltf default (orthographic 'plan')", &o);
+    check_framed_lit("ortho_first.gltf default (orthographic 'plan')", &o, false);
     free(o.ldr);
     pg_scene_gpu_destroy(g_gpu, sg);
     pg_scene_free(sc);

@@ -1293,9 +1293,12 @@ static pg_scene *load_object(const char *file)
     return s;
 }
 
-/* Projects the 8 corners of the scene bounds; *inside: all in front of near, behind far and in the
- * image; returns the larger side of their screen box over the shorter image side. */
-static double projected_span(const pg_scene *s, const pg_camera *cam, float w, float h, bool *inside)
+/* Projects every vertex; *inside: all in front of near, behind far and in the image. *fill: the
+ * larger of the vertices' screen box width over the image width and height over the image height
+ * (1 = the object touches two opposite edges); *size: the box's larger side in pixels over the
+ * image's shorter side; *off: the box centre's largest NDC offset from the image centre. */
+static void projected_fill(const pg_scene *s, const pg_camera *cam, float w, float h, bool *inside, double *fill,
+                           double *size, double *off)
 {
     float V[16], P[16], VP[16];
     pg_camera_view(cam, V);
@@ -1303,28 +1306,42 @@ static double projected_span(const pg_scene *s, const pg_camera *cam, float w, f
     pg_mat4_mul(P, V, VP);
     double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
     *inside = true;
-    for (int i = 0; i < 8; i++) {
-        float p[4] = {(i & 1) ? s->bounds_max[0] : s->bounds_min[0], (i & 2) ? s->bounds_max[1] : s->bounds_min[1],
-                      (i & 4) ? s->bounds_max[2] : s->bounds_min[2], 1}, o[4];
+    for (uint32_t i = 0; i < s->n_vertices; i++) {
+        float p[4] = {s->vertices[i].position[0], s->vertices[i].position[1], s->vertices[i].position[2], 1}, o[4];
         xform(VP, p, o);
         if (!(o[3] > 0)) {
             *inside = false;
-            return 0;
+            continue;
         }
         double x = o[0] / o[3], y = o[1] / o[3], z = o[2] / o[3];
         if (x < -1 || x > 1 || y < -1 || y > 1 || z < 0 || z > 1) *inside = false;
         x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
     }
-    double bw = 0.5 * (x1 - x0) * w, bh = 0.5 * (y1 - y0) * h;
-    return fmax(bw, bh) / fmin(w, h);
+    *fill = fmax(0.5 * (x1 - x0), 0.5 * (y1 - y0));
+    *size = fmax(0.5 * (x1 - x0) * w, 0.5 * (y1 - y0) * h) / fmin(w, h);
+    *off = fmax(fabs(0.5 * (x0 + x1)), fabs(0.5 * (y0 + y1)));
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
 }
 
 static void test_object_framing(void)
 {
-    const char *files[] = {"cube.gltf", "sphere.gltf", "quad.gltf", "rod.gltf", "tiny.gltf", "huge.gltf"};
+    /* every camera-less object of the corpus; the last four are flat (seen from the front) */
+    const char *files[] = {"cube.gltf", "sphere.gltf", "rod.gltf",   "tiny.gltf",      "huge.gltf",
+                           "tall.gltf", "quad.gltf",   "panels.gltf", "panel_back.gltf", "wall_x.gltf"};
+    /* the camera's direction from the centre for the flat ones: quad faces +Y, panels +Z,
+     * panel_back -Z, wall_x -X */
+    const float flat_dir[4][3] = {{0, 1, 0}, {0, 0, 1}, {0, 0, -1}, {-1, 0, 0}};
+    const size_t n_files = sizeof files / sizeof files[0], first_flat = 6;
     const float aspects[] = {16.0f / 9, 1.0f, 9.0f / 16, 4.0f};
+    double sizes[16];
+    size_t n_sizes = 0;
     float cube_intensity = 0, cube_r = 0;
-    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+    for (size_t i = 0; i < n_files; i++) {
         pg_scene *s = load_object(files[i]);
         if (!s) continue;
         CHECK(s->n_cameras == 0 && s->cameras == NULL);
@@ -1332,16 +1349,29 @@ static void test_object_framing(void)
             float r = 0, d = 0;
             pg_camera cam = pg_camera_frame_object(s, aspects[a], &r, &d);
             bool inside;
-            double span = projected_span(s, &cam, 100.0f * aspects[a], 100.0f, &inside);
-            CHECK_MSG(inside, "%s aspect %.2f: bounds not fully in view", files[i], aspects[a]);
-            CHECK_MSG(span >= 0.2 && span <= 0.9, "%s aspect %.2f: span %.2f", files[i], aspects[a], span);
-            /* near/far hug the bounding sphere: depth precision follows the object's size */
-            CHECK_MSG(cam.near_z > 0.5f * d && cam.far_z < 1.5f * d && cam.far_z / cam.near_z < 3.0f,
+            double fill, size, off;
+            projected_fill(s, &cam, 160.0f * aspects[a], 160.0f, &inside, &fill, &size, &off);
+            CHECK_MSG(inside, "%s aspect %.2f: vertices not all in view", files[i], aspects[a]);
+            /* fitted into 90% of the tighter half-angle, centred */
+            CHECK_MSG(fill >= 0.85 && fill <= 0.901, "%s aspect %.2f: fill %.3f", files[i], aspects[a], fill);
+            CHECK_MSG(off <= 0.01, "%s aspect %.2f: off-centre by %.3f", files[i], aspects[a], off);
+            if (a == 0 && n_sizes < 16) sizes[n_sizes++] = size;
+            /* near/far hug the vertices: depth precision follows the object's size */
+            CHECK_MSG(cam.near_z > 0 && cam.far_z > cam.near_z && cam.far_z / cam.near_z < 20.0f,
                       "%s: near %g far %g d %g", files[i], cam.near_z, cam.far_z, d);
-            /* from above and in front (+Y, +Z), to the side (+X) */
-            float c[3];
-            for (int k = 0; k < 3; k++) c[k] = 0.5f * (s->bounds_min[k] + s->bounds_max[k]);
-            CHECK(cam.position[1] > c[1] && cam.position[2] > c[2] && cam.position[0] > c[0]);
+            float c[3], v[3];
+            for (int k = 0; k < 3; k++) {
+                c[k] = cam.target[k];
+                v[k] = cam.position[k] - c[k];
+            }
+            float vl = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+            if (i < first_flat) { /* 3/4 view: from above and in front (+Y, +Z), to the side (+X) */
+                CHECK(v[1] > 0 && v[2] > 0 && v[0] > 0);
+            } else { /* from the front: along the face's normal */
+                const float *fd = flat_dir[i - first_flat];
+                CHECK_MSG((v[0] * fd[0] + v[1] * fd[1] + v[2] * fd[2]) > 0.9999f * vl, "%s: seen from (%g,%g,%g)",
+                          files[i], v[0] / vl, v[1] / vl, v[2] / vl);
+            }
         }
         float r = 0;
         pg_camera_frame_object(s, 1.0f, &r, NULL);
@@ -1363,9 +1393,61 @@ static void test_object_framing(void)
                       "huge: intensity %g", L.intensity);
         pg_scene_free(s);
     }
+    /* docs/scenes.md: at 16:9 the median object's screen box spans at least 0.8 of the image's
+     * shorter side (the smallest at least 0.5) */
+    CHECK(n_sizes == n_files);
+    if (n_sizes == n_files) {
+        qsort(sizes, n_sizes, sizeof sizes[0], cmp_double);
+        CHECK_MSG(sizes[0] >= 0.5 && sizes[n_sizes / 2] >= 0.8, "sizes: smallest %.2f, median %.2f", sizes[0],
+                  sizes[n_sizes / 2]);
+    }
     /* empty / NULL scene: the unit box, still valid */
     pg_camera c0 = pg_camera_frame_object(NULL, 0.0f, NULL, NULL);
     CHECK(c0.aspect == 1.0f && c0.near_z > 0 && c0.far_z > c0.near_z);
+}
+
+/* --gltf-scene: the file's default scene, another one by index, an index out of range (an error
+ * naming the count and the names), the atrium refusing it, and the line the tools print. */
+static void test_gltf_scene_choice(void)
+{
+    char path[PG_PATH_MAX], line[PG_PATH_MAX + 160];
+    snprintf(path, sizeof path, "%s/corpus/gltf/objects/two_scenes.gltf", PG_TEST_DIR);
+    pg_error err = {0};
+    pg_scene *s = NULL;
+    CHECK_MSG(pg_scene_load(path, &s, &err) == PG_OK, "%s", err.msg);
+    if (s) {
+        CHECK(s->n_gltf_scenes == 2 && s->gltf_scene == 0 && !s->gltf_scene_chosen);
+        CHECK(!strcmp(s->gltf_scene_name, "small"));
+        CHECK(fabsf(s->bounds_max[0] - 0.5f) < 1e-6f);
+        CHECK(pg_scene_choice_line(s, line, sizeof line) && strstr(line, "has 2 scenes; drawing scene 0 'small' (the "
+                                                                        "file's default); --gltf-scene N"));
+        pg_scene_free(s);
+    }
+    pg_scene_load_opts o = {.gltf_scene = 1};
+    s = NULL;
+    CHECK_MSG(pg_scene_load_ex(path, &o, &s, &err) == PG_OK, "%s", err.msg);
+    if (s) {
+        CHECK(s->gltf_scene == 1 && s->gltf_scene_chosen && !strcmp(s->gltf_scene_name, "big"));
+        CHECK_MSG(fabsf(s->bounds_max[0] - 11.5f) < 1e-5f && fabsf(s->bounds_min[0] - 8.5f) < 1e-5f, "big: x %g..%g",
+                  s->bounds_min[0], s->bounds_max[0]);
+        CHECK(pg_scene_choice_line(s, line, sizeof line) && strstr(line, "drawing scene 1 'big' (--gltf-scene)"));
+        pg_scene_free(s);
+    }
+    o.gltf_scene = 2;
+    s = NULL;
+    CHECK(pg_scene_load_ex(path, &o, &s, &err) == PG_ERR_INVALID_ARG && s == NULL);
+    CHECK_MSG(strstr(err.msg, "two_scenes.gltf: --gltf-scene 2: out of range (the file has 2 scenes: 0 'small', 1 "
+                              "'big')"),
+              "%s", err.msg);
+    CHECK(pg_scene_load_ex("default", &o, &s, &err) == PG_ERR_INVALID_ARG && strstr(err.msg, "--gltf-scene 2"));
+    /* a one-scene file says nothing */
+    snprintf(path, sizeof path, "%s/corpus/gltf/objects/cube.gltf", PG_TEST_DIR);
+    s = NULL;
+    CHECK(pg_scene_load(path, &s, &err) == PG_OK);
+    if (s) {
+        CHECK(s->n_gltf_scenes == 1 && s->gltf_scene == 0 && !pg_scene_choice_line(s, line, sizeof line) && !line[0]);
+        pg_scene_free(s);
+    }
 }
 
 static void test_gltf_cameras(void)
@@ -1521,6 +1603,7 @@ int main(void)
     test_api_edges();
     test_object_framing();
     test_gltf_cameras();
+    test_gltf_scene_choice();
     test_gltf_camera_errors();
     test_sponza();
     return pg_test_finish("test_scene");

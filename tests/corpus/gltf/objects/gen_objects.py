@@ -7,6 +7,13 @@ is committed. Run: `python3 tests/corpus/gltf/objects/gen_objects.py`.
   sphere.gltf        UV sphere, radius 1, centred at (3, 1, -2)
   quad.gltf          flat 2x2 quad in the XZ plane facing +Y (a floor tile)
   rod.gltf           long thin box 10 x 0.2 x 0.2 along X
+  panels.gltf        three 1 x 1 quads side by side in the XY plane facing +Z, 0.2 apart (test
+                     panels, as texture sample files show them)
+  panel_back.gltf    one 2 x 1 quad in the XY plane facing -Z
+  wall_x.gltf        one 1 x 2 quad in the YZ plane facing -X
+  tall.gltf          a standing box 0.5 x 1.8 x 0.3 on the ground (a character's proportions)
+  two_scenes.gltf    the unit cube in two glTF scenes: 'small' (the default, `scene` 0) and 'big'
+                     (node scaled 3x, moved to x = 10); --gltf-scene picks one
   tiny.gltf          cube of side 1e-3
   huge.gltf          cube of side 1e4 centred at (5e3, 0, 0)
   camera.gltf        the unit cube + one perspective camera 'front' (node 'front_node') at
@@ -48,6 +55,32 @@ def sphere(center, r, nu=24, nv=12):
 def quad():
     pos = [(-1, 0, -1), (-1, 0, 1), (1, 0, 1), (1, 0, -1)]
     return pos, [(0, 1, 0)] * 4, [0, 1, 2, 0, 2, 3]
+
+
+def panel(x0, x1, y0, y1, plane, face):
+    """A quad: plane 'xy' (z = 0) or 'yz' (x = 0); face +1 / -1 along the plane's normal."""
+    if plane == "xy":
+        pos = [(x0, y0, 0), (x1, y0, 0), (x1, y1, 0), (x0, y1, 0)]
+        n = (0, 0, face)
+    else:
+        pos = [(0, y0, x0), (0, y0, x1), (0, y1, x1), (0, y1, x0)]
+        n = (face, 0, 0)
+    # counter-clockwise seen from the side the normal points to
+    e1 = [pos[1][k] - pos[0][k] for k in range(3)]
+    e2 = [pos[2][k] - pos[0][k] for k in range(3)]
+    c = (e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0])
+    idx = [0, 1, 2, 0, 2, 3] if sum(c[k] * n[k] for k in range(3)) > 0 else [0, 2, 1, 0, 3, 2]
+    return pos, [n] * 4, idx
+
+
+def merge(*meshes):
+    pos, nrm, idx = [], [], []
+    for p, n, i in meshes:
+        base = len(pos)
+        pos += p
+        nrm += n
+        idx += [base + j for j in i]
+    return pos, nrm, idx
 
 
 def doc(mesh, cameras=None, camera_nodes=None):
@@ -99,6 +132,15 @@ write("cube.gltf", doc(cube))
 write("sphere.gltf", doc(sphere((3, 1, -2), 1.0)))
 write("quad.gltf", doc(quad()))
 write("rod.gltf", doc(box((-5, -0.1, -0.1), (5, 0.1, 0.1))))
+write("panels.gltf", doc(merge(*[panel(x, x + 1, 0, 1, "xy", 1) for x in (-1.7, -0.5, 0.7)])))
+write("panel_back.gltf", doc(panel(-1, 1, -0.5, 0.5, "xy", -1)))
+write("wall_x.gltf", doc(panel(-0.5, 0.5, 0, 2, "yz", -1)))
+write("tall.gltf", doc(box((-0.25, 0, -0.15), (0.25, 1.8, 0.15))))
+two = doc(cube)
+two["nodes"] = [{"name": "small_cube", "mesh": 0},
+                {"name": "big_cube", "mesh": 0, "scale": [3, 3, 3], "translation": [10, 0, 0]}]
+two["scenes"] = [{"name": "small", "nodes": [0]}, {"name": "big", "nodes": [1]}]
+write("two_scenes.gltf", two)
 write("tiny.gltf", doc(box((-5e-4, -5e-4, -5e-4), (5e-4, 5e-4, 5e-4))))
 write("huge.gltf", doc(box((0, -5e3, -5e3), (1e4, 5e3, 5e3))))
 eye = (0.5, 0.8, 3.0)
