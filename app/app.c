@@ -11,6 +11,19 @@ pg_result pg_app_open(pg_app *app, const pg_cli_common *opt, bool with_gpu, pg_e
     return pg_app_open_ex(app, opt, with_gpu, NULL, err);
 }
 
+/* "lights: the file's 3 KHR_lights_punctual lights (2 point, 1 directional)..." */
+static void describe_file_lights(const pg_scene *scene, uint32_t generated, char *buf, size_t size)
+{
+    uint32_t n[3] = {0, 0, 0};
+    for (uint32_t i = 0; i < scene->n_lights; i++) n[scene->lights[i].type]++;
+    snprintf(buf, size, "lights: the file's %u KHR_lights_punctual light%s (%u point, %u spot, %u directional)%s",
+             scene->n_lights, scene->n_lights == 1 ? "" : "s", n[0], n[1], n[2],
+             n[1] ? "; spot lights are not drawn yet" : "");
+    if (generated)
+        snprintf(buf + strlen(buf), size - strlen(buf), " + %u generated point lights (--lights or the scenario)",
+                 generated);
+}
+
 pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, const pg_gpu_desc *window_bits,
                          pg_error *err)
 {
@@ -75,13 +88,20 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
                      app->lights.intensity);
     }
     if (opt->has_lights || !(app->has_scenario && app->scenario.has_light_count)) app->lights.count = opt->lights;
+    if (app->scene->n_lights > 0) { /* the file's own lights, first; generated ones only when asked */
+        uint32_t generated = opt->has_lights || (app->has_scenario && app->scenario.has_light_count) ? app->lights.count : 0;
+        app->lights.file_count = app->scene->n_lights;
+        app->lights.count = app->scene->n_lights + generated;
+        describe_file_lights(app->scene, generated, app->lights_why, sizeof app->lights_why);
+    }
     if (opt->has_radius) app->lights.radius = opt->radius;
     if (opt->has_intensity) app->lights.intensity = opt->intensity;
     if (opt->has_ambient) app->lights.ambient = opt->ambient;
     app->object_lights = strcmp(app->scene->path, "default") != 0 && !opt->has_intensity &&
                          !(app->has_scenario && app->scenario.has_intensity);
-    if (app->object_lights && app->lights.count != opt->lights) /* a scenario's light count */
-        app->lights.intensity = pg_light_setup_object(app->scene, app->lights.count, opt->seed).intensity;
+    if (app->object_lights && app->lights.count - app->lights.file_count != opt->lights) /* a scenario's count */
+        app->lights.intensity =
+            pg_light_setup_object(app->scene, app->lights.count - app->lights.file_count, opt->seed).intensity;
     if (opt->has_radius || opt->has_intensity)
         snprintf(app->lights_why + strlen(app->lights_why), sizeof app->lights_why - strlen(app->lights_why),
                  "; %s%s%s from the command line", opt->has_radius ? "radius" : "",
@@ -102,13 +122,6 @@ void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const
         fprintf(f, "explain: %s\nexplain: %s\n", app->camera_why, app->lights_why);
         char choice[PG_PATH_MAX + 160];
         if (pg_scene_choice_line(app->scene, choice, sizeof choice)) fprintf(f, "explain: scene: %s\n", choice);
-        bool file_lights = false;
-        for (uint32_t k = 0; k < app->scene->n_warnings; k++)
-            file_lights = file_lights || strstr(app->scene->warnings[k], "KHR_lights_punctual") != NULL;
-        if (file_lights)
-            fprintf(f, "explain: lights: the file's KHR_lights_punctual lights are not used yet; the %u lights above "
-                       "are generated\n",
-                    app->lights.count);
         fprintf(f, "explain: environment: none (passgraph has no environment light yet; surfaces no light reaches "
                    "get the ambient term, %g x albedo)\n",
                 app->lights.ambient);

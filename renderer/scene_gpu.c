@@ -273,7 +273,27 @@ static pg_result create_buffers(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *s
                               err)))
             return r;
     }
-    sg->bytes = sg->vertices.size + sg->indices.size + sg->materials.size + sg->colors.size + sg->uv1.size;
+    if (scene->n_lights > 0) { /* read once a frame by light_animate: host visible, written here */
+        if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_lights * sizeof(pg_gpu_file_light),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, "scene.file_lights", &sg->file_lights, err)))
+            return r;
+        pg_gpu_file_light *fl = sg->file_lights.mapped;
+        for (uint32_t i = 0; i < scene->n_lights; i++) {
+            const pg_scene_light *L = &scene->lights[i];
+            /* the shading has no 1/pi in its Lambert term (albedo x colour x N.L), so a light in the
+             * extension's units (candela, lux) is divided by pi once here */
+            const float k = L->intensity / 3.14159265358979f;
+            pg_gpu_file_light g = {
+                {L->position[0], L->position[1], L->position[2], L->range},
+                {L->color[0] * k, L->color[1] * k, L->color[2] * k, (float)L->type},
+                {L->direction[0], L->direction[1], L->direction[2], 0.0f},
+            };
+            fl[i] = g;
+        }
+        sg->n_file_lights = scene->n_lights;
+    }
+    sg->bytes = sg->vertices.size + sg->indices.size + sg->materials.size + sg->colors.size + sg->uv1.size +
+                sg->file_lights.size;
     return PG_OK;
 }
 
@@ -435,6 +455,7 @@ void pg_scene_gpu_destroy(pg_gpu *gpu, pg_scene_gpu *sg)
     pg_buffer_destroy(gpu, &sg->materials);
     pg_buffer_destroy(gpu, &sg->colors);
     pg_buffer_destroy(gpu, &sg->uv1);
+    pg_buffer_destroy(gpu, &sg->file_lights);
     free(sg->draws);
     free(sg);
 }

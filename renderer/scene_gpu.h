@@ -40,6 +40,13 @@ typedef struct pg_draw {
     float center[3];         /* centre of the primitive's world-space bounds (for sorting) */
 } pg_draw;
 
+/* A file light as shaders/light_animate.comp reads it (48 bytes). */
+typedef struct pg_gpu_file_light {
+    float position_range[4]; /* world position, the file's range (0: none) */
+    float color_type[4];     /* colour x intensity / pi (linear RGB), type (pg_light_type) */
+    float direction[4];      /* where it points (unit, world), 0 */
+} pg_gpu_file_light;
+
 typedef struct pg_scene_gpu {
     pg_buffer vertices, indices, materials;
     pg_buffer colors;            /* binding 1 stream (float4 per vertex); buffer NULL when absent */
@@ -57,6 +64,10 @@ typedef struct pg_scene_gpu {
     uint32_t n_draws, n_opaque_draws, n_blend_draws;
     pg_draw *draws;
     pg_scene_features features;
+    /* the file's KHR_lights_punctual lights as light_animate reads them (pg_gpu_file_light, host
+     * visible, written once); buffer NULL when the scene has none */
+    pg_buffer file_lights;
+    uint32_t n_file_lights;
     float bounds_min[3], bounds_max[3];
     uint64_t bytes;
 } pg_scene_gpu;

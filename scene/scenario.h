@@ -36,6 +36,8 @@ typedef struct pg_light_setup {
                                      light box onto the shell between the two, so no light comes
                                      near the surfaces inside (pg_light_setup_object) */
     float keep_min[3], keep_max[3];
+    uint32_t file_count;          /* the first file_count of `count` are the scene file's
+                                     KHR_lights_punctual lights (scene->lights); the rest generated */
 } pg_light_setup;
 
 typedef struct pg_scenario {

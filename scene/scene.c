@@ -46,6 +46,7 @@ void pg_scene_free(pg_scene *scene)
     free(scene->primitives);
     free(scene->materials);
     free(scene->cameras);
+    free(scene->lights);
     for (uint32_t i = 0; i < scene->n_warnings; i++) free(scene->warnings[i]);
     free(scene->warnings);
     free(scene);
@@ -414,4 +415,5 @@ void pg_scene_finalize(pg_scene *s)
     }
     memcpy(s->bounds_min, smin, sizeof smin);
     memcpy(s->bounds_max, smax, sizeof smax);
+    s->features.has_file_lights = s->n_lights > 0;
 }

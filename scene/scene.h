@@ -100,6 +100,23 @@ typedef struct pg_scene_camera {
     float forward[3], up[3];     /* world, unit length (node -Z and +Y, orthonormalised) */
 } pg_scene_camera;
 
+/* A KHR_lights_punctual light placed by its node's world transform (one entry per node that
+ * references a light, reached in the drawn scene, depth-first; a light used by two nodes appears
+ * twice). The node's scale moves and turns it but scales neither its range nor its intensity
+ * (the extension's rule). */
+typedef enum pg_light_type { PG_LIGHT_POINT = 0, PG_LIGHT_SPOT = 1, PG_LIGHT_DIRECTIONAL = 2 } pg_light_type;
+typedef struct pg_scene_light {
+    char name[PG_NAME_MAX];      /* lights[i].name, else "KHR_lights_punctual.lights[i]" */
+    int gltf_light, gltf_node;   /* indices in the file */
+    pg_light_type type;
+    float color[3];              /* linear RGB, the file's colour (default white) */
+    float intensity;             /* candela (point, spot) or lux (directional); default 1 */
+    float range;                 /* 0: none given (infinite reach in the extension) */
+    float inner_cone, outer_cone;/* spot: radians, 0 <= inner < outer <= pi/2 */
+    float position[3];           /* world */
+    float direction[3];          /* world, unit: where the light points (the node's -Z) */
+} pg_scene_light;
+
 typedef struct pg_scene {
     char name[PG_NAME_MAX];
     char path[PG_PATH_MAX];   /* "default" for the generated scene */
@@ -124,6 +141,8 @@ typedef struct pg_scene {
     pg_scene_camera *cameras;   /* owned (freed by pg_scene_free); NULL when n_cameras == 0;
                                    the built-in atrium has none */
     uint32_t n_cameras;
+    pg_scene_light *lights;     /* the file's KHR_lights_punctual lights; owned; NULL when none */
+    uint32_t n_lights;
     /* What the loader could not draw as the file asks, one line each, "PATH: cause: what is
      * drawn instead" (e.g. "x.gltf: 2 skins ignored: rendered in bind pose"); in load order, one
      * line per kind of feature (one per extensionsUsed entry, the 17th on summed up in one line). Owned by the scene: warnings[i] and the array are

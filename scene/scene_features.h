@@ -16,6 +16,8 @@ typedef struct pg_scene_features {
     bool has_vertex_colors; /* scene->colors present (COLOR_0 on a drawn primitive) */
     bool has_uv1;         /* scene->uv1 present and a texture reads TEXCOORD_1 */
     bool has_uv_transform;/* any KHR_texture_transform on a used texture */
+    bool has_file_lights; /* KHR_lights_punctual lights (scene->n_lights > 0): their table is
+                             uploaded, light_animate reads it, shading uses the glTF falloff */
 } pg_scene_features;
 
 #endif

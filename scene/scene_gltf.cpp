@@ -536,7 +536,8 @@ static void hand_out_textures(const Ctx &c, const std::vector<TexKey> &order, pg
 
 /* step 6: the pg_scene, owning copies of everything built; the warnings prefixed with the path */
 static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &mats,
-                          const std::vector<pg_scene_camera> &cams, const std::vector<TexKey> &tex_order)
+                          const std::vector<pg_scene_camera> &cams, const std::vector<pg_scene_light> &lights,
+                          const std::vector<TexKey> &tex_order)
 {
     std::unique_ptr<pg_scene, SceneDeleter> s(static_cast<pg_scene *>(calloc(1, sizeof(pg_scene))));
     if (!s) throw std::bad_alloc();
@@ -560,6 +561,8 @@ static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &
     s->n_materials = uint32_t(mats.size());
     s->cameras = copy_out(cams);
     s->n_cameras = uint32_t(cams.size());
+    s->lights = copy_out(lights);
+    s->n_lights = uint32_t(lights.size());
     /* COLOR_0 when a drawn primitive has it */
     if (!o.colors.empty()) {
         s->colors = static_cast<float(*)[4]>(malloc(o.colors.size() * sizeof(float)));
@@ -596,11 +599,13 @@ pg_scene *load(Ctx &c)
     /* 4. node hierarchy -> geometry */
     Out o;
     std::vector<pg_scene_camera> cams;
+    std::vector<pg_scene_light> lights;
     {
         std::vector<int> roots = root_nodes(c);
         Walker w{c, o, std::vector<char>(md.nodes.size(), 0), 0};
         for (int r : roots) w.visit(r, mat_identity(), 0);
         for (int r : roots) camera_visit(c, r, mat_identity(), cams);
+        for (int r : roots) light_visit(c, r, mat_identity(), lights);
     }
     if (o.idx.empty()) gfail("the scene has no triangles");
     collect_warnings(c);
@@ -611,7 +616,7 @@ pg_scene *load(Ctx &c)
     for (size_t i = 0; i < md.materials.size(); i++) mats.push_back(material_from_gltf(c, i, tex));
     assign_materials(md, o, mats);
 
-    return hand_out(c, o, mats, cams, tex.order); /* 6 */
+    return hand_out(c, o, mats, cams, lights, tex.order); /* 6 */
 }
 
 } // namespace pg_gltf

@@ -149,6 +149,9 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M);
 /* scene_gltf_nodes.cpp */
 Mat4 mat_identity();
 void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_camera> &out);
+/* KHR_lights_punctual: the lights of the nodes under ni, placed by their world transforms;
+ * bad values fail naming "KHR_lights_punctual.lights[i].FIELD" or "nodes[n].extensions..." */
+void light_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_light> &out);
 
 /* scene_gltf_warnings.cpp */
 std::string plural(size_t n, const char *one, const char *many);

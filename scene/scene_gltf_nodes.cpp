@@ -157,4 +157,75 @@ void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene
     for (int ch : nd.children) camera_visit(c, ch, world, out);
 }
 
+/* one light object of the extension, checked (placement left 0) */
+static pg_scene_light light_object(const Ctx &c, int li)
+{
+    const tinygltf::Light &gl = c.model.lights[size_t(li)];
+    const std::string lw = strf("KHR_lights_punctual.lights[%d]", li);
+    pg_scene_light L;
+    memset(&L, 0, sizeof L);
+    pg_strlcpy(L.name, gl.name.empty() ? lw.c_str() : gl.name.c_str(), sizeof L.name);
+    L.gltf_light = li;
+    if (gl.type == "point") L.type = PG_LIGHT_POINT;
+    else if (gl.type == "spot") L.type = PG_LIGHT_SPOT;
+    else if (gl.type == "directional") L.type = PG_LIGHT_DIRECTIONAL;
+    else gfail(lw + ".type: '" + gl.type + "': expected \"point\", \"spot\" or \"directional\"");
+    if (gl.color.empty()) {
+        L.color[0] = L.color[1] = L.color[2] = 1.0f;
+    } else {
+        if (gl.color.size() != 3) gfail(strf("%s.color: %zu numbers, expected 3", lw.c_str(), gl.color.size()));
+        for (int k = 0; k < 3; k++) {
+            if (!(std::isfinite(gl.color[size_t(k)]) && gl.color[size_t(k)] >= 0 && gl.color[size_t(k)] <= 3.4e38))
+                gfail(lw + ".color: expected three finite numbers >= 0");
+            L.color[k] = float(gl.color[size_t(k)]);
+        }
+    }
+    if (!(std::isfinite(gl.intensity) && gl.intensity >= 0 && gl.intensity <= 1e30))
+        gfail(lw + ".intensity: expected a finite number >= 0 (at most 1e30)");
+    L.intensity = float(gl.intensity);
+    if (!(std::isfinite(gl.range) && gl.range >= 0 && gl.range <= 1e30))
+        gfail(lw + ".range: expected a finite number > 0 (at most 1e30), or absent");
+    L.range = L.type == PG_LIGHT_DIRECTIONAL ? 0.0f : float(gl.range);
+    if (L.type == PG_LIGHT_SPOT) {
+        double in = gl.spot.innerConeAngle, out = gl.spot.outerConeAngle;
+        if (!(std::isfinite(out) && out > 0 && out <= 1.5707963267948966))
+            gfail(lw + ".spot.outerConeAngle: expected an angle in (0, pi/2] radians");
+        if (!(std::isfinite(in) && in >= 0 && in < out))
+            gfail(lw + ".spot.innerConeAngle: expected an angle in [0, outerConeAngle) radians");
+        L.inner_cone = float(in);
+        L.outer_cone = float(out);
+    }
+    return L;
+}
+
+void light_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_light> &out)
+{
+    const tinygltf::Model &md = c.model;
+    const tinygltf::Node &nd = md.nodes[size_t(ni)];
+    Mat4 world = mat_mul(parent, node_local(nd, ni));
+    auto ext = nd.extensions.find("KHR_lights_punctual");
+    if (ext != nd.extensions.end()) {
+        const std::string where = strf("nodes[%d].extensions.KHR_lights_punctual.light", ni);
+        const tinygltf::Value &v = ext->second;
+        if (!v.IsObject() || !v.Has("light") || !(v.Get("light").IsInt() || v.Get("light").IsNumber()))
+            gfail(where + ": expected a light index");
+        double li = v.Get("light").GetNumberAsDouble();
+        if (!(li >= 0 && li < double(md.lights.size()) && li == std::floor(li)))
+            gfail(strf("%s: %g out of range (%zu lights)", where.c_str(), li, md.lights.size()));
+        pg_scene_light L = light_object(c, int(li));
+        L.gltf_node = ni;
+        double d[3] = {-world.m[8], -world.m[9], -world.m[10]};
+        double dl = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (L.type != PG_LIGHT_POINT && !(dl > 1e-30))
+            gfail(strf("nodes[%d]: light node transform is singular (no direction)", ni));
+        for (int k = 0; k < 3; k++) {
+            L.position[k] = float(world.m[12 + k]);
+            L.direction[k] = dl > 1e-30 ? float(d[k] / dl) : (k == 1 ? -1.0f : 0.0f);
+            if (!std::isfinite(L.position[k])) gfail(strf("nodes[%d]: light position is not finite", ni));
+        }
+        out.push_back(L);
+    }
+    for (int ch : nd.children) light_visit(c, ch, world, out);
+}
+
 } // namespace pg_gltf

@@ -18,8 +18,8 @@ namespace pg_gltf {
 /* The glTF extensions passgraph implements: accepted in extensionsRequired, not warned in
  * extensionsUsed. */
 constexpr const char *kImplementedExtensions[] = {"EXT_meshopt_compression", "KHR_draco_mesh_compression",
-                                                  "KHR_materials_emissive_strength", "KHR_mesh_quantization",
-                                                  "KHR_texture_transform"};
+                                                  "KHR_lights_punctual", "KHR_materials_emissive_strength",
+                                                  "KHR_mesh_quantization", "KHR_texture_transform"};
 bool extension_implemented(const std::string &e)
 {
     for (const char *x : kImplementedExtensions)

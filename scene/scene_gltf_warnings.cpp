@@ -58,7 +58,6 @@ std::string filter_name(int f)
 std::string extension_effect(const std::string &e)
 {
     if (e == "KHR_texture_transform") return "texture offset/rotation/scale not applied";
-    if (e == "KHR_lights_punctual") return "the file's lights are not used";
     if (e == "KHR_materials_variants") return "the default material of each primitive is drawn";
     if (e.compare(0, 14, "KHR_materials_") == 0) return "the core material is drawn without it";
     return "not supported";
@@ -88,6 +87,11 @@ void collect_warnings(Ctx &c)
         W.push_back(plural(morph_targets, "morph target", "morph targets") + " in " +
                     plural(morph_meshes, "mesh", "meshes") +
                     " ignored: rendered with the base geometry (weights not applied)");
+    size_t spots = 0;
+    for (const auto &l : md.lights) spots += l.type == "spot";
+    if (spots)
+        W.push_back("KHR_lights_punctual: " + plural(spots, "spot light", "spot lights") +
+                    " not drawn yet (point and directional lights are)");
     constexpr size_t kMaxExtensionLines = 16;
     std::vector<std::string> unimpl;
     for (const std::string &e : md.extensionsUsed)

@@ -3,8 +3,10 @@
 // (core/runtime/scene_gpu.h); Light is the 32-byte record the light_animate pass writes.
 
 struct Light {
-    vec4 pos_radius;   // xyz world position, w range R
-    vec4 color;        // rgb radiant colour (already times intensity), w unused
+    vec4 pos_radius;   // xyz world position, w range R: where the light stops (lists, culling)
+    vec4 color;        // rgb radiant colour (already times intensity), w the falloff's range (the
+                       // window's R: equal to pos_radius.w for generated lights; 3e38 = no window
+                       // for a file light without a range; the true range under stochastic culling)
 };
 
 struct GpuMaterial {
@@ -75,6 +77,7 @@ vec3 pg_srgb_decode(vec3 c)
         uvec4 noise;        /* sample index, seed (stochastic passes' random stream), 0, 0 */    \
         vec4 light_keep_min; /* the box lights stay out of, w = 1 when they do */                \
         vec4 light_keep_max;                                                                     \
+        uvec4 light_src;    /* x: lights from the scene file (the first x of counts.x) */        \
     } frame;
 
 // Camera-relative rendering (use after FRAME_UNIFORMS_BLOCK): shading works on positions

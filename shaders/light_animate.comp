@@ -9,6 +9,56 @@
 FRAME_UNIFORMS_BLOCK
 layout(local_size_x = 64) in;
 layout(set = 1, binding = 0, std430) writeonly buffer Lights { Light lights[]; };
+#ifdef PG_FILE_LIGHTS
+// The scene file's KHR_lights_punctual lights (renderer/scene_gpu.h pg_gpu_file_light): the first
+// frame.light_src.x lights are these, the generated ones follow.
+struct FileLight {
+    vec4 position_range; // world position, the file's range (0: none)
+    vec4 color_type;     // colour x intensity / pi (linear), type (0 point, 1 spot, 2 directional)
+    vec4 direction;      // where it points (unit, world), 0
+};
+layout(set = 1, binding = 1, std430) readonly buffer FileLights { FileLight file_lights[]; };
+#ifdef PG_LIGHT_CUTOFF_NANO
+#define PG_LIGHT_CUTOFF (float(PG_LIGHT_CUTOFF_NANO) * 1e-9)
+#else
+#define PG_LIGHT_CUTOFF 1e-4
+#endif
+// Distance of a directional light, stored as a point light this far along -direction with its
+// colour times PG_SUN_DIST^2 and no window: across a scene of size s its direction varies by
+// s / 1e15 rad and its 1/d^2 by 2 s / 1e15, below float precision for s < 1e7.
+const float PG_SUN_DIST = 1e15;
+const float PG_NO_WINDOW = 3e38; // a window range whose (d/R)^4 is 0 for any finite d
+
+Light pg_file_light(uint i)
+{
+    FileLight f = file_lights[i];
+    Light L;
+    vec3 c = f.color_type.rgb;
+    uint type = uint(f.color_type.w + 0.5);
+    if (type == 2u) { // directional: no position, no falloff, reaches everything
+        L.pos_radius = vec4(-f.direction.xyz * PG_SUN_DIST, PG_NO_WINDOW);
+        L.color = vec4(c * (PG_SUN_DIST * PG_SUN_DIST), PG_NO_WINDOW);
+        return L;
+    }
+    if (type == 1u) { // spot lights are not drawn yet (scene warnings say so): nothing
+        L.pos_radius = vec4(f.position_range.xyz, 0.0);
+        L.color = vec4(0.0);
+        return L;
+    }
+    float range = f.position_range.w;
+#ifdef PG_INFINITE_REACH
+    // the reference: a light without a range reaches everything (the extension's rule)
+    float reach = range > 0.0 ? range : PG_NO_WINDOW;
+#else
+    // a light without a range stops where its unshadowed contribution falls below PG_LIGHT_CUTOFF
+    // (scene-linear, per channel): max(c) / d^2 = cutoff
+    float reach = range > 0.0 ? range : sqrt(max(c.r, max(c.g, c.b)) / float(PG_LIGHT_CUTOFF));
+#endif
+    L.pos_radius = vec4(f.position_range.xyz, reach);
+    L.color = vec4(c, range > 0.0 ? range : PG_NO_WINDOW);
+    return L;
+}
+#endif
 
 uint pg_hash(uint x)
 {
@@ -45,6 +95,16 @@ void main()
     uint i = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * 64u) + gl_GlobalInvocationID.x;
     uint count = frame.counts.x;
     if (i >= count) return;
+#ifdef PG_FILE_LIGHTS
+    if (i < frame.light_src.x) {
+        lights[i] = pg_file_light(i);
+        return;
+    }
+    i -= frame.light_src.x; // the generated lights follow the file's, numbered from 0
+    uint out_i = i + frame.light_src.x;
+#else
+    uint out_i = i;
+#endif
     uint seed = frame.counts.y;
     float t = frame.camera_pos.w;
     float speed = frame.light_params.y;
@@ -65,6 +125,6 @@ void main()
     float hue = pg_rand(seed, i, 6u);
     vec3 rgb = clamp(abs(mod(hue * 6.0 + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
     vec3 color = mix(vec3(1.0), rgb, frame.light_params.x) * frame.light_box_max.w;
-    lights[i].pos_radius = vec4(pos, frame.light_box_min.w);
-    lights[i].color = vec4(color, 0.0);
+    lights[out_i].pos_radius = vec4(pos, frame.light_box_min.w);
+    lights[out_i].color = vec4(color, frame.light_box_min.w); // the window's range: the same
 }

@@ -12,7 +12,7 @@
 // Node (4 x vec4, 64 bytes; root 1, leaves np .. 2np - 1, an implicit complete binary tree):
 //   [0] xyz min of the light centres, w the largest radius
 //   [1] xyz max of the light centres, w the number of lights
-//   [2] rgb the sum of the colours (already times intensity)
+//   [2] rgb the sum of the colours (already times intensity), w the largest falloff range (Light.color.w)
 //   [3] xyz the colour-luminance-weighted centroid (the node's representative light)
 // An empty node has min +3e38, max -3e38, radius 0, colour 0: it reaches nothing.
 #include "common.glsl"
@@ -82,7 +82,7 @@ void main()
             write_node(pc.np + i, vec4(vec3(3e38), 0.0), vec4(vec3(-3e38), 0.0), vec4(0.0), vec4(0.0));
         } else {
             Light L = lights[key.y];
-            write_node(pc.np + i, L.pos_radius, vec4(L.pos_radius.xyz, 1.0), vec4(L.color.rgb, 0.0),
+            write_node(pc.np + i, L.pos_radius, vec4(L.pos_radius.xyz, 1.0), vec4(L.color.rgb, L.color.w),
                        vec4(L.pos_radius.xyz, 0.0));
         }
     } else {
@@ -93,6 +93,6 @@ void main()
         float la = pg_luminance(ac.rgb), lb = pg_luminance(bc.rgb);
         vec3 rep = la + lb > 0.0 ? (la * ar.xyz + lb * br.xyz) / (la + lb) : 0.5 * (ar.xyz + br.xyz);
         write_node(n, vec4(min(amin.xyz, bmin.xyz), max(amin.w, bmin.w)), vec4(max(amax.xyz, bmax.xyz), amax.w + bmax.w),
-                   vec4(ac.rgb + bc.rgb, 0.0), vec4(rep, 0.0));
+                   vec4(ac.rgb + bc.rgb, max(ac.w, bc.w)), vec4(rep, 0.0));
     }
 }

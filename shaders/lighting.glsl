@@ -1,5 +1,8 @@
 // lighting.glsl - the reference point-light model (CIS 565):
 //   contribution = color * max(dot(N, L), 0) * clamp(1 - (d/R)^4, 0, 1) / max(d^2, dmin^2)
+// With PG_GLTF_FALLOFF (a scene with KHR_lights_punctual lights) the window is squared, the
+// extension's recommended falloff, for every light: clamp(1 - (d/R)^4, 0, 1)^2. The window's R is
+// the light's color.w (Light, common.glsl), its cut-off range pos_radius.w.
 // d >= R contributes exactly 0 (this also makes R = 0 contribute 0 instead of 0/0); the
 // 1/d^2 term is bounded by 1/dmin^2 (dmin = frame.light_params.w = PG_LIGHT_MIN_DISTANCE) so a
 // light lying on the surface gives a finite value. Blinn-Phong adds
@@ -34,6 +37,9 @@ float pg_light_term(vec3 Ld, float d2, float inv_r2, vec3 N, float inv_md2, out 
 {
     float t = d2 * inv_r2;                // (d/R)^2
     float falloff = clamp(1.0 - t * t, 0.0, 1.0);
+#ifdef PG_GLTF_FALLOFF
+    falloff *= falloff;
+#endif
     float rs = inversesqrt(d2);           // 1/d: +Inf at d = 0 (or d^2 flushed to 0)
     bool dir = rs <= 3.40282347e+38;      // false: the light is on the point, taken as head-on (L = N)
     att = falloff * min(rs * rs, inv_md2);
@@ -110,12 +116,8 @@ void pg_accumulate_light(Light light, vec3 cam, vec3 P, vec3 N, vec3 V, float sh
     float R = light.pos_radius.w;
     float R2 = R * R;
     float md2 = min_dist * min_dist;
-#ifdef PG_STOCHASTIC_CULL
-    float Rt = light.color.w; // the true range: the falloff's (pos_radius.w is the random one)
+    float Rt = light.color.w; // the falloff's range (pos_radius.w: where the light stops)
     float inv_r2 = pg_light_inv_r2(Rt * Rt);
-#else
-    float inv_r2 = pg_light_inv_r2(R2);
-#endif
     pg_accumulate_light_rel(light.pos_radius.xyz - cam, R2, inv_r2, light.color.rgb, P, N, V, shininess, 1.0 / md2,
                             acc);
 }

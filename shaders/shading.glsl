@@ -78,8 +78,8 @@ vec3 pg_light_contribution(Surface s, uint li, vec3 cam, vec3 P, vec3 V, float i
     PgShade one;
     one.diffuse = vec3(0.0);
     one.specular = vec3(0.0);
-    pg_accumulate_light_rel(L.pos_radius.xyz - cam, R2, pg_light_inv_r2(R2), L.color.rgb, P, s.normal, V, s.shininess,
-                            inv_md2, one);
+    pg_accumulate_light_rel(L.pos_radius.xyz - cam, R2, pg_light_inv_r2(L.color.w * L.color.w), L.color.rgb, P,
+                            s.normal, V, s.shininess, inv_md2, one);
     return s.albedo * one.diffuse + s.specular * one.specular;
 }
 
@@ -142,7 +142,8 @@ float pg_lc_box_d2(vec3 lo, vec3 hi, vec3 P)
 vec3 pg_lc_upper(uint n, Surface s, vec3 P, vec3 cam, float inv_md2, out float dmin2_out)
 {
     vec4 lo = tree[4u * n], hi = tree[4u * n + 1u];
-    vec3 c = tree[4u * n + 2u].rgb;
+    vec4 cw = tree[4u * n + 2u];
+    vec3 c = cw.rgb;
     vec3 rl = lo.xyz - cam, rh = hi.xyz - cam;
     float d2 = pg_lc_box_d2(rl, rh, P);
     // float margins: never above a light's true distance (the rounding of camera-relative values)
@@ -159,8 +160,9 @@ vec3 pg_lc_upper(uint n, Surface s, vec3 P, vec3 cam, float inv_md2, out float d
     if (front < -slack) return vec3(0.0);
     // N.L <= N.(x - P) / |x - P| <= (front + slack) / dm for every centre x of the box
     float cos_max = dm > 0.0 ? min(1.0, (front + slack) / dm) : 1.0;
-    // falloff(d / R) <= falloff(dm / Rmax): it falls with d and rises with R
-    float t = dmin2_out / (lo.w * lo.w);
+    // falloff(d / R) <= falloff(dm / Rmax): it falls with d and rises with R (the falloff's R, cw.w:
+    // the largest of the node's; squared for PG_GLTF_FALLOFF it is only smaller)
+    float t = dmin2_out / (cw.w * cw.w);
     float falloff = clamp(1.0 - t * t, 0.0, 1.0) * (1.0 + 1e-5) + 1e-6;
     float att = min(dm > 0.0 ? 1.0 / dmin2_out : 3.0e38, inv_md2) * min(falloff, 1.0);
 #ifdef PG_BLINN_PHONG
@@ -170,13 +172,14 @@ vec3 pg_lc_upper(uint n, Surface s, vec3 P, vec3 cam, float inv_md2, out float d
 #endif
 }
 
-vec3 pg_lc_light(Surface s, vec3 pos, float R, vec3 color, vec3 cam, vec3 P, vec3 V, float inv_md2)
+// R: where the light stops; Rf: its falloff's range (Light.color.w)
+vec3 pg_lc_light(Surface s, vec3 pos, float R, float Rf, vec3 color, vec3 cam, vec3 P, vec3 V, float inv_md2)
 {
     float R2 = R * R;
     PgShade one;
     one.diffuse = vec3(0.0);
     one.specular = vec3(0.0);
-    pg_accumulate_light_rel(pos - cam, R2, pg_light_inv_r2(R2), color, P, s.normal, V, s.shininess, inv_md2, one);
+    pg_accumulate_light_rel(pos - cam, R2, pg_light_inv_r2(Rf * Rf), color, P, s.normal, V, s.shininess, inv_md2, one);
     return s.albedo * one.diffuse + s.specular * one.specular;
 }
 
@@ -197,14 +200,16 @@ vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
         if (n >= np) { // a leaf: one light, exactly
             PG_COUNT(1);
             vec4 pr = tree[4u * n];
-            E += pg_lc_light(s, pr.xyz, pr.w, tree[4u * n + 2u].rgb, cam, P, V, inv_md2);
+            vec4 lc = tree[4u * n + 2u];
+            E += pg_lc_light(s, pr.xyz, pr.w, lc.w, lc.rgb, cam, P, V, inv_md2);
             continue;
         }
         float d2;
         vec3 U = pg_lc_upper(n, s, P, cam, inv_md2, d2);
         if (U == vec3(0.0)) continue;
         PG_COUNT(1);
-        vec3 est = clamp(pg_lc_light(s, tree[4u * n + 3u].xyz, tree[4u * n].w, tree[4u * n + 2u].rgb, cam, P, V, inv_md2),
+        vec4 nc = tree[4u * n + 2u];
+        vec3 est = clamp(pg_lc_light(s, tree[4u * n + 3u].xyz, tree[4u * n].w, nc.w, nc.rgb, cam, P, V, inv_md2),
                          vec3(0.0), U);
         vec3 b = max(U - est, est);
         if (all(lessThanEqual(B + b, eps * E))) {
@@ -440,11 +445,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #endif
             if (keep) {   // what pg_accumulate_light_rel reads, computed once per tile
                 float R2 = L.pos_radius.w * L.pos_radius.w;
-#ifdef PG_STOCHASTIC_CULL
-                s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(L.color.w * L.color.w)); // true range
-#else
-                s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(R2));
-#endif
+                s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(L.color.w * L.color.w)); // falloff's R
                 s_tl_light[2u * pos + 1u] = vec4(L.color.rgb, R2);
             }
             barrier();

@@ -129,6 +129,8 @@ typedef struct bench {
     /* lists */
     uint32_t n_lights, n_sizes, n_scenes, n_sweeps, n_pipes;
     uint32_t lights[MAX_LIST];
+    bool lights_given;          /* --lights was on the command line (generated lights added to a
+                                   scene file's own; without it such a scene has only its own) */
     uint32_t widths[MAX_LIST], heights[MAX_LIST];
     const char *scenes[MAX_LIST];
     char scene_names[MAX_LIST][PG_PATH_MAX];

@@ -367,6 +367,7 @@ static pg_result parse_lists(bench *B, const setup_args *sa, pg_error *err)
     pg_result r = PG_OK;
     static char def_lights[] = "100,1000,5000";
     if (!r) r = pg_bench_parse_lights(B, sa->lights ? sa->lights : def_lights, err);
+    B->lights_given = sa->lights != NULL;
     if (!r && sa->sizes) r = parse_sizes(B, sa->sizes, err);
     if (!r && !sa->sizes) {
         B->n_sizes = 1;
@@ -482,9 +483,11 @@ static pg_frame_info block_frame(const bench *B, const pg_app *app, uint32_t si,
     fi.width = B->widths[si];
     fi.height = B->heights[si];
     fi.camera.aspect = (float)fi.width / (float)fi.height;
-    fi.lights.count = B->lights[li];
+    /* a scene file's own lights come first; generated ones are added only when --lights asks */
+    uint32_t generated = fi.lights.file_count && !B->lights_given ? 0 : B->lights[li];
+    fi.lights.count = fi.lights.file_count + generated;
     if (app->object_lights) /* the object rule keeps the total over the lights: per count */
-        fi.lights.intensity = pg_light_setup_object(app->scene, B->lights[li], fi.lights.seed).intensity;
+        fi.lights.intensity = pg_light_setup_object(app->scene, generated, fi.lights.seed).intensity;
     fi.time = B->opt.time;
     return fi;
 }

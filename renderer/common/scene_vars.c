@@ -16,6 +16,7 @@ static const struct {
     {"has_vertex_colors", offsetof(pg_scene_features, has_vertex_colors)},
     {"has_uv1", offsetof(pg_scene_features, has_uv1)},
     {"has_uv_transform", offsetof(pg_scene_features, has_uv_transform)},
+    {"has_file_lights", offsetof(pg_scene_features, has_file_lights)},
 };
 #define N_FEATURES (sizeof k_features / sizeof k_features[0])
 

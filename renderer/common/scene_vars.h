@@ -15,7 +15,7 @@ extern "C" {
 
 /* Sets "lights" and one 0/1 variable per scene feature ("has_textures", "has_normal_maps",
  * "has_alpha_mask", "has_blend", "has_emissive", "has_vertex_colors", "has_uv1",
- * "has_uv_transform"); features may be NULL (none). */
+ * "has_uv_transform", "has_file_lights"); features may be NULL (none). */
 pg_result pg_scene_vars_set(pg_compile_vars *vars, const pg_scene_features *features, uint32_t lights,
                             pg_error *err);
 /* In declare(): the scene features the caller set (missing variables read as false). */

@@ -2,7 +2,7 @@
  * each light's range is cut to a random r(xi) where its contribution falls below a threshold, and
  * the shading pass rescales what it keeps (deferred_lighting option stochastic_threshold, the same
  * value), so the expectation of every pixel is exact. Slots: reads [lights], writes
- * [lights_stochastic] (same layout: position and random range; colour and the true range in w).
+ * [lights_stochastic] (same layout: position and random range; colour and the falloff's range in w).
  * Options: threshold (luminance of one light's attenuated colour below which it is kept at random;
  * > 0). The random numbers come from the frame's sample index and seed. */
 #include "light_compute.h"
@@ -28,6 +28,7 @@ static pg_result sl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     p->lights = pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
     p->out = pg_decl_write(out, "lights_stochastic", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
     pg_decl_define_int(out, "PG_SC_TAU_MICRO", (int64_t)(tau * 1e6 + 0.5));
+    if (pg_scene_features_of(in).has_file_lights) pg_decl_define(out, "PG_GLTF_FALLOFF");
     pg_decl_explain(out, "threshold %g: lights are cut to random ranges below it (unbiased, noisy)", tau);
     if (pg_lights_of(in) == 0) pg_decl_explain(out, "0 lights: the culling dispatch records nothing");
     return PG_OK;

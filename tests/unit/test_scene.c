@@ -799,8 +799,8 @@ static void test_corpus_features(void)
     CHECK(pg_scene_load_gltf(PG_TEST_DIR "/corpus/gltf/required_made_up.gltf", &bad, &err) == PG_ERR_GLTF);
     CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus/gltf/required_made_up.gltf: extensionsRequired: "
                                "'EXT_made_up' is not supported (passgraph implements only these glTF extensions: "
-                               "EXT_meshopt_compression, KHR_draco_mesh_compression, KHR_materials_emissive_strength, "
-                               "KHR_mesh_quantization, KHR_texture_transform)"),
+                               "EXT_meshopt_compression, KHR_draco_mesh_compression, KHR_lights_punctual, "
+                               "KHR_materials_emissive_strength, KHR_mesh_quantization, KHR_texture_transform)"),
               "%s", err.msg);
     /* a scenario path that is a directory */
     pg_scenario sc;
@@ -1450,6 +1450,72 @@ static void test_gltf_scene_choice(void)
     }
 }
 
+static pg_scene *load_lights(const char *file)
+{
+    char path[PG_PATH_MAX];
+    snprintf(path, sizeof path, "%s/corpus/gltf/lights/%s", PG_TEST_DIR, file);
+    pg_scene *s = NULL;
+    pg_error err = {0};
+    if (pg_scene_load_gltf(path, &s, &err)) CHECK_MSG(0, "%s: %s", file, err.msg);
+    return s;
+}
+
+static bool near3(const float *v, float x, float y, float z, float tol)
+{
+    return fabsf(v[0] - x) <= tol && fabsf(v[1] - y) <= tol && fabsf(v[2] - z) <= tol;
+}
+
+/* KHR_lights_punctual: types, colours, intensities, ranges, cones, placement through the node
+ * hierarchy (tests/corpus/gltf/lights/gen_lights.py); the bad cases are MANIFEST lines. */
+static void test_file_lights(void)
+{
+    pg_scene *s = load_lights("rgb_points.gltf");
+    if (s) {
+        CHECK(s->n_lights == 3);
+        if (s->n_lights == 3) {
+            const pg_scene_light *L = s->lights;
+            CHECK(L[0].type == PG_LIGHT_POINT && !strcmp(L[0].name, "red") && L[0].gltf_light == 0);
+            CHECK(near3(L[0].position, -3, 2, 0, 1e-6f) && near3(L[1].position, 0, 2, 0, 1e-6f) &&
+                  near3(L[2].position, 3, 2, 0, 1e-6f));
+            CHECK(near3(L[0].color, 1, 0, 0, 0) && near3(L[1].color, 0, 1, 0, 0) && near3(L[2].color, 0, 0, 1, 0));
+            CHECK(L[0].range == 4.0f && L[1].range == 0.0f && L[2].intensity == 5.0f);
+        }
+        pg_scene_free(s);
+    }
+    s = load_lights("spot.gltf");
+    if (s) {
+        CHECK(s->n_lights == 1);
+        if (s->n_lights == 1) {
+            const pg_scene_light *L = s->lights;
+            CHECK(L->type == PG_LIGHT_SPOT && fabsf(L->inner_cone - 0.3f) < 1e-7f && fabsf(L->outer_cone - 0.5f) < 1e-7f);
+            CHECK(near3(L->position, 0, 3, 0, 1e-6f) && near3(L->direction, 0, -1, 0, 1e-6f));
+            CHECK(near3(L->color, 1, 1, 1, 0) && L->intensity == 20.0f); /* default colour white */
+        }
+        pg_scene_free(s);
+    }
+    s = load_lights("sun.gltf");
+    if (s) {
+        CHECK(s->n_lights == 1);
+        if (s->n_lights == 1) { /* -Z turned -60 degrees about X: down and towards -Z */
+            CHECK(s->lights[0].type == PG_LIGHT_DIRECTIONAL && s->lights[0].range == 0.0f);
+            CHECK_MSG(near3(s->lights[0].direction, 0, -0.8660254f, -0.5f, 1e-6f), "sun direction %g %g %g",
+                      s->lights[0].direction[0], s->lights[0].direction[1], s->lights[0].direction[2]);
+        }
+        pg_scene_free(s);
+    }
+    s = load_lights("mixed.gltf");
+    if (s) {
+        CHECK(s->n_lights == 3 && s->lights[0].type == PG_LIGHT_POINT && s->lights[1].type == PG_LIGHT_SPOT &&
+              s->lights[2].type == PG_LIGHT_DIRECTIONAL);
+        pg_scene_free(s);
+    }
+    s = load_object("cube.gltf"); /* no extension: no lights */
+    if (s) {
+        CHECK(s->n_lights == 0 && s->lights == NULL);
+        pg_scene_free(s);
+    }
+}
+
 static void test_gltf_cameras(void)
 {
     pg_error err = {0};
@@ -1604,6 +1670,7 @@ int main(void)
     test_object_framing();
     test_gltf_cameras();
     test_gltf_scene_choice();
+    test_file_lights();
     test_gltf_camera_errors();
     test_sponza();
     return pg_test_finish("test_scene");

@@ -531,7 +531,8 @@ write("ok_many_extensions.gltf", d, "PG_OK",
       warn=["extensionsUsed: 'EXT_x_%02d' ignored: not supported" % i for i in range(16)]
       + ["extensionsUsed: 2 more extensions ignored (not supported)"])
 IMPLEMENTED = ("EXT_meshopt_compression", "KHR_draco_mesh_compression",  # may be required
-               "KHR_materials_emissive_strength", "KHR_mesh_quantization", "KHR_texture_transform")
+               "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization",
+               "KHR_texture_transform")
 for name, exts in (("required_texture_transform.gltf", ["KHR_texture_transform", "KHR_mesh_quantization"]),
                    ("required_meshopt.gltf", ["EXT_meshopt_compression"]),
                    ("required_emissive_and_meshopt.gltf", ["KHR_materials_emissive_strength",
@@ -613,6 +614,39 @@ d["materials"] = [{"name": "lamp", "emissiveFactor": [1, 0.5, 0],
 write("ok_emissive.gltf", d, "PG_OK", warn=[
     "metallicRoughnessTexture of 1 material (materials[1]) ignored: the metallic/roughness factors are used",
     "occlusionTexture of 1 material (materials[1]) ignored"])
+
+# ------------------------------------------------------------------------------------------------
+# KHR_lights_punctual: bad light objects and bad node references fail naming the field
+
+
+def lights_doc(light, node_ext=None):
+    d, _ = base_doc(with_normals=True)
+    d["extensionsUsed"] = ["KHR_lights_punctual"]
+    d["extensions"] = {"KHR_lights_punctual": {"lights": [light]}}
+    d["nodes"].append({"extensions": {"KHR_lights_punctual": node_ext if node_ext is not None else {"light": 0}}})
+    d["scenes"][0]["nodes"] = [0, 1]
+    return d
+
+
+write("light_bad_type.gltf", lights_doc({"type": "area"}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].type: 'area': expected \"point\", \"spot\" or \"directional\"")
+write("light_color_two.gltf", lights_doc({"type": "point", "color": [1, 0.5]}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].color: 2 numbers, expected 3")
+write("light_color_negative.gltf", lights_doc({"type": "point", "color": [1, -1, 0]}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].color: expected three finite numbers >= 0")
+write("light_intensity_negative.gltf", lights_doc({"type": "point", "intensity": -2}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].intensity: expected a finite number >= 0")
+write("light_range_negative.gltf", lights_doc({"type": "point", "range": -1}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].range: expected a finite number > 0")
+write("light_cone_inverted.gltf", lights_doc({"type": "spot", "spot": {"innerConeAngle": 0.6,
+                                                                        "outerConeAngle": 0.5}}),
+      "PG_ERR_GLTF", "KHR_lights_punctual.lights[0].spot.innerConeAngle: expected an angle in [0, outerConeAngle)")
+write("light_cone_wide.gltf", lights_doc({"type": "spot", "spot": {"outerConeAngle": 2.0}}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].spot.outerConeAngle: expected an angle in (0, pi/2]")
+write("light_index_out_of_range.gltf", lights_doc({"type": "point"}, {"light": 3}), "PG_ERR_GLTF",
+      "nodes[1].extensions.KHR_lights_punctual.light: 3 out of range (1 lights)")
+write("light_index_missing.gltf", lights_doc({"type": "point"}, {}), "PG_ERR_GLTF",
+      "nodes[1].extensions.KHR_lights_punctual.light: expected a light index")
 
 # ------------------------------------------------------------------------------------------------
 # fuzz findings (tests/fuzz/README.md): the inputs are kept verbatim in fuzz/, which this script

@@ -1,0 +1,271 @@
+/* test_gpu_file_lights.c - a scene file's own KHR_lights_punctual lights light it
+ * (tests/corpus/gltf/lights/, gen_lights.py), on the Vulkan device with the validation layer and
+ * synchronization validation on (zero messages), 160x90, the default object view (the floor is
+ * flat: seen from above):
+ *  1. rgb_points.gltf: three coloured point lights (red with range 4, green and blue without).
+ *     The reference (rgba32f, reach infinite) equals a CPU evaluation of the extension's model at
+ *     the floor point under each pixel centre (colour x intensity / pi, x N.L, x the window
+ *     clamp(1 - (d/range)^4, 0, 1)^2 for the ranged light, / max(d^2, dmin^2), + the object
+ *     ambient 0.02, times albedo 0.8) within 1e-4 relative (float rounding); the pixel under
+ *     each lamp is dominated (3x) by the lamp's colour.
+ *  2. naive, forward_plus, deferred and visibility (light_cutoff 1e-4: the unranged lights stop
+ *     where they add < 1e-4) are within 2e-3 |ref| + 2 x 1e-4 x 0.8 (the cut-off of the two
+ *     unranged lights, albedo 0.8) + the rgba16f rounding; forward_plus is
+ *     bit-identical to naive. A light_cutoff of 0.05 is a measurably worse approximation (the
+ *     knob works), still within 2 x 0.05 x 0.8 of the reference.
+ *  3. sun.gltf: a directional light of 2 lux lights every floor pixel the box does not hide alike:
+ *     0.8 x (2 / pi x cos 30 deg + 0.02) within 1e-4 relative. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "accuracy_bounds.h"
+#include "default_view.h"
+#include "gpu_harness.h"
+#include "pass_list.h"
+#include "test_util.h"
+
+#define W 160
+#define H 90
+#define ALBEDO 0.8
+#define AMBIENT 0.02
+
+static pg_gpu *g_gpu;
+static pg_pass_registry g_reg;
+
+typedef struct loaded {
+    pg_scene *scene;
+    pg_scene_gpu *sg;
+    pg_frame_info fi;
+} loaded;
+
+static bool load(const char *file, loaded *out)
+{
+    char path[PG_PATH_MAX];
+    snprintf(path, sizeof path, "%s/corpus/gltf/lights/%s", PG_TEST_DIR, file);
+    pg_error err = {0};
+    memset(out, 0, sizeof *out);
+    if (pg_scene_load(path, &out->scene, &err) || pg_scene_gpu_create(g_gpu, out->scene, &out->sg, &err)) {
+        CHECK_MSG(0, "%s: %s", file, err.msg);
+        pg_scene_free(out->scene);
+        out->scene = NULL;
+        return false;
+    }
+    pg_frame_info fi = {.time = 0, .width = W, .height = H};
+    char cw[256], lw[256];
+    if (pg_scene_default_view(out->scene, NULL, (float)W / H, 0, 1, &fi.camera, &fi.lights, cw, sizeof cw, lw,
+                              sizeof lw, &err))
+        CHECK_MSG(0, "%s: default view: %s", file, err.msg);
+    fi.lights.count = fi.lights.file_count = out->scene->n_lights; /* the file's lights alone */
+    out->fi = fi;
+    return true;
+}
+
+static void unload(loaded *l)
+{
+    if (l->sg) pg_scene_gpu_destroy(g_gpu, l->sg);
+    pg_scene_free(l->scene);
+}
+
+/* the floor point (y = 0) under pixel (x, y)'s centre; false when the ray misses the floor or
+ * (box) first meets the unit box of sun.gltf (-0.5..0.5, 0..1, -0.5..0.5) */
+static bool floor_point_ex(const pg_frame_info *fi, uint32_t x, uint32_t y, bool box, double p[3])
+{
+    pg_camera cam = fi->camera;
+    cam.aspect = (float)W / H;
+    float V[16], P[16], VP[16], inv[16];
+    pg_camera_view(&cam, V);
+    pg_camera_proj(&cam, P);
+    pg_mat4_mul(P, V, VP);
+    pg_mat4_invert(VP, inv);
+    double ndc[2] = {(x + 0.5) / W * 2 - 1, (y + 0.5) / H * 2 - 1}, a[3], b[3];
+    for (int e = 0; e < 2; e++) {
+        double z = e ? 1.0 : 0.0, h[4];
+        for (int r = 0; r < 4; r++)
+            h[r] = inv[0 * 4 + r] * ndc[0] + inv[1 * 4 + r] * ndc[1] + inv[2 * 4 + r] * z + inv[3 * 4 + r];
+        for (int k = 0; k < 3; k++) (e ? b : a)[k] = h[k] / h[3];
+    }
+    if (!(fabs(b[1] - a[1]) > 1e-12)) return false;
+    double t = -a[1] / (b[1] - a[1]);
+    for (int k = 0; k < 3; k++) p[k] = a[k] + t * (b[k] - a[k]);
+    if (box) { /* slab test along a + s (b - a), s in [0, t] */
+        const double lo[3] = {-0.5, 0, -0.5}, hi[3] = {0.5, 1, 0.5};
+        double s0 = 0, s1 = t;
+        for (int k = 0; k < 3; k++) {
+            double dk = b[k] - a[k];
+            if (fabs(dk) < 1e-300) {
+                if (a[k] < lo[k] || a[k] > hi[k]) s0 = 2, s1 = 1;
+                continue;
+            }
+            double u = (lo[k] - a[k]) / dk, v = (hi[k] - a[k]) / dk;
+            s0 = fmax(s0, fmin(u, v));
+            s1 = fmin(s1, fmax(u, v));
+        }
+        if (s0 <= s1 + 1e-9) return false; /* the box is in the way (or touches the point) */
+    }
+    return fabs(p[0]) < 4.9 && fabs(p[2]) < 4.9;
+}
+
+static bool floor_point(const pg_frame_info *fi, uint32_t x, uint32_t y, double p[3])
+{
+    return floor_point_ex(fi, x, y, false, p);
+}
+
+/* the extension's model at a floor point (normal +Y), infinite reach for unranged lights */
+static void cpu_shade(const pg_scene *s, const double p[3], double out[3])
+{
+    double sum[3] = {AMBIENT, AMBIENT, AMBIENT};
+    for (uint32_t i = 0; i < s->n_lights; i++) {
+        const pg_scene_light *L = &s->lights[i];
+        double k = L->intensity / 3.14159265358979, w = 0, ndl;
+        if (L->type == PG_LIGHT_DIRECTIONAL) {
+            ndl = fmax(-L->direction[1], 0.0);
+            w = ndl;
+        } else if (L->type == PG_LIGHT_POINT) {
+            double d[3] = {L->position[0] - p[0], L->position[1] - p[1], L->position[2] - p[2]};
+            double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            ndl = fmax(d[1] / sqrt(d2), 0.0);
+            double win = 1;
+            if (L->range > 0) {
+                double t = d2 / ((double)L->range * L->range);
+                win = fmin(fmax(1 - t * t, 0.0), 1.0);
+                win *= win;
+            }
+            w = ndl * win / fmax(d2, 1e-4);
+        }
+        for (int c = 0; c < 3; c++) sum[c] += L->color[c] * k * w;
+    }
+    for (int c = 0; c < 3; c++) out[c] = ALBEDO * sum[c];
+}
+
+static bool render(const loaded *l, const char *pipe, const pg_param_override *sets, uint32_t n, pg_th_frame *f)
+{
+    bool ok = pg_th_render(g_gpu, &g_reg, l->sg, pipe, sets, n, &l->fi, 1, false, f);
+    CHECK_MSG(ok, "%s: render failed", pipe);
+    return ok;
+}
+
+static void rgb_points(const loaded *l)
+{
+    pg_th_frame ref;
+    if (!render(l, "pipelines/reference.json", NULL, 0, &ref)) return;
+    /* 1. the reference against the CPU model, every floor pixel */
+    uint32_t n = 0, bad = 0;
+    double worst = 0;
+    for (uint32_t y = 0; y < H; y++)
+        for (uint32_t x = 0; x < W; x++) {
+            double p[3], e[3];
+            if (!floor_point(&l->fi, x, y, p)) continue;
+            cpu_shade(l->scene, p, e);
+            const float *g = ref.hdr + ((size_t)y * W + x) * 4;
+            n++;
+            for (int c = 0; c < 3; c++) {
+                double rel = fabs(g[c] - e[c]) / fmax(e[c], 1e-6);
+                worst = fmax(worst, rel);
+                if (rel > 1e-4) bad++;
+            }
+        }
+    printf("rgb_points: reference vs the CPU model: %u floor pixels, worst relative %.3g\n", n, worst);
+    CHECK_MSG(n > W * H / 4 && bad == 0, "reference vs CPU: %u of %u channels off by > 1e-4 (worst %.3g)", bad, 3 * n,
+              worst);
+    /* the pixel under each lamp is the lamp's colour */
+    for (uint32_t i = 0; i < l->scene->n_lights; i++) {
+        const pg_scene_light *L = &l->scene->lights[i];
+        int dom = L->color[0] > 0 ? 0 : L->color[1] > 0 ? 1 : 2;
+        uint32_t bx = 0, by = 0;
+        double best = 1e30;
+        for (uint32_t y = 0; y < H; y++)
+            for (uint32_t x = 0; x < W; x++) {
+                double p[3];
+                if (!floor_point(&l->fi, x, y, p)) continue;
+                double d = hypot(p[0] - L->position[0], p[2] - L->position[2]);
+                if (d < best) best = d, bx = x, by = y;
+            }
+        const float *g = ref.hdr + ((size_t)by * W + bx) * 4;
+        bool ok = true;
+        for (int c = 0; c < 3; c++)
+            if (c != dom) ok = ok && g[dom] > 3 * g[c];
+        CHECK_MSG(ok, "light %u (%s): pixel (%u,%u) = (%g,%g,%g) not dominated by channel %d", i, L->name, bx, by,
+                  g[0], g[1], g[2], dom);
+    }
+    /* 2. the pipelines with the cut-off against the reference */
+    static const char *const pipes[] = {"pipelines/naive.json", "pipelines/forward_plus.json",
+                                        "pipelines/deferred.json", "pipelines/visibility.json"};
+    pg_th_frame naive;
+    memset(&naive, 0, sizeof naive);
+    for (size_t k = 0; k < sizeof pipes / sizeof pipes[0]; k++) {
+        pg_th_frame f;
+        if (!render(l, pipes[k], NULL, 0, &f)) continue;
+        double peak = 0, worst_abs = pg_th_max_abs(&f, &ref, &peak), over = 0;
+        for (size_t i = 0; i < (size_t)W * H; i++)
+            for (int c = 0; c < 3; c++) {
+                double r = ref.hdr[i * 4 + c], d = fabs(f.hdr[i * 4 + c] - r);
+                double bound = 2e-3 * fabs(r) + 2 * 1e-4 * ALBEDO + 1e-6;
+                over = fmax(over, d / bound);
+            }
+        printf("rgb_points: %s vs reference: max |d| %.3g (peak %.3g), bound usage %.3f\n", pipes[k], worst_abs, peak,
+               over);
+        CHECK_MSG(over <= 1.0, "%s: %.3f of the cut-off bound", pipes[k], over);
+        if (k == 0) naive = f;
+        else {
+            if (k == 1) CHECK_MSG(pg_th_hdr_identical(&f, &naive), "forward_plus is not bit-identical to naive");
+            pg_th_release(&f);
+        }
+    }
+    /* the knob: a coarse cut-off is measurably worse, within its own bound */
+    pg_param_override coarse = {"light_cutoff", "0.05"};
+    pg_th_frame f;
+    if (render(l, "pipelines/naive.json", &coarse, 1, &f)) {
+        double peak = 0, d = pg_th_max_abs(&f, &ref, &peak), d_fine = pg_th_max_abs(&naive, &ref, &peak);
+        printf("rgb_points: light_cutoff 0.05: max |d| %.3g (1e-4: %.3g)\n", d, d_fine);
+        CHECK_MSG(d > 10 * d_fine && d <= 2 * 0.05 * ALBEDO + 2e-3 * peak, "cutoff 0.05: %g (1e-4: %g)", d, d_fine);
+        pg_th_release(&f);
+    }
+    pg_th_release(&naive);
+    pg_th_release(&ref);
+}
+
+static void sun(const loaded *l)
+{
+    pg_th_frame ref;
+    if (!render(l, "pipelines/reference.json", NULL, 0, &ref)) return;
+    double e = ALBEDO * (2.0 / 3.14159265358979 * cos(30.0 * 3.14159265358979 / 180.0) + AMBIENT);
+    uint32_t n = 0, bad = 0;
+    double worst = 0;
+    for (uint32_t y = 0; y < H; y++)
+        for (uint32_t x = 0; x < W; x++) {
+            double p[3];
+            if (!floor_point_ex(&l->fi, x, y, true, p)) continue;
+            const float *g = ref.hdr + ((size_t)y * W + x) * 4;
+            n++;
+            for (int c = 0; c < 3; c++) {
+                double rel = fabs(g[c] - e) / e;
+                worst = fmax(worst, rel);
+                if (rel > 1e-4) bad++;
+            }
+        }
+    printf("sun: %u floor pixels vs %.6f: worst relative %.3g\n", n, e, worst);
+    CHECK_MSG(n > W * H / 4 && bad == 0, "sun: %u of %u channels off (worst %.3g)", bad, 3 * n, worst);
+    pg_th_release(&ref);
+}
+
+int main(void)
+{
+    if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_file_lights", "PG_TEST_NO_GPU is set");
+    pg_register_builtin_passes(&g_reg);
+    pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
+    pg_error err = {0};
+    if (pg_gpu_create(&gd, &g_gpu, &err)) {
+        fprintf(stderr, "test_gpu_file_lights: %s\n", err.msg);
+        return 1;
+    }
+    loaded a, b;
+    if (load("rgb_points.gltf", &a)) rgb_points(&a);
+    unload(&a);
+    if (load("sun.gltf", &b)) sun(&b);
+    unload(&b);
+    printf("validation messages: %u\n", g_gpu->validation_messages);
+    CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);
+    pg_gpu_destroy(g_gpu);
+    return pg_test_finish("test_gpu_file_lights");
+}
