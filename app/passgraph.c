@@ -28,6 +28,8 @@ static void usage(FILE *f)
             "            culls and reasons, resources, memory blocks; as text, JSON, Graphviz DOT/SVG\n"
             "            or a memory-timeline SVG\n"
             "  devices   list the Vulkan devices (for --device)\n"
+            "  lights-table  write a glTF with N generated point lights stored in it (a binary\n"
+            "            PASSGRAPH_lights_table, or KHR_lights_punctual JSON)\n"
             "\n"
             "'passgraph <command> --help' lists a command's options.\n");
 }
@@ -62,6 +64,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "bench")) return pg_cmd_bench(argc - 2, argv + 2);
     if (!strcmp(cmd, "bench-merge")) return pg_cmd_bench_merge(argc - 2, argv + 2);
     if (!strcmp(cmd, "devices")) return pg_cmd_devices(argc - 2, argv + 2);
+    if (!strcmp(cmd, "lights-table")) return pg_cmd_lights_table(argc - 2, argv + 2);
     fprintf(stderr, "passgraph: unknown command '%s'\n", cmd);
     usage(stderr);
     return 2;

@@ -415,3 +415,59 @@ void pg_scenario_apply(const pg_scenario *sc, pg_light_setup *setup, pg_camera *
         if (!(camera->far_z > camera->near_z)) camera->far_z = camera->near_z * 1000.0f;
     }
 }
+
+/* ---- the CPU twin of shaders/light_animate.comp ---- */
+static uint32_t la_hash(uint32_t x)
+{
+    uint32_t state = x * 747796405u + 2891336453u;
+    uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+static float la_rand(uint32_t seed, uint32_t i, uint32_t k)
+{
+    return (float)(la_hash(la_hash(seed ^ la_hash(i * 16u + k)) + k) >> 8) * (1.0f / 16777216.0f);
+}
+
+static float la_clamp01(float x) { return x < 0.0f ? 0.0f : x > 1.0f ? 1.0f : x; }
+
+void pg_light_setup_generate(const pg_light_setup *s, float time, uint32_t i, float pos[3], float color[3])
+{
+    bool moving = s->motion != PG_MOTION_STATIC;
+    float p[3];
+    for (uint32_t a = 0; a < 3; a++) {
+        float phase = la_rand(s->seed, i, a), u = phase;
+        if (moving) {
+            float freq = 0.02f + 0.08f * la_rand(s->seed, i, 3u + a);
+            float x = phase + freq * s->speed * time;
+            float tri = 1.0f - fabsf(2.0f * (x - floorf(x)) - 1.0f);
+            u = tri * tri * (3.0f - 2.0f * tri);
+        }
+        p[a] = u;
+    }
+    for (int a = 0; a < 3; a++) pos[a] = s->box_min[a] + (s->box_max[a] - s->box_min[a]) * p[a];
+    if (s->keep_out) { /* pg_keep_out */
+        float c[3], h[3], ka[3], q[3], n = 0;
+        for (int a = 0; a < 3; a++) {
+            c[a] = 0.5f * (s->box_min[a] + s->box_max[a]);
+            h[a] = fmaxf(0.5f * (s->box_max[a] - s->box_min[a]), 1e-30f);
+            ka[a] = fminf(0.5f * (s->keep_max[a] - s->keep_min[a]) / h[a], 0.999f);
+            q[a] = (pos[a] - c[a]) / h[a];
+            n = fmaxf(n, fabsf(q[a]));
+        }
+        float u[3], t_in = 3e38f;
+        for (int a = 0; a < 3; a++) {
+            u[a] = n > 0.0f ? q[a] / n : (a == 1 ? 1.0f : 0.0f);
+            t_in = fminf(t_in, ka[a] / fmaxf(fabsf(u[a]), 1e-30f));
+        }
+        float t = t_in + (1.0f - t_in) * n;
+        for (int a = 0; a < 3; a++) pos[a] = c[a] + h[a] * u[a] * t;
+    }
+    float hue = la_rand(s->seed, i, 6u);
+    for (int k = 0; k < 3; k++) {
+        float off = k == 0 ? 0.0f : k == 1 ? 4.0f : 2.0f, x = hue * 6.0f + off;
+        float m = x - 6.0f * floorf(x / 6.0f);
+        float rgb = la_clamp01(fabsf(m - 3.0f) - 1.0f);
+        color[k] = (1.0f + (rgb - 1.0f) * s->saturation) * s->intensity;
+    }
+}

@@ -78,6 +78,11 @@ pg_light_setup pg_light_setup_default(const pg_scene *scene, uint32_t count, uin
 #define PG_OBJECT_LIGHT_K 0.014f
 #define PG_OBJECT_AMBIENT 0.02f
 pg_light_setup pg_light_setup_object(const pg_scene *scene, uint32_t count, uint32_t seed);
+/* The CPU twin of shaders/light_animate.comp: generated light i of the set-up at `time` (its
+ * position, its colour already times the intensity, its range = setup->radius). Float arithmetic
+ * in the shader's order, so the values agree with the GPU's to a few ulp (not bit for bit: GPUs
+ * may fuse and reorder). `passgraph lights-table` writes these into a file. */
+void pg_light_setup_generate(const pg_light_setup *setup, float time, uint32_t i, float pos[3], float color[3]);
 /* Applies the scenario's fields over setup/camera (either may be NULL): only fields present in
  * the file (has_*) are copied; camera fields one by one. If the result has far_z <= near_z,
  * far_z becomes near_z * 1000. The light count from a scenario is a default: callers apply a

@@ -606,6 +606,7 @@ pg_scene *load(Ctx &c)
         for (int r : roots) w.visit(r, mat_identity(), 0);
         for (int r : roots) camera_visit(c, r, mat_identity(), cams);
         for (int r : roots) light_visit(c, r, mat_identity(), lights);
+        table_lights(c, lights);
     }
     if (o.idx.empty()) gfail("the scene has no triangles");
     collect_warnings(c);

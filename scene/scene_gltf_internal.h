@@ -152,6 +152,9 @@ void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene
 /* KHR_lights_punctual: the lights of the nodes under ni, placed by their world transforms;
  * bad values fail naming "KHR_lights_punctual.lights[i].FIELD" or "nodes[n].extensions..." */
 void light_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_light> &out);
+/* PASSGRAPH_lights_table (docs/scenes.md): the root extension's point lights appended to out;
+ * bad values fail naming "extensions.PASSGRAPH_lights_table.FIELD" or the record */
+void table_lights(const Ctx &c, std::vector<pg_scene_light> &out);
 
 /* scene_gltf_warnings.cpp */
 std::string plural(size_t n, const char *one, const char *many);

@@ -2,6 +2,7 @@
  * scene roots (cycles, depth and instance limits), node transforms, and the cameras it reaches.
  */
 #include "scene_gltf_internal.h"
+#include "scenario.h"
 
 #include <cmath>
 #include <cstring>
@@ -226,6 +227,59 @@ void light_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_
         out.push_back(L);
     }
     for (int ch : nd.children) light_visit(c, ch, world, out);
+}
+
+/* One record of the table: 8 little-endian float32, position xyz, range (0: none), colour rgb
+ * (linear), intensity (candela). */
+void table_lights(const Ctx &c, std::vector<pg_scene_light> &out)
+{
+    auto ext = c.model.extensions.find("PASSGRAPH_lights_table");
+    if (ext == c.model.extensions.end()) return;
+    const std::string w = "extensions.PASSGRAPH_lights_table";
+    const tinygltf::Value &v = ext->second;
+    auto num = [&](const char *key, double &x) {
+        if (!v.IsObject() || !v.Has(key) || !(v.Get(key).IsInt() || v.Get(key).IsNumber()))
+            gfail(w + "." + key + ": expected a number");
+        x = v.Get(key).GetNumberAsDouble();
+    };
+    double bvd = 0, countd = 0;
+    num("bufferView", bvd);
+    num("count", countd);
+    if (!(bvd >= 0 && bvd == std::floor(bvd) && bvd < double(c.model.bufferViews.size())))
+        gfail(strf("%s.bufferView: %g out of range (%zu bufferViews)", w.c_str(), bvd, c.model.bufferViews.size()));
+    if (!(countd >= 0 && countd == std::floor(countd) && countd <= double(PG_MAX_LIGHTS)))
+        gfail(strf("%s.count: expected an integer in 0..%u", w.c_str(), PG_MAX_LIGHTS));
+    const int bvi = int(bvd);
+    const size_t count = size_t(countd), rec = 32;
+    const tinygltf::BufferView &bv = c.model.bufferViews[size_t(bvi)];
+    if (bv.byteStride != 0 && bv.byteStride != rec)
+        gfail(strf("%s: bufferViews[%d].byteStride %zu (the records are 32 bytes, tightly packed)", w.c_str(), bvi,
+                   bv.byteStride));
+    auto bytes = view_bytes(c, bvi, w);
+    if (bytes.second < count * rec)
+        gfail(strf("%s.count: %zu lights need %zu bytes, bufferViews[%d] has %zu", w.c_str(), count, count * rec, bvi,
+                   bytes.second));
+    size_t base = out.size();
+    out.resize(base + count);
+    for (size_t i = 0; i < count; i++) {
+        float f[8];
+        memcpy(f, bytes.first + i * rec, sizeof f);
+        pg_scene_light &L = out[base + i];
+        memset(&L, 0, sizeof L);
+        L.gltf_light = -1;
+        L.gltf_node = -1;
+        L.type = PG_LIGHT_POINT;
+        for (int k = 0; k < 8; k++)
+            if (!std::isfinite(f[k]) || (k >= 3 && f[k] < 0))
+                gfail(strf("%s: light %zu: %s %g (expected finite numbers, range, colour and intensity >= 0)",
+                           w.c_str(), i, k < 3 ? "position" : k == 3 ? "range" : k < 7 ? "colour" : "intensity",
+                           double(f[k])));
+        memcpy(L.position, f, sizeof L.position);
+        L.range = f[3];
+        memcpy(L.color, f + 4, sizeof L.color);
+        L.intensity = f[7];
+        L.direction[1] = -1.0f;
+    }
 }
 
 } // namespace pg_gltf

@@ -535,6 +535,28 @@ camline --scene "$objs/cube.gltf" --scenario "$root/assets/scenarios/cis565.json
   && ok || { bad "--gltf-scene out of range"; cat "$tmp/cerr"; }
 "$PG" render --size 64x36 --gltf-scene 0 --out "$tmp/c.png" >/dev/null 2>"$tmp/cerr"
 [ $? -eq 1 ] && grep -q "the built-in atrium is not a glTF file" "$tmp/cerr" && ok || { bad "--gltf-scene on the atrium"; cat "$tmp/cerr"; }
+# lights-table: N generated lights frozen into a file, as a binary table and as KHR_lights_punctual
+# JSON: the two render the same image; the output may sit in another folder (relative buffer
+# URIs rewritten); bad options exit 2
+lt="$root/tests/corpus/gltf/lights/rgb_points.gltf"
+mkdir -p "$tmp/lt/sub"
+"$PG" lights-table --scene "$lt" --lights 200 --out "$tmp/lt/t.gltf" >/dev/null &&
+  "$PG" lights-table --scene "$lt" --lights 200 --json --out "$tmp/lt/j.gltf" >/dev/null &&
+  [ -s "$tmp/lt/t.lights.bin" ] && [ "$(stat -c %s "$tmp/lt/t.lights.bin")" -eq 6400 ] &&
+  "$PG" render --scene "$tmp/lt/t.gltf" --size 64x36 --explain --out "$tmp/lt/t.png" >"$tmp/lt/t.txt" 2>&1 &&
+  "$PG" render --scene "$tmp/lt/j.gltf" --size 64x36 --out "$tmp/lt/j.png" >/dev/null 2>&1 &&
+  cmp -s "$tmp/lt/t.png" "$tmp/lt/j.png" &&
+  grep -q "^explain: lights: the file's 203 lights (203 point, 0 spot, 0 directional)$" "$tmp/lt/t.txt" \
+  && ok || { bad "lights-table: table and JSON renders differ or failed"; cat "$tmp/lt/t.txt"; }
+"$PG" lights-table --scene "$root/tests/corpus/gltf/compressed/q_s16.gltf" --lights 10 --out "$tmp/lt/sub/q.gltf" \
+  >/dev/null 2>"$tmp/err" && grep -q '"uri":"\.\./' "$tmp/lt/sub/q.gltf" &&
+  "$PG" render --scene "$tmp/lt/sub/q.gltf" --size 32x18 --out "$tmp/lt/q.png" >/dev/null 2>&1 \
+  && ok || { bad "lights-table: output in another folder"; cat "$tmp/err"; }
+expect_fail "lights-table without --out" "--scene IN.gltf and --out OUT.gltf are required" lights-table --scene "$lt"
+expect_fail "lights-table of a .glb" "must be .gltf files" lights-table --scene "$root/tests/corpus/gltf/models/crate.glb" \
+  --out "$tmp/lt/x.gltf"
+expect_fail "lights-table of a missing file" "cannot open" lights-table --scene "$tmp/lt/none.gltf" --out "$tmp/lt/x.gltf"
+expect_fail "lights-table unknown option" "unknown option '--nope'" lights-table --nope
 # the default render of a glTF with a camera is the render with that camera named
 "$PG" render --size 64x36 --lights 8 --scene "$objs/camera.gltf" --out "$tmp/cam_default.png" >/dev/null 2>&1 &&
   "$PG" render --size 64x36 --lights 8 --scene "$objs/camera.gltf" --camera 0 --out "$tmp/cam_0.png" >/dev/null 2>&1 &&
@@ -595,7 +617,7 @@ expect_fail "--scene an OBJ file" "$gcorp/cube.obj: not a glTF 2.0 file (passgra
   render --scene "$gcorp/cube.obj" --size 32x18 --lights 4 --out "$tmp/x.png"
 expect_fail "--scene a glTF 1.0 file" "glTF 1.0 is not supported, only 2.0" \
   render --scene "$gcorp/version_1.gltf" --size 32x18 --lights 4 --out "$tmp/x.png"
-expect_fail "--scene: an unsupported required extension" "extensionsRequired: 'EXT_made_up' is not supported (passgraph implements only these glTF extensions: EXT_meshopt_compression, KHR_draco_mesh_compression, KHR_lights_punctual, KHR_materials_emissive_strength, KHR_mesh_quantization, KHR_texture_transform)" \
+expect_fail "--scene: an unsupported required extension" "extensionsRequired: 'EXT_made_up' is not supported (passgraph implements only these glTF extensions: EXT_meshopt_compression, KHR_draco_mesh_compression, KHR_lights_punctual, KHR_materials_emissive_strength, KHR_mesh_quantization, KHR_texture_transform, PASSGRAPH_lights_table)" \
   render --scene "$gcorp/required_made_up.gltf" --size 32x18 --lights 4 --out "$tmp/x.png"
 expect_fail "--out .bmp" "--out $tmp/x.bmp: unsupported image extension '.bmp' (accepted: .png, .jpg, .jpeg, .exr)" \
   render --size 32x18 --lights 4 --out "$tmp/x.bmp"

@@ -800,7 +800,7 @@ static void test_corpus_features(void)
     CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus/gltf/required_made_up.gltf: extensionsRequired: "
                                "'EXT_made_up' is not supported (passgraph implements only these glTF extensions: "
                                "EXT_meshopt_compression, KHR_draco_mesh_compression, KHR_lights_punctual, "
-                               "KHR_materials_emissive_strength, KHR_mesh_quantization, KHR_texture_transform)"),
+                               "KHR_materials_emissive_strength, KHR_mesh_quantization, KHR_texture_transform, PASSGRAPH_lights_table)"),
               "%s", err.msg);
     /* a scenario path that is a directory */
     pg_scenario sc;
@@ -1509,11 +1509,90 @@ static void test_file_lights(void)
               s->lights[2].type == PG_LIGHT_DIRECTIONAL);
         pg_scene_free(s);
     }
+    /* PASSGRAPH_lights_table: two records */
+    pg_error err = {0};
+    s = NULL;
+    CHECK(pg_scene_load_gltf(PG_TEST_DIR "/corpus/gltf/ok_lights_table.gltf", &s, &err) == PG_OK);
+    if (s) {
+        CHECK(s->n_lights == 2);
+        if (s->n_lights == 2) {
+            const pg_scene_light *L = s->lights;
+            CHECK(L[0].type == PG_LIGHT_POINT && near3(L[0].position, 0, 1, 0, 0) && L[0].range == 2.0f &&
+                  near3(L[0].color, 1, 0.5f, 0.25f, 0) && L[0].intensity == 3.0f && L[0].gltf_node == -1);
+            CHECK(near3(L[1].position, 1, 2, 3, 0) && L[1].range == 0.0f && near3(L[1].color, 0, 1, 0, 0));
+        }
+        pg_scene_free(s);
+    }
     s = load_object("cube.gltf"); /* no extension: no lights */
     if (s) {
         CHECK(s->n_lights == 0 && s->lights == NULL);
         pg_scene_free(s);
     }
+}
+
+/* 1,000,000 lights in a PASSGRAPH_lights_table load (the time is printed: a benchmark, not a
+ * bound; docs/scenes.md) with every record intact */
+static void test_million_table_lights(void)
+{
+    char dir[] = "/tmp/pg_table_XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK_MSG(0, "mkdtemp failed");
+        return;
+    }
+    const uint32_t n = 1000000;
+    char bin[64], gltf[64];
+    snprintf(bin, sizeof bin, "%s/t.bin", dir);
+    snprintf(gltf, sizeof gltf, "%s/t.gltf", dir);
+    FILE *f = fopen(bin, "wb");
+    CHECK(f != NULL);
+    if (!f) return;
+    /* a triangle (3 positions, 3 indices as uint32) then the table */
+    const float tri[9] = {0, 0, 0, 1, 0, 0, 0, 0, 1};
+    const uint32_t idx[3] = {0, 1, 2};
+    fwrite(tri, sizeof tri, 1, f);
+    fwrite(idx, sizeof idx, 1, f);
+    for (uint32_t i = 0; i < n; i++) {
+        float r[8] = {(float)(i % 1000), (float)(i / 1000), 1.0f, 0.5f, 1.0f, 0.5f, 0.25f, (float)i};
+        fwrite(r, sizeof r, 1, f);
+    }
+    fclose(f);
+    f = fopen(gltf, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fprintf(f,
+            "{\"asset\": {\"version\": \"2.0\"}, \"extensionsUsed\": [\"PASSGRAPH_lights_table\"],\n"
+            " \"extensions\": {\"PASSGRAPH_lights_table\": {\"bufferView\": 2, \"count\": %u}},\n"
+            " \"scene\": 0, \"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}],\n"
+            " \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"indices\": 1}]}],\n"
+            " \"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\",\n"
+            "   \"min\": [0, 0, 0], \"max\": [1, 0, 1]},\n"
+            "  {\"bufferView\": 1, \"componentType\": 5125, \"count\": 3, \"type\": \"SCALAR\"}],\n"
+            " \"bufferViews\": [{\"buffer\": 0, \"byteLength\": 36}, {\"buffer\": 0, \"byteOffset\": 36, "
+            "\"byteLength\": 12},\n"
+            "   {\"buffer\": 0, \"byteOffset\": 48, \"byteLength\": %u}],\n"
+            " \"buffers\": [{\"uri\": \"t.bin\", \"byteLength\": %u}]}\n",
+            n, n * 32u, 48u + n * 32u);
+    fclose(f);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    pg_scene *s = NULL;
+    pg_error err = {0};
+    pg_result r = pg_scene_load_gltf(gltf, &s, &err);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    double sec = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    CHECK_MSG(r == PG_OK, "%s", err.msg);
+    if (s) {
+        printf("1,000,000 table lights loaded in %.3f s\n", sec);
+        CHECK(s->n_lights == n);
+        if (s->n_lights == n) {
+            const pg_scene_light *L = &s->lights[123456];
+            CHECK(near3(L->position, 456, 123, 1, 0) && L->intensity == 123456.0f && L->range == 0.5f);
+        }
+        pg_scene_free(s);
+    }
+    remove(bin);
+    remove(gltf);
+    rmdir(dir);
 }
 
 static void test_gltf_cameras(void)
@@ -1671,6 +1750,7 @@ int main(void)
     test_gltf_cameras();
     test_gltf_scene_choice();
     test_file_lights();
+    test_million_table_lights();
     test_gltf_camera_errors();
     test_sponza();
     return pg_test_finish("test_scene");

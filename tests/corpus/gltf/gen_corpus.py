@@ -532,7 +532,7 @@ write("ok_many_extensions.gltf", d, "PG_OK",
       + ["extensionsUsed: 2 more extensions ignored (not supported)"])
 IMPLEMENTED = ("EXT_meshopt_compression", "KHR_draco_mesh_compression",  # may be required
                "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization",
-               "KHR_texture_transform")
+               "KHR_texture_transform", "PASSGRAPH_lights_table")
 for name, exts in (("required_texture_transform.gltf", ["KHR_texture_transform", "KHR_mesh_quantization"]),
                    ("required_meshopt.gltf", ["EXT_meshopt_compression"]),
                    ("required_emissive_and_meshopt.gltf", ["KHR_materials_emissive_strength",
@@ -647,6 +647,36 @@ write("light_index_out_of_range.gltf", lights_doc({"type": "point"}, {"light": 3
       "nodes[1].extensions.KHR_lights_punctual.light: 3 out of range (1 lights)")
 write("light_index_missing.gltf", lights_doc({"type": "point"}, {}), "PG_ERR_GLTF",
       "nodes[1].extensions.KHR_lights_punctual.light: expected a light index")
+
+# PASSGRAPH_lights_table: a good table of two lights, and bad ones refused naming the field
+
+
+def table_doc(records, count, stride=None, ext=None):
+    table = b"".join(struct.pack("<8f", *r) for r in records)
+    d, data = base_doc(with_normals=True, extra_bin=table)
+    view = {"buffer": 0, "byteOffset": len(data) - len(table), "byteLength": len(table)}
+    if stride:
+        view["byteStride"] = stride
+    d["bufferViews"].append(view)
+    d["buffers"][0] = {"byteLength": len(data), "uri": b64(data)}
+    d["extensionsUsed"] = ["PASSGRAPH_lights_table"]
+    d["extensions"] = {"PASSGRAPH_lights_table": ext if ext is not None else
+                       {"bufferView": len(d["bufferViews"]) - 1, "count": count}}
+    return d
+
+
+TWO = [(0, 1, 0, 2, 1, 0.5, 0.25, 3), (1, 2, 3, 0, 0, 1, 0, 1)]
+write("ok_lights_table.gltf", table_doc(TWO, 2), "PG_OK")
+write("lights_table_short.gltf", table_doc(TWO, 3), "PG_ERR_GLTF",
+      "extensions.PASSGRAPH_lights_table.count: 3 lights need 96 bytes, bufferViews[3] has 64")
+write("lights_table_negative.gltf", table_doc([(0, 1, 0, 2, 1, -0.5, 0, 3)], 1), "PG_ERR_GLTF",
+      "extensions.PASSGRAPH_lights_table: light 0: colour -0.5")
+write("lights_table_stride.gltf", table_doc(TWO, 2, stride=16), "PG_ERR_GLTF",
+      "extensions.PASSGRAPH_lights_table: bufferViews[3].byteStride 16 (the records are 32 bytes")
+write("lights_table_no_count.gltf", table_doc(TWO, 2, ext={"bufferView": 3}), "PG_ERR_GLTF",
+      "extensions.PASSGRAPH_lights_table.count: expected a number")
+write("lights_table_bad_view.gltf", table_doc(TWO, 2, ext={"bufferView": 9, "count": 2}), "PG_ERR_GLTF",
+      "extensions.PASSGRAPH_lights_table.bufferView: 9 out of range (4 bufferViews)")
 
 # ------------------------------------------------------------------------------------------------
 # fuzz findings (tests/fuzz/README.md): the inputs are kept verbatim in fuzz/, which this script
