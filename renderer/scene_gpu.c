@@ -5,11 +5,11 @@
 #include <string.h>
 
 /* Where each part lies in the one staging buffer: vertices | colours | uv1 | indices | materials |
- * white texel | every mip of every texture (16-byte aligned from the white texel on). */
+ * file lights | white texel | every mip of every texture (16-byte aligned from the white texel on). */
 typedef struct staging_layout {
-    VkDeviceSize vb, cb, ub, ib, mb; /* bytes of vertices, colours, uv1, indices, materials */
+    VkDeviceSize vb, cb, ub, ib, mb, lb; /* bytes of vertices, colours, uv1, indices, materials, lights */
     uint32_t n_mat;                  /* materials (1, the default, when the scene has none) */
-    VkDeviceSize v_off, c_off, u_off, i_off, m_off, white_off;
+    VkDeviceSize v_off, c_off, u_off, i_off, m_off, l_off, white_off;
     VkDeviceSize *tex_off; /* per texture */
 } staging_layout;
 
@@ -22,7 +22,8 @@ static VkDeviceSize staging_size(const pg_scene_gpu *sg, const pg_scene *scene, 
     L->ib = (VkDeviceSize)scene->n_indices * sizeof(uint32_t);
     L->n_mat = scene->n_materials ? scene->n_materials : 1;
     L->mb = (VkDeviceSize)L->n_mat * sizeof(pg_gpu_material);
-    VkDeviceSize total = L->vb + L->cb + L->ub + L->ib + L->mb + 16;
+    L->lb = (VkDeviceSize)scene->n_lights * sizeof(pg_gpu_file_light);
+    VkDeviceSize total = L->vb + L->cb + L->ub + L->ib + L->mb + L->lb + 16;
     for (uint32_t t = 0; t < scene->n_textures; t++) total += (scene->textures[t].data_size + 15) & ~(VkDeviceSize)15;
     total += 16; /* white texel */
     return total;
@@ -55,6 +56,23 @@ static void gpu_material(const pg_material *s, pg_gpu_material *out)
     memcpy(out, &g, sizeof g);
 }
 
+/* the file's lights as light_animate reads them */
+static void gpu_file_lights(const pg_scene *scene, pg_gpu_file_light *fl)
+{
+    for (uint32_t i = 0; i < scene->n_lights; i++) {
+        const pg_scene_light *L = &scene->lights[i];
+        /* the shading has no 1/pi in its Lambert term (albedo x colour x N.L), so a light in the
+         * extension's units (candela, lux) is divided by pi once here */
+        const float k = L->intensity / 3.14159265358979f;
+        pg_gpu_file_light g = {
+            {L->position[0], L->position[1], L->position[2], L->range},
+            {L->color[0] * k, L->color[1] * k, L->color[2] * k, (float)L->type},
+            {L->direction[0], L->direction[1], L->direction[2], 0.0f},
+        };
+        memcpy(&fl[i], &g, sizeof g);
+    }
+}
+
 /* the scene's arrays, materials and textures written to the staging memory; offsets into L */
 static void fill_staging(uint8_t *dst, const pg_scene *scene, staging_layout *L)
 {
@@ -79,6 +97,9 @@ static void fill_staging(uint8_t *dst, const pg_scene *scene, staging_layout *L)
         gpu_material(scene->n_materials ? &scene->materials[m] : &dm, &gm[m]);
     }
     off += L->mb;
+    L->l_off = off;
+    gpu_file_lights(scene, (pg_gpu_file_light *)(dst + off));
+    off += L->lb;
     off = (off + 15) & ~(VkDeviceSize)15;
     L->white_off = off;
     static const uint8_t white[4] = {255, 255, 255, 255};
@@ -100,7 +121,8 @@ static void copy_buffers(VkCommandBuffer cmd, VkBuffer staging, const pg_scene_g
     if (L->ib) vkCmdCopyBuffer(cmd, staging, sg->indices.buffer, 1, &c1);
     VkBufferCopy c2 = {L->m_off, 0, L->mb};
     vkCmdCopyBuffer(cmd, staging, sg->materials.buffer, 1, &c2);
-    VkBufferCopy c3 = {L->c_off, 0, L->cb}, c4 = {L->u_off, 0, L->ub};
+    VkBufferCopy c3 = {L->c_off, 0, L->cb}, c4 = {L->u_off, 0, L->ub}, c5 = {L->l_off, 0, L->lb};
+    if (L->lb) vkCmdCopyBuffer(cmd, staging, sg->file_lights.buffer, 1, &c5);
     if (L->cb) vkCmdCopyBuffer(cmd, staging, sg->colors.buffer, 1, &c3);
     if (L->ub) vkCmdCopyBuffer(cmd, staging, sg->uv1.buffer, 1, &c4);
 }
@@ -136,7 +158,7 @@ static void copy_images(VkCommandBuffer cmd, VkBuffer staging, const pg_scene_gp
 
 /* after the copies: the images to shader reads, the buffers to their readers (the vertex streams
  * and indices are also storage buffers of the compute passes that rebuild surfaces from triangle
- * ids: visibility_shade, visibility_gbuffer) */
+ * ids: visibility_shade, visibility_gbuffer; the file lights are read by light_animate) */
 static void release_to_shaders(VkCommandBuffer cmd, const pg_scene_gpu *sg, VkImageMemoryBarrier2 *bars)
 {
     for (uint32_t i = 0; i < sg->n_images; i++)
@@ -145,21 +167,21 @@ static void release_to_shaders(VkCommandBuffer cmd, const pg_scene_gpu *sg, VkIm
                                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    VkBufferMemoryBarrier2 bb[5];
-    VkBuffer bufs[5] = {sg->vertices.buffer, sg->indices.buffer, sg->materials.buffer, sg->colors.buffer,
-                        sg->uv1.buffer};
+    VkBufferMemoryBarrier2 bb[6];
+    VkBuffer bufs[6] = {sg->vertices.buffer, sg->indices.buffer, sg->materials.buffer, sg->colors.buffer,
+                        sg->uv1.buffer, sg->file_lights.buffer};
     const VkAccessFlags2 sr = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
     const VkPipelineStageFlags2 cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    VkAccessFlags2 acc[5] = {VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr, VK_ACCESS_2_INDEX_READ_BIT | sr,
+    VkAccessFlags2 acc[6] = {VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr, VK_ACCESS_2_INDEX_READ_BIT | sr,
                              VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr,
-                             VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr};
-    VkPipelineStageFlags2 st[5] = {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs,
+                             VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr, sr};
+    VkPipelineStageFlags2 st[6] = {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs,
                                    VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT | cs,
                                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | cs,
                                    VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs,
-                                   VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs};
+                                   VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs, cs};
     uint32_t n_bb = 0;
-    for (int i = 0; i < 5; i++) {
+    for (int i = 0; i < 6; i++) {
         if (!bufs[i]) continue;
         bb[n_bb++] = pg_buffer_barrier(bufs[i], VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, st[i],
                                        acc[i]);
@@ -273,23 +295,10 @@ static pg_result create_buffers(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *s
                               err)))
             return r;
     }
-    if (scene->n_lights > 0) { /* read once a frame by light_animate: host visible, written here */
-        if ((r = pg_buffer_create(gpu, (VkDeviceSize)scene->n_lights * sizeof(pg_gpu_file_light),
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, "scene.file_lights", &sg->file_lights, err)))
+    if (scene->n_lights > 0) { /* device-local, filled by the upload; read once a frame by light_animate */
+        if ((r = scene_buffer(gpu, (VkDeviceSize)scene->n_lights * sizeof(pg_gpu_file_light),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene.file_lights", &sg->file_lights, err)))
             return r;
-        pg_gpu_file_light *fl = sg->file_lights.mapped;
-        for (uint32_t i = 0; i < scene->n_lights; i++) {
-            const pg_scene_light *L = &scene->lights[i];
-            /* the shading has no 1/pi in its Lambert term (albedo x colour x N.L), so a light in the
-             * extension's units (candela, lux) is divided by pi once here */
-            const float k = L->intensity / 3.14159265358979f;
-            pg_gpu_file_light g = {
-                {L->position[0], L->position[1], L->position[2], L->range},
-                {L->color[0] * k, L->color[1] * k, L->color[2] * k, (float)L->type},
-                {L->direction[0], L->direction[1], L->direction[2], 0.0f},
-            };
-            fl[i] = g;
-        }
         sg->n_file_lights = scene->n_lights;
     }
     sg->bytes = sg->vertices.size + sg->indices.size + sg->materials.size + sg->colors.size + sg->uv1.size +

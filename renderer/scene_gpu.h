@@ -64,8 +64,8 @@ typedef struct pg_scene_gpu {
     uint32_t n_draws, n_opaque_draws, n_blend_draws;
     pg_draw *draws;
     pg_scene_features features;
-    /* the file's KHR_lights_punctual lights as light_animate reads them (pg_gpu_file_light, host
-     * visible, written once); buffer NULL when the scene has none */
+    /* the file's lights (KHR_lights_punctual, PASSGRAPH_lights_table) as light_animate reads them
+     * (pg_gpu_file_light, device-local, uploaded once); buffer NULL when the scene has none */
     pg_buffer file_lights;
     uint32_t n_file_lights;
     float bounds_min[3], bounds_max[3];
