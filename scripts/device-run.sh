@@ -20,6 +20,9 @@
 #                  1,000 / 100,000 / 1,000,000 lights (visibility, deferred_oct16; times only)
 #   tile-size      the exact tiled loop with 8x8 and 16x16 tiles at 1,000 / 100,000 / 1,000,000
 #                  lights (visibility; times only)
+#   file-lights    1,000,000 cis565 lights frozen into the scene file (passgraph lights-table, a
+#                  PASSGRAPH_lights_table) against the same count generated: time and error of
+#                  visibility, deferred_oct16 and stochastic (threshold 3)
 #   knob-stochastic  the stochastic_threshold x tile_size sweep of `knobs` alone
 #   knobs          the approximation knobs at 1,000,000 lights (stochastic_threshold,
 #                  ris_candidates, lightcut_error) and the accumulation curve of the stochastic
@@ -141,6 +144,23 @@ for step in "${STEPS[@]}"; do
       --lights 1000,100000,1000000 "${ERR[@]}"
     bench manylight_naive "$BUNDLE" naive --lights 1000 "${ERR[@]}"
     ;;
+  file-lights)
+    mkdir -p "$OUT/file_lights_scene"
+    FL_SCENE="$OUT/file_lights_scene/sponza_1m.gltf"
+    if [ "$DRY_RUN" = 1 ]; then echo "$BUNDLE/passgraph lights-table ... --out $FL_SCENE"; else
+      t0=$(date +%s.%N)
+      "$BUNDLE/passgraph" lights-table --scene "$SCENE" --scenario "$SCENARIO" --lights 1000000 --out "$FL_SCENE" \
+        > "$OUT/logs/lights_table.log" 2>&1
+      echo "lights-table rc=$? $(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f s", b - a }')"
+    fi
+    FL=(--warmup 2 --warmup-ms 1000 --frames 5 --no-hdr-flip --flicker-frames 0 --set stochastic_threshold=3)
+    SAVED=("${COMMON[@]}")
+    COMMON=(--size "$SIZE" --scene "$FL_SCENE" --scenario "$SCENARIO" --quiet)
+    bench file_lights "$BUNDLE" visibility,deferred_oct16,stochastic "${FL[@]}"
+    COMMON=("${SAVED[@]}")
+    bench generated_lights "$BUNDLE" visibility,deferred_oct16,stochastic --lights 1000000 "${FL[@]}"
+    rm -rf "$OUT/file_lights_scene"
+    ;;
   tile-size)
     bench tile_size "$BUNDLE" visibility --lights 1000,100000,1000000 --sweep tile_size=8,16 \
       --reference-max-lights 0 --warmup 2 --warmup-ms 500 --frames 10
@@ -172,7 +192,7 @@ for step in "${STEPS[@]}"; do
     COMMON=("${SAVED[@]}")
     ;;
   *)
-    echo "device-run.sh: unknown step '$step' (validate, bench, bench-forward, prepass, ab, sweep, tiling, tile-size, manylight, knobs, knob-stochastic," \
+    echo "device-run.sh: unknown step '$step' (validate, bench, bench-forward, prepass, ab, sweep, tiling, tile-size, file-lights, manylight, knobs, knob-stochastic," \
       "evals, stress)" >&2
     exit 2
     ;;
