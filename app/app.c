@@ -16,9 +16,8 @@ static void describe_file_lights(const pg_scene *scene, uint32_t generated, char
 {
     uint32_t n[3] = {0, 0, 0};
     for (uint32_t i = 0; i < scene->n_lights; i++) n[scene->lights[i].type]++;
-    snprintf(buf, size, "lights: the file's %u light%s (%u point, %u spot, %u directional)%s",
-             scene->n_lights, scene->n_lights == 1 ? "" : "s", n[0], n[1], n[2],
-             n[1] ? "; spot lights are not drawn yet" : "");
+    snprintf(buf, size, "lights: the file's %u light%s (%u point, %u spot, %u directional)", scene->n_lights,
+             scene->n_lights == 1 ? "" : "s", n[0], n[1], n[2]);
     if (generated)
         snprintf(buf + strlen(buf), size - strlen(buf), " + %u generated point lights (--lights or the scenario)",
                  generated);

@@ -1,6 +1,7 @@
 /* scene_gpu.c - uploads a pg_scene once; everything here is read-only afterwards. */
 #include "scene_gpu.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -69,6 +70,11 @@ static void gpu_file_lights(const pg_scene *scene, pg_gpu_file_light *fl)
             {L->color[0] * k, L->color[1] * k, L->color[2] * k, (float)L->type},
             {L->direction[0], L->direction[1], L->direction[2], 0.0f},
         };
+        if (L->type == PG_LIGHT_SPOT) { /* the spot record: axis x scale, offset (the extension's) */
+            float ci = cosf(L->inner_cone), co = cosf(L->outer_cone), sc = 1.0f / fmaxf(ci - co, 1e-3f);
+            for (int k = 0; k < 3; k++) g.direction[k] *= sc;
+            g.direction[3] = -co * sc;
+        }
         memcpy(&fl[i], &g, sizeof g);
     }
 }

@@ -44,7 +44,8 @@ typedef struct pg_draw {
 typedef struct pg_gpu_file_light {
     float position_range[4]; /* world position, the file's range (0: none) */
     float color_type[4];     /* colour x intensity / pi (linear RGB), type (pg_light_type) */
-    float direction[4];      /* where it points (unit, world), 0 */
+    float direction[4];      /* where it points (unit, world), 0; a spot light: the axis x scale and
+                                offset of its cone (lighting.glsl PG_SPOT_LIGHTS) */
 } pg_gpu_file_light;
 
 typedef struct pg_scene_gpu {

@@ -416,4 +416,7 @@ void pg_scene_finalize(pg_scene *s)
     memcpy(s->bounds_min, smin, sizeof smin);
     memcpy(s->bounds_max, smax, sizeof smax);
     s->features.has_file_lights = s->n_lights > 0;
+    s->features.has_spot_lights = false;
+    for (uint32_t i = 0; i < s->n_lights; i++)
+        if (s->lights[i].type == PG_LIGHT_SPOT) s->features.has_spot_lights = true;
 }

@@ -18,6 +18,8 @@ typedef struct pg_scene_features {
     bool has_uv_transform;/* any KHR_texture_transform on a used texture */
     bool has_file_lights; /* KHR_lights_punctual lights (scene->n_lights > 0): their table is
                              uploaded, light_animate reads it, shading uses the glTF falloff */
+    bool has_spot_lights; /* some of them are spot lights: every light gets a spot record after the
+                             lights (the "lights" variable counts records: twice the lights) */
 } pg_scene_features;
 
 #endif

@@ -87,11 +87,6 @@ void collect_warnings(Ctx &c)
         W.push_back(plural(morph_targets, "morph target", "morph targets") + " in " +
                     plural(morph_meshes, "mesh", "meshes") +
                     " ignored: rendered with the base geometry (weights not applied)");
-    size_t spots = 0;
-    for (const auto &l : md.lights) spots += l.type == "spot";
-    if (spots)
-        W.push_back("KHR_lights_punctual: " + plural(spots, "spot light", "spot lights") +
-                    " not drawn yet (point and directional lights are)");
     constexpr size_t kMaxExtensionLines = 16;
     std::vector<std::string> unimpl;
     for (const std::string &e : md.extensionsUsed)

@@ -15,7 +15,7 @@ layout(set = 1, binding = 0, std430) writeonly buffer Lights { Light lights[]; }
 struct FileLight {
     vec4 position_range; // world position, the file's range (0: none)
     vec4 color_type;     // colour x intensity / pi (linear), type (0 point, 1 spot, 2 directional)
-    vec4 direction;      // where it points (unit, world), 0
+    vec4 direction;      // where it points (unit, world), 0; spot: axis x scale, offset (its record)
 };
 layout(set = 1, binding = 1, std430) readonly buffer FileLights { FileLight file_lights[]; };
 #ifdef PG_LIGHT_CUTOFF_NANO
@@ -40,11 +40,7 @@ Light pg_file_light(uint i)
         L.color = vec4(c * (PG_SUN_DIST * PG_SUN_DIST), PG_NO_WINDOW);
         return L;
     }
-    if (type == 1u) { // spot lights are not drawn yet (scene warnings say so): nothing
-        L.pos_radius = vec4(f.position_range.xyz, 0.0);
-        L.color = vec4(0.0);
-        return L;
-    }
+    // point and spot (a spot is a point light times its cone: its record, written by main)
     float range = f.position_range.w;
 #ifdef PG_INFINITE_REACH
     // the reference: a light without a range reaches everything (the extension's rule)
@@ -95,6 +91,13 @@ void main()
     uint i = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * 64u) + gl_GlobalInvocationID.x;
     uint count = frame.counts.x;
     if (i >= count) return;
+#ifdef PG_SPOT_LIGHTS
+    // every light's spot record, after the lights (lighting.glsl): a file spot light's cone, else
+    // (0, 0, 0, 1), a factor of 1
+    bool spot = i < frame.light_src.x && uint(file_lights[i].color_type.w + 0.5) == 1u;
+    lights[count + i].pos_radius = spot ? file_lights[i].direction : vec4(0.0, 0.0, 0.0, 1.0);
+    lights[count + i].color = vec4(0.0);
+#endif
 #ifdef PG_FILE_LIGHTS
     if (i < frame.light_src.x) {
         lights[i] = pg_file_light(i);

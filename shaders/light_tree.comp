@@ -13,7 +13,9 @@
 //   [0] xyz min of the light centres, w the largest radius
 //   [1] xyz max of the light centres, w the number of lights
 //   [2] rgb the sum of the colours (already times intensity), w the largest falloff range (Light.color.w)
-//   [3] xyz the colour-luminance-weighted centroid (the node's representative light)
+//   [3] xyz the colour-luminance-weighted centroid (the node's representative light); a leaf's is
+//       its light's centre ([0].xyz), so with PG_SPOT_LIGHTS a leaf keeps its spot record here
+//       (lighting.glsl) and the merge reads a leaf child's centre from [0]
 // An empty node has min +3e38, max -3e38, radius 0, colour 0: it reaches nothing.
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
@@ -82,14 +84,22 @@ void main()
             write_node(pc.np + i, vec4(vec3(3e38), 0.0), vec4(vec3(-3e38), 0.0), vec4(0.0), vec4(0.0));
         } else {
             Light L = lights[key.y];
-            write_node(pc.np + i, L.pos_radius, vec4(L.pos_radius.xyz, 1.0), vec4(L.color.rgb, L.color.w),
-                       vec4(L.pos_radius.xyz, 0.0));
+#ifdef PG_SPOT_LIGHTS
+            vec4 rep = lights[n_lights + key.y].pos_radius; // a leaf's [3]: its spot record
+#else
+            vec4 rep = vec4(L.pos_radius.xyz, 0.0);
+#endif
+            write_node(pc.np + i, L.pos_radius, vec4(L.pos_radius.xyz, 1.0), vec4(L.color.rgb, L.color.w), rep);
         }
     } else {
         if (i >= pc.k) return;
         uint n = pc.k + i, a = 2u * n, b = a + 1u;
         vec4 amin = tree[4u * a], amax = tree[4u * a + 1u], ac = tree[4u * a + 2u], ar = tree[4u * a + 3u];
         vec4 bmin = tree[4u * b], bmax = tree[4u * b + 1u], bc = tree[4u * b + 2u], br = tree[4u * b + 3u];
+        if (a >= pc.np) { // leaf children: their centres (their [3] may hold spot records)
+            ar.xyz = amin.xyz;
+            br.xyz = bmin.xyz;
+        }
         float la = pg_luminance(ac.rgb), lb = pg_luminance(bc.rgb);
         vec3 rep = la + lb > 0.0 ? (la * ar.xyz + lb * br.xyz) / (la + lb) : 0.5 * (ar.xyz + br.xyz);
         write_node(n, vec4(min(amin.xyz, bmin.xyz), max(amin.w, bmin.w)), vec4(max(amax.xyz, bmax.xyz), amax.w + bmax.w),

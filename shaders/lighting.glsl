@@ -19,6 +19,24 @@
 // skipping the light (light colours are finite and >= 0; the select, not a multiply, keeps an Inf
 // or NaN of an out-of-range light out of the sum), so every shading pass sums bit-identically.
 
+// Spot lights (PG_SPOT_LIGHTS, a scene with KHR_lights_punctual spot lights): every light i has a
+// spot record after the lights, lights[frame.counts.x + i].pos_radius = (axis x scale, offset),
+// with the extension's scale = 1 / max(cos(inner) - cos(outer), 1e-3) and offset = -cos(outer) x
+// scale; the light is multiplied by clamp(dot(axis, -L) x scale + offset, 0, 1)^2. A light that is
+// not a spot has (0, 0, 0, 1): a factor of exactly 1. The clusters bin the light's sphere (a
+// superset of its cone). PG_SPOT_OF(i) is light i's record, (0, 0, 0, 1) without spot lights.
+#ifdef PG_SPOT_LIGHTS
+#define PG_SPOT_OF(i) (lights[frame.counts.x + (i)].pos_radius)
+#else
+#define PG_SPOT_OF(i) vec4(0.0, 0.0, 0.0, 1.0)
+#endif
+float pg_spot_factor(vec4 sp, vec3 Ld) // Ld = light - P
+{
+    float cd = -dot(sp.xyz, Ld) * inversesqrt(max(dot(Ld, Ld), 1e-37));
+    float t = clamp(cd + sp.w, 0.0, 1.0);
+    return t * t;
+}
+
 struct PgShade {
     vec3 diffuse;
     vec3 specular;
@@ -80,7 +98,7 @@ float pg_sc_rescale(vec3 color, float att)
 
 // One light, as the inner loops read it: rel = its centre camera-relative (world - cam), R2 = R^2,
 // inv_r2 = pg_light_inv_r2(R2). P camera-relative; inv_md2 = 1 / dmin^2.
-void pg_accumulate_light_rel(vec3 rel, float R2, float inv_r2, vec3 color, vec3 P, vec3 N, vec3 V,
+void pg_accumulate_light_rel(vec3 rel, float R2, float inv_r2, vec3 color, vec4 spot, vec3 P, vec3 N, vec3 V,
                              float shininess, float inv_md2, inout PgShade acc)
 {
     vec3 Ld = rel - P;
@@ -89,13 +107,16 @@ void pg_accumulate_light_rel(vec3 rel, float R2, float inv_r2, vec3 color, vec3 
     float att;
     vec3 L;
     float w = pg_light_term(Ld, d2, inv_r2, N, inv_md2, att, L);
-    vec3 c = PG_SC_COLOR(color, att);
+    vec3 c = PG_SC_COLOR(color, att);     // the stochastic rescale sees the light without its cone
+#ifdef PG_SPOT_LIGHTS
+    c *= pg_spot_factor(spot, Ld);
+#endif
     acc.diffuse += c * w;
     pg_light_specular(c, att, L, N, V, shininess, acc);
 }
 
 // The same sum without a branch: a light out of range adds exactly 0.
-void pg_accumulate_light_rel_select(vec3 rel, float R2, float inv_r2, vec3 color, vec3 P, vec3 N, vec3 V,
+void pg_accumulate_light_rel_select(vec3 rel, float R2, float inv_r2, vec3 color, vec4 spot, vec3 P, vec3 N, vec3 V,
                                     float shininess, float inv_md2, inout PgShade acc)
 {
     vec3 Ld = rel - P;
@@ -105,12 +126,16 @@ void pg_accumulate_light_rel_select(vec3 rel, float R2, float inv_r2, vec3 color
     vec3 L;
     float w = pg_light_term(Ld, d2, inv_r2, N, inv_md2, att, L);
     vec3 c = PG_SC_COLOR(color, att);
+#ifdef PG_SPOT_LIGHTS
+    c *= pg_spot_factor(spot, Ld);
+#endif
     acc.diffuse += c * (in_range ? w : 0.0);
     if (in_range) pg_light_specular(c, att, L, N, V, shininess, acc);
 }
 
 // P is camera-relative (world - cam); the light is moved into the same frame first.
-void pg_accumulate_light(Light light, vec3 cam, vec3 P, vec3 N, vec3 V, float shininess, float min_dist,
+// spot: the light's spot record (PG_SPOT_OF)
+void pg_accumulate_light(Light light, vec4 spot, vec3 cam, vec3 P, vec3 N, vec3 V, float shininess, float min_dist,
                          inout PgShade acc)
 {
     float R = light.pos_radius.w;
@@ -118,8 +143,8 @@ void pg_accumulate_light(Light light, vec3 cam, vec3 P, vec3 N, vec3 V, float sh
     float md2 = min_dist * min_dist;
     float Rt = light.color.w; // the falloff's range (pos_radius.w: where the light stops)
     float inv_r2 = pg_light_inv_r2(Rt * Rt);
-    pg_accumulate_light_rel(light.pos_radius.xyz - cam, R2, inv_r2, light.color.rgb, P, N, V, shininess, 1.0 / md2,
-                            acc);
+    pg_accumulate_light_rel(light.pos_radius.xyz - cam, R2, inv_r2, light.color.rgb, spot, P, N, V, shininess,
+                            1.0 / md2, acc);
 }
 
 // The colour of a shaded point from its summed light terms: every shading pass ends with this

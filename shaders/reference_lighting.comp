@@ -77,6 +77,9 @@ layout(push_constant) uniform Push {
 #ifdef PG_HAS_LIGHTS
 shared vec4 s_pos_radius[LIGHT_TILE];
 shared vec4 s_color[LIGHT_TILE];
+#ifdef PG_SPOT_LIGHTS
+shared vec4 s_spot[LIGHT_TILE];    // the staged lights' spot records (lighting.glsl)
+#endif
 #ifdef PG_REFERENCE_CULL
 shared uint s_box[6];              // ordered-uint min xyz, max xyz of the covered pixels
 shared uint s_sg_count[LIGHT_TILE]; // kept lights per subgroup of the current tile
@@ -177,12 +180,18 @@ void main()
         if (keep) {
             s_pos_radius[pos] = lt.pos_radius;
             s_color[pos] = lt.color;
+#ifdef PG_SPOT_LIGHTS
+            s_spot[pos] = PG_SPOT_OF(base + slot);
+#endif
         }
         count = total;
 #else
         if (lid < count) {
             s_pos_radius[lid] = lights[base + lid].pos_radius;
             s_color[lid] = lights[base + lid].color;
+#ifdef PG_SPOT_LIGHTS
+            s_spot[lid] = PG_SPOT_OF(base + lid);
+#endif
         }
 #endif
         memoryBarrierShared();
@@ -192,7 +201,12 @@ void main()
                 Light l;
                 l.pos_radius = s_pos_radius[k];
                 l.color = s_color[k];
-                pg_accumulate_light(l, cam, P, s.normal, V, s.shininess, min_dist, acc);
+#ifdef PG_SPOT_LIGHTS
+                vec4 sp = s_spot[k];
+#else
+                vec4 sp = vec4(0.0, 0.0, 0.0, 1.0);
+#endif
+                pg_accumulate_light(l, sp, cam, P, s.normal, V, s.shininess, min_dist, acc);
             }
         }
         memoryBarrierShared();

@@ -78,8 +78,8 @@ vec3 pg_light_contribution(Surface s, uint li, vec3 cam, vec3 P, vec3 V, float i
     PgShade one;
     one.diffuse = vec3(0.0);
     one.specular = vec3(0.0);
-    pg_accumulate_light_rel(L.pos_radius.xyz - cam, R2, pg_light_inv_r2(L.color.w * L.color.w), L.color.rgb, P,
-                            s.normal, V, s.shininess, inv_md2, one);
+    pg_accumulate_light_rel(L.pos_radius.xyz - cam, R2, pg_light_inv_r2(L.color.w * L.color.w), L.color.rgb,
+                            PG_SPOT_OF(li), P, s.normal, V, s.shininess, inv_md2, one);
     return s.albedo * one.diffuse + s.specular * one.specular;
 }
 
@@ -172,14 +172,16 @@ vec3 pg_lc_upper(uint n, Surface s, vec3 P, vec3 cam, float inv_md2, out float d
 #endif
 }
 
-// R: where the light stops; Rf: its falloff's range (Light.color.w)
-vec3 pg_lc_light(Surface s, vec3 pos, float R, float Rf, vec3 color, vec3 cam, vec3 P, vec3 V, float inv_md2)
+// R: where the light stops; Rf: its falloff's range (Light.color.w); spot: its spot record
+vec3 pg_lc_light(Surface s, vec3 pos, float R, float Rf, vec3 color, vec4 spot, vec3 cam, vec3 P, vec3 V,
+                 float inv_md2)
 {
     float R2 = R * R;
     PgShade one;
     one.diffuse = vec3(0.0);
     one.specular = vec3(0.0);
-    pg_accumulate_light_rel(pos - cam, R2, pg_light_inv_r2(Rf * Rf), color, P, s.normal, V, s.shininess, inv_md2, one);
+    pg_accumulate_light_rel(pos - cam, R2, pg_light_inv_r2(Rf * Rf), color, spot, P, s.normal, V, s.shininess, inv_md2,
+                            one);
     return s.albedo * one.diffuse + s.specular * one.specular;
 }
 
@@ -201,7 +203,12 @@ vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
             PG_COUNT(1);
             vec4 pr = tree[4u * n];
             vec4 lc = tree[4u * n + 2u];
-            E += pg_lc_light(s, pr.xyz, pr.w, lc.w, lc.rgb, cam, P, V, inv_md2);
+#ifdef PG_SPOT_LIGHTS
+            vec4 sp = tree[4u * n + 3u]; // a leaf keeps its light's spot record there (light_tree.comp)
+#else
+            vec4 sp = vec4(0.0, 0.0, 0.0, 1.0);
+#endif
+            E += pg_lc_light(s, pr.xyz, pr.w, lc.w, lc.rgb, sp, cam, P, V, inv_md2);
             continue;
         }
         float d2;
@@ -209,7 +216,9 @@ vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
         if (U == vec3(0.0)) continue;
         PG_COUNT(1);
         vec4 nc = tree[4u * n + 2u];
-        vec3 est = clamp(pg_lc_light(s, tree[4u * n + 3u].xyz, tree[4u * n].w, nc.w, nc.rgb, cam, P, V, inv_md2),
+        // the representative has no cone: its estimate stays clamped to [0, U], and U bounds a cone too
+        vec3 est = clamp(pg_lc_light(s, tree[4u * n + 3u].xyz, tree[4u * n].w, nc.w, nc.rgb, vec4(0.0, 0.0, 0.0, 1.0),
+                                     cam, P, V, inv_md2),
                          vec3(0.0), U);
         vec3 b = max(U - est, est);
         if (all(lessThanEqual(B + b, eps * E))) {
@@ -273,15 +282,17 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
     float min_dist = frame.light_params.w;
 #ifdef PG_CLUSTERED
     PG_COUNT(rec.y);
-    for (uint k = 0u; k < rec.y; k++)
-        pg_accumulate_light(lights[cluster_lights[rec.x + k]], cam, P, s.normal, V, s.shininess, min_dist, acc);
+    for (uint k = 0u; k < rec.y; k++) {
+        uint li = cluster_lights[rec.x + k];
+        pg_accumulate_light(lights[li], PG_SPOT_OF(li), cam, P, s.normal, V, s.shininess, min_dist, acc);
+    }
 #elif defined(PG_LIGHTCUT)
     return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z)) + pg_lightcut(s, P, V);
 #else
     uint count = frame.counts.x;
     PG_COUNT(count);
     for (uint i = 0u; i < count; i++)
-        pg_accumulate_light(lights[i], cam, P, s.normal, V, s.shininess, min_dist, acc);
+        pg_accumulate_light(lights[i], PG_SPOT_OF(i), cam, P, s.normal, V, s.shininess, min_dist, acc);
 #endif
 #endif
     return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z));
@@ -315,6 +326,9 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 shared uint s_tl_cluster;
 shared uint s_tl_box[6];                     // ordered-uint min xyz, max xyz
 shared vec4 s_tl_light[2 * PG_TILE_N];       // pos_radius, color of the kept lights
+#ifdef PG_SPOT_LIGHTS
+shared vec4 s_tl_spot[PG_TILE_N];            // their spot records
+#endif
 shared uint s_tl_count[PG_TILE_N];
 #ifdef PG_TILE_BACKFACE
 shared uint s_tb_first;                      // the lowest invocation of the cluster: its normal is the axis
@@ -447,6 +461,9 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                 float R2 = L.pos_radius.w * L.pos_radius.w;
                 s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(L.color.w * L.color.w)); // falloff's R
                 s_tl_light[2u * pos + 1u] = vec4(L.color.rgb, R2);
+#ifdef PG_SPOT_LIGHTS
+                s_tl_spot[pos] = PG_SPOT_OF(cluster_lights[rec.x + k]);
+#endif
             }
             barrier();
             if (mine) {
@@ -454,7 +471,13 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                 for (uint j = 0u; j < total; j++) {
                     vec4 a = s_tl_light[2u * j];
                     vec4 b = s_tl_light[2u * j + 1u];
-                    pg_accumulate_light_rel_select(a.xyz, b.w, a.w, b.rgb, P, s.normal, V, s.shininess, inv_md2, acc);
+#ifdef PG_SPOT_LIGHTS
+                    vec4 sp = s_tl_spot[j];
+#else
+                    vec4 sp = vec4(0.0, 0.0, 0.0, 1.0);
+#endif
+                    pg_accumulate_light_rel_select(a.xyz, b.w, a.w, b.rgb, sp, P, s.normal, V, s.shininess, inv_md2,
+                                                   acc);
                 }
             }
             barrier();   // before the next chunk overwrites the shared lights and counts

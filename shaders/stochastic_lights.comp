@@ -67,4 +67,7 @@ void main()
     }
     culled[i].pos_radius = vec4(L.pos_radius.xyz, r);
     culled[i].color = L.color;
+#ifdef PG_SPOT_LIGHTS
+    culled[frame.counts.x + i] = lights[frame.counts.x + i]; // the spot records follow the lights
+#endif
 }

@@ -17,13 +17,16 @@ static const struct {
     {"has_uv1", offsetof(pg_scene_features, has_uv1)},
     {"has_uv_transform", offsetof(pg_scene_features, has_uv_transform)},
     {"has_file_lights", offsetof(pg_scene_features, has_file_lights)},
+    {"has_spot_lights", offsetof(pg_scene_features, has_spot_lights)},
 };
 #define N_FEATURES (sizeof k_features / sizeof k_features[0])
 
 pg_result pg_scene_vars_set(pg_compile_vars *vars, const pg_scene_features *features, uint32_t lights,
                             pg_error *err)
 {
-    pg_result r = pg_vars_set(vars, PG_VAR_LIGHTS, lights, err);
+    /* spot lights: a spot record follows the lights (lighting.glsl), so the buffers hold twice */
+    uint64_t records = features && features->has_spot_lights ? 2ull * lights : lights;
+    pg_result r = pg_vars_set(vars, PG_VAR_LIGHTS, records, err);
     for (size_t i = 0; !r && i < N_FEATURES; i++) {
         const bool on = features && *(const bool *)((const char *)features + k_features[i].offset);
         r = pg_vars_set(vars, k_features[i].name, on, err);

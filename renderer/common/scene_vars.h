@@ -11,16 +11,18 @@
 extern "C" {
 #endif
 
-#define PG_VAR_LIGHTS "lights" /* the number of lights (count terms ["lights", N]) */
+#define PG_VAR_LIGHTS "lights" /* the number of light records (count terms ["lights", N]): the light
+                                  count, twice it in a scene with spot lights (each light's spot
+                                  record follows the lights: lights[count + i], lighting.glsl) */
 
 /* Sets "lights" and one 0/1 variable per scene feature ("has_textures", "has_normal_maps",
  * "has_alpha_mask", "has_blend", "has_emissive", "has_vertex_colors", "has_uv1",
- * "has_uv_transform", "has_file_lights"); features may be NULL (none). */
+ * "has_uv_transform", "has_file_lights", "has_spot_lights"); features may be NULL (none). */
 pg_result pg_scene_vars_set(pg_compile_vars *vars, const pg_scene_features *features, uint32_t lights,
                             pg_error *err);
 /* In declare(): the scene features the caller set (missing variables read as false). */
 pg_scene_features pg_scene_features_of(const pg_declare_in *in);
-/* In declare(): the light count (0 when unset). */
+/* In declare(): the light records (the light count, twice it with spot lights; 0 when unset). */
 static inline uint32_t pg_lights_of(const pg_declare_in *in)
 {
     return (uint32_t)pg_var(in, PG_VAR_LIGHTS);

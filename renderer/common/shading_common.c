@@ -51,6 +51,7 @@ void pg_shading_declare(pg_shading_params *sp, const pg_declare_in *in, pg_pass_
     pg_decl_runtime_param(out, &sp->o.ambient, sizeof sp->o.ambient);
     if (o->shading == 1) pg_decl_define(out, "PG_BLINN_PHONG");
     if (pg_scene_features_of(in).has_file_lights) pg_decl_define(out, "PG_GLTF_FALLOFF");
+    if (pg_scene_features_of(in).has_spot_lights) pg_decl_define(out, "PG_SPOT_LIGHTS");
     if (o->view) {
         pg_decl_define_int(out, "PG_DEBUG_VIEW", o->view);
         pg_decl_explain(out, "debug view '%s': output shows it instead of lighting", pg_debug_views[o->view]);

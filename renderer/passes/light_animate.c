@@ -37,6 +37,7 @@ static pg_result la_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     p->file_lights = pg_scene_features_of(in).has_file_lights;
     if (p->file_lights) {
         pg_decl_define(out, "PG_FILE_LIGHTS");
+        if (pg_scene_features_of(in).has_spot_lights) pg_decl_define(out, "PG_SPOT_LIGHTS");
         if (reach == 1) {
             pg_decl_define(out, "PG_INFINITE_REACH");
             pg_decl_explain(out, "file lights without a range reach everything (reach infinite)");

@@ -22,6 +22,7 @@
 
 typedef struct lt_params {
     pg_slot lights, tree;
+    uint32_t records_per_light; /* 2 with spot lights: their records follow the lights */
 } lt_params;
 
 typedef struct light_tree {
@@ -49,6 +50,11 @@ static pg_result lt_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     p->lights = pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
     p->tree = pg_decl_write(out, "light_tree", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
     if (pg_lights_of(in) == 0) pg_decl_explain(out, "0 lights: no tree is built");
+    p->records_per_light = 1;
+    if (pg_scene_features_of(in).has_spot_lights) { /* leaves keep spot records */
+        pg_decl_define(out, "PG_SPOT_LIGHTS");
+        p->records_per_light = 2;
+    }
     return PG_OK;
 }
 
@@ -58,7 +64,7 @@ static pg_result lt_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     pg_gpu *gpu = ctx->gpu;
     const lt_params *pa = PG_PARAMS(ctx, lt_params);
     const pg_phys_resource *lights = pg_ctx_res(ctx, pa->lights), *tree = pg_ctx_res(ctx, pa->tree);
-    uint32_t n = (uint32_t)(lights->size / 32);
+    uint32_t n = (uint32_t)(lights->size / 32 / pa->records_per_light);
     p->np = pow2_at_least(n ? n : 1);
     p->tree_bytes = 2ull * p->np * 64;
     if (tree->size < p->tree_bytes)
@@ -84,7 +90,9 @@ static pg_result lt_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
     if ((r = pg_pipeline_layout_create(gpu, 2, sets, 16, &p->layout, err))) return r;
     VkShaderModule cs;
-    if ((r = pg_shader_module(gpu, "light_tree.comp", VK_SHADER_STAGE_COMPUTE_BIT, NULL, 0, &cs, err))) return r;
+    const char *defs[PG_MAX_DEFINES];
+    uint32_t nd = pg_decl_define_list(&ctx->pass->decl, defs, PG_MAX_DEFINES);
+    if ((r = pg_shader_module(gpu, "light_tree.comp", VK_SHADER_STAGE_COMPUTE_BIT, defs, nd, &cs, err))) return r;
     r = pg_compute_pipeline_create(gpu, p->layout, cs, ctx->pass->name, &p->pipeline, err);
     vkDestroyShaderModule(gpu->device, cs, NULL);
     return r;

@@ -14,7 +14,12 @@
  *     bit-identical to naive. A light_cutoff of 0.05 is a measurably worse approximation (the
  *     knob works), still within 2 x 0.05 x 0.8 of the reference.
  *  3. sun.gltf: a directional light of 2 lux lights every floor pixel the box does not hide alike:
- *     0.8 x (2 / pi x cos 30 deg + 0.02) within 1e-4 relative. */
+ *     0.8 x (2 / pi x cos 30 deg + 0.02) within 1e-4 relative.
+ *  4. spot.gltf: a spot light (inner 0.3, outer 0.5 rad) pointing down: the reference equals the CPU
+ *     model with the extension's cone (clamp(cos x scale + offset, 0, 1)^2) within 1e-4 relative;
+ *     more than half of the floor is outside the cone and gets exactly the ambient term; naive,
+ *     forward_plus, deferred, visibility (and the lightcut within its 2% bound) match the
+ *     reference as in 2; mixed.gltf (a point light, a spot, a sun) likewise. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -121,7 +126,7 @@ static void cpu_shade(const pg_scene *s, const double p[3], double out[3])
         if (L->type == PG_LIGHT_DIRECTIONAL) {
             ndl = fmax(-L->direction[1], 0.0);
             w = ndl;
-        } else if (L->type == PG_LIGHT_POINT) {
+        } else {
             double d[3] = {L->position[0] - p[0], L->position[1] - p[1], L->position[2] - p[2]};
             double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             ndl = fmax(d[1] / sqrt(d2), 0.0);
@@ -132,6 +137,12 @@ static void cpu_shade(const pg_scene *s, const double p[3], double out[3])
                 win *= win;
             }
             w = ndl * win / fmax(d2, 1e-4);
+            if (L->type == PG_LIGHT_SPOT) { /* the extension's cone: clamp(cd scale + offset, 0, 1)^2 */
+                double cd = -(L->direction[0] * d[0] + L->direction[1] * d[1] + L->direction[2] * d[2]) / sqrt(d2);
+                double ci = cos(L->inner_cone), co = cos(L->outer_cone), sc = 1.0 / fmax(ci - co, 1e-3);
+                double t = fmin(fmax(cd * sc - co * sc, 0.0), 1.0);
+                w *= t * t;
+            }
         }
         for (int c = 0; c < 3; c++) sum[c] += L->color[c] * k * w;
     }
@@ -143,6 +154,67 @@ static bool render(const loaded *l, const char *pipe, const pg_param_override *s
     bool ok = pg_th_render(g_gpu, &g_reg, l->sg, pipe, sets, n, &l->fi, 1, false, f);
     CHECK_MSG(ok, "%s: render failed", pipe);
     return ok;
+}
+
+/* every floor pixel of the reference against the CPU model; returns the pixels compared */
+static uint32_t ref_vs_cpu(const char *label, const loaded *l, const pg_th_frame *ref, uint32_t *unlit)
+{
+    uint32_t n = 0, bad = 0;
+    double worst = 0;
+    *unlit = 0;
+    for (uint32_t y = 0; y < H; y++)
+        for (uint32_t x = 0; x < W; x++) {
+            double p[3], e[3];
+            if (!floor_point(&l->fi, x, y, p)) continue;
+            cpu_shade(l->scene, p, e);
+            const float *g = ref->hdr + ((size_t)y * W + x) * 4;
+            n++;
+            if (e[0] == ALBEDO * AMBIENT && e[1] == ALBEDO * AMBIENT && e[2] == ALBEDO * AMBIENT) (*unlit)++;
+            for (int c = 0; c < 3; c++) {
+                double rel = fabs(g[c] - e[c]) / fmax(e[c], 1e-6);
+                worst = fmax(worst, rel);
+                if (rel > 1e-4) bad++;
+            }
+        }
+    printf("%s: reference vs the CPU model: %u floor pixels (%u outside every light), worst relative %.3g\n", label, n,
+           *unlit, worst);
+    CHECK_MSG(n > W * H / 4 && bad == 0, "%s: reference vs CPU: %u of %u channels off by > 1e-4 (worst %.3g)", label,
+              bad, 3 * n, worst);
+    return n;
+}
+
+/* the exact pipelines (and the lightcut within its bound) against the reference */
+static void pipelines_vs_ref(const char *label, const loaded *l, const pg_th_frame *ref)
+{
+    static const char *const pipes[] = {"pipelines/naive.json", "pipelines/forward_plus.json",
+                                        "pipelines/deferred.json", "pipelines/visibility.json",
+                                        "pipelines/lightcut.json"};
+    for (size_t k = 0; k < sizeof pipes / sizeof pipes[0]; k++) {
+        pg_th_frame f;
+        if (!render(l, pipes[k], NULL, 0, &f)) continue;
+        double over = 0;
+        for (size_t i = 0; i < (size_t)W * H; i++)
+            for (int c = 0; c < 3; c++) {
+                double r = ref->hdr[i * 4 + c], d = fabs(f.hdr[i * 4 + c] - r);
+                double rel = k == 4 ? 0.02 + 2e-3 : 2e-3; /* the lightcut's stated bound, lightcut_error 0.02 */
+                double bound = rel * fabs(r) + 2 * 1e-4 * ALBEDO + 1e-6;
+                over = fmax(over, d / bound);
+            }
+        printf("%s: %s vs reference: bound usage %.3f\n", label, pipes[k], over);
+        CHECK_MSG(over <= 1.0, "%s: %s: %.3f of the bound", label, pipes[k], over);
+        pg_th_release(&f);
+    }
+}
+
+static void spot(const loaded *l)
+{
+    pg_th_frame ref;
+    if (!render(l, "pipelines/reference.json", NULL, 0, &ref)) return;
+    uint32_t unlit = 0, n = ref_vs_cpu("spot", l, &ref, &unlit);
+    /* the cone (outer 0.5 rad from 3 units up: radius 1.64) lights a disc: most of the floor is outside */
+    CHECK_MSG(n > 0 && unlit > n / 2 && unlit < n, "spot: %u of %u floor pixels outside the cone", unlit, n);
+    pipelines_vs_ref("spot", l, &ref);
+    pg_th_release(&ref);
 }
 
 static void rgb_points(const loaded *l)
@@ -264,6 +336,17 @@ int main(void)
     unload(&a);
     if (load("sun.gltf", &b)) sun(&b);
     unload(&b);
+    loaded c, d;
+    if (load("spot.gltf", &c)) spot(&c);
+    unload(&c);
+    if (load("mixed.gltf", &d)) { /* a point light, a spot and a sun: every exact pipeline and the lightcut */
+        pg_th_frame ref;
+        if (render(&d, "pipelines/reference.json", NULL, 0, &ref)) {
+            pipelines_vs_ref("mixed", &d, &ref);
+            pg_th_release(&ref);
+        }
+    }
+    unload(&d);
     printf("validation messages: %u\n", g_gpu->validation_messages);
     CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);
     pg_gpu_destroy(g_gpu);

@@ -384,7 +384,14 @@ static void test_full_hd(void)
     double dt_flip = (t1.tv_sec - t0.tv_sec) + (t1.tv_nsec - t0.tv_nsec) * 1e-9;
     double dt_ssim = (t2.tv_sec - t1.tv_sec) + (t2.tv_nsec - t1.tv_nsec) * 1e-9;
     printf("1920x1080: LDR-FLIP %.6f in %.2f s, SSIM %.6f in %.2f s\n", m, dt_flip, s, dt_ssim);
-    CHECK_MSG(dt_flip < 10.0, "LDR-FLIP 1920x1080 took %.2f s", dt_flip);
+    /* a guard against accidentally quadratic code, not a benchmark: ~2 s here in RelWithDebInfo;
+     * ASan builds run several times slower (10.15 s once beside another build on 2 cores) */
+#if defined(__SANITIZE_ADDRESS__)
+    const double limit = 40.0;
+#else
+    const double limit = 10.0;
+#endif
+    CHECK_MSG(dt_flip < limit, "LDR-FLIP 1920x1080 took %.2f s (limit %.0f s)", dt_flip, limit);
     free(ref);
     free(t);
 }
