@@ -222,24 +222,8 @@ static void rgb_points(const loaded *l)
     pg_th_frame ref;
     if (!render(l, "pipelines/reference.json", NULL, 0, &ref)) return;
     /* 1. the reference against the CPU model, every floor pixel */
-    uint32_t n = 0, bad = 0;
-    double worst = 0;
-    for (uint32_t y = 0; y < H; y++)
-        for (uint32_t x = 0; x < W; x++) {
-            double p[3], e[3];
-            if (!floor_point(&l->fi, x, y, p)) continue;
-            cpu_shade(l->scene, p, e);
-            const float *g = ref.hdr + ((size_t)y * W + x) * 4;
-            n++;
-            for (int c = 0; c < 3; c++) {
-                double rel = fabs(g[c] - e[c]) / fmax(e[c], 1e-6);
-                worst = fmax(worst, rel);
-                if (rel > 1e-4) bad++;
-            }
-        }
-    printf("rgb_points: reference vs the CPU model: %u floor pixels, worst relative %.3g\n", n, worst);
-    CHECK_MSG(n > W * H / 4 && bad == 0, "reference vs CPU: %u of %u channels off by > 1e-4 (worst %.3g)", bad, 3 * n,
-              worst);
+    uint32_t unlit = 0;
+    ref_vs_cpu("rgb_points", l, &ref, &unlit);
     /* the pixel under each lamp is the lamp's colour */
     for (uint32_t i = 0; i < l->scene->n_lights; i++) {
         const pg_scene_light *L = &l->scene->lights[i];

@@ -54,3 +54,14 @@ def look_rotation(eye, target):
         return [(m01 + m10) / s, 0.25 * s, (m12 + m21) / s, (m02 - m20) / s]
     s = math.sqrt(1.0 + m22 - m00 - m11) * 2
     return [(m02 + m20) / s, (m12 + m21) / s, 0.25 * s, (m10 - m01) / s]
+
+
+def merge(*meshes):
+    """One (positions, normals, indices) mesh from several, the indices rebased."""
+    pos, nrm, idx = [], [], []
+    for p, n, i in meshes:
+        base = len(pos)
+        pos += p
+        nrm += n
+        idx += [base + j for j in i]
+    return pos, nrm, idx

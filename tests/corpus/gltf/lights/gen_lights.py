@@ -19,7 +19,7 @@ import struct
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from gltfgen import b64, box  # noqa: E402
+from gltfgen import b64, box, merge  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -27,16 +27,6 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 def floor():
     pos = [(-5, 0, -5), (-5, 0, 5), (5, 0, 5), (5, 0, -5)]
     return pos, [(0, 1, 0)] * 4, [0, 1, 2, 0, 2, 3]
-
-
-def merge(*meshes):
-    pos, nrm, idx = [], [], []
-    for p, n, i in meshes:
-        base = len(pos)
-        pos += p
-        nrm += n
-        idx += [base + j for j in i]
-    return pos, nrm, idx
 
 
 def quat_x(angle):

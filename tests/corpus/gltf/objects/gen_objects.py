@@ -30,7 +30,7 @@ import struct
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from gltfgen import b64, box, look_rotation  # noqa: E402  (shared geometry, tests/corpus/gltf/gltfgen.py)
+from gltfgen import b64, box, look_rotation, merge  # noqa: E402  (shared geometry, tests/corpus/gltf/gltfgen.py)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -71,16 +71,6 @@ def panel(x0, x1, y0, y1, plane, face):
     c = (e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0])
     idx = [0, 1, 2, 0, 2, 3] if sum(c[k] * n[k] for k in range(3)) > 0 else [0, 2, 1, 0, 3, 2]
     return pos, [n] * 4, idx
-
-
-def merge(*meshes):
-    pos, nrm, idx = [], [], []
-    for p, n, i in meshes:
-        base = len(pos)
-        pos += p
-        nrm += n
-        idx += [base + j for j in i]
-    return pos, nrm, idx
 
 
 def doc(mesh, cameras=None, camera_nodes=None):
