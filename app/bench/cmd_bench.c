@@ -497,6 +497,8 @@ static pg_frame_info block_frame(const bench *B, const pg_app *app, uint32_t si,
  * table cannot grow, else 0 (an interrupt ends the block early). */
 static int run_block(bench *B, pg_app *app, uint32_t sc, uint32_t si, uint32_t li, pg_error *err)
 {
+    /* a scene file with its own lights and no --lights: those lights alone, one block */
+    if (app->lights.file_count && !B->lights_given && li > 0) return 0;
     pg_frame_info fi = block_frame(B, app, si, li);
     reference *refs = calloc(B->n_refs ? B->n_refs : 1, sizeof *refs);
     if (!refs) {
@@ -514,6 +516,7 @@ static int run_block(bench *B, pg_app *app, uint32_t sc, uint32_t si, uint32_t l
                 break;
             }
             config_row(B, idx, row);
+            row->lights = fi.lights.count; /* every light rendered: a file's own ones included */
             char what[PG_NAME_MAX + 400];
             char lab[PG_NAME_MAX + 260];
             series_label(B, p, v, lab, sizeof lab);

@@ -552,6 +552,13 @@ mkdir -p "$tmp/lt/sub"
   >/dev/null 2>"$tmp/err" && grep -q '"uri":"\.\./' "$tmp/lt/sub/q.gltf" &&
   "$PG" render --scene "$tmp/lt/sub/q.gltf" --size 32x18 --out "$tmp/lt/q.png" >/dev/null 2>&1 \
   && ok || { bad "lights-table: output in another folder"; cat "$tmp/err"; }
+# bench on a scene with its own lights: without --lights one block of those lights alone; with
+# --lights the generated ones are added (the lights column counts every light rendered)
+"$PG" bench --scene "$lt" --pipelines "$root/pipelines/naive.json" --size 32x18 --frames 1 --warmup 0 --no-hdr-flip \
+  --out "$tmp/lt/b" 2>&1 | grep -c "^bench: naive .* lights=3 ok" | grep -qx 1 &&
+  "$PG" bench --scene "$lt" --pipelines "$root/pipelines/naive.json" --size 32x18 --frames 1 --warmup 0 --no-hdr-flip \
+    --lights 10 --out "$tmp/lt/b2" 2>&1 | grep -q "^bench: naive .* lights=13 ok" \
+  && ok || bad "bench on a scene with its own lights"
 expect_fail "lights-table without --out" "--scene IN.gltf and --out OUT.gltf are required" lights-table --scene "$lt"
 expect_fail "lights-table of a .glb" "must be .gltf files" lights-table --scene "$root/tests/corpus/gltf/models/crate.glb" \
   --out "$tmp/lt/x.gltf"
