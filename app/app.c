@@ -42,6 +42,8 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     pg_strlcpy(app->scene_path, scene, sizeof app->scene_path);
     pg_scene_load_opts lo = {.gltf_scene = opt->gltf_scene};
     if ((r = pg_scene_load_ex(scene, &lo, &app->scene, err))) return r;
+    if (app->has_scenario && pg_scenario_shading(&app->scenario) >= 0) /* what a pipeline's shading "auto" picks */
+        app->scene->features.auto_shading = (uint8_t)pg_scenario_shading(&app->scenario); /* before the GPU copy */
     pg_scene_print_warnings(app->scene, "passgraph: ", stderr); /* once per loaded scene */
     char choice[PG_PATH_MAX + 160];
     if (pg_scene_choice_line(app->scene, choice, sizeof choice) && !opt->quiet)
@@ -129,8 +131,15 @@ void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const
     const pg_param *sh = s->pipeline ? pg_pipeline_find_param(s->pipeline, "shading") : NULL;
     char v[64] = "";
     if (sh) pg_param_format(sh, v, sizeof v);
-    fprintf(f, "explain: shading%s%s: %s\n", label ? " of " : "", label ? label : "",
-            sh ? v : "the pipeline has no `shading` parameter (its passes' own model)");
+    static const char *const models[] = {"lambert", "blinn_phong", "pbr (the glTF metallic-roughness BRDF)"};
+    const int a = app->scene ? app->scene->features.auto_shading : 0;
+    fprintf(f, "explain: shading%s%s: %s%s%s%s\n", label ? " of " : "", label ? label : "",
+            sh ? v : "the pipeline has no `shading` parameter (its passes' own model)",
+            sh && !strcmp(v, "auto") ? " -> " : "", sh && !strcmp(v, "auto") ? models[a >= 0 && a <= 2 ? a : 0] : "",
+            sh && !strcmp(v, "auto")
+                ? (app->has_scenario && pg_scenario_shading(&app->scenario) >= 0 ? " (the scenario's shading)"
+                   : a == 2 ? " (a glTF file's materials)" : " (a generated scene)")
+                : "");
 }
 
 void pg_app_close(pg_app *app)

@@ -47,6 +47,12 @@ static void gpu_material(const pg_material *s, pg_gpu_material *out)
     g.params[3] = s->shininess;
     memcpy(g.emissive, s->emissive, sizeof s->emissive);
     g.tex2[0] = s->emissive_tex >= 0 ? s->emissive_tex + 1 : -1;
+    g.pbr[0] = s->metallic;
+    g.pbr[1] = s->roughness;
+    g.pbr[2] = s->occlusion_strength;
+    g.pbr[3] = s->unlit ? 1.0f : 0.0f;
+    g.tex3[0] = s->metallic_roughness_tex >= 0 ? s->metallic_roughness_tex + 1 : -1;
+    g.tex3[1] = s->occlusion_tex >= 0 ? s->occlusion_tex + 1 : -1;
     for (int t = 0; t < PG_TEXSLOT_COUNT; t++) {
         if (s->tex_coord[t] == 1) g.tex2[1] |= 1 << t;
         for (int k = 0; k < 3; k++) {

@@ -26,9 +26,11 @@ typedef struct pg_gpu_material { /* std430, matches shaders/common.glsl */
     float emissive[4];           /* rgb emissive (factor x strength), w unused */
     int32_t tex2[4];             /* emissive texture (-1 none), texcoord set bits (bit s = slot s
                                     reads TEXCOORD_1), 0, 0 */
+    float pbr[4];                /* metallic, roughness, occlusion strength, 1 = unlit */
+    int32_t tex3[4];             /* metallic-roughness texture, occlusion texture (-1 none), 0, 0 */
     float uv_xform[PG_TEXSLOT_COUNT][2][4]; /* per slot: rows (m00 m01 m02 0), (m10 m11 m12 0) */
-} pg_gpu_material;              /* 176 bytes */
-_Static_assert(sizeof(pg_gpu_material) == 176, "pg_gpu_material must match GpuMaterial (std430)");
+} pg_gpu_material;              /* 272 bytes */
+_Static_assert(sizeof(pg_gpu_material) == 272, "pg_gpu_material must match GpuMaterial (std430)");
 
 typedef struct pg_draw {
     uint32_t first_index, index_count;

@@ -264,8 +264,9 @@ static pg_result parse_root(const sc_ctx *c, const cJSON *root, pg_scenario *sc)
             TRY(parse_lights(c, it, sc));
         } else if (strcmp(key, "shading") == 0) {
             TRY(get_string(c, it, "shading", sc->shading, sizeof sc->shading));
-            if (strcmp(sc->shading, "lambert") != 0 && strcmp(sc->shading, "blinn_phong") != 0)
-                return schema(c, "shading", "expected \"lambert\" or \"blinn_phong\"");
+            if (strcmp(sc->shading, "lambert") != 0 && strcmp(sc->shading, "blinn_phong") != 0 &&
+                strcmp(sc->shading, "pbr") != 0)
+                return schema(c, "shading", "expected \"lambert\", \"blinn_phong\" or \"pbr\"");
         } else {
             return schema(c, key,
                           "unknown key (expected name, description, scene, camera, lights or "
@@ -383,6 +384,14 @@ pg_light_setup pg_light_setup_object(const pg_scene *scene, uint32_t count, uint
         L.keep_max[k] = (float)(mx[k] + PG_OBJECT_LIGHT_GAP * r);
     }
     return L;
+}
+
+int pg_scenario_shading(const pg_scenario *sc)
+{
+    if (!strcmp(sc->shading, "lambert")) return PG_SHADING_LAMBERT;
+    if (!strcmp(sc->shading, "blinn_phong")) return PG_SHADING_BLINN_PHONG;
+    if (!strcmp(sc->shading, "pbr")) return PG_SHADING_PBR;
+    return -1;
 }
 
 void pg_scenario_apply(const pg_scenario *sc, pg_light_setup *setup, pg_camera *camera)

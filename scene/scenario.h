@@ -52,7 +52,8 @@ typedef struct pg_scenario {
     bool has_light_count, has_light_box, has_radius, has_intensity, has_saturation,
          has_motion, has_speed, has_seed, has_ambient;
     pg_light_setup lights;
-    char shading[PG_NAME_MAX];    /* optional: "lambert" / "blinn_phong" */
+    char shading[PG_NAME_MAX];    /* optional: "lambert" / "blinn_phong" / "pbr": the model a
+                                     pipeline's shading "auto" picks (pg_scenario_shading) */
 } pg_scenario;
 
 /* Errors: PG_ERR_IO (missing file), PG_ERR_PARSE (JSON syntax, with line:column),
@@ -88,6 +89,9 @@ void pg_light_setup_generate(const pg_light_setup *setup, float time, uint32_t i
  * far_z becomes near_z * 1000. The light count from a scenario is a default: callers apply a
  * command-line --lights AFTER this call so that it wins. */
 void pg_scenario_apply(const pg_scenario *sc, pg_light_setup *setup, pg_camera *camera);
+/* The scenario's "shading" as PG_SHADING_* (scene_features.h), or -1 when it gives none: the tools
+ * put it in the scene's features.auto_shading, the model a pipeline's shading "auto" picks. */
+int pg_scenario_shading(const pg_scenario *sc);
 
 #ifdef __cplusplus
 }

@@ -20,7 +20,9 @@ void pg_material_init(pg_material *m, const char *name)
     memset(m, 0, sizeof *m);
     pg_strlcpy(m->name, name ? name : "", sizeof m->name);
     for (int k = 0; k < 4; k++) m->base_color[k] = 1.0f;
-    m->base_color_tex = m->normal_tex = m->emissive_tex = -1;
+    m->base_color_tex = m->normal_tex = m->emissive_tex = m->metallic_roughness_tex = m->occlusion_tex = -1;
+    m->metallic = m->roughness = 1.0f; /* glTF's defaults */
+    m->occlusion_strength = 1.0f;
     m->normal_scale = 1.0f;
     m->alpha_mode = PG_ALPHA_OPAQUE;
     m->alpha_cutoff = 0.5f;
@@ -29,6 +31,18 @@ void pg_material_init(pg_material *m, const char *name)
     for (int t = 0; t < PG_TEXSLOT_COUNT; t++) {
         m->uv_transform[t][0] = 1.0f;
         m->uv_transform[t][4] = 1.0f;
+    }
+}
+
+int pg_material_slot_texture(const pg_material *m, int slot)
+{
+    switch (slot) {
+    case PG_TEXSLOT_BASE: return m->base_color_tex;
+    case PG_TEXSLOT_NORMAL: return m->normal_tex;
+    case PG_TEXSLOT_EMISSIVE: return m->emissive_tex;
+    case PG_TEXSLOT_METALLIC_ROUGHNESS: return m->metallic_roughness_tex;
+    case PG_TEXSLOT_OCCLUSION: return m->occlusion_tex;
+    default: return -1;
     }
 }
 
@@ -400,9 +414,11 @@ void pg_scene_finalize(pg_scene *s)
             if (m->alpha_mode == PG_ALPHA_MASK) s->features.has_alpha_mask = true;
             if (m->alpha_mode == PG_ALPHA_BLEND) s->features.has_blend = true;
             if (m->emissive[0] > 0 || m->emissive[1] > 0 || m->emissive[2] > 0) s->features.has_emissive = true;
+            if (m->unlit) s->features.has_unlit = s->features.has_emissive = true; /* drawn as emission */
+            if (m->metallic_roughness_tex >= 0) s->features.has_metallic_roughness_tex = true;
+            if (m->occlusion_tex >= 0) s->features.has_occlusion_tex = true;
             for (int t = 0; t < PG_TEXSLOT_COUNT; t++) {
-                int tex = t == PG_TEXSLOT_BASE ? m->base_color_tex
-                          : t == PG_TEXSLOT_NORMAL ? m->normal_tex : m->emissive_tex;
+                int tex = pg_material_slot_texture(m, t);
                 if (tex < 0) continue;
                 if (m->has_uv_transform[t]) s->features.has_uv_transform = true;
                 if (m->tex_coord[t] == 1 && s->uv1) s->features.has_uv1 = true;
@@ -416,6 +432,7 @@ void pg_scene_finalize(pg_scene *s)
     memcpy(s->bounds_min, smin, sizeof smin);
     memcpy(s->bounds_max, smax, sizeof smax);
     s->features.has_file_lights = s->n_lights > 0;
+    s->features.auto_shading = s->gltf_materials ? PG_SHADING_PBR : PG_SHADING_LAMBERT;
     s->features.has_spot_lights = false;
     for (uint32_t i = 0; i < s->n_lights; i++)
         if (s->lights[i].type == PG_LIGHT_SPOT) s->features.has_spot_lights = true;

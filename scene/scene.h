@@ -26,7 +26,14 @@ typedef struct pg_vertex {
 typedef enum pg_alpha_mode { PG_ALPHA_OPAQUE = 0, PG_ALPHA_MASK = 1, PG_ALPHA_BLEND = 2 } pg_alpha_mode;
 
 /* The texture slots of a material (index into pg_material.tex_coord / uv_transform). */
-enum { PG_TEXSLOT_BASE = 0, PG_TEXSLOT_NORMAL = 1, PG_TEXSLOT_EMISSIVE = 2, PG_TEXSLOT_COUNT = 3 };
+enum {
+    PG_TEXSLOT_BASE = 0,
+    PG_TEXSLOT_NORMAL = 1,
+    PG_TEXSLOT_EMISSIVE = 2,
+    PG_TEXSLOT_METALLIC_ROUGHNESS = 3,
+    PG_TEXSLOT_OCCLUSION = 4,
+    PG_TEXSLOT_COUNT = 5
+};
 
 typedef struct pg_material {
     char name[PG_NAME_MAX];
@@ -38,6 +45,12 @@ typedef struct pg_material {
     float alpha_cutoff;      /* MASK: discard below (default 0.5) */
     float specular;          /* Blinn-Phong specular strength (from roughness/metallic), 0..1 */
     float shininess;         /* Blinn-Phong exponent */
+    float metallic;          /* glTF metallicFactor, 0..1 (default 1) */
+    float roughness;         /* glTF roughnessFactor, 0..1 (default 1) */
+    int metallic_roughness_tex; /* linear texture: G roughness, B metallic (x the factors); -1 if none */
+    int occlusion_tex;       /* linear texture: R occlusion; -1 if none */
+    float occlusion_strength;/* occlusionTexture.strength, 0..1 (default 1) */
+    bool unlit;              /* KHR_materials_unlit: the base colour is the result, no lighting */
     bool double_sided;
     float emissive[3];       /* emissiveFactor times KHR_materials_emissive_strength, linear */
     int emissive_tex;        /* sRGB texture, -1 if none */
@@ -138,6 +151,8 @@ typedef struct pg_scene {
     uint32_t n_textures;
     float bounds_min[3], bounds_max[3];
     pg_scene_features features; /* light_count left 0 here */
+    bool gltf_materials;        /* the materials are a glTF file's metallic-roughness materials:
+                                   features.auto_shading is PG_SHADING_PBR (else Lambert) */
     pg_scene_camera *cameras;   /* owned (freed by pg_scene_free); NULL when n_cameras == 0;
                                    the built-in atrium has none */
     uint32_t n_cameras;
@@ -231,6 +246,8 @@ pg_result pg_texture_init(pg_texture *tex, const char *name, const uint8_t *rgba
 /* A material with glTF's defaults: white, no textures, opaque, cutoff 0.5, normal scale 1, no
  * emissive, TEXCOORD_0 and identity transforms everywhere, specular 0.04, shininess 1. */
 void pg_material_init(pg_material *m, const char *name);
+/* The texture of material slot PG_TEXSLOT_* (index into scene->textures), -1 when it has none. */
+int pg_material_slot_texture(const pg_material *m, int slot);
 void pg_texture_release(pg_texture *tex);
 
 /* ---- helpers shared by the loaders (glTF shim, default scene); usable by tools ----

@@ -7,6 +7,9 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+/* The light models of the shading passes (their option `shading`; renderer/common/shading_common.h). */
+enum { PG_SHADING_LAMBERT = 0, PG_SHADING_BLINN_PHONG = 1, PG_SHADING_PBR = 2, PG_SHADING_AUTO = 3 };
+
 typedef struct pg_scene_features {
     bool has_textures;    /* any base-colour texture */
     bool has_normal_maps; /* any material with a normal map (and tangents) */
@@ -20,6 +23,12 @@ typedef struct pg_scene_features {
                              uploaded, light_animate reads it, shading uses the glTF falloff */
     bool has_spot_lights; /* some of them are spot lights: every light gets a spot record after the
                              lights (the "lights" variable counts records: twice the lights) */
+    bool has_metallic_roughness_tex; /* any metallicRoughnessTexture (sampled by the pbr model) */
+    bool has_occlusion_tex; /* any occlusionTexture (sampled by the pbr model) */
+    bool has_unlit;       /* any KHR_materials_unlit material (drawn as emission: has_emissive too) */
+    uint8_t auto_shading; /* PG_SHADING_LAMBERT / _BLINN_PHONG / _PBR: the model a pass's shading
+                             "auto" picks: pbr for a glTF file's materials, lambert for the
+                             generated scenes; a scenario's "shading" sets it (the tools) */
 } pg_scene_features;
 
 #endif

@@ -32,8 +32,7 @@
  *
  * Warnings (pg_scene.warnings, collect_warnings): everything the file uses that is not drawn as it
  * asks gets one line per kind (skins, morph targets, animations, each extension in
- * extensionsUsed that is not implemented, BLEND materials, emission / occlusion /
- * metallic-roughness textures, COLOR_1+, TEXCOORD_2+, texCoord >= 2, sampler values outside the
+ * extensionsUsed that is not implemented, BLEND materials, COLOR_1+, TEXCOORD_2+, texCoord >= 2, sampler values outside the
  * glTF enums, point/line primitives). The library never prints them. An extensionsRequired entry
  * that is not implemented is an error. A non-GLB file
  * whose first non-blank byte is not '{' or '[' is "not a glTF 2.0 file"; asset.version 1.x is
@@ -41,7 +40,9 @@
  * Non-finite POSITION / NORMAL / TEXCOORD_0 / TANGENT values are errors, and so are positions that
  * leave the float range (or normals/tangents that overflow) under their node transform.
  *
- * Material mapping (glTF metallic-roughness -> passgraph Blinn-Phong):
+ * Materials keep the glTF metallic-roughness values (metallic, roughness, their texture, occlusion
+ * texture and strength: the pbr light model, shaders/lighting.glsl) and KHR_materials_unlit; for the
+ * blinn_phong model they are also mapped to Blinn-Phong:
  *   specular  = 0.04 + 0.5 * (1 - roughness) * (1 - metallic)      (0.04 .. 0.54)
  *   shininess = clamp(2 / (roughness^4 + 1e-4) - 2, 1, 512)         (Beckmann-like roughness
  *                                                                    to Blinn-Phong exponent)
@@ -399,6 +400,11 @@ static void material_tex_coords(const Ctx &c, const tinygltf::Material &gm, size
          opt_object(jm, "normalTexture", mw), mw + ".normalTexture"},
         {PG_TEXSLOT_EMISSIVE, gm.emissiveTexture.index, gm.emissiveTexture.texCoord,
          opt_object(jm, "emissiveTexture", mw), mw + ".emissiveTexture"},
+        {PG_TEXSLOT_METALLIC_ROUGHNESS, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+         jpbr ? opt_object(*jpbr, "metallicRoughnessTexture", mw) : nullptr,
+         mw + ".pbrMetallicRoughness.metallicRoughnessTexture"},
+        {PG_TEXSLOT_OCCLUSION, gm.occlusionTexture.index, gm.occlusionTexture.texCoord,
+         opt_object(jm, "occlusionTexture", mw), mw + ".occlusionTexture"},
     };
     for (const auto &sl : slots) {
         if (sl.index < 0 || !sl.ti) continue;
@@ -456,6 +462,13 @@ static pg_material material_from_gltf(const Ctx &c, size_t i, TextureTable &tex)
                                         mw + ".pbrMetallicRoughness.baseColorTexture");
     pm.normal_tex = tex.texture_for(gm.normalTexture.index, false, mw + ".normalTexture");
     pm.emissive_tex = tex.texture_for(gm.emissiveTexture.index, true, mw + ".emissiveTexture");
+    pm.metallic_roughness_tex = tex.texture_for(pbr.metallicRoughnessTexture.index, false,
+                                                mw + ".pbrMetallicRoughness.metallicRoughnessTexture");
+    pm.occlusion_tex = tex.texture_for(gm.occlusionTexture.index, false, mw + ".occlusionTexture");
+    pm.metallic = float(std::isfinite(pbr.metallicFactor) ? clamp01(pbr.metallicFactor) : 1.0);
+    pm.roughness = float(std::isfinite(pbr.roughnessFactor) ? clamp01(pbr.roughnessFactor) : 1.0);
+    pm.occlusion_strength = float(std::isfinite(gm.occlusionTexture.strength) ? clamp01(gm.occlusionTexture.strength) : 1.0);
+    pm.unlit = gm.extensions.find("KHR_materials_unlit") != gm.extensions.end();
     material_tex_coords(c, gm, i, mw, pm);
     pm.normal_scale = float(std::isfinite(gm.normalTexture.scale) ? gm.normalTexture.scale : 1.0);
     if (gm.alphaMode == "MASK") pm.alpha_mode = PG_ALPHA_MASK;
@@ -499,9 +512,9 @@ static void hand_out_uv1(Ctx &c, const Out &o, const std::vector<pg_material> &m
     for (size_t p = 0; p < o.prims.size(); p++) {
         if (!o.prims[p].index_count) continue;
         const pg_material &pm = mats[o.prims[p].material];
-        const int tex[PG_TEXSLOT_COUNT] = {pm.base_color_tex, pm.normal_tex, pm.emissive_tex};
         bool reads = false;
-        for (int t = 0; t < PG_TEXSLOT_COUNT; t++) reads = reads || (tex[t] >= 0 && pm.tex_coord[t] == 1);
+        for (int t = 0; t < PG_TEXSLOT_COUNT; t++)
+            reads = reads || (pg_material_slot_texture(&pm, t) >= 0 && pm.tex_coord[t] == 1);
         if (reads && o.prim_has_uv1[p]) uv1_read = true;
         if (reads && !o.prim_has_uv1[p]) uv1_missing++;
     }
@@ -559,6 +572,7 @@ static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &
     s->n_primitives = uint32_t(o.prims.size());
     s->materials = copy_out(mats);
     s->n_materials = uint32_t(mats.size());
+    s->gltf_materials = true; /* the pbr light model by default (features.auto_shading) */
     s->cameras = copy_out(cams);
     s->n_cameras = uint32_t(cams.size());
     s->lights = copy_out(lights);

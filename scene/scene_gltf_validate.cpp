@@ -19,6 +19,7 @@ namespace pg_gltf {
  * extensionsUsed. */
 constexpr const char *kImplementedExtensions[] = {"EXT_meshopt_compression", "KHR_draco_mesh_compression",
                                                   "KHR_lights_punctual", "KHR_materials_emissive_strength",
+                                                  "KHR_materials_unlit",
                                                   "KHR_mesh_quantization", "KHR_texture_transform",
                                                   "PASSGRAPH_lights_table"};
 bool extension_implemented(const std::string &e)

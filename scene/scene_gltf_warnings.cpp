@@ -99,24 +99,17 @@ void collect_warnings(Ctx &c)
         W.push_back(strf("extensionsUsed: %zu more extensions ignored (not supported)",
                          unimpl.size() - kMaxExtensionLines));
 
-    std::vector<std::string> occlusion, mr, texcoord;
+    std::vector<std::string> texcoord;
     for (size_t i = 0; i < md.materials.size(); i++) {
         const tinygltf::Material &m = md.materials[i];
-        if ((m.pbrMetallicRoughness.baseColorTexture.index >= 0 &&
-             m.pbrMetallicRoughness.baseColorTexture.texCoord > 1) ||
+        const auto &pbr = m.pbrMetallicRoughness;
+        if ((pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord > 1) ||
             (m.normalTexture.index >= 0 && m.normalTexture.texCoord > 1) ||
-            (m.emissiveTexture.index >= 0 && m.emissiveTexture.texCoord > 1))
+            (m.emissiveTexture.index >= 0 && m.emissiveTexture.texCoord > 1) ||
+            (pbr.metallicRoughnessTexture.index >= 0 && pbr.metallicRoughnessTexture.texCoord > 1) ||
+            (m.occlusionTexture.index >= 0 && m.occlusionTexture.texCoord > 1))
             texcoord.push_back(material_desc(md, i));
-        if (m.occlusionTexture.index >= 0) occlusion.push_back(material_desc(md, i));
-        if (m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
-            mr.push_back(material_desc(md, i));
     }
-    if (!mr.empty())
-        W.push_back("metallicRoughnessTexture of " + plural(mr.size(), "material", "materials") +
-                    " (" + name_list(mr) + ") ignored: the metallic/roughness factors are used");
-    if (!occlusion.empty())
-        W.push_back("occlusionTexture of " + plural(occlusion.size(), "material", "materials") +
-                    " (" + name_list(occlusion) + ") ignored");
     if (!texcoord.empty())
         W.push_back("textures of " + plural(texcoord.size(), "material", "materials") + " (" +
                     name_list(texcoord) + ") ask for a texCoord other than 0 or 1: read with TEXCOORD_0");

@@ -23,6 +23,11 @@
 #   file-lights    1,000,000 cis565 lights frozen into the scene file (passgraph lights-table, a
 #                  PASSGRAPH_lights_table) against the same count generated: time and error of
 #                  visibility, deferred_oct16 and stochastic (threshold 3)
+#   shading-cost   the light models at 100,000 lights: lambert, blinn_phong and pbr (the glTF BRDF) in
+#                  every clustered exact pipeline (times only)
+#   spot-cost      100,000 spot lights against the same 100,000 point lights (same positions, ranges,
+#                  colours: scripts/spot_lights.py over `passgraph lights-table --json`) in every
+#                  clustered exact pipeline (times only)
 #   knob-stochastic  the stochastic_threshold x tile_size sweep of `knobs` alone
 #   knobs          the approximation knobs at 1,000,000 lights (stochastic_threshold,
 #                  ris_candidates, lightcut_error) and the accumulation curve of the stochastic
@@ -160,6 +165,28 @@ for step in "${STEPS[@]}"; do
     COMMON=("${SAVED[@]}")
     bench generated_lights "$BUNDLE" visibility,deferred_oct16,stochastic --lights 1000000 "${FL[@]}"
     rm -rf "$OUT/file_lights_scene"
+    ;;
+  shading-cost)
+    bench shading_cost "$BUNDLE" forward_plus,deferred,deferred_oct16,deferred_packed,visibility --lights 100000 \
+      --sweep shading=lambert,blinn_phong,pbr --warmup 2 --warmup-ms 500 --frames 10 --reference-max-lights 0
+    ;;
+  spot-cost)
+    mkdir -p "$OUT/spot_scene"
+    SP_DIR="$OUT/spot_scene"
+    if [ "$DRY_RUN" = 1 ]; then echo "$BUNDLE/passgraph lights-table --json ... ; spot_lights.py"; else
+      "$BUNDLE/passgraph" lights-table --scene "$SCENE" --scenario "$SCENARIO" --lights 100000 --json \
+        --out "$SP_DIR/points.gltf" > "$OUT/logs/spot_table.log" 2>&1
+      python3 "$HERE/spot_lights.py" "$SP_DIR/points.gltf" "$SP_DIR/spots.gltf" >> "$OUT/logs/spot_table.log" 2>&1
+      echo "spot scenes rc=$?"
+    fi
+    SAVED=("${COMMON[@]}")
+    for kind in points spots; do
+      COMMON=(--size "$SIZE" --scene "$SP_DIR/$kind.gltf" --scenario "$SCENARIO" --quiet)
+      bench "spot_cost_$kind" "$BUNDLE" forward_plus,deferred,deferred_oct16,deferred_packed,visibility \
+        --warmup 2 --warmup-ms 500 --frames 10 --reference-max-lights 0
+    done
+    COMMON=("${SAVED[@]}")
+    rm -rf "$SP_DIR"
     ;;
   tile-size)
     bench tile_size "$BUNDLE" visibility --lights 1000,100000,1000000 --sweep tile_size=8,16 \

@@ -15,20 +15,51 @@ struct GpuMaterial {
     vec4 params;       // alpha cutoff, normal scale, specular, shininess
     vec4 emissive;     // rgb emissive (factor x strength)
     ivec4 tex2;        // emissive texture (-1 none), texcoord set bits (bit s: slot s reads
-                       // TEXCOORD_1; slots 0 base, 1 normal, 2 emissive), 0, 0
-    vec4 uv_xform[6];  // per slot s: rows 2s and 2s+1 of its 2x3 KHR_texture_transform matrix
+                       // TEXCOORD_1; slots 0 base, 1 normal, 2 emissive, 3 metallic-roughness,
+                       // 4 occlusion), 0, 0
+    vec4 pbr;          // metallic, roughness, occlusion strength, 1 = unlit (KHR_materials_unlit)
+    ivec4 tex3;        // metallic-roughness texture, occlusion texture (-1 none), 0, 0
+    vec4 uv_xform[10]; // per slot s: rows 2s and 2s+1 of its 2x3 KHR_texture_transform matrix
 };
 
 // What shading needs of a visible point (from the material in forward, from the G-buffer in
 // deferred).
+// With PG_PBR (the glTF metallic-roughness model) specular holds the metallic value and shininess
+// the (perceptual) roughness, so every G-buffer variant carries them in the same channels.
 struct Surface {
-    vec3 albedo;
+    vec3 albedo;    // base colour
     float alpha;    // base colour alpha (BLEND materials: coverage)
     vec3 normal;    // unit, facing the camera side that is seen
-    float specular; // Blinn-Phong strength
-    float shininess;
+    float specular; // Blinn-Phong strength; PG_PBR: metallic
+    float shininess;// Blinn-Phong exponent; PG_PBR: roughness
     vec3 emissive;  // added to the lit colour (0 without PG_EMISSIVE)
+    float occlusion;// PG_PBR: ambient occlusion (occlusionTexture), scales the ambient term; else 1
 };
+
+// The pbr model's occlusion in the G-buffers (gbuffer.frag, visibility_resolve.comp; read by
+// deferred_lighting.comp, reference_lighting.comp). Surface.occlusion is in [0, 1], or -1 for an unlit
+// surface (lighting.glsl pg_pbr_lit). unorm channels (oct16's normal w, packed's third word) hold
+// occlusion / 2 in [0, 0.5] and 1 for unlit; the float position's w holds 1 + occlusion in [1, 2]
+// (> 0: drawn) and 3 for unlit.
+float pg_gb_occlusion_unorm(float occ)
+{
+    return occ < 0.0 ? 1.0 : 0.5 * clamp(occ, 0.0, 1.0);
+}
+
+float pg_gb_occlusion_from_unorm(float v)
+{
+    return v > 0.75 ? -1.0 : 2.0 * v;
+}
+
+float pg_gb_occlusion_float(float occ)
+{
+    return occ < 0.0 ? 3.0 : 1.0 + occ;
+}
+
+float pg_gb_occlusion_from_float(float w)
+{
+    return w > 2.5 ? -1.0 : max(w - 1.0, 0.0);
+}
 
 // What a fragment shader knows of the surface before the material (surface_inputs.glsl).
 struct SurfaceInput {

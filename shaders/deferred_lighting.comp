@@ -112,6 +112,7 @@ void main()
     s.shininess = 1.0;
     s.alpha = 1.0;
     s.emissive = vec3(0.0);
+    s.occlusion = 1.0;
     if (lit) {
 #if defined(PG_GBUFFER_FLOAT)
     P = texelFetch(g_position, px, 0).xyz - frame.camera_pos.xyz; // world -> camera-relative
@@ -121,6 +122,9 @@ void main()
     s.shininess = n.w;
     s.albedo = a.rgb;
     s.specular = a.a;
+#ifdef PG_PBR
+    s.occlusion = pg_gb_occlusion_from_float(texelFetch(g_position, px, 0).w); // gbuffer.frag
+#endif
     view_depth = -PG_REL_TO_VIEW(P).z;
 #elif defined(PG_GBUFFER_VISIBILITY)
     SurfaceInput si;
@@ -139,7 +143,12 @@ void main()
     vec4 n = texelFetch(g_normal, px, 0);
     vec4 a = texelFetch(g_albedo, px, 0); // sRGB decoded by the sampler
     s.normal = pg_oct_decode(n.xy * 2.0 - 1.0);
+#ifdef PG_PBR
+    s.shininess = n.z; // roughness
+    s.occlusion = pg_gb_occlusion_from_unorm(n.w);
+#else
     s.shininess = n.z * 512.0;
+#endif
     s.albedo = a.rgb;
     s.specular = a.a;
 #else
@@ -148,7 +157,13 @@ void main()
     vec4 a = unpackUnorm4x8(g.y);
     s.albedo = pg_srgb_decode(a.rgb);
     s.specular = a.a;
+#ifdef PG_PBR
+    vec2 ro = unpackUnorm2x16(g.z); // roughness, occlusion
+    s.shininess = ro.x;
+    s.occlusion = pg_gb_occlusion_from_unorm(ro.y);
+#else
     s.shininess = uintBitsToFloat(g.z);
+#endif
     view_depth = uintBitsToFloat(g.w);
     vec3 pv = PG_ORTHO ? pg_ortho_view_pos_from_view_depth(uv, view_depth, frame.proj)
                        : pg_view_pos_from_view_depth(uv, view_depth, frame.proj);

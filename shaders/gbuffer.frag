@@ -1,6 +1,10 @@
 #version 460
 // gbuffer.frag - writes the G-buffer of one packing variant (one of PG_GBUFFER_FLOAT,
 // PG_GBUFFER_OCT16, PG_GBUFFER_PACKED); see renderer/passes/gbuffer.c for the layouts.
+// PG_PBR (the pbr light model): the specular channel holds metallic, the shininess channel roughness
+// (oct16: unorm16 roughness itself, not /512; packed: unorm16 roughness | unorm16 occlusion in the
+// third word), and the occlusion goes in the float position's w (1 + occlusion) or oct16's normal w
+// (pg_gb_occlusion_*, octahedral.glsl: an unlit surface's -1 is stored as a value past the range).
 // PG_GBUFFER_EMISSIVE: the optional emissive target after the variant's targets (rgba16f/rgba32f,
 // scene-linear s.emissive; the pass defines it only when bound and the scene has emissive materials).
 #include "common.glsl"
@@ -34,21 +38,35 @@ void main()
 {
     Surface s = pg_surface(pg_surface_input());
 #if defined(PG_GBUFFER_FLOAT)
-#ifdef PG_GBUFFER_CAMERA_POSITION
-    g_position = vec4(v_rel, 1.0); // exactly the position forward.frag shades
+#ifdef PG_PBR
+    float w = pg_gb_occlusion_float(s.occlusion); // > 0 where drawn; the occlusion rides along
 #else
-    g_position = vec4(v_rel + frame.camera_pos.xyz, 1.0); // world space, as the classic layout
+    float w = 1.0;
+#endif
+#ifdef PG_GBUFFER_CAMERA_POSITION
+    g_position = vec4(v_rel, w); // exactly the position forward.frag shades
+#else
+    g_position = vec4(v_rel + frame.camera_pos.xyz, w); // world space, as the classic layout
 #endif
     g_normal = vec4(s.normal, s.shininess);
     g_albedo = vec4(s.albedo, s.specular);
 #elif defined(PG_GBUFFER_OCT16)
+#ifdef PG_PBR
+    g_normal = vec4(pg_oct_encode(s.normal) * 0.5 + 0.5, clamp(s.shininess, 0.0, 1.0), pg_gb_occlusion_unorm(s.occlusion));
+#else
     g_normal = vec4(pg_oct_encode(s.normal) * 0.5 + 0.5, clamp(s.shininess / 512.0, 0.0, 1.0), 0.0);
+#endif
     g_albedo = vec4(clamp(s.albedo, 0.0, 1.0), clamp(s.specular, 0.0, 1.0));
 #else
     float view_depth = -PG_REL_TO_VIEW(v_rel).z;
     g_packed = uvec4(pg_oct_pack_unorm16(s.normal),
                      packUnorm4x8(vec4(pg_srgb_encode(s.albedo), clamp(s.specular, 0.0, 1.0))),
-                     floatBitsToUint(s.shininess), floatBitsToUint(view_depth));
+#ifdef PG_PBR
+                     packUnorm2x16(vec2(s.shininess, pg_gb_occlusion_unorm(s.occlusion))), // roughness, occlusion
+#else
+                     floatBitsToUint(s.shininess),
+#endif
+                     floatBitsToUint(view_depth));
 #endif
 #ifdef PG_GBUFFER_EMISSIVE
     g_emissive = vec4(s.emissive, 0.0); // as forward adds it (0 without PG_EMISSIVE's factor)

@@ -1,4 +1,4 @@
-// lighting.glsl - the reference point-light model (CIS 565):
+// lighting.glsl - the light models: Lambert, the reference point-light model (CIS 565):
 //   contribution = color * max(dot(N, L), 0) * clamp(1 - (d/R)^4, 0, 1) / max(d^2, dmin^2)
 // With PG_GLTF_FALLOFF (a scene with KHR_lights_punctual lights) the window is squared, the
 // extension's recommended falloff, for every light: clamp(1 - (d/R)^4, 0, 1)^2. The window's R is
@@ -37,10 +37,93 @@ float pg_spot_factor(vec4 sp, vec3 Ld) // Ld = light - P
     return t * t;
 }
 
+// The light sums of a point. Lambert and Blinn-Phong: diffuse = sum colour x N.L x att, specular =
+// sum colour x (N.H)^shininess x att. PG_PBR (lighting_pbr below): three sums that the material's
+// per-pixel constants multiply (pg_shade_lights).
 struct PgShade {
     vec3 diffuse;
     vec3 specular;
+#ifdef PG_PBR
+    vec3 fresnel;
+#endif
 };
+
+PgShade pg_shade_zero()
+{
+    PgShade z;
+    z.diffuse = vec3(0.0);
+    z.specular = vec3(0.0);
+#ifdef PG_PBR
+    z.fresnel = vec3(0.0);
+#endif
+    return z;
+}
+
+#ifdef PG_PBR
+// ---- the glTF 2.0 metallic-roughness BRDF (PG_PBR: shading "pbr") ------------------------------
+// The glTF 2.0 specification, Appendix B: with a = roughness^2, c_diff = base x (1 - metallic),
+// F0 = mix(0.04, base, metallic), F = F0 + (1 - F0) (1 - V.H)^5:
+//   f = (1 - F) c_diff / pi + F D V
+//   D = a^2 / (pi ((N.H)^2 (a^2 - 1) + 1)^2)                                  (GGX / Trowbridge-Reitz)
+//   V = 0.5 / (N.L sqrt((N.V)^2 (1 - a^2) + a^2) + N.V sqrt((N.L)^2 (1 - a^2) + a^2))
+//                                                        (height-correlated Smith, Heitz 2014)
+// A light of intensity I (the extension's candela) at distance d adds f x I x N.L / d^2 (x its
+// window and cone). Light.color holds colour x I / pi (the Lambert models' units), so the term
+// summed here is pi f x color x N.L x att. F is linear in F0 (F = F0 (1 - w) + w, w = (1 - V.H)^5),
+// so per light three sums do not depend on the material and the pixel's constants multiply them
+// once (pg_shade_lights):
+//   diffuse += color (1 - w) N.L att           x c_diff (1 - F0)
+//   specular += color (1 - w) pi D V N.L att   x F0
+//   fresnel += color w pi D V N.L att          x 1 (0 for an unlit surface: pg_pbr_lit)
+// pi D = k^2 with k = a / (|N x H|^2 + (N.H)^2 a^2) (the same D; |N x H|^2 = 1 - (N.H)^2 computed
+// without its cancellation near N.H = 1). Roughness is clamped to >= PG_PBR_MIN_ROUGHNESS (a = 0
+// is a mirror: an infinite peak); N.V to >= 0 (a normal-mapped pixel may face away from the eye).
+// N.H enters squared, unclamped: where N.H < 0 (only when N.V < 0: a normal map turned a pixel's
+// normal away from the eye, a case the specification leaves open) the lobe is mirrored instead of
+// cut, so the result stays finite (|N x H|^2 + (N.H)^2 a^2 >= a^2) and continuous in the normal,
+// and G-buffer quantization cannot flip it.
+// Bounds (the lightcut's): k^2 <= 1 / a^2, V N.L <= 0.5 / a, so pi D V N.L <= 0.5 / a^3.
+// C twin: renderer/common/brdf.c (tests/unit/test_numeric.c).
+const float PG_PBR_MIN_ROUGHNESS = 0.045;
+
+// The weight of the Fresnel sum: 1, but 0 for an unlit surface (KHR_materials_unlit: Surface.occlusion
+// < 0; base 0 and metallic 1 make c_diff = F0 = 0, and this removes the last term, Schlick's
+// grazing reflection).
+float pg_pbr_lit(Surface s)
+{
+    return s.occlusion < 0.0 ? 0.0 : 1.0;
+}
+
+float pg_pbr_alpha(float roughness)
+{
+    float r = clamp(roughness, PG_PBR_MIN_ROUGHNESS, 1.0);
+    return r * r;
+}
+
+// One light of colour c reaching the point from unit direction L with attenuation att (N.L > 0).
+void pg_light_pbr(vec3 c, float att, vec3 L, vec3 N, vec3 V, float roughness, inout PgShade acc)
+{
+    float a = pg_pbr_alpha(roughness);
+    float a2 = a * a;
+    float ndl = max(dot(N, L), 0.0);
+    float ndv = max(dot(N, V), 0.0);
+    vec3 h = L + V;
+    float hl = dot(h, h);
+    vec3 H = hl > 1e-30 ? h * inversesqrt(hl) : N; // L = -V: grazing both ways (N.L N.V ~ 0)
+    float ndh = dot(N, H);
+    vec3 nxh = cross(N, H);
+    float k = a / (dot(nxh, nxh) + ndh * ndh * a2); // >= a^2 below: finite, and continuous in N
+    float den = ndl * sqrt(ndv * ndv * (1.0 - a2) + a2) + ndv * sqrt(ndl * ndl * (1.0 - a2) + a2);
+    float vis_ndl = den > 0.0 ? 0.5 * ndl / den : 0.0; // V x N.L
+    float t = 1.0 - clamp(dot(V, H), 0.0, 1.0);
+    float t2 = t * t;
+    float w = t2 * t2 * t;
+    float spec = k * k * vis_ndl * att;
+    acc.diffuse += c * (ndl * att * (1.0 - w));
+    acc.specular += c * (spec * (1.0 - w));
+    acc.fresnel += c * (spec * w);
+}
+#endif
 
 // 1/R^2 of a light, capped at FLT_MAX: R^2 below 2^-128 (R < ~1e-19) gives a finite factor, never
 // 0 * Inf (such a light reaches only points within R of it, where the falloff stays in [0, 1]).
@@ -61,7 +144,7 @@ float pg_light_term(vec3 Ld, float d2, float inv_r2, vec3 N, float inv_md2, out 
     float rs = inversesqrt(d2);           // 1/d: +Inf at d = 0 (or d^2 flushed to 0)
     bool dir = rs <= 3.40282347e+38;      // false: the light is on the point, taken as head-on (L = N)
     att = falloff * min(rs * rs, inv_md2);
-#ifdef PG_BLINN_PHONG
+#if defined(PG_BLINN_PHONG) || defined(PG_PBR)
     L = dir ? Ld * rs : N;
     float ndl = max(dot(N, L), 0.0);
 #else
@@ -111,8 +194,12 @@ void pg_accumulate_light_rel(vec3 rel, float R2, float inv_r2, vec3 color, vec4 
 #ifdef PG_SPOT_LIGHTS
     c *= pg_spot_factor(spot, Ld);
 #endif
+#ifdef PG_PBR
+    if (w > 0.0) pg_light_pbr(c, att, L, N, V, shininess, acc);
+#else
     acc.diffuse += c * w;
     pg_light_specular(c, att, L, N, V, shininess, acc);
+#endif
 }
 
 // The same sum without a branch: a light out of range adds exactly 0.
@@ -129,8 +216,12 @@ void pg_accumulate_light_rel_select(vec3 rel, float R2, float inv_r2, vec3 color
 #ifdef PG_SPOT_LIGHTS
     c *= pg_spot_factor(spot, Ld);
 #endif
+#ifdef PG_PBR
+    if (in_range && w > 0.0) pg_light_pbr(c, att, L, N, V, shininess, acc);
+#else
     acc.diffuse += c * (in_range ? w : 0.0);
     if (in_range) pg_light_specular(c, att, L, N, V, shininess, acc);
+#endif
 }
 
 // P is camera-relative (world - cam); the light is moved into the same frame first.
@@ -149,7 +240,33 @@ void pg_accumulate_light(Light light, vec4 spot, vec3 cam, vec3 P, vec3 N, vec3 
 
 // The colour of a shaded point from its summed light terms: every shading pass ends with this
 // (shading.glsl, reference_lighting.comp), so they combine with the same operations.
+// PG_PBR: the ambient term is a uniform environment of that radiance, with the split-sum
+// integral of the specular lobe taken as F0 (c_diff + F0) and scaled by the occlusion texture.
 vec3 pg_shade_combine(Surface s, PgShade acc, vec3 ambient)
 {
+#ifdef PG_PBR
+    vec3 f0 = mix(vec3(0.04), s.albedo, s.specular);
+    vec3 cdiff = s.albedo * (1.0 - s.specular);
+    // precise: no fused multiply-adds, so a pass where occlusion or the lit weight is a constant
+    // (forward without occlusion textures) rounds exactly as one that reads them (the reference)
+    precise vec3 c = cdiff * (1.0 - f0) * acc.diffuse + f0 * acc.specular + pg_pbr_lit(s) * acc.fresnel +
+                     (cdiff + f0) * (ambient * max(s.occlusion, 0.0)) + s.emissive;
+    return c;
+#else
     return s.albedo * (acc.diffuse + ambient) + s.specular * acc.specular + s.emissive;
+#endif
+}
+
+// The lights' part of that colour (no ambient, no emission): one light's contribution (RIS,
+// lightcut).
+vec3 pg_shade_lights(Surface s, PgShade acc)
+{
+#ifdef PG_PBR
+    vec3 f0 = mix(vec3(0.04), s.albedo, s.specular);
+    vec3 cdiff = s.albedo * (1.0 - s.specular);
+    precise vec3 c = cdiff * (1.0 - f0) * acc.diffuse + f0 * acc.specular + pg_pbr_lit(s) * acc.fresnel;
+    return c;
+#else
+    return s.albedo * acc.diffuse + s.specular * acc.specular;
+#endif
 }

@@ -9,7 +9,7 @@
 // lights cooperatively, one per thread, then every thread walks the tile in order; one barrier
 // pair per tile. A dispatch covers the lights [pc.first, pc.end). The pass splits large light
 // counts over several dispatches (renderer/passes/reference_lighting.c); the running sums then wait in
-// rgba32f images (acc_diffuse, and acc_specular for Blinn-Phong), fp32 like the registers they
+// rgba32f images (acc_diffuse, acc_specular for Blinn-Phong and pbr, acc_fresnel for pbr), fp32 like the registers they
 // come from, so splitting does not change a bit. pc.mode bits: 1 = start from the sums stored
 // there (else from 0), 2 = store the sums and stop (else combine and write the HDR pixel).
 // Background pixels (position.w == 0) are black with alpha 1, as forward clears them.
@@ -45,12 +45,17 @@ layout(set = 1, binding = 2) uniform sampler2D g_albedo;   // rgb albedo, a spec
 layout(set = 1, binding = 3, PG_HDR_FORMAT) uniform writeonly image2D hdr_out;
 #ifdef PG_REFERENCE_ACCUM
 layout(set = 1, binding = 4, rgba32f) uniform image2D acc_diffuse; // running diffuse sum (rgb)
-#ifdef PG_BLINN_PHONG
+#if defined(PG_BLINN_PHONG) || defined(PG_PBR)
 layout(set = 1, binding = 5, rgba32f) uniform image2D acc_specular; // running specular sum (rgb)
+#endif
+#ifdef PG_PBR
+layout(set = 1, binding = 6, rgba32f) uniform image2D acc_fresnel; // running Fresnel sum (rgb)
 #endif
 #endif
 #ifdef PG_REFERENCE_EMISSIVE
-#if defined(PG_REFERENCE_ACCUM) && defined(PG_BLINN_PHONG)
+#if defined(PG_REFERENCE_ACCUM) && defined(PG_PBR)
+#define EMISSIVE_BINDING 7
+#elif defined(PG_REFERENCE_ACCUM) && defined(PG_BLINN_PHONG)
 #define EMISSIVE_BINDING 6
 #elif defined(PG_REFERENCE_ACCUM)
 #define EMISSIVE_BINDING 5
@@ -115,6 +120,7 @@ void main()
     s.specular = a.a;
     s.alpha = 1.0;
     s.emissive = vec3(0.0);
+    s.occlusion = pg_gb_occlusion_from_float(p4.w); // the float G-buffer's w (gbuffer.frag; PG_PBR only)
 #ifdef PG_REFERENCE_EMISSIVE
     if (covered) s.emissive = texelFetch(g_emissive, px, 0).rgb;
 #endif
@@ -124,15 +130,16 @@ void main()
     vec3 c = covered ? pg_shade_point(s, P, view_depth, vec2(px) + 0.5) : vec3(0.0);
     imageStore(hdr_out, px, vec4(pg_hdr_sanitize(c), 1.0));
 #else
-    PgShade acc;
-    acc.diffuse = vec3(0.0);
-    acc.specular = vec3(0.0);
+    PgShade acc = pg_shade_zero();
 #ifdef PG_HAS_LIGHTS
 #ifdef PG_REFERENCE_ACCUM
     if ((pc.mode & 1u) != 0u && covered) {
         acc.diffuse = imageLoad(acc_diffuse, px).rgb;
-#ifdef PG_BLINN_PHONG
+#if defined(PG_BLINN_PHONG) || defined(PG_PBR)
         acc.specular = imageLoad(acc_specular, px).rgb;
+#endif
+#ifdef PG_PBR
+        acc.fresnel = imageLoad(acc_fresnel, px).rgb;
 #endif
     }
 #endif
@@ -217,8 +224,11 @@ void main()
         // every pixel is written (0 for background), so no dispatch reads undefined contents
         if (inside) {
             imageStore(acc_diffuse, px, vec4(acc.diffuse, 0.0));
-#ifdef PG_BLINN_PHONG
+#if defined(PG_BLINN_PHONG) || defined(PG_PBR)
             imageStore(acc_specular, px, vec4(acc.specular, 0.0));
+#endif
+#ifdef PG_PBR
+            imageStore(acc_fresnel, px, vec4(acc.fresnel, 0.0));
 #endif
         }
         return;

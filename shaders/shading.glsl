@@ -75,12 +75,10 @@ vec3 pg_light_contribution(Surface s, uint li, vec3 cam, vec3 P, vec3 V, float i
 {
     Light L = lights[li];
     float R2 = L.pos_radius.w * L.pos_radius.w;
-    PgShade one;
-    one.diffuse = vec3(0.0);
-    one.specular = vec3(0.0);
+    PgShade one = pg_shade_zero();
     pg_accumulate_light_rel(L.pos_radius.xyz - cam, R2, pg_light_inv_r2(L.color.w * L.color.w), L.color.rgb,
                             PG_SPOT_OF(li), P, s.normal, V, s.shininess, inv_md2, one);
-    return s.albedo * one.diffuse + s.specular * one.specular;
+    return pg_shade_lights(s, one);
 }
 
 vec3 pg_ris_estimate(Surface s, uvec4 rec, vec3 P, vec3 V, vec2 frag_xy)
@@ -165,7 +163,11 @@ vec3 pg_lc_upper(uint n, Surface s, vec3 P, vec3 cam, float inv_md2, out float d
     float t = dmin2_out / (cw.w * cw.w);
     float falloff = clamp(1.0 - t * t, 0.0, 1.0) * (1.0 + 1e-5) + 1e-6;
     float att = min(dm > 0.0 ? 1.0 / dmin2_out : 3.0e38, inv_md2) * min(falloff, 1.0);
-#ifdef PG_BLINN_PHONG
+#if defined(PG_PBR)
+    // (1 - F0)(1 - w) <= 1, F0 (1 - w) + w <= 1 and pi D V N.L <= 0.5 / a^3 (lighting.glsl)
+    float a = pg_pbr_alpha(s.shininess);
+    return c * (att * (s.albedo * (1.0 - s.specular) * cos_max + vec3(0.5 / (a * a * a))));
+#elif defined(PG_BLINN_PHONG)
     return c * (att * (s.albedo * cos_max + vec3(s.specular)));
 #else
     return c * (att * cos_max) * s.albedo;
@@ -177,12 +179,10 @@ vec3 pg_lc_light(Surface s, vec3 pos, float R, float Rf, vec3 color, vec4 spot, 
                  float inv_md2)
 {
     float R2 = R * R;
-    PgShade one;
-    one.diffuse = vec3(0.0);
-    one.specular = vec3(0.0);
+    PgShade one = pg_shade_zero();
     pg_accumulate_light_rel(pos - cam, R2, pg_light_inv_r2(Rf * Rf), color, spot, P, s.normal, V, s.shininess, inv_md2,
                             one);
-    return s.albedo * one.diffuse + s.specular * one.specular;
+    return pg_shade_lights(s, one);
 }
 
 vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
@@ -244,9 +244,7 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 {
     vec3 V = PG_VIEW_DIR(P);
     vec3 cam = frame.camera_pos.xyz;
-    PgShade acc;
-    acc.diffuse = vec3(0.0);
-    acc.specular = vec3(0.0);
+    PgShade acc = pg_shade_zero();
 #if defined(PG_CLUSTERED)
     uvec3 grid = uvec3(GRID_X, GRID_Y, GRID_Z);
     uvec3 cc = pg_cluster_coord(frag_xy, vec2(frame.counts.zw), view_depth, frame.clip.x, frame.clip.y, grid);
@@ -353,9 +351,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
     vec3 cam = frame.camera_pos.xyz;
     float min_dist = frame.light_params.w;
     float inv_md2 = 1.0 / (min_dist * min_dist);
-    PgShade acc;
-    acc.diffuse = vec3(0.0);
-    acc.specular = vec3(0.0);
+    PgShade acc = pg_shade_zero();
     uvec3 grid = uvec3(GRID_X, GRID_Y, GRID_Z);
     uint ci = 0xffffffffu;
     if (lit) ci = pg_cluster_index(pg_cluster_coord(frag_xy, vec2(frame.counts.zw), view_depth, frame.clip.x,

@@ -7,6 +7,10 @@
 //   PG_UV1             textures may read TEXCOORD_1 (vertex stream 2)
 //   PG_UV_TRANSFORM    KHR_texture_transform matrices per texture slot
 //   PG_EMISSIVE        emissive factor and texture
+//   PG_PBR             the glTF metallic-roughness model: specular = metallic, shininess = roughness,
+//                      occlusion (lighting.glsl); with PG_METALLIC_ROUGHNESS_TEXTURES and
+//                      PG_OCCLUSION_TEXTURES their textures
+//   PG_UNLIT           KHR_materials_unlit materials: emissive = base colour, nothing else lit
 //   TEXTURE_COUNT      size of the scene's texture array
 // Every texture is sampled with textureGrad and SurfaceInput.duv0/duv1, the screen-space
 // derivatives of TEXCOORD_0/1 taken before any branch (fragment shaders: dFdx/dFdy in
@@ -36,6 +40,8 @@ layout(push_constant) uniform DrawPush { uint material; float ambient; } draw;
 const int PG_SLOT_BASE = 0;
 const int PG_SLOT_NORMAL = 1;
 const int PG_SLOT_EMISSIVE = 2;
+const int PG_SLOT_METALLIC_ROUGHNESS = 3;
+const int PG_SLOT_OCCLUSION = 4;
 
 // The texture coordinate a slot of material m reads: TEXCOORD_0 or _1, then its transform.
 vec2 pg_slot_uv(GpuMaterial m, int slot, SurfaceInput si)
@@ -132,13 +138,44 @@ Surface pg_surface_material(SurfaceInput si, uint material)
     s.albedo = base.rgb;
     s.alpha = base.a;
     s.normal = N;
+    s.occlusion = 1.0;
+#ifdef PG_PBR
+    float metallic = m.pbr.x, roughness = m.pbr.y;
+#ifdef PG_METALLIC_ROUGHNESS_TEXTURES
+    vec4 tmr = pg_slot_sample(m.tex3.x >= 0, m.tex3.x, m, PG_SLOT_METALLIC_ROUGHNESS, si);
+    if (m.tex3.x >= 0) {     // the glTF channels: G roughness, B metallic
+        roughness *= tmr.g;
+        metallic *= tmr.b;
+    }
+#endif
+#ifdef PG_OCCLUSION_TEXTURES
+    vec4 tao = pg_slot_sample(m.tex3.y >= 0, m.tex3.y, m, PG_SLOT_OCCLUSION, si);
+    if (m.tex3.y >= 0) s.occlusion = 1.0 + m.pbr.z * (tao.r - 1.0); // the glTF strength
+#endif
+    s.specular = metallic;
+    s.shininess = roughness;
+#else
     s.specular = m.params.z;
     s.shininess = m.params.w;
+#endif
     s.emissive = vec3(0.0);
 #ifdef PG_EMISSIVE
     s.emissive = m.emissive.rgb;
     vec4 te = pg_slot_sample(m.tex2.x >= 0, m.tex2.x, m, PG_SLOT_EMISSIVE, si);
     if (m.tex2.x >= 0) s.emissive *= te.rgb;
+#endif
+#ifdef PG_UNLIT
+    if (m.pbr.w > 0.5) { // KHR_materials_unlit: the base colour is the result (an emission, no light)
+        s.emissive = base.rgb;
+        s.albedo = vec3(0.0);
+#ifdef PG_PBR
+        s.specular = 1.0; // a black metal: F0 = 0, c_diff = 0; occlusion < 0 drops the Fresnel sum too
+        s.shininess = 1.0;
+        s.occlusion = -1.0;
+#else
+        s.specular = 0.0;
+#endif
+    }
 #endif
     return s;
 }

@@ -42,7 +42,12 @@ void main()
         float view_depth = -PG_REL_TO_VIEW(P).z;
         g = uvec4(pg_oct_pack_unorm16(s.normal),
                   packUnorm4x8(vec4(pg_srgb_encode(s.albedo), clamp(s.specular, 0.0, 1.0))),
-                  floatBitsToUint(s.shininess), floatBitsToUint(view_depth));
+#ifdef PG_PBR
+                  packUnorm2x16(vec2(s.shininess, pg_gb_occlusion_unorm(s.occlusion))), // roughness, occlusion
+#else
+                  floatBitsToUint(s.shininess),
+#endif
+                  floatBitsToUint(view_depth));
         emissive = s.emissive;
     }
     imageStore(g_packed, px, g);

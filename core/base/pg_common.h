@@ -71,7 +71,7 @@ const char *pg_result_name(pg_result r);
 #define PG_MAX_AFTER 8
 #define PG_MAX_ENUM_VALUES 12
 #define PG_MAX_COUNT_TERMS 4
-#define PG_MAX_EXPLAIN 128       /* explanation lines in a compiled graph */
+#define PG_MAX_EXPLAIN 256       /* explanation lines in a compiled graph */
 #define PG_EXPLAIN_MAX 256
 #define PG_MAX_BARRIERS_PER_PASS 24
 

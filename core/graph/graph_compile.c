@@ -194,7 +194,6 @@ static pg_result phase_declare(compile_ctx *c)
                            lists_runtime && !pp->decl.n_runtime_params
                                ? "lists run-time options but marks no run-time field of its params"
                                : "marks more run-time fields than PG_MAX_RUNTIME_PARAMS");
-        if (pp->decl.n_explain > 8) pp->decl.n_explain = 8;
     }
     return PG_OK;
 }
@@ -410,7 +409,7 @@ static void collect_explain(compile_ctx *c)
                         plan->resources[r].cull_reason);
     for (uint32_t k = 0; k < plan->n_order; k++) {
         const pg_plan_pass *pp = &plan->passes[plan->order[k]];
-        for (uint32_t e = 0; e < pp->decl.n_explain && e < 8; e++)
+        for (uint32_t e = 0; e < pp->decl.n_explain && e < PG_MAX_PASS_EXPLAIN; e++)
             pg_gc_add_explain(plan, "%s: %s", pp->name, pp->decl.explain[e]);
     }
 }

@@ -18,7 +18,12 @@ static const struct {
     {"has_uv_transform", offsetof(pg_scene_features, has_uv_transform)},
     {"has_file_lights", offsetof(pg_scene_features, has_file_lights)},
     {"has_spot_lights", offsetof(pg_scene_features, has_spot_lights)},
+    {"has_metallic_roughness_tex", offsetof(pg_scene_features, has_metallic_roughness_tex)},
+    {"has_occlusion_tex", offsetof(pg_scene_features, has_occlusion_tex)},
+    {"has_unlit", offsetof(pg_scene_features, has_unlit)},
 };
+#define PG_VAR_AUTO_SHADING "auto_shading"
+
 #define N_FEATURES (sizeof k_features / sizeof k_features[0])
 
 pg_result pg_scene_vars_set(pg_compile_vars *vars, const pg_scene_features *features, uint32_t lights,
@@ -31,6 +36,7 @@ pg_result pg_scene_vars_set(pg_compile_vars *vars, const pg_scene_features *feat
         const bool on = features && *(const bool *)((const char *)features + k_features[i].offset);
         r = pg_vars_set(vars, k_features[i].name, on, err);
     }
+    if (!r) r = pg_vars_set(vars, PG_VAR_AUTO_SHADING, features ? features->auto_shading : PG_SHADING_LAMBERT, err);
     return r;
 }
 
@@ -39,5 +45,7 @@ pg_scene_features pg_scene_features_of(const pg_declare_in *in)
     pg_scene_features f = {0};
     for (size_t i = 0; i < N_FEATURES; i++)
         *(bool *)((char *)&f + k_features[i].offset) = pg_var(in, k_features[i].name) != 0;
+    int64_t a = pg_var(in, PG_VAR_AUTO_SHADING);
+    f.auto_shading = (uint8_t)(a == PG_SHADING_BLINN_PHONG || a == PG_SHADING_PBR ? a : PG_SHADING_LAMBERT);
     return f;
 }

@@ -15,9 +15,11 @@ extern "C" {
                                   count, twice it in a scene with spot lights (each light's spot
                                   record follows the lights: lights[count + i], lighting.glsl) */
 
-/* Sets "lights" and one 0/1 variable per scene feature ("has_textures", "has_normal_maps",
+/* Sets "lights", one 0/1 variable per scene feature ("has_textures", "has_normal_maps",
  * "has_alpha_mask", "has_blend", "has_emissive", "has_vertex_colors", "has_uv1",
- * "has_uv_transform", "has_file_lights", "has_spot_lights"); features may be NULL (none). */
+ * "has_uv_transform", "has_file_lights", "has_spot_lights", "has_metallic_roughness_tex",
+ * "has_occlusion_tex", "has_unlit") and "auto_shading" (PG_SHADING_*, the model shading "auto"
+ * picks); features may be NULL (none: Lambert). */
 pg_result pg_scene_vars_set(pg_compile_vars *vars, const pg_scene_features *features, uint32_t lights,
                             pg_error *err);
 /* In declare(): the scene features the caller set (missing variables read as false). */

@@ -7,7 +7,36 @@
 
 const char *const pg_debug_views[] = {"none",     "cluster_heat", "cluster_x", "cluster_y", "cluster_z",
                                       "overflow", "albedo",       "normal",    "depth",     NULL};
-static const char *const k_shading[] = {"lambert", "blinn_phong", NULL};
+const char *const pg_shading_models[] = {"lambert", "blinn_phong", "pbr", "auto", NULL};
+
+int pg_shading_model(const pg_declare_in *in, int option)
+{
+    return option == PG_SHADING_AUTO ? pg_scene_features_of(in).auto_shading : option;
+}
+
+void pg_material_model_declare(const pg_declare_in *in, pg_pass_decl *out, int option)
+{
+    const pg_scene_features f = pg_scene_features_of(in);
+    const int model = pg_shading_model(in, option);
+    if (option == PG_SHADING_AUTO)
+        pg_decl_explain(out, "shading auto: %s (%s)", pg_shading_models[model],
+                        model == PG_SHADING_PBR ? "the scene's glTF metallic-roughness materials"
+                        : f.auto_shading == PG_SHADING_LAMBERT ? "a generated scene, or a scenario's choice"
+                                                               : "the scenario's choice");
+    if (model == PG_SHADING_BLINN_PHONG) pg_decl_define(out, "PG_BLINN_PHONG");
+    if (model == PG_SHADING_PBR) {
+        pg_decl_define(out, "PG_PBR");
+        if (f.has_metallic_roughness_tex) pg_decl_define(out, "PG_METALLIC_ROUGHNESS_TEXTURES");
+        else pg_decl_explain(out, "no metallicRoughnessTexture: its sampling compiled out");
+        if (f.has_occlusion_tex) pg_decl_define(out, "PG_OCCLUSION_TEXTURES");
+        else pg_decl_explain(out, "no occlusionTexture: its sampling compiled out");
+    } else if (f.has_metallic_roughness_tex || f.has_occlusion_tex) {
+        pg_decl_explain(out, "shading %s: the metallic-roughness and occlusion textures are not read (the pbr model "
+                             "reads them)",
+                        pg_shading_models[model]);
+    }
+    if (f.has_unlit) pg_decl_define(out, "PG_UNLIT");
+}
 
 pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const char *const *extra_known,
                                pg_shading_params *sp, pg_error *err)
@@ -24,7 +53,7 @@ pg_result pg_shading_opts_read(const pg_pass_desc *desc, bool clustered, const c
     pg_result r;
     memset(o, 0, sizeof *o);
     if ((r = pg_opt_check_known(desc, known, err))) return r;
-    if ((r = pg_opt_enum(desc, "shading", k_shading, 0, &o->shading, err))) return r;
+    if ((r = pg_opt_enum(desc, "shading", pg_shading_models, PG_SHADING_AUTO, &o->shading, err))) return r;
     if ((r = pg_opt_float(desc, "ambient", 0.0, 0.0, 1e6, &o->ambient, err))) return r;
     sp->ambient = (float)o->ambient;
     if ((r = pg_opt_enum(desc, "view", pg_debug_views, 0, &o->view, err))) return r;
@@ -49,7 +78,7 @@ void pg_shading_declare(pg_shading_params *sp, const pg_declare_in *in, pg_pass_
     const bool clustered = sp->clustered;
     pg_decl_runtime_param(out, &sp->ambient, sizeof sp->ambient); /* pg_shading_runtime_options */
     pg_decl_runtime_param(out, &sp->o.ambient, sizeof sp->o.ambient);
-    if (o->shading == 1) pg_decl_define(out, "PG_BLINN_PHONG");
+    pg_material_model_declare(in, out, o->shading);
     if (pg_scene_features_of(in).has_file_lights) pg_decl_define(out, "PG_GLTF_FALLOFF");
     if (pg_scene_features_of(in).has_spot_lights) pg_decl_define(out, "PG_SPOT_LIGHTS");
     if (o->view) {

@@ -1,7 +1,9 @@
 /* shading_common.h - options, variant defines and the light descriptor set shared by the
  * shading passes (forward_naive, forward_plus, deferred_lighting).
  *
- * Options: shading "lambert" | "blinn_phong"; ambient >= 0; view (debug view: none,
+ * Options: shading "lambert" | "blinn_phong" | "pbr" | "auto" (default: pbr for a glTF file's
+ * materials, lambert for the generated scenes, a scenario's "shading" where it gives one:
+ * scene features auto_shading); ambient >= 0; view (debug view: none,
  * cluster_heat, cluster_x, cluster_y, cluster_z, overflow, albedo, normal, depth). The cluster
  * grid of a clustered pass is no option: it is the count of the resource bound to its
  * cluster_counts slot (pg_shading_grid_declare).
@@ -18,13 +20,23 @@
 #include "vk_pipeline.h"
 
 typedef struct pg_shading_opts {
-    int shading;         /* 0 lambert, 1 blinn_phong */
+    int shading;         /* PG_SHADING_*: the option as given (PG_SHADING_AUTO resolved by
+                            pg_shading_model) */
     double ambient;
     int view;            /* index into pg_debug_views */
     uint32_t grid[3];    /* clustered: the cluster grid (pg_shading_grid_declare) */
 } pg_shading_opts;
 
 extern const char *const pg_debug_views[]; /* NULL-terminated */
+extern const char *const pg_shading_models[]; /* indexed by PG_SHADING_*, NULL-terminated */
+
+/* The light model of a shading option (PG_SHADING_AUTO: the scene's features.auto_shading). */
+int pg_shading_model(const pg_declare_in *in, int option);
+/* The material variant of a light model: PG_BLINN_PHONG, or PG_PBR with the metallic-roughness and
+ * occlusion textures the scene has (PG_METALLIC_ROUGHNESS_TEXTURES, PG_OCCLUSION_TEXTURES), and
+ * PG_UNLIT when a material is unlit; explanations for what is left out. The shading passes and
+ * the gbuffer pass (whose layout stores the model's values) call it. */
+void pg_material_model_declare(const pg_declare_in *in, pg_pass_decl *out, int option);
 
 /* The shading options and light slots a shading pass keeps in its params block (embedded in the
  * pass's own params): filled by declare (pg_shading_opts_read, the handles, pg_shading_declare),

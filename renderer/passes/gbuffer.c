@@ -8,6 +8,10 @@
  * Options: packing "float" | "oct16" | "packed" (default float). Only the targets the variant
  * uses are bound, allocated and written (the deferred pipelines declare the others under a
  * `when` that drops them).
+ *          shading: the light model whose values the layout stores (pg_shading_models, default
+ *          auto; the deferred_lighting pass reading the targets must have the same: the shipped
+ *          pipelines give both "$shading"): pbr stores metallic and roughness where the others
+ *          store specular and shininess, and the occlusion (gbuffer.frag).
  *          position_space "world" (default) | "camera", float packing only: what the position
  *          target holds. "world" is the classic layout (deferred_lighting subtracts the camera
  *          again, which rounds); "camera" stores the interpolated camera-relative position the
@@ -34,12 +38,13 @@ typedef struct gbuffer_pass {
 
 static const char *const k_spaces[] = {"world", "camera", NULL};
 
-/* packing, and position_space (0 world, 1 camera; camera only with the float packing) */
-static pg_result gb_options(const pg_pass_desc *desc, int *packing, int *space, pg_error *err)
+/* packing, position_space (0 world, 1 camera; camera only with the float packing) and shading */
+static pg_result gb_options(const pg_pass_desc *desc, int *packing, int *space, int *shading, pg_error *err)
 {
-    static const char *const known[] = {"packing", "position_space", NULL};
+    static const char *const known[] = {"packing", "position_space", "shading", NULL};
     pg_result r;
     if ((r = pg_opt_check_known(desc, known, err))) return r;
+    if ((r = pg_opt_enum(desc, "shading", pg_shading_models, PG_SHADING_AUTO, shading, err))) return r;
     if ((r = pg_opt_enum(desc, "packing", pg_gbuffer_packings, 0, packing, err))) return r;
     if ((r = pg_opt_enum(desc, "position_space", k_spaces, 0, space, err))) return r;
     if (*packing == PG_GBUFFER_VISIBILITY)
@@ -59,8 +64,8 @@ static pg_result gb_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
 {
     gb_params *p = pg_decl_params(out, sizeof *p);
     pg_result r;
-    int packing, space;
-    if ((r = gb_options(in->desc, &packing, &space, err))) return r;
+    int packing, space, shading;
+    if ((r = gb_options(in->desc, &packing, &space, &shading, err))) return r;
     p->packing = packing;
     for (uint32_t t = 0; t < pg_gbuffer_targets[packing]; t++)
         p->targets[t] = pg_decl_write(out, pg_gbuffer_slot_names[packing][t], PG_RES_IMAGE, PG_ACCESS_COLOR_WRITE, PG_STAGE_FRAGMENT,
@@ -71,6 +76,7 @@ static pg_result gb_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     pg_decl_define(out, pg_gbuffer_defines[packing]);
     if (space == 1) pg_decl_define(out, "PG_GBUFFER_CAMERA_POSITION");
     if (emissive) pg_decl_define(out, "PG_GBUFFER_EMISSIVE");
+    pg_material_model_declare(in, out, shading);
     pg_scene_draw_declare_features(in, out, &p->draw);
     return PG_OK;
 }

@@ -6,7 +6,8 @@
  * Slots: reads [vis_id (r32ui)]; writes [packed (rgba32ui storage, every pixel written: zeros where
  *        nothing is drawn), emissive (optional, rgba16f storage; unused - not allocated - without
  *        emissive materials; not bound: no emission, explain line)].
- * No options. */
+ * Options: shading (the light model whose values the packed layout stores, as gbuffer's; default
+ * auto). */
 #include <stdio.h>
 #include <string.h>
 
@@ -32,10 +33,13 @@ typedef struct visibility_resolve {
 
 static pg_result vr_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
-    static const char *const known[] = {NULL};
+    static const char *const known[] = {"shading", NULL};
     vr_params *p = pg_decl_params(out, sizeof *p);
     pg_result r;
+    int shading;
     if ((r = pg_opt_check_known(in->desc, known, err))) return r;
+    if ((r = pg_opt_enum(in->desc, "shading", pg_shading_models, PG_SHADING_AUTO, &shading, err))) return r;
+    pg_material_model_declare(in, out, shading);
     p->vis_id = pg_decl_read(out, "vis_id", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_UINT);
     p->packed = pg_decl_write(out, "packed", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_UINT);
     char where[32];

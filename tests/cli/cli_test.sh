@@ -524,7 +524,7 @@ camline --scene "$objs/cube.gltf" --scenario "$root/assets/scenarios/cis565.json
 # --explain names the shading model and the environment; a file with several glTF scenes gets a
 # line, --gltf-scene picks one, out of range is an error naming the count
 "$PG" render --size 64x36 --lights 8 --explain --scene "$objs/two_scenes.gltf" --out "$tmp/c.png" >"$tmp/cl" 2>"$tmp/cerr" &&
-  grep -q "^explain: shading: lambert$" "$tmp/cl" && grep -q "^explain: environment: none" "$tmp/cl" &&
+  grep -q "^explain: shading: auto -> pbr (the glTF metallic-roughness BRDF) (a glTF file's materials)$" "$tmp/cl" && grep -q "^explain: environment: none" "$tmp/cl" &&
   grep -q "^explain: scene: .*two_scenes.gltf has 2 scenes; drawing scene 0 'small' (the file's default); --gltf-scene N draws another$" "$tmp/cl" &&
   grep -q "^passgraph: .*two_scenes.gltf has 2 scenes; drawing scene 0 'small'" "$tmp/cerr" \
   && ok || { bad "two_scenes: explain shading/environment/scene lines"; cat "$tmp/cl" "$tmp/cerr"; }
@@ -624,7 +624,7 @@ expect_fail "--scene an OBJ file" "$gcorp/cube.obj: not a glTF 2.0 file (passgra
   render --scene "$gcorp/cube.obj" --size 32x18 --lights 4 --out "$tmp/x.png"
 expect_fail "--scene a glTF 1.0 file" "glTF 1.0 is not supported, only 2.0" \
   render --scene "$gcorp/version_1.gltf" --size 32x18 --lights 4 --out "$tmp/x.png"
-expect_fail "--scene: an unsupported required extension" "extensionsRequired: 'EXT_made_up' is not supported (passgraph implements only these glTF extensions: EXT_meshopt_compression, KHR_draco_mesh_compression, KHR_lights_punctual, KHR_materials_emissive_strength, KHR_mesh_quantization, KHR_texture_transform, PASSGRAPH_lights_table)" \
+expect_fail "--scene: an unsupported required extension" "extensionsRequired: 'EXT_made_up' is not supported (passgraph implements only these glTF extensions: EXT_meshopt_compression, KHR_draco_mesh_compression, KHR_lights_punctual, KHR_materials_emissive_strength, KHR_materials_unlit, KHR_mesh_quantization, KHR_texture_transform, PASSGRAPH_lights_table)" \
   render --scene "$gcorp/required_made_up.gltf" --size 32x18 --lights 4 --out "$tmp/x.png"
 expect_fail "--out .bmp" "--out $tmp/x.bmp: unsupported image extension '.bmp' (accepted: .png, .jpg, .jpeg, .exr)" \
   render --size 32x18 --lights 4 --out "$tmp/x.bmp"

@@ -40,7 +40,9 @@ static bool load(const char *name, pg_scene **scene, pg_scene_gpu **sg)
     pg_error err = {0};
     *scene = NULL;
     *sg = NULL;
-    if (pg_scene_load(path, scene, &err) || pg_scene_gpu_create(g_gpu, *scene, sg, &err)) {
+    if (!pg_scene_load(path, scene, &err)) /* the blending arithmetic is checked on Lambert's albedo x ambient */
+        (*scene)->features.auto_shading = PG_SHADING_LAMBERT;
+    if (!*scene || pg_scene_gpu_create(g_gpu, *scene, sg, &err)) {
         CHECK_MSG(0, "%s: %s", name, err.msg);
         pg_scene_free(*scene);
         *scene = NULL;

@@ -1,7 +1,8 @@
 /* test_gpu_file_lights.c - a scene file's own KHR_lights_punctual lights light it
  * (tests/corpus/gltf/lights/, gen_lights.py), on the Vulkan device with the validation layer and
  * synchronization validation on (zero messages), 160x90, the default object view (the floor is
- * flat: seen from above):
+ * flat: seen from above), Lambert shading (the scene's "auto" model set so; the pbr BRDF under
+ * these lights is test_gpu_pbr's):
  *  1. rgb_points.gltf: three coloured point lights (red with range 4, green and blue without).
  *     The reference (rgba32f, reach infinite) equals a CPU evaluation of the extension's model at
  *     the floor point under each pixel centre (colour x intensity / pi, x N.L, x the window
@@ -39,58 +40,27 @@
 static pg_gpu *g_gpu;
 static pg_pass_registry g_reg;
 
-typedef struct loaded {
-    pg_scene *scene;
-    pg_scene_gpu *sg;
-    pg_frame_info fi;
-} loaded;
+typedef pg_th_scene loaded;
 
 static bool load(const char *file, loaded *out)
 {
     char path[PG_PATH_MAX];
-    snprintf(path, sizeof path, "%s/corpus/gltf/lights/%s", PG_TEST_DIR, file);
-    pg_error err = {0};
-    memset(out, 0, sizeof *out);
-    if (pg_scene_load(path, &out->scene, &err) || pg_scene_gpu_create(g_gpu, out->scene, &out->sg, &err)) {
-        CHECK_MSG(0, "%s: %s", file, err.msg);
-        pg_scene_free(out->scene);
-        out->scene = NULL;
-        return false;
-    }
-    pg_frame_info fi = {.time = 0, .width = W, .height = H};
-    char cw[256], lw[256];
-    if (pg_scene_default_view(out->scene, NULL, (float)W / H, 0, 1, &fi.camera, &fi.lights, cw, sizeof cw, lw,
-                              sizeof lw, &err))
-        CHECK_MSG(0, "%s: default view: %s", file, err.msg);
-    fi.lights.count = fi.lights.file_count = out->scene->n_lights; /* the file's lights alone */
-    out->fi = fi;
-    return true;
+    snprintf(path, sizeof path, "%s/%s", "lights", file);
+    /* the extension's light model with Lambert's BRDF (pbr: test_gpu_pbr) */
+    return pg_th_file_open(g_gpu, path, W, H, PG_SHADING_LAMBERT, out);
 }
 
 static void unload(loaded *l)
 {
-    if (l->sg) pg_scene_gpu_destroy(g_gpu, l->sg);
-    pg_scene_free(l->scene);
+    pg_th_scene_close(g_gpu, l);
 }
 
 /* the floor point (y = 0) under pixel (x, y)'s centre; false when the ray misses the floor or
  * (box) first meets the unit box of sun.gltf (-0.5..0.5, 0..1, -0.5..0.5) */
 static bool floor_point_ex(const pg_frame_info *fi, uint32_t x, uint32_t y, bool box, double p[3])
 {
-    pg_camera cam = fi->camera;
-    cam.aspect = (float)W / H;
-    float V[16], P[16], VP[16], inv[16];
-    pg_camera_view(&cam, V);
-    pg_camera_proj(&cam, P);
-    pg_mat4_mul(P, V, VP);
-    pg_mat4_invert(VP, inv);
-    double ndc[2] = {(x + 0.5) / W * 2 - 1, (y + 0.5) / H * 2 - 1}, a[3], b[3];
-    for (int e = 0; e < 2; e++) {
-        double z = e ? 1.0 : 0.0, h[4];
-        for (int r = 0; r < 4; r++)
-            h[r] = inv[0 * 4 + r] * ndc[0] + inv[1 * 4 + r] * ndc[1] + inv[2 * 4 + r] * z + inv[3 * 4 + r];
-        for (int k = 0; k < 3; k++) (e ? b : a)[k] = h[k] / h[3];
-    }
+    double a[3], b[3];
+    pg_th_pixel_ray(fi, x, y, a, b);
     if (!(fabs(b[1] - a[1]) > 1e-12)) return false;
     double t = -a[1] / (b[1] - a[1]);
     for (int k = 0; k < 3; k++) p[k] = a[k] + t * (b[k] - a[k]);
@@ -184,38 +154,11 @@ static uint32_t ref_vs_cpu(const char *label, const loaded *l, const pg_th_frame
     return n;
 }
 
-/* every deterministic pipeline against the reference: its documented per-pixel bound (A |ref| +
- * B peak: accuracy_bounds.h; the lightcut's stated 2%) plus the rgba16f rounding (2e-3 |ref|) and
- * the cut-off of two unranged lights (2 x 1e-4 x albedo) */
+/* every deterministic pipeline against the reference (pg_th_pipelines_vs_ref) with the cut-off of two
+ * unranged lights (2 x 1e-4 x albedo) */
 static void pipelines_vs_ref(const char *label, const loaded *l, const pg_th_frame *ref)
 {
-    static const struct {
-        const char *path;
-        double a, b;
-    } pipes[] = {{"pipelines/naive.json", 0, 0},
-                 {"pipelines/forward_plus.json", 0, 0},
-                 {"pipelines/deferred.json", FLOAT_PX_A, FLOAT_PX_B},
-                 {"pipelines/deferred_oct16.json", OCT16_PX_A, OCT16_PX_B},
-                 {"pipelines/deferred_packed.json", PACKED_PX_A, PACKED_PX_B},
-                 {"pipelines/visibility.json", VIS_PX_A, VIS_PX_B},
-                 {"pipelines/lightcut.json", 0.02, 0}};
-    double peak = 0;
-    for (size_t i = 0; i < (size_t)W * H * 4; i++)
-        if (i % 4 != 3) peak = fmax(peak, ref->hdr[i]);
-    for (size_t k = 0; k < sizeof pipes / sizeof pipes[0]; k++) {
-        pg_th_frame f;
-        if (!render(l, pipes[k].path, NULL, 0, &f)) continue;
-        double over = 0;
-        for (size_t i = 0; i < (size_t)W * H; i++)
-            for (int c = 0; c < 3; c++) {
-                double r = ref->hdr[i * 4 + c], d = fabs(f.hdr[i * 4 + c] - r);
-                double bound = (pipes[k].a + 2e-3) * fabs(r) + pipes[k].b * peak + 2 * 1e-4 * ALBEDO + 1e-6;
-                over = fmax(over, d / bound);
-            }
-        printf("%s: %s vs reference: bound usage %.3f\n", label, pipes[k].path, over);
-        CHECK_MSG(over <= 1.0, "%s: %s: %.3f of the bound", label, pipes[k].path, over);
-        pg_th_release(&f);
-    }
+    pg_th_pipelines_vs_ref(g_gpu, &g_reg, l->sg, &l->fi, ref, label, 2 * 1e-4 * ALBEDO);
 }
 
 static void spot(const loaded *l)

@@ -15,7 +15,8 @@
  * assets/scenarios/cis565.json at 320x180 (skipped with the reason when absent). Each against naive
  * in the same HDR format (rgba16f), both resolve paths:
  *   - scenes without textures: every pixel within VIS_PX_A |ref| + VIS_PX_B peak (the surface
- *     point and attributes come from the pixel ray instead of the rasterizer's interpolation);
+ *     point and attributes come from the pixel ray instead of the rasterizer's interpolation;
+ *     VIS_PBR_PX_* for the glTF scenes, which "auto" renders with the pbr model);
  *   - every scene: RMSE <= VIS_RMSE_REL of the peak, display (8-bit) steps <= VIS_DISPLAY_MAX_STEP
  *     and the share of pixels more than one step off <= VIS_DISPLAY_SHARE (the mip level comes
  *     from analytic derivatives instead of the hardware's 2x2 quads: texture filtering differs
@@ -152,11 +153,12 @@ typedef struct vis_err {
     int max_step;
 } vis_err;
 
-static vis_err measure(const pg_th_frame *a, const pg_th_frame *ref, double peak)
+/* pbr: the per-pixel bound of the pbr light model (VIS_PBR_PX_*) */
+static vis_err measure(const pg_th_frame *a, const pg_th_frame *ref, double peak, bool pbr)
 {
     vis_err e = {0};
     double need_a;
-    pg_th_bound_usage(a, ref, peak, VIS_PX_A, VIS_PX_B, &e.px_usage, &need_a);
+    pg_th_bound_usage(a, ref, peak, pbr ? VIS_PBR_PX_A : VIS_PX_A, pbr ? VIS_PBR_PX_B : VIS_PX_B, &e.px_usage, &need_a);
     double sum = 0;
     size_t n = (size_t)a->w * a->h, over = 0;
     for (size_t i = 0; i < n * 4; i++) {
@@ -188,6 +190,7 @@ static bool within(const vis_err *e, bool textured)
 static void check_frame(const char *label, const pg_scene_gpu *sg, const pg_frame_info *fi, bool control)
 {
     bool textured = sg->features.has_textures || sg->features.has_normal_maps;
+    bool pbr = sg->features.auto_shading == PG_SHADING_PBR; /* the model "auto" renders these with */
     pg_param_override shade = {"resolve", "shade"}, gbuf = {"resolve", "gbuffer"};
     pg_th_frame nv, vs, vg, dp;
     memset(&dp, 0, sizeof dp);
@@ -199,10 +202,10 @@ static void check_frame(const char *label, const pg_scene_gpu *sg, const pg_fram
     if (ok) {
         double peak = 0;
         pg_th_max_abs(&vs, &nv, &peak);
-        vis_err es = measure(&vs, &nv, peak), eg = measure(&vg, &dp, peak);
-        printf("%s%s: peak %.4g; shade vs naive: px usage %.3g, rmse %.3g of peak, display max %d, %.3g%% > 1 step; "
+        vis_err es = measure(&vs, &nv, peak, pbr), eg = measure(&vg, &dp, peak, pbr);
+        printf("%s%s%s: peak %.4g; shade vs naive: px usage %.3g, rmse %.3g of peak, display max %d, %.3g%% > 1 step; "
                "gbuffer vs deferred_packed: px usage %.3g, rmse %.3g, display max %d, %.3g%% > 1; passes %s | %s\n",
-               label, textured ? " (textured)" : "", peak, es.px_usage, es.rmse_rel, es.max_step, 100 * es.share,
+               label, textured ? " (textured)" : "", pbr ? " (pbr)" : "", peak, es.px_usage, es.rmse_rel, es.max_step, 100 * es.share,
                eg.px_usage, eg.rmse_rel, eg.max_step, 100 * eg.share, vs.order, vg.order);
         CHECK_MSG(peak > 0, "%s: the image is black", label);
         CHECK_MSG(pg_count_nonfinite(vs.hdr, vs.w, vs.h) == 0 && pg_count_nonfinite(vg.hdr, vg.w, vg.h) == 0,
@@ -213,7 +216,8 @@ static void check_frame(const char *label, const pg_scene_gpu *sg, const pg_fram
         CHECK_MSG(within(&eg, true), "%s: resolve=gbuffer outside its bounds against deferred_packed", label);
         if (!textured) {
             double u = 0, na = 0;
-            pg_th_bound_usage(&vg, &nv, peak, PACKED_PX_A, PACKED_PX_B, &u, &na);
+            pg_th_bound_usage(&vg, &nv, peak, pbr ? VIS_PACKED_PBR_PX_A : PACKED_PX_A, pbr ? VIS_PACKED_PBR_PX_B : PACKED_PX_B,
+                              &u, &na);
             CHECK_MSG(u <= 1.0, "%s: resolve=gbuffer outside the packed bound against naive: usage %g", label, u);
         }
         CHECK_MSG(strstr(vs.order, "visibility,shade") != NULL, "%s: resolve=shade ran %s", label, vs.order);
@@ -228,7 +232,7 @@ static void check_frame(const char *label, const pg_scene_gpu *sg, const pg_fram
             half.lights.count /= 2;
             pg_th_frame h;
             if (pg_th_render(g_gpu, &g_reg, sg, "pipelines/naive.json", NULL, 0, &half, 1, false, &h)) {
-                vis_err ec = measure(&h, &nv, peak);
+                vis_err ec = measure(&h, &nv, peak, pbr);
                 CHECK_MSG(!within(&ec, false) && !within(&ec, true), "control: half the lights inside the bounds");
                 pg_th_release(&h);
             }

@@ -6,7 +6,10 @@
 #include <string.h>
 
 #include "image_util.h"
+#include "accuracy_bounds.h"
+#include "default_view.h"
 #include "scenario.h"
+#include "test_util.h"
 #include "shader.h"
 
 bool pg_th_render(pg_gpu *gpu, const pg_pass_registry *reg, const pg_scene_gpu *sg, const char *pipeline,
@@ -127,6 +130,50 @@ void pg_th_bound_usage(const pg_th_frame *a, const pg_th_frame *ref, double peak
 }
 
 
+void pg_th_pipelines_vs_ref(pg_gpu *gpu, const pg_pass_registry *reg, const pg_scene_gpu *sg, const pg_frame_info *fi,
+                            const pg_th_frame *ref, const char *label, double extra)
+{
+    static const struct {
+        const char *path;
+        double a, b;
+    } pipes[] = {{"pipelines/naive.json", 0, 0},
+                 {"pipelines/forward_plus.json", 0, 0},
+                 {"pipelines/deferred.json", FLOAT_PX_A, FLOAT_PX_B},
+                 {"pipelines/deferred_oct16.json", OCT16_PX_A, OCT16_PX_B},
+                 {"pipelines/deferred_packed.json", PACKED_PX_A, PACKED_PX_B},
+                 {"pipelines/visibility.json", VIS_PX_A, VIS_PX_B},
+                 {"pipelines/lightcut.json", 0.02, 0}};
+    const size_t n = (size_t)ref->w * ref->h;
+    double peak = 0;
+    for (size_t i = 0; i < n * 4; i++)
+        if (i % 4 != 3) peak = fmax(peak, ref->hdr[i]);
+    pg_th_frame naive;
+    memset(&naive, 0, sizeof naive);
+    for (size_t k = 0; k < sizeof pipes / sizeof pipes[0]; k++) {
+        pg_th_frame f;
+        if (!pg_th_render(gpu, reg, sg, pipes[k].path, NULL, 0, fi, 1, false, &f)) {
+            CHECK_MSG(0, "%s: %s: render failed", label, pipes[k].path);
+            continue;
+        }
+        double over = 0;
+        for (size_t i = 0; i < n; i++)
+            for (int c = 0; c < 3; c++) {
+                double r = ref->hdr[i * 4 + c], d = fabs(f.hdr[i * 4 + c] - r);
+                double bound = (pipes[k].a + 2e-3) * fabs(r) + pipes[k].b * peak + extra + 1e-6;
+                over = fmax(over, d / bound);
+            }
+        printf("%s: %s vs reference: bound usage %.3f\n", label, pipes[k].path, over);
+        CHECK_MSG(over <= 1.0, "%s: %s: %.3f of the bound", label, pipes[k].path, over);
+        if (k == 0) {
+            naive = f;
+            continue;
+        }
+        if (k == 1) CHECK_MSG(pg_th_hdr_identical(&f, &naive), "%s: forward_plus is not bit-identical to naive", label);
+        pg_th_release(&f);
+    }
+    pg_th_release(&naive);
+}
+
 bool pg_th_scene_open(pg_gpu *gpu, const char *label, const char *path, const char *scenario, uint32_t w, uint32_t h,
                       uint32_t lights, pg_th_scene *out)
 {
@@ -135,8 +182,10 @@ bool pg_th_scene_open(pg_gpu *gpu, const char *label, const char *path, const ch
     pg_scenario sc;
     char sc_path[PG_PATH_MAX];
     if (scenario) pg_data_path(sc_path, sizeof sc_path, scenario);
-    if ((scenario && pg_scenario_load(sc_path, &sc, &err)) || pg_scene_load(path, &out->scene, &err) ||
-        pg_scene_gpu_create(gpu, out->scene, &out->sg, &err)) {
+    bool loaded = !(scenario && pg_scenario_load(sc_path, &sc, &err)) && !pg_scene_load(path, &out->scene, &err);
+    if (loaded && scenario && pg_scenario_shading(&sc) >= 0) /* as the tools: the scenario's model for "auto" */
+        out->scene->features.auto_shading = (uint8_t)pg_scenario_shading(&sc);
+    if (!loaded || pg_scene_gpu_create(gpu, out->scene, &out->sg, &err)) {
         fprintf(stderr, "%s: %s\n", label, err.msg);
         pg_scene_free(out->scene);
         memset(out, 0, sizeof *out);
@@ -149,6 +198,47 @@ bool pg_th_scene_open(pg_gpu *gpu, const char *label, const char *path, const ch
                               .height = h};
     if (scenario) pg_scenario_apply(&sc, &out->fi.lights, &out->fi.camera);
     out->fi.lights.count = lights;
+    return true;
+}
+
+void pg_th_pixel_ray(const pg_frame_info *fi, uint32_t x, uint32_t y, double a[3], double b[3])
+{
+    pg_camera cam = fi->camera;
+    cam.aspect = (float)fi->width / (float)fi->height;
+    float V[16], P[16], VP[16], inv[16];
+    pg_camera_view(&cam, V);
+    pg_camera_proj(&cam, P);
+    pg_mat4_mul(P, V, VP);
+    pg_mat4_invert(VP, inv);
+    double ndc[2] = {(x + 0.5) / fi->width * 2 - 1, (y + 0.5) / fi->height * 2 - 1};
+    for (int e = 0; e < 2; e++) {
+        double z = e ? 1.0 : 0.0, h[4];
+        for (int r = 0; r < 4; r++)
+            h[r] = inv[0 * 4 + r] * ndc[0] + inv[1 * 4 + r] * ndc[1] + inv[2 * 4 + r] * z + inv[3 * 4 + r];
+        for (int k = 0; k < 3; k++) (e ? b : a)[k] = h[k] / h[3];
+    }
+}
+
+bool pg_th_file_open(pg_gpu *gpu, const char *rel, uint32_t w, uint32_t h, int shading, pg_th_scene *out)
+{
+    char path[PG_PATH_MAX];
+    snprintf(path, sizeof path, "%s/corpus/gltf/%s", PG_TEST_DIR, rel);
+    pg_error err = {0};
+    memset(out, 0, sizeof *out);
+    if (!pg_scene_load(path, &out->scene, &err) && shading >= 0) out->scene->features.auto_shading = (uint8_t)shading;
+    if (!out->scene || pg_scene_gpu_create(gpu, out->scene, &out->sg, &err)) {
+        CHECK_MSG(0, "%s: %s", rel, err.msg);
+        pg_scene_free(out->scene);
+        memset(out, 0, sizeof *out);
+        return false;
+    }
+    pg_frame_info fi = {.time = 0, .width = w, .height = h};
+    char cw[256], lw[256];
+    if (pg_scene_default_view(out->scene, NULL, (float)w / (float)h, 0, 1, &fi.camera, &fi.lights, cw, sizeof cw, lw,
+                              sizeof lw, &err))
+        CHECK_MSG(0, "%s: default view: %s", rel, err.msg);
+    fi.lights.count = fi.lights.file_count = out->scene->n_lights; /* the file's lights alone */
+    out->fi = fi;
     return true;
 }
 

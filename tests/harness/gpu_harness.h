@@ -37,6 +37,19 @@ uint32_t pg_th_differ_pixels(const pg_th_frame *a, const pg_th_frame *b);
 void pg_th_bound_usage(const pg_th_frame *a, const pg_th_frame *ref, double peak, double A, double B, double *usage,
                        double *need_a);
 
+/* Every deterministic shipped pipeline (naive, forward_plus, deferred, deferred_oct16,
+ * deferred_packed, visibility, lightcut) rendered with fi against the reference frame ref: every
+ * pixel and RGB channel within its documented per-pixel bound (A |ref| + B peak: accuracy_bounds.h;
+ * the lightcut's stated 2%), plus the rgba16f rounding (2e-3 |ref|) and `extra` (an absolute term:
+ * the cut-off of unranged file lights); forward_plus bit-identical to naive. Prints each usage
+ * ("label: PIPELINE vs reference: bound usage U") and CHECKs. */
+void pg_th_pipelines_vs_ref(pg_gpu *gpu, const pg_pass_registry *reg, const pg_scene_gpu *sg, const pg_frame_info *fi,
+                            const pg_th_frame *ref, const char *label, double extra);
+
+/* The ray through pixel (x, y)'s centre of fi's camera (fi->width x fi->height): a on the near plane,
+ * b on the far plane (world space, double). */
+void pg_th_pixel_ray(const pg_frame_info *fi, uint32_t x, uint32_t y, double a[3], double b[3]);
+
 /* A scene opened for a test: loaded ("default" = the built-in atrium), uploaded, and a frame
  * set-up: the scene's default camera for w x h, its default lights (seed 7) at time 0.5, then
  * the scenario (a data-folder path, or NULL) applied over them, and `lights` lights. */
@@ -49,5 +62,10 @@ typedef struct pg_th_scene {
 bool pg_th_scene_open(pg_gpu *gpu, const char *label, const char *path, const char *scenario, uint32_t w, uint32_t h,
                       uint32_t lights, pg_th_scene *out);
 void pg_th_scene_close(pg_gpu *gpu, pg_th_scene *s);
+/* A corpus file (PG_TEST_DIR/corpus/gltf/REL) opened as the tools show it: its default view for
+ * w x h (pg_scene_default_view: its camera or the object view, the object ambient) at time 0, lit
+ * by its own lights alone; shading >= 0 sets the model "auto" picks (PG_SHADING_*) before the upload,
+ * -1 keeps the file's. CHECKs and returns false (nothing left to close) when a step fails. */
+bool pg_th_file_open(pg_gpu *gpu, const char *rel, uint32_t w, uint32_t h, int shading, pg_th_scene *out);
 
 #endif

@@ -16,7 +16,14 @@
  *      the sphere centre to the frustum piece (false-positive rate reported).
  *   5. attenuation (shaders/lighting.glsl) vs double: bounded by intensity / dmin^2, finite,
  *      error bound.
+ *   6. the pbr BRDF (renderer/common/brdf.c, the twin of lighting.glsl's pg_light_pbr): the closed
+ *      forms of its terms (D(N.H = 1) = 1 / (pi a^2), D = 1/pi at a = 1, V = 1/4 head-on, Schlick's
+ *      ends), GGX normalization (the projected microfacet area: integral of D (N.H) over the
+ *      hemisphere = 1, Walter et al. 2007), energy (the specular lobe with F = 1 reflects <= 1 of
+ *      the light, Heitz 2014's height-correlated Smith), reciprocity, float twin vs double, the
+ *      lightcut's bound pi D V N.L <= 0.5 / a^3, finite results at the extremes.
  * Prints every measured number next to its bound. Runs in a few seconds. */
+#include "brdf.h"
 #include "cluster_math.h"
 #include "frame.h"
 #include "scene.h"
@@ -1048,6 +1055,160 @@ static void test_attenuation(void)
     CHECK(worst_rel <= ATT_REL_BOUND);
 }
 
+/* ------------------------------------------------------------------------------------------ */
+/* 6. the pbr BRDF                                                                             */
+
+/* float twin vs double: relative error of pi f N.L (one light, c = att = 1) where N.L, N.V >= 0.05 */
+#define BRDF_TWIN_REL 1e-4
+/* energy of the specular lobe with F = 1 (quadrature of a 720 x 720 hemisphere grid): <= 1 + quadrature error */
+#define BRDF_ENERGY_TOL 2e-3
+
+static void rand_unit(double o[3])
+{
+    double z = rng_range(-1, 1), ph = rng_range(0, 2 * M_PI), r = sqrt(1 - z * z);
+    o[0] = r * cos(ph);
+    o[1] = r * sin(ph);
+    o[2] = z;
+}
+
+/* a unit vector at angle acos(mu) from N = (0, 0, 1), azimuth ph */
+static void dir_mu(double mu, double ph, double o[3])
+{
+    double s = sqrt(fmax(0, 1 - mu * mu));
+    o[0] = s * cos(ph);
+    o[1] = s * sin(ph);
+    o[2] = mu;
+}
+
+/* pi f N.L of the float twin for one channel (c = att = 1, no ambient) */
+static float twin_one(const double L[3], const double V[3], const double N[3], float b, float m, float r)
+{
+    float Lf[3] = {(float)L[0], (float)L[1], (float)L[2]}, Vf[3] = {(float)V[0], (float)V[1], (float)V[2]};
+    float Nf[3] = {(float)N[0], (float)N[1], (float)N[2]}, c[3] = {1, 1, 1}, base[3] = {b, b, b}, e[3] = {0, 0, 0};
+    pg_pbr_sums acc = {{0}, {0}, {0}};
+    pg_pbr_light(c, 1.0f, Lf, Nf, Vf, r, &acc);
+    float out[3];
+    pg_pbr_combine(base, m, &acc, 0.0f, 1.0f, e, out);
+    return out[0];
+}
+
+static void test_brdf(void)
+{
+    printf("pbr BRDF (glTF 2.0 Appendix B: GGX, height-correlated Smith, Schlick):\n");
+    /* closed forms */
+    const double as[] = {0.01, 0.05, 0.1, 0.3, 0.6, 1.0};
+    double worst_cf = 0;
+    for (size_t i = 0; i < sizeof as / sizeof as[0]; i++) {
+        double a = as[i];
+        worst_cf = fmax(worst_cf, fabs(pg_brdf_ggx_d(1, a) * M_PI * a * a - 1));
+        worst_cf = fmax(worst_cf, fabs(pg_brdf_smith_v(1, 1, a) - 0.25) * 4);
+    }
+    for (double t = 0.05; t <= 1.0; t += 0.05) {
+        worst_cf = fmax(worst_cf, fabs(pg_brdf_ggx_d(t, 1.0) * M_PI - 1));               /* a = 1: uniform */
+        worst_cf = fmax(worst_cf, fabs(pg_brdf_smith_v(t, 0.5, 1.0) * 2 * (t + 0.5) - 1)); /* a = 1: 1/(2(N.L+N.V)) */
+    }
+    worst_cf = fmax(worst_cf, fabs(pg_brdf_schlick(0.04, 1.0) - 0.04) + fabs(pg_brdf_schlick(0.04, 0.0) - 1.0));
+    printf("  closed forms (D(1) = 1/(pi a^2), D = 1/pi and V = 1/(2(N.L+N.V)) at a = 1, V = 1/4 head-on, "
+           "Schlick at 0 and 90 deg): worst relative error %.2e (bound 1e-12)\n",
+           worst_cf);
+    CHECK(worst_cf <= 1e-12);
+    /* normalization: integral over the hemisphere of D(h) (N.h) = integral_0^1 pi D du with u = (N.h)^2 */
+    double worst_norm = 0;
+    for (size_t i = 1; i < sizeof as / sizeof as[0]; i++) {
+        const int n = 400000; /* Simpson on u */
+        double sum = 0;
+        for (int k = 0; k <= n; k++) {
+            double u = (double)k / n, w = k == 0 || k == n ? 1 : k % 2 ? 4 : 2;
+            sum += w * M_PI * pg_brdf_ggx_d(sqrt(u), as[i]);
+        }
+        sum /= 3.0 * n;
+        worst_norm = fmax(worst_norm, fabs(sum - 1));
+    }
+    printf("  GGX normalization (integral of D (N.H) over the hemisphere, a = 0.05..1): worst |x - 1| %.2e (bound "
+           "1e-6)\n",
+           worst_norm);
+    CHECK(worst_norm <= 1e-6);
+    /* energy: E(V) = integral of D V F=1 (N.L) over L, for a few roughnesses and view angles */
+    const double rs[] = {0.3, 0.5, 0.7, 1.0}, mus[] = {1.0, 0.5, 0.1};
+    double worst_e = 0, e_smooth = 0;
+    for (size_t i = 0; i < 4; i++)
+        for (size_t j = 0; j < 3; j++) {
+            const int nt = 720, np = 720;
+            double a = rs[i] * rs[i], V[3], N[3] = {0, 0, 1}, e = 0;
+            dir_mu(mus[j], 0, V);
+            for (int it = 0; it < nt; it++) {
+                double th = (it + 0.5) * (M_PI / 2) / nt, mu = cos(th);
+                for (int ip = 0; ip < np; ip++) {
+                    double L[3];
+                    dir_mu(mu, (ip + 0.5) * 2 * M_PI / np, L);
+                    double h[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]}, hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+                    double ndh = h[2] / hl;
+                    e += pg_brdf_ggx_d(ndh, a) * pg_brdf_smith_v(mu, mus[j], a) * mu * sin(th);
+                }
+            }
+            e *= (M_PI / 2 / nt) * (2 * M_PI / np);
+            (void)N;
+            worst_e = fmax(worst_e, e);
+            if (i == 0 && j == 0) e_smooth = e;
+        }
+    printf("  specular energy with F = 1 (roughness 0.3..1, N.V 1, 0.5, 0.1): at most %.4f (bound 1 + %.0e); "
+           "roughness 0.3 head-on %.4f (>= 0.95: single scattering loses little when smooth)\n",
+           worst_e, BRDF_ENERGY_TOL, e_smooth);
+    CHECK(worst_e <= 1 + BRDF_ENERGY_TOL);
+    CHECK(e_smooth >= 0.95);
+    /* float twin vs double, reciprocity, the lightcut's bound, extremes */
+    double worst_rel = 0, worst_recip = 0, worst_bound = 0;
+    long nonfinite = 0;
+    for (int it = 0; it < 200000; it++) {
+        double N[3], L[3], V[3];
+        rand_unit(N);
+        rand_unit(L);
+        rand_unit(V);
+        double ndl = N[0] * L[0] + N[1] * L[1] + N[2] * L[2], ndv = N[0] * V[0] + N[1] * V[1] + N[2] * V[2];
+        float r = (float)rng_range(0.0, 1.0), b = (float)rng_unit(), m = (float)(rng_below(3) == 0 ? rng_below(2) : rng_unit());
+        /* the bound, everywhere (grazing and behind included) */
+        float Lf[3] = {(float)L[0], (float)L[1], (float)L[2]}, Vf[3] = {(float)V[0], (float)V[1], (float)V[2]};
+        float Nf[3] = {(float)N[0], (float)N[1], (float)N[2]}, c[3] = {1, 1, 1};
+        pg_pbr_sums acc = {{0}, {0}, {0}};
+        if (ndl > 0) pg_pbr_light(c, 1.0f, Lf, Nf, Vf, r, &acc);
+        float a = pg_pbr_alpha(r);
+        double spec = (double)acc.specular[0] + acc.fresnel[0];
+        if (!isfinite(spec) || !isfinite(acc.diffuse[0])) nonfinite++;
+        worst_bound = fmax(worst_bound, spec / (0.5 / ((double)a * a * a)));
+        if (ndl < 0.05 || ndv < 0.05 || r < 0.05) continue;
+        double want = M_PI * pg_brdf_pbr(L, V, N, b, m, r) * ndl;
+        float got = twin_one(L, V, N, b, m, r);
+        worst_rel = fmax(worst_rel, fabs(got - want) / want);
+        /* reciprocity: f(L, V) = f(V, L) */
+        float back = twin_one(V, L, N, b, m, r);
+        worst_recip = fmax(worst_recip, fabs(got / ndl - back / ndv) / (want / ndl));
+    }
+    /* extremes: roughness 0 (clamped), L = -V, N.V = 0, a light along the surface, tiny N.L */
+    const double ex[][9] = {{0, 0, 1, 0, 0, 1, 0, 0, 1},   {0, 0.6, 0.8, 0, -0.6, -0.8, 0, 0, 1},
+                            {0, 0, 1, 1, 0, 0, 0, 0, 1},   {1e-30, 0, 1, 0, 1, 0, 0, 0, 1},
+                            {1, 0, 1e-7, -1, 0, 1e-7, 0, 0, 1}};
+    for (size_t i = 0; i < sizeof ex / sizeof ex[0]; i++)
+        for (int ri = 0; ri < 3; ri++) {
+            double L[3] = {ex[i][0], ex[i][1], ex[i][2]}, V[3] = {ex[i][3], ex[i][4], ex[i][5]};
+            double ll = sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2]), vl = sqrt(V[0] * V[0] + V[1] * V[1] + V[2] * V[2]);
+            for (int k = 0; k < 3; k++) {
+                L[k] /= ll;
+                V[k] /= vl;
+            }
+            float v = twin_one(L, V, ex[i] + 6, 0.8f, 0.5f, ri == 0 ? 0.0f : ri == 1 ? 0.045f : 1.0f);
+            if (!isfinite(v) || v < 0) nonfinite++;
+        }
+    printf("  float twin vs double (200000 random, N.L and N.V >= 0.05): worst relative %.2e (bound %.0e); "
+           "reciprocity %.2e (bound %.0e)\n",
+           worst_rel, BRDF_TWIN_REL, worst_recip, 2 * BRDF_TWIN_REL);
+    printf("  pi D V N.L / (0.5 / a^3) (the lightcut's bound): at most %.4f (<= 1); non-finite or negative: %ld\n",
+           worst_bound, nonfinite);
+    CHECK(worst_rel <= BRDF_TWIN_REL);
+    CHECK(worst_recip <= 2 * BRDF_TWIN_REL);
+    CHECK(worst_bound <= 1.0 + 1e-5);
+    CHECK(nonfinite == 0);
+}
+
 int main(void)
 {
     double t0 = now_s();
@@ -1056,6 +1217,7 @@ int main(void)
     test_slices();
     test_clusters();
     test_attenuation();
+    test_brdf();
     printf("test_numeric: %.2f s\n", now_s() - t0);
     return pg_test_finish("test_numeric");
 }

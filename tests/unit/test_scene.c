@@ -582,7 +582,7 @@ static void test_scenarios(void)
         {"{\"lights\": {\"speed\": -1}}", PG_ERR_SCHEMA, "lights.speed"},
         {"{\"lights\": {\"seed\": -1}}", PG_ERR_SCHEMA, "lights.seed"},
         {"{\"lights\": {\"ambient\": -0.1}}", PG_ERR_SCHEMA, "lights.ambient: expected a number in [0, 1000]"},
-        {"{\"shading\": \"phong\"}", PG_ERR_SCHEMA, "shading: expected \"lambert\" or \"blinn_phong\""},
+        {"{\"shading\": \"phong\"}", PG_ERR_SCHEMA, "shading: expected \"lambert\", \"blinn_phong\" or \"pbr\""},
         {"{\"name\": 3}", PG_ERR_SCHEMA, "name: expected a string"},
         {"{\"lights\": {\"radius\": 1, \"radius\": 2}}", PG_ERR_SCHEMA, "lights.radius: duplicate key"},
         {"[1, 2]", PG_ERR_SCHEMA, "expected a JSON object"},
@@ -800,7 +800,7 @@ static void test_corpus_features(void)
     CHECK_MSG(!strcmp(err.msg, PG_TEST_DIR "/corpus/gltf/required_made_up.gltf: extensionsRequired: "
                                "'EXT_made_up' is not supported (passgraph implements only these glTF extensions: "
                                "EXT_meshopt_compression, KHR_draco_mesh_compression, KHR_lights_punctual, "
-                               "KHR_materials_emissive_strength, KHR_mesh_quantization, KHR_texture_transform, PASSGRAPH_lights_table)"),
+                               "KHR_materials_emissive_strength, KHR_materials_unlit, KHR_mesh_quantization, KHR_texture_transform, PASSGRAPH_lights_table)"),
               "%s", err.msg);
     /* a scenario path that is a directory */
     pg_scenario sc;

@@ -531,8 +531,8 @@ write("ok_many_extensions.gltf", d, "PG_OK",
       warn=["extensionsUsed: 'EXT_x_%02d' ignored: not supported" % i for i in range(16)]
       + ["extensionsUsed: 2 more extensions ignored (not supported)"])
 IMPLEMENTED = ("EXT_meshopt_compression", "KHR_draco_mesh_compression",  # may be required
-               "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization",
-               "KHR_texture_transform", "PASSGRAPH_lights_table")
+               "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_unlit",
+               "KHR_mesh_quantization", "KHR_texture_transform", "PASSGRAPH_lights_table")
 for name, exts in (("required_texture_transform.gltf", ["KHR_texture_transform", "KHR_mesh_quantization"]),
                    ("required_meshopt.gltf", ["EXT_meshopt_compression"]),
                    ("required_emissive_and_meshopt.gltf", ["KHR_materials_emissive_strength",
@@ -611,9 +611,7 @@ d["materials"] = [{"name": "lamp", "emissiveFactor": [1, 0.5, 0],
                   {"emissiveTexture": {"index": 0},
                    "pbrMetallicRoughness": {"metallicRoughnessTexture": {"index": 0}},
                    "occlusionTexture": {"index": 0}}]
-write("ok_emissive.gltf", d, "PG_OK", warn=[
-    "metallicRoughnessTexture of 1 material (materials[1]) ignored: the metallic/roughness factors are used",
-    "occlusionTexture of 1 material (materials[1]) ignored"])
+write("ok_emissive.gltf", d, "PG_OK")  # the metallic-roughness and occlusion textures are read (pbr)
 
 # ------------------------------------------------------------------------------------------------
 # KHR_lights_punctual: bad light objects and bad node references fail naming the field

@@ -1,7 +1,10 @@
-"""gltfgen.py - geometry helpers shared by the glTF corpus generators (objects/, blend/,
-emissive/): a flat-shaded box and a look-at node rotation. Standard library only; deterministic."""
+"""gltfgen.py - helpers shared by the glTF corpus generators (objects/, blend/, emissive/, pbr/,
+features/): a flat-shaded box, a UV sphere, a look-at node rotation, PNG encoding. Standard library
+only; deterministic."""
 import base64
 import math
+import struct
+import zlib
 
 
 def b64(data):
@@ -26,6 +29,37 @@ def box(mn, mx):
             nrm.append(n)
         idx += [base, base + 1, base + 2, base, base + 2, base + 3]
     return pos, nrm, idx
+
+
+def sphere(center, r, nu=24, nv=12):
+    """A UV sphere: (nu + 1) x (nv + 1) vertices with smooth normals, 6 nu nv indices."""
+    pos, nrm, idx = [], [], []
+    for j in range(nv + 1):
+        th = math.pi * j / nv
+        for i in range(nu + 1):
+            ph = 2 * math.pi * i / nu
+            n = (math.sin(th) * math.cos(ph), math.cos(th), -math.sin(th) * math.sin(ph))
+            nrm.append(n)
+            pos.append(tuple(center[k] + r * n[k] for k in range(3)))
+    for j in range(nv):
+        for i in range(nu):
+            a = j * (nu + 1) + i
+            b = a + nu + 1
+            idx += [a, b, a + 1, a + 1, b, b + 1]
+    return pos, nrm, idx
+
+
+def pad4(b):
+    return b + b"\0" * ((4 - len(b) % 4) % 4)
+
+
+def png_rgba(w, h, pixels):
+    """An 8-bit RGBA PNG of w x h pixels (a flat list of bytes, rows from the top)."""
+    def chunk(tag, data):
+        return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF)
+    raw = b"".join(b"\0" + bytes(pixels[y * w * 4:(y + 1) * w * 4]) for y in range(h))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
 def look_rotation(eye, target):

@@ -30,26 +30,9 @@ import struct
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from gltfgen import b64, box, look_rotation, merge  # noqa: E402  (shared geometry, tests/corpus/gltf/gltfgen.py)
+from gltfgen import b64, box, look_rotation, merge, sphere  # noqa: E402  (shared geometry, tests/corpus/gltf/gltfgen.py)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def sphere(center, r, nu=24, nv=12):
-    pos, nrm, idx = [], [], []
-    for j in range(nv + 1):
-        th = math.pi * j / nv
-        for i in range(nu + 1):
-            ph = 2 * math.pi * i / nu
-            n = (math.sin(th) * math.cos(ph), math.cos(th), -math.sin(th) * math.sin(ph))
-            nrm.append(n)
-            pos.append(tuple(center[k] + r * n[k] for k in range(3)))
-    for j in range(nv):
-        for i in range(nu):
-            a = j * (nu + 1) + i
-            b = a + nu + 1
-            idx += [a, b, a + 1, a + 1, b, b + 1]
-    return pos, nrm, idx
 
 
 def quad():

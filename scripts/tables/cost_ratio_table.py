@@ -1,0 +1,73 @@
+#!/usr/bin/env python3
+"""cost_ratio_table.py [--label NAME=CSV ...] [--by-variant] BASE - a markdown table of median GPU frame
+times of `passgraph bench` results, one row per (pipeline, lights), one column per variant, and each
+variant's ratio to the BASE variant. Two ways to name the variants:
+
+  --by-variant: the `variant` column of one results.csv (a --sweep), e.g. the light models:
+      scripts/tables/cost_ratio_table.py --by-variant shading=lambert \\
+          --label all=docs/results/DIR/shading_cost/results.csv
+  --label NAME=CSV (repeated): each file is one variant named NAME, e.g. points against spots:
+      scripts/tables/cost_ratio_table.py points --label points=.../spot_cost_points/results.csv \\
+          --label spots=.../spot_cost_spots/results.csv
+
+Each cell also names the pass that dominates the frame. Used for docs/performance.md."""
+import argparse
+import csv
+
+
+def dominant(row):
+    best = None
+    for k, v in row.items():
+        if k.startswith("pass_") and k.endswith("_ms_median") and v not in ("", None):
+            name, ms = k[len("pass_"):-len("_ms_median")], float(v)
+            if best is None or ms > best[1]:
+                best = (name, ms)
+    return best
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("base", help="the variant the ratios are taken against")
+    ap.add_argument("--label", action="append", default=[], metavar="NAME=CSV")
+    ap.add_argument("--by-variant", action="store_true", help="variants are the `variant` column of the files")
+    a = ap.parse_args()
+    cells = {}  # (pipeline, lights) -> {variant: row}
+    order, variants = [], []
+    for lab in a.label:
+        name, _, path = lab.partition("=")
+        with open(path, newline="") as f:
+            for row in csv.DictReader(f):
+                if row.get("status") != "ok":
+                    continue
+                v = row["variant"] if a.by_variant else name
+                key = (row["pipeline"], row["lights"])
+                if key not in cells:
+                    cells[key] = {}
+                    order.append(key)
+                cells[key][v] = row
+                if v not in variants:
+                    variants.append(v)
+    if a.base not in variants:
+        raise SystemExit("cost_ratio_table.py: no variant %r (have %s)" % (a.base, ", ".join(variants)))
+    others = [v for v in variants if v != a.base]
+    head = ["pipeline", "lights"] + ["%s ms (dominant pass)" % v for v in variants] + ["%s / %s" % (v, a.base) for v in others]
+    print("| " + " | ".join(head) + " |")
+    print("|" + "---|" * 2 + "---:|" * (len(variants) + len(others)))
+    for key in order:
+        c = cells[key]
+        line = [key[0], key[1]]
+        for v in variants:
+            r = c.get(v)
+            if r is None:
+                line.append("-")
+                continue
+            d = dominant(r)
+            line.append("%.3f (%s %.3f)" % (float(r["gpu_ms_median"]), d[0], d[1]) if d else "%.3f" % float(r["gpu_ms_median"]))
+        for v in others:
+            b, r = c.get(a.base), c.get(v)
+            line.append("%.2fx" % (float(r["gpu_ms_median"]) / float(b["gpu_ms_median"])) if b and r else "-")
+        print("| " + " | ".join(line) + " |")
+
+
+if __name__ == "__main__":
+    main()
