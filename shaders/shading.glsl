@@ -315,6 +315,8 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 // r = light - box centre Pc and H = max dot(N_i, Pc - P_i). Such a light has max(N.L, 0) = 0 (and no
 // Blinn-Phong term) at every one of those pixels: it adds exactly 0, so the sum stays bit-identical;
 // tol covers the rounding of both sides.
+// PG_SPOT_LIGHTS: a spot light also leaves the chunk when its cone misses the bounding sphere of the
+// cluster's part of the tile (pg_spot_reaches_sphere): it would add exactly 0 there.
 // PG_TILE_SUBGROUPS: the pipeline requires full subgroups (gpu->exact_subgroups), so subgroup
 // ballots give the order within a subgroup; otherwise a shared-memory scan.
 #ifndef PG_TILE
@@ -332,6 +334,27 @@ shared uint s_tl_count[PG_TILE_N];
 shared uint s_tb_first;                      // the lowest invocation of the cluster: its normal is the axis
 shared uint s_tb_e, s_tb_h;                  // E (float bits, >= 0) and H (ordered uint)
 shared float s_tb_axis[3];
+#endif
+
+#ifdef PG_SPOT_LIGHTS
+// false when a spot light (record sp: axis x scale, offset = -cos(outer) x scale; lighting.glsl) at
+// `pos` gives every point of the sphere (c, r) a cone factor of exactly 0: the angle between its axis
+// and the sphere's centre, less the angle the sphere spans from the light, exceeds the outer cone by
+// a margin (2e-3 rad, far above the float rounding of these angles). Such a light adds exactly 0 to
+// every pixel of the tile, so leaving it out keeps the sum bit-identical. A point light's record
+// (0, 0, 0, 1) has no cone: always true.
+bool pg_spot_reaches_sphere(vec4 sp, vec3 pos, vec3 c, float r)
+{
+    float scale = length(sp.xyz);
+    if (!(scale > 0.0)) return true;
+    vec3 d = c - pos;
+    float dl = length(d);
+    if (!(dl > r * 1.001 + 1e-6)) return true;                // the light is in (or at) the sphere
+    float cos_outer = clamp(-sp.w / scale, -1.0, 1.0);
+    float theta = acos(clamp(dot(sp.xyz, d) / (scale * dl), -1.0, 1.0));
+    float spread = asin(min(r / dl, 1.0));
+    return theta - spread <= acos(cos_outer) + 2e-3;
+}
 #endif
 
 uint pg_tl_order(float f)                    // float -> uint with the same order
@@ -427,6 +450,10 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                 float lr = length(r);
                 keep = keep && !(dot(tb_a, r) + tb_e * lr * (1.0 + 1e-5) + tb_h
                                  < -(tb_tol + 1e-5 * (lr + length(L.pos_radius.xyz))));
+#endif
+#ifdef PG_SPOT_LIGHTS
+                if (keep) keep = pg_spot_reaches_sphere(PG_SPOT_OF(cluster_lights[rec.x + k]), L.pos_radius.xyz,
+                                                        0.5 * (bmin + bmax), 0.5 * length(bmax - bmin));
 #endif
             }
             uint pos, total;
