@@ -107,18 +107,20 @@ void pg_light_pbr(vec3 c, float att, vec3 L, vec3 N, vec3 V, float roughness, in
     float a2 = a * a;
     float ndl = max(dot(N, L), 0.0);
     float ndv = max(dot(N, V), 0.0);
+    // with the unnormalised half vector h = L + V (|h|^2 = 2 V.h for unit L, V): k = a |h|^2 / q,
+    // q = |N x h|^2 + (N.h)^2 a^2, and V.H = sqrt(V.h / 2); pi D V N.L att = 0.5 N.L att (a |h|^2)^2 /
+    // (q^2 den): one division and no normalisation of h (q = 0 only where L = -V: 0 there)
     vec3 h = L + V;
-    float hl = dot(h, h);
-    vec3 H = hl > 1e-30 ? h * inversesqrt(hl) : N; // L = -V: grazing both ways (N.L N.V ~ 0)
-    float ndh = dot(N, H);
-    vec3 nxh = cross(N, H);
-    float k = a / (dot(nxh, nxh) + ndh * ndh * a2); // >= a^2 below: finite, and continuous in N
+    float nh = dot(N, h);
+    vec3 nxh = cross(N, h);
+    float q = dot(nxh, nxh) + nh * nh * a2;  // >= a^2 |h|^2: finite, and continuous in N
+    float num = a * dot(h, h);
     float den = ndl * sqrt(ndv * ndv * (1.0 - a2) + a2) + ndv * sqrt(ndl * ndl * (1.0 - a2) + a2);
-    float vis_ndl = den > 0.0 ? 0.5 * ndl / den : 0.0; // V x N.L
-    float t = 1.0 - clamp(dot(V, H), 0.0, 1.0);
+    float qd = q * q * den;
+    float spec = qd > 0.0 ? 0.5 * ndl * att * num * num / qd : 0.0;
+    float t = 1.0 - min(sqrt(max(0.5 * dot(V, h), 0.0)), 1.0);
     float t2 = t * t;
     float w = t2 * t2 * t;
-    float spec = k * k * vis_ndl * att;
     acc.diffuse += c * (ndl * att * (1.0 - w));
     acc.specular += c * (spec * (1.0 - w));
     acc.fresnel += c * (spec * w);

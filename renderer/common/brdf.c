@@ -27,21 +27,16 @@ void pg_pbr_light(const float c[3], float att, const float L[3], const float N[3
     float ndl = fmaxf(dotf(N, L), 0.0f);
     float ndv = fmaxf(dotf(N, V), 0.0f);
     float h[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
-    float hl = dotf(h, h);
-    float H[3] = {N[0], N[1], N[2]};
-    if (hl > 1e-30f) {
-        float s = 1.0f / sqrtf(hl);
-        for (int k = 0; k < 3; k++) H[k] = h[k] * s;
-    }
-    float ndh = dotf(N, H);
-    float nxh[3] = {N[1] * H[2] - N[2] * H[1], N[2] * H[0] - N[0] * H[2], N[0] * H[1] - N[1] * H[0]};
-    float k = a / (dotf(nxh, nxh) + ndh * ndh * a2);
+    float nh = dotf(N, h);
+    float nxh[3] = {N[1] * h[2] - N[2] * h[1], N[2] * h[0] - N[0] * h[2], N[0] * h[1] - N[1] * h[0]};
+    float q = dotf(nxh, nxh) + nh * nh * a2;
+    float num = a * dotf(h, h);
     float den = ndl * sqrtf(ndv * ndv * (1.0f - a2) + a2) + ndv * sqrtf(ndl * ndl * (1.0f - a2) + a2);
-    float vis_ndl = den > 0.0f ? 0.5f * ndl / den : 0.0f;
-    float t = 1.0f - clampf(dotf(V, H), 0.0f, 1.0f);
+    float qd = q * q * den;
+    float spec = qd > 0.0f ? 0.5f * ndl * att * num * num / qd : 0.0f;
+    float t = 1.0f - fminf(sqrtf(fmaxf(0.5f * dotf(V, h), 0.0f)), 1.0f);
     float t2 = t * t;
     float w = t2 * t2 * t;
-    float spec = k * k * vis_ndl * att;
     for (int i = 0; i < 3; i++) {
         acc->diffuse[i] += c[i] * (ndl * att * (1.0f - w));
         acc->specular[i] += c[i] * (spec * (1.0f - w));
