@@ -124,7 +124,7 @@ void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const
         char choice[PG_PATH_MAX + 160];
         if (pg_scene_choice_line(app->scene, choice, sizeof choice)) fprintf(f, "explain: scene: %s\n", choice);
         fprintf(f, "explain: environment: none (passgraph has no environment light yet; surfaces no light reaches "
-                   "get the ambient term, %g x albedo)\n",
+                   "get the ambient term, %g (x albedo; pbr: x (c_diff + F0) x occlusion))\n",
                 app->lights.ambient);
     }
     if (!s) return;
