@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "pass_list.h"
+#include "shading_common.h"
 #include "shader.h"
 
 pg_result pg_app_open(pg_app *app, const pg_cli_common *opt, bool with_gpu, pg_error *err)
@@ -131,15 +132,17 @@ void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const
     const pg_param *sh = s->pipeline ? pg_pipeline_find_param(s->pipeline, "shading") : NULL;
     char v[64] = "";
     if (sh) pg_param_format(sh, v, sizeof v);
-    static const char *const models[] = {"lambert", "blinn_phong", "pbr (the glTF metallic-roughness BRDF)"};
-    const int a = app->scene ? app->scene->features.auto_shading : 0;
-    fprintf(f, "explain: shading%s%s: %s%s%s%s\n", label ? " of " : "", label ? label : "",
-            sh ? v : "the pipeline has no `shading` parameter (its passes' own model)",
-            sh && !strcmp(v, "auto") ? " -> " : "", sh && !strcmp(v, "auto") ? models[a >= 0 && a <= 2 ? a : 0] : "",
-            sh && !strcmp(v, "auto")
-                ? (app->has_scenario && pg_scenario_shading(&app->scenario) >= 0 ? " (the scenario's shading)"
-                   : a == 2 ? " (a glTF file's materials)" : " (a generated scene)")
-                : "");
+    char resolved[160] = ""; /* what "auto" picks for this scene, and why */
+    if (sh && !strcmp(v, "auto")) {
+        const int a = app->scene ? app->scene->features.auto_shading : PG_SHADING_LAMBERT;
+        snprintf(resolved, sizeof resolved, " -> %s%s (%s)", pg_shading_models[a],
+                 a == PG_SHADING_PBR ? " (the glTF metallic-roughness BRDF)" : "",
+                 app->has_scenario && pg_scenario_shading(&app->scenario) >= 0 ? "the scenario's shading"
+                 : a == PG_SHADING_PBR                                        ? "a glTF file's materials"
+                                                                              : "a generated scene");
+    }
+    fprintf(f, "explain: shading%s%s: %s%s\n", label ? " of " : "", label ? label : "",
+            sh ? v : "the pipeline has no `shading` parameter (its passes' own model)", resolved);
 }
 
 void pg_app_close(pg_app *app)

@@ -36,31 +36,6 @@ struct Surface {
     float occlusion;// PG_PBR: ambient occlusion (occlusionTexture), scales the ambient term; else 1
 };
 
-// The pbr model's occlusion in the G-buffers (gbuffer.frag, visibility_resolve.comp; read by
-// deferred_lighting.comp, reference_lighting.comp). Surface.occlusion is in [0, 1], or -1 for an unlit
-// surface (lighting.glsl pg_pbr_lit). unorm channels (oct16's normal w, packed's third word) hold
-// occlusion / 2 in [0, 0.5] and 1 for unlit; the float position's w holds 1 + occlusion in [1, 2]
-// (> 0: drawn) and 3 for unlit.
-float pg_gb_occlusion_unorm(float occ)
-{
-    return occ < 0.0 ? 1.0 : 0.5 * clamp(occ, 0.0, 1.0);
-}
-
-float pg_gb_occlusion_from_unorm(float v)
-{
-    return v > 0.75 ? -1.0 : 2.0 * v;
-}
-
-float pg_gb_occlusion_float(float occ)
-{
-    return occ < 0.0 ? 3.0 : 1.0 + occ;
-}
-
-float pg_gb_occlusion_from_float(float w)
-{
-    return w > 2.5 ? -1.0 : max(w - 1.0, 0.0);
-}
-
 // What a fragment shader knows of the surface before the material (surface_inputs.glsl).
 struct SurfaceInput {
     vec3 normal;    // interpolated world normal (not normalized)

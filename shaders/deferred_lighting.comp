@@ -22,6 +22,7 @@ FRAME_UNIFORMS_BLOCK
 #include "lighting.glsl"
 #include "cluster.glsl"
 #include "octahedral.glsl"
+#include "gbuffer_pack.glsl"
 #include "depth_reconstruct.glsl"
 
 #ifndef PG_TILE

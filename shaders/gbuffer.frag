@@ -4,7 +4,7 @@
 // PG_PBR (the pbr light model): the specular channel holds metallic, the shininess channel roughness
 // (oct16: unorm16 roughness itself, not /512; packed: unorm16 roughness | unorm16 occlusion in the
 // third word), and the occlusion goes in the float position's w (1 + occlusion) or oct16's normal w
-// (pg_gb_occlusion_*, octahedral.glsl: an unlit surface's -1 is stored as a value past the range).
+// (gbuffer_pack.glsl: an unlit surface's -1 is stored as a value past the range).
 // PG_GBUFFER_EMISSIVE: the optional emissive target after the variant's targets (rgba16f/rgba32f,
 // scene-linear s.emissive; the pass defines it only when bound and the scene has emissive materials).
 #include "common.glsl"
@@ -12,6 +12,7 @@ FRAME_UNIFORMS_BLOCK
 #include "surface_inputs.glsl"
 #include "surface.glsl"
 #include "octahedral.glsl"
+#include "gbuffer_pack.glsl"
 #if defined(PG_GBUFFER_FLOAT)
 layout(location = 0) out vec4 g_position; // world position (rgba32f, or rgba16f to show its failure);
                                           // PG_GBUFFER_CAMERA_POSITION: camera-relative, as shaded
@@ -58,15 +59,7 @@ void main()
 #endif
     g_albedo = vec4(clamp(s.albedo, 0.0, 1.0), clamp(s.specular, 0.0, 1.0));
 #else
-    float view_depth = -PG_REL_TO_VIEW(v_rel).z;
-    g_packed = uvec4(pg_oct_pack_unorm16(s.normal),
-                     packUnorm4x8(vec4(pg_srgb_encode(s.albedo), clamp(s.specular, 0.0, 1.0))),
-#ifdef PG_PBR
-                     packUnorm2x16(vec2(s.shininess, pg_gb_occlusion_unorm(s.occlusion))), // roughness, occlusion
-#else
-                     floatBitsToUint(s.shininess),
-#endif
-                     floatBitsToUint(view_depth));
+    g_packed = pg_gbuffer_packed(s, -PG_REL_TO_VIEW(v_rel).z);
 #endif
 #ifdef PG_GBUFFER_EMISSIVE
     g_emissive = vec4(s.emissive, 0.0); // as forward adds it (0 without PG_EMISSIVE's factor)

@@ -242,25 +242,8 @@ void pg_accumulate_light(Light light, vec4 spot, vec3 cam, vec3 P, vec3 N, vec3 
 
 // The colour of a shaded point from its summed light terms: every shading pass ends with this
 // (shading.glsl, reference_lighting.comp), so they combine with the same operations.
-// PG_PBR: the ambient term is a uniform environment of that radiance, with the split-sum
-// integral of the specular lobe taken as F0 (c_diff + F0) and scaled by the occlusion texture.
-vec3 pg_shade_combine(Surface s, PgShade acc, vec3 ambient)
-{
-#ifdef PG_PBR
-    vec3 f0 = mix(vec3(0.04), s.albedo, s.specular);
-    vec3 cdiff = s.albedo * (1.0 - s.specular);
-    // precise: no fused multiply-adds, so a pass where occlusion or the lit weight is a constant
-    // (forward without occlusion textures) rounds exactly as one that reads them (the reference)
-    precise vec3 c = cdiff * (1.0 - f0) * acc.diffuse + f0 * acc.specular + pg_pbr_lit(s) * acc.fresnel +
-                     (cdiff + f0) * (ambient * max(s.occlusion, 0.0)) + s.emissive;
-    return c;
-#else
-    return s.albedo * (acc.diffuse + ambient) + s.specular * acc.specular + s.emissive;
-#endif
-}
-
-// The lights' part of that colour (no ambient, no emission): one light's contribution (RIS,
-// lightcut).
+// The lights' part of a shaded point's colour (pg_shade_combine adds ambient and emission): also
+// one light's contribution alone (RIS, lightcut).
 vec3 pg_shade_lights(Surface s, PgShade acc)
 {
 #ifdef PG_PBR
@@ -270,5 +253,22 @@ vec3 pg_shade_lights(Surface s, PgShade acc)
     return c;
 #else
     return s.albedo * acc.diffuse + s.specular * acc.specular;
+#endif
+}
+
+// PG_PBR: the ambient term is a uniform environment of that radiance, with the split-sum
+// integral of the specular lobe taken as F0 (c_diff + F0) and scaled by the occlusion texture.
+vec3 pg_shade_combine(Surface s, PgShade acc, vec3 ambient)
+{
+#ifdef PG_PBR
+    vec3 f0 = mix(vec3(0.04), s.albedo, s.specular);
+    vec3 cdiff = s.albedo * (1.0 - s.specular);
+    // precise (here and in pg_shade_lights): no fused multiply-adds, so a pass where occlusion or the
+    // lit weight is a constant (forward without occlusion textures) rounds exactly as one that reads
+    // them (the reference)
+    precise vec3 c = pg_shade_lights(s, acc) + (cdiff + f0) * (ambient * max(s.occlusion, 0.0)) + s.emissive;
+    return c;
+#else
+    return s.albedo * (acc.diffuse + ambient) + s.specular * acc.specular + s.emissive;
 #endif
 }

@@ -29,6 +29,8 @@
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "lighting.glsl"
+#include "octahedral.glsl"
+#include "gbuffer_pack.glsl"
 
 #ifndef LIGHT_TILE_X
 #define LIGHT_TILE_X 16

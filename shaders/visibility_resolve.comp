@@ -12,6 +12,7 @@
 FRAME_UNIFORMS_BLOCK
 #include "depth_reconstruct.glsl"
 #include "octahedral.glsl"
+#include "gbuffer_pack.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 1, binding = 0) uniform usampler2D g_vis;
 layout(set = 1, binding = 1, rgba32ui) uniform writeonly uimage2D g_packed;
@@ -39,15 +40,7 @@ void main()
         vec3 P;
         pg_vis_fetch(vis, vec2(px) + 0.5, vec2(size), si, material, P);
         Surface s = pg_surface_material(si, material);
-        float view_depth = -PG_REL_TO_VIEW(P).z;
-        g = uvec4(pg_oct_pack_unorm16(s.normal),
-                  packUnorm4x8(vec4(pg_srgb_encode(s.albedo), clamp(s.specular, 0.0, 1.0))),
-#ifdef PG_PBR
-                  packUnorm2x16(vec2(s.shininess, pg_gb_occlusion_unorm(s.occlusion))), // roughness, occlusion
-#else
-                  floatBitsToUint(s.shininess),
-#endif
-                  floatBitsToUint(view_depth));
+        g = pg_gbuffer_packed(s, -PG_REL_TO_VIEW(P).z); // as gbuffer.frag writes it
         emissive = s.emissive;
     }
     imageStore(g_packed, px, g);

@@ -7,21 +7,16 @@ is committed. Run: python3 tests/fuzz/gen_seeds.py"""
 import json
 import os
 import struct
-import zlib
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "corpus", "gltf"))
+from gltfgen import png_rgba  # noqa: E402  (tests/corpus/gltf/gltfgen.py)
 
 HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "seeds", "gltf")
 
 
 def pad4(b, fill=b"\0"):
     return b + fill * ((4 - len(b) % 4) % 4)
-
-
-def png_rgba(w, h, pixels):
-    def chunk(tag, data):
-        return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF)
-    raw = b"".join(b"\0" + bytes(pixels[y * w * 4:(y + 1) * w * 4]) for y in range(h))
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
-            + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
 def glb(doc, binchunk):

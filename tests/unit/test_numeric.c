@@ -1059,7 +1059,7 @@ static void test_attenuation(void)
 /* 6. the pbr BRDF                                                                             */
 
 /* float twin vs double: relative error of pi f N.L (one light, c = att = 1) where N.L, N.V >= 0.05 */
-#define BRDF_TWIN_REL 1e-4
+#define BRDF_TWIN_REL 3e-5
 /* energy of the specular lobe with F = 1 (quadrature of a 720 x 720 hemisphere grid): <= 1 + quadrature error */
 #define BRDF_ENERGY_TOL 2e-3
 
