@@ -2,10 +2,54 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <strings.h>
+#include <stdlib.h>
 
+#include "environment.h"
+#include "exr.h"
 #include "pass_list.h"
 #include "shading_common.h"
 #include "shader.h"
+
+/* FILE.exr (OpenEXR, RGB(A) of any pixel type, image/exr.h) or else a Radiance HDR file. */
+static pg_result load_environment_file(const char *path, pg_environment **out, pg_error *err)
+{
+    size_t n = strlen(path);
+    if (n < 4 || strcasecmp(path + n - 4, ".exr")) return pg_environment_load(path, out, err);
+    float *rgba = NULL;
+    uint32_t w = 0, h = 0;
+    pg_result r = pg_exr_read_rgba(path, &rgba, &w, &h, err);
+    if (!r) r = pg_environment_from_pixels(path, w, h, rgba, out, err);
+    free(rgba);
+    return r;
+}
+
+pg_result pg_app_attach_environment(pg_app *app, pg_scene *scene, pg_error *err)
+{
+    const char *e = app->opt.environment;
+    const bool gltf = strcmp(scene->path, "default") != 0;
+    pg_environment *env = NULL;
+    pg_result r = PG_OK;
+    if (e && !strcmp(e, "none")) {
+        snprintf(app->env_why, sizeof app->env_why, "environment: none (--environment none)");
+    } else if (e && strcmp(e, "default")) {
+        if ((r = load_environment_file(e, &env, err))) return r;
+        snprintf(app->env_why, sizeof app->env_why, "environment: %s, %ux%u, %u levels (--environment)", e,
+                 env->width[0], env->height[0], env->n_levels);
+    } else if (e || (gltf && scene->n_lights == 0 && !app->has_scenario)) {
+        if ((r = pg_environment_default(PG_DEFAULT_SKY_LEVEL, &env, err))) return r;
+        snprintf(app->env_why, sizeof app->env_why, "environment: the neutral default sky, mean radiance %g (%s)",
+                 PG_DEFAULT_SKY_LEVEL, e ? "--environment default" : "a glTF file without lights");
+    } else {
+        snprintf(app->env_why, sizeof app->env_why, "environment: none (%s; --environment FILE.hdr adds one)",
+                 !gltf ? "the generated atrium" : scene->n_lights ? "the file has its own lights" : "a scenario");
+    }
+    if (env && env->clamped)
+        fprintf(stderr, "passgraph: %s: %llu texel components were negative, not finite or above %g: read as 0 or "
+                        "%g\n", env->source, (unsigned long long)env->clamped, PG_ENV_MAX_VALUE, PG_ENV_MAX_VALUE);
+    pg_scene_set_environment(scene, env);
+    return PG_OK;
+}
 
 pg_result pg_app_open(pg_app *app, const pg_cli_common *opt, bool with_gpu, pg_error *err)
 {
@@ -49,6 +93,7 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     char choice[PG_PATH_MAX + 160];
     if (pg_scene_choice_line(app->scene, choice, sizeof choice) && !opt->quiet)
         fprintf(stderr, "passgraph: %s\n", choice);
+    if ((r = pg_app_attach_environment(app, app->scene, err))) goto fail;
     if (with_gpu) {
         pg_gpu_desc gd = {
             .validation = opt->validation,
@@ -98,6 +143,14 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     }
     if (opt->has_radius) app->lights.radius = opt->radius;
     if (opt->has_intensity) app->lights.intensity = opt->intensity;
+    if (app->scene->environment && !opt->has_ambient && !(app->has_scenario && app->scenario.has_ambient) &&
+        app->lights.ambient != 0) { /* the environment lights what the lights miss */
+        app->lights.ambient = 0;
+        snprintf(app->lights_why + strlen(app->lights_why), sizeof app->lights_why - strlen(app->lights_why),
+                 "; ambient 0 (the environment light instead)");
+    }
+    app->lights.env_intensity = opt->env_intensity;
+    app->lights.env_rotation = opt->env_rotation_deg * (float)(3.14159265358979 / 180.0);
     if (opt->has_ambient) app->lights.ambient = opt->ambient;
     app->object_lights = strcmp(app->scene->path, "default") != 0 && !opt->has_intensity &&
                          !(app->has_scenario && app->scenario.has_intensity);
@@ -124,8 +177,9 @@ void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const
         fprintf(f, "explain: %s\nexplain: %s\n", app->camera_why, app->lights_why);
         char choice[PG_PATH_MAX + 160];
         if (pg_scene_choice_line(app->scene, choice, sizeof choice)) fprintf(f, "explain: scene: %s\n", choice);
-        fprintf(f, "explain: environment: none (passgraph has no environment light yet; surfaces no light reaches "
-                   "get the ambient term, %g (x albedo; pbr: x (c_diff + F0) x occlusion))\n",
+        fprintf(f, "explain: %s; intensity %g, rotation %g deg; ambient term %g (x albedo; pbr: x (c_diff + F0) x "
+                   "occlusion)\n",
+                app->env_why, app->lights.env_intensity, app->lights.env_rotation * 180.0 / 3.14159265358979,
                 app->lights.ambient);
     }
     if (!s) return;

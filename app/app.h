@@ -29,6 +29,7 @@ typedef struct pg_app {
     char scene_path[PG_PATH_MAX];
     char camera_why[256];         /* "camera: ..." one line: which camera was chosen and why */
     char lights_why[256];         /* "lights: ..." one line */
+    char env_why[PG_PATH_MAX + 160]; /* "environment: ..." one line */
     bool object_lights;           /* the intensity is pg_light_setup_object's (it depends on the
                                      light count): no scenario intensity, no --intensity */
 } pg_app;
@@ -52,6 +53,10 @@ pg_session_desc pg_app_session_desc(const pg_app *app);
  * lights are named as not used yet), the glTF scene drawn when the file has several, the shading
  * model of the session's pipeline (its `shading` parameter, when it has one; `label` names the
  * side, may be NULL) and the environment (none: passgraph has no environment light yet). */
+/* The environment light of a scene before its upload, from app->opt.environment (--environment
+ * FILE.hdr|default|none; by default the neutral sky for a glTF file without lights and without a
+ * scenario); app->env_why says which and why. Errors name the file (pg_environment_load). */
+pg_result pg_app_attach_environment(pg_app *app, struct pg_scene *scene, pg_error *err);
 void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const char *label, FILE *f);
 uint64_t pg_app_check_exact(const char *cmd, const char *what, const pg_frame_stats *st, bool require_exact);
 

@@ -27,6 +27,12 @@ const char *const pg_cli_common_help =
     "  --intensity I        light colour multiplier (default 1)\n"
     "  --ambient A          constant light times albedo, added to the pipeline's ambient\n"
     "                       (default: 0.02 for a glTF object, 0 for the atrium)\n"
+    "  --environment E      environment light: FILE.hdr (Radiance) or FILE.exr (OpenEXR), an\n"
+    "                       equirectangular 2:1 image; default\n"
+    "                       (the neutral sky) or none; default: the neutral sky for a glTF file\n"
+    "                       without lights (and no scenario), none otherwise\n"
+    "  --environment-intensity X  its radiance scale, 0..1e6 (default 1; a run-time value)\n"
+    "  --environment-rotation D   its rotation about +Y in degrees (default 0; a run-time value)\n"
     "  --size WxH           output size, 1..16384 each (default 640x360)\n"
     "  --time T             animation time in seconds; fixes the frame (default 0)\n"
     "  --seed S             light seed, 0..4294967295 (default 1)\n"
@@ -65,6 +71,7 @@ void pg_cli_defaults(pg_cli_common *c)
     c->width = 640;
     c->height = 360;
     c->seed = 1;
+    c->env_intensity = 1.0f;
     c->device_index = -1;
     c->frames = 1;
 }
@@ -318,6 +325,15 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         NEED_VALUE();
         if ((r = parse_float(a, v, 0, 1000, &c->ambient, err))) return r;
         c->has_ambient = true;
+    } else if (!strcmp(a, "--environment")) {
+        NEED_VALUE();
+        c->environment = v;
+    } else if (!strcmp(a, "--environment-intensity")) {
+        NEED_VALUE();
+        if ((r = parse_float(a, v, 0, 1e6, &c->env_intensity, err))) return r;
+    } else if (!strcmp(a, "--environment-rotation")) {
+        NEED_VALUE();
+        if ((r = parse_float(a, v, -36000, 36000, &c->env_rotation_deg, err))) return r;
     } else if (!strcmp(a, "--size")) {
         NEED_VALUE();
         if ((r = parse_size(c, v, err))) return r;

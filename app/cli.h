@@ -26,6 +26,9 @@ typedef struct pg_cli_common {
     bool has_radius, has_intensity, has_ambient;
     float radius, intensity;     /* --radius, --intensity */
     float ambient;               /* --ambient (the light set-up's run-time ambient) */
+    const char *environment;     /* --environment FILE.hdr|default|none (NULL: automatic, app.c) */
+    float env_intensity;         /* --environment-intensity (default 1) */
+    float env_rotation_deg;      /* --environment-rotation, degrees about +Y (default 0) */
     const char *out;             /* --out FILE */
     uint32_t n_sets;
     pg_param_override sets[PG_CLI_MAX_SETS]; /* --set key=value (points into argv) */

@@ -41,5 +41,7 @@ void pg_frame_uniforms_fill(const pg_frame_info *info, pg_frame_uniforms *u)
         u->light_keep_max[i] = info->lights.keep_max[i];
     }
     u->light_keep_min[3] = info->lights.keep_out ? 1.0f : 0.0f;
+    u->environment[0] = info->lights.env_intensity;
+    u->environment[1] = info->lights.env_rotation;
     u->light_src[0] = info->lights.file_count < info->lights.count ? info->lights.file_count : info->lights.count;
 }

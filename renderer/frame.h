@@ -29,6 +29,7 @@ typedef struct pg_frame_uniforms {
     float light_keep_min[4]; /* pg_light_setup.keep_min, w = 1 when keep_out */
     float light_keep_max[4]; /* pg_light_setup.keep_max, w = 0 */
     uint32_t light_src[4];   /* x: lights from the scene file (pg_light_setup.file_count), 0, 0, 0 */
+    float environment[4];    /* intensity, rotation about +Y (radians), 0, 0 (pg_light_setup.env_*) */
 } pg_frame_uniforms;
 
 typedef struct pg_frame_info {

@@ -1,14 +1,18 @@
 /* scene_gpu.c - uploads a pg_scene once; everything here is read-only afterwards. */
 #include "scene_gpu.h"
 
+#include "environment.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* Where each part lies in the one staging buffer: vertices | colours | uv1 | indices | materials |
- * file lights | white texel | every mip of every texture (16-byte aligned from the white texel on). */
+ * file lights | environment (every level) | white texel | every mip of every texture (16-byte aligned from the white texel on). */
 typedef struct staging_layout {
     VkDeviceSize vb, cb, ub, ib, mb, lb; /* bytes of vertices, colours, uv1, indices, materials, lights */
+    VkDeviceSize eb, e_off;          /* bytes and offset of the environment's texels */
+    VkDeviceSize qb, q_off;          /* bytes and offset of its sampling tables (cdf) */
     uint32_t n_mat;                  /* materials (1, the default, when the scene has none) */
     VkDeviceSize v_off, c_off, u_off, i_off, m_off, l_off, white_off;
     VkDeviceSize *tex_off; /* per texture */
@@ -24,7 +28,9 @@ static VkDeviceSize staging_size(const pg_scene_gpu *sg, const pg_scene *scene, 
     L->n_mat = scene->n_materials ? scene->n_materials : 1;
     L->mb = (VkDeviceSize)L->n_mat * sizeof(pg_gpu_material);
     L->lb = (VkDeviceSize)scene->n_lights * sizeof(pg_gpu_file_light);
-    VkDeviceSize total = L->vb + L->cb + L->ub + L->ib + L->mb + L->lb + 16;
+    L->eb = scene->environment ? scene->environment->n_texels * 16 : 0;
+    L->qb = scene->environment ? scene->environment->n_cdf * sizeof(float) : 0;
+    VkDeviceSize total = L->vb + L->cb + L->ub + L->ib + L->mb + L->lb + L->eb + L->qb + 48;
     for (uint32_t t = 0; t < scene->n_textures; t++) total += (scene->textures[t].data_size + 15) & ~(VkDeviceSize)15;
     total += 16; /* white texel */
     return total;
@@ -113,6 +119,12 @@ static void fill_staging(uint8_t *dst, const pg_scene *scene, staging_layout *L)
     gpu_file_lights(scene, (pg_gpu_file_light *)(dst + off));
     off += L->lb;
     off = (off + 15) & ~(VkDeviceSize)15;
+    L->e_off = off;
+    if (L->eb) memcpy(dst + off, scene->environment->rgba, L->eb);
+    off += L->eb;
+    L->q_off = off;
+    if (L->qb) memcpy(dst + off, scene->environment->cdf, L->qb);
+    off = (off + L->qb + 15) & ~(VkDeviceSize)15;
     L->white_off = off;
     static const uint8_t white[4] = {255, 255, 255, 255};
     memcpy(dst + off, white, 4);
@@ -135,6 +147,10 @@ static void copy_buffers(VkCommandBuffer cmd, VkBuffer staging, const pg_scene_g
     vkCmdCopyBuffer(cmd, staging, sg->materials.buffer, 1, &c2);
     VkBufferCopy c3 = {L->c_off, 0, L->cb}, c4 = {L->u_off, 0, L->ub}, c5 = {L->l_off, 0, L->lb};
     if (L->lb) vkCmdCopyBuffer(cmd, staging, sg->file_lights.buffer, 1, &c5);
+    VkBufferCopy c6 = {L->e_off, 0, L->eb};
+    if (L->eb) vkCmdCopyBuffer(cmd, staging, sg->environment.buffer, 1, &c6);
+    VkBufferCopy c7 = {L->q_off, 0, L->qb};
+    if (L->qb) vkCmdCopyBuffer(cmd, staging, sg->env_cdf.buffer, 1, &c7);
     if (L->cb) vkCmdCopyBuffer(cmd, staging, sg->colors.buffer, 1, &c3);
     if (L->ub) vkCmdCopyBuffer(cmd, staging, sg->uv1.buffer, 1, &c4);
 }
@@ -179,21 +195,21 @@ static void release_to_shaders(VkCommandBuffer cmd, const pg_scene_gpu *sg, VkIm
                                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    VkBufferMemoryBarrier2 bb[6];
-    VkBuffer bufs[6] = {sg->vertices.buffer, sg->indices.buffer, sg->materials.buffer, sg->colors.buffer,
-                        sg->uv1.buffer, sg->file_lights.buffer};
+    VkBufferMemoryBarrier2 bb[8];
+    VkBuffer bufs[8] = {sg->vertices.buffer, sg->indices.buffer, sg->materials.buffer, sg->colors.buffer,
+                        sg->uv1.buffer, sg->file_lights.buffer, sg->environment.buffer, sg->env_cdf.buffer};
     const VkAccessFlags2 sr = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
     const VkPipelineStageFlags2 cs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    VkAccessFlags2 acc[6] = {VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr, VK_ACCESS_2_INDEX_READ_BIT | sr,
+    VkAccessFlags2 acc[8] = {VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr, VK_ACCESS_2_INDEX_READ_BIT | sr,
                              VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr,
-                             VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr, sr};
-    VkPipelineStageFlags2 st[6] = {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs,
+                             VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | sr, sr, sr, sr};
+    VkPipelineStageFlags2 st[8] = {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs,
                                    VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT | cs,
                                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | cs,
                                    VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs,
-                                   VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs, cs};
+                                   VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | cs, cs, cs, cs};
     uint32_t n_bb = 0;
-    for (int i = 0; i < 6; i++) {
+    for (int i = 0; i < 8; i++) {
         if (!bufs[i]) continue;
         bb[n_bb++] = pg_buffer_barrier(bufs[i], VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, st[i],
                                        acc[i]);
@@ -313,8 +329,21 @@ static pg_result create_buffers(pg_gpu *gpu, pg_scene_gpu *sg, const pg_scene *s
             return r;
         sg->n_file_lights = scene->n_lights;
     }
+    if (scene->environment) { /* every level; read by environment_filter and reference_lighting */
+        const pg_environment *e = scene->environment;
+        if ((r = scene_buffer(gpu, (VkDeviceSize)e->n_texels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              "scene.environment", &sg->environment, err)))
+            return r;
+        if (e->cdf && (r = scene_buffer(gpu, (VkDeviceSize)e->n_cdf * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                        "scene.env_cdf", &sg->env_cdf, err)))
+            return r;
+        sg->env_levels = e->n_levels;
+        sg->env_width = e->width[0];
+        sg->env_height = e->height[0];
+        sg->env_id = e->id;
+    }
     sg->bytes = sg->vertices.size + sg->indices.size + sg->materials.size + sg->colors.size + sg->uv1.size +
-                sg->file_lights.size;
+                sg->file_lights.size + sg->environment.size + sg->env_cdf.size;
     return PG_OK;
 }
 
@@ -477,6 +506,8 @@ void pg_scene_gpu_destroy(pg_gpu *gpu, pg_scene_gpu *sg)
     pg_buffer_destroy(gpu, &sg->colors);
     pg_buffer_destroy(gpu, &sg->uv1);
     pg_buffer_destroy(gpu, &sg->file_lights);
+    pg_buffer_destroy(gpu, &sg->environment);
+    pg_buffer_destroy(gpu, &sg->env_cdf);
     free(sg->draws);
     free(sg);
 }

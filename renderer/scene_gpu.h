@@ -71,6 +71,13 @@ typedef struct pg_scene_gpu {
      * (pg_gpu_file_light, device-local, uploaded once); buffer NULL when the scene has none */
     pg_buffer file_lights;
     uint32_t n_file_lights;
+    /* the environment light's texels (scene/environment.h: vec4 per texel, every level one after the
+     * other), device-local, uploaded once; buffer NULL without an environment. env_id: the
+     * pg_environment's id, what environment_filter remembers it filtered */
+    pg_buffer environment;
+    pg_buffer env_cdf;           /* its importance-sampling tables (environment.h cdf); NULL when black */
+    uint32_t env_levels, env_width, env_height;
+    uint64_t env_id;
     float bounds_min[3], bounds_max[3];
     uint64_t bytes;
 } pg_scene_gpu;

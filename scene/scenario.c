@@ -353,6 +353,7 @@ pg_light_setup pg_light_setup_default(const pg_scene *scene, uint32_t count, uin
     L.motion = PG_MOTION_NOISE;
     L.speed = 1.0f;
     L.seed = seed;
+    L.env_intensity = 1.0f;
     return L;
 }
 

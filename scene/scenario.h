@@ -38,6 +38,9 @@ typedef struct pg_light_setup {
     float keep_min[3], keep_max[3];
     uint32_t file_count;          /* the first file_count of `count` are the scene file's
                                      KHR_lights_punctual lights (scene->lights); the rest generated */
+    float env_intensity;          /* the environment light's run-time knobs (scene->environment):
+                                     radiance scale (1 in pg_light_setup_default) and rotation about +Y in radians (environment.h) */
+    float env_rotation;
 } pg_light_setup;
 
 typedef struct pg_scenario {

@@ -5,6 +5,7 @@
  */
 #include "scene.h"
 #include "scene_internal.h"
+#include "environment.h"
 
 #include <float.h>
 #include <math.h>
@@ -61,9 +62,17 @@ void pg_scene_free(pg_scene *scene)
     free(scene->materials);
     free(scene->cameras);
     free(scene->lights);
+    pg_environment_free(scene->environment);
     for (uint32_t i = 0; i < scene->n_warnings; i++) free(scene->warnings[i]);
     free(scene->warnings);
     free(scene);
+}
+
+void pg_scene_set_environment(pg_scene *scene, struct pg_environment *env)
+{
+    if (scene->environment != env) pg_environment_free(scene->environment);
+    scene->environment = env;
+    scene->features.has_environment = env != NULL;
 }
 
 pg_result pg_scene_add_warning(pg_scene *scene, const char *line, pg_error *err)

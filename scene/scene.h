@@ -173,6 +173,10 @@ typedef struct pg_scene {
     int gltf_scene;
     bool gltf_scene_chosen;   /* picked by pg_scene_load_opts.gltf_scene, not the file's default */
     char gltf_scene_name[PG_NAME_MAX];
+    /* The environment light (environment.h): set by the tools after loading (--environment, or the
+     * neutral default sky for a glTF file without lights: pg_scene_set_environment), never by the
+     * loaders; owned; NULL when there is none (features.has_environment). */
+    struct pg_environment *environment;
 } pg_scene;
 
 /* What a load may choose (pg_scene_load_ex). */
@@ -233,6 +237,9 @@ pg_result pg_scene_load_ex(const char *path_or_default, const pg_scene_load_opts
  * false). */
 bool pg_scene_choice_line(const pg_scene *scene, char *buf, size_t size);
 void pg_scene_free(pg_scene *scene);
+/* Gives the scene an environment light (owned from then on; NULL removes it) and sets
+ * features.has_environment; call before pg_scene_gpu_create. */
+void pg_scene_set_environment(pg_scene *scene, struct pg_environment *env);
 /* Appends a copy of `line` to scene->warnings (PG_ERR_OOM when it cannot). */
 pg_result pg_scene_add_warning(pg_scene *scene, const char *line, pg_error *err);
 /* Writes each warning as "PREFIXwarning: LINE\n" to f (prefix e.g. "passgraph render: ", may be

@@ -26,6 +26,8 @@ typedef struct pg_scene_features {
     bool has_metallic_roughness_tex; /* any metallicRoughnessTexture (sampled by the pbr model) */
     bool has_occlusion_tex; /* any occlusionTexture (sampled by the pbr model) */
     bool has_unlit;       /* any KHR_materials_unlit material (drawn as emission: has_emissive too) */
+    bool has_environment; /* scene->environment is set: the environment_filter pass fills the
+                             filtered environment and the shading passes read it */
     uint8_t auto_shading; /* PG_SHADING_LAMBERT / _BLINN_PHONG / _PBR: the model a pass's shading
                              "auto" picks: pbr for a glTF file's materials, lambert for the
                              generated scenes; a scenario's "shading" sets it (the tools) */

@@ -28,6 +28,9 @@
 #   spot-cost      100,000 spot lights against the same 100,000 point lights (same positions, ranges,
 #                  colours: scripts/spot_lights.py over `passgraph lights-table --json`) in every
 #                  clustered exact pipeline (times only)
+#   environment-cost  the environment light: one frame of visibility and reference with the neutral
+#                  sky (the filter pass's one-time cost), and every exact pipeline with and without it
+#                  at 1,000 lights, Lambert and pbr (times and error against the reference)
 #   knob-stochastic  the stochastic_threshold x tile_size sweep of `knobs` alone
 #   knobs          the approximation knobs at 1,000,000 lights (stochastic_threshold,
 #                  ris_candidates, lightcut_error) and the accumulation curve of the stochastic
@@ -187,6 +190,20 @@ for step in "${STEPS[@]}"; do
     done
     COMMON=("${SAVED[@]}")
     rm -rf "$SP_DIR"
+    ;;
+  environment-cost)
+    # the environment light's cost: the one-time filter (a rendered frame's passes) and every
+    # pipeline with and without the neutral sky at 1,000 lights, with their error against the
+    # reference (whose environment term is its Monte Carlo)
+    for pipe in visibility reference; do
+      run "env_frame_$pipe" "$BUNDLE/passgraph" render "${COMMON[@]}" --lights 1000 --environment default \
+        --pipeline "$P/$pipe.json" --out "/tmp/env_$pipe.png"
+    done
+    for env in none default; do
+      bench "environment_$env" "$BUNDLE" naive,forward_plus,deferred,deferred_oct16,deferred_packed,visibility \
+        --lights 1000 --environment "$env" --sweep shading=lambert,pbr --warmup 2 --warmup-ms 500 --frames 10 \
+        --no-hdr-flip
+    done
     ;;
   tile-size)
     bench tile_size "$BUNDLE" visibility --lights 1000,100000,1000000 --sweep tile_size=8,16 \

@@ -84,6 +84,7 @@ vec3 pg_srgb_decode(vec3 c)
         vec4 light_keep_min; /* the box lights stay out of, w = 1 when they do */                \
         vec4 light_keep_max;                                                                     \
         uvec4 light_src;    /* x: lights from the scene file (the first x of counts.x) */        \
+        vec4 environment;   /* intensity, rotation about +Y (radians), 0, 0 */                   \
     } frame;
 
 // Camera-relative rendering (use after FRAME_UNIFORMS_BLOCK): shading works on positions

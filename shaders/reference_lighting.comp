@@ -76,6 +76,138 @@ layout(push_constant) uniform Push {
 #define PG_AMBIENT pc.ambient
 
 #include "shading.glsl" // the Lights buffer (set 2) and the debug views
+
+// PG_REFERENCE_ENV: the environment light by Monte Carlo over the scene's level-0 texels (set 1,
+// binding PG_REFERENCE_ENV_BINDING; PG_ENV_SRC_W x PG_ENV_SRC_H; with PG_REFERENCE_ENV_IS the next
+// binding holds its importance-sampling tables, scene/environment.h cdf). Each of PG_REF_ENV_SAMPLES
+// rounds draws one direction from each strategy: cosine around N, a GGX half vector (pbr), the
+// environment's texels by luminance x sin(theta) (when it is not black); a direction L drawn by any
+// of them adds f(L) L_env(L) N.L / (p_cos(L) + p_ggx(L) + p_env(L)) (multiple importance sampling
+// with the balance heuristic, Veach 1997): unbiased wherever one strategy can draw L. The rounds are
+// Hammersley points rotated per pixel (Cranley-Patterson, a hash of the pixel and frame.noise.y).
+// Lambert and Blinn-Phong: f = albedo / pi (their environment term has no specular part).
+#ifdef PG_REFERENCE_ENV
+layout(set = 1, binding = PG_REFERENCE_ENV_BINDING, std430) readonly buffer EnvSource { vec4 env_src[]; };
+#define PG_ENV_FETCH(i) env_src[i]
+#include "environment.glsl"
+#ifdef PG_REFERENCE_ENV_IS
+layout(set = 1, binding = PG_REFERENCE_ENV_BINDING + 1, std430) readonly buffer EnvCdf { float env_cdf[]; };
+#endif
+
+const uint REF_ENV_W = uint(PG_ENV_SRC_W), REF_ENV_H = uint(PG_ENV_SRC_H);
+
+vec3 ref_env_radiance(vec3 d)
+{
+    vec2 uv = pg_env_dir_to_uv(pg_env_unrotate(d, frame.environment.y));
+    return pg_env_bilinear(0u, REF_ENV_W, REF_ENV_H, uv);
+}
+
+#ifdef PG_REFERENCE_ENV_IS
+// the largest k < n with env_cdf[base + k] <= x (env_cdf[base] = 0)
+uint ref_cdf_search(uint base, uint n, float x)
+{
+    uint lo = 0u, hi = n;
+    while (hi - lo > 1u) {
+        uint mid = (lo + hi) / 2u;
+        if (env_cdf[base + mid] <= x) lo = mid;
+        else hi = mid;
+    }
+    return lo;
+}
+
+// A world direction drawn by the tables from xi (uniform within the drawn texel).
+vec3 ref_env_draw(vec2 xi)
+{
+    uint j = ref_cdf_search(0u, REF_ENV_H, xi.y);
+    float fy = (xi.y - env_cdf[j]) / max(env_cdf[j + 1u] - env_cdf[j], 1e-30);
+    uint rb = REF_ENV_H + 1u + j * (REF_ENV_W + 1u);
+    uint i = ref_cdf_search(rb, REF_ENV_W, xi.x);
+    float fx = (xi.x - env_cdf[rb + i]) / max(env_cdf[rb + i + 1u] - env_cdf[rb + i], 1e-30);
+    vec2 uv = vec2((float(i) + clamp(fx, 0.0, 1.0)) / float(REF_ENV_W), (float(j) + clamp(fy, 0.0, 1.0)) / float(REF_ENV_H));
+    return pg_env_unrotate(pg_env_uv_to_dir(uv), -frame.environment.y);
+}
+
+// The tables' solid-angle density of world direction d.
+float ref_env_pdf(vec3 d)
+{
+    vec3 s = pg_env_unrotate(d, frame.environment.y);
+    vec2 uv = pg_env_dir_to_uv(s);
+    uint i = min(uint(uv.x * float(REF_ENV_W)), REF_ENV_W - 1u), j = min(uint(uv.y * float(REF_ENV_H)), REF_ENV_H - 1u);
+    uint rb = REF_ENV_H + 1u + j * (REF_ENV_W + 1u);
+    float p = (env_cdf[j + 1u] - env_cdf[j]) * (env_cdf[rb + i + 1u] - env_cdf[rb + i]);
+    float sin_t = sqrt(max(1.0 - s.y * s.y, 0.0));
+    return sin_t > 0.0 ? p * float(REF_ENV_W) * float(REF_ENV_H) / (2.0 * PG_ENV_PI * PG_ENV_PI * sin_t) : 0.0;
+}
+#else
+float ref_env_pdf(vec3 d) { return 0.0; }
+#endif
+
+struct RefEnvSurface {
+    vec3 N, V;
+    float nv, a;
+    vec3 f0, cdiff;
+};
+
+// f(L) N.L (pbr: the glTF BRDF; otherwise 1 / pi, the albedo applied by the caller) and the
+// strategies' summed density of L.
+vec3 ref_env_term(RefEnvSurface r, vec3 L, out float pdf)
+{
+    float nl = dot(r.N, L);
+    pdf = 0.0;
+    if (nl <= 0.0) return vec3(0.0);
+    pdf = nl / PG_ENV_PI + ref_env_pdf(L);
+#ifdef PG_PBR
+    vec3 H = normalize(r.V + L);
+    float vh = max(dot(r.V, H), 0.0), nh = dot(r.N, H);
+    float a2 = r.a * r.a, q = nh * nh * (a2 - 1.0) + 1.0;
+    float D = a2 / (PG_ENV_PI * q * q);
+    if (nh > 0.0 && vh > 0.0) pdf += D * nh / (4.0 * vh);
+    vec3 F = r.f0 + (1.0 - r.f0) * pow(1.0 - vh, 5.0);
+    return ((1.0 - F) * r.cdiff / PG_ENV_PI + F * (D * pg_env_smith_v(nl, r.nv, r.a))) * nl;
+#else
+    return vec3(nl / PG_ENV_PI);
+#endif
+}
+
+vec3 ref_env_add(RefEnvSurface r, vec3 L)
+{
+    float pdf;
+    vec3 f = ref_env_term(r, L, pdf);
+    return pdf > 0.0 ? f * ref_env_radiance(L) / pdf : vec3(0.0);
+}
+
+vec3 ref_env_light(Surface s, vec3 V, uvec2 px)
+{
+    RefEnvSurface r;
+    V = pg_env_view(s.normal, V);
+    r.N = s.normal;
+    r.V = V;
+    r.nv = clamp(dot(s.normal, V), 0.0, 1.0);
+    r.a = pg_env_alpha(s.shininess);
+    r.f0 = mix(vec3(0.04), s.albedo, s.specular);
+    r.cdiff = s.albedo * (1.0 - s.specular);
+    uint h = pg_pcg(px.x * 73856093u ^ px.y * 19349663u ^ frame.noise.y * 83492791u);
+    vec2 shift = vec2(float(h >> 8u), float(pg_pcg(h) >> 8u)) * (1.0 / 16777216.0);
+    vec3 sum = vec3(0.0);
+    for (uint i = 0u; i < uint(PG_REF_ENV_SAMPLES); i++) {
+        vec2 xi = fract(pg_env_hammersley(i, uint(PG_REF_ENV_SAMPLES)) + shift);
+        sum += ref_env_add(r, pg_env_cosine_dir(r.N, xi));
+#ifdef PG_PBR
+        vec3 H = pg_env_ggx_half(r.N, r.a, xi);
+        sum += ref_env_add(r, 2.0 * dot(V, H) * H - V);
+#endif
+#ifdef PG_REFERENCE_ENV_IS
+        sum += ref_env_add(r, ref_env_draw(fract(xi.yx + shift.yx)));
+#endif
+    }
+    sum /= float(PG_REF_ENV_SAMPLES);
+#ifdef PG_PBR
+    return frame.environment.x * max(s.occlusion, 0.0) * sum;
+#else
+    return frame.environment.x * s.albedo * sum;
+#endif
+}
+#endif
 #ifdef PG_REFERENCE_CULL
 #include "cluster.glsl"     // pg_sphere_intersects_aabb
 #endif
@@ -239,6 +371,9 @@ void main()
 #endif
     if (!inside) return;
     vec3 c = covered ? pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z)) : vec3(0.0);
+#ifdef PG_REFERENCE_ENV
+    if (covered) c += ref_env_light(s, PG_VIEW_DIR(P), uvec2(px));
+#endif
     imageStore(hdr_out, px, vec4(pg_hdr_sanitize(c), 1.0));
 #endif
 }

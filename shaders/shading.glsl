@@ -27,6 +27,25 @@ layout(set = 2, binding = 2, std430) readonly buffer ClusterLights { uint cluste
 #define PG_DEBUG_VIEW 0
 #endif
 
+// PG_ENVIRONMENT: the filtered environment (environment_filter's buffer) at set 2, binding
+// PG_ENV_BINDING (after the light bindings); its light is added to every shaded point.
+#ifdef PG_ENVIRONMENT
+layout(set = 2, binding = PG_ENV_BINDING, std430) readonly buffer EnvironmentFiltered { vec4 env_filtered[]; };
+#define PG_ENV_FETCH(i) env_filtered[i]
+#include "environment.glsl"
+#endif
+
+// A shaded point's colour: the light sums combined with the material, the ambient term and the
+// emission (pg_shade_combine), plus the environment's light (V: unit, toward the eye).
+vec3 pg_shade_final(Surface s, PgShade acc, vec3 V)
+{
+    vec3 c = pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z));
+#ifdef PG_ENVIRONMENT_FILTERED
+    c += pg_env_light(s, V);
+#endif
+    return c;
+}
+
 // PG_COUNT_EVALS (deferred_lighting): pg_evals counts the light evaluations of this invocation
 // (every light of a list a pixel walks, RIS candidates, lightcut leaves and representatives); the
 // pass sums them per frame into the buffer at set 2, binding PG_EVALS_BINDING (64-bit: low, high).
@@ -274,7 +293,7 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
     return rec.y < raw ? vec3(1.0, 0.0, 0.0) : s.albedo * 0.25;
 #else
 #if defined(PG_RIS) && defined(PG_CLUSTERED) && defined(PG_HAS_LIGHTS)
-    return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z)) + pg_ris_estimate(s, rec, P, V, frag_xy);
+    return pg_shade_final(s, acc, V) + pg_ris_estimate(s, rec, P, V, frag_xy);
 #endif
 #ifdef PG_HAS_LIGHTS
     float min_dist = frame.light_params.w;
@@ -285,7 +304,7 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
         pg_accumulate_light(lights[li], PG_SPOT_OF(li), cam, P, s.normal, V, s.shininess, min_dist, acc);
     }
 #elif defined(PG_LIGHTCUT)
-    return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z)) + pg_lightcut(s, P, V);
+    return pg_shade_final(s, acc, V) + pg_lightcut(s, P, V);
 #else
     uint count = frame.counts.x;
     PG_COUNT(count);
@@ -293,7 +312,7 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
         pg_accumulate_light(lights[i], PG_SPOT_OF(i), cam, P, s.normal, V, s.shininess, min_dist, acc);
 #endif
 #endif
-    return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z));
+    return pg_shade_final(s, acc, V);
 #endif
 }
 
@@ -508,6 +527,6 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
         pending = pending && !mine;
         barrier();       // before the next round resets the cluster and box (a cluster may have no chunk)
     }
-    return pg_shade_combine(s, acc, vec3(PG_AMBIENT + frame.clip.z));
+    return pg_shade_final(s, acc, V);
 }
 #endif

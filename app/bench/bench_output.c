@@ -163,6 +163,10 @@ static cJSON *json_meta(const bench *B)
     cJSON *sc = cJSON_AddArrayToObject(m, "scenes");
     for (uint32_t i = 0; sc && i < B->n_scenes; i++) cJSON_AddItemToArray(sc, cJSON_CreateString(B->scene_names[i]));
     if (B->opt.scenario) cJSON_AddStringToObject(m, "scenario", B->opt.scenario);
+    /* --environment as given ("auto": the neutral sky for a glTF file without lights, else none) */
+    cJSON_AddStringToObject(m, "environment", B->opt.environment ? B->opt.environment : "auto");
+    cJSON_AddNumberToObject(m, "environment_intensity", B->opt.env_intensity);
+    cJSON_AddNumberToObject(m, "environment_rotation_deg", B->opt.env_rotation_deg);
     cJSON_AddStringToObject(m, "reference", B->ref_name);
     cJSON_AddStringToObject(m, "reference_path", B->ref_path);
     cJSON *rl = cJSON_AddObjectToObject(m, "reference_max_lights");

@@ -83,7 +83,7 @@ static bool parse_at(viewer *v, const char *spec, pg_error *err)
     view_action *a = &v->actions[v->n_actions];
     char what[64] = {0};
     int used_chars = 0;
-    if (v->n_actions >= MAX_ACTIONS || sscanf(spec, "%u:%15[a-z]%n", &a->frame, what, &used_chars) < 2) {
+    if (v->n_actions >= MAX_ACTIONS || sscanf(spec, "%u:%15[a-z_]%n", &a->frame, what, &used_chars) < 2) {
         fprintf(stderr, "passgraph view: --at %s: expected FRAME:ACTION[=ARG]\n", spec);
         return false;
     }
@@ -237,6 +237,8 @@ static bool initial_state(viewer *v, const pg_cli_common *opt)
     v->radius = v->app.lights.radius;
     v->intensity = v->app.lights.intensity;
     v->ambient = v->app.lights.ambient;
+    v->env_intensity = v->app.lights.env_intensity;
+    v->env_rotation_deg = v->app.lights.env_rotation * (float)(180.0 / 3.14159265358979);
     v->speed = v->app.lights.speed;
     v->seed = (int)v->app.lights.seed;
     v->time = opt->time;

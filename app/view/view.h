@@ -64,6 +64,7 @@ typedef struct viewer {
     /* frame settings */
     int light_count;
     float radius, intensity, speed, time, ambient;
+    float env_intensity, env_rotation_deg; /* the environment light's run-time knobs */
     int seed;
     bool paused;
     pg_camera camera, home;

@@ -133,6 +133,8 @@ static pg_frame_info viewer_frame_info(const viewer *v)
     fi.lights.radius = v->radius;
     fi.lights.intensity = v->intensity;
     fi.lights.ambient = v->ambient;
+    fi.lights.env_intensity = v->env_intensity;
+    fi.lights.env_rotation = v->env_rotation_deg * (float)(3.14159265358979 / 180.0);
     fi.lights.speed = v->speed;
     fi.lights.seed = (uint32_t)v->seed;
     fi.time = v->time;

@@ -58,6 +58,14 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
         v->flip_said = false;
     } else if (!strcmp(a->what, "lights")) {
         v->light_count = atoi(a->arg);
+    } else if (!strcmp(a->what, "env_intensity") || !strcmp(a->what, "env_rotation")) {
+        char *end = NULL;
+        float x = strtof(a->arg, &end);
+        if (!end || *end || !isfinite(x) || (a->what[4] == 'i' && x < 0))
+            return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s=%s: expected a number%s", a->frame, a->what, a->arg,
+                           a->what[4] == 'i' ? " >= 0" : " (degrees)");
+        if (a->what[4] == 'i') v->env_intensity = x;
+        else v->env_rotation_deg = x;
     } else if (!strcmp(a->what, "camera")) {
         if (!strcmp(a->arg, "auto")) {
             camera_choose(v, 1);
@@ -76,7 +84,7 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
         v->want_rdoc = true;
         pg_strlcpy(v->rdoc_file, a->arg, sizeof v->rdoc_file);
     } else {
-        return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s: unknown action (resize, iconify, restore, copy, set, pipeline, display, ocioview, diff, lights, camera, screenshot, capture)",
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s: unknown action (resize, iconify, restore, copy, set, pipeline, display, ocioview, diff, lights, env_intensity, env_rotation, camera, screenshot, capture)",
                        a->frame, a->what);
     }
     return PG_OK;

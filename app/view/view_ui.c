@@ -2,6 +2,8 @@
  * memory and its aliasing timeline). */
 #include "view.h"
 
+#include "environment.h"
+
 /* ---------------------------------------------------------------- UI */
 
 static void param_widget(viewer *v, const pg_param *p)
@@ -99,7 +101,8 @@ static void open_scene(viewer *v)
     pg_scene *sc = NULL;
     pg_scene_gpu *sg = NULL;
     pg_error err = {0};
-    if (pg_scene_load(v->scene_input, &sc, &err) || pg_scene_gpu_create(v->app.gpu, sc, &sg, &err)) {
+    if (pg_scene_load(v->scene_input, &sc, &err) || pg_app_attach_environment(&v->app, sc, &err) ||
+        pg_scene_gpu_create(v->app.gpu, sc, &sg, &err)) {
         snprintf(v->error, sizeof v->error, "%s", err.msg);
         pg_scene_free(sc);
         return;
@@ -148,6 +151,11 @@ static void scene_and_lights_ui(viewer *v)
     pg_ui_slider_float("radius", &v->radius, 0.01f, 100.0f, "%.3f", true);
     pg_ui_slider_float("intensity", &v->intensity, 0.001f, 100.0f, "%.3f", true);
     pg_ui_slider_float("ambient", &v->ambient, 0.0f, 1.0f, "%.3f", false);
+    if (v->app.scene && v->app.scene->environment) { /* frame uniforms: no rebuild, no new filtering */
+        pg_ui_text("environment: %s", v->app.scene->environment->source);
+        pg_ui_slider_float("environment intensity", &v->env_intensity, 0.0f, 16.0f, "%.3f", false);
+        pg_ui_slider_float("environment rotation", &v->env_rotation_deg, -180.0f, 180.0f, "%.1f deg", false);
+    }
     pg_ui_slider_float("motion speed", &v->speed, 0.0f, 10.0f, "%.2f", false);
     pg_ui_input_int("seed", &v->seed);
     pg_ui_checkbox("pause", &v->paused);

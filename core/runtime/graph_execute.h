@@ -40,6 +40,8 @@ typedef struct pg_phys_resource {
     VkDeviceMemory own_memory; /* non-null when not in a shared block */
     VkDeviceMemory memory;     /* what it is bound to (own_memory or a shared block) */
     VkDeviceSize memory_offset, memory_size; /* the bytes it occupies there */
+    uint64_t content_tag;      /* what a pass last wrote into a kept (persistent) resource, its own
+                                * tag (pg_ctx_content_tag); 0 whenever the resource is (re)created */
 } pg_phys_resource;
 
 typedef struct pg_pass_create_ctx {
@@ -88,6 +90,15 @@ typedef struct pg_pass_record_ctx {
     pg_error *record_error;           /* the first contract break found while recording (e.g. by
                                        * pg_pass_begin_rendering); set -> the frame fails with it */
 } pg_pass_record_ctx;
+
+/* record(): the content tag of the resource bound to a write slot (pg_phys_resource.content_tag),
+ * writable by the pass: a pass that fills a persistent resource from an input that rarely changes
+ * stores the input's identity there and records nothing while it matches (the resource is kept
+ * with its contents by a new plan of the same memory, and re-created with tag 0 otherwise). */
+static inline uint64_t *pg_ctx_content_tag(const pg_pass_record_ctx *ctx, pg_slot s)
+{
+    return (uint64_t *)&((pg_phys_resource *)ctx->slots[pg_plan_slot_of(ctx->pass, s)])->content_tag;
+}
 
 /* Begins dynamic rendering on the pass's attachment slots (indices into ctx->slots: colour
  * slots, then depth_slot or -1) and checks each load op against the slot's declared access: a

@@ -81,6 +81,10 @@ typedef struct pg_rt_memory {
      * pg_runtime_apply_growth (cleared by it, by the next reports read and by a new plan) */
     pg_rt_grow_request pending[PG_RT_MAX_GROW_REQUESTS];
     uint32_t n_pending;
+    /* persistent buffers carried over a memory rebuild (pg_rt_carry_persistent), indexed like the
+     * new plan's resources, until pg_rt_build_memory puts them in place */
+    pg_phys_resource carried[PG_MAX_RESOURCES];
+    bool carried_set[PG_MAX_RESOURCES], carried_init[PG_MAX_RESOURCES];
 } pg_rt_memory;
 
 /* Frames in flight: everything the host writes or reads per frame has one copy per slot; frame
@@ -173,6 +177,11 @@ void pg_rt_destroy_passes(pg_runtime *rt);
 void pg_rt_destroy_built(pg_runtime *rt);
 void pg_rt_forget_contents(pg_runtime *rt, int resource);
 void pg_rt_mark_persistent_written(pg_runtime *rt);
+/* Before a memory rebuild for `next`: takes out of the built resources every persistent buffer with
+ * its own memory that `next` has too (same name, size and usage, not growable, its own memory
+ * there as well), with its contents and content tag, so pg_rt_destroy_built leaves it and
+ * pg_rt_build_memory puts it in place. */
+void pg_rt_carry_persistent(pg_runtime *rt, const pg_graph_plan *next);
 void pg_rt_clear_growth(pg_runtime *rt);
 void pg_rt_request_growth(pg_runtime *rt, int resource, uint64_t needed, uint64_t max);
 

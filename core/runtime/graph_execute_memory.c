@@ -28,6 +28,7 @@ static pg_result create_unbound(pg_runtime *rt, int i, pg_error *err)
     const pg_plan_resource *pr = &rt->cur.plan->resources[i];
     pg_phys_resource *r = &rt->mem.res[i];
     r->kind = pr->kind;
+    r->content_tag = 0; /* new contents: no pass wrote them */
     if (pr->kind == PG_RES_IMAGE) {
         const pg_format_info *fi = pg_format_get(pr->format);
         r->format = (VkFormat)fi->vk_format;
@@ -204,8 +205,36 @@ static pg_result build_own(pg_runtime *rt, int i, pg_error *err)
     return bind(rt, i, rt->mem.res[i].own_memory, 0, err);
 }
 
-/* The physical resources (memory blocks, own allocations) and the readback buffers
- * (graph_execute_frames.c). */
+static bool carriable(const pg_plan_resource *r)
+{
+    return !r->culled && r->kind == PG_RES_BUFFER && r->lifetime == PG_LIFETIME_PERSISTENT && !r->growable &&
+           r->block < 0;
+}
+
+void pg_rt_carry_persistent(pg_runtime *rt, const pg_graph_plan *next)
+{
+    const pg_graph_plan *old = rt->cur.plan;
+    pg_rt_memory *m = &rt->mem;
+    memset(m->carried_set, 0, sizeof m->carried_set);
+    if (!m->built || !old) return;
+    for (uint32_t j = 0; j < next->n_resources; j++) {
+        const pg_plan_resource *b = &next->resources[j];
+        for (uint32_t i = 0; carriable(b) && i < old->n_resources; i++) {
+            const pg_plan_resource *a = &old->resources[i];
+            if (!carriable(a) || strcmp(a->name, b->name) || a->size_bytes != b->size_bytes || a->usage != b->usage ||
+                !m->res[i].own_memory)
+                continue;
+            m->carried[j] = m->res[i];
+            m->carried_set[j] = true;
+            m->carried_init[j] = m->persistent_initialized[i];
+            memset(&m->res[i], 0, sizeof m->res[i]); /* not freed by pg_rt_destroy_built */
+            break;
+        }
+    }
+}
+
+/* The physical resources (memory blocks, own allocations, the carried persistent buffers) and the
+ * readback buffers (graph_execute_frames.c). */
 pg_result pg_rt_build_memory(pg_runtime *rt, pg_error *err)
 {
     const pg_graph_plan *plan = rt->cur.plan;
@@ -213,15 +242,22 @@ pg_result pg_rt_build_memory(pg_runtime *rt, pg_error *err)
     rt->stats.resource_creations++;
     rt->stats.memory_bytes_transient = 0;
     rt->stats.memory_bytes_unaliased = 0;
+    bool bound[PG_MAX_RESOURCES] = {0};
+    for (uint32_t i = 0; i < plan->n_resources; i++) { /* first, so a failure below frees them too */
+        if (!rt->mem.carried_set[i]) continue;
+        rt->mem.res[i] = rt->mem.carried[i];
+        rt->mem.persistent_initialized[i] = rt->mem.carried_init[i];
+        rt->mem.carried_set[i] = false;
+        bound[i] = true;
+    }
     for (uint32_t i = 0; i < plan->n_resources; i++) {
-        if (plan->resources[i].culled) continue;
+        if (plan->resources[i].culled || bound[i]) continue;
         if ((r = create_unbound(rt, (int)i, err))) return r;
     }
     /* shared blocks: each plan block is packed again with the real memory requirements
      * (core/graph/alias_pack.c), only among its own members, so two resources share bytes at run time
      * only if the plan's alias barriers order them; members without a common memory type end up
      * in separate allocations */
-    bool bound[PG_MAX_RESOURCES] = {0};
     for (uint32_t b = 0; b < plan->n_blocks; b++)
         if ((r = build_block(rt, b, bound, err))) return r;
     for (uint32_t i = 0; i < plan->n_resources; i++) {

@@ -263,6 +263,7 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
         }
         if (!r) r = pg_rt_build_passes(rt, err);
     } else {
+        pg_rt_carry_persistent(rt, plan); /* e.g. a filtered environment: kept with what it holds */
         pg_rt_destroy_built(rt);
         rt->cur.plan = plan;
         rt->cur.pipeline = pipeline;

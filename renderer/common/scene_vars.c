@@ -21,6 +21,7 @@ static const struct {
     {"has_metallic_roughness_tex", offsetof(pg_scene_features, has_metallic_roughness_tex)},
     {"has_occlusion_tex", offsetof(pg_scene_features, has_occlusion_tex)},
     {"has_unlit", offsetof(pg_scene_features, has_unlit)},
+    {"has_environment", offsetof(pg_scene_features, has_environment)},
 };
 #define PG_VAR_AUTO_SHADING "auto_shading"
 

@@ -120,19 +120,54 @@ pg_result pg_light_set_create_ex(const pg_pass_create_ctx *ctx, const pg_shading
                                  const pg_phys_resource *extra, pg_pass_set *out, pg_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (!sp->has_lights) return PG_OK;
-    pg_set_binding b[4] = {
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->lights), VK_NULL_HANDLE, 0},
-    };
-    uint32_t n = 1;
-    if (sp->clustered) {
-        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->cluster_counts), VK_NULL_HANDLE, 0};
-        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->cluster_lists), VK_NULL_HANDLE, 0};
+    if (!sp->has_lights && !sp->has_env) return PG_OK;
+    pg_set_binding b[5];
+    uint32_t n = 0;
+    if (sp->has_lights) {
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->lights), VK_NULL_HANDLE, 0};
+        if (sp->clustered) {
+            b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->cluster_counts),
+                                      VK_NULL_HANDLE, 0};
+            b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->cluster_lists),
+                                      VK_NULL_HANDLE, 0};
+        }
+        if (extra) b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, extra, VK_NULL_HANDLE, 0};
     }
-    if (extra) b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, extra, VK_NULL_HANDLE, 0};
+    if (sp->has_env) /* PG_ENV_BINDING */
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->environment), VK_NULL_HANDLE, 0};
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.lights", ctx->pass->name);
     return pg_pass_set_create(ctx->gpu, n, b, name, out, err);
+}
+
+void pg_environment_slot_declare(const pg_declare_in *in, pg_pass_decl *out, pg_shading_params *sp, uint32_t stages,
+                                 bool extra)
+{
+    const bool env = pg_scene_features_of(in).has_environment;
+    sp->has_env = false;
+    sp->environment = PG_SLOT_NONE;
+    if (in->desc->n_reads <= out->n_reads) {
+        if (env)
+            pg_decl_explain(out, "no environment slot bound (reads[%u]): the environment light does not reach this "
+                                 "pass", out->n_reads);
+        return;
+    }
+    sp->environment = pg_decl_read(out, "environment", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, stages, 0);
+    if (!env) {
+        pg_decl_mark_unused(out, sp->environment, "no environment light: its term compiled out");
+        return;
+    }
+    if (sp->o.view != 0) {
+        pg_decl_mark_unused(out, sp->environment, "debug view: no environment light");
+        return;
+    }
+    sp->has_env = true;
+    pg_decl_define(out, "PG_ENVIRONMENT");
+    pg_decl_define(out, "PG_ENVIRONMENT_FILTERED");
+    pg_decl_define_int(out, "PG_ENV_BINDING", pg_lights_of(in) > 0 ? 1 + (sp->clustered ? 2 : 0) + (extra ? 1 : 0) : 0);
+    pg_decl_explain(out, "environment light: diffuse table and %s (frame intensity and rotation: run-time values)",
+                    pg_shading_model(in, sp->o.shading) == PG_SHADING_PBR ? "split-sum specular"
+                                                                           : "no specular term (pbr has one)");
 }
 
 pg_result pg_emissive_slot_declare(const pg_declare_in *in, pg_pass_decl *out, bool is_write, bool full_precision,

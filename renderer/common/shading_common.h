@@ -47,6 +47,8 @@ typedef struct pg_shading_params {
     bool clustered;      /* the pass reads cluster lists */
     bool has_lights;     /* declared with lights (PG_HAS_LIGHTS) */
     pg_slot lights, cluster_counts, cluster_lists; /* cluster_*: PG_SLOT_NONE unless clustered */
+    pg_slot environment; /* the filtered environment (pg_environment_slot_declare), or none */
+    bool has_env;        /* it is bound and used: PG_ENVIRONMENT, the last binding of set 2 */
 } pg_shading_params;
 
 /* known: the pass's other option keys (NULL-terminated, may be NULL). Fills sp->o, sp->ambient and
@@ -70,6 +72,17 @@ pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, const pg_shading_pa
 /* The same with one more storage buffer after them (binding 1, or 3 when clustered), if extra. */
 pg_result pg_light_set_create_ex(const pg_pass_create_ctx *ctx, const pg_shading_params *sp,
                                  const pg_phys_resource *extra, pg_pass_set *out, pg_error *err);
+/* The optional environment slot: the filtered environment buffer (environment_filter's output,
+ * shaders/environment.glsl), the last read of a shading pass (forward_naive, forward_plus,
+ * forward_transparent, deferred_lighting), declared next (after every other read). Bound:
+ * declared (storage read in `stages`), and used when the scene has an environment and the pass
+ * shades (no debug view): defines PG_ENVIRONMENT, PG_ENVIRONMENT_FILTERED and PG_ENV_BINDING, its
+ * binding in set 2 after the light bindings and the pass's extra one (pg_light_set_create_ex);
+ * otherwise marked unused (the filter pass and the buffer are culled). Not bound: nothing is
+ * declared, and with an environment an explain line says the pass does not get it. */
+void pg_environment_slot_declare(const pg_declare_in *in, pg_pass_decl *out, pg_shading_params *sp, uint32_t stages,
+                                 bool extra);
+
 /* The optional emissive G-buffer slot (gb_emissive): the last write of a gbuffer pass, the last read of
  * deferred_lighting and reference_lighting, declared next (after the slots declared so far). Bound when the
  * pass desc has a slot there: declared (colour attachment written in the fragment stage, or sampled in

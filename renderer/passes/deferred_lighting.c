@@ -4,7 +4,8 @@
  * Slots: reads [lights, cluster_counts, cluster_lights, depth, G-buffer targets of the variant,
  *               emissive (optional: the gbuffer pass's emissive target, added once per pixel as
  *               forward adds it; unused - not allocated - without emissive materials; not bound:
- *               no emission drawn, explain line)]
+ *               no emission drawn, explain line), environment (optional, after the emissive slot: the
+ *               filtered environment, shading_common.h)]
  *        writes [hdr] (storage image, every pixel written).
  * packing "visibility": the one "target" is the visibility pass's triangle id (r32ui); the surface
  * is rebuilt from the triangle, its vertex streams and its material here (visibility_common.h,
@@ -91,7 +92,10 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     bool emissive = false;
     const uint32_t light_reads = source == 1 ? 1 : 3;
     if (packing == PG_GBUFFER_VISIBILITY) {
-        if (in->desc->n_reads > light_reads + 2)
+        const uint32_t extra = light_reads + 2; /* the optional environment slot may follow */
+        const pg_resource_desc *rd =
+            in->desc->n_reads > extra ? pg_pipeline_find_resource(in->pipeline, in->desc->reads[extra]) : NULL;
+        if (in->desc->n_reads > extra + 1 || (rd && rd->kind == PG_RES_IMAGE))
             return pg_fail(err, PG_ERR_SCHEMA,
                            "%s: %s.reads[%u]: packing \"visibility\" takes no emissive target (the material's "
                            "emission is evaluated in this pass)",
@@ -112,6 +116,7 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     pg_decl_define(out, pg_gbuffer_defines[packing]);
     if (emissive) pg_decl_define(out, "PG_DEFERRED_EMISSIVE");
     pg_shading_declare(&p->sh, in, out);
+    pg_environment_slot_declare(in, out, &p->sh, PG_STAGE_COMPUTE, true);
     bool tiled;
     int64_t tile;
     if ((r = pg_opt_bool(in->desc, "tile_lights", true, &tiled, err))) return r;

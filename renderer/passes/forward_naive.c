@@ -1,6 +1,7 @@
 /* forward_naive.c - the exact reference: draws the scene once with depth, and every fragment
  * loops over every light (shaders/forward.frag without PG_CLUSTERED).
- * Slots: reads [lights] (storage buffer, fragment); writes [color, depth].
+ * Slots: reads [lights (storage buffer, fragment), environment (optional: the filtered environment,
+ * shading_common.h)]; writes [color, depth].
  * Options: shading, ambient, view (albedo, normal, depth) - see shading_common.h.
  * Variants: PG_ALPHA_MASK only if the scene has alpha-mask materials (a second pipeline for those
  * draws), PG_NORMAL_MAPS only if it has normal maps, PG_BLINN_PHONG for that shading, no light
@@ -17,6 +18,7 @@ static pg_result fn_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     p->depth = pg_decl_write(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_WRITE, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
     pg_scene_draw_declare_features(in, out, &p->draw);
     pg_shading_declare(&p->sh, in, out);
+    pg_environment_slot_declare(in, out, &p->sh, PG_STAGE_FRAGMENT, false);
     return PG_OK;
 }
 

@@ -2,7 +2,8 @@
  * finds its cluster (screen tile x exponential depth slice) and shades only the lights the
  * cluster_assign pass listed for it, in ascending light order - the same sum as naive whenever
  * no cluster overflowed.
- * Slots: reads [lights, cluster_counts, cluster_lights] (storage buffers, fragment);
+ * Slots: reads [lights, cluster_counts, cluster_lights (storage buffers, fragment), environment
+ *        (optional: the filtered environment, shading_common.h)];
  *        writes [color, depth].
  * Options: prepass (bool, default false): depth was drawn by a depth_prepass pass before this
  * one; the depth slot is then depth_rmw (loaded). prepass_test (with prepass; must match the
@@ -58,6 +59,7 @@ static pg_result fp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
                                  "tested LESS with writes: fragments behind the nearest opaque surface are not shaded");
     }
     pg_shading_declare(&p->sh, in, out);
+    pg_environment_slot_declare(in, out, &p->sh, PG_STAGE_FRAGMENT, false);
     return PG_OK;
 }
 

@@ -4,8 +4,9 @@
  * (rgb = a*src + (1-a)*dst, non-premultiplied; a = s.alpha), depth tested against the opaque
  * depth but not written, back faces culled unless the material is double-sided. Each fragment is
  * shaded like forward.frag (pg_surface + pg_shade_point: the same lights, ambient and model).
- * Slots: lights "all":      reads [lights, depth], writes [color]
- *        lights "clusters": reads [lights, cluster_counts, cluster_lights, depth], writes [color]
+ * Slots: lights "all":      reads [lights, depth, environment (optional)], writes [color]
+ *        lights "clusters": reads [lights, cluster_counts, cluster_lights, depth, environment (optional)],
+ *        writes [color] (environment: the filtered environment, shading_common.h)
  * (depth: depth attachment, read-only; color: colour attachment, loaded and blended).
  * Options: lights ("all": every light, as forward_naive; "clusters": the cluster lists, as
  * forward_plus: the grid is the cluster_counts resource's count), shading, ambient, view.
@@ -60,6 +61,7 @@ static pg_result ft_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         if ((r = pg_shading_grid_declare(&p->sh, in, err))) return r;
     }
     p->depth = pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_READ, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
+    pg_environment_slot_declare(in, out, &p->sh, PG_STAGE_FRAGMENT, false);
     p->color = pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_RMW, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
     if (!pg_scene_features_of(in).has_blend) {
         pg_decl_skip(out, "no BLEND materials: no transparent pass");

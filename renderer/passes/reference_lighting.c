@@ -37,7 +37,14 @@
  *                than one dispatch takes at the compiled output size; accum_specular also with
  *                lambert shading, accum_fresnel with every model but pbr)].
  * Options: shading, ambient, view (none, albedo, normal, depth) as forward_naive;
- *          lights_per_dispatch (0 = auto, default; else 1..32768). */
+ *          lights_per_dispatch (0 = auto, default; else 1..32768);
+ *          environment_samples (1..1024, default 256): with an environment light in the scene, the
+ *          pixel's environment term is a Monte Carlo integral over its full-resolution texels, that
+ *          many rounds of a cosine, a GGX and an environment-table sample combined by multiple
+ *          importance sampling (shaders/reference_lighting.comp PG_REFERENCE_ENV): unbiased, and its
+ *          noise is the reference's error there (at most 1024: lavapipe ends a shader's loops after
+ *          65535 iterations in all, and a dispatch's light loop may take 32896 of them) (the other pipelines use the filtered
+ *          environment: environment_filter). */
 #include <stdio.h>
 #include <string.h>
 
@@ -63,12 +70,13 @@ typedef struct ref_params { /* filled once by declare, read by create/update/rec
     pg_slot surface[3];           /* position, normal, albedo */
     pg_slot emissive;             /* PG_SLOT_NONE when not bound */
     pg_slot hdr, accum[3];        /* accum_diffuse, accum_specular, accum_fresnel (NONE unless bound) */
+    bool env;                     /* the scene's environment by Monte Carlo (PG_REFERENCE_ENV) */
 } ref_params;
 
 typedef struct reference_lighting {
     uint32_t lights_per_dispatch; /* 0: auto */
     float ambient;                /* option "ambient" (a run-time value): push constant */
-    bool has_lights, has_accum, has_emissive;
+    bool has_lights, has_accum, has_emissive, has_env;
     uint32_t n_accum;             /* sum images bound: 1 (diffuse), 2 (+ specular), 3 (+ Fresnel) */
     pg_slot light_slot, hdr, accum[3];
     VkSampler sampler;
@@ -77,7 +85,7 @@ typedef struct reference_lighting {
     VkPipeline pipeline;
 } reference_lighting;
 
-static const char *const k_extra[] = {"lights_per_dispatch", "cull_lights", NULL};
+static const char *const k_extra[] = {"lights_per_dispatch", "cull_lights", "environment_samples", NULL};
 static const char *const k_surface_slots[3] = {"position", "normal", "albedo"};
 
 static pg_result ref_options(const pg_pass_desc *desc, pg_shading_params *sp, uint32_t *lpd, pg_error *err)
@@ -186,6 +194,23 @@ static pg_result ref_check_sizes(const pg_declare_in *in, pg_pass_decl *out, con
     return PG_OK;
 }
 
+/* The environment light by Monte Carlo over the scene's texels (option environment_samples). */
+static pg_result ref_env_declare(const pg_declare_in *in, pg_pass_decl *out, ref_params *p, pg_error *err)
+{
+    int64_t samples;
+    pg_result r = pg_opt_int(in->desc, "environment_samples", 256, 1, 1024, &samples, err);
+    if (r) return r;
+    p->env = pg_scene_features_of(in).has_environment && p->sh.o.view == 0;
+    if (!p->env) return PG_OK;
+    pg_decl_define(out, "PG_REFERENCE_ENV");
+    pg_decl_define_int(out, "PG_REF_ENV_SAMPLES", samples);
+    pg_decl_explain(out, "environment light: Monte Carlo over the full-resolution environment, %lld rounds a pixel of "
+                         "cosine, %sand environment-table samples with multiple importance sampling "
+                         "(environment_samples; unbiased, its noise is the reference's error)",
+                    (long long)samples, pg_shading_model(in, p->sh.o.shading) == PG_SHADING_PBR ? "GGX " : "");
+    return PG_OK;
+}
+
 static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
     ref_params *p = pg_decl_params(out, sizeof *p);
@@ -257,6 +282,7 @@ static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
         pg_decl_mark_unused(out, p->accum[1], why);
         if (pg_slot_ok(p->accum[2])) pg_decl_mark_unused(out, p->accum[2], why);
     }
+    if ((r = ref_env_declare(in, out, p, err))) return r;
     return ref_check_sizes(in, out, p, emissive, err);
 }
 
@@ -282,15 +308,32 @@ static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
     const char *hdr_fmt = pg_format_get(hdr->pg_fmt)->name;
     /* the images sized like hdr have its extent (declare) */
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
-    pg_set_binding b[8];
+    pg_set_binding b[10];
     uint32_t n = 0;
     for (uint32_t t = 0; t < 3; t++)
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pg_ctx_res(ctx, pa->surface[t]), p->sampler, 0};
     b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr, VK_NULL_HANDLE, 0};
     for (uint32_t k = 0; k < p->n_accum; k++)
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pg_ctx_res(ctx, pa->accum[k]), VK_NULL_HANDLE, 0};
-    if (p->has_emissive) /* the last binding (EMISSIVE_BINDING in the shader) */
+    if (p->has_emissive) /* EMISSIVE_BINDING in the shader */
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pg_ctx_res(ctx, pa->emissive), p->sampler, 0};
+    const pg_scene_gpu *sg = PG_SCENE_OF(ctx);
+    p->has_env = pa->env;
+    if (p->has_env && (!sg || !sg->environment.buffer))
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: the scene has an environment but no uploaded texels",
+                       ctx->pass->name);
+    const uint32_t env_binding = n;
+    pg_phys_resource env_src = {.kind = PG_RES_BUFFER}, env_cdf = {.kind = PG_RES_BUFFER};
+    if (p->has_env) { /* the last bindings: the scene's environment texels (level 0 first), its tables */
+        env_src.buffer = sg->environment.buffer;
+        env_src.size = sg->environment.size;
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &env_src, VK_NULL_HANDLE, 0};
+        if (sg->env_cdf.buffer) {
+            env_cdf.buffer = sg->env_cdf.buffer;
+            env_cdf.size = sg->env_cdf.size;
+            b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &env_cdf, VK_NULL_HANDLE, 0};
+        }
+    }
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.surface", ctx->pass->name);
     if ((r = pg_pass_set_create(gpu, n, b, name, &p->surface, err))) return r;
@@ -298,11 +341,18 @@ static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
     VkDescriptorSetLayout sets[3] = {ctx->frame_layout, p->surface.layout, p->lights.layout};
     if ((r = pg_pipeline_layout_create(gpu, p->lights.layout ? 3 : 2, sets, 4 * sizeof(uint32_t), &p->layout, err)))
         return r;
-    const char *defs[PG_MAX_DEFINES + 2];
+    const char *defs[PG_MAX_DEFINES + 5];
     uint32_t nd = pg_decl_define_list(&ctx->pass->decl, defs, PG_MAX_DEFINES);
-    char fmt_def[48];
+    char fmt_def[48], env_defs[3][48];
     snprintf(fmt_def, sizeof fmt_def, "PG_HDR_FORMAT=%s", hdr_fmt);
     defs[nd++] = fmt_def;
+    if (p->has_env) {
+        snprintf(env_defs[0], sizeof env_defs[0], "PG_REFERENCE_ENV_BINDING=%u", env_binding);
+        snprintf(env_defs[1], sizeof env_defs[1], "PG_ENV_SRC_W=%u", sg->env_width);
+        snprintf(env_defs[2], sizeof env_defs[2], "PG_ENV_SRC_H=%u", sg->env_height);
+        for (int k = 0; k < 3; k++) defs[nd++] = env_defs[k];
+        if (sg->env_cdf.buffer) defs[nd++] = "PG_REFERENCE_ENV_IS";
+    }
     VkShaderModule cs;
     if ((r = pg_shader_module(gpu, "reference_lighting.comp", VK_SHADER_STAGE_COMPUTE_BIT, defs, nd, &cs, err)))
         return r;

@@ -10,7 +10,9 @@ variant's ratio to the BASE variant. Two ways to name the variants:
       scripts/tables/cost_ratio_table.py points --label points=.../spot_cost_points/results.csv \\
           --label spots=.../spot_cost_spots/results.csv
 
-Each cell also names the pass that dominates the frame. Used for docs/performance.md."""
+--variant V keeps only the rows of one --sweep value (e.g. the environment on and off, one light model
+at a time: --variant shading=pbr). Each cell also names the pass that dominates the frame. Used for
+docs/performance.md."""
 import argparse
 import csv
 
@@ -30,6 +32,7 @@ def main():
     ap.add_argument("base", help="the variant the ratios are taken against")
     ap.add_argument("--label", action="append", default=[], metavar="NAME=CSV")
     ap.add_argument("--by-variant", action="store_true", help="variants are the `variant` column of the files")
+    ap.add_argument("--variant", help="keep only the rows of this `variant` (a --sweep value, e.g. shading=pbr)")
     a = ap.parse_args()
     cells = {}  # (pipeline, lights) -> {variant: row}
     order, variants = [], []
@@ -37,7 +40,7 @@ def main():
         name, _, path = lab.partition("=")
         with open(path, newline="") as f:
             for row in csv.DictReader(f):
-                if row.get("status") != "ok":
+                if row.get("status") != "ok" or (a.variant is not None and row.get("variant") != a.variant):
                     continue
                 v = row["variant"] if a.by_variant else name
                 key = (row["pipeline"], row["lights"])

@@ -287,7 +287,7 @@ for fmt in text json dot timeline; do
   "$PG" dump --pipeline "$deferred" --lights 1000 --format $fmt >"$tmp/dump.$fmt" 2>"$tmp/err" && [ -s "$tmp/dump.$fmt" ] \
     && ok || { bad "dump --format $fmt"; cat "$tmp/err"; }
 done
-grep -q "^totals: 5 passes run, 1 culled; 14 barriers" "$tmp/dump.text" && grep -q "^memory timeline" "$tmp/dump.text" \
+grep -q "^totals: 5 passes run, 2 culled; 14 barriers" "$tmp/dump.text" && grep -q "^memory timeline" "$tmp/dump.text" \
   && ok || { bad "dump text: totals or timeline missing"; cat "$tmp/dump.text"; }
 python3 -c 'import json,sys; json.load(sys.stdin)' <"$tmp/dump.json" && ok || bad "dump --format json does not parse"
 python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["format_version"] == 1 and d["order"][-1] == "display" and d["totals"]["passes_run"] == 5' \
@@ -296,8 +296,8 @@ head -n 1 "$tmp/dump.dot" | grep -q "^digraph" && ok || bad "dump --format dot i
 head -c 4 "$tmp/dump.timeline" | grep -q "<svg" && tail -n 1 "$tmp/dump.timeline" | grep -q "</svg>" && ok || bad "dump --format timeline is not an SVG"
 "$PG" dump --pipeline "$deferred" --format timeline --out "$tmp/tl.svg" >"$tmp/out" 2>"$tmp/err" && grep -q "^dump: deferred 1920x1080" "$tmp/out" \
   && grep -q "class=\"bar\"" "$tmp/tl.svg" && ok || { bad "dump timeline --out"; cat "$tmp/err"; }
-"$PG" dump --pipeline "$deferred" --lights 0 --format json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert [p["name"] for p in d["culled_passes"]] == ["animate_lights", "assign_lights", "transparent"]' \
-  && ok || bad "dump --lights 0 does not cull light animation and assignment"
+"$PG" dump --pipeline "$deferred" --lights 0 --format json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert [p["name"] for p in d["culled_passes"]] == ["filter_environment", "animate_lights", "assign_lights", "transparent"]' \
+  && ok || bad "dump --lights 0 does not cull light animation and assignment (and the filter without an environment)"
 # the transparent pass: culled with its reason without BLEND materials, run with them
 grep -q "culled pass 'transparent': no BLEND materials: no transparent pass" "$tmp/dump.text" \
   && ok || bad "dump text: transparent pass not culled with its reason"
@@ -509,7 +509,7 @@ camline >"$tmp/cl" && grep -q "^explain: camera: interior view of the built-in a
   grep -q "^explain: lights: generated point lights, interior box" "$tmp/cl" && ok || { bad "atrium: camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
 camline --scene "$objs/cube.gltf" >"$tmp/cl" && \
   grep -q "^explain: camera: auto framing (object, no glTF camera: bounds radius 0.866, distance 2.01" "$tmp/cl" && \
-  grep -q "^explain: lights: generated point lights, object box (bounds grown by 0.6 x radius per side, none within 0.15 x radius of the bounds), radius 1.3, intensity 0.336, ambient 0.02$" "$tmp/cl" && ok || { bad "cube: camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
+  grep -q "^explain: lights: generated point lights, object box (bounds grown by 0.6 x radius per side, none within 0.15 x radius of the bounds), radius 1.3, intensity 0.336, ambient 0.02; ambient 0 (the environment light instead)$" "$tmp/cl" && ok || { bad "cube: camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
 camline --scene "$objs/cube.gltf" --ambient 0 >"$tmp/cl" && grep -q "^explain: lights: generated point lights, object box.*; ambient 0 from --ambient$" "$tmp/cl" \
   && ok || { bad "cube --ambient 0: lights line"; cat "$tmp/cl" "$tmp/cerr"; }
 camline --scene "$objs/camera.gltf" >"$tmp/cl" && grep -q "^explain: camera: glTF camera 0 'front' (node 'front_node', perspective), the scene's first camera" "$tmp/cl" \
@@ -524,10 +524,41 @@ camline --scene "$objs/cube.gltf" --scenario "$root/assets/scenarios/cis565.json
 # --explain names the shading model and the environment; a file with several glTF scenes gets a
 # line, --gltf-scene picks one, out of range is an error naming the count
 "$PG" render --size 64x36 --lights 8 --explain --scene "$objs/two_scenes.gltf" --out "$tmp/c.png" >"$tmp/cl" 2>"$tmp/cerr" &&
-  grep -q "^explain: shading: auto -> pbr (the glTF metallic-roughness BRDF) (a glTF file's materials)$" "$tmp/cl" && grep -q "^explain: environment: none" "$tmp/cl" &&
+  grep -q "^explain: shading: auto -> pbr (the glTF metallic-roughness BRDF) (a glTF file's materials)$" "$tmp/cl" && grep -q "^explain: environment: the neutral default sky, mean radiance 0.25 (a glTF file without lights)" "$tmp/cl" &&
   grep -q "^explain: scene: .*two_scenes.gltf has 2 scenes; drawing scene 0 'small' (the file's default); --gltf-scene N draws another$" "$tmp/cl" &&
   grep -q "^passgraph: .*two_scenes.gltf has 2 scenes; drawing scene 0 'small'" "$tmp/cerr" \
   && ok || { bad "two_scenes: explain shading/environment/scene lines"; cat "$tmp/cl" "$tmp/cerr"; }
+# the environment light: --environment none / FILE.hdr (a flat RGBE file written here) / errors naming
+# the file and the cause, exit 1
+"$PG" render --size 64x36 --lights 8 --explain --scene "$objs/two_scenes.gltf" --environment none --out "$tmp/c.png" >"$tmp/cl" 2>"$tmp/cerr" &&
+  grep -q "^explain: environment: none (--environment none)" "$tmp/cl" && grep -q "filter_environment.*no environment light" "$tmp/cl" \
+  && ok || { bad "--environment none"; cat "$tmp/cl" "$tmp/cerr"; }
+python3 - "$tmp/sky.hdr" "$tmp/tall.hdr" "$tmp/cut.hdr" <<'PYEOF'
+import sys
+def hdr(path, w, h, px, cut=False):
+    head = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n" % (h, w)
+    body = bytes(px * (w * h))
+    open(path, "wb").write(head + (body[: len(body) // 2] if cut else body))
+hdr(sys.argv[1], 16, 8, [128, 128, 160, 129])
+hdr(sys.argv[2], 8, 16, [128, 128, 128, 129])
+hdr(sys.argv[3], 16, 8, [128, 128, 128, 129], cut=True)
+PYEOF
+"$PG" render --size 64x36 --lights 8 --explain --scene "$objs/two_scenes.gltf" --environment "$tmp/sky.hdr" --environment-intensity 2 --environment-rotation 90 --validation --out "$tmp/c.png" >"$tmp/cl" 2>"$tmp/cerr" &&
+  grep -q "^explain: environment: .*sky.hdr, 16x8, 4 levels (--environment); intensity 2, rotation 90 deg" "$tmp/cl" \
+  && ok || { bad "--environment FILE.hdr"; cat "$tmp/cl" "$tmp/cerr"; }
+# an OpenEXR environment: an HDR image passgraph itself wrote at 2:1; one that is not 2:1 is refused
+"$PG" render --size 32x16 --lights 16 --out "$tmp/env.exr" >/dev/null 2>&1 &&
+  "$PG" render --size 64x36 --lights 8 --explain --scene "$objs/two_scenes.gltf" --environment "$tmp/env.exr" --out "$tmp/c.png" >"$tmp/cl" 2>"$tmp/cerr" &&
+  grep -q "^explain: environment: .*env.exr, 32x16, 5 levels (--environment)" "$tmp/cl" \
+  && ok || { bad "--environment FILE.exr"; cat "$tmp/cl" "$tmp/cerr"; }
+"$PG" render --size 32x18 --lights 16 --out "$tmp/env_wide.exr" >/dev/null 2>&1
+"$PG" render --size 64x36 --scene "$objs/two_scenes.gltf" --environment "$tmp/env_wide.exr" --out "$tmp/c.png" >/dev/null 2>"$tmp/cerr"
+[ $? -eq 1 ] && grep -q "env_wide.exr: 32 x 18: an equirectangular environment is 2:1" "$tmp/cerr" && ok || { bad "--environment not-2:1.exr"; cat "$tmp/cerr"; }
+for bad_env in "$tmp/missing.hdr:cannot open" "$tmp/tall.hdr:2:1" "$tmp/cut.hdr:truncated" "$root/README.md:not a Radiance HDR file"; do
+  f="${bad_env%%:*}"; why="${bad_env#*:}"
+  "$PG" render --size 64x36 --scene "$objs/two_scenes.gltf" --environment "$f" --out "$tmp/c.png" >/dev/null 2>"$tmp/cerr"
+  [ $? -eq 1 ] && grep -q "$(basename "$f").*$why" "$tmp/cerr" && ok || { bad "--environment $f: expected '$why'"; cat "$tmp/cerr"; }
+done
 "$PG" render --size 64x36 --lights 8 --explain --scene "$objs/two_scenes.gltf" --gltf-scene 1 --out "$tmp/c.png" >"$tmp/cl" 2>"$tmp/cerr" &&
   grep -q "drawing scene 1 'big' (--gltf-scene)" "$tmp/cl" && ok || { bad "--gltf-scene 1"; cat "$tmp/cl" "$tmp/cerr"; }
 "$PG" render --size 64x36 --scene "$objs/two_scenes.gltf" --gltf-scene 2 --out "$tmp/c.png" >/dev/null 2>"$tmp/cerr"

@@ -52,7 +52,8 @@ grep -Eq '^view: light lists need .* over the 8.0 MiB budget' "$tmp/out2" && ok 
 # cameras (the orthographic one included) and auto framing
 objs="$root/tests/corpus/gltf/objects"
 xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --validation --size 64x36 --frames 8 --lights 8 \
-  --scene "$objs/two_cameras.gltf" --at 2:camera=auto --at 4:camera=side --at 6:camera=1 >"$tmp/out3" 2>"$tmp/err3"
+  --scene "$objs/two_cameras.gltf" --at 2:camera=auto --at 4:camera=side --at 6:camera=1 \
+  --at 3:env_intensity=2.5 --at 5:env_rotation=45 >"$tmp/out3" 2>"$tmp/err3"
 rc=$?
 [ $rc -eq 0 ] && ok || { bad "cameras: exit $rc"; cat "$tmp/err3"; }
 grep -q "^view: camera: glTF camera 1 'top'" "$tmp/out3" && ok || { bad "cameras: orthographic camera line"; cat "$tmp/out3"; }
@@ -60,6 +61,13 @@ grep -q "^view: camera: glTF camera 0 'side'" "$tmp/out3" && ok || { bad "camera
 grep -q "^view: camera: auto framing" "$tmp/out3" && ok || { bad "cameras: auto framing line"; cat "$tmp/out3"; }
 grep -q "^view: lights: generated point lights, object box" "$tmp/out3" && ok || { bad "cameras: lights line"; cat "$tmp/out3"; }
 grep -q "validation message" "$tmp/err3" && bad "cameras: validation messages" || ok
+# the environment light's run-time knobs (the neutral sky of a glTF file without lights): scripted,
+# no rebuild; a bad value is an error naming the action
+grep -q "^view: frame 3: env_intensity 2.5" "$tmp/out3" && grep -q "^view: frame 5: env_rotation 45" "$tmp/out3" \
+  && ok || { bad "environment knobs not applied"; cat "$tmp/out3"; }
+xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 4 --lights 4 --scene "$objs/two_cameras.gltf" \
+  --at 2:env_intensity=-1 >"$tmp/out5" 2>"$tmp/err5"
+[ $? -ne 0 ] && grep -q "env_intensity=-1: expected a number >= 0" "$tmp/err5" && ok || { bad "env_intensity=-1 accepted"; cat "$tmp/err5"; }
 # a glTF with a feature the loader does not draw: the warning line once on stderr (the UI lists it
 # too); a .jpg screenshot is a JPEG
 skins="$root/tests/corpus/gltf/ok_skins.gltf"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # run.sh - builds the seed corpora and runs the libFuzzer targets one after another
 # (tests/fuzz/README.md). Usage:
-#   tests/fuzz/run.sh [BUILD_DIR [TARGET...]]      (defaults: /tmp/build-fuzz, both targets)
+#   tests/fuzz/run.sh [BUILD_DIR [TARGET...]]      (defaults: /tmp/build-fuzz, every target)
 # Environment: FUZZ_RUNS (executions per target, default 1000000), FUZZ_SECONDS (time cap per
 # target, default 1800), FUZZ_WORK (corpora, artifacts and logs, default /tmp/pg-fuzz).
 # Each target keeps its growing corpus in $FUZZ_WORK/corpus/TARGET (seeded on the first run) and
@@ -12,7 +12,7 @@ ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
 BUILD=${1:-/tmp/build-fuzz}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_pipeline_json fuzz_gltf)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_pipeline_json fuzz_gltf fuzz_hdr)
 RUNS=${FUZZ_RUNS:-1000000}
 SECONDS_MAX=${FUZZ_SECONDS:-1800}
 WORK=${FUZZ_WORK:-/tmp/pg-fuzz}
@@ -26,6 +26,9 @@ seed_pipeline() { # $1 = directory
     while read -r f; do cp "$f" "$d/sub_$(echo "${f#"$ROOT"/tests/corpus/pipelines/}" | tr / _)"; done
   for f in "$ROOT"/tests/corpus/graph/*.json; do cp "$f" "$d/graph_$(basename "$f")"; done
 }
+seed_hdr() {
+  cp "$ROOT"/tests/fuzz/seeds/hdr/* "$1"/
+}
 seed_gltf() {
   local d=$1
   cp "$ROOT"/tests/corpus/gltf/*.gltf "$ROOT"/tests/corpus/gltf/*.glb "$d"/
@@ -38,6 +41,7 @@ for t in "${TARGETS[@]}"; do
   case $t in
     fuzz_pipeline_json) dict=pipeline.dict; seeder=seed_pipeline ;;
     fuzz_gltf) dict=gltf.dict; seeder=seed_gltf ;;
+    fuzz_hdr) dict=hdr.dict; seeder=seed_hdr ;;
     *) echo "run.sh: unknown target $t" >&2; exit 1 ;;
   esac
   corpus="$WORK/corpus/$t"; art="$WORK/artifacts/$t"; logs="$WORK/logs/$t"

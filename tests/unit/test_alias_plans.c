@@ -115,7 +115,7 @@ int main(void)
                 pg_compile_desc cd = {.pipeline = pl, .registry = &g_reg, .output_width = 1920, .output_height = 1080,
                                       .disable_aliasing = off};
                 pg_scene_vars_set(&cd.vars,
-                                  rich ? &(pg_scene_features){true, true, true, true, true, true, true, true, true, true, true, true, true,
+                                  rich ? &(pg_scene_features){true, true, true, true, true, true, true, true, true, true, true, true, true, true,
                                                                PG_SHADING_PBR}
                                        : &(pg_scene_features){.has_textures = true},
                                   256, NULL);
