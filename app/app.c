@@ -5,6 +5,7 @@
 #include <strings.h>
 #include <stdlib.h>
 
+#include "animation.h"
 #include "environment.h"
 #include "exr.h"
 #include "pass_list.h"
@@ -68,6 +69,16 @@ static void describe_file_lights(const pg_scene *scene, uint32_t generated, char
                  generated);
 }
 
+pg_result pg_app_pose_scene(pg_app *app, pg_scene *scene, pg_error *err)
+{
+    app->animation = PG_ANIM_FIRST;
+    if (app->opt.animation) {
+        pg_result r = pg_anim_find(scene->anim, app->opt.animation, &app->animation, err);
+        if (r) return r;
+    }
+    return pg_scene_pose(scene, app->animation, app->opt.time, err);
+}
+
 pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, const pg_gpu_desc *window_bits,
                          pg_error *err)
 {
@@ -90,6 +101,7 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     if (app->has_scenario && pg_scenario_shading(&app->scenario) >= 0) /* what a pipeline's shading "auto" picks */
         app->scene->features.auto_shading = (uint8_t)pg_scenario_shading(&app->scenario); /* before the GPU copy */
     pg_scene_print_warnings(app->scene, "passgraph: ", stderr); /* once per loaded scene */
+    if ((r = pg_app_pose_scene(app, app->scene, err))) goto fail;
     char choice[PG_PATH_MAX + 160];
     if (pg_scene_choice_line(app->scene, choice, sizeof choice) && !opt->quiet)
         fprintf(stderr, "passgraph: %s\n", choice);
@@ -177,6 +189,9 @@ void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const
         fprintf(f, "explain: %s\nexplain: %s\n", app->camera_why, app->lights_why);
         char choice[PG_PATH_MAX + 160];
         if (pg_scene_choice_line(app->scene, choice, sizeof choice)) fprintf(f, "explain: scene: %s\n", choice);
+        char anim[256];
+        if (pg_anim_describe(app->scene, app->animation, app->opt.time, anim, sizeof anim))
+            fprintf(f, "explain: animation: %s; --animation N|NAME|all|none, --time T\n", anim);
         fprintf(f, "explain: %s; intensity %g, rotation %g deg; ambient term %g (x albedo; pbr: x (c_diff + F0) x "
                    "occlusion)\n",
                 app->env_why, app->lights.env_intensity, app->lights.env_rotation * 180.0 / 3.14159265358979,
@@ -215,6 +230,7 @@ pg_frame_info pg_app_frame(const pg_app *app)
         .camera = app->camera,
         .lights = app->lights,
         .time = app->opt.time,
+        .animation = app->animation,
         .width = app->opt.width,
         .height = app->opt.height,
     };

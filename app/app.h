@@ -30,6 +30,7 @@ typedef struct pg_app {
     char camera_why[256];         /* "camera: ..." one line: which camera was chosen and why */
     char lights_why[256];         /* "lights: ..." one line */
     char env_why[PG_PATH_MAX + 160]; /* "environment: ..." one line */
+    int animation;                /* the glTF animation played (--animation; scene/animation.h) */
     bool object_lights;           /* the intensity is pg_light_setup_object's (it depends on the
                                      light count): no scenario intensity, no --intensity */
 } pg_app;
@@ -57,6 +58,10 @@ pg_session_desc pg_app_session_desc(const pg_app *app);
  * FILE.hdr|default|none; by default the neutral sky for a glTF file without lights and without a
  * scenario); app->env_why says which and why. Errors name the file (pg_environment_load). */
 pg_result pg_app_attach_environment(pg_app *app, struct pg_scene *scene, pg_error *err);
+/* The played animation from --animation (app->animation; an unknown one is an error listing the
+ * file's) and the scene posed on the CPU at --time (pg_scene_pose: vertices, file lights, bounds),
+ * so framing and the static upload follow the animation. Before the upload and the default view. */
+pg_result pg_app_pose_scene(pg_app *app, struct pg_scene *scene, pg_error *err);
 void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const char *label, FILE *f);
 uint64_t pg_app_check_exact(const char *cmd, const char *what, const pg_frame_stats *st, bool require_exact);
 

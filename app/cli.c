@@ -34,7 +34,10 @@ const char *const pg_cli_common_help =
     "  --environment-intensity X  its radiance scale, 0..1e6 (default 1; a run-time value)\n"
     "  --environment-rotation D   its rotation about +Y in degrees (default 0; a run-time value)\n"
     "  --size WxH           output size, 1..16384 each (default 640x360)\n"
-    "  --time T             animation time in seconds; fixes the frame (default 0)\n"
+    "  --time T             animation time in seconds; fixes the frame (default 0): the glTF\n"
+    "                       file's animation (looping) and the generated lights' motion\n"
+    "  --animation A        the glTF animation played: N, NAME, all or none (the rest pose);\n"
+    "                       default: the first\n"
     "  --seed S             light seed, 0..4294967295 (default 1)\n"
     "  --set KEY=VALUE      override a pipeline parameter (repeatable)\n"
     "  --device N|NAME      Vulkan device index or name substring ('passgraph devices')\n"
@@ -310,6 +313,10 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         NEED_VALUE();
         if ((r = parse_u64(a, v, 1, 100000, &u, err))) return r;
         c->frames = (uint32_t)u;
+    } else if (!strcmp(a, "--animation")) {
+        NEED_VALUE();
+        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--animation: empty (N, NAME, all or none)");
+        c->animation = v;
     } else if (!strcmp(a, "--time")) {
         NEED_VALUE();
         if ((r = parse_float(a, v, -1e7, 1e7, &c->time, err))) return r;

@@ -22,6 +22,7 @@ typedef struct pg_cli_common {
     uint32_t lights;
     uint32_t width, height;      /* --size WxH */
     float time;                  /* --time T */
+    const char *animation;       /* --animation N|NAME|all|none (NULL: the first animation) */
     uint32_t seed;               /* --seed S */
     bool has_radius, has_intensity, has_ambient;
     float radius, intensity;     /* --radius, --intensity */

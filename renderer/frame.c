@@ -44,4 +44,5 @@ void pg_frame_uniforms_fill(const pg_frame_info *info, pg_frame_uniforms *u)
     u->environment[0] = info->lights.env_intensity;
     u->environment[1] = info->lights.env_rotation;
     u->light_src[0] = info->lights.file_count < info->lights.count ? info->lights.file_count : info->lights.count;
+    memcpy(&u->light_src[1], &info->animation, sizeof info->animation);
 }

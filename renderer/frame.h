@@ -28,7 +28,8 @@ typedef struct pg_frame_uniforms {
     uint32_t noise[4];      /* sample index, seed (pg_frame_info.sample, lights.seed), 0, 0 */
     float light_keep_min[4]; /* pg_light_setup.keep_min, w = 1 when keep_out */
     float light_keep_max[4]; /* pg_light_setup.keep_max, w = 0 */
-    uint32_t light_src[4];   /* x: lights from the scene file (pg_light_setup.file_count), 0, 0, 0 */
+    uint32_t light_src[4];   /* x: lights from the scene file (pg_light_setup.file_count), y: the
+                                played glTF animation (pg_frame_info.animation as int32), 0, 0 */
     float environment[4];    /* intensity, rotation about +Y (radians), 0, 0 (pg_light_setup.env_*) */
 } pg_frame_uniforms;
 
@@ -36,6 +37,8 @@ typedef struct pg_frame_info {
     pg_camera camera;
     pg_light_setup lights;  /* count and seed included */
     float time;
+    int32_t animation;      /* the glTF animation played at `time` (scene/animation.h: an index,
+                               PG_ANIM_ALL, PG_ANIM_NONE; 0 = the first, the default) */
     uint32_t width, height;
     /* the random stream of stochastic passes (hash of pixel, sample, seed): frames with one
      * sample index and seed give one image; accumulation and temporal measures step it */

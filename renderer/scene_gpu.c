@@ -1,5 +1,6 @@
 /* scene_gpu.c - uploads a pg_scene once; everything here is read-only afterwards. */
 #include "scene_gpu.h"
+#include "scene_gpu_anim.h"
 
 #include "environment.h"
 
@@ -72,24 +73,9 @@ static void gpu_material(const pg_material *s, pg_gpu_material *out)
 /* the file's lights as light_animate reads them */
 static void gpu_file_lights(const pg_scene *scene, pg_gpu_file_light *fl)
 {
-    for (uint32_t i = 0; i < scene->n_lights; i++) {
-        const pg_scene_light *L = &scene->lights[i];
-        /* the shading has no 1/pi in its Lambert term (albedo x colour x N.L), so a light in the
-         * extension's units (candela, lux) is divided by pi once here */
-        const float k = L->intensity / 3.14159265358979f;
-        pg_gpu_file_light g = {
-            {L->position[0], L->position[1], L->position[2], L->range},
-            {L->color[0] * k, L->color[1] * k, L->color[2] * k, (float)L->type},
-            {L->direction[0], L->direction[1], L->direction[2], 0.0f},
-        };
-        if (L->type == PG_LIGHT_SPOT) { /* the spot record: axis x scale, offset (the extension's) */
-            float ci = cosf(L->inner_cone), co = cosf(L->outer_cone), sc = 1.0f / fmaxf(ci - co, 1e-3f);
-            for (int k = 0; k < 3; k++) g.direction[k] *= sc;
-            g.direction[3] = -co * sc;
-        }
-        memcpy(&fl[i], &g, sizeof g);
-    }
+    for (uint32_t i = 0; i < scene->n_lights; i++) pg_gpu_file_light_from(&scene->lights[i], &fl[i]);
 }
+
 
 /* the scene's arrays, materials and textures written to the staging memory; offsets into L */
 static void fill_staging(uint8_t *dst, const pg_scene *scene, staging_layout *L)
@@ -292,7 +278,8 @@ static int draw_cmp(const void *a, const void *b)
 static pg_result scene_buffer(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags usage, const char *name,
                               pg_buffer *out, pg_error *err)
 {
-    return pg_buffer_create(gpu, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false, name, out, err);
+    /* concurrent over both queue families: compute passes on the second queue read them too */
+    return pg_buffer_create_ex(gpu, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false, true, name, out, err);
 }
 
 /* vertices, indices, materials, and the optional streams only for a scene that uses them (the
@@ -481,6 +468,9 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
     free(tex_sampler);
     tex_sampler = NULL;
     if ((r = build_draws(sg, scene, err))) goto fail;
+    if ((r = pg_scene_gpu_anim_create(gpu, scene, &sg->anim, err))) goto fail;
+    if (sg->anim) sg->bytes += sg->anim->local.size + sg->anim->info.size + sg->anim->prims.size +
+                               sg->anim->deltas.size + sg->anim->pose.size;
     *out = sg;
     return PG_OK;
 fail:
@@ -508,6 +498,7 @@ void pg_scene_gpu_destroy(pg_gpu *gpu, pg_scene_gpu *sg)
     pg_buffer_destroy(gpu, &sg->file_lights);
     pg_buffer_destroy(gpu, &sg->environment);
     pg_buffer_destroy(gpu, &sg->env_cdf);
+    pg_scene_gpu_anim_destroy(gpu, sg->anim);
     free(sg->draws);
     free(sg);
 }

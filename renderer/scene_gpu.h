@@ -78,6 +78,9 @@ typedef struct pg_scene_gpu {
     pg_buffer env_cdf;           /* its importance-sampling tables (environment.h cdf); NULL when black */
     uint32_t env_levels, env_width, env_height;
     uint64_t env_id;
+    /* the animation's buffers (scene_gpu_anim.h) for the geometry_animate pass; NULL for a scene
+     * without animation. It points into the pg_scene, which must outlive this upload. */
+    struct pg_scene_gpu_anim *anim;
     float bounds_min[3], bounds_max[3];
     uint64_t bytes;
 } pg_scene_gpu;
@@ -87,6 +90,8 @@ typedef struct pg_scene_gpu {
 #define PG_SCENE_OF(ctx) ((const pg_scene_gpu *)(ctx)->user)
 
 pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu **out, pg_error *err);
+/* A file light as the table holds it (colour x intensity / pi, the spot record's axis scale). */
+void pg_gpu_file_light_from(const pg_scene_light *L, pg_gpu_file_light *out);
 void pg_scene_gpu_destroy(pg_gpu *gpu, pg_scene_gpu *sg);
 /* The VkSampler of a glTF sampler state: wrap S/T, mag/min filter, mipmap mode; PG_MIP_NONE
  * samples level 0 only (maxLod 0); no anisotropy; maxLod unclamped otherwise. */

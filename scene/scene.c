@@ -6,6 +6,7 @@
 #include "scene.h"
 #include "scene_internal.h"
 #include "environment.h"
+#include "animation.h"
 
 #include <float.h>
 #include <math.h>
@@ -63,6 +64,7 @@ void pg_scene_free(pg_scene *scene)
     free(scene->cameras);
     free(scene->lights);
     pg_environment_free(scene->environment);
+    pg_scene_anim_free(scene->anim);
     for (uint32_t i = 0; i < scene->n_warnings; i++) free(scene->warnings[i]);
     free(scene->warnings);
     free(scene);
@@ -441,6 +443,8 @@ void pg_scene_finalize(pg_scene *s)
     memcpy(s->bounds_min, smin, sizeof smin);
     memcpy(s->bounds_max, smax, sizeof smax);
     s->features.has_file_lights = s->n_lights > 0;
+    s->features.has_animation = s->anim != NULL && s->anim->n_prims > 0;
+    s->features.vertices = s->n_vertices;
     s->features.auto_shading = s->gltf_materials ? PG_SHADING_PBR : PG_SHADING_LAMBERT;
     s->features.has_spot_lights = false;
     for (uint32_t i = 0; i < s->n_lights; i++)

@@ -177,6 +177,10 @@ typedef struct pg_scene {
      * neutral default sky for a glTF file without lights: pg_scene_set_environment), never by the
      * loaders; owned; NULL when there is none (features.has_environment). */
     struct pg_environment *environment;
+    /* The file's animation, skins and morph targets (animation.h): NULL when no drawn primitive
+     * moves (features.has_animation). The vertices above are the rest pose (or the pose
+     * pg_scene_pose put there); the geometry_animate pass deforms anim->local on the GPU. */
+    struct pg_scene_anim *anim;
 } pg_scene;
 
 /* What a load may choose (pg_scene_load_ex). */

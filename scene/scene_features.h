@@ -28,6 +28,10 @@ typedef struct pg_scene_features {
     bool has_unlit;       /* any KHR_materials_unlit material (drawn as emission: has_emissive too) */
     bool has_environment; /* scene->environment is set: the environment_filter pass fills the
                              filtered environment and the shading passes read it */
+    bool has_animation;   /* scene->anim is set: some drawn primitive is skinned, morphed or on an
+                             animated node; the geometry_animate pass deforms the vertices */
+    uint32_t vertices;    /* scene->n_vertices (the compile variable "vertices": the size of the
+                             deformed vertex buffer when has_animation, else 0) */
     uint8_t auto_shading; /* PG_SHADING_LAMBERT / _BLINN_PHONG / _PBR: the model a pass's shading
                              "auto" picks: pbr for a glTF file's materials, lambert for the
                              generated scenes; a scenario's "shading" sets it (the tools) */

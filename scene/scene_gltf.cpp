@@ -550,7 +550,7 @@ static void hand_out_textures(const Ctx &c, const std::vector<TexKey> &order, pg
 /* step 6: the pg_scene, owning copies of everything built; the warnings prefixed with the path */
 static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &mats,
                           const std::vector<pg_scene_camera> &cams, const std::vector<pg_scene_light> &lights,
-                          const std::vector<TexKey> &tex_order)
+                          const std::vector<TexKey> &tex_order, pg_scene_anim *anim)
 {
     std::unique_ptr<pg_scene, SceneDeleter> s(static_cast<pg_scene *>(calloc(1, sizeof(pg_scene))));
     if (!s) throw std::bad_alloc();
@@ -591,6 +591,7 @@ static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &
         if (pg_scene_add_warning(s.get(), (c.path + ": " + wline).c_str(), &werr) != PG_OK)
             throw std::bad_alloc();
     }
+    s->anim = anim; /* owned by the scene from here (nothing below throws) */
     pg_scene_finalize(s.get());
     return s.release();
 }
@@ -616,6 +617,7 @@ pg_scene *load(Ctx &c)
     std::vector<pg_scene_light> lights;
     {
         std::vector<int> roots = root_nodes(c);
+        anim_prepare(c);
         Walker w{c, o, std::vector<char>(md.nodes.size(), 0), 0};
         for (int r : roots) w.visit(r, mat_identity(), 0);
         for (int r : roots) camera_visit(c, r, mat_identity(), cams);
@@ -623,6 +625,7 @@ pg_scene *load(Ctx &c)
         table_lights(c, lights);
     }
     if (o.idx.empty()) gfail("the scene has no triangles");
+    std::unique_ptr<pg_scene_anim, void (*)(pg_scene_anim *)> anim(anim_hand_out(c, o), pg_scene_anim_free);
     collect_warnings(c);
 
     /* 5. materials and textures */
@@ -631,7 +634,9 @@ pg_scene *load(Ctx &c)
     for (size_t i = 0; i < md.materials.size(); i++) mats.push_back(material_from_gltf(c, i, tex));
     assign_materials(md, o, mats);
 
-    return hand_out(c, o, mats, cams, lights, tex.order); /* 6 */
+    pg_scene *s = hand_out(c, o, mats, cams, lights, tex.order, anim.get()); /* 6 */
+    anim.release();
+    return s;
 }
 
 } // namespace pg_gltf

@@ -8,7 +8,9 @@
  *   scene_gltf_images.cpp      tinygltf's image callback (PNG/JPEG via stb_image) and file system,
  *                              samplers, KHR_texture_transform
  *   scene_gltf_compressed.cpp  EXT_meshopt_compression and KHR_draco_mesh_compression decoding
- *   scene_gltf_mesh.cpp        accessors (sparse, quantized), primitives -> vertices and indices
+ *   scene_gltf_accessors.cpp   accessors as views (sparse, decoded data) and their elements
+ *   scene_gltf_mesh.cpp        attributes (quantized types), primitives -> vertices and indices
+ *   scene_gltf_anim.cpp        animations, skins, morph targets (pg_scene_anim)
  *   scene_gltf_nodes.cpp       the node hierarchy, transforms, cameras
  *   scene_gltf_warnings.cpp    the warning lines (pg_scene.warnings)
  *   scene_gltf_util.cpp        what every step uses: messages, throwers, uri/path helpers,
@@ -17,6 +19,7 @@
 #ifndef PG_SCENE_GLTF_INTERNAL_H
 #define PG_SCENE_GLTF_INTERNAL_H
 
+#include "animation.h"
 #include "scene.h"
 
 #include <nlohmann/json.hpp>
@@ -88,6 +91,16 @@ struct Ctx {
     std::map<int, int> draco_index_fix; /* indices accessor without bufferView -> Draco view */
     /* dense copies of sparse accessors (accessor index -> data), owned until hand-out */
     std::map<int, std::vector<unsigned char>> sparse_data;
+    /* animation (scene_gltf_anim.cpp): the file has animations, skins or morph targets, so the
+     * primitives that move keep their mesh-space vertices; per node: a TRS channel targets it; per
+     * skin: its first joint slot */
+    bool animated = false;
+    std::vector<char> node_animated;
+    std::vector<uint32_t> skin_slot_base;
+    uint32_t joint_slots = 0;
+    unsigned joints1_prims = 0; /* drawn skinned primitives with JOINTS_1.. (ignored) */
+    unsigned unskinned_prims = 0; /* drawn primitives of a node with a skin but no JOINTS_0/WEIGHTS_0 */
+    unsigned ignored_channels = 0;
 };
 
 /* column-major 4x4, double */
@@ -103,6 +116,18 @@ struct Out {
     std::vector<char> prim_has_uv1;           /* the primitive has TEXCOORD_1 */
     std::vector<float> colors;                /* COLOR_0, 4 per vertex; empty when no primitive has it */
     std::vector<float> uv1;                   /* TEXCOORD_1, 2 per vertex; empty when none has it */
+    /* animation (Ctx.animated only): per vertex the mesh-space vertex of a moving primitive and its
+     * pg_anim_prim (PG_ANIM_STATIC: a static vertex, its local entry filled at hand-out); joint
+     * slots and weights (4 per vertex, from the first skinned primitive on); morph deltas; each
+     * morphing node's weights (node -> first weight) */
+    std::vector<pg_vertex> local;
+    std::vector<uint32_t> vertex_prim;
+    std::vector<uint16_t> joints;
+    std::vector<float> weights;
+    std::vector<pg_anim_delta> deltas;
+    std::vector<pg_anim_prim> aprims;
+    std::vector<float> rest_weights;
+    std::map<int, std::pair<uint32_t, uint32_t>> node_weights; /* node -> (base, count) */
 };
 
 struct Walker {
@@ -111,7 +136,8 @@ struct Walker {
     std::vector<char> on_path;
     size_t visits = 0;
 
-    void visit(int ni, const Mat4 &parent, int depth); /* scene_gltf_nodes.cpp */
+    /* scene_gltf_nodes.cpp; moving: an ancestor is animated (its primitives move with it) */
+    void visit(int ni, const Mat4 &parent, int depth, bool moving = false);
 };
 /* scene_gltf_validate.cpp */
 bool extension_implemented(const std::string &e);
@@ -143,8 +169,33 @@ const char *ctype_name(int ct);
 size_t ctype_size(int ct);
 std::pair<const unsigned char *, size_t> view_bytes(const Ctx &c, int bvi, const std::string &who);
 const int *find_attr(const tinygltf::Primitive &p, const char *name);
-/* scene_gltf_mesh.cpp */
-void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M);
+/* scene_gltf_accessors.cpp: accessors as range-checked views */
+struct View {
+    int index = -1;
+    const unsigned char *base = nullptr;
+    size_t stride = 0, count = 0;
+    int type = 0, ctype = 0, ncomp = 0;
+    bool normalized = false;
+};
+View get_view(Ctx &c, int ai);
+/* element i as floats (glTF's conversions of normalized and integer types) */
+void read_floats(const View &v, size_t i, float *out);
+void view_floats(const View &v, size_t i, float *out);
+/* element i of an index view (UNSIGNED_BYTE/SHORT/INT) */
+uint32_t read_index(const View &v, size_t i);
+const char *type_name(int t);
+/* meshes[mi].primitives[pi] of nodes[ni] under its world transform M; `moving`: the node or an
+ * ancestor is animated */
+void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni = -1, bool moving = false);
+
+/* scene_gltf_anim.cpp */
+/* Before the walk: whether the file animates anything, the animated nodes, the skins' joint slots. */
+void anim_prepare(Ctx &c);
+/* A moving primitive's skin attributes and morph targets (its vertices at o.verts[base..base+n)). */
+void anim_primitive(Ctx &c, Out &o, const tinygltf::Primitive &prim, int ni, size_t base, size_t n,
+                    const std::string &pw);
+/* After the walk: the scene's pg_scene_anim (NULL when no drawn primitive moves). */
+pg_scene_anim *anim_hand_out(Ctx &c, const Out &o);
 
 /* scene_gltf_nodes.cpp */
 Mat4 mat_identity();

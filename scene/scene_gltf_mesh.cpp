@@ -1,6 +1,6 @@
-/* scene_gltf_mesh.cpp - step 4 of the glTF load (scene_gltf.cpp): accessors (range-checked views,
- * sparse, KHR_mesh_quantization types) and primitives baked into vertices and indices under their
- * node transform.
+/* scene_gltf_mesh.cpp - step 4 of the glTF load (scene_gltf.cpp): vertex attributes (their glTF and
+ * KHR_mesh_quantization types) and primitives baked into vertices and indices under their node
+ * transform (a moving primitive kept in mesh space too: scene_gltf_anim.cpp).
  */
 #include "scene_gltf_internal.h"
 
@@ -13,170 +13,7 @@
 namespace pg_gltf {
 
 /* ------------------------------------------------------------------------------------------ */
-/* step 4: accessors, nodes, primitives                                                         */
-
-const char *type_name(int t)
-{
-    switch (t) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    case TINYGLTF_TYPE_MAT2: return "MAT2";
-    case TINYGLTF_TYPE_MAT3: return "MAT3";
-    case TINYGLTF_TYPE_MAT4: return "MAT4";
-    default: return "?";
-    }
-}
-
-
-struct View {
-    int index = -1;
-    const unsigned char *base = nullptr;
-    size_t stride = 0, count = 0;
-    int type = 0, ctype = 0, ncomp = 0;
-    bool normalized = false;
-};
-
-inline uint32_t read_index(const View &v, size_t i)
-{
-    const unsigned char *p = v.base + i * v.stride;
-    switch (v.ctype) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        uint16_t x;
-        memcpy(&x, p, 2);
-        return x;
-    }
-    default: {
-        uint32_t x;
-        memcpy(&x, p, 4);
-        return x;
-    }
-    }
-}
-
-
-/* Sparse accessors (core glTF 2.0): a dense copy of the base data (zeros without a bufferView)
- * with sparse.count elements substituted at sparse.indices (strictly increasing, < count). */
-void apply_sparse(Ctx &c, int ai, const tinygltf::Accessor &a, View &v, size_t elem)
-{
-    auto done = c.sparse_data.find(ai);
-    if (done != c.sparse_data.end()) {
-        v.base = done->second.data();
-        v.stride = elem;
-        return;
-    }
-    const std::string sw = strf("accessors[%d].sparse", ai);
-    constexpr uint64_t kMaxSparseBytes = uint64_t(1) << 30;
-    if (uint64_t(a.count) > kMaxSparseBytes / elem)
-        fail(PG_ERR_LIMIT, strf("accessors[%d]: sparse accessor of %zu elements (%zu bytes each) "
-                                "exceeds 1 GiB",
-                                ai, a.count, elem));
-    std::vector<unsigned char> d(a.count * elem, 0);
-    if (v.base)
-        for (size_t i = 0; i < a.count; i++) memcpy(&d[i * elem], v.base + i * v.stride, elem);
-    const size_t sc = a.sparse.count < 0 ? 0 : size_t(a.sparse.count);
-    if (sc < 1 || sc > a.count)
-        gfail(strf("%s.count: %d is outside 1..%zu (the accessor's count)", sw.c_str(),
-                   a.sparse.count, a.count));
-    const int ict = a.sparse.indices.componentType;
-    const size_t isz = ctype_size(ict);
-    if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-        ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-        gfail(strf("%s.indices.componentType: %d is not an unsigned integer type", sw.c_str(), ict));
-    auto ib = view_bytes(c, a.sparse.indices.bufferView, sw + ".indices");
-    auto vb = view_bytes(c, a.sparse.values.bufferView, sw + ".values");
-    const uint64_t ioff = uint64_t(a.sparse.indices.byteOffset < 0 ? 0 : a.sparse.indices.byteOffset);
-    const uint64_t voff = uint64_t(a.sparse.values.byteOffset < 0 ? 0 : a.sparse.values.byteOffset);
-    if (ioff > ib.second || sc > (ib.second - ioff) / isz)
-        gfail(strf("%s.indices: %zu indices (byteOffset %llu) exceed bufferView %d (%zu bytes)",
-                   sw.c_str(), sc, (unsigned long long)ioff, a.sparse.indices.bufferView,
-                   ib.second));
-    if (voff > vb.second || sc > (vb.second - voff) / elem)
-        gfail(strf("%s.values: %zu elements of %zu bytes (byteOffset %llu) exceed bufferView %d "
-                   "(%zu bytes)",
-                   sw.c_str(), sc, elem, (unsigned long long)voff, a.sparse.values.bufferView,
-                   vb.second));
-    View iv;
-    iv.base = ib.first + ioff;
-    iv.stride = isz;
-    iv.ctype = ict;
-    uint64_t prev = 0;
-    for (size_t k = 0; k < sc; k++) {
-        uint32_t idx = read_index(iv, k);
-        if (idx >= a.count)
-            gfail(strf("%s.indices: index %u at position %zu is out of range (count %zu)",
-                       sw.c_str(), idx, k, a.count));
-        if (k > 0 && idx <= prev)
-            gfail(strf("%s.indices: index %u at position %zu is not greater than the one before "
-                       "(%llu)",
-                       sw.c_str(), idx, k, (unsigned long long)prev));
-        prev = idx;
-        memcpy(&d[size_t(idx) * elem], vb.first + voff + k * elem, elem);
-    }
-    auto &stored = c.sparse_data[ai];
-    stored.swap(d);
-    v.base = stored.data();
-    v.stride = elem;
-}
-
-View get_view(Ctx &c, int ai)
-{
-    const tinygltf::Model &m = c.model;
-    if (ai < 0 || size_t(ai) >= m.accessors.size())
-        gfail(strf("accessors[%d]: out of range (%zu accessors)", ai, m.accessors.size()));
-    const tinygltf::Accessor &a = m.accessors[size_t(ai)];
-    View v;
-    v.index = ai;
-    v.type = a.type;
-    v.ctype = a.componentType;
-    v.ncomp = type_comps(a.type);
-    v.count = a.count;
-    v.normalized = a.normalized;
-    const bool sparse = a.sparse.isSparse;
-    size_t csize = ctype_size(a.componentType);
-    if (!csize || !v.ncomp)
-        gfail(strf("accessors[%d]: invalid componentType %d or type", ai, a.componentType));
-    size_t elem = csize * size_t(v.ncomp);
-    auto dd = c.draco_data.find(ai);
-    if (dd != c.draco_data.end()) {
-        v.base = dd->second.data();
-        v.stride = elem;
-        return v;
-    }
-    if (a.bufferView < 0 || c.draco_index_fix.count(ai)) {
-        if (!sparse)
-            gfail(strf("accessors[%d]: has no bufferView (zero-filled accessors are not supported "
-                       "without sparse)",
-                       ai));
-        apply_sparse(c, ai, a, v, elem);
-        return v;
-    }
-    if (size_t(a.bufferView) >= m.bufferViews.size())
-        gfail(strf("accessors[%d]: bufferView %d out of range", ai, a.bufferView));
-    const tinygltf::BufferView &bv = m.bufferViews[size_t(a.bufferView)];
-    auto bytes = view_bytes(c, a.bufferView, strf("accessors[%d]", ai));
-    size_t stride = bv.byteStride ? bv.byteStride : elem;
-    if (stride < elem)
-        gfail(strf("accessors[%d]: bufferViews[%d].byteStride %zu is smaller than the element "
-                   "(%zu bytes)",
-                   ai, a.bufferView, stride, elem));
-    if (a.count > 0) {
-        uint64_t len = bv.byteLength;
-        bool ok = a.byteOffset <= len && elem <= len - a.byteOffset &&
-                  uint64_t(a.count - 1) <= (len - a.byteOffset - elem) / stride;
-        if (!ok)
-            gfail(strf("accessors[%d]: count %zu (byteOffset %zu, stride %zu, element %zu bytes) "
-                       "exceeds bufferView %d (%zu bytes)",
-                       ai, a.count, a.byteOffset, stride, elem, a.bufferView, bv.byteLength));
-    }
-    v.base = bytes.first + a.byteOffset;
-    v.stride = stride;
-    if (sparse) apply_sparse(c, ai, a, v, elem);
-    return v;
-}
+/* step 4: attributes, primitives                                                               */
 
 /* KHR_mesh_quantization: the component types a vertex attribute may have. Core glTF 2.0 allows
  * FLOAT for POSITION/NORMAL/TANGENT and FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT for
@@ -222,42 +59,6 @@ void expect_attr(const View &v, const char *semantic, int type, AttrKind k, bool
                would_be_ok ? "; that type needs KHR_mesh_quantization in extensionsUsed" : ""));
 }
 
-/* Reads element i as floats, converted as glTF 2.0 and KHR_mesh_quantization say: FLOAT as is;
- * normalized UNSIGNED_BYTE c / 255, UNSIGNED_SHORT c / 65535, BYTE max(c / 127, -1), SHORT
- * max(c / 32767, -1); not normalized: the integer value. */
-inline void read_floats(const View &v, size_t i, float *out)
-{
-    const unsigned char *p = v.base + i * v.stride;
-    const int n = v.ncomp;
-    switch (v.ctype) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: memcpy(out, p, sizeof(float) * size_t(n)); break;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        for (int k = 0; k < n; k++) out[k] = v.normalized ? float(p[k]) / 255.0f : float(p[k]);
-        break;
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-        for (int k = 0; k < n; k++) {
-            float x = float(int8_t(p[k]));
-            out[k] = v.normalized ? std::max(x / 127.0f, -1.0f) : x;
-        }
-        break;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        for (int k = 0; k < n; k++) {
-            uint16_t x;
-            memcpy(&x, p + 2 * k, 2);
-            out[k] = v.normalized ? float(x) / 65535.0f : float(x);
-        }
-        break;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-        for (int k = 0; k < n; k++) {
-            int16_t x;
-            memcpy(&x, p + 2 * k, 2);
-            out[k] = v.normalized ? std::max(float(x) / 32767.0f, -1.0f) : float(x);
-        }
-        break;
-    default:
-        for (int k = 0; k < n; k++) out[k] = 0;
-    }
-}
 
 void check_finite(const float *v, int n, const View &view, const char *semantic, size_t i)
 {
@@ -510,10 +311,31 @@ static void emit_vertices(Out &o, const PrimAttrs &a, const Xform &x, const std:
     }
 }
 
+/* A vertex emitted in mesh space moved to the world by x (the rest pose of a moving primitive). */
+static void xform_in_place(const Xform &x, pg_vertex &v)
+{
+    const double *m = x.m;
+    double p[3], n[3], t[3];
+    for (int r = 0; r < 3; r++) {
+        p[r] = m[r] * v.position[0] + m[4 + r] * v.position[1] + m[8 + r] * v.position[2] + m[12 + r];
+        n[r] = x.nsign * (x.cof[r * 3 + 0] * v.normal[0] + x.cof[r * 3 + 1] * v.normal[1] + x.cof[r * 3 + 2] * v.normal[2]);
+        t[r] = m[r] * v.tangent[0] + m[4 + r] * v.tangent[1] + m[8 + r] * v.tangent[2];
+    }
+    const double nl = std::hypot(n[0], n[1], n[2]), tl = std::hypot(t[0], t[1], t[2]);
+    for (int r = 0; r < 3; r++) {
+        v.position[r] = float(p[r]);
+        v.normal[r] = nl > 1e-30 ? float(n[r] / nl) : (r == 1 ? 1.0f : 0.0f);
+        v.tangent[r] = tl > 1e-30 ? float(t[r] / tl) : 0.0f;
+    }
+    v.tangent[3] = float(v.tangent[3] * x.nsign);
+}
+
 /* meshes[mi].primitives[pi] under the node transform M appended to o: its mode (points and lines
  * skipped, counted), attributes, indices as a triangle list, vertices, missing normals and
- * tangents computed, the pg_primitive */
-void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
+ * tangents computed, the pg_primitive. A primitive that moves (Ctx.animated: on an animated node,
+ * skinned or morphed) is emitted in mesh space first (normals and tangents computed there), kept in
+ * o.local with its skin and morph data, then placed by M for the rest pose. */
+void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool moving)
 {
     const tinygltf::Primitive &prim = c.model.meshes[size_t(mi)].primitives[size_t(pi)];
     const std::string pw = strf("meshes[%d].primitives[%d]", mi, pi);
@@ -534,13 +356,19 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
     to_triangle_list(mode, ind, pw);
     if (ind.empty() || n == 0) return;
 
+    const bool skinned = ni >= 0 && c.model.nodes[size_t(ni)].skin >= 0 && find_attr(prim, "JOINTS_0") &&
+                         find_attr(prim, "WEIGHTS_0");
+    if (ni >= 0 && c.model.nodes[size_t(ni)].skin >= 0 && !skinned) c.unskinned_prims++;
+    const bool dyn = c.animated && (moving || skinned || !prim.targets.empty());
     const Xform x = node_xform(M, pw);
     if (o.verts.size() + n > 0xFFFFFFF0ull || o.idx.size() + ind.size() > 0xFFFFFFF0ull ||
         o.verts.size() > 0x7FFFFFFFull)
         fail(PG_ERR_LIMIT, pw + ": scene exceeds 2^32 vertices or indices");
     const size_t base = o.verts.size();
-    emit_vertices(o, a, x, pw);
-    if (x.det < 0)
+    Mat4 ident{};
+    ident.m[0] = ident.m[5] = ident.m[10] = ident.m[15] = 1.0;
+    emit_vertices(o, a, dyn ? node_xform(ident, pw) : x, pw);
+    if (x.det < 0 && !skinned) /* a skinned mesh ignores its node's transform */
         for (size_t t = 0; t + 2 < ind.size(); t += 3) std::swap(ind[t + 1], ind[t + 2]);
 
     pg_vertex *V = o.verts.data() + base;
@@ -549,6 +377,15 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M)
                          c.model.materials[size_t(prim.material)].normalTexture.index >= 0;
     if (!a.tan && normal_mapped)
         pg_mesh_compute_tangents(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
+    if (c.animated) {
+        o.vertex_prim.resize(base + n, PG_ANIM_STATIC);
+        o.local.resize(base + n);
+    }
+    if (dyn) {
+        memcpy(o.local.data() + base, V, n * sizeof(pg_vertex));
+        anim_primitive(c, o, prim, ni, base, n, pw);
+        for (size_t i = 0; i < n; i++) xform_in_place(x, V[i]); /* the rest pose */
+    }
 
     pg_primitive pr;
     memset(&pr, 0, sizeof pr);

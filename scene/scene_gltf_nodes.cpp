@@ -65,7 +65,7 @@ Mat4 node_local(const tinygltf::Node &n, int ni)
     return r;
 }
 
-void Walker::visit(int ni, const Mat4 &parent, int depth)
+void Walker::visit(int ni, const Mat4 &parent, int depth, bool moving)
 {
     const auto &nodes = c.model.nodes;
     if (ni < 0 || size_t(ni) >= nodes.size())
@@ -81,14 +81,15 @@ void Walker::visit(int ni, const Mat4 &parent, int depth)
     for (double x : world.m)
         if (!std::isfinite(x)) gfail(strf("nodes[%d]: world transform is not finite", ni));
     on_path[size_t(ni)] = 1;
+    moving = moving || (c.animated && c.node_animated[size_t(ni)]);
     if (nd.mesh >= 0) {
         if (size_t(nd.mesh) >= c.model.meshes.size())
             gfail(strf("nodes[%d].mesh: %d out of range", ni, nd.mesh));
         const tinygltf::Mesh &mesh = c.model.meshes[size_t(nd.mesh)];
         for (size_t p = 0; p < mesh.primitives.size(); p++)
-            emit_primitive(c, o, nd.mesh, int(p), world);
+            emit_primitive(c, o, nd.mesh, int(p), world, ni, moving);
     }
-    for (int ch : nd.children) visit(ch, world, depth + 1);
+    for (int ch : nd.children) visit(ch, world, depth + 1, moving);
     on_path[size_t(ni)] = 0;
 }
 

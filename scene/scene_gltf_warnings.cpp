@@ -71,22 +71,17 @@ void collect_warnings(Ctx &c)
     if (c.skipped_prims)
         W.push_back(strf("skipped %u point/line primitive(s) (only triangles are drawn)",
                          c.skipped_prims));
-    if (!md.skins.empty())
-        W.push_back(plural(md.skins.size(), "skin", "skins") + " ignored: rendered in bind pose");
-    size_t morph_meshes = 0, morph_targets = 0;
-    for (const auto &m : md.meshes) {
-        size_t t = 0;
-        for (const auto &p : m.primitives) t = std::max(t, p.targets.size());
-        morph_meshes += t > 0;
-        morph_targets += t;
-    }
-    if (!md.animations.empty())
-        W.push_back(plural(md.animations.size(), "animation", "animations") +
-                    " ignored: the nodes are drawn at their static transforms");
-    if (morph_meshes)
-        W.push_back(plural(morph_targets, "morph target", "morph targets") + " in " +
-                    plural(morph_meshes, "mesh", "meshes") +
-                    " ignored: rendered with the base geometry (weights not applied)");
+    if (c.unskinned_prims)
+        W.push_back(strf("%u primitive(s) of skinned nodes without JOINTS_0/WEIGHTS_0: drawn by their node's transform, "
+                         "unskinned",
+                         c.unskinned_prims));
+    if (c.joints1_prims)
+        W.push_back(strf("%u skinned primitive(s) with JOINTS_1/WEIGHTS_1 ignored: 4 joints per vertex are applied",
+                         c.joints1_prims));
+    if (c.ignored_channels)
+        W.push_back(strf("%u animation channel(s) ignored (KHR_animation_pointer, a node given by a matrix, or "
+                         "weights of a mesh without drawn morph targets)",
+                         c.ignored_channels));
     constexpr size_t kMaxExtensionLines = 16;
     std::vector<std::string> unimpl;
     for (const std::string &e : md.extensionsUsed)

@@ -167,6 +167,8 @@ static cJSON *json_meta(const bench *B)
     cJSON_AddStringToObject(m, "environment", B->opt.environment ? B->opt.environment : "auto");
     cJSON_AddNumberToObject(m, "environment_intensity", B->opt.env_intensity);
     cJSON_AddNumberToObject(m, "environment_rotation_deg", B->opt.env_rotation_deg);
+    /* --animation as given ("first": the file's first animation, when it has one) */
+    cJSON_AddStringToObject(m, "animation", B->opt.animation ? B->opt.animation : "first");
     cJSON_AddStringToObject(m, "reference", B->ref_name);
     cJSON_AddStringToObject(m, "reference_path", B->ref_path);
     cJSON *rl = cJSON_AddObjectToObject(m, "reference_max_lights");

@@ -101,7 +101,8 @@ static void open_scene(viewer *v)
     pg_scene *sc = NULL;
     pg_scene_gpu *sg = NULL;
     pg_error err = {0};
-    if (pg_scene_load(v->scene_input, &sc, &err) || pg_app_attach_environment(&v->app, sc, &err) ||
+    if (pg_scene_load(v->scene_input, &sc, &err) || pg_app_pose_scene(&v->app, sc, &err) ||
+        pg_app_attach_environment(&v->app, sc, &err) ||
         pg_scene_gpu_create(v->app.gpu, sc, &sg, &err)) {
         snprintf(v->error, sizeof v->error, "%s", err.msg);
         pg_scene_free(sc);

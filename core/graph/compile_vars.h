@@ -14,7 +14,7 @@
 extern "C" {
 #endif
 
-#define PG_MAX_COMPILE_VARS 16
+#define PG_MAX_COMPILE_VARS 32
 #define PG_VAR_NAME_MAX 32
 
 typedef struct pg_compile_var {

@@ -211,6 +211,7 @@ static bool access_fits_kind(pg_access a, pg_res_kind kind)
     case PG_ACCESS_DEPTH_READ:
     case PG_ACCESS_SAMPLED: return kind == PG_RES_IMAGE;
     case PG_ACCESS_UNIFORM:
+    case PG_ACCESS_VERTEX_INPUT:
     case PG_ACCESS_INDIRECT: return kind == PG_RES_BUFFER;
     case PG_ACCESS_STORAGE_READ:
     case PG_ACCESS_STORAGE_WRITE:

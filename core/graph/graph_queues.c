@@ -85,6 +85,10 @@ static void raster_reason(const pg_plan_pass *pp, char *buf, size_t n)
             snprintf(buf, n, "slot '%s' is an attachment (%s)", d->name, pg_access_name(d->access));
             return;
         }
+        if (d->access == PG_ACCESS_VERTEX_INPUT) {
+            snprintf(buf, n, "slot '%s' is a vertex stream (vertex_input)", d->name);
+            return;
+        }
         const bool shader = d->access == PG_ACCESS_SAMPLED || d->access == PG_ACCESS_STORAGE_READ ||
                             d->access == PG_ACCESS_STORAGE_WRITE || d->access == PG_ACCESS_STORAGE_RW ||
                             d->access == PG_ACCESS_UNIFORM;

@@ -95,6 +95,12 @@ pg_sync_info pg_access_sync(pg_access access, uint32_t stages, pg_res_kind kind,
         s.writes = true;
         s.full_write = true;
         break;
+    case PG_ACCESS_VERTEX_INPUT:
+        s.stages = VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT;
+        s.access = VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT;
+        s.usage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
+        s.reads = true;
+        break;
     case PG_ACCESS_INDIRECT:
         s.stages = VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT;
         s.access = VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
@@ -113,7 +119,7 @@ const char *pg_access_name(pg_access a)
     static const char *n[PG_ACCESS_COUNT] = {
         "color_write", "color_rmw", "depth_write", "depth_rmw", "depth_read", "sampled",
         "storage_read", "storage_write", "storage_rw", "uniform", "transfer_src",
-        "transfer_dst", "indirect",
+        "transfer_dst", "indirect", "vertex_input",
     };
     return (unsigned)a < PG_ACCESS_COUNT ? n[a] : "?";
 }

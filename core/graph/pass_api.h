@@ -43,6 +43,7 @@ typedef enum pg_access {
     PG_ACCESS_TRANSFER_SRC,
     PG_ACCESS_TRANSFER_DST,     /* fully overwritten by a copy/clear */
     PG_ACCESS_INDIRECT,         /* indirect draw/dispatch arguments */
+    PG_ACCESS_VERTEX_INPUT,     /* a vertex buffer (vertex attribute fetch) */
     PG_ACCESS_COUNT
 } pg_access;
 

@@ -167,6 +167,12 @@ typedef struct pg_buffer {
 } pg_buffer;
 
 /* host_visible: HOST_VISIBLE|HOST_COHERENT, persistently mapped; else DEVICE_LOCAL. */
+/* The same with both_queues: VK_SHARING_MODE_CONCURRENT over the graphics and compute families
+ * when they differ (data written once and read by passes on either queue: the scene's buffers;
+ * an exclusive buffer read first on another family without an ownership transfer has undefined
+ * contents). pg_buffer_create: both_queues = host_visible. */
+pg_result pg_buffer_create_ex(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags usage, bool host_visible,
+                              bool both_queues, const char *name, pg_buffer *out, pg_error *err);
 pg_result pg_buffer_create(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags usage,
                            bool host_visible, const char *name, pg_buffer *out, pg_error *err);
 void pg_buffer_destroy(pg_gpu *gpu, pg_buffer *b);

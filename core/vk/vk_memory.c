@@ -38,6 +38,12 @@ VkResult pg_gpu_alloc_device_memory(pg_gpu *gpu, VkDeviceSize size, uint32_t typ
 pg_result pg_buffer_create(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags usage,
                            bool host_visible, const char *name, pg_buffer *out, pg_error *err)
 {
+    return pg_buffer_create_ex(gpu, size, usage, host_visible, host_visible, name, out, err);
+}
+
+pg_result pg_buffer_create_ex(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags usage, bool host_visible,
+                              bool both_queues, const char *name, pg_buffer *out, pg_error *err)
+{
     memset(out, 0, sizeof *out);
     if (size == 0) size = 16;
     VkBufferCreateInfo bci = {
@@ -46,10 +52,10 @@ pg_result pg_buffer_create(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags us
         .usage = usage,
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
     };
-    /* host-written/read buffers (frame uniforms, staging, timestamps) may be used on both queues
-     * of different families: concurrent sharing, no ownership transfers */
+    /* host-written/read buffers (frame uniforms, staging, timestamps) and the static scene data
+     * may be used on both queues of different families: concurrent sharing, no ownership transfers */
     const uint32_t fams[2] = {gpu->queue_family, gpu->compute_family};
-    if (host_visible && gpu->compute_queue && gpu->compute_family != gpu->queue_family) {
+    if (both_queues && gpu->compute_queue && gpu->compute_family != gpu->queue_family) {
         bci.sharingMode = VK_SHARING_MODE_CONCURRENT;
         bci.queueFamilyIndexCount = 2;
         bci.pQueueFamilyIndices = fams;

@@ -55,6 +55,8 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     out->uv1 = f->uv1;
     out->push_draw_key = false;
     out->draw_key_shift = 0;
+    out->has_geometry = f->has_geometry;
+    out->geometry = f->geometry;
     n += pg_scene_draw_define_list(&pass->decl, f, defs + n, PG_MAX_DEFINES);
     if ((out->vertex_colors && !PG_SCENE_OF(ctx)->colors.buffer) || (out->uv1 && !PG_SCENE_OF(ctx)->uv1.buffer)) {
         r = pg_fail(err, PG_ERR_INVALID_ARG, "%s: compiled with %s but the uploaded scene has no such stream",
@@ -110,7 +112,8 @@ static void bind_scene(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, V
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sd->opaque);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sd->layout, 0, pass_set ? 3 : 2, sets, 0, NULL);
     VkDeviceSize zero = 0;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &sc->vertices.buffer, &zero);
+    const VkBuffer vb = sd->has_geometry ? pg_ctx_res(ctx, sd->geometry)->buffer : sc->vertices.buffer;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);
     if (sd->vertex_colors) vkCmdBindVertexBuffers(cmd, 1, 1, &sc->colors.buffer, &zero);
     if (sd->uv1) vkCmdBindVertexBuffers(cmd, 2, 1, &sc->uv1.buffer, &zero);
     vkCmdBindIndexBuffer(cmd, sc->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
@@ -174,6 +177,27 @@ void pg_scene_draw_destroy(pg_gpu *gpu, pg_scene_draw *sd)
 }
 
 const char *const pg_prepass_tests[] = {"less", "equal", NULL};
+
+void pg_geometry_slot_declare(const pg_declare_in *in, pg_pass_decl *out, pg_scene_draw_features *f, bool storage)
+{
+    const bool animated = pg_scene_features_of(in).has_animation;
+    f->has_geometry = false;
+    f->geometry = PG_SLOT_NONE;
+    if (in->desc->n_reads <= out->n_reads) {
+        if (animated)
+            pg_decl_explain(out, "no geometry slot bound (reads[%u]): the animated scene is drawn in its rest pose",
+                            out->n_reads);
+        return;
+    }
+    f->geometry = storage ? pg_decl_read(out, "geometry", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0)
+                          : pg_decl_read(out, "geometry", PG_RES_BUFFER, PG_ACCESS_VERTEX_INPUT, PG_STAGE_VERTEX, 0);
+    if (!animated) {
+        pg_decl_mark_unused(out, f->geometry, "no animation: the static vertex buffer is drawn");
+        return;
+    }
+    f->has_geometry = true;
+    pg_decl_explain(out, "draws the scene's vertices at the frame's pose (geometry)");
+}
 
 uint32_t pg_scene_draw_define_list(const pg_pass_decl *decl, const pg_scene_draw_features *f, const char **out,
                                    uint32_t max)

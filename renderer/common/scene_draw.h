@@ -20,6 +20,10 @@ typedef struct pg_scene_draw_features {
     bool uv1;             /* PG_UV1: vertex stream 2 */
     uint8_t mask_define;  /* 1 + the position of PG_ALPHA_MASK among the pass's defines (0: none): the
                            * opaque pipelines compile every other define */
+    bool has_geometry;    /* pg_geometry_slot_declare bound the read slot `geometry` (the deformed
+                           * vertices of geometry_animate) and the scene is animated: the pass draws
+                           * from it instead of the static vertex buffer */
+    pg_slot geometry;
 } pg_scene_draw_features;
 
 typedef struct pg_scene_draw {
@@ -28,6 +32,8 @@ typedef struct pg_scene_draw {
     float ambient;                    /* pushed with each draw's material (DrawPush.ambient) */
     bool vertex_colors, uv1;          /* the pipelines read vertex streams 1 / 2 (PG_VERTEX_COLORS, PG_UV1) */
     bool depth_equal;                 /* pg_scene_draw_desc.depth_equal */
+    bool has_geometry;                /* vertex stream 0 is the graph's `geometry` buffer (features) */
+    pg_slot geometry;
     bool push_draw_key;               /* the visibility pass: DrawPush's second word is
                                        * draw index << draw_key_shift instead of the ambient */
     uint32_t draw_key_shift;
@@ -72,6 +78,14 @@ void pg_scene_draw_declare_features(const pg_declare_in *in, pg_pass_decl *out, 
 /* The same without the alpha-mask variant: the defines that shape the vertex path and the surface
  * (for a pass that draws no alpha-mask draws but must run the same vertex shader). */
 void pg_scene_draw_declare_vertex_features(const pg_declare_in *in, pg_pass_decl *out, pg_scene_draw_features *f);
+/* declare(), after every other read: the optional trailing read slot `geometry` (the scene's
+ * vertices at the frame's pose, written by geometry_animate: pipelines/fragments/geometry.json) when
+ * the pass's description binds one more read than declared so far; marked unused (so the animation
+ * pass can be culled) when the scene has no animation. storage: the pass reads it as a storage
+ * buffer in compute (the visibility passes that rebuild surfaces) instead of as its vertex stream.
+ * Fills f->has_geometry / f->geometry; a scene that is animated while the pass binds no such slot
+ * is drawn in its rest pose (said by an explain line). */
+void pg_geometry_slot_declare(const pg_declare_in *in, pg_pass_decl *out, pg_scene_draw_features *f, bool storage);
 /* The pass's declared defines without PG_ALPHA_MASK (f->mask_define) into out (max entries); returns how
  * many. */
 uint32_t pg_scene_draw_define_list(const pg_pass_decl *decl, const pg_scene_draw_features *f, const char **out,

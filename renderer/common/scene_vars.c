@@ -22,6 +22,7 @@ static const struct {
     {"has_occlusion_tex", offsetof(pg_scene_features, has_occlusion_tex)},
     {"has_unlit", offsetof(pg_scene_features, has_unlit)},
     {"has_environment", offsetof(pg_scene_features, has_environment)},
+    {"has_animation", offsetof(pg_scene_features, has_animation)},
 };
 #define PG_VAR_AUTO_SHADING "auto_shading"
 
@@ -37,6 +38,8 @@ pg_result pg_scene_vars_set(pg_compile_vars *vars, const pg_scene_features *feat
         const bool on = features && *(const bool *)((const char *)features + k_features[i].offset);
         r = pg_vars_set(vars, k_features[i].name, on, err);
     }
+    /* the deformed vertex buffer (pipelines/fragments/geometry.json: count ["vertices"]) */
+    if (!r) r = pg_vars_set(vars, "vertices", features && features->has_animation ? features->vertices : 0, err);
     if (!r) r = pg_vars_set(vars, PG_VAR_AUTO_SHADING, features ? features->auto_shading : PG_SHADING_LAMBERT, err);
     return r;
 }

@@ -27,6 +27,7 @@ pg_result pg_vis_tri_bits(const pg_scene_gpu *sc, uint32_t *tri_bits, pg_error *
 pg_result pg_vis_geometry_create(const pg_pass_create_ctx *ctx, const pg_scene_draw_features *f, uint32_t scene_set,
                                  pg_vis_geometry *g, pg_error *err)
 {
+    g->geometry = f->has_geometry ? pg_ctx_res(ctx, f->geometry) : NULL;
     const pg_scene_gpu *sc = PG_SCENE_OF(ctx);
     pg_result r;
     if (!sc) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: needs a scene", ctx->pass->name);
@@ -73,6 +74,7 @@ uint32_t pg_vis_geometry_bindings(pg_vis_geometry *g, const pg_scene_gpu *sc, pg
     for (uint32_t i = 0; i < 5; i++) {
         if (!src[i]) continue;
         g->streams[i] = (pg_phys_resource){.kind = PG_RES_BUFFER, .buffer = src[i]->buffer, .size = src[i]->size};
+        if (i == 0 && g->geometry) g->streams[0] = *g->geometry; /* the vertices at the frame's pose */
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &g->streams[i], VK_NULL_HANDLE, 0};
     }
     return n;

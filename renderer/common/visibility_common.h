@@ -27,6 +27,8 @@ typedef struct pg_vis_geometry {
     uint32_t tri_bits;
     bool colors, uv1;          /* the pass was compiled with PG_VERTEX_COLORS / PG_UV1 */
     pg_buffer draws;           /* the draw table */
+    const pg_phys_resource *geometry; /* the graph's deformed vertices (an animated scene), else NULL:
+                                       * stream 0 is then the static vertex buffer */
     pg_phys_resource streams[5]; /* descriptors of vertices, indices, draws, colours, uv1 (buffer
                                   * kind, static: the graph does not track them) for pg_pass_set */
     char defines[PG_MAX_DEFINES + 8][PG_NAME_MAX];

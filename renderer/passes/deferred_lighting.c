@@ -92,10 +92,10 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     bool emissive = false;
     const uint32_t light_reads = source == 1 ? 1 : 3;
     if (packing == PG_GBUFFER_VISIBILITY) {
-        const uint32_t extra = light_reads + 2; /* the optional environment slot may follow */
+        const uint32_t extra = light_reads + 2; /* the optional environment and geometry slots may follow */
         const pg_resource_desc *rd =
             in->desc->n_reads > extra ? pg_pipeline_find_resource(in->pipeline, in->desc->reads[extra]) : NULL;
-        if (in->desc->n_reads > extra + 1 || (rd && rd->kind == PG_RES_IMAGE))
+        if (in->desc->n_reads > extra + 2 || (rd && rd->kind == PG_RES_IMAGE))
             return pg_fail(err, PG_ERR_SCHEMA,
                            "%s: %s.reads[%u]: packing \"visibility\" takes no emissive target (the material's "
                            "emission is evaluated in this pass)",
@@ -117,6 +117,7 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     if (emissive) pg_decl_define(out, "PG_DEFERRED_EMISSIVE");
     pg_shading_declare(&p->sh, in, out);
     pg_environment_slot_declare(in, out, &p->sh, PG_STAGE_COMPUTE, true);
+    if (packing == PG_GBUFFER_VISIBILITY) pg_geometry_slot_declare(in, out, &p->draw, true);
     bool tiled;
     int64_t tile;
     if ((r = pg_opt_bool(in->desc, "tile_lights", true, &tiled, err))) return r;

@@ -66,6 +66,7 @@ static pg_result dp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
             pg_decl_explain(out, "alpha-mask draws left out of the depth pre-pass: the shading pass draws them with "
                                  "their discard");
     }
+    pg_geometry_slot_declare(in, out, &p->draw, false);
     return PG_OK;
 }
 

@@ -60,6 +60,7 @@ static pg_result fp_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     }
     pg_shading_declare(&p->sh, in, out);
     pg_environment_slot_declare(in, out, &p->sh, PG_STAGE_FRAGMENT, false);
+    pg_geometry_slot_declare(in, out, &p->draw, false);
     return PG_OK;
 }
 

@@ -62,6 +62,7 @@ static pg_result ft_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     }
     p->depth = pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_READ, PG_STAGE_FRAGMENT, PG_FMTCLASS_DEPTH);
     pg_environment_slot_declare(in, out, &p->sh, PG_STAGE_FRAGMENT, false);
+    pg_geometry_slot_declare(in, out, &p->draw, false);
     p->color = pg_decl_write(out, "color", PG_RES_IMAGE, PG_ACCESS_COLOR_RMW, PG_STAGE_FRAGMENT, PG_FMTCLASS_FLOAT);
     if (!pg_scene_features_of(in).has_blend) {
         pg_decl_skip(out, "no BLEND materials: no transparent pass");

@@ -78,6 +78,7 @@ static pg_result gb_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     if (emissive) pg_decl_define(out, "PG_GBUFFER_EMISSIVE");
     pg_material_model_declare(in, out, shading);
     pg_scene_draw_declare_features(in, out, &p->draw);
+    pg_geometry_slot_declare(in, out, &p->draw, false);
     return PG_OK;
 }
 

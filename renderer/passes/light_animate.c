@@ -8,7 +8,9 @@
  *            1e-9..1, default 1e-4: an approximation knob (clustering needs a finite range) */
 #include "light_compute.h"
 #include "pass_api.h"
+#include "frame.h"
 #include "scene_gpu.h"
+#include "scene_gpu_anim.h"
 #include "scene_vars.h"
 
 #include <string.h>
@@ -73,6 +75,13 @@ static pg_result la_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 
 static void la_record(void *self, const pg_pass_record_ctx *ctx)
 {
+    const pg_scene_gpu *sg = PG_SCENE_OF(ctx);
+    if (sg && sg->anim && sg->anim->n_moving_lights) { /* file lights on animated nodes: placed for this frame */
+        const pg_frame_uniforms *fu = PG_FRAME_OF(ctx);
+        int32_t animation;
+        memcpy(&animation, &fu->light_src[1], sizeof animation);
+        pg_scene_gpu_anim_update_lights(sg->anim, sg->file_lights.buffer, animation, fu->camera_pos[3], ctx->cmd);
+    }
     pg_light_compute_record(&((light_animate *)self)->lc, ctx); /* one thread a light */
 }
 

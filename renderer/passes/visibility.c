@@ -39,6 +39,7 @@ static pg_result vis_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
                        in->desc->file, in->desc->json_path, where, in->desc->name, pg_format_get(id->format)->name,
                        id->name);
     pg_scene_draw_declare_features(in, out, &p->draw);
+    pg_geometry_slot_declare(in, out, &p->draw, false);
     return PG_OK;
 }
 

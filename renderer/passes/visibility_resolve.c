@@ -63,6 +63,7 @@ static pg_result vr_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         pg_decl_explain(out, "no emissive slot bound (writes[1]): emissive materials are not drawn");
     }
     pg_scene_draw_declare_features(in, out, &p->draw);
+    pg_geometry_slot_declare(in, out, &p->draw, true);
     return PG_OK;
 }
 

@@ -103,8 +103,11 @@ static void check_compile(bool prepass, bool equal)
         }
         if (pp >= 0) {
             const pg_plan_pass *p = &plan->passes[pp];
-            CHECK_MSG(p->n_slots == 1 && p->slots[0].decl.access == PG_ACCESS_DEPTH_WRITE,
-                      "prepass: slot 0 should clear and write depth");
+            /* its slots: the optional geometry read (unused: the scene is static), then the depth */
+            const uint32_t last = p->n_slots - 1;
+            CHECK_MSG(p->n_slots == 2 && p->slots[last].is_write && p->slots[last].decl.access == PG_ACCESS_DEPTH_WRITE &&
+                          !strcmp(p->slots[0].decl.name, "geometry") && p->slots[0].decl.unused,
+                      "prepass: its write should clear and write depth, its one read be the unused geometry");
             CHECK_MSG(has_define(p, "PG_ALPHA_MASK") == equal, "prepass_test=%s: the pre-pass %s PG_ALPHA_MASK",
                       equal ? "equal" : "less", equal ? "lacks" : "has");
         }

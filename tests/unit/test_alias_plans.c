@@ -116,7 +116,7 @@ int main(void)
                                       .disable_aliasing = off};
                 pg_scene_vars_set(&cd.vars,
                                   rich ? &(pg_scene_features){true, true, true, true, true, true, true, true, true, true, true, true, true, true,
-                                                               PG_SHADING_PBR}
+                                                               false, 0, PG_SHADING_PBR}
                                        : &(pg_scene_features){.has_textures = true},
                                   256, NULL);
                 pg_graph_plan *p = NULL;

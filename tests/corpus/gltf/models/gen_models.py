@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Generates ten small, recognisable everyday-object glTF 2.0 models (issue 11: "for ten
 object-type glTF models, `passgraph render --scene MODEL --out x.png` with no other option gives a
-framed, lit, recognisable image"). Python 3 standard library only; deterministic (no random
-module, no time stamps: the same bytes on every run); the output is committed next to this file.
+framed, lit, recognisable image") and one animated, skinned character (walker.gltf). Python 3
+standard library only; deterministic (no random module, no time stamps: the same bytes on every
+run); the output is committed next to this file.
 Run: `python3 tests/corpus/gltf/models/gen_models.py` (`--out DIR` writes into DIR instead).
 
 Every model faces +Z, stands on y = 0, is in metres, and has several materials and node
@@ -11,7 +12,10 @@ primitives (box, lathe, sphere, torus, polygon); each triangle is wound counter-
 from the side its (outward, unit) vertex normals point to, and every closed part is checked to
 have a positive signed volume (outward winding). `validate()` re-reads every written file and
 checks accessor min/max, byteLength, bufferView ranges / alignment / targets, index ranges, unit
-normals and triangle winding against the normals before the file is written.
+normals and triangle winding against the normals before the file is written; with skins and
+animations (validate_animated) also the inverse bind matrices against the joints' bind pose,
+JOINTS_0 / WEIGHTS_0 (1 or 2 joints a vertex, in range, weights summing to 1), sampler key times
+(increasing, exact min/max) and output counts; walker_check() poses walker.gltf by CPU skinning.
 
   mug.gltf           glazed mug: lathe body with a wall thickness (outside / inside materials),
                      half-torus handle (node rotation), coffee disc
@@ -35,6 +39,11 @@ normals and triangle winding against the normals before the file is written.
                      on top (node rotation + scale)
   desk_lamp.gltf     desk lamp: metal base and arms, open shade (doubleSided), emissive bulb,
                      and a perspective glTF camera 'product_shot' (the default view)
+  walker.gltf        animated stylised person, 1.8 m: one skinned mesh (skin, shirt, trousers,
+                     shoes/hair materials) on a 15-joint skeleton (nodes 0-14, root 'hips'; mesh
+                     node 'walker_body' with skin 0), JOINTS_0 UNSIGNED_BYTE blended at the elbows,
+                     knees, ankles, spine and neck; animations 'walk' (1 s loop in place, hips bob)
+                     and 'wave' (2 s, right arm), LINEAR, keys every 1/16 s
 """
 import base64
 import json
@@ -341,6 +350,131 @@ def cone(prim, r, h, y0=0.0, m=None, seg=32, v_scale=1.0):
     closed_lathe(prim, [(0, y0), (r, y0), (0, y0 + h)], m=m, seg=seg, v_scale=v_scale)
 
 
+# ----------------------------------------------------------------------------- skinned geometry
+
+
+class SkinPrim(Prim):
+    """A Prim with JOINTS_0 / WEIGHTS_0: every vertex gets `weigh(world position)` -> (4 joint
+    indices, 4 weights), set by the caller before each part."""
+
+    def __init__(self, material):
+        Prim.__init__(self, material)
+        self.jw = []
+        self.weigh = None
+
+    def vert(self, p, n, uv=(0.0, 0.0), col=(1.0, 1.0, 1.0, 1.0)):
+        i = Prim.vert(self, p, n, uv, col)
+        self.jw.append(self.weigh(self.pos[i]))
+        return i
+
+
+def skin_blend(j0, j1, w1):
+    """Joint j0 blended into j1 by w1 (0..1), quantised to 1/1024 so that the two float weights
+    are exact and sum to exactly 1; one joint where the blend is 0 or 1."""
+    q = round(min(1.0, max(0.0, w1)) * 1024) / 1024.0
+    if q <= 0.0:
+        return ((j0, 0, 0, 0), (1.0, 0.0, 0.0, 0.0))
+    if q >= 1.0:
+        return ((j1, 0, 0, 0), (1.0, 0.0, 0.0, 0.0))
+    return ((j0, j1, 0, 0), (1.0 - q, q, 0.0, 0.0))
+
+
+def smoothstep(c, h, s):
+    """0 below c - h, 1 above c + h, smooth in between."""
+    t = min(1.0, max(0.0, (s - (c - h)) / (2 * h)))
+    return t * t * (3 - 2 * t)
+
+
+def smooth_profile(pts):
+    """(r, y) points from the bottom pole (r = 0) up to the top pole (r = 0) -> rings (r, y, nr, ny)
+    with the averaged (smooth) normals of the neighbouring steps."""
+    steps = []
+    for (r0, y0), (r1, y1) in zip(pts, pts[1:]):
+        l = math.hypot(r1 - r0, y1 - y0)
+        steps.append(((y1 - y0) / l, -(r1 - r0) / l))
+    rings = [(0.0, pts[0][1], 0.0, -1.0)]
+    for k in range(1, len(pts) - 1):
+        a, b = steps[k - 1], steps[k]
+        l = math.hypot(a[0] + b[0], a[1] + b[1])
+        rings.append((pts[k][0], pts[k][1], (a[0] + b[0]) / l, (a[1] + b[1]) / l))
+    rings.append((0.0, pts[-1][1], 0.0, 1.0))
+    return rings
+
+
+@closed
+def revolve(prim, rings, m=None, seg=16):
+    """Closed smooth surface of revolution about +Y (mapped by m): rings [(r, y, nr, ny)] from the
+    bottom pole (r = 0) to the top pole (r = 0); each ring's seg vertices are shared by the quads
+    above and below it (no seam duplicate: no UVs). A ring repeated with another normal makes a
+    crease (the zero-area quads between them are dropped)."""
+    ids = []
+    for r, y, nr, ny in rings:
+        if r == 0:
+            ids.append([emit(prim, m, (0.0, y, 0.0), (0.0, ny, 0.0))])
+            continue
+        row = []
+        for s in range(seg):
+            a = 2 * math.pi * s / seg
+            c, sn = math.cos(a), math.sin(a)
+            row.append(emit(prim, m, (r * c, y, -r * sn), (nr * c, ny, -nr * sn)))
+        ids.append(row)
+    for A, B in zip(ids, ids[1:]):
+        for s in range(seg):
+            s1 = (s + 1) % seg
+            if len(A) == 1:
+                prim.tri(A[0], B[s], B[s1])
+            elif len(B) == 1:
+                prim.tri(A[s], A[s1], B[0])
+            else:
+                prim.quad(A[s], A[s1], B[s1], B[s])
+
+
+def ellipsoid_rings(r, nv, phi0=-90.0, phi1=90.0):
+    """Rings of a sphere of radius r (scaled into an ellipsoid by the caller's matrix) between the
+    latitudes phi0 and phi1 (degrees), nv steps; the poles at +-90 have r = 0."""
+    out = []
+    for k in range(nv + 1):
+        ph = math.radians(phi0 + (phi1 - phi0) * k / nv)
+        c, s = math.cos(ph), math.sin(ph)
+        out.append((0.0 if abs(abs(ph) - math.pi / 2) < 1e-9 else r * c, r * s, c, s))
+    return out
+
+
+def frame_y(d):
+    """Rotation matrix whose +Y column is the unit vector d (and +Z stays world +Z for d in the XY
+    plane)."""
+    ref = [0.0, 0.0, 1.0] if abs(d[2]) < 0.9 else [1.0, 0.0, 0.0]
+    x = norm(cross(d, ref))
+    z = cross(x, d)
+    m = I4()
+    for i in range(3):
+        m[i][0], m[i][1], m[i][2] = x[i], d[i], z[i]
+    return m
+
+
+def capsule(prim, a, b, ra, rb, shaft=(), seg=12, cap=3, sx=1.0, sz=1.0):
+    """Smooth tapered capsule from point a (radius ra) to point b (radius rb): a hemisphere around
+    each end point, rings at the distances `shaft` from a (denser where a joint bends it); the
+    cross-section scaled by sx, sz in the capsule's own frame (frame_y)."""
+    L = math.sqrt(dot(sub(b, a), sub(b, a)))
+    d = mulv(sub(b, a), 1.0 / L)
+    ln = math.hypot(L, ra - rb)
+    n = (L / ln, (ra - rb) / ln)          # outward normal (r, y) of the tapered shaft
+    rings = []
+    for k in range(cap + 1):
+        ph = -math.pi / 2 + math.pi / 2 * k / cap
+        rings.append((0.0 if k == 0 else ra * math.cos(ph), ra * math.sin(ph),
+                      math.cos(ph), math.sin(ph)))
+    for s in shaft:
+        assert 0 < s < L
+        rings.append((ra + (rb - ra) * s / L, s, n[0], n[1]))
+    for k in range(cap + 1):
+        ph = math.pi / 2 * k / cap
+        rings.append((0.0 if k == cap else rb * math.cos(ph), L + rb * math.sin(ph),
+                      math.cos(ph), math.sin(ph)))
+    revolve(prim, rings, m=chain(T(*a), frame_y(d), S(sx, 1.0, sz)), seg=seg)
+
+
 # ----------------------------------------------------------------------------- textures (PNG)
 
 
@@ -481,6 +615,10 @@ class Model:
         self.images, self.textures, self.samplers = [], [], []
         self.cameras, self.ext_used = [], []
         self.mat_index = {}
+        # skins: (name, joint nodes, inverse bind matrices (16 floats, column-major), skeleton);
+        # animations: (name, key times, [(node, path, values)]): LINEAR samplers sharing the times
+        self.skins, self.animations = [], []
+        self.check = None    # check(d, blob): extra checks of the built file (after validate)
 
     def material(self, m):
         self.materials.append(m)
@@ -536,12 +674,14 @@ class Model:
             views.append(v)
             return len(views) - 1
 
-        def acc(values, ctype, typ, with_minmax=False, normalized=False):
-            comps = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[typ]
-            fmt = {5126: "f", 5123: "H", 5125: "I"}[ctype]
+        def acc(values, ctype, typ, with_minmax=False, normalized=False, target=-1):
+            comps = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}[typ]
+            fmt = {5126: "f", 5121: "B", 5123: "H", 5125: "I"}[ctype]
             flat = values if comps == 1 else [c for v in values for c in v]
             data = struct.pack("<%d%s" % (len(flat), fmt), *flat)
-            a = {"bufferView": view(data, 34963 if typ == "SCALAR" else 34962),
+            if target == -1:   # vertex attributes and indices; None: no target (animation, skin data)
+                target = 34963 if typ == "SCALAR" else 34962
+            a = {"bufferView": view(data, target),
                  "componentType": ctype, "count": len(values), "type": typ}
             if with_minmax:
                 # min/max of the values as stored (float32-rounded)
@@ -562,12 +702,30 @@ class Model:
                         at["TEXCOORD_0"] = acc(p.uv, 5126, "VEC2")
                     if p.has_color:
                         at["COLOR_0"] = acc(p.col, 5126, "VEC4")
+                    if isinstance(p, SkinPrim):
+                        at["JOINTS_0"] = acc([j for j, _ in p.jw], 5121, "VEC4")
+                        at["WEIGHTS_0"] = acc([w for _, w in p.jw], 5126, "VEC4")
                     big = len(p.pos) > 65535
                     ind = acc(p.idx, 5125 if big else 5123, "SCALAR")
                     shared[id(p)] = (at, ind)
                 at, ind = shared[id(p)]
                 out.append({"attributes": dict(at), "indices": ind, "material": mi})
             meshes.append({"name": name, "primitives": out})
+
+        skins = []
+        for name, joints, ibms, skeleton in self.skins:
+            skins.append({"name": name, "inverseBindMatrices": acc(ibms, 5126, "MAT4", target=None),
+                          "joints": joints, "skeleton": skeleton})
+        animations = []
+        for name, times, channels in self.animations:
+            inp = acc(times, 5126, "SCALAR", True, target=None)
+            an = {"name": name, "channels": [], "samplers": []}
+            for node, path, values in channels:
+                out = acc(values, 5126, "VEC4" if path == "rotation" else "VEC3", target=None)
+                an["channels"].append({"sampler": len(an["samplers"]),
+                                       "target": {"node": node, "path": path}})
+                an["samplers"].append({"input": inp, "interpolation": "LINEAR", "output": out})
+            animations.append(an)
 
         images = []
         for name, data in self.images:
@@ -594,6 +752,10 @@ class Model:
             d["samplers"] = self.samplers
         if self.cameras:
             d["cameras"] = self.cameras
+        if skins:
+            d["skins"] = skins
+        if animations:
+            d["animations"] = animations
         d["accessors"] = accessors
         d["bufferViews"] = views
         buf = {"byteLength": len(blob)}
@@ -606,6 +768,8 @@ class Model:
         glb = filename.endswith(".glb")
         d, blob = self.build(glb)
         validate(d, blob, filename)
+        if self.check:
+            self.check(d, blob)
         path = os.path.join(OUT, filename)
         if glb:
             js = json.dumps(d, separators=(",", ":")).encode()
@@ -675,6 +839,217 @@ def validate(d, blob, who):
         for n in d["nodes"]:
             if "rotation" in n and abs(math.sqrt(sum(c * c for c in n["rotation"])) - 1) > 1e-6:
                 fail("node %s: rotation not unit" % n["name"])
+    if "skins" in d or "animations" in d:
+        validate_animated(d, blob, who)
+
+
+# ----------------------------------------------------------------------------- skins and animations
+
+
+ACC_COMPS = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
+ACC_FMT = {5126: ("f", 4), 5121: ("B", 1), 5123: ("H", 2), 5125: ("I", 4)}
+
+
+def accessor_rows(d, blob, ai):
+    """accessors[ai] read back as tuples; it must fill its bufferView, which must lie in the buffer."""
+    a = d["accessors"][ai]
+    v = d["bufferViews"][a["bufferView"]]
+    comps = ACC_COMPS[a["type"]]
+    fmt, size = ACC_FMT[a["componentType"]]
+    if (a.get("byteOffset", 0) or "byteStride" in v or a["count"] * comps * size != v["byteLength"] or
+            v["byteOffset"] % 4 or v["byteOffset"] + v["byteLength"] > len(blob)):
+        raise AssertionError("accessors[%d] does not fill its bufferView (or it is out of the buffer)" % ai)
+    flat = struct.unpack_from("<%d%s" % (a["count"] * comps, fmt), blob, v["byteOffset"])
+    return [tuple(flat[i:i + comps]) for i in range(0, len(flat), comps)]
+
+
+def trs_matrix(t, q, s=(1.0, 1.0, 1.0)):
+    x, y, z, w = q
+    r = [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+         [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+         [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
+    return [[r[i][0] * s[0], r[i][1] * s[1], r[i][2] * s[2], t[i]] for i in range(3)] + [[0.0, 0.0, 0.0, 1.0]]
+
+
+def col_major(m16):
+    """A glTF MAT4 (16 floats, column-major) as row-major nested lists."""
+    return [[m16[c * 4 + r] for c in range(4)] for r in range(4)]
+
+
+def qmul(a, b):
+    """Hamilton product a * b of (x, y, z, w) quaternions: rotates by b, then by a."""
+    return [a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1],
+            a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
+            a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3],
+            a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]]
+
+
+def slerp(a, b, s):
+    d = sum(a[k] * b[k] for k in range(4))
+    if d < 0:
+        b, d = [-x for x in b], -d
+    if d > 0.9995:
+        q = [a[k] + (b[k] - a[k]) * s for k in range(4)]
+    else:
+        th = math.acos(d)
+        q = [(math.sin((1 - s) * th) * a[k] + math.sin(s * th) * b[k]) / math.sin(th) for k in range(4)]
+    l = math.sqrt(sum(x * x for x in q))
+    return [x / l for x in q]
+
+
+def sample_linear(times, values, path, t):
+    """A LINEAR sampler at time t (clamped to its keys); rotations slerp."""
+    if t <= times[0]:
+        return list(values[0])
+    if t >= times[-1]:
+        return list(values[-1])
+    k = max(i for i in range(len(times)) if times[i] <= t)
+    s = (t - times[k]) / (times[k + 1] - times[k])
+    if path == "rotation":
+        return slerp(values[k], values[k + 1], s)
+    return [values[k][i] + (values[k + 1][i] - values[k][i]) * s for i in range(len(values[k]))]
+
+
+def pose_world(d, rows, anim, t):
+    """World matrices of all nodes at time t of animations[anim] (None: the nodes' own TRS)."""
+    local = [[n.get("translation", [0.0] * 3), n.get("rotation", [0.0, 0.0, 0.0, 1.0]),
+              n.get("scale", [1.0] * 3)] for n in d["nodes"]]
+    if anim is not None:
+        a = d["animations"][anim]
+        for c in a["channels"]:
+            smp = a["samplers"][c["sampler"]]
+            path = c["target"]["path"]
+            v = sample_linear([r[0] for r in rows[smp["input"]]], rows[smp["output"]], path, t)
+            local[c["target"]["node"]][("translation", "rotation", "scale").index(path)] = v
+    world = [None] * len(d["nodes"])
+
+    def walk(k, parent):
+        world[k] = mat_mul(parent, trs_matrix(*local[k]))
+        for c in d["nodes"][k].get("children", []):
+            walk(c, world[k])
+    for k in d["scenes"][d["scene"]]["nodes"]:
+        walk(k, I4())
+    return world
+
+
+def skinned_positions(d, rows, node, anim, t):
+    """The skinned world positions of node's primitives (one list each) at time t (linear blend
+    skinning: sum of weight x world(joint) x inverseBind(joint))."""
+    skin = d["skins"][d["nodes"][node]["skin"]]
+    world = pose_world(d, rows, anim, t)
+    jm = [mat_mul(world[jn], col_major(m))
+          for jn, m in zip(skin["joints"], rows[skin["inverseBindMatrices"]])]
+    out = []
+    for p in d["meshes"][d["nodes"][node]["mesh"]]["primitives"]:
+        at = p["attributes"]
+        ps = []
+        for v, js, ws in zip(rows[at["POSITION"]], rows[at["JOINTS_0"]], rows[at["WEIGHTS_0"]]):
+            q = [0.0, 0.0, 0.0]
+            for j, w in zip(js, ws):
+                if w:
+                    q = add(q, mulv(xf_point(jm[j], v), w))
+            ps.append(q)
+        out.append(ps)
+    return out
+
+
+def validate_animated(d, blob, who):
+    """What glTF 2.0 requires of skins, skinned primitives and animations (and what this script
+    promises: 1 or 2 joints per vertex, weights summing to 1, LINEAR samplers)."""
+    def fail(msg):
+        raise AssertionError("%s: %s" % (who, msg))
+    rows = {}
+    for i, a in enumerate(d["accessors"]):
+        rows[i] = r = accessor_rows(d, blob, i)
+        if len(r) != a["count"]:
+            fail("accessors[%d] count" % i)
+        if "min" in a and (a["min"] != [min(x[k] for x in r) for k in range(len(r[0]))] or
+                           a["max"] != [max(x[k] for x in r) for k in range(len(r[0]))]):
+            fail("accessors[%d] min/max" % i)
+    nn = len(d["nodes"])
+    seen, stack = [], list(d["scenes"][d["scene"]]["nodes"])
+    while stack:                               # a forest: every node reached once from the scene
+        k = stack.pop()
+        if k in seen or not 0 <= k < nn:
+            fail("node %d reached twice or out of range" % k)
+        seen.append(k)
+        stack += d["nodes"][k].get("children", [])
+    if sorted(seen) != list(range(nn)):
+        fail("nodes not all in the scene")
+    parent = {c: k for k, n in enumerate(d["nodes"]) for c in n.get("children", [])}
+    rest = pose_world(d, rows, None, 0.0)
+
+    def no_target(ai, what):
+        if "target" in d["bufferViews"][d["accessors"][ai]["bufferView"]]:
+            fail(what + ": bufferView has a target")
+    for si, sk in enumerate(d.get("skins", [])):
+        js = sk["joints"]
+        if len(set(js)) != len(js) or any(not 0 <= j < nn for j in js):
+            fail("skins[%d].joints" % si)
+        a = d["accessors"][sk["inverseBindMatrices"]]
+        if (a["type"], a["componentType"], a["count"]) != ("MAT4", 5126, len(js)):
+            fail("skins[%d].inverseBindMatrices: MAT4 FLOAT, one per joint" % si)
+        no_target(sk["inverseBindMatrices"], "skins[%d].inverseBindMatrices" % si)
+        for k, (j, m) in enumerate(zip(js, rows[sk["inverseBindMatrices"]])):
+            p = mat_mul(rest[j], col_major(m))          # world(bind) x inverseBind = identity
+            if any(abs(p[r][c] - (r == c)) > 1e-6 for r in range(4) for c in range(4)):
+                fail("skins[%d]: inverseBindMatrices[%d] is not the inverse of joint %d's bind pose" %
+                     (si, k, j))
+            a_, up = j, []
+            while a_ in parent:
+                a_ = parent[a_]
+                up.append(a_)
+            if "skeleton" in sk and sk["skeleton"] != j and sk["skeleton"] not in up:
+                fail("skins[%d].skeleton is not a common root of the joints" % si)
+    for ni, n in enumerate(d["nodes"]):
+        if "skin" not in n:
+            continue
+        if "mesh" not in n or any(k in n for k in ("translation", "rotation", "scale", "matrix")):
+            fail("skinned node %d: needs a mesh and no transform of its own" % ni)
+        nj = len(d["skins"][n["skin"]]["joints"])
+        for pi, p in enumerate(d["meshes"][n["mesh"]]["primitives"]):
+            w = "node %d primitive %d" % (ni, pi)
+            at = p["attributes"]
+            cnt = d["accessors"][at["POSITION"]]["count"]
+            ja, wa = d["accessors"][at["JOINTS_0"]], d["accessors"][at["WEIGHTS_0"]]
+            if ja["type"] != "VEC4" or ja["componentType"] not in (5121, 5123) or ja["count"] != cnt:
+                fail(w + ": JOINTS_0 must be VEC4 UNSIGNED_BYTE/SHORT, one per vertex")
+            if wa["type"] != "VEC4" or wa["componentType"] != 5126 or wa["count"] != cnt:
+                fail(w + ": WEIGHTS_0 must be VEC4 FLOAT, one per vertex")
+            for key in ("JOINTS_0", "WEIGHTS_0"):
+                if d["bufferViews"][d["accessors"][at[key]]["bufferView"]].get("target") != 34962:
+                    fail(w + ": " + key + " target")
+            for v, (js, ws) in enumerate(zip(rows[at["JOINTS_0"]], rows[at["WEIGHTS_0"]])):
+                used = [j for j, x in zip(js, ws) if x > 0]
+                if abs(sum(ws) - 1) > 1e-6 or min(ws) < 0 or not 1 <= len(used) <= 2:
+                    fail(w + ": vertex %d weights %r" % (v, ws))
+                if max(js) >= nj or len(set(used)) != len(used):
+                    fail(w + ": vertex %d joints %r" % (v, js))
+    for ai, an in enumerate(d.get("animations", [])):
+        targets = set()
+        for c in an["channels"]:
+            node, path = c["target"]["node"], c["target"]["path"]
+            w = "animations[%d] channel node %d %s" % (ai, node, path)
+            if ((node, path) in targets or not 0 <= node < nn or
+                    path not in ("translation", "rotation", "scale")):
+                fail(w + ": duplicate or bad target")
+            targets.add((node, path))
+            smp = an["samplers"][c["sampler"]]
+            ia, oa = d["accessors"][smp["input"]], d["accessors"][smp["output"]]
+            t = [r[0] for r in rows[smp["input"]]]
+            if (ia["type"], ia["componentType"]) != ("SCALAR", 5126) or "min" not in ia or t[0] < 0:
+                fail(w + ": input must be SCALAR FLOAT with min/max, from t >= 0")
+            if any(t[k] >= t[k + 1] for k in range(len(t) - 1)):
+                fail(w + ": key times not increasing")
+            want = "VEC4" if path == "rotation" else "VEC3"
+            if (smp.get("interpolation", "LINEAR") != "LINEAR" or
+                    (oa["type"], oa["componentType"], oa["count"]) != (want, 5126, len(t))):
+                fail(w + ": output must be %s FLOAT, one per key (LINEAR)" % want)
+            no_target(smp["input"], w)
+            no_target(smp["output"], w)
+            if path == "rotation" and any(abs(math.sqrt(sum(x * x for x in q)) - 1) > 1e-6
+                                          for q in rows[smp["output"]]):
+                fail(w + ": rotation keys not unit")
 
 
 # ----------------------------------------------------------------------------- the models
@@ -1162,10 +1537,256 @@ def desk_lamp():
     return M
 
 
+# walker.gltf: joints (name, parent index, bind position in metres); the bind pose has no joint
+# rotations, so inverseBindMatrices[j] = translate(-position). The character's left is +X.
+WALKER_JOINTS = [
+    ("hips", -1, (0.0, 0.95, 0.0)),
+    ("spine", 0, (0.0, 1.08, 0.0)),
+    ("chest", 1, (0.0, 1.26, 0.0)),
+    ("neck", 2, (0.0, 1.47, 0.0)),
+    ("head", 3, (0.0, 1.57, 0.0)),
+    ("upper_arm_L", 2, (0.2, 1.41, 0.0)),
+    ("forearm_L", 5, (0.245, 1.13, 0.0)),
+    ("upper_arm_R", 2, (-0.2, 1.41, 0.0)),
+    ("forearm_R", 7, (-0.245, 1.13, 0.0)),
+    ("thigh_L", 0, (0.095, 0.9, 0.0)),
+    ("shin_L", 9, (0.095, 0.49, 0.0)),
+    ("foot_L", 10, (0.095, 0.085, 0.0)),
+    ("thigh_R", 0, (-0.095, 0.9, 0.0)),
+    ("shin_R", 12, (-0.095, 0.49, 0.0)),
+    ("foot_R", 13, (-0.095, 0.085, 0.0)),
+]
+WALKER_TORSO = [(0, 0.96), (0.1, 0.965), (0.138, 0.985), (0.142, 1.03), (0.138, 1.1), (0.148, 1.18),
+                (0.165, 1.27), (0.178, 1.35), (0.178, 1.4), (0.165, 1.445), (0.13, 1.475), (0.08, 1.495),
+                (0, 1.505)]
+WALKER_PELVIS = [(0, 0.79), (0.07, 0.795), (0.12, 0.81), (0.155, 0.845), (0.168, 0.9), (0.165, 0.96),
+                 (0.155, 1.01), (0.152, 1.03), (0.12, 1.045), (0, 1.05)]
+WALK_KEYS = 16          # walk: keys every 1/16 s over 1 s
+WAVE_KEYS = 32          # wave: keys every 1/16 s over 2 s
+
+
+def walk_rotations(t):
+    """Joint rotations of the walk cycle at t (s, period 1): legs and arms in opposite phases, the
+    left leg forward at t = 0.25 (its knee bent in the swing, t = 0.84 .. 1.25, most at about
+    t = 0.05), hips and chest twisting against each other; the feet kept nearly level."""
+    ph = 2 * math.pi * t
+    q = {"hips": quat("y", -5 * math.sin(ph)), "chest": quat("y", 8 * math.sin(ph))}
+    for side, off in (("L", 0.0), ("R", math.pi)):
+        f = ph + off
+        thigh = -22 * math.sin(f)                      # about +X: negative swings forward (+Z)
+        sw = math.atan2(math.sin(f), math.cos(f)) - 0.3  # the swing: |sw| < 1.3 (f in -1 .. 1.6)
+        knee = 5 + (55 * math.cos(sw * math.pi / 2.6) if abs(sw) < 1.3 else 0.0)  # folds the shin back
+        q["thigh_" + side] = quat("x", thigh)
+        q["shin_" + side] = quat("x", knee)
+        q["foot_" + side] = quat("x", -0.85 * (thigh + knee))
+        q["upper_arm_" + side] = quat("x", 18 * math.sin(f))
+        q["forearm_" + side] = quat("x", -(15 + 15 * max(0.0, -math.sin(f))))
+    return q
+
+
+def wave_rotations(t):
+    """The right arm raised (0 - 0.5 s) out to the side and up, the forearm vertical and waving
+    +-25 degrees in the frontal plane twice a second (0.5 - 1.5 s), lowered again (1.5 - 2 s)."""
+    up = smoothstep(0.25, 0.25, t) * (1 - smoothstep(1.75, 0.25, t))
+    wv = math.sin(4 * math.pi * (t - 0.5)) if 0.5 <= t <= 1.5 else 0.0
+    return {"upper_arm_R": qmul(quat("z", -130 * up), quat("x", -15 * up)),
+            "forearm_R": quat("z", -50 * up + 25 * wv)}
+
+
+def walker_fk(rot, hips_t):
+    """World matrices of the joints for local rotations rot {name: quat} and the hips translation."""
+    world = []
+    for name, parent, pos in WALKER_JOINTS:
+        t = hips_t if parent < 0 else sub(pos, WALKER_JOINTS[parent][2])
+        m = trs_matrix(t, rot.get(name, [0.0, 0.0, 0.0, 1.0]))
+        world.append(m if parent < 0 else mat_mul(world[parent], m))
+    return world
+
+
+def walker():
+    M = Model("walker")
+    skin = M.material(mat("skin", (0.80, 0.57, 0.44, 1), rough=0.7))
+    shirt = M.material(mat("shirt", (0.12, 0.32, 0.62, 1), rough=0.85))
+    trousers = M.material(mat("trousers", (0.2, 0.21, 0.25, 1), rough=0.8))
+    dark = M.material(mat("shoes_hair", (0.1, 0.06, 0.035, 1), rough=0.6))
+    J = {name: k for k, (name, _, _) in enumerate(WALKER_JOINTS)}
+    P = {name: list(pos) for name, _, pos in WALKER_JOINTS}
+    sk, sh, tr, dk = SkinPrim(skin), SkinPrim(shirt), SkinPrim(trousers), SkinPrim(dark)
+
+    def rigid(name):
+        w = ((J[name], 0, 0, 0), (1.0, 0.0, 0.0, 0.0))
+        return lambda p: w
+
+    def torso_w(p):                            # hips -> spine -> chest along y
+        if p[1] < 1.14:
+            return skin_blend(J["hips"], J["spine"], smoothstep(1.06, 0.05, p[1]))
+        return skin_blend(J["spine"], J["chest"], smoothstep(1.22, 0.06, p[1]))
+
+    def neck_w(p):
+        if p[1] < 1.515:
+            return skin_blend(J["chest"], J["neck"], smoothstep(1.47, 0.03, p[1]))
+        return skin_blend(J["neck"], J["head"], smoothstep(1.565, 0.03, p[1]))
+    # torso (shirt) and pelvis (trousers): elliptical cross-sections
+    sh.weigh = tr.weigh = torso_w
+    revolve(sh, smooth_profile(WALKER_TORSO), m=S(1, 1, 0.62), seg=16)
+    revolve(tr, smooth_profile(WALKER_PELVIS), m=S(1, 1, 0.72), seg=14)
+    # neck, head (an ellipsoid), nose; hair (a tilted cap, lower at the back) and eyes
+    sk.weigh = neck_w
+    capsule(sk, (0, 1.43, 0), (0, 1.59, 0), 0.05, 0.045, shaft=(0.05, 0.1), seg=10, cap=2)
+    hc = (0.0, 1.675, 0.005)
+    sk.weigh = dk.weigh = rigid("head")
+    revolve(sk, ellipsoid_rings(0.11, 10), m=chain(T(*hc), S(0.88, 1.1, 1.0)), seg=16)
+    revolve(sk, ellipsoid_rings(0.02, 4), m=chain(T(0, 1.665, 0.11), S(0.8, 1.2, 1.0)), seg=8)
+    hr, h0 = 0.118, 12.0
+    y0 = hr * math.sin(math.radians(h0))
+    revolve(dk, [(0.0, y0, 0.0, -1.0), (hr * math.cos(math.radians(h0)), y0, 0.0, -1.0)] +
+            ellipsoid_rings(hr, 6, h0, 90.0), m=chain(T(*hc), R("x", -20), S(0.88, 1.1, 1.0)), seg=16)
+    for x in (-0.036, 0.036):
+        revolve(dk, ellipsoid_rings(0.016, 4), m=T(x, 1.692, 0.1), seg=8)
+    # arms: one sleeve tube shoulder -> wrist (rings dense at the elbow), hands
+    for side in ("L", "R"):
+        ua, fa = "upper_arm_" + side, "forearm_" + side
+        a, e = P[ua], P[fa]
+        lu = math.sqrt(dot(sub(e, a), sub(e, a)))
+        d = norm(sub(e, a))
+        wrist = add(e, mulv(d, 0.25))
+
+        def arm_w(p, a=a, d=d, lu=lu, j=(J[ua], J[fa])):     # upper arm -> forearm at the elbow
+            return skin_blend(j[0], j[1], smoothstep(lu, 0.05, dot(sub(p, a), d)))
+        sh.weigh = arm_w
+        capsule(sh, a, wrist, 0.05, 0.04, seg=10,
+                shaft=(0.1, 0.2, lu - 0.035, lu - 0.017, lu, lu + 0.017, lu + 0.035, 0.42))
+        sk.weigh = rigid(fa)
+        capsule(sk, add(wrist, mulv(d, 0.01)), add(wrist, mulv(d, 0.08)), 0.034, 0.03, seg=8, cap=2, sx=0.6)
+    # legs: one trouser tube hip -> ankle (dense at the knee), shoes (flattened capsules along +Z)
+    for side in ("L", "R"):
+        th, sn, ft = "thigh_" + side, "shin_" + side, "foot_" + side
+        a, k, f = P[th], P[sn], P[ft]
+        lk, lf = a[1] - k[1], a[1] - f[1]
+
+        def leg_w(p, a=a, lk=lk, lf=lf, j=(J[th], J[sn], J[ft])):
+            s = a[1] - p[1]
+            if s < (lk + lf) / 2:
+                return skin_blend(j[0], j[1], smoothstep(lk, 0.06, s))
+            return skin_blend(j[1], j[2], smoothstep(lf, 0.03, s))
+        tr.weigh = leg_w
+        capsule(tr, a, f, 0.075, 0.048, seg=12,
+                shaft=(0.17, 0.26, 0.33, 0.37, 0.41, 0.45, 0.49, 0.6, 0.72))
+        dk.weigh = rigid(ft)
+        capsule(dk, (f[0], 0.045, -0.07), (f[0], 0.045, 0.13), 0.05, 0.05, shaft=(0.1,), seg=10, sx=0.9)
+    # skeleton: joint nodes 0..14 (hips the root), then the skinned mesh node (no transform)
+    world = []
+    for k, (name, parent, pos) in enumerate(WALKER_JOINTS):
+        M.node(name, t=pos if parent < 0 else sub(pos, WALKER_JOINTS[parent][2]), root=parent < 0)
+        kids = [c for c, (_, p, _) in enumerate(WALKER_JOINTS) if p == k]
+        if kids:
+            M.nodes[k]["children"] = kids
+        tk = M.nodes[k]["translation"]
+        world.append(tk if parent < 0 else add(world[parent], tk))
+    body = M.mesh("walker", [(sk, skin), (sh, shirt), (tr, trousers), (dk, dark)])
+    M.node("walker_body", body)
+    M.nodes[-1]["skin"] = 0
+    ibms = [[1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -w[0], -w[1], -w[2], 1.0]
+            for w in world]             # column-major translate(-bind position)
+    M.skins.append(("walker_skin", list(range(len(WALKER_JOINTS))), ibms, 0))
+    # walk: the hips bob so that the lowest shoe vertex touches y = 0 at every key
+    bind = {J[n]: P[n] for n in J}
+    times = [k / WALK_KEYS for k in range(WALK_KEYS + 1)]
+    keys = []
+    for t in times[:-1]:
+        rot = walk_rotations(t)
+        hips = P["hips"]
+        wm = walker_fk(rot, hips)
+        low = min(xf_point(mat_mul(wm[js[0]], T(*mulv(bind[js[0]], -1))), v)[1]
+                  for v, (js, _) in zip(dk.pos, dk.jw) if js[0] in (J["foot_L"], J["foot_R"]))
+        keys.append((rot, [hips[0], hips[1] - low, hips[2]]))
+    keys.append(keys[0])                       # the last key is the first: a seamless loop
+    order = ["hips", "chest", "thigh_L", "shin_L", "foot_L", "thigh_R", "shin_R", "foot_R", "upper_arm_L",
+             "forearm_L", "upper_arm_R", "forearm_R"]
+    ch = [(J["hips"], "translation", [h for _, h in keys])]
+    ch += [(J[n], "rotation", [r[n] for r, _ in keys]) for n in order]
+    M.animations.append(("walk", times, ch))
+    wt = [k / 16.0 for k in range(WAVE_KEYS + 1)]
+    wr = [wave_rotations(t) for t in wt]
+    wr[-1] = wr[0]
+    M.animations.append(("wave", wt, [(J[n], "rotation", [r[n] for r in wr])
+                                      for n in ("upper_arm_R", "forearm_R")]))
+    M.check = walker_check
+    return M
+
+
+def walker_check(d, blob):
+    """Poses by CPU skinning of the written data: the rest pose is the bind pose; no vertex moves
+    more than 1.5 m from it; in the walk the shoes stay on y = 0 at every key (>= -0.2 m between),
+    the left foot ahead at 0.25 s and behind at 0.75 s; in the wave the right hand is above the
+    head at 1 s and the left arm does not move; every animation loops (first key = last key)."""
+    rows = {i: accessor_rows(d, blob, i) for i in range(len(d["accessors"]))}
+    body = len(d["nodes"]) - 1
+    prims = d["meshes"][d["nodes"][body]["mesh"]]["primitives"]
+    bind = [rows[p["attributes"]["POSITION"]] for p in prims]
+    joints = [rows[p["attributes"]["JOINTS_0"]] for p in prims]
+    weights = [rows[p["attributes"]["WEIGHTS_0"]] for p in prims]
+    names = [n["name"] for n in d["nodes"]]
+    shoes = [m["name"] for m in d["materials"]].index("shoes_hair")
+
+    def only(pi, jname):                       # vertices of primitive pi weighted to one joint
+        j = names.index(jname)
+        return [v for v, (js, ws) in enumerate(zip(joints[pi], weights[pi])) if js[0] == j and ws[0] == 1.0]
+    rest = skinned_positions(d, rows, body, None, 0.0)
+    assert all(abs(a[k] - b[k]) < 1e-5 for pa, pb in zip(rest, bind) for a, b in zip(pa, pb)
+               for k in range(3))
+    for an in d["animations"]:
+        for smp in an["samplers"]:
+            out = rows[smp["output"]]
+            assert out[0] == out[-1], an["name"]
+            t = [r[0] for r in rows[smp["input"]]]
+            assert t[0] == 0.0 and max(b - a for a, b in zip(t, t[1:])) <= 0.125, an["name"]
+    assert [an["name"] for an in d["animations"]] == ["walk", "wave"]
+    stats = {}
+    for ai, (dur, steps) in enumerate(((1.0, 32), (2.0, 40))):
+        moved, low = 0.0, 1e9
+        for k in range(steps + 1):
+            t = dur * k / steps
+            pos = skinned_positions(d, rows, body, ai, t)
+            for pa, pb in zip(pos, bind):
+                for a, b in zip(pa, pb):
+                    moved = max(moved, math.sqrt(dot(sub(a, b), sub(a, b))))
+            low = min(low, min(p[1] for pa in pos for p in pa))
+            if ai == 0:
+                shoe_low = min(p[1] for p in pos[shoes])
+                assert shoe_low >= -0.2, (t, shoe_low)
+                if k % 2 == 0:                 # a key (1/16 s): the planted shoe touches y = 0
+                    assert abs(shoe_low) < 1e-4, (t, shoe_low)
+        assert moved <= 1.5, (ai, moved)
+        stats[d["animations"][ai]["name"]] = (moved, low)
+    pos = skinned_positions(d, rows, body, 0, 0.25)
+    fl = [pos[shoes][v][2] for v in only(shoes, "foot_L")]
+    fr = [pos[shoes][v][2] for v in only(shoes, "foot_R")]
+    assert sum(fl) / len(fl) > sum(fr) / len(fr) + 0.2, "walk t = 0.25: left foot not ahead"
+    stats["walk t=0.25 feet z"] = (sum(fl) / len(fl), sum(fr) / len(fr))
+    stats["walk t=0.25 min y"] = min(p[1] for pa in pos for p in pa)
+    pos = skinned_positions(d, rows, body, 0, 0.75)
+    fl = [pos[shoes][v][2] for v in only(shoes, "foot_L")]
+    fr = [pos[shoes][v][2] for v in only(shoes, "foot_R")]
+    assert sum(fl) / len(fl) + 0.2 < sum(fr) / len(fr), "walk t = 0.75: left foot not behind"
+    pos = skinned_positions(d, rows, body, 1, 1.0)
+    skin = [m["name"] for m in d["materials"]].index("skin")
+    hand = max(pos[skin][v][1] for v in only(skin, "forearm_R"))
+    assert hand > 1.85, hand
+    assert all(abs(pos[skin][v][k] - bind[skin][v][k]) < 1e-5 for v in only(skin, "forearm_L")
+               for k in range(3))
+    stats["wave t=1 right hand top"] = hand
+    hips = [r[1] for r in rows[d["animations"][0]["samplers"][0]["output"]]]
+    stats["walk hips y"] = (min(hips), max(hips))
+    print("walker.gltf: " + "; ".join(
+        "%s %s" % (k, " ".join("%.3f" % x for x in (v if isinstance(v, tuple) else (v,))))
+        for k, v in stats.items()))
+
+
 MODELS = [("mug.gltf", mug), ("pawn.gltf", pawn), ("table_chair.gltf", table_chair),
           ("donut.gltf", donut), ("rocket.glb", rocket), ("house.gltf", house),
           ("tree.gltf", tree), ("snowman.gltf", snowman), ("crate.glb", crate),
-          ("desk_lamp.gltf", desk_lamp)]
+          ("desk_lamp.gltf", desk_lamp), ("walker.gltf", walker)]
 
 if __name__ == "__main__":
     # --out DIR writes elsewhere (cli_test.sh checks that the committed files are what this
@@ -1177,5 +1798,5 @@ if __name__ == "__main__":
         sys.exit("usage: gen_models.py [--out DIR]")
     for fname, fn in MODELS:
         size, tris = fn().write(fname)
-        assert size < 300 * 1024, (fname, size)
+        assert size < (150 if fname == "walker.gltf" else 300) * 1024, (fname, size)
         print("%-18s %7d bytes %6d triangles" % (fname, size, tris))

@@ -1,0 +1,222 @@
+/* scene_gpu_anim.c - the animation buffers of an uploaded scene (scene_gpu_anim.h). */
+#include "scene_gpu_anim.h"
+#include "scene_gpu.h"
+
+#include <math.h>
+
+#include <stdlib.h>
+#include <string.h>
+
+/* data -> a new device-local storage buffer, through a staging buffer and one submit; made visible
+ * to compute shader reads */
+static pg_result upload(pg_gpu *gpu, const void *data, VkDeviceSize size, VkBufferUsageFlags usage, const char *name,
+                        pg_buffer *out, pg_error *err)
+{
+    if (size == 0) size = 16; /* an unused binding still needs a buffer */
+    /* concurrent over both queue families: geometry_animate may run on the compute queue */
+    pg_result r = pg_buffer_create_ex(gpu, size,
+                                      usage | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                                      true, name, out, err);
+    if (r || !data) return r;
+    pg_buffer staging;
+    if ((r = pg_buffer_create(gpu, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true, "scene.anim.staging", &staging, err)))
+        return r;
+    memcpy(staging.mapped, data, (size_t)size);
+    VkCommandBuffer cmd;
+    if (!(r = pg_gpu_begin_once(gpu, &cmd, err))) {
+        VkBufferCopy c = {0, 0, size};
+        vkCmdCopyBuffer(cmd, staging.buffer, out->buffer, 1, &c);
+        VkBufferMemoryBarrier2 b = pg_buffer_barrier(out->buffer, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                                     VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+        pg_cmd_barriers(cmd, 0, NULL, 1, &b);
+        r = pg_gpu_end_once(gpu, cmd, err);
+    }
+    pg_buffer_destroy(gpu, &staging);
+    return r;
+}
+
+/* per vertex: (prim, joints 0|1, joints 2|3, 0) and the weights */
+static void *vertex_info(const pg_scene_anim *a)
+{
+    uint32_t *info = calloc((size_t)a->n_vertices + 1, 32);
+    if (!info) return NULL;
+    for (uint32_t v = 0; v < a->n_vertices; v++) {
+        uint32_t *w = info + (size_t)v * 8;
+        w[0] = a->vertex_prim[v];
+        if (a->joints) {
+            w[1] = (uint32_t)a->joints[v][0] | (uint32_t)a->joints[v][1] << 16;
+            w[2] = (uint32_t)a->joints[v][2] | (uint32_t)a->joints[v][3] << 16;
+            memcpy(w + 4, a->weights[v], sizeof(float[4]));
+        }
+    }
+    return info;
+}
+
+static void *prim_table(const pg_scene_anim *a)
+{
+    uint32_t *t = calloc((size_t)a->n_prims + 1, 32);
+    if (!t) return NULL;
+    for (uint32_t i = 0; i < a->n_prims; i++) {
+        const pg_anim_prim *p = &a->prims[i];
+        uint32_t *w = t + (size_t)i * 8;
+        w[0] = p->node;
+        w[1] = p->skin >= 0 && a->joints ? 1u : 0u;
+        w[2] = p->n_targets;
+        w[3] = p->target_base;
+        w[4] = p->first_vertex;
+        w[5] = p->n_vertices;
+        w[6] = p->weight_base;
+    }
+    return t;
+}
+
+/* per node: animation moves it (a TRS channel on it or an ancestor) */
+static uint8_t *moving_nodes(const pg_scene_anim *a)
+{
+    uint8_t *m = calloc(a->n_nodes + 1, 1), *direct = calloc(a->n_nodes + 1, 1);
+    if (!m || !direct) {
+        free(m);
+        free(direct);
+        return NULL;
+    }
+    for (uint32_t i = 0; i < a->n_animations; i++)
+        for (uint32_t c = 0; c < a->animations[i].n_channels; c++) {
+            const pg_anim_channel *ch = &a->animations[i].channels[c];
+            if (ch->path != PG_ANIM_WEIGHTS && ch->node < a->n_nodes) direct[ch->node] = 1;
+        }
+    for (uint32_t n = 0; n < a->n_nodes; n++) {
+        uint32_t steps = 0;
+        for (int32_t k = (int32_t)n; k >= 0 && steps <= a->n_nodes && !m[n]; k = a->nodes[k].parent, steps++)
+            m[n] = direct[k];
+    }
+    free(direct);
+    return m;
+}
+
+static pg_result find_moving_lights(const pg_scene *scene, pg_scene_gpu_anim *ga, pg_error *err)
+{
+    const pg_scene_anim *a = scene->anim;
+    uint8_t *moving = moving_nodes(a);
+    if (!moving) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    for (uint32_t i = 0; i < scene->n_lights; i++) {
+        const int32_t n = scene->lights[i].gltf_node;
+        if (n >= 0 && (uint32_t)n < a->n_nodes && moving[n]) ga->n_moving_lights++;
+    }
+    if (ga->n_moving_lights) {
+        ga->moving_light = calloc(ga->n_moving_lights, sizeof *ga->moving_light);
+        ga->moving_rest = calloc(ga->n_moving_lights, sizeof *ga->moving_rest);
+        if (!ga->moving_light || !ga->moving_rest) {
+            free(moving);
+            return pg_fail(err, PG_ERR_OOM, "out of memory");
+        }
+        uint32_t k = 0;
+        for (uint32_t i = 0; i < scene->n_lights; i++) {
+            const int32_t n = scene->lights[i].gltf_node;
+            if (n < 0 || (uint32_t)n >= a->n_nodes || !moving[n]) continue;
+            ga->moving_light[k] = i;
+            ga->moving_rest[k++] = scene->lights[i];
+        }
+    }
+    free(moving);
+    return PG_OK;
+}
+
+void pg_scene_gpu_anim_update_lights(const pg_scene_gpu_anim *ga, VkBuffer table, int animation, double time,
+                                     VkCommandBuffer cmd)
+{
+    if (!ga || !ga->n_moving_lights || !table) return;
+    const pg_scene_anim *a = ga->anim;
+    pg_anim_pose pose;
+    if (pg_anim_pose_alloc(a, &pose, NULL)) return;
+    pg_anim_pose_eval(a, animation, time, &pose);
+    VkBufferMemoryBarrier2 b = pg_buffer_barrier(table, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                                                 VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    pg_cmd_barriers(cmd, 0, NULL, 1, &b);
+    for (uint32_t k = 0; k < ga->n_moving_lights; k++) {
+        pg_scene_light L = ga->moving_rest[k];
+        const float *m = pose.node_world + (size_t)L.gltf_node * 16;
+        const float d[3] = {-m[8], -m[9], -m[10]};
+        const float dl = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int c = 0; c < 3; c++) {
+            L.position[c] = m[12 + c];
+            if (dl > 1e-30f) L.direction[c] = d[c] / dl;
+        }
+        pg_gpu_file_light rec;
+        pg_gpu_file_light_from(&L, &rec);
+        vkCmdUpdateBuffer(cmd, table, (VkDeviceSize)ga->moving_light[k] * sizeof rec, sizeof rec, &rec);
+    }
+    b = pg_buffer_barrier(table, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    pg_cmd_barriers(cmd, 0, NULL, 1, &b);
+    pg_anim_pose_release(&pose);
+}
+
+pg_result pg_scene_gpu_anim_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu_anim **out, pg_error *err)
+{
+    *out = NULL;
+    const pg_scene_anim *a = scene->anim;
+    if (!a) return PG_OK;
+    if (a->n_vertices != scene->n_vertices)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "scene '%s': animation data for %u vertices, the scene has %u",
+                       scene->name, a->n_vertices, scene->n_vertices);
+    pg_scene_gpu_anim *ga = calloc(1, sizeof *ga);
+    if (!ga) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    ga->anim = a;
+    ga->n_vertices = a->n_vertices;
+    ga->joint_base = a->n_nodes * 16;
+    ga->weight_base = ga->joint_base + a->n_joint_slots * 16;
+    ga->pose_floats = ga->weight_base + a->n_weights;
+    const bool geometry = scene->features.has_animation; /* else only lights move: no vertex buffers */
+    void *info = geometry ? vertex_info(a) : NULL, *prims = geometry ? prim_table(a) : NULL;
+    pg_result r = PG_OK;
+    if (geometry && (!info || !prims)) r = pg_fail(err, PG_ERR_OOM, "out of memory");
+    if (!r && geometry) r = upload(gpu, a->local, (VkDeviceSize)a->n_vertices * sizeof(pg_vertex), 0, "scene.anim.local", &ga->local, err);
+    if (!r && geometry) r = upload(gpu, info, (VkDeviceSize)a->n_vertices * 32, 0, "scene.anim.info", &ga->info, err);
+    if (!r && geometry) r = upload(gpu, prims, (VkDeviceSize)a->n_prims * 32, 0, "scene.anim.prims", &ga->prims, err);
+    if (!r && geometry)
+        r = upload(gpu, a->deltas, (VkDeviceSize)a->n_deltas * sizeof(pg_anim_delta), 0, "scene.anim.deltas",
+                   &ga->deltas, err);
+    if (!r && geometry)
+        r = upload(gpu, NULL, ((VkDeviceSize)ga->pose_floats * 4 + 15) & ~(VkDeviceSize)15, 0, "scene.anim.pose",
+                   &ga->pose, err);
+    free(info);
+    free(prims);
+    if (!r) r = find_moving_lights(scene, ga, err);
+    if (r) {
+        pg_scene_gpu_anim_destroy(gpu, ga);
+        return r;
+    }
+    *out = ga;
+    return PG_OK;
+}
+
+void pg_scene_gpu_anim_destroy(pg_gpu *gpu, pg_scene_gpu_anim *ga)
+{
+    if (!ga) return;
+    pg_buffer_destroy(gpu, &ga->local);
+    pg_buffer_destroy(gpu, &ga->info);
+    pg_buffer_destroy(gpu, &ga->prims);
+    pg_buffer_destroy(gpu, &ga->deltas);
+    pg_buffer_destroy(gpu, &ga->pose);
+    free(ga->moving_light);
+    free(ga->moving_rest);
+    free(ga);
+}
+
+pg_result pg_scene_gpu_anim_pack_pose(const pg_scene_gpu_anim *ga, int animation, double time, float *out,
+                                      pg_error *err)
+{
+    const pg_scene_anim *a = ga->anim;
+    pg_anim_pose pose;
+    pg_result r = pg_anim_pose_alloc(a, &pose, err);
+    if (r) return r;
+    pg_anim_pose_eval(a, animation, time, &pose);
+    memcpy(out, pose.node_world, (size_t)a->n_nodes * 16 * sizeof(float));
+    memcpy(out + ga->joint_base, pose.joints, (size_t)a->n_joint_slots * 16 * sizeof(float));
+    if (a->n_weights) memcpy(out + ga->weight_base, pose.weights, (size_t)a->n_weights * sizeof(float));
+    pg_anim_pose_release(&pose);
+    return PG_OK;
+}

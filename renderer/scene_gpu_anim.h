@@ -1,0 +1,42 @@
+/* scene_gpu_anim.h - a scene's animation data uploaded for the geometry_animate pass
+ * (shaders/animate_geometry.comp): device-local storage buffers written once, plus the pose buffer
+ * the pass refreshes every frame with vkCmdUpdateBuffer.
+ *   local:  pg_vertex per scene vertex (mesh space for a moving primitive; the world for a static one)
+ *   info:   per vertex uvec4 (prim or 0xFFFFFFFF, joint slots 0|1<<16, 2|3<<16, 0) + vec4 weights
+ *   prims:  per moving primitive uvec4 (node, skinned, targets, target base), uvec4 (first vertex,
+ *           vertices, weight base, 0)
+ *   deltas: pg_anim_delta per (target, vertex) of each morphing primitive
+ *   pose:   mat4 per node (world), mat4 per joint slot (world x inverse bind), float per morph weight
+ * Created by pg_scene_gpu_create for a scene with features.has_animation; it keeps a pointer to the
+ * scene's pg_scene_anim (the scene must outlive its upload, as every tool's does). */
+#ifndef PG_SCENE_GPU_ANIM_H
+#define PG_SCENE_GPU_ANIM_H
+
+#include "animation.h"
+#include "vk_context.h"
+
+typedef struct pg_scene_gpu_anim {
+    pg_buffer local, info, prims, deltas, pose;
+    uint32_t n_vertices;
+    uint32_t joint_base, weight_base, pose_floats; /* float offsets in the pose, its size */
+    const pg_scene_anim *anim;
+    /* the file lights on nodes that animation moves (the node or an ancestor has a TRS channel):
+     * their indices in the light table and their records as loaded; light_animate rewrites them
+     * each frame (pg_scene_gpu_anim_update_lights) */
+    uint32_t n_moving_lights;
+    uint32_t *moving_light;
+    pg_scene_light *moving_rest;
+} pg_scene_gpu_anim;
+
+pg_result pg_scene_gpu_anim_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu_anim **out, pg_error *err);
+void pg_scene_gpu_anim_destroy(pg_gpu *gpu, pg_scene_gpu_anim *ga);
+/* Records into cmd the file-light table's moving lights at (animation, time), placed by their
+ * nodes' world matrices, with the barriers around the writes (after earlier compute reads, before
+ * the next). Nothing when no light moves. */
+void pg_scene_gpu_anim_update_lights(const pg_scene_gpu_anim *ga, VkBuffer table, int animation, double time,
+                                     VkCommandBuffer cmd);
+/* The pose at (animation, time) packed as the pose buffer holds it (ga->pose_floats floats). */
+pg_result pg_scene_gpu_anim_pack_pose(const pg_scene_gpu_anim *ga, int animation, double time, float *out,
+                                      pg_error *err);
+
+#endif

@@ -1,0 +1,368 @@
+/* animation.c - glTF animation on the CPU (animation.h): channel sampling, node hierarchy, joint
+ * matrices, the deformed vertices, and the scene posed at a time. */
+#include "animation.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void pg_scene_anim_free(pg_scene_anim *a)
+{
+    if (!a) return;
+    for (uint32_t i = 0; i < a->n_skins; i++) {
+        free(a->skins[i].joints);
+        free(a->skins[i].inverse_bind);
+    }
+    for (uint32_t i = 0; i < a->n_animations; i++) {
+        for (uint32_t c = 0; c < a->animations[i].n_channels; c++) {
+            free(a->animations[i].channels[c].times);
+            free(a->animations[i].channels[c].values);
+        }
+        free(a->animations[i].channels);
+    }
+    free(a->nodes);
+    free(a->skins);
+    free(a->animations);
+    free(a->prims);
+    free(a->rest_weights);
+    free(a->local);
+    free(a->vertex_prim);
+    free(a->joints);
+    free(a->weights);
+    free(a->deltas);
+    free(a);
+}
+
+pg_result pg_anim_pose_alloc(const pg_scene_anim *a, pg_anim_pose *out, pg_error *err)
+{
+    memset(out, 0, sizeof *out);
+    out->node_world = calloc((size_t)a->n_nodes * 16 + 16, sizeof(float));
+    out->joints = calloc((size_t)a->n_joint_slots * 16 + 16, sizeof(float));
+    out->weights = calloc((size_t)a->n_weights + 1, sizeof(float));
+    if (!out->node_world || !out->joints || !out->weights) {
+        pg_anim_pose_release(out);
+        return pg_fail(err, PG_ERR_OOM, "animation pose: out of memory");
+    }
+    return PG_OK;
+}
+
+void pg_anim_pose_release(pg_anim_pose *p)
+{
+    free(p->node_world);
+    free(p->joints);
+    free(p->weights);
+    memset(p, 0, sizeof *p);
+}
+
+/* ---- sampling ---- */
+
+static void quat_normalize(float q[4])
+{
+    const double l = sqrt((double)q[0] * q[0] + (double)q[1] * q[1] + (double)q[2] * q[2] + (double)q[3] * q[3]);
+    if (!(l > 1e-30)) {
+        q[0] = q[1] = q[2] = 0;
+        q[3] = 1;
+        return;
+    }
+    for (int k = 0; k < 4; k++) q[k] = (float)(q[k] / l);
+}
+
+/* spherical linear interpolation along the shorter arc */
+static void quat_slerp(const float *a, const float *b, double t, float out[4])
+{
+    double d = 0;
+    for (int k = 0; k < 4; k++) d += (double)a[k] * b[k];
+    const double s = d < 0 ? -1.0 : 1.0;
+    d = fabs(d);
+    double wa, wb;
+    if (d > 0.9995) { /* nearly parallel: linear, normalised below */
+        wa = 1 - t;
+        wb = t;
+    } else {
+        const double th = acos(d), sn = sin(th);
+        wa = sin((1 - t) * th) / sn;
+        wb = sin(t * th) / sn;
+    }
+    for (int k = 0; k < 4; k++) out[k] = (float)(wa * a[k] + wb * s * b[k]);
+    quat_normalize(out);
+}
+
+/* The channel's value at time t into out[width]. */
+static void channel_sample(const pg_anim_channel *ch, double t, float *out)
+{
+    const uint32_t w = ch->width, n = ch->n_keys;
+    const bool cubic = ch->interp == PG_INTERP_CUBICSPLINE;
+    const uint32_t stride = cubic ? 3 * w : w, voff = cubic ? w : 0; /* the value within a key */
+    if (n == 1 || t <= ch->times[0]) {
+        memcpy(out, ch->values + voff, w * sizeof(float));
+        return;
+    }
+    if (t >= ch->times[n - 1]) {
+        memcpy(out, ch->values + (size_t)(n - 1) * stride + voff, w * sizeof(float));
+        return;
+    }
+    uint32_t lo = 0, hi = n - 1; /* times[lo] <= t < times[hi] */
+    while (hi - lo > 1) {
+        const uint32_t mid = lo + (hi - lo) / 2;
+        if (ch->times[mid] <= t) lo = mid;
+        else hi = mid;
+    }
+    const double t0 = ch->times[lo], t1 = ch->times[hi], dt = t1 - t0;
+    const double u = dt > 0 ? (t - t0) / dt : 0;
+    const float *k0 = ch->values + (size_t)lo * stride, *k1 = ch->values + (size_t)hi * stride;
+    if (ch->interp == PG_INTERP_STEP) {
+        memcpy(out, k0, w * sizeof(float));
+        return;
+    }
+    if (!cubic) {
+        if (ch->path == PG_ANIM_ROTATION) {
+            quat_slerp(k0, k1, u, out);
+            return;
+        }
+        for (uint32_t k = 0; k < w; k++) out[k] = (float)((1 - u) * k0[k] + u * k1[k]);
+        return;
+    }
+    /* Hermite: v0 = k0[w..2w), b0 = k0[2w..3w) (out-tangent), a1 = k1[0..w) (in-tangent), v1 */
+    const double u2 = u * u, u3 = u2 * u;
+    const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
+    for (uint32_t k = 0; k < w; k++)
+        out[k] = (float)(h00 * k0[w + k] + h10 * dt * k0[2 * w + k] + h01 * k1[w + k] + h11 * dt * k1[k]);
+    if (ch->path == PG_ANIM_ROTATION) quat_normalize(out);
+}
+
+/* ---- matrices (column-major, m[c*4 + r]) ---- */
+
+static void trs_matrix(const float t[3], const float q[4], const float s[3], float m[16])
+{
+    const double x = q[0], y = q[1], z = q[2], w = q[3];
+    const double R[9] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
+                         2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+                         2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y)};
+    for (int c = 0; c < 3; c++) {
+        for (int r = 0; r < 3; r++) m[c * 4 + r] = (float)(R[c * 3 + r] * s[c]);
+        m[c * 4 + 3] = 0;
+    }
+    m[12] = t[0];
+    m[13] = t[1];
+    m[14] = t[2];
+    m[15] = 1;
+}
+
+double pg_anim_local_time(const pg_scene_anim *a, int animation, double time)
+{
+    double end = 0;
+    if (animation == PG_ANIM_ALL) {
+        for (uint32_t i = 0; i < a->n_animations; i++)
+            if (a->animations[i].end > end) end = a->animations[i].end;
+    } else if (animation >= 0 && (uint32_t)animation < a->n_animations) {
+        end = a->animations[animation].end;
+    }
+    if (!(end > 0) || !isfinite(time)) return 0;
+    double t = fmod(time, end);
+    if (t < 0) t += end;
+    if (time > 0 && t == 0) t = end; /* t = end plays the last key, not the first */
+    return t;
+}
+
+/* apply one animation's channels at t to the local TRS arrays / weights */
+static void apply_animation(const pg_scene_anim *a, const pg_animation *an, double t, float (*T)[3], float (*R)[4],
+                            float (*S)[3], float *weights)
+{
+    float v[4];
+    for (uint32_t c = 0; c < an->n_channels; c++) {
+        const pg_anim_channel *ch = &an->channels[c];
+        if (ch->node >= a->n_nodes) continue;
+        if (ch->path == PG_ANIM_WEIGHTS) { /* the loader made width the node's weight count */
+            const pg_anim_node *nd = &a->nodes[ch->node];
+            if (ch->width == nd->n_weights && nd->n_weights) channel_sample(ch, t, weights + nd->weight_base);
+            continue;
+        }
+        if (ch->width > 4) continue;
+        channel_sample(ch, t, v);
+        if (ch->path == PG_ANIM_TRANSLATION) memcpy(T[ch->node], v, 3 * sizeof(float));
+        else if (ch->path == PG_ANIM_ROTATION) memcpy(R[ch->node], v, 4 * sizeof(float));
+        else memcpy(S[ch->node], v, 3 * sizeof(float));
+    }
+}
+
+/* world matrices of every node, parents before children (stack: n_nodes scratch entries, done:
+ * n_nodes flags; the loader refused cycles and gave each node at most one parent) */
+static void node_worlds(const pg_scene_anim *a, const float *local, float *world, uint32_t *stack, uint8_t *done)
+{
+    memset(done, 0, a->n_nodes);
+    for (uint32_t i = 0; i < a->n_nodes; i++) {
+        uint32_t n = 0, cur = i;
+        while (!done[cur] && n < a->n_nodes) { /* the unresolved ancestors, nearest first */
+            stack[n++] = cur;
+            const int32_t p = a->nodes[cur].parent;
+            if (p < 0) break;
+            cur = (uint32_t)p;
+        }
+        while (n > 0) {
+            const uint32_t k = stack[--n];
+            const int32_t p = a->nodes[k].parent;
+            if (p < 0 || !done[p]) memcpy(world + (size_t)k * 16, local + (size_t)k * 16, 16 * sizeof(float));
+            else pg_mat4_mul(world + (size_t)p * 16, local + (size_t)k * 16, world + (size_t)k * 16);
+            done[k] = 1;
+        }
+    }
+}
+
+void pg_anim_pose_eval(const pg_scene_anim *a, int animation, double time, pg_anim_pose *pose)
+{
+    const uint32_t nn = a->n_nodes;
+    float (*T)[3] = malloc(sizeof *T * (nn + 1)), (*R)[4] = malloc(sizeof *R * (nn + 1)),
+          (*S)[3] = malloc(sizeof *S * (nn + 1));
+    float *local = malloc(sizeof(float) * 16 * (nn + 1));
+    uint32_t *stack = malloc(sizeof(uint32_t) * (nn + 1));
+    uint8_t *done = malloc(nn + 1);
+    if (!T || !R || !S || !local || !stack || !done) { /* out of memory: the pose keeps its last values */
+        free(T), free(R), free(S), free(local), free(stack), free(done);
+        return;
+    }
+    for (uint32_t i = 0; i < nn; i++) {
+        memcpy(T[i], a->nodes[i].translation, sizeof T[i]);
+        memcpy(R[i], a->nodes[i].rotation, sizeof R[i]);
+        memcpy(S[i], a->nodes[i].scale, sizeof S[i]);
+    }
+    if (a->n_weights) memcpy(pose->weights, a->rest_weights, a->n_weights * sizeof(float));
+    const double t = pg_anim_local_time(a, animation, time);
+    if (animation == PG_ANIM_ALL) {
+        for (uint32_t k = 0; k < a->n_animations; k++) apply_animation(a, &a->animations[k], t, T, R, S, pose->weights);
+    } else if (animation >= 0 && (uint32_t)animation < a->n_animations) {
+        apply_animation(a, &a->animations[animation], t, T, R, S, pose->weights);
+    }
+    for (uint32_t i = 0; i < nn; i++) {
+        if (a->nodes[i].has_matrix) memcpy(local + (size_t)i * 16, a->nodes[i].matrix, 16 * sizeof(float));
+        else trs_matrix(T[i], R[i], S[i], local + (size_t)i * 16);
+    }
+    node_worlds(a, local, pose->node_world, stack, done);
+    for (uint32_t s = 0; s < a->n_skins; s++) {
+        const pg_anim_skin *sk = &a->skins[s];
+        for (uint32_t j = 0; j < sk->n_joints; j++) {
+            float *out = pose->joints + (size_t)(sk->slot_base + j) * 16;
+            const uint32_t node = sk->joints[j];
+            if (node < nn) pg_mat4_mul(pose->node_world + (size_t)node * 16, sk->inverse_bind[j], out);
+            else memcpy(out, sk->inverse_bind[j], 16 * sizeof(float));
+        }
+    }
+    free(T), free(R), free(S), free(local), free(stack), free(done);
+}
+
+/* ---- deformation ---- */
+
+static void xform_vertex(const float m[16], const float p[3], const float nrm[3], const float tan[4],
+                         pg_vertex *o)
+{
+    for (int r = 0; r < 3; r++) o->position[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+    const float a00 = m[0], a01 = m[4], a02 = m[8], a10 = m[1], a11 = m[5], a12 = m[9], a20 = m[2], a21 = m[6],
+                a22 = m[10];
+    const float cof[9] = {a11 * a22 - a12 * a21, a12 * a20 - a10 * a22, a10 * a21 - a11 * a20,
+                          a02 * a21 - a01 * a22, a00 * a22 - a02 * a20, a01 * a20 - a00 * a21,
+                          a01 * a12 - a02 * a11, a02 * a10 - a00 * a12, a00 * a11 - a01 * a10};
+    const float det = a00 * cof[0] + a01 * cof[1] + a02 * cof[2];
+    const float sg = det < 0 ? -1.0f : 1.0f;
+    float n[3], t[3];
+    for (int r = 0; r < 3; r++) {
+        n[r] = sg * (cof[r * 3 + 0] * nrm[0] + cof[r * 3 + 1] * nrm[1] + cof[r * 3 + 2] * nrm[2]);
+        t[r] = m[r] * tan[0] + m[4 + r] * tan[1] + m[8 + r] * tan[2];
+    }
+    const float nl = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const float tl = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    for (int r = 0; r < 3; r++) {
+        o->normal[r] = nl > 1e-30f ? n[r] / nl : (r == 1 ? 1.0f : 0.0f);
+        o->tangent[r] = tl > 1e-30f ? t[r] / tl : 0.0f;
+    }
+    o->tangent[3] = tan[3] * sg;
+}
+
+void pg_anim_deform(const pg_scene_anim *a, const pg_anim_pose *pose, pg_vertex *out)
+{
+    for (uint32_t v = 0; v < a->n_vertices; v++) {
+        const pg_vertex *L = &a->local[v];
+        const uint32_t pi = a->vertex_prim[v];
+        if (pi == PG_ANIM_STATIC || pi >= a->n_prims) {
+            out[v] = *L;
+            continue;
+        }
+        const pg_anim_prim *pr = &a->prims[pi];
+        float p[3], n[3], t[4];
+        memcpy(p, L->position, sizeof p);
+        memcpy(n, L->normal, sizeof n);
+        memcpy(t, L->tangent, sizeof t);
+        const uint32_t i = v - pr->first_vertex;
+        for (uint32_t k = 0; k < pr->n_targets; k++) {
+            const float w = pose->weights[pr->weight_base + k];
+            if (w == 0.0f) continue;
+            const pg_anim_delta *d = &a->deltas[pr->target_base + k * pr->n_vertices + i];
+            for (int r = 0; r < 3; r++) {
+                p[r] += w * d->position[r];
+                n[r] += w * d->normal[r];
+                t[r] += w * d->tangent[r];
+            }
+        }
+        float m[16];
+        if (pr->skin >= 0 && a->joints) {
+            memset(m, 0, sizeof m);
+            for (int k = 0; k < 4; k++) {
+                const float w = a->weights[v][k];
+                if (w == 0.0f) continue;
+                const float *J = pose->joints + (size_t)a->joints[v][k] * 16;
+                for (int e = 0; e < 16; e++) m[e] += w * J[e];
+            }
+        } else {
+            memcpy(m, pose->node_world + (size_t)pr->node * 16, sizeof m);
+        }
+        out[v] = *L;
+        xform_vertex(m, p, n, t, &out[v]);
+    }
+}
+
+/* ---- choosing, describing, posing a scene ---- */
+
+pg_result pg_anim_find(const pg_scene_anim *a, const char *spec, int *out, pg_error *err)
+{
+    if (!strcmp(spec, "none")) return *out = PG_ANIM_NONE, PG_OK;
+    if (!strcmp(spec, "all")) return *out = PG_ANIM_ALL, PG_OK;
+    const uint32_t n = a ? a->n_animations : 0;
+    char *end = NULL;
+    const long k = strtol(spec, &end, 10);
+    if (end && end != spec && *end == 0 && k >= 0 && (unsigned long)k < n) return *out = (int)k, PG_OK;
+    for (uint32_t i = 0; i < n; i++)
+        if (!strcmp(a->animations[i].name, spec)) return *out = (int)i, PG_OK;
+    char list[512] = "";
+    size_t len = 0;
+    for (uint32_t i = 0; i < n && len + 64 < sizeof list; i++)
+        len += (size_t)snprintf(list + len, sizeof list - len, "%s%u '%s'", i ? ", " : "", i, a->animations[i].name);
+    if (!n)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--animation %s: the scene has no animations; use none", spec);
+    return pg_fail(err, PG_ERR_INVALID_ARG, "--animation %s: no such animation; available: %s%s, all or none", spec,
+                   list, n > 8 ? ", ..." : "");
+}
+
+bool pg_anim_describe(const pg_scene *scene, int animation, double time, char *buf, size_t size)
+{
+    const pg_scene_anim *a = scene ? scene->anim : NULL;
+    if (!a || !size) {
+        if (size) buf[0] = 0;
+        return false;
+    }
+    uint32_t targets = 0;
+    for (uint32_t i = 0; i < a->n_prims; i++) targets += a->prims[i].n_targets;
+    char what[160];
+    if (animation >= 0 && (uint32_t)animation < a->n_animations)
+        snprintf(what, sizeof what, "animation %d '%s' of %u (%.3g s loop) at t = %.3g s", animation,
+                 a->animations[animation].name, a->n_animations, (double)a->animations[animation].end,
+                 pg_anim_local_time(a, animation, time));
+    else if (animation == PG_ANIM_ALL && a->n_animations)
+        snprintf(what, sizeof what, "all %u animations at t = %.3g s", a->n_animations,
+                 pg_anim_local_time(a, animation, time));
+    else
+        snprintf(what, sizeof what, "the rest pose (%s)", a->n_animations ? "--animation none" : "no animations");
+    snprintf(buf, size, "%s; %u skin%s (%u joints), %u morph target%s on %u deformed primitive%s", what, a->n_skins,
+             a->n_skins == 1 ? "" : "s", a->n_joint_slots, targets, targets == 1 ? "" : "s", a->n_prims,
+             a->n_prims == 1 ? "" : "s");
+    return true;
+}

@@ -1,0 +1,150 @@
+/* animation.h - a glTF file's animation on the CPU: its node hierarchy, skins, morph targets and
+ * animation channels as the loader keeps them (pg_scene.anim), the pose at a time (node world
+ * matrices, joint matrices, morph weights), and the deformed vertices: the CPU twin of
+ * shaders/animate_geometry.comp, which the geometry_animate pass runs every frame on the GPU.
+ *
+ * The rules are the glTF 2.0 specification's (sections 3.7 and 3.11):
+ * - a node's local matrix is T * R * S (or its `matrix`, which animation cannot target);
+ * - rotations interpolate by spherical linear interpolation (the shorter arc), LINEAR values
+ *   linearly, STEP holds the key at or before the time, CUBICSPLINE is the Hermite spline of the
+ *   specification's appendix (tangents scaled by the key interval; rotations normalised after);
+ *   before the first key a channel holds its first value, after the last its last value;
+ * - a skinned vertex is sum_k w_k * (world(joint_k) * inverseBind_k) * p: the skinned mesh node's
+ *   own transform is ignored; weights are normalised at load (a vertex whose weights sum to 0 follows
+ *   its first joint);
+ * - morph targets add sum_t w_t * delta_t to POSITION, NORMAL and TANGENT (xyz) before skinning or
+ *   the node transform; the weights are the node's `weights`, else the mesh's, else 0, animated by
+ *   "weights" channels;
+ * - normals go by the cofactor matrix of the (blended) upper 3x3 times the sign of its determinant,
+ *   tangents by the upper 3x3, both renormalised; a mirroring matrix flips the tangent's handedness.
+ *
+ * Playing: time t (seconds, --time) loops over [0, end] of the played animation (end = its last key
+ * time over all its channels); the played animation is one of the file's (PG_ANIM_FIRST: the first,
+ * the default), every one at once (PG_ANIM_ALL, each looping over the longest), or none
+ * (PG_ANIM_NONE: the rest pose with the nodes' own transforms and default weights).
+ */
+#ifndef PG_ANIMATION_H
+#define PG_ANIMATION_H
+
+#include "pg_common.h"
+#include "scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { PG_ANIM_NONE = -1, PG_ANIM_ALL = -2, PG_ANIM_FIRST = 0 };
+#define PG_ANIM_STATIC 0xFFFFFFFFu /* pg_scene_anim.vertex_prim of a vertex that never moves */
+#define PG_ANIM_MAX_JOINT_SLOTS 65535u /* joint slots are 16-bit per vertex */
+
+typedef enum pg_anim_path {
+    PG_ANIM_TRANSLATION = 0,
+    PG_ANIM_ROTATION = 1,
+    PG_ANIM_SCALE = 2,
+    PG_ANIM_WEIGHTS = 3
+} pg_anim_path;
+typedef enum pg_anim_interp { PG_INTERP_LINEAR = 0, PG_INTERP_STEP = 1, PG_INTERP_CUBICSPLINE = 2 } pg_anim_interp;
+
+typedef struct pg_anim_channel {
+    uint32_t node;          /* the glTF node index (pg_scene_anim.nodes) */
+    pg_anim_path path;
+    pg_anim_interp interp;
+    uint32_t n_keys;        /* >= 1 */
+    uint32_t width;         /* floats per value: 3 (T, S), 4 (R, x y z w), the node's weight count */
+    float *times;           /* n_keys, non-decreasing, finite */
+    float *values;          /* n_keys * width; CUBICSPLINE: n_keys * 3 * width (in-tangent, value,
+                               out-tangent per key) */
+} pg_anim_channel;
+
+typedef struct pg_animation {
+    char name[PG_NAME_MAX]; /* animations[i].name, else "animations[i]" */
+    pg_anim_channel *channels;
+    uint32_t n_channels;
+    float end;              /* the last key time over its channels (0: a still pose) */
+} pg_animation;
+
+typedef struct pg_anim_node {
+    int32_t parent;         /* -1: a root */
+    float translation[3], rotation[4], scale[3]; /* rest TRS (rotation x y z w) */
+    bool has_matrix;        /* given by `matrix` (then TRS unused, not animatable) */
+    float matrix[16];       /* column-major */
+    uint32_t weight_base, n_weights; /* its morph weights in the pose (n_weights 0: none) */
+} pg_anim_node;
+
+typedef struct pg_anim_skin {
+    uint32_t n_joints;
+    uint32_t *joints;          /* node indices */
+    float (*inverse_bind)[16]; /* n_joints, column-major (identity when the file has none) */
+    uint32_t slot_base;        /* its first joint matrix in pg_anim_pose.joints */
+} pg_anim_skin;
+
+/* One deformed primitive: its vertices [first_vertex, first_vertex + n_vertices) of the scene. */
+typedef struct pg_anim_prim {
+    uint32_t node;             /* rigid: the node whose world matrix moves it */
+    int32_t skin;              /* -1: rigid, else pg_scene_anim.skins index */
+    uint32_t first_vertex, n_vertices;
+    uint32_t n_targets;        /* morph targets: deltas[target_base + t * n_vertices + i] */
+    uint32_t target_base;
+    uint32_t weight_base;      /* its node's weights in the pose */
+} pg_anim_prim;
+
+typedef struct pg_anim_delta {
+    float position[4], normal[4], tangent[4]; /* xyz, w 0 */
+} pg_anim_delta; /* 48 bytes, the GPU layout */
+
+typedef struct pg_scene_anim {
+    pg_anim_node *nodes;       /* every node of the file */
+    uint32_t n_nodes;
+    pg_anim_skin *skins;
+    uint32_t n_skins, n_joint_slots;
+    pg_animation *animations;
+    uint32_t n_animations;
+    pg_anim_prim *prims;
+    uint32_t n_prims;
+    float *rest_weights;       /* n_weights: each morphing node's default weights */
+    uint32_t n_weights;
+    uint32_t n_vertices;       /* the scene's */
+    pg_vertex *local;          /* n_vertices: a deformed vertex in its mesh's space; a static one as
+                                  the scene has it (world) */
+    uint32_t *vertex_prim;     /* n_vertices: index into prims, or PG_ANIM_STATIC */
+    uint16_t (*joints)[4];     /* n_vertices absolute joint slots; NULL without skins */
+    float (*weights)[4];       /* n_vertices, normalised; NULL without skins */
+    pg_anim_delta *deltas;
+    uint32_t n_deltas;
+} pg_scene_anim;
+
+typedef struct pg_anim_pose {
+    float *node_world;  /* 16 per node */
+    float *joints;      /* 16 per joint slot: world(joint) x inverseBind */
+    float *weights;     /* n_weights */
+} pg_anim_pose;
+
+void pg_scene_anim_free(pg_scene_anim *a);
+
+pg_result pg_anim_pose_alloc(const pg_scene_anim *a, pg_anim_pose *out, pg_error *err);
+void pg_anim_pose_release(pg_anim_pose *p);
+/* The pose at `time` seconds of animation `animation` (an index, PG_ANIM_ALL or PG_ANIM_NONE; an
+ * index out of range is the rest pose). */
+void pg_anim_pose_eval(const pg_scene_anim *a, int animation, double time, pg_anim_pose *pose);
+/* The time within the played animation's loop that `time` maps to. */
+double pg_anim_local_time(const pg_scene_anim *a, int animation, double time);
+/* The deformed scene vertices under the pose (n_vertices), the CPU twin of
+ * shaders/animate_geometry.comp. */
+void pg_anim_deform(const pg_scene_anim *a, const pg_anim_pose *pose, pg_vertex *out);
+
+/* Finds --animation SPEC: "none", "all", an index or a name. Not found: PG_ERR_INVALID_ARG naming
+ * what the file has. */
+pg_result pg_anim_find(const pg_scene_anim *a, const char *spec, int *out, pg_error *err);
+/* One line for --explain: what plays ("animation 0 'Walk' of 3 (1.67 s loop) at t = 0.5 s; 1 skin,
+ * 2 morph targets") or "" when the scene has no animation (returns false). */
+bool pg_anim_describe(const pg_scene *scene, int animation, double time, char *buf, size_t size);
+
+/* Poses the scene on the CPU: scene->vertices become the deformed vertices at `time`, the file
+ * lights and the glTF cameras on nodes move with their nodes, bounds are recomputed (so framing
+ * follows the animated geometry). A scene without animation is left as is. */
+pg_result pg_scene_pose(pg_scene *scene, int animation, double time, pg_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

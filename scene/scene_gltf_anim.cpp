@@ -1,0 +1,409 @@
+/* scene_gltf_anim.cpp - the glTF load's animation data (scene/animation.h): which nodes animation
+ * moves, the skins' joint slots, each moving primitive's JOINTS_0 / WEIGHTS_0 and morph targets,
+ * and at hand-out the node table, skins and animation channels of pg_scene_anim. Bad values fail
+ * naming the object ("animations[0].samplers[1].input: ..."). */
+#include "scene_gltf_internal.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+
+namespace pg_gltf {
+
+static pg_anim_path channel_path(const std::string &p, bool *known)
+{
+    *known = true;
+    if (p == "translation") return PG_ANIM_TRANSLATION;
+    if (p == "rotation") return PG_ANIM_ROTATION;
+    if (p == "scale") return PG_ANIM_SCALE;
+    if (p == "weights") return PG_ANIM_WEIGHTS;
+    *known = false;
+    return PG_ANIM_TRANSLATION;
+}
+
+void anim_prepare(Ctx &c)
+{
+    const tinygltf::Model &md = c.model;
+    bool morphs = false;
+    for (const auto &m : md.meshes)
+        for (const auto &p : m.primitives) morphs = morphs || !p.targets.empty();
+    c.animated = !md.animations.empty() || !md.skins.empty() || morphs;
+    c.node_animated.assign(md.nodes.size(), 0);
+    for (size_t ai = 0; ai < md.animations.size(); ai++) {
+        const auto &an = md.animations[ai];
+        for (size_t ci = 0; ci < an.channels.size(); ci++) {
+            const auto &ch = an.channels[ci];
+            bool known = false;
+            const pg_anim_path path = channel_path(ch.target_path, &known);
+            if (!known || ch.target_node < 0) continue; /* counted at hand-out */
+            if (size_t(ch.target_node) >= md.nodes.size())
+                gfail(strf("animations[%zu].channels[%zu].target.node: %d out of range (%zu nodes)", ai, ci,
+                           ch.target_node, md.nodes.size()));
+            if (path != PG_ANIM_WEIGHTS && md.nodes[size_t(ch.target_node)].matrix.size() != 16)
+                c.node_animated[size_t(ch.target_node)] = 1;
+        }
+    }
+    c.skin_slot_base.assign(md.skins.size(), 0);
+    uint64_t slots = 0;
+    for (size_t s = 0; s < md.skins.size(); s++) {
+        c.skin_slot_base[s] = uint32_t(slots);
+        slots += md.skins[s].joints.size();
+        for (size_t j = 0; j < md.skins[s].joints.size(); j++) {
+            const int jn = md.skins[s].joints[j];
+            if (jn < 0 || size_t(jn) >= md.nodes.size())
+                gfail(strf("skins[%zu].joints[%zu]: node %d out of range (%zu nodes)", s, j, jn, md.nodes.size()));
+        }
+    }
+    if (slots > PG_ANIM_MAX_JOINT_SLOTS)
+        fail(PG_ERR_LIMIT, strf("skins: %llu joints in all (at most %u)", (unsigned long long)slots,
+                                PG_ANIM_MAX_JOINT_SLOTS));
+    c.joint_slots = uint32_t(slots);
+}
+
+/* JOINTS_0 / WEIGHTS_0 of a skinned primitive into o.joints / o.weights (absolute joint slots,
+ * weights normalised) */
+static void skin_attributes(Ctx &c, Out &o, const tinygltf::Primitive &prim, int skin, size_t base, size_t n,
+                            const std::string &pw)
+{
+    const tinygltf::Skin &sk = c.model.skins[size_t(skin)];
+    View jv = get_view(c, *find_attr(prim, "JOINTS_0")), wv = get_view(c, *find_attr(prim, "WEIGHTS_0"));
+    if (jv.count != n || wv.count != n)
+        gfail(strf("%s: JOINTS_0 / WEIGHTS_0 have %zu / %zu elements but POSITION has %zu", pw.c_str(), jv.count,
+                   wv.count, n));
+    if (jv.type != TINYGLTF_TYPE_VEC4 || jv.normalized ||
+        (jv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && jv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))
+        gfail(strf("accessors[%d]: JOINTS_0 must be VEC4 UNSIGNED_BYTE or UNSIGNED_SHORT (got %s %s)", jv.index,
+                   type_name(jv.type), ctype_name(jv.ctype)));
+    const bool wf = wv.ctype == TINYGLTF_COMPONENT_TYPE_FLOAT && !wv.normalized;
+    const bool wu = wv.normalized && (wv.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                      wv.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+    if (wv.type != TINYGLTF_TYPE_VEC4 || !(wf || wu))
+        gfail(strf("accessors[%d]: WEIGHTS_0 must be VEC4 FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT "
+                   "(got %s %s%s)",
+                   wv.index, type_name(wv.type), wv.normalized ? "normalized " : "", ctype_name(wv.ctype)));
+    for (const auto &at : prim.attributes)
+        if (at.first.compare(0, 7, "JOINTS_") == 0 && at.first != "JOINTS_0") {
+            c.joints1_prims++;
+            break;
+        }
+    o.joints.resize((base + n) * 4, 0);
+    o.weights.resize((base + n) * 4, 0.0f);
+    const uint32_t slot0 = c.skin_slot_base[size_t(skin)];
+    for (size_t i = 0; i < n; i++) {
+        float j[4], w[4];
+        view_floats(jv, i, j);
+        view_floats(wv, i, w);
+        double sum = 0;
+        for (int k = 0; k < 4; k++) {
+            if (!(std::isfinite(w[k]) && w[k] >= 0))
+                gfail(strf("accessors[%d]: WEIGHTS_0 element %zu: %g (expected finite weights >= 0)", wv.index, i,
+                           double(w[k])));
+            if (w[k] > 0 && !(j[k] < float(sk.joints.size())))
+                gfail(strf("accessors[%d]: JOINTS_0 element %zu: joint %g out of range (skins[%d] has %zu joints)",
+                           jv.index, i, double(j[k]), skin, sk.joints.size()));
+            sum += w[k];
+        }
+        uint16_t *J = &o.joints[(base + i) * 4];
+        float *W = &o.weights[(base + i) * 4];
+        for (int k = 0; k < 4; k++) {
+            J[k] = uint16_t(slot0 + (w[k] > 0 ? uint32_t(j[k]) : 0u));
+            W[k] = sum > 0 ? float(w[k] / sum) : (k == 0 ? 1.0f : 0.0f);
+        }
+    }
+}
+
+/* the node's morph weights (allocated on first use: node.weights, else mesh.weights, else 0) */
+static uint32_t node_weights(Ctx &c, Out &o, int ni, int mi, size_t targets, const std::string &pw)
+{
+    auto it = o.node_weights.find(ni);
+    if (it != o.node_weights.end()) {
+        if (targets > it->second.second)
+            gfail(strf("%s.targets: %zu targets, but the mesh's other primitives have %u", pw.c_str(), targets,
+                       it->second.second));
+        return it->second.first;
+    }
+    const tinygltf::Mesh &mesh = c.model.meshes[size_t(mi)];
+    size_t count = targets;
+    for (const auto &p : mesh.primitives) count = std::max(count, p.targets.size());
+    const tinygltf::Node &nd = c.model.nodes[size_t(ni)];
+    const std::vector<double> &def = !nd.weights.empty() ? nd.weights : mesh.weights;
+    if (!def.empty() && def.size() != count)
+        gfail(strf("%s.weights: %zu weights for %zu morph targets", !nd.weights.empty() ? strf("nodes[%d]", ni).c_str()
+                                                                                       : strf("meshes[%d]", mi).c_str(),
+                   def.size(), count));
+    const uint32_t b = uint32_t(o.rest_weights.size());
+    for (size_t k = 0; k < count; k++) {
+        const double w = k < def.size() ? def[k] : 0.0;
+        if (!std::isfinite(w)) gfail(strf("meshes[%d].weights: not finite", mi));
+        o.rest_weights.push_back(float(w));
+    }
+    o.node_weights[ni] = {b, uint32_t(count)};
+    return b;
+}
+
+/* one morph target attribute (VEC3) of target t into the deltas at `first` (field 0 position,
+ * 1 normal, 2 tangent) */
+static void target_attribute(Ctx &c, Out &o, const std::map<std::string, int> &tg, const char *name, int field,
+                             size_t first, size_t n, const std::string &tw)
+{
+    auto f = tg.find(name);
+    if (f == tg.end()) return;
+    View v = get_view(c, f->second);
+    if (v.type != TINYGLTF_TYPE_VEC3 || v.count != n)
+        gfail(strf("%s.%s: accessors[%d] must be VEC3 with %zu elements (got %s, %zu)", tw.c_str(), name, v.index, n,
+                   type_name(v.type), v.count));
+    for (size_t i = 0; i < n; i++) {
+        float d[3];
+        view_floats(v, i, d);
+        for (int k = 0; k < 3; k++)
+            if (!std::isfinite(d[k])) gfail(strf("%s.%s: element %zu is not finite", tw.c_str(), name, i));
+        pg_anim_delta &D = o.deltas[first + i];
+        float *dst = field == 0 ? D.position : field == 1 ? D.normal : D.tangent;
+        memcpy(dst, d, sizeof d);
+    }
+}
+
+void anim_primitive(Ctx &c, Out &o, const tinygltf::Primitive &prim, int ni, size_t base, size_t n,
+                    const std::string &pw)
+{
+    const tinygltf::Node &nd = c.model.nodes[size_t(ni)];
+    pg_anim_prim ap;
+    memset(&ap, 0, sizeof ap);
+    ap.node = uint32_t(ni);
+    ap.skin = -1;
+    ap.first_vertex = uint32_t(base);
+    ap.n_vertices = uint32_t(n);
+    if (nd.skin >= 0 && find_attr(prim, "JOINTS_0") && find_attr(prim, "WEIGHTS_0")) {
+        if (size_t(nd.skin) >= c.model.skins.size())
+            gfail(strf("nodes[%d].skin: %d out of range (%zu skins)", ni, nd.skin, c.model.skins.size()));
+        ap.skin = nd.skin;
+        skin_attributes(c, o, prim, nd.skin, base, n, pw);
+    }
+    if (!prim.targets.empty()) {
+        const size_t nt = prim.targets.size();
+        if (o.deltas.size() + nt * n > (size_t(1) << 26))
+            fail(PG_ERR_LIMIT, pw + ".targets: more than 2^26 morph target vertices in the scene");
+        ap.n_targets = uint32_t(nt);
+        ap.target_base = uint32_t(o.deltas.size());
+        ap.weight_base = node_weights(c, o, ni, c.model.nodes[size_t(ni)].mesh, nt, pw);
+        pg_anim_delta zero;
+        memset(&zero, 0, sizeof zero);
+        o.deltas.resize(o.deltas.size() + nt * n, zero);
+        for (size_t t = 0; t < nt; t++) {
+            const std::string tw = strf("%s.targets[%zu]", pw.c_str(), t);
+            const size_t first = ap.target_base + t * n;
+            target_attribute(c, o, prim.targets[t], "POSITION", 0, first, n, tw);
+            target_attribute(c, o, prim.targets[t], "NORMAL", 1, first, n, tw);
+            target_attribute(c, o, prim.targets[t], "TANGENT", 2, first, n, tw);
+        }
+    }
+    const uint32_t index = uint32_t(o.aprims.size());
+    o.aprims.push_back(ap);
+    for (size_t i = 0; i < n; i++) o.vertex_prim[base + i] = index;
+}
+
+/* ---- hand-out ---- */
+
+template <typename T> static T *dup(const std::vector<T> &v)
+{
+    if (v.empty()) return nullptr;
+    T *p = static_cast<T *>(malloc(v.size() * sizeof(T)));
+    if (!p) throw std::bad_alloc();
+    memcpy(p, v.data(), v.size() * sizeof(T));
+    return p;
+}
+
+struct AnimDeleter {
+    void operator()(pg_scene_anim *a) const { pg_scene_anim_free(a); }
+};
+
+static void hand_out_nodes(const Ctx &c, const Out &o, pg_scene_anim *a)
+{
+    const tinygltf::Model &md = c.model;
+    a->n_nodes = uint32_t(md.nodes.size());
+    a->nodes = static_cast<pg_anim_node *>(calloc(md.nodes.size() + 1, sizeof(pg_anim_node)));
+    if (!a->nodes) throw std::bad_alloc();
+    for (size_t i = 0; i < md.nodes.size(); i++) a->nodes[i].parent = -1;
+    for (size_t i = 0; i < md.nodes.size(); i++) {
+        const tinygltf::Node &nd = md.nodes[i];
+        pg_anim_node &N = a->nodes[i];
+        for (int ch : nd.children)
+            if (ch >= 0 && size_t(ch) < md.nodes.size() && a->nodes[ch].parent < 0 && size_t(ch) != i)
+                a->nodes[ch].parent = int32_t(i); /* the first parent (glTF allows one) */
+        N.rotation[3] = 1;
+        N.scale[0] = N.scale[1] = N.scale[2] = 1;
+        if (nd.matrix.size() == 16) {
+            N.has_matrix = true;
+            for (int k = 0; k < 16; k++) N.matrix[k] = float(nd.matrix[size_t(k)]);
+        }
+        for (size_t k = 0; k < 3 && nd.translation.size() == 3; k++) N.translation[k] = float(nd.translation[k]);
+        for (size_t k = 0; k < 3 && nd.scale.size() == 3; k++) N.scale[k] = float(nd.scale[k]);
+        for (size_t k = 0; k < 4 && nd.rotation.size() == 4; k++) N.rotation[k] = float(nd.rotation[k]);
+        auto w = o.node_weights.find(int(i));
+        if (w != o.node_weights.end()) {
+            N.weight_base = w->second.first;
+            N.n_weights = w->second.second;
+        }
+    }
+    /* a parent chain that loops (a file without scenes whose nodes are never walked) is cut */
+    for (size_t i = 0; i < md.nodes.size(); i++) {
+        size_t steps = 0;
+        for (int32_t p = a->nodes[i].parent; p >= 0; p = a->nodes[p].parent)
+            if (++steps > md.nodes.size()) {
+                a->nodes[i].parent = -1;
+                break;
+            }
+    }
+}
+
+static void hand_out_skins(Ctx &c, pg_scene_anim *a)
+{
+    const tinygltf::Model &md = c.model;
+    a->n_skins = uint32_t(md.skins.size());
+    a->n_joint_slots = c.joint_slots;
+    if (md.skins.empty()) return;
+    a->skins = static_cast<pg_anim_skin *>(calloc(md.skins.size(), sizeof(pg_anim_skin)));
+    if (!a->skins) throw std::bad_alloc();
+    for (size_t s = 0; s < md.skins.size(); s++) {
+        const tinygltf::Skin &sk = md.skins[s];
+        pg_anim_skin &S = a->skins[s];
+        const size_t nj = sk.joints.size();
+        S.n_joints = uint32_t(nj);
+        S.slot_base = c.skin_slot_base[s];
+        S.joints = static_cast<uint32_t *>(calloc(nj + 1, sizeof(uint32_t)));
+        S.inverse_bind = static_cast<float(*)[16]>(calloc(nj + 1, sizeof(float[16])));
+        if (!S.joints || !S.inverse_bind) throw std::bad_alloc();
+        for (size_t j = 0; j < nj; j++) {
+            S.joints[j] = uint32_t(sk.joints[j]);
+            for (int k = 0; k < 4; k++) S.inverse_bind[j][k * 5] = 1.0f;
+        }
+        if (sk.inverseBindMatrices < 0) continue;
+        View v = get_view(c, sk.inverseBindMatrices);
+        if (v.type != TINYGLTF_TYPE_MAT4 || v.ctype != TINYGLTF_COMPONENT_TYPE_FLOAT || v.count < nj)
+            gfail(strf("skins[%zu].inverseBindMatrices: accessors[%d] must be MAT4 FLOAT with at least %zu elements "
+                       "(got %s %s, %zu)",
+                       s, v.index, nj, type_name(v.type), ctype_name(v.ctype), v.count));
+        for (size_t j = 0; j < nj; j++) {
+            view_floats(v, j, S.inverse_bind[j]);
+            for (int k = 0; k < 16; k++)
+                if (!std::isfinite(S.inverse_bind[j][k]))
+                    gfail(strf("skins[%zu].inverseBindMatrices: matrix %zu is not finite", s, j));
+        }
+    }
+}
+
+/* one channel: its sampler's keys and values, checked */
+static bool hand_out_channel(Ctx &c, const pg_scene_anim *a, size_t ai, size_t ci, pg_anim_channel &C)
+{
+    const tinygltf::Animation &an = c.model.animations[ai];
+    const tinygltf::AnimationChannel &ch = an.channels[ci];
+    const std::string cw = strf("animations[%zu].channels[%zu]", ai, ci);
+    bool known = false;
+    C.path = channel_path(ch.target_path, &known);
+    if (!known || ch.target_node < 0) return false;
+    C.node = uint32_t(ch.target_node);
+    if (C.path != PG_ANIM_WEIGHTS && a->nodes[C.node].has_matrix) return false; /* glTF forbids: ignored */
+    if (C.path == PG_ANIM_WEIGHTS && a->nodes[C.node].n_weights == 0) return false; /* not a drawn morph */
+    if (ch.sampler < 0 || size_t(ch.sampler) >= an.samplers.size())
+        gfail(strf("%s.sampler: %d out of range (%zu samplers)", cw.c_str(), ch.sampler, an.samplers.size()));
+    const tinygltf::AnimationSampler &sm = an.samplers[size_t(ch.sampler)];
+    const std::string sw = strf("animations[%zu].samplers[%d]", ai, ch.sampler);
+    if (sm.interpolation == "STEP") C.interp = PG_INTERP_STEP;
+    else if (sm.interpolation == "CUBICSPLINE") C.interp = PG_INTERP_CUBICSPLINE;
+    else if (sm.interpolation == "LINEAR" || sm.interpolation.empty()) C.interp = PG_INTERP_LINEAR;
+    else gfail(sw + ".interpolation: '" + sm.interpolation + "': expected LINEAR, STEP or CUBICSPLINE");
+    View in = get_view(c, sm.input), out = get_view(c, sm.output);
+    if (in.type != TINYGLTF_TYPE_SCALAR || in.ctype != TINYGLTF_COMPONENT_TYPE_FLOAT || in.count < 1)
+        gfail(strf("%s.input: accessors[%d] must be SCALAR FLOAT with at least one key", sw.c_str(), in.index));
+    C.n_keys = uint32_t(in.count);
+    C.width = C.path == PG_ANIM_ROTATION ? 4 : C.path == PG_ANIM_WEIGHTS ? a->nodes[C.node].n_weights : 3;
+    const size_t per_key = (C.interp == PG_INTERP_CUBICSPLINE ? 3 : 1) * size_t(C.width);
+    const int want_type = C.path == PG_ANIM_ROTATION ? TINYGLTF_TYPE_VEC4
+                          : C.path == PG_ANIM_WEIGHTS ? TINYGLTF_TYPE_SCALAR
+                                                      : TINYGLTF_TYPE_VEC3;
+    const size_t comps = C.path == PG_ANIM_WEIGHTS ? 1 : C.width;
+    if (out.type != want_type || out.count * comps != in.count * per_key)
+        gfail(strf("%s.output: accessors[%d] must be %s with %zu elements for %zu keys of '%s' (got %s, %zu)",
+                   sw.c_str(), out.index, type_name(want_type), in.count * per_key / comps, in.count,
+                   ch.target_path.c_str(), type_name(out.type), out.count));
+    C.times = static_cast<float *>(malloc(in.count * sizeof(float)));
+    C.values = static_cast<float *>(malloc(in.count * per_key * sizeof(float)));
+    if (!C.times || !C.values) throw std::bad_alloc();
+    for (size_t k = 0; k < in.count; k++) {
+        view_floats(in, k, &C.times[k]);
+        if (!std::isfinite(C.times[k]) || C.times[k] < 0 || (k > 0 && C.times[k] < C.times[k - 1]))
+            gfail(strf("%s.input: key %zu: time %g (expected finite, >= 0, not decreasing)", sw.c_str(), k,
+                       double(C.times[k])));
+    }
+    for (size_t e = 0; e < out.count; e++) {
+        view_floats(out, e, &C.values[e * comps]);
+        for (size_t k = 0; k < comps; k++)
+            if (!std::isfinite(C.values[e * comps + k]))
+                gfail(strf("%s.output: element %zu is not finite", sw.c_str(), e));
+    }
+    return true;
+}
+
+static void hand_out_animations(Ctx &c, pg_scene_anim *a)
+{
+    const tinygltf::Model &md = c.model;
+    if (md.animations.empty()) return;
+    a->animations = static_cast<pg_animation *>(calloc(md.animations.size(), sizeof(pg_animation)));
+    if (!a->animations) throw std::bad_alloc();
+    for (size_t ai = 0; ai < md.animations.size(); ai++) {
+        const tinygltf::Animation &an = md.animations[ai];
+        pg_animation &A = a->animations[a->n_animations++];
+        pg_strlcpy(A.name, an.name.empty() ? strf("animations[%zu]", ai).c_str() : an.name.c_str(), sizeof A.name);
+        A.channels = static_cast<pg_anim_channel *>(calloc(an.channels.size() + 1, sizeof(pg_anim_channel)));
+        if (!A.channels) throw std::bad_alloc();
+        for (size_t ci = 0; ci < an.channels.size(); ci++) {
+            pg_anim_channel &C = A.channels[A.n_channels];
+            memset(&C, 0, sizeof C);
+            if (!hand_out_channel(c, a, ai, ci, C)) {
+                free(C.times);
+                free(C.values);
+                memset(&C, 0, sizeof C);
+                c.ignored_channels++;
+                continue;
+            }
+            A.end = std::max(A.end, C.times[C.n_keys - 1]);
+            A.n_channels++;
+        }
+    }
+}
+
+pg_scene_anim *anim_hand_out(Ctx &c, const Out &o)
+{
+    /* kept when a drawn primitive moves, or when the file has animations (a light or camera on an
+     * animated node moves too); features.has_animation only for moving geometry */
+    if (!c.animated || (o.aprims.empty() && c.model.animations.empty())) return nullptr;
+    std::unique_ptr<pg_scene_anim, AnimDeleter> a(static_cast<pg_scene_anim *>(calloc(1, sizeof(pg_scene_anim))));
+    if (!a) throw std::bad_alloc();
+    hand_out_nodes(c, o, a.get());
+    hand_out_skins(c, a.get());
+    hand_out_animations(c, a.get());
+    const size_t n = o.verts.size();
+    a->n_vertices = uint32_t(n);
+    a->local = dup(o.local);
+    a->vertex_prim = dup(o.vertex_prim);
+    for (size_t v = 0; v < n; v++)
+        if (a->vertex_prim[v] == PG_ANIM_STATIC) a->local[v] = o.verts[v];
+    if (!o.joints.empty()) {
+        std::vector<uint16_t> j(o.joints);
+        std::vector<float> w(o.weights);
+        j.resize(n * 4, 0);
+        w.resize(n * 4, 0.0f);
+        a->joints = reinterpret_cast<uint16_t(*)[4]>(dup(j));
+        a->weights = reinterpret_cast<float(*)[4]>(dup(w));
+    }
+    a->prims = dup(o.aprims);
+    a->n_prims = uint32_t(o.aprims.size());
+    a->deltas = dup(o.deltas);
+    a->n_deltas = uint32_t(o.deltas.size());
+    a->rest_weights = dup(o.rest_weights);
+    a->n_weights = uint32_t(o.rest_weights.size());
+    return a.release();
+}
+
+} // namespace pg_gltf

@@ -1,0 +1,185 @@
+/* test_gpu_animation.c - animation as a graph pass (geometry_animate, shaders/animate_geometry.comp)
+ * on the Vulkan device with the validation layer and synchronization validation on (zero
+ * messages), 160x90.
+ *  1. For each generated file of tests/corpus/gltf/animation (rigid TRS with STEP and CUBICSPLINE,
+ *     a two-joint skin, two morph targets) at two times, and for the pipelines naive, forward_plus,
+ *     deferred (G-buffer), visibility and reference: the scene uploaded in its rest pose and
+ *     deformed on the GPU at the frame's time renders like its static twin, the same file posed on
+ *     the CPU (scene/animation.c pg_anim_deform) and uploaded without animation: at most
+ *     ANIM_EDGE_PIXELS of the pixels differ by more than 1e-3 of the peak (rasterisation of edges
+ *     whose vertices differ in the last float bits), none by more than that elsewhere. The same
+ *     scene rendered with --animation none must differ from the twin (the test fails if the pass
+ *     does nothing).
+ *     lamp.gltf (a point light on an orbiting node, no moving geometry) likewise: light_animate
+ *     rewrites the light's record for the frame's time (the geometry pass is culled).
+ *  2. A scene without animation: geometry_animate culled with its reason, the geometry buffer not
+ *     allocated, every drawing pass on the static vertex buffer. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "animation.h"
+#include "gpu_harness.h"
+#include "pass_list.h"
+#include "render_session.h"
+#include "test_util.h"
+
+#define W 160
+#define H 90
+#define ANIM_EDGE_PIXELS 0.004 /* share of the pixels that may differ at triangle edges */
+
+static pg_gpu *g_gpu;
+static pg_pass_registry g_reg;
+
+static bool upload(pg_scene *s, pg_scene_gpu **sg, const char *what)
+{
+    pg_error err = {0};
+    if (pg_scene_gpu_create(g_gpu, s, sg, &err)) {
+        CHECK_MSG(0, "%s: upload: %s", what, err.msg);
+        return false;
+    }
+    return true;
+}
+
+/* pixels whose HDR RGB differ by more than tol */
+static uint32_t differing(const pg_th_frame *a, const pg_th_frame *b, double tol)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < a->w * a->h; i++)
+        for (int c = 0; c < 3; c++)
+            if (fabs((double)a->hdr[i * 4 + c] - b->hdr[i * 4 + c]) > tol) {
+                n++;
+                break;
+            }
+    return n;
+}
+
+static void twin(const char *file, double t)
+{
+    char path[PG_PATH_MAX], label[PG_PATH_MAX + 32];
+    snprintf(path, sizeof path, "%s/corpus/gltf/animation/%s", PG_TEST_DIR, file);
+    snprintf(label, sizeof label, "%s t=%g", file, t);
+    pg_scene *live = NULL, *still = NULL;
+    pg_scene_gpu *live_g = NULL, *still_g = NULL;
+    pg_error err = {0};
+    if (pg_scene_load(path, &live, &err) || pg_scene_load(path, &still, &err)) {
+        CHECK_MSG(0, "%s: %s", label, err.msg);
+        goto out;
+    }
+    /* the twin: posed on the CPU, then static */
+    CHECK(pg_scene_pose(still, PG_ANIM_FIRST, t, &err) == PG_OK);
+    pg_scene_anim_free(still->anim);
+    still->anim = NULL;
+    pg_scene_finalize(still);
+    CHECK(!still->features.has_animation && live->anim);
+    if (!upload(live, &live_g, label) || !upload(still, &still_g, label)) goto out;
+    pg_frame_info fi = {
+        .camera = {.position = {0.3f, 2.2f, 4.0f}, .target = {0, 1, -0.5f}, .up = {0, 1, 0}, .fov_y_deg = 45,
+                   .near_z = 0.1f, .far_z = 100},
+        .lights = pg_light_setup_default(live, 64, 7),
+        .time = (float)t,
+        .animation = PG_ANIM_FIRST,
+        .width = W,
+        .height = H,
+    };
+    fi.lights.count = 64;
+    if (live->n_lights) fi.lights.count = fi.lights.file_count = live->n_lights; /* the file's lights alone */
+    static const char *const pipes[] = {"pipelines/naive.json", "pipelines/forward_plus.json",
+                                        "pipelines/deferred.json", "pipelines/visibility.json",
+                                        "pipelines/reference.json"};
+    for (size_t p = 0; p < sizeof pipes / sizeof pipes[0]; p++) {
+        pg_th_frame a, b, rest;
+        bool ok_a = pg_th_render(g_gpu, &g_reg, live_g, pipes[p], NULL, 0, &fi, 1, false, &a);
+        bool ok_b = pg_th_render(g_gpu, &g_reg, still_g, pipes[p], NULL, 0, &fi, 1, false, &b);
+        pg_frame_info fr = fi;
+        fr.animation = PG_ANIM_NONE;
+        bool ok_r = pg_th_render(g_gpu, &g_reg, live_g, pipes[p], NULL, 0, &fr, 1, false, &rest);
+        CHECK_MSG(ok_a && ok_b && ok_r, "%s %s: render failed", label, pipes[p]);
+        if (ok_a && ok_b && ok_r) {
+            double peak = 0;
+            pg_th_max_abs(&a, &b, &peak);
+            const uint32_t n = differing(&a, &b, 1e-3 * peak), n_rest = differing(&rest, &b, 1e-3 * peak);
+            printf("%s %s: %u of %u pixels differ from the CPU-posed twin; the rest pose: %u\n", label, pipes[p], n,
+                   W * H, n_rest);
+            CHECK_MSG(n <= (uint32_t)(ANIM_EDGE_PIXELS * W * H), "%s %s: %u pixels differ", label, pipes[p], n);
+            CHECK_MSG(n_rest > 10 * (n + 1), "%s %s: the rest pose differs in only %u pixels", label, pipes[p],
+                      n_rest);
+            CHECK_MSG(!live->features.has_animation || strstr(a.order, "animate_geometry") != NULL, "%s: not run: %s",
+                      pipes[p], a.order);
+            CHECK_MSG(!strstr(b.order, "animate_geometry"), "%s: run for a static scene: %s", pipes[p], b.order);
+        }
+        if (ok_a) pg_th_release(&a);
+        if (ok_b) pg_th_release(&b);
+        if (ok_r) pg_th_release(&rest);
+    }
+out:
+    if (live_g) pg_scene_gpu_destroy(g_gpu, live_g);
+    if (still_g) pg_scene_gpu_destroy(g_gpu, still_g);
+    pg_scene_free(live);
+    pg_scene_free(still);
+}
+
+static void culled(void)
+{
+    char path[PG_PATH_MAX];
+    snprintf(path, sizeof path, "%s/corpus/gltf/pbr/spheres.gltf", PG_TEST_DIR);
+    pg_scene *s = NULL;
+    pg_scene_gpu *sg = NULL;
+    pg_error err = {0};
+    if (pg_scene_load(path, &s, &err) || !upload(s, &sg, "spheres")) {
+        CHECK_MSG(0, "spheres: %s", err.msg);
+        pg_scene_free(s);
+        return;
+    }
+    static const char *const pipes[] = {"pipelines/naive.json", "pipelines/visibility.json"};
+    for (size_t p = 0; p < 2; p++) {
+        char pp[PG_PATH_MAX];
+        pg_data_path(pp, sizeof pp, pipes[p]);
+        pg_session_desc sd = {.pipeline_path = pp, .registry = &g_reg};
+        pg_session *ss = NULL;
+        if (!pg_session_create(g_gpu, sg, &sd, &ss, &err) && !pg_session_compile(ss, 0, W, H, &err)) {
+            bool seen = false;
+            for (uint32_t i = 0; i < ss->plan->n_passes; i++)
+                if (!strcmp(ss->plan->passes[i].name, "animate_geometry")) {
+                    seen = true;
+                    printf("%s: animate_geometry culled: %s\n", pipes[p], ss->plan->passes[i].cull_reason);
+                    CHECK_MSG(ss->plan->passes[i].culled && strstr(ss->plan->passes[i].cull_reason, "no animation"),
+                              "animate_geometry: culled %d (%s)", ss->plan->passes[i].culled,
+                              ss->plan->passes[i].cull_reason);
+                }
+            CHECK_MSG(seen, "%s: no animate_geometry pass", pipes[p]);
+            for (uint32_t i = 0; i < ss->plan->n_resources; i++)
+                if (!strcmp(ss->plan->resources[i].name, "geometry"))
+                    CHECK_MSG(ss->plan->resources[i].culled, "the geometry buffer is allocated without animation");
+        } else {
+            CHECK_MSG(0, "compile: %s", err.msg);
+        }
+        pg_session_destroy(ss);
+    }
+    pg_scene_gpu_destroy(g_gpu, sg);
+    pg_scene_free(s);
+}
+
+int main(void)
+{
+    if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_animation", "PG_TEST_NO_GPU is set");
+    pg_register_builtin_passes(&g_reg);
+    pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
+    pg_error err = {0};
+    if (pg_gpu_create(&gd, &g_gpu, &err)) {
+        fprintf(stderr, "test_gpu_animation: %s\n", err.msg);
+        return 1;
+    }
+    twin("rigid.gltf", 0.5);
+    twin("rigid.gltf", 2.5);
+    twin("skinned.gltf", 0.5);
+    twin("skinned.gltf", 1.0);
+    twin("morph.gltf", 1.0);
+    twin("lamp.gltf", 1.0); /* a light on an animated node: light_animate places it each frame */
+    twin("lamp.gltf", 2.0);
+    culled();
+    printf("validation messages: %u\n", g_gpu->validation_messages);
+    CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);
+    pg_gpu_destroy(g_gpu);
+    return pg_test_finish("test_gpu_animation");
+}
