@@ -37,6 +37,9 @@
 #                  pipeline (--accumulate 1, 4, 16, 64)
 #   evals          light evaluations a pixel of the compute-shaded pipelines (exact and
 #                  approximate) at 100,000 and 1,000,000 lights, with their shading time
+#   animation      the animated character (models/walker.gltf): geometry_animate's cost in naive,
+#                  forward+, deferred and visibility with the compute queue on and off, and the
+#                  images of both queue plans (identical)
 #   stress         radius 6 at 1,000,000 lights (exact? list memory), a dense clump of lights
 #                  (assets/scenarios/clump.json), 3840x2160 at 100,000 lights
 #
@@ -235,9 +238,29 @@ for step in "${STEPS[@]}"; do
     bench uhd "$BUNDLE" visibility,stochastic,ris,lightcut --lights 100000 "${ERR[@]}"
     COMMON=("${SAVED[@]}")
     ;;
+  animation)
+    # the animated character (tests/corpus/gltf/models/walker.gltf, its walk cycle from t = 0.25,
+    # the pose advancing with --time-step): geometry_animate's cost in each pipeline with the
+    # compute queue on and off, and the image with the pass on either queue (must be identical)
+    W=${WALKER:-tests/corpus/gltf/models/walker.gltf}
+    for q in on off; do
+      run "anim_bench_$q" "$BUNDLE/passgraph" bench --size "$SIZE" --scene "$W" --quiet --time 0.25 \
+        --pipelines "$P/naive.json,$P/forward_plus.json,$P/deferred.json,$P/visibility.json" \
+        "${TIMING[@]}" --async-compute $q --out "$OUT/anim_$q"
+      [ -f "$OUT/anim_$q/results.csv" ] && python3 "$HERE/tables/bench_rows.py" "$OUT/anim_$q/results.csv"
+      for p in visibility deferred; do
+        run "anim_render_${p}_$q" "$BUNDLE/passgraph" render --size "$SIZE" --scene "$W" --pipeline "$P/$p.json" \
+          --time 0.25 --frames 3 --async-compute $q --explain --out "$OUT/anim_${p}_$q.png"
+      done
+    done
+    for p in visibility deferred; do
+      if cmp -s "$OUT/anim_${p}_on.png" "$OUT/anim_${p}_off.png"; then echo "animation $p: compute queue on/off identical"
+      else echo "animation $p: compute queue on/off DIFFER"; fi
+    done
+    ;;
   *)
     echo "device-run.sh: unknown step '$step' (validate, bench, bench-forward, prepass, ab, sweep, tiling, tile-size, file-lights, manylight, knobs, knob-stochastic," \
-      "evals, stress)" >&2
+      "evals, stress, animation)" >&2
     exit 2
     ;;
   esac
