@@ -86,6 +86,10 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     app->opt = *opt;
     pg_register_builtin_passes(&app->registry);
     pg_result r;
+    if ((r = pg_plugins_load(&app->registry, opt->plugins, opt->n_plugins, &app->plugins, err))) {
+        pg_plugins_close(&app->plugins);
+        return r;
+    }
     if (opt->pipeline) pg_strlcpy(app->pipeline_path, opt->pipeline, sizeof app->pipeline_path);
     else pg_data_path(app->pipeline_path, sizeof app->pipeline_path, "pipelines/naive.json");
     if (opt->scenario) {
@@ -222,6 +226,7 @@ void pg_app_close(pg_app *app)
     app->scene_gpu = NULL;
     app->scene = NULL;
     app->gpu = NULL;
+    pg_plugins_close(&app->plugins); /* after every session that used their pass types */
 }
 
 pg_frame_info pg_app_frame(const pg_app *app)

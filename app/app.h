@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "frame.h"
 #include "pass_api.h"
+#include "plugins.h"
 #include "render_session.h"
 #include "scenario.h"
 #include "scene.h"
@@ -24,7 +25,8 @@ typedef struct pg_app {
     bool has_scenario;
     pg_light_setup lights;
     pg_camera camera;
-    pg_pass_registry registry;
+    pg_pass_registry registry;    /* the built-in pass types, then the plug-ins' (--plugin) */
+    pg_plugins plugins;
     char pipeline_path[PG_PATH_MAX];
     char scene_path[PG_PATH_MAX];
     char camera_why[256];         /* "camera: ..." one line: which camera was chosen and why */

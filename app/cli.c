@@ -40,6 +40,7 @@ const char *const pg_cli_common_help =
     "                       default: the first\n"
     "  --seed S             light seed, 0..4294967295 (default 1)\n"
     "  --set KEY=VALUE      override a pipeline parameter (repeatable)\n"
+    "  --plugin FILE.so     load pass types from a plug-in (repeatable; docs/plugins.md)\n"
     "  --device N|NAME      Vulkan device index or name substring ('passgraph devices')\n"
     "  --validation         enable the Khronos validation layer + synchronization validation;\n"
     "                       any message makes the command fail\n"
@@ -264,6 +265,21 @@ static pg_result parse_async_compute(pg_cli_common *c, const char *v, pg_error *
 }
 
 /* The common options, one branch each (the longer ones in the helpers above). */
+/* --plugin FILE (repeatable) and --animation N|NAME|all|none (checked against the scene later) */
+static pg_result parse_plugin_or_animation(pg_cli_common *c, const char *a, const char *v, pg_error *err)
+{
+    if (!strcmp(a, "--animation")) {
+        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--animation: empty (N, NAME, all or none)");
+        c->animation = v;
+        return PG_OK;
+    }
+    if (c->n_plugins >= sizeof c->plugins / sizeof c->plugins[0])
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--plugin %s: at most %zu plug-ins", v,
+                       sizeof c->plugins / sizeof c->plugins[0]);
+    c->plugins[c->n_plugins++] = v;
+    return PG_OK;
+}
+
 pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, bool *used, pg_error *err)
 {
     const char *a = argv[*i];
@@ -313,10 +329,9 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         NEED_VALUE();
         if ((r = parse_u64(a, v, 1, 100000, &u, err))) return r;
         c->frames = (uint32_t)u;
-    } else if (!strcmp(a, "--animation")) {
+    } else if (!strcmp(a, "--plugin") || !strcmp(a, "--animation")) {
         NEED_VALUE();
-        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--animation: empty (N, NAME, all or none)");
-        c->animation = v;
+        if ((r = parse_plugin_or_animation(c, a, v, err))) return r;
     } else if (!strcmp(a, "--time")) {
         NEED_VALUE();
         if ((r = parse_float(a, v, -1e7, 1e7, &c->time, err))) return r;

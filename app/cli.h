@@ -23,6 +23,8 @@ typedef struct pg_cli_common {
     uint32_t width, height;      /* --size WxH */
     float time;                  /* --time T */
     const char *animation;       /* --animation N|NAME|all|none (NULL: the first animation) */
+    uint32_t n_plugins;
+    const char *plugins[8];      /* --plugin FILE.so (repeatable; app/plugins.h) */
     uint32_t seed;               /* --seed S */
     bool has_radius, has_intensity, has_ambient;
     float radius, intensity;     /* --radius, --intensity */

@@ -684,6 +684,31 @@ skin_w="passgraph: warning: $gcorp/ok_skins.gltf: 1 primitive(s) of skinned node
 "$PG" compare --scene "$gcorp/ok_skins.gltf" --reference "$naive" --size 32x18 --lights 4 --quiet >"$tmp/out" 2>"$tmp/err" \
   && [ "$(grep -cxF -- "$skin_w" "$tmp/err")" = 1 ] \
   && ok || { bad "compare: scene warning once"; cat "$tmp/err"; }
+# pass types from a plug-in (docs/plugins.md): the example 'tint' renders; each bad plug-in is refused
+plugdir="$(dirname "$PG")/plugins"
+tintp="$root/examples/plugins/tint/tint.json"
+if [ -f "$plugdir/libpg_tint.so" ]; then
+  "$PG" render --plugin "$plugdir/libpg_tint.so" --pipeline "$tintp" --validation --size 64x36 --lights 16 \
+    --set tint_r=1 --set tint_g=0 --set tint_b=0 --explain --out "$tmp/tint.png" >"$tmp/out" 2>"$tmp/err" \
+    && grep -qF "tint: multiplies the image by (1, 0, 0)" "$tmp/out" \
+    && python3 "$root/tests/cli/png_channels.py" "$tmp/tint.png" >"$tmp/tstat" \
+    && awk '{ exit !($1 > 5 && $5 <= 1 && $6 <= 1) }' "$tmp/tstat" \
+    && ok || { bad "render with the tint plug-in (R G B means, maxima: $(cat "$tmp/tstat" 2>/dev/null))"; cat "$tmp/err"; }
+  expect_fail "--plugin: missing file" "$tmp/no-such.so: cannot load plug-in: no such file" \
+    render --plugin "$tmp/no-such.so" --size 16x16 --out "$tmp/x.png"
+  expect_fail "--plugin: not a shared object" "$tintp: cannot load plug-in: " \
+    render --plugin "$tintp" --size 16x16 --out "$tmp/x.png"
+  expect_fail "--plugin: no entry points" "libpg_tint_noentry.so: not a passgraph plug-in: no passgraph_plugin_api_version" \
+    render --plugin "$plugdir/libpg_tint_noentry.so" --size 16x16 --out "$tmp/x.png"
+  expect_fail "--plugin: API version" "libpg_tint_badversion.so: plug-in API version 999; this passgraph has 1" \
+    render --plugin "$plugdir/libpg_tint_badversion.so" --size 16x16 --out "$tmp/x.png"
+  expect_fail "--plugin twice" "libpg_tint.so: pass type 'tint' is registered twice" \
+    render --plugin "$plugdir/libpg_tint.so" --plugin "$plugdir/libpg_tint.so" --size 16x16 --out "$tmp/x.png"
+  expect_fail "a plug-in's pass type without the plug-in" "'tint'" \
+    render --pipeline "$tintp" --size 16x16 --out "$tmp/x.png"
+else
+  bad "the example plug-in was not built: $plugdir/libpg_tint.so"
+fi
 # a glTF animation: played at --time by the geometry_animate pass, named by --explain; an unknown
 # --animation is an error listing the file's
 acorp="$gcorp/animation"

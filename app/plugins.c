@@ -1,0 +1,63 @@
+/* plugins.c - loading pass-type plug-ins (plugins.h). */
+#include "plugins.h"
+#include "pass_plugin.h"
+
+#include <dlfcn.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static pg_result load_one(pg_pass_registry *reg, const char *path, pg_plugins *out, pg_error *err)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) return pg_fail(err, PG_ERR_IO, "%s: cannot load plug-in: no such file", path);
+    if (S_ISDIR(st.st_mode)) return pg_fail(err, PG_ERR_IO, "%s: cannot load plug-in: is a directory", path);
+    /* a bare name would be searched in the system's library path: make it a path */
+    char full[PG_PATH_MAX + 4];
+    snprintf(full, sizeof full, "%s%s", strchr(path, '/') ? "" : "./", path);
+    void *h = dlopen(full, RTLD_NOW | RTLD_LOCAL);
+    if (!h) {
+        const char *why = dlerror();
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: cannot load plug-in: %s", path, why ? why : "dlopen failed");
+    }
+    out->handles[out->n++] = h;
+    pg_plugin_version_fn version;
+    pg_plugin_register_fn reg_fn;
+    void *v = dlsym(h, PG_PLUGIN_VERSION_SYMBOL), *r = dlsym(h, PG_PLUGIN_REGISTER_SYMBOL);
+    if (!v || !r)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: not a passgraph plug-in: no %s", path,
+                       !v ? PG_PLUGIN_VERSION_SYMBOL : PG_PLUGIN_REGISTER_SYMBOL);
+    memcpy(&version, &v, sizeof version); /* object pointer -> function pointer, as POSIX allows */
+    memcpy(&reg_fn, &r, sizeof reg_fn);
+    const uint32_t got = version();
+    if (got != PG_PLUGIN_API_VERSION)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: plug-in API version %u; this passgraph has %u (rebuild the "
+                                                "plug-in against this passgraph's headers)",
+                       path, got, PG_PLUGIN_API_VERSION);
+    pg_error e = {0};
+    const uint32_t before = reg->count;
+    pg_result rr = reg_fn(reg, &e);
+    if (rr) return pg_fail(err, rr, "%s: %s", path, e.msg[0] ? e.msg : "registration failed");
+    if (reg->count == before)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: the plug-in registered no pass type", path);
+    return PG_OK;
+}
+
+pg_result pg_plugins_load(pg_pass_registry *reg, const char *const *paths, uint32_t n, pg_plugins *out,
+                          pg_error *err)
+{
+    if (n > PG_MAX_PLUGINS)
+        return pg_fail(err, PG_ERR_LIMIT, "--plugin: %u plug-ins, at most %d", n, PG_MAX_PLUGINS);
+    for (uint32_t i = 0; i < n; i++) {
+        pg_result r = load_one(reg, paths[i], out, err);
+        if (r) return r;
+    }
+    return PG_OK;
+}
+
+void pg_plugins_close(pg_plugins *p)
+{
+    for (uint32_t i = p->n; i-- > 0;)
+        if (p->handles[i]) dlclose(p->handles[i]);
+    memset(p, 0, sizeof *p);
+}
