@@ -48,6 +48,7 @@ void anim_prepare(Ctx &c)
     uint64_t slots = 0;
     for (size_t s = 0; s < md.skins.size(); s++) {
         c.skin_slot_base[s] = uint32_t(slots);
+        if (md.skins[s].joints.empty()) gfail(strf("skins[%zu].joints: empty (a skin needs at least one joint)", s));
         slots += md.skins[s].joints.size();
         for (size_t j = 0; j < md.skins[s].joints.size(); j++) {
             const int jn = md.skins[s].joints[j];
@@ -360,7 +361,16 @@ static void hand_out_animations(Ctx &c, pg_scene_anim *a)
         for (size_t ci = 0; ci < an.channels.size(); ci++) {
             pg_anim_channel &C = A.channels[A.n_channels];
             memset(&C, 0, sizeof C);
-            if (!hand_out_channel(c, a, ai, ci, C)) {
+            bool kept = false;
+            try {
+                kept = hand_out_channel(c, a, ai, ci, C);
+            } catch (...) { /* the channel is not counted yet: free what it allocated before the refusal */
+                free(C.times);
+                free(C.values);
+                memset(&C, 0, sizeof C);
+                throw;
+            }
+            if (!kept) {
                 free(C.times);
                 free(C.values);
                 memset(&C, 0, sizeof C);

@@ -32,6 +32,7 @@ seed_hdr() {
 seed_gltf() {
   local d=$1
   cp "$ROOT"/tests/corpus/gltf/*.gltf "$ROOT"/tests/corpus/gltf/*.glb "$d"/
+  for f in "$ROOT"/tests/corpus/gltf/animation/*.gltf; do cp "$f" "$d/anim_$(basename "$f")"; done
   cp "$ROOT"/tests/fuzz/seeds/gltf/* "$d"/
 }
 
