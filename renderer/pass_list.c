@@ -23,6 +23,7 @@ void pg_register_builtin_passes(pg_pass_registry *reg)
         &pg_pass_stochastic_lights,
         &pg_pass_environment_filter,
         &pg_pass_geometry_animate,
+        &pg_pass_shader,
     };
     memset(reg, 0, sizeof *reg);
     for (size_t i = 0; i < sizeof builtin / sizeof builtin[0]; i++) reg->types[reg->count++] = builtin[i];

@@ -23,6 +23,7 @@ extern const pg_pass_type pg_pass_light_tree;
 extern const pg_pass_type pg_pass_stochastic_lights;
 extern const pg_pass_type pg_pass_environment_filter;
 extern const pg_pass_type pg_pass_geometry_animate;
+extern const pg_pass_type pg_pass_shader;
 
 /* Fills reg with every built-in pass type. */
 void pg_register_builtin_passes(pg_pass_registry *reg);

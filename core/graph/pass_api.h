@@ -87,7 +87,7 @@ typedef struct pg_slot_decl {
 
 #define PG_MAX_DEFINES 32
 #define PG_MAX_PASS_EXPLAIN 16 /* explanation lines of one pass (declare) */
-#define PG_MAX_PASS_PARAMS 320 /* bytes of a pass type's params block (pg_pass_type.params_size) */
+#define PG_MAX_PASS_PARAMS 1536 /* bytes of a pass type's params block (pg_pass_type.params_size) */
 #define PG_MAX_RUNTIME_PARAMS 4 /* run-time value fields of one params block (pg_decl_runtime_param) */
 typedef struct pg_pass_decl {
     uint32_t n_reads, n_writes;

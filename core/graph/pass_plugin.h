@@ -21,7 +21,7 @@
 
 #include "pass_api.h"
 
-#define PG_PLUGIN_API_VERSION 1u
+#define PG_PLUGIN_API_VERSION 2u
 #define PG_PLUGIN_VERSION_SYMBOL "passgraph_plugin_api_version"
 #define PG_PLUGIN_REGISTER_SYMBOL "passgraph_plugin_register"
 

@@ -127,3 +127,35 @@ pg_result pj_include_allowed(loader *L, const src_file *from, const char *ipath,
                       "include '%s' is outside the allowed folders (the including file's folder, "
                       "the data folder, --include-dir)", rel);
 }
+
+pg_result pg_pipeline_resolve_file(const char *from_file, const char *top_file, const char *rel, char *out,
+                                   size_t out_size, pg_error *err)
+{
+    int n;
+    if (rel[0] == '/') {
+        n = snprintf(out, out_size, "%s", rel);
+    } else {
+        const char *slash = strrchr(from_file, '/');
+        n = slash ? snprintf(out, out_size, "%.*s/%s", (int)(slash - from_file), from_file, rel)
+                  : snprintf(out, out_size, "%s", rel);
+    }
+    if (n < 0 || (size_t)n >= out_size || (size_t)n >= PATH_MAX) return pg_fail(err, PG_ERR_INCLUDE, "path too long");
+    char target[PATH_MAX], dir[PATH_MAX];
+    canon(out, target);
+    const char *froms[2] = {from_file, top_file};
+    for (int i = 0; i < 2; i++) {
+        if (!froms[i]) continue;
+        canon_dir(froms[i], dir);
+        if (inside(target, dir)) return PG_OK;
+    }
+    char data[PG_PATH_MAX];
+    pg_data_path(data, sizeof data, "pipelines");
+    canon(data, dir);
+    if (inside(target, dir)) return PG_OK;
+    for (uint32_t i = 0; i < g_n_dirs; i++)
+        if (inside(target, g_dirs[i])) return PG_OK;
+    return pg_fail(err, PG_ERR_INCLUDE,
+                   "'%s' is outside the allowed folders (the pipeline file's folder, the data folder's "
+                   "pipelines/, --include-dir)",
+                   rel);
+}

@@ -23,6 +23,14 @@ extern "C" {
  * options). Each must be an existing directory; n = 0 clears them. */
 pg_result pg_pipeline_set_include_dirs(const char *const *dirs, uint32_t n, pg_error *err);
 
+/* A file a pipeline names other than an include (a `shader` pass's GLSL file): rel resolved against
+ * from_file's folder (an absolute rel as it is) into out, then held to the include rules above
+ * (from_file's folder, top_file's folder, the data folder's pipelines/, --include-dir), decided on
+ * the name before the file is touched. The message has no file/JSON prefix (the caller adds it):
+ *   "'../../etc/passwd' is outside the allowed folders (...)" or "path too long". */
+pg_result pg_pipeline_resolve_file(const char *from_file, const char *top_file, const char *rel, char *out,
+                                   size_t out_size, pg_error *err);
+
 #ifdef __cplusplus
 }
 #endif

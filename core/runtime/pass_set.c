@@ -6,12 +6,18 @@
 pg_result pg_pass_set_create(pg_gpu *gpu, uint32_t n, const pg_set_binding *b, const char *name, pg_pass_set *out,
                              pg_error *err)
 {
+    return pg_pass_set_create_numbered(gpu, n, b, NULL, name, out, err);
+}
+
+pg_result pg_pass_set_create_numbered(pg_gpu *gpu, uint32_t n, const pg_set_binding *b, const uint32_t *numbers,
+                                      const char *name, pg_pass_set *out, pg_error *err)
+{
     memset(out, 0, sizeof *out);
     if (n > 16) return pg_fail(err, PG_ERR_LIMIT, "%s: too many bindings", name);
     VkDescriptorSetLayoutBinding lb[16];
     VkDescriptorPoolSize ps[16];
     for (uint32_t i = 0; i < n; i++) {
-        lb[i] = (VkDescriptorSetLayoutBinding){i, b[i].type, 1,
+        lb[i] = (VkDescriptorSetLayoutBinding){numbers ? numbers[i] : i, b[i].type, 1,
                                                VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
                                                    VK_SHADER_STAGE_COMPUTE_BIT,
                                                NULL};
@@ -20,8 +26,9 @@ pg_result pg_pass_set_create(pg_gpu *gpu, uint32_t n, const pg_set_binding *b, c
     VkDescriptorSetLayoutCreateInfo lci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
                                            .bindingCount = n, .pBindings = lb};
     PG_VK_TRY(err, vkCreateDescriptorSetLayout(gpu->device, &lci, NULL, &out->layout));
+    if (n == 0) ps[0] = (VkDescriptorPoolSize){VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}; /* a pool needs a size */
     VkDescriptorPoolCreateInfo pci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-                                      .maxSets = 1, .poolSizeCount = n, .pPoolSizes = ps};
+                                      .maxSets = 1, .poolSizeCount = lci.bindingCount ? lci.bindingCount : 1, .pPoolSizes = ps};
     PG_VK_TRY(err, vkCreateDescriptorPool(gpu->device, &pci, NULL, &out->pool));
     VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
                                       .descriptorPool = out->pool, .descriptorSetCount = 1,
@@ -33,7 +40,7 @@ pg_result pg_pass_set_create(pg_gpu *gpu, uint32_t n, const pg_set_binding *b, c
     VkDescriptorImageInfo ii[16];
     for (uint32_t i = 0; i < n; i++) {
         w[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = out->set,
-                                      .dstBinding = i, .descriptorCount = 1, .descriptorType = b[i].type};
+                                      .dstBinding = lb[i].binding, .descriptorCount = 1, .descriptorType = b[i].type};
         if (b[i].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || b[i].type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER) {
             bi[i] = (VkDescriptorBufferInfo){b[i].res->buffer, 0, VK_WHOLE_SIZE};
             w[i].pBufferInfo = &bi[i];

@@ -24,9 +24,12 @@ typedef struct pg_pass_set {
     VkDescriptorSet set;
 } pg_pass_set;
 
-/* Bindings are numbered 0..n-1, visible to all stages. */
+/* Bindings are numbered 0..n-1, visible to all stages; n = 0 makes an empty set. */
 pg_result pg_pass_set_create(pg_gpu *gpu, uint32_t n, const pg_set_binding *bindings, const char *name,
                              pg_pass_set *out, pg_error *err);
+/* The same with the binding numbers given (numbers[i] for bindings[i]; distinct). */
+pg_result pg_pass_set_create_numbered(pg_gpu *gpu, uint32_t n, const pg_set_binding *bindings, const uint32_t *numbers,
+                                      const char *name, pg_pass_set *out, pg_error *err);
 void pg_pass_set_destroy(pg_gpu *gpu, pg_pass_set *s);
 
 #ifdef __cplusplus

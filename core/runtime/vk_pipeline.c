@@ -71,6 +71,11 @@ pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, con
             att[i].srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
             att[i].dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
             att[i].alphaBlendOp = VK_BLEND_OP_ADD;
+        } else if (d->blend_add) {
+            att[i].blendEnable = VK_TRUE;
+            att[i].srcColorBlendFactor = att[i].dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+            att[i].srcAlphaBlendFactor = att[i].dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+            att[i].colorBlendOp = att[i].alphaBlendOp = VK_BLEND_OP_ADD;
         }
     }
     VkPipelineColorBlendStateCreateInfo cb = {.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,

@@ -33,6 +33,7 @@ typedef struct pg_gfx_pipeline_desc {
     const pg_vertex_input *vertex_input; /* NULL: no vertex input */
     bool blend_over;                /* every colour attachment: rgb = src.a*src + (1-src.a)*dst,
                                      * a = src.a + (1-src.a)*dst.a (non-premultiplied "over") */
+    bool blend_add;                 /* every colour attachment: dst + src (rgb and a) */
 } pg_gfx_pipeline_desc;
 
 pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, const char *name,

@@ -40,25 +40,58 @@ static bool sb_append(strbuf *sb, const char *s, size_t n)
 typedef struct gen_sources {
     const pg_shader_source *v;
     uint32_t n;
+    /* a user shader (pg_shader_compile_user): the top-level file's path and folder; its includes
+     * are looked up in that folder first (names without ".." or a leading '/'), then in the
+     * shaders folder (the library); every file boundary gets a `#line N "file"` so glslang's
+     * messages name the user's file and line */
+    const char *user_path;
+    const char *user_dir;
 } gen_sources;
+
+/* The file an include or top-level name reads: a generated source, the user's folder, or the
+ * shaders folder. *text is malloc'd; path names it for messages. */
+static pg_result open_source(const char *name, int depth, const gen_sources *gen, char *path, size_t path_size,
+                             char **text, pg_error *err)
+{
+    *text = NULL;
+    for (uint32_t i = 0; gen && i < gen->n && !*text; i++) {
+        if (!gen->v[i].name || strcmp(gen->v[i].name, name)) continue;
+        snprintf(path, path_size, "<generated %s>", name);
+        size_t len = gen->v[i].text ? strlen(gen->v[i].text) : 0;
+        *text = malloc(len + 1);
+        if (!*text) return pg_fail(err, PG_ERR_OOM, "out of memory expanding %s", path);
+        if (len) memcpy(*text, gen->v[i].text, len);
+        (*text)[len] = 0;
+        return PG_OK;
+    }
+    if (gen->user_path && depth == 0) {
+        snprintf(path, path_size, "%s", gen->user_path);
+        return pg_read_file(path, text, NULL, err);
+    }
+    if (gen->user_dir && name[0] != '/' && !strstr(name, "..")) {
+        snprintf(path, path_size, "%s/%s", gen->user_dir, name);
+        if (access(path, R_OK) == 0) return pg_read_file(path, text, NULL, err);
+    }
+    snprintf(path, path_size, "%s/shaders/%s", pg_data_dir(), name);
+    return pg_read_file(path, text, NULL, err);
+}
+
+static bool line_directive(strbuf *out, int line, const char *path)
+{
+    char buf[PG_PATH_MAX + 96];
+    int n = snprintf(buf, sizeof buf, "#line %d \"%s\"\n", line, path);
+    return n > 0 && (size_t)n < sizeof buf && sb_append(out, buf, (size_t)n);
+}
 
 static pg_result expand(const char *name, int depth, const gen_sources *gen, strbuf *out, pg_error *err)
 {
     if (depth > 8) return pg_fail(err, PG_ERR_SHADER, "shaders/%s: #include nested too deep", name);
     char path[PG_PATH_MAX + 64];
-    snprintf(path, sizeof path, "%s/shaders/%s", pg_data_dir(), name);
     char *text = NULL;
-    pg_result r = PG_OK;
-    for (uint32_t i = 0; gen && i < gen->n && !text; i++) {
-        if (!gen->v[i].name || strcmp(gen->v[i].name, name)) continue;
-        snprintf(path, sizeof path, "<generated %s>", name);
-        size_t len = gen->v[i].text ? strlen(gen->v[i].text) : 0;
-        text = malloc(len + 1);
-        if (!text) return pg_fail(err, PG_ERR_OOM, "out of memory expanding %s", path);
-        if (len) memcpy(text, gen->v[i].text, len);
-        text[len] = 0;
-    }
-    if (!text && (r = pg_read_file(path, &text, NULL, err))) return r;
+    pg_result r = open_source(name, depth, gen, path, sizeof path, &text, err);
+    if (r) return r;
+    const bool lines = gen->user_path != NULL;
+    if (lines && depth > 0 && !line_directive(out, 1, path)) goto oom;
     const char *p = text;
     int line = 1;
     while (*p) {
@@ -84,6 +117,7 @@ static pg_result expand(const char *name, int depth, const gen_sources *gen, str
                 return r;
             }
             if (!sb_append(out, "\n", 1)) goto oom;
+            if (lines && !line_directive(out, line + 1, path)) goto oom;
         } else if (!sb_append(out, p, n)) {
             goto oom;
         }
@@ -95,6 +129,14 @@ static pg_result expand(const char *name, int depth, const gen_sources *gen, str
 oom:
     free(text);
     return pg_fail(err, PG_ERR_OOM, "out of memory expanding %s", path);
+}
+
+/* 1-based line number of position at in text */
+static int line_of(const char *text, const char *at)
+{
+    int line = 1;
+    for (const char *p = text; p < at; p++) line += *p == '\n';
+    return line;
 }
 
 static pthread_mutex_t g_glslang_lock = PTHREAD_MUTEX_INITIALIZER;
@@ -284,26 +326,60 @@ pg_result pg_shader_compile(const char *name, VkShaderStageFlagBits stage,
 }
 
 static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, const char *const *defines,
-                             uint32_t n_defines, const pg_shader_source *sources, uint32_t n_sources,
-                             bool vulkan12, uint32_t **spirv, size_t *n_words, pg_error *err);
+                             uint32_t n_defines, const gen_sources *gen, bool vulkan12, uint32_t **spirv,
+                             size_t *n_words, pg_error *err);
 
 pg_result pg_shader_compile_ex(const char *name, VkShaderStageFlagBits stage, const char *const *defines,
                                uint32_t n_defines, const pg_shader_source *sources, uint32_t n_sources,
                                uint32_t **spirv, size_t *n_words, pg_error *err)
 {
-    return compile_for(name, stage, defines, n_defines, sources, n_sources, false, spirv, n_words, err);
+    const gen_sources gen = {sources, n_sources, NULL, NULL};
+    return compile_for(name, stage, defines, n_defines, &gen, false, spirv, n_words, err);
+}
+
+/* the folder of path ("." for a bare name) */
+static void dir_of(const char *path, char *out, size_t size)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash) snprintf(out, size, ".");
+    else if (slash == path) snprintf(out, size, "/");
+    else snprintf(out, size, "%.*s", (int)(slash - path), path);
+}
+
+pg_result pg_shader_compile_user(const char *path, VkShaderStageFlagBits stage, const char *const *defines,
+                                 uint32_t n_defines, bool vulkan12, uint32_t **spirv, size_t *n_words, pg_error *err)
+{
+    char dir[PG_PATH_MAX];
+    dir_of(path, dir, sizeof dir);
+    const gen_sources gen = {NULL, 0, path, dir};
+    return compile_for(path, stage, defines, n_defines, &gen, vulkan12, spirv, n_words, err);
+}
+
+pg_result pg_shader_module_words(struct pg_gpu *gpu, const char *name, const uint32_t *code, size_t words,
+                                 VkShaderModule *out, pg_error *err)
+{
+    VkShaderModuleCreateInfo ci = {
+        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+        .codeSize = words * sizeof(uint32_t),
+        .pCode = code,
+    };
+    VkResult vr = vkCreateShaderModule(gpu->device, &ci, NULL, out);
+    if (vr != VK_SUCCESS)
+        return pg_fail(err, PG_ERR_VULKAN, "vkCreateShaderModule(%s) failed: %s", name, pg_vk_result_name(vr));
+    pg_gpu_name(gpu, VK_OBJECT_TYPE_SHADER_MODULE, (uint64_t)*out, "%s", name);
+    return PG_OK;
 }
 
 /* vulkan12: target Vulkan 1.2 / SPIR-V 1.5 (the most a 1.2 device accepts) instead of 1.3 / 1.6 */
 static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, const char *const *defines,
-                             uint32_t n_defines, const pg_shader_source *sources, uint32_t n_sources,
-                             bool vulkan12, uint32_t **spirv, size_t *n_words, pg_error *err)
+                             uint32_t n_defines, const gen_sources *gen, bool vulkan12, uint32_t **spirv,
+                             size_t *n_words, pg_error *err)
 {
     *spirv = NULL;
     *n_words = 0;
     strbuf body = {0};
-    gen_sources gen = {sources, n_sources};
-    pg_result r = expand(name, 0, &gen, &body, err);
+    pg_result r = expand(name, 0, gen, &body, err);
+    const char *shown = gen->user_path ? "" : "shaders/"; /* messages: the user's path as given */
     if (r) {
         free(body.data);
         return r;
@@ -314,7 +390,7 @@ static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, cons
     char *ver_end = ver ? strchr(ver, '\n') : NULL;
     if (!ver || !ver_end) {
         free(body.data);
-        return pg_fail(err, PG_ERR_SHADER, "shaders/%s: no #version line", name);
+        return pg_fail(err, PG_ERR_SHADER, "%s%s: no #version line", shown, name);
     }
     bool ok = sb_append(&src, body.data, (size_t)(ver_end - body.data + 1));
     for (uint32_t i = 0; ok && i < n_defines; i++) {
@@ -326,8 +402,12 @@ static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, cons
             snprintf(line, sizeof line, "#define %s 1\n", defines[i]);
         ok = sb_append(&src, line, strlen(line));
     }
-    char lineinfo[64];
-    snprintf(lineinfo, sizeof lineinfo, "#line 2\n");
+    char lineinfo[PG_PATH_MAX + 96];
+    if (gen->user_path)
+        snprintf(lineinfo, sizeof lineinfo, "#extension GL_GOOGLE_cpp_style_line_directive : require\n#line %d \"%s\"\n",
+                 line_of(body.data, ver_end) + 1, name);
+    else
+        snprintf(lineinfo, sizeof lineinfo, "#line 2\n");
     ok = ok && sb_append(&src, lineinfo, strlen(lineinfo)) &&
          sb_append(&src, ver_end + 1, strlen(ver_end + 1));
     free(body.data);
@@ -367,19 +447,17 @@ static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, cons
     glslang_shader_t *sh = glslang_shader_create(&input);
     glslang_program_t *prog = NULL;
     if (!sh) {
-        r = pg_fail(err, PG_ERR_SHADER, "shaders/%s: glslang_shader_create failed", name);
+        r = pg_fail(err, PG_ERR_SHADER, "%s%s: glslang_shader_create failed", shown, name);
         goto done;
     }
     if (!glslang_shader_preprocess(sh, &input) || !glslang_shader_parse(sh, &input)) {
-        r = pg_fail(err, PG_ERR_SHADER, "shaders/%s: compile failed:\n%s", name,
-                    glslang_shader_get_info_log(sh));
+        r = pg_fail(err, PG_ERR_SHADER, "%s%s: compile failed:\n%s", shown, name, glslang_shader_get_info_log(sh));
         goto done;
     }
     prog = glslang_program_create();
     glslang_program_add_shader(prog, sh);
     if (!glslang_program_link(prog, GLSLANG_MSG_SPV_RULES_BIT | GLSLANG_MSG_VULKAN_RULES_BIT)) {
-        r = pg_fail(err, PG_ERR_SHADER, "shaders/%s: link failed:\n%s", name,
-                    glslang_program_get_info_log(prog));
+        r = pg_fail(err, PG_ERR_SHADER, "%s%s: link failed:\n%s", shown, name, glslang_program_get_info_log(prog));
         goto done;
     }
     glslang_program_SPIRV_generate(prog, input.stage);
@@ -417,18 +495,10 @@ pg_result pg_shader_module_ex(pg_gpu *gpu, const char *name, VkShaderStageFlagBi
 {
     uint32_t *code;
     size_t words;
-    pg_result r = compile_for(name, stage, defines, n_defines, sources, n_sources, gpu->vulkan12, &code, &words, err);
+    const gen_sources gen = {sources, n_sources, NULL, NULL};
+    pg_result r = compile_for(name, stage, defines, n_defines, &gen, gpu->vulkan12, &code, &words, err);
     if (r) return r;
-    VkShaderModuleCreateInfo ci = {
-        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-        .codeSize = words * sizeof(uint32_t),
-        .pCode = code,
-    };
-    VkResult vr = vkCreateShaderModule(gpu->device, &ci, NULL, out);
+    r = pg_shader_module_words(gpu, name, code, words, out, err);
     free(code);
-    if (vr != VK_SUCCESS)
-        return pg_fail(err, PG_ERR_VULKAN, "vkCreateShaderModule(%s) failed: %s", name,
-                       pg_vk_result_name(vr));
-    pg_gpu_name(gpu, VK_OBJECT_TYPE_SHADER_MODULE, (uint64_t)*out, "%s", name);
-    return PG_OK;
+    return r;
 }

@@ -9,6 +9,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include <stdbool.h>
+
 #include "pg_common.h"
 
 #ifdef __cplusplus
@@ -40,6 +42,17 @@ pg_result pg_shader_compile_ex(const char *name, VkShaderStageFlagBits stage, co
 pg_result pg_shader_module_ex(struct pg_gpu *gpu, const char *name, VkShaderStageFlagBits stage,
                               const char *const *defines, uint32_t n_defines, const pg_shader_source *sources,
                               uint32_t n_sources, VkShaderModule *out, pg_error *err);
+
+/* A user's shader file (the `shader` pass type): path is the file itself (any folder; the caller
+ * confines it). Its `#include "x"` lines read x from the file's own folder first (a name without
+ * ".." or a leading '/'), then from the shaders folder (passgraph's shader library). glslang's
+ * messages name the user's files and lines (GL_GOOGLE_cpp_style_line_directive). vulkan12: the
+ * Vulkan 1.2 / SPIR-V 1.5 target of a 1.2 device (pg_gpu.vulkan12), else 1.3 / 1.6. */
+pg_result pg_shader_compile_user(const char *path, VkShaderStageFlagBits stage, const char *const *defines,
+                                 uint32_t n_defines, bool vulkan12, uint32_t **spirv, size_t *n_words, pg_error *err);
+/* A VkShaderModule over SPIR-V words, named name. */
+pg_result pg_shader_module_words(struct pg_gpu *gpu, const char *name, const uint32_t *code, size_t words,
+                                 VkShaderModule *out, pg_error *err);
 
 #ifdef __cplusplus
 }

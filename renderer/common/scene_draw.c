@@ -1,5 +1,7 @@
 #include "scene_draw.h"
 
+#include <stdlib.h>
+
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
@@ -31,6 +33,22 @@ static pg_vertex_input scene_vertex_input(bool vertex_colors, bool uv1)
         v.attributes[v.n_attributes++] = (VkVertexInputAttributeDescription){5, 2, VK_FORMAT_R32G32_SFLOAT, 0};
     }
     return v;
+}
+
+/* The pass's fragment shader: one of the shaders folder, or a user's file (fragment_user). */
+static pg_result fragment_module(pg_gpu *gpu, const pg_scene_draw_desc *d, const char *const *defs, uint32_t n,
+                                 VkShaderModule *out, pg_error *err)
+{
+    if (!d->fragment_user)
+        return pg_shader_module(gpu, d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, out, err);
+    uint32_t *code;
+    size_t words;
+    pg_result r = pg_shader_compile_user(d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, gpu->vulkan12,
+                                         &code, &words, err);
+    if (r) return r;
+    r = pg_shader_module_words(gpu, d->fragment_shader, code, words, out, err);
+    free(code);
+    return r;
 }
 
 pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_draw_desc *d, pg_scene_draw *out,
@@ -68,7 +86,7 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     for (uint32_t i = 0; i < d->n_extra_defines; i++) defs[n++] = d->extra_defines[i];
     VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE, fs_mask = VK_NULL_HANDLE;
     if ((r = pg_shader_module(gpu, "scene.vert", VK_SHADER_STAGE_VERTEX_BIT, defs, n, &vs, err))) goto out;
-    if ((r = pg_shader_module(gpu, d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, &fs, err))) goto out;
+    if ((r = fragment_module(gpu, d, defs, n, &fs, err))) goto out;
     const pg_vertex_input vin = scene_vertex_input(out->vertex_colors, out->uv1);
     pg_gfx_pipeline_desc gd = {
         .layout = out->layout,
@@ -90,7 +108,7 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     out->depth_equal = d->depth_equal;
     if (has_mask && !d->blend && !d->depth_equal && PG_SCENE_OF(ctx)->n_draws - PG_SCENE_OF(ctx)->n_blend_draws > PG_SCENE_OF(ctx)->n_opaque_draws) {
         defs[n++] = "PG_ALPHA_MASK";
-        if ((r = pg_shader_module(gpu, d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, &fs_mask, err)))
+        if ((r = fragment_module(gpu, d, defs, n, &fs_mask, err)))
             goto out;
         gd.fs = fs_mask;
         char name[PG_NAME_MAX + 16];

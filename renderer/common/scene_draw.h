@@ -41,6 +41,7 @@ typedef struct pg_scene_draw {
 
 typedef struct pg_scene_draw_desc {
     const char *fragment_shader;      /* e.g. "forward.frag" */
+    bool fragment_user;               /* fragment_shader is a user's file (pg_shader_compile_user) */
     const pg_scene_draw_features *features; /* what the pass's declare chose (its params) */
     VkDescriptorSetLayout pass_layout;/* set 2 (may be VK_NULL_HANDLE) */
     uint32_t n_color;

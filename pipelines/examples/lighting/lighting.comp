@@ -1,0 +1,51 @@
+#version 460
+// lighting.comp - a user lighting pass over the cluster lists (pipelines/examples/lighting/
+// lighting.json). Per pixel of the float G-buffer: find the pixel's cluster as the built-in passes
+// do (cluster.glsl), then sum its lights with this example's own model,
+//   c = albedo x (sum over the list of colour x max(N.L, 0) x f(d) + ambient + frame ambient),
+//   f(d) = max(1 - (d/R)^2, 0)^2 / (1 + d^2),   R = the light's range (pos_radius.w),
+// a softened inverse square that reaches 0 at the range. tests/gpu/test_gpu_user_passes.c
+// evaluates it on the CPU.
+#include "common.glsl"
+FRAME_UNIFORMS_BLOCK
+#include "cluster.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 2, binding = 0, std430) readonly buffer Lights { Light lights[]; };
+layout(set = 2, binding = 1, std430) readonly buffer ClusterRecords { uvec4 cluster_records[]; };
+layout(set = 2, binding = 2, std430) readonly buffer ClusterLights { uint cluster_lights[]; };
+layout(set = 2, binding = 3) uniform sampler2D positions; // world position, w = 0 where no surface
+layout(set = 2, binding = 4) uniform sampler2D normals;
+layout(set = 2, binding = 5) uniform sampler2D albedo;
+layout(set = 2, binding = 6, rgba16f) uniform writeonly image2D hdr_out;
+layout(push_constant) uniform Params {
+    float ambient;
+} params;
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(hdr_out)))) return;
+    vec4 P = texelFetch(positions, p, 0);
+    if (P.w == 0.0) {
+        imageStore(hdr_out, p, vec4(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+    vec3 N = normalize(texelFetch(normals, p, 0).xyz);
+    vec3 rel = P.xyz - frame.camera_pos.xyz;
+    float view_depth = -PG_REL_TO_VIEW(rel).z;
+    uvec3 grid = uvec3(GRID_X, GRID_Y, GRID_Z);
+    uvec3 cc = pg_cluster_coord(vec2(p) + 0.5, vec2(frame.counts.zw), view_depth, frame.clip.x, frame.clip.y, grid);
+    uvec4 rec = cluster_records[pg_cluster_index(cc, grid)];
+    vec3 sum = vec3(0.0);
+    for (uint k = 0u; k < rec.y; k++) {
+        Light L = lights[cluster_lights[rec.x + k]];
+        vec3 d = L.pos_radius.xyz - P.xyz;
+        float dist = length(d);
+        float R = L.pos_radius.w;
+        if (!(dist < R) || dist <= 0.0) continue;
+        float w = 1.0 - (dist / R) * (dist / R);
+        sum += L.color.rgb * max(dot(N, d / dist), 0.0) * (w * w / (1.0 + dist * dist));
+    }
+    vec3 c = texelFetch(albedo, p, 0).rgb * (sum + params.ambient + frame.clip.z);
+    imageStore(hdr_out, p, vec4(pg_hdr_sanitize(c), 1.0));
+}

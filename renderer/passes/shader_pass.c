@@ -1,0 +1,208 @@
+/* shader_pass.c - the `shader` pass type: a pass written by the user in the pipeline JSON and a
+ * GLSL file (docs/user-passes.md), in three forms:
+ *   compute     a compute shader dispatched per pixel of an image, per element of a buffer, or
+ *               a fixed number of workgroups;
+ *   fullscreen  a fragment shader over one full-screen triangle into colour targets (blend none,
+ *               add or over);
+ *   draw        the scene's draws through passgraph's vertex path (scene.vert, materials, the
+ *               posed geometry) with the user's fragment shader, into targets with a depth test.
+ * Set 0 is the frame block, set 1 the scene (draw; an empty set otherwise), set 2 the user's
+ * bindings, at the binding numbers the shader gave them. Push constants carry options.params, a
+ * run-time value: a new value re-creates nothing (update()). declare: shader_pass_declare.c. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "graph_execute.h"
+#include "pass_set.h"
+#include "shader.h"
+#include "shader_pass.h"
+#include "vk_pipeline.h"
+
+typedef struct shader_pass {
+    pg_pass_set set, empty;
+    VkSampler sampler;
+    VkPipelineLayout layout;
+    VkPipeline pipeline;
+    pg_scene_draw draw;
+    _Alignas(16) unsigned char push[SP_PUSH_MAX];
+} shader_pass;
+
+static pg_result user_module(pg_gpu *gpu, const char *path, VkShaderStageFlagBits stage, const pg_pass_decl *decl,
+                             VkShaderModule *out, pg_error *err)
+{
+    const char *defs[PG_MAX_DEFINES];
+    const uint32_t nd = pg_decl_define_list(decl, defs, PG_MAX_DEFINES);
+    uint32_t *code;
+    size_t words;
+    pg_result r = pg_shader_compile_user(path, stage, defs, nd, gpu->vulkan12, &code, &words, err);
+    if (r) return r;
+    r = pg_shader_module_words(gpu, path, code, words, out, err);
+    free(code);
+    return r;
+}
+
+static pg_result make_set(shader_pass *s, const pg_pass_create_ctx *ctx, const sp_params *pa, pg_error *err)
+{
+    pg_set_binding b[SP_MAX_BINDINGS];
+    uint32_t numbers[SP_MAX_BINDINGS];
+    bool sampled = false;
+    for (uint32_t k = 0; k < pa->n_bindings; k++) sampled |= pa->bindings[k].type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    pg_result r;
+    if (sampled && (r = pg_sampler_create(ctx->gpu, (VkFilter)pa->filter, (VkSamplerAddressMode)pa->address,
+                                          &s->sampler, err)))
+        return r;
+    for (uint32_t k = 0; k < pa->n_bindings; k++) {
+        b[k] = (pg_set_binding){(VkDescriptorType)pa->bindings[k].type, pg_ctx_res(ctx, pa->bindings[k].slot),
+                                s->sampler, 0};
+        numbers[k] = pa->bindings[k].number;
+    }
+    return pg_pass_set_create_numbered(ctx->gpu, pa->n_bindings, b, numbers, ctx->pass->name, &s->set, err);
+}
+
+static pg_result create_fullscreen(shader_pass *s, const pg_pass_create_ctx *ctx, const sp_params *pa, pg_error *err)
+{
+    pg_gpu *gpu = ctx->gpu;
+    VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE;
+    pg_result r = pg_shader_module(gpu, "fullscreen.vert", VK_SHADER_STAGE_VERTEX_BIT, NULL, 0, &vs, err);
+    if (!r) r = user_module(gpu, pa->path, VK_SHADER_STAGE_FRAGMENT_BIT, &ctx->pass->decl, &fs, err);
+    if (!r) {
+        pg_gfx_pipeline_desc d = {
+            .layout = s->layout,
+            .vs = vs,
+            .fs = fs,
+            .n_color = pa->n_targets,
+            .blend_over = pa->blend == SP_BLEND_OVER,
+            .blend_add = pa->blend == SP_BLEND_ADD,
+        };
+        for (uint32_t t = 0; t < pa->n_targets; t++) d.color_formats[t] = pg_ctx_res(ctx, pa->targets[t])->format;
+        r = pg_gfx_pipeline_create(gpu, &d, ctx->pass->name, &s->pipeline, err);
+    }
+    if (vs) vkDestroyShaderModule(gpu->device, vs, NULL);
+    if (fs) vkDestroyShaderModule(gpu->device, fs, NULL);
+    return r;
+}
+
+static pg_result create_draw(shader_pass *s, const pg_pass_create_ctx *ctx, const sp_params *pa, pg_error *err)
+{
+    pg_scene_draw_desc d = {
+        .fragment_shader = pa->path,
+        .fragment_user = true,
+        .features = &pa->draw,
+        .pass_layout = s->set.layout,
+        .n_color = pa->n_targets,
+        .depth_format = pg_ctx_res(ctx, pa->depth)->format,
+        .blend = pa->blend == SP_BLEND_OVER,
+        .depth_equal = pa->depth_compare == VK_COMPARE_OP_EQUAL,
+    };
+    for (uint32_t t = 0; t < pa->n_targets; t++) d.color_formats[t] = pg_ctx_res(ctx, pa->targets[t])->format;
+    return pg_scene_draw_create(ctx, &d, &s->draw, err);
+}
+
+static pg_result sp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
+{
+    shader_pass *s = self;
+    const sp_params *pa = PG_PARAMS(ctx, sp_params);
+    memcpy(s->push, pa->push, sizeof s->push);
+    pg_result r = make_set(s, ctx, pa, err);
+    if (r) return r;
+    if (pa->form == SP_DRAW) return create_draw(s, ctx, pa, err);
+    if ((r = pg_pass_set_create(ctx->gpu, 0, NULL, ctx->pass->name, &s->empty, err))) return r;
+    VkDescriptorSetLayout sets[3] = {ctx->frame_layout, s->empty.layout, s->set.layout};
+    if ((r = pg_pipeline_layout_create(ctx->gpu, 3, sets, pa->push_size, &s->layout, err))) return r;
+    if (pa->form == SP_FULLSCREEN) return create_fullscreen(s, ctx, pa, err);
+    VkShaderModule cs;
+    if ((r = user_module(ctx->gpu, pa->path, VK_SHADER_STAGE_COMPUTE_BIT, &ctx->pass->decl, &cs, err))) return r;
+    r = pg_compute_pipeline_create(ctx->gpu, s->layout, cs, ctx->pass->name, &s->pipeline, err);
+    vkDestroyShaderModule(ctx->gpu->device, cs, NULL);
+    return r;
+}
+
+static uint32_t div_up(uint64_t n, uint32_t d)
+{
+    uint64_t g = (n + d - 1) / d;
+    return g > 65535 ? 65535 : (uint32_t)g;
+}
+
+static void bind_and_push(const shader_pass *s, const pg_pass_record_ctx *ctx, const sp_params *pa,
+                          VkPipelineBindPoint point)
+{
+    VkDescriptorSet sets[3] = {ctx->frame_set, s->empty.set, s->set.set};
+    vkCmdBindPipeline(ctx->cmd, point, s->pipeline);
+    vkCmdBindDescriptorSets(ctx->cmd, point, s->layout, 0, 3, sets, 0, NULL);
+    if (pa->push_size) vkCmdPushConstants(ctx->cmd, s->layout, PG_PUSH_STAGES, 0, pa->push_size, s->push);
+}
+
+static void begin_targets(const pg_pass_record_ctx *ctx, const sp_params *pa)
+{
+    uint32_t slots[SP_MAX_TARGETS];
+    VkClearColorValue clears[SP_MAX_TARGETS];
+    memset(clears, 0, sizeof clears);
+    for (uint32_t t = 0; t < pa->n_targets; t++) slots[t] = pg_plan_slot_of(ctx->pass, pa->targets[t]);
+    const int depth = pg_slot_ok(pa->depth) ? (int)pg_plan_slot_of(ctx->pass, pa->depth) : -1;
+    pg_pass_begin_rendering(ctx, pa->n_targets, slots, pa->clear_targets ? clears : NULL, depth, pa->depth_clear, 1.0f);
+}
+
+static void sp_record(void *self, const pg_pass_record_ctx *ctx)
+{
+    shader_pass *s = self;
+    const sp_params *pa = PG_PARAMS(ctx, sp_params);
+    if (pa->form == SP_COMPUTE) {
+        bind_and_push(s, ctx, pa, VK_PIPELINE_BIND_POINT_COMPUTE);
+        uint32_t g[3] = {pa->groups[0], pa->groups[1], pa->groups[2]};
+        if (pa->dispatch == SP_DISPATCH_IMAGE) {
+            const pg_phys_resource *img = pg_ctx_res(ctx, pa->dispatch_slot);
+            g[0] = div_up(img->width, pa->local[0]);
+            g[1] = div_up(img->height, pa->local[1]);
+            g[2] = 1;
+        } else if (pa->dispatch == SP_DISPATCH_BUFFER) {
+            const pg_phys_resource *buf = pg_ctx_res(ctx, pa->dispatch_slot);
+            g[0] = div_up(buf->size / pa->dispatch_stride, pa->local[0]);
+            g[1] = g[2] = 1;
+        }
+        if (g[0] && g[1] && g[2]) vkCmdDispatch(ctx->cmd, g[0], g[1], g[2]);
+        return;
+    }
+    begin_targets(ctx, pa);
+    if (pa->form == SP_DRAW) {
+        pg_scene_draw_record(&s->draw, ctx, s->set.set);
+    } else {
+        bind_and_push(s, ctx, pa, VK_PIPELINE_BIND_POINT_GRAPHICS);
+        vkCmdDraw(ctx->cmd, 3, 1, 0, 0);
+    }
+    vkCmdEndRendering(ctx->cmd);
+}
+
+static void sp_destroy(void *self, pg_gpu *gpu)
+{
+    shader_pass *s = self;
+    pg_scene_draw_destroy(gpu, &s->draw);
+    if (s->pipeline) vkDestroyPipeline(gpu->device, s->pipeline, NULL);
+    if (s->layout) vkDestroyPipelineLayout(gpu->device, s->layout, NULL);
+    if (s->sampler) vkDestroySampler(gpu->device, s->sampler, NULL);
+    pg_pass_set_destroy(gpu, &s->set);
+    pg_pass_set_destroy(gpu, &s->empty);
+}
+
+/* options.params are push constants: a new value re-creates nothing */
+static const char *const k_runtime[] = {"params", NULL};
+
+static pg_result sp_update(void *self, const void *params, pg_error *err)
+{
+    (void)err;
+    shader_pass *s = self;
+    memcpy(s->push, ((const sp_params *)params)->push, sizeof s->push);
+    return PG_OK;
+}
+
+const pg_pass_type pg_pass_shader = {
+    .name = "shader",
+    .summary = "user pass: a GLSL compute, full-screen or scene-draw shader named in the pipeline JSON",
+    .instance_size = sizeof(shader_pass),
+    .params_size = sizeof(sp_params),
+    .declare = pg_shader_pass_declare,
+    .create = sp_create,
+    .record = sp_record,
+    .destroy = sp_destroy,
+    .runtime_options = k_runtime,
+    .update = sp_update,
+};
