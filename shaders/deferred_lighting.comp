@@ -24,6 +24,7 @@ FRAME_UNIFORMS_BLOCK
 #include "octahedral.glsl"
 #include "gbuffer_pack.glsl"
 #include "depth_reconstruct.glsl"
+#include "gbuffer_read.glsl"
 
 #ifndef PG_TILE
 #define PG_TILE 8
@@ -104,29 +105,13 @@ void main()
 #endif
     vec2 frag = vec2(px) + 0.5;
     vec2 uv = frag / vec2(size);
-    Surface s;
+    Surface s = pg_surface_default();
     vec3 P = vec3(0.0); // camera-relative
     float view_depth = 0.0;
-    s.albedo = vec3(0.0);
-    s.normal = vec3(0.0, 0.0, 1.0);
-    s.specular = 0.0;
-    s.shininess = 1.0;
-    s.alpha = 1.0;
-    s.emissive = vec3(0.0);
-    s.occlusion = 1.0;
     if (lit) {
 #if defined(PG_GBUFFER_FLOAT)
-    P = texelFetch(g_position, px, 0).xyz - frame.camera_pos.xyz; // world -> camera-relative
-    vec4 n = texelFetch(g_normal, px, 0);
-    vec4 a = texelFetch(g_albedo, px, 0);
-    s.normal = n.xyz;
-    s.shininess = n.w;
-    s.albedo = a.rgb;
-    s.specular = a.a;
-#ifdef PG_PBR
-    s.occlusion = pg_gb_occlusion_from_float(texelFetch(g_position, px, 0).w); // gbuffer.frag
-#endif
-    view_depth = -PG_REL_TO_VIEW(P).z;
+    pg_gbuffer_read_float(texelFetch(g_position, px, 0), texelFetch(g_normal, px, 0), texelFetch(g_albedo, px, 0), s, P,
+                          view_depth);
 #elif defined(PG_GBUFFER_VISIBILITY)
     SurfaceInput si;
     uint material;
@@ -134,41 +119,9 @@ void main()
     s = pg_surface_material(si, material);
     view_depth = -PG_REL_TO_VIEW(P).z;
 #elif defined(PG_GBUFFER_OCT16)
-    // via the linear view depth: finite for any near/far (unprojecting through inv_proj breaks
-    // down when far/near > 2^24, where proj[10] rounds to -1)
-    view_depth = PG_ORTHO ? pg_ortho_view_depth_from_depth(depth, frame.clip.x, frame.clip.y)
-                          : pg_view_depth_from_depth(depth, frame.clip.x, frame.clip.y);
-    vec3 pv = PG_ORTHO ? pg_ortho_view_pos_from_view_depth(uv, view_depth, frame.proj)
-                       : pg_view_pos_from_view_depth(uv, view_depth, frame.proj);
-    P = PG_VIEW_TO_REL(pv);
-    vec4 n = texelFetch(g_normal, px, 0);
-    vec4 a = texelFetch(g_albedo, px, 0); // sRGB decoded by the sampler
-    s.normal = pg_oct_decode(n.xy * 2.0 - 1.0);
-#ifdef PG_PBR
-    s.shininess = n.z; // roughness
-    s.occlusion = pg_gb_occlusion_from_unorm(n.w);
+    pg_gbuffer_read_oct16(depth, uv, texelFetch(g_normal, px, 0), texelFetch(g_albedo, px, 0), s, P, view_depth);
 #else
-    s.shininess = n.z * 512.0;
-#endif
-    s.albedo = a.rgb;
-    s.specular = a.a;
-#else
-    uvec4 g = texelFetch(g_packed, px, 0);
-    s.normal = pg_oct_unpack_unorm16(g.x);
-    vec4 a = unpackUnorm4x8(g.y);
-    s.albedo = pg_srgb_decode(a.rgb);
-    s.specular = a.a;
-#ifdef PG_PBR
-    vec2 ro = unpackUnorm2x16(g.z); // roughness, occlusion
-    s.shininess = ro.x;
-    s.occlusion = pg_gb_occlusion_from_unorm(ro.y);
-#else
-    s.shininess = uintBitsToFloat(g.z);
-#endif
-    view_depth = uintBitsToFloat(g.w);
-    vec3 pv = PG_ORTHO ? pg_ortho_view_pos_from_view_depth(uv, view_depth, frame.proj)
-                       : pg_view_pos_from_view_depth(uv, view_depth, frame.proj);
-    P = PG_VIEW_TO_REL(pv);
+    pg_gbuffer_read_packed(texelFetch(g_packed, px, 0), uv, s, P, view_depth);
 #endif
 #ifdef PG_DEFERRED_EMISSIVE
     s.emissive = texelFetch(g_emissive, px, 0).rgb;

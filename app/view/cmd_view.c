@@ -261,10 +261,10 @@ static bool initial_state(viewer *v, const pg_cli_common *opt)
     return true;
 }
 
-/* every 0.5 s: a change on disk (pipeline JSON or shader) rescans and reloads the current one */
+/* every 0.1 s: a change on disk (pipeline JSON or shader) rescans and reloads the current one */
 static void watch_disk(viewer *v, double t)
 {
-    if (t - v->last_watch <= 0.5) return;
+    if (t - v->last_watch <= 0.1) return;
     v->last_watch = t;
     double sig = watch_signature(v);
     if (sig == v->watch_sig) return;

@@ -36,12 +36,33 @@ static void scan_dir(viewer *v, const char *dir)
     }
 }
 
+/* each folder under dir (pipelines/examples/NAME/: the user passes written in JSON + GLSL) */
+static void scan_subdirs(viewer *v, const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d) return;
+    char subs[MAX_PIPELINES][PG_PATH_MAX];
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) && n < MAX_PIPELINES) {
+        if (e->d_name[0] == '.') continue;
+        snprintf(subs[n], PG_PATH_MAX, "%s/%s", dir, e->d_name);
+        struct stat st;
+        if (stat(subs[n], &st) == 0 && S_ISDIR(st.st_mode)) n++;
+    }
+    closedir(d);
+    qsort(subs, (size_t)n, PG_PATH_MAX, cmp_str);
+    for (int i = 0; i < n; i++) scan_dir(v, subs[i]);
+}
+
 void scan_pipelines(viewer *v, const char *current_path)
 {
     v->n_pipelines = 0;
     char dir[PG_PATH_MAX];
     pg_data_path(dir, sizeof dir, "pipelines");
     scan_dir(v, dir);
+    pg_data_path(dir, sizeof dir, "pipelines/examples");
+    scan_subdirs(v, dir);
     if (v->extra_dir[0]) scan_dir(v, v->extra_dir);
     v->current = -1;
     char want[PG_PATH_MAX], have[PG_PATH_MAX];
@@ -177,41 +198,47 @@ void reload(viewer *v)
     v->reloads++;
 }
 
-/* Sum of the modification times of everything a pipeline or shader edit touches. */
+/* The modification times and sizes of the regular files in dir, summed. */
+static double dir_signature(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d) return 0;
+    double sig = 0;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        if (e->d_name[0] == '.') continue;
+        char p[PG_PATH_MAX * 2];
+        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+        struct stat st;
+        if (stat(p, &st) == 0 && S_ISREG(st.st_mode))
+            sig += (double)st.st_mtim.tv_sec + st.st_mtim.tv_nsec * 1e-9 + (double)st.st_size * 1e-3;
+    }
+    closedir(d);
+    return sig;
+}
+
+/* Sum of the modification times of everything a pipeline or shader edit touches: the data
+ * folder's pipelines, fragments and shaders, --pipelines DIR, and the folder of every listed
+ * pipeline (a user pass's GLSL lives next to its pipeline file: pipelines/examples/NAME/). */
 double watch_signature(const viewer *v)
 {
-    const char *dirs[4];
-    char a[PG_PATH_MAX], b[PG_PATH_MAX], c[PG_PATH_MAX];
-    pg_data_path(a, sizeof a, "pipelines");
-    pg_data_path(b, sizeof b, "pipelines/fragments");
-    pg_data_path(c, sizeof c, "shaders");
+    char dirs[4 + MAX_PIPELINES][PG_PATH_MAX];
     int n = 0;
-    dirs[n++] = a;
-    dirs[n++] = b;
-    dirs[n++] = c;
-    if (v->extra_dir[0]) dirs[n++] = v->extra_dir;
-    double sig = 0;
-    for (int i = 0; i < n; i++) {
-        DIR *d = opendir(dirs[i]);
-        if (!d) continue;
-        struct dirent *e;
-        while ((e = readdir(d))) {
-            if (e->d_name[0] == '.') continue;
-            char p[PG_PATH_MAX * 2];
-            snprintf(p, sizeof p, "%s/%s", dirs[i], e->d_name);
-            struct stat st;
-            if (stat(p, &st) == 0 && S_ISREG(st.st_mode))
-                sig += (double)st.st_mtim.tv_sec + st.st_mtim.tv_nsec * 1e-9 + (double)st.st_size * 1e-3;
-        }
-        closedir(d);
-    }
-    /* listed pipelines outside those folders (a --pipeline elsewhere); independent of which one
-     * is selected, so switching is not mistaken for an edit */
+    pg_data_path(dirs[n++], PG_PATH_MAX, "pipelines");
+    pg_data_path(dirs[n++], PG_PATH_MAX, "pipelines/fragments");
+    pg_data_path(dirs[n++], PG_PATH_MAX, "shaders");
+    if (v->extra_dir[0]) pg_strlcpy(dirs[n++], v->extra_dir, PG_PATH_MAX);
     for (int i = 0; i < v->n_pipelines; i++) {
-        bool inside = false;
-        for (int k = 0; k < n; k++) inside |= strncmp(v->paths[i], dirs[k], strlen(dirs[k])) == 0;
-        struct stat st;
-        if (!inside && stat(v->paths[i], &st) == 0) sig += (double)st.st_mtim.tv_sec + st.st_mtim.tv_nsec * 1e-9;
+        char dir[PG_PATH_MAX];
+        pg_strlcpy(dir, v->paths[i], sizeof dir);
+        char *slash = strrchr(dir, '/');
+        if (slash) *slash = 0;
+        else pg_strlcpy(dir, ".", sizeof dir);
+        bool seen = false;
+        for (int k = 0; k < n && !seen; k++) seen = !strcmp(dirs[k], dir);
+        if (!seen) pg_strlcpy(dirs[n++], dir, PG_PATH_MAX);
     }
+    double sig = 0;
+    for (int i = 0; i < n; i++) sig += dir_signature(dirs[i]);
     return sig;
 }

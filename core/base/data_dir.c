@@ -1,6 +1,10 @@
 /* data_dir.c - where passgraph's data (shaders/, pipelines/, assets/) lives (pg_common.h). */
+#ifndef _GNU_SOURCE
+#define _GNU_SOURCE /* dladdr */
+#endif
 #include "pg_common.h"
 
+#include <dlfcn.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,6 +43,24 @@ static void find_data_dir(void)
             }
             snprintf(cand, sizeof cand, "%s", exe);
             if (dir_has_shaders(cand)) {
+                pg_strlcpy(g_data_dir, cand, sizeof g_data_dir);
+                return;
+            }
+        }
+    }
+    /* passgraph as a shared library (libpassgraph.so, docs/embedding.md): <prefix>/share/passgraph
+     * next to the library's <prefix>/lib[/multiarch] */
+    Dl_info info;
+    if (dladdr((void *)&find_data_dir, &info) && info.dli_fname && info.dli_fname[0] == '/') {
+        char lib[PG_PATH_MAX];
+        pg_strlcpy(lib, info.dli_fname, sizeof lib);
+        for (int up = 0; up < 3; up++) {
+            char *slash = strrchr(lib, '/');
+            if (!slash) break;
+            *slash = 0;
+            char cand[PG_PATH_MAX + 32];
+            snprintf(cand, sizeof cand, "%s/share/passgraph", lib);
+            if (up > 0 && dir_has_shaders(cand)) {
                 pg_strlcpy(g_data_dir, cand, sizeof g_data_dir);
                 return;
             }

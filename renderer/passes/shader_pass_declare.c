@@ -23,18 +23,6 @@
 #include "shader_pass_declare.h"
 #include "spirv_reflect.h"
 
-pg_result sp_fail(const sp_ctx *c, pg_result code, const char *sub, const char *fmt, ...)
-{
-    char msg[PG_ERROR_MSG_MAX];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    const pg_pass_desc *d = c->in->desc;
-    return pg_fail(c->err, code, "%s: %s.options%s%s: pass '%s': %s", d->file, d->json_path, sub ? "." : "",
-                   sub ? sub : "", d->name, msg);
-}
-
 static const char *const k_forms[] = {"compute", "fullscreen", "draw"};
 
 /* The SPIR-V image format a storage image of this pipeline format declares (0: none matches). */
@@ -66,27 +54,27 @@ static pg_result read_form(sp_ctx *c)
         const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, k_forms[i]);
         if (!v) continue;
         if (found >= 0)
-            return sp_fail(c, PG_ERR_SCHEMA, k_forms[i], "give one of compute, fullscreen, draw (also has %s)",
+            return pg_sp_fail(c, PG_ERR_SCHEMA, k_forms[i], "give one of compute, fullscreen, draw (also has %s)",
                            k_forms[found]);
         if (!cJSON_IsString(v) || !v->valuestring[0])
-            return sp_fail(c, PG_ERR_SCHEMA, k_forms[i], "expected the shader's file name (a string)");
+            return pg_sp_fail(c, PG_ERR_SCHEMA, k_forms[i], "expected the shader's file name (a string)");
         found = i;
         c->rel = v->valuestring;
     }
     if (found < 0)
-        return sp_fail(c, PG_ERR_SCHEMA, NULL,
+        return pg_sp_fail(c, PG_ERR_SCHEMA, NULL,
                        "a shader pass names its shader file under one of \"compute\", \"fullscreen\", \"draw\"");
     c->form_key = k_forms[found];
     c->p->form = (uint8_t)found;
     pg_error e;
     if (pg_pipeline_resolve_file(c->in->desc->file, c->in->pipeline ? c->in->pipeline->path : NULL, c->rel,
                                  c->p->path, sizeof c->p->path, &e))
-        return sp_fail(c, e.code, c->form_key, "shader %s", e.msg);
+        return pg_sp_fail(c, e.code, c->form_key, "shader %s", e.msg);
     struct stat st;
     if (stat(c->p->path, &st) != 0)
-        return sp_fail(c, PG_ERR_IO, c->form_key, "cannot open shader '%s' (%s)", c->rel, c->p->path);
+        return pg_sp_fail(c, PG_ERR_IO, c->form_key, "cannot open shader '%s' (%s)", c->rel, c->p->path);
     if (!S_ISREG(st.st_mode))
-        return sp_fail(c, PG_ERR_IO, c->form_key, "shader '%s' is not a regular file", c->rel);
+        return pg_sp_fail(c, PG_ERR_IO, c->form_key, "shader '%s' is not a regular file", c->rel);
     return PG_OK;
 }
 
@@ -104,14 +92,14 @@ static pg_result read_defines(sp_ctx *c)
 {
     const cJSON *defs = cJSON_GetObjectItemCaseSensitive(c->in->desc->options, "defines");
     if (!defs) return PG_OK;
-    if (!cJSON_IsObject(defs)) return sp_fail(c, PG_ERR_SCHEMA, "defines", "expected an object {\"NAME\": value}");
+    if (!cJSON_IsObject(defs)) return pg_sp_fail(c, PG_ERR_SCHEMA, "defines", "expected an object {\"NAME\": value}");
     const cJSON *it;
     cJSON_ArrayForEach(it, defs)
     {
         char sub[PG_NAME_MAX + 16];
         snprintf(sub, sizeof sub, "defines.%s", it->string);
         if (!is_identifier(it->string) || strlen(it->string) >= 40 || !strncmp(it->string, "PG_", 3))
-            return sp_fail(c, PG_ERR_SCHEMA, sub, "a define is a C identifier under 40 characters, not starting PG_");
+            return pg_sp_fail(c, PG_ERR_SCHEMA, sub, "a define is a C identifier under 40 characters, not starting PG_");
         char d[PG_NAME_MAX];
         if (cJSON_IsBool(it)) {
             if (cJSON_IsFalse(it)) continue;
@@ -123,9 +111,9 @@ static pg_result read_defines(sp_ctx *c)
         } else if (cJSON_IsString(it) && is_identifier(it->valuestring) && strlen(it->valuestring) < 20) {
             snprintf(d, sizeof d, "%s=%s", it->string, it->valuestring);
         } else {
-            return sp_fail(c, PG_ERR_SCHEMA, sub, "expected a finite number, true/false or an identifier");
+            return pg_sp_fail(c, PG_ERR_SCHEMA, sub, "expected a finite number, true/false or an identifier");
         }
-        if (c->out->n_defines >= PG_MAX_DEFINES) return sp_fail(c, PG_ERR_LIMIT, sub, "more than %d defines", PG_MAX_DEFINES);
+        if (c->out->n_defines >= PG_MAX_DEFINES) return pg_sp_fail(c, PG_ERR_LIMIT, sub, "more than %d defines", PG_MAX_DEFINES);
         pg_decl_define(c->out, d);
     }
     return PG_OK;
@@ -143,10 +131,10 @@ static pg_result compile_and_reflect(sp_ctx *c)
     size_t n_words = 0;
     pg_error e;
     if (pg_shader_compile_user(c->p->path, stage, defs, n, false, &words, &n_words, &e))
-        return sp_fail(c, PG_ERR_SHADER, c->form_key, "%s", e.msg);
+        return pg_sp_fail(c, PG_ERR_SHADER, c->form_key, "%s", e.msg);
     pg_result r = pg_spirv_reflect(words, n_words, &c->refl, &e);
     free(words);
-    if (r) return sp_fail(c, r, c->form_key, "shader '%s': %s", c->rel, e.msg);
+    if (r) return pg_sp_fail(c, r, c->form_key, "shader '%s': %s", c->rel, e.msg);
     return PG_OK;
 }
 
@@ -159,7 +147,7 @@ static pg_result check_sets(sp_ctx *c)
         if (b->set == 0 && b->binding == 0 && b->kind == PG_SPV_UNIFORM_BUFFER && !strcmp(b->type_name, "FrameUniforms"))
             continue;
         if (b->set == 1 && c->p->form == SP_DRAW) continue;
-        return sp_fail(c, PG_ERR_SHADER, c->form_key,
+        return pg_sp_fail(c, PG_ERR_SHADER, c->form_key,
                        "shader '%s' binding '%s' (set %u, binding %u): a user shader's resources are in set %d "
                        "(set 0 is the frame block FRAME_UNIFORMS_BLOCK of common.glsl%s)",
                        c->rel, b->name, b->set, b->binding, SP_USER_SET,
@@ -196,19 +184,6 @@ static bool access_from_name(const char *s, pg_access *out)
     return false;
 }
 
-bool sp_access_writes(pg_access a)
-{
-    return a == PG_ACCESS_STORAGE_WRITE || a == PG_ACCESS_STORAGE_RW;
-}
-
-/* Index of name in the pass's reads (writes) list, -1 if absent. */
-int sp_find_in(const char (*list)[PG_NAME_MAX], uint32_t n, const char *name)
-{
-    for (uint32_t i = 0; i < n; i++)
-        if (!strcmp(list[i], name)) return (int)i;
-    return -1;
-}
-
 /* The shader's kind against the resource and the access; qualifiers and formats. */
 static pg_result check_binding_kind(sp_ctx *c, const char *sub, const pg_spv_binding *b, const pg_resource_desc *rd,
                                     pg_access a)
@@ -229,38 +204,38 @@ static pg_result check_binding_kind(sp_ctx *c, const char *sub, const pg_spv_bin
         if (image || a == PG_ACCESS_SAMPLED || a == PG_ACCESS_UNIFORM) want = "a buffer bound storage_read/write/rw";
         break;
     default:
-        return sp_fail(c, PG_ERR_SHADER, sub,
+        return pg_sp_fail(c, PG_ERR_SHADER, sub,
                        "shader '%s' binding '%s' (set %u, binding %u) is a %s: use a combined sampler (sampler2D), "
                        "a storage image, a uniform or a storage buffer",
                        c->rel, b->name, b->set, b->binding, pg_spv_kind_name(b->kind));
     }
     if (want)
-        return sp_fail(c, PG_ERR_FORMAT, sub,
+        return pg_sp_fail(c, PG_ERR_FORMAT, sub,
                        "shader '%s' binding '%s' (set %u, binding %u) is a %s: it needs %s, not %s '%s' bound %s",
                        c->rel, b->name, b->set, b->binding, pg_spv_kind_name(b->kind), want,
                        image ? "image" : "buffer", rd->name, pg_access_name(a));
     if (b->kind == PG_SPV_STORAGE_IMAGE || b->kind == PG_SPV_STORAGE_BUFFER) {
-        if (b->non_writable && sp_access_writes(a))
-            return sp_fail(c, PG_ERR_FORMAT, sub,
+        if (b->non_writable && pg_sp_access_writes(a))
+            return pg_sp_fail(c, PG_ERR_FORMAT, sub,
                            "shader '%s' binding '%s' (set %u, binding %u) is readonly but bound %s", c->rel, b->name,
                            b->set, b->binding, pg_access_name(a));
         if (!b->non_writable && a == PG_ACCESS_STORAGE_READ)
-            return sp_fail(c, PG_ERR_FORMAT, sub,
+            return pg_sp_fail(c, PG_ERR_FORMAT, sub,
                            "shader '%s' binding '%s' (set %u, binding %u) is bound storage_read but the shader may "
                            "write it: declare it readonly",
                            c->rel, b->name, b->set, b->binding);
         if (b->non_readable && a != PG_ACCESS_STORAGE_WRITE)
-            return sp_fail(c, PG_ERR_FORMAT, sub,
+            return pg_sp_fail(c, PG_ERR_FORMAT, sub,
                            "shader '%s' binding '%s' (set %u, binding %u) is writeonly but bound %s", c->rel, b->name,
                            b->set, b->binding, pg_access_name(a));
     }
     if (b->kind == PG_SPV_STORAGE_IMAGE && b->image_format != spv_format_of(rd->format))
-        return sp_fail(c, PG_ERR_FORMAT, sub,
+        return pg_sp_fail(c, PG_ERR_FORMAT, sub,
                        "shader '%s' binding '%s' (set %u, binding %u) declares format %s but resource '%s' is %s",
                        c->rel, b->name, b->set, b->binding, pg_spv_image_format_name(b->image_format), rd->name,
                        pg_format_get(rd->format)->name);
     if (b->array_size != 1)
-        return sp_fail(c, PG_ERR_SHADER, sub, "shader '%s' binding '%s': arrays of resources are not bound by a "
+        return pg_sp_fail(c, PG_ERR_SHADER, sub, "shader '%s' binding '%s': arrays of resources are not bound by a "
                        "shader pass", c->rel, b->name);
     return PG_OK;
 }
@@ -276,7 +251,7 @@ static pg_result read_binding(sp_ctx *c, const cJSON *it, uint32_t k)
             b = &c->refl.bindings[i];
             c->binding_refl[k] = (int)i;
         }
-    if (!b) return sp_fail(c, PG_ERR_SHADER, sub, "shader '%s' has no binding '%s' in set %d", c->rel, it->string, SP_USER_SET);
+    if (!b) return pg_sp_fail(c, PG_ERR_SHADER, sub, "shader '%s' has no binding '%s' in set %d", c->rel, it->string, SP_USER_SET);
     const char *res = NULL;
     pg_access a = inferred_access(b);
     if (cJSON_IsString(it)) {
@@ -286,23 +261,23 @@ static pg_result read_binding(sp_ctx *c, const cJSON *it, uint32_t k)
         const cJSON *ac = cJSON_GetObjectItemCaseSensitive(it, "access");
         if (cJSON_IsString(r)) res = r->valuestring;
         if (ac && (!cJSON_IsString(ac) || !access_from_name(ac->valuestring, &a)))
-            return sp_fail(c, PG_ERR_SCHEMA, sub,
+            return pg_sp_fail(c, PG_ERR_SCHEMA, sub,
                            "access: expected sampled, storage_read, storage_write, storage_rw or uniform");
     }
-    if (!res) return sp_fail(c, PG_ERR_SCHEMA, sub, "expected a resource name or {\"resource\": R, \"access\": A}");
+    if (!res) return pg_sp_fail(c, PG_ERR_SCHEMA, sub, "expected a resource name or {\"resource\": R, \"access\": A}");
     const pg_resource_desc *rd = c->in->pipeline ? pg_pipeline_find_resource(c->in->pipeline, res) : NULL;
-    if (!rd) return sp_fail(c, PG_ERR_UNKNOWN_RESOURCE, sub, "no resource '%s' in the pipeline", res);
+    if (!rd) return pg_sp_fail(c, PG_ERR_UNKNOWN_RESOURCE, sub, "no resource '%s' in the pipeline", res);
     pg_result r = check_binding_kind(c, sub, b, rd, a);
     if (r) return r;
     const pg_pass_desc *d = c->in->desc;
-    const bool w = sp_access_writes(a);
-    int idx = w ? sp_find_in(d->writes, d->n_writes, res) : sp_find_in(d->reads, d->n_reads, res);
+    const bool w = pg_sp_access_writes(a);
+    int idx = w ? pg_sp_find_in(d->writes, d->n_writes, res) : pg_sp_find_in(d->reads, d->n_reads, res);
     if (idx < 0)
-        return sp_fail(c, PG_ERR_SCHEMA, sub, "resource '%s' is bound %s but is not in the pass's %s", res,
+        return pg_sp_fail(c, PG_ERR_SCHEMA, sub, "resource '%s' is bound %s but is not in the pass's %s", res,
                        pg_access_name(a), w ? "writes" : "reads");
     int *use = w ? &c->write_use[idx] : &c->read_use[idx];
     if (*use != SP_USE_NONE)
-        return sp_fail(c, PG_ERR_SCHEMA, sub, "resource '%s' is bound twice (each entry of %s is one binding)", res,
+        return pg_sp_fail(c, PG_ERR_SCHEMA, sub, "resource '%s' is bound twice (each entry of %s is one binding)", res,
                        w ? "writes" : "reads");
     *use = 1 + (int)k;
     c->binding_access[k] = a;
@@ -317,12 +292,12 @@ static pg_result read_binding(sp_ctx *c, const cJSON *it, uint32_t k)
 static pg_result read_bindings(sp_ctx *c)
 {
     const cJSON *bs = cJSON_GetObjectItemCaseSensitive(c->in->desc->options, "bindings");
-    if (bs && !cJSON_IsObject(bs)) return sp_fail(c, PG_ERR_SCHEMA, "bindings", "expected an object {\"name\": resource}");
+    if (bs && !cJSON_IsObject(bs)) return pg_sp_fail(c, PG_ERR_SCHEMA, "bindings", "expected an object {\"name\": resource}");
     uint32_t k = 0;
     const cJSON *it;
     cJSON_ArrayForEach(it, bs)
     {
-        if (k >= SP_MAX_BINDINGS) return sp_fail(c, PG_ERR_LIMIT, "bindings", "more than %d bindings", SP_MAX_BINDINGS);
+        if (k >= SP_MAX_BINDINGS) return pg_sp_fail(c, PG_ERR_LIMIT, "bindings", "more than %d bindings", SP_MAX_BINDINGS);
         pg_result r = read_binding(c, it, k++);
         if (r) return r;
     }
@@ -330,7 +305,7 @@ static pg_result read_bindings(sp_ctx *c)
     for (uint32_t i = 0; i < c->refl.n_bindings; i++) {
         const pg_spv_binding *b = &c->refl.bindings[i];
         if (b->set == SP_USER_SET && !cJSON_GetObjectItemCaseSensitive(bs, b->name))
-            return sp_fail(c, PG_ERR_SHADER, "bindings",
+            return pg_sp_fail(c, PG_ERR_SHADER, "bindings",
                            "shader '%s' binding '%s' (set %u, binding %u, a %s) is not bound: add \"%s\": RESOURCE",
                            c->rel, b->name, b->set, b->binding, pg_spv_kind_name(b->kind), b->name);
     }
@@ -355,11 +330,11 @@ pg_result pg_shader_pass_declare(const pg_declare_in *in, pg_pass_decl *out, pg_
     if (!r) r = compile_and_reflect(c);
     if (!r) r = check_sets(c);
     if (!r) r = read_bindings(c);
-    if (!r) r = sp_read_params(c);
-    if (!r) r = sp_read_attachments(c);
-    if (!r) r = sp_declare_slots(c);
-    if (!r) r = sp_read_dispatch(c);
-    if (!r) sp_explain(c);
+    if (!r) r = pg_sp_read_params(c);
+    if (!r) r = pg_sp_read_attachments(c);
+    if (!r) r = pg_sp_declare_slots(c);
+    if (!r) r = pg_sp_read_dispatch(c);
+    if (!r) pg_sp_explain(c);
     free(c);
     return r;
 }

@@ -26,21 +26,21 @@ typedef struct sp_ctx {
 enum { SP_USE_NONE = 0, SP_USE_TARGET = -1, SP_USE_DEPTH = -2, SP_USE_GEOMETRY = -3 };
 
 /* "FILE: passes[i].options.SUB: pass 'P': MESSAGE" (sub NULL: "...options: ...") */
-pg_result sp_fail(const sp_ctx *c, pg_result code, const char *sub, const char *fmt, ...)
+pg_result pg_sp_fail(const sp_ctx *c, pg_result code, const char *sub, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
 /* storage_write / storage_rw */
-bool sp_access_writes(pg_access a);
+bool pg_sp_access_writes(pg_access a);
 /* Index of name in a pass's reads (writes) list, -1 if absent. */
-int sp_find_in(const char (*list)[PG_NAME_MAX], uint32_t n, const char *name);
+int pg_sp_find_in(const char (*list)[PG_NAME_MAX], uint32_t n, const char *name);
 
-/* shader_pass_slots.c: the steps after the bindings, in this order */
-pg_result sp_read_params(sp_ctx *c);
-pg_result sp_read_attachments(sp_ctx *c);
-pg_result sp_declare_slots(sp_ctx *c);
-pg_result sp_read_dispatch(sp_ctx *c);
-void sp_explain(sp_ctx *c);
+/* shader_pass_util.c: above; shader_pass_slots.c: the steps after the bindings, in this order */
+pg_result pg_sp_read_params(sp_ctx *c);
+pg_result pg_sp_read_attachments(sp_ctx *c);
+pg_result pg_sp_declare_slots(sp_ctx *c);
+pg_result pg_sp_read_dispatch(sp_ctx *c);
+void pg_sp_explain(sp_ctx *c);
 
 #endif

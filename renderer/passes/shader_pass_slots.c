@@ -54,15 +54,15 @@ static pg_result read_member(sp_ctx *c, const cJSON *ps, const pg_spv_member *m)
     snprintf(sub, sizeof sub, "params.%s", m->name);
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(ps, m->name);
     if (m->scalar == PG_SPV_OTHER || m->array_size != 1 || m->components > 4)
-        return sp_fail(c, PG_ERR_SHADER, sub,
+        return pg_sp_fail(c, PG_ERR_SHADER, sub,
                        "shader '%s' push-constant member '%s' is not a scalar or a vector: a params value is a "
                        "number or 2-4 numbers",
                        c->rel, m->name);
     if (!v)
-        return sp_fail(c, PG_ERR_SCHEMA, sub, "shader '%s' push-constant member '%s' (%s x %u) has no value", c->rel,
+        return pg_sp_fail(c, PG_ERR_SCHEMA, sub, "shader '%s' push-constant member '%s' (%s x %u) has no value", c->rel,
                        m->name, scalar_name(m->scalar), m->components);
     if (m->offset + 4 * m->components > SP_PUSH_MAX)
-        return sp_fail(c, PG_ERR_LIMIT, sub, "push-constant member '%s' ends past %d bytes", m->name, SP_PUSH_MAX);
+        return pg_sp_fail(c, PG_ERR_LIMIT, sub, "push-constant member '%s' ends past %d bytes", m->name, SP_PUSH_MAX);
     bool ok = true;
     if (m->components == 1) {
         ok = put_number(v, m->scalar, c->p->push + m->offset);
@@ -72,32 +72,32 @@ static pg_result read_member(sp_ctx *c, const cJSON *ps, const pg_spv_member *m)
             ok = put_number(cJSON_GetArrayItem(v, (int)k), m->scalar, c->p->push + m->offset + 4 * k);
     }
     if (!ok)
-        return sp_fail(c, PG_ERR_SCHEMA, sub, "expected %s%u %s value%s for shader '%s' member '%s'",
+        return pg_sp_fail(c, PG_ERR_SCHEMA, sub, "expected %s%u %s value%s for shader '%s' member '%s'",
                        m->components > 1 ? "an array of " : "", m->components, scalar_name(m->scalar),
                        m->components > 1 ? "s" : "", c->rel, m->name);
     return PG_OK;
 }
 
-pg_result sp_read_params(sp_ctx *c)
+pg_result pg_sp_read_params(sp_ctx *c)
 {
     const cJSON *ps = cJSON_GetObjectItemCaseSensitive(c->in->desc->options, "params");
-    if (ps && !cJSON_IsObject(ps)) return sp_fail(c, PG_ERR_SCHEMA, "params", "expected an object {\"member\": value}");
+    if (ps && !cJSON_IsObject(ps)) return pg_sp_fail(c, PG_ERR_SCHEMA, "params", "expected an object {\"member\": value}");
     pg_decl_runtime_param(c->out, c->p->push, sizeof c->p->push); /* (all zero without a push block) */
     if (c->p->form == SP_DRAW) {
         if (ps && ps->child)
-            return sp_fail(c, PG_ERR_SCHEMA, "params",
+            return pg_sp_fail(c, PG_ERR_SCHEMA, "params",
                            "the draw form's push constants are the scene's per-draw block: give values as defines");
         return PG_OK;
     }
     const pg_spv_reflection *r = &c->refl;
     if (!r->has_push) {
         if (ps && ps->child)
-            return sp_fail(c, PG_ERR_SHADER, "params", "shader '%s' has no push_constant block for '%s'", c->rel,
+            return pg_sp_fail(c, PG_ERR_SHADER, "params", "shader '%s' has no push_constant block for '%s'", c->rel,
                            ps->child->string);
         return PG_OK;
     }
     if (r->push_size > SP_PUSH_MAX)
-        return sp_fail(c, PG_ERR_LIMIT, "params", "shader '%s' push_constant block is %u bytes (at most %d)", c->rel,
+        return pg_sp_fail(c, PG_ERR_LIMIT, "params", "shader '%s' push_constant block is %u bytes (at most %d)", c->rel,
                        r->push_size, SP_PUSH_MAX);
     c->p->push_size = r->push_size;
     for (uint32_t i = 0; i < r->n_push; i++) {
@@ -112,7 +112,7 @@ pg_result sp_read_params(sp_ctx *c)
         if (!found) {
             char sub[PG_NAME_MAX + 16];
             snprintf(sub, sizeof sub, "params.%s", it->string);
-            return sp_fail(c, PG_ERR_SHADER, sub, "shader '%s' push_constant block %s has no member '%s'", c->rel,
+            return pg_sp_fail(c, PG_ERR_SHADER, sub, "shader '%s' push_constant block %s has no member '%s'", c->rel,
                            r->push_name, it->string);
         }
     }
@@ -127,7 +127,7 @@ static pg_result check_outputs(sp_ctx *c, const cJSON *targets)
     for (uint32_t i = 0; i < r->n_outputs; i++) {
         uint32_t loc = r->outputs[i].location;
         if (loc >= c->p->n_targets)
-            return sp_fail(c, PG_ERR_SHADER, "targets",
+            return pg_sp_fail(c, PG_ERR_SHADER, "targets",
                            "shader '%s' output '%s' is at location %u but targets lists %u image(s)", c->rel,
                            r->outputs[i].name, loc, c->p->n_targets);
         seen |= 1u << loc;
@@ -136,13 +136,13 @@ static pg_result check_outputs(sp_ctx *c, const cJSON *targets)
         const bool uint_target = rd && pg_format_get(rd->format)->fmt_class == PG_FMTCLASS_UINT;
         const bool uint_out = r->outputs[i].scalar == PG_SPV_UINT || r->outputs[i].scalar == PG_SPV_INT;
         if (rd && uint_target != uint_out)
-            return sp_fail(c, PG_ERR_FORMAT, "targets", "shader '%s' output '%s' (location %u) is %s but target '%s' is %s",
+            return pg_sp_fail(c, PG_ERR_FORMAT, "targets", "shader '%s' output '%s' (location %u) is %s but target '%s' is %s",
                            c->rel, r->outputs[i].name, loc, scalar_name(r->outputs[i].scalar), tname,
                            pg_format_get(rd->format)->name);
     }
     for (uint32_t t = 0; t < c->p->n_targets; t++)
         if (!(seen & (1u << t)))
-            return sp_fail(c, PG_ERR_SHADER, "targets", "shader '%s' writes no output at location %u (target '%s')",
+            return pg_sp_fail(c, PG_ERR_SHADER, "targets", "shader '%s' writes no output at location %u (target '%s')",
                            c->rel, t, cJSON_GetArrayItem(targets, (int)t)->valuestring);
     return PG_OK;
 }
@@ -157,32 +157,32 @@ static pg_result read_depth(sp_ctx *c, int blend)
     if (!r) r = pg_opt_bool(c->in->desc, "depth_clear", true, &clear, c->err);
     if (r) return r;
     if (!cJSON_IsString(dv))
-        return sp_fail(c, PG_ERR_SCHEMA, "depth", "the draw form needs a depth image (\"depth\": RESOURCE)");
+        return pg_sp_fail(c, PG_ERR_SCHEMA, "depth", "the draw form needs a depth image (\"depth\": RESOURCE)");
     const pg_pass_desc *d = c->in->desc;
-    int w = sp_find_in(d->writes, d->n_writes, dv->valuestring);
-    int rd = w < 0 ? sp_find_in(d->reads, d->n_reads, dv->valuestring) : -1;
+    int w = pg_sp_find_in(d->writes, d->n_writes, dv->valuestring);
+    int rd = w < 0 ? pg_sp_find_in(d->reads, d->n_reads, dv->valuestring) : -1;
     if (w < 0 && rd < 0)
-        return sp_fail(c, PG_ERR_SCHEMA, "depth", "'%s' is in neither the pass's reads (test only) nor its writes",
+        return pg_sp_fail(c, PG_ERR_SCHEMA, "depth", "'%s' is in neither the pass's reads (test only) nor its writes",
                        dv->valuestring);
     int *use = w >= 0 ? &c->write_use[w] : &c->read_use[rd];
-    if (*use != SP_USE_NONE) return sp_fail(c, PG_ERR_SCHEMA, "depth", "'%s' is bound twice", dv->valuestring);
+    if (*use != SP_USE_NONE) return pg_sp_fail(c, PG_ERR_SCHEMA, "depth", "'%s' is bound twice", dv->valuestring);
     *use = SP_USE_DEPTH;
     c->p->depth_compare = test == 1 ? VK_COMPARE_OP_EQUAL : VK_COMPARE_OP_LESS;
     c->p->depth_write = w >= 0;
     c->p->depth_clear = w >= 0 && clear && test == 0;
     if (w < 0 && test == 0 && blend != SP_BLEND_OVER)
-        return sp_fail(c, PG_ERR_SCHEMA, "depth",
+        return pg_sp_fail(c, PG_ERR_SCHEMA, "depth",
                        "'%s' is read only (in reads): test it \"equal\" or blend \"over\" (both leave depth unwritten)",
                        dv->valuestring);
     if (w >= 0 && (test == 1 || blend == SP_BLEND_OVER))
-        return sp_fail(c, PG_ERR_SCHEMA, "depth",
+        return pg_sp_fail(c, PG_ERR_SCHEMA, "depth",
                        "'%s' is in the writes but an \"equal\" test or \"over\" blending writes no depth: put it "
                        "in the reads",
                        dv->valuestring);
     return PG_OK;
 }
 
-pg_result sp_read_attachments(sp_ctx *c)
+pg_result pg_sp_read_attachments(sp_ctx *c)
 {
     const cJSON *o = c->in->desc->options;
     const cJSON *targets = cJSON_GetObjectItemCaseSensitive(o, "targets");
@@ -199,30 +199,30 @@ pg_result sp_read_attachments(sp_ctx *c)
         static const char *const gfx_only[] = {"targets", "blend", "depth", "depth_test", "depth_clear"};
         for (size_t i = 0; i < sizeof gfx_only / sizeof gfx_only[0]; i++)
             if (cJSON_GetObjectItemCaseSensitive(o, gfx_only[i]))
-                return sp_fail(c, PG_ERR_SCHEMA, gfx_only[i], "a compute shader has no attachments");
+                return pg_sp_fail(c, PG_ERR_SCHEMA, gfx_only[i], "a compute shader has no attachments");
         return PG_OK;
     }
     if (!cJSON_IsArray(targets) || cJSON_GetArraySize(targets) > SP_MAX_TARGETS)
-        return sp_fail(c, PG_ERR_SCHEMA, "targets", "expected an array of 0..%d written images (locations 0, 1, ...)",
+        return pg_sp_fail(c, PG_ERR_SCHEMA, "targets", "expected an array of 0..%d written images (locations 0, 1, ...)",
                        SP_MAX_TARGETS);
     const pg_pass_desc *d = c->in->desc;
     c->p->n_targets = (uint8_t)cJSON_GetArraySize(targets);
     for (int t = 0; t < c->p->n_targets; t++) {
         const cJSON *v = cJSON_GetArrayItem(targets, t);
-        int w = cJSON_IsString(v) ? sp_find_in(d->writes, d->n_writes, v->valuestring) : -1;
+        int w = cJSON_IsString(v) ? pg_sp_find_in(d->writes, d->n_writes, v->valuestring) : -1;
         if (w < 0 || c->write_use[w] != SP_USE_NONE)
-            return sp_fail(c, PG_ERR_SCHEMA, "targets", "targets[%d] must name an image of the pass's writes, once", t);
+            return pg_sp_fail(c, PG_ERR_SCHEMA, "targets", "targets[%d] must name an image of the pass's writes, once", t);
         c->write_use[w] = SP_USE_TARGET;
         c->target_of_write[w] = t;
     }
     if ((r = check_outputs(c, targets))) return r;
     if (c->p->form == SP_DRAW && blend == SP_BLEND_ADD)
-        return sp_fail(c, PG_ERR_SCHEMA, "blend", "the draw form blends \"none\" or \"over\"");
+        return pg_sp_fail(c, PG_ERR_SCHEMA, "blend", "the draw form blends \"none\" or \"over\"");
     c->p->blend = (uint8_t)blend;
     c->p->clear_targets = blend == SP_BLEND_NONE;
     if (c->p->form == SP_DRAW) return read_depth(c, blend);
     if (cJSON_GetObjectItemCaseSensitive(o, "depth"))
-        return sp_fail(c, PG_ERR_SCHEMA, "depth", "a fullscreen shader has no depth attachment (sample it instead)");
+        return pg_sp_fail(c, PG_ERR_SCHEMA, "depth", "a fullscreen shader has no depth attachment (sample it instead)");
     return PG_OK;
 }
 
@@ -250,7 +250,7 @@ static pg_result declare_reads(sp_ctx *c, uint32_t stages)
         } else {
             char sub[32];
             snprintf(sub, sizeof sub, "reads[%u]", i);
-            return sp_fail(c, PG_ERR_SCHEMA, "bindings",
+            return pg_sp_fail(c, PG_ERR_SCHEMA, "bindings",
                            "resource '%s' (reads[%u]) is used by no binding%s", d->reads[i], i,
                            c->p->form == SP_DRAW ? " or depth (and only a last read 'geometry' is the scene's)" : "");
         }
@@ -259,7 +259,7 @@ static pg_result declare_reads(sp_ctx *c, uint32_t stages)
     return PG_OK;
 }
 
-pg_result sp_declare_slots(sp_ctx *c)
+pg_result pg_sp_declare_slots(sp_ctx *c)
 {
     const uint32_t stages = c->p->form == SP_COMPUTE ? PG_STAGE_COMPUTE : PG_STAGE_FRAGMENT;
     pg_result r = declare_reads(c, stages);
@@ -282,7 +282,7 @@ pg_result sp_declare_slots(sp_ctx *c)
                                         c->p->depth_clear ? PG_ACCESS_DEPTH_WRITE : PG_ACCESS_DEPTH_RMW, 0,
                                         PG_FMTCLASS_DEPTH);
         } else {
-            return sp_fail(c, PG_ERR_SCHEMA, "bindings", "resource '%s' (writes[%u]) is used by no binding%s",
+            return pg_sp_fail(c, PG_ERR_SCHEMA, "bindings", "resource '%s' (writes[%u]) is used by no binding%s",
                            d->writes[i], i, c->p->form == SP_COMPUTE ? "" : ", target or depth");
         }
     }
@@ -295,9 +295,9 @@ static pg_slot slot_of_resource(const sp_ctx *c, const char *name, pg_res_kind *
     const pg_pass_desc *d = c->in->desc;
     const pg_resource_desc *rd = pg_pipeline_find_resource(c->in->pipeline, name);
     if (rd) *kind = rd->kind;
-    int i = sp_find_in(d->writes, d->n_writes, name);
+    int i = pg_sp_find_in(d->writes, d->n_writes, name);
     if (i >= 0 && c->write_use[i] > 0) return c->p->bindings[c->write_use[i] - 1].slot;
-    i = sp_find_in(d->reads, d->n_reads, name);
+    i = pg_sp_find_in(d->reads, d->n_reads, name);
     if (i >= 0 && c->read_use[i] > 0) return c->p->bindings[c->read_use[i] - 1].slot;
     return PG_SLOT_NONE;
 }
@@ -312,15 +312,15 @@ static pg_result dispatch_groups(sp_ctx *c, const cJSON *g)
         ok = cJSON_IsNumber(v) && v->valuedouble >= 1 && v->valuedouble <= 65535 && v->valuedouble == floor(v->valuedouble);
         if (ok) c->p->groups[k] = (uint32_t)v->valuedouble;
     }
-    if (!ok) return sp_fail(c, PG_ERR_SCHEMA, "dispatch.groups", "expected 1 to 3 whole numbers in 1..65535");
+    if (!ok) return pg_sp_fail(c, PG_ERR_SCHEMA, "dispatch.groups", "expected 1 to 3 whole numbers in 1..65535");
     return PG_OK;
 }
 
-pg_result sp_read_dispatch(sp_ctx *c)
+pg_result pg_sp_read_dispatch(sp_ctx *c)
 {
     const cJSON *dv = cJSON_GetObjectItemCaseSensitive(c->in->desc->options, "dispatch");
     if (c->p->form != SP_COMPUTE) {
-        if (dv) return sp_fail(c, PG_ERR_SCHEMA, "dispatch", "only a compute shader has a dispatch size");
+        if (dv) return pg_sp_fail(c, PG_ERR_SCHEMA, "dispatch", "only a compute shader has a dispatch size");
         return PG_OK;
     }
     for (int k = 0; k < 3; k++) c->p->local[k] = c->refl.local_size[k] ? c->refl.local_size[k] : 1;
@@ -331,7 +331,7 @@ pg_result sp_read_dispatch(sp_ctx *c)
             if (pg_slot_is_write(c->p->bindings[k].slot) && c->p->bindings[k].type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)
                 name = c->in->desc->writes[pg_slot_index(c->p->bindings[k].slot)];
         if (!name)
-            return sp_fail(c, PG_ERR_SCHEMA, "dispatch",
+            return pg_sp_fail(c, PG_ERR_SCHEMA, "dispatch",
                            "no written image to dispatch over: give {\"image\": R}, {\"buffer\": R} or {\"groups\": [x, y, z]}");
     } else if (cJSON_IsObject(dv) && cJSON_GetArraySize(dv) == 1 && cJSON_IsString(dv->child) &&
                (!strcmp(dv->child->string, "image") || !strcmp(dv->child->string, "buffer"))) {
@@ -340,12 +340,12 @@ pg_result sp_read_dispatch(sp_ctx *c)
     } else if (cJSON_IsObject(dv) && cJSON_GetArraySize(dv) == 1 && !strcmp(dv->child->string, "groups")) {
         return dispatch_groups(c, dv->child);
     } else {
-        return sp_fail(c, PG_ERR_SCHEMA, "dispatch", "expected {\"image\": R}, {\"buffer\": R} or {\"groups\": [x, y, z]}");
+        return pg_sp_fail(c, PG_ERR_SCHEMA, "dispatch", "expected {\"image\": R}, {\"buffer\": R} or {\"groups\": [x, y, z]}");
     }
     pg_res_kind kind = PG_RES_IMAGE;
     c->p->dispatch_slot = slot_of_resource(c, name, &kind);
     if (!pg_slot_ok(c->p->dispatch_slot) || (kind == PG_RES_IMAGE) != want_image)
-        return sp_fail(c, PG_ERR_SCHEMA, "dispatch", "'%s' is not %s bound by this pass", name,
+        return pg_sp_fail(c, PG_ERR_SCHEMA, "dispatch", "'%s' is not %s bound by this pass", name,
                        want_image ? "an image" : "a buffer");
     c->p->dispatch = want_image ? SP_DISPATCH_IMAGE : SP_DISPATCH_BUFFER;
     if (!want_image) {
@@ -355,7 +355,7 @@ pg_result sp_read_dispatch(sp_ctx *c)
     return PG_OK;
 }
 
-void sp_explain(sp_ctx *c)
+void pg_sp_explain(sp_ctx *c)
 {
     const sp_params *p = c->p;
     char what[160];

@@ -700,7 +700,7 @@ if [ -f "$plugdir/libpg_tint.so" ]; then
     render --plugin "$tintp" --size 16x16 --out "$tmp/x.png"
   expect_fail "--plugin: no entry points" "libpg_tint_noentry.so: not a passgraph plug-in: no passgraph_plugin_api_version" \
     render --plugin "$plugdir/libpg_tint_noentry.so" --size 16x16 --out "$tmp/x.png"
-  expect_fail "--plugin: API version" "libpg_tint_badversion.so: plug-in API version 999; this passgraph has 1" \
+  expect_fail "--plugin: API version" "libpg_tint_badversion.so: plug-in API version 999; this passgraph has 2" \
     render --plugin "$plugdir/libpg_tint_badversion.so" --size 16x16 --out "$tmp/x.png"
   expect_fail "--plugin twice" "libpg_tint.so: pass type 'tint' is registered twice" \
     render --plugin "$plugdir/libpg_tint.so" --plugin "$plugdir/libpg_tint.so" --size 16x16 --out "$tmp/x.png"
@@ -709,6 +709,43 @@ if [ -f "$plugdir/libpg_tint.so" ]; then
 else
   bad "the example plug-in was not built: $plugdir/libpg_tint.so"
 fi
+# user passes written in JSON + GLSL (docs/user-passes.md): the examples render with validation;
+# a bad shader pass fails naming the pipeline file, the JSON path, the shader and the cause
+for ex in tonemap bloom ssao lighting normals; do
+  "$PG" render --pipeline "$root/pipelines/examples/$ex/$ex.json" --validation --size 64x36 --lights 16 \
+    --out "$tmp/ex_$ex.png" >"$tmp/out" 2>"$tmp/err" && [ -s "$tmp/ex_$ex.png" ] && ! grep -q "VUID" "$tmp/err" \
+    && ok || { bad "render: example user pass $ex"; cat "$tmp/err"; }
+done
+up="$tmp/userpass"
+mkdir -p "$up"
+cp "$root/pipelines/examples/tonemap/tonemap.frag" "$up/"
+sed "s#\"\.\./\.\./fragments/#\"$root/pipelines/fragments/#g" "$root/pipelines/examples/tonemap/tonemap.json" >"$up/ok.json"
+sed 's/"hdr_image": {/"hdr_img": {/' "$up/ok.json" >"$up/b_name.json"
+sed 's/"access": "sampled"/"access": "storage_read"/' "$up/ok.json" >"$up/b_access.json"
+sed 's/"tonemap.frag"/"nope.frag"/' "$up/ok.json" >"$up/b_missing.json"
+sed 's/float L = /float L = no_such_thing + /' "$up/tonemap.frag" >"$up/broken.frag"
+sed 's/"tonemap.frag"/"broken.frag"/' "$up/ok.json" >"$up/b_glsl.json"
+sed 's/"white": "\$white"/"whit": 2/' "$up/ok.json" >"$up/b_param.json"
+sed 's#"tonemap.frag"#"../../../etc/passwd"#' "$up/ok.json" >"$up/b_outside.json"
+sed 's/uniform sampler2D hdr_image;/uniform sampler2D hdr_image;\nlayout(set = 2, binding = 1) uniform sampler2D extra;/' \
+  "$up/tonemap.frag" >"$up/extra.frag"
+sed 's/"tonemap.frag"/"extra.frag"/' "$up/ok.json" >"$up/b_unbound.json"
+"$PG" dump --pipeline "$up/ok.json" >"$tmp/out" 2>"$tmp/err" && grep -q "user fullscreen shader tonemap.frag" "$tmp/out" \
+  && ok || { bad "dump: a shader pass"; cat "$tmp/err"; }
+expect_fail "shader pass: binding name" "b_name.json: passes[3].options.bindings.hdr_img: pass 'tonemap': shader 'tonemap.frag' has no binding 'hdr_img' in set 2" \
+  dump --pipeline "$up/b_name.json"
+expect_fail "shader pass: access" "bindings.hdr_image: pass 'tonemap': shader 'tonemap.frag' binding 'hdr_image' (set 2, binding 0) is a combined image sampler: it needs an image bound \"sampled\", not image 'hdr' bound storage_read" \
+  dump --pipeline "$up/b_access.json"
+expect_fail "shader pass: missing shader" "b_missing.json: passes[3].options.fullscreen: pass 'tonemap': cannot open shader 'nope.frag'" \
+  dump --pipeline "$up/b_missing.json"
+expect_fail "shader pass: glslang error" "broken.frag:22: 'no_such_thing' : undeclared identifier" \
+  dump --pipeline "$up/b_glsl.json"
+expect_fail "shader pass: push member" "passes[3].options.params.white: pass 'tonemap': shader 'tonemap.frag' push-constant member 'white' (float x 1) has no value" \
+  dump --pipeline "$up/b_param.json"
+expect_fail "shader pass: outside the folders" "shader '../../../etc/passwd' is outside the allowed folders" \
+  dump --pipeline "$up/b_outside.json"
+expect_fail "shader pass: unbound binding" "shader 'extra.frag' binding 'extra' (set 2, binding 1, a combined image sampler) is not bound" \
+  render --pipeline "$up/b_unbound.json" --size 16x16 --out "$tmp/x.png"
 # a glTF animation: played at --time by the geometry_animate pass, named by --explain; an unknown
 # --animation is an error listing the file's
 acorp="$gcorp/animation"

@@ -13,7 +13,9 @@
  *  4. user_lighting (compute over the cluster lists; rgb_points.gltf: three point lights over a
  *     flat floor): every floor pixel equals the CPU evaluation of lighting.comp's model (Lambert,
  *     (1 - (d/R)^2)^2 / (1 + d^2), R the range or the cut-off reach) within 2e-3 relative (the
- *     rgba16f target) + 1e-5. */
+ *     rgba16f target) + 1e-5.
+ *  5. normals (the draw form: the scene's draws, passgraph's material code, the user's fragment
+ *     shader): the HDR image is bit-identical to the naive pipeline's debug view "normal". */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -212,6 +214,19 @@ static void user_lighting(const pg_th_scene *s)
     pg_th_release(&f);
 }
 
+static void normals(const pg_th_scene *s)
+{
+    pg_param_override v = {"view", "normal"};
+    pg_th_frame a, b;
+    if (!render(s, "pipelines/examples/normals/normals.json", NULL, 0, &a)) return;
+    if (render(s, "pipelines/naive.json", &v, 1, &b)) {
+        CHECK_MSG(pg_th_hdr_identical(&a, &b), "normals: the draw form differs from naive's view=normal in %u pixels",
+                  pg_th_differ_pixels(&a, &b));
+        pg_th_release(&b);
+    }
+    pg_th_release(&a);
+}
+
 int main(void)
 {
     if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_user_passes", "PG_TEST_NO_GPU is set");
@@ -226,6 +241,7 @@ int main(void)
     if (pg_th_scene_open(g_gpu, "atrium", "default", NULL, W, H, 256, &atrium)) {
         tonemap(&atrium);
         bloom(&atrium);
+        normals(&atrium);
         pg_th_scene_close(g_gpu, &atrium);
     }
     if (pg_th_file_open(g_gpu, "lights/sun.gltf", W, H, PG_SHADING_LAMBERT, &sun)) {

@@ -9,6 +9,10 @@
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "cluster.glsl"
+#include "octahedral.glsl"
+#include "gbuffer_pack.glsl"
+#include "depth_reconstruct.glsl"
+#include "gbuffer_read.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 2, binding = 0, std430) readonly buffer Lights { Light lights[]; };
 layout(set = 2, binding = 1, std430) readonly buffer ClusterRecords { uvec4 cluster_records[]; };
@@ -25,14 +29,18 @@ void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, imageSize(hdr_out)))) return;
-    vec4 P = texelFetch(positions, p, 0);
-    if (P.w == 0.0) {
+    vec4 position = texelFetch(positions, p, 0);
+    if (position.w == 0.0) {
         imageStore(hdr_out, p, vec4(0.0, 0.0, 0.0, 1.0));
         return;
     }
-    vec3 N = normalize(texelFetch(normals, p, 0).xyz);
-    vec3 rel = P.xyz - frame.camera_pos.xyz;
-    float view_depth = -PG_REL_TO_VIEW(rel).z;
+    // the surface as the built-in deferred pass rebuilds it (gbuffer_read.glsl; packing "float")
+    Surface s;
+    vec3 rel; // camera-relative position
+    float view_depth;
+    pg_gbuffer_read_float(position, texelFetch(normals, p, 0), texelFetch(albedo, p, 0), s, rel, view_depth);
+    vec3 N = normalize(s.normal);
+    vec3 P = position.xyz;
     uvec3 grid = uvec3(GRID_X, GRID_Y, GRID_Z);
     uvec3 cc = pg_cluster_coord(vec2(p) + 0.5, vec2(frame.counts.zw), view_depth, frame.clip.x, frame.clip.y, grid);
     uvec4 rec = cluster_records[pg_cluster_index(cc, grid)];
@@ -46,6 +54,6 @@ void main()
         float w = 1.0 - (dist / R) * (dist / R);
         sum += L.color.rgb * max(dot(N, d / dist), 0.0) * (w * w / (1.0 + dist * dist));
     }
-    vec3 c = texelFetch(albedo, p, 0).rgb * (sum + params.ambient + frame.clip.z);
+    vec3 c = s.albedo * (sum + params.ambient + frame.clip.z);
     imageStore(hdr_out, p, vec4(pg_hdr_sanitize(c), 1.0));
 }

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# check-install.sh BUILD_DIR - passgraph as an installed library (docs/embedding.md): installs
+# BUILD_DIR into a temporary prefix, builds examples/embed against it twice - with CMake's
+# find_package(passgraph) and with pkg-config - and runs both with the validation layer on. Each run
+# must read its data from the prefix (not the source tree), render, read the frame into memory and
+# into a VkImage of its own (the two must agree), print per-pass GPU times and the error against
+# the reference pipeline. ctest runs it as install_test.
+set -euo pipefail
+build=$(cd "$1" && pwd)
+root=$(cd "$(dirname "$0")/.." && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+prefix="$tmp/prefix"
+cmake --install "$build" --prefix "$prefix" >"$tmp/install.log"
+for f in include/passgraph/passgraph.h include/passgraph/pass_api.h share/passgraph/shaders/common.glsl \
+         share/passgraph/pipelines/forward_plus.json; do
+  [ -f "$prefix/$f" ] || { echo "check-install: $f was not installed"; exit 1; }
+done
+pc=$(find "$prefix" -name passgraph.pc | head -1)
+cfg=$(find "$prefix" -name passgraphConfig.cmake | head -1)
+lib=$(find "$prefix" -name 'libpassgraph.so' | head -1)
+[ -n "$pc" ] && [ -n "$cfg" ] && [ -n "$lib" ] || { echo "check-install: no pkg-config file, CMake package or library"; exit 1; }
+libdir=$(dirname "$lib")
+# 1. CMake: find_package(passgraph) from the prefix
+cmake -S "$root/examples/embed" -B "$tmp/cmake-build" -DCMAKE_PREFIX_PATH="$prefix" >"$tmp/cmake.log" \
+  || { cat "$tmp/cmake.log"; exit 1; }
+cmake --build "$tmp/cmake-build" >"$tmp/build.log" || { cat "$tmp/build.log"; exit 1; }
+# 2. pkg-config
+export PKG_CONFIG_PATH="$(dirname "$pc")"
+cc -std=c11 -Wall -Wextra -Werror "$root/examples/embed/embed.c" -o "$tmp/embed-pkgconfig" \
+  $(pkg-config --cflags --libs passgraph)
+status=0
+for exe in "$tmp/cmake-build/embed" "$tmp/embed-pkgconfig"; do
+  out="$tmp/$(basename "$exe").ppm"
+  if (cd "$tmp" && env -u PASSGRAPH_DATA_DIR LD_LIBRARY_PATH="$libdir" EMBED_VALIDATION=1 "$exe" "" "$out") >"$tmp/run.log" 2>&1 \
+     && grep -qF "embed: data folder $prefix/" "$tmp/run.log" && grep -q "VkImage vs memory: 0 of" "$tmp/run.log" \
+     && grep -q "against the reference: RMSE" "$tmp/run.log" && grep -q "validation messages: 0" "$tmp/run.log" \
+     && [ -s "$out" ]; then
+    echo "check-install: $(basename "$exe"): ok"
+    cat "$tmp/run.log"
+  else
+    echo "check-install: $(basename "$exe"): FAILED"
+    cat "$tmp/run.log"
+    status=1
+  fi
+done
+exit $status
