@@ -69,6 +69,14 @@ static void describe_file_lights(const pg_scene *scene, uint32_t generated, char
                  generated);
 }
 
+pg_result pg_app_session_create(pg_app *app, const pg_session_desc *desc, pg_session **out, pg_error *err)
+{
+    *out = NULL;
+    pg_result r = pg_plugins_load_listed(&app->registry, desc->pipeline_path, &app->plugins, err);
+    if (!r) r = pg_session_create(app->gpu, app->scene_gpu, desc, out, err);
+    return r;
+}
+
 pg_result pg_app_pose_scene(pg_app *app, pg_scene *scene, pg_error *err)
 {
     app->animation = PG_ANIM_FIRST;
@@ -92,6 +100,8 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     }
     if (opt->pipeline) pg_strlcpy(app->pipeline_path, opt->pipeline, sizeof app->pipeline_path);
     else pg_data_path(app->pipeline_path, sizeof app->pipeline_path, "pipelines/naive.json");
+    /* the pipeline's own plug-ins (for dump, which compiles without a session) */
+    if ((r = pg_plugins_load_listed(&app->registry, app->pipeline_path, &app->plugins, err))) return r;
     if (opt->scenario) {
         if ((r = pg_scenario_load(opt->scenario, &app->scenario, err))) return r;
         app->has_scenario = true;

@@ -129,7 +129,7 @@ static pg_result side_create(side *sd, const char *label, pg_app *app, const cha
         .settings = app->opt.settings, /* both sides: the same display / view */
         .n_settings = app->opt.n_settings,
     };
-    if (pg_session_create(app->gpu, app->scene_gpu, &desc, &sd->s, err)) return pg_error_prefix(err, "%s", label);
+    if (pg_app_session_create(app, &desc, &sd->s, err)) return pg_error_prefix(err, "%s", label);
     if (!sd->s->pipeline->hdr_output[0])
         return pg_fail(err, PG_ERR_NO_OUTPUT,
                        "%s: %s: pipeline '%s' declares no hdr_output; compare needs the scene-linear HDR image", label,

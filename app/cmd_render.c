@@ -378,7 +378,7 @@ static int render_on_app(pg_app *app, const render_opts *ro, pg_rdoc *rdoc)
     render_images im = {0};
     render_run run = {.frames = ro->opt.frames}, *r = &run;
     pg_session_desc sd = pg_app_session_desc(app);
-    if (pg_session_create(app->gpu, app->scene_gpu, &sd, &s, &err)) goto done;
+    if (pg_app_session_create(app, &sd, &s, &err)) goto done;
     pg_frame_info fi = pg_app_frame(app);
     r->samples = calloc((size_t)r->frames * (2 * PG_MAX_PASSES + 3), sizeof(double));
     if (!r->samples) {

@@ -1,8 +1,11 @@
 /* plugins.c - loading pass-type plug-ins (plugins.h). */
 #include "plugins.h"
 #include "pass_plugin.h"
+#include "pipeline.h"
 
 #include <dlfcn.h>
+#include <limits.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -20,6 +23,8 @@ static pg_result load_one(pg_pass_registry *reg, const char *path, pg_plugins *o
         const char *why = dlerror();
         return pg_fail(err, PG_ERR_INVALID_ARG, "%s: cannot load plug-in: %s", path, why ? why : "dlopen failed");
     }
+    char real[PATH_MAX];
+    pg_strlcpy(out->paths[out->n], realpath(full, real) ? real : full, PG_PATH_MAX);
     out->handles[out->n++] = h;
     pg_plugin_version_fn version;
     pg_plugin_register_fn reg_fn;
@@ -53,6 +58,28 @@ pg_result pg_plugins_load(pg_pass_registry *reg, const char *const *paths, uint3
         if (r) return r;
     }
     return PG_OK;
+}
+
+pg_result pg_plugins_load_listed(pg_pass_registry *reg, const char *pipeline_path, pg_plugins *out, pg_error *err)
+{
+    pg_pipeline *p = NULL;
+    pg_error ignored;
+    if (pg_pipeline_load(pipeline_path, NULL, 0, &p, &ignored)) return PG_OK; /* the session says why */
+    pg_result r = PG_OK;
+    for (uint32_t i = 0; i < p->n_plugins && !r; i++) {
+        char real[PATH_MAX];
+        if (!realpath(p->plugins[i], real)) pg_strlcpy(real, p->plugins[i], sizeof real);
+        bool loaded = false;
+        for (uint32_t k = 0; k < out->n && !loaded; k++) loaded = !strcmp(out->paths[k], real);
+        if (loaded) continue;
+        if (out->n >= PG_MAX_PLUGINS) {
+            r = pg_fail(err, PG_ERR_LIMIT, "%s: plugins: more than %d plug-ins in all", pipeline_path, PG_MAX_PLUGINS);
+        } else if ((r = load_one(reg, p->plugins[i], out, err))) {
+            pg_error_prefix(err, "%s: plugins[%u]", pipeline_path, i);
+        }
+    }
+    pg_pipeline_free(p);
+    return r;
 }
 
 void pg_plugins_close(pg_plugins *p)

@@ -144,7 +144,7 @@ static void reference_render(bench *B, pg_app *app, const pg_frame_info *fi0, co
     pg_frame_stats st;
     pg_frame_info fi = *fi0;
     fi.time = B->opt.time;
-    if (!pg_session_create(app->gpu, app->scene_gpu, &desc, &s, &e) && !pg_session_render(s, &fi, true, &st, &e) &&
+    if (!pg_app_session_create(app, &desc, &s, &e) && !pg_session_render(s, &fi, true, &st, &e) &&
         !grab_images(s, &ref->hdr, &ref->ldr, &ref->w, &ref->h, &e)) {
         ref->ok = true;
     } else {
@@ -194,7 +194,7 @@ static pg_result open_row_session(const bench *B, pg_app *app, const pipe_entry 
         .settings = app->opt.settings,
         .n_settings = app->opt.n_settings,
     };
-    pg_result r = pg_session_create(app->gpu, app->scene_gpu, &desc, s, e);
+    pg_result r = pg_app_session_create(app, &desc, s, e);
     if (r) return r;
     return pg_session_set_frames_in_flight(*s, B->frames_in_flight, e);
 }

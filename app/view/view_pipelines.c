@@ -116,7 +116,7 @@ pg_result open_session(viewer *v, const char *path, bool with_overrides, pg_sess
         .settings = v->settings,
         .n_settings = v->n_settings,
     };
-    pg_result r = pg_session_create(v->app.gpu, v->app.scene_gpu, &sd, out, err);
+    pg_result r = pg_app_session_create(&v->app, &sd, out, err);
     /* the displayed graph keeps two frames in flight; the reference of the diff view reads back */
     if (!r && with_overrides && (r = pg_session_set_frames_in_flight(*out, v->frames_in_flight, err))) {
         pg_session_destroy(*out);
@@ -147,6 +147,7 @@ static pg_result reload_in_place(viewer *v, const char *path, pg_error *err)
     for (int i = 0; i < v->n_ov; i++)
         if (pg_pipeline_find_param(probe, v->ov_key[i])) ov[n++] = (pg_param_override){v->ov_key[i], v->ov_val[i]};
     pg_pipeline_free(probe);
+    if ((r = pg_plugins_load_listed(&v->app.registry, path, &v->app.plugins, err))) return r;
     return pg_session_reload(v->session, path, ov, n, err);
 }
 

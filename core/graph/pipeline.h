@@ -121,6 +121,8 @@ typedef struct pg_omitted {
     char why[160];               /* "when: $gbuffer == float (gbuffer is 'packed')" */
 } pg_omitted;
 
+#define PG_MAX_PIPELINE_PLUGINS 4
+
 typedef struct pg_pipeline {
     char name[PG_NAME_MAX];
     char description[256];
@@ -132,6 +134,11 @@ typedef struct pg_pipeline {
     pg_omitted omitted[PG_MAX_PASSES + PG_MAX_RESOURCES];
     char output[PG_NAME_MAX];           /* the final displayable image (required) */
     char hdr_output[PG_NAME_MAX];       /* optional scene-linear HDR image to inspect/read back */
+    /* "plugins" (top-level file only): shared libraries of pass types the pipeline needs, resolved
+     * against the file's folder and held to the include rules (pipeline_paths.h); loading them is
+     * the application's (app/plugins.c), before the pipeline is compiled */
+    uint32_t n_plugins;
+    char plugins[PG_MAX_PIPELINE_PLUGINS][PG_PATH_MAX];
 } pg_pipeline;
 
 /* Loads path (and its includes). overrides may be NULL when n_overrides is 0. */

@@ -20,6 +20,7 @@
 #define _XOPEN_SOURCE 700 /* realpath() */
 #endif
 #include "pipeline_json_internal.h"
+#include "pipeline_paths.h"
 #include "pg_file.h"
 
 #include <errno.h>
@@ -244,6 +245,36 @@ static pg_result read_output(loader *L, const char *key, bool required, char *ou
     return PG_OK;
 }
 
+/* "plugins": [paths] of the top-level file, resolved and confined like includes; each must exist */
+static pg_result read_plugins(loader *L, const src_file *f)
+{
+    const cJSON *pl = cJSON_GetObjectItemCaseSensitive(f->root, "plugins");
+    if (!pl) return PG_OK;
+    char got[96], where[32];
+    if (!cJSON_IsArray(pl) || cJSON_GetArraySize(pl) > PG_MAX_PIPELINE_PLUGINS) {
+        pj_describe(pl, got, sizeof got);
+        return pj_fail_at(L, PG_ERR_SCHEMA, f, "plugins", "expected an array of at most %d shared-library paths, got %s",
+                          PG_MAX_PIPELINE_PLUGINS, got);
+    }
+    uint32_t i = 0;
+    for (const cJSON *c = pl->child; c; c = c->next, i++) {
+        snprintf(where, sizeof where, "plugins[%u]", i);
+        pg_error e;
+        char *dst = L->p->plugins[L->p->n_plugins];
+        struct stat st;
+        if (!cJSON_IsString(c) || !c->valuestring[0]) {
+            pj_describe(c, got, sizeof got);
+            return pj_fail_at(L, PG_ERR_SCHEMA, f, where, "expected a file path, got %s", got);
+        }
+        if (pg_pipeline_resolve_file(f->path, f->path, c->valuestring, dst, PG_PATH_MAX, &e))
+            return pj_fail_at(L, e.code, f, where, "plug-in %s", e.msg);
+        if (stat(dst, &st) != 0 || !S_ISREG(st.st_mode))
+            return pj_fail_at(L, PG_ERR_IO, f, where, "plug-in '%s' (%s): no such file", c->valuestring, dst);
+        L->p->n_plugins++;
+    }
+    return PG_OK;
+}
+
 static pg_result read_header(loader *L)
 {
     const src_file *f = L->files[0];
@@ -276,7 +307,7 @@ static pg_result read_header(loader *L)
         }
         pg_strlcpy(p->description, desc->valuestring, sizeof p->description);
     }
-    return PG_OK;
+    return read_plugins(L, f);
 }
 
 static void loader_free(loader *L)

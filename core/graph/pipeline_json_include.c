@@ -35,8 +35,8 @@ src_file *pj_new_file(loader *L, const char *path)
     return f;
 }
 
-static const char *const k_top_keys[] = {"name",   "description", "include", "parameters",
-                                         "resources", "passes",   "output",  "hdr_output", NULL};
+static const char *const k_top_keys[] = {"name",   "description", "include",    "parameters", "resources",
+                                         "passes", "output",      "hdr_output", "plugins",    NULL};
 static const char *const k_frag_keys[] = {"description", "include", "parameters", "resources",
                                           "passes", NULL};
 

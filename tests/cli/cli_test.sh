@@ -706,6 +706,22 @@ if [ -f "$plugdir/libpg_tint.so" ]; then
     render --plugin "$plugdir/libpg_tint.so" --plugin "$plugdir/libpg_tint.so" --size 16x16 --out "$tmp/x.png"
   expect_fail "a plug-in's pass type without the plug-in" "'tint'" \
     render --pipeline "$tintp" --size 16x16 --out "$tmp/x.png"
+  # a pipeline file's own "plugins" list (next to the file, under the include rules): no --plugin needed
+  pld="$tmp/plugpipe"
+  mkdir -p "$pld"
+  cp "$plugdir/libpg_tint.so" "$pld/"
+  sed -e "s#\"\.\./\.\./\.\./pipelines/fragments/#\"$root/pipelines/fragments/#g" \
+      -e 's#^  "include"#  "plugins": ["libpg_tint.so"],\n  "include"#' "$tintp" >"$pld/tint.json"
+  "$PG" render --pipeline "$pld/tint.json" --validation --size 32x18 --lights 4 --out "$tmp/tint2.png" \
+    --plugin "$pld/libpg_tint.so" >"$tmp/out" 2>"$tmp/err" && ok || { bad "render: a pipeline's plugins list and --plugin of the same file"; cat "$tmp/err"; }
+  "$PG" render --pipeline "$pld/tint.json" --size 32x18 --lights 4 --out "$tmp/tint3.png" >"$tmp/out" 2>"$tmp/err" \
+    && ok || { bad "render: a pipeline's plugins list"; cat "$tmp/err"; }
+  sed 's#"plugins": \["libpg_tint.so"\]#"plugins": ["nope.so"]#' "$pld/tint.json" >"$pld/missing.json"
+  expect_fail "pipeline plugins: missing file" "missing.json: plugins[0]: plug-in 'nope.so'" \
+    render --pipeline "$pld/missing.json" --size 16x16 --out "$tmp/x.png"
+  sed 's#"plugins": \["libpg_tint.so"\]#"plugins": ["/usr/lib/x86_64-linux-gnu/libm.so.6"]#' "$pld/tint.json" >"$pld/outside.json"
+  expect_fail "pipeline plugins: outside the folders" "outside.json: plugins[0]: plug-in '/usr/lib/x86_64-linux-gnu/libm.so.6' is outside the allowed folders" \
+    render --pipeline "$pld/outside.json" --size 16x16 --out "$tmp/x.png"
 else
   bad "the example plug-in was not built: $plugdir/libpg_tint.so"
 fi
