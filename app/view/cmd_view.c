@@ -327,10 +327,14 @@ static bool draw_one(viewer *v, uint32_t frame, float dt, pg_error *err)
     if (rdoc_now) rdoc_finish(v);
     v->want_rdoc = false;
     v->rdoc_file[0] = 0;
-    if (v->reloads != loads_before) /* the switch as the user waits for it */
-        printf("view: frame %u: %s ready in %.1f ms (load, compile, first frame; rebuilt: %s)\n", frame,
-               v->names[v->current], (pg_time_s() - t_load) * 1e3,
-               pg_rebuild_kind_name(pg_runtime_get_stats(v->session->runtime).last_rebuild));
+    if (v->reloads != loads_before) { /* the switch as the user waits for it */
+        const pg_runtime_stats st = pg_runtime_get_stats(v->session->runtime);
+        printf("view: frame %u: %s ready in %.1f ms (load, compile, first frame; rebuilt: %s", frame,
+               v->names[v->current], (pg_time_s() - t_load) * 1e3, pg_rebuild_kind_name(st.last_rebuild));
+        if (st.last_rebuild == PG_REBUILD_PIPELINES)
+            printf(", %u pass(es) created, %u kept", st.last_passes_created, st.last_passes_kept);
+        printf(")\n");
+    }
     v->want_shot = false;
     return true;
 }

@@ -180,6 +180,10 @@ typedef struct pg_runtime_stats {
     uint32_t resource_creations;      /* times physical resources were (re)built */
     /* pg_runtime_set_plan() outcomes, over the runtime's life (see pg_rebuild_kind) */
     uint32_t memory_rebuilds, resource_rebuilds, pipeline_rebuilds, value_updates;
+    /* the last set_plan that re-created pass instances: how many it created and how many it kept
+     * (a PG_REBUILD_PIPELINES keeps the instances of the passes whose type, variant, options,
+     * slots and queue are unchanged, e.g. every pass but the one whose shader was edited) */
+    uint32_t last_passes_created, last_passes_kept;
     pg_rebuild_kind last_rebuild;     /* the last set_plan's */
     uint64_t memory_bytes_transient;  /* actual VkDeviceMemory for transient blocks */
     uint64_t memory_bytes_unaliased;  /* sum of transient resources' memory requirements */

@@ -48,6 +48,12 @@ typedef struct pg_rt_current {
     pg_user_block user;       /* the caller's block and generation (pg_runtime_set_plan) */
     uint32_t width, height;
     uint64_t mem_sig, pipe_sig, val_sig; /* see memory_signature, pipeline_signature, value_signature */
+    /* each pass's own part of pipe_sig (by plan pass index) and the part every pass shares (the
+     * caller's block generation, the settings): a new plan of the same memory keeps the instances
+     * of the passes whose part did not change (graph_execute_plan.c) */
+    uint64_t pass_sig[PG_MAX_PASSES];
+    char pass_name[PG_MAX_PASSES][PG_NAME_MAX];
+    uint64_t shared_sig;
 } pg_rt_current;
 
 /* A growth a pass asked for in the last pass reports read (pg_report_grow), not applied yet. */

@@ -274,9 +274,13 @@ pg_result pg_rt_build_passes(pg_runtime *rt, pg_error *err)
     const pg_graph_plan *plan = rt->cur.plan;
     pg_result r;
     if ((r = pg_rt_timing_build(rt, err))) return r;
-    /* pass instances */
-    for (uint32_t o = 0; o < plan->n_order; o++)
+    /* pass instances (those kept from the previous plan are there already: graph_execute_plan.c) */
+    rt->stats.last_passes_created = 0;
+    for (uint32_t o = 0; o < plan->n_order; o++) {
+        if (rt->mem.pass_state[plan->order[o]]) continue;
         if ((r = create_pass(rt, plan->order[o], err))) return r;
+        rt->stats.last_passes_created++;
+    }
     rt->mem.built = true;
     return PG_OK;
 }

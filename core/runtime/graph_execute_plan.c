@@ -130,11 +130,10 @@ static uint64_t hash_params(uint64_t s, const pg_plan_pass *p, bool runtime)
     return fnv(s, fixed, n);
 }
 
-/* (b) What needs new pass instances: the caller's block generation, the settings, the executed passes in order with
- * their types, shader variants (defines), bound resources and the options that are not run-time
- * values (pg_pass_type.runtime_options). */
-static uint64_t pipeline_signature(const pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pl,
-                                   uint64_t user_generation)
+/* (b) What needs new pass instances: the caller's block generation, the settings (shared_signature),
+ * the executed passes in order with their types, shader variants (defines), bound resources and the
+ * options that are not run-time values (pg_pass_type.runtime_options) (pass_signature). */
+static uint64_t shared_signature(const pg_runtime *rt, uint64_t user_generation)
 {
     uint64_t s = 1469598103934665603ull;
     s = fnv(s, &user_generation, sizeof user_generation);
@@ -144,24 +143,81 @@ static uint64_t pipeline_signature(const pg_runtime *rt, const pg_graph_plan *pl
         s = fnv(s, k, strlen(k) + 1);
         s = fnv(s, v, strlen(v) + 1);
     }
+    return s;
+}
+
+static uint64_t pass_signature(const pg_pipeline *pl, const pg_plan_pass *p)
+{
+    uint64_t s = 1469598103934665603ull;
+    s = fnv(s, p->name, strlen(p->name) + 1);
+    s = fnv(s, p->type->name, strlen(p->type->name) + 1);
+    for (uint32_t d = 0; d < p->decl.n_defines; d++) s = fnv(s, p->decl.defines[d], strlen(p->decl.defines[d]) + 1);
+    s = hash_options(s, p->type, pl->passes[p->desc_index].options, false);
+    s = hash_params(s, p, false);
+    s = fnv(s, &p->n_slots, sizeof p->n_slots);
+    for (uint32_t k = 0; k < p->n_slots; k++) {
+        s = fnv(s, &p->slots[k].resource, sizeof(int));
+        s = fnv(s, &p->slots[k].decl.unused, sizeof(bool));
+    }
+    return fnv(s, &p->queue, sizeof p->queue); /* pass-owned objects are used on one queue */
+}
+
+/* Fills sigs[i] (plan pass index) for the executed passes and returns the plan's signature. */
+static uint64_t pipeline_signature(const pg_graph_plan *plan, const pg_pipeline *pl, uint64_t shared, uint64_t *sigs)
+{
+    uint64_t s = shared;
     s = fnv(s, &plan->n_order, sizeof plan->n_order);
     for (uint32_t i = 0; i < plan->n_order; i++) {
-        const pg_plan_pass *p = &plan->passes[plan->order[i]];
+        const int pi = plan->order[i];
+        sigs[pi] = pass_signature(pl, &plan->passes[pi]);
         s = fnv(s, &plan->order[i], sizeof plan->order[i]);
-        s = fnv(s, p->name, strlen(p->name) + 1);
-        s = fnv(s, p->type->name, strlen(p->type->name) + 1);
-        for (uint32_t d = 0; d < p->decl.n_defines; d++)
-            s = fnv(s, p->decl.defines[d], strlen(p->decl.defines[d]) + 1);
-        s = hash_options(s, p->type, pl->passes[p->desc_index].options, false);
-        s = hash_params(s, p, false);
-        s = fnv(s, &p->n_slots, sizeof p->n_slots);
-        for (uint32_t k = 0; k < p->n_slots; k++) {
-            s = fnv(s, &p->slots[k].resource, sizeof(int));
-            s = fnv(s, &p->slots[k].decl.unused, sizeof(bool));
-        }
-        s = fnv(s, &p->queue, sizeof p->queue); /* pass-owned objects are used on one queue */
+        s = fnv(s, &sigs[pi], sizeof sigs[pi]);
     }
     return s;
+}
+
+/* Same memory, new pass instances: the instances of the current plan's passes whose own signature
+ * the new plan's pass of the same name has (and nothing shared changed) move into keep[] at the
+ * new plan's index, out of the runtime (pg_rt_destroy_passes then leaves them). */
+static void take_unchanged(pg_runtime *rt, const pg_graph_plan *plan, const uint64_t *sigs, uint64_t shared,
+                           void **keep)
+{
+    const pg_graph_plan *old = rt->cur.plan;
+    if (!old || shared != rt->cur.shared_sig) return;
+    for (uint32_t i = 0; i < plan->n_order; i++) {
+        const int pi = plan->order[i];
+        for (uint32_t k = 0; k < old->n_order; k++) {
+            const int oi = old->order[k];
+            if (!rt->mem.pass_state[oi] || sigs[pi] != rt->cur.pass_sig[oi] ||
+                strcmp(plan->passes[pi].name, rt->cur.pass_name[oi]))
+                continue;
+            keep[pi] = rt->mem.pass_state[oi];
+            rt->mem.pass_state[oi] = NULL;
+            break;
+        }
+    }
+}
+
+/* The per-pass signatures and names of the plan being adopted. */
+static void adopt_signatures(pg_runtime *rt, const pg_graph_plan *plan, const uint64_t *sigs, uint64_t shared)
+{
+    memcpy(rt->cur.pass_sig, sigs, sizeof rt->cur.pass_sig);
+    for (uint32_t i = 0; i < plan->n_passes && i < PG_MAX_PASSES; i++)
+        pg_strlcpy(rt->cur.pass_name[i], plan->passes[i].name, PG_NAME_MAX);
+    rt->cur.shared_sig = shared;
+}
+
+/* Kept instances adopt the new plan's run-time values (their type's update()). */
+static pg_result update_kept(pg_runtime *rt, void *const *keep, pg_error *err)
+{
+    const pg_graph_plan *plan = rt->cur.plan;
+    for (uint32_t i = 0; i < plan->n_passes; i++) {
+        const pg_plan_pass *p = &plan->passes[i];
+        if (!keep[i] || !p->type->update) continue;
+        pg_result r = p->type->update(keep[i], p->decl.params, err);
+        if (r) return pg_error_prefix(err, "pass '%s' (%s)", p->name, p->type->name);
+    }
+    return PG_OK;
 }
 
 /* (c) The run-time values: the options the pass types list as such (pass.update() gets them). */
@@ -214,7 +270,9 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
                        "the plan was compiled for queues of %s family, the device's are of %s: compile with "
                        "pg_runtime_queue_caps()", plan->qfot ? "different" : "one", plan->qfot ? "one" : "different");
     const uint64_t msig = memory_signature(plan, width, height);
-    const uint64_t psig = pipeline_signature(rt, plan, pipeline, user.generation);
+    uint64_t sigs[PG_MAX_PASSES] = {0};
+    const uint64_t shared = shared_signature(rt, user.generation);
+    const uint64_t psig = pipeline_signature(plan, pipeline, shared, sigs);
     const uint64_t vsig = value_signature(plan, pipeline);
     pg_rt_reports_due(rt); /* a new light count may need a buffer to grow: read the next report */
     pg_rt_clear_growth(rt); /* requests name resources of the plan being replaced */
@@ -243,9 +301,18 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
         /* same resources: keep them (and what persistent ones hold when the new plan assumes
          * the same state at frame start), re-create the pass instances only */
         vkDeviceWaitIdle(rt->cfg.gpu->device);
+        void *keep[PG_MAX_PASSES] = {0};
+        if (!some) take_unchanged(rt, plan, sigs, shared, keep);
         pg_rt_destroy_passes(rt);
         for (uint32_t i = 0; i < plan->n_resources; i++)
             if (wrap_signature(plan, (int)i) != wrap_signature(rt->cur.plan, (int)i)) pg_rt_forget_contents(rt, (int)i);
+        adopt_signatures(rt, plan, sigs, shared);
+        uint32_t kept = 0;
+        for (uint32_t i = 0; i < PG_MAX_PASSES; i++) {
+            rt->mem.pass_state[i] = keep[i];
+            kept += keep[i] != NULL;
+        }
+        rt->stats.last_passes_kept = kept;
         rt->cur.plan = plan;
         rt->cur.pipeline = pipeline;
         rt->cur.user = user;
@@ -262,6 +329,7 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
             r = PG_OK;
         }
         if (!r) r = pg_rt_build_passes(rt, err);
+        if (!r) r = update_kept(rt, keep, err);
     } else {
         pg_rt_carry_persistent(rt, plan); /* e.g. a filtered environment: kept with what it holds */
         pg_rt_destroy_built(rt);
@@ -273,6 +341,8 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
         rt->cur.mem_sig = msig;
         rt->cur.pipe_sig = psig;
         rt->cur.val_sig = vsig;
+        adopt_signatures(rt, plan, sigs, shared);
+        rt->stats.last_passes_kept = 0;
         rt->stats.memory_rebuilds++;
         rt->stats.last_rebuild = PG_REBUILD_MEMORY;
         r = pg_rt_build_memory(rt, err);

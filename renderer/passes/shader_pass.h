@@ -42,6 +42,8 @@ typedef struct sp_params {
     pg_slot depth;            /* draw: the depth attachment (PG_SLOT_NONE: none) */
     pg_scene_draw_features draw; /* draw: the scene's vertex path and surface variant */
     uint32_t push_size;       /* bytes of the shader's push-constant block (0: none) */
+    uint64_t spirv_hash;      /* of the SPIR-V declare compiled: part of the plan's pipeline signature,
+                               * so an edit of the shader (or of a file it includes) re-creates the pass */
     /* the push-constant values from options.params: a run-time value (a new value re-creates
      * nothing: pg_pass_type.runtime_options, update()) */
     _Alignas(16) unsigned char push[SP_PUSH_MAX];

@@ -133,6 +133,9 @@ static pg_result compile_and_reflect(sp_ctx *c)
     if (pg_shader_compile_user(c->p->path, stage, defs, n, false, &words, &n_words, &e))
         return pg_sp_fail(c, PG_ERR_SHADER, c->form_key, "%s", e.msg);
     pg_result r = pg_spirv_reflect(words, n_words, &c->refl, &e);
+    uint64_t h = 1469598103934665603ull; /* FNV-1a */
+    for (size_t i = 0; i < n_words * 4; i++) h = (h ^ ((const unsigned char *)words)[i]) * 1099511628211ull;
+    c->p->spirv_hash = h;
     free(words);
     if (r) return pg_sp_fail(c, r, c->form_key, "shader '%s': %s", c->rel, e.msg);
     return PG_OK;

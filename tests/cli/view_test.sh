@@ -77,4 +77,26 @@ xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --size 64x36 --frames 2 --ligh
 [ "$(grep -cxF "passgraph: warning: $skins: 1 primitive(s) of skinned nodes without JOINTS_0/WEIGHTS_0: drawn by their node's transform, unskinned" "$tmp/err4")" = 1 ] \
   && ok || { bad "view: skins warning not printed once"; cat "$tmp/err4"; }
 [ "$(head -c 3 "$tmp/shot.jpg" 2>/dev/null | od -An -tx1 | tr -d ' ')" = "ffd8ff" ] && ok || bad "view --screenshot x.jpg: not a JPEG"
+# a user pass (pipelines/examples/tonemap: JSON + GLSL) hot-reloaded: the shader is broken on disk
+# (its glslang error with the file and line is shown, the last good graph keeps running), then edited
+# (the new image is shown; the reload's time is printed); the examples are in the viewer's list
+ut="$tmp/usertone"
+mkdir -p "$ut"
+cp "$root/pipelines/examples/tonemap/tonemap.frag" "$ut/"
+sed "s#\"\.\./\.\./fragments/#\"$root/pipelines/fragments/#g" "$root/pipelines/examples/tonemap/tonemap.json" >"$ut/tonemap.json"
+sed 's/float L = /float L = no_such_thing + /' "$ut/tonemap.frag" >"$tmp/tm_broken.frag"
+sed 's/out_color = vec4(pg_srgb_encode(c \* scale), 1.0);/out_color = vec4(pg_srgb_encode(c * scale).bgr, 1.0);/' \
+  "$ut/tonemap.frag" >"$tmp/tm_swapped.frag"
+xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --validation --size 640x360 --frames 12 --lights 16 \
+  --pipeline "$ut/tonemap.json" --at 3:copy="$tmp/tm_broken.frag:$ut/tonemap.frag" \
+  --at 7:copy="$tmp/tm_swapped.frag:$ut/tonemap.frag" >"$tmp/out6" 2>"$tmp/err6"
+rc=$?
+[ $rc -eq 0 ] && ok || { bad "user pass reload: view exit $rc"; tail -20 "$tmp/err6"; }
+grep -q "validation message" "$tmp/err6" && bad "user pass reload: validation messages" || ok
+grep -q "tonemap.frag:22: 'no_such_thing' : undeclared identifier" "$tmp/err6" \
+  && ok || { bad "user pass reload: the shader error was not shown"; cat "$tmp/err6"; }
+grep -Eq '^view: frame 1[01]: .* ready in [0-9.]+ ms' "$tmp/out6" || grep -Eq '^view: frame [7-9]: .*ready in [0-9.]+ ms' "$tmp/out6" \
+  && ok || { bad "user pass reload: the edited shader was not shown"; cat "$tmp/out6"; }
+grep -Eq '^view: 12 frames' "$tmp/out6" && ok || { bad "user pass reload: did not run 12 frames"; tail -3 "$tmp/out6"; }
+grep -E 'ready in' "$tmp/out6" | tail -1
 check_finish view_test

@@ -9,7 +9,9 @@
  *                            constant now, not a define);
  *   3. the same overrides    nothing at all (last_rebuild "none", no counter moves);
  *   4. + shading=blinn_phong a new shader variant: the pass instances only (pipeline_rebuilds + 1),
- *                            the resources are kept;
+ *                            the resources are kept, and so are the instances of the passes the
+ *                            variant does not touch (the light animation, the light assignment,
+ *                            the display: last_passes_kept 3, the G-buffer and lighting created);
  *   5. 24 lights             a bigger light buffer: it and the other members of its memory block
  *                            are re-created (the block packed again) with the pass instances, the
  *                            rest kept (resource_rebuilds + 1);
@@ -276,6 +278,13 @@ int main(void)
             }
             pg_session_destroy(f2);
         } else if (st->want != PG_REBUILD_MEMORY) {
+            if (st->want == PG_REBUILD_PIPELINES) {
+                printf("  pass instances: %u created, %u kept of %u\n", rs.last_passes_created, rs.last_passes_kept,
+                       s->plan->n_order);
+                CHECK_MSG(rs.last_passes_kept == 3 && rs.last_passes_created + rs.last_passes_kept == s->plan->n_order,
+                          "%s: %u pass instances created, %u kept of %u (want the 3 the variant does not touch kept)",
+                          st->what, rs.last_passes_created, rs.last_passes_kept, s->plan->n_order);
+            }
             CHECK_MSG(live > 0 && kept == live, "%s: %u of %u resources kept their VkImage/VkBuffer", st->what,
                       kept, live);
         }
