@@ -40,6 +40,11 @@
 #   animation      the animated character (models/walker.gltf): geometry_animate's cost in naive,
 #                  forward+, deferred and visibility with the compute queue on and off, and the
 #                  images of both queue plans (identical)
+#   user-passes    the example user passes (`shader` passes, pipelines/examples/) against the built-in
+#                  passes doing the same work: the tone mapper (fullscreen and compute) against display_tonemap
+#                  (reinhard, fullscreen) and the OCIO display (compute) at 1,000 lights; the user lighting pass (a per-pixel
+#                  loop over the cluster lists) against deferred's lighting with the per-pixel loop
+#                  (tile_lights=false) and tiled, at 100,000 lights (times only)
 #   stress         radius 6 at 1,000,000 lights (exact? list memory), a dense clump of lights
 #                  (assets/scenarios/clump.json), 3840x2160 at 100,000 lights
 #
@@ -238,6 +243,13 @@ for step in "${STEPS[@]}"; do
     bench uhd "$BUNDLE" visibility,stochastic,ris,lightcut --lights 100000 "${ERR[@]}"
     COMMON=("${SAVED[@]}")
     ;;
+  user-passes)
+    UT=(--warmup 2 --warmup-ms 500 --frames 20 --reference-max-lights 0)
+    bench user_tonemap "$BUNDLE" examples/tonemap/tonemap --lights 1000 --sweep tonemap_stage=fullscreen,compute "${UT[@]}"
+    bench builtin_display "$BUNDLE" forward_plus --lights 1000 --sweep tonemap=ocio,reinhard "${UT[@]}"
+    bench user_lighting "$BUNDLE" examples/lighting/lighting --lights 100000 "${UT[@]}"
+    bench builtin_lighting "$BUNDLE" deferred --lights 100000 --sweep tile_lights=false,true "${UT[@]}"
+    ;;
   animation)
     # the animated character (tests/corpus/gltf/models/walker.gltf, its walk cycle from t = 0.25,
     # the pose advancing with --time-step): geometry_animate's cost in each pipeline with the
@@ -260,7 +272,7 @@ for step in "${STEPS[@]}"; do
     ;;
   *)
     echo "device-run.sh: unknown step '$step' (validate, bench, bench-forward, prepass, ab, sweep, tiling, tile-size, file-lights, manylight, knobs, knob-stochastic," \
-      "evals, stress, animation)" >&2
+      "evals, stress, animation, user-passes)" >&2
     exit 2
     ;;
   esac
