@@ -43,7 +43,7 @@
 #   user-passes    the example user passes (`shader` passes, pipelines/examples/) against the built-in
 #                  passes doing the same work: the tone mapper (fullscreen and compute) against display_tonemap
 #                  (reinhard, fullscreen) and the OCIO display (compute) at 1,000 lights; the user lighting pass (a per-pixel
-#                  loop over the cluster lists) against deferred's lighting with the per-pixel loop
+#                  loop over the cluster lists, and the tiled one) against deferred's lighting with the per-pixel loop
 #                  (tile_lights=false) and tiled, at 100,000 lights (times only)
 #   stress         radius 6 at 1,000,000 lights (exact? list memory), a dense clump of lights
 #                  (assets/scenarios/clump.json), 3840x2160 at 100,000 lights
@@ -247,7 +247,7 @@ for step in "${STEPS[@]}"; do
     UT=(--warmup 2 --warmup-ms 500 --frames 20 --reference-max-lights 0)
     bench user_tonemap "$BUNDLE" examples/tonemap/tonemap --lights 1000 --sweep tonemap_stage=fullscreen,compute "${UT[@]}"
     bench builtin_display "$BUNDLE" forward_plus --lights 1000 --sweep tonemap=ocio,reinhard "${UT[@]}"
-    bench user_lighting "$BUNDLE" examples/lighting/lighting --lights 100000 "${UT[@]}"
+    bench user_lighting "$BUNDLE" examples/lighting/lighting --lights 100000 --sweep loop=pixel,tiled "${UT[@]}"
     bench builtin_lighting "$BUNDLE" deferred --lights 100000 --sweep tile_lights=false,true "${UT[@]}"
     ;;
   animation)
