@@ -44,7 +44,8 @@
 #                  passes doing the same work: the tone mapper (fullscreen and compute) against display_tonemap
 #                  (reinhard, fullscreen) and the OCIO display (compute) at 1,000 lights; the user lighting pass (a per-pixel
 #                  loop over the cluster lists, and the tiled one) against deferred's lighting with the per-pixel loop
-#                  (tile_lights=false) and tiled, at 100,000 lights (times only)
+#                  (tile_lights=false) and tiled, with and without its back-face test, at 100,000
+#                  lights (times only)
 #   stress         radius 6 at 1,000,000 lights (exact? list memory), a dense clump of lights
 #                  (assets/scenarios/clump.json), 3840x2160 at 100,000 lights
 #
@@ -249,6 +250,7 @@ for step in "${STEPS[@]}"; do
     bench builtin_display "$BUNDLE" forward_plus --lights 1000 --sweep tonemap=ocio,reinhard "${UT[@]}"
     bench user_lighting "$BUNDLE" examples/lighting/lighting --lights 100000 --sweep loop=pixel,tiled "${UT[@]}"
     bench builtin_lighting "$BUNDLE" deferred --lights 100000 --sweep tile_lights=false,true "${UT[@]}"
+    bench builtin_lighting_box "$BUNDLE" deferred --lights 100000 --set tile_lights=true --sweep tile_backface=false "${UT[@]}"
     ;;
   animation)
     # the animated character (tests/corpus/gltf/models/walker.gltf, its walk cycle from t = 0.25,

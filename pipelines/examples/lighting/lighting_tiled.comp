@@ -5,8 +5,11 @@
 // first), streams that cluster's list through shared memory 64 lights at a time, keeps only the
 // lights whose sphere reaches the bounding box of the tile's pixels in that cluster (a light that
 // reaches a pixel reaches the box: the others would add exactly 0), and the cluster's pixels sum
-// the kept lights. Each light is read once a tile instead of once a pixel, and most are tested once
-// a tile instead of once a pixel. The kept lights of a chunk are summed in the order the threads
+// the kept lights. A light also leaves the chunk when it lies behind every one of those pixels:
+// dot(N_i, light - P_i) = dot(N_i, r) + dot(N_i, Pc - P_i) <= dot(a, r) + E |r| + H < 0, with Pc the
+// box centre, r = light - Pc, a the normal of one of the pixels, E = max |N_i - a| and
+// H = max dot(N_i, Pc - P_i): max(N.L, 0) is 0 at each of them, so it would add nothing. Each light
+// is read once a tile instead of once a pixel, and tested once a tile instead of once a pixel. The kept lights of a chunk are summed in the order the threads
 // kept them, so a pixel's sum may differ from lighting.comp's in the last bits.
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
@@ -31,6 +34,9 @@ layout(push_constant) uniform Params {
 shared uint s_cluster;       // the cluster the tile works on (the smallest still pending)
 shared uint s_box[6];        // its pixels' camera-relative bounding box (order-preserving uints)
 shared uint s_kept;          // lights of the current chunk that reach the box
+shared uint s_first;         // the lowest invocation of the cluster: its normal is the axis a
+shared float s_axis[3];
+shared uint s_e, s_h;        // E (float bits, >= 0) and H (order-preserving uint)
 shared vec4 s_light[2u * TILE_N];
 
 uint to_ordered(float f) // float -> uint with the same order
@@ -78,6 +84,9 @@ void main()
             s_cluster = 0xffffffffu;
             s_box[0] = s_box[1] = s_box[2] = 0xffffffffu;
             s_box[3] = s_box[4] = s_box[5] = 0u;
+            s_first = 0xffffffffu;
+            s_e = 0u;
+            s_h = 0u;
         }
         barrier();
         if (pending) atomicMin(s_cluster, ci);
@@ -85,14 +94,30 @@ void main()
         uint c = s_cluster;
         if (c == 0xffffffffu) break;
         bool mine = pending && ci == c;
-        if (mine)
+        if (mine) {
             for (int k = 0; k < 3; k++) {
                 atomicMin(s_box[k], to_ordered(rel[k]));
                 atomicMax(s_box[3 + k], to_ordered(rel[k]));
             }
+            atomicMin(s_first, lid);
+        }
         barrier();
         vec3 bmin = vec3(from_ordered(s_box[0]), from_ordered(s_box[1]), from_ordered(s_box[2]));
         vec3 bmax = vec3(from_ordered(s_box[3]), from_ordered(s_box[4]), from_ordered(s_box[5]));
+        vec3 pc = 0.5 * (bmin + bmax);
+        if (lid == s_first) {
+            s_axis[0] = N.x;
+            s_axis[1] = N.y;
+            s_axis[2] = N.z;
+        }
+        barrier();
+        vec3 axis = vec3(s_axis[0], s_axis[1], s_axis[2]);
+        if (mine) {
+            atomicMax(s_e, floatBitsToUint(length(N - axis)));
+            atomicMax(s_h, to_ordered(dot(N, pc - rel)));
+        }
+        barrier();
+        float E = uintBitsToFloat(s_e), H = from_ordered(s_h);
         uvec4 rec = cluster_records[c];
         for (uint base = 0u; base < rec.y; base += TILE_N) {
             if (lid == 0u) s_kept = 0u;
@@ -101,7 +126,10 @@ void main()
                 Light L = lights[cluster_lights[rec.x + base + lid]];
                 vec3 centre = L.pos_radius.xyz - frame.camera_pos.xyz;
                 float pad = 1e-4 * L.pos_radius.w + 4e-7 * (length(centre) + length(L.pos_radius.xyz));
-                if (pg_sphere_intersects_aabb(centre, L.pos_radius.w + pad, bmin, bmax)) {
+                vec3 r = centre - pc;
+                float lr = length(r);
+                bool behind = dot(axis, r) + E * lr + H < -1e-4 * (lr + length(pc) + 1.0);
+                if (!behind && pg_sphere_intersects_aabb(centre, L.pos_radius.w + pad, bmin, bmax)) {
                     uint k = atomicAdd(s_kept, 1u);
                     s_light[2u * k] = L.pos_radius;
                     s_light[2u * k + 1u] = L.color;
