@@ -205,25 +205,14 @@ void passgraph_get_vulkan(const passgraph *p, passgraph_vulkan *out)
     *out = (passgraph_vulkan){p->gpu->instance, p->gpu->phys, p->gpu->device, p->gpu->queue, p->gpu->queue_family};
 }
 
+/* One image barrier over every stage (the copy is a one-off, not a frame's hot path). */
 static void image_barrier(VkCommandBuffer cmd, VkImage img, VkImageLayout from, VkImageLayout to, VkAccessFlags2 src_access,
                           VkAccessFlags2 dst_access)
 {
-    VkImageMemoryBarrier2 b = {
-        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
-        .srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-        .srcAccessMask = src_access,
-        .dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-        .dstAccessMask = dst_access,
-        .oldLayout = from,
-        .newLayout = to,
-        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .image = img,
-        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1},
-    };
-    VkDependencyInfo d = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1,
-                          .pImageMemoryBarriers = &b};
-    vkCmdPipelineBarrier2(cmd, &d);
+    const VkImageMemoryBarrier2 b =
+        pg_image_barrier(img, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, src_access,
+                         VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, dst_access, from, to);
+    pg_cmd_barriers(cmd, 1, &b, 0, NULL);
 }
 
 pg_result passgraph_render_to_image(passgraph *p, VkImage dst, VkFormat format, VkImageLayout old_layout,

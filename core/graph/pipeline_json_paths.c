@@ -92,6 +92,27 @@ static bool inside(const char *path, const char *dir)
     return strncmp(path, dir, n) == 0 && path[n] == '/';
 }
 
+/* path lies inside from_file's folder, top_file's folder (either may be NULL), the data folder's
+ * pipelines/ or an --include-dir (decided on the canonical name). */
+static bool path_allowed(const char *path, const char *from_file, const char *top_file)
+{
+    char target[PATH_MAX], dir[PATH_MAX];
+    canon(path, target);
+    const char *froms[2] = {from_file, top_file};
+    for (int i = 0; i < 2; i++) {
+        if (!froms[i]) continue;
+        canon_dir(froms[i], dir);
+        if (inside(target, dir)) return true;
+    }
+    char data[PG_PATH_MAX];
+    pg_data_path(data, sizeof data, "pipelines");
+    canon(data, dir);
+    if (inside(target, dir)) return true;
+    for (uint32_t i = 0; i < g_n_dirs; i++)
+        if (inside(target, g_dirs[i])) return true;
+    return false;
+}
+
 pg_result pg_pipeline_set_include_dirs(const char *const *dirs, uint32_t n, pg_error *err)
 {
     if (n > PG_MAX_INCLUDE_DIRS)
@@ -111,18 +132,7 @@ pg_result pg_pipeline_set_include_dirs(const char *const *dirs, uint32_t n, pg_e
 pg_result pj_include_allowed(loader *L, const src_file *from, const char *ipath, const char *rel,
                              const char *path)
 {
-    char target[PATH_MAX], dir[PATH_MAX];
-    canon(path, target);
-    canon_dir(from->path, dir);
-    if (inside(target, dir)) return PG_OK;
-    canon_dir(L->stack[0]->path, dir);
-    if (inside(target, dir)) return PG_OK;
-    char data[PG_PATH_MAX];
-    pg_data_path(data, sizeof data, "pipelines");
-    canon(data, dir);
-    if (inside(target, dir)) return PG_OK;
-    for (uint32_t i = 0; i < g_n_dirs; i++)
-        if (inside(target, g_dirs[i])) return PG_OK;
+    if (path_allowed(path, from->path, L->stack[0]->path)) return PG_OK;
     return pj_fail_at(L, PG_ERR_INCLUDE, from, ipath,
                       "include '%s' is outside the allowed folders (the including file's folder, "
                       "the data folder, --include-dir)", rel);
@@ -140,20 +150,7 @@ pg_result pg_pipeline_resolve_file(const char *from_file, const char *top_file, 
                   : snprintf(out, out_size, "%s", rel);
     }
     if (n < 0 || (size_t)n >= out_size || (size_t)n >= PATH_MAX) return pg_fail(err, PG_ERR_INCLUDE, "path too long");
-    char target[PATH_MAX], dir[PATH_MAX];
-    canon(out, target);
-    const char *froms[2] = {from_file, top_file};
-    for (int i = 0; i < 2; i++) {
-        if (!froms[i]) continue;
-        canon_dir(froms[i], dir);
-        if (inside(target, dir)) return PG_OK;
-    }
-    char data[PG_PATH_MAX];
-    pg_data_path(data, sizeof data, "pipelines");
-    canon(data, dir);
-    if (inside(target, dir)) return PG_OK;
-    for (uint32_t i = 0; i < g_n_dirs; i++)
-        if (inside(target, g_dirs[i])) return PG_OK;
+    if (path_allowed(out, from_file, top_file)) return PG_OK;
     return pg_fail(err, PG_ERR_INCLUDE,
                    "'%s' is outside the allowed folders (the pipeline file's folder, the data folder's "
                    "pipelines/, --include-dir)",

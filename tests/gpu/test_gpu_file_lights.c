@@ -57,38 +57,6 @@ static void unload(loaded *l)
     pg_th_scene_close(g_gpu, l);
 }
 
-/* the floor point (y = 0) under pixel (x, y)'s centre; false when the ray misses the floor or
- * (box) first meets the unit box of sun.gltf (-0.5..0.5, 0..1, -0.5..0.5) */
-static bool floor_point_ex(const pg_frame_info *fi, uint32_t x, uint32_t y, bool box, double p[3])
-{
-    double a[3], b[3];
-    pg_th_pixel_ray(fi, x, y, a, b);
-    if (!(fabs(b[1] - a[1]) > 1e-12)) return false;
-    double t = -a[1] / (b[1] - a[1]);
-    for (int k = 0; k < 3; k++) p[k] = a[k] + t * (b[k] - a[k]);
-    if (box) { /* slab test along a + s (b - a), s in [0, t] */
-        const double lo[3] = {-0.5, 0, -0.5}, hi[3] = {0.5, 1, 0.5};
-        double s0 = 0, s1 = t;
-        for (int k = 0; k < 3; k++) {
-            double dk = b[k] - a[k];
-            if (fabs(dk) < 1e-300) {
-                if (a[k] < lo[k] || a[k] > hi[k]) s0 = 2, s1 = 1;
-                continue;
-            }
-            double u = (lo[k] - a[k]) / dk, v = (hi[k] - a[k]) / dk;
-            s0 = fmax(s0, fmin(u, v));
-            s1 = fmin(s1, fmax(u, v));
-        }
-        if (s0 <= s1 + 1e-9) return false; /* the box is in the way (or touches the point) */
-    }
-    return fabs(p[0]) < 4.9 && fabs(p[2]) < 4.9;
-}
-
-static bool floor_point(const pg_frame_info *fi, uint32_t x, uint32_t y, double p[3])
-{
-    return floor_point_ex(fi, x, y, false, p);
-}
-
 /* the extension's model at a floor point (normal +Y), infinite reach for unranged lights */
 static void cpu_shade(const pg_scene *s, const double p[3], double out[3])
 {
@@ -138,7 +106,7 @@ static uint32_t ref_vs_cpu(const char *label, const loaded *l, const pg_th_frame
     for (uint32_t y = 0; y < H; y++)
         for (uint32_t x = 0; x < W; x++) {
             double p[3], e[3];
-            if (!floor_point(&l->fi, x, y, p)) continue;
+            if (!pg_th_floor_point(&l->fi, x, y, false, p)) continue;
             cpu_shade(l->scene, p, e);
             const float *g = ref->hdr + ((size_t)y * W + x) * 4;
             n++;
@@ -210,7 +178,7 @@ static void rgb_points(const loaded *l)
         for (uint32_t y = 0; y < H; y++)
             for (uint32_t x = 0; x < W; x++) {
                 double p[3];
-                if (!floor_point(&l->fi, x, y, p)) continue;
+                if (!pg_th_floor_point(&l->fi, x, y, false, p)) continue;
                 double d = hypot(p[0] - L->position[0], p[2] - L->position[2]);
                 if (d < best) best = d, bx = x, by = y;
             }
@@ -268,7 +236,7 @@ static void sun(const loaded *l)
     for (uint32_t y = 0; y < H; y++)
         for (uint32_t x = 0; x < W; x++) {
             double p[3];
-            if (!floor_point_ex(&l->fi, x, y, true, p)) continue;
+            if (!pg_th_floor_point(&l->fi, x, y, true, p)) continue;
             const float *g = ref.hdr + ((size_t)y * W + x) * 4;
             n++;
             for (int c = 0; c < 3; c++) {

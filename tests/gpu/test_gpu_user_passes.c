@@ -125,31 +125,14 @@ static void bloom(const pg_th_scene *s)
     pg_th_release(&b);
 }
 
-/* the floor point (y = 0) under pixel (x, y), when the unit box (-0.5..0.5, 0..1, -0.5..0.5) of
- * sun.gltf does not hide it; *edge gets its distance to the box's foot */
+/* the floor point under pixel (x, y) the unit box of sun.gltf does not hide (pg_th_floor_point);
+ * *edge gets its distance to the box's foot */
 static bool floor_point(const pg_frame_info *fi, uint32_t x, uint32_t y, double p[3], double *edge)
 {
-    double a[3], b[3];
-    pg_th_pixel_ray(fi, x, y, a, b);
-    if (!(fabs(b[1] - a[1]) > 1e-12)) return false;
-    double t = -a[1] / (b[1] - a[1]);
-    for (int k = 0; k < 3; k++) p[k] = a[k] + t * (b[k] - a[k]);
-    const double lo[3] = {-0.5, 0, -0.5}, hi[3] = {0.5, 1, 0.5};
-    double s0 = 0, s1 = t;
-    for (int k = 0; k < 3; k++) {
-        double dk = b[k] - a[k];
-        if (fabs(dk) < 1e-300) {
-            if (a[k] < lo[k] || a[k] > hi[k]) s0 = 2, s1 = 1;
-            continue;
-        }
-        double u = (lo[k] - a[k]) / dk, v = (hi[k] - a[k]) / dk;
-        s0 = fmax(s0, fmin(u, v));
-        s1 = fmin(s1, fmax(u, v));
-    }
-    if (s0 <= s1 + 1e-9) return false;
+    if (!pg_th_floor_point(fi, x, y, true, p)) return false;
     double dx = fmax(fabs(p[0]) - 0.5, 0.0), dz = fmax(fabs(p[2]) - 0.5, 0.0);
     *edge = sqrt(dx * dx + dz * dz);
-    return fabs(p[0]) < 4.9 && fabs(p[2]) < 4.9;
+    return true;
 }
 
 static void ssao(const pg_th_scene *s)

@@ -219,6 +219,31 @@ void pg_th_pixel_ray(const pg_frame_info *fi, uint32_t x, uint32_t y, double a[3
     }
 }
 
+bool pg_th_floor_point(const pg_frame_info *fi, uint32_t x, uint32_t y, bool box, double p[3])
+{
+    double a[3], b[3];
+    pg_th_pixel_ray(fi, x, y, a, b);
+    if (!(fabs(b[1] - a[1]) > 1e-12)) return false;
+    double t = -a[1] / (b[1] - a[1]);
+    for (int k = 0; k < 3; k++) p[k] = a[k] + t * (b[k] - a[k]);
+    if (box) { /* slab test along a + s (b - a), s in [0, t] */
+        const double lo[3] = {-0.5, 0, -0.5}, hi[3] = {0.5, 1, 0.5};
+        double s0 = 0, s1 = t;
+        for (int k = 0; k < 3; k++) {
+            double dk = b[k] - a[k];
+            if (fabs(dk) < 1e-300) {
+                if (a[k] < lo[k] || a[k] > hi[k]) s0 = 2, s1 = 1;
+                continue;
+            }
+            double u = (lo[k] - a[k]) / dk, v = (hi[k] - a[k]) / dk;
+            s0 = fmax(s0, fmin(u, v));
+            s1 = fmin(s1, fmax(u, v));
+        }
+        if (s0 <= s1 + 1e-9) return false; /* the box is in the way (or touches the point) */
+    }
+    return fabs(p[0]) < 4.9 && fabs(p[2]) < 4.9;
+}
+
 bool pg_th_file_open(pg_gpu *gpu, const char *rel, uint32_t w, uint32_t h, int shading, pg_th_scene *out)
 {
     char path[PG_PATH_MAX];

@@ -50,6 +50,11 @@ void pg_th_pipelines_vs_ref(pg_gpu *gpu, const pg_pass_registry *reg, const pg_s
  * b on the far plane (world space, double). */
 void pg_th_pixel_ray(const pg_frame_info *fi, uint32_t x, uint32_t y, double a[3], double b[3]);
 
+/* The point of the floor y = 0 (the corpus' light scenes, tests/corpus/gltf/lights/) under pixel
+ * (x, y)'s centre: false when the ray misses the floor, the point lies outside |x|, |z| < 4.9, or
+ * (box) the unit box of sun.gltf (-0.5..0.5, 0..1, -0.5..0.5) hides it first. */
+bool pg_th_floor_point(const pg_frame_info *fi, uint32_t x, uint32_t y, bool box, double p[3]);
+
 /* A scene opened for a test: loaded ("default" = the built-in atrium), uploaded, and a frame
  * set-up: the scene's default camera for w x h, its default lights (seed 7) at time 0.5, then
  * the scenario (a data-folder path, or NULL) applied over them, and `lights` lights. */
