@@ -47,9 +47,21 @@ static pg_result add_param(passgraph *p, const char *key, const char *value, pg_
     return PG_OK;
 }
 
-static pg_result open_session(passgraph *p, const char *path, pg_session **out, pg_error *err)
+/* A session on path with the overrides; declared_only: only those the pipeline declares (the
+ * reference: a parameter of the pipeline under test need not exist there, as in `compare`). */
+static pg_result open_session(passgraph *p, const char *path, bool declared_only, pg_session **out, pg_error *err)
 {
-    pg_session_desc sd = {.pipeline_path = path, .registry = &p->reg, .overrides = p->params, .n_overrides = p->n_params};
+    pg_param_override ov[MAX_PARAMS];
+    uint32_t n = 0;
+    pg_pipeline *probe = NULL;
+    if (declared_only) {
+        pg_result r = pg_pipeline_load(path, NULL, 0, &probe, err);
+        if (r) return r;
+    }
+    for (uint32_t i = 0; i < p->n_params; i++)
+        if (!probe || pg_pipeline_find_param(probe, p->keys[i])) ov[n++] = p->params[i];
+    pg_pipeline_free(probe);
+    pg_session_desc sd = {.pipeline_path = path, .registry = &p->reg, .overrides = ov, .n_overrides = n};
     return pg_session_create(p->gpu, p->sg, &sd, out, err);
 }
 
@@ -84,7 +96,7 @@ static pg_result open_parts(passgraph *p, const passgraph_desc *d, pg_error *err
                               &p->fi.lights, NULL, 0, NULL, 0, err);
     if (r) return r;
     r = passgraph_set_lights(p, 256, 7, 0.0f, err);
-    if (!r) r = open_session(p, p->pipeline, &p->session, err);
+    if (!r) r = open_session(p, p->pipeline, false, &p->session, err);
     return r;
 }
 
@@ -161,6 +173,9 @@ pg_result passgraph_set_param(passgraph *p, const char *key, const char *value, 
     if (!key || !value) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_set_param: no key or value");
     pg_result r = add_param(p, key, value, err);
     if (!r) r = pg_session_reload(p->session, p->pipeline, p->params, p->n_params, err);
+    /* the reference session (passgraph_error_against) is opened again with the new overrides */
+    pg_session_destroy(p->reference);
+    p->reference = NULL;
     return r;
 }
 
@@ -304,7 +319,7 @@ pg_result passgraph_error_against(passgraph *p, const char *reference, passgraph
     if (!p->reference || strcmp(path, p->reference_path)) {
         pg_session_destroy(p->reference);
         p->reference = NULL;
-        if ((r = open_session(p, path, &p->reference, err))) return r;
+        if ((r = open_session(p, path, true, &p->reference, err))) return r;
         pg_strlcpy(p->reference_path, path, sizeof p->reference_path);
     }
     pg_frame_stats rs;

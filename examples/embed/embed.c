@@ -1,7 +1,8 @@
 /* embed.c - a program that uses passgraph as a library (docs/embedding.md): it opens a session on a
- * pipeline and the built-in atrium, sets the camera and the lights, renders a frame into memory and
- * writes it as a binary PPM, renders one into a VkImage of its own and reads that back, prints every
- * pass's GPU time and the error against the reference pipeline (every light for every pixel).
+ * pipeline and the built-in atrium, sets the camera, the lights and a parameter (the default
+ * pipeline's grid_z), renders a frame into memory and writes it as a binary PPM, renders one into a
+ * VkImage of its own and reads that back, prints every pass's GPU time and the error against the
+ * reference pipeline (every light for every pixel).
  *
  *   embed [PIPELINE] [OUT.ppm]      (defaults: the installed forward_plus.json, embed.ppm)
  *
@@ -81,6 +82,7 @@ int main(int argc, char **argv)
     uint8_t *rgba = malloc((size_t)W * H * 4);
     if (passgraph_set_camera(pg, eye, target, up, 60, 0, 0, &err)) rc = fail("camera", &err);
     else if (passgraph_set_lights(pg, 1000, 3, 1.5f, &err)) rc = fail("lights", &err);
+    else if (passgraph_set_param(pg, "grid_z", "24", &err)) rc = fail("parameter", &err); /* a new variant */
     else if (passgraph_render(pg, &err)) rc = fail("render", &err);
     else if (!rgba || passgraph_read_rgba8(pg, rgba, (size_t)W * H * 4, &err)) rc = fail("read", &err);
     else rc = 0;

@@ -94,7 +94,8 @@ void passgraph_size(const passgraph *p, uint32_t *width, uint32_t *height);
 /* The image error of the last frame against the same frame (camera, lights, time) rendered by a
  * reference pipeline (NULL: the data folder's pipelines/reference.json, every light for every
  * pixel): RMSE, PSNR and max abs over the scene-linear RGB (PSNR against the reference's peak),
- * and the share of pixels whose 8-bit display value differs by more than one step. */
+ * and the share of pixels whose 8-bit display value differs by more than one step. The reference
+ * gets the parameter overrides it declares (as `passgraph compare --set` gives them). */
 typedef struct passgraph_error_stats {
     double rmse, psnr_db, max_abs;
     double share_over_1;
