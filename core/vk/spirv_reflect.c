@@ -507,9 +507,11 @@ static pg_result variable_type(spv_ctx *c, const uint32_t *var, uint32_t *pointe
     return id_name(c, var[2], name);
 }
 
-/* Dimension, arrayed, multisampled and format of the OpTypeImage img into b. */
-static void image_fields(const uint32_t *img, pg_spv_binding *b)
+/* Sampled type, dimension, arrayed, multisampled and format of the OpTypeImage img into b. */
+static void image_fields(const spv_ctx *c, const uint32_t *img, pg_spv_binding *b)
 {
+    uint32_t components;
+    scalar_of(c, img[2], &b->sampled_type, &components);
     b->dim = img[3];
     b->arrayed = img[5] != 0;
     b->multisampled = img[6] != 0;
@@ -527,13 +529,13 @@ static pg_result opaque_binding(spv_ctx *c, uint32_t type, pg_spv_binding *b)
         if (!(img = def_of(c, d[2], OP_TYPE_IMAGE)))
             return pg_fail(c->err, PG_ERR_SHADER, "SPIR-V sampled image type %u: %u is not an image type", type, d[2]);
         b->kind = PG_SPV_COMBINED_IMAGE_SAMPLER;
-        image_fields(img, b);
+        image_fields(c, img, b);
         break;
     case OP_TYPE_IMAGE:
         b->kind = d[3] == DIM_SUBPASS_DATA ? PG_SPV_INPUT_ATTACHMENT
                   : d[7] == 2              ? PG_SPV_STORAGE_IMAGE
                                            : PG_SPV_SAMPLED_IMAGE;
-        image_fields(d, b);
+        image_fields(c, d, b);
         break;
     case OP_TYPE_SAMPLER: b->kind = PG_SPV_SAMPLER; break;
     case OP_TYPE_ACCELERATION_STRUCTURE: b->kind = PG_SPV_ACCELERATION_STRUCTURE; break;

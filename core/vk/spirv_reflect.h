@@ -41,6 +41,8 @@ const char *pg_spv_kind_name(pg_spv_kind k);
  * "?" past the table. */
 const char *pg_spv_image_format_name(uint32_t fmt);
 
+typedef enum pg_spv_scalar { PG_SPV_FLOAT, PG_SPV_INT, PG_SPV_UINT, PG_SPV_BOOL, PG_SPV_OTHER } pg_spv_scalar;
+
 typedef struct pg_spv_binding {
     char name[64];         /* the variable's OpName; for an instance-less block the block type's name */
     char type_name[64];    /* the block's struct type name ("" for images) */
@@ -52,11 +54,12 @@ typedef struct pg_spv_binding {
     uint32_t array_size;   /* 1 for a non-array, N for [N] (the product for [N][M]), 0 for a runtime array */
     bool non_writable;     /* NonWritable on the variable, or on every member of its block (readonly) */
     bool non_readable;     /* NonReadable likewise (writeonly) */
+    pg_spv_scalar sampled_type; /* images: the pg_spv_scalar of the texel components (float for sampler2D /
+                            * image2D, uint for usampler2D / uimage2D, int for isampler2D / iimage2D) */
     uint32_t block_size;   /* bytes of a uniform/storage block's struct up to the end of its last member
                             * (a runtime array last counts 0 bytes: then the fixed part's size) */
 } pg_spv_binding;
 
-typedef enum pg_spv_scalar { PG_SPV_FLOAT, PG_SPV_INT, PG_SPV_UINT, PG_SPV_BOOL, PG_SPV_OTHER } pg_spv_scalar;
 typedef struct pg_spv_member {
     char name[64];
     uint32_t offset, size;   /* bytes (an array: length * ArrayStride; a runtime array: 0) */

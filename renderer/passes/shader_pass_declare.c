@@ -232,6 +232,16 @@ static pg_result check_binding_kind(sp_ctx *c, const char *sub, const pg_spv_bin
                            "shader '%s' binding '%s' (set %u, binding %u) is writeonly but bound %s", c->rel, b->name,
                            b->set, b->binding, pg_access_name(a));
     }
+    const bool uint_image = pg_format_get(rd->format)->fmt_class == PG_FMTCLASS_UINT;
+    const bool uint_shader = b->sampled_type == PG_SPV_UINT || b->sampled_type == PG_SPV_INT;
+    if (image && (b->kind == PG_SPV_COMBINED_IMAGE_SAMPLER || b->kind == PG_SPV_STORAGE_IMAGE) &&
+        uint_image != uint_shader)
+        return pg_sp_fail(c, PG_ERR_FORMAT, sub,
+                          "shader '%s' binding '%s' (set %u, binding %u) reads %s texels but resource '%s' is %s: use "
+                          "%s",
+                          c->rel, b->name, b->set, b->binding, uint_shader ? "integer" : "float", rd->name,
+                          pg_format_get(rd->format)->name,
+                          uint_image ? "a usampler/uimage" : "a sampler/image of floats (sampler2D, image2D)");
     if (b->kind == PG_SPV_STORAGE_IMAGE && b->image_format != spv_format_of(rd->format))
         return pg_sp_fail(c, PG_ERR_FORMAT, sub,
                        "shader '%s' binding '%s' (set %u, binding %u) declares format %s but resource '%s' is %s",

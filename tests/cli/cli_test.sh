@@ -746,6 +746,11 @@ sed 's#"tonemap.frag"#"../../../etc/passwd"#' "$up/ok.json" >"$up/b_outside.json
 sed 's/uniform sampler2D hdr_image;/uniform sampler2D hdr_image;\nlayout(set = 2, binding = 1) uniform sampler2D extra;/' \
   "$up/tonemap.frag" >"$up/extra.frag"
 sed 's/"tonemap.frag"/"extra.frag"/' "$up/ok.json" >"$up/b_unbound.json"
+sed 's/uniform sampler2D hdr_image;/uniform usampler2D hdr_image;/; s/texelFetch(hdr_image, texel, 0).rgb/vec3(texelFetch(hdr_image, texel, 0).rgb)/' \
+  "$up/tonemap.frag" >"$up/uint.frag"
+sed 's/"tonemap.frag"/"uint.frag"/' "$up/ok.json" >"$up/b_uint.json"
+expect_fail "shader pass: texel type" "shader 'uint.frag' binding 'hdr_image' (set 2, binding 0) reads integer texels but resource 'hdr' is rgba16f" \
+  dump --pipeline "$up/b_uint.json"
 "$PG" dump --pipeline "$up/ok.json" >"$tmp/out" 2>"$tmp/err" && grep -q "user fullscreen shader tonemap.frag" "$tmp/out" \
   && ok || { bad "dump: a shader pass"; cat "$tmp/err"; }
 expect_fail "shader pass: binding name" "b_name.json: passes[3].options.bindings.hdr_img: pass 'tonemap': shader 'tonemap.frag' has no binding 'hdr_img' in set 2" \

@@ -158,6 +158,13 @@ static void check_compute_bindings(const pg_spv_reflection *r)
                   b ? b->block_size : 0, sizes[i][2]);
     }
     CHECK(pg_spv_find_name(r, "Lights") == pg_spv_find_binding(r, 1, 1));
+    /* the texel type: float (sampler2D, image2D rgba16f), uint (uimage3D r32ui) */
+    const pg_spv_binding *t0 = pg_spv_find_binding(r, 0, 0), *t1 = pg_spv_find_binding(r, 0, 1),
+                         *t2 = pg_spv_find_binding(r, 0, 2);
+    CHECK_MSG(t0 && t1 && t2 && t0->sampled_type == PG_SPV_FLOAT && t1->sampled_type == PG_SPV_FLOAT &&
+                  t2->sampled_type == PG_SPV_UINT,
+              "sampled types %d %d %d, want float float uint", t0 ? (int)t0->sampled_type : -1,
+              t1 ? (int)t1->sampled_type : -1, t2 ? (int)t2->sampled_type : -1);
     CHECK(pg_spv_find_name(r, "nothing") == NULL);
     CHECK(pg_spv_find_binding(r, 0, 9) == NULL);
     CHECK(pg_spv_find_binding(r, 3, 0) == NULL);
