@@ -9,6 +9,7 @@
  * Set 0 is the frame block, set 1 the scene (draw; an empty set otherwise), set 2 the user's
  * bindings, at the binding numbers the shader gave them. Push constants carry options.params, a
  * run-time value: a new value re-creates nothing (update()). declare: shader_pass_declare.c. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,10 +17,13 @@
 #include "pass_set.h"
 #include "shader.h"
 #include "shader_pass.h"
+#include "visibility_common.h"
 #include "vk_pipeline.h"
 
 typedef struct shader_pass {
-    pg_pass_set set, empty;
+    pg_pass_set set, empty;     /* empty: set 1 (or, "surface": "visibility", the vertex streams) */
+    pg_vis_geometry vis;        /* "surface": "visibility" */
+    bool vis_surface;
     VkSampler sampler;
     VkPipelineLayout layout;
     VkPipeline pipeline;
@@ -28,10 +32,17 @@ typedef struct shader_pass {
 } shader_pass;
 
 static pg_result user_module(pg_gpu *gpu, const char *path, VkShaderStageFlagBits stage, const pg_pass_decl *decl,
-                             VkShaderModule *out, pg_error *err)
+                             const pg_vis_geometry *vis, VkShaderModule *out, pg_error *err)
 {
-    const char *defs[PG_MAX_DEFINES];
-    const uint32_t nd = pg_decl_define_list(decl, defs, PG_MAX_DEFINES);
+    const char *defs[PG_MAX_DEFINES + 16];
+    uint32_t nd;
+    if (vis) { /* the scene's defines (TEXTURE_COUNT, PG_VIS_TRI_BITS, ...) and where the streams are */
+        nd = pg_vis_geometry_define_list(vis, defs);
+        defs[nd++] = "PG_VIS_SET=1";
+        defs[nd++] = "PG_VIS_BINDING=0";
+    } else {
+        nd = pg_decl_define_list(decl, defs, PG_MAX_DEFINES);
+    }
     uint32_t *code;
     size_t words;
     pg_result r = pg_shader_compile_user(path, stage, defs, nd, gpu->vulkan12, &code, &words, err);
@@ -64,7 +75,7 @@ static pg_result create_fullscreen(shader_pass *s, const pg_pass_create_ctx *ctx
     pg_gpu *gpu = ctx->gpu;
     VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE;
     pg_result r = pg_shader_module(gpu, "fullscreen.vert", VK_SHADER_STAGE_VERTEX_BIT, NULL, 0, &vs, err);
-    if (!r) r = user_module(gpu, pa->path, VK_SHADER_STAGE_FRAGMENT_BIT, &ctx->pass->decl, &fs, err);
+    if (!r) r = user_module(gpu, pa->path, VK_SHADER_STAGE_FRAGMENT_BIT, &ctx->pass->decl, NULL, &fs, err);
     if (!r) {
         pg_gfx_pipeline_desc d = {
             .layout = s->layout,
@@ -98,6 +109,21 @@ static pg_result create_draw(shader_pass *s, const pg_pass_create_ctx *ctx, cons
     return pg_scene_draw_create(ctx, &d, &s->draw, err);
 }
 
+/* Set 1: empty, or ("surface": "visibility") the scene's vertex streams, indices and draw table. */
+static pg_result create_set1(shader_pass *s, const pg_pass_create_ctx *ctx, const sp_params *pa, pg_error *err)
+{
+    s->vis_surface = pa->vis_surface;
+    if (!pa->vis_surface) return pg_pass_set_create(ctx->gpu, 0, NULL, ctx->pass->name, &s->empty, err);
+    if (!PG_SCENE_OF(ctx)) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: \"surface\": \"visibility\" needs a scene", ctx->pass->name);
+    pg_result r = pg_vis_geometry_create(ctx, &pa->draw, SP_SCENE_SET, &s->vis, err);
+    if (r) return r;
+    pg_set_binding b[8];
+    const uint32_t n = pg_vis_geometry_bindings(&s->vis, PG_SCENE_OF(ctx), b, 0);
+    char name[PG_NAME_MAX + 16];
+    snprintf(name, sizeof name, "%s.streams", ctx->pass->name);
+    return pg_pass_set_create(ctx->gpu, n, b, name, &s->empty, err);
+}
+
 static pg_result sp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
     shader_pass *s = self;
@@ -106,12 +132,15 @@ static pg_result sp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     pg_result r = make_set(s, ctx, pa, err);
     if (r) return r;
     if (pa->form == SP_DRAW) return create_draw(s, ctx, pa, err);
-    if ((r = pg_pass_set_create(ctx->gpu, 0, NULL, ctx->pass->name, &s->empty, err))) return r;
-    VkDescriptorSetLayout sets[3] = {ctx->frame_layout, s->empty.layout, s->set.layout};
-    if ((r = pg_pipeline_layout_create(ctx->gpu, 3, sets, pa->push_size, &s->layout, err))) return r;
+    if ((r = create_set1(s, ctx, pa, err))) return r;
+    VkDescriptorSetLayout sets[4] = {ctx->frame_layout, s->empty.layout, s->set.layout,
+                                     s->vis_surface ? PG_SCENE_OF(ctx)->set_layout : VK_NULL_HANDLE};
+    if ((r = pg_pipeline_layout_create(ctx->gpu, s->vis_surface ? 4 : 3, sets, pa->push_size, &s->layout, err))) return r;
     if (pa->form == SP_FULLSCREEN) return create_fullscreen(s, ctx, pa, err);
     VkShaderModule cs;
-    if ((r = user_module(ctx->gpu, pa->path, VK_SHADER_STAGE_COMPUTE_BIT, &ctx->pass->decl, &cs, err))) return r;
+    if ((r = user_module(ctx->gpu, pa->path, VK_SHADER_STAGE_COMPUTE_BIT, &ctx->pass->decl,
+                         s->vis_surface ? &s->vis : NULL, &cs, err)))
+        return r;
     r = pg_compute_pipeline_create(ctx->gpu, s->layout, cs, ctx->pass->name, &s->pipeline, err);
     vkDestroyShaderModule(ctx->gpu->device, cs, NULL);
     return r;
@@ -126,9 +155,10 @@ static uint32_t div_up(uint64_t n, uint32_t d)
 static void bind_and_push(const shader_pass *s, const pg_pass_record_ctx *ctx, const sp_params *pa,
                           VkPipelineBindPoint point)
 {
-    VkDescriptorSet sets[3] = {ctx->frame_set, s->empty.set, s->set.set};
+    VkDescriptorSet sets[4] = {ctx->frame_set, s->empty.set, s->set.set,
+                               s->vis_surface ? PG_SCENE_OF(ctx)->set : VK_NULL_HANDLE};
     vkCmdBindPipeline(ctx->cmd, point, s->pipeline);
-    vkCmdBindDescriptorSets(ctx->cmd, point, s->layout, 0, 3, sets, 0, NULL);
+    vkCmdBindDescriptorSets(ctx->cmd, point, s->layout, 0, s->vis_surface ? 4 : 3, sets, 0, NULL);
     if (pa->push_size) vkCmdPushConstants(ctx->cmd, s->layout, PG_PUSH_STAGES, 0, pa->push_size, s->push);
 }
 
@@ -181,6 +211,7 @@ static void sp_destroy(void *self, pg_gpu *gpu)
     if (s->sampler) vkDestroySampler(gpu->device, s->sampler, NULL);
     pg_pass_set_destroy(gpu, &s->set);
     pg_pass_set_destroy(gpu, &s->empty);
+    pg_vis_geometry_destroy(gpu, &s->vis);
 }
 
 /* options.params are push constants: a new value re-creates nothing */

@@ -11,6 +11,8 @@
 #define SP_MAX_TARGETS 8   /* colour targets (fullscreen, draw) */
 #define SP_PUSH_MAX 128    /* push-constant bytes (Vulkan's guaranteed minimum) */
 #define SP_USER_SET 2      /* the descriptor set of the user's bindings (0 frame, 1 scene) */
+#define SP_VIS_SET 1       /* "surface": "visibility": the vertex streams (visibility_common.h) */
+#define SP_SCENE_SET 3     /* ... and the scene's materials and textures */
 
 typedef enum sp_form { SP_COMPUTE = 0, SP_FULLSCREEN, SP_DRAW } sp_form;
 typedef enum sp_dispatch { SP_DISPATCH_IMAGE = 0, SP_DISPATCH_BUFFER, SP_DISPATCH_GROUPS } sp_dispatch;
@@ -31,6 +33,8 @@ typedef struct sp_params {
     uint8_t filter;           /* VkFilter of the sampler of sampled bindings */
     uint8_t address;          /* VkSamplerAddressMode */
     bool clear_targets;       /* targets written whole (color_write, cleared to 0) */
+    bool vis_surface;         /* compute, "surface": "visibility": the scene's vertex streams in set 1
+                               * and its materials in set 3, for visibility_surface.glsl */
     bool depth_write, depth_clear;
     uint32_t depth_compare;   /* VkCompareOp (draw) */
     uint32_t local[3];        /* the compute shader's local size */

@@ -119,14 +119,36 @@ static pg_result read_defines(sp_ctx *c)
     return PG_OK;
 }
 
+/* options.surface: "none" (default) or "visibility" (compute: rebuild surfaces from a visibility
+ * buffer with visibility_surface.glsl; the pass binds the scene's streams and materials). */
+static pg_result read_surface(sp_ctx *c)
+{
+    static const char *const k_surfaces[] = {"none", "visibility", NULL};
+    int v = 0;
+    pg_result r = pg_opt_enum(c->in->desc, "surface", k_surfaces, 0, &v, c->err);
+    if (r) return r;
+    if (v == 1 && c->p->form != SP_COMPUTE)
+        return pg_sp_fail(c, PG_ERR_SCHEMA, "surface", "\"visibility\" is for a compute shader");
+    c->p->vis_surface = v == 1;
+    return PG_OK;
+}
+
 /* Compiles the shader with the declared defines and reads its interface. */
 static pg_result compile_and_reflect(sp_ctx *c)
 {
     const VkShaderStageFlagBits stage =
         c->p->form == SP_COMPUTE ? VK_SHADER_STAGE_COMPUTE_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
-    const char *defs[PG_MAX_DEFINES + 1];
-    uint32_t n = pg_decl_define_list(c->out, defs, PG_MAX_DEFINES);
+    const char *defs[PG_MAX_DEFINES + 8];
+    /* a visibility surface is compiled without the alpha-mask variant (compute: no discard), as
+     * pg_vis_geometry does at create */
+    uint32_t n = c->p->vis_surface ? pg_scene_draw_define_list(c->out, &c->p->draw, defs, PG_MAX_DEFINES)
+                                   : pg_decl_define_list(c->out, defs, PG_MAX_DEFINES);
     if (c->p->form == SP_DRAW) defs[n++] = "TEXTURE_COUNT=1"; /* the scene's count at create: same interface */
+    if (c->p->vis_surface) { /* what pg_vis_geometry adds at create (placeholders of the same interface) */
+        static const char *const vis[] = {"TEXTURE_COUNT=1", "PG_VIS_TRI_BITS=16", "PG_SURFACE_GRADS",
+                                          "PG_SURFACE_NO_PUSH", "PG_SCENE_SET=3", "PG_VIS_SET=1", "PG_VIS_BINDING=0"};
+        for (size_t i = 0; i < sizeof vis / sizeof vis[0]; i++) defs[n++] = vis[i];
+    }
     uint32_t *words = NULL;
     size_t n_words = 0;
     pg_error e;
@@ -149,7 +171,8 @@ static pg_result check_sets(sp_ctx *c)
         if (b->set == SP_USER_SET) continue;
         if (b->set == 0 && b->binding == 0 && b->kind == PG_SPV_UNIFORM_BUFFER && !strcmp(b->type_name, "FrameUniforms"))
             continue;
-        if (b->set == 1 && c->p->form == SP_DRAW) continue;
+        if (b->set == 1 && (c->p->form == SP_DRAW || c->p->vis_surface)) continue;
+        if (b->set == SP_SCENE_SET && c->p->vis_surface) continue;
         return pg_sp_fail(c, PG_ERR_SHADER, c->form_key,
                        "shader '%s' binding '%s' (set %u, binding %u): a user shader's resources are in set %d "
                        "(set 0 is the frame block FRAME_UNIFORMS_BLOCK of common.glsl%s)",
@@ -329,7 +352,7 @@ pg_result pg_shader_pass_declare(const pg_declare_in *in, pg_pass_decl *out, pg_
 {
     static const char *const known[] = {"compute", "fullscreen", "draw",    "bindings",    "params",
                                         "defines", "dispatch",   "targets", "blend",       "depth",
-                                        "depth_test", "depth_clear", "filter", "address", NULL};
+                                        "depth_test", "depth_clear", "filter", "address", "surface", NULL};
     sp_ctx *c = calloc(1, sizeof *c);
     if (!c) return pg_fail(err, PG_ERR_OOM, "out of memory");
     c->in = in;
@@ -338,7 +361,8 @@ pg_result pg_shader_pass_declare(const pg_declare_in *in, pg_pass_decl *out, pg_
     c->p = pg_decl_params(out, sizeof *c->p);
     pg_result r = c->p ? pg_opt_check_known(in->desc, known, err) : pg_fail(err, PG_ERR_LIMIT, "params block");
     if (!r) r = read_form(c);
-    if (!r && c->p->form == SP_DRAW) pg_scene_draw_declare_features(in, out, &c->p->draw);
+    if (!r) r = read_surface(c);
+    if (!r && (c->p->form == SP_DRAW || c->p->vis_surface)) pg_scene_draw_declare_features(in, out, &c->p->draw);
     if (!r) r = read_defines(c);
     if (!r) r = compile_and_reflect(c);
     if (!r) r = check_sets(c);

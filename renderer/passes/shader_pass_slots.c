@@ -245,7 +245,8 @@ static pg_result declare_reads(sp_ctx *c, uint32_t stages)
                              a == PG_ACCESS_SAMPLED ? PG_FMTCLASS_ANY : PG_FMTCLASS_ANY_COLOR);
         } else if (use == SP_USE_DEPTH) {
             c->p->depth = pg_decl_read(c->out, "depth", PG_RES_IMAGE, PG_ACCESS_DEPTH_READ, 0, PG_FMTCLASS_DEPTH);
-        } else if (c->p->form == SP_DRAW && i + 1 == d->n_reads && !strcmp(d->reads[i], "geometry")) {
+        } else if ((c->p->form == SP_DRAW || c->p->vis_surface) && i + 1 == d->n_reads &&
+                   !strcmp(d->reads[i], "geometry")) {
             break; /* the scene's posed vertices: pg_geometry_slot_declare, after every other read */
         } else {
             char sub[32];
@@ -256,6 +257,7 @@ static pg_result declare_reads(sp_ctx *c, uint32_t stages)
         }
     }
     if (c->p->form == SP_DRAW) pg_geometry_slot_declare(c->in, c->out, &c->p->draw, false);
+    if (c->p->vis_surface) pg_geometry_slot_declare(c->in, c->out, &c->p->draw, true);
     return PG_OK;
 }
 

@@ -727,7 +727,7 @@ else
 fi
 # user passes written in JSON + GLSL (docs/user-passes.md): the examples render with validation;
 # a bad shader pass fails naming the pipeline file, the JSON path, the shader and the cause
-for ex in tonemap bloom ssao lighting normals; do
+for ex in tonemap bloom ssao lighting normals vis_surface; do
   "$PG" render --pipeline "$root/pipelines/examples/$ex/$ex.json" --validation --size 64x36 --lights 16 \
     --out "$tmp/ex_$ex.png" >"$tmp/out" 2>"$tmp/err" && [ -s "$tmp/ex_$ex.png" ] && ! grep -q "VUID" "$tmp/err" \
     && ok || { bad "render: example user pass $ex"; cat "$tmp/err"; }

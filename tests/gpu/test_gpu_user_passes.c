@@ -16,7 +16,10 @@
  *     every floor pixel equals the CPU evaluation of the model (Lambert, (1 - (d/R)^2)^2 / (1 + d^2),
  *     R the range or the cut-off reach) within 2e-3 relative (the rgba16f target) + 1e-5.
  *  5. normals (the draw form: the scene's draws, passgraph's material code, the user's fragment
- *     shader): the HDR image is bit-identical to the naive pipeline's debug view "normal". */
+ *     shader): the HDR image is bit-identical to the naive pipeline's debug view "normal".
+ *  6. vis_surface (a compute pass with "surface": "visibility": the surface rebuilt from the
+ *     visibility buffer with visibility_surface.glsl): bit-identical to the visibility pipeline's
+ *     debug views "normal" and "albedo". */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -219,6 +222,22 @@ static void normals(const pg_th_scene *s)
     pg_th_release(&a);
 }
 
+static void vis_surface(const pg_th_scene *s)
+{
+    static const char *const views[] = {"normal", "albedo"};
+    for (int k = 0; k < 2; k++) {
+        pg_param_override v = {"view", views[k]}, a = {"albedo", k ? "true" : "false"};
+        pg_th_frame f, ref;
+        if (!render(s, "pipelines/examples/vis_surface/vis_surface.json", &a, 1, &f)) return;
+        if (render(s, "pipelines/visibility.json", &v, 1, &ref)) {
+            CHECK_MSG(pg_th_hdr_identical(&f, &ref), "vis_surface: %s differs from visibility's view=%s in %u pixels",
+                      views[k], views[k], pg_th_differ_pixels(&f, &ref));
+            pg_th_release(&ref);
+        }
+        pg_th_release(&f);
+    }
+}
+
 int main(void)
 {
     if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_user_passes", "PG_TEST_NO_GPU is set");
@@ -234,6 +253,7 @@ int main(void)
         tonemap(&atrium);
         bloom(&atrium);
         normals(&atrium);
+        vis_surface(&atrium);
         pg_th_scene_close(g_gpu, &atrium);
     }
     if (pg_th_file_open(g_gpu, "lights/sun.gltf", W, H, PG_SHADING_LAMBERT, &sun)) {
