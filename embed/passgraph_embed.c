@@ -233,8 +233,13 @@ static void image_barrier(VkCommandBuffer cmd, VkImage img, VkImageLayout from, 
 pg_result passgraph_render_to_image(passgraph *p, VkImage dst, VkFormat format, VkImageLayout old_layout,
                                     VkImageLayout new_layout, pg_error *err)
 {
-    (void)format;
     if (!dst) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_render_to_image: no image");
+    VkFormatProperties fp;
+    vkGetPhysicalDeviceFormatProperties(p->gpu->phys, format, &fp);
+    if (!(fp.linearTilingFeatures & VK_FORMAT_FEATURE_BLIT_DST_BIT) &&
+        !(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_DST_BIT))
+        return pg_fail(err, PG_ERR_FORMAT, "passgraph_render_to_image: VkFormat %d cannot be a blit destination on this device",
+                       (int)format);
     p->have_frame = false;
     pg_result r = pg_session_render(p->session, &p->fi, false, &p->stats, err);
     if (!r) r = pg_runtime_wait_idle(p->session->runtime, err);

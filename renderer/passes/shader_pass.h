@@ -35,7 +35,7 @@ typedef struct sp_params {
     bool clear_targets;       /* targets written whole (color_write, cleared to 0) */
     bool vis_surface;         /* compute, "surface": "visibility": the scene's vertex streams in set 1
                                * and its materials in set 3, for visibility_surface.glsl */
-    bool depth_write, depth_clear;
+    bool depth_clear;         /* the depth image is in the writes and cleared (depth_write access) */
     uint32_t depth_compare;   /* VkCompareOp (draw) */
     uint32_t local[3];        /* the compute shader's local size */
     uint32_t groups[3];       /* SP_DISPATCH_GROUPS */

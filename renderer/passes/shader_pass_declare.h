@@ -23,7 +23,7 @@ typedef struct sp_ctx {
 } sp_ctx;
 
 /* pass read/write uses besides a binding (1 + its index) */
-enum { SP_USE_NONE = 0, SP_USE_TARGET = -1, SP_USE_DEPTH = -2, SP_USE_GEOMETRY = -3 };
+enum { SP_USE_NONE = 0, SP_USE_TARGET = -1, SP_USE_DEPTH = -2 };
 
 /* "FILE: passes[i].options.SUB: pass 'P': MESSAGE" (sub NULL: "...options: ...") */
 pg_result pg_sp_fail(const sp_ctx *c, pg_result code, const char *sub, const char *fmt, ...)

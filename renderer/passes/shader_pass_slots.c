@@ -168,7 +168,6 @@ static pg_result read_depth(sp_ctx *c, int blend)
     if (*use != SP_USE_NONE) return pg_sp_fail(c, PG_ERR_SCHEMA, "depth", "'%s' is bound twice", dv->valuestring);
     *use = SP_USE_DEPTH;
     c->p->depth_compare = test == 1 ? VK_COMPARE_OP_EQUAL : VK_COMPARE_OP_LESS;
-    c->p->depth_write = w >= 0;
     c->p->depth_clear = w >= 0 && clear && test == 0;
     if (w < 0 && test == 0 && blend != SP_BLEND_OVER)
         return pg_sp_fail(c, PG_ERR_SCHEMA, "depth",
