@@ -4,8 +4,8 @@
 // do (cluster.glsl), then sum its lights with this example's own model,
 //   c = albedo x (sum over the list of colour x max(N.L, 0) x f(d) + ambient + frame ambient),
 //   f(d) = max(1 - (d/R)^2, 0)^2 / (1 + d^2),   R = the light's range (pos_radius.w),
-// a softened inverse square that reaches 0 at the range. tests/gpu/test_gpu_user_passes.c
-// evaluates it on the CPU.
+// a softened inverse square that reaches 0 at the range (light_model.glsl, shared with
+// lighting_tiled.comp). tests/gpu/test_gpu_user_passes.c evaluates it on the CPU.
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "cluster.glsl"
@@ -13,6 +13,7 @@ FRAME_UNIFORMS_BLOCK
 #include "gbuffer_pack.glsl"
 #include "depth_reconstruct.glsl"
 #include "gbuffer_read.glsl"
+#include "light_model.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 2, binding = 0, std430) readonly buffer Lights { Light lights[]; };
 layout(set = 2, binding = 1, std430) readonly buffer ClusterRecords { uvec4 cluster_records[]; };
@@ -47,12 +48,8 @@ void main()
     vec3 sum = vec3(0.0);
     for (uint k = 0u; k < rec.y; k++) {
         Light L = lights[cluster_lights[rec.x + k]];
-        vec3 d = L.pos_radius.xyz - P.xyz;
-        float dist = length(d);
-        float R = L.pos_radius.w;
-        if (!(dist < R) || dist <= 0.0) continue;
-        float w = 1.0 - (dist / R) * (dist / R);
-        sum += L.color.rgb * max(dot(N, d / dist), 0.0) * (w * w / (1.0 + dist * dist));
+        float R2 = L.pos_radius.w * L.pos_radius.w;
+        sum += example_light(L.pos_radius.xyz - P, R2, 1.0 / R2, L.color.rgb, N);
     }
     vec3 c = s.albedo * (sum + params.ambient + frame.clip.z);
     imageStore(hdr_out, p, vec4(pg_hdr_sanitize(c), 1.0));

@@ -9,8 +9,11 @@
 // dot(N_i, light - P_i) = dot(N_i, r) + dot(N_i, Pc - P_i) <= dot(a, r) + E |r| + H < 0, with Pc the
 // box centre, r = light - Pc, a the normal of one of the pixels, E = max |N_i - a| and
 // H = max dot(N_i, Pc - P_i): max(N.L, 0) is 0 at each of them, so it would add nothing. Each light
-// is read once a tile instead of once a pixel, and tested once a tile instead of once a pixel. The kept lights of a chunk are summed in the order the threads
-// kept them, so a pixel's sum may differ from lighting.comp's in the last bits.
+// is read once a tile instead of once a pixel, and tested once a tile instead of once a pixel; what
+// the model needs of a light (its camera-relative centre, R^2, 1/R^2) is computed once a tile too, and
+// the pixels evaluate light_model.glsl from it in camera-relative coordinates. The kept lights of a
+// chunk are summed in the order the threads kept them, so a pixel's sum may differ from
+// lighting.comp's in the last bits.
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "cluster.glsl"
@@ -18,6 +21,7 @@ FRAME_UNIFORMS_BLOCK
 #include "gbuffer_pack.glsl"
 #include "depth_reconstruct.glsl"
 #include "gbuffer_read.glsl"
+#include "light_model.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 2, binding = 0, std430) readonly buffer Lights { Light lights[]; };
 layout(set = 2, binding = 1, std430) readonly buffer ClusterRecords { uvec4 cluster_records[]; };
@@ -48,17 +52,6 @@ uint to_ordered(float f) // float -> uint with the same order
 float from_ordered(uint u)
 {
     return uintBitsToFloat((u & 0x80000000u) != 0u ? u & 0x7fffffffu : ~u);
-}
-
-// lighting.comp's model: colour x max(N.L, 0) x max(1 - (d/R)^2, 0)^2 / (1 + d^2)
-vec3 light_term(vec4 pos_radius, vec4 color, vec3 P, vec3 N)
-{
-    vec3 d = pos_radius.xyz - P;
-    float dist = length(d);
-    float R = pos_radius.w;
-    if (!(dist < R) || dist <= 0.0) return vec3(0.0);
-    float w = 1.0 - (dist / R) * (dist / R);
-    return color.rgb * max(dot(N, d / dist), 0.0) * (w * w / (1.0 + dist * dist));
 }
 
 void main()
@@ -130,14 +123,18 @@ void main()
                 float lr = length(r);
                 bool behind = dot(axis, r) + E * lr + H < -1e-4 * (lr + length(pc) + 1.0);
                 if (!behind && pg_sphere_intersects_aabb(centre, L.pos_radius.w + pad, bmin, bmax)) {
-                    uint k = atomicAdd(s_kept, 1u);
-                    s_light[2u * k] = L.pos_radius;
-                    s_light[2u * k + 1u] = L.color;
+                    uint k = atomicAdd(s_kept, 1u); // camera-relative centre, 1/R^2; colour, R^2
+                    float R2 = L.pos_radius.w * L.pos_radius.w;
+                    s_light[2u * k] = vec4(centre, 1.0 / R2);
+                    s_light[2u * k + 1u] = vec4(L.color.rgb, R2);
                 }
             }
             barrier();
             if (mine)
-                for (uint k = 0u; k < s_kept; k++) sum += light_term(s_light[2u * k], s_light[2u * k + 1u], position.xyz, N);
+                for (uint k = 0u; k < s_kept; k++) {
+                    vec4 a = s_light[2u * k], b = s_light[2u * k + 1u];
+                    sum += example_light(a.xyz - rel, b.w, a.w, b.rgb, N);
+                }
             barrier();
         }
         if (mine) pending = false;
