@@ -1,8 +1,7 @@
 /* scene_gpu_anim.c - the animation buffers of an uploaded scene (scene_gpu_anim.h). */
 #include "scene_gpu_anim.h"
+#include "node_place.h"
 #include "scene_gpu.h"
-
-#include <math.h>
 
 #include <stdlib.h>
 #include <string.h>
@@ -123,27 +122,33 @@ static pg_result find_moving_lights(const pg_scene *scene, pg_scene_gpu_anim *ga
     return PG_OK;
 }
 
+const pg_anim_pose *pg_scene_gpu_anim_pose(const pg_scene_gpu_anim *ga, int animation, double time)
+{
+    pg_scene_gpu_anim_now *now = ga->now;
+    if (!now->valid || now->animation != animation || now->time != time) {
+        pg_anim_pose_eval(ga->anim, animation, time, &now->pose);
+        now->animation = animation;
+        now->time = time;
+        now->valid = true;
+        now->evaluations++;
+    }
+    return &now->pose;
+}
+
 void pg_scene_gpu_anim_update_lights(const pg_scene_gpu_anim *ga, VkBuffer table, int animation, double time,
                                      VkCommandBuffer cmd)
 {
     if (!ga || !ga->n_moving_lights || !table) return;
-    const pg_scene_anim *a = ga->anim;
-    pg_anim_pose pose;
-    if (pg_anim_pose_alloc(a, &pose, NULL)) return;
-    pg_anim_pose_eval(a, animation, time, &pose);
+    const pg_anim_pose *pose = pg_scene_gpu_anim_pose(ga, animation, time);
     VkBufferMemoryBarrier2 b = pg_buffer_barrier(table, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                                                  VK_ACCESS_2_TRANSFER_WRITE_BIT);
     pg_cmd_barriers(cmd, 0, NULL, 1, &b);
     for (uint32_t k = 0; k < ga->n_moving_lights; k++) {
         pg_scene_light L = ga->moving_rest[k];
-        const float *m = pose.node_world + (size_t)L.gltf_node * 16;
-        const float d[3] = {-m[8], -m[9], -m[10]};
-        const float dl = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        for (int c = 0; c < 3; c++) {
-            L.position[c] = m[12 + c];
-            if (dl > 1e-30f) L.direction[c] = d[c] / dl;
-        }
+        double m[16];
+        pg_mat4_widen(pose->node_world + (size_t)L.gltf_node * 16, m);
+        pg_place_light(m, &L);
         pg_gpu_file_light rec;
         pg_gpu_file_light_from(&L, &rec);
         vkCmdUpdateBuffer(cmd, table, (VkDeviceSize)ga->moving_light[k] * sizeof rec, sizeof rec, &rec);
@@ -151,7 +156,6 @@ void pg_scene_gpu_anim_update_lights(const pg_scene_gpu_anim *ga, VkBuffer table
     b = pg_buffer_barrier(table, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     pg_cmd_barriers(cmd, 0, NULL, 1, &b);
-    pg_anim_pose_release(&pose);
 }
 
 pg_result pg_scene_gpu_anim_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu_anim **out, pg_error *err)
@@ -185,6 +189,8 @@ pg_result pg_scene_gpu_anim_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_
     free(info);
     free(prims);
     if (!r) r = find_moving_lights(scene, ga, err);
+    if (!r && !(ga->now = calloc(1, sizeof *ga->now))) r = pg_fail(err, PG_ERR_OOM, "out of memory");
+    if (!r) r = pg_anim_pose_alloc(a, &ga->now->pose, err);
     if (r) {
         pg_scene_gpu_anim_destroy(gpu, ga);
         return r;
@@ -203,20 +209,16 @@ void pg_scene_gpu_anim_destroy(pg_gpu *gpu, pg_scene_gpu_anim *ga)
     pg_buffer_destroy(gpu, &ga->pose);
     free(ga->moving_light);
     free(ga->moving_rest);
+    if (ga->now) pg_anim_pose_release(&ga->now->pose);
+    free(ga->now);
     free(ga);
 }
 
-pg_result pg_scene_gpu_anim_pack_pose(const pg_scene_gpu_anim *ga, int animation, double time, float *out,
-                                      pg_error *err)
+void pg_scene_gpu_anim_pack_pose(const pg_scene_gpu_anim *ga, int animation, double time, float *out)
 {
     const pg_scene_anim *a = ga->anim;
-    pg_anim_pose pose;
-    pg_result r = pg_anim_pose_alloc(a, &pose, err);
-    if (r) return r;
-    pg_anim_pose_eval(a, animation, time, &pose);
-    memcpy(out, pose.node_world, (size_t)a->n_nodes * 16 * sizeof(float));
-    memcpy(out + ga->joint_base, pose.joints, (size_t)a->n_joint_slots * 16 * sizeof(float));
-    if (a->n_weights) memcpy(out + ga->weight_base, pose.weights, (size_t)a->n_weights * sizeof(float));
-    pg_anim_pose_release(&pose);
-    return PG_OK;
+    const pg_anim_pose *pose = pg_scene_gpu_anim_pose(ga, animation, time);
+    memcpy(out, pose->node_world, (size_t)a->n_nodes * 16 * sizeof(float));
+    memcpy(out + ga->joint_base, pose->joints, (size_t)a->n_joint_slots * 16 * sizeof(float));
+    if (a->n_weights) memcpy(out + ga->weight_base, pose->weights, (size_t)a->n_weights * sizeof(float));
 }

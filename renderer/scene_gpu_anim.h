@@ -15,6 +15,17 @@
 #include "animation.h"
 #include "vk_context.h"
 
+/* The pose of the frame being recorded: evaluated once for each new (animation, time), so the passes
+ * of one frame that need it (geometry_animate, light_animate) share one evaluation, into arrays
+ * allocated once with the upload. */
+typedef struct pg_scene_gpu_anim_now {
+    pg_anim_pose pose;
+    int animation;
+    double time;
+    bool valid;
+    uint64_t evaluations; /* poses evaluated so far (tests: one a frame) */
+} pg_scene_gpu_anim_now;
+
 typedef struct pg_scene_gpu_anim {
     pg_buffer local, info, prims, deltas, pose;
     uint32_t n_vertices;
@@ -26,6 +37,7 @@ typedef struct pg_scene_gpu_anim {
     uint32_t n_moving_lights;
     uint32_t *moving_light;
     pg_scene_light *moving_rest;
+    pg_scene_gpu_anim_now *now;
 } pg_scene_gpu_anim;
 
 pg_result pg_scene_gpu_anim_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu_anim **out, pg_error *err);
@@ -35,8 +47,10 @@ void pg_scene_gpu_anim_destroy(pg_gpu *gpu, pg_scene_gpu_anim *ga);
  * the next). Nothing when no light moves. */
 void pg_scene_gpu_anim_update_lights(const pg_scene_gpu_anim *ga, VkBuffer table, int animation, double time,
                                      VkCommandBuffer cmd);
+/* The pose at (animation, time): ga->now's, evaluated only when (animation, time) differs from the
+ * last call's. */
+const pg_anim_pose *pg_scene_gpu_anim_pose(const pg_scene_gpu_anim *ga, int animation, double time);
 /* The pose at (animation, time) packed as the pose buffer holds it (ga->pose_floats floats). */
-pg_result pg_scene_gpu_anim_pack_pose(const pg_scene_gpu_anim *ga, int animation, double time, float *out,
-                                      pg_error *err);
+void pg_scene_gpu_anim_pack_pose(const pg_scene_gpu_anim *ga, int animation, double time, float *out);
 
 #endif

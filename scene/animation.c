@@ -41,7 +41,15 @@ pg_result pg_anim_pose_alloc(const pg_scene_anim *a, pg_anim_pose *out, pg_error
     out->node_world = calloc((size_t)a->n_nodes * 16 + 16, sizeof(float));
     out->joints = calloc((size_t)a->n_joint_slots * 16 + 16, sizeof(float));
     out->weights = calloc((size_t)a->n_weights + 1, sizeof(float));
-    if (!out->node_world || !out->joints || !out->weights) {
+    const size_t nn = (size_t)a->n_nodes + 1;
+    out->work.t = malloc(sizeof *out->work.t * nn);
+    out->work.r = malloc(sizeof *out->work.r * nn);
+    out->work.s = malloc(sizeof *out->work.s * nn);
+    out->work.local = malloc(sizeof(float) * 16 * nn);
+    out->work.stack = malloc(sizeof(uint32_t) * nn);
+    out->work.done = malloc(nn);
+    if (!out->node_world || !out->joints || !out->weights || !out->work.t || !out->work.r || !out->work.s ||
+        !out->work.local || !out->work.stack || !out->work.done) {
         pg_anim_pose_release(out);
         return pg_fail(err, PG_ERR_OOM, "animation pose: out of memory");
     }
@@ -53,6 +61,12 @@ void pg_anim_pose_release(pg_anim_pose *p)
     free(p->node_world);
     free(p->joints);
     free(p->weights);
+    free(p->work.t);
+    free(p->work.r);
+    free(p->work.s);
+    free(p->work.local);
+    free(p->work.stack);
+    free(p->work.done);
     memset(p, 0, sizeof *p);
 }
 
@@ -213,15 +227,8 @@ static void node_worlds(const pg_scene_anim *a, const float *local, float *world
 void pg_anim_pose_eval(const pg_scene_anim *a, int animation, double time, pg_anim_pose *pose)
 {
     const uint32_t nn = a->n_nodes;
-    float (*T)[3] = malloc(sizeof *T * (nn + 1)), (*R)[4] = malloc(sizeof *R * (nn + 1)),
-          (*S)[3] = malloc(sizeof *S * (nn + 1));
-    float *local = malloc(sizeof(float) * 16 * (nn + 1));
-    uint32_t *stack = malloc(sizeof(uint32_t) * (nn + 1));
-    uint8_t *done = malloc(nn + 1);
-    if (!T || !R || !S || !local || !stack || !done) { /* out of memory: the pose keeps its last values */
-        free(T), free(R), free(S), free(local), free(stack), free(done);
-        return;
-    }
+    float(*T)[3] = pose->work.t, (*R)[4] = pose->work.r, (*S)[3] = pose->work.s;
+    float *local = pose->work.local;
     for (uint32_t i = 0; i < nn; i++) {
         memcpy(T[i], a->nodes[i].translation, sizeof T[i]);
         memcpy(R[i], a->nodes[i].rotation, sizeof R[i]);
@@ -238,7 +245,7 @@ void pg_anim_pose_eval(const pg_scene_anim *a, int animation, double time, pg_an
         if (a->nodes[i].has_matrix) memcpy(local + (size_t)i * 16, a->nodes[i].matrix, 16 * sizeof(float));
         else trs_matrix(T[i], R[i], S[i], local + (size_t)i * 16);
     }
-    node_worlds(a, local, pose->node_world, stack, done);
+    node_worlds(a, local, pose->node_world, pose->work.stack, pose->work.done);
     for (uint32_t s = 0; s < a->n_skins; s++) {
         const pg_anim_skin *sk = &a->skins[s];
         for (uint32_t j = 0; j < sk->n_joints; j++) {
@@ -248,7 +255,6 @@ void pg_anim_pose_eval(const pg_scene_anim *a, int animation, double time, pg_an
             else memcpy(out, sk->inverse_bind[j], 16 * sizeof(float));
         }
     }
-    free(T), free(R), free(S), free(local), free(stack), free(done);
 }
 
 /* ---- deformation ---- */

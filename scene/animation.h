@@ -117,14 +117,21 @@ typedef struct pg_anim_pose {
     float *node_world;  /* 16 per node */
     float *joints;      /* 16 per joint slot: world(joint) x inverseBind */
     float *weights;     /* n_weights */
+    struct {            /* pg_anim_pose_eval's working memory, allocated with the pose: no allocation a frame */
+        float (*t)[3], (*r)[4], (*s)[3]; /* per node TRS */
+        float *local;                     /* 16 per node */
+        uint32_t *stack;
+        uint8_t *done;
+    } work;
 } pg_anim_pose;
 
 void pg_scene_anim_free(pg_scene_anim *a);
 
+/* A pose's arrays and working memory, sized for `a`: evaluating it then allocates nothing. */
 pg_result pg_anim_pose_alloc(const pg_scene_anim *a, pg_anim_pose *out, pg_error *err);
 void pg_anim_pose_release(pg_anim_pose *p);
 /* The pose at `time` seconds of animation `animation` (an index, PG_ANIM_ALL or PG_ANIM_NONE; an
- * index out of range is the rest pose). */
+ * index out of range is the rest pose), into a pose allocated for `a`. */
 void pg_anim_pose_eval(const pg_scene_anim *a, int animation, double time, pg_anim_pose *pose);
 /* The time within the played animation's loop that `time` maps to. */
 double pg_anim_local_time(const pg_scene_anim *a, int animation, double time);

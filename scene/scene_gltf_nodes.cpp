@@ -1,6 +1,7 @@
 /* scene_gltf_nodes.cpp - step 4 of the glTF load (scene_gltf.cpp): the node hierarchy from the
  * scene roots (cycles, depth and instance limits), node transforms, and the cameras it reaches.
  */
+#include "node_place.h"
 #include "scene_gltf_internal.h"
 #include "scenario.h"
 
@@ -141,19 +142,7 @@ void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene
         } else {
             gfail(cw + ".type: '" + gc.type + "': expected \"perspective\" or \"orthographic\"");
         }
-        double f[3] = {-world.m[8], -world.m[9], -world.m[10]}, u[3] = {world.m[4], world.m[5], world.m[6]};
-        double fl = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-        if (!(fl > 1e-30)) gfail(strf("nodes[%d]: camera node transform is singular", ni));
-        for (double &x : f) x /= fl;
-        double fu = f[0] * u[0] + f[1] * u[1] + f[2] * u[2];
-        for (int k = 0; k < 3; k++) u[k] -= fu * f[k];
-        double ul = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-        if (!(ul > 1e-12 * fl)) gfail(strf("nodes[%d]: camera node transform is singular", ni));
-        for (int k = 0; k < 3; k++) {
-            sc.position[k] = float(world.m[12 + k]);
-            sc.forward[k] = float(f[k]);
-            sc.up[k] = float(u[k] / ul);
-        }
+        if (!pg_place_camera(world.m, &sc)) gfail(strf("nodes[%d]: camera node transform is singular", ni));
         out.push_back(sc);
     }
     for (int ch : nd.children) camera_visit(c, ch, world, out);
@@ -216,15 +205,11 @@ void light_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_
             gfail(strf("%s: %g out of range (%zu lights)", where.c_str(), li, md.lights.size()));
         pg_scene_light L = light_object(c, int(li));
         L.gltf_node = ni;
-        double d[3] = {-world.m[8], -world.m[9], -world.m[10]};
-        double dl = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (L.type != PG_LIGHT_POINT && !(dl > 1e-30))
+        L.direction[1] = -1.0f; /* a point light's default when its node has no -Z axis */
+        if (!pg_place_light(world.m, &L) && L.type != PG_LIGHT_POINT)
             gfail(strf("nodes[%d]: light node transform is singular (no direction)", ni));
-        for (int k = 0; k < 3; k++) {
-            L.position[k] = float(world.m[12 + k]);
-            L.direction[k] = dl > 1e-30 ? float(d[k] / dl) : (k == 1 ? -1.0f : 0.0f);
+        for (int k = 0; k < 3; k++)
             if (!std::isfinite(L.position[k])) gfail(strf("nodes[%d]: light position is not finite", ni));
-        }
         out.push_back(L);
     }
     for (int ch : nd.children) light_visit(c, ch, world, out);

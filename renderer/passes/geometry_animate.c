@@ -121,11 +121,7 @@ static void ga_record(void *self, const pg_pass_record_ctx *ctx)
     const pg_frame_uniforms *fu = PG_FRAME_OF(ctx);
     int32_t animation;
     memcpy(&animation, &fu->light_src[1], sizeof animation);
-    pg_error perr;
-    if (pg_scene_gpu_anim_pack_pose(p->ga, animation, fu->camera_pos[3], p->pose, &perr)) {
-        if (ctx->record_error && !ctx->record_error->code) *ctx->record_error = perr;
-        return;
-    }
+    pg_scene_gpu_anim_pack_pose(p->ga, animation, fu->camera_pos[3], p->pose);
     if (p->ga->pose_floats) upload_pose(p, ctx->cmd);
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 1, &p->set.set, 0, NULL);

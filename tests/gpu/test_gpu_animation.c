@@ -11,7 +11,9 @@
  *     scene rendered with --animation none must differ from the twin (the test fails if the pass
  *     does nothing).
  *     lamp.gltf (a point light on an orbiting node, no moving geometry) likewise: light_animate
- *     rewrites the light's record for the frame's time (the geometry pass is culled).
+ *     rewrites the light's record for the frame's time (the geometry pass is culled). lantern.gltf
+ *     (a light and a box on one orbiting node): both passes run, and the frame evaluates the pose
+ *     once (pg_scene_gpu_anim_now.evaluations), not once a pass.
  *  2. A scene without animation: geometry_animate culled with its reason, the geometry buffer not
  *     allocated, every drawing pass on the static vertex buffer. */
 #include <math.h>
@@ -22,6 +24,7 @@
 #include "gpu_harness.h"
 #include "pass_list.h"
 #include "render_session.h"
+#include "scene_gpu_anim.h"
 #include "test_util.h"
 
 #define W 160
@@ -89,7 +92,13 @@ static void twin(const char *file, double t)
                                         "pipelines/reference.json"};
     for (size_t p = 0; p < sizeof pipes / sizeof pipes[0]; p++) {
         pg_th_frame a, b, rest;
+        const uint64_t evals = live_g->anim ? live_g->anim->now->evaluations : 0;
         bool ok_a = pg_th_render(g_gpu, &g_reg, live_g, pipes[p], NULL, 0, &fi, 1, false, &a);
+        if (ok_a && live_g->anim) { /* one frame at a new time: one evaluation, however many passes need it */
+            const uint64_t n = live_g->anim->now->evaluations - evals;
+            CHECK_MSG(n == 1, "%s %s: the pose was evaluated %llu times for one frame", label, pipes[p],
+                      (unsigned long long)n);
+        }
         bool ok_b = pg_th_render(g_gpu, &g_reg, still_g, pipes[p], NULL, 0, &fi, 1, false, &b);
         pg_frame_info fr = fi;
         fr.animation = PG_ANIM_NONE;
@@ -177,6 +186,7 @@ int main(void)
     twin("morph.gltf", 1.0);
     twin("lamp.gltf", 1.0); /* a light on an animated node: light_animate places it each frame */
     twin("lamp.gltf", 2.0);
+    twin("lantern.gltf", 1.0); /* geometry and a light on one node: both passes, one pose a frame */
     culled();
     printf("validation messages: %u\n", g_gpu->validation_messages);
     CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);

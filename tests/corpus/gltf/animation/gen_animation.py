@@ -509,6 +509,28 @@ def lamp():
     doc.write()
 
 
+def lantern():
+    """a point light and a box on one orbiting node: geometry and a light moving together, so the
+    geometry_animate and light_animate passes of a frame share one pose"""
+    doc = Doc("lantern.gltf")
+    doc.floor()
+    cube = doc.mesh("post", *UNIT_BOX, doc.material("post_blue", (0.1, 0.2, 0.8)))
+    doc.node({"name": "post", "mesh": cube, "translation": [0, 0.5, 0]})
+    cart = doc.mesh("cart", *UNIT_BOX, doc.material("cart_red", (0.8, 0.2, 0.1)))
+    orbit = doc.node({"name": "orbit", "children": [3, 4]})
+    lamp_node = doc.node({"name": "lamp", "translation": [2.5, 1.5, 0],
+                          "extensions": {"KHR_lights_punctual": {"light": 0}}}, root=False)
+    cart_node = doc.node({"name": "cart", "mesh": cart, "translation": [1.5, 0.25, 0], "scale": [0.5, 0.5, 0.5]},
+                         root=False)
+    assert (orbit, lamp_node, cart_node) == (2, 3, 4)
+    doc.d["extensionsUsed"] = ["KHR_lights_punctual"]
+    doc.d["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "warm", "type": "point", "color": [1.0, 0.8, 0.5], "intensity": 30.0, "range": 6.0}]}}
+    doc.animation("orbit", [(orbit, "rotation", "LINEAR", [0, 1, 2, 3, 4],
+                             [quat_axis((0, 1, 0), a) for a in (0, 90, 180, 270, 360)])])
+    doc.write()
+
+
 def check_poses():
     cache = {}
     for name, node, v, anim, t, want in POSES:
@@ -526,7 +548,8 @@ rigid()
 skinned()
 morph()
 lamp()
-for f in ("rigid.gltf", "skinned.gltf", "morph.gltf", "lamp.gltf"):
+lantern()
+for f in ("rigid.gltf", "skinned.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf"):
     Gltf(f).check()
 check_poses()
-print("rigid.gltf skinned.gltf morph.gltf lamp.gltf: written and checked (%d poses)" % len(POSES))
+print("rigid.gltf skinned.gltf morph.gltf lamp.gltf lantern.gltf: written and checked (%d poses)" % len(POSES))
