@@ -48,8 +48,10 @@ void main()
     vec3 sum = vec3(0.0);
     for (uint k = 0u; k < rec.y; k++) {
         Light L = lights[cluster_lights[rec.x + k]];
+        vec3 d = L.pos_radius.xyz - P;
         float R2 = L.pos_radius.w * L.pos_radius.w;
-        sum += example_light(L.pos_radius.xyz - P, R2, 1.0 / R2, L.color.rgb, N);
+        if (!(dot(d, d) < R2)) continue; // most lights of a list miss the pixel: the test first, 1/R^2 after
+        sum += example_light(d, R2, 1.0 / R2, L.color.rgb, N);
     }
     vec3 c = s.albedo * (sum + params.ambient + frame.clip.z);
     imageStore(hdr_out, p, vec4(pg_hdr_sanitize(c), 1.0));
