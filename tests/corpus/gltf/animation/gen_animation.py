@@ -491,6 +491,16 @@ POSES = [
 ]
 
 
+def warm_light_orbiting(doc, orbit):
+    """the file's one light (warm, range 6) and the animation "orbit": node `orbit` turns about +Y
+    once in 4 s"""
+    doc.d["extensionsUsed"] = ["KHR_lights_punctual"]
+    doc.d["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "warm", "type": "point", "color": [1.0, 0.8, 0.5], "intensity": 30.0, "range": 6.0}]}}
+    doc.animation("orbit", [(orbit, "rotation", "LINEAR", [0, 1, 2, 3, 4],
+                             [quat_axis((0, 1, 0), a) for a in (0, 90, 180, 270, 360)])])
+
+
 def lamp():
     """a point light on a node that orbits the origin: KHR_lights_punctual lights move with their nodes"""
     doc = Doc("lamp.gltf")
@@ -501,11 +511,7 @@ def lamp():
     lamp_node = doc.node({"name": "lamp", "translation": [2.5, 1, 0],
                           "extensions": {"KHR_lights_punctual": {"light": 0}}}, root=False)
     assert (orbit, lamp_node) == (2, 3)
-    doc.d["extensionsUsed"] = ["KHR_lights_punctual"]
-    doc.d["extensions"] = {"KHR_lights_punctual": {"lights": [
-        {"name": "warm", "type": "point", "color": [1.0, 0.8, 0.5], "intensity": 30.0, "range": 6.0}]}}
-    doc.animation("orbit", [(orbit, "rotation", "LINEAR", [0, 1, 2, 3, 4],
-                             [quat_axis((0, 1, 0), a) for a in (0, 90, 180, 270, 360)])])
+    warm_light_orbiting(doc, orbit)
     doc.write()
 
 
@@ -523,11 +529,7 @@ def lantern():
     cart_node = doc.node({"name": "cart", "mesh": cart, "translation": [1.5, 0.25, 0], "scale": [0.5, 0.5, 0.5]},
                          root=False)
     assert (orbit, lamp_node, cart_node) == (2, 3, 4)
-    doc.d["extensionsUsed"] = ["KHR_lights_punctual"]
-    doc.d["extensions"] = {"KHR_lights_punctual": {"lights": [
-        {"name": "warm", "type": "point", "color": [1.0, 0.8, 0.5], "intensity": 30.0, "range": 6.0}]}}
-    doc.animation("orbit", [(orbit, "rotation", "LINEAR", [0, 1, 2, 3, 4],
-                             [quat_axis((0, 1, 0), a) for a in (0, 90, 180, 270, 360)])])
+    warm_light_orbiting(doc, orbit)
     doc.write()
 
 
