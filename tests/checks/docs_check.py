@@ -6,10 +6,11 @@ Fails (one line per break, exit 1) when:
   - a tracked file's path contains "issue" (any case);
   - README.md, docs/**/*.md (CHANGELOG.md aside), pipelines/README.md,
     assets/**/README.md or tests/**/README.md name an issue number;
-  - the README's embedded pass code differs from the file it names: the line
-    `<!-- code: PATH -->` or `<!-- code: PATH:FIRST-LAST -->` stands right
-    before a ``` block whose lines must be byte-identical to PATH (or to its
-    lines FIRST..LAST, 1-based, inclusive);
+  - code embedded in README.md or a docs/ page differs from the file it
+    names: the line `<!-- code: PATH -->` or `<!-- code: PATH:FIRST-LAST -->`
+    stands right before a ``` block whose lines must be byte-identical to PATH
+    (or to its lines FIRST..LAST, 1-based, inclusive); README.md must embed
+    at least one (its small pass);
   - a relative markdown link `](path)` in README.md or docs/**/*.md (outside
     docs/results/) names a file or folder that does not exist.
 Standard library only.
@@ -65,8 +66,9 @@ def read_bytes(path):
         return fh.read()
 
 
-def check_code_blocks(root, errors):
-    path = os.path.join(root, "README.md")
+def check_code_blocks(root, page, errors):
+    """the embedded code of one page; returns how many marks it has"""
+    path = os.path.join(root, page)
     lines = read_bytes(path).split(b"\n")
     found = 0
     for i, raw in enumerate(lines):
@@ -75,7 +77,7 @@ def check_code_blocks(root, errors):
             continue
         found += 1
         src, first, last = m.group(1), m.group(2), m.group(3)
-        where = "README.md:%d" % (i + 1)
+        where = "%s:%d" % (page, i + 1)
         if i + 1 >= len(lines) or not lines[i + 1].startswith(b"```"):
             errors.append("%s: code mark for %s is not followed by a ``` block" % (where, src))
             continue
@@ -114,8 +116,7 @@ def check_code_blocks(root, errors):
                     errors.append("%s: embedded code differs from %s at its line %d"
                                   % (where, label, k + 1))
                     break
-    if found == 0:
-        errors.append("README.md: no embedded pass code (<!-- code: renderer/passes/... --> before a ``` block)")
+    return found
 
 
 def check_links(root, page, errors):
@@ -173,13 +174,15 @@ def main(argv):
                 errors.append("%s:%d: names an issue number (%s)" % (page, n, m.group(0)))
 
     if os.path.isfile(readme):
-        check_code_blocks(root, errors)
         link_pages = ["README.md"] + sorted(
             f for f in files
             if f.startswith("docs/") and not f.startswith("docs/results/") and f.endswith(".md"))
         for page in link_pages:
             if os.path.isfile(os.path.join(root, page)):
                 check_links(root, page, errors)
+                found = check_code_blocks(root, page, errors)
+                if page == "README.md" and found == 0:
+                    errors.append("README.md: no embedded pass code (<!-- code: renderer/passes/... --> before a ``` block)")
 
     for e in errors:
         print(e)
