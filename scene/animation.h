@@ -150,6 +150,10 @@ bool pg_anim_describe(const pg_scene *scene, int animation, double time, char *b
  * lights and the glTF cameras on nodes move with their nodes, bounds are recomputed (so framing
  * follows the animated geometry). A scene without animation is left as is. */
 pg_result pg_scene_pose(pg_scene *scene, int animation, double time, pg_error *err);
+/* Places glTF camera `index` by its node's world matrix in `pose` (a pose of scene->anim): the
+ * viewer's glTF camera follows its node as the clock plays. False, the camera left as it was, when
+ * the scene has no animation, the camera no node, or the matrix is singular there. */
+bool pg_scene_pose_camera(pg_scene *scene, uint32_t index, const pg_anim_pose *pose);
 
 #ifdef __cplusplus
 }

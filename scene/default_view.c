@@ -4,6 +4,17 @@
 #include <stdio.h>
 #include <string.h>
 
+int pg_scene_default_camera(const pg_scene *scene, const char *camera_spec)
+{
+    if (!scene || (camera_spec && !strcmp(camera_spec, "auto"))) return -1;
+    if (camera_spec) {
+        uint32_t ci = 0;
+        pg_error e = {0};
+        return pg_scene_find_camera(scene, camera_spec, &ci, &e) ? -1 : (int)ci;
+    }
+    return !strcmp(scene->path, "default") || scene->n_cameras == 0 ? -1 : 0;
+}
+
 pg_result pg_scene_default_view(const pg_scene *scene, const char *camera_spec, float aspect, uint32_t count,
                               uint32_t seed, pg_camera *camera, pg_light_setup *lights, char *camera_why,
                               size_t camera_why_size, char *lights_why, size_t lights_why_size, pg_error *err)
@@ -24,7 +35,7 @@ pg_result pg_scene_default_view(const pg_scene *scene, const char *camera_spec, 
         cam = pg_camera_default_for_scene(scene, aspect);
         snprintf(cw, sizeof cw, "camera: interior view of the built-in atrium (inside the bounds, looking along +X)");
     } else {
-        if (!want_auto && scene && scene->n_cameras > 0) {
+        if (pg_scene_default_camera(scene, NULL) == 0 && !want_auto) {
             pg_result r = pg_camera_from_scene(scene, 0, aspect, &cam, err);
             if (r) return r;
             snprintf(cw, sizeof cw, "camera: glTF camera 0 '%s' (node '%s', %s), the scene's first camera; "

@@ -25,6 +25,10 @@ pg_result pg_scene_default_view(const pg_scene *scene, const char *camera_spec, 
                               uint32_t seed, pg_camera *camera, pg_light_setup *lights, char *camera_why,
                               size_t camera_why_size, char *lights_why, size_t lights_why_size, pg_error *err);
 
+/* The glTF camera index pg_scene_default_view uses for (scene, camera_spec), or -1 when its camera
+ * is not a glTF camera (auto framing, the atrium's view, an unknown name). */
+int pg_scene_default_camera(const pg_scene *scene, const char *camera_spec);
+
 #ifdef __cplusplus
 }
 #endif

@@ -5,6 +5,17 @@
 
 #include <string.h>
 
+bool pg_scene_pose_camera(pg_scene *scene, uint32_t index, const pg_anim_pose *pose)
+{
+    const pg_scene_anim *a = scene->anim;
+    if (!a || index >= scene->n_cameras) return false;
+    pg_scene_camera *C = &scene->cameras[index];
+    if (C->gltf_node < 0 || (uint32_t)C->gltf_node >= a->n_nodes) return false;
+    double m[16];
+    pg_mat4_widen(pose->node_world + (size_t)C->gltf_node * 16, m);
+    return pg_place_camera(m, C); /* singular at this time: keeps the last placement */
+}
+
 pg_result pg_scene_pose(pg_scene *scene, int animation, double time, pg_error *err)
 {
     pg_scene_anim *a = scene ? scene->anim : NULL;
@@ -21,13 +32,7 @@ pg_result pg_scene_pose(pg_scene *scene, int animation, double time, pg_error *e
         pg_mat4_widen(pose.node_world + (size_t)L->gltf_node * 16, m);
         pg_place_light(m, L);
     }
-    for (uint32_t i = 0; i < scene->n_cameras; i++) { /* a camera on an animated node: placed at `time` */
-        pg_scene_camera *C = &scene->cameras[i];
-        if (C->gltf_node < 0 || (uint32_t)C->gltf_node >= a->n_nodes) continue;
-        double m[16];
-        pg_mat4_widen(pose.node_world + (size_t)C->gltf_node * 16, m);
-        pg_place_camera(m, C); /* singular at this time: keeps the last placement */
-    }
+    for (uint32_t i = 0; i < scene->n_cameras; i++) pg_scene_pose_camera(scene, i, &pose); /* placed at `time` */
     pg_anim_pose_release(&pose);
     const bool env = scene->features.has_environment;
     const uint8_t shading = scene->features.auto_shading;

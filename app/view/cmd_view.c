@@ -246,6 +246,9 @@ static bool initial_state(viewer *v, const pg_cli_common *opt)
     camera_angles(v);
     printf("view: %s\nview: %s\n", v->app.camera_why, v->app.lights_why);
     camera_list(v, "start view");
+    const bool scenario_camera = v->app.has_scenario && v->app.scenario.has_camera && !v->app.opt.camera;
+    v->cam_start_gltf = scenario_camera ? -1 : pg_scene_default_camera(v->app.scene, v->app.opt.camera);
+    camera_follow_set(v, v->cam_start_gltf);
     float ext[3] = {v->app.scene->bounds_max[0] - v->app.scene->bounds_min[0],
                     v->app.scene->bounds_max[1] - v->app.scene->bounds_min[1],
                     v->app.scene->bounds_max[2] - v->app.scene->bounds_min[2]};
@@ -323,6 +326,9 @@ static bool draw_one(viewer *v, uint32_t frame, float dt, pg_error *err)
     v->key_c_down = key_c;
     bool rdoc_now = v->want_rdoc && rdoc_ready(v);
     if (rdoc_now) pg_rdoc_begin(v->rdoc);
+    if (capture) /* where the picture is taken from (view_test: a followed glTF camera) */
+        printf("view: frame %u: camera at (%.5f, %.5f, %.5f), time %.5f s\n", frame, v->camera.position[0],
+               v->camera.position[1], v->camera.position[2], v->time);
     if (draw_frame(v, capture, err)) return false;
     if (rdoc_now) rdoc_finish(v);
     v->want_rdoc = false;
@@ -413,6 +419,7 @@ static void close_viewer(viewer *v)
     if (v->app.gpu) vkDeviceWaitIdle(v->app.gpu->device);
     pg_session_destroy(v->session);
     pg_session_destroy(v->naive);
+    camera_follow_release(v);
     if (v->app.gpu) {
         pg_image_destroy(v->app.gpu, &v->diff_image);
         pg_image_destroy(v->app.gpu, &v->present_copy);
@@ -457,6 +464,7 @@ int pg_cmd_view(int argc, char **argv)
     if (!v) return 1;
     v->cycle_every = 20;
     v->frames_in_flight = 2;
+    v->cam_follow = v->cam_start_gltf = -1;
     int rc = parse_view_options(v, &opt, argc, argv);
     if (rc >= 0) {
         free(v);

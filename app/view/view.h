@@ -19,6 +19,7 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
+#include "animation.h"
 #include "app.h"
 #include "bench_stats.h"
 #include "commands.h"
@@ -125,6 +126,11 @@ typedef struct viewer {
     char scene_input[PG_PATH_MAX];
     /* camera choice: 0 = the start view (app.camera_why), 1 = auto framing, 2+k = glTF camera k */
     int cam_choice, n_cam_items;
+    /* a glTF camera on an animated node follows it as the clock plays (camera_follow): its index,
+     * or -1 (none, or the fly camera moved); cam_start_gltf: the start view's glTF camera or -1 */
+    int cam_follow, cam_start_gltf;
+    pg_anim_pose follow_pose;               /* allocated for follow_anim */
+    const pg_scene_anim *follow_anim;
     char cam_items[VIEW_MAX_CAMS + 2][PG_NAME_MAX * 2 + 16];
     const char *cam_ptrs[VIEW_MAX_CAMS + 2];
     view_action actions[MAX_ACTIONS];
@@ -149,6 +155,8 @@ void colour_ui(viewer *v);
 void camera_angles(viewer *v);
 void camera_list(viewer *v, const char *start_label);
 void camera_choose(viewer *v, int choice);
+void camera_follow_set(viewer *v, int gltf_camera);
+void camera_follow_release(viewer *v);
 void camera_update(viewer *v, float dt);
 
 /* view_ui.c */

@@ -51,10 +51,54 @@ void camera_choose(viewer *v, int choice)
     v->cam_choice = choice;
     v->camera = cam;
     camera_angles(v);
+    camera_follow_set(v, choice >= 2 ? choice - 2 : choice == 0 ? v->cam_start_gltf : -1);
+}
+
+/* Follows glTF camera `gltf_camera` (-1: none) when animation can move its node. */
+void camera_follow_set(viewer *v, int gltf_camera)
+{
+    const pg_scene *sc = v->app.scene;
+    v->cam_follow = -1;
+    if (!sc || !sc->anim || gltf_camera < 0 || (uint32_t)gltf_camera >= sc->n_cameras ||
+        sc->cameras[gltf_camera].gltf_node < 0)
+        return;
+    v->cam_follow = gltf_camera;
+    printf("view: camera: glTF camera %d '%s' follows its node '%s' as the clock plays\n", gltf_camera,
+           sc->cameras[gltf_camera].name, sc->cameras[gltf_camera].node_name);
+}
+
+void camera_follow_release(viewer *v)
+{
+    pg_anim_pose_release(&v->follow_pose);
+    v->follow_anim = NULL;
+}
+
+/* The followed camera placed by its node at the clock's time (the pose kept between frames). */
+static void camera_follow(viewer *v)
+{
+    pg_scene *sc = v->app.scene;
+    if (v->follow_anim != sc->anim) {
+        camera_follow_release(v);
+        if (pg_anim_pose_alloc(sc->anim, &v->follow_pose, NULL)) {
+            v->cam_follow = -1;
+            return;
+        }
+        v->follow_anim = sc->anim;
+    }
+    pg_anim_pose_eval(sc->anim, v->app.animation, v->time, &v->follow_pose);
+    pg_scene_pose_camera(sc, (uint32_t)v->cam_follow, &v->follow_pose);
+    float aspect = v->win.extent.height ? (float)v->win.extent.width / (float)v->win.extent.height : 16.0f / 9;
+    pg_error err = {0};
+    if (pg_camera_from_scene(sc, (uint32_t)v->cam_follow, aspect, &v->camera, &err)) {
+        v->cam_follow = -1;
+        return;
+    }
+    camera_angles(v);
 }
 
 void camera_update(viewer *v, float dt)
 {
+    if (v->cam_follow >= 0) camera_follow(v);
     float fwd[3] = {cosf(v->pitch) * cosf(v->yaw), sinf(v->pitch), cosf(v->pitch) * sinf(v->yaw)};
     float right[3] = {-sinf(v->yaw), 0, cosf(v->yaw)};
     GLFWwindow *w = v->window;
@@ -72,12 +116,14 @@ void camera_update(viewer *v, float dt)
         if (glfwGetKey(w, GLFW_KEY_E) == GLFW_PRESS) mv[1] += s;
         if (glfwGetKey(w, GLFW_KEY_Q) == GLFW_PRESS) mv[1] -= s;
         for (int k = 0; k < 3; k++) v->camera.position[k] += mv[k];
+        if (mv[0] != 0 || mv[1] != 0 || mv[2] != 0) v->cam_follow = -1; /* flown away: no longer follows */
     }
     double x, y;
     glfwGetCursorPos(w, &x, &y);
     bool rmb = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
     if (rmb && (v->looking || !pg_ui_want_mouse())) {
         if (v->looking) {
+            if (x != v->last_x || y != v->last_y) v->cam_follow = -1;
             v->yaw += (float)(x - v->last_x) * 0.004f;
             v->pitch -= (float)(y - v->last_y) * 0.004f;
             v->pitch = fmaxf(-1.55f, fminf(1.55f, v->pitch));

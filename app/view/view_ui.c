@@ -130,6 +130,8 @@ static void open_scene(viewer *v)
     v->camera = v->home;
     camera_angles(v);
     camera_list(v, "start view");
+    v->cam_start_gltf = pg_scene_default_camera(sc, NULL);
+    camera_follow_set(v, v->cam_start_gltf);
     v->app.lights = ls;
     v->radius = ls.radius;
     v->intensity = ls.intensity;
@@ -170,6 +172,7 @@ static void scene_and_lights_ui(viewer *v)
         v->camera = v->home;
         v->cam_choice = 0;
         camera_angles(v);
+        camera_follow_set(v, v->cam_start_gltf);
     }
     pg_ui_same_line();
     if (pg_ui_button("screenshot")) {

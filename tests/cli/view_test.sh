@@ -99,4 +99,24 @@ grep -Eq '^view: frame 1[01]: .* ready in [0-9.]+ ms' "$tmp/out6" || grep -Eq '^
   && ok || { bad "user pass reload: the edited shader was not shown"; cat "$tmp/out6"; }
 grep -Eq '^view: 12 frames' "$tmp/out6" && ok || { bad "user pass reload: did not run 12 frames"; tail -3 "$tmp/out6"; }
 grep -E 'ready in' "$tmp/out6" | tail -1
+# a glTF camera on an animated node follows it as the clock plays (tests/corpus/gltf/animation/
+# lantern.gltf: camera 'eye' rides a node that turns about +Y at 90 deg/s, at (0, 3, 6) in it): the
+# start view, and the camera chosen again after auto framing, are where the pose puts them
+lantern="$root/tests/corpus/gltf/animation/lantern.gltf"
+for at in "" "--at 2:camera=auto --at 4:camera=eye"; do
+  # shellcheck disable=SC2086
+  xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --validation --size 64x36 --frames 31 --scene "$lantern" --screenshot "$tmp/follow.png" $at \
+    >"$tmp/out7" 2>"$tmp/err7"
+  [ $? -eq 0 ] && ok || { bad "follow camera ($at): view exit"; tail -5 "$tmp/err7"; }
+  grep -q "^view: camera: glTF camera 0 'eye' follows its node 'eye'" "$tmp/out7" && ok || { bad "follow camera ($at): no follow line"; cat "$tmp/out7"; }
+  grep -q "validation message" "$tmp/err7" && bad "follow camera: validation messages" || ok
+  line=$(grep "^view: frame 30: camera at" "$tmp/out7")
+  python3 - "$line" <<'PY' && ok || bad "follow camera ($at): not where the pose puts it: $line"
+import math, re, sys
+x, y, z, t = map(float, re.search(r"\(([-0-9.]+), ([-0-9.]+), ([-0-9.]+)\), time ([0-9.]+)", sys.argv[1]).groups())
+a = math.radians(90.0 * t)
+want = (6 * math.sin(a), 3.0, 6 * math.cos(a))
+sys.exit(0 if t > 0.9 and max(abs(p - q) for p, q in zip((x, y, z), want)) < 1e-3 else 1)
+PY
+done
 check_finish view_test

@@ -523,12 +523,17 @@ def lantern():
     cube = doc.mesh("post", *UNIT_BOX, doc.material("post_blue", (0.1, 0.2, 0.8)))
     doc.node({"name": "post", "mesh": cube, "translation": [0, 0.5, 0]})
     cart = doc.mesh("cart", *UNIT_BOX, doc.material("cart_red", (0.8, 0.2, 0.1)))
-    orbit = doc.node({"name": "orbit", "children": [3, 4]})
+    orbit = doc.node({"name": "orbit", "children": [3, 4, 5]})
     lamp_node = doc.node({"name": "lamp", "translation": [2.5, 1.5, 0],
                           "extensions": {"KHR_lights_punctual": {"light": 0}}}, root=False)
     cart_node = doc.node({"name": "cart", "mesh": cart, "translation": [1.5, 0.25, 0], "scale": [0.5, 0.5, 0.5]},
                          root=False)
-    assert (orbit, lamp_node, cart_node) == (2, 3, 4)
+    # a camera riding the orbit at (0, 3, 6), looking at the origin (pitched down atan(1/2))
+    eye = doc.node({"name": "eye", "camera": 0, "translation": [0, 3, 6],
+                    "rotation": quat_axis((1, 0, 0), -math.degrees(math.atan2(3, 6)))}, root=False)
+    doc.d["cameras"] = [{"name": "eye", "type": "perspective",
+                         "perspective": {"yfov": 0.8, "znear": 0.1, "zfar": 100.0}}]
+    assert (orbit, lamp_node, cart_node, eye) == (2, 3, 4, 5)
     warm_light_orbiting(doc, orbit)
     doc.write()
 
