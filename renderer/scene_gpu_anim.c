@@ -36,18 +36,25 @@ static pg_result upload(pg_gpu *gpu, const void *data, VkDeviceSize size, VkBuff
     return r;
 }
 
-/* per vertex: (prim, joints 0|1, joints 2|3, 0) and the weights */
-static void *vertex_info(const pg_scene_anim *a)
+/* per vertex: (prim, joints 0|1, joints 2|3, 0) and weights 0-3; with 8 influences also
+ * (joints 4|5, joints 6|7, 0, 0) and weights 4-7 (ga->info_stride bytes a vertex) */
+static void *vertex_info(const pg_scene_anim *a, uint32_t stride)
 {
-    uint32_t *info = calloc((size_t)a->n_vertices + 1, 32);
+    const uint32_t words = stride / 4;
+    uint32_t *info = calloc((size_t)a->n_vertices + 1, stride);
     if (!info) return NULL;
     for (uint32_t v = 0; v < a->n_vertices; v++) {
-        uint32_t *w = info + (size_t)v * 8;
+        uint32_t *w = info + (size_t)v * words;
         w[0] = a->vertex_prim[v];
-        if (a->joints) {
-            w[1] = (uint32_t)a->joints[v][0] | (uint32_t)a->joints[v][1] << 16;
-            w[2] = (uint32_t)a->joints[v][2] | (uint32_t)a->joints[v][3] << 16;
-            memcpy(w + 4, a->weights[v], sizeof(float[4]));
+        if (!a->joints) continue;
+        const uint16_t *J = a->joints[v];
+        w[1] = (uint32_t)J[0] | (uint32_t)J[1] << 16;
+        w[2] = (uint32_t)J[2] | (uint32_t)J[3] << 16;
+        memcpy(w + 4, a->weights[v], sizeof(float[4]));
+        if (words == 16) {
+            w[8] = (uint32_t)J[4] | (uint32_t)J[5] << 16;
+            w[9] = (uint32_t)J[6] | (uint32_t)J[7] << 16;
+            memcpy(w + 12, a->weights[v] + 4, sizeof(float[4]));
         }
     }
     return info;
@@ -174,11 +181,13 @@ pg_result pg_scene_gpu_anim_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_
     ga->weight_base = ga->joint_base + a->n_joint_slots * 16;
     ga->pose_floats = ga->weight_base + a->n_weights;
     const bool geometry = scene->features.has_animation; /* else only lights move: no vertex buffers */
-    void *info = geometry ? vertex_info(a) : NULL, *prims = geometry ? prim_table(a) : NULL;
+    ga->info_stride = a->influences > 4 ? 64u : 32u;
+    void *info = geometry ? vertex_info(a, ga->info_stride) : NULL, *prims = geometry ? prim_table(a) : NULL;
     pg_result r = PG_OK;
     if (geometry && (!info || !prims)) r = pg_fail(err, PG_ERR_OOM, "out of memory");
     if (!r && geometry) r = upload(gpu, a->local, (VkDeviceSize)a->n_vertices * sizeof(pg_vertex), 0, "scene.anim.local", &ga->local, err);
-    if (!r && geometry) r = upload(gpu, info, (VkDeviceSize)a->n_vertices * 32, 0, "scene.anim.info", &ga->info, err);
+    if (!r && geometry)
+        r = upload(gpu, info, (VkDeviceSize)a->n_vertices * ga->info_stride, 0, "scene.anim.info", &ga->info, err);
     if (!r && geometry) r = upload(gpu, prims, (VkDeviceSize)a->n_prims * 32, 0, "scene.anim.prims", &ga->prims, err);
     if (!r && geometry)
         r = upload(gpu, a->deltas, (VkDeviceSize)a->n_deltas * sizeof(pg_anim_delta), 0, "scene.anim.deltas",

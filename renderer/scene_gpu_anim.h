@@ -2,7 +2,10 @@
  * (shaders/animate_geometry.comp): device-local storage buffers written once, plus the pose buffer
  * the pass refreshes every frame with vkCmdUpdateBuffer.
  *   local:  pg_vertex per scene vertex (mesh space for a moving primitive; the world for a static one)
- *   info:   per vertex uvec4 (prim or 0xFFFFFFFF, joint slots 0|1<<16, 2|3<<16, 0) + vec4 weights
+ *   info:   per vertex uvec4 (prim or 0xFFFFFFFF, joint slots 0|1<<16, 2|3<<16, 0) + vec4 weights;
+ *           a scene whose skins use 8 joints a vertex (pg_scene_anim.influences) adds uvec4 (4|5<<16,
+ *           6|7<<16, 0, 0) + vec4 weights 4-7 (info_stride 64 instead of 32; the shader is compiled
+ *           with PG_ANIM_INFLUENCES8)
  *   prims:  per moving primitive uvec4 (node, skinned, targets, target base), uvec4 (first vertex,
  *           vertices, weight base, 0)
  *   deltas: pg_anim_delta per (target, vertex) of each morphing primitive
@@ -30,6 +33,7 @@ typedef struct pg_scene_gpu_anim {
     pg_buffer local, info, prims, deltas, pose;
     uint32_t n_vertices;
     uint32_t joint_base, weight_base, pose_floats; /* float offsets in the pose, its size */
+    uint32_t info_stride;      /* bytes a vertex of info: 32, or 64 with 8 joints a vertex */
     const pg_scene_anim *anim;
     /* the file lights on nodes that animation moves (the node or an ancestor has a TRS channel):
      * their indices in the light table and their records as loaded; light_animate rewrites them

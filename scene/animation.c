@@ -312,7 +312,7 @@ void pg_anim_deform(const pg_scene_anim *a, const pg_anim_pose *pose, pg_vertex 
         float m[16];
         if (pr->skin >= 0 && a->joints) {
             memset(m, 0, sizeof m);
-            for (int k = 0; k < 4; k++) {
+            for (int k = 0; k < PG_ANIM_MAX_INFLUENCES; k++) {
                 const float w = a->weights[v][k];
                 if (w == 0.0f) continue;
                 const float *J = pose->joints + (size_t)a->joints[v][k] * 16;

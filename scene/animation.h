@@ -9,9 +9,10 @@
  *   linearly, STEP holds the key at or before the time, CUBICSPLINE is the Hermite spline of the
  *   specification's appendix (tangents scaled by the key interval; rotations normalised after);
  *   before the first key a channel holds its first value, after the last its last value;
- * - a skinned vertex is sum_k w_k * (world(joint_k) * inverseBind_k) * p: the skinned mesh node's
- *   own transform is ignored; weights are normalised at load (a vertex whose weights sum to 0 follows
- *   its first joint);
+ * - a skinned vertex is sum_k w_k * (world(joint_k) * inverseBind_k) * p over up to 8 joints
+ *   (JOINTS_0/WEIGHTS_0, then JOINTS_1/WEIGHTS_1): the skinned mesh node's own transform is ignored;
+ *   weights are normalised at load over all 8 (a vertex whose weights sum to 0 follows its first
+ *   joint);
  * - morph targets add sum_t w_t * delta_t to POSITION, NORMAL and TANGENT (xyz) before skinning or
  *   the node transform; the weights are the node's `weights`, else the mesh's, else 0, animated by
  *   "weights" channels;
@@ -36,6 +37,7 @@ extern "C" {
 enum { PG_ANIM_NONE = -1, PG_ANIM_ALL = -2, PG_ANIM_FIRST = 0 };
 #define PG_ANIM_STATIC 0xFFFFFFFFu /* pg_scene_anim.vertex_prim of a vertex that never moves */
 #define PG_ANIM_MAX_JOINT_SLOTS 65535u /* joint slots are 16-bit per vertex */
+#define PG_ANIM_MAX_INFLUENCES 8      /* joints per vertex: JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1 */
 
 typedef enum pg_anim_path {
     PG_ANIM_TRANSLATION = 0,
@@ -107,8 +109,9 @@ typedef struct pg_scene_anim {
     pg_vertex *local;          /* n_vertices: a deformed vertex in its mesh's space; a static one as
                                   the scene has it (world) */
     uint32_t *vertex_prim;     /* n_vertices: index into prims, or PG_ANIM_STATIC */
-    uint16_t (*joints)[4];     /* n_vertices absolute joint slots; NULL without skins */
-    float (*weights)[4];       /* n_vertices, normalised; NULL without skins */
+    uint16_t (*joints)[PG_ANIM_MAX_INFLUENCES]; /* n_vertices absolute joint slots; NULL without skins */
+    float (*weights)[PG_ANIM_MAX_INFLUENCES];   /* n_vertices, normalised over all 8; NULL without skins */
+    uint32_t influences;       /* 4, or 8 when a vertex has a non-zero weight in JOINTS_1/WEIGHTS_1 */
     pg_anim_delta *deltas;
     uint32_t n_deltas;
 } pg_scene_anim;

@@ -62,54 +62,75 @@ void anim_prepare(Ctx &c)
     c.joint_slots = uint32_t(slots);
 }
 
-/* JOINTS_0 / WEIGHTS_0 of a skinned primitive into o.joints / o.weights (absolute joint slots,
- * weights normalised) */
-static void skin_attributes(Ctx &c, Out &o, const tinygltf::Primitive &prim, int skin, size_t base, size_t n,
-                            const std::string &pw)
+/* JOINTS_n / WEIGHTS_n (n = set) of a skinned primitive, checked: its two views */
+static void skin_views(Ctx &c, const tinygltf::Primitive &prim, int set, size_t n, const std::string &pw, View &jv,
+                       View &wv)
 {
-    const tinygltf::Skin &sk = c.model.skins[size_t(skin)];
-    View jv = get_view(c, *find_attr(prim, "JOINTS_0")), wv = get_view(c, *find_attr(prim, "WEIGHTS_0"));
+    const std::string J = strf("JOINTS_%d", set), Wn = strf("WEIGHTS_%d", set);
+    jv = get_view(c, *find_attr(prim, J.c_str()));
+    wv = get_view(c, *find_attr(prim, Wn.c_str()));
     if (jv.count != n || wv.count != n)
-        gfail(strf("%s: JOINTS_0 / WEIGHTS_0 have %zu / %zu elements but POSITION has %zu", pw.c_str(), jv.count,
-                   wv.count, n));
+        gfail(strf("%s: %s / %s have %zu / %zu elements but POSITION has %zu", pw.c_str(), J.c_str(), Wn.c_str(),
+                   jv.count, wv.count, n));
     if (jv.type != TINYGLTF_TYPE_VEC4 || jv.normalized ||
         (jv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && jv.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))
-        gfail(strf("accessors[%d]: JOINTS_0 must be VEC4 UNSIGNED_BYTE or UNSIGNED_SHORT (got %s %s)", jv.index,
+        gfail(strf("accessors[%d]: %s must be VEC4 UNSIGNED_BYTE or UNSIGNED_SHORT (got %s %s)", jv.index, J.c_str(),
                    type_name(jv.type), ctype_name(jv.ctype)));
     const bool wf = wv.ctype == TINYGLTF_COMPONENT_TYPE_FLOAT && !wv.normalized;
     const bool wu = wv.normalized && (wv.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                                       wv.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
     if (wv.type != TINYGLTF_TYPE_VEC4 || !(wf || wu))
-        gfail(strf("accessors[%d]: WEIGHTS_0 must be VEC4 FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT "
+        gfail(strf("accessors[%d]: %s must be VEC4 FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT "
                    "(got %s %s%s)",
-                   wv.index, type_name(wv.type), wv.normalized ? "normalized " : "", ctype_name(wv.ctype)));
+                   wv.index, Wn.c_str(), type_name(wv.type), wv.normalized ? "normalized " : "", ctype_name(wv.ctype)));
+}
+
+/* JOINTS_0 / WEIGHTS_0 and, when present, JOINTS_1 / WEIGHTS_1 of a skinned primitive into
+ * o.joints / o.weights (PG_ANIM_MAX_INFLUENCES a vertex: absolute joint slots, weights normalised
+ * over all of them) */
+static void skin_attributes(Ctx &c, Out &o, const tinygltf::Primitive &prim, int skin, size_t base, size_t n,
+                            const std::string &pw)
+{
+    const tinygltf::Skin &sk = c.model.skins[size_t(skin)];
+    const bool set1_j = find_attr(prim, "JOINTS_1") != nullptr, set1_w = find_attr(prim, "WEIGHTS_1") != nullptr;
+    if (set1_j != set1_w)
+        gfail(strf("%s: %s without %s (a joint set needs both)", pw.c_str(), set1_j ? "JOINTS_1" : "WEIGHTS_1",
+                   set1_j ? "WEIGHTS_1" : "JOINTS_1"));
+    const int sets = set1_j ? 2 : 1;
+    View jv[2], wv[2];
+    for (int t = 0; t < sets; t++) skin_views(c, prim, t, n, pw, jv[t], wv[t]);
     for (const auto &at : prim.attributes)
-        if (at.first.compare(0, 7, "JOINTS_") == 0 && at.first != "JOINTS_0") {
-            c.joints1_prims++;
+        if ((at.first.compare(0, 7, "JOINTS_") == 0 || at.first.compare(0, 8, "WEIGHTS_") == 0) &&
+            at.first != "JOINTS_0" && at.first != "JOINTS_1" && at.first != "WEIGHTS_0" && at.first != "WEIGHTS_1") {
+            c.joints2_prims++;
             break;
         }
-    o.joints.resize((base + n) * 4, 0);
-    o.weights.resize((base + n) * 4, 0.0f);
+    const size_t K = PG_ANIM_MAX_INFLUENCES;
+    o.joints.resize((base + n) * K, 0);
+    o.weights.resize((base + n) * K, 0.0f);
     const uint32_t slot0 = c.skin_slot_base[size_t(skin)];
     for (size_t i = 0; i < n; i++) {
-        float j[4], w[4];
-        view_floats(jv, i, j);
-        view_floats(wv, i, w);
+        float j[PG_ANIM_MAX_INFLUENCES] = {0}, w[PG_ANIM_MAX_INFLUENCES] = {0};
         double sum = 0;
-        for (int k = 0; k < 4; k++) {
-            if (!(std::isfinite(w[k]) && w[k] >= 0))
-                gfail(strf("accessors[%d]: WEIGHTS_0 element %zu: %g (expected finite weights >= 0)", wv.index, i,
-                           double(w[k])));
-            if (w[k] > 0 && !(j[k] < float(sk.joints.size())))
-                gfail(strf("accessors[%d]: JOINTS_0 element %zu: joint %g out of range (skins[%d] has %zu joints)",
-                           jv.index, i, double(j[k]), skin, sk.joints.size()));
-            sum += w[k];
+        for (int t = 0; t < sets; t++) {
+            view_floats(jv[t], i, j + 4 * t);
+            view_floats(wv[t], i, w + 4 * t);
+            for (int k = 4 * t; k < 4 * t + 4; k++) {
+                if (!(std::isfinite(w[k]) && w[k] >= 0))
+                    gfail(strf("accessors[%d]: WEIGHTS_%d element %zu: %g (expected finite weights >= 0)",
+                               wv[t].index, t, i, double(w[k])));
+                if (w[k] > 0 && !(j[k] < float(sk.joints.size())))
+                    gfail(strf("accessors[%d]: JOINTS_%d element %zu: joint %g out of range (skins[%d] has %zu joints)",
+                               jv[t].index, t, i, double(j[k]), skin, sk.joints.size()));
+                sum += w[k];
+            }
         }
-        uint16_t *J = &o.joints[(base + i) * 4];
-        float *W = &o.weights[(base + i) * 4];
-        for (int k = 0; k < 4; k++) {
+        uint16_t *J = &o.joints[(base + i) * K];
+        float *W = &o.weights[(base + i) * K];
+        for (size_t k = 0; k < K; k++) {
             J[k] = uint16_t(slot0 + (w[k] > 0 ? uint32_t(j[k]) : 0u));
             W[k] = sum > 0 ? float(w[k] / sum) : (k == 0 ? 1.0f : 0.0f);
+            if (k >= 4 && W[k] > 0) c.influences8 = true;
         }
     }
 }
@@ -402,11 +423,12 @@ pg_scene_anim *anim_hand_out(Ctx &c, const Out &o)
     if (!o.joints.empty()) {
         std::vector<uint16_t> j(o.joints);
         std::vector<float> w(o.weights);
-        j.resize(n * 4, 0);
-        w.resize(n * 4, 0.0f);
-        a->joints = reinterpret_cast<uint16_t(*)[4]>(dup(j));
-        a->weights = reinterpret_cast<float(*)[4]>(dup(w));
+        j.resize(n * PG_ANIM_MAX_INFLUENCES, 0);
+        w.resize(n * PG_ANIM_MAX_INFLUENCES, 0.0f);
+        a->joints = reinterpret_cast<uint16_t(*)[PG_ANIM_MAX_INFLUENCES]>(dup(j));
+        a->weights = reinterpret_cast<float(*)[PG_ANIM_MAX_INFLUENCES]>(dup(w));
     }
+    a->influences = c.influences8 ? 8u : 4u;
     a->prims = dup(o.aprims);
     a->n_prims = uint32_t(o.aprims.size());
     a->deltas = dup(o.deltas);

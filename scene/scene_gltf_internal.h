@@ -98,7 +98,8 @@ struct Ctx {
     std::vector<char> node_animated;
     std::vector<uint32_t> skin_slot_base;
     uint32_t joint_slots = 0;
-    unsigned joints1_prims = 0; /* drawn skinned primitives with JOINTS_1.. (ignored) */
+    unsigned joints2_prims = 0; /* drawn skinned primitives with JOINTS_2.. (ignored: 8 joints a vertex) */
+    bool influences8 = false;   /* a vertex weighs a joint of JOINTS_1 */
     unsigned unskinned_prims = 0; /* drawn primitives of a node with a skin but no JOINTS_0/WEIGHTS_0 */
     unsigned ignored_channels = 0;
 };
@@ -118,7 +119,7 @@ struct Out {
     std::vector<float> uv1;                   /* TEXCOORD_1, 2 per vertex; empty when none has it */
     /* animation (Ctx.animated only): per vertex the mesh-space vertex of a moving primitive and its
      * pg_anim_prim (PG_ANIM_STATIC: a static vertex, its local entry filled at hand-out); joint
-     * slots and weights (4 per vertex, from the first skinned primitive on); morph deltas; each
+     * slots and weights (8 per vertex, from the first skinned primitive on); morph deltas; each
      * morphing node's weights (node -> first weight) */
     std::vector<pg_vertex> local;
     std::vector<uint32_t> vertex_prim;

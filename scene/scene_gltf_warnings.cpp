@@ -75,9 +75,10 @@ void collect_warnings(Ctx &c)
         W.push_back(strf("%u primitive(s) of skinned nodes without JOINTS_0/WEIGHTS_0: drawn by their node's transform, "
                          "unskinned",
                          c.unskinned_prims));
-    if (c.joints1_prims)
-        W.push_back(strf("%u skinned primitive(s) with JOINTS_1/WEIGHTS_1 ignored: 4 joints per vertex are applied",
-                         c.joints1_prims));
+    if (c.joints2_prims)
+        W.push_back(strf("%u skinned primitive(s) with JOINTS_2/WEIGHTS_2 or more ignored: 8 joints per vertex are "
+                         "applied (JOINTS_0, JOINTS_1)",
+                         c.joints2_prims));
     if (c.ignored_channels)
         W.push_back(strf("%u animation channel(s) ignored (KHR_animation_pointer, a node given by a matrix, or "
                          "weights of a mesh without drawn morph targets)",

@@ -10,10 +10,15 @@ layout(local_size_x = 64) in;
 // 12 floats a vertex: position xyz, normal xyz, uv, tangent xyzw (scene.h pg_vertex)
 layout(set = 0, binding = 0, std430) writeonly buffer Out { float outv[]; };
 layout(set = 0, binding = 1, std430) readonly buffer Local { float localv[]; };
-// per vertex: prim (0xFFFFFFFF: static), joints 0|1 << 16, joints 2|3 << 16, 0; weights
+// per vertex: prim (0xFFFFFFFF: static), joints 0|1 << 16, joints 2|3 << 16, 0; weights; with
+// PG_ANIM_INFLUENCES8 (a skin with JOINTS_1) also joints 4|5 << 16, joints 6|7 << 16, 0, 0; weights 4-7
 struct VertexInfo {
     uvec4 info;
     vec4 weights;
+#ifdef PG_ANIM_INFLUENCES8
+    uvec4 info2;
+    vec4 weights2;
+#endif
 };
 layout(set = 0, binding = 2, std430) readonly buffer Info { VertexInfo vinfo[]; };
 // per moving primitive: (node, skinned, targets, target base), (first vertex, vertices, weight base, 0)
@@ -74,6 +79,14 @@ void main()
             if (w == 0.0) continue;
             m += w * pose_matrix(pc.joint_base + j[k] * 16u);
         }
+#ifdef PG_ANIM_INFLUENCES8
+        uint j2[4] = uint[4](vi.info2.x & 0xFFFFu, vi.info2.x >> 16, vi.info2.y & 0xFFFFu, vi.info2.y >> 16);
+        for (int k = 0; k < 4; k++) {
+            float w = vi.weights2[k];
+            if (w == 0.0) continue;
+            m += w * pose_matrix(pc.joint_base + j2[k] * 16u);
+        }
+#endif
     } else {
         m = pose_matrix(pr.a.x * 16u);
     }

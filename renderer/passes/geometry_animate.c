@@ -90,7 +90,9 @@ static pg_result ga_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     if ((r = pg_pass_set_create(ctx->gpu, 6, b, ctx->pass->name, &p->set, err))) return r;
     if ((r = pg_pipeline_layout_create(ctx->gpu, 1, &p->set.layout, sizeof p->push, &p->layout, err))) return r;
     VkShaderModule cs;
-    if ((r = pg_shader_module(ctx->gpu, "animate_geometry.comp", VK_SHADER_STAGE_COMPUTE_BIT, NULL, 0, &cs, err)))
+    const char *defines[1] = {"PG_ANIM_INFLUENCES8"}; /* 8 joints a vertex: the larger info record */
+    if ((r = pg_shader_module(ctx->gpu, "animate_geometry.comp", VK_SHADER_STAGE_COMPUTE_BIT, defines,
+                              ga->info_stride > 32 ? 1 : 0, &cs, err)))
         return r;
     r = pg_compute_pipeline_create(ctx->gpu, p->layout, cs, ctx->pass->name, &p->pipeline, err);
     vkDestroyShaderModule(ctx->gpu->device, cs, NULL);

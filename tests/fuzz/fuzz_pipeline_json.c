@@ -11,7 +11,10 @@
  *      the shipped pipelines declare (hdr_format=rgba32f, shading=blinn_phong);
  *   C. as an included fragment: written to $DIR/frag_input.json and included, after the fixed
  *      fragment fixed_frag.json, by a fixed top-level file, with --set fz_mode=b.
- * A pipeline that loads is compiled for two fixed sets of scene features.
+ * A pipeline that loads is compiled for two fixed sets of scene features. DIR also holds the GLSL of
+ * every example under pipelines/examples/ (flat: their names differ), so the seeds made from the
+ * examples (run.sh: their includes pointed at fragments/) reach the `shader` pass type's declare:
+ * its options, the shader's compilation and the reflection checks.
  *
  * Invariants checked (abort = a finding): a result code in range; out set iff PG_OK; on failure
  * err.code equals the result and err.msg is a non-empty terminated string; a loaded pipeline is
@@ -73,6 +76,26 @@ static const char k_fixed_top[] =
 
 static int keep_json(const char *name) { return fuzz_ends_with(name, ".json"); }
 
+static int keep_glsl(const char *name)
+{
+    return fuzz_ends_with(name, ".comp") || fuzz_ends_with(name, ".frag") || fuzz_ends_with(name, ".glsl");
+}
+
+/* the examples' shaders, flat into dir */
+static void copy_example_shaders(const char *dir)
+{
+    DIR *d = opendir(PG_SOURCE_DIR "/pipelines/examples");
+    if (!d) return;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        if (e->d_name[0] == '.') continue;
+        char src[1024];
+        snprintf(src, sizeof src, "%s/pipelines/examples/%s", PG_SOURCE_DIR, e->d_name);
+        fuzz_copy_dir(src, dir, keep_glsl);
+    }
+    closedir(d);
+}
+
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
@@ -85,6 +108,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     snprintf(sub, sizeof sub, "%s/good_fragments", dir);
     mkdir(sub, 0700);
     fuzz_copy_dir(PG_SOURCE_DIR "/tests/corpus/pipelines/good/fragments", sub, keep_json);
+    copy_example_shaders(dir);
     snprintf(sub, sizeof sub, "%s/fixed_frag.json", dir);
     fuzz_write(sub, k_fixed_frag, strlen(k_fixed_frag));
     snprintf(g_top_path, sizeof g_top_path, "%s/input.json", dir);

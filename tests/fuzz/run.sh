@@ -25,6 +25,11 @@ seed_pipeline() { # $1 = directory
   find "$ROOT"/tests/corpus/pipelines/good "$ROOT"/tests/corpus/pipelines/inc -name '*.json' |
     while read -r f; do cp "$f" "$d/sub_$(echo "${f#"$ROOT"/tests/corpus/pipelines/}" | tr / _)"; done
   for f in "$ROOT"/tests/corpus/graph/*.json; do cp "$f" "$d/graph_$(basename "$f")"; done
+  # the examples' `shader` passes, their includes pointed at the target's fragments/ (their GLSL is
+  # copied beside the input by the target itself)
+  for f in "$ROOT"/pipelines/examples/*/*.json; do
+    sed 's#"\.\./\.\./fragments/#"fragments/#g' "$f" >"$d/example_$(basename "$f")"
+  done
 }
 seed_hdr() {
   cp "$ROOT"/tests/fuzz/seeds/hdr/* "$1"/

@@ -2,7 +2,7 @@
  * on the Vulkan device with the validation layer and synchronization validation on (zero
  * messages), 160x90.
  *  1. For each generated file of tests/corpus/gltf/animation (rigid TRS with STEP and CUBICSPLINE,
- *     a two-joint skin, two morph targets) at two times, and for the pipelines naive, forward_plus,
+ *     a two-joint skin, 8 joints a vertex (skinned8.gltf), two morph targets) at two times, and for the pipelines naive, forward_plus,
  *     deferred (G-buffer), visibility and reference: the scene uploaded in its rest pose and
  *     deformed on the GPU at the frame's time renders like its static twin, the same file posed on
  *     the CPU (scene/animation.c pg_anim_deform) and uploaded without animation: at most
@@ -183,6 +183,7 @@ int main(void)
     twin("rigid.gltf", 2.5);
     twin("skinned.gltf", 0.5);
     twin("skinned.gltf", 1.0);
+    twin("skinned8.gltf", 1.0); /* 8 joints a vertex: the larger info record, PG_ANIM_INFLUENCES8 */
     twin("morph.gltf", 1.0);
     twin("lamp.gltf", 1.0); /* a light on an animated node: light_animate places it each frame */
     twin("lamp.gltf", 2.0);

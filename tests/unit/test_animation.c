@@ -5,6 +5,8 @@
  *    by a CUBICSPLINE channel; a second animation moving it up (LINEAR);
  *  - skinned.gltf: a tube skinned to two joints, the elbow bent about +Z; the skinned mesh node's
  *    own translation (5, 0, 0) must be ignored;
+ *  - skinned8.gltf: 8 joints a vertex (JOINTS_1/WEIGHTS_1): the top rings weigh 8 joints 1/8 each,
+ *    4 of them rising by 2 (the rings rise by 1; by 0 if the second set were dropped);
  *  - morph.gltf: a cube with two morph targets (one a sparse accessor), mesh default weights
  *    [0.25, 0] and a LINEAR weights channel.
  * Every position within 1e-5 of the hand value; the loop, the rest pose, --animation lookup, the
@@ -112,6 +114,23 @@ static void skinned(void)
     pg_scene_free(s);
 }
 
+static void skinned8(void)
+{
+    pg_scene *s = load("skinned8.gltf");
+    if (!s) return;
+    CHECK_MSG(s->anim->influences == 8 && s->anim->n_joint_slots == 8, "influences %u, joint slots %u",
+              s->anim->influences, s->anim->n_joint_slots);
+    expect(s, 0, 0, 10, 9, 0.2, 1, 0.2, "top ring v9");
+    expect(s, 0, 1, 10, 9, 0.2, 2, 0.2, "top ring v9 (joints 4-7 of JOINTS_1 up by 2)");
+    expect(s, 0, 0.5, 10, 9, 0.2, 1.5, 0.2, "top ring v9");
+    expect(s, 0, 1, 10, 7, 0.2, 1.75, 0.2, "the y = 0.75 ring");
+    expect(s, 0, 1, 10, 5, 0.2, 0.5, 0.2, "below: joint 0 alone");
+    pg_scene_free(s);
+    pg_scene *four = load("skinned.gltf"); /* one joint set: the 4-joint layout */
+    if (four) CHECK_MSG(four->anim->influences == 4, "skinned.gltf: influences %u", four->anim->influences);
+    pg_scene_free(four);
+}
+
 static void morph(void)
 {
     pg_scene *s = load("morph.gltf");
@@ -182,14 +201,20 @@ static void refused(void)
         {"\"joints\": [\n    1,\n    2\n   ],", "\"joints\": [],", "skins[0].joints: empty"},
         {"\"joints\": [\n    1,\n    2\n   ],", "\"joints\": [1],", "joint 1 out of range (skins[0] has 1 joints)"},
     };
+    static const char *const skin8_cases[][3] = {
+        {"\"WEIGHTS_1\": 6", "\"TEXCOORD_5\": 6", "JOINTS_1 without WEIGHTS_1"},
+        {"\"JOINTS_1\": 5,", "\"JOINTS_1\": 4,", "JOINTS_1 must be VEC4 UNSIGNED_BYTE or UNSIGNED_SHORT"},
+    };
     refused_in("rigid.gltf", 3, rigid_cases);
     refused_in("skinned.gltf", 2, skin_cases);
+    refused_in("skinned8.gltf", 2, skin8_cases);
 }
 
 int main(void)
 {
     rigid();
     skinned();
+    skinned8();
     morph();
     refused();
     return pg_test_finish("test_animation");

@@ -239,6 +239,34 @@ def skinned():
     doc.write()
 
 
+def skinned8():
+    """8 joints a vertex (JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1): a tube 1 high, whose top two
+    rings (y >= 0.75) weigh the 8 joints 1/8 each; joints 0-3 stay, joints 4-7 rise by 2 at t = 1 ("lift"),
+    so the top rings rise by 4/8 x 2 = 1 (by 0 if JOINTS_1 were dropped); the rest follows joint 0"""
+    doc = Doc("skinned8.gltf")
+    doc.floor()
+    pos, nrm, idx = tube(0.2, 5, 0.25)
+    j0, w0, j1, w1 = [], [], [], []
+    for p in pos:
+        if p[1] >= 0.75:
+            j0.append((0, 1, 2, 3)), w0.append((0.125,) * 4), j1.append((4, 5, 6, 7)), w1.append((0.125,) * 4)
+        else:
+            j0.append((0, 0, 0, 0)), w0.append((1, 0, 0, 0)), j1.append((0, 0, 0, 0)), w1.append((0, 0, 0, 0))
+    acc = {"JOINTS_0": doc.accessor(b"".join(struct.pack("<4B", *x) for x in j0), UBYTE, len(j0), "VEC4"),
+           "WEIGHTS_0": doc.accessor(floats(w0), FLOAT, len(w0), "VEC4"),
+           "JOINTS_1": doc.accessor(b"".join(struct.pack("<4H", *x) for x in j1), USHORT, len(j1), "VEC4"),
+           "WEIGHTS_1": doc.accessor(floats(w1), FLOAT, len(w1), "VEC4")}
+    post = doc.mesh("post8", pos, nrm, idx, doc.material("post_violet", (0.6, 0.2, 0.8)), extra_attrs=acc)
+    root = doc.node({"name": "root", "children": list(range(2, 10))})
+    bones = [doc.node({"name": "bone%d" % k}, root=False) for k in range(8)]
+    mesh_node = doc.node({"name": "post8_mesh", "mesh": post, "skin": 0})
+    assert (root, bones, mesh_node) == (1, list(range(2, 10)), 10)
+    doc.d["skins"] = [{"name": "post8_skin", "joints": bones, "skeleton": root}]  # no inverseBindMatrices: identity
+    doc.animation("lift", [(b, "translation", "LINEAR", [0, 1, 2], [(0, 0, 0), (0, 2, 0), (0, 0, 0)])
+                           for b in bones[4:]])
+    doc.write()
+
+
 def morph():
     doc = Doc("morph.gltf")
     doc.floor()
@@ -328,9 +356,10 @@ class Gltf:
                     e1, e2 = [b[i] - a[i] for i in range(3)], [c[i] - a[i] for i in range(3)]
                     g = (e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0])
                     assert all(sum(g[i] * nrm[j][i] for i in range(3)) > 0 for j in idx[k:k + 3]), (self.path, k)
-                if "JOINTS_0" in attrs:
-                    for w in self.read(attrs["WEIGHTS_0"]):
-                        assert abs(sum(w) - 1) < 1e-6
+                if "JOINTS_0" in attrs:  # the weights of all the joint sets sum to 1
+                    sets = [self.read(attrs[k]) for k in ("WEIGHTS_0", "WEIGHTS_1") if k in attrs]
+                    for ws in zip(*sets):
+                        assert abs(sum(sum(w) for w in ws) - 1) < 1e-6
         seen = []
         stack = list(d["scenes"][0]["nodes"])
         while stack:
@@ -340,7 +369,7 @@ class Gltf:
             stack += d["nodes"][k].get("children", [])
         assert sorted(seen) == list(range(len(d["nodes"])))
         for s in d.get("skins", []):
-            assert len(self.read(s["inverseBindMatrices"])) == len(s["joints"])
+            assert "inverseBindMatrices" not in s or len(self.read(s["inverseBindMatrices"])) == len(s["joints"])
             for n in d["nodes"]:
                 if n.get("skin") is not None and d["skins"][n["skin"]] is s:
                     attrs = d["meshes"][n["mesh"]]["primitives"][0]["attributes"]
@@ -451,8 +480,12 @@ def vertex(g, node, v, anim, t):
     if "skin" not in n:
         return xform(world[node], p)
     skin = d["skins"][n["skin"]]
-    ibm = g.read(skin["inverseBindMatrices"])
+    ident = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
+    ibm = g.read(skin["inverseBindMatrices"]) if "inverseBindMatrices" in skin else [ident] * len(skin["joints"])
     js, ws = g.read(prim["attributes"]["JOINTS_0"])[v], g.read(prim["attributes"]["WEIGHTS_0"])[v]
+    if "JOINTS_1" in prim["attributes"]:
+        js = tuple(js) + tuple(g.read(prim["attributes"]["JOINTS_1"])[v])
+        ws = tuple(ws) + tuple(g.read(prim["attributes"]["WEIGHTS_1"])[v])
     out = [0.0, 0.0, 0.0]
     for j, w in zip(js, ws):
         inv = [[ibm[j][c * 4 + r] for c in range(4)] for r in range(4)]  # column-major
@@ -482,6 +515,11 @@ POSES = [
     ("skinned.gltf", 3, 9, 0, 0.5, ((0.2 + 0.2 * R2) / 2, (1 + 1 + 0.2 * R2) / 2, 0.2)),
     ("skinned.gltf", 3, 1, 0, 1.0, (0.2, 0.0, 0.2)),                # the y = 0 ring: root only
     ("skinned.gltf", 3, 17, 0, 2.0, (0.2, 2.0, 0.2)),
+    ("skinned8.gltf", 10, 9, 0, 0.0, (0.2, 1.0, 0.2)),              # the top ring: 8 joints, 1/8 each
+    ("skinned8.gltf", 10, 9, 0, 1.0, (0.2, 2.0, 0.2)),              # joints 4-7 up by 2: + 1
+    ("skinned8.gltf", 10, 9, 0, 0.5, (0.2, 1.5, 0.2)),
+    ("skinned8.gltf", 10, 7, 0, 1.0, (0.2, 1.75, 0.2)),             # the y = 0.75 ring likewise
+    ("skinned8.gltf", 10, 5, 0, 1.0, (0.2, 0.5, 0.2)),              # below: joint 0 alone, still
     ("morph.gltf", 1, 10, None, 0.0, (0.5, 1.25, 0.5)),             # mesh.weights [0.25, 0]
     ("morph.gltf", 1, 10, 0, 0.0, (0.5, 1.0, 0.5)),
     ("morph.gltf", 1, 10, 0, 0.5, (0.625, 1.5, 0.5)),               # weights [0.5, 0.25]
@@ -553,10 +591,11 @@ def check_poses():
 
 rigid()
 skinned()
+skinned8()
 morph()
 lamp()
 lantern()
-for f in ("rigid.gltf", "skinned.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf"):
+for f in ("rigid.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf"):
     Gltf(f).check()
 check_poses()
-print("rigid.gltf skinned.gltf morph.gltf lamp.gltf lantern.gltf: written and checked (%d poses)" % len(POSES))
+print("rigid.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf: written and checked (%d poses)" % len(POSES))
