@@ -3,6 +3,7 @@
 #include "node_place.h"
 #include "scene_gpu.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -99,6 +100,76 @@ static uint8_t *moving_nodes(const pg_scene_anim *a)
     }
     free(direct);
     return m;
+}
+
+/* per moving primitive: the centre of its mesh-space bounds and its dominant joints */
+static pg_result prim_centres(const pg_scene_anim *a, pg_scene_gpu_anim *ga, pg_error *err)
+{
+    ga->centres = calloc((size_t)a->n_prims + 1, sizeof *ga->centres);
+    float *sum = a->joints ? calloc((size_t)a->n_joint_slots + 1, sizeof(float)) : NULL;
+    if (!ga->centres || (a->joints && !sum)) {
+        free(sum);
+        return pg_fail(err, PG_ERR_OOM, "out of memory");
+    }
+    for (uint32_t p = 0; p < a->n_prims; p++) {
+        const pg_anim_prim *pr = &a->prims[p];
+        pg_anim_prim_centre *c = &ga->centres[p];
+        float mn[3] = {3.4e38f, 3.4e38f, 3.4e38f}, mx[3] = {-3.4e38f, -3.4e38f, -3.4e38f};
+        for (uint32_t v = pr->first_vertex; v < pr->first_vertex + pr->n_vertices && v < a->n_vertices; v++)
+            for (int k = 0; k < 3; k++) {
+                mn[k] = fminf(mn[k], a->local[v].position[k]);
+                mx[k] = fmaxf(mx[k], a->local[v].position[k]);
+            }
+        for (int k = 0; k < 3; k++) c->local[k] = pr->n_vertices ? 0.5f * (mn[k] + mx[k]) : 0.0f;
+        if (pr->skin < 0 || !sum) continue;
+        for (uint32_t v = pr->first_vertex; v < pr->first_vertex + pr->n_vertices && v < a->n_vertices; v++)
+            for (int k = 0; k < PG_ANIM_MAX_INFLUENCES; k++) sum[a->joints[v][k]] += a->weights[v][k];
+        for (uint32_t v = pr->first_vertex; v < pr->first_vertex + pr->n_vertices && v < a->n_vertices; v++)
+            for (int k = 0; k < PG_ANIM_MAX_INFLUENCES; k++) { /* the 4 largest sums, then cleared */
+                const uint16_t s = a->joints[v][k];
+                float w = sum[s];
+                sum[s] = 0;
+                if (!(w > 0)) continue;
+                const uint32_t n = c->n_joints;
+                uint32_t at = n;
+                while (at > 0 && c->weight[at - 1] < w) at--;
+                if (at >= 4) continue;
+                for (uint32_t q = n < 4 ? n : 3; q > at; q--) {
+                    c->slot[q] = c->slot[q - 1];
+                    c->weight[q] = c->weight[q - 1];
+                }
+                c->slot[at] = s;
+                c->weight[at] = w;
+                if (n < 4) c->n_joints++;
+            }
+        float total = 0;
+        for (uint32_t j = 0; j < c->n_joints; j++) total += c->weight[j];
+        for (uint32_t j = 0; j < c->n_joints; j++) c->weight[j] /= total;
+    }
+    free(sum);
+    return PG_OK;
+}
+
+int32_t pg_scene_gpu_anim_prim_at(const pg_scene_gpu_anim *ga, int32_t first_vertex)
+{
+    const pg_scene_anim *a = ga ? ga->anim : NULL;
+    for (uint32_t p = 0; a && ga->centres && p < a->n_prims; p++)
+        if ((int64_t)a->prims[p].first_vertex == first_vertex) return (int32_t)p;
+    return -1;
+}
+
+void pg_scene_gpu_anim_centre(const pg_scene_gpu_anim *ga, uint32_t prim, const pg_anim_pose *pose, float out[3])
+{
+    const pg_anim_prim_centre *c = &ga->centres[prim];
+    float m[16];
+    if (c->n_joints) {
+        memset(m, 0, sizeof m);
+        for (uint32_t j = 0; j < c->n_joints; j++)
+            for (int e = 0; e < 16; e++) m[e] += c->weight[j] * pose->joints[(size_t)c->slot[j] * 16 + e];
+    } else {
+        memcpy(m, pose->node_world + (size_t)ga->anim->prims[prim].node * 16, sizeof m);
+    }
+    for (int r = 0; r < 3; r++) out[r] = m[r] * c->local[0] + m[4 + r] * c->local[1] + m[8 + r] * c->local[2] + m[12 + r];
 }
 
 static pg_result find_moving_lights(const pg_scene *scene, pg_scene_gpu_anim *ga, pg_error *err)
@@ -200,6 +271,7 @@ pg_result pg_scene_gpu_anim_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_
     if (!r) r = find_moving_lights(scene, ga, err);
     if (!r && !(ga->now = calloc(1, sizeof *ga->now))) r = pg_fail(err, PG_ERR_OOM, "out of memory");
     if (!r) r = pg_anim_pose_alloc(a, &ga->now->pose, err);
+    if (!r && geometry) r = prim_centres(a, ga, err);
     if (r) {
         pg_scene_gpu_anim_destroy(gpu, ga);
         return r;
@@ -220,6 +292,7 @@ void pg_scene_gpu_anim_destroy(pg_gpu *gpu, pg_scene_gpu_anim *ga)
     free(ga->moving_rest);
     if (ga->now) pg_anim_pose_release(&ga->now->pose);
     free(ga->now);
+    free(ga->centres);
     free(ga);
 }
 

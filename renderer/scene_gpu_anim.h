@@ -29,6 +29,17 @@ typedef struct pg_scene_gpu_anim_now {
     uint64_t evaluations; /* poses evaluated so far (tests: one a frame) */
 } pg_scene_gpu_anim_now;
 
+/* What sorting a moving primitive by its posed bounds needs: the centre of its mesh-space bounds and,
+ * for a skinned one, its dominant joints (the largest summed weights over its vertices, normalised):
+ * the posed centre is sum w_j (world(joint_j) x inverseBind_j) x centre, or its node's world matrix
+ * x centre for a rigid one (morph targets are left out: a sort key). */
+typedef struct pg_anim_prim_centre {
+    float local[3];
+    uint32_t n_joints;  /* 0: rigid */
+    uint16_t slot[4];
+    float weight[4];
+} pg_anim_prim_centre;
+
 typedef struct pg_scene_gpu_anim {
     pg_buffer local, info, prims, deltas, pose;
     uint32_t n_vertices;
@@ -42,6 +53,7 @@ typedef struct pg_scene_gpu_anim {
     uint32_t *moving_light;
     pg_scene_light *moving_rest;
     pg_scene_gpu_anim_now *now;
+    pg_anim_prim_centre *centres; /* per moving primitive (anim->n_prims) */
 } pg_scene_gpu_anim;
 
 pg_result pg_scene_gpu_anim_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu_anim **out, pg_error *err);
@@ -54,6 +66,11 @@ void pg_scene_gpu_anim_update_lights(const pg_scene_gpu_anim *ga, VkBuffer table
 /* The pose at (animation, time): ga->now's, evaluated only when (animation, time) differs from the
  * last call's. */
 const pg_anim_pose *pg_scene_gpu_anim_pose(const pg_scene_gpu_anim *ga, int animation, double time);
+/* The anim primitive whose vertices start at scene vertex `first_vertex` (a draw's vertex_offset), or
+ * -1 when that primitive does not move. */
+int32_t pg_scene_gpu_anim_prim_at(const pg_scene_gpu_anim *ga, int32_t first_vertex);
+/* The world centre of moving primitive `prim` under `pose` (pg_anim_prim_centre). */
+void pg_scene_gpu_anim_centre(const pg_scene_gpu_anim *ga, uint32_t prim, const pg_anim_pose *pose, float out[3]);
 /* The pose at (animation, time) packed as the pose buffer holds it (ga->pose_floats floats). */
 void pg_scene_gpu_anim_pack_pose(const pg_scene_gpu_anim *ga, int animation, double time, float *out);
 

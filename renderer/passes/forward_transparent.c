@@ -1,6 +1,7 @@
 /* forward_transparent.c - glTF alphaMode BLEND: after the opaque lighting (forward or deferred),
  * draws only the scene's BLEND draws onto the HDR image, sorted back to front every frame by the
- * distance from the camera to each draw's bounds centre, with "over" blending
+ * distance from the camera to each draw's bounds centre (a moving primitive's at the frame's pose:
+ * scene_gpu_anim.h pg_scene_gpu_anim_centre), with "over" blending
  * (rgb = a*src + (1-a)*dst, non-premultiplied; a = s.alpha), depth tested against the opaque
  * depth but not written, back faces culled unless the material is double-sided. Each fragment is
  * shaded like forward.frag (pg_surface + pg_shade_point: the same lights, ambient and model).
@@ -17,6 +18,7 @@
 
 #include "frame.h"
 #include "scene_draw.h"
+#include "scene_gpu_anim.h"
 #include "scene_vars.h"
 #include "shading_common.h"
 
@@ -33,6 +35,8 @@ typedef struct pg_transparent_pass {
     uint32_t n;            /* BLEND draws of the scene */
     uint32_t *order;       /* their indices in scene->draws, sorted every frame */
     float *key;            /* squared camera distance per BLEND draw (scratch) */
+    int32_t *anim_prim;    /* per BLEND draw: its moving primitive (sorted by its posed centre), or -1 */
+    bool any_moving;
 } pg_transparent_pass;
 
 static const char *const k_lights[] = {"all", "clusters", NULL};
@@ -99,7 +103,13 @@ static pg_result ft_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     p->n = PG_SCENE_OF(ctx)->n_blend_draws;
     p->order = calloc(p->n ? p->n : 1, sizeof *p->order);
     p->key = calloc(p->n ? p->n : 1, sizeof *p->key);
-    if (!p->order || !p->key) return pg_fail(err, PG_ERR_OOM, "%s: out of memory", ctx->pass->name);
+    p->anim_prim = calloc(p->n ? p->n : 1, sizeof *p->anim_prim);
+    if (!p->order || !p->key || !p->anim_prim) return pg_fail(err, PG_ERR_OOM, "%s: out of memory", ctx->pass->name);
+    const pg_scene_gpu *sg = PG_SCENE_OF(ctx);
+    for (uint32_t i = 0; i < p->n; i++) {
+        p->anim_prim[i] = pg_scene_gpu_anim_prim_at(sg->anim, sg->draws[sg->n_draws - p->n + i].vertex_offset);
+        p->any_moving = p->any_moving || p->anim_prim[i] >= 0;
+    }
     pg_scene_draw_desc d = {
         .fragment_shader = "forward.frag",
         .features = &pa->draw,
@@ -122,12 +132,25 @@ static pg_result ft_update(void *self, const void *params, pg_error *err)
     return PG_OK;
 }
 
-/* Back to front: larger squared distance first; equal distances keep scene draw order. */
-static void sort_back_to_front(pg_transparent_pass *p, const pg_scene_gpu *sc, const float cam[3])
+/* Back to front: larger squared distance first; equal distances keep scene draw order. A moving
+ * draw's centre is the one of its posed bounds (the frame's pose, evaluated once a frame). */
+static void sort_back_to_front(pg_transparent_pass *p, const pg_scene_gpu *sc, const pg_frame_uniforms *fu)
 {
+    const float *cam = fu->camera_pos;
+    const pg_anim_pose *pose = NULL;
+    if (p->any_moving && sc->anim) {
+        int32_t animation;
+        memcpy(&animation, &fu->light_src[1], sizeof animation);
+        pose = pg_scene_gpu_anim_pose(sc->anim, animation, fu->camera_pos[3]);
+    }
     const uint32_t first = sc->n_draws - p->n;
     for (uint32_t i = 0; i < p->n; i++) {
+        float posed[3];
         const float *c = sc->draws[first + i].center;
+        if (pose && p->anim_prim[i] >= 0) {
+            pg_scene_gpu_anim_centre(sc->anim, (uint32_t)p->anim_prim[i], pose, posed);
+            c = posed;
+        }
         float dx = c[0] - cam[0], dy = c[1] - cam[1], dz = c[2] - cam[2];
         float k = dx * dx + dy * dy + dz * dz;
         /* insertion sort: a handful of draws, and stable */
@@ -146,7 +169,7 @@ static void ft_record(void *self, const pg_pass_record_ctx *ctx)
 {
     pg_transparent_pass *p = self;
     const pg_phys_resource *depth = pg_ctx_res(ctx, p->depth), *color = pg_ctx_res(ctx, p->color);
-    sort_back_to_front(p, PG_SCENE_OF(ctx), PG_FRAME_OF(ctx)->camera_pos);
+    sort_back_to_front(p, PG_SCENE_OF(ctx), PG_FRAME_OF(ctx));
     VkRenderingAttachmentInfo ca = {
         .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
         .imageView = color->view,
@@ -182,6 +205,7 @@ static void ft_destroy(void *self, pg_gpu *gpu)
     pg_pass_set_destroy(gpu, &p->lights);
     free(p->order);
     free(p->key);
+    free(p->anim_prim);
     p->order = NULL;
     p->key = NULL;
 }

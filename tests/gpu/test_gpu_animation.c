@@ -13,7 +13,9 @@
  *     lamp.gltf (a point light on an orbiting node, no moving geometry) likewise: light_animate
  *     rewrites the light's record for the frame's time (the geometry pass is culled). lantern.gltf
  *     (a light and a box on one orbiting node): both passes run, and the frame evaluates the pose
- *     once (pg_scene_gpu_anim_now.evaluations), not once a pass.
+ *     once (pg_scene_gpu_anim_now.evaluations), not once a pass. glass.gltf (two BLEND boxes, the
+ *     moving one in front of the still one at t = 1, behind it at rest): the transparent pass sorts
+ *     by the posed bounds, as the CPU-posed twin does.
  *  2. A scene without animation: geometry_animate culled with its reason, the geometry buffer not
  *     allocated, every drawing pass on the static vertex buffer. */
 #include <math.h>
@@ -188,6 +190,7 @@ int main(void)
     twin("lamp.gltf", 1.0); /* a light on an animated node: light_animate places it each frame */
     twin("lamp.gltf", 2.0);
     twin("lantern.gltf", 1.0); /* geometry and a light on one node: both passes, one pose a frame */
+    twin("glass.gltf", 1.0);   /* two BLEND boxes whose back-to-front order the animation swaps */
     culled();
     printf("validation messages: %u\n", g_gpu->validation_messages);
     CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);

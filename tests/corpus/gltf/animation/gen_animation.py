@@ -131,9 +131,14 @@ class Doc:
             self.d["scenes"][0]["nodes"].append(len(self.d["nodes"]) - 1)
         return len(self.d["nodes"]) - 1
 
-    def material(self, name, base):
-        self.d["materials"].append({"name": name, "pbrMetallicRoughness": {
-            "baseColorFactor": list(base) + [1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
+    def material(self, name, base, alpha=None):
+        """alpha: None opaque, else alphaMode BLEND with that base colour alpha"""
+        m = {"name": name, "pbrMetallicRoughness": {
+            "baseColorFactor": list(base) + [1.0 if alpha is None else alpha], "metallicFactor": 0.0,
+            "roughnessFactor": 1.0}}
+        if alpha is not None:
+            m["alphaMode"] = "BLEND"
+        self.d["materials"].append(m)
         return len(self.d["materials"]) - 1
 
     def animation(self, name, channels):
@@ -576,6 +581,26 @@ def lantern():
     doc.write()
 
 
+def glass():
+    """two alphaMode BLEND boxes: a red one still, a blue one moving from behind it (t = 0, 2) to in
+    front of it (t = 1) as seen from tests/gpu/test_gpu_animation.c's camera (0.3, 2.2, 4): the
+    transparent pass must sort them by their posed bounds"""
+    doc = Doc("glass.gltf")
+    doc.floor()
+    red = doc.mesh("red_glass", *UNIT_BOX, doc.material("red_glass", (0.9, 0.1, 0.1), alpha=0.5))
+    blue = doc.mesh("blue_glass", *UNIT_BOX, doc.material("blue_glass", (0.1, 0.2, 0.9), alpha=0.5))
+    still = doc.node({"name": "still", "mesh": red, "translation": [0, 1, -0.5]})
+    mover = doc.node({"name": "mover", "mesh": blue, "translation": [0, 1, -2.5]})
+    sun = doc.node({"name": "sun", "rotation": quat_axis((1, 0, 0), -45),  # shines along (0, -1, -1)
+                    "extensions": {"KHR_lights_punctual": {"light": 0}}})
+    assert (still, mover, sun) == (1, 2, 3)
+    doc.d["extensionsUsed"] = ["KHR_lights_punctual"]
+    doc.d["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "sun", "type": "directional", "color": [1.0, 1.0, 1.0], "intensity": 3.0}]}}
+    doc.animation("pass", [(mover, "translation", "LINEAR", [0, 1, 2], [(0, 1, -2.5), (0, 1.2, 2.0), (0, 1, -2.5)])])
+    doc.write()
+
+
 def check_poses():
     cache = {}
     for name, node, v, anim, t, want in POSES:
@@ -595,7 +620,8 @@ skinned8()
 morph()
 lamp()
 lantern()
-for f in ("rigid.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf"):
+glass()
+for f in ("rigid.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf", "glass.gltf"):
     Gltf(f).check()
 check_poses()
-print("rigid.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf: written and checked (%d poses)" % len(POSES))
+print("rigid.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf glass.gltf: written and checked (%d poses)" % len(POSES))
