@@ -111,19 +111,21 @@ void pg_light_pbr(vec3 c, float att, vec3 L, vec3 N, vec3 V, float roughness, in
     // q = |N x h|^2 + (N.h)^2 a^2, and V.H = sqrt(V.h / 2); pi D V N.L att = 0.5 N.L att (a |h|^2)^2 /
     // (q^2 den): one division and no normalisation of h (q = 0 only where L = -V: 0 there)
     vec3 h = L + V;
+    float hh = dot(h, h);                    // 2 (1 + V.L) = 4 (V.H)^2
     float nh = dot(N, h);
     vec3 nxh = cross(N, h);
     float q = dot(nxh, nxh) + nh * nh * a2;  // >= a^2 |h|^2: finite, and continuous in N
-    float num = a * dot(h, h);
+    float num = a * hh;
     float den = ndl * sqrt(ndv * ndv * (1.0 - a2) + a2) + ndv * sqrt(ndl * ndl * (1.0 - a2) + a2);
     float qd = q * q * den;
     float spec = qd > 0.0 ? 0.5 * ndl * att * num * num / qd : 0.0;
-    float t = 1.0 - min(sqrt(max(0.5 * dot(V, h), 0.0)), 1.0);
+    float t = 1.0 - min(0.5 * sqrt(hh), 1.0); // 1 - V.H, V.H = |h| / 2
     float t2 = t * t;
     float w = t2 * t2 * t;
-    acc.diffuse += c * (ndl * att * (1.0 - w));
-    acc.specular += c * (spec * (1.0 - w));
-    acc.fresnel += c * (spec * w);
+    float dw = ndl * att, sw = spec * w;
+    acc.diffuse += c * (dw - dw * w);
+    acc.specular += c * (spec - sw);
+    acc.fresnel += c * sw;
 }
 #endif
 
