@@ -169,7 +169,8 @@ void pg_scene_gpu_anim_centre(const pg_scene_gpu_anim *ga, uint32_t prim, const 
     } else {
         memcpy(m, pose->node_world + (size_t)ga->anim->prims[prim].node * 16, sizeof m);
     }
-    for (int r = 0; r < 3; r++) out[r] = m[r] * c->local[0] + m[4 + r] * c->local[1] + m[8 + r] * c->local[2] + m[12 + r];
+    for (int r = 0; r < 3; r++)
+        out[r] = m[r] * c->local[0] + m[4 + r] * c->local[1] + m[8 + r] * c->local[2] + m[12 + r];
 }
 
 static pg_result find_moving_lights(const pg_scene *scene, pg_scene_gpu_anim *ga, pg_error *err)

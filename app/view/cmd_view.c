@@ -419,7 +419,6 @@ static void close_viewer(viewer *v)
     if (v->app.gpu) vkDeviceWaitIdle(v->app.gpu->device);
     pg_session_destroy(v->session);
     pg_session_destroy(v->naive);
-    camera_follow_release(v);
     if (v->app.gpu) {
         pg_image_destroy(v->app.gpu, &v->diff_image);
         pg_image_destroy(v->app.gpu, &v->present_copy);

@@ -20,6 +20,7 @@
 #include <GLFW/glfw3.h>
 
 #include "animation.h"
+#include "scene_gpu_anim.h"
 #include "app.h"
 #include "bench_stats.h"
 #include "commands.h"
@@ -129,8 +130,6 @@ typedef struct viewer {
     /* a glTF camera on an animated node follows it as the clock plays (camera_follow): its index,
      * or -1 (none, or the fly camera moved); cam_start_gltf: the start view's glTF camera or -1 */
     int cam_follow, cam_start_gltf;
-    pg_anim_pose follow_pose;               /* allocated for follow_anim */
-    const pg_scene_anim *follow_anim;
     char cam_items[VIEW_MAX_CAMS + 2][PG_NAME_MAX * 2 + 16];
     const char *cam_ptrs[VIEW_MAX_CAMS + 2];
     view_action actions[MAX_ACTIONS];
@@ -156,7 +155,6 @@ void camera_angles(viewer *v);
 void camera_list(viewer *v, const char *start_label);
 void camera_choose(viewer *v, int choice);
 void camera_follow_set(viewer *v, int gltf_camera);
-void camera_follow_release(viewer *v);
 void camera_update(viewer *v, float dt);
 
 /* view_ui.c */

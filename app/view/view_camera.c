@@ -67,26 +67,17 @@ void camera_follow_set(viewer *v, int gltf_camera)
            sc->cameras[gltf_camera].name, sc->cameras[gltf_camera].node_name);
 }
 
-void camera_follow_release(viewer *v)
-{
-    pg_anim_pose_release(&v->follow_pose);
-    v->follow_anim = NULL;
-}
-
-/* The followed camera placed by its node at the clock's time (the pose kept between frames). */
+/* The followed camera placed by its node at the clock's time. The pose is the uploaded scene's
+ * (pg_scene_gpu_anim_pose): the frame's passes then find it evaluated already. */
 static void camera_follow(viewer *v)
 {
     pg_scene *sc = v->app.scene;
-    if (v->follow_anim != sc->anim) {
-        camera_follow_release(v);
-        if (pg_anim_pose_alloc(sc->anim, &v->follow_pose, NULL)) {
-            v->cam_follow = -1;
-            return;
-        }
-        v->follow_anim = sc->anim;
+    const pg_scene_gpu_anim *ga = v->app.scene_gpu ? v->app.scene_gpu->anim : NULL;
+    if (!ga) {
+        v->cam_follow = -1;
+        return;
     }
-    pg_anim_pose_eval(sc->anim, v->app.animation, v->time, &v->follow_pose);
-    pg_scene_pose_camera(sc, (uint32_t)v->cam_follow, &v->follow_pose);
+    pg_scene_pose_camera(sc, (uint32_t)v->cam_follow, pg_scene_gpu_anim_pose(ga, v->app.animation, v->time));
     float aspect = v->win.extent.height ? (float)v->win.extent.width / (float)v->win.extent.height : 16.0f / 9;
     pg_error err = {0};
     if (pg_camera_from_scene(sc, (uint32_t)v->cam_follow, aspect, &v->camera, &err)) {
