@@ -10,6 +10,13 @@
 #ifndef PG_CLUSTER_LIGHT_GLSL
 #define PG_CLUSTER_LIGHT_GLSL
 
+// vec4s per light in the assignment's spheres buffer: the sphere, and with PG_SPOT_LIGHTS the cone
+#ifdef PG_SPOT_LIGHTS
+#define PG_LIGHT_RECORD_VEC4 2u
+#else
+#define PG_LIGHT_RECORD_VEC4 1u
+#endif
+
 // The sphere a light is tested against the cluster boxes with: centre in view space (taken
 // camera-relative first, which keeps precision far from the origin), radius padded for the float
 // error of that transform (|rel| * a few ulp). w <= 0 or NaN: the light reaches nothing (it
@@ -22,5 +29,39 @@ vec4 pg_light_view_sphere(Light L)
     float pad = r > 0.0 ? 1e-4 * r + 4e-7 * (length(rel) + length(L.pos_radius.xyz)) : 0.0;
     return vec4(pv, r + pad);
 }
+
+#ifdef PG_SPOT_LIGHTS
+// A spot light's cone in view space, from its spot record sp (lighting.glsl: axis x scale, offset =
+// -cos(outer) x scale; the light adds exactly 0 where the angle from its axis exceeds the outer
+// cone): (unit axis, cos(outer)). A light without a cone (record (0, 0, 0, 1)), a cone wider than a
+// half-space or a NaN record gives w = 2: no cone test.
+vec4 pg_light_view_cone(vec4 sp)
+{
+    float scale = length(sp.xyz);
+    float cos_outer = -sp.w / scale;
+    if (!(scale > 0.0) || !(cos_outer >= 0.0) || !(scale < 3.0e38)) return vec4(0.0, 0.0, 0.0, 2.0);
+    vec3 axis = mat3(frame.view) * (sp.xyz / scale);
+    return vec4(normalize(axis), min(cos_outer, 1.0));
+}
+
+// false when no point of the sphere (c, r) lies within the cone (pg_light_view_cone) of a light at
+// `apex` (the same space): f(P) = cos(outer) |P x axis| - sin(outer) (P . axis), P relative to the
+// apex, is the distance from P to the cone's boundary line in the plane of P and the axis, positive
+// exactly where the angle of P from the axis exceeds the outer cone (outer <= 90 degrees). f is
+// 1-Lipschitz, so f(c) > r puts the whole sphere outside the cone, where the light adds exactly 0.
+// The margin, 2e-3 rad of angle (2e-3 |c - apex|) plus float rounding of the positions, lies far
+// above the rounding of the shading's cone factor and of this test.
+bool pg_cone_reaches_sphere(vec4 cone, vec3 apex, vec3 c, float r)
+{
+    if (!(cone.w <= 1.0)) return true;                 // no cone
+    vec3 v = c - apex;
+    float axial = dot(v, cone.xyz);
+    float radial = length(cross(v, cone.xyz));         // no cancellation near the axis
+    float sin_outer = sqrt(max(1.0 - cone.w * cone.w, 0.0));
+    float f = cone.w * radial - sin_outer * axial;
+    float margin = 2e-3 * length(v) + 1e-5 * (length(apex) + length(c)) + 1e-6;
+    return !(f > r + margin);                          // NaN keeps the light
+}
+#endif
 
 #endif

@@ -10,6 +10,8 @@
 // Both variants visit candidates in the same order and apply the same test, so the fill stores
 // exactly the lights the count counted. Words are handed to lanes in order and combined with an
 // exclusive prefix sum, so the lists come out ascending.
+// PG_SPOT_LIGHTS: a spot light is also dropped from a cluster when its cone misses the bounding
+// sphere of the cluster's box (pg_cone_reaches_sphere): it adds exactly 0 to every point there.
 // PG_ONE_SUBGROUP: the workgroup is exactly one full subgroup (the pipeline requires the size;
 // gpu->exact_subgroups): subgroup operations only, no barrier. Otherwise a 64-wide workgroup and
 // a shared-memory scan in gl_LocalInvocationIndex order.
@@ -85,6 +87,10 @@ void main()
     uvec3 c = uvec3(cluster % grid.x, (cluster / grid.x) % grid.y, cluster / (grid.x * grid.y));
     vec3 bmin, bmax;
     pg_cluster_aabb(c, grid, frame.inv_proj, frame.clip.x, frame.clip.y, PG_ORTHO, bmin, bmax);
+#ifdef PG_SPOT_LIGHTS
+    vec3 box_c = 0.5 * (bmin + bmax);                // the box's bounding sphere, for the cone test
+    float box_r = 0.5 * length(bmax - bmin);
+#endif
 #ifdef PG_ONE_SUBGROUP
     uint lane = gl_SubgroupInvocationID, width = gl_SubgroupSize;
 #else
@@ -130,9 +136,18 @@ void main()
                     mm &= mm - 1u;   // 0 stays 0
                 }
                 for (int q = 0; q < PG_CANDIDATE_LOADS; q++)
-                    sph[q] = bits[q] < 32u ? spheres[w * 32u + bits[q]] : vec4(0.0);
+                    sph[q] = bits[q] < 32u ? spheres[(w * 32u + bits[q]) * PG_LIGHT_RECORD_VEC4] : vec4(0.0);
+#ifdef PG_SPOT_LIGHTS
+                vec4 cone[PG_CANDIDATE_LOADS];
                 for (int q = 0; q < PG_CANDIDATE_LOADS; q++)
-                    if (bits[q] < 32u && pg_sphere_intersects_aabb(sph[q].xyz, sph[q].w, bmin, bmax))
+                    cone[q] = bits[q] < 32u ? spheres[(w * 32u + bits[q]) * PG_LIGHT_RECORD_VEC4 + 1u] : vec4(2.0);
+#endif
+                for (int q = 0; q < PG_CANDIDATE_LOADS; q++)
+                    if (bits[q] < 32u && pg_sphere_intersects_aabb(sph[q].xyz, sph[q].w, bmin, bmax)
+#ifdef PG_SPOT_LIGHTS
+                        && pg_cone_reaches_sphere(cone[q], sph[q].xyz, box_c, box_r)
+#endif
+                       )
                         hits[j] |= 1u << bits[q];
             }
             n_hits += bitCount(hits[j]);

@@ -10,7 +10,8 @@
  *            deterministic subset when the list buffer is too small;
  *   4. fill  (cluster_lists.comp, PG_FILL) the same walk again, writing the hits in ascending
  *            light order at each cluster's offset.
- * Step 1 also stores each light's view-space sphere, which steps 2 and 4 test. Method
+ * Step 1 also stores each light's view-space sphere, which steps 2 and 4 test; with spot lights
+ * also its view-space cone, so a cluster the cone misses does not list the light. Method
  * "brute_force" only stores the spheres in step 1 and makes every light a candidate of every
  * cluster (O(clusters x lights)): the oracle tests/test_cluster_assign.c checks the binned lists
  * against.
@@ -45,6 +46,7 @@
 #include "shader.h"
 #include "shading_common.h"
 #include "pass_set.h"
+#include "scene_vars.h"
 #include "vk_pipeline.h"
 
 /* words (32 lights each) one count/fill workgroup walks: 16,384 lights, so 1,000,000 lights give
@@ -66,6 +68,7 @@ typedef struct ca_opts {
 
 typedef struct ca_params { /* filled once by declare, read by create */
     ca_opts o;
+    bool spots;          /* the scene has spot lights: the lights buffer holds a spot record per light */
     pg_slot lights, records, lists;
 } ca_params;
 
@@ -76,6 +79,7 @@ typedef struct ca_stats { /* mirrors Stats in cluster_scan.comp */
 typedef struct cluster_assign {
     ca_opts o;
     uint32_t clusters, light_count, words;
+    uint32_t record_vec4;       /* vec4s per light in spheres: 1, or 2 with spot lights (sphere, cone) */
     uint64_t budget;            /* bytes the lists may grow to (budget clamped to the device) */
     bool budget_clamped;
     pg_buffer stats;            /* host visible */
@@ -123,6 +127,8 @@ static pg_result ca_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     pg_decl_mark_partial(out, p->lists); /* filled up to each cluster's count; readers read only that */
     if ((r = pg_cluster_grid_declare(in, p->records, p->lists, p->o.grid, err))) return r;
     const ca_opts o = p->o;
+    p->spots = pg_scene_features_of(in).has_spot_lights;
+    if (p->spots) pg_decl_define(out, "PG_SPOT_LIGHTS"); /* lists leave out clusters a cone misses */
     pg_decl_define_int(out, "GRID_X", o.grid[0]);
     pg_decl_define_int(out, "GRID_Y", o.grid[1]);
     pg_decl_define_int(out, "GRID_Z", o.grid[2]);
@@ -185,7 +191,9 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     p->lists_slot = pg_plan_slot_of(ctx->pass, pa->lists);
     p->gpu = gpu;
     p->clusters = p->o.grid[0] * p->o.grid[1] * p->o.grid[2];
-    p->light_count = (uint32_t)(lights->size / 32);
+    /* 32 bytes a light, then as many spot records with spot lights (scene_vars.c) */
+    p->light_count = (uint32_t)(lights->size / 32 / (pa->spots ? 2 : 1));
+    p->record_vec4 = pa->spots ? 2 : 1;
     p->words = (p->light_count + 31) / 32;
     /* the lists' budget, within what one storage-buffer binding can span */
     uint64_t dev_max = gpu->max_storage_buffer_range & ~(uint64_t)255;
@@ -224,7 +232,7 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
             return r;
     }
     snprintf(name, sizeof name, "%s.spheres", ctx->pass->name);
-    if ((r = pg_buffer_create(gpu, (uint64_t)(p->light_count ? p->light_count : 1) * 16,
+    if ((r = pg_buffer_create(gpu, (uint64_t)(p->light_count ? p->light_count : 1) * 16 * p->record_vec4,
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false, name, &p->spheres, err)))
         return r;
     p->n_segments = p->words ? (p->words + SEG_WORDS - 1) / SEG_WORDS : 1;

@@ -13,13 +13,19 @@
  * and memory knobs: max_lights keeps the first max_lights lights of every exact list; a list
  * budget smaller than the lists keeps the first k of every exact list for one k, counts what it
  * dropped, says so in a note, and gives the same lists every frame; the list buffer grows from
- * its initial size and the frame is rendered again. */
+ * its initial size and the frame is rendered again. Spot lights: the lists also leave out a spot light
+ * where its cone misses a cluster (cluster_light.glsl pg_cone_reaches_sphere); on a hostile set of
+ * cones the binned lists equal the oracle's, no cluster box holds a sampled point inside a light's
+ * range and cone whose list lacks the light, lights without a usable cone (point records, NaN,
+ * wider than a half-space) keep every cluster their sphere reaches, and the test removes a share
+ * of the sphere's references. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#include "cluster_math.h"
 #include "graph_execute.h"
 #include "pass_list.h"
 #include "render_session.h"
@@ -35,6 +41,8 @@ static pg_gpu *g_gpu;
 static pg_pass_registry g_reg;
 static float *g_lights;  /* 8 floats per light: position, radius, colour, 0 */
 static uint32_t g_count;
+static float *g_spots;   /* with g_spot_mode: 8 floats per light, its spot record (axis x scale, offset), 0s */
+static bool g_spot_mode; /* the scene declares spot lights: the lights slot holds both arrays */
 
 /* ---- a pass that copies g_lights into its "lights" slot every frame ---- */
 static uint32_t g_lights_gen; /* bumped (with the device idle) when g_lights changes between frames */
@@ -53,6 +61,14 @@ static pg_result up_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     return PG_OK;
 }
 
+static void up_copy(upload_pass *p)
+{
+    uint64_t n = (uint64_t)g_count * 32 < p->bytes ? (uint64_t)g_count * 32 : p->bytes;
+    memcpy(p->staging.mapped, g_lights, n);
+    if (g_spot_mode && 2 * n <= p->bytes) memcpy((char *)p->staging.mapped + n, g_spots, n);
+    p->gen = g_lights_gen;
+}
+
 static pg_result up_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
     upload_pass *p = self;
@@ -61,20 +77,14 @@ static pg_result up_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
                                    err);
     if (r) return r;
     memset(p->staging.mapped, 0, p->bytes);
-    uint64_t n = (uint64_t)g_count * 32 < p->bytes ? (uint64_t)g_count * 32 : p->bytes;
-    memcpy(p->staging.mapped, g_lights, n);
-    p->gen = g_lights_gen;
+    up_copy(p);
     return PG_OK;
 }
 
 static void up_record(void *self, const pg_pass_record_ctx *ctx)
 {
     upload_pass *p = self;
-    if (p->gen != g_lights_gen) { /* the lights changed while the device was idle */
-        uint64_t n = (uint64_t)g_count * 32 < p->bytes ? (uint64_t)g_count * 32 : p->bytes;
-        memcpy(p->staging.mapped, g_lights, n);
-        p->gen = g_lights_gen;
-    }
+    if (p->gen != g_lights_gen) up_copy(p); /* the lights changed while the device was idle */
     VkBufferCopy c = {0, 0, p->bytes};
     vkCmdCopyBuffer(ctx->cmd, p->staging.buffer, ctx->slots[0]->buffer, 1, &c);
 }
@@ -383,6 +393,152 @@ static void oracle_cases(const pg_scene_gpu *sg)
     }
 }
 
+/* ---- spot lights: the cone test of the lists ---- */
+static void spot_set(uint32_t i, float ax, float ay, float az, float outer, float inner)
+{
+    float *sp = g_spots + (size_t)i * 8;
+    memset(sp, 0, 8 * sizeof(float));
+    double len = sqrt((double)ax * ax + (double)ay * ay + (double)az * az);
+    double scale = 1.0 / fmax(cos(inner) - cos(outer), 1e-3); /* the extension's (renderer: light upload) */
+    sp[0] = (float)(ax / len * scale), sp[1] = (float)(ay / len * scale), sp[2] = (float)(az / len * scale);
+    sp[3] = (float)(-cos(outer) * scale);
+}
+
+static void spot_none(uint32_t i, float w) /* a record without a usable cone: (0, 0, 0, w) */
+{
+    float *sp = g_spots + (size_t)i * 8;
+    memset(sp, 0, 8 * sizeof(float));
+    sp[3] = w;
+}
+
+/* A spot set (camera at the origin looking down -Z: view = world): seeded random cones of every
+ * orientation and width in the frustum, cones whose apex sits on tile edges and slice boundaries
+ * with axes along the tile planes, and twins of ten lights (the same sphere) without a usable cone:
+ * a point record, a NaN record, a cone wider than a half-space. Returns the first twin. */
+static uint32_t spot_hostile_set(float fov, float n, float f, uint32_t gx, uint32_t gy, uint32_t gz)
+{
+    static const float outers[] = {0.005f, 0.05f, 0.2f, 0.5f, 0.9f, 1.3f, 1.5707964f};
+    double ty = tan(fov * M_PI / 360.0), tx = ty * W / H;
+    for (uint32_t i = 0; i < 700; i++) {
+        float d = (float)(n * pow((double)f / n, frand() * 0.8));
+        light_add((frand() * 2.4f - 1.2f) * (float)tx * d, (frand() * 2.0f - 1.0f) * (float)ty * d, -d,
+                  d * (0.05f + 0.6f * frand()));
+        float o = outers[i % 7];
+        spot_set(g_count - 1, frand() - 0.5f, frand() - 0.5f, frand() - 0.5f, o, o * frand());
+    }
+    for (uint32_t k = 1; k < gz; k += 5) { /* on edges, axes along the tile planes and the view axis */
+        float d = slice_depth(k, gz, n, f);
+        for (uint32_t ex = 1; ex < gx; ex += 3) {
+            float x = (float)((2.0 * ex / gx - 1.0) * tx * d);
+            light_add(x, 0.0f, -d, 0.4f * d);
+            spot_set(g_count - 1, 0.0f, 1.0f, 0.0f, 0.3f, 0.1f);
+            light_add(x, 0.0f, -d, 0.4f * d);
+            spot_set(g_count - 1, 0.0f, 0.0f, -1.0f, 0.05f, 0.0f);
+            light_add(x, 0.0f, -d, 0.4f * d);
+            spot_set(g_count - 1, 1.0f, 0.0f, 0.0f, 1.5707964f, 1.0f);
+        }
+        for (uint32_t ey = 1; ey < gy; ey += 2) {
+            float y = (float)((1.0 - 2.0 * ey / gy) * ty * d);
+            light_add(0.0f, y, -d, 0.4f * d);
+            spot_set(g_count - 1, 1.0f, 0.0f, 0.0f, 0.4f, 0.2f);
+            light_add(0.0f, y, -d, 0.4f * d);
+            spot_set(g_count - 1, 0.0f, -1.0f, 0.0f, 1.0f, 0.5f);
+        }
+    }
+    uint32_t twins = g_count;
+    for (uint32_t i = 0; i < 10; i++) {
+        const float *src = g_lights + (size_t)i * 8;
+        for (int t = 0; t < 3; t++) {
+            light_add(src[0], src[1], src[2], src[3]);
+            spot_none(g_count - 1, t == 0 ? 1.0f : t == 1 ? NAN : 0.5f); /* point, NaN, cos(outer) = -0.5 */
+            if (t == 2) g_spots[(size_t)(g_count - 1) * 8] = 1.0f; /* axis (1, 0, 0), offset 0.5: 120 degrees */
+        }
+    }
+    return twins;
+}
+
+static bool in_list(const lists *l, uint32_t c, uint32_t light)
+{
+    const uint32_t *rec = l->rec + 4 * c;
+    for (uint32_t k = 0; k < rec[1]; k++)
+        if (l->list[rec[0] + k] == light) return true;
+    return false;
+}
+
+/* Is some sampled point of the box within the light's range and strictly inside its cone (the
+ * shading's cone factor > 0 there)? 9 x 9 x 9 points, corners and faces included. */
+static bool box_point_lit(const float *lt, const float *sp, pg_vec3 mn, pg_vec3 mx)
+{
+    double scale = sqrt((double)sp[0] * sp[0] + (double)sp[1] * sp[1] + (double)sp[2] * sp[2]);
+    double cos_outer = -sp[3] / scale;
+    for (int i = 0; i < 9; i++)
+        for (int j = 0; j < 9; j++)
+            for (int k = 0; k < 9; k++) {
+                double p[3] = {mn.x + (mx.x - mn.x) * i / 8.0, mn.y + (mx.y - mn.y) * j / 8.0,
+                               mn.z + (mx.z - mn.z) * k / 8.0};
+                double v[3] = {p[0] - lt[0], p[1] - lt[1], p[2] - lt[2]};
+                double d2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+                if (!(d2 < (double)lt[3] * lt[3]) || d2 == 0.0) continue;
+                double c = (v[0] * sp[0] + v[1] * sp[1] + v[2] * sp[2]) / (scale * sqrt(d2));
+                if (c > cos_outer + 1e-6) return true;
+            }
+    return false;
+}
+
+static void spot_cases(pg_scene_gpu *sg)
+{
+    const float fov = 60, n = 0.1f, f = 200;
+    const uint32_t grid[3] = {16, 9, 24};
+    light_clear();
+    uint32_t twins = spot_hostile_set(fov, n, f, grid[0], grid[1], grid[2]);
+    sg->features.has_spot_lights = g_spot_mode = true; /* what the passes compile for */
+    run_desc d = {.grid = {grid[0], grid[1], grid[2]}, .budget_mb = 1024, .subgroups = true, .cam = camera(fov, n, f)};
+    run_result r = run(sg, &d);
+    sg->features.has_spot_lights = g_spot_mode = false;
+    CHECK_MSG(r.ok, "spots: render failed");
+    if (!r.ok) {
+        run_free(&r);
+        return;
+    }
+    check_equal("spots", &r);
+    float proj[16], inv[16];
+    pg_camera_proj(&d.cam, proj);
+    CHECK(pg_mat4_invert(proj, inv));
+    uint64_t sphere_refs = 0, listed = 0, missed = 0, twin_differ = 0;
+    pg_uvec3 g3 = {grid[0], grid[1], grid[2]};
+    for (uint32_t c = 0; c < grid[0] * grid[1] * grid[2]; c++) {
+        pg_uvec3 cc = {c % grid[0], (c / grid[0]) % grid[1], c / (grid[0] * grid[1])};
+        pg_vec3 mn, mx;
+        pg_cluster_aabb(cc, g3, inv, n, f, &mn, &mx);
+        for (uint32_t i = 0; i < g_count; i++) {
+            const float *lt = g_lights + (size_t)i * 8;
+            bool sphere = pg_sphere_intersects_aabb((pg_vec3){lt[0], lt[1], lt[2]}, lt[3], mn, mx);
+            bool has = in_list(&r.binned, c, i);
+            if (i >= twins) { /* no usable cone: listed exactly where the point-record twin is */
+                uint32_t base = twins + (i - twins) / 3 * 3;
+                twin_differ += has != in_list(&r.binned, c, base);
+                continue;
+            }
+            sphere_refs += sphere;
+            listed += has;
+            if (sphere && !has && box_point_lit(lt, g_spots + (size_t)i * 8, mn, mx)) {
+                if (missed++ < 5)
+                    fprintf(stderr, "  spots: cluster %u lacks light %u, which lights a point of its box\n", c, i);
+            }
+        }
+    }
+    printf("  %-28s %llu of %llu sphere references kept by the cone test (%.1f%%)\n", "spots", (unsigned long long)listed,
+           (unsigned long long)sphere_refs, sphere_refs ? 100.0 * listed / sphere_refs : 0.0);
+    CHECK_MSG(missed == 0, "spots: %llu (cluster, light) pairs lack a light that lights a sampled point of the box",
+              (unsigned long long)missed);
+    CHECK_MSG(twin_differ == 0, "spots: %llu clusters list a cone-less twin differently from its point twin",
+              (unsigned long long)twin_differ);
+    /* the test does something: the random cones miss much of what their spheres reach */
+    CHECK_MSG(listed < sphere_refs * 3 / 4, "spots: the cone test kept %llu of %llu sphere references",
+              (unsigned long long)listed, (unsigned long long)sphere_refs);
+    run_free(&r);
+}
+
 /* max_lights and the list budget: deterministic subsets of the exact lists, counted */
 static void knob_cases(const pg_scene_gpu *sg)
 {
@@ -489,8 +645,9 @@ int main(void)
         return 1;
     }
     g_lights = calloc((size_t)65536 * 8, sizeof(float));
+    g_spots = calloc((size_t)65536 * 8, sizeof(float));
     pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
-    if (!g_lights || pg_gpu_create(&gd, &g_gpu, &err)) {
+    if (!g_lights || !g_spots || pg_gpu_create(&gd, &g_gpu, &err)) {
         fprintf(stderr, "test_cluster_assign: %s\n", err.msg);
         return 1;
     }
@@ -503,6 +660,7 @@ int main(void)
     }
     printf("subgroup size %u, one-subgroup workgroups %s\n", g_gpu->subgroup_size, g_gpu->exact_subgroups ? "yes" : "no");
     oracle_cases(sg);
+    spot_cases(sg);
     knob_cases(sg);
     pg_scene_gpu_destroy(g_gpu, sg);
     pg_scene_free(scene);
@@ -510,5 +668,6 @@ int main(void)
     CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);
     pg_gpu_destroy(g_gpu);
     free(g_lights);
+    free(g_spots);
     return pg_test_finish("test_cluster_assign");
 }

@@ -11,10 +11,15 @@ Every scene is a grey floor, 10 x 10 in the XZ plane at y = 0 facing +Y, plus:
   sun.gltf          a unit box standing on the floor and a directional light of 2 lux pointing down
                     and towards -Z (the node turned -60 degrees about X)
   mixed.gltf        one light of each kind (point at (2, 1, 2), spot as in spot.gltf, the sun)
+  spots.gltf        a unit box and 96 spot lights with seeded random positions (over and beside
+                    the floor, some under it), orientations (any, some straight up or sideways),
+                    outer cones from 0.02 rad to exactly pi/2, inner cones below them, ranges 0.5
+                    to 6 (three unranged): the hostile set of the clusters' cone test
 """
 import json
 import math
 import os
+import random
 import struct
 import sys
 
@@ -97,3 +102,49 @@ write("mixed.gltf", doc(merge(floor(), box((-0.5, 0, -0.5), (0.5, 1, 0.5))),
     {"name": "lamp_node", "translation": [2, 1, 2], "extensions": {"KHR_lights_punctual": {"light": 0}}},
     dict(SPOT_NODE, extensions={"KHR_lights_punctual": {"light": 1}}),
     {"name": "sun_node", "rotation": quat_x(-math.pi / 3), "extensions": {"KHR_lights_punctual": {"light": 2}}}]))
+
+
+def quat_towards(d):
+    """The rotation that turns the light's forward axis -Z towards the unit vector d."""
+    ax = (d[1], -d[0], 0.0)  # (-Z) x d
+    c = -d[2]                # cos of the angle between -Z and d
+    s = math.sqrt(ax[0] ** 2 + ax[1] ** 2)
+    if s < 1e-9:
+        return [0.0, 0.0, 0.0, 1.0] if c > 0 else [1.0, 0.0, 0.0, 0.0]
+    ang = math.atan2(s, c)
+    k = math.sin(ang / 2) / s
+    return [ax[0] * k, ax[1] * k, 0.0, math.cos(ang / 2)]
+
+
+def hostile_spots(n=96, seed=7):
+    rng = random.Random(seed)
+    outers = [0.02, 0.1, 0.3, 0.5, 0.9, 1.2, 1.5, math.pi / 2]
+    fixed = [(0, -1, 0), (0, 1, 0), (1, 0, 0), (0, 0, 1), (0, 0, -1)]  # down, up, sideways
+    lights, nodes = [], []
+    for i in range(n):
+        outer = outers[i % len(outers)]
+        inner = outer * rng.choice([0.0, 0.5, 0.9, 0.999])
+        if i < len(fixed) * 3:
+            d = fixed[i % len(fixed)]
+        else:
+            while True:
+                d = [rng.uniform(-1, 1) for _ in range(3)]
+                ln = math.sqrt(sum(c * c for c in d))
+                if 0.1 < ln <= 1:
+                    d = [c / ln for c in d]
+                    break
+        light = {"name": "spot%d" % i, "type": "spot", "intensity": round(rng.uniform(0.5, 4), 3),
+                 "color": [round(rng.uniform(0.3, 1), 3) for _ in range(3)],
+                 "spot": {"innerConeAngle": inner, "outerConeAngle": outer}}
+        if i % 32 != 5:  # three unranged lights
+            light["range"] = round(rng.uniform(0.5, 6), 3)
+        lights.append(light)
+        y = rng.uniform(-0.5, 3.0) if i % 11 else -0.2  # a few under the floor
+        nodes.append({"name": "spot%d_node" % i,
+                      "translation": [round(rng.uniform(-6, 6), 4), round(y, 4), round(rng.uniform(-6, 6), 4)],
+                      "rotation": quat_towards(d), "extensions": {"KHR_lights_punctual": {"light": i}}})
+    return lights, nodes
+
+
+SPOTS, SPOT_NODES = hostile_spots()
+write("spots.gltf", doc(merge(floor(), box((-0.5, 0, -0.5), (0.5, 1, 0.5))), SPOTS, SPOT_NODES))
