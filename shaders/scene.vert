@@ -6,6 +6,16 @@
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 layout(location = 0) in vec3 in_position;
+#ifdef PG_POSITION_ONLY
+// The visibility pass's opaque pipeline (scene_draw.c position_only_opaque): its fragment shader
+// reads no input, so only the position is fetched and only gl_Position is written.
+precise gl_Position;
+
+void main()
+{
+    gl_Position = frame.proj * vec4(PG_REL_TO_VIEW(in_position - frame.camera_pos.xyz), 1.0);
+}
+#else
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_tangent;
@@ -42,3 +52,4 @@ void main()
 #endif
     gl_Position = frame.proj * vec4(PG_REL_TO_VIEW(v_rel), 1.0);
 }
+#endif

@@ -84,13 +84,20 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
         return r;
     }
     for (uint32_t i = 0; i < d->n_extra_defines; i++) defs[n++] = d->extra_defines[i];
-    VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE, fs_mask = VK_NULL_HANDLE;
+    VkShaderModule vs = VK_NULL_HANDLE, vs_pos = VK_NULL_HANDLE, fs = VK_NULL_HANDLE, fs_mask = VK_NULL_HANDLE;
     if ((r = pg_shader_module(gpu, "scene.vert", VK_SHADER_STAGE_VERTEX_BIT, defs, n, &vs, err))) goto out;
     if ((r = fragment_module(gpu, d, defs, n, &fs, err))) goto out;
     const pg_vertex_input vin = scene_vertex_input(out->vertex_colors, out->uv1);
+    pg_vertex_input vin_pos = vin; /* binding 0, location 0 alone */
+    vin_pos.n_bindings = 1;
+    vin_pos.n_attributes = 1;
+    if (d->position_only_opaque) {
+        defs[n] = "PG_POSITION_ONLY";
+        if ((r = pg_shader_module(gpu, "scene.vert", VK_SHADER_STAGE_VERTEX_BIT, defs, n + 1, &vs_pos, err))) goto out;
+    }
     pg_gfx_pipeline_desc gd = {
         .layout = out->layout,
-        .vs = vs,
+        .vs = d->position_only_opaque ? vs_pos : vs,
         .fs = fs,
         .n_color = d->n_color,
         .depth_format = d->depth_format,
@@ -100,7 +107,7 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
         .depth_bias_constant = d->depth_bias_constant,
         .depth_bias_slope = d->depth_bias_slope,
         .dynamic_cull = true,
-        .vertex_input = &vin,
+        .vertex_input = d->position_only_opaque ? &vin_pos : &vin,
         .blend_over = d->blend,
     };
     memcpy(gd.color_formats, d->color_formats, sizeof gd.color_formats);
@@ -111,12 +118,15 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
         if ((r = fragment_module(gpu, d, defs, n, &fs_mask, err)))
             goto out;
         gd.fs = fs_mask;
+        gd.vs = vs;
+        gd.vertex_input = &vin;
         char name[PG_NAME_MAX + 16];
         snprintf(name, sizeof name, "%s.masked", pass->name);
         r = pg_gfx_pipeline_create(gpu, &gd, name, &out->masked, err);
     }
 out:
     if (vs) vkDestroyShaderModule(gpu->device, vs, NULL);
+    if (vs_pos) vkDestroyShaderModule(gpu->device, vs_pos, NULL);
     if (fs) vkDestroyShaderModule(gpu->device, fs, NULL);
     if (fs_mask) vkDestroyShaderModule(gpu->device, fs_mask, NULL);
     return r;

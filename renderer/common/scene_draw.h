@@ -56,6 +56,9 @@ typedef struct pg_scene_draw_desc {
                                        * tested EQUAL without writes, and the alpha-mask draws drawn
                                        * with the opaque pipeline (the pre-pass discarded them; no
                                        * masked pipeline is made) */
+    bool position_only_opaque;        /* the opaque pipeline's vertex shader fetches and writes the
+                                       * position alone (a fragment shader that reads no input:
+                                       * the visibility pass); the alpha-mask one keeps them all */
     float depth_bias_constant;        /* depth bias of the pipelines (both 0: none) */
     float depth_bias_slope;
 } pg_scene_draw_desc;

@@ -23,7 +23,8 @@
  * surfaces winning, derivatives at the alpha cutoff) is measured by tests/test_gpu_prepass.c.
  *
  * Both: the vertex path is the scene-draw one every raster pass uses (scene_draw.c: scene.vert
- * with the same surface defines, `precise gl_Position`, the same per-draw cull mode). BLEND draws
+ * with the same surface defines, `precise gl_Position`, the same per-draw cull mode); "less"
+ * fetches and writes the position alone (PG_POSITION_ONLY). BLEND draws
  * are not drawn (forward_transparent draws them later against the depth without writing it).
  * Slots: writes [depth] (cleared to 1, then tested LESS and written). Options: test ("less",
  * "equal"; must match the shading pass's prepass_test). */
@@ -82,6 +83,9 @@ static pg_result dp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
         .depth_format = pg_ctx_res(ctx, pa->depth)->format,
         .depth_bias_constant = test == PG_PREPASS_LESS ? PG_PREPASS_BIAS_CONSTANT : 0.0f,
         .depth_bias_slope = test == PG_PREPASS_LESS ? PG_PREPASS_BIAS_SLOPE : 0.0f,
+        /* "less" draws the opaque draws alone, with an empty fragment stage: the position is all
+         * it needs ("equal" keeps the shading pass's vertex path whole: its depths are compared) */
+        .position_only_opaque = test == PG_PREPASS_LESS,
     };
     p->depth_slot = pg_plan_slot_of(ctx->pass, pa->depth);
     return pg_scene_draw_create(ctx, &d, &p->draw, err);

@@ -63,6 +63,7 @@ static pg_result vis_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
         .n_color = 1,
         .color_formats = {vis_id->format},
         .depth_format = pg_ctx_res(ctx, pa->depth)->format,
+        .position_only_opaque = true,
     };
     p->color_slot = pg_plan_slot_of(ctx->pass, pa->vis_id);
     p->depth_slot = pg_plan_slot_of(ctx->pass, pa->depth);
