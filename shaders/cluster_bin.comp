@@ -19,9 +19,10 @@
 // The radius is grown by 1e-4 relative plus 1e-5 of the distance: 10x the test's slack and
 // float rounding. tests/test_cluster_assign.c checks the lists against the brute-force oracle.
 // Every light's sphere is also stored (spheres[]), so the list steps test candidates without
-// transforming lights again; with PG_BRUTE_FORCE only that is done. PG_SPOT_LIGHTS: each light
-// stores its view-space cone after its sphere (pg_light_view_cone; PG_LIGHT_RECORD_VEC4 = 2 vec4 a
-// light), which the list steps test too. The masks bin the sphere only (a superset of the cone).
+// transforming lights again; with PG_BRUTE_FORCE only that is done. PG_SPOT_LIGHTS: a spot light's
+// sphere is the bound of its ball within its cone (pg_cone_bound_sphere), and its view-space cone
+// and apex follow the sphere (PG_LIGHT_RECORD_VEC4 = 3 vec4 a light): the list steps test the cone
+// too.
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "cluster.glsl"
@@ -81,10 +82,13 @@ void main()
     uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + lid;
     if (i >= frame.counts.x) return;
     vec4 sph = pg_light_view_sphere(lights[i]);
-    spheres[i * PG_LIGHT_RECORD_VEC4] = sph;
 #ifdef PG_SPOT_LIGHTS
-    spheres[i * PG_LIGHT_RECORD_VEC4 + 1u] = pg_light_view_cone(lights[frame.counts.x + i].pos_radius);
+    vec4 cone = pg_light_view_cone(lights[frame.counts.x + i].pos_radius);
+    spheres[i * PG_LIGHT_RECORD_VEC4 + 1u] = cone;
+    spheres[i * PG_LIGHT_RECORD_VEC4 + 2u] = vec4(sph.xyz, 0.0);  // the apex
+    sph = pg_cone_bound_sphere(sph, lights[i].pos_radius.w, cone);
 #endif
+    spheres[i * PG_LIGHT_RECORD_VEC4] = sph;
 #ifndef PG_BRUTE_FORCE                               // the oracle needs only the spheres
     if (!(sph.w > 0.0) || any(isnan(sph.xyz)) || any(isinf(sph.xyz))) return;
     float rr = sph.w * (1.0 + 1e-4) + 1e-5 * length(sph.xyz) + 1e-6;

@@ -11,8 +11,10 @@
 #define PG_CLUSTER_LIGHT_GLSL
 
 // vec4s per light in the assignment's spheres buffer: the sphere, and with PG_SPOT_LIGHTS the cone
+// (pg_light_view_cone) and the apex (the light's view-space position; the sphere is then the
+// bound of its lit set, pg_cone_bound_sphere)
 #ifdef PG_SPOT_LIGHTS
-#define PG_LIGHT_RECORD_VEC4 2u
+#define PG_LIGHT_RECORD_VEC4 3u
 #else
 #define PG_LIGHT_RECORD_VEC4 1u
 #endif
@@ -31,6 +33,10 @@ vec4 pg_light_view_sphere(Light L)
 }
 
 #ifdef PG_SPOT_LIGHTS
+// The angle a cone test widens a spot light's outer cone by: far above the float rounding of the
+// shading's cone factor and of the tests' angles.
+const float PG_CONE_MARGIN = 2e-3;
+
 // A spot light's cone in view space, from its spot record sp (lighting.glsl: axis x scale, offset =
 // -cos(outer) x scale; the light adds exactly 0 where the angle from its axis exceeds the outer
 // cone): (unit axis, cos(outer)). A light without a cone (record (0, 0, 0, 1)), a cone wider than a
@@ -59,8 +65,30 @@ bool pg_cone_reaches_sphere(vec4 cone, vec3 apex, vec3 c, float r)
     float radial = length(cross(v, cone.xyz));         // no cancellation near the axis
     float sin_outer = sqrt(max(1.0 - cone.w * cone.w, 0.0));
     float f = cone.w * radial - sin_outer * axial;
-    float margin = 2e-3 * length(v) + 1e-5 * (length(apex) + length(c)) + 1e-6;
+    float margin = PG_CONE_MARGIN * length(v) + 1e-5 * (length(apex) + length(c)) + 1e-6;
     return !(f > r + margin);                          // NaN keeps the light
+}
+
+// A sphere holding every point a spot light lights: its ball (sph: view-space centre and padded
+// radius r, pg_light_view_sphere; r_raw its unpadded range) within its cone (widened by
+// PG_CONE_MARGIN to a). Up to 45 degrees the sphere through the apex and the rim of the cone's cap
+// (centre apex + axis r / (2 cos a), radius r / (2 cos a)); from 45 to 60 degrees the sphere of
+// the rim (centre apex + axis r cos a, radius r sin a); past 60 degrees, or without a cone, the ball,
+// which is then the smaller. Both contain the apex, the rim and the cap. The pad the ball carries
+// for the apex's rounding (sph.w - r_raw) is added again in full (the formulas scale it down), and
+// the rounding of the centre.
+vec4 pg_cone_bound_sphere(vec4 sph, float r_raw, vec4 cone)
+{
+    if (!(cone.w <= 1.0) || !(sph.w > 0.0)) return sph;
+    float a = acos(cone.w) + PG_CONE_MARGIN;
+    if (!(a < 1.0471975)) return sph;                  // 60 degrees
+    float ca = cos(a), sa = sin(a);
+    float r = sph.w;
+    float off = a <= 0.78539816 ? r / (2.0 * ca) : r * ca;
+    float rb = a <= 0.78539816 ? off : r * sa;
+    vec3 c = sph.xyz + cone.xyz * off;
+    float pad = max(sph.w - r_raw, 0.0) + 1e-5 * rb + 1e-6 * (length(c) + length(sph.xyz));
+    return vec4(c, rb + pad);
 }
 #endif
 

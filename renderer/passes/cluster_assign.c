@@ -79,7 +79,7 @@ typedef struct ca_stats { /* mirrors Stats in cluster_scan.comp */
 typedef struct cluster_assign {
     ca_opts o;
     uint32_t clusters, light_count, words;
-    uint32_t record_vec4;       /* vec4s per light in spheres: 1, or 2 with spot lights (sphere, cone) */
+    uint32_t record_vec4;       /* vec4s per light in spheres: 1, or 3 with spot lights (sphere, cone, apex) */
     uint64_t budget;            /* bytes the lists may grow to (budget clamped to the device) */
     bool budget_clamped;
     pg_buffer stats;            /* host visible */
@@ -193,7 +193,7 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     p->clusters = p->o.grid[0] * p->o.grid[1] * p->o.grid[2];
     /* 32 bytes a light, then as many spot records with spot lights (scene_vars.c) */
     p->light_count = (uint32_t)(lights->size / 32 / (pa->spots ? 2 : 1));
-    p->record_vec4 = pa->spots ? 2 : 1;
+    p->record_vec4 = pa->spots ? 3 : 1;
     p->words = (p->light_count + 31) / 32;
     /* the lists' budget, within what one storage-buffer binding can span */
     uint64_t dev_max = gpu->max_storage_buffer_range & ~(uint64_t)255;

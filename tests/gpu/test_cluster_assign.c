@@ -13,7 +13,8 @@
  * and memory knobs: max_lights keeps the first max_lights lights of every exact list; a list
  * budget smaller than the lists keeps the first k of every exact list for one k, counts what it
  * dropped, says so in a note, and gives the same lists every frame; the list buffer grows from
- * its initial size and the frame is rendered again. Spot lights: the lists also leave out a spot light
+ * its initial size and the frame is rendered again. Spot lights: a spot light is binned and tested by
+ * the bound of its ball within its cone (pg_cone_bound_sphere), and the lists also leave it out
  * where its cone misses a cluster (cluster_light.glsl pg_cone_reaches_sphere); on a hostile set of
  * cones the binned lists equal the oracle's, no cluster box holds a sampled point inside a light's
  * range and cone whose list lacks the light, lights without a usable cone (point records, NaN,
