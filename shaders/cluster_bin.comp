@@ -20,9 +20,9 @@
 // float rounding. tests/test_cluster_assign.c checks the lists against the brute-force oracle.
 // Every light's sphere is also stored (spheres[]), so the list steps test candidates without
 // transforming lights again; with PG_BRUTE_FORCE only that is done. PG_SPOT_LIGHTS: a spot light's
-// sphere is the bound of its ball within its cone (pg_cone_bound_sphere), and its view-space cone
-// and apex follow the sphere (PG_LIGHT_RECORD_VEC4 = 3 vec4 a light): the list steps test the cone
-// too.
+// sphere, the one binned, is the bound of its ball within its cone (pg_cone_bound_sphere; it reaches
+// past the ball), and its view-space cone and ball follow it (PG_LIGHT_RECORD_VEC4 = 3 vec4 a
+// light): the list steps test all three, so the binned sphere is conservative for them.
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 #include "cluster.glsl"
@@ -85,7 +85,7 @@ void main()
 #ifdef PG_SPOT_LIGHTS
     vec4 cone = pg_light_view_cone(lights[frame.counts.x + i].pos_radius);
     spheres[i * PG_LIGHT_RECORD_VEC4 + 1u] = cone;
-    spheres[i * PG_LIGHT_RECORD_VEC4 + 2u] = vec4(sph.xyz, 0.0);  // the apex
+    spheres[i * PG_LIGHT_RECORD_VEC4 + 2u] = sph;  // the ball: apex and range
     sph = pg_cone_bound_sphere(sph, lights[i].pos_radius.w, cone);
 #endif
     spheres[i * PG_LIGHT_RECORD_VEC4] = sph;

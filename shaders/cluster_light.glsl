@@ -11,8 +11,8 @@
 #define PG_CLUSTER_LIGHT_GLSL
 
 // vec4s per light in the assignment's spheres buffer: the sphere, and with PG_SPOT_LIGHTS the cone
-// (pg_light_view_cone) and the apex (the light's view-space position; the sphere is then the
-// bound of its lit set, pg_cone_bound_sphere)
+// (pg_light_view_cone) and the ball (pg_light_view_sphere: apex and range; the sphere is then the
+// bound of the ball within the cone, pg_cone_bound_sphere)
 #ifdef PG_SPOT_LIGHTS
 #define PG_LIGHT_RECORD_VEC4 3u
 #else

@@ -11,8 +11,8 @@
 // exactly the lights the count counted. Words are handed to lanes in order and combined with an
 // exclusive prefix sum, so the lists come out ascending.
 // PG_SPOT_LIGHTS: a spot light's sphere bounds its lit set (its ball within its cone), and the light
-// is also dropped from a cluster when its cone misses the bounding sphere of the cluster's box
-// (pg_cone_reaches_sphere): it adds exactly 0 to every point there.
+// is also dropped from a cluster when its ball misses the box or its cone misses the bounding sphere
+// of the box (pg_cone_reaches_sphere): it adds exactly 0 to every point there.
 // PG_ONE_SUBGROUP: the workgroup is exactly one full subgroup (the pipeline requires the size;
 // gpu->exact_subgroups): subgroup operations only, no barrier. Otherwise a 64-wide workgroup and
 // a shared-memory scan in gl_LocalInvocationIndex order.
@@ -139,17 +139,18 @@ void main()
                 for (int q = 0; q < PG_CANDIDATE_LOADS; q++)
                     sph[q] = bits[q] < 32u ? spheres[(w * 32u + bits[q]) * PG_LIGHT_RECORD_VEC4] : vec4(0.0);
 #ifdef PG_SPOT_LIGHTS
-                vec4 cone[PG_CANDIDATE_LOADS], apex[PG_CANDIDATE_LOADS];
+                vec4 cone[PG_CANDIDATE_LOADS], ball[PG_CANDIDATE_LOADS];
                 for (int q = 0; q < PG_CANDIDATE_LOADS; q++) {
                     uint base = (w * 32u + bits[q]) * PG_LIGHT_RECORD_VEC4;
                     cone[q] = bits[q] < 32u ? spheres[base + 1u] : vec4(2.0);
-                    apex[q] = bits[q] < 32u ? spheres[base + 2u] : vec4(0.0);
+                    ball[q] = bits[q] < 32u ? spheres[base + 2u] : vec4(0.0);
                 }
 #endif
                 for (int q = 0; q < PG_CANDIDATE_LOADS; q++)
                     if (bits[q] < 32u && pg_sphere_intersects_aabb(sph[q].xyz, sph[q].w, bmin, bmax)
 #ifdef PG_SPOT_LIGHTS
-                        && pg_cone_reaches_sphere(cone[q], apex[q].xyz, box_c, box_r)
+                        && pg_sphere_intersects_aabb(ball[q].xyz, ball[q].w, bmin, bmax)
+                        && pg_cone_reaches_sphere(cone[q], ball[q].xyz, box_c, box_r)
 #endif
                        )
                         hits[j] |= 1u << bits[q];

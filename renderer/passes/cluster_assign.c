@@ -79,7 +79,7 @@ typedef struct ca_stats { /* mirrors Stats in cluster_scan.comp */
 typedef struct cluster_assign {
     ca_opts o;
     uint32_t clusters, light_count, words;
-    uint32_t record_vec4;       /* vec4s per light in spheres: 1, or 3 with spot lights (sphere, cone, apex) */
+    uint32_t record_vec4;       /* vec4s per light in spheres: 1, or 3 with spot lights (bound sphere, cone, ball) */
     uint64_t budget;            /* bytes the lists may grow to (budget clamped to the device) */
     bool budget_clamped;
     pg_buffer stats;            /* host visible */

@@ -528,7 +528,7 @@ static void spot_cases(pg_scene_gpu *sg)
             }
         }
     }
-    printf("  %-28s %llu of %llu sphere references kept by the cone test (%.1f%%)\n", "spots", (unsigned long long)listed,
+    printf("  %-28s %llu of %llu sphere references kept by the cone tests (%.1f%%)\n", "spots", (unsigned long long)listed,
            (unsigned long long)sphere_refs, sphere_refs ? 100.0 * listed / sphere_refs : 0.0);
     CHECK_MSG(missed == 0, "spots: %llu (cluster, light) pairs lack a light that lights a sampled point of the box",
               (unsigned long long)missed);
