@@ -11,8 +11,10 @@ variant's ratio to the BASE variant. Two ways to name the variants:
           --label spots=.../spot_cost_spots/results.csv
 
 --variant V keeps only the rows of one --sweep value (e.g. the environment on and off, one light model
-at a time: --variant shading=pbr). Each cell also names the pass that dominates the frame. Used for
-docs/performance.md."""
+at a time: --variant shading=pbr). Each cell also names the pass that dominates the frame.
+--steps PASS: one row per other variant instead (e.g. successive versions of a change), its ratio to
+BASE in each pipeline, the light references its lists hold and PASS's median ms (of the first
+pipeline), e.g. --steps assign_lights. Used for docs/performance.md."""
 import argparse
 import csv
 
@@ -33,6 +35,7 @@ def main():
     ap.add_argument("--label", action="append", default=[], metavar="NAME=CSV")
     ap.add_argument("--by-variant", action="store_true", help="variants are the `variant` column of the files")
     ap.add_argument("--variant", help="keep only the rows of this `variant` (a --sweep value, e.g. shading=pbr)")
+    ap.add_argument("--steps", metavar="PASS", help="one row per other variant: ratios, references, PASS ms")
     a = ap.parse_args()
     cells = {}  # (pipeline, lights) -> {variant: row}
     order, variants = [], []
@@ -53,6 +56,9 @@ def main():
     if a.base not in variants:
         raise SystemExit("cost_ratio_table.py: no variant %r (have %s)" % (a.base, ", ".join(variants)))
     others = [v for v in variants if v != a.base]
+    if a.steps:
+        steps_table(cells, order, a.base, others, a.steps)
+        return
     head = ["pipeline", "lights"] + ["%s ms (dominant pass)" % v for v in variants] + ["%s / %s" % (v, a.base) for v in others]
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * 2 + "---:|" * (len(variants) + len(others)))
@@ -69,6 +75,24 @@ def main():
         for v in others:
             b, r = c.get(a.base), c.get(v)
             line.append("%.2fx" % (float(r["gpu_ms_median"]) / float(b["gpu_ms_median"])) if b and r else "-")
+        print("| " + " | ".join(line) + " |")
+
+
+def steps_table(cells, order, base, others, pass_name):
+    """One row per variant in `others`: its frame time over BASE's in each (pipeline, lights)."""
+    head = ["variant"] + ["%s %s" % k if len({k[1] for k in order}) > 1 else k[0] for k in order]
+    head += ["references", "%s ms" % pass_name]
+    print("| " + " | ".join(head) + " |")
+    print("|---|" + "---:|" * (len(order) + 2))
+    for v in others:
+        line = [v]
+        for key in order:
+            b, r = cells[key].get(base), cells[key].get(v)
+            line.append("%.2fx" % (float(r["gpu_ms_median"]) / float(b["gpu_ms_median"])) if b and r else "-")
+        first = cells[order[0]].get(v, {})
+        line.append("{:,}".format(int(first["light_refs"])) if first.get("light_refs") else "-")
+        ms = first.get("pass_%s_ms_median" % pass_name)
+        line.append("%.2f" % float(ms) if ms else "-")
         print("| " + " | ".join(line) + " |")
 
 
