@@ -29,7 +29,7 @@
  *     (cluster_light.glsl pg_cone_reaches_sphere), so forward_plus stays bit-identical to naive
  *     only if that test never drops a light from a cluster where it lights a pixel; every
  *     pipeline within its bound of the reference (cut-off of three unranged lights), the tiled
- *     loops byte-identical to the per-pixel ones. */
+ *     loops byte-identical to the per-pixel ones; and again through an orthographic camera. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -284,11 +284,17 @@ int main(void)
     }
     unload(&d);
     loaded e;
-    if (load("spots.gltf", &e)) { /* the cone test of the cluster lists on a hostile set */
+    if (load("spots.gltf", &e)) { /* the cone tests of the light assignment on a hostile set */
         pg_th_frame ref;
         if (render(&e, "pipelines/reference.json", NULL, 0, &ref)) {
             pg_th_pipelines_vs_ref(g_gpu, &g_reg, e.sg, &e.fi, &ref, "spots", 3 * 1e-4 * ALBEDO);
             tile_cone_identical("spots", &e);
+            pg_th_release(&ref);
+        }
+        /* the same view orthographic, 14 units high: the clusters are boxes of parallel rays */
+        e.fi.camera.ortho_height = 14.0f;
+        if (render(&e, "pipelines/reference.json", NULL, 0, &ref)) {
+            pg_th_pipelines_vs_ref(g_gpu, &g_reg, e.sg, &e.fi, &ref, "spots orthographic", 3 * 1e-4 * ALBEDO);
             pg_th_release(&ref);
         }
     }
