@@ -12,8 +12,8 @@
 // 1/R^2 known per light, 1/max(d^2, dmin^2) = min((1/d)^2, 1/dmin^2) and L = Ld/d from one
 // inversesqrt, instead of a square root and three divisions. The same model; only the rounding
 // differs (C twin and its bounds: tests/test_numeric.c att_float). Two forms share that arithmetic
-// (pg_light_term): pg_accumulate_light_rel returns early for a light out of range (the per-pixel
-// loops, where most lights of a list miss the pixel), pg_accumulate_light_rel_select evaluates
+// (pg_light_term): pg_accumulate_light_rel returns early for a light out of range or outside its
+// cone (the per-pixel loops, where most lights of a list miss the pixel), pg_accumulate_light_rel_select evaluates
 // every light and adds exactly 0 for one out of range (the tiled loop, whose lights were culled
 // against the tile and mostly reach the pixel: no branch). Adding +0 leaves the sum bit-identical to
 // skipping the light (light colours are finite and >= 0; the select, not a multiply, keeps an Inf
@@ -191,12 +191,16 @@ void pg_accumulate_light_rel(vec3 rel, float R2, float inv_r2, vec3 color, vec4 
     vec3 Ld = rel - P;
     float d2 = dot(Ld, Ld);
     if (!(d2 < R2)) return;               // outside range (and R = 0, and NaN)
+#ifdef PG_SPOT_LIGHTS
+    float cone = pg_spot_factor(spot, Ld);
+    if (cone == 0.0) return;              // outside the cone: it would add exactly 0
+#endif
     float att;
     vec3 L;
     float w = pg_light_term(Ld, d2, inv_r2, N, inv_md2, att, L);
     vec3 c = PG_SC_COLOR(color, att);     // the stochastic rescale sees the light without its cone
 #ifdef PG_SPOT_LIGHTS
-    c *= pg_spot_factor(spot, Ld);
+    c *= cone;
 #endif
 #ifdef PG_PBR
     if (w > 0.0) pg_light_pbr(c, att, L, N, V, shininess, acc);
