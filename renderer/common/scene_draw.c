@@ -85,7 +85,12 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     }
     for (uint32_t i = 0; i < d->n_extra_defines; i++) defs[n++] = d->extra_defines[i];
     VkShaderModule vs = VK_NULL_HANDLE, vs_pos = VK_NULL_HANDLE, fs = VK_NULL_HANDLE, fs_mask = VK_NULL_HANDLE;
-    if ((r = pg_shader_module(gpu, "scene.vert", VK_SHADER_STAGE_VERTEX_BIT, defs, n, &vs, err))) goto out;
+    /* the full vertex shader: the opaque pipeline's, or the alpha-mask one's */
+    const bool masked = has_mask && !d->blend && !d->depth_equal &&
+                        PG_SCENE_OF(ctx)->n_draws - PG_SCENE_OF(ctx)->n_blend_draws > PG_SCENE_OF(ctx)->n_opaque_draws;
+    if ((!d->position_only_opaque || masked) &&
+        (r = pg_shader_module(gpu, "scene.vert", VK_SHADER_STAGE_VERTEX_BIT, defs, n, &vs, err)))
+        goto out;
     if ((r = fragment_module(gpu, d, defs, n, &fs, err))) goto out;
     const pg_vertex_input vin = scene_vertex_input(out->vertex_colors, out->uv1);
     pg_vertex_input vin_pos = vin; /* binding 0, location 0 alone */
@@ -113,7 +118,7 @@ pg_result pg_scene_draw_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     memcpy(gd.color_formats, d->color_formats, sizeof gd.color_formats);
     if ((r = pg_gfx_pipeline_create(gpu, &gd, pass->name, &out->opaque, err))) goto out;
     out->depth_equal = d->depth_equal;
-    if (has_mask && !d->blend && !d->depth_equal && PG_SCENE_OF(ctx)->n_draws - PG_SCENE_OF(ctx)->n_blend_draws > PG_SCENE_OF(ctx)->n_opaque_draws) {
+    if (masked) {
         defs[n++] = "PG_ALPHA_MASK";
         if ((r = fragment_module(gpu, d, defs, n, &fs_mask, err)))
             goto out;
