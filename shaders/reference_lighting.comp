@@ -278,6 +278,7 @@ void main()
     }
 #endif
     vec3 V = PG_VIEW_DIR(P);
+    PgLightMat lm = pg_light_mat(s.normal, V, s.shininess);
     vec3 cam = frame.camera_pos.xyz;
     float min_dist = frame.light_params.w;
     uint lid = gl_LocalInvocationIndex;
@@ -347,7 +348,7 @@ void main()
 #else
                 vec4 sp = vec4(0.0, 0.0, 0.0, 1.0);
 #endif
-                pg_accumulate_light(l, sp, cam, P, s.normal, V, s.shininess, min_dist, acc);
+                pg_accumulate_light(l, sp, cam, P, s.normal, V, lm, min_dist, acc);
             }
         }
         memoryBarrierShared();

@@ -96,7 +96,7 @@ vec3 pg_light_contribution(Surface s, uint li, vec3 cam, vec3 P, vec3 V, float i
     float R2 = L.pos_radius.w * L.pos_radius.w;
     PgShade one = pg_shade_zero();
     pg_accumulate_light_rel(L.pos_radius.xyz - cam, R2, pg_light_inv_r2(L.color.w * L.color.w), L.color.rgb,
-                            PG_SPOT_OF(li), P, s.normal, V, s.shininess, inv_md2, one);
+                            PG_SPOT_OF(li), P, s.normal, V, pg_light_mat(s.normal, V, s.shininess), inv_md2, one);
     return pg_shade_lights(s, one);
 }
 
@@ -199,7 +199,8 @@ vec3 pg_lc_light(Surface s, vec3 pos, float R, float Rf, vec3 color, vec4 spot, 
 {
     float R2 = R * R;
     PgShade one = pg_shade_zero();
-    pg_accumulate_light_rel(pos - cam, R2, pg_light_inv_r2(Rf * Rf), color, spot, P, s.normal, V, s.shininess, inv_md2,
+    pg_accumulate_light_rel(pos - cam, R2, pg_light_inv_r2(Rf * Rf), color, spot, P, s.normal, V,
+                            pg_light_mat(s.normal, V, s.shininess), inv_md2,
                             one);
     return pg_shade_lights(s, one);
 }
@@ -297,11 +298,12 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #endif
 #ifdef PG_HAS_LIGHTS
     float min_dist = frame.light_params.w;
+    PgLightMat lm = pg_light_mat(s.normal, V, s.shininess);
 #ifdef PG_CLUSTERED
     PG_COUNT(rec.y);
     for (uint k = 0u; k < rec.y; k++) {
         uint li = cluster_lights[rec.x + k];
-        pg_accumulate_light(lights[li], PG_SPOT_OF(li), cam, P, s.normal, V, s.shininess, min_dist, acc);
+        pg_accumulate_light(lights[li], PG_SPOT_OF(li), cam, P, s.normal, V, lm, min_dist, acc);
     }
 #elif defined(PG_LIGHTCUT)
     return pg_shade_final(s, acc, V) + pg_lightcut(s, P, V);
@@ -309,7 +311,7 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
     uint count = frame.counts.x;
     PG_COUNT(count);
     for (uint i = 0u; i < count; i++)
-        pg_accumulate_light(lights[i], PG_SPOT_OF(i), cam, P, s.normal, V, s.shininess, min_dist, acc);
+        pg_accumulate_light(lights[i], PG_SPOT_OF(i), cam, P, s.normal, V, lm, min_dist, acc);
 #endif
 #endif
     return pg_shade_final(s, acc, V);
@@ -399,6 +401,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
     if (lit) ci = pg_cluster_index(pg_cluster_coord(frag_xy, vec2(frame.counts.zw), view_depth, frame.clip.x,
                                                     frame.clip.y, grid), grid);
     vec3 V = lit ? PG_VIEW_DIR(P) : vec3(0.0, 0.0, 1.0);
+    PgLightMat lm = pg_light_mat(s.normal, V, s.shininess);
     bool pending = lit;
 #ifdef PG_TILE_SUBGROUPS
     uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; // a permutation of the tile
@@ -518,7 +521,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #else
                     vec4 sp = vec4(0.0, 0.0, 0.0, 1.0);
 #endif
-                    pg_accumulate_light_rel_select(a.xyz, b.w, a.w, b.rgb, sp, P, s.normal, V, s.shininess, inv_md2,
+                    pg_accumulate_light_rel_select(a.xyz, b.w, a.w, b.rgb, sp, P, s.normal, V, lm, inv_md2,
                                                    acc);
                 }
             }

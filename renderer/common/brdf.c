@@ -27,11 +27,16 @@ void pg_pbr_light(const float c[3], float att, const float L[3], const float N[3
     float ndl = fmaxf(dotf(N, L), 0.0f);
     float ndv = fmaxf(dotf(N, V), 0.0f);
     float h[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
-    float nh = dotf(N, h);
-    float nxh[3] = {N[1] * h[2] - N[2] * h[1], N[2] * h[0] - N[0] * h[2], N[0] * h[1] - N[1] * h[0]};
-    float q = dotf(nxh, nxh) + nh * nh * a2;
-    float num = a * dotf(h, h);
-    float den = ndl * sqrtf(ndv * ndv * (1.0f - a2) + a2) + ndv * sqrtf(ndl * ndl * (1.0f - a2) + a2);
+    float nh = dotf(N, h), hh = dotf(h, h), b2 = 1.0f - a2;
+    float q;
+    if (a2 >= PG_PBR_FAST_Q_A2) {
+        q = fmaxf(hh - nh * nh * b2, a2 * hh);
+    } else {
+        float nxh[3] = {N[1] * h[2] - N[2] * h[1], N[2] * h[0] - N[0] * h[2], N[0] * h[1] - N[1] * h[0]};
+        q = dotf(nxh, nxh) + nh * nh * a2;
+    }
+    float num = a * hh;
+    float den = ndl * sqrtf(ndv * ndv * b2 + a2) + ndv * sqrtf(ndl * ndl * b2 + a2);
     float qd = q * q * den;
     float spec = qd > 0.0f ? 0.5f * ndl * att * num * num / qd : 0.0f;
     float t = 1.0f - fminf(sqrtf(fmaxf(0.5f * dotf(V, h), 0.0f)), 1.0f);

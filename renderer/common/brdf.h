@@ -14,6 +14,7 @@ extern "C" {
 #endif
 
 #define PG_PBR_MIN_ROUGHNESS 0.045f /* lighting.glsl's clamp: roughness 0 would be a mirror */
+#define PG_PBR_FAST_Q_A2 0.0625f  /* lighting.glsl's: a^2 from which q = |h|^2 - (N.h)^2 (1 - a^2) */
 
 /* The three light sums of the pbr model (PgShade): the pixel's material multiplies them once. */
 typedef struct pg_pbr_sums {
