@@ -22,6 +22,7 @@ void pg_register_builtin_passes(pg_pass_registry *reg)
         &pg_pass_light_tree,
         &pg_pass_stochastic_lights,
         &pg_pass_environment_filter,
+        &pg_pass_environment_background,
         &pg_pass_geometry_animate,
         &pg_pass_shader,
     };

@@ -22,6 +22,7 @@ extern const pg_pass_type pg_pass_luminance_histogram;
 extern const pg_pass_type pg_pass_light_tree;
 extern const pg_pass_type pg_pass_stochastic_lights;
 extern const pg_pass_type pg_pass_environment_filter;
+extern const pg_pass_type pg_pass_environment_background;
 extern const pg_pass_type pg_pass_geometry_animate;
 extern const pg_pass_type pg_pass_shader;
 

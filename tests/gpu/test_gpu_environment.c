@@ -25,8 +25,10 @@
  *     filter run).
  *  5. models/mug.gltf under the neutral sky: naive within the split-sum bound of the reference at every
  *     pixel, silhouette pixels whose normal faces away from the eye included (silhouette()).
- *  6. Without an environment the filter pass is culled with its reason and the buffer is not
- *     allocated. */
+ *  6. The background (environment_background): every uncovered pixel is the environment toward its
+ *     view ray, covered pixels are untouched (background()).
+ *  7. Without an environment the filter and background passes are culled with their reason and the
+ *     buffer is not allocated. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -353,6 +355,95 @@ static void once(const pg_th_scene *l)
     pg_session_destroy(s);
 }
 
+/* The environment behind the scene (environment_background): naive with background=environment
+ * against background=none. Covered pixels are bit-identical (the pass leaves them alone); every
+ * uncovered pixel (0 without the background) is the environment toward its view ray: within
+ * BG_REL x + BG_ABS of the CPU's bilinear radiance of the source (pg_environment_radiance; the pass
+ * reads the 256x128 prefiltered level 0 filtered from it; this smooth sky agrees to 0.02%), away from
+ * the sky/ground edge (a step the two resamplings smear differently). Intensity 2 and a rotation are
+ * followed; an orthographic camera looking 31 degrees down sees one colour, the environment along
+ * its view axis (the ground). */
+#define BG_REL 0.01
+#define BG_ABS 0.002
+static void bg_check(const char *label, const pg_th_scene *l, const pg_frame_info *fi, double intensity, double rot,
+                     const pg_th_frame *with, const pg_th_frame *without)
+{
+    uint32_t n_bg = 0, n_cmp = 0, n_cov_diff = 0;
+    double worst = 0;
+    for (uint32_t y = 0; y < H; y++)
+        for (uint32_t x = 0; x < W; x++) {
+            size_t i = ((size_t)y * W + x) * 4;
+            const float *a = with->hdr + i, *b = without->hdr + i;
+            if (b[0] != 0 || b[1] != 0 || b[2] != 0) { /* a surface */
+                if (memcmp(a, b, 3 * sizeof(float))) n_cov_diff++;
+                continue;
+            }
+            n_bg++;
+            double o[3], e[3], d[3], dl = 0, u, v, want[3];
+            pg_th_pixel_ray(fi, x, y, o, e);
+            for (int k = 0; k < 3; k++) d[k] = e[k] - o[k], dl += d[k] * d[k];
+            for (int k = 0; k < 3; k++) d[k] /= sqrt(dl);
+            double dr[3] = {d[0] * cos(rot) - d[2] * sin(rot), d[1], d[0] * sin(rot) + d[2] * cos(rot)};
+            pg_env_dir_to_uv(dr, &u, &v);
+            if (fabs(v - 0.5) < 3.0 / ENV_H) continue; /* the horizon step */
+            pg_environment_radiance(l->scene->environment, 0, d, rot, intensity, want);
+            for (int c = 0; c < 3; c++) {
+                double use = fabs(a[c] - want[c]) / (BG_REL * want[c] + BG_ABS);
+                worst = fmax(worst, use);
+                if (use > 1)
+                    CHECK_MSG(0, "%s: background pixel (%u, %u) channel %d: %.5f, environment %.5f", label, x, y, c,
+                              a[c], want[c]);
+            }
+            n_cmp++;
+        }
+    printf("%s: %u background pixels (%u compared), bound usage %.3f (%.3g x + %.3g); covered pixels changed: %u\n",
+           label, n_bg, n_cmp, worst, BG_REL, BG_ABS, n_cov_diff);
+    CHECK_MSG(n_cmp > W * H / 10, "%s: only %u background pixels compared", label, n_cmp);
+    CHECK_MSG(n_cov_diff == 0, "%s: the background pass changed %u covered pixels", label, n_cov_diff);
+}
+
+static void background(void)
+{
+    pg_th_scene l;
+    if (!open_file("pbr/spheres.gltf", test_environment(), &l)) return;
+    pg_param_override with[2] = {{"hdr_format", "rgba32f"}, {"background", "environment"}};
+    pg_param_override without[2] = {{"hdr_format", "rgba32f"}, {"background", "none"}};
+    const struct { const char *label; float intensity, rot_deg, ortho; } cases[] = {
+        {"background", 1, 0, 0}, {"background x2, rotated 70 deg", 2, 70, 0}, {"background, orthographic", 1, 0, 6}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        pg_th_scene lc = l;
+        lc.fi.lights.env_intensity = cases[c].intensity;
+        lc.fi.lights.env_rotation = cases[c].rot_deg * (float)(M_PI / 180.0);
+        lc.fi.camera.ortho_height = cases[c].ortho;
+        if (cases[c].ortho > 0) { /* raised to look down past the horizon */
+            double dist = 0;
+            for (int k = 0; k < 3; k++) dist += pow(lc.fi.camera.target[k] - lc.fi.camera.position[k], 2);
+            lc.fi.camera.position[1] += (float)(0.6 * sqrt(dist));
+        }
+        pg_th_frame a, b;
+        if (!render(&lc, "pipelines/naive.json", with, 2, &a)) continue;
+        if (render(&lc, "pipelines/naive.json", without, 2, &b)) {
+            CHECK_MSG(strstr(a.order, "background") && !strstr(b.order, "background"), "%s: passes %s / %s",
+                      cases[c].label, a.order, b.order);
+            bg_check(cases[c].label, &lc, &lc.fi, cases[c].intensity, cases[c].rot_deg * M_PI / 180.0, &a, &b);
+            if (cases[c].ortho > 0) { /* one colour */
+                uint32_t other = 0;
+                const float *first = NULL;
+                for (size_t i = 0; i < (size_t)W * H; i++) {
+                    const float *p = b.hdr + 4 * i;
+                    if (p[0] != 0 || p[1] != 0 || p[2] != 0) continue;
+                    if (!first) first = a.hdr + 4 * i;
+                    else if (memcmp(first, a.hdr + 4 * i, 3 * sizeof(float))) other++;
+                }
+                CHECK_MSG(first && other == 0, "orthographic: %u background pixels differ from the first", other);
+            }
+            pg_th_release(&b);
+        }
+        pg_th_release(&a);
+    }
+    pg_th_scene_close(g_gpu, &l);
+}
+
 /* without an environment: the filter pass culled with its reason, the buffer not allocated; and a
  * transient "environment" resource refused */
 static void culled(void)
@@ -361,7 +452,8 @@ static void culled(void)
     if (!open_file("pbr/spheres.gltf", NULL, &l)) return;
     pg_th_frame f;
     if (render(&l, "pipelines/forward_plus.json", NULL, 0, &f)) {
-        CHECK_MSG(!strstr(f.order, "filter_environment"), "the filter ran without an environment: %s", f.order);
+        CHECK_MSG(!strstr(f.order, "filter_environment") && !strstr(f.order, "background"),
+                  "the filter or the background ran without an environment: %s", f.order);
         pg_th_release(&f);
     }
     char path[PG_PATH_MAX];
@@ -371,10 +463,10 @@ static void culled(void)
     pg_error err = {0};
     if (!pg_session_create(g_gpu, l.sg, &sd, &s, &err) && !pg_session_compile(s, 0, W, H, &err)) {
         for (uint32_t i = 0; i < s->plan->n_passes; i++)
-            if (!strcmp(s->plan->passes[i].name, "filter_environment")) {
-                printf("no environment: filter_environment culled: %s\n", s->plan->passes[i].cull_reason);
+            if (!strcmp(s->plan->passes[i].name, "filter_environment") || !strcmp(s->plan->passes[i].name, "background")) {
+                printf("no environment: %s culled: %s\n", s->plan->passes[i].name, s->plan->passes[i].cull_reason);
                 CHECK_MSG(s->plan->passes[i].culled && strstr(s->plan->passes[i].cull_reason, "no environment"),
-                          "filter_environment: culled %d (%s)", s->plan->passes[i].culled,
+                          "%s: culled %d (%s)", s->plan->passes[i].name, s->plan->passes[i].culled,
                           s->plan->passes[i].cull_reason);
             }
         for (uint32_t i = 0; i < s->plan->n_resources; i++)
@@ -441,6 +533,7 @@ int main(void)
         pg_th_scene_close(g_gpu, &l);
     }
     silhouette();
+    background();
     culled();
     printf("validation messages: %u\n", g_gpu->validation_messages);
     CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);

@@ -1,0 +1,126 @@
+/* environment_background.c - compute pass: the environment behind the scene. Every pixel that no
+ * surface covered (depth still 1) gets the environment's radiance toward its view ray, from the
+ * filtered environment's sharpest level (shaders/environment_background.comp); covered pixels keep
+ * the shading pass's colour. It runs after the opaque shading and before the transparent pass, so
+ * glass blends over the sky as a viewer shows it.
+ * Slots: reads [depth (sampled), environment (the filtered buffer, environment_filter)],
+ * writes [hdr (rgba16f or rgba32f storage image, read and written: only background pixels change)].
+ * Skipped (the graph culls it, with the reason) when the scene has no environment light, or under a
+ * debug view. Options: "view" (the pipeline's debug view; default "none"). */
+#include <stdio.h>
+
+#include "environment_layout.h"
+#include "frame.h"
+#include "pass_api.h"
+#include "pass_set.h"
+#include "scene_vars.h"
+#include "shading_common.h"
+#include "shader.h"
+#include "vk_pipeline.h"
+
+typedef struct eb_params {
+    pg_slot depth, environment, hdr;
+} eb_params;
+
+typedef struct environment_background {
+    pg_pass_set set;
+    VkSampler sampler;
+    VkPipelineLayout layout;
+    VkPipeline pipeline;
+    uint32_t width, height;
+} environment_background;
+
+static pg_result eb_check_hdr(const pg_declare_in *in, pg_slot s, pg_error *err)
+{
+    char where[32];
+    const pg_resource_desc *rd = pg_decl_slot_resource(in, s, PG_RES_IMAGE, where, sizeof where);
+    if (rd && rd->format != PG_FMT_RGBA16F && rd->format != PG_FMT_RGBA32F)
+        return pg_fail(err, PG_ERR_FORMAT,
+                       "%s: %s.%s: pass '%s' slot hdr: the background is written to an rgba16f or rgba32f image, not "
+                       "%s (resource '%s')",
+                       in->desc->file, in->desc->json_path, where, in->desc->name, pg_format_get(rd->format)->name,
+                       rd->name);
+    return PG_OK;
+}
+
+static pg_result eb_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
+{
+    static const char *const known[] = {"view", NULL};
+    pg_result r = pg_opt_check_known(in->desc, known, err);
+    if (r) return r;
+    int view = 0;
+    if ((r = pg_opt_enum(in->desc, "view", pg_debug_views, 0, &view, err))) return r;
+    eb_params *p = pg_decl_params(out, sizeof *p);
+    p->depth = pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_DEPTH);
+    p->environment = pg_decl_read(out, "environment", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
+    p->hdr = pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_RW, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
+    if ((r = eb_check_hdr(in, p->hdr, err))) return r;
+    if (!pg_scene_features_of(in).has_environment) {
+        pg_decl_skip(out, "no environment light in the scene: the background stays black");
+        return PG_OK;
+    }
+    if (view != 0) {
+        pg_decl_skip(out, "debug view '%s': no background", pg_debug_views[view]);
+        return PG_OK;
+    }
+    pg_decl_explain(out, "the environment (its 256x128 sharpest level, x intensity, rotated) where no surface was drawn");
+    return PG_OK;
+}
+
+static pg_result eb_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
+{
+    environment_background *p = self;
+    pg_gpu *gpu = ctx->gpu;
+    const eb_params *pa = PG_PARAMS(ctx, eb_params);
+    const pg_phys_resource *hdr = pg_ctx_res(ctx, pa->hdr);
+    pg_result r;
+    p->width = hdr->width;
+    p->height = hdr->height;
+    if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
+    pg_set_binding b[3] = {
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pg_ctx_res(ctx, pa->depth), p->sampler, 0},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, pa->environment), VK_NULL_HANDLE, 0},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hdr, VK_NULL_HANDLE, 0},
+    };
+    if ((r = pg_pass_set_create(gpu, 3, b, ctx->pass->name, &p->set, err))) return r;
+    VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
+    if ((r = pg_pipeline_layout_create(gpu, 2, sets, 0, &p->layout, err))) return r;
+    char fmt_def[48];
+    snprintf(fmt_def, sizeof fmt_def, "PG_HDR_FORMAT=%s", pg_format_get(hdr->pg_fmt)->name);
+    const char *defs[1] = {fmt_def};
+    VkShaderModule cs;
+    if ((r = pg_shader_module(gpu, "environment_background.comp", VK_SHADER_STAGE_COMPUTE_BIT, defs, 1, &cs, err)))
+        return r;
+    r = pg_compute_pipeline_create(gpu, p->layout, cs, ctx->pass->name, &p->pipeline, err);
+    vkDestroyShaderModule(gpu->device, cs, NULL);
+    return r;
+}
+
+static void eb_record(void *self, const pg_pass_record_ctx *ctx)
+{
+    environment_background *p = self;
+    VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
+    vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
+    vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 2, sets, 0, NULL);
+    vkCmdDispatch(ctx->cmd, (p->width + 7) / 8, (p->height + 7) / 8, 1);
+}
+
+static void eb_destroy(void *self, pg_gpu *gpu)
+{
+    environment_background *p = self;
+    if (p->pipeline) vkDestroyPipeline(gpu->device, p->pipeline, NULL);
+    if (p->layout) vkDestroyPipelineLayout(gpu->device, p->layout, NULL);
+    if (p->sampler) vkDestroySampler(gpu->device, p->sampler, NULL);
+    pg_pass_set_destroy(gpu, &p->set);
+}
+
+const pg_pass_type pg_pass_environment_background = {
+    .name = "environment_background",
+    .summary = "compute: the environment light behind the scene, where no surface was drawn",
+    .instance_size = sizeof(environment_background),
+    .params_size = sizeof(eb_params),
+    .declare = eb_declare,
+    .create = eb_create,
+    .record = eb_record,
+    .destroy = eb_destroy,
+};
