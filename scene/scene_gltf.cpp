@@ -241,14 +241,38 @@ static void parse_json(Ctx &c, const RawFile &f)
  * fallback buffers are not loaded: tinygltf would look for a file (or refuse a missing uri), so
  * it gets a copy of the file in which each is a 4-byte data URI (never read: only compressed
  * bufferViews use it, and those are read from their decoded data); Draco indices accessors
- * without a bufferView get one (see prevalidate). A GLB keeps its BIN chunk after the new JSON. */
+ * without a bufferView get one (see prevalidate); animation targets without a node get one
+ * (nodeless_targets). A GLB keeps its BIN chunk after the new JSON. */
+/* The animation channel targets without a "node" (KHR_animation_pointer's), as (animation,
+ * channel): tinygltf 2.7 drops such a channel, so the copy it reads gives each "node": 0 (unused: the
+ * pointer names the target, scene_gltf_anim.cpp channel_target). */
+static std::vector<std::pair<size_t, size_t>> nodeless_targets(const json &j)
+{
+    std::vector<std::pair<size_t, size_t>> out;
+    const auto an = j.find("animations");
+    if (an == j.end() || !an->is_array()) return out;
+    for (size_t ai = 0; ai < an->size(); ai++) {
+        const json &a = (*an)[ai];
+        const auto ch = a.is_object() ? a.find("channels") : a.end();
+        if (!a.is_object() || ch == a.end() || !ch->is_array()) continue;
+        for (size_t ci = 0; ci < ch->size(); ci++) {
+            const json &c = (*ch)[ci];
+            const auto t = c.is_object() ? c.find("target") : c.end();
+            if (c.is_object() && t != c.end() && t->is_object() && !t->contains("node")) out.emplace_back(ai, ci);
+        }
+    }
+    return out;
+}
+
 static std::vector<unsigned char> rewrite_for_tinygltf(const Ctx &c, const unsigned char *bytes)
 {
     std::vector<unsigned char> rewritten;
+    const std::vector<std::pair<size_t, size_t>> nodeless = nodeless_targets(c.j);
     if (std::find(c.buffer_no_data.begin(), c.buffer_no_data.end(), 1) == c.buffer_no_data.end() &&
-        c.draco_index_fix.empty())
+        c.draco_index_fix.empty() && nodeless.empty())
         return rewritten;
     json j2 = c.j;
+    for (const auto &nc : nodeless) j2["animations"][nc.first]["channels"][nc.second]["target"]["node"] = 0;
     for (const auto &fx : c.draco_index_fix)
         j2["accessors"][size_t(fx.first)]["bufferView"] = fx.second;
     for (size_t i = 0; i < c.buffer_no_data.size(); i++)

@@ -22,6 +22,37 @@ static pg_anim_path channel_path(const std::string &p, bool *known)
     return PG_ANIM_TRANSLATION;
 }
 
+/* A channel's target node and path: target.node and target.path, or with target.path "pointer" the
+ * KHR_animation_pointer JSON pointer "/nodes/N/translation|rotation|scale|weights" (the same
+ * animation). false: another pointer (a material, light or camera property: *pointer names it, for
+ * the warning) or an unknown path. A pointer that is not a string is refused. */
+static bool channel_target(const tinygltf::AnimationChannel &ch, const std::string &cw, int *node, pg_anim_path *path,
+                           std::string *pointer)
+{
+    bool known = false;
+    *node = ch.target_node;
+    pointer->clear();
+    if (ch.target_path != "pointer") {
+        *path = channel_path(ch.target_path, &known);
+        return known && *node >= 0;
+    }
+    const auto ext = ch.target_extensions.find("KHR_animation_pointer");
+    if (ext == ch.target_extensions.end() || !ext->second.IsObject() || !ext->second.Has("pointer") ||
+        !ext->second.Get("pointer").IsString())
+        gfail(cw + ".target: path 'pointer' without a KHR_animation_pointer extension giving a \"pointer\" string");
+    *pointer = ext->second.Get("pointer").Get<std::string>();
+    const std::string pre = "/nodes/";
+    if (pointer->compare(0, pre.size(), pre) != 0) return false;
+    size_t i = pre.size(), j = i;
+    while (j < pointer->size() && j - i < 10 && (*pointer)[j] >= '0' && (*pointer)[j] <= '9') j++;
+    if (j == i || j >= pointer->size() || (*pointer)[j] != '/' || (j - i > 1 && (*pointer)[i] == '0')) return false;
+    const unsigned long n = strtoul(pointer->c_str() + i, nullptr, 10);
+    if (n > 0x7fffffffUL) return false;
+    *path = channel_path(pointer->substr(j + 1), &known);
+    *node = int(n);
+    return known;
+}
+
 void anim_prepare(Ctx &c)
 {
     const tinygltf::Model &md = c.model;
@@ -34,14 +65,16 @@ void anim_prepare(Ctx &c)
         const auto &an = md.animations[ai];
         for (size_t ci = 0; ci < an.channels.size(); ci++) {
             const auto &ch = an.channels[ci];
-            bool known = false;
-            const pg_anim_path path = channel_path(ch.target_path, &known);
-            if (!known || ch.target_node < 0) continue; /* counted at hand-out */
-            if (size_t(ch.target_node) >= md.nodes.size())
-                gfail(strf("animations[%zu].channels[%zu].target.node: %d out of range (%zu nodes)", ai, ci,
-                           ch.target_node, md.nodes.size()));
-            if (path != PG_ANIM_WEIGHTS && md.nodes[size_t(ch.target_node)].matrix.size() != 16)
-                c.node_animated[size_t(ch.target_node)] = 1;
+            const std::string cw = strf("animations[%zu].channels[%zu]", ai, ci);
+            int node = -1;
+            pg_anim_path path = PG_ANIM_TRANSLATION;
+            std::string pointer;
+            if (!channel_target(ch, cw, &node, &path, &pointer)) continue; /* counted at hand-out */
+            if (size_t(node) >= md.nodes.size())
+                gfail(strf("%s.target.%s%d out of range (%zu nodes)", cw.c_str(),
+                           pointer.empty() ? "node: " : "extensions.KHR_animation_pointer.pointer: node ", node,
+                           md.nodes.size()));
+            if (path != PG_ANIM_WEIGHTS && md.nodes[size_t(node)].matrix.size() != 16) c.node_animated[size_t(node)] = 1;
         }
     }
     c.skin_slot_base.assign(md.skins.size(), 0);
@@ -321,10 +354,13 @@ static bool hand_out_channel(Ctx &c, const pg_scene_anim *a, size_t ai, size_t c
     const tinygltf::Animation &an = c.model.animations[ai];
     const tinygltf::AnimationChannel &ch = an.channels[ci];
     const std::string cw = strf("animations[%zu].channels[%zu]", ai, ci);
-    bool known = false;
-    C.path = channel_path(ch.target_path, &known);
-    if (!known || ch.target_node < 0) return false;
-    C.node = uint32_t(ch.target_node);
+    int node = -1;
+    std::string pointer;
+    if (!channel_target(ch, cw, &node, &C.path, &pointer)) {
+        if (!pointer.empty()) c.ignored_pointers.push_back(pointer);
+        return false;
+    }
+    C.node = uint32_t(node);
     if (C.path != PG_ANIM_WEIGHTS && a->nodes[C.node].has_matrix) return false; /* glTF forbids: ignored */
     if (C.path == PG_ANIM_WEIGHTS && a->nodes[C.node].n_weights == 0) return false; /* not a drawn morph */
     if (ch.sampler < 0 || size_t(ch.sampler) >= an.samplers.size())
@@ -348,7 +384,7 @@ static bool hand_out_channel(Ctx &c, const pg_scene_anim *a, size_t ai, size_t c
     if (out.type != want_type || out.count * comps != in.count * per_key)
         gfail(strf("%s.output: accessors[%d] must be %s with %zu elements for %zu keys of '%s' (got %s, %zu)",
                    sw.c_str(), out.index, type_name(want_type), in.count * per_key / comps, in.count,
-                   ch.target_path.c_str(), type_name(out.type), out.count));
+                   pointer.empty() ? ch.target_path.c_str() : pointer.c_str(), type_name(out.type), out.count));
     C.times = static_cast<float *>(malloc(in.count * sizeof(float)));
     C.values = static_cast<float *>(malloc(in.count * per_key * sizeof(float)));
     if (!C.times || !C.values) throw std::bad_alloc();

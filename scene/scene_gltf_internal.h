@@ -102,6 +102,7 @@ struct Ctx {
     bool influences8 = false;   /* a vertex weighs a joint of JOINTS_1 */
     unsigned unskinned_prims = 0; /* drawn primitives of a node with a skin but no JOINTS_0/WEIGHTS_0 */
     unsigned ignored_channels = 0;
+    std::vector<std::string> ignored_pointers; /* KHR_animation_pointer targets not animated */
 };
 
 /* column-major 4x4, double */

@@ -8,7 +8,8 @@
  *  - skinned8.gltf: 8 joints a vertex (JOINTS_1/WEIGHTS_1): the top rings weigh 8 joints 1/8 each,
  *    4 of them rising by 2 (the rings rise by 1; by 0 if the second set were dropped);
  *  - morph.gltf: a cube with two morph targets (one a sparse accessor), mesh default weights
- *    [0.25, 0] and a LINEAR weights channel.
+ *    [0.25, 0] and a LINEAR weights channel;
+ *  - pointer.gltf: rigid.gltf's animations through KHR_animation_pointer: the same poses.
  * Every position within 1e-5 of the hand value; the loop, the rest pose, --animation lookup, the
  * scene bounds following the pose, and files whose animation data is broken (refused naming the
  * object). */
@@ -89,6 +90,36 @@ static void rigid(void)
     char line[256];
     CHECK(pg_anim_describe(s, 0, 5, line, sizeof line) && strstr(line, "'spin'") && strstr(line, "t = 1 s"));
     pg_scene_free(s);
+}
+
+/* pointer.gltf: rigid.gltf's animations with KHR_animation_pointer targets (/nodes/N/path): every
+ * vertex of every moving primitive equal, bit for bit, at every time of both animations; its
+ * channel on a material's baseColorFactor is ignored with one warning naming the pointer */
+static void pointer(void)
+{
+    pg_scene *p = load("pointer.gltf"), *r = load("rigid.gltf");
+    if (p && r) {
+        CHECK(p->anim->n_animations == 2 && p->anim->animations[0].n_channels == 3 &&
+              p->anim->animations[1].n_channels == 1 && p->n_vertices == r->n_vertices);
+        uint32_t differ = 0;
+        for (int a = 0; a < 2; a++)
+            for (double t = 0; t <= 4.0; t += 0.25) {
+                pg_error err = {0};
+                CHECK(pg_scene_pose(p, a, t, &err) == PG_OK && pg_scene_pose(r, a, t, &err) == PG_OK);
+                for (uint32_t v = 0; v < p->n_vertices && p->n_vertices == r->n_vertices; v++)
+                    differ += memcmp(p->vertices[v].position, r->vertices[v].position, sizeof(float[3])) != 0;
+            }
+        CHECK_MSG(differ == 0, "pointer.gltf: %u vertex poses differ from rigid.gltf's", differ);
+        uint32_t lines = 0;
+        for (uint32_t i = 0; i < p->n_warnings; i++)
+            lines += strstr(p->warnings[i], "KHR_animation_pointer: 1 channel ignored "
+                                            "(/materials/1/pbrMetallicRoughness/baseColorFactor)") != NULL;
+        CHECK_MSG(lines == 1 && p->n_warnings == 1, "pointer.gltf: %u warnings, %u naming the material pointer",
+                  p->n_warnings, lines);
+        printf("pointer.gltf: the same poses as rigid.gltf at 34 times; %s\n", p->n_warnings ? p->warnings[0] : "");
+    }
+    pg_scene_free(p);
+    pg_scene_free(r);
 }
 
 static void skinned(void)
@@ -205,7 +236,16 @@ static void refused(void)
         {"\"WEIGHTS_1\": 6", "\"TEXCOORD_5\": 6", "JOINTS_1 without WEIGHTS_1"},
         {"\"JOINTS_1\": 5,", "\"JOINTS_1\": 4,", "JOINTS_1 must be VEC4 UNSIGNED_BYTE or UNSIGNED_SHORT"},
     };
+    static const char *const pointer_cases[][3] = {
+        {"\"pointer\": \"/nodes/1/rotation\"", "\"pointer\": \"/nodes/99/rotation\"",
+         "channels[0].target.extensions.KHR_animation_pointer.pointer: node 99 out of range"},
+        {"\"pointer\": \"/nodes/1/rotation\"", "\"pointr\": \"/nodes/1/rotation\"",
+         "channels[0].target: path 'pointer' without a KHR_animation_pointer extension giving a \"pointer\" string"},
+        {"\"pointer\": \"/nodes/1/rotation\"", "\"pointer\": 7",
+         "channels[0].target: path 'pointer' without a KHR_animation_pointer extension giving a \"pointer\" string"},
+    };
     refused_in("rigid.gltf", 3, rigid_cases);
+    refused_in("pointer.gltf", 3, pointer_cases);
     refused_in("skinned.gltf", 2, skin_cases);
     refused_in("skinned8.gltf", 2, skin8_cases);
 }
@@ -213,6 +253,7 @@ static void refused(void)
 int main(void)
 {
     rigid();
+    pointer();
     skinned();
     skinned8();
     morph();

@@ -141,14 +141,21 @@ class Doc:
         self.d["materials"].append(m)
         return len(self.d["materials"]) - 1
 
-    def animation(self, name, channels):
-        """channels: (node, path, interpolation, times, output rows)"""
+    def animation(self, name, channels, pointer=False):
+        """channels: (node, path, interpolation, times, output rows); pointer: targets given as
+        KHR_animation_pointer JSON pointers (/nodes/N/path), and a node of None takes `path` as the
+        pointer itself with VEC4 values (e.g. a material's baseColorFactor)"""
         anim = {"name": name, "channels": [], "samplers": []}
         for node, path, interp, t, rows in channels:
-            typ = {"translation": "VEC3", "scale": "VEC3", "rotation": "VEC4", "weights": "SCALAR"}[path]
+            typ = {"translation": "VEC3", "scale": "VEC3", "rotation": "VEC4", "weights": "SCALAR"}.get(path, "VEC4")
             out = self.accessor(floats(rows), FLOAT, len(rows), typ)
             anim["samplers"].append({"input": self.times(t), "interpolation": interp, "output": out})
-            anim["channels"].append({"sampler": len(anim["samplers"]) - 1, "target": {"node": node, "path": path}})
+            if pointer:
+                ptr = path if node is None else "/nodes/%d/%s" % (node, path)
+                target = {"path": "pointer", "extensions": {"KHR_animation_pointer": {"pointer": ptr}}}
+            else:
+                target = {"node": node, "path": path}
+            anim["channels"].append({"sampler": len(anim["samplers"]) - 1, "target": target})
         self.d.setdefault("animations", []).append(anim)
 
     def floor(self):
@@ -188,6 +195,43 @@ def rigid():
          [(0, 0, 0), half, (0, 0, 0), tan, one, tan, (0, 0, 0), half, (0, 0, 0)])])
     doc.animation("bounce", [(spinner, "translation", "LINEAR", [0, 1], [(0, 0.5, 0), (0, 2, 0)])])
     doc.write()
+
+
+def pointer():
+    """rigid.gltf's two animations with every target a KHR_animation_pointer (/nodes/N/path), and a
+    channel animating a material's baseColorFactor that passgraph ignores (and warns about)"""
+    doc = Doc("pointer.gltf")
+    doc.d["extensionsUsed"] = ["KHR_animation_pointer"]
+    doc.floor()
+    red = doc.material("box_red", (0.8, 0.15, 0.1))
+    cube = doc.mesh("box", *UNIT_BOX, red)
+    spinner = doc.node({"name": "spinner", "mesh": cube, "translation": [0, 0.5, 0], "children": [2]})
+    satellite = doc.node({"name": "satellite", "mesh": cube, "translation": [1.5, 0, 0],
+                          "scale": [0.5, 0.5, 0.5]}, root=False)
+    assert (spinner, satellite, red) == (1, 2, 1)
+    half, one, tan = (0.5, 0.5, 0.5), (1, 1, 1), (0.25, 0.25, 0.25)
+    doc.animation("spin", [
+        (spinner, "rotation", "LINEAR", [0, 1, 2, 3, 4], [quat_axis((0, 1, 0), a) for a in (0, 90, 180, 270, 360)]),
+        (spinner, "translation", "STEP", [0, 2], [(0, 0.5, 0), (2, 0.5, 0)]),
+        (satellite, "scale", "CUBICSPLINE", [0, 2, 4],
+         [(0, 0, 0), half, (0, 0, 0), tan, one, tan, (0, 0, 0), half, (0, 0, 0)]),
+        (None, "/materials/1/pbrMetallicRoughness/baseColorFactor", "LINEAR", [0, 4],
+         [(0.8, 0.15, 0.1, 1), (0.1, 0.15, 0.8, 1)])], pointer=True)
+    doc.animation("bounce", [(spinner, "translation", "LINEAR", [0, 1], [(0, 0.5, 0), (0, 2, 0)])], pointer=True)
+    doc.write()
+
+
+def target_of(c):
+    """(node, path) of an animation channel, KHR_animation_pointer's /nodes/N/path included; (None,
+    pointer) for another pointer"""
+    t = c["target"]
+    if t["path"] != "pointer":
+        return t["node"], t["path"]
+    ptr = t["extensions"]["KHR_animation_pointer"]["pointer"]
+    parts = ptr.split("/")
+    if len(parts) == 4 and parts[1] == "nodes":
+        return int(parts[2]), parts[3]
+    return None, ptr
 
 
 def tube(h, rings, dy):
@@ -382,11 +426,14 @@ class Gltf:
         for anim in d.get("animations", []):
             for c in anim["channels"]:
                 smp = anim["samplers"][c["sampler"]]
-                node = d["nodes"][c["target"]["node"]]
+                node_i, path = target_of(c)
                 t = [r[0] for r in self.read(smp["input"])]
                 assert "min" in d["accessors"][smp["input"]] and all(t[k] < t[k + 1] for k in range(len(t) - 1))
                 per = 3 if smp.get("interpolation") == "CUBICSPLINE" else 1
-                if c["target"]["path"] == "weights":
+                if node_i is None:
+                    continue
+                node = d["nodes"][node_i]
+                if path == "weights":
                     per *= len(d["meshes"][node["mesh"]]["primitives"][0]["targets"])
                 assert d["accessors"][smp["output"]]["count"] == len(t) * per
 
@@ -459,7 +506,9 @@ def pose(g, anim, t):
     if anim is not None:
         a = d["animations"][anim]
         for c in a["channels"]:
-            path, node = c["target"]["path"], c["target"]["node"]
+            node, path = target_of(c)
+            if node is None:
+                continue
             width = {"translation": 3, "scale": 3, "rotation": 4, "weights": len(local[node]["weights"])}[path]
             local[node][path] = sample(g, a["samplers"][c["sampler"]], path, t, width)
     world = [None] * len(d["nodes"])
@@ -513,6 +562,10 @@ POSES = [
     ("rigid.gltf", 1, 10, 1, 0.5, (0.5, 1.75, 0.5)),                # bounce: spinner at y 1.25
     ("rigid.gltf", 1, 10, 1, 1.0, (0.5, 2.5, 0.5)),
     ("rigid.gltf", 1, 10, None, 0.0, (0.5, 1.0, 0.5)),
+    ("pointer.gltf", 1, 10, 0, 1.0, (0.5, 1.0, -0.5)),              # rigid.gltf's, by pointers
+    ("pointer.gltf", 1, 10, 0, 2.0, (1.5, 1.0, -0.5)),
+    ("pointer.gltf", 2, 10, 0, 1.0, (0.34375, 0.84375, -1.84375)),
+    ("pointer.gltf", 1, 10, 1, 0.5, (0.5, 1.75, 0.5)),
     ("skinned.gltf", 3, 17, 0, 0.0, (0.2, 2.0, 0.2)),               # the mesh node's (5, 0, 0) ignored
     ("skinned.gltf", 3, 17, 0, 0.5, (-0.8 * R2, 1 + 1.2 * R2, 0.2)),
     ("skinned.gltf", 3, 17, 0, 1.0, (-1.0, 1.2, 0.2)),
@@ -615,13 +668,14 @@ def check_poses():
 
 
 rigid()
+pointer()
 skinned()
 skinned8()
 morph()
 lamp()
 lantern()
 glass()
-for f in ("rigid.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf", "glass.gltf"):
+for f in ("rigid.gltf", "pointer.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf", "glass.gltf"):
     Gltf(f).check()
 check_poses()
-print("rigid.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf glass.gltf: written and checked (%d poses)" % len(POSES))
+print("rigid.gltf pointer.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf glass.gltf: written and checked (%d poses)" % len(POSES))
