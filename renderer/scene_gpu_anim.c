@@ -180,7 +180,8 @@ static pg_result find_moving_lights(const pg_scene *scene, pg_scene_gpu_anim *ga
     if (!moving) return pg_fail(err, PG_ERR_OOM, "out of memory");
     for (uint32_t i = 0; i < scene->n_lights; i++) {
         const int32_t n = scene->lights[i].gltf_node;
-        if (n >= 0 && (uint32_t)n < a->n_nodes && moving[n]) ga->n_moving_lights++;
+        if ((n >= 0 && (uint32_t)n < a->n_nodes && moving[n]) || pg_anim_light_animated(a, scene->lights[i].gltf_light))
+            ga->n_moving_lights++;
     }
     if (ga->n_moving_lights) {
         ga->moving_light = calloc(ga->n_moving_lights, sizeof *ga->moving_light);
@@ -192,7 +193,8 @@ static pg_result find_moving_lights(const pg_scene *scene, pg_scene_gpu_anim *ga
         uint32_t k = 0;
         for (uint32_t i = 0; i < scene->n_lights; i++) {
             const int32_t n = scene->lights[i].gltf_node;
-            if (n < 0 || (uint32_t)n >= a->n_nodes || !moving[n]) continue;
+            const bool placed = n >= 0 && (uint32_t)n < a->n_nodes && moving[n];
+            if (!placed && !pg_anim_light_animated(a, scene->lights[i].gltf_light)) continue;
             ga->moving_light[k] = i;
             ga->moving_rest[k++] = scene->lights[i];
         }
@@ -228,6 +230,7 @@ void pg_scene_gpu_anim_update_lights(const pg_scene_gpu_anim *ga, VkBuffer table
         double m[16];
         pg_mat4_widen(pose->node_world + (size_t)L.gltf_node * 16, m);
         pg_place_light(m, &L);
+        pg_anim_light_props(ga->anim, pose, &L); /* KHR_animation_pointer: colour, intensity, range, cones */
         pg_gpu_file_light rec;
         pg_gpu_file_light_from(&L, &rec);
         vkCmdUpdateBuffer(cmd, table, (VkDeviceSize)ga->moving_light[k] * sizeof rec, sizeof rec, &rec);

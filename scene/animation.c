@@ -32,6 +32,8 @@ void pg_scene_anim_free(pg_scene_anim *a)
     free(a->joints);
     free(a->weights);
     free(a->deltas);
+    free(a->light_animated);
+    free(a->light_rest);
     free(a);
 }
 
@@ -41,6 +43,7 @@ pg_result pg_anim_pose_alloc(const pg_scene_anim *a, pg_anim_pose *out, pg_error
     out->node_world = calloc((size_t)a->n_nodes * 16 + 16, sizeof(float));
     out->joints = calloc((size_t)a->n_joint_slots * 16 + 16, sizeof(float));
     out->weights = calloc((size_t)a->n_weights + 1, sizeof(float));
+    out->lights = calloc((size_t)a->n_lights + 1, sizeof *out->lights);
     const size_t nn = (size_t)a->n_nodes + 1;
     out->work.t = malloc(sizeof *out->work.t * nn);
     out->work.r = malloc(sizeof *out->work.r * nn);
@@ -48,7 +51,7 @@ pg_result pg_anim_pose_alloc(const pg_scene_anim *a, pg_anim_pose *out, pg_error
     out->work.local = malloc(sizeof(float) * 16 * nn);
     out->work.stack = malloc(sizeof(uint32_t) * nn);
     out->work.done = malloc(nn);
-    if (!out->node_world || !out->joints || !out->weights || !out->work.t || !out->work.r || !out->work.s ||
+    if (!out->node_world || !out->joints || !out->weights || !out->lights || !out->work.t || !out->work.r || !out->work.s ||
         !out->work.local || !out->work.stack || !out->work.done) {
         pg_anim_pose_release(out);
         return pg_fail(err, PG_ERR_OOM, "animation pose: out of memory");
@@ -61,6 +64,7 @@ void pg_anim_pose_release(pg_anim_pose *p)
     free(p->node_world);
     free(p->joints);
     free(p->weights);
+    free(p->lights);
     free(p->work.t);
     free(p->work.r);
     free(p->work.s);
@@ -181,12 +185,33 @@ double pg_anim_local_time(const pg_scene_anim *a, int animation, double time)
 }
 
 /* apply one animation's channels at t to the local TRS arrays / weights */
+/* offset of a light channel's value in a pose's light properties, -1 for a node channel */
+static int light_prop_offset(pg_anim_path p)
+{
+    switch (p) {
+    case PG_ANIM_LIGHT_COLOR: return 0;
+    case PG_ANIM_LIGHT_INTENSITY: return 3;
+    case PG_ANIM_LIGHT_RANGE: return 4;
+    case PG_ANIM_SPOT_INNER: return 5;
+    case PG_ANIM_SPOT_OUTER: return 6;
+    default: return -1;
+    }
+}
+
 static void apply_animation(const pg_scene_anim *a, const pg_animation *an, double t, float (*T)[3], float (*R)[4],
-                            float (*S)[3], float *weights)
+                            float (*S)[3], float *weights, float (*lights)[PG_ANIM_LIGHT_PROPS])
 {
     float v[4];
     for (uint32_t c = 0; c < an->n_channels; c++) {
         const pg_anim_channel *ch = &an->channels[c];
+        const int lo = light_prop_offset(ch->path);
+        if (lo >= 0) { /* the loader made width 3 for the colour, 1 for the rest */
+            if (ch->node < a->n_lights && ch->width == (lo == 0 ? 3u : 1u)) {
+                channel_sample(ch, t, v);
+                memcpy(&lights[ch->node][lo], v, ch->width * sizeof(float));
+            }
+            continue;
+        }
         if (ch->node >= a->n_nodes) continue;
         if (ch->path == PG_ANIM_WEIGHTS) { /* the loader made width the node's weight count */
             const pg_anim_node *nd = &a->nodes[ch->node];
@@ -235,11 +260,13 @@ void pg_anim_pose_eval(const pg_scene_anim *a, int animation, double time, pg_an
         memcpy(S[i], a->nodes[i].scale, sizeof S[i]);
     }
     if (a->n_weights) memcpy(pose->weights, a->rest_weights, a->n_weights * sizeof(float));
+    if (a->n_lights) memcpy(pose->lights, a->light_rest, a->n_lights * sizeof *pose->lights);
     const double t = pg_anim_local_time(a, animation, time);
     if (animation == PG_ANIM_ALL) {
-        for (uint32_t k = 0; k < a->n_animations; k++) apply_animation(a, &a->animations[k], t, T, R, S, pose->weights);
+        for (uint32_t k = 0; k < a->n_animations; k++)
+            apply_animation(a, &a->animations[k], t, T, R, S, pose->weights, pose->lights);
     } else if (animation >= 0 && (uint32_t)animation < a->n_animations) {
-        apply_animation(a, &a->animations[animation], t, T, R, S, pose->weights);
+        apply_animation(a, &a->animations[animation], t, T, R, S, pose->weights, pose->lights);
     }
     for (uint32_t i = 0; i < nn; i++) {
         if (a->nodes[i].has_matrix) memcpy(local + (size_t)i * 16, a->nodes[i].matrix, 16 * sizeof(float));
@@ -255,6 +282,36 @@ void pg_anim_pose_eval(const pg_scene_anim *a, int animation, double time, pg_an
             else memcpy(out, sk->inverse_bind[j], 16 * sizeof(float));
         }
     }
+}
+
+/* ---- light properties (KHR_animation_pointer) ---- */
+
+bool pg_anim_light_animated(const pg_scene_anim *a, int gltf_light)
+{
+    return a && gltf_light >= 0 && (uint32_t)gltf_light < a->n_lights && a->light_animated[gltf_light];
+}
+
+static float clampf_(float x, float lo, float hi)
+{
+    return x >= lo ? (x <= hi ? x : hi) : lo; /* NaN -> lo */
+}
+
+bool pg_anim_light_props(const pg_scene_anim *a, const pg_anim_pose *pose, pg_scene_light *L)
+{
+    if (!pg_anim_light_animated(a, L->gltf_light)) return false;
+    const float *p = pose->lights[L->gltf_light];
+    for (int k = 0; k < 3; k++) L->color[k] = clampf_(p[k], 0.0f, 3.4e38f);
+    L->intensity = clampf_(p[3], 0.0f, 1e30f);
+    if (L->type != PG_LIGHT_DIRECTIONAL) /* a range that reaches 0 stays a tiny one, not "none given" */
+        L->range = a->light_rest[L->gltf_light][4] > 0 || p[4] != a->light_rest[L->gltf_light][4]
+                       ? clampf_(p[4], 1e-6f, 1e30f)
+                       : 0.0f;
+    if (L->type == PG_LIGHT_SPOT) {
+        const float outer = clampf_(p[6], 1e-6f, 1.5707963f);
+        L->outer_cone = outer;
+        L->inner_cone = fminf(clampf_(p[5], 0.0f, outer), outer * (1.0f - 1e-6f));
+    }
+    return true;
 }
 
 /* ---- deformation ---- */

@@ -43,8 +43,17 @@ typedef enum pg_anim_path {
     PG_ANIM_TRANSLATION = 0,
     PG_ANIM_ROTATION = 1,
     PG_ANIM_SCALE = 2,
-    PG_ANIM_WEIGHTS = 3
+    PG_ANIM_WEIGHTS = 3,
+    /* KHR_animation_pointer on a KHR_lights_punctual light's property (pg_anim_channel.node is the
+     * light's index in the extension's array): /extensions/KHR_lights_punctual/lights/N/... */
+    PG_ANIM_LIGHT_COLOR = 4,     /* color (width 3) */
+    PG_ANIM_LIGHT_INTENSITY = 5, /* intensity */
+    PG_ANIM_LIGHT_RANGE = 6,     /* range */
+    PG_ANIM_SPOT_INNER = 7,      /* spot/innerConeAngle */
+    PG_ANIM_SPOT_OUTER = 8       /* spot/outerConeAngle */
 } pg_anim_path;
+/* a light's animatable properties in a pose: colour r g b, intensity, range, inner and outer cone */
+#define PG_ANIM_LIGHT_PROPS 7
 typedef enum pg_anim_interp { PG_INTERP_LINEAR = 0, PG_INTERP_STEP = 1, PG_INTERP_CUBICSPLINE = 2 } pg_anim_interp;
 
 typedef struct pg_anim_channel {
@@ -114,12 +123,16 @@ typedef struct pg_scene_anim {
     uint32_t influences;       /* 4, or 8 when a vertex has a non-zero weight in JOINTS_1/WEIGHTS_1 */
     pg_anim_delta *deltas;
     uint32_t n_deltas;
+    uint32_t n_lights;         /* the file's KHR_lights_punctual lights */
+    uint8_t *light_animated;   /* n_lights: 1 where a channel animates the light's properties */
+    float (*light_rest)[PG_ANIM_LIGHT_PROPS]; /* n_lights: the file's values (of the animated ones) */
 } pg_scene_anim;
 
 typedef struct pg_anim_pose {
     float *node_world;  /* 16 per node */
     float *joints;      /* 16 per joint slot: world(joint) x inverseBind */
     float *weights;     /* n_weights */
+    float (*lights)[PG_ANIM_LIGHT_PROPS]; /* n_lights: each light's properties at the pose's time */
     struct {            /* pg_anim_pose_eval's working memory, allocated with the pose: no allocation a frame */
         float (*t)[3], (*r)[4], (*s)[3]; /* per node TRS */
         float *local;                     /* 16 per node */
@@ -149,9 +162,17 @@ pg_result pg_anim_find(const pg_scene_anim *a, const char *spec, int *out, pg_er
  * 2 morph targets") or "" when the scene has no animation (returns false). */
 bool pg_anim_describe(const pg_scene *scene, int animation, double time, char *buf, size_t size);
 
+/* KHR_animation_pointer on lights: whether a channel animates light `gltf_light`'s properties, and
+ * L's colour, intensity, range and spot cones set from the pose (left as they are, false, when
+ * none is animated). The values are kept valid: colour and intensity >= 0, a range > 0, cones with
+ * 0 <= inner < outer <= pi/2. */
+bool pg_anim_light_animated(const pg_scene_anim *a, int gltf_light);
+bool pg_anim_light_props(const pg_scene_anim *a, const pg_anim_pose *pose, pg_scene_light *L);
+
 /* Poses the scene on the CPU: scene->vertices become the deformed vertices at `time`, the file
  * lights and the glTF cameras on nodes move with their nodes, bounds are recomputed (so framing
- * follows the animated geometry). A scene without animation is left as is. */
+ * follows the animated geometry), with their animated colour, intensity, range and cones. A scene
+ * without animation is left as is. */
 pg_result pg_scene_pose(pg_scene *scene, int animation, double time, pg_error *err);
 /* Places glTF camera `index` by its node's world matrix in `pose` (a pose of scene->anim): the
  * viewer's glTF camera follows its node as the clock plays. False, the camera left as it was, when

@@ -41,16 +41,34 @@ static bool channel_target(const tinygltf::AnimationChannel &ch, const std::stri
         !ext->second.Get("pointer").IsString())
         gfail(cw + ".target: path 'pointer' without a KHR_animation_pointer extension giving a \"pointer\" string");
     *pointer = ext->second.Get("pointer").Get<std::string>();
-    const std::string pre = "/nodes/";
+    const std::string lights = "/extensions/KHR_lights_punctual/lights/";
+    const bool light = pointer->compare(0, lights.size(), lights) == 0;
+    const std::string pre = light ? lights : "/nodes/";
     if (pointer->compare(0, pre.size(), pre) != 0) return false;
     size_t i = pre.size(), j = i;
     while (j < pointer->size() && j - i < 10 && (*pointer)[j] >= '0' && (*pointer)[j] <= '9') j++;
     if (j == i || j >= pointer->size() || (*pointer)[j] != '/' || (j - i > 1 && (*pointer)[i] == '0')) return false;
     const unsigned long n = strtoul(pointer->c_str() + i, nullptr, 10);
     if (n > 0x7fffffffUL) return false;
-    *path = channel_path(pointer->substr(j + 1), &known);
     *node = int(n);
+    if (light) {
+        static const struct { const char *name; pg_anim_path path; } props[] = {
+            {"color", PG_ANIM_LIGHT_COLOR}, {"intensity", PG_ANIM_LIGHT_INTENSITY}, {"range", PG_ANIM_LIGHT_RANGE},
+            {"spot/innerConeAngle", PG_ANIM_SPOT_INNER}, {"spot/outerConeAngle", PG_ANIM_SPOT_OUTER}};
+        for (const auto &pr : props)
+            if (pointer->substr(j + 1) == pr.name) {
+                *path = pr.path;
+                return true;
+            }
+        return false;
+    }
+    *path = channel_path(pointer->substr(j + 1), &known);
     return known;
+}
+
+static bool light_path(pg_anim_path p)
+{
+    return p >= PG_ANIM_LIGHT_COLOR;
 }
 
 void anim_prepare(Ctx &c)
@@ -70,6 +88,12 @@ void anim_prepare(Ctx &c)
             pg_anim_path path = PG_ANIM_TRANSLATION;
             std::string pointer;
             if (!channel_target(ch, cw, &node, &path, &pointer)) continue; /* counted at hand-out */
+            if (light_path(path)) {
+                if (size_t(node) >= md.lights.size())
+                    gfail(strf("%s.target.extensions.KHR_animation_pointer.pointer: light %d out of range (%zu lights)",
+                               cw.c_str(), node, md.lights.size()));
+                continue;
+            }
             if (size_t(node) >= md.nodes.size())
                 gfail(strf("%s.target.%s%d out of range (%zu nodes)", cw.c_str(),
                            pointer.empty() ? "node: " : "extensions.KHR_animation_pointer.pointer: node ", node,
@@ -361,7 +385,8 @@ static bool hand_out_channel(Ctx &c, const pg_scene_anim *a, size_t ai, size_t c
         return false;
     }
     C.node = uint32_t(node);
-    if (C.path != PG_ANIM_WEIGHTS && a->nodes[C.node].has_matrix) return false; /* glTF forbids: ignored */
+    const bool lp = light_path(C.path);
+    if (!lp && C.path != PG_ANIM_WEIGHTS && a->nodes[C.node].has_matrix) return false; /* glTF forbids: ignored */
     if (C.path == PG_ANIM_WEIGHTS && a->nodes[C.node].n_weights == 0) return false; /* not a drawn morph */
     if (ch.sampler < 0 || size_t(ch.sampler) >= an.samplers.size())
         gfail(strf("%s.sampler: %d out of range (%zu samplers)", cw.c_str(), ch.sampler, an.samplers.size()));
@@ -375,11 +400,14 @@ static bool hand_out_channel(Ctx &c, const pg_scene_anim *a, size_t ai, size_t c
     if (in.type != TINYGLTF_TYPE_SCALAR || in.ctype != TINYGLTF_COMPONENT_TYPE_FLOAT || in.count < 1)
         gfail(strf("%s.input: accessors[%d] must be SCALAR FLOAT with at least one key", sw.c_str(), in.index));
     C.n_keys = uint32_t(in.count);
-    C.width = C.path == PG_ANIM_ROTATION ? 4 : C.path == PG_ANIM_WEIGHTS ? a->nodes[C.node].n_weights : 3;
+    C.width = C.path == PG_ANIM_ROTATION                         ? 4
+              : C.path == PG_ANIM_WEIGHTS                        ? a->nodes[C.node].n_weights
+              : lp && C.path != PG_ANIM_LIGHT_COLOR              ? 1
+                                                                 : 3;
     const size_t per_key = (C.interp == PG_INTERP_CUBICSPLINE ? 3 : 1) * size_t(C.width);
-    const int want_type = C.path == PG_ANIM_ROTATION ? TINYGLTF_TYPE_VEC4
-                          : C.path == PG_ANIM_WEIGHTS ? TINYGLTF_TYPE_SCALAR
-                                                      : TINYGLTF_TYPE_VEC3;
+    const int want_type = C.path == PG_ANIM_ROTATION                        ? TINYGLTF_TYPE_VEC4
+                          : C.path == PG_ANIM_WEIGHTS || C.width == 1       ? TINYGLTF_TYPE_SCALAR
+                                                                            : TINYGLTF_TYPE_VEC3;
     const size_t comps = C.path == PG_ANIM_WEIGHTS ? 1 : C.width;
     if (out.type != want_type || out.count * comps != in.count * per_key)
         gfail(strf("%s.output: accessors[%d] must be %s with %zu elements for %zu keys of '%s' (got %s, %zu)",
@@ -407,6 +435,12 @@ static void hand_out_animations(Ctx &c, pg_scene_anim *a)
 {
     const tinygltf::Model &md = c.model;
     if (md.animations.empty()) return;
+    if (!md.lights.empty()) {
+        a->n_lights = uint32_t(md.lights.size());
+        a->light_animated = static_cast<uint8_t *>(calloc(md.lights.size(), 1));
+        a->light_rest = static_cast<float(*)[PG_ANIM_LIGHT_PROPS]>(calloc(md.lights.size(), sizeof *a->light_rest));
+        if (!a->light_animated || !a->light_rest) throw std::bad_alloc();
+    }
     a->animations = static_cast<pg_animation *>(calloc(md.animations.size(), sizeof(pg_animation)));
     if (!a->animations) throw std::bad_alloc();
     for (size_t ai = 0; ai < md.animations.size(); ai++) {
@@ -435,7 +469,14 @@ static void hand_out_animations(Ctx &c, pg_scene_anim *a)
                 continue;
             }
             A.end = std::max(A.end, C.times[C.n_keys - 1]);
-            A.n_channels++;
+            A.n_channels++; /* counted (freed with the animation) before light_object may refuse the light */
+            if (light_path(C.path) && C.node < a->n_lights && !a->light_animated[C.node]) {
+                a->light_animated[C.node] = 1;
+                const pg_scene_light L = light_object(c, int(C.node)); /* its rest values, checked */
+                float *r = a->light_rest[C.node];
+                memcpy(r, L.color, sizeof L.color);
+                r[3] = L.intensity, r[4] = L.range, r[5] = L.inner_cone, r[6] = L.outer_cone;
+            }
         }
     }
 }

@@ -205,6 +205,8 @@ void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene
 /* KHR_lights_punctual: the lights of the nodes under ni, placed by their world transforms;
  * bad values fail naming "KHR_lights_punctual.lights[i].FIELD" or "nodes[n].extensions..." */
 void light_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_light> &out);
+/* one light object of the extension, checked (placement left 0) */
+pg_scene_light light_object(const Ctx &c, int li);
 /* PASSGRAPH_lights_table (docs/scenes.md): the root extension's point lights appended to out;
  * bad values fail naming "extensions.PASSGRAPH_lights_table.FIELD" or the record */
 void table_lights(const Ctx &c, std::vector<pg_scene_light> &out);

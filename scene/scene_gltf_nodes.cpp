@@ -149,7 +149,7 @@ void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene
 }
 
 /* one light object of the extension, checked (placement left 0) */
-static pg_scene_light light_object(const Ctx &c, int li)
+pg_scene_light light_object(const Ctx &c, int li)
 {
     const tinygltf::Light &gl = c.model.lights[size_t(li)];
     const std::string lw = strf("KHR_lights_punctual.lights[%d]", li);

@@ -31,6 +31,7 @@ pg_result pg_scene_pose(pg_scene *scene, int animation, double time, pg_error *e
         double m[16];
         pg_mat4_widen(pose.node_world + (size_t)L->gltf_node * 16, m);
         pg_place_light(m, L);
+        pg_anim_light_props(a, &pose, L); /* KHR_animation_pointer: colour, intensity, range, cones */
     }
     for (uint32_t i = 0; i < scene->n_cameras; i++) pg_scene_pose_camera(scene, i, &pose); /* placed at `time` */
     pg_anim_pose_release(&pose);

@@ -190,6 +190,8 @@ int main(void)
     twin("lamp.gltf", 1.0); /* a light on an animated node: light_animate places it each frame */
     twin("lamp.gltf", 2.0);
     twin("lantern.gltf", 1.0); /* geometry and a light on one node: both passes, one pose a frame */
+    twin("beacon.gltf", 1.0);  /* a spot light's colour, intensity, range and cones (KHR_animation_pointer) */
+    twin("beacon.gltf", 3.0);
     twin("glass.gltf", 1.0);   /* two BLEND boxes whose back-to-front order the animation swaps */
     culled();
     printf("validation messages: %u\n", g_gpu->validation_messages);

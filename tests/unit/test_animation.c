@@ -9,7 +9,9 @@
  *    4 of them rising by 2 (the rings rise by 1; by 0 if the second set were dropped);
  *  - morph.gltf: a cube with two morph targets (one a sparse accessor), mesh default weights
  *    [0.25, 0] and a LINEAR weights channel;
- *  - pointer.gltf: rigid.gltf's animations through KHR_animation_pointer: the same poses.
+ *  - pointer.gltf: rigid.gltf's animations through KHR_animation_pointer: the same poses;
+ *  - beacon.gltf: a spot light's colour, intensity, range and cones animated through
+ *    KHR_animation_pointer.
  * Every position within 1e-5 of the hand value; the loop, the rest pose, --animation lookup, the
  * scene bounds following the pose, and files whose animation data is broken (refused naming the
  * object). */
@@ -120,6 +122,43 @@ static void pointer(void)
     }
     pg_scene_free(p);
     pg_scene_free(r);
+}
+
+/* beacon.gltf: a spot light's colour, intensity, range and cones animated by KHR_animation_pointer
+ * (README there): the posed light against the hand values, the rest pose the file's */
+static void light_expect(pg_scene *s, int anim, double t, const float want[7], const char *what)
+{
+    pg_error err = {0};
+    CHECK(pg_scene_pose(s, anim, t, &err) == PG_OK);
+    const pg_scene_light *L = &s->lights[0];
+    const float got[7] = {L->color[0], L->color[1], L->color[2], L->intensity, L->range, L->inner_cone, L->outer_cone};
+    float d = 0;
+    for (int k = 0; k < 7; k++) d = fmaxf(d, fabsf(got[k] - want[k]));
+    CHECK_MSG(d < 1e-5f, "%s at t=%g: colour (%g, %g, %g) intensity %g range %g cones %g %g", what, t, got[0], got[1],
+              got[2], got[3], got[4], got[5], got[6]);
+    CHECK_MSG(fabsf(L->position[1] - 3) < 1e-5f && fabsf(L->direction[1] + 1) < 1e-5f, "%s: the light moved", what);
+}
+
+static void beacon(void)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/corpus/gltf/animation/beacon.gltf", PG_TEST_DIR);
+    pg_scene *s = NULL;
+    pg_error err = {0};
+    if (pg_scene_load_gltf(path, &s, &err)) {
+        CHECK_MSG(0, "beacon.gltf: %s", err.msg);
+        return;
+    }
+    CHECK(s->anim && !s->features.has_animation && s->n_lights == 1 && s->n_warnings == 0);
+    CHECK(pg_anim_light_animated(s->anim, 0) && !pg_anim_light_animated(s->anim, 1) &&
+          !pg_anim_light_animated(s->anim, -1));
+    const float rest[7] = {1, 1, 1, 20, 8, 0.3f, 0.6f}, t1[7] = {1, 0.65f, 0.6f, 30, 8, 0.25f, 0.675f},
+                t3[7] = {0.6f, 0.35f, 0.6f, 50, 4, 0.15f, 0.825f};
+    light_expect(s, 0, 1, t1, "beacon");
+    light_expect(s, 0, 3, t3, "beacon (range stepped to 4)");
+    light_expect(s, PG_ANIM_NONE, 3, rest, "beacon in the rest pose");
+    light_expect(s, 0, 5, t1, "beacon (t = 5 loops to 1)");
+    pg_scene_free(s);
 }
 
 static void skinned(void)
@@ -246,6 +285,11 @@ static void refused(void)
     };
     refused_in("rigid.gltf", 3, rigid_cases);
     refused_in("pointer.gltf", 3, pointer_cases);
+    static const char *const beacon_cases[][3] = {
+        {"lights/0/intensity\"", "lights/5/intensity\"",
+         "channels[1].target.extensions.KHR_animation_pointer.pointer: light 5 out of range (1 lights)"},
+    };
+    refused_in("beacon.gltf", 1, beacon_cases);
     refused_in("skinned.gltf", 2, skin_cases);
     refused_in("skinned8.gltf", 2, skin8_cases);
 }
@@ -254,6 +298,7 @@ int main(void)
 {
     rigid();
     pointer();
+    beacon();
     skinned();
     skinned8();
     morph();

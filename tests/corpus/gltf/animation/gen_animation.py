@@ -144,10 +144,11 @@ class Doc:
     def animation(self, name, channels, pointer=False):
         """channels: (node, path, interpolation, times, output rows); pointer: targets given as
         KHR_animation_pointer JSON pointers (/nodes/N/path), and a node of None takes `path` as the
-        pointer itself with VEC4 values (e.g. a material's baseColorFactor)"""
+        pointer itself, its type from the rows' width (e.g. a material's baseColorFactor, VEC4)"""
         anim = {"name": name, "channels": [], "samplers": []}
         for node, path, interp, t, rows in channels:
-            typ = {"translation": "VEC3", "scale": "VEC3", "rotation": "VEC4", "weights": "SCALAR"}.get(path, "VEC4")
+            typ = {"translation": "VEC3", "scale": "VEC3", "rotation": "VEC4", "weights": "SCALAR"}.get(path) \
+                or {1: "SCALAR", 3: "VEC3", 4: "VEC4"}[len(rows[0])]
             out = self.accessor(floats(rows), FLOAT, len(rows), typ)
             anim["samplers"].append({"input": self.times(t), "interpolation": interp, "output": out})
             if pointer:
@@ -218,6 +219,30 @@ def pointer():
         (None, "/materials/1/pbrMetallicRoughness/baseColorFactor", "LINEAR", [0, 4],
          [(0.8, 0.15, 0.1, 1), (0.1, 0.15, 0.8, 1)])], pointer=True)
     doc.animation("bounce", [(spinner, "translation", "LINEAR", [0, 1], [(0, 0.5, 0), (0, 2, 0)])], pointer=True)
+    doc.write()
+
+
+def beacon():
+    """a spot light on a still node, pointing down, whose colour, intensity, range and cones are
+    animated by KHR_animation_pointer (/extensions/KHR_lights_punctual/lights/0/...)"""
+    doc = Doc("beacon.gltf")
+    doc.d["extensionsUsed"] = ["KHR_lights_punctual", "KHR_animation_pointer"]
+    doc.floor()
+    cube = doc.mesh("post", *UNIT_BOX, doc.material("post_blue", (0.1, 0.2, 0.8)))
+    doc.node({"name": "post", "mesh": cube, "translation": [1.5, 0.5, 0]})
+    lamp_node = doc.node({"name": "beacon", "translation": [0, 3, 0], "rotation": quat_axis((1, 0, 0), -90),
+                          "extensions": {"KHR_lights_punctual": {"light": 0}}})
+    assert lamp_node == 2
+    doc.d["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "beacon", "type": "spot", "color": [1.0, 1.0, 1.0], "intensity": 20.0, "range": 8.0,
+         "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.6}}]}}
+    L = "/extensions/KHR_lights_punctual/lights/0/"
+    doc.animation("pulse", [
+        (None, L + "color", "LINEAR", [0, 2, 4], [(1, 1, 1), (1, 0.3, 0.2), (0.2, 0.4, 1)]),
+        (None, L + "intensity", "LINEAR", [0, 4], [(20,), (60,)]),
+        (None, L + "range", "STEP", [0, 2], [(8,), (4,)]),
+        (None, L + "spot/innerConeAngle", "LINEAR", [0, 4], [(0.3,), (0.1,)]),
+        (None, L + "spot/outerConeAngle", "LINEAR", [0, 4], [(0.6,), (0.9,)])], pointer=True)
     doc.write()
 
 
@@ -669,13 +694,14 @@ def check_poses():
 
 rigid()
 pointer()
+beacon()
 skinned()
 skinned8()
 morph()
 lamp()
 lantern()
 glass()
-for f in ("rigid.gltf", "pointer.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf", "glass.gltf"):
+for f in ("rigid.gltf", "pointer.gltf", "beacon.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf", "glass.gltf"):
     Gltf(f).check()
 check_poses()
-print("rigid.gltf pointer.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf glass.gltf: written and checked (%d poses)" % len(POSES))
+print("rigid.gltf pointer.gltf beacon.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf glass.gltf: written and checked (%d poses)" % len(POSES))
