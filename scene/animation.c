@@ -34,6 +34,8 @@ void pg_scene_anim_free(pg_scene_anim *a)
     free(a->deltas);
     free(a->light_animated);
     free(a->light_rest);
+    free(a->camera_animated);
+    free(a->camera_rest);
     free(a);
 }
 
@@ -44,6 +46,7 @@ pg_result pg_anim_pose_alloc(const pg_scene_anim *a, pg_anim_pose *out, pg_error
     out->joints = calloc((size_t)a->n_joint_slots * 16 + 16, sizeof(float));
     out->weights = calloc((size_t)a->n_weights + 1, sizeof(float));
     out->lights = calloc((size_t)a->n_lights + 1, sizeof *out->lights);
+    out->cameras = calloc((size_t)a->n_cameras + 1, sizeof *out->cameras);
     const size_t nn = (size_t)a->n_nodes + 1;
     out->work.t = malloc(sizeof *out->work.t * nn);
     out->work.r = malloc(sizeof *out->work.r * nn);
@@ -51,7 +54,7 @@ pg_result pg_anim_pose_alloc(const pg_scene_anim *a, pg_anim_pose *out, pg_error
     out->work.local = malloc(sizeof(float) * 16 * nn);
     out->work.stack = malloc(sizeof(uint32_t) * nn);
     out->work.done = malloc(nn);
-    if (!out->node_world || !out->joints || !out->weights || !out->lights || !out->work.t || !out->work.r || !out->work.s ||
+    if (!out->node_world || !out->joints || !out->weights || !out->lights || !out->cameras || !out->work.t || !out->work.r || !out->work.s ||
         !out->work.local || !out->work.stack || !out->work.done) {
         pg_anim_pose_release(out);
         return pg_fail(err, PG_ERR_OOM, "animation pose: out of memory");
@@ -65,6 +68,7 @@ void pg_anim_pose_release(pg_anim_pose *p)
     free(p->joints);
     free(p->weights);
     free(p->lights);
+    free(p->cameras);
     free(p->work.t);
     free(p->work.r);
     free(p->work.s);
@@ -199,7 +203,7 @@ static int light_prop_offset(pg_anim_path p)
 }
 
 static void apply_animation(const pg_scene_anim *a, const pg_animation *an, double t, float (*T)[3], float (*R)[4],
-                            float (*S)[3], float *weights, float (*lights)[PG_ANIM_LIGHT_PROPS])
+                            float (*S)[3], const pg_anim_pose *pose)
 {
     float v[4];
     for (uint32_t c = 0; c < an->n_channels; c++) {
@@ -208,14 +212,21 @@ static void apply_animation(const pg_scene_anim *a, const pg_animation *an, doub
         if (lo >= 0) { /* the loader made width 3 for the colour, 1 for the rest */
             if (ch->node < a->n_lights && ch->width == (lo == 0 ? 3u : 1u)) {
                 channel_sample(ch, t, v);
-                memcpy(&lights[ch->node][lo], v, ch->width * sizeof(float));
+                memcpy(&pose->lights[ch->node][lo], v, ch->width * sizeof(float));
+            }
+            continue;
+        }
+        if (ch->path >= PG_ANIM_CAM_YFOV) { /* width 1 */
+            if (ch->node < a->n_cameras && ch->width == 1) {
+                channel_sample(ch, t, v);
+                pose->cameras[ch->node][ch->path - PG_ANIM_CAM_YFOV] = v[0];
             }
             continue;
         }
         if (ch->node >= a->n_nodes) continue;
         if (ch->path == PG_ANIM_WEIGHTS) { /* the loader made width the node's weight count */
             const pg_anim_node *nd = &a->nodes[ch->node];
-            if (ch->width == nd->n_weights && nd->n_weights) channel_sample(ch, t, weights + nd->weight_base);
+            if (ch->width == nd->n_weights && nd->n_weights) channel_sample(ch, t, pose->weights + nd->weight_base);
             continue;
         }
         if (ch->width > 4) continue;
@@ -261,12 +272,12 @@ void pg_anim_pose_eval(const pg_scene_anim *a, int animation, double time, pg_an
     }
     if (a->n_weights) memcpy(pose->weights, a->rest_weights, a->n_weights * sizeof(float));
     if (a->n_lights) memcpy(pose->lights, a->light_rest, a->n_lights * sizeof *pose->lights);
+    if (a->n_cameras) memcpy(pose->cameras, a->camera_rest, a->n_cameras * sizeof *pose->cameras);
     const double t = pg_anim_local_time(a, animation, time);
     if (animation == PG_ANIM_ALL) {
-        for (uint32_t k = 0; k < a->n_animations; k++)
-            apply_animation(a, &a->animations[k], t, T, R, S, pose->weights, pose->lights);
+        for (uint32_t k = 0; k < a->n_animations; k++) apply_animation(a, &a->animations[k], t, T, R, S, pose);
     } else if (animation >= 0 && (uint32_t)animation < a->n_animations) {
-        apply_animation(a, &a->animations[animation], t, T, R, S, pose->weights, pose->lights);
+        apply_animation(a, &a->animations[animation], t, T, R, S, pose);
     }
     for (uint32_t i = 0; i < nn; i++) {
         if (a->nodes[i].has_matrix) memcpy(local + (size_t)i * 16, a->nodes[i].matrix, 16 * sizeof(float));
@@ -311,6 +322,35 @@ bool pg_anim_light_props(const pg_scene_anim *a, const pg_anim_pose *pose, pg_sc
         L->outer_cone = outer;
         L->inner_cone = fminf(clampf_(p[5], 0.0f, outer), outer * (1.0f - 1e-6f));
     }
+    return true;
+}
+
+bool pg_anim_camera_animated(const pg_scene_anim *a, int gltf_camera)
+{
+    return a && gltf_camera >= 0 && (uint32_t)gltf_camera < a->n_cameras && a->camera_animated[gltf_camera];
+}
+
+/* x kept at least `lo` away from 0, its sign kept (NaN -> lo) */
+static float away_from_0(float x, float lo)
+{
+    return x <= -lo ? fmaxf(x, -3.4e38f) : x >= lo ? fminf(x, 3.4e38f) : lo;
+}
+
+bool pg_anim_camera_props(const pg_scene_anim *a, const pg_anim_pose *pose, pg_scene_camera *C)
+{
+    if (!pg_anim_camera_animated(a, C->gltf_camera)) return false;
+    const float *p = pose->cameras[C->gltf_camera];
+    if (C->type == PG_CAMERA_PERSPECTIVE) {
+        C->yfov_rad = clampf_(p[0], 1e-4f, 3.1415f);
+        C->aspect_ratio = clampf_(p[1], 0.0f, 1e6f);
+        C->znear = clampf_(p[4], 1e-6f, 1e30f);
+    } else {
+        C->xmag = away_from_0(p[2], 1e-6f);
+        C->ymag = away_from_0(p[3], 1e-6f);
+        C->znear = clampf_(p[4], 0.0f, 1e30f);
+    }
+    const bool infinite = C->type == PG_CAMERA_PERSPECTIVE && p[5] == 0;
+    C->zfar = infinite ? 0.0f : fmaxf(clampf_(p[5], 0.0f, 3.4e38f), C->znear * (1.0f + 1e-3f) + 1e-6f);
     return true;
 }
 

@@ -50,10 +50,20 @@ typedef enum pg_anim_path {
     PG_ANIM_LIGHT_INTENSITY = 5, /* intensity */
     PG_ANIM_LIGHT_RANGE = 6,     /* range */
     PG_ANIM_SPOT_INNER = 7,      /* spot/innerConeAngle */
-    PG_ANIM_SPOT_OUTER = 8       /* spot/outerConeAngle */
+    PG_ANIM_SPOT_OUTER = 8,      /* spot/outerConeAngle */
+    /* KHR_animation_pointer on a camera's projection (node is the camera's index in "cameras"):
+     * /cameras/N/perspective/... or /cameras/N/orthographic/... */
+    PG_ANIM_CAM_YFOV = 9,        /* perspective/yfov */
+    PG_ANIM_CAM_ASPECT = 10,     /* perspective/aspectRatio */
+    PG_ANIM_CAM_XMAG = 11,       /* orthographic/xmag */
+    PG_ANIM_CAM_YMAG = 12,       /* orthographic/ymag */
+    PG_ANIM_CAM_ZNEAR = 13,      /* perspective/znear or orthographic/znear */
+    PG_ANIM_CAM_ZFAR = 14        /* perspective/zfar or orthographic/zfar */
 } pg_anim_path;
 /* a light's animatable properties in a pose: colour r g b, intensity, range, inner and outer cone */
 #define PG_ANIM_LIGHT_PROPS 7
+/* a camera's: yfov, aspectRatio, xmag, ymag, znear, zfar */
+#define PG_ANIM_CAMERA_PROPS 6
 typedef enum pg_anim_interp { PG_INTERP_LINEAR = 0, PG_INTERP_STEP = 1, PG_INTERP_CUBICSPLINE = 2 } pg_anim_interp;
 
 typedef struct pg_anim_channel {
@@ -126,6 +136,9 @@ typedef struct pg_scene_anim {
     uint32_t n_lights;         /* the file's KHR_lights_punctual lights */
     uint8_t *light_animated;   /* n_lights: 1 where a channel animates the light's properties */
     float (*light_rest)[PG_ANIM_LIGHT_PROPS]; /* n_lights: the file's values (of the animated ones) */
+    uint32_t n_cameras;        /* the file's cameras */
+    uint8_t *camera_animated;  /* n_cameras: 1 where a channel animates the camera's projection */
+    float (*camera_rest)[PG_ANIM_CAMERA_PROPS]; /* n_cameras: the file's values (of the animated ones) */
 } pg_scene_anim;
 
 typedef struct pg_anim_pose {
@@ -133,6 +146,7 @@ typedef struct pg_anim_pose {
     float *joints;      /* 16 per joint slot: world(joint) x inverseBind */
     float *weights;     /* n_weights */
     float (*lights)[PG_ANIM_LIGHT_PROPS]; /* n_lights: each light's properties at the pose's time */
+    float (*cameras)[PG_ANIM_CAMERA_PROPS]; /* n_cameras: each camera's projection at the pose's time */
     struct {            /* pg_anim_pose_eval's working memory, allocated with the pose: no allocation a frame */
         float (*t)[3], (*r)[4], (*s)[3]; /* per node TRS */
         float *local;                     /* 16 per node */
@@ -168,13 +182,19 @@ bool pg_anim_describe(const pg_scene *scene, int animation, double time, char *b
  * 0 <= inner < outer <= pi/2. */
 bool pg_anim_light_animated(const pg_scene_anim *a, int gltf_light);
 bool pg_anim_light_props(const pg_scene_anim *a, const pg_anim_pose *pose, pg_scene_light *L);
+/* Likewise for a camera's projection: yfov and aspectRatio (perspective), xmag and ymag
+ * (orthographic), znear and zfar, kept valid (yfov in (0, pi), magnifications not 0, znear > 0 for a
+ * perspective camera, zfar 0 (infinite, perspective) or past znear). */
+bool pg_anim_camera_animated(const pg_scene_anim *a, int gltf_camera);
+bool pg_anim_camera_props(const pg_scene_anim *a, const pg_anim_pose *pose, pg_scene_camera *C);
 
 /* Poses the scene on the CPU: scene->vertices become the deformed vertices at `time`, the file
  * lights and the glTF cameras on nodes move with their nodes, bounds are recomputed (so framing
  * follows the animated geometry), with their animated colour, intensity, range and cones. A scene
  * without animation is left as is. */
 pg_result pg_scene_pose(pg_scene *scene, int animation, double time, pg_error *err);
-/* Places glTF camera `index` by its node's world matrix in `pose` (a pose of scene->anim): the
+/* Places glTF camera `index` by its node's world matrix in `pose` (a pose of scene->anim), with its
+ * animated projection (pg_anim_camera_props): the
  * viewer's glTF camera follows its node as the clock plays. False, the camera left as it was, when
  * the scene has no animation, the camera no node, or the matrix is singular there. */
 bool pg_scene_pose_camera(pg_scene *scene, uint32_t index, const pg_anim_pose *pose);

@@ -41,9 +41,10 @@ static bool channel_target(const tinygltf::AnimationChannel &ch, const std::stri
         !ext->second.Get("pointer").IsString())
         gfail(cw + ".target: path 'pointer' without a KHR_animation_pointer extension giving a \"pointer\" string");
     *pointer = ext->second.Get("pointer").Get<std::string>();
-    const std::string lights = "/extensions/KHR_lights_punctual/lights/";
+    const std::string lights = "/extensions/KHR_lights_punctual/lights/", cameras = "/cameras/";
     const bool light = pointer->compare(0, lights.size(), lights) == 0;
-    const std::string pre = light ? lights : "/nodes/";
+    const bool camera = pointer->compare(0, cameras.size(), cameras) == 0;
+    const std::string pre = light ? lights : camera ? cameras : "/nodes/";
     if (pointer->compare(0, pre.size(), pre) != 0) return false;
     size_t i = pre.size(), j = i;
     while (j < pointer->size() && j - i < 10 && (*pointer)[j] >= '0' && (*pointer)[j] <= '9') j++;
@@ -51,12 +52,23 @@ static bool channel_target(const tinygltf::AnimationChannel &ch, const std::stri
     const unsigned long n = strtoul(pointer->c_str() + i, nullptr, 10);
     if (n > 0x7fffffffUL) return false;
     *node = int(n);
-    if (light) {
+    if (light || camera) {
         static const struct { const char *name; pg_anim_path path; } props[] = {
-            {"color", PG_ANIM_LIGHT_COLOR}, {"intensity", PG_ANIM_LIGHT_INTENSITY}, {"range", PG_ANIM_LIGHT_RANGE},
-            {"spot/innerConeAngle", PG_ANIM_SPOT_INNER}, {"spot/outerConeAngle", PG_ANIM_SPOT_OUTER}};
+            {"color", PG_ANIM_LIGHT_COLOR},
+            {"intensity", PG_ANIM_LIGHT_INTENSITY},
+            {"range", PG_ANIM_LIGHT_RANGE},
+            {"spot/innerConeAngle", PG_ANIM_SPOT_INNER},
+            {"spot/outerConeAngle", PG_ANIM_SPOT_OUTER},
+            {"perspective/yfov", PG_ANIM_CAM_YFOV},
+            {"perspective/aspectRatio", PG_ANIM_CAM_ASPECT},
+            {"orthographic/xmag", PG_ANIM_CAM_XMAG},
+            {"orthographic/ymag", PG_ANIM_CAM_YMAG},
+            {"perspective/znear", PG_ANIM_CAM_ZNEAR},
+            {"orthographic/znear", PG_ANIM_CAM_ZNEAR},
+            {"perspective/zfar", PG_ANIM_CAM_ZFAR},
+            {"orthographic/zfar", PG_ANIM_CAM_ZFAR}};
         for (const auto &pr : props)
-            if (pointer->substr(j + 1) == pr.name) {
+            if (pointer->substr(j + 1) == pr.name && (pr.path >= PG_ANIM_CAM_YFOV) == camera) {
                 *path = pr.path;
                 return true;
             }
@@ -68,7 +80,12 @@ static bool channel_target(const tinygltf::AnimationChannel &ch, const std::stri
 
 static bool light_path(pg_anim_path p)
 {
-    return p >= PG_ANIM_LIGHT_COLOR;
+    return p >= PG_ANIM_LIGHT_COLOR && p < PG_ANIM_CAM_YFOV;
+}
+
+static bool camera_path(pg_anim_path p)
+{
+    return p >= PG_ANIM_CAM_YFOV;
 }
 
 void anim_prepare(Ctx &c)
@@ -88,10 +105,12 @@ void anim_prepare(Ctx &c)
             pg_anim_path path = PG_ANIM_TRANSLATION;
             std::string pointer;
             if (!channel_target(ch, cw, &node, &path, &pointer)) continue; /* counted at hand-out */
-            if (light_path(path)) {
-                if (size_t(node) >= md.lights.size())
-                    gfail(strf("%s.target.extensions.KHR_animation_pointer.pointer: light %d out of range (%zu lights)",
-                               cw.c_str(), node, md.lights.size()));
+            if (light_path(path) || camera_path(path)) {
+                const size_t have = light_path(path) ? md.lights.size() : md.cameras.size();
+                if (size_t(node) >= have)
+                    gfail(strf("%s.target.extensions.KHR_animation_pointer.pointer: %s %d out of range (%zu %s)",
+                               cw.c_str(), light_path(path) ? "light" : "camera", node, have,
+                               light_path(path) ? "lights" : "cameras"));
                 continue;
             }
             if (size_t(node) >= md.nodes.size())
@@ -385,7 +404,7 @@ static bool hand_out_channel(Ctx &c, const pg_scene_anim *a, size_t ai, size_t c
         return false;
     }
     C.node = uint32_t(node);
-    const bool lp = light_path(C.path);
+    const bool lp = light_path(C.path) || camera_path(C.path);
     if (!lp && C.path != PG_ANIM_WEIGHTS && a->nodes[C.node].has_matrix) return false; /* glTF forbids: ignored */
     if (C.path == PG_ANIM_WEIGHTS && a->nodes[C.node].n_weights == 0) return false; /* not a drawn morph */
     if (ch.sampler < 0 || size_t(ch.sampler) >= an.samplers.size())
@@ -441,6 +460,12 @@ static void hand_out_animations(Ctx &c, pg_scene_anim *a)
         a->light_rest = static_cast<float(*)[PG_ANIM_LIGHT_PROPS]>(calloc(md.lights.size(), sizeof *a->light_rest));
         if (!a->light_animated || !a->light_rest) throw std::bad_alloc();
     }
+    if (!md.cameras.empty()) {
+        a->n_cameras = uint32_t(md.cameras.size());
+        a->camera_animated = static_cast<uint8_t *>(calloc(md.cameras.size(), 1));
+        a->camera_rest = static_cast<float(*)[PG_ANIM_CAMERA_PROPS]>(calloc(md.cameras.size(), sizeof *a->camera_rest));
+        if (!a->camera_animated || !a->camera_rest) throw std::bad_alloc();
+    }
     a->animations = static_cast<pg_animation *>(calloc(md.animations.size(), sizeof(pg_animation)));
     if (!a->animations) throw std::bad_alloc();
     for (size_t ai = 0; ai < md.animations.size(); ai++) {
@@ -476,6 +501,12 @@ static void hand_out_animations(Ctx &c, pg_scene_anim *a)
                 float *r = a->light_rest[C.node];
                 memcpy(r, L.color, sizeof L.color);
                 r[3] = L.intensity, r[4] = L.range, r[5] = L.inner_cone, r[6] = L.outer_cone;
+            }
+            if (camera_path(C.path) && C.node < a->n_cameras && !a->camera_animated[C.node]) {
+                a->camera_animated[C.node] = 1;
+                const pg_scene_camera K = camera_object(c, int(C.node)); /* its rest values, checked */
+                float *r = a->camera_rest[C.node];
+                r[0] = K.yfov_rad, r[1] = K.aspect_ratio, r[2] = K.xmag, r[3] = K.ymag, r[4] = K.znear, r[5] = K.zfar;
             }
         }
     }

@@ -202,6 +202,8 @@ pg_scene_anim *anim_hand_out(Ctx &c, const Out &o);
 /* scene_gltf_nodes.cpp */
 Mat4 mat_identity();
 void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_camera> &out);
+/* one camera object of the file, checked (no node: placement left 0, gltf_node -1) */
+pg_scene_camera camera_object(const Ctx &c, int ci);
 /* KHR_lights_punctual: the lights of the nodes under ni, placed by their world transforms;
  * bad values fail naming "KHR_lights_punctual.lights[i].FIELD" or "nodes[n].extensions..." */
 void light_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_light> &out);

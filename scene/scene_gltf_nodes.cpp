@@ -104,48 +104,55 @@ void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene
     if (nd.camera >= 0) {
         if (size_t(nd.camera) >= md.cameras.size())
             gfail(strf("nodes[%d].camera: %d out of range (%zu cameras)", ni, nd.camera, md.cameras.size()));
-        const tinygltf::Camera &gc = md.cameras[size_t(nd.camera)];
-        const std::string cw = strf("cameras[%d]", nd.camera);
-        pg_scene_camera sc;
-        memset(&sc, 0, sizeof sc);
-        pg_strlcpy(sc.name, gc.name.empty() ? cw.c_str() : gc.name.c_str(), sizeof sc.name);
+        pg_scene_camera sc = camera_object(c, nd.camera);
         pg_strlcpy(sc.node_name, nd.name.empty() ? strf("nodes[%d]", ni).c_str() : nd.name.c_str(),
                    sizeof sc.node_name);
-        sc.gltf_camera = nd.camera;
         sc.gltf_node = ni;
-        if (gc.type == "perspective") {
-            const auto &p = gc.perspective;
-            if (!(std::isfinite(p.yfov) && p.yfov > 0 && p.yfov < 3.14159))
-                gfail(cw + ".perspective.yfov: expected a finite angle in (0, pi) radians");
-            if (!(std::isfinite(p.znear) && p.znear > 0))
-                gfail(cw + ".perspective.znear: expected a finite number > 0");
-            if (!(std::isfinite(p.zfar) && (p.zfar == 0 || p.zfar > p.znear)))
-                gfail(cw + ".perspective.zfar: expected a finite number > znear (or absent: infinite)");
-            if (!(std::isfinite(p.aspectRatio) && p.aspectRatio >= 0))
-                gfail(cw + ".perspective.aspectRatio: expected a finite number > 0");
-            sc.type = PG_CAMERA_PERSPECTIVE;
-            sc.yfov_rad = float(p.yfov);
-            sc.aspect_ratio = float(p.aspectRatio);
-            sc.znear = float(p.znear);
-            sc.zfar = float(p.zfar);
-        } else if (gc.type == "orthographic") {
-            const auto &o = gc.orthographic;
-            if (!(std::isfinite(o.xmag) && o.xmag != 0 && std::isfinite(o.ymag) && o.ymag != 0))
-                gfail(cw + ".orthographic.xmag/ymag: expected finite non-zero numbers");
-            if (!(std::isfinite(o.znear) && o.znear >= 0 && std::isfinite(o.zfar) && o.zfar > o.znear))
-                gfail(cw + ".orthographic.znear/zfar: expected finite 0 <= znear < zfar");
-            sc.type = PG_CAMERA_ORTHOGRAPHIC;
-            sc.xmag = float(o.xmag);
-            sc.ymag = float(o.ymag);
-            sc.znear = float(o.znear);
-            sc.zfar = float(o.zfar);
-        } else {
-            gfail(cw + ".type: '" + gc.type + "': expected \"perspective\" or \"orthographic\"");
-        }
         if (!pg_place_camera(world.m, &sc)) gfail(strf("nodes[%d]: camera node transform is singular", ni));
         out.push_back(sc);
     }
     for (int ch : nd.children) camera_visit(c, ch, world, out);
+}
+
+pg_scene_camera camera_object(const Ctx &c, int ci)
+{
+    const tinygltf::Camera &gc = c.model.cameras[size_t(ci)];
+    const std::string cw = strf("cameras[%d]", ci);
+    pg_scene_camera sc;
+    memset(&sc, 0, sizeof sc);
+    pg_strlcpy(sc.name, gc.name.empty() ? cw.c_str() : gc.name.c_str(), sizeof sc.name);
+    sc.gltf_camera = ci;
+    sc.gltf_node = -1;
+    if (gc.type == "perspective") {
+        const auto &p = gc.perspective;
+        if (!(std::isfinite(p.yfov) && p.yfov > 0 && p.yfov < 3.14159))
+            gfail(cw + ".perspective.yfov: expected a finite angle in (0, pi) radians");
+        if (!(std::isfinite(p.znear) && p.znear > 0))
+            gfail(cw + ".perspective.znear: expected a finite number > 0");
+        if (!(std::isfinite(p.zfar) && (p.zfar == 0 || p.zfar > p.znear)))
+            gfail(cw + ".perspective.zfar: expected a finite number > znear (or absent: infinite)");
+        if (!(std::isfinite(p.aspectRatio) && p.aspectRatio >= 0))
+            gfail(cw + ".perspective.aspectRatio: expected a finite number > 0");
+        sc.type = PG_CAMERA_PERSPECTIVE;
+        sc.yfov_rad = float(p.yfov);
+        sc.aspect_ratio = float(p.aspectRatio);
+        sc.znear = float(p.znear);
+        sc.zfar = float(p.zfar);
+    } else if (gc.type == "orthographic") {
+        const auto &o = gc.orthographic;
+        if (!(std::isfinite(o.xmag) && o.xmag != 0 && std::isfinite(o.ymag) && o.ymag != 0))
+            gfail(cw + ".orthographic.xmag/ymag: expected finite non-zero numbers");
+        if (!(std::isfinite(o.znear) && o.znear >= 0 && std::isfinite(o.zfar) && o.zfar > o.znear))
+            gfail(cw + ".orthographic.znear/zfar: expected finite 0 <= znear < zfar");
+        sc.type = PG_CAMERA_ORTHOGRAPHIC;
+        sc.xmag = float(o.xmag);
+        sc.ymag = float(o.ymag);
+        sc.znear = float(o.znear);
+        sc.zfar = float(o.zfar);
+    } else {
+        gfail(cw + ".type: '" + gc.type + "': expected \"perspective\" or \"orthographic\"");
+    }
+    return sc;
 }
 
 /* one light object of the extension, checked (placement left 0) */

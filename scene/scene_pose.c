@@ -13,6 +13,7 @@ bool pg_scene_pose_camera(pg_scene *scene, uint32_t index, const pg_anim_pose *p
     if (C->gltf_node < 0 || (uint32_t)C->gltf_node >= a->n_nodes) return false;
     double m[16];
     pg_mat4_widen(pose->node_world + (size_t)C->gltf_node * 16, m);
+    pg_anim_camera_props(a, pose, C); /* KHR_animation_pointer: yfov, aspect, xmag, ymag, znear, zfar */
     return pg_place_camera(m, C); /* singular at this time: keeps the last placement */
 }
 

@@ -10,8 +10,8 @@
  *  - morph.gltf: a cube with two morph targets (one a sparse accessor), mesh default weights
  *    [0.25, 0] and a LINEAR weights channel;
  *  - pointer.gltf: rigid.gltf's animations through KHR_animation_pointer: the same poses;
- *  - beacon.gltf: a spot light's colour, intensity, range and cones animated through
- *    KHR_animation_pointer.
+ *  - beacon.gltf: a spot light's colour, intensity, range and cones and a camera's yfov and zfar
+ *    animated through KHR_animation_pointer.
  * Every position within 1e-5 of the hand value; the loop, the rest pose, --animation lookup, the
  * scene bounds following the pose, and files whose animation data is broken (refused naming the
  * object). */
@@ -158,6 +158,16 @@ static void beacon(void)
     light_expect(s, 0, 3, t3, "beacon (range stepped to 4)");
     light_expect(s, PG_ANIM_NONE, 3, rest, "beacon in the rest pose");
     light_expect(s, 0, 5, t1, "beacon (t = 5 loops to 1)");
+    /* the camera's projection: yfov 0.8 -> 0.4 and zfar 50 -> 30 over 4 s, znear and its place kept */
+    CHECK(s->n_cameras == 1 && pg_anim_camera_animated(s->anim, 0) && !pg_anim_camera_animated(s->anim, 1));
+    const double cams[][3] = {{1, 0.7, 45}, {3, 0.5, 35}, {-1, 0.8, 50}}; /* t (-1: rest pose), yfov, zfar */
+    for (size_t i = 0; i < sizeof cams / sizeof cams[0]; i++) {
+        CHECK(pg_scene_pose(s, cams[i][0] < 0 ? PG_ANIM_NONE : 0, fabs(cams[i][0]), &err) == PG_OK);
+        const pg_scene_camera *C = &s->cameras[0];
+        CHECK_MSG(fabs(C->yfov_rad - cams[i][1]) < 1e-6 && fabs(C->zfar - cams[i][2]) < 1e-4 &&
+                      fabsf(C->znear - 0.1f) < 1e-7f && fabsf(C->position[2] - 6) < 1e-5f,
+                  "eye at t=%g: yfov %g zfar %g znear %g", cams[i][0], C->yfov_rad, C->zfar, C->znear);
+    }
     pg_scene_free(s);
 }
 
@@ -288,8 +298,10 @@ static void refused(void)
     static const char *const beacon_cases[][3] = {
         {"lights/0/intensity\"", "lights/5/intensity\"",
          "channels[1].target.extensions.KHR_animation_pointer.pointer: light 5 out of range (1 lights)"},
+        {"/cameras/0/perspective/yfov\"", "/cameras/2/perspective/yfov\"",
+         "channels[5].target.extensions.KHR_animation_pointer.pointer: camera 2 out of range (1 cameras)"},
     };
-    refused_in("beacon.gltf", 1, beacon_cases);
+    refused_in("beacon.gltf", 2, beacon_cases);
     refused_in("skinned.gltf", 2, skin_cases);
     refused_in("skinned8.gltf", 2, skin8_cases);
 }

@@ -224,7 +224,8 @@ def pointer():
 
 def beacon():
     """a spot light on a still node, pointing down, whose colour, intensity, range and cones are
-    animated by KHR_animation_pointer (/extensions/KHR_lights_punctual/lights/0/...)"""
+    animated by KHR_animation_pointer (/extensions/KHR_lights_punctual/lights/0/...), and a still
+    camera whose yfov and zfar are (/cameras/0/perspective/...)"""
     doc = Doc("beacon.gltf")
     doc.d["extensionsUsed"] = ["KHR_lights_punctual", "KHR_animation_pointer"]
     doc.floor()
@@ -232,7 +233,12 @@ def beacon():
     doc.node({"name": "post", "mesh": cube, "translation": [1.5, 0.5, 0]})
     lamp_node = doc.node({"name": "beacon", "translation": [0, 3, 0], "rotation": quat_axis((1, 0, 0), -90),
                           "extensions": {"KHR_lights_punctual": {"light": 0}}})
-    assert lamp_node == 2
+    # a still camera at (0, 4, 6) looking at the origin, zooming in: yfov 0.8 -> 0.4, zfar 50 -> 30
+    eye = doc.node({"name": "eye", "camera": 0, "translation": [0, 4, 6],
+                    "rotation": quat_axis((1, 0, 0), -math.degrees(math.atan2(4, 6)))})
+    doc.d["cameras"] = [{"name": "eye", "type": "perspective",
+                         "perspective": {"yfov": 0.8, "znear": 0.1, "zfar": 50.0}}]
+    assert (lamp_node, eye) == (2, 3)
     doc.d["extensions"] = {"KHR_lights_punctual": {"lights": [
         {"name": "beacon", "type": "spot", "color": [1.0, 1.0, 1.0], "intensity": 20.0, "range": 8.0,
          "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.6}}]}}
@@ -242,7 +248,9 @@ def beacon():
         (None, L + "intensity", "LINEAR", [0, 4], [(20,), (60,)]),
         (None, L + "range", "STEP", [0, 2], [(8,), (4,)]),
         (None, L + "spot/innerConeAngle", "LINEAR", [0, 4], [(0.3,), (0.1,)]),
-        (None, L + "spot/outerConeAngle", "LINEAR", [0, 4], [(0.6,), (0.9,)])], pointer=True)
+        (None, L + "spot/outerConeAngle", "LINEAR", [0, 4], [(0.6,), (0.9,)]),
+        (None, "/cameras/0/perspective/yfov", "LINEAR", [0, 4], [(0.8,), (0.4,)]),
+        (None, "/cameras/0/perspective/zfar", "LINEAR", [0, 4], [(50,), (30,)])], pointer=True)
     doc.write()
 
 
