@@ -103,24 +103,44 @@ static uint8_t *moving_nodes(const pg_scene_anim *a)
 }
 
 /* per moving primitive: the centre of its mesh-space bounds and its dominant joints */
+/* The centre of the bounds of primitive pr's mesh-space vertices, with morph target t at weight 1
+ * (t < 0: none). */
+static void prim_bounds_centre(const pg_scene_anim *a, const pg_anim_prim *pr, int t, float out[3])
+{
+    float mn[3] = {3.4e38f, 3.4e38f, 3.4e38f}, mx[3] = {-3.4e38f, -3.4e38f, -3.4e38f};
+    for (uint32_t i = 0; i < pr->n_vertices && pr->first_vertex + i < a->n_vertices; i++) {
+        const float *p = a->local[pr->first_vertex + i].position;
+        const float *d = t >= 0 ? a->deltas[pr->target_base + (uint32_t)t * pr->n_vertices + i].position : NULL;
+        for (int k = 0; k < 3; k++) {
+            const float x = d ? p[k] + d[k] : p[k];
+            mn[k] = fminf(mn[k], x);
+            mx[k] = fmaxf(mx[k], x);
+        }
+    }
+    for (int k = 0; k < 3; k++) out[k] = pr->n_vertices ? 0.5f * (mn[k] + mx[k]) : 0.0f;
+}
+
 static pg_result prim_centres(const pg_scene_anim *a, pg_scene_gpu_anim *ga, pg_error *err)
 {
+    uint64_t n_shift = 0;
+    for (uint32_t p = 0; p < a->n_prims; p++) n_shift += a->prims[p].n_targets;
     ga->centres = calloc((size_t)a->n_prims + 1, sizeof *ga->centres);
+    ga->morph_shift = calloc((size_t)n_shift + 1, sizeof *ga->morph_shift);
     float *sum = a->joints ? calloc((size_t)a->n_joint_slots + 1, sizeof(float)) : NULL;
-    if (!ga->centres || (a->joints && !sum)) {
+    if (!ga->centres || !ga->morph_shift || (a->joints && !sum)) {
         free(sum);
         return pg_fail(err, PG_ERR_OOM, "out of memory");
     }
+    uint32_t shift_at = 0;
     for (uint32_t p = 0; p < a->n_prims; p++) {
         const pg_anim_prim *pr = &a->prims[p];
         pg_anim_prim_centre *c = &ga->centres[p];
-        float mn[3] = {3.4e38f, 3.4e38f, 3.4e38f}, mx[3] = {-3.4e38f, -3.4e38f, -3.4e38f};
-        for (uint32_t v = pr->first_vertex; v < pr->first_vertex + pr->n_vertices && v < a->n_vertices; v++)
-            for (int k = 0; k < 3; k++) {
-                mn[k] = fminf(mn[k], a->local[v].position[k]);
-                mx[k] = fmaxf(mx[k], a->local[v].position[k]);
-            }
-        for (int k = 0; k < 3; k++) c->local[k] = pr->n_vertices ? 0.5f * (mn[k] + mx[k]) : 0.0f;
+        prim_bounds_centre(a, pr, -1, c->local);
+        c->morph_base = shift_at;
+        for (uint32_t t = 0; t < pr->n_targets && a->deltas; t++, shift_at++) {
+            prim_bounds_centre(a, pr, (int)t, ga->morph_shift[shift_at]);
+            for (int k = 0; k < 3; k++) ga->morph_shift[shift_at][k] -= c->local[k];
+        }
         if (pr->skin < 0 || !sum) continue;
         for (uint32_t v = pr->first_vertex; v < pr->first_vertex + pr->n_vertices && v < a->n_vertices; v++)
             for (int k = 0; k < PG_ANIM_MAX_INFLUENCES; k++) sum[a->joints[v][k]] += a->weights[v][k];
@@ -161,6 +181,10 @@ int32_t pg_scene_gpu_anim_prim_at(const pg_scene_gpu_anim *ga, int32_t first_ver
 void pg_scene_gpu_anim_centre(const pg_scene_gpu_anim *ga, uint32_t prim, const pg_anim_pose *pose, float out[3])
 {
     const pg_anim_prim_centre *c = &ga->centres[prim];
+    const pg_anim_prim *pr = &ga->anim->prims[prim];
+    float lc[3] = {c->local[0], c->local[1], c->local[2]};
+    for (uint32_t t = 0; t < pr->n_targets && ga->anim->deltas; t++) /* morphed before skinning or the node */
+        for (int k = 0; k < 3; k++) lc[k] += pose->weights[pr->weight_base + t] * ga->morph_shift[c->morph_base + t][k];
     float m[16];
     if (c->n_joints) {
         memset(m, 0, sizeof m);
@@ -169,8 +193,7 @@ void pg_scene_gpu_anim_centre(const pg_scene_gpu_anim *ga, uint32_t prim, const 
     } else {
         memcpy(m, pose->node_world + (size_t)ga->anim->prims[prim].node * 16, sizeof m);
     }
-    for (int r = 0; r < 3; r++)
-        out[r] = m[r] * c->local[0] + m[4 + r] * c->local[1] + m[8 + r] * c->local[2] + m[12 + r];
+    for (int r = 0; r < 3; r++) out[r] = m[r] * lc[0] + m[4 + r] * lc[1] + m[8 + r] * lc[2] + m[12 + r];
 }
 
 static pg_result find_moving_lights(const pg_scene *scene, pg_scene_gpu_anim *ga, pg_error *err)
@@ -297,6 +320,7 @@ void pg_scene_gpu_anim_destroy(pg_gpu *gpu, pg_scene_gpu_anim *ga)
     if (ga->now) pg_anim_pose_release(&ga->now->pose);
     free(ga->now);
     free(ga->centres);
+    free(ga->morph_shift);
     free(ga);
 }
 

@@ -32,9 +32,12 @@ typedef struct pg_scene_gpu_anim_now {
 /* What sorting a moving primitive by its posed bounds needs: the centre of its mesh-space bounds and,
  * for a skinned one, its dominant joints (the largest summed weights over its vertices, normalised):
  * the posed centre is sum w_j (world(joint_j) x inverseBind_j) x centre, or its node's world matrix
- * x centre for a rigid one (morph targets are left out: a sort key). */
+ * x centre for a rigid one. Morph targets move the mesh-space centre first: + sum_t w_t x shift_t,
+ * shift_t the move of the bounds' centre with target t at weight 1 (exact at each target, linear
+ * between: a sort key). */
 typedef struct pg_anim_prim_centre {
     float local[3];
+    uint32_t morph_base; /* its targets' shifts: pg_scene_gpu_anim.morph_shift[morph_base + t] */
     uint32_t n_joints;  /* 0: rigid */
     uint16_t slot[4];
     float weight[4];
@@ -54,6 +57,7 @@ typedef struct pg_scene_gpu_anim {
     pg_scene_light *moving_rest;
     pg_scene_gpu_anim_now *now;
     pg_anim_prim_centre *centres; /* per moving primitive (anim->n_prims) */
+    float (*morph_shift)[3];       /* per morph target of each moving primitive (pg_anim_prim_centre) */
 } pg_scene_gpu_anim;
 
 pg_result pg_scene_gpu_anim_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu_anim **out, pg_error *err);

@@ -687,6 +687,28 @@ def glass():
     doc.write()
 
 
+def glass_morph():
+    """glass.gltf's passing blue box moved by a morph target instead of its node: its bounds move
+    with the target's weight, so the transparent pass must sort by the morphed bounds"""
+    doc = Doc("glass_morph.gltf")
+    doc.floor()
+    red = doc.mesh("red_glass", *UNIT_BOX, doc.material("red_glass", (0.9, 0.1, 0.1), alpha=0.5))
+    pos, nrm, idx = UNIT_BOX
+    ahead = [(0, 0.2, 4.5)] * len(pos)  # the whole box to (0, 1.2, 2) from (0, 1, -2.5)
+    blue = doc.mesh("blue_glass", pos, nrm, idx, doc.material("blue_glass", (0.1, 0.2, 0.9), alpha=0.5),
+                    targets=[{"POSITION": doc.vec3(ahead, bounds=True)}], weights=[0])
+    still = doc.node({"name": "still", "mesh": red, "translation": [0, 1, -0.5]})
+    mover = doc.node({"name": "mover", "mesh": blue, "translation": [0, 1, -2.5]})
+    sun = doc.node({"name": "sun", "rotation": quat_axis((1, 0, 0), -45),
+                    "extensions": {"KHR_lights_punctual": {"light": 0}}})
+    assert (still, mover, sun) == (1, 2, 3)
+    doc.d["extensionsUsed"] = ["KHR_lights_punctual"]
+    doc.d["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "sun", "type": "directional", "color": [1.0, 1.0, 1.0], "intensity": 3.0}]}}
+    doc.animation("pass", [(mover, "weights", "LINEAR", [0, 1, 2], [(0,), (1,), (0,)])])
+    doc.write()
+
+
 def check_poses():
     cache = {}
     for name, node, v, anim, t, want in POSES:
@@ -709,7 +731,8 @@ morph()
 lamp()
 lantern()
 glass()
-for f in ("rigid.gltf", "pointer.gltf", "beacon.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf", "glass.gltf"):
+glass_morph()
+for f in ("rigid.gltf", "pointer.gltf", "beacon.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf", "glass.gltf", "glass_morph.gltf"):
     Gltf(f).check()
 check_poses()
-print("rigid.gltf pointer.gltf beacon.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf glass.gltf: written and checked (%d poses)" % len(POSES))
+print("rigid.gltf pointer.gltf beacon.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf glass.gltf glass_morph.gltf: written and checked (%d poses)" % len(POSES))
