@@ -605,9 +605,11 @@ two="$objs/two_cameras.gltf"
 expect_fail "unknown camera lists the cameras" "available: 0 'side' (node 'side_node'), 1 'top' (node 'top_node', orthographic), or auto" \
   render --scene "$two" --camera nope --size 32x18 --out "$tmp/x.png"
 expect_fail "camera index out of range" "--camera 2: no such camera" render --scene "$two" --camera 2 --size 32x18 --out "$tmp/x.png"
-"$PG" render --scene "$two" --camera top --size 32x18 --lights 8 --explain --out "$tmp/top.png" 2>"$tmp/cerr" | \
-  grep -q "^explain: camera: glTF camera 1 'top' (node 'top_node', orthographic), selected by --camera top" \
-  && [ -s "$tmp/top.png" ] && ok || { bad "orthographic camera: render"; cat "$tmp/cerr"; }
+# (stdout to a file: `| grep -q` would exit at the first match and a later write would kill the render
+# by SIGPIPE before it wrote the PNG; that failed once under ASan)
+"$PG" render --scene "$two" --camera top --size 32x18 --lights 8 --explain --out "$tmp/top.png" >"$tmp/cout" \
+  2>"$tmp/cerr" && grep -q "^explain: camera: glTF camera 1 'top' (node 'top_node', orthographic), selected by --camera top" \
+  "$tmp/cout" && [ -s "$tmp/top.png" ] && ok || { bad "orthographic camera: render"; cat "$tmp/cerr"; }
 expect_fail "camera on a file without cameras" "has no cameras; use --camera auto" \
   render --scene "$objs/cube.gltf" --camera 0 --size 32x18 --out "$tmp/x.png"
 expect_fail "camera on the atrium" "has no cameras" render --camera 0 --size 32x18 --out "$tmp/x.png"
