@@ -170,6 +170,24 @@ void pg_environment_slot_declare(const pg_declare_in *in, pg_pass_decl *out, pg_
                                                                            : "no specular term (pbr has one)");
 }
 
+pg_result pg_hdr_storage_check(const pg_declare_in *in, pg_slot hdr, const char *what, pg_error *err)
+{
+    char where[32];
+    const pg_resource_desc *rd = pg_decl_slot_resource(in, hdr, PG_RES_IMAGE, where, sizeof where);
+    if (rd && rd->format != PG_FMT_RGBA16F && rd->format != PG_FMT_RGBA32F)
+        return pg_fail(err, PG_ERR_FORMAT,
+                       "%s: %s.%s: pass '%s' slot hdr: %s writes rgba16f or rgba32f, not %s (resource '%s')",
+                       in->desc->file, in->desc->json_path, where, in->desc->name, what,
+                       pg_format_get(rd->format)->name, rd->name);
+    return PG_OK;
+}
+
+const char *pg_hdr_format_define(const pg_phys_resource *hdr, char *buf, size_t size)
+{
+    snprintf(buf, size, "PG_HDR_FORMAT=%s", pg_format_get(hdr->pg_fmt)->name);
+    return buf;
+}
+
 pg_result pg_emissive_slot_declare(const pg_declare_in *in, pg_pass_decl *out, bool is_write, bool full_precision,
                                    pg_slot *slot, bool *used, pg_error *err)
 {

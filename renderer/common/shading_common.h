@@ -91,6 +91,13 @@ void pg_environment_slot_declare(const pg_declare_in *in, pg_pass_decl *out, pg_
  * bound: nothing is declared (*slot = PG_SLOT_NONE), and with emissive materials an explain line says they
  * are not drawn. *used: bound and the scene has emissive materials (the pass then compiles its emissive
  * variant). */
+/* The hdr slot of a compute pass that writes it as a storage image: rgba16f or rgba32f (the format its
+ * shader's PG_HDR_FORMAT names), else PG_ERR_FORMAT "...: pass 'P' slot hdr: WHAT writes rgba16f or
+ * rgba32f, not F (resource 'R')". */
+pg_result pg_hdr_storage_check(const pg_declare_in *in, pg_slot hdr, const char *what, pg_error *err);
+/* "PG_HDR_FORMAT=<format>" for the bound hdr image, written into buf. */
+const char *pg_hdr_format_define(const pg_phys_resource *hdr, char *buf, size_t size);
+
 pg_result pg_emissive_slot_declare(const pg_declare_in *in, pg_pass_decl *out, bool is_write, bool full_precision,
                                    pg_slot *slot, bool *used, pg_error *err);
 

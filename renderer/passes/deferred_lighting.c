@@ -105,14 +105,7 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         return r;
     }
     p->hdr = pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
-    char where[32];
-    const pg_resource_desc *hdr = pg_decl_slot_resource(in, p->hdr, PG_RES_IMAGE, where, sizeof where);
-    if (hdr && hdr->format != PG_FMT_RGBA16F && hdr->format != PG_FMT_RGBA32F)
-        return pg_fail(err, PG_ERR_FORMAT,
-                       "%s: %s.%s: pass '%s' slot hdr: deferred lighting writes rgba16f or rgba32f, not %s "
-                       "(resource '%s')",
-                       in->desc->file, in->desc->json_path, where, in->desc->name, pg_format_get(hdr->format)->name,
-                       hdr->name);
+    if ((r = pg_hdr_storage_check(in, p->hdr, "deferred lighting", err))) return r;
     pg_decl_define(out, pg_gbuffer_defines[packing]);
     if (emissive) pg_decl_define(out, "PG_DEFERRED_EMISSIVE");
     pg_shading_declare(&p->sh, in, out);
@@ -186,7 +179,6 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     bool emissive = !vis && pg_slot_ok(pa->emissive_slot) && !pg_ctx_unused(ctx, pa->emissive_slot);
     if (vis && (r = pg_vis_geometry_create(ctx, &pa->draw, 3, &p->vis, err))) return r;
     const pg_phys_resource *hdr = pg_ctx_res(ctx, pa->hdr); /* rgba16f or rgba32f (declare) */
-    const char *hdr_fmt = pg_format_get(hdr->pg_fmt)->name;
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
     pg_set_binding b[12];
     uint32_t n = 0;
@@ -230,8 +222,7 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     if (vis) nd = pg_vis_geometry_define_list(&p->vis, defs);
     else nd = pg_decl_define_list(&ctx->pass->decl, defs, PG_MAX_DEFINES);
     char fmt_def[48];
-    snprintf(fmt_def, sizeof fmt_def, "PG_HDR_FORMAT=%s", hdr_fmt);
-    defs[nd++] = fmt_def;
+    defs[nd++] = pg_hdr_format_define(hdr, fmt_def, sizeof fmt_def);
     const bool tiled = pa->tiled;
     p->tile = pa->tile;
     /* the tiled path orders lights within a subgroup by ballots when every subgroup is full */

@@ -7,10 +7,7 @@
  * writes [hdr (rgba16f or rgba32f storage image, read and written: only background pixels change)].
  * Skipped (the graph culls it, with the reason) when the scene has no environment light, or under a
  * debug view. Options: "view" (the pipeline's debug view; default "none"). */
-#include <stdio.h>
 
-#include "environment_layout.h"
-#include "frame.h"
 #include "pass_api.h"
 #include "pass_set.h"
 #include "scene_vars.h"
@@ -30,19 +27,6 @@ typedef struct environment_background {
     uint32_t width, height;
 } environment_background;
 
-static pg_result eb_check_hdr(const pg_declare_in *in, pg_slot s, pg_error *err)
-{
-    char where[32];
-    const pg_resource_desc *rd = pg_decl_slot_resource(in, s, PG_RES_IMAGE, where, sizeof where);
-    if (rd && rd->format != PG_FMT_RGBA16F && rd->format != PG_FMT_RGBA32F)
-        return pg_fail(err, PG_ERR_FORMAT,
-                       "%s: %s.%s: pass '%s' slot hdr: the background is written to an rgba16f or rgba32f image, not "
-                       "%s (resource '%s')",
-                       in->desc->file, in->desc->json_path, where, in->desc->name, pg_format_get(rd->format)->name,
-                       rd->name);
-    return PG_OK;
-}
-
 static pg_result eb_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
     static const char *const known[] = {"view", NULL};
@@ -54,7 +38,7 @@ static pg_result eb_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     p->depth = pg_decl_read(out, "depth", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_DEPTH);
     p->environment = pg_decl_read(out, "environment", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
     p->hdr = pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_RW, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
-    if ((r = eb_check_hdr(in, p->hdr, err))) return r;
+    if ((r = pg_hdr_storage_check(in, p->hdr, "the environment background", err))) return r;
     if (!pg_scene_features_of(in).has_environment) {
         pg_decl_skip(out, "no environment light in the scene: the background stays black");
         return PG_OK;
@@ -86,8 +70,7 @@ static pg_result eb_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
     if ((r = pg_pipeline_layout_create(gpu, 2, sets, 0, &p->layout, err))) return r;
     char fmt_def[48];
-    snprintf(fmt_def, sizeof fmt_def, "PG_HDR_FORMAT=%s", pg_format_get(hdr->pg_fmt)->name);
-    const char *defs[1] = {fmt_def};
+    const char *defs[1] = {pg_hdr_format_define(hdr, fmt_def, sizeof fmt_def)};
     VkShaderModule cs;
     if ((r = pg_shader_module(gpu, "environment_background.comp", VK_SHADER_STAGE_COMPUTE_BIT, defs, 1, &cs, err)))
         return r;

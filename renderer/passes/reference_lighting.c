@@ -228,14 +228,7 @@ static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
     if ((r = pg_emissive_slot_declare(in, out, false, true, &p->emissive, &emissive, err))) return r;
     if (emissive) pg_decl_define(out, "PG_REFERENCE_EMISSIVE");
     p->hdr = pg_decl_write(out, "hdr", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
-    char where[32];
-    const pg_resource_desc *hdr = pg_decl_slot_resource(in, p->hdr, PG_RES_IMAGE, where, sizeof where);
-    if (hdr && hdr->format != PG_FMT_RGBA16F && hdr->format != PG_FMT_RGBA32F)
-        return pg_fail(err, PG_ERR_FORMAT,
-                       "%s: %s.%s: pass '%s' slot hdr: reference lighting writes rgba16f or rgba32f, not %s "
-                       "(resource '%s')",
-                       in->desc->file, in->desc->json_path, where, in->desc->name, pg_format_get(hdr->format)->name,
-                       hdr->name);
+    if ((r = pg_hdr_storage_check(in, p->hdr, "reference lighting", err))) return r;
     /* read and written by the later dispatches, written in full by the first one before any
      * later one reads them: the pass initializes them itself */
     p->accum[0] =
@@ -305,7 +298,6 @@ static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
     p->n_accum = !p->has_accum ? 0 : pg_ctx_unused(ctx, pa->accum[1]) ? 1
                  : pg_slot_ok(pa->accum[2]) && !pg_ctx_unused(ctx, pa->accum[2]) ? 3 : 2;
     const pg_phys_resource *hdr = pg_ctx_res(ctx, pa->hdr); /* rgba16f or rgba32f (declare) */
-    const char *hdr_fmt = pg_format_get(hdr->pg_fmt)->name;
     /* the images sized like hdr have its extent (declare) */
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
     pg_set_binding b[10];
@@ -344,8 +336,7 @@ static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
     const char *defs[PG_MAX_DEFINES + 5];
     uint32_t nd = pg_decl_define_list(&ctx->pass->decl, defs, PG_MAX_DEFINES);
     char fmt_def[48], env_defs[3][48];
-    snprintf(fmt_def, sizeof fmt_def, "PG_HDR_FORMAT=%s", hdr_fmt);
-    defs[nd++] = fmt_def;
+    defs[nd++] = pg_hdr_format_define(hdr, fmt_def, sizeof fmt_def);
     if (p->has_env) {
         snprintf(env_defs[0], sizeof env_defs[0], "PG_REFERENCE_ENV_BINDING=%u", env_binding);
         snprintf(env_defs[1], sizeof env_defs[1], "PG_ENV_SRC_W=%u", sg->env_width);
