@@ -102,7 +102,6 @@ static uint8_t *moving_nodes(const pg_scene_anim *a)
     return m;
 }
 
-/* per moving primitive: the centre of its mesh-space bounds and its dominant joints */
 /* The centre of the bounds of primitive pr's mesh-space vertices, with morph target t at weight 1
  * (t < 0: none). */
 static void prim_bounds_centre(const pg_scene_anim *a, const pg_anim_prim *pr, int t, float out[3])
@@ -120,6 +119,8 @@ static void prim_bounds_centre(const pg_scene_anim *a, const pg_anim_prim *pr, i
     for (int k = 0; k < 3; k++) out[k] = pr->n_vertices ? 0.5f * (mn[k] + mx[k]) : 0.0f;
 }
 
+/* per moving primitive: the centre of its mesh-space bounds, its morph targets' shifts of it and
+ * its dominant joints */
 static pg_result prim_centres(const pg_scene_anim *a, pg_scene_gpu_anim *ga, pg_error *err)
 {
     uint64_t n_shift = 0;
@@ -196,16 +197,19 @@ void pg_scene_gpu_anim_centre(const pg_scene_gpu_anim *ga, uint32_t prim, const 
     for (int r = 0; r < 3; r++) out[r] = m[r] * lc[0] + m[4 + r] * lc[1] + m[8 + r] * lc[2] + m[12 + r];
 }
 
+/* a file light the frame's pose changes: on a moving node, or with animated properties */
+static bool light_moves(const pg_scene_anim *a, const uint8_t *moving, const pg_scene_light *L)
+{
+    const int32_t n = L->gltf_node;
+    return (n >= 0 && (uint32_t)n < a->n_nodes && moving[n]) || pg_anim_light_animated(a, L->gltf_light);
+}
+
 static pg_result find_moving_lights(const pg_scene *scene, pg_scene_gpu_anim *ga, pg_error *err)
 {
     const pg_scene_anim *a = scene->anim;
     uint8_t *moving = moving_nodes(a);
     if (!moving) return pg_fail(err, PG_ERR_OOM, "out of memory");
-    for (uint32_t i = 0; i < scene->n_lights; i++) {
-        const int32_t n = scene->lights[i].gltf_node;
-        if ((n >= 0 && (uint32_t)n < a->n_nodes && moving[n]) || pg_anim_light_animated(a, scene->lights[i].gltf_light))
-            ga->n_moving_lights++;
-    }
+    for (uint32_t i = 0; i < scene->n_lights; i++) ga->n_moving_lights += light_moves(a, moving, &scene->lights[i]);
     if (ga->n_moving_lights) {
         ga->moving_light = calloc(ga->n_moving_lights, sizeof *ga->moving_light);
         ga->moving_rest = calloc(ga->n_moving_lights, sizeof *ga->moving_rest);
@@ -215,9 +219,7 @@ static pg_result find_moving_lights(const pg_scene *scene, pg_scene_gpu_anim *ga
         }
         uint32_t k = 0;
         for (uint32_t i = 0; i < scene->n_lights; i++) {
-            const int32_t n = scene->lights[i].gltf_node;
-            const bool placed = n >= 0 && (uint32_t)n < a->n_nodes && moving[n];
-            if (!placed && !pg_anim_light_animated(a, scene->lights[i].gltf_light)) continue;
+            if (!light_moves(a, moving, &scene->lights[i])) continue;
             ga->moving_light[k] = i;
             ga->moving_rest[k++] = scene->lights[i];
         }

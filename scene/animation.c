@@ -54,8 +54,8 @@ pg_result pg_anim_pose_alloc(const pg_scene_anim *a, pg_anim_pose *out, pg_error
     out->work.local = malloc(sizeof(float) * 16 * nn);
     out->work.stack = malloc(sizeof(uint32_t) * nn);
     out->work.done = malloc(nn);
-    if (!out->node_world || !out->joints || !out->weights || !out->lights || !out->cameras || !out->work.t || !out->work.r || !out->work.s ||
-        !out->work.local || !out->work.stack || !out->work.done) {
+    if (!out->node_world || !out->joints || !out->weights || !out->lights || !out->cameras || !out->work.t ||
+        !out->work.r || !out->work.s || !out->work.local || !out->work.stack || !out->work.done) {
         pg_anim_pose_release(out);
         return pg_fail(err, PG_ERR_OOM, "animation pose: out of memory");
     }
@@ -188,7 +188,6 @@ double pg_anim_local_time(const pg_scene_anim *a, int animation, double time)
     return t;
 }
 
-/* apply one animation's channels at t to the local TRS arrays / weights */
 /* offset of a light channel's value in a pose's light properties, -1 for a node channel */
 static int light_prop_offset(pg_anim_path p)
 {
@@ -202,6 +201,8 @@ static int light_prop_offset(pg_anim_path p)
     }
 }
 
+/* apply one animation's channels at t to the local TRS arrays and the pose's weights, light
+ * properties and camera projections */
 static void apply_animation(const pg_scene_anim *a, const pg_animation *an, double t, float (*T)[3], float (*R)[4],
                             float (*S)[3], const pg_anim_pose *pose)
 {

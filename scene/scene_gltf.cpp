@@ -237,14 +237,8 @@ static void parse_json(Ctx &c, const RawFile &f)
     }
 }
 
-/* The file as tinygltf is to see it, when it must differ (else empty): EXT_meshopt_compression
- * fallback buffers are not loaded: tinygltf would look for a file (or refuse a missing uri), so
- * it gets a copy of the file in which each is a 4-byte data URI (never read: only compressed
- * bufferViews use it, and those are read from their decoded data); Draco indices accessors
- * without a bufferView get one (see prevalidate); animation targets without a node get one
- * (nodeless_targets). A GLB keeps its BIN chunk after the new JSON. */
-/* The animation channel targets without a "node" (KHR_animation_pointer's), as (animation,
- * channel): tinygltf 2.7 drops such a channel, so the copy it reads gives each "node": 0 (unused: the
+/* The animation channel targets of path "pointer" without a "node" (KHR_animation_pointer's), as
+ * (animation, channel): tinygltf 2.7 drops such a channel, so the copy it reads gives each "node": 0 (unused: the
  * pointer names the target, scene_gltf_anim.cpp channel_target). */
 static std::vector<std::pair<size_t, size_t>> nodeless_targets(const json &j)
 {
@@ -258,12 +252,20 @@ static std::vector<std::pair<size_t, size_t>> nodeless_targets(const json &j)
         for (size_t ci = 0; ci < ch->size(); ci++) {
             const json &c = (*ch)[ci];
             const auto t = c.is_object() ? c.find("target") : c.end();
-            if (c.is_object() && t != c.end() && t->is_object() && !t->contains("node")) out.emplace_back(ai, ci);
+            if (c.is_object() && t != c.end() && t->is_object() && !t->contains("node") && t->contains("path") &&
+                (*t)["path"] == "pointer") /* a nodeless target of another path stays dropped */
+                out.emplace_back(ai, ci);
         }
     }
     return out;
 }
 
+/* The file as tinygltf is to see it, when it must differ (else empty): EXT_meshopt_compression
+ * fallback buffers are not loaded: tinygltf would look for a file (or refuse a missing uri), so
+ * it gets a copy of the file in which each is a 4-byte data URI (never read: only compressed
+ * bufferViews use it, and those are read from their decoded data); Draco indices accessors
+ * without a bufferView get one (see prevalidate); animation targets without a node get one
+ * (nodeless_targets). A GLB keeps its BIN chunk after the new JSON. */
 static std::vector<unsigned char> rewrite_for_tinygltf(const Ctx &c, const unsigned char *bytes)
 {
     std::vector<unsigned char> rewritten;

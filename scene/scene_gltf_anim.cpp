@@ -22,10 +22,12 @@ static pg_anim_path channel_path(const std::string &p, bool *known)
     return PG_ANIM_TRANSLATION;
 }
 
-/* A channel's target node and path: target.node and target.path, or with target.path "pointer" the
- * KHR_animation_pointer JSON pointer "/nodes/N/translation|rotation|scale|weights" (the same
- * animation). false: another pointer (a material, light or camera property: *pointer names it, for
- * the warning) or an unknown path. A pointer that is not a string is refused. */
+/* A channel's target and path: target.node and target.path, or with target.path "pointer" the
+ * KHR_animation_pointer JSON pointer: "/nodes/N/translation|rotation|scale|weights" (the same
+ * animation), "/extensions/KHR_lights_punctual/lights/N/<property>" or "/cameras/N/<projection
+ * property>" (*node is then the light's or camera's index). false: another pointer (a material
+ * property: *pointer names it, for the warning) or an unknown path. A pointer that is not a string is
+ * refused. */
 static bool channel_target(const tinygltf::AnimationChannel &ch, const std::string &cw, int *node, pg_anim_path *path,
                            std::string *pointer)
 {
