@@ -3,7 +3,7 @@
 // (deferred_lighting with packing "visibility", visibility_resolve). renderer/common/visibility_common.h
 // binds, in set PG_VIS_SET from binding PG_VIS_BINDING on:
 //   +0 the scene's vertices (pg_vertex: 12 floats), +1 its indices, +2 the draw table (uvec4 per
-//   draw: first index, vertex offset, material, 0), then COLOR_0 (vec4 per vertex, only with
+//   draw: first index, vertex offset, material, flags), then COLOR_0 (vec4 per vertex, only with
 //   PG_VERTEX_COLORS) and TEXCOORD_1 (vec2 per vertex, only with PG_UV1).
 // Include after common.glsl (FRAME_UNIFORMS_BLOCK), depth_reconstruct.glsl and surface.glsl
 // (compiled with PG_SURFACE_GRADS).

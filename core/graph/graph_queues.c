@@ -89,6 +89,12 @@ static void raster_reason(const pg_plan_pass *pp, char *buf, size_t n)
             snprintf(buf, n, "slot '%s' is a vertex stream (vertex_input)", d->name);
             return;
         }
+        /* copies to or from a depth aspect are for graphics queues only (vkCmdCopy*Image*) */
+        if ((d->access == PG_ACCESS_TRANSFER_DST || d->access == PG_ACCESS_TRANSFER_SRC) &&
+            (d->formats & PG_FMTCLASS_DEPTH)) {
+            snprintf(buf, n, "slot '%s' copies a depth image (%s)", d->name, pg_access_name(d->access));
+            return;
+        }
         const bool shader = d->access == PG_ACCESS_SAMPLED || d->access == PG_ACCESS_STORAGE_READ ||
                             d->access == PG_ACCESS_STORAGE_WRITE || d->access == PG_ACCESS_STORAGE_RW ||
                             d->access == PG_ACCESS_UNIFORM;

@@ -531,6 +531,8 @@ static void fill_enable(const pg_gpu *gpu, const pg_gpu_desc *desc, const dev_fe
         .hostQueryReset = f12->hostQueryReset,
         .timelineSemaphore = f12->timelineSemaphore,
         .scalarBlockLayout = f12->scalarBlockLayout,
+        /* 64-bit atomicMin on storage buffers: the visibility pass's compute rasterizer */
+        .shaderBufferInt64Atomics = f12->shaderBufferInt64Atomics,
         .shaderSampledImageArrayNonUniformIndexing = f12->shaderSampledImageArrayNonUniformIndexing,
         .runtimeDescriptorArray = f12->runtimeDescriptorArray,
     };
@@ -556,6 +558,7 @@ static pg_result create_device(pg_gpu *gpu, const pg_gpu_desc *desc, const dev_f
     fill_enable(gpu, desc, df, &e);
     gpu->primitive_id_in_fragment = df->f2.features.geometryShader;
     gpu->nonuniform_sampled_arrays = df->f12.shaderSampledImageArrayNonUniformIndexing;
+    gpu->int64_atomics = df->f2.features.shaderInt64 && df->f12.shaderBufferInt64Atomics;
     gpu->timeline_semaphores = df->f12.timelineSemaphore;
     if (q->cfam >= 0 && !df->f12.timelineSemaphore) {
         q->cfam = -1;

@@ -98,6 +98,9 @@ typedef struct pg_gpu {
     /* shaderSampledImageArrayNonUniformIndexing enabled: a compute invocation may index the
      * scene's texture array with its own value (nonuniformEXT) */
     bool nonuniform_sampled_arrays;
+    /* shaderInt64 and shaderBufferInt64Atomics enabled: 64-bit atomics on storage buffers (the
+     * visibility pass's compute rasterizer) */
+    bool int64_atomics;
     uint64_t max_storage_buffer_range; /* bytes one storage-buffer binding may span */
     uint32_t validation_messages; /* errors + warnings reported by the validation layer */
     uint32_t validation_errors;

@@ -1,0 +1,198 @@
+// visibility_raster.glsl - the visibility pass's compute rasterizer (option raster "compute";
+// renderer/passes/visibility_raster.c): what its three shaders share.
+//
+// Every opaque triangle of the scene is transformed as scene.vert transforms it, clipped against
+// the near plane (clip z >= 0) and a guard band of PG_RASTER_GUARD pixels around the viewport
+// (in homogeneous clip space: the far side and the viewport's own edges are left to the pixel
+// tests), projected and snapped to 1/256 pixel (8 subpixel bits, as the rasterizers of desktop
+// GPUs). Coverage is the exact integer edge test at pixel centres with a tie rule for centres on
+// an edge (an edge a->b owns them when dy < 0, or dy = 0 and dx > 0: of two triangles that share
+// an edge exactly one does, so a closed mesh has neither holes nor double hits). Back faces of
+// single-sided materials are culled by the sign of the snapped area (VK_FRONT_FACE_COUNTER_CLOCKWISE
+// with the pass's viewport, y down: front when the area below is negative). Depth is z/w
+// interpolated with the screen-space barycentrics; a pixel keeps the 64-bit minimum of
+// (depth bits << 32) | id (atomicMin), so the nearest triangle wins and a tie goes to the lower id,
+// i.e. the draw and then the primitive drawn first, as a LESS depth test does.
+//
+// Set 1: 0 the keys (one uint64 per pixel), 1 the job list, 2 the job dispatch's indirect
+// arguments, 3 each draw's first global triangle, 4-6 the scene's vertices, indices and draw table
+// (visibility_common.h: uvec4 first index, vertex offset, material, flags with bit 0 double-sided),
+// 7 the id image, 8 the depth values (one float per pixel, copied into the depth image).
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+#include "common.glsl"
+FRAME_UNIFORMS_BLOCK
+
+layout(set = 1, binding = 0, std430) buffer RasterKeys { uint64_t raster_keys[]; };
+// a job: a triangle too large for one invocation, PG_RASTER_JOB_BLOCKS 8x8 blocks of its box per
+// workgroup: (x0, y0, x1, y1) and (x2, y2, id, first block) snapped and oriented, (z0, z1, z2)
+struct PgRasterJob {
+    ivec4 a;
+    uvec4 b;
+    vec4 z;
+};
+layout(set = 1, binding = 1, std430) buffer RasterJobs { uint raster_job_next; uint raster_job_pad[3]; PgRasterJob raster_jobs[]; };
+layout(set = 1, binding = 2, std430) buffer RasterArgs { uint raster_job_groups; uint raster_args_yz[2]; };
+layout(set = 1, binding = 3, std430) readonly buffer RasterTriStart { uint raster_tri_start[]; };
+layout(set = 1, binding = 4, std430) readonly buffer RasterVertices { float raster_vertices[]; };
+layout(set = 1, binding = 5, std430) readonly buffer RasterIndices { uint raster_indices[]; };
+layout(set = 1, binding = 6, std430) readonly buffer RasterDraws { uvec4 raster_draws[]; };
+layout(push_constant) uniform RasterPush {
+    uint n_tris;   // triangles of the rasterized draws
+    uint n_draws;  // rasterized draws (the scene's opaque ones)
+    uint job_cap;  // entries of raster_jobs
+    uint tri_bits; // visibility_common.h
+} rp;
+
+const float PG_RASTER_SNAP = 256.0;      // 8 subpixel bits
+const float PG_RASTER_GUARD = 1048576.0; // guard band: 2^20 pixels from the viewport's centre
+const uint PG_RASTER_JOB_BLOCKS = 16u;   // 8x8 blocks per job
+const uint PG_RASTER_SMALL = 64u;        // box pixels one invocation covers itself
+
+ivec2 pg_raster_size() { return ivec2(frame.counts.zw); }
+
+// The draw that global triangle t belongs to (raster_tri_start[d] <= t < raster_tri_start[d + 1]).
+uint pg_raster_draw_of(uint t)
+{
+    uint lo = 0u, hi = rp.n_draws; // raster_tri_start[lo] <= t < raster_tri_start[hi]
+    while (hi - lo > 1u) {
+        uint mid = (lo + hi) >> 1u;
+        if (raster_tri_start[mid] <= t) lo = mid;
+        else hi = mid;
+    }
+    return lo;
+}
+
+// Clip-space corners of triangle t (as scene.vert computes gl_Position), its id and whether its
+// material is double-sided.
+void pg_raster_fetch(uint t, out vec4 c[3], out uint id, out bool two_sided)
+{
+    uint d = pg_raster_draw_of(t);
+    uvec4 dr = raster_draws[d];
+    uint prim = t - raster_tri_start[d];
+    id = (d << rp.tri_bits) | prim;
+    two_sided = (dr.w & 1u) != 0u;
+    for (int k = 0; k < 3; k++) {
+        uint v = raster_indices[dr.x + 3u * prim + uint(k)] + dr.y;
+        vec3 p = vec3(raster_vertices[12u * v], raster_vertices[12u * v + 1u], raster_vertices[12u * v + 2u]);
+        precise vec4 g = frame.proj * vec4(PG_REL_TO_VIEW(p - frame.camera_pos.xyz), 1.0);
+        c[k] = g;
+    }
+}
+
+// The clip planes: dot(plane, c) >= 0 inside. 0: z >= 0 (near); 1-4: the guard band.
+vec4 pg_raster_plane(int i)
+{
+    vec2 g = PG_RASTER_GUARD / (0.5 * vec2(pg_raster_size()));
+    if (i == 0) return vec4(0.0, 0.0, 1.0, 0.0);
+    if (i == 1) return vec4(1.0, 0.0, 0.0, g.x);
+    if (i == 2) return vec4(-1.0, 0.0, 0.0, g.x);
+    if (i == 3) return vec4(0.0, 1.0, 0.0, g.y);
+    return vec4(0.0, -1.0, 0.0, g.y);
+}
+
+// The triangle clipped to the planes, as a convex polygon of n <= 8 corners (0: nothing left; a
+// triangle wholly outside the viewport on one side or beyond the far plane is dropped here too).
+int pg_raster_clip(vec4 c[3], out vec4 poly[8])
+{
+    for (int k = 0; k < 3; k++) poly[k] = c[k];
+    // wholly outside one side of the viewport, or beyond the far plane: nothing to draw
+    for (int a = 0; a < 2; a++) {
+        if (c[0][a] > c[0].w && c[1][a] > c[1].w && c[2][a] > c[2].w) return 0;
+        if (c[0][a] < -c[0].w && c[1][a] < -c[1].w && c[2][a] < -c[2].w) return 0;
+    }
+    if (c[0].z > c[0].w && c[1].z > c[1].w && c[2].z > c[2].w) return 0;
+    int n = 3;
+    for (int i = 0; i < 5; i++) {
+        vec4 pl = pg_raster_plane(i);
+        bool all_in = true;
+        for (int k = 0; k < n; k++) all_in = all_in && dot(pl, poly[k]) >= 0.0;
+        if (all_in) continue;
+        vec4 src[8];
+        for (int k = 0; k < 8; k++) src[k] = poly[k];
+        int m = 0;
+        for (int k = 0; k < n; k++) {
+            vec4 a = src[k], b = src[(k + 1) % n];
+            float da = dot(pl, a), db = dot(pl, b);
+            if (da >= 0.0 && m < 8) poly[m++] = a;
+            if ((da >= 0.0) != (db >= 0.0) && m < 8) poly[m++] = mix(a, b, da / (da - db));
+        }
+        n = m;
+        if (n < 3) return 0;
+    }
+    return n;
+}
+
+// A triangle ready for pixel tests: snapped corners (1/256 pixel) ordered so that the area is
+// positive, their depths, the pixel box (inclusive, clipped to the viewport) and the area.
+struct PgRasterTri {
+    ivec2 p0, p1, p2;
+    vec3 z;
+    ivec4 box;
+    int64_t area;
+};
+
+ivec2 pg_raster_snap(vec4 c)
+{
+    vec2 s = vec2(pg_raster_size());
+    precise vec2 f = (c.xy / c.w * 0.5 + 0.5) * s;
+    return ivec2(round(f * PG_RASTER_SNAP));
+}
+
+int64_t pg_raster_edge(ivec2 a, ivec2 b, ivec2 p)
+{
+    return int64_t(b.x - a.x) * int64_t(p.y - a.y) - int64_t(b.y - a.y) * int64_t(p.x - a.x);
+}
+
+void pg_raster_box(inout PgRasterTri t)
+{
+    ivec2 lo = min(min(t.p0, t.p1), t.p2), hi = max(max(t.p0, t.p1), t.p2);
+    // pixel centres px * 256 + 128 within [lo, hi]
+    ivec2 a = (lo - 128 + 255) >> 8, b = (hi - 128) >> 8;
+    ivec2 s = pg_raster_size();
+    t.box = ivec4(max(a, ivec2(0)), min(b, s - 1));
+}
+
+// false: nothing to draw (degenerate, a culled back face, or outside the viewport).
+bool pg_raster_setup(vec4 a, vec4 b, vec4 c, bool cull_back, out PgRasterTri t)
+{
+    t.p0 = pg_raster_snap(a);
+    t.p1 = pg_raster_snap(b);
+    t.p2 = pg_raster_snap(c);
+    t.z = vec3(a.z / a.w, b.z / b.w, c.z / c.w);
+    t.area = pg_raster_edge(t.p0, t.p1, t.p2);
+    if (t.area == 0l) return false;
+    if (t.area > 0l) { // clockwise on screen (y down): a back face
+        if (cull_back) return false;
+    } else {
+        ivec2 q = t.p1;
+        t.p1 = t.p2;
+        t.p2 = q;
+        t.z = t.z.xzy;
+        t.area = -t.area;
+    }
+    pg_raster_box(t);
+    return t.box.x <= t.box.z && t.box.y <= t.box.w;
+}
+
+bool pg_raster_owns(ivec2 a, ivec2 b, int64_t e) // the tie rule: e = 0 counts for one side only
+{
+    int dx = b.x - a.x, dy = b.y - a.y;
+    return e > 0l || (e == 0l && (dy < 0 || (dy == 0 && dx > 0)));
+}
+
+// Tests the centre of pixel px against the triangle and keeps the nearer of it and what the pixel
+// holds.
+void pg_raster_pixel(PgRasterTri t, ivec2 px, uint id)
+{
+    ivec2 p = px * 256 + 128;
+    int64_t e0 = pg_raster_edge(t.p1, t.p2, p), e1 = pg_raster_edge(t.p2, t.p0, p), e2 = pg_raster_edge(t.p0, t.p1, p);
+    if (!pg_raster_owns(t.p1, t.p2, e0) || !pg_raster_owns(t.p2, t.p0, e1) || !pg_raster_owns(t.p0, t.p1, e2))
+        return;
+    float inv = 1.0 / float(t.area);
+    float z = (float(e0) * t.z.x + float(e1) * t.z.y + float(e2) * t.z.z) * inv;
+    z = max(z, 0.0);
+    if (!(z < 1.0)) return; // beyond the far plane (a LESS test against the cleared 1.0)
+    uint i = uint(px.y) * uint(pg_raster_size().x) + uint(px.x);
+    atomicMin(raster_keys[i], (uint64_t(floatBitsToUint(z)) << 32) | uint64_t(id));
+}

@@ -1,0 +1,25 @@
+#version 460
+// visibility_raster_jobs.comp - the compute rasterizer's second step (visibility_raster.glsl): one
+// workgroup of 8x8 invocations per job covers up to PG_RASTER_JOB_BLOCKS 8x8 blocks of a large
+// triangle's pixel box, an invocation per pixel of the block.
+#include "visibility_raster.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+
+void main()
+{
+    PgRasterJob job = raster_jobs[gl_WorkGroupID.x];
+    PgRasterTri r;
+    r.p0 = job.a.xy;
+    r.p1 = job.a.zw;
+    r.p2 = ivec2(job.b.xy);
+    r.z = job.z.xyz;
+    r.area = pg_raster_edge(r.p0, r.p1, r.p2);
+    pg_raster_box(r);
+    uint bw = uint(r.box.z - r.box.x + 8) / 8u;
+    uint blocks = bw * (uint(r.box.w - r.box.y + 8) / 8u);
+    uint end = min(job.b.w + PG_RASTER_JOB_BLOCKS, blocks);
+    for (uint b = job.b.w; b < end; b++) {
+        ivec2 px = r.box.xy + ivec2((b % bw) * 8u, (b / bw) * 8u) + ivec2(gl_LocalInvocationID.xy);
+        if (px.x <= r.box.z && px.y <= r.box.w) pg_raster_pixel(r, px, job.b.z);
+    }
+}
