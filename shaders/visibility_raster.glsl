@@ -91,6 +91,14 @@ vec4 pg_raster_plane(int i)
     return vec4(0.0, -1.0, 0.0, g.y);
 }
 
+// false when every corner is inside every plane and the viewport's box (most triangles): no clipping
+bool pg_raster_needs_clip(vec4 c[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (!(c[k].z >= 0.0 && c[k].z <= c[k].w && abs(c[k].x) <= c[k].w && abs(c[k].y) <= c[k].w)) return true;
+    return false;
+}
+
 // The triangle clipped to the planes, as a convex polygon of n <= 8 corners (0: nothing left; a
 // triangle wholly outside the viewport on one side or beyond the far plane is dropped here too).
 int pg_raster_clip(vec4 c[3], out vec4 poly[8])

@@ -22,7 +22,9 @@ void main()
     bool two_sided;
     pg_raster_fetch(t, c, id, two_sided);
     vec4 poly[8];
-    int n = pg_raster_clip(c, poly);
+    int n = 3;
+    if (pg_raster_needs_clip(c)) n = pg_raster_clip(c, poly);
+    else poly[0] = c[0], poly[1] = c[1], poly[2] = c[2];
     for (int k = 0; k + 2 < n; k++) { // the polygon as a fan
         PgRasterTri r;
         if (!pg_raster_setup(poly[0], poly[k + 1], poly[k + 2], !two_sided, r)) continue;

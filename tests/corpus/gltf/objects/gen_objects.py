@@ -19,6 +19,10 @@ is committed. Run: `python3 tests/corpus/gltf/objects/gen_objects.py`.
   camera.gltf        the unit cube + one perspective camera 'front' (node 'front_node') at
                      (0.5, 0.8, 3) looking at the origin, yfov 0.6, znear 0.1, zfar 100
   ortho_first.gltf   the unit cube + an orthographic camera "plan" only (the default view)
+  ties.gltf          a 4x4 grid of 0.25-unit quads (z = 0, facing +Z) and an orthographic camera
+                     'front' (ymag 1, at z = 5): at 128x72 a quad is 9x9 pixels with its corners
+                     on pixel corners, so each quad's diagonal passes through 9 pixel centres,
+                     which exactly one of its two triangles must cover (the rasterizers' tie rule)
   two_cameras.gltf   the unit cube + camera 'side' (perspective, infinite zfar, node 'side_node'
                      at (4, 0, 0) looking along -X) and camera 'top' (orthographic, node 'top_node')
 """
@@ -136,3 +140,9 @@ write("ortho_first.gltf", doc(cube,
                 "orthographic": {"xmag": 2.0, "ymag": 1.0, "znear": 0.1, "zfar": 20.0}}],
       camera_nodes=[{"name": "plan_node", "camera": 0, "translation": [0, 5, 0],
                      "rotation": [-math.sqrt(0.5), 0, 0, math.sqrt(0.5)]}]))
+# pixel centres on shared edges (the compute rasterizer's tie rule; test_gpu_visibility)
+write("ties.gltf", doc(merge(*[panel(-0.5 + 0.25 * i, -0.25 + 0.25 * i, -0.5 + 0.25 * j, -0.25 + 0.25 * j, "xy", 1)
+                               for i in range(4) for j in range(4)]),
+      cameras=[{"name": "front", "type": "orthographic",
+                "orthographic": {"xmag": 16.0 / 9.0, "ymag": 1.0, "znear": 0.1, "zfar": 20.0}}],
+      camera_nodes=[{"name": "front_node", "camera": 0, "translation": [0, 0, 5]}]))
