@@ -96,18 +96,31 @@ vec4 pg_slot_sample(bool want, int t, GpuMaterial m, int slot, SurfaceInput si)
 #endif
 }
 
-// The material of index `material` at a surface point.
-Surface pg_surface_material(SurfaceInput si, uint material)
+// The base colour (factor x texture x COLOR_0) of material m at a surface point.
+vec4 pg_surface_base(GpuMaterial m, SurfaceInput si)
 {
-    GpuMaterial m = materials[material];
     vec4 base = m.base_color;
     vec4 tb = pg_slot_sample(m.tex.x >= 0, m.tex.x, m, PG_SLOT_BASE, si);
     if (m.tex.x >= 0) base *= tb;
 #ifdef PG_VERTEX_COLORS
     base *= si.color;
 #endif
+    return base;
+}
+
+// false where an alpha-mask material's alpha test drops the point (what PG_ALPHA_MASK discards).
+bool pg_surface_alpha_kept(GpuMaterial m, vec4 base)
+{
+    return !(m.tex.z == 1 && base.a < m.params.x);
+}
+
+// The material of index `material` at a surface point.
+Surface pg_surface_material(SurfaceInput si, uint material)
+{
+    GpuMaterial m = materials[material];
+    vec4 base = pg_surface_base(m, si);
 #ifdef PG_ALPHA_MASK
-    if (m.tex.z == 1 && base.a < m.params.x) discard;
+    if (!pg_surface_alpha_kept(m, base)) discard;
 #endif
     vec3 N = si.normal;
     float nl = length(N);

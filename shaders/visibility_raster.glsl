@@ -14,18 +14,30 @@
 // (depth bits << 32) | id (atomicMin), so the nearest triangle wins and a tie goes to the lower id,
 // i.e. the draw and then the primitive drawn first, as a LESS depth test does.
 //
+// PG_RASTER_ALPHA_MASK (a scene with alpha-mask draws): a covered pixel of an alpha-mask draw
+// (flags bit 1) is kept only where its material's alpha test keeps it: the surface is rebuilt at the
+// pixel centre as the shading pass rebuilds it (visibility_surface.glsl: barycentrics from the
+// pixel ray, analytic UV derivatives) and its base alpha tested (surface.glsl
+// pg_surface_alpha_kept), after a look at the pixel's key (a point behind it needs no test).
+//
 // Set 1: 0 the keys (one uint64 per pixel), 1 the job list, 2 the job dispatch's indirect
-// arguments, 3 each draw's first global triangle, 4-6 the scene's vertices, indices and draw table
-// (visibility_common.h: uvec4 first index, vertex offset, material, flags with bit 0 double-sided),
-// 7 the id image, 8 the depth values (one float per pixel, copied into the depth image).
+// arguments, 3 each draw's first global triangle, 4 the id image, 5 the depth values (one float per
+// pixel, copied into the depth image), from 6 the scene's vertices, indices and draw table
+// (visibility_common.h: uvec4 first index, vertex offset, material, flags with bit 0 double-sided
+// and bit 1 alpha mask) and, with PG_RASTER_ALPHA_MASK, COLOR_0 and TEXCOORD_1 where compiled in;
+// set 2 the scene's materials and textures (PG_RASTER_ALPHA_MASK).
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
+#ifdef PG_RASTER_ALPHA_MASK
+#extension GL_EXT_nonuniform_qualifier : require
+#endif
 #include "common.glsl"
 FRAME_UNIFORMS_BLOCK
 
 layout(set = 1, binding = 0, std430) buffer RasterKeys { uint64_t raster_keys[]; };
 // a job: a triangle too large for one invocation, PG_RASTER_JOB_BLOCKS 8x8 blocks of its box per
-// workgroup: (x0, y0, x1, y1) and (x2, y2, id, first block) snapped and oriented, (z0, z1, z2)
+// workgroup: (x0, y0, x1, y1) and (x2, y2, id, first block | alpha mask << 31) snapped and
+// oriented, (z0, z1, z2)
 struct PgRasterJob {
     ivec4 a;
     uvec4 b;
@@ -34,9 +46,20 @@ struct PgRasterJob {
 layout(set = 1, binding = 1, std430) buffer RasterJobs { uint raster_job_next; uint raster_job_pad[3]; PgRasterJob raster_jobs[]; };
 layout(set = 1, binding = 2, std430) buffer RasterArgs { uint raster_job_groups; uint raster_args_yz[2]; };
 layout(set = 1, binding = 3, std430) readonly buffer RasterTriStart { uint raster_tri_start[]; };
-layout(set = 1, binding = 4, std430) readonly buffer RasterVertices { float raster_vertices[]; };
-layout(set = 1, binding = 5, std430) readonly buffer RasterIndices { uint raster_indices[]; };
-layout(set = 1, binding = 6, std430) readonly buffer RasterDraws { uvec4 raster_draws[]; };
+#ifdef PG_RASTER_ALPHA_MASK
+#define PG_VIS_SET 1
+#define PG_VIS_BINDING 6
+#include "depth_reconstruct.glsl"
+#include "surface.glsl"
+#include "visibility_surface.glsl"
+#define raster_vertices vis_vertices
+#define raster_indices vis_indices
+#define raster_draws vis_draws
+#else
+layout(set = 1, binding = 6, std430) readonly buffer RasterVertices { float raster_vertices[]; };
+layout(set = 1, binding = 7, std430) readonly buffer RasterIndices { uint raster_indices[]; };
+layout(set = 1, binding = 8, std430) readonly buffer RasterDraws { uvec4 raster_draws[]; };
+#endif
 layout(push_constant) uniform RasterPush {
     uint n_tris;   // triangles of the rasterized draws
     uint n_draws;  // rasterized draws (the scene's opaque ones)
@@ -64,14 +87,15 @@ uint pg_raster_draw_of(uint t)
 }
 
 // Clip-space corners of triangle t (as scene.vert computes gl_Position), its id and whether its
-// material is double-sided.
-void pg_raster_fetch(uint t, out vec4 c[3], out uint id, out bool two_sided)
+// material is double-sided and alpha-masked.
+void pg_raster_fetch(uint t, out vec4 c[3], out uint id, out bool two_sided, out bool masked)
 {
     uint d = pg_raster_draw_of(t);
     uvec4 dr = raster_draws[d];
     uint prim = t - raster_tri_start[d];
     id = (d << rp.tri_bits) | prim;
     two_sided = (dr.w & 1u) != 0u;
+    masked = (dr.w & 2u) != 0u;
     for (int k = 0; k < 3; k++) {
         uint v = raster_indices[dr.x + 3u * prim + uint(k)] + dr.y;
         vec3 p = vec3(raster_vertices[12u * v], raster_vertices[12u * v + 1u], raster_vertices[12u * v + 2u]);
@@ -189,9 +213,22 @@ bool pg_raster_owns(ivec2 a, ivec2 b, int64_t e) // the tie rule: e = 0 counts f
     return e > 0l || (e == 0l && (dy < 0 || (dy == 0 && dx > 0)));
 }
 
+#ifdef PG_RASTER_ALPHA_MASK
+// false where the alpha test of triangle `id`'s material drops the centre of pixel px
+bool pg_raster_alpha_kept(uint id, ivec2 px)
+{
+    SurfaceInput si;
+    uint material;
+    vec3 P;
+    pg_vis_fetch(id, vec2(px) + 0.5, vec2(pg_raster_size()), si, material, P);
+    GpuMaterial m = materials[material];
+    return pg_surface_alpha_kept(m, pg_surface_base(m, si));
+}
+#endif
+
 // Tests the centre of pixel px against the triangle and keeps the nearer of it and what the pixel
-// holds.
-void pg_raster_pixel(PgRasterTri t, ivec2 px, uint id)
+// holds (masked: an alpha-mask draw's triangle, PG_RASTER_ALPHA_MASK).
+void pg_raster_pixel(PgRasterTri t, ivec2 px, uint id, bool masked)
 {
     ivec2 p = px * 256 + 128;
     int64_t e0 = pg_raster_edge(t.p1, t.p2, p), e1 = pg_raster_edge(t.p2, t.p0, p), e2 = pg_raster_edge(t.p0, t.p1, p);
@@ -202,5 +239,9 @@ void pg_raster_pixel(PgRasterTri t, ivec2 px, uint id)
     z = max(z, 0.0);
     if (!(z < 1.0)) return; // beyond the far plane (a LESS test against the cleared 1.0)
     uint i = uint(px.y) * uint(pg_raster_size().x) + uint(px.x);
-    atomicMin(raster_keys[i], (uint64_t(floatBitsToUint(z)) << 32) | uint64_t(id));
+    uint64_t key = (uint64_t(floatBitsToUint(z)) << 32) | uint64_t(id);
+#ifdef PG_RASTER_ALPHA_MASK
+    if (masked && (key >= raster_keys[i] || !pg_raster_alpha_kept(id, px))) return;
+#endif
+    atomicMin(raster_keys[i], key);
 }

@@ -17,9 +17,11 @@ void main()
     pg_raster_box(r);
     uint bw = uint(r.box.z - r.box.x + 8) / 8u;
     uint blocks = bw * (uint(r.box.w - r.box.y + 8) / 8u);
-    uint end = min(job.b.w + PG_RASTER_JOB_BLOCKS, blocks);
-    for (uint b = job.b.w; b < end; b++) {
+    uint first = job.b.w & 0x7fffffffu;
+    bool masked = (job.b.w & 0x80000000u) != 0u;
+    uint end = min(first + PG_RASTER_JOB_BLOCKS, blocks);
+    for (uint b = first; b < end; b++) {
         ivec2 px = r.box.xy + ivec2((b % bw) * 8u, (b / bw) * 8u) + ivec2(gl_LocalInvocationID.xy);
-        if (px.x <= r.box.z && px.y <= r.box.w) pg_raster_pixel(r, px, job.b.z);
+        if (px.x <= r.box.z && px.y <= r.box.w) pg_raster_pixel(r, px, job.b.z, masked);
     }
 }

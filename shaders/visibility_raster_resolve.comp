@@ -4,8 +4,8 @@
 // buffer's clear value, there), which the pass then copies into the depth image.
 #include "visibility_raster.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 1, binding = 7, r32ui) uniform writeonly uimage2D raster_vis_id;
-layout(set = 1, binding = 8, std430) writeonly buffer RasterDepth { float raster_depth[]; };
+layout(set = 1, binding = 4, r32ui) uniform writeonly uimage2D raster_vis_id;
+layout(set = 1, binding = 5, std430) writeonly buffer RasterDepth { float raster_depth[]; };
 
 void main()
 {

@@ -7,10 +7,10 @@
 #include "visibility_raster.glsl"
 layout(local_size_x = 64) in;
 
-void pg_raster_serial(PgRasterTri r, uint id)
+void pg_raster_serial(PgRasterTri r, uint id, bool masked)
 {
     for (int y = r.box.y; y <= r.box.w; y++)
-        for (int x = r.box.x; x <= r.box.z; x++) pg_raster_pixel(r, ivec2(x, y), id);
+        for (int x = r.box.x; x <= r.box.z; x++) pg_raster_pixel(r, ivec2(x, y), id, masked);
 }
 
 void main()
@@ -19,8 +19,8 @@ void main()
     if (t >= rp.n_tris) return;
     vec4 c[3];
     uint id;
-    bool two_sided;
-    pg_raster_fetch(t, c, id, two_sided);
+    bool two_sided, masked;
+    pg_raster_fetch(t, c, id, two_sided, masked);
     vec4 poly[8];
     int n = 3;
     if (pg_raster_needs_clip(c)) n = pg_raster_clip(c, poly);
@@ -30,20 +30,20 @@ void main()
         if (!pg_raster_setup(poly[0], poly[k + 1], poly[k + 2], !two_sided, r)) continue;
         uint w = uint(r.box.z - r.box.x + 1), h = uint(r.box.w - r.box.y + 1);
         if (w * h <= PG_RASTER_SMALL) {
-            pg_raster_serial(r, id);
+            pg_raster_serial(r, id, masked);
             continue;
         }
         uint bw = (w + 7u) / 8u, blocks = bw * ((h + 7u) / 8u);
         uint nj = (blocks + PG_RASTER_JOB_BLOCKS - 1u) / PG_RASTER_JOB_BLOCKS;
         uint s = atomicAdd(raster_job_next, nj);
         if (s + nj > rp.job_cap) { // no room: every later reservation fails too
-            pg_raster_serial(r, id);
+            pg_raster_serial(r, id, masked);
             continue;
         }
         for (uint j = 0u; j < nj; j++) {
             PgRasterJob job;
             job.a = ivec4(r.p0, r.p1);
-            job.b = uvec4(uint(r.p2.x), uint(r.p2.y), id, j * PG_RASTER_JOB_BLOCKS);
+            job.b = uvec4(uint(r.p2.x), uint(r.p2.y), id, j * PG_RASTER_JOB_BLOCKS | (masked ? 0x80000000u : 0u));
             job.z = vec4(r.z, 0.0);
             raster_jobs[s + j] = job;
         }

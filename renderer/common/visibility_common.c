@@ -63,7 +63,8 @@ pg_result pg_vis_geometry_create(const pg_pass_create_ctx *ctx, const pg_scene_d
         t[4 * i + 0] = sc->draws[i].first_index;
         memcpy(&t[4 * i + 1], &sc->draws[i].vertex_offset, sizeof(uint32_t)); /* added modulo 2^32 */
         t[4 * i + 2] = sc->draws[i].material;
-        t[4 * i + 3] = sc->draws[i].double_sided ? 1u : 0u; /* flags (the compute rasterizer's culling) */
+        /* flags, read by the compute rasterizer: bit 0 double-sided (no culling), bit 1 alpha mask */
+        t[4 * i + 3] = (sc->draws[i].double_sided ? 1u : 0u) | (sc->draws[i].alpha_mask ? 2u : 0u);
     }
     return PG_OK;
 }

@@ -10,7 +10,7 @@
  *
  * The rebuilding passes bind, after their own images, the scene's vertices and indices (storage
  * buffers of pg_scene_gpu), the pass's draw table (uvec4 per draw: first index, vertex offset,
- * material, flags with bit 0 double-sided; host-visible, written once at create) and the optional
+ * material, flags with bit 0 double-sided and bit 1 alpha mask; host-visible, written once at create) and the optional
  * COLOR_0 / TEXCOORD_1 streams (shaders/visibility_surface.glsl), and the scene's set (materials,
  * textures). */
 #ifndef PG_VISIBILITY_COMMON_H

@@ -8,8 +8,7 @@
  * (deferred_lighting with packing "visibility", or visibility_resolve).
  * Needs gl_PrimitiveID in the fragment stage (the device's geometryShader feature).
  * Option raster: "hardware" (default; the above) or "compute": the same ids and depth from compute
- * shaders (visibility_raster.h), which use the whole GPU where the raster units are few; a scene
- * with alpha-mask draws keeps the hardware path (explain line).
+ * shaders (visibility_raster.h), which use the whole GPU where the raster units are few.
  * Slots: writes [vis_id (r32ui), depth]. */
 #include <string.h>
 
@@ -41,11 +40,6 @@ static pg_result vis_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
     if ((r = pg_opt_check_known(in->desc, known, err))) return r;
     if ((r = pg_opt_enum(in->desc, "raster", vis_rasters, 0, &raster, err))) return r;
     p->compute = raster == 1;
-    if (p->compute && pg_scene_features_of(in).has_alpha_mask) {
-        p->compute = false;
-        pg_decl_explain(out, "raster compute: the scene has alpha-mask draws, which only the hardware path "
-                             "rasterizes: hardware raster used");
-    }
     if (p->compute) {
         p->vis_id = pg_decl_write(out, "vis_id", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE,
                                   PG_FMTCLASS_UINT);
@@ -65,6 +59,10 @@ static pg_result vis_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
                        id->name);
     if (p->compute) {
         pg_decl_explain(out, "raster compute: triangles rasterized by compute shaders (64-bit depth-id minimum)");
+        if (pg_scene_features_of(in).has_alpha_mask) /* the alpha test rebuilds the surface */
+            pg_scene_draw_declare_features(in, out, &p->draw);
+        else
+            pg_decl_explain(out, "raster compute: no alpha-mask draws: the alpha test is compiled out");
         pg_geometry_slot_declare(in, out, &p->draw, true);
         return PG_OK;
     }

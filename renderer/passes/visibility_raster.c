@@ -54,13 +54,20 @@ static pg_result make_buffers(pg_gpu *gpu, const pg_scene_gpu *sc, const char *p
 
 static pg_result make_pipelines(const pg_pass_create_ctx *ctx, pg_vis_raster *r, pg_error *err)
 {
+    const char *defs[PG_MAX_DEFINES + 16];
+    uint32_t nd = 0;
+    if (r->masked) { /* the surface variant of the alpha test (visibility_surface.glsl, surface.glsl) */
+        nd = pg_vis_geometry_define_list(&r->vis, defs);
+        defs[nd++] = "PG_RASTER_ALPHA_MASK";
+    }
     static const char *const shaders[3] = {"visibility_raster_tris.comp", "visibility_raster_jobs.comp",
                                            "visibility_raster_resolve.comp"};
     VkPipeline *out[3] = {&r->tris, &r->job, &r->resolve};
     pg_result res;
     for (int i = 0; i < 3; i++) {
         VkShaderModule cs;
-        if ((res = pg_shader_module(ctx->gpu, shaders[i], VK_SHADER_STAGE_COMPUTE_BIT, NULL, 0, &cs, err))) return res;
+        if ((res = pg_shader_module(ctx->gpu, shaders[i], VK_SHADER_STAGE_COMPUTE_BIT, defs, nd, &cs, err)))
+            return res;
         pg_compute_pipeline_desc pd = {.layout = r->layout, .cs = cs};
         res = pg_compute_pipeline_create_ex(ctx->gpu, &pd, ctx->pass->name, out[i], err);
         vkDestroyShaderModule(ctx->gpu->device, cs, NULL);
@@ -81,13 +88,14 @@ pg_result pg_vis_raster_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
                        "shaderBufferInt64Atomics), which the device lacks; use raster \"hardware\"",
                        ctx->pass->name);
     if (!sc) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: needs a scene", ctx->pass->name);
+    r->masked = f->alpha_mask;
     pg_scene_draw_features vf = *f;
-    vf.vertex_colors = vf.uv1 = false; /* positions only */
+    if (!r->masked) vf.vertex_colors = vf.uv1 = false; /* positions only */
     if ((res = pg_vis_geometry_create(ctx, &vf, 2, &r->vis, err))) return res;
     const pg_phys_resource *id = pg_ctx_res(ctx, vis_id);
     r->width = id->width;
     r->height = id->height;
-    r->n_draws = sc->n_opaque_draws; /* visibility.c: no alpha-mask draws on this path */
+    r->n_draws = sc->n_draws - sc->n_blend_draws; /* the opaque, then the alpha-mask draws */
     r->job_cap = RASTER_JOB_CAP;
     r->vis_id = vis_id;
     r->depth_slot = depth;
@@ -96,14 +104,15 @@ pg_result pg_vis_raster_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     pg_set_binding b[10];
     uint32_t n = 0;
     for (int i = 0; i < 4; i++) b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &r->res[i], VK_NULL_HANDLE, 0};
-    n = pg_vis_geometry_bindings(&r->vis, sc, b, n);
     b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, id, VK_NULL_HANDLE, 0};
     b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &r->res[4], VK_NULL_HANDLE, 0};
+    n = pg_vis_geometry_bindings(&r->vis, sc, b, n);
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.set", ctx->pass->name);
     if ((res = pg_pass_set_create(gpu, n, b, name, &r->set, err))) return res;
-    VkDescriptorSetLayout sets[2] = {ctx->frame_layout, r->set.layout};
-    if ((res = pg_pipeline_layout_create(gpu, 2, sets, sizeof(raster_push), &r->layout, err))) return res;
+    VkDescriptorSetLayout sets[3] = {ctx->frame_layout, r->set.layout, sc->set_layout};
+    if ((res = pg_pipeline_layout_create(gpu, r->masked ? 3 : 2, sets, sizeof(raster_push), &r->layout, err)))
+        return res;
     return make_pipelines(ctx, r, err);
 }
 
@@ -125,8 +134,8 @@ void pg_vis_raster_record(const pg_vis_raster *r, const pg_pass_record_ctx *ctx)
     const uint32_t args[4] = {0, 1, 1, 0};
     vkCmdUpdateBuffer(cmd, r->args.buffer, 0, sizeof args, args);
     pg_cmd_memory_barrier(cmd, TR, VK_ACCESS_2_TRANSFER_WRITE_BIT, CS, SRW);
-    VkDescriptorSet sets[2] = {ctx->frame_set, r->set.set};
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->layout, 0, 2, sets, 0, NULL);
+    VkDescriptorSet sets[3] = {ctx->frame_set, r->set.set, PG_SCENE_OF(ctx)->set};
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->layout, 0, r->masked ? 3 : 2, sets, 0, NULL);
     const raster_push push = {r->n_tris, r->n_draws, r->job_cap, r->vis.tri_bits};
     vkCmdPushConstants(cmd, r->layout, PG_PUSH_STAGES, 0, sizeof push, &push);
     const uint32_t groups = (r->n_tris + 63) / 64, gx = groups < 65535 ? groups : 65535;

@@ -28,8 +28,8 @@
  * raster=compute (the compute rasterizer) against the hardware ids on every scene: at most
  * VIS_RASTER_SHARE of the pixels differ (0 on the corpus, 3 of 57,600 on the Sponza), within the
  * same bounds against naive; objects/ties.gltf puts 144 pixel centres exactly on shared edges (a
- * tie rule that gives them to neither triangle leaves 144 holes); a scene with alpha-mask draws
- * keeps the hardware path (byte-identical).
+ * tie rule that gives them to neither triangle leaves 144 holes); the atrium's alpha-masked grille
+ * goes through the compute path's alpha test (1 pixel of 57,600 differs; 398, 0.69%, without it).
  *
  * The tiled light loop (shading.glsl pg_shade_tile) of visibility and deferred_oct16: with
  * tile_lights=false (the per-pixel loop), with tile_size 16 and with tile_backface=false the HDR
@@ -197,10 +197,10 @@ static bool within(const vis_err *e, bool textured)
 
 /* raster=compute (vc) against the hardware ids (vs): the same triangle at all but a few pixels
  * (VIS_RASTER_SHARE: centres on or within rounding of an edge, where the 8-bit snapping, the tie
- * rule or the interpolated depth can pick the neighbour), so within the same bounds against naive;
- * a scene with alpha-mask draws keeps the hardware path: byte-identical. */
+ * rule or the interpolated depth can pick the neighbour, and alpha-tested texels where the analytic
+ * and the quad derivatives pick other mip levels), so within the same bounds against naive. */
 static void check_compute_raster(const char *label, const pg_th_frame *vc, const pg_th_frame *vs, const pg_th_frame *nv,
-                                 double peak, bool textured, bool pbr, bool alpha_mask)
+                                 double peak, bool textured, bool pbr)
 {
     size_t n = (size_t)vc->w * vc->h, differ = 0;
     for (size_t p = 0; p < n; p++)
@@ -210,7 +210,6 @@ static void check_compute_raster(const char *label, const pg_th_frame *vc, const
     printf("%s: raster=compute vs hardware: %zu of %zu pixels differ (%.3g%%); vs naive: px usage %.3g, rmse %.3g, "
            "display max %d\n", label, differ, n, 100 * share, ec.px_usage, ec.rmse_rel, ec.max_step);
     if (share > g_worst_raster) g_worst_raster = share;
-    if (alpha_mask) CHECK_MSG(differ == 0, "%s: raster=compute with alpha-mask draws is not the hardware path", label);
     CHECK_MSG(share <= VIS_RASTER_SHARE, "%s: raster=compute differs from hardware at %.3g%% of pixels", label,
               100 * share);
     CHECK_MSG(within(&ec, textured), "%s: raster=compute outside its bounds against naive", label);
@@ -253,7 +252,7 @@ static void check_frame(const char *label, const pg_scene_gpu *sg, const pg_fram
                               &u, &na);
             CHECK_MSG(u <= 1.0, "%s: resolve=gbuffer outside the packed bound against naive: usage %g", label, u);
         }
-        check_compute_raster(label, &vc, &vs, &nv, peak, textured, pbr, sg->features.has_alpha_mask);
+        check_compute_raster(label, &vc, &vs, &nv, peak, textured, pbr);
         CHECK_MSG(strstr(vs.order, "visibility,shade") != NULL, "%s: resolve=shade ran %s", label, vs.order);
         CHECK_MSG(strstr(vg.order, "visibility,resolve,lighting_packed") != NULL, "%s: resolve=gbuffer ran %s", label,
                   vg.order);
