@@ -46,6 +46,10 @@
 #                  loop over the cluster lists, and the tiled one) against deferred's lighting with the per-pixel loop
 #                  (tile_lights=false) and tiled, with and without its back-face test, at 100,000
 #                  lights (times only)
+#   raster         the visibility pass's two rasterizers (raster=hardware, compute) at 1,000 / 100,000 /
+#                  1,000,000 lights (times; error against the reference at 1,000), every
+#                  visibility-buffer pipeline with raster=compute as in manylight (time, RMSE, FLIP,
+#                  flicker), and the built-in atrium (alpha-masked grille) at 1,000 lights
 #   stress         radius 6 at 1,000,000 lights (exact? list memory), a dense clump of lights
 #                  (assets/scenarios/clump.json), 3840x2160 at 100,000 lights
 #
@@ -233,6 +237,17 @@ for step in "${STEPS[@]}"; do
   evals)
     bench evals "$BUNDLE" visibility,deferred,stochastic,ris,lightcut --lights 100000,1000000 --warmup 2 \
       --warmup-ms 400 --frames 5 --no-hdr-flip --flicker-frames 0
+    ;;
+  raster)
+    RT=(--warmup 2 --warmup-ms 500 --frames 20)
+    bench raster "$BUNDLE" visibility --lights 1000,100000,1000000 --sweep raster=hardware,compute "${RT[@]}" \
+      --reference-max-lights 1000
+    bench raster_manylight "$BUNDLE" visibility,stochastic,ris,lightcut --lights 1000,100000,1000000 \
+      --sweep raster=compute --warmup 2 --warmup-ms 1000 --frames 5 --no-hdr-flip --flicker-frames 4
+    SAVED=("${COMMON[@]}")
+    COMMON=(--size "$SIZE" --scene default --quiet)
+    bench raster_atrium "$BUNDLE" visibility --lights 1000 --sweep raster=hardware,compute "${RT[@]}" --reference-max-lights 0
+    COMMON=("${SAVED[@]}")
     ;;
   stress)
     ERR=(--warmup 2 --warmup-ms 300 --frames 5 --no-hdr-flip --flicker-frames 4)
