@@ -2,6 +2,7 @@
 #include "visibility_raster.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "shader.h"
@@ -96,7 +97,11 @@ pg_result pg_vis_raster_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     r->width = id->width;
     r->height = id->height;
     r->n_draws = sc->n_draws - sc->n_blend_draws; /* the opaque, then the alpha-mask draws */
-    r->job_cap = RASTER_JOB_CAP;
+    /* PASSGRAPH_RASTER_JOBS=N (1..65535): a smaller job list, so that its overflow path (the triangle
+     * rasterized by its own invocation) can be tested */
+    const char *jobs = getenv("PASSGRAPH_RASTER_JOBS");
+    const long cap = jobs ? strtol(jobs, NULL, 10) : RASTER_JOB_CAP;
+    r->job_cap = cap >= 1 && cap <= RASTER_JOB_CAP ? (uint32_t)cap : RASTER_JOB_CAP;
     r->vis_id = vis_id;
     r->depth_slot = depth;
     if ((res = make_buffers(gpu, sc, ctx->pass->name, r, err))) return res;

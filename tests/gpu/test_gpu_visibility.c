@@ -29,7 +29,9 @@
  * VIS_RASTER_SHARE of the pixels differ (0 on the corpus, 3 of 57,600 on the Sponza), within the
  * same bounds against naive; objects/ties.gltf puts 144 pixel centres exactly on shared edges (a
  * tie rule that gives them to neither triangle leaves 144 holes); the atrium's alpha-masked grille
- * goes through the compute path's alpha test (1 pixel of 57,600 differs; 398, 0.69%, without it).
+ * goes through the compute path's alpha test (1 pixel of 57,600 differs; 398, 0.69%, without it);
+ * on the atrium and the Sponza a job list of 4 entries (the overflow path: large triangles drawn by
+ * their own invocation) gives the same image byte for byte.
  *
  * The tiled light loop (shading.glsl pg_shade_tile) of visibility and deferred_oct16: with
  * tile_lights=false (the per-pixel loop), with tile_size 16 and with tile_backface=false the HDR
@@ -216,6 +218,25 @@ static void check_compute_raster(const char *label, const pg_th_frame *vc, const
     CHECK_MSG(pg_count_nonfinite(vc->hdr, vc->w, vc->h) == 0, "%s: raster=compute: non-finite pixels", label);
 }
 
+/* The compute rasterizer's job list overflowing (PASSGRAPH_RASTER_JOBS=4: the large triangles past
+ * the 4th job are rasterized by their own invocation) gives the same ids and depth, so the same
+ * HDR image byte for byte (atomicMin does not depend on the order). */
+static void check_raster_overflow(const char *label, const pg_scene_gpu *sg, const pg_frame_info *fi,
+                                  const pg_th_frame *vc)
+{
+    pg_param_override compute = {"raster", "compute"};
+    pg_th_frame f;
+    setenv("PASSGRAPH_RASTER_JOBS", "4", 1);
+    bool ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/visibility.json", &compute, 1, fi, 1, false, &f);
+    unsetenv("PASSGRAPH_RASTER_JOBS");
+    CHECK_MSG(ok, "%s: raster=compute with 4 jobs: render failed", label);
+    if (!ok) return;
+    bool same = pg_th_hdr_identical(&f, vc);
+    printf("%s: raster=compute with a job list of 4: %s\n", label, same ? "byte-identical" : "DIFFERENT");
+    CHECK_MSG(same, "%s: raster=compute: the job list's overflow path changes the image", label);
+    pg_th_release(&f);
+}
+
 static void check_frame(const char *label, const pg_scene_gpu *sg, const pg_frame_info *fi, bool control)
 {
     bool textured = sg->features.has_textures || sg->features.has_normal_maps;
@@ -253,6 +274,7 @@ static void check_frame(const char *label, const pg_scene_gpu *sg, const pg_fram
             CHECK_MSG(u <= 1.0, "%s: resolve=gbuffer outside the packed bound against naive: usage %g", label, u);
         }
         check_compute_raster(label, &vc, &vs, &nv, peak, textured, pbr);
+        if (control || !strcmp(label, "sponza")) check_raster_overflow(label, sg, fi, &vc);
         CHECK_MSG(strstr(vs.order, "visibility,shade") != NULL, "%s: resolve=shade ran %s", label, vs.order);
         CHECK_MSG(strstr(vg.order, "visibility,resolve,lighting_packed") != NULL, "%s: resolve=gbuffer ran %s", label,
                   vg.order);
