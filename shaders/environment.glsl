@@ -78,6 +78,36 @@ vec3 pg_env_bilinear(uint off, uint w, uint h, vec2 uv)
     return mix(a, b, fy);
 }
 
+// The scene's source levels (scene/environment.h: level 0 w x h, each next level halved, at least
+// 1 x 1, one after the other): level k's element offset, width and height.
+uvec3 pg_env_src_level(uint k, uint w, uint h)
+{
+    uint off = 0u;
+    for (uint i = 0u; i < k; i++) {
+        off += w * h;
+        w = max(w / 2u, 1u);
+        h = max(h / 2u, 1u);
+    }
+    return uvec3(off, w, h);
+}
+
+// Source radiance at uv, bilinear in source level k (clamped to the `levels` there are).
+vec3 pg_env_src_bilinear(uint k, vec2 uv, uint w, uint h, uint levels)
+{
+    uvec3 l = pg_env_src_level(min(k, levels - 1u), w, h);
+    return pg_env_bilinear(l.x, l.y, l.z, uv);
+}
+
+// Source radiance toward unit direction d (stored axes) at a fractional level (linear between two).
+vec3 pg_env_src_lod(vec3 d, float lod, uint w, uint h, uint levels)
+{
+    vec2 uv = pg_env_dir_to_uv(d);
+    float l = clamp(lod, 0.0, float(levels - 1u));
+    uint l0 = uint(l);
+    return mix(pg_env_src_bilinear(l0, uv, w, h, levels), pg_env_src_bilinear(l0 + 1u, uv, w, h, levels),
+               l - float(l0));
+}
+
 // The view direction the environment term uses: V itself, or where an interpolated or normal-mapped
 // normal faces away from the eye (N.V < 0.01) V bent toward N until N.V = 0.01, so the reflected
 // direction and the half vectors stay above the surface (the split-sum and the reference's Monte

@@ -31,32 +31,10 @@ layout(push_constant) uniform Push { uint width, height, levels; } pc; // the so
 #define PG_ENV_SPEC_SAMPLES 256u
 #endif
 
-// The source's level k: element offset, width, height (scene/environment.h's halving rule).
-uvec3 src_level(uint k)
-{
-    uint off = 0u, w = pc.width, h = pc.height;
-    for (uint i = 0u; i < k; i++) {
-        off += w * h;
-        w = max(w / 2u, 1u);
-        h = max(h / 2u, 1u);
-    }
-    return uvec3(off, w, h);
-}
-
-vec3 src_bilinear(uint k, vec2 uv)
-{
-    uvec3 l = src_level(min(k, pc.levels - 1u));
-    return pg_env_bilinear(l.x, l.y, l.z, uv);
-}
-
-// Source radiance toward d at a fractional level (linear between two levels).
-vec3 src_lod(vec3 d, float lod)
-{
-    vec2 uv = pg_env_dir_to_uv(d);
-    float l = clamp(lod, 0.0, float(pc.levels - 1u));
-    uint l0 = uint(l);
-    return mix(src_bilinear(l0, uv), src_bilinear(l0 + 1u, uv), l - float(l0));
-}
+// The source's levels (environment.glsl pg_env_src_*) with this dispatch's sizes.
+uvec3 src_level(uint k) { return pg_env_src_level(k, pc.width, pc.height); }
+vec3 src_bilinear(uint k, vec2 uv) { return pg_env_src_bilinear(k, uv, pc.width, pc.height, pc.levels); }
+vec3 src_lod(vec3 d, float lod) { return pg_env_src_lod(d, lod, pc.width, pc.height, pc.levels); }
 
 vec3 filter_irradiance(vec3 n)
 {

@@ -26,7 +26,8 @@
  *  5. models/mug.gltf under the neutral sky: naive within the split-sum bound of the reference at every
  *     pixel, silhouette pixels whose normal faces away from the eye included (silhouette()).
  *  6. The background (environment_background): every uncovered pixel is the environment toward its
- *     view ray, covered pixels are untouched (background()).
+ *     view ray, covered pixels are untouched (background()); a single-texel checker resolved when
+ *     zoomed in and not aliased in a wide view (background_detail()).
  *  7. Without an environment the filter and background passes are culled with their reason and the
  *     buffer is not allocated. */
 #include <math.h>
@@ -359,8 +360,8 @@ static void once(const pg_th_scene *l)
  * against background=none. Covered pixels are bit-identical (the pass leaves them alone); every
  * uncovered pixel (0 without the background) is the environment toward its view ray: within
  * BG_REL x + BG_ABS of the CPU's bilinear radiance of the source (pg_environment_radiance; the pass
- * reads the 256x128 prefiltered level 0 filtered from it; this smooth sky agrees to 0.02%), away from
- * the sky/ground edge (a step the two resamplings smear differently). Intensity 2 and a rotation are
+ * reads the source at the level that matches the pixel's angle, level 0 at this size; measured: at
+ * most 1.3% of the bound), away from the sky/ground edge (a step the two resamplings smear differently). Intensity 2 and a rotation are
  * followed; an orthographic camera looking 31 degrees down sees one colour, the environment along
  * its view axis (the ground). */
 #define BG_REL 0.01
@@ -437,6 +438,95 @@ static void background(void)
                 }
                 CHECK_MSG(first && other == 0, "orthographic: %u background pixels differ from the first", other);
             }
+            pg_th_release(&b);
+        }
+        pg_th_release(&a);
+    }
+    pg_th_scene_close(g_gpu, &l);
+}
+
+/* The background at the source's own resolution, without aliasing: a 1024x512 environment that is a
+ * checkerboard of single texels (0 and 1), the camera looking up into it. Zoomed in (a 20-degree
+ * view: 0.13 degrees a pixel, 0.35 a texel) the texels are resolved: the background pixels reach
+ * below 0.1 and above 0.9 (the 256x128 level the pass read before is 0.5 grey there: it fails).
+ * Wide (120 degrees: up to 2.2 degrees a pixel) every pixel whose ray spans more than 2.2 texels to
+ * its neighbours' (the pass reads level 1 or coarser there, each texel of which is 0.5) is the
+ * checker's mean 0.5 within 0.02 (level 0 read at that size would alias to 0 .. 1). */
+#define CHECK_W 1024
+#define CHECK_H 512
+static pg_environment *checker_environment(void)
+{
+    float *px = malloc((size_t)CHECK_W * CHECK_H * 4 * sizeof(float));
+    if (!px) return NULL;
+    for (uint32_t j = 0; j < CHECK_H; j++)
+        for (uint32_t i = 0; i < CHECK_W; i++) {
+            float v = (float)((i + j) & 1u);
+            float *t = px + 4 * ((size_t)j * CHECK_W + i);
+            t[0] = t[1] = t[2] = v;
+            t[3] = 1;
+        }
+    pg_environment *e = NULL;
+    pg_error err = {0};
+    CHECK_MSG(!pg_environment_from_pixels("checker", CHECK_W, CHECK_H, px, &e, &err), "checker: %s", err.msg);
+    free(px);
+    return e;
+}
+
+/* The angle between pixel (x, y)'s view ray and its right and lower neighbours', in level-0 texels
+ * of a `w`-texel-wide environment (2 pi / w radians a texel). */
+static double pixel_texels(const pg_frame_info *fi, uint32_t x, uint32_t y, uint32_t w)
+{
+    double d[3][3];
+    const uint32_t px[3][2] = {{x, y}, {x + 1, y}, {x, y + 1}};
+    for (int r = 0; r < 3; r++) {
+        double o[3], e[3], l = 0;
+        pg_th_pixel_ray(fi, px[r][0], px[r][1], o, e);
+        for (int k = 0; k < 3; k++) d[r][k] = e[k] - o[k], l += d[r][k] * d[r][k];
+        for (int k = 0; k < 3; k++) d[r][k] /= sqrt(l);
+    }
+    double a = 0, b = 0;
+    for (int k = 0; k < 3; k++) a += pow(d[1][k] - d[0][k], 2), b += pow(d[2][k] - d[0][k], 2);
+    return sqrt(fmax(a, b)) * w / (2 * M_PI);
+}
+
+static void background_detail(void)
+{
+    pg_th_scene l;
+    if (!open_file("pbr/spheres.gltf", checker_environment(), &l)) return;
+    pg_param_override with[2] = {{"hdr_format", "rgba32f"}, {"background", "environment"}};
+    pg_param_override without[2] = {{"hdr_format", "rgba32f"}, {"background", "none"}};
+    const float fovs[2] = {20, 120};
+    for (int c = 0; c < 2; c++) {
+        pg_th_scene lc = l;
+        for (int k = 0; k < 3; k++) lc.fi.camera.target[k] = lc.fi.camera.position[k] + (k == 1 ? 1.0f : 0.3f);
+        lc.fi.camera.up[0] = 1, lc.fi.camera.up[1] = 0, lc.fi.camera.up[2] = 0;
+        lc.fi.camera.fov_y_deg = fovs[c];
+        pg_th_frame a, b;
+        if (!render(&lc, "pipelines/naive.json", with, 2, &a)) continue;
+        if (render(&lc, "pipelines/naive.json", without, 2, &b)) {
+            uint32_t n = 0, n_wide = 0;
+            double lo = 1e9, hi = -1e9, worst = 0;
+            for (uint32_t y = 0; y + 1 < H; y++)
+                for (uint32_t x = 0; x + 1 < W; x++) {
+                    size_t i = (size_t)y * W + x;
+                    const float *q = b.hdr + 4 * i;
+                    if (q[0] != 0 || q[1] != 0 || q[2] != 0) continue;
+                    n++;
+                    lo = fmin(lo, a.hdr[4 * i]);
+                    hi = fmax(hi, a.hdr[4 * i]);
+                    if (pixel_texels(&lc.fi, x, y, CHECK_W) > 2.2) {
+                        n_wide++;
+                        worst = fmax(worst, fabs(a.hdr[4 * i] - 0.5));
+                    }
+                }
+            printf("background, checker at %.0f degrees: %u background pixels, values %.4f .. %.4f; %u span > 2.2 "
+                   "texels, worst |value - 0.5| there %.4f\n", fovs[c], n, lo, hi, n_wide, worst);
+            CHECK_MSG(n > W * H / 2, "checker at %.0f degrees: only %u background pixels", fovs[c], n);
+            if (c == 0)
+                CHECK_MSG(lo <= 0.1 && hi >= 0.9, "zoomed checker: values %.4f .. %.4f: the texels are not resolved", lo, hi);
+            else
+                CHECK_MSG(n_wide > W * H / 4 && worst <= 0.02,
+                          "wide checker: %u pixels span > 2.2 texels, worst %.4f off the mean (aliasing)", n_wide, worst);
             pg_th_release(&b);
         }
         pg_th_release(&a);
@@ -534,6 +624,7 @@ int main(void)
     }
     silhouette();
     background();
+    background_detail();
     culled();
     printf("validation messages: %u\n", g_gpu->validation_messages);
     CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);
