@@ -123,6 +123,15 @@ bool pg_raster_needs_clip(vec4 c[3])
     return false;
 }
 
+// Where the edge a-b (signed distances da, db to a plane) crosses it, computed from the lesser
+// corner (in x, then y, z, w) so that the two triangles sharing an edge get the same point whatever
+// their order: their clipped edges stay shared, with no crack along the near plane.
+vec4 pg_raster_cut(vec4 a, vec4 b, float da, float db)
+{
+    bool swap = a.x != b.x ? a.x > b.x : a.y != b.y ? a.y > b.y : a.z != b.z ? a.z > b.z : a.w > b.w;
+    return swap ? mix(b, a, db / (db - da)) : mix(a, b, da / (da - db));
+}
+
 // The triangle clipped to the planes, as a convex polygon of n <= 8 corners (0: nothing left; a
 // triangle wholly outside the viewport on one side or beyond the far plane is dropped here too).
 int pg_raster_clip(vec4 c[3], out vec4 poly[8])
@@ -147,7 +156,7 @@ int pg_raster_clip(vec4 c[3], out vec4 poly[8])
             vec4 a = src[k], b = src[(k + 1) % n];
             float da = dot(pl, a), db = dot(pl, b);
             if (da >= 0.0 && m < 8) poly[m++] = a;
-            if ((da >= 0.0) != (db >= 0.0) && m < 8) poly[m++] = mix(a, b, da / (da - db));
+            if ((da >= 0.0) != (db >= 0.0) && m < 8) poly[m++] = pg_raster_cut(a, b, da, db);
         }
         n = m;
         if (n < 3) return 0;
