@@ -43,8 +43,19 @@ struct PgRasterJob {
     uvec4 b;
     vec4 z;
 };
-layout(set = 1, binding = 1, std430) buffer RasterJobs { uint raster_job_next; uint raster_job_pad[3]; PgRasterJob raster_jobs[]; };
-layout(set = 1, binding = 2, std430) buffer RasterArgs { uint raster_job_groups; uint raster_args_yz[2]; };
+// raster_job_next: jobs reserved (a failed reservation too); raster_job_end: the end of the last
+// successful one (the jobs written are exactly [0, end))
+layout(set = 1, binding = 1, std430) buffer RasterJobs {
+    uint raster_job_next;
+    uint raster_job_end;
+    uint raster_job_pad[2];
+    PgRasterJob raster_jobs[];
+};
+// the job dispatch's groups, x <= PG_RASTER_GROUPS_X wide, y rows: x * y >= raster_job_end
+layout(set = 1, binding = 2, std430) buffer RasterArgs { uint raster_groups_x; uint raster_groups_y; uint raster_groups_z; };
+#ifndef PG_RASTER_GROUPS_X
+#define PG_RASTER_GROUPS_X 65535u // a test may set fewer (PASSGRAPH_RASTER_GROUPS_X): more rows
+#endif
 layout(set = 1, binding = 3, std430) readonly buffer RasterTriStart { uint raster_tri_start[]; };
 #ifdef PG_RASTER_ALPHA_MASK
 #define PG_VIS_SET 1

@@ -1,13 +1,16 @@
 #version 460
 // visibility_raster_jobs.comp - the compute rasterizer's second step (visibility_raster.glsl): one
-// workgroup of 8x8 invocations per job covers up to PG_RASTER_JOB_BLOCKS 8x8 blocks of a large
-// triangle's pixel box, an invocation per pixel of the block.
+// workgroup of 8x8 invocations per job (a 2D grid of groups: more jobs than one dimension allows)
+// covers up to PG_RASTER_JOB_BLOCKS 8x8 blocks of a large triangle's pixel box, an invocation per
+// pixel of the block.
 #include "visibility_raster.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 
 void main()
 {
-    PgRasterJob job = raster_jobs[gl_WorkGroupID.x];
+    uint j = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    if (j >= raster_job_end) return; // the last row's tail (uniform: the whole workgroup)
+    PgRasterJob job = raster_jobs[j];
     PgRasterTri r;
     r.p0 = job.a.xy;
     r.p1 = job.a.zw;

@@ -47,6 +47,9 @@ void main()
             job.z = vec4(r.z, 0.0);
             raster_jobs[s + j] = job;
         }
-        atomicMax(raster_job_groups, s + nj);
+        // both grow with the end, so a maximum keeps them: min(end, X) columns, ceil(end / X) rows
+        atomicMax(raster_job_end, s + nj);
+        atomicMax(raster_groups_x, min(s + nj, PG_RASTER_GROUPS_X));
+        atomicMax(raster_groups_y, (s + nj + PG_RASTER_GROUPS_X - 1u) / PG_RASTER_GROUPS_X);
     }
 }

@@ -7,7 +7,10 @@
 
 #include "shader.h"
 
-enum { RASTER_JOB_BYTES = 48, RASTER_JOB_CAP = 65535 };
+/* a job covers 16 8x8 blocks (1,024 pixels) of one triangle's box; the list holds one job per 32
+ * pixels of the target, at least 65,536 and at most 2^22 (the jobs of a frame: about the pixels
+ * covered, times the boxes' waste, over 1,024) */
+enum { RASTER_JOB_BYTES = 48, RASTER_JOB_MIN = 65536, RASTER_JOB_MAX = 1 << 22, RASTER_PIXELS_PER_JOB = 32 };
 
 typedef struct raster_push {
     uint32_t n_tris, n_draws, job_cap, tri_bits;
@@ -57,8 +60,17 @@ static pg_result make_pipelines(const pg_pass_create_ctx *ctx, pg_vis_raster *r,
 {
     const char *defs[PG_MAX_DEFINES + 16];
     uint32_t nd = 0;
+    /* PASSGRAPH_RASTER_GROUPS_X=N (1..65535): the job dispatch's rows N groups wide instead of 65,535,
+     * so that a test reaches its second row */
+    char gx[40];
+    const char *env = getenv("PASSGRAPH_RASTER_GROUPS_X");
+    const long n = env ? strtol(env, NULL, 10) : 0;
+    if (n >= 1 && n <= 65535) {
+        snprintf(gx, sizeof gx, "PG_RASTER_GROUPS_X=%ldu", n);
+        defs[nd++] = gx;
+    }
     if (r->masked) { /* the surface variant of the alpha test (visibility_surface.glsl, surface.glsl) */
-        nd = pg_vis_geometry_define_list(&r->vis, defs);
+        nd += pg_vis_geometry_define_list(&r->vis, defs + nd);
         defs[nd++] = "PG_RASTER_ALPHA_MASK";
     }
     static const char *const shaders[3] = {"visibility_raster_tris.comp", "visibility_raster_jobs.comp",
@@ -97,11 +109,13 @@ pg_result pg_vis_raster_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     r->width = id->width;
     r->height = id->height;
     r->n_draws = sc->n_draws - sc->n_blend_draws; /* the opaque, then the alpha-mask draws */
-    /* PASSGRAPH_RASTER_JOBS=N (1..65535): a smaller job list, so that its overflow path (the triangle
-     * rasterized by its own invocation) can be tested */
+    /* PASSGRAPH_RASTER_JOBS=N (1..2^22): another job list size, e.g. a small one, so that its
+     * overflow path (the triangle rasterized by its own invocation) can be tested */
+    uint64_t want = (uint64_t)r->width * r->height / RASTER_PIXELS_PER_JOB;
+    want = want < RASTER_JOB_MIN ? RASTER_JOB_MIN : want > RASTER_JOB_MAX ? RASTER_JOB_MAX : want;
     const char *jobs = getenv("PASSGRAPH_RASTER_JOBS");
-    const long cap = jobs ? strtol(jobs, NULL, 10) : RASTER_JOB_CAP;
-    r->job_cap = cap >= 1 && cap <= RASTER_JOB_CAP ? (uint32_t)cap : RASTER_JOB_CAP;
+    const long cap = jobs ? strtol(jobs, NULL, 10) : (long)want;
+    r->job_cap = cap >= 1 && cap <= RASTER_JOB_MAX ? (uint32_t)cap : (uint32_t)want;
     r->vis_id = vis_id;
     r->depth_slot = depth;
     if ((res = make_buffers(gpu, sc, ctx->pass->name, r, err))) return res;
@@ -136,7 +150,7 @@ void pg_vis_raster_record(const pg_vis_raster *r, const pg_pass_record_ctx *ctx)
     /* every frame begins with a full barrier (graph_execute.h): the previous frame's uses are done */
     vkCmdFillBuffer(cmd, r->keys.buffer, 0, VK_WHOLE_SIZE, 0xFFFFFFFFu); /* depth NaN-max, id none */
     vkCmdFillBuffer(cmd, r->jobs.buffer, 0, 16, 0);
-    const uint32_t args[4] = {0, 1, 1, 0};
+    const uint32_t args[4] = {0, 0, 1, 0}; /* no groups until a job is written */
     vkCmdUpdateBuffer(cmd, r->args.buffer, 0, sizeof args, args);
     pg_cmd_memory_barrier(cmd, TR, VK_ACCESS_2_TRANSFER_WRITE_BIT, CS, SRW);
     VkDescriptorSet sets[3] = {ctx->frame_set, r->set.set, PG_SCENE_OF(ctx)->set};

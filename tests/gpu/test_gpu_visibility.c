@@ -31,7 +31,7 @@
  * tie rule that gives them to neither triangle leaves 144 holes); the atrium's alpha-masked grille
  * goes through the compute path's alpha test (1 pixel of 57,600 differs; 398, 0.69%, without it);
  * on the atrium and the Sponza a job list of 4 entries (the overflow path: large triangles drawn by
- * their own invocation) gives the same image byte for byte.
+ * their own invocation) and job rows of 7 groups (the 2D job grid) give the same image byte for byte.
  *
  * The tiled light loop (shading.glsl pg_shade_tile) of visibility and deferred_oct16: with
  * tile_lights=false (the per-pixel loop), with tile_size 16 and with tile_backface=false the HDR
@@ -219,22 +219,27 @@ static void check_compute_raster(const char *label, const pg_th_frame *vc, const
 }
 
 /* The compute rasterizer's job list overflowing (PASSGRAPH_RASTER_JOBS=4: the large triangles past
- * the 4th job are rasterized by their own invocation) gives the same ids and depth, so the same
- * HDR image byte for byte (atomicMin does not depend on the order). */
+ * the 4th job are rasterized by their own invocation), and its job dispatch in rows of 7 groups
+ * (PASSGRAPH_RASTER_GROUPS_X=7: the 2D grid a list of more than 65,535 jobs needs), give the same
+ * ids and depth, so the same HDR image byte for byte (atomicMin does not depend on the order). */
 static void check_raster_overflow(const char *label, const pg_scene_gpu *sg, const pg_frame_info *fi,
                                   const pg_th_frame *vc)
 {
     pg_param_override compute = {"raster", "compute"};
     pg_th_frame f;
-    setenv("PASSGRAPH_RASTER_JOBS", "4", 1);
-    bool ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/visibility.json", &compute, 1, fi, 1, false, &f);
-    unsetenv("PASSGRAPH_RASTER_JOBS");
-    CHECK_MSG(ok, "%s: raster=compute with 4 jobs: render failed", label);
-    if (!ok) return;
-    bool same = pg_th_hdr_identical(&f, vc);
-    printf("%s: raster=compute with a job list of 4: %s\n", label, same ? "byte-identical" : "DIFFERENT");
-    CHECK_MSG(same, "%s: raster=compute: the job list's overflow path changes the image", label);
-    pg_th_release(&f);
+    static const char *const envs[2][2] = {{"PASSGRAPH_RASTER_JOBS", "4"}, {"PASSGRAPH_RASTER_GROUPS_X", "7"}};
+    static const char *const what[2] = {"a job list of 4", "job rows 7 groups wide"};
+    for (int v = 0; v < 2; v++) {
+        setenv(envs[v][0], envs[v][1], 1);
+        bool ok = pg_th_render(g_gpu, &g_reg, sg, "pipelines/visibility.json", &compute, 1, fi, 1, false, &f);
+        unsetenv(envs[v][0]);
+        CHECK_MSG(ok, "%s: raster=compute with %s: render failed", label, what[v]);
+        if (!ok) continue;
+        bool same = pg_th_hdr_identical(&f, vc);
+        printf("%s: raster=compute with %s: %s\n", label, what[v], same ? "byte-identical" : "DIFFERENT");
+        CHECK_MSG(same, "%s: raster=compute with %s changes the image", label, what[v]);
+        pg_th_release(&f);
+    }
 }
 
 static void check_frame(const char *label, const pg_scene_gpu *sg, const pg_frame_info *fi, bool control)
