@@ -57,19 +57,14 @@ layout(set = 1, binding = 2, std430) buffer RasterArgs { uint raster_groups_x; u
 #define PG_RASTER_GROUPS_X 65535u // a test may set fewer (PASSGRAPH_RASTER_GROUPS_X): more rows
 #endif
 layout(set = 1, binding = 3, std430) readonly buffer RasterTriStart { uint raster_tri_start[]; };
-#ifdef PG_RASTER_ALPHA_MASK
 #define PG_VIS_SET 1
 #define PG_VIS_BINDING 6
+#ifdef PG_RASTER_ALPHA_MASK
 #include "depth_reconstruct.glsl"
 #include "surface.glsl"
 #include "visibility_surface.glsl"
-#define raster_vertices vis_vertices
-#define raster_indices vis_indices
-#define raster_draws vis_draws
 #else
-layout(set = 1, binding = 6, std430) readonly buffer RasterVertices { float raster_vertices[]; };
-layout(set = 1, binding = 7, std430) readonly buffer RasterIndices { uint raster_indices[]; };
-layout(set = 1, binding = 8, std430) readonly buffer RasterDraws { uvec4 raster_draws[]; };
+#include "visibility_streams.glsl"
 #endif
 layout(push_constant) uniform RasterPush {
     uint n_tris;   // triangles of the rasterized draws
@@ -102,15 +97,14 @@ uint pg_raster_draw_of(uint t)
 void pg_raster_fetch(uint t, out vec4 c[3], out uint id, out bool two_sided, out bool masked)
 {
     uint d = pg_raster_draw_of(t);
-    uvec4 dr = raster_draws[d];
+    uvec4 dr = vis_draws[d];
     uint prim = t - raster_tri_start[d];
     id = (d << rp.tri_bits) | prim;
     two_sided = (dr.w & 1u) != 0u;
     masked = (dr.w & 2u) != 0u;
     for (int k = 0; k < 3; k++) {
-        uint v = raster_indices[dr.x + 3u * prim + uint(k)] + dr.y;
-        vec3 p = vec3(raster_vertices[12u * v], raster_vertices[12u * v + 1u], raster_vertices[12u * v + 2u]);
-        precise vec4 g = frame.proj * vec4(PG_REL_TO_VIEW(p - frame.camera_pos.xyz), 1.0);
+        uint v = vis_indices[dr.x + 3u * prim + uint(k)] + dr.y;
+        precise vec4 g = frame.proj * vec4(PG_REL_TO_VIEW(pg_vis_vec3(v, 0u) - frame.camera_pos.xyz), 1.0);
         c[k] = g;
     }
 }

@@ -16,5 +16,5 @@ void main()
     uint64_t k = raster_keys[i];
     uint id = uint(k & 0xffffffffUL);
     imageStore(raster_vis_id, px, uvec4(id));
-    raster_depth[i] = id == 0xffffffffu ? 1.0 : uintBitsToFloat(uint(k >> 32));
+    raster_depth[i] = id == PG_VIS_NONE ? 1.0 : uintBitsToFloat(uint(k >> 32));
 }

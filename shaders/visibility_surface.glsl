@@ -1,10 +1,7 @@
 // visibility_surface.glsl - rebuilds the surface seen at a pixel from its visibility id (the
 // (draw << PG_VIS_TRI_BITS) | triangle that visibility.frag wrote), for compute passes
-// (deferred_lighting with packing "visibility", visibility_resolve). renderer/common/visibility_common.h
-// binds, in set PG_VIS_SET from binding PG_VIS_BINDING on:
-//   +0 the scene's vertices (pg_vertex: 12 floats), +1 its indices, +2 the draw table (uvec4 per
-//   draw: first index, vertex offset, material, flags), then COLOR_0 (vec4 per vertex, only with
-//   PG_VERTEX_COLORS) and TEXCOORD_1 (vec2 per vertex, only with PG_UV1).
+// (deferred_lighting with packing "visibility", visibility_resolve), from the scene's streams that
+// visibility_streams.glsl declares (set PG_VIS_SET, from binding PG_VIS_BINDING on).
 // Include after common.glsl (FRAME_UNIFORMS_BLOCK), depth_reconstruct.glsl and surface.glsl
 // (compiled with PG_SURFACE_GRADS).
 //
@@ -15,28 +12,7 @@
 // differences a rasterizer's fine derivatives take (surface.glsl samples with them).
 // gl_FrontFacing becomes the side of the triangle the ray arrives from, with glTF's
 // counter-clockwise winding as front, as the rasterizer decides it.
-layout(set = PG_VIS_SET, binding = PG_VIS_BINDING + 0, std430) readonly buffer VisVertices { float vis_vertices[]; };
-layout(set = PG_VIS_SET, binding = PG_VIS_BINDING + 1, std430) readonly buffer VisIndices { uint vis_indices[]; };
-layout(set = PG_VIS_SET, binding = PG_VIS_BINDING + 2, std430) readonly buffer VisDraws { uvec4 vis_draws[]; };
-#ifdef PG_VERTEX_COLORS
-layout(set = PG_VIS_SET, binding = PG_VIS_BINDING + 3, std430) readonly buffer VisColors { vec4 vis_colors[]; };
-#define PG_VIS_UV1_BINDING (PG_VIS_BINDING + 4)
-#else
-#define PG_VIS_UV1_BINDING (PG_VIS_BINDING + 3)
-#endif
-#ifdef PG_UV1
-layout(set = PG_VIS_SET, binding = PG_VIS_UV1_BINDING, std430) readonly buffer VisUv1 { vec2 vis_uv1[]; };
-#endif
-
-const uint PG_VIS_NONE = 0xffffffffu; // cleared id: nothing drawn
-
-vec3 pg_vis_vec3(uint v, uint o) { return vec3(vis_vertices[12u * v + o], vis_vertices[12u * v + o + 1u], vis_vertices[12u * v + o + 2u]); }
-vec2 pg_vis_vec2(uint v, uint o) { return vec2(vis_vertices[12u * v + o], vis_vertices[12u * v + o + 1u]); }
-vec4 pg_vis_vec4(uint v, uint o)
-{
-    return vec4(vis_vertices[12u * v + o], vis_vertices[12u * v + o + 1u], vis_vertices[12u * v + o + 2u],
-                vis_vertices[12u * v + o + 3u]);
-}
+#include "visibility_streams.glsl"
 
 // Camera-relative origin and direction of the ray through pixel position `frag` (pixels).
 void pg_vis_ray(vec2 frag, vec2 size, out vec3 o, out vec3 dir)

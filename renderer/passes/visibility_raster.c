@@ -116,7 +116,6 @@ pg_result pg_vis_raster_create(const pg_pass_create_ctx *ctx, const pg_scene_dra
     const char *jobs = getenv("PASSGRAPH_RASTER_JOBS");
     const long cap = jobs ? strtol(jobs, NULL, 10) : (long)want;
     r->job_cap = cap >= 1 && cap <= RASTER_JOB_MAX ? (uint32_t)cap : (uint32_t)want;
-    r->vis_id = vis_id;
     r->depth_slot = depth;
     if ((res = make_buffers(gpu, sc, ctx->pass->name, r, err))) return res;
     r->n_tris = ((const uint32_t *)r->tri_start.mapped)[r->n_draws];

@@ -23,7 +23,7 @@ typedef struct pg_vis_raster {
     uint32_t n_tris, n_draws, job_cap;
     bool masked;                  /* alpha-mask draws: PG_RASTER_ALPHA_MASK, the scene's set bound */
     uint32_t width, height;
-    pg_slot vis_id, depth_slot;
+    pg_slot depth_slot;           /* the depth image the record copies into */
 } pg_vis_raster;
 
 /* f: the pass's features (the geometry slot, the surface variant); vis_id / depth: its write slots (storage image,
