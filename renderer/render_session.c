@@ -1,7 +1,20 @@
 #include "render_session.h"
 
+#include "scene_gpu_anim.h"
+
 #include <stdlib.h>
 #include <string.h>
+
+/* The frame prologue of a scene with animated materials (KHR_animation_pointer): their records at
+ * the frame's played animation and time, before any pass reads the material table. */
+static bool material_prologue(void *user, VkCommandBuffer cmd, const void *frame_block)
+{
+    const pg_scene_gpu *sg = user;
+    const pg_frame_uniforms *fu = frame_block;
+    int32_t animation;
+    memcpy(&animation, &fu->light_src[1], sizeof animation);
+    return pg_scene_gpu_anim_update_materials(sg->anim, sg->materials.buffer, animation, fu->camera_pos[3], cmd);
+}
 
 pg_result pg_session_create(pg_gpu *gpu, const pg_scene_gpu *scene, const pg_session_desc *desc, pg_session **out,
                             pg_error *err)
@@ -43,6 +56,8 @@ pg_result pg_session_create(pg_gpu *gpu, const pg_scene_gpu *scene, const pg_ses
     if (!r) r = pg_pipeline_load(desc->pipeline_path, desc->overrides, desc->n_overrides, &s->pipeline, err);
     if (!r && gpu) r = pg_runtime_create(gpu, sizeof(pg_frame_uniforms), &s->runtime, err);
     if (!r && s->runtime) pg_runtime_set_settings(s->runtime, s->desc.settings, s->desc.n_settings);
+    if (!r && s->runtime && scene && scene->anim && scene->anim->n_moving_materials)
+        pg_runtime_set_frame_prologue(s->runtime, material_prologue, (void *)scene);
     if (r) {
         pg_session_destroy(s);
         return r;

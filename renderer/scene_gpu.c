@@ -37,39 +37,6 @@ static VkDeviceSize staging_size(const pg_scene_gpu *sg, const pg_scene *scene, 
     return total;
 }
 
-/* a material as the shaders read it */
-static void gpu_material(const pg_material *s, pg_gpu_material *out)
-{
-    pg_gpu_material g;
-    memset(&g, 0, sizeof g);
-    memcpy(g.base_color, s->base_color, sizeof g.base_color);
-    /* texture i of the scene is image i+1 on the GPU (0 is white) */
-    g.tex[0] = s->base_color_tex >= 0 ? s->base_color_tex + 1 : -1;
-    g.tex[1] = s->normal_tex >= 0 ? s->normal_tex + 1 : -1;
-    g.tex[2] = (int32_t)s->alpha_mode;
-    g.tex[3] = s->double_sided ? 1 : 0;
-    g.params[0] = s->alpha_cutoff;
-    g.params[1] = s->normal_scale;
-    g.params[2] = s->specular;
-    g.params[3] = s->shininess;
-    memcpy(g.emissive, s->emissive, sizeof s->emissive);
-    g.tex2[0] = s->emissive_tex >= 0 ? s->emissive_tex + 1 : -1;
-    g.pbr[0] = s->metallic;
-    g.pbr[1] = s->roughness;
-    g.pbr[2] = s->occlusion_strength;
-    g.pbr[3] = s->unlit ? 1.0f : 0.0f;
-    g.tex3[0] = s->metallic_roughness_tex >= 0 ? s->metallic_roughness_tex + 1 : -1;
-    g.tex3[1] = s->occlusion_tex >= 0 ? s->occlusion_tex + 1 : -1;
-    for (int t = 0; t < PG_TEXSLOT_COUNT; t++) {
-        if (s->tex_coord[t] == 1) g.tex2[1] |= 1 << t;
-        for (int k = 0; k < 3; k++) {
-            g.uv_xform[t][0][k] = s->uv_transform[t][k];
-            g.uv_xform[t][1][k] = s->uv_transform[t][3 + k];
-        }
-    }
-    memcpy(out, &g, sizeof g);
-}
-
 /* the file's lights as light_animate reads them */
 static void gpu_file_lights(const pg_scene *scene, pg_gpu_file_light *fl)
 {
@@ -98,7 +65,7 @@ static void fill_staging(uint8_t *dst, const pg_scene *scene, staging_layout *L)
     for (uint32_t m = 0; m < L->n_mat; m++) {
         pg_material dm;
         pg_material_init(&dm, "default");
-        gpu_material(scene->n_materials ? &scene->materials[m] : &dm, &gm[m]);
+        pg_gpu_material_from(scene->n_materials ? &scene->materials[m] : &dm, &gm[m]);
     }
     off += L->mb;
     L->l_off = off;

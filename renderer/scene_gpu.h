@@ -31,6 +31,8 @@ typedef struct pg_gpu_material { /* std430, matches shaders/common.glsl */
     float uv_xform[PG_TEXSLOT_COUNT][2][4]; /* per slot: rows (m00 m01 m02 0), (m10 m11 m12 0) */
 } pg_gpu_material;              /* 272 bytes */
 _Static_assert(sizeof(pg_gpu_material) == 272, "pg_gpu_material must match GpuMaterial (std430)");
+/* a material as the shaders read it */
+void pg_gpu_material_from(const pg_material *m, pg_gpu_material *out);
 
 typedef struct pg_draw {
     uint32_t first_index, index_count;

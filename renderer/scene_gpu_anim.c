@@ -228,6 +228,48 @@ static pg_result find_moving_lights(const pg_scene *scene, pg_scene_gpu_anim *ga
     return PG_OK;
 }
 
+static pg_result find_moving_materials(const pg_scene *scene, pg_scene_gpu_anim *ga, pg_error *err)
+{
+    const pg_scene_anim *a = scene->anim;
+    for (uint32_t m = 0; m < scene->n_materials && m < a->n_materials; m++)
+        ga->n_moving_materials += pg_anim_material_animated(a, (int)m);
+    if (!ga->n_moving_materials) return PG_OK;
+    ga->moving_material = calloc(ga->n_moving_materials, sizeof *ga->moving_material);
+    ga->moving_mat_rest = calloc(ga->n_moving_materials, sizeof *ga->moving_mat_rest);
+    if (!ga->moving_material || !ga->moving_mat_rest) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    uint32_t k = 0;
+    for (uint32_t m = 0; m < scene->n_materials && m < a->n_materials; m++) {
+        if (!pg_anim_material_animated(a, (int)m)) continue;
+        ga->moving_material[k] = m;
+        ga->moving_mat_rest[k++] = scene->materials[m];
+    }
+    return PG_OK;
+}
+
+/* a scene table's earlier reads (by `readers`) before the transfer writes that rewrite its records */
+static void before_update(VkCommandBuffer cmd, VkBuffer table, VkPipelineStageFlags2 readers)
+{
+    VkBufferMemoryBarrier2 b = pg_buffer_barrier(table, readers, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
+                                                 VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    pg_cmd_barriers(cmd, 0, NULL, 1, &b);
+}
+
+bool pg_scene_gpu_anim_update_materials(const pg_scene_gpu_anim *ga, VkBuffer table, int animation, double time,
+                                        VkCommandBuffer cmd)
+{
+    if (!ga || !ga->n_moving_materials || !table) return false;
+    const pg_anim_pose *pose = pg_scene_gpu_anim_pose(ga, animation, time);
+    before_update(cmd, table, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT); /* every pass may read materials */
+    for (uint32_t k = 0; k < ga->n_moving_materials; k++) {
+        pg_material M = ga->moving_mat_rest[k];
+        pg_anim_material_props(ga->anim, pose, (int)ga->moving_material[k], &M);
+        pg_gpu_material rec;
+        pg_gpu_material_from(&M, &rec);
+        vkCmdUpdateBuffer(cmd, table, (VkDeviceSize)ga->moving_material[k] * sizeof rec, sizeof rec, &rec);
+    }
+    return true;
+}
+
 const pg_anim_pose *pg_scene_gpu_anim_pose(const pg_scene_gpu_anim *ga, int animation, double time)
 {
     pg_scene_gpu_anim_now *now = ga->now;
@@ -246,10 +288,7 @@ void pg_scene_gpu_anim_update_lights(const pg_scene_gpu_anim *ga, VkBuffer table
 {
     if (!ga || !ga->n_moving_lights || !table) return;
     const pg_anim_pose *pose = pg_scene_gpu_anim_pose(ga, animation, time);
-    VkBufferMemoryBarrier2 b = pg_buffer_barrier(table, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                                                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                                                 VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    pg_cmd_barriers(cmd, 0, NULL, 1, &b);
+    before_update(cmd, table, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT); /* light_animate's earlier reads */
     for (uint32_t k = 0; k < ga->n_moving_lights; k++) {
         pg_scene_light L = ga->moving_rest[k];
         double m[16];
@@ -260,8 +299,9 @@ void pg_scene_gpu_anim_update_lights(const pg_scene_gpu_anim *ga, VkBuffer table
         pg_gpu_file_light_from(&L, &rec);
         vkCmdUpdateBuffer(cmd, table, (VkDeviceSize)ga->moving_light[k] * sizeof rec, sizeof rec, &rec);
     }
-    b = pg_buffer_barrier(table, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    VkBufferMemoryBarrier2 b = pg_buffer_barrier(table, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     pg_cmd_barriers(cmd, 0, NULL, 1, &b);
 }
 
@@ -298,6 +338,7 @@ pg_result pg_scene_gpu_anim_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_
     free(info);
     free(prims);
     if (!r) r = find_moving_lights(scene, ga, err);
+    if (!r) r = find_moving_materials(scene, ga, err);
     if (!r && !(ga->now = calloc(1, sizeof *ga->now))) r = pg_fail(err, PG_ERR_OOM, "out of memory");
     if (!r) r = pg_anim_pose_alloc(a, &ga->now->pose, err);
     if (!r && geometry) r = prim_centres(a, ga, err);
@@ -319,6 +360,8 @@ void pg_scene_gpu_anim_destroy(pg_gpu *gpu, pg_scene_gpu_anim *ga)
     pg_buffer_destroy(gpu, &ga->pose);
     free(ga->moving_light);
     free(ga->moving_rest);
+    free(ga->moving_material);
+    free(ga->moving_mat_rest);
     if (ga->now) pg_anim_pose_release(&ga->now->pose);
     free(ga->now);
     free(ga->centres);

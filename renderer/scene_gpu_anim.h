@@ -55,6 +55,12 @@ typedef struct pg_scene_gpu_anim {
     uint32_t n_moving_lights;
     uint32_t *moving_light;
     pg_scene_light *moving_rest;
+    /* the materials KHR_animation_pointer animates: their indices in the material table and their
+     * values as loaded; the frame prologue rewrites them each frame
+     * (pg_scene_gpu_anim_update_materials) */
+    uint32_t n_moving_materials;
+    uint32_t *moving_material;
+    pg_material *moving_mat_rest;
     pg_scene_gpu_anim_now *now;
     pg_anim_prim_centre *centres; /* per moving primitive (anim->n_prims) */
     float (*morph_shift)[3];       /* per morph target of each moving primitive (pg_anim_prim_centre) */
@@ -67,6 +73,12 @@ void pg_scene_gpu_anim_destroy(pg_gpu *gpu, pg_scene_gpu_anim *ga);
  * the next). Nothing when no light moves. */
 void pg_scene_gpu_anim_update_lights(const pg_scene_gpu_anim *ga, VkBuffer table, int animation, double time,
                                      VkCommandBuffer cmd);
+/* Records into cmd the material table's animated materials at (animation, time)
+ * (pg_anim_material_props), after a barrier from every earlier read; the caller orders them before
+ * this frame's reads (the runtime's frame prologue: pg_runtime_set_frame_prologue). False, nothing
+ * recorded, when no material is animated. */
+bool pg_scene_gpu_anim_update_materials(const pg_scene_gpu_anim *ga, VkBuffer table, int animation, double time,
+                                        VkCommandBuffer cmd);
 /* The pose at (animation, time): ga->now's, evaluated only when (animation, time) differs from the
  * last call's. */
 const pg_anim_pose *pg_scene_gpu_anim_pose(const pg_scene_gpu_anim *ga, int animation, double time);

@@ -36,6 +36,8 @@ void pg_scene_anim_free(pg_scene_anim *a)
     free(a->light_rest);
     free(a->camera_animated);
     free(a->camera_rest);
+    free(a->material_animated);
+    free(a->material_rest);
     free(a);
 }
 
@@ -47,6 +49,7 @@ pg_result pg_anim_pose_alloc(const pg_scene_anim *a, pg_anim_pose *out, pg_error
     out->weights = calloc((size_t)a->n_weights + 1, sizeof(float));
     out->lights = calloc((size_t)a->n_lights + 1, sizeof *out->lights);
     out->cameras = calloc((size_t)a->n_cameras + 1, sizeof *out->cameras);
+    out->materials = calloc((a->n_animated_materials ? (size_t)a->n_materials : 0) + 1, sizeof *out->materials);
     const size_t nn = (size_t)a->n_nodes + 1;
     out->work.t = malloc(sizeof *out->work.t * nn);
     out->work.r = malloc(sizeof *out->work.r * nn);
@@ -54,7 +57,8 @@ pg_result pg_anim_pose_alloc(const pg_scene_anim *a, pg_anim_pose *out, pg_error
     out->work.local = malloc(sizeof(float) * 16 * nn);
     out->work.stack = malloc(sizeof(uint32_t) * nn);
     out->work.done = malloc(nn);
-    if (!out->node_world || !out->joints || !out->weights || !out->lights || !out->cameras || !out->work.t ||
+    if (!out->node_world || !out->joints || !out->weights || !out->lights || !out->cameras || !out->materials ||
+        !out->work.t ||
         !out->work.r || !out->work.s || !out->work.local || !out->work.stack || !out->work.done) {
         pg_anim_pose_release(out);
         return pg_fail(err, PG_ERR_OOM, "animation pose: out of memory");
@@ -69,6 +73,7 @@ void pg_anim_pose_release(pg_anim_pose *p)
     free(p->weights);
     free(p->lights);
     free(p->cameras);
+    free(p->materials);
     free(p->work.t);
     free(p->work.r);
     free(p->work.s);
@@ -217,7 +222,16 @@ static void apply_animation(const pg_scene_anim *a, const pg_animation *an, doub
             }
             continue;
         }
-        if (ch->path >= PG_ANIM_CAM_YFOV) { /* width 1 */
+        uint32_t mw = 0;
+        const int mo = pg_anim_material_offset(ch->path, &mw);
+        if (mo >= 0) { /* the loader made the width pg_anim_material_offset's */
+            if (ch->node < a->n_materials && a->n_animated_materials && ch->width == mw) {
+                channel_sample(ch, t, v);
+                memcpy(&pose->materials[ch->node][mo], v, mw * sizeof(float));
+            }
+            continue;
+        }
+        if (ch->path >= PG_ANIM_CAM_YFOV && ch->path <= PG_ANIM_CAM_ZFAR) { /* width 1 */
             if (ch->node < a->n_cameras && ch->width == 1) {
                 channel_sample(ch, t, v);
                 pose->cameras[ch->node][ch->path - PG_ANIM_CAM_YFOV] = v[0];
@@ -274,6 +288,8 @@ void pg_anim_pose_eval(const pg_scene_anim *a, int animation, double time, pg_an
     if (a->n_weights) memcpy(pose->weights, a->rest_weights, a->n_weights * sizeof(float));
     if (a->n_lights) memcpy(pose->lights, a->light_rest, a->n_lights * sizeof *pose->lights);
     if (a->n_cameras) memcpy(pose->cameras, a->camera_rest, a->n_cameras * sizeof *pose->cameras);
+    for (uint32_t m = 0; a->n_animated_materials && m < a->n_materials; m++)
+        if (a->material_animated[m]) memcpy(pose->materials[m], a->material_rest[m], sizeof *pose->materials);
     const double t = pg_anim_local_time(a, animation, time);
     if (animation == PG_ANIM_ALL) {
         for (uint32_t k = 0; k < a->n_animations; k++) apply_animation(a, &a->animations[k], t, T, R, S, pose);
@@ -329,6 +345,68 @@ bool pg_anim_light_props(const pg_scene_anim *a, const pg_anim_pose *pose, pg_sc
 bool pg_anim_camera_animated(const pg_scene_anim *a, int gltf_camera)
 {
     return a && gltf_camera >= 0 && (uint32_t)gltf_camera < a->n_cameras && a->camera_animated[gltf_camera];
+}
+
+/* ---- material properties (KHR_animation_pointer) ---- */
+
+int pg_anim_material_offset(pg_anim_path p, uint32_t *width)
+{
+    static const struct { int8_t offset, width; } fixed[] = {
+        {0, 4}, {4, 1}, {5, 1}, {6, 3}, {9, 1}, {10, 1}, {11, 1}, {12, 1}}; /* PG_ANIM_MAT_BASE_COLOR .. _OCCLUSION_STRENGTH */
+    *width = 0;
+    if (p < PG_ANIM_MAT_BASE_COLOR || p > PG_ANIM_MAT_LAST) return -1;
+    if (p < PG_ANIM_MAT_UV) {
+        *width = (uint32_t)fixed[p - PG_ANIM_MAT_BASE_COLOR].width;
+        return fixed[p - PG_ANIM_MAT_BASE_COLOR].offset;
+    }
+    const int slot = (p - PG_ANIM_MAT_UV) / 3, k = (p - PG_ANIM_MAT_UV) % 3; /* offset, rotation, scale */
+    *width = k == 1 ? 1u : 2u;
+    return PG_ANIM_MAT_UV_BASE + 5 * slot + (k == 0 ? 0 : k == 1 ? 2 : 3);
+}
+
+bool pg_anim_material_animated(const pg_scene_anim *a, int gltf_material)
+{
+    return a && gltf_material >= 0 && (uint32_t)gltf_material < a->n_materials && a->material_animated[gltf_material];
+}
+
+static bool mat_bit(uint32_t bits, pg_anim_path p)
+{
+    return (bits >> (p - PG_ANIM_MAT_BASE_COLOR)) & 1u;
+}
+
+/* finite and >= 0 (NaN -> 0) */
+static float nonneg_(float x)
+{
+    return clampf_(x, 0.0f, 3.4e38f);
+}
+
+bool pg_anim_material_props(const pg_scene_anim *a, const pg_anim_pose *pose, int gltf_material, pg_material *M)
+{
+    if (!pg_anim_material_animated(a, gltf_material)) return false;
+    const uint32_t bits = a->material_animated[gltf_material];
+    const float *p = pose->materials[gltf_material];
+    if (mat_bit(bits, PG_ANIM_MAT_BASE_COLOR))
+        for (int k = 0; k < 4; k++) M->base_color[k] = clampf_(p[k], 0.0f, 1.0f);
+    if (mat_bit(bits, PG_ANIM_MAT_METALLIC) || mat_bit(bits, PG_ANIM_MAT_ROUGHNESS)) {
+        M->metallic = clampf_(p[4], 0.0f, 1.0f);
+        M->roughness = clampf_(p[5], 0.0f, 1.0f);
+        pg_material_specular_from(M->metallic, M->roughness, &M->specular, &M->shininess);
+    }
+    if (mat_bit(bits, PG_ANIM_MAT_EMISSIVE) || mat_bit(bits, PG_ANIM_MAT_EMISSIVE_STRENGTH))
+        for (int k = 0; k < 3; k++) M->emissive[k] = (float)fmin((double)nonneg_(p[6 + k]) * nonneg_(p[9]), 3.4e38);
+    if (mat_bit(bits, PG_ANIM_MAT_ALPHA_CUTOFF)) M->alpha_cutoff = nonneg_(p[10]);
+    if (mat_bit(bits, PG_ANIM_MAT_NORMAL_SCALE)) M->normal_scale = clampf_(p[11], -3.4e38f, 3.4e38f);
+    if (mat_bit(bits, PG_ANIM_MAT_OCCLUSION_STRENGTH)) M->occlusion_strength = clampf_(p[12], 0.0f, 1.0f);
+    for (int sl = 0; sl < PG_TEXSLOT_COUNT; sl++) {
+        const pg_anim_path first = (pg_anim_path)(PG_ANIM_MAT_UV + 3 * sl);
+        if (!mat_bit(bits, first) && !mat_bit(bits, first + 1) && !mat_bit(bits, first + 2)) continue;
+        const float *u = p + PG_ANIM_MAT_UV_BASE + 5 * sl;
+        const double off[2] = {clampf_(u[0], -1e30f, 1e30f), clampf_(u[1], -1e30f, 1e30f)};
+        const double sc[2] = {clampf_(u[3], -1e30f, 1e30f), clampf_(u[4], -1e30f, 1e30f)};
+        pg_material_uv_transform(off, clampf_(u[2], -1e30f, 1e30f), sc, M->uv_transform[sl]);
+        M->has_uv_transform[sl] = true;
+    }
+    return true;
 }
 
 /* x kept at least `lo` away from 0, its sign kept (NaN -> lo) */

@@ -58,12 +58,31 @@ typedef enum pg_anim_path {
     PG_ANIM_CAM_XMAG = 11,       /* orthographic/xmag */
     PG_ANIM_CAM_YMAG = 12,       /* orthographic/ymag */
     PG_ANIM_CAM_ZNEAR = 13,      /* perspective/znear or orthographic/znear */
-    PG_ANIM_CAM_ZFAR = 14        /* perspective/zfar or orthographic/zfar */
+    PG_ANIM_CAM_ZFAR = 14,       /* perspective/zfar or orthographic/zfar */
+    /* KHR_animation_pointer on a material's property (node is the material's index in
+     * "materials"): /materials/N/... */
+    PG_ANIM_MAT_BASE_COLOR = 15, /* pbrMetallicRoughness/baseColorFactor (width 4) */
+    PG_ANIM_MAT_METALLIC = 16,   /* pbrMetallicRoughness/metallicFactor */
+    PG_ANIM_MAT_ROUGHNESS = 17,  /* pbrMetallicRoughness/roughnessFactor */
+    PG_ANIM_MAT_EMISSIVE = 18,   /* emissiveFactor (width 3) */
+    PG_ANIM_MAT_EMISSIVE_STRENGTH = 19, /* extensions/KHR_materials_emissive_strength/emissiveStrength */
+    PG_ANIM_MAT_ALPHA_CUTOFF = 20, /* alphaCutoff */
+    PG_ANIM_MAT_NORMAL_SCALE = 21, /* normalTexture/scale */
+    PG_ANIM_MAT_OCCLUSION_STRENGTH = 22, /* occlusionTexture/strength */
+    /* <slot's textureInfo>/extensions/KHR_texture_transform/offset (width 2), rotation, scale
+     * (width 2): path PG_ANIM_MAT_UV + 3 x slot (PG_TEXSLOT_*) + 0, 1 or 2 */
+    PG_ANIM_MAT_UV = 23,
+    PG_ANIM_MAT_LAST = PG_ANIM_MAT_UV + 3 * PG_TEXSLOT_COUNT - 1
 } pg_anim_path;
 /* a light's animatable properties in a pose: colour r g b, intensity, range, inner and outer cone */
 #define PG_ANIM_LIGHT_PROPS 7
 /* a camera's: yfov, aspectRatio, xmag, ymag, znear, zfar */
 #define PG_ANIM_CAMERA_PROPS 6
+/* a material's: base colour r g b a, metallic, roughness, emissive r g b, emissive strength, alpha
+ * cutoff, normal scale, occlusion strength (PG_ANIM_MAT_BASE_COLOR + k: the offset of path k is
+ * pg_anim_material_offset), then per texture slot offset u v, rotation, scale u v */
+#define PG_ANIM_MAT_UV_BASE 13
+#define PG_ANIM_MATERIAL_PROPS (PG_ANIM_MAT_UV_BASE + 5 * PG_TEXSLOT_COUNT)
 typedef enum pg_anim_interp { PG_INTERP_LINEAR = 0, PG_INTERP_STEP = 1, PG_INTERP_CUBICSPLINE = 2 } pg_anim_interp;
 
 typedef struct pg_anim_channel {
@@ -139,6 +158,11 @@ typedef struct pg_scene_anim {
     uint32_t n_cameras;        /* the file's cameras */
     uint8_t *camera_animated;  /* n_cameras: 1 where a channel animates the camera's projection */
     float (*camera_rest)[PG_ANIM_CAMERA_PROPS]; /* n_cameras: the file's values (of the animated ones) */
+    uint32_t n_materials;      /* the file's materials */
+    uint32_t *material_animated; /* n_materials: bit k set where a channel animates path
+                                    PG_ANIM_MAT_BASE_COLOR + k of the material (0: none) */
+    float (*material_rest)[PG_ANIM_MATERIAL_PROPS]; /* n_materials: the file's values (of the animated ones) */
+    uint32_t n_animated_materials;
 } pg_scene_anim;
 
 typedef struct pg_anim_pose {
@@ -147,6 +171,7 @@ typedef struct pg_anim_pose {
     float *weights;     /* n_weights */
     float (*lights)[PG_ANIM_LIGHT_PROPS]; /* n_lights: each light's properties at the pose's time */
     float (*cameras)[PG_ANIM_CAMERA_PROPS]; /* n_cameras: each camera's projection at the pose's time */
+    float (*materials)[PG_ANIM_MATERIAL_PROPS]; /* n_materials: each material's properties at the pose's time */
     struct {            /* pg_anim_pose_eval's working memory, allocated with the pose: no allocation a frame */
         float (*t)[3], (*r)[4], (*s)[3]; /* per node TRS */
         float *local;                     /* 16 per node */
@@ -188,10 +213,21 @@ bool pg_anim_light_props(const pg_scene_anim *a, const pg_anim_pose *pose, pg_sc
 bool pg_anim_camera_animated(const pg_scene_anim *a, int gltf_camera);
 bool pg_anim_camera_props(const pg_scene_anim *a, const pg_anim_pose *pose, pg_scene_camera *C);
 
+/* Likewise for a material (materials[gltf_material] of the file): its factors and texture transforms
+ * from the pose into M, kept valid (base colour, metallic, roughness, alpha cutoff, occlusion strength
+ * in [0, 1]; emissive, its strength and normal scale finite and >= 0 where the spec says so), the
+ * emissive as factor x strength and each slot's transform as the loader builds it
+ * (pg_material_uv_transform); Blinn-Phong's specular and shininess follow metallic and roughness
+ * (pg_material_specular_from). */
+bool pg_anim_material_animated(const pg_scene_anim *a, int gltf_material);
+bool pg_anim_material_props(const pg_scene_anim *a, const pg_anim_pose *pose, int gltf_material, pg_material *M);
+/* the offset in a material's properties of path p (PG_ANIM_MAT_*), -1 for another path; its width */
+int pg_anim_material_offset(pg_anim_path p, uint32_t *width);
+
 /* Poses the scene on the CPU: scene->vertices become the deformed vertices at `time`, the file
  * lights and the glTF cameras on nodes move with their nodes, bounds are recomputed (so framing
- * follows the animated geometry), with their animated colour, intensity, range and cones. A scene
- * without animation is left as is. */
+ * follows the animated geometry), with their animated colour, intensity, range and cones, and the
+ * animated materials take their properties at `time`. A scene without animation is left as is. */
 pg_result pg_scene_pose(pg_scene *scene, int animation, double time, pg_error *err);
 /* Places glTF camera `index` by its node's world matrix in `pose` (a pose of scene->anim), with its
  * animated projection (pg_anim_camera_props): the

@@ -428,10 +428,16 @@ void pg_scene_finalize(pg_scene *s)
             if (m->unlit) s->features.has_unlit = s->features.has_emissive = true; /* drawn as emission */
             if (m->metallic_roughness_tex >= 0) s->features.has_metallic_roughness_tex = true;
             if (m->occlusion_tex >= 0) s->features.has_occlusion_tex = true;
+            /* KHR_animation_pointer: what a material may become at another time counts too */
+            const uint32_t ab = s->anim && pr->material < s->anim->n_materials ? s->anim->material_animated[pr->material] : 0;
+            if (ab & (1u << (PG_ANIM_MAT_EMISSIVE - PG_ANIM_MAT_BASE_COLOR) |
+                      1u << (PG_ANIM_MAT_EMISSIVE_STRENGTH - PG_ANIM_MAT_BASE_COLOR)))
+                s->features.has_emissive = true;
             for (int t = 0; t < PG_TEXSLOT_COUNT; t++) {
                 int tex = pg_material_slot_texture(m, t);
                 if (tex < 0) continue;
-                if (m->has_uv_transform[t]) s->features.has_uv_transform = true;
+                if (m->has_uv_transform[t] || ((ab >> (PG_ANIM_MAT_UV + 3 * t - PG_ANIM_MAT_BASE_COLOR)) & 7u))
+                    s->features.has_uv_transform = true;
                 if (m->tex_coord[t] == 1 && s->uv1) s->features.has_uv1 = true;
             }
         }

@@ -260,6 +260,14 @@ void pg_material_init(pg_material *m, const char *name);
 /* The texture of material slot PG_TEXSLOT_* (index into scene->textures), -1 when it has none. */
 int pg_material_slot_texture(const pg_material *m, int slot);
 void pg_texture_release(pg_texture *tex);
+/* KHR_texture_transform's offset, rotation (radians, counter-clockwise in UV space) and scale as
+ * the 2x3 row-major matrix M = T * R * S of pg_material.uv_transform:
+ *   { sx cos r, sy sin r, ox,  -sx sin r, sy cos r, oy }  (computed in double) */
+void pg_material_uv_transform(const double offset[2], double rotation, const double scale[2], float m[6]);
+/* Blinn-Phong's specular strength and exponent from glTF metallic and roughness (clamped to [0, 1];
+ * NaN reads as glTF's default 1): specular = 0.04 + 0.5 (1 - r)(1 - m), shininess = 2 / (r^4 + 1e-4) - 2
+ * in [1, 512] */
+void pg_material_specular_from(double metallic, double roughness, float *specular, float *shininess);
 
 /* ---- helpers shared by the loaders (glTF shim, default scene); usable by tools ----
  * Indices are local to verts (0..n_verts-1); out-of-range triangles are skipped. */

@@ -446,10 +446,7 @@ static void material_specular(const tinygltf::PbrMetallicRoughness &pbr, pg_mate
 {
     double metal = std::isfinite(pbr.metallicFactor) ? clamp01(pbr.metallicFactor) : 1.0;
     double rough = std::isfinite(pbr.roughnessFactor) ? clamp01(pbr.roughnessFactor) : 1.0;
-    pm.specular = float(0.04 + 0.5 * (1.0 - rough) * (1.0 - metal));
-    double r4 = rough * rough * rough * rough;
-    double sh = 2.0 / (r4 + 1e-4) - 2.0;
-    pm.shininess = float(sh < 1 ? 1 : sh > 512 ? 512 : sh);
+    pg_material_specular_from(metal, rough, &pm.specular, &pm.shininess);
 }
 
 /* emissive = emissiveFactor x emissiveStrength (both checked finite >= 0 by prevalidate) */

@@ -22,11 +22,43 @@ static pg_anim_path channel_path(const std::string &p, bool *known)
     return PG_ANIM_TRANSLATION;
 }
 
+/* The path of a material property a pointer names after "/materials/N/" (false: one passgraph does
+ * not animate, warned). */
+static bool material_property(const std::string &prop, pg_anim_path *path)
+{
+    static const struct { const char *name; pg_anim_path path; } props[] = {
+        {"pbrMetallicRoughness/baseColorFactor", PG_ANIM_MAT_BASE_COLOR},
+        {"pbrMetallicRoughness/metallicFactor", PG_ANIM_MAT_METALLIC},
+        {"pbrMetallicRoughness/roughnessFactor", PG_ANIM_MAT_ROUGHNESS},
+        {"emissiveFactor", PG_ANIM_MAT_EMISSIVE},
+        {"extensions/KHR_materials_emissive_strength/emissiveStrength", PG_ANIM_MAT_EMISSIVE_STRENGTH},
+        {"alphaCutoff", PG_ANIM_MAT_ALPHA_CUTOFF},
+        {"normalTexture/scale", PG_ANIM_MAT_NORMAL_SCALE},
+        {"occlusionTexture/strength", PG_ANIM_MAT_OCCLUSION_STRENGTH}};
+    for (const auto &pr : props)
+        if (prop == pr.name) {
+            *path = pr.path;
+            return true;
+        }
+    static const char *const slots[PG_TEXSLOT_COUNT] = {
+        "pbrMetallicRoughness/baseColorTexture", "normalTexture", "emissiveTexture",
+        "pbrMetallicRoughness/metallicRoughnessTexture", "occlusionTexture"};
+    static const char *const uv[3] = {"offset", "rotation", "scale"};
+    for (int sl = 0; sl < PG_TEXSLOT_COUNT; sl++)
+        for (int k = 0; k < 3; k++)
+            if (prop == std::string(slots[sl]) + "/extensions/KHR_texture_transform/" + uv[k]) {
+                *path = pg_anim_path(PG_ANIM_MAT_UV + 3 * sl + k);
+                return true;
+            }
+    return false;
+}
+
 /* A channel's target and path: target.node and target.path, or with target.path "pointer" the
  * KHR_animation_pointer JSON pointer: "/nodes/N/translation|rotation|scale|weights" (the same
- * animation), "/extensions/KHR_lights_punctual/lights/N/<property>" or "/cameras/N/<projection
- * property>" (*node is then the light's or camera's index). false: another pointer (a material
- * property: *pointer names it, for the warning) or an unknown path. A pointer that is not a string is
+ * animation), "/extensions/KHR_lights_punctual/lights/N/<property>", "/cameras/N/<projection
+ * property>" or "/materials/N/<property>" (material_property; *node is then the light's, camera's
+ * or material's index). false: another pointer (*pointer names it, for the warning) or an unknown
+ * path. A pointer that is not a string is
  * refused. */
 static bool channel_target(const tinygltf::AnimationChannel &ch, const std::string &cw, int *node, pg_anim_path *path,
                            std::string *pointer)
@@ -43,10 +75,12 @@ static bool channel_target(const tinygltf::AnimationChannel &ch, const std::stri
         !ext->second.Get("pointer").IsString())
         gfail(cw + ".target: path 'pointer' without a KHR_animation_pointer extension giving a \"pointer\" string");
     *pointer = ext->second.Get("pointer").Get<std::string>();
-    const std::string lights = "/extensions/KHR_lights_punctual/lights/", cameras = "/cameras/";
+    const std::string lights = "/extensions/KHR_lights_punctual/lights/", cameras = "/cameras/",
+                      materials = "/materials/";
     const bool light = pointer->compare(0, lights.size(), lights) == 0;
     const bool camera = pointer->compare(0, cameras.size(), cameras) == 0;
-    const std::string pre = light ? lights : camera ? cameras : "/nodes/";
+    const bool material = pointer->compare(0, materials.size(), materials) == 0;
+    const std::string pre = light ? lights : camera ? cameras : material ? materials : "/nodes/";
     if (pointer->compare(0, pre.size(), pre) != 0) return false;
     size_t i = pre.size(), j = i;
     while (j < pointer->size() && j - i < 10 && (*pointer)[j] >= '0' && (*pointer)[j] <= '9') j++;
@@ -54,6 +88,7 @@ static bool channel_target(const tinygltf::AnimationChannel &ch, const std::stri
     const unsigned long n = strtoul(pointer->c_str() + i, nullptr, 10);
     if (n > 0x7fffffffUL) return false;
     *node = int(n);
+    if (material) return material_property(pointer->substr(j + 1), path);
     if (light || camera) {
         static const struct { const char *name; pg_anim_path path; } props[] = {
             {"color", PG_ANIM_LIGHT_COLOR},
@@ -87,7 +122,12 @@ static bool light_path(pg_anim_path p)
 
 static bool camera_path(pg_anim_path p)
 {
-    return p >= PG_ANIM_CAM_YFOV;
+    return p >= PG_ANIM_CAM_YFOV && p <= PG_ANIM_CAM_ZFAR;
+}
+
+static bool material_path(pg_anim_path p)
+{
+    return p >= PG_ANIM_MAT_BASE_COLOR && p <= PG_ANIM_MAT_LAST;
 }
 
 void anim_prepare(Ctx &c)
@@ -107,12 +147,14 @@ void anim_prepare(Ctx &c)
             pg_anim_path path = PG_ANIM_TRANSLATION;
             std::string pointer;
             if (!channel_target(ch, cw, &node, &path, &pointer)) continue; /* counted at hand-out */
-            if (light_path(path) || camera_path(path)) {
-                const size_t have = light_path(path) ? md.lights.size() : md.cameras.size();
+            if (light_path(path) || camera_path(path) || material_path(path)) {
+                const char *what = light_path(path) ? "light" : camera_path(path) ? "camera" : "material";
+                const size_t have = light_path(path)    ? md.lights.size()
+                                    : camera_path(path) ? md.cameras.size()
+                                                        : md.materials.size();
                 if (size_t(node) >= have)
-                    gfail(strf("%s.target.extensions.KHR_animation_pointer.pointer: %s %d out of range (%zu %s)",
-                               cw.c_str(), light_path(path) ? "light" : "camera", node, have,
-                               light_path(path) ? "lights" : "cameras"));
+                    gfail(strf("%s.target.extensions.KHR_animation_pointer.pointer: %s %d out of range (%zu %ss)",
+                               cw.c_str(), what, node, have, what));
                 continue;
             }
             if (size_t(node) >= md.nodes.size())
@@ -406,7 +448,7 @@ static bool hand_out_channel(Ctx &c, const pg_scene_anim *a, size_t ai, size_t c
         return false;
     }
     C.node = uint32_t(node);
-    const bool lp = light_path(C.path) || camera_path(C.path);
+    const bool lp = light_path(C.path) || camera_path(C.path) || material_path(C.path);
     if (!lp && C.path != PG_ANIM_WEIGHTS && a->nodes[C.node].has_matrix) return false; /* glTF forbids: ignored */
     if (C.path == PG_ANIM_WEIGHTS && a->nodes[C.node].n_weights == 0) return false; /* not a drawn morph */
     if (ch.sampler < 0 || size_t(ch.sampler) >= an.samplers.size())
@@ -421,14 +463,19 @@ static bool hand_out_channel(Ctx &c, const pg_scene_anim *a, size_t ai, size_t c
     if (in.type != TINYGLTF_TYPE_SCALAR || in.ctype != TINYGLTF_COMPONENT_TYPE_FLOAT || in.count < 1)
         gfail(strf("%s.input: accessors[%d] must be SCALAR FLOAT with at least one key", sw.c_str(), in.index));
     C.n_keys = uint32_t(in.count);
+    uint32_t mat_width = 0;
+    if (material_path(C.path)) pg_anim_material_offset(C.path, &mat_width);
     C.width = C.path == PG_ANIM_ROTATION                         ? 4
               : C.path == PG_ANIM_WEIGHTS                        ? a->nodes[C.node].n_weights
+              : material_path(C.path)                            ? mat_width
               : lp && C.path != PG_ANIM_LIGHT_COLOR              ? 1
                                                                  : 3;
     const size_t per_key = (C.interp == PG_INTERP_CUBICSPLINE ? 3 : 1) * size_t(C.width);
-    const int want_type = C.path == PG_ANIM_ROTATION                        ? TINYGLTF_TYPE_VEC4
-                          : C.path == PG_ANIM_WEIGHTS || C.width == 1       ? TINYGLTF_TYPE_SCALAR
-                                                                            : TINYGLTF_TYPE_VEC3;
+    const int want_type = C.path == PG_ANIM_ROTATION || (C.width == 4 && C.path != PG_ANIM_WEIGHTS)
+                              ? TINYGLTF_TYPE_VEC4
+                          : C.path == PG_ANIM_WEIGHTS || C.width == 1 ? TINYGLTF_TYPE_SCALAR
+                          : C.width == 2                              ? TINYGLTF_TYPE_VEC2
+                                                                      : TINYGLTF_TYPE_VEC3;
     const size_t comps = C.path == PG_ANIM_WEIGHTS ? 1 : C.width;
     if (out.type != want_type || out.count * comps != in.count * per_key)
         gfail(strf("%s.output: accessors[%d] must be %s with %zu elements for %zu keys of '%s' (got %s, %zu)",
@@ -452,6 +499,55 @@ static bool hand_out_channel(Ctx &c, const pg_scene_anim *a, size_t ai, size_t c
     return true;
 }
 
+/* materials[m]'s animatable values as the file gives them (glTF's defaults where it does not):
+ * the layout of pg_scene_anim.material_rest (animation.h PG_ANIM_MATERIAL_PROPS) */
+static void material_rest(const Ctx &c, uint32_t m, float r[PG_ANIM_MATERIAL_PROPS])
+{
+    const tinygltf::Material &gm = c.model.materials[m];
+    const auto &pbr = gm.pbrMetallicRoughness;
+    for (int k = 0; k < 4; k++) r[k] = size_t(k) < pbr.baseColorFactor.size() ? float(pbr.baseColorFactor[size_t(k)]) : 1.0f;
+    r[4] = float(pbr.metallicFactor);
+    r[5] = float(pbr.roughnessFactor);
+    for (int k = 0; k < 3; k++) r[6 + k] = size_t(k) < gm.emissiveFactor.size() ? float(gm.emissiveFactor[size_t(k)]) : 0.0f;
+    r[9] = 1.0f;
+    auto es = gm.extensions.find("KHR_materials_emissive_strength");
+    if (es != gm.extensions.end() && es->second.Has("emissiveStrength"))
+        r[9] = float(es->second.Get("emissiveStrength").GetNumberAsDouble());
+    r[10] = float(gm.alphaCutoff);
+    r[11] = float(gm.normalTexture.scale);
+    r[12] = float(gm.occlusionTexture.strength);
+    const json &jm = c.j.at("materials").at(m);
+    const std::string mw = strf("materials[%u]", m);
+    const json *jpbr = opt_object(jm, "pbrMetallicRoughness", mw);
+    const json *ti[PG_TEXSLOT_COUNT] = {};
+    ti[PG_TEXSLOT_BASE] = jpbr ? opt_object(*jpbr, "baseColorTexture", mw) : nullptr;
+    ti[PG_TEXSLOT_NORMAL] = opt_object(jm, "normalTexture", mw);
+    ti[PG_TEXSLOT_EMISSIVE] = opt_object(jm, "emissiveTexture", mw);
+    ti[PG_TEXSLOT_METALLIC_ROUGHNESS] = jpbr ? opt_object(*jpbr, "metallicRoughnessTexture", mw) : nullptr;
+    ti[PG_TEXSLOT_OCCLUSION] = opt_object(jm, "occlusionTexture", mw);
+    for (int sl = 0; sl < PG_TEXSLOT_COUNT; sl++) {
+        float *u = r + PG_ANIM_MAT_UV_BASE + 5 * sl; /* offset u v, rotation, scale u v */
+        u[0] = u[1] = u[2] = 0.0f;
+        u[3] = u[4] = 1.0f;
+        const json *tt = nullptr;
+        if (ti[sl] && ti[sl]->contains("extensions") && (*ti[sl])["extensions"].is_object() &&
+            (*ti[sl])["extensions"].contains("KHR_texture_transform"))
+            tt = &(*ti[sl])["extensions"]["KHR_texture_transform"];
+        if (!tt || !tt->is_object()) continue; /* the loader checked the values (texture_transform) */
+        auto num = [&](const char *key, int i, float *out) {
+            auto it = tt->find(key);
+            if (it == tt->end()) return;
+            const json &v = i < 0 ? *it : (it->is_array() && it->size() == 2 ? (*it)[size_t(i)] : *it);
+            if (v.is_number()) *out = float(v.get<double>());
+        };
+        num("offset", 0, &u[0]);
+        num("offset", 1, &u[1]);
+        num("rotation", -1, &u[2]);
+        num("scale", 0, &u[3]);
+        num("scale", 1, &u[4]);
+    }
+}
+
 static void hand_out_animations(Ctx &c, pg_scene_anim *a)
 {
     const tinygltf::Model &md = c.model;
@@ -461,6 +557,13 @@ static void hand_out_animations(Ctx &c, pg_scene_anim *a)
         a->light_animated = static_cast<uint8_t *>(calloc(md.lights.size(), 1));
         a->light_rest = static_cast<float(*)[PG_ANIM_LIGHT_PROPS]>(calloc(md.lights.size(), sizeof *a->light_rest));
         if (!a->light_animated || !a->light_rest) throw std::bad_alloc();
+    }
+    if (!md.materials.empty()) {
+        a->n_materials = uint32_t(md.materials.size());
+        a->material_animated = static_cast<uint32_t *>(calloc(md.materials.size(), sizeof *a->material_animated));
+        a->material_rest =
+            static_cast<float(*)[PG_ANIM_MATERIAL_PROPS]>(calloc(md.materials.size(), sizeof *a->material_rest));
+        if (!a->material_animated || !a->material_rest) throw std::bad_alloc();
     }
     if (!md.cameras.empty()) {
         a->n_cameras = uint32_t(md.cameras.size());
@@ -503,6 +606,13 @@ static void hand_out_animations(Ctx &c, pg_scene_anim *a)
                 float *r = a->light_rest[C.node];
                 memcpy(r, L.color, sizeof L.color);
                 r[3] = L.intensity, r[4] = L.range, r[5] = L.inner_cone, r[6] = L.outer_cone;
+            }
+            if (material_path(C.path) && C.node < a->n_materials) {
+                if (!a->material_animated[C.node]) {
+                    material_rest(c, C.node, a->material_rest[C.node]);
+                    a->n_animated_materials++;
+                }
+                a->material_animated[C.node] |= 1u << (C.path - PG_ANIM_MAT_BASE_COLOR);
             }
             if (camera_path(C.path) && C.node < a->n_cameras && !a->camera_animated[C.node]) {
                 a->camera_animated[C.node] = 1;

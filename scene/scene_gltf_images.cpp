@@ -247,13 +247,7 @@ bool texture_transform(const json &ti, const std::string &where, float m[6], int
         rot = rit->get<double>();
     }
     if (tt->contains("texCoord")) *tex_coord = int(std::min<uint64_t>(uint_field(*tt, "texCoord", tw, false), 1u << 20));
-    const double cr = std::cos(rot), sr = std::sin(rot);
-    m[0] = float(sc[0] * cr);
-    m[1] = float(sc[1] * sr);
-    m[2] = float(off[0]);
-    m[3] = float(-sc[0] * sr);
-    m[4] = float(sc[1] * cr);
-    m[5] = float(off[1]);
+    pg_material_uv_transform(off, rot, sc, m);
     return true;
 }
 

@@ -89,8 +89,8 @@ void collect_warnings(Ctx &c)
         for (const std::string &p : c.ignored_pointers)
             if (std::find(shown.begin(), shown.end(), p.substr(0, 80)) == shown.end()) shown.push_back(p.substr(0, 80));
         W.push_back("KHR_animation_pointer: " + plural(n_ptr, "channel", "channels") + " ignored (" +
-                    name_list(shown) + "): only node TRS and weights, KHR_lights_punctual light properties and camera projections are "
-                    "animated");
+                    name_list(shown) + "): only node TRS and weights, KHR_lights_punctual light properties, camera projections "
+                    "and material factors and texture transforms are animated");
     }
     constexpr size_t kMaxExtensionLines = 16;
     std::vector<std::string> unimpl;

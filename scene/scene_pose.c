@@ -35,6 +35,8 @@ pg_result pg_scene_pose(pg_scene *scene, int animation, double time, pg_error *e
         pg_anim_light_props(a, &pose, L); /* KHR_animation_pointer: colour, intensity, range, cones */
     }
     for (uint32_t i = 0; i < scene->n_cameras; i++) pg_scene_pose_camera(scene, i, &pose); /* placed at `time` */
+    for (uint32_t m = 0; m < scene->n_materials && m < a->n_materials; m++) /* the file's materials come first */
+        pg_anim_material_props(a, &pose, (int)m, &scene->materials[m]);
     pg_anim_pose_release(&pose);
     const bool env = scene->features.has_environment;
     const uint8_t shading = scene->features.auto_shading;

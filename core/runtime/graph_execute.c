@@ -39,6 +39,12 @@ void pg_runtime_set_settings(pg_runtime *rt, const pg_param_override *settings, 
     rt->cfg.n_settings = settings ? n_settings : 0;
 }
 
+void pg_runtime_set_frame_prologue(pg_runtime *rt, pg_frame_prologue_fn fn, void *user)
+{
+    rt->cfg.prologue = fn;
+    rt->cfg.prologue_user = fn ? user : NULL;
+}
+
 uint64_t pg_frame_counter_sum(const pg_frame_stats *st, const char *name)
 {
     uint64_t sum = 0;

@@ -210,6 +210,15 @@ void pg_runtime_destroy(pg_runtime *rt);
  * they must stay alive until the runtime is destroyed. Call before pg_runtime_set_plan(); they
  * are part of the physical signature, so a plan set after a change re-creates the passes. */
 void pg_runtime_set_settings(pg_runtime *rt, const pg_param_override *settings, uint32_t n_settings);
+/* A frame prologue: work on data the caller owns outside the graph (the renderer's animated
+ * material table), recorded at the start of every frame's first graphics-queue batch, before any
+ * pass (after the frames-in-flight barrier). It gets the frame's block (as handed to
+ * pg_runtime_render) and returns whether it wrote anything with transfer commands; then a barrier
+ * makes those writes visible to every later command of the frame on that queue (and, through the
+ * queue's semaphores, to the compute-queue batches that wait for a graphics batch). The prologue
+ * orders its writes after earlier reads itself. fn NULL: none (the default). */
+typedef bool (*pg_frame_prologue_fn)(void *user, VkCommandBuffer cmd, const void *frame_block);
+void pg_runtime_set_frame_prologue(pg_runtime *rt, pg_frame_prologue_fn fn, void *user);
 /* What the caller hands every pass instance besides the plan (pg_pass_create_ctx.user): an
  * opaque block (the renderer's uploaded scene) and its generation. The runtime never reads the
  * block; a new generation re-creates the pass instances (the caller bumps it whenever the block's

@@ -39,6 +39,8 @@ typedef struct pg_rt_config {
     uint32_t frame_size;                /* bytes of the caller's per-frame block */
     const pg_param_override *settings;  /* borrowed, see pg_runtime_set_settings */
     uint32_t n_settings;
+    pg_frame_prologue_fn prologue;      /* pg_runtime_set_frame_prologue */
+    void *prologue_user;
 } pg_rt_config;
 
 /* The plan being run and its signatures. Owner: graph_execute_plan.c. */

@@ -174,7 +174,7 @@ static void record_pass(pg_runtime *rt, VkCommandBuffer cmd, uint32_t f, uint32_
  * timestamp reset; the acquires, the passes, in the last batch the final barriers; the
  * releases; at a queue's last batch the timestamp copy; in the last batch the readbacks. */
 static pg_result record_batch(pg_runtime *rt, uint32_t f, uint32_t b, bool first, bool last_of_queue, bool readback,
-                              pg_error *record_error, pg_error *err)
+                              const void *frame_block, pg_error *record_error, pg_error *err)
 {
     const pg_graph_plan *plan = rt->cur.plan;
     const pg_plan_batch *bt = &plan->batches[b];
@@ -189,6 +189,11 @@ static pg_result record_batch(pg_runtime *rt, uint32_t f, uint32_t b, bool first
          * graphics work (prev_frame_wait). */
         if (rt->frames.n_in_flight > 1 && !rt->frames.test_no_frame_barrier) emit_full_barrier(cmd);
         pg_rt_timing_begin(rt, cmd, f, bt->queue);
+        /* the caller's prologue (pg_runtime_set_frame_prologue), before every pass of the frame */
+        if (bt->queue == PG_QUEUE_GRAPHICS && rt->cfg.prologue &&
+            rt->cfg.prologue(rt->cfg.prologue_user, cmd, frame_block))
+            pg_cmd_memory_barrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                  VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
     }
     emit_qfots(rt, cmd, b, false); /* acquires */
     for (uint32_t o = bt->first; o < bt->first + bt->count; o++) record_pass(rt, cmd, f, o, record_error);
@@ -205,7 +210,7 @@ static pg_result record_batch(pg_runtime *rt, uint32_t f, uint32_t b, bool first
 
 /* Step 2: every batch of slot f's frame. A pass that broke its declaration while recording
  * fails the frame (nothing is submitted). */
-static pg_result record_frame(pg_runtime *rt, uint32_t f, bool readback, pg_error *err)
+static pg_result record_frame(pg_runtime *rt, uint32_t f, bool readback, const void *frame_block, pg_error *err)
 {
     const pg_graph_plan *plan = rt->cur.plan;
     /* the first and last batch of each queue (timestamp reset / copy, frames-in-flight barrier) */
@@ -218,7 +223,8 @@ static pg_result record_frame(pg_runtime *rt, uint32_t f, bool readback, pg_erro
     pg_error record_error = {0};
     for (uint32_t b = 0; b < plan->n_batches; b++) {
         const int q = plan->batches[b].queue;
-        pg_result r = record_batch(rt, f, b, first_of[q] == (int)b, last_of[q] == (int)b, readback, &record_error, err);
+        pg_result r = record_batch(rt, f, b, first_of[q] == (int)b, last_of[q] == (int)b, readback, frame_block,
+                                   &record_error, err);
         if (r) return r;
     }
     if (record_error.msg[0]) {
@@ -314,7 +320,7 @@ pg_result pg_runtime_render(pg_runtime *rt, const void *frame_block, bool readba
     bool idle;
     pg_result r;
     if ((r = pg_rt_frame_begin(rt, frame_block, &f, &wait_ms, err))) return r;
-    if ((r = record_frame(rt, f, readback, err))) return r;
+    if ((r = record_frame(rt, f, readback, frame_block, err))) return r;
     if ((r = pg_rt_frame_submit(rt, f, err))) return r;
     if ((r = pg_rt_frame_settle(rt, f, readback, &wait_ms, &idle, err))) return r;
     pg_rt_mark_persistent_written(rt);

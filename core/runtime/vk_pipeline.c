@@ -1,5 +1,7 @@
 #include "vk_pipeline.h"
 
+#include "pipeline_stats.h"
+
 #include <stddef.h>
 #include <string.h>
 
@@ -92,6 +94,7 @@ pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, con
     VkGraphicsPipelineCreateInfo ci = {
         .sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
         .pNext = &ri,
+        .flags = pg_pipeline_stats_flags(gpu),
         .stageCount = 2,
         .pStages = stages,
         .pVertexInputState = &vi,
@@ -106,6 +109,7 @@ pg_result pg_gfx_pipeline_create(pg_gpu *gpu, const pg_gfx_pipeline_desc *d, con
     };
     PG_VK_TRY(err, vkCreateGraphicsPipelines(gpu->device, gpu->pipeline_cache, 1, &ci, NULL, out));
     pg_gpu_name(gpu, VK_OBJECT_TYPE_PIPELINE, (uint64_t)*out, "%s", name);
+    pg_pipeline_stats_report(gpu, *out, name);
     return PG_OK;
 }
 
@@ -114,12 +118,14 @@ pg_result pg_compute_pipeline_create(pg_gpu *gpu, VkPipelineLayout layout, VkSha
 {
     VkComputePipelineCreateInfo ci = {
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .flags = pg_pipeline_stats_flags(gpu),
         .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                   .module = cs, .pName = "main"},
         .layout = layout,
     };
     PG_VK_TRY(err, vkCreateComputePipelines(gpu->device, gpu->pipeline_cache, 1, &ci, NULL, out));
     pg_gpu_name(gpu, VK_OBJECT_TYPE_PIPELINE, (uint64_t)*out, "%s", name);
+    pg_pipeline_stats_report(gpu, *out, name);
     return PG_OK;
 }
 
@@ -139,6 +145,7 @@ pg_result pg_compute_pipeline_create_ex(pg_gpu *gpu, const pg_compute_pipeline_d
         return pg_fail(err, PG_ERR_NO_DEVICE, "%s: %s cannot require a subgroup size", name, gpu->props.deviceName);
     VkComputePipelineCreateInfo ci = {
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .flags = pg_pipeline_stats_flags(gpu),
         .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                   .pNext = d->subgroup_size ? &rs : NULL,
                   .flags = d->subgroup_size ? VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT : 0,
@@ -150,6 +157,7 @@ pg_result pg_compute_pipeline_create_ex(pg_gpu *gpu, const pg_compute_pipeline_d
     };
     PG_VK_TRY(err, vkCreateComputePipelines(gpu->device, gpu->pipeline_cache, 1, &ci, NULL, out));
     pg_gpu_name(gpu, VK_OBJECT_TYPE_PIPELINE, (uint64_t)*out, "%s", name);
+    pg_pipeline_stats_report(gpu, *out, name);
     return PG_OK;
 }
 

@@ -1,6 +1,7 @@
 /* vk_context.c - instance, device, queue, validation; vk_memory.c has the allocation helpers,
  * vk_names.c the result names and debug names. */
 #include "vk_context.h"
+#include "pipeline_stats.h"
 
 #include "pg_cache.h"
 
@@ -396,6 +397,7 @@ static pg_result pick_queues(pg_gpu *gpu, const pg_gpu_desc *desc, queue_choice 
  * chains the query used are gone (NULL). */
 typedef struct dev_features {
     bool has_sgsc, has_m4; /* VK_EXT_subgroup_size_control, VK_KHR_maintenance4 (always on 1.3) */
+    bool pipeline_stats;   /* PASSGRAPH_PIPELINE_STATS and VK_KHR_pipeline_executable_properties */
     VkPhysicalDeviceVulkan13Features f13;
     VkPhysicalDeviceVulkan12Features f12;
     VkPhysicalDeviceFeatures2 f2;
@@ -407,6 +409,12 @@ static pg_result query_features(pg_gpu *gpu, dev_features *df, pg_error *err)
     bool has_sgsc = df->has_sgsc =
         !gpu->vulkan12 || has_device_ext(gpu->phys, VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME);
     bool has_m4 = df->has_m4 = !gpu->vulkan12 || has_device_ext(gpu->phys, VK_KHR_MAINTENANCE_4_EXTENSION_NAME);
+    df->pipeline_stats = pg_pipeline_stats_wanted();
+    if (df->pipeline_stats && !has_device_ext(gpu->phys, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME)) {
+        df->pipeline_stats = false; /* pipelineExecutableInfo is required with the extension */
+        fprintf(stderr, "passgraph: pipeline-stats: %s lacks VK_KHR_pipeline_executable_properties: no statistics\n",
+                gpu->props.deviceName);
+    }
     VkPhysicalDeviceVulkan13Features f13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceSynchronization2Features fs2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES};
     VkPhysicalDeviceDynamicRenderingFeatures fdr = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES,
@@ -476,6 +484,7 @@ typedef struct dev_enable {
     VkPhysicalDeviceSubgroupSizeControlFeatures esg;
     VkPhysicalDeviceMaintenance4Features em4;
     VkPhysicalDeviceVulkan12Features e12;
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR epep;
     VkPhysicalDeviceFeatures2 e2;
     const char *exts[8];
     uint32_t n_ext;
@@ -548,6 +557,14 @@ static void fill_enable(const pg_gpu *gpu, const pg_gpu_desc *desc, const dev_fe
             .geometryShader = f2->features.geometryShader,
         },
     };
+    if (df->pipeline_stats) { /* pipeline_stats.h: the driver's statistics of every pipeline */
+        e->exts[e->n_ext++] = VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME;
+        e->epep = (VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR){
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR,
+            .pNext = e->e2.pNext,
+            .pipelineExecutableInfo = VK_TRUE};
+        e->e2.pNext = &e->epep;
+    }
 }
 
 /* the logical device with its queues (the async compute one only with timeline semaphores) */
@@ -589,6 +606,13 @@ static pg_result create_device(pg_gpu *gpu, const pg_gpu_desc *desc, const dev_f
                                                     : vkCreateDevice(gpu->phys, &dci, NULL, &gpu->device);
     if (r != VK_SUCCESS) return pg_fail(err, PG_ERR_VULKAN, "vkCreateDevice failed: %s", pg_vk_result_name(r));
     vkGetDeviceQueue(gpu->device, gpu->queue_family, 0, &gpu->queue);
+    if (df->pipeline_stats) {
+        gpu->exec_props = (PFN_vkGetPipelineExecutablePropertiesKHR)vkGetDeviceProcAddr(
+            gpu->device, "vkGetPipelineExecutablePropertiesKHR");
+        gpu->exec_stats = (PFN_vkGetPipelineExecutableStatisticsKHR)vkGetDeviceProcAddr(
+            gpu->device, "vkGetPipelineExecutableStatisticsKHR");
+        if (!gpu->exec_props) gpu->exec_stats = NULL;
+    }
     if (cfam >= 0) {
         gpu->compute_family = (uint32_t)cfam;
         gpu->compute_emulated = desc->emulate_compute_queue;

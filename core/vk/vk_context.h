@@ -111,6 +111,10 @@ typedef struct pg_gpu {
     VkPipelineCache pipeline_cache;
     size_t pipeline_cache_loaded;
     uint64_t pipeline_cache_sum;
+    /* PASSGRAPH_PIPELINE_STATS=1 on a device with VK_KHR_pipeline_executable_properties: every
+     * pipeline reports its statistics (pipeline_stats.h); NULL otherwise */
+    PFN_vkGetPipelineExecutablePropertiesKHR exec_props;
+    PFN_vkGetPipelineExecutableStatisticsKHR exec_stats;
     PFN_vkSetDebugUtilsObjectNameEXT set_object_name;
     PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label;
     PFN_vkCmdEndDebugUtilsLabelEXT cmd_end_label;

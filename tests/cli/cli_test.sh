@@ -329,6 +329,11 @@ rc=$?
 "$PG" render --immediate --validation --pipeline "$deferred" --size 64x36 --lights 8 --out "$tmp/imm.png" >"$tmp/out" 2>"$tmp/err" \
   && "$PG" render --validation --pipeline "$deferred" --size 64x36 --lights 8 --out "$tmp/nimm.png" >/dev/null 2>&1 \
   && cmp -s "$tmp/imm.png" "$tmp/nimm.png" && ok || { bad "render --immediate: failed or a different image"; cat "$tmp/err"; }
+# PASSGRAPH_PIPELINE_STATS on a device without VK_KHR_pipeline_executable_properties (lavapipe):
+# one line naming the device and the extension, exit 0, the same image
+PASSGRAPH_PIPELINE_STATS=1 "$PG" render --validation --pipeline "$deferred" --size 64x36 --lights 8 --out "$tmp/pstats.png" >/dev/null 2>"$tmp/err" \
+  && [ "$(grep -c 'pipeline-stats: .* lacks VK_KHR_pipeline_executable_properties: no statistics' "$tmp/err")" = 1 ] \
+  && cmp -s "$tmp/pstats.png" "$tmp/nimm.png" && ok || { bad "render with PASSGRAPH_PIPELINE_STATS"; cat "$tmp/err"; }
 expect_fail "dump: bad pipeline" "passes[0].type" dump --pipeline "$tmp/unknown_type.json"
 expect_fail "dump: missing pipeline" "nope_dump.json" dump --pipeline "$tmp/nope_dump.json"
 expect_fail "dump: bad format" "--format xml" dump --pipeline "$deferred" --format xml

@@ -15,7 +15,10 @@
  *     (a light and a box on one orbiting node): both passes run, and the frame evaluates the pose
  *     once (pg_scene_gpu_anim_now.evaluations), not once a pass. glass.gltf (two BLEND boxes, the
  *     moving one in front of the still one at t = 1, behind it at rest): the transparent pass sorts
- *     by the posed bounds, as the CPU-posed twin does.
+ *     by the posed bounds, as the CPU-posed twin does. shimmer.gltf (materials animated by
+ *     KHR_animation_pointer: base colour, metallic, roughness, emissive, emissive strength, a texture
+ *     transform, an alpha cutoff): the frame prologue rewrites their records before any pass reads
+ *     them, and every pipeline renders the CPU-posed materials' image.
  *  2. A scene without animation: geometry_animate culled with its reason, the geometry buffer not
  *     allocated, every drawing pass on the static vertex buffer. */
 #include <math.h>
@@ -192,6 +195,10 @@ int main(void)
     twin("lantern.gltf", 1.0); /* geometry and a light on one node: both passes, one pose a frame */
     twin("beacon.gltf", 1.0);  /* a spot light's colour, intensity, range and cones (KHR_animation_pointer) */
     twin("beacon.gltf", 3.0);
+    /* materials (KHR_animation_pointer): base colour, metallic, roughness, emissive and its strength,
+     * a texture transform and an alpha cutoff, rewritten by the frame prologue */
+    twin("shimmer.gltf", 1.0);
+    twin("shimmer.gltf", 3.0);
     twin("glass.gltf", 1.0);   /* two BLEND boxes whose back-to-front order the animation swaps */
     twin("glass_morph.gltf", 1.0); /* likewise by a morph target: the sort key follows the weights */
     culled();

@@ -11,7 +11,9 @@
  *    [0.25, 0] and a LINEAR weights channel;
  *  - pointer.gltf: rigid.gltf's animations through KHR_animation_pointer: the same poses;
  *  - beacon.gltf: a spot light's colour, intensity, range and cones and a camera's yfov and zfar
- *    animated through KHR_animation_pointer.
+ *    animated through KHR_animation_pointer;
+ *  - shimmer.gltf: materials' base colour, metallic, roughness, emissive and its strength, a texture
+ *    transform and an alpha cutoff animated through KHR_animation_pointer (and one ignored pointer).
  * Every position within 1e-5 of the hand value; the loop, the rest pose, --animation lookup, the
  * scene bounds following the pose, and files whose animation data is broken (refused naming the
  * object). */
@@ -96,7 +98,8 @@ static void rigid(void)
 
 /* pointer.gltf: rigid.gltf's animations with KHR_animation_pointer targets (/nodes/N/path): every
  * vertex of every moving primitive equal, bit for bit, at every time of both animations; its
- * channel on a material's baseColorFactor is ignored with one warning naming the pointer */
+ * channel on a material's KHR_materials_ior ior (not animated by passgraph) is ignored with one
+ * warning naming the pointer */
 static void pointer(void)
 {
     pg_scene *p = load("pointer.gltf"), *r = load("rigid.gltf");
@@ -115,7 +118,7 @@ static void pointer(void)
         uint32_t lines = 0;
         for (uint32_t i = 0; i < p->n_warnings; i++)
             lines += strstr(p->warnings[i], "KHR_animation_pointer: 1 channel ignored "
-                                            "(/materials/1/pbrMetallicRoughness/baseColorFactor)") != NULL;
+                                            "(/materials/1/extensions/KHR_materials_ior/ior)") != NULL;
         CHECK_MSG(lines == 1 && p->n_warnings == 1, "pointer.gltf: %u warnings, %u naming the material pointer",
                   p->n_warnings, lines);
         printf("pointer.gltf: the same poses as rigid.gltf at 34 times; %s\n", p->n_warnings ? p->warnings[0] : "");
@@ -188,6 +191,91 @@ static void beacon(void)
                   "clamped camera: yfov %g aspect %g znear %g zfar %g", C.yfov_rad, C.aspect_ratio, C.znear, C.zfar);
         pg_anim_pose_release(&pose);
     }
+    pg_scene_free(s);
+}
+
+/* shimmer.gltf: materials animated by KHR_animation_pointer (README there), posed on the CPU
+ * against hand values; the rest pose the file's; hostile pose values kept valid */
+static void material_expect(pg_scene *s, int anim, double t, const float want[15], const char *what)
+{
+    pg_error err = {0};
+    CHECK(pg_scene_pose(s, anim, t, &err) == PG_OK);
+    const pg_material *tint = &s->materials[1], *glow = &s->materials[2], *scroll = &s->materials[3],
+                      *fade = &s->materials[4];
+    const float *u = scroll->uv_transform[PG_TEXSLOT_BASE];
+    const float got[15] = {tint->base_color[0], tint->base_color[2], tint->metallic, tint->roughness,
+                           glow->emissive[0], glow->emissive[1], glow->emissive[2], u[0], u[1], u[2], u[3], u[4], u[5],
+                           fade->alpha_cutoff, fade->base_color[3]};
+    float d = 0;
+    for (int k = 0; k < 15; k++) d = fmaxf(d, fabsf(got[k] - want[k]));
+    CHECK_MSG(d < 1e-5f, "%s at t=%g: tint (%g .. %g) m %g r %g, glow (%g %g %g), uv (%g %g %g / %g %g %g), cutoff %g",
+              what, t, got[0], got[1], got[2], got[3], got[4], got[5], got[6], got[7], got[8], got[9], got[10],
+              got[11], got[12], got[13]);
+    float sp, sh;
+    pg_material_specular_from(tint->metallic, tint->roughness, &sp, &sh);
+    CHECK_MSG(tint->specular == sp && tint->shininess == sh, "%s: Blinn-Phong terms not following", what);
+}
+
+static void shimmer(void)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/corpus/gltf/animation/shimmer.gltf", PG_TEST_DIR);
+    pg_scene *s = NULL;
+    pg_error err = {0};
+    if (pg_scene_load_gltf(path, &s, &err)) {
+        CHECK_MSG(0, "shimmer.gltf: %s", err.msg);
+        return;
+    }
+    CHECK(s->anim && !s->features.has_animation && s->n_materials >= 5 && s->anim->n_animated_materials == 4);
+    CHECK(!pg_anim_material_animated(s->anim, 0) && pg_anim_material_animated(s->anim, 1) &&
+          pg_anim_material_animated(s->anim, 4) && !pg_anim_material_animated(s->anim, 5) &&
+          !pg_anim_material_animated(s->anim, -1));
+    /* the emissive term and the texture transform may be needed at another time: compiled in */
+    CHECK(s->features.has_emissive && s->features.has_uv_transform);
+    uint32_t lines = 0;
+    for (uint32_t i = 0; i < s->n_warnings; i++)
+        lines += strstr(s->warnings[i], "1 channel ignored (/materials/0/extensions/KHR_materials_ior/ior)") != NULL;
+    CHECK_MSG(lines == 1 && s->n_warnings == 1, "shimmer.gltf: %u warnings, %u naming the ior pointer", s->n_warnings,
+              lines);
+    /* t = 1: a quarter of the LINEAR keys over [0, 4]; metallic and rotation STEP at 2 */
+    const float t1[15] = {0.625f, 0.275f, 0, 0.825f, 0.375f, 0.1875f, 0.0375f, 1.25f, 0, 0.375f, 0, 1, 0.125f,
+                          0.375f, 0.6f};
+    const float c = cosf(0.5f), sn = sinf(0.5f); /* t = 3: rotation 0.5, scale (1.75, 1), offset (1.125, 0.375) */
+    const float t3[15] = {0.275f, 0.625f, 1, 0.475f, 0.75f * 2.5f, 0.375f * 2.5f, 0.075f * 2.5f, 1.75f * c, sn,
+                          1.125f, -1.75f * sn, c, 0.375f, 0.725f, 0.6f};
+    const float rest[15] = {0.8f, 0.1f, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.5f, 0.6f};
+    material_expect(s, 0, 1, t1, "shimmer");
+    material_expect(s, 0, 3, t3, "shimmer");
+    material_expect(s, PG_ANIM_NONE, 3, rest, "shimmer in the rest pose");
+    material_expect(s, 0, 5, t1, "shimmer (t = 5 loops to 1)");
+    /* values an animation may reach (a CUBICSPLINE overshoot) are kept valid */
+    pg_anim_pose pose;
+    if (pg_anim_pose_alloc(s->anim, &pose, &err) == PG_OK) {
+        pg_anim_pose_eval(s->anim, 0, 1, &pose);
+        float *p = pose.materials[1];
+        p[0] = -1, p[1] = NAN, p[2] = 2, p[3] = 7, p[4] = -3, p[5] = 9;
+        pg_material M = s->materials[1];
+        CHECK(pg_anim_material_props(s->anim, &pose, 1, &M));
+        CHECK_MSG(M.base_color[0] == 0 && M.base_color[1] == 0 && M.base_color[2] == 1 && M.base_color[3] == 1 &&
+                      M.metallic == 0 && M.roughness == 1,
+                  "clamped material: (%g %g %g %g) m %g r %g", M.base_color[0], M.base_color[1], M.base_color[2],
+                  M.base_color[3], M.metallic, M.roughness);
+        p = pose.materials[2];
+        p[6] = -1, p[7] = 3e38f, p[9] = 1e10f;
+        M = s->materials[2];
+        CHECK(pg_anim_material_props(s->anim, &pose, 2, &M));
+        CHECK_MSG(M.emissive[0] == 0 && isfinite(M.emissive[1]) && M.emissive[1] > 0, "clamped emissive: %g %g",
+                  M.emissive[0], M.emissive[1]);
+        M = s->materials[0];
+        CHECK(!pg_anim_material_props(s->anim, &pose, 0, &M)); /* not animated: left as it is */
+        pg_anim_pose_release(&pose);
+    }
+    uint32_t w = 0;
+    CHECK(pg_anim_material_offset(PG_ANIM_MAT_BASE_COLOR, &w) == 0 && w == 4);
+    CHECK(pg_anim_material_offset(PG_ANIM_MAT_EMISSIVE, &w) == 6 && w == 3);
+    CHECK(pg_anim_material_offset((pg_anim_path)(PG_ANIM_MAT_UV + 3 * PG_TEXSLOT_OCCLUSION + 2), &w) ==
+              PG_ANIM_MAT_UV_BASE + 5 * PG_TEXSLOT_OCCLUSION + 3 && w == 2);
+    CHECK(pg_anim_material_offset(PG_ANIM_CAM_ZFAR, &w) == -1 && w == 0);
     pg_scene_free(s);
 }
 
@@ -343,6 +431,11 @@ static void refused(void)
          "channels[5].target.extensions.KHR_animation_pointer.pointer: camera 2 out of range (1 cameras)"},
     };
     refused_in("beacon.gltf", 2, beacon_cases);
+    static const char *const shimmer_cases[][3] = {
+        {"\"/materials/1/pbrMetallicRoughness/baseColorFactor\"", "\"/materials/9/pbrMetallicRoughness/baseColorFactor\"",
+         "channels[0].target.extensions.KHR_animation_pointer.pointer: material 9 out of range (5 materials)"},
+    };
+    refused_in("shimmer.gltf", 1, shimmer_cases);
     refused_in("skinned.gltf", 2, skin_cases);
     refused_in("skinned8.gltf", 2, skin8_cases);
 }
@@ -352,6 +445,7 @@ int main(void)
     rigid();
     pointer();
     beacon();
+    shimmer();
     skinned();
     skinned8();
     morph();

@@ -50,7 +50,7 @@ import struct
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from gltfgen import box, pad4  # noqa: E402  (tests/corpus/gltf/gltfgen.py)
+from gltfgen import box, pad4, png_rgba  # noqa: E402  (tests/corpus/gltf/gltfgen.py)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 FLOAT, UBYTE, USHORT, UINT = 5126, 5121, 5123, 5125
@@ -148,7 +148,7 @@ class Doc:
         anim = {"name": name, "channels": [], "samplers": []}
         for node, path, interp, t, rows in channels:
             typ = {"translation": "VEC3", "scale": "VEC3", "rotation": "VEC4", "weights": "SCALAR"}.get(path) \
-                or {1: "SCALAR", 3: "VEC3", 4: "VEC4"}[len(rows[0])]
+                or {1: "SCALAR", 2: "VEC2", 3: "VEC3", 4: "VEC4"}[len(rows[0])]
             out = self.accessor(floats(rows), FLOAT, len(rows), typ)
             anim["samplers"].append({"input": self.times(t), "interpolation": interp, "output": out})
             if pointer:
@@ -200,7 +200,7 @@ def rigid():
 
 def pointer():
     """rigid.gltf's two animations with every target a KHR_animation_pointer (/nodes/N/path), and a
-    channel animating a material's baseColorFactor that passgraph ignores (and warns about)"""
+    channel animating a material's KHR_materials_ior ior that passgraph ignores (and warns about)"""
     doc = Doc("pointer.gltf")
     doc.d["extensionsUsed"] = ["KHR_animation_pointer"]
     doc.floor()
@@ -216,8 +216,7 @@ def pointer():
         (spinner, "translation", "STEP", [0, 2], [(0, 0.5, 0), (2, 0.5, 0)]),
         (satellite, "scale", "CUBICSPLINE", [0, 2, 4],
          [(0, 0, 0), half, (0, 0, 0), tan, one, tan, (0, 0, 0), half, (0, 0, 0)]),
-        (None, "/materials/1/pbrMetallicRoughness/baseColorFactor", "LINEAR", [0, 4],
-         [(0.8, 0.15, 0.1, 1), (0.1, 0.15, 0.8, 1)])], pointer=True)
+        (None, "/materials/1/extensions/KHR_materials_ior/ior", "LINEAR", [0, 4], [(1.5,), (1.2,)])], pointer=True)
     doc.animation("bounce", [(spinner, "translation", "LINEAR", [0, 1], [(0, 0.5, 0), (0, 2, 0)])], pointer=True)
     doc.write()
 
@@ -251,6 +250,63 @@ def beacon():
         (None, L + "spot/outerConeAngle", "LINEAR", [0, 4], [(0.6,), (0.9,)]),
         (None, "/cameras/0/perspective/yfov", "LINEAR", [0, 4], [(0.8,), (0.4,)]),
         (None, "/cameras/0/perspective/zfar", "LINEAR", [0, 4], [(50,), (30,)])], pointer=True)
+    doc.write()
+
+
+def shimmer():
+    """KHR_animation_pointer on materials: four boxes under a directional light whose base colour,
+    metallic and roughness ("tint"), emissive factor and KHR_materials_emissive_strength ("glow"),
+    base-colour texture's KHR_texture_transform offset, rotation and scale ("scroll", a 2x2 texture
+    red green / blue white, NEAREST, REPEAT) and alpha cutoff ("fade", MASK with alpha 0.6: seen
+    while the cutoff is below 0.6) are animated; and one channel on a property passgraph does not
+    animate (KHR_materials_ior's ior: ignored, warned)"""
+    doc = Doc("shimmer.gltf")
+    doc.d["extensionsUsed"] = ["KHR_lights_punctual", "KHR_animation_pointer", "KHR_materials_emissive_strength",
+                               "KHR_texture_transform"]
+    doc.floor()
+    tint = doc.material("tint", (0.8, 0.15, 0.1))
+    glow = doc.material("glow", (0.2, 0.2, 0.2))
+    doc.d["materials"][glow]["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": 1.0}}
+    scroll = doc.material("scroll", (1, 1, 1))
+    doc.d["materials"][scroll]["pbrMetallicRoughness"]["baseColorTexture"] = {
+        "index": 0, "extensions": {"KHR_texture_transform": {"offset": [0, 0]}}}
+    fade = doc.material("fade", (0.3, 0.8, 0.3), alpha=0.6)
+    doc.d["materials"][fade]["alphaMode"] = "MASK"
+    doc.d["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png_rgba(2, 2, [
+        255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255])).decode()}]
+    doc.d["samplers"] = [{"magFilter": 9728, "minFilter": 9728, "wrapS": 10497, "wrapT": 10497}]
+    doc.d["textures"] = [{"source": 0, "sampler": 0}]
+    pos, nrm, idx = UNIT_BOX
+    uv = [c for _ in range(6) for c in ((0, 0), (1, 0), (1, 1), (0, 1))]  # each face's corners
+    uvs = doc.accessor(floats(uv), FLOAT, len(uv), "VEC2")
+    for x, mat in ((-1.6, tint), (-0.5, glow), (0.6, scroll), (1.7, fade)):
+        extra = {"TEXCOORD_0": uvs} if mat == scroll else None
+        mesh = doc.mesh(doc.d["materials"][mat]["name"], pos, nrm, idx, mat, extra_attrs=extra)
+        doc.node({"name": doc.d["materials"][mat]["name"], "mesh": mesh, "translation": [x, 0.5, -0.5]})
+    doc.node({"name": "sun", "rotation": quat_axis((1, 0, 0), -60),
+              "extensions": {"KHR_lights_punctual": {"light": 0}}})
+    doc.d["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "sun", "type": "directional", "color": [1.0, 1.0, 1.0], "intensity": 3.0}]}}
+    # a still camera at (0, 2.2, 4) looking at (0, 0.5, -0.5)
+    doc.node({"name": "eye", "camera": 0, "translation": [0, 2.2, 4],
+              "rotation": quat_axis((1, 0, 0), -math.degrees(math.atan2(1.7, 4.5)))})
+    doc.d["cameras"] = [{"name": "eye", "type": "perspective",
+                         "perspective": {"yfov": 0.7, "znear": 0.1, "zfar": 50.0}}]
+    M = "/materials/%d/"
+    X = M % scroll + "pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform/"
+    doc.animation("shimmer", [
+        (None, M % tint + "pbrMetallicRoughness/baseColorFactor", "LINEAR", [0, 4],
+         [(0.8, 0.15, 0.1, 1), (0.1, 0.15, 0.8, 1)]),
+        (None, M % tint + "pbrMetallicRoughness/metallicFactor", "STEP", [0, 2], [(0,), (1,)]),
+        (None, M % tint + "pbrMetallicRoughness/roughnessFactor", "LINEAR", [0, 4], [(1,), (0.3,)]),
+        (None, M % glow + "emissiveFactor", "LINEAR", [0, 4], [(0, 0, 0), (1, 0.5, 0.1)]),
+        (None, M % glow + "extensions/KHR_materials_emissive_strength/emissiveStrength", "LINEAR", [0, 4],
+         [(1,), (3,)]),
+        (None, X + "offset", "LINEAR", [0, 4], [(0, 0), (1.5, 0.5)]),
+        (None, X + "rotation", "STEP", [0, 2], [(0,), (0.5,)]),
+        (None, X + "scale", "LINEAR", [0, 4], [(1, 1), (2, 1)]),
+        (None, M % fade + "alphaCutoff", "LINEAR", [0, 4], [(0.2,), (0.9,)]),
+        (None, M % 0 + "extensions/KHR_materials_ior/ior", "LINEAR", [0, 4], [(1.5,), (1.2,)])], pointer=True)
     doc.write()
 
 
@@ -725,6 +781,7 @@ def check_poses():
 rigid()
 pointer()
 beacon()
+shimmer()
 skinned()
 skinned8()
 morph()
@@ -732,7 +789,7 @@ lamp()
 lantern()
 glass()
 glass_morph()
-for f in ("rigid.gltf", "pointer.gltf", "beacon.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf", "glass.gltf", "glass_morph.gltf"):
+for f in ("rigid.gltf", "pointer.gltf", "beacon.gltf", "shimmer.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf", "glass.gltf", "glass_morph.gltf"):
     Gltf(f).check()
 check_poses()
-print("rigid.gltf pointer.gltf beacon.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf glass.gltf glass_morph.gltf: written and checked (%d poses)" % len(POSES))
+print("rigid.gltf pointer.gltf beacon.gltf shimmer.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf glass.gltf glass_morph.gltf: written and checked (%d poses)" % len(POSES))
