@@ -46,6 +46,8 @@
 #                  loop over the cluster lists, and the tiled one) against deferred's lighting with the per-pixel loop
 #                  (tile_lights=false) and tiled, with and without its back-face test, at 100,000
 #                  lights (times only)
+#   pipeline-stats the driver's statistics of every pipeline (PASSGRAPH_PIPELINE_STATS: registers, spills)
+#                  of visibility, deferred_oct16 and forward+ with Lambert and pbr at 100,000 lights
 #   raster         the visibility pass's two rasterizers (raster=hardware, compute) at 1,000 / 100,000 /
 #                  1,000,000 lights (times; error against the reference at 1,000), every
 #                  visibility-buffer pipeline with raster=compute as in manylight (time, RMSE, FLIP,
@@ -237,6 +239,16 @@ for step in "${STEPS[@]}"; do
   evals)
     bench evals "$BUNDLE" visibility,deferred,stochastic,ris,lightcut --lights 100000,1000000 --warmup 2 \
       --warmup-ms 400 --frames 5 --no-hdr-flip --flicker-frames 0
+    ;;
+  pipeline-stats)
+    # the driver's statistics (registers, spills) of the light loops, Lambert and pbr, at 100,000 lights
+    for p in visibility deferred_oct16 forward_plus; do
+      for sh in lambert pbr; do
+        PASSGRAPH_PIPELINE_STATS=1 run "stats_${p}_$sh" "$BUNDLE/passgraph" render "${COMMON[@]}" --lights 100000 \
+          --pipeline "$P/$p.json" --set shading=$sh --out /tmp/stats.png
+        [ "$DRY_RUN" = 1 ] || grep "pipeline-stats" "$OUT/logs/stats_${p}_$sh.log" | cut -c1-400
+      done
+    done
     ;;
   raster)
     RT=(--warmup 2 --warmup-ms 500 --frames 20)
