@@ -543,8 +543,11 @@ bool pg_anim_describe(const pg_scene *scene, int animation, double time, char *b
                  pg_anim_local_time(a, animation, time));
     else
         snprintf(what, sizeof what, "the rest pose (%s)", a->n_animations ? "--animation none" : "no animations");
-    snprintf(buf, size, "%s; %u skin%s (%u joints), %u morph target%s on %u deformed primitive%s", what, a->n_skins,
-             a->n_skins == 1 ? "" : "s", a->n_joint_slots, targets, targets == 1 ? "" : "s", a->n_prims,
-             a->n_prims == 1 ? "" : "s");
+    int n = snprintf(buf, size, "%s; %u skin%s (%u joints), %u morph target%s on %u deformed primitive%s", what,
+                     a->n_skins, a->n_skins == 1 ? "" : "s", a->n_joint_slots, targets, targets == 1 ? "" : "s",
+                     a->n_prims, a->n_prims == 1 ? "" : "s");
+    if (a->n_animated_materials && n > 0 && (size_t)n < size)
+        snprintf(buf + n, size - (size_t)n, "; %u material%s animated (KHR_animation_pointer)", a->n_animated_materials,
+                 a->n_animated_materials == 1 ? "" : "s");
     return true;
 }

@@ -237,6 +237,11 @@ static void shimmer(void)
         lines += strstr(s->warnings[i], "1 channel ignored (/materials/0/extensions/KHR_materials_ior/ior)") != NULL;
     CHECK_MSG(lines == 1 && s->n_warnings == 1, "shimmer.gltf: %u warnings, %u naming the ior pointer", s->n_warnings,
               lines);
+    char line[512];
+    CHECK(pg_anim_describe(s, 0, 1.0, line, sizeof line));
+    CHECK_MSG(strstr(line, "animation 0 'shimmer' of 1 (4 s loop) at t = 1 s") &&
+                  strstr(line, "; 4 materials animated (KHR_animation_pointer)"),
+              "--explain's animation line: %s", line);
     /* t = 1: a quarter of the LINEAR keys over [0, 4]; metallic and rotation STEP at 2 */
     const float t1[15] = {0.625f, 0.275f, 0, 0.825f, 0.375f, 0.1875f, 0.0375f, 1.25f, 0, 0.375f, 0, 1, 0.125f,
                           0.375f, 0.6f};
