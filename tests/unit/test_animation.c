@@ -439,8 +439,11 @@ static void refused(void)
     static const char *const shimmer_cases[][3] = {
         {"\"/materials/1/pbrMetallicRoughness/baseColorFactor\"", "\"/materials/9/pbrMetallicRoughness/baseColorFactor\"",
          "channels[0].target.extensions.KHR_animation_pointer.pointer: material 9 out of range (5 materials)"},
+        /* the base colour's keys as VEC3 (its only VEC4 accessor): the property is a VEC4 */
+        {"\"type\": \"VEC4\"", "\"type\": \"VEC3\"",
+         "must be VEC4 with 2 elements for 2 keys of '/materials/1/pbrMetallicRoughness/baseColorFactor' (got VEC3"},
     };
-    refused_in("shimmer.gltf", 1, shimmer_cases);
+    refused_in("shimmer.gltf", 2, shimmer_cases);
     refused_in("skinned.gltf", 2, skin_cases);
     refused_in("skinned8.gltf", 2, skin8_cases);
 }
