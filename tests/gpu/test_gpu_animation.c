@@ -17,7 +17,7 @@
  *     moving one in front of the still one at t = 1, behind it at rest): the transparent pass sorts
  *     by the posed bounds, as the CPU-posed twin does. shimmer.gltf (materials animated by
  *     KHR_animation_pointer: base colour, metallic, roughness, emissive, emissive strength, a texture
- *     transform, an alpha cutoff): the frame prologue rewrites their records before any pass reads
+ *     transform, an alpha cutoff, a normal scale, an occlusion strength): the frame prologue rewrites their records before any pass reads
  *     them, and every pipeline renders the CPU-posed materials' image.
  *  2. A scene without animation: geometry_animate culled with its reason, the geometry buffer not
  *     allocated, every drawing pass on the static vertex buffer. */
@@ -196,7 +196,8 @@ int main(void)
     twin("beacon.gltf", 1.0);  /* a spot light's colour, intensity, range and cones (KHR_animation_pointer) */
     twin("beacon.gltf", 3.0);
     /* materials (KHR_animation_pointer): base colour, metallic, roughness, emissive and its strength,
-     * a texture transform and an alpha cutoff, rewritten by the frame prologue */
+     * a texture transform, an alpha cutoff, a normal scale and an occlusion strength, rewritten by
+     * the frame prologue */
     twin("shimmer.gltf", 1.0);
     twin("shimmer.gltf", 3.0);
     twin("glass.gltf", 1.0);   /* two BLEND boxes whose back-to-front order the animation swaps */

@@ -13,7 +13,8 @@
  *  - beacon.gltf: a spot light's colour, intensity, range and cones and a camera's yfov and zfar
  *    animated through KHR_animation_pointer;
  *  - shimmer.gltf: materials' base colour, metallic, roughness, emissive and its strength, a texture
- *    transform and an alpha cutoff animated through KHR_animation_pointer (and one ignored pointer).
+ *    transform, an alpha cutoff, a normal scale and an occlusion strength animated through
+ *    KHR_animation_pointer (and one ignored pointer).
  * Every position within 1e-5 of the hand value; the loop, the rest pose, --animation lookup, the
  * scene bounds following the pose, and files whose animation data is broken (refused naming the
  * object). */
@@ -214,6 +215,12 @@ static void material_expect(pg_scene *s, int anim, double t, const float want[15
     float sp, sh;
     pg_material_specular_from(tint->metallic, tint->roughness, &sp, &sh);
     CHECK_MSG(tint->specular == sp && tint->shininess == sh, "%s: Blinn-Phong terms not following", what);
+    /* "bump": normal scale 1 -> 0.2 and occlusion strength 1 -> 0 over 4 s (LINEAR) */
+    const double k = anim == PG_ANIM_NONE ? 0.0 : fmod(t, 4.0) / 4.0;
+    const pg_material *bump = &s->materials[5];
+    CHECK_MSG(fabs(bump->normal_scale - (1 - 0.8 * k)) < 1e-6 && fabs(bump->occlusion_strength - (1 - k)) < 1e-6,
+              "%s at t=%g: bump normal scale %g, occlusion strength %g", what, t, bump->normal_scale,
+              bump->occlusion_strength);
 }
 
 static void shimmer(void)
@@ -226,9 +233,9 @@ static void shimmer(void)
         CHECK_MSG(0, "shimmer.gltf: %s", err.msg);
         return;
     }
-    CHECK(s->anim && !s->features.has_animation && s->n_materials >= 5 && s->anim->n_animated_materials == 4);
+    CHECK(s->anim && !s->features.has_animation && s->n_materials >= 6 && s->anim->n_animated_materials == 5);
     CHECK(!pg_anim_material_animated(s->anim, 0) && pg_anim_material_animated(s->anim, 1) &&
-          pg_anim_material_animated(s->anim, 4) && !pg_anim_material_animated(s->anim, 5) &&
+          pg_anim_material_animated(s->anim, 5) && !pg_anim_material_animated(s->anim, 6) &&
           !pg_anim_material_animated(s->anim, -1));
     /* the emissive term and the texture transform may be needed at another time: compiled in */
     CHECK(s->features.has_emissive && s->features.has_uv_transform);
@@ -240,7 +247,7 @@ static void shimmer(void)
     char line[512];
     CHECK(pg_anim_describe(s, 0, 1.0, line, sizeof line));
     CHECK_MSG(strstr(line, "animation 0 'shimmer' of 1 (4 s loop) at t = 1 s") &&
-                  strstr(line, "; 4 materials animated (KHR_animation_pointer)"),
+                  strstr(line, "; 5 materials animated (KHR_animation_pointer)"),
               "--explain's animation line: %s", line);
     /* t = 1: a quarter of the LINEAR keys over [0, 4]; metallic and rotation STEP at 2 */
     const float t1[15] = {0.625f, 0.275f, 0, 0.825f, 0.375f, 0.1875f, 0.0375f, 1.25f, 0, 0.375f, 0, 1, 0.125f,
@@ -438,7 +445,7 @@ static void refused(void)
     refused_in("beacon.gltf", 2, beacon_cases);
     static const char *const shimmer_cases[][3] = {
         {"\"/materials/1/pbrMetallicRoughness/baseColorFactor\"", "\"/materials/9/pbrMetallicRoughness/baseColorFactor\"",
-         "channels[0].target.extensions.KHR_animation_pointer.pointer: material 9 out of range (5 materials)"},
+         "channels[0].target.extensions.KHR_animation_pointer.pointer: material 9 out of range (6 materials)"},
         /* the base colour's keys as VEC3 (its only VEC4 accessor): the property is a VEC4 */
         {"\"type\": \"VEC4\"", "\"type\": \"VEC3\"",
          "must be VEC4 with 2 elements for 2 keys of '/materials/1/pbrMetallicRoughness/baseColorFactor' (got VEC3"},

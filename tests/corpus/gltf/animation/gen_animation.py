@@ -257,8 +257,9 @@ def shimmer():
     """KHR_animation_pointer on materials: four boxes under a directional light whose base colour,
     metallic and roughness ("tint"), emissive factor and KHR_materials_emissive_strength ("glow"),
     base-colour texture's KHR_texture_transform offset, rotation and scale ("scroll", a 2x2 texture
-    red green / blue white, NEAREST, REPEAT) and alpha cutoff ("fade", MASK with alpha 0.6: seen
-    while the cutoff is below 0.6) are animated; and one channel on a property passgraph does not
+    red green / blue white, NEAREST, REPEAT), alpha cutoff ("fade", MASK with alpha 0.6: seen
+    while the cutoff is below 0.6) and a fifth box's normal scale and occlusion strength ("bump",
+    behind the row) are animated; and one channel on a property passgraph does not
     animate (KHR_materials_ior's ior: ignored, warned)"""
     doc = Doc("shimmer.gltf")
     doc.d["extensionsUsed"] = ["KHR_lights_punctual", "KHR_animation_pointer", "KHR_materials_emissive_strength",
@@ -272,17 +273,25 @@ def shimmer():
         "index": 0, "extensions": {"KHR_texture_transform": {"offset": [0, 0]}}}
     fade = doc.material("fade", (0.3, 0.8, 0.3), alpha=0.6)
     doc.d["materials"][fade]["alphaMode"] = "MASK"
+    # "bump": a 2x2 normal map (flat, tilted +x, tilted +y, tilted -x -y), also its occlusion (R)
+    bump = doc.material("bump", (0.7, 0.7, 0.7))
+    doc.d["materials"][bump]["normalTexture"] = {"index": 1}
+    doc.d["materials"][bump]["occlusionTexture"] = {"index": 1}
     doc.d["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png_rgba(2, 2, [
-        255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255])).decode()}]
+        255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255])).decode()},
+        {"uri": "data:image/png;base64," + base64.b64encode(png_rgba(2, 2, [
+            128, 128, 255, 255, 200, 128, 200, 255, 128, 200, 200, 255, 90, 90, 230, 255])).decode()}]
     doc.d["samplers"] = [{"magFilter": 9728, "minFilter": 9728, "wrapS": 10497, "wrapT": 10497}]
-    doc.d["textures"] = [{"source": 0, "sampler": 0}]
+    doc.d["textures"] = [{"source": 0, "sampler": 0}, {"source": 1, "sampler": 0}]
     pos, nrm, idx = UNIT_BOX
     uv = [c for _ in range(6) for c in ((0, 0), (1, 0), (1, 1), (0, 1))]  # each face's corners
     uvs = doc.accessor(floats(uv), FLOAT, len(uv), "VEC2")
-    for x, mat in ((-1.6, tint), (-0.5, glow), (0.6, scroll), (1.7, fade)):
-        extra = {"TEXCOORD_0": uvs} if mat == scroll else None
+    for x, z, mat in ((-1.6, -0.5, tint), (-0.5, -0.5, glow), (0.6, -0.5, scroll), (1.7, -0.5, fade),
+                      (0.05, -2.3, bump)):  # bump floats at y 1.6: seen above the row
+        extra = {"TEXCOORD_0": uvs} if mat in (scroll, bump) else None
         mesh = doc.mesh(doc.d["materials"][mat]["name"], pos, nrm, idx, mat, extra_attrs=extra)
-        doc.node({"name": doc.d["materials"][mat]["name"], "mesh": mesh, "translation": [x, 0.5, -0.5]})
+        doc.node({"name": doc.d["materials"][mat]["name"], "mesh": mesh,
+                  "translation": [x, 1.6 if mat == bump else 0.5, z]})
     doc.node({"name": "sun", "rotation": quat_axis((1, 0, 0), -60),
               "extensions": {"KHR_lights_punctual": {"light": 0}}})
     doc.d["extensions"] = {"KHR_lights_punctual": {"lights": [
@@ -306,6 +315,8 @@ def shimmer():
         (None, X + "rotation", "STEP", [0, 2], [(0,), (0.5,)]),
         (None, X + "scale", "LINEAR", [0, 4], [(1, 1), (2, 1)]),
         (None, M % fade + "alphaCutoff", "LINEAR", [0, 4], [(0.2,), (0.9,)]),
+        (None, M % bump + "normalTexture/scale", "LINEAR", [0, 4], [(1,), (0.2,)]),
+        (None, M % bump + "occlusionTexture/strength", "LINEAR", [0, 4], [(1,), (0,)]),
         (None, M % 0 + "extensions/KHR_materials_ior/ior", "LINEAR", [0, 4], [(1.5,), (1.2,)])], pointer=True)
     doc.write()
 
