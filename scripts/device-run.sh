@@ -46,7 +46,7 @@
 #                  loop over the cluster lists, and the tiled one) against deferred's lighting with the per-pixel loop
 #                  (tile_lights=false) and tiled, with and without its back-face test, at 100,000
 #                  lights (times only)
-#   pipeline-stats the driver's statistics of every pipeline (PASSGRAPH_PIPELINE_STATS: registers, spills)
+#   pipeline-stats the driver's statistics of every pipeline (PASSGRAPH_PIPELINE_STATS)
 #                  of visibility, deferred_oct16 and forward+ with Lambert and pbr at 100,000 lights
 #   raster         the visibility pass's two rasterizers (raster=hardware, compute) at 1,000 / 100,000 /
 #                  1,000,000 lights (times; error against the reference at 1,000), every
@@ -241,7 +241,7 @@ for step in "${STEPS[@]}"; do
       --warmup-ms 400 --frames 5 --no-hdr-flip --flicker-frames 0
     ;;
   pipeline-stats)
-    # the driver's statistics (registers, spills) of the light loops, Lambert and pbr, at 100,000 lights
+    # the driver's statistics (PASSGRAPH_PIPELINE_STATS) of the light loops, Lambert and pbr, at 100,000 lights
     for p in visibility deferred_oct16 forward_plus; do
       for sh in lambert pbr; do
         PASSGRAPH_PIPELINE_STATS=1 run "stats_${p}_$sh" "$BUNDLE/passgraph" render "${COMMON[@]}" --lights 100000 \

@@ -3,7 +3,7 @@
  * pipeline passgraph creates is created with VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR and one
  * line a shader executable goes to stderr:
  *   passgraph: pipeline-stats: <pipeline name> <executable name>: <statistic>=<value>, ...
- * (on NVIDIA: registers, shared memory, local memory/spills, instructions). A device without the
+ * (whatever statistics the driver names, e.g. register counts; not yet seen on a GPU). A device without the
  * extension gets one line saying so and nothing else changes. docs/cli.md ("Environment"). */
 #ifndef PG_PIPELINE_STATS_H
 #define PG_PIPELINE_STATS_H
