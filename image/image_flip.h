@@ -41,9 +41,10 @@
  *
  * Published anchors this implementation checks (tests/unit/test_image_metrics.c): the green/blue
  * normalisation (flat pure green vs flat pure blue gives 1), the constants above, identical images
- * give 0. NVlabs/flip also publishes results for its example images (HDR: start -12.5423, stop
- * 0.9427, 14 exposures, mean 0.283478); those images are not available here, so those values are
- * NOT checked.
+ * give 0. tests/oracle/ (metrics_oracle) compares every pixel with an independent numpy
+ * implementation of these papers and conventions (docs/accuracy.md states the agreement). NVlabs/flip
+ * also publishes results for its example images (HDR: start -12.5423, stop 0.9427, 14 exposures,
+ * mean 0.283478); those images are not available here, so those values are NOT checked.
  */
 #ifndef PG_IMAGE_FLIP_H
 #define PG_IMAGE_FLIP_H

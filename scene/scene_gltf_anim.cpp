@@ -381,7 +381,12 @@ static void hand_out_nodes(const Ctx &c, const Out &o, pg_scene_anim *a)
         }
         for (size_t k = 0; k < 3 && nd.translation.size() == 3; k++) N.translation[k] = float(nd.translation[k]);
         for (size_t k = 0; k < 3 && nd.scale.size() == 3; k++) N.scale[k] = float(nd.scale[k]);
-        for (size_t k = 0; k < 4 && nd.rotation.size() == 4; k++) N.rotation[k] = float(nd.rotation[k]);
+        if (nd.rotation.size() == 4) { /* normalised, as the rest pose's node_local does */
+            const double l = std::sqrt(nd.rotation[0] * nd.rotation[0] + nd.rotation[1] * nd.rotation[1] +
+                                       nd.rotation[2] * nd.rotation[2] + nd.rotation[3] * nd.rotation[3]);
+            if (!(l > 1e-12)) gfail(strf("nodes[%zu].rotation: zero-length quaternion", i));
+            for (size_t k = 0; k < 4; k++) N.rotation[k] = float(nd.rotation[k] / l);
+        }
         auto w = o.node_weights.find(int(i));
         if (w != o.node_weights.end()) {
             N.weight_base = w->second.first;

@@ -137,6 +137,7 @@ struct Walker {
     Out &o;
     std::vector<char> on_path;
     size_t visits = 0;
+    size_t instances = 0; /* EXT_mesh_gpu_instancing instances drawn so far */
 
     /* scene_gltf_nodes.cpp; moving: an ancestor is animated (its primitives move with it) */
     void visit(int ni, const Mat4 &parent, int depth, bool moving = false);
@@ -187,8 +188,9 @@ void view_floats(const View &v, size_t i, float *out);
 uint32_t read_index(const View &v, size_t i);
 const char *type_name(int t);
 /* meshes[mi].primitives[pi] of nodes[ni] under its world transform M; `moving`: the node or an
- * ancestor is animated */
-void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni = -1, bool moving = false);
+ * ancestor is animated; inst: an EXT_mesh_gpu_instancing instance's transform, applied before M */
+void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni = -1, bool moving = false,
+                    const Mat4 *inst = nullptr);
 
 /* scene_gltf_anim.cpp */
 /* Before the walk: whether the file animates anything, the animated nodes, the skins' joint slots. */
@@ -199,8 +201,17 @@ void anim_primitive(Ctx &c, Out &o, const tinygltf::Primitive &prim, int ni, siz
 /* After the walk: the scene's pg_scene_anim (NULL when no drawn primitive moves). */
 pg_scene_anim *anim_hand_out(Ctx &c, const Out &o);
 
-/* scene_gltf_nodes.cpp */
+/* scene_gltf_util.cpp: matrices */
 Mat4 mat_identity();
+Mat4 mat_mul(const Mat4 &a, const Mat4 &b);
+/* T * R * S with q normalised (a zero-length q fails naming rot_where) */
+Mat4 mat_trs(const double t[3], const double q[4], const double s[3], const std::string &rot_where);
+
+/* scene_gltf_nodes.cpp */
+
+/* scene_gltf_instancing.cpp: nodes[ni]'s EXT_mesh_gpu_instancing transforms (empty without the
+ * extension), checked; *total counts the scene's instances (PG_ERR_LIMIT past 2^20) */
+std::vector<Mat4> node_instances(Ctx &c, int ni, size_t *total);
 void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_camera> &out);
 /* one camera object of the file, checked (no node: placement left 0, gltf_node -1) */
 pg_scene_camera camera_object(const Ctx &c, int ci);

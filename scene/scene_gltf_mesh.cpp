@@ -334,8 +334,9 @@ static void xform_in_place(const Xform &x, pg_vertex &v)
  * skipped, counted), attributes, indices as a triangle list, vertices, missing normals and
  * tangents computed, the pg_primitive. A primitive that moves (Ctx.animated: on an animated node,
  * skinned or morphed) is emitted in mesh space first (normals and tangents computed there), kept in
- * o.local with its skin and morph data, then placed by M for the rest pose. */
-void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool moving)
+ * o.local with its skin and morph data, then placed by M for the rest pose. An instance of
+ * EXT_mesh_gpu_instancing (inst) is placed by M x *inst, and its mesh space includes *inst. */
+void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool moving, const Mat4 *inst)
 {
     const tinygltf::Primitive &prim = c.model.meshes[size_t(mi)].primitives[size_t(pi)];
     const std::string pw = strf("meshes[%d].primitives[%d]", mi, pi);
@@ -360,14 +361,17 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool 
                          find_attr(prim, "WEIGHTS_0");
     if (ni >= 0 && c.model.nodes[size_t(ni)].skin >= 0 && !skinned) c.unskinned_prims++;
     const bool dyn = c.animated && (moving || skinned || !prim.targets.empty());
-    const Xform x = node_xform(M, pw);
+    /* the placement: M, or M x the instance's transform; a moving primitive keeps the instance's
+     * transform in its mesh-space vertices (the pose applies the node's) */
+    const Mat4 MI = inst ? mat_mul(M, *inst) : M;
+    const Xform x = node_xform(MI, pw);
     if (o.verts.size() + n > 0xFFFFFFF0ull || o.idx.size() + ind.size() > 0xFFFFFFF0ull ||
         o.verts.size() > 0x7FFFFFFFull)
         fail(PG_ERR_LIMIT, pw + ": scene exceeds 2^32 vertices or indices");
     const size_t base = o.verts.size();
     Mat4 ident{};
     ident.m[0] = ident.m[5] = ident.m[10] = ident.m[15] = 1.0;
-    emit_vertices(o, a, dyn ? node_xform(ident, pw) : x, pw);
+    emit_vertices(o, a, dyn ? node_xform(inst ? *inst : ident, pw) : x, pw);
     if (x.det < 0 && !skinned) /* a skinned mesh ignores its node's transform */
         for (size_t t = 0; t + 2 < ind.size(); t += 3) std::swap(ind[t + 1], ind[t + 2]);
 
@@ -384,7 +388,8 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool 
     if (dyn) {
         memcpy(o.local.data() + base, V, n * sizeof(pg_vertex));
         anim_primitive(c, o, prim, ni, base, n, pw);
-        for (size_t i = 0; i < n; i++) xform_in_place(x, V[i]); /* the rest pose */
+        const Xform xn = inst ? node_xform(M, pw) : x;
+        for (size_t i = 0; i < n; i++) xform_in_place(xn, V[i]); /* the rest pose */
     }
 
     pg_primitive pr;

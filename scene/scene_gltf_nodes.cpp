@@ -16,25 +16,6 @@ namespace pg_gltf {
 constexpr int kMaxNodeDepth = 1024;
 constexpr size_t kMaxNodeVisits = size_t(1) << 20;
 
-Mat4 mat_identity()
-{
-    Mat4 r{};
-    r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1.0;
-    return r;
-}
-
-Mat4 mat_mul(const Mat4 &a, const Mat4 &b)
-{
-    Mat4 r{};
-    for (int col = 0; col < 4; col++)
-        for (int row = 0; row < 4; row++) {
-            double s = 0;
-            for (int k = 0; k < 4; k++) s += a.m[k * 4 + row] * b.m[col * 4 + k];
-            r.m[col * 4 + row] = s;
-        }
-    return r;
-}
-
 Mat4 node_local(const tinygltf::Node &n, int ni)
 {
     Mat4 r = mat_identity();
@@ -47,23 +28,9 @@ Mat4 node_local(const tinygltf::Node &n, int ni)
         for (int i = 0; i < 3; i++) t[i] = n.translation[size_t(i)];
     if (n.scale.size() == 3)
         for (int i = 0; i < 3; i++) s[i] = n.scale[size_t(i)];
-    if (n.rotation.size() == 4) {
+    if (n.rotation.size() == 4)
         for (int i = 0; i < 4; i++) q[i] = n.rotation[size_t(i)];
-        double l = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-        if (!(l > 1e-12)) gfail(strf("nodes[%d].rotation: zero-length quaternion", ni));
-        for (double &x : q) x /= l;
-    }
-    double x = q[0], y = q[1], z = q[2], w = q[3];
-    double R[9] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
-                   2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
-                   2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y)};
-    /* R is column-major: column c = R[c*3 .. c*3+2]; M = T * R * S */
-    for (int col = 0; col < 3; col++)
-        for (int row = 0; row < 3; row++) r.m[col * 4 + row] = R[col * 3 + row] * s[col];
-    r.m[12] = t[0];
-    r.m[13] = t[1];
-    r.m[14] = t[2];
-    return r;
+    return mat_trs(t, q, s, strf("nodes[%d].rotation", ni));
 }
 
 void Walker::visit(int ni, const Mat4 &parent, int depth, bool moving)
@@ -83,12 +50,17 @@ void Walker::visit(int ni, const Mat4 &parent, int depth, bool moving)
         if (!std::isfinite(x)) gfail(strf("nodes[%d]: world transform is not finite", ni));
     on_path[size_t(ni)] = 1;
     moving = moving || (c.animated && c.node_animated[size_t(ni)]);
+    if (nd.mesh >= 0 && size_t(nd.mesh) >= c.model.meshes.size())
+        gfail(strf("nodes[%d].mesh: %d out of range", ni, nd.mesh));
+    const std::vector<Mat4> inst = node_instances(c, ni, &instances); /* EXT_mesh_gpu_instancing */
     if (nd.mesh >= 0) {
-        if (size_t(nd.mesh) >= c.model.meshes.size())
-            gfail(strf("nodes[%d].mesh: %d out of range", ni, nd.mesh));
         const tinygltf::Mesh &mesh = c.model.meshes[size_t(nd.mesh)];
-        for (size_t p = 0; p < mesh.primitives.size(); p++)
-            emit_primitive(c, o, nd.mesh, int(p), world, ni, moving);
+        if (inst.empty())
+            for (size_t p = 0; p < mesh.primitives.size(); p++)
+                emit_primitive(c, o, nd.mesh, int(p), world, ni, moving);
+        for (const Mat4 &I : inst)
+            for (size_t p = 0; p < mesh.primitives.size(); p++)
+                emit_primitive(c, o, nd.mesh, int(p), world, ni, moving, &I);
     }
     for (int ch : nd.children) visit(ch, world, depth + 1, moving);
     on_path[size_t(ni)] = 0;

@@ -4,6 +4,7 @@
  */
 #include "scene_gltf_internal.h"
 
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <string>
@@ -126,6 +127,47 @@ const int *find_attr(const tinygltf::Primitive &p, const char *name)
 {
     auto it = p.attributes.find(name);
     return it == p.attributes.end() ? nullptr : &it->second;
+}
+
+/* ---- matrices (column-major 4x4, double) ---- */
+
+Mat4 mat_identity()
+{
+    Mat4 r{};
+    r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1.0;
+    return r;
+}
+
+Mat4 mat_mul(const Mat4 &a, const Mat4 &b)
+{
+    Mat4 r{};
+    for (int col = 0; col < 4; col++)
+        for (int row = 0; row < 4; row++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++) s += a.m[k * 4 + row] * b.m[col * 4 + k];
+            r.m[col * 4 + row] = s;
+        }
+    return r;
+}
+
+Mat4 mat_trs(const double t[3], const double q_in[4], const double s[3], const std::string &rot_where)
+{
+    Mat4 r = mat_identity();
+    double q[4] = {q_in[0], q_in[1], q_in[2], q_in[3]};
+    double l = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (!(l > 1e-12)) gfail(rot_where + ": zero-length quaternion");
+    for (double &x : q) x /= l;
+    double x = q[0], y = q[1], z = q[2], w = q[3];
+    double R[9] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
+                   2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+                   2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y)};
+    /* R is column-major: column c = R[c*3 .. c*3+2]; M = T * R * S */
+    for (int col = 0; col < 3; col++)
+        for (int row = 0; row < 3; row++) r.m[col * 4 + row] = R[col * 3 + row] * s[col];
+    r.m[12] = t[0];
+    r.m[13] = t[1];
+    r.m[14] = t[2];
+    return r;
 }
 
 } // namespace pg_gltf

@@ -17,8 +17,8 @@ namespace pg_gltf {
 
 /* The glTF extensions passgraph implements: accepted in extensionsRequired, not warned in
  * extensionsUsed. */
-constexpr const char *kImplementedExtensions[] = {"EXT_meshopt_compression", "KHR_draco_mesh_compression",
-                                                  "KHR_lights_punctual", "KHR_materials_emissive_strength",
+constexpr const char *kImplementedExtensions[] = {"EXT_mesh_gpu_instancing", "EXT_meshopt_compression",
+                                                  "KHR_draco_mesh_compression", "KHR_lights_punctual", "KHR_materials_emissive_strength",
                                                   "KHR_materials_unlit",
                                                   "KHR_mesh_quantization", "KHR_texture_transform",
                                                   "PASSGRAPH_lights_table"};

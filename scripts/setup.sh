@@ -13,6 +13,7 @@ PKGS=(
   valgrind
   libglfw3-dev libimgui-dev xvfb xauth graphviz
   libopencolorio-dev libopenexr-dev
+  python3-numpy python3-skimage
   renderdoccmd python3-renderdoc librenderdoc-dev
 )
 

@@ -206,6 +206,7 @@ int main(void)
     twin("shimmer.gltf", 3.0);
     twin("glass.gltf", 1.0);   /* two BLEND boxes whose back-to-front order the animation swaps */
     twin("glass_morph.gltf", 1.0); /* likewise by a morph target: the sort key follows the weights */
+    twin("../instancing/grove_moving.gltf", 1.0); /* EXT_mesh_gpu_instancing on a turning node */
     culled();
     printf("validation messages: %u\n", g_gpu->validation_messages);
     CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);

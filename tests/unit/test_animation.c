@@ -25,21 +25,11 @@
 
 #include "animation.h"
 #include "scene.h"
+#include "test_scene_file.h"
 #include "test_util.h"
 
 /* a file of tests/corpus/gltf/animation, loaded (NULL and a failed check when it does not load) */
-static pg_scene *load_file(const char *rel)
-{
-    char path[1024];
-    snprintf(path, sizeof path, "%s/corpus/gltf/animation/%s", PG_TEST_DIR, rel);
-    pg_scene *s = NULL;
-    pg_error err = {0};
-    if (pg_scene_load_gltf(path, &s, &err)) {
-        CHECK_MSG(0, "%s: %s", rel, err.msg);
-        return NULL;
-    }
-    return s;
-}
+static pg_scene *load_file(const char *rel) { return pg_test_load_gltf("animation", rel); }
 
 /* likewise, a file whose geometry moves */
 static pg_scene *load(const char *rel)

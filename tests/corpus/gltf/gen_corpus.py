@@ -529,7 +529,7 @@ d["extensionsUsed"] = ["EXT_x_%02d" % i for i in range(18)]
 write("ok_many_extensions.gltf", d, "PG_OK",
       warn=["extensionsUsed: 'EXT_x_%02d' ignored: not supported" % i for i in range(16)]
       + ["extensionsUsed: 2 more extensions ignored (not supported)"])
-IMPLEMENTED = ("EXT_meshopt_compression", "KHR_draco_mesh_compression",  # may be required
+IMPLEMENTED = ("EXT_mesh_gpu_instancing", "EXT_meshopt_compression", "KHR_draco_mesh_compression",  # may be required
                "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_unlit",
                "KHR_mesh_quantization", "KHR_texture_transform", "PASSGRAPH_lights_table")
 for name, exts in (("required_texture_transform.gltf", ["KHR_texture_transform", "KHR_mesh_quantization"]),
@@ -674,6 +674,43 @@ write("lights_table_no_count.gltf", table_doc(TWO, 2, ext={"bufferView": 3}), "P
       "extensions.PASSGRAPH_lights_table.count: expected a number")
 write("lights_table_bad_view.gltf", table_doc(TWO, 2, ext={"bufferView": 9, "count": 2}), "PG_ERR_GLTF",
       "extensions.PASSGRAPH_lights_table.bufferView: 9 out of range (4 bufferViews)")
+
+# EXT_mesh_gpu_instancing: the triangle drawn at instances whose TRANSLATION and SCALE are the
+# triangle's own positions accessor (3 VEC3 FLOAT: (0,0,0), (1,0,0), (0,1,0)); bad ones refused
+
+
+def instancing_doc(attrs, mesh=True, extra_accessor=None):
+    d, _ = base_doc()
+    if extra_accessor:
+        d["accessors"].append(extra_accessor)
+    d["extensionsUsed"] = ["EXT_mesh_gpu_instancing"]
+    node = {"extensions": {"EXT_mesh_gpu_instancing": {"attributes": attrs}}}
+    if mesh:
+        node["mesh"] = 0
+    else:
+        d["nodes"].append(node)
+        d["scenes"] = [{"nodes": [0, 1]}]
+        return d
+    d["nodes"] = [node]
+    return d
+
+
+write("ok_instancing.gltf", instancing_doc({"TRANSLATION": 0, "_ID": 1}), "PG_OK")
+write("instancing_no_mesh.gltf", instancing_doc({"TRANSLATION": 0}, mesh=False), "PG_ERR_GLTF",
+      "nodes[1].extensions.EXT_mesh_gpu_instancing: the node has no mesh to instance")
+write("instancing_count_mismatch.gltf",
+      instancing_doc({"TRANSLATION": 0, "SCALE": 2},
+                     extra_accessor={"bufferView": 0, "componentType": 5126, "count": 2, "type": "VEC3"}),
+      "PG_ERR_GLTF", "EXT_mesh_gpu_instancing.attributes: accessors of 3 and 2 instances")
+write("instancing_bad_type.gltf", instancing_doc({"ROTATION": 0}), "PG_ERR_GLTF",
+      "EXT_mesh_gpu_instancing.attributes.ROTATION: accessors[0] must be VEC4 FLOAT or normalized BYTE/SHORT "
+      "(got VEC3 FLOAT)")
+write("instancing_bad_attribute.gltf", instancing_doc({"COLOR": 0}), "PG_ERR_GLTF",
+      "EXT_mesh_gpu_instancing.attributes: 'COLOR' is not TRANSLATION, ROTATION, SCALE")
+write("instancing_bad_accessor.gltf", instancing_doc({"SCALE": 7}), "PG_ERR_GLTF",
+      "EXT_mesh_gpu_instancing.attributes.SCALE: expected an accessor index (2 accessors)")
+write("instancing_only_custom.gltf", instancing_doc({"_ID": 0}), "PG_ERR_GLTF",
+      "EXT_mesh_gpu_instancing.attributes: none of TRANSLATION, ROTATION, SCALE")
 
 # ------------------------------------------------------------------------------------------------
 # fuzz findings (tests/fuzz/README.md): the inputs are kept verbatim in fuzz/, which this script
