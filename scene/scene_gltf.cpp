@@ -263,7 +263,9 @@ static std::vector<std::pair<size_t, size_t>> nodeless_targets(const json &j)
 /* The file as tinygltf is to see it, when it must differ (else empty): EXT_meshopt_compression
  * fallback buffers are not loaded: tinygltf would look for a file (or refuse a missing uri), so
  * it gets a copy of the file in which each is a 4-byte data URI (never read: only compressed
- * bufferViews use it, and those are read from their decoded data); Draco indices accessors
+ * bufferViews use it, and those are read from their decoded data); data URIs of the image media
+ * types tinygltf does not know (image/webp, image/ktx2, ...) become application/octet-stream (the
+ * image callback tells the formats by their bytes); Draco indices accessors
  * without a bufferView get one (see prevalidate); animation targets without a node get one
  * (nodeless_targets). A GLB keeps its BIN chunk after the new JSON. */
 static std::vector<unsigned char> rewrite_for_tinygltf(const Ctx &c, const unsigned char *bytes)
@@ -271,9 +273,13 @@ static std::vector<unsigned char> rewrite_for_tinygltf(const Ctx &c, const unsig
     std::vector<unsigned char> rewritten;
     const std::vector<std::pair<size_t, size_t>> nodeless = nodeless_targets(c.j);
     if (std::find(c.buffer_no_data.begin(), c.buffer_no_data.end(), 1) == c.buffer_no_data.end() &&
-        c.draco_index_fix.empty() && nodeless.empty())
+        c.draco_index_fix.empty() && nodeless.empty() && c.image_media_rewrite.empty())
         return rewritten;
     json j2 = c.j;
+    for (size_t i : c.image_media_rewrite) { /* image/webp, image/ktx2, ...: tinygltf decodes only some */
+        const std::string uri = c.j["images"][i]["uri"].get<std::string>();
+        j2["images"][i]["uri"] = "data:application/octet-stream" + uri.substr(uri.find(';'));
+    }
     for (const auto &nc : nodeless) j2["animations"][nc.first]["channels"][nc.second]["target"]["node"] = 0;
     for (const auto &fx : c.draco_index_fix)
         j2["accessors"][size_t(fx.first)]["bufferView"] = fx.second;
@@ -335,6 +341,7 @@ static void tinygltf_load(Ctx &c, const RawFile &f)
     }
     for (size_t i = 0; i < c.model.images.size(); i++) {
         const tinygltf::Image &im = c.model.images[i];
+        if (i < c.image_undecoded_only.size() && c.image_undecoded_only[i]) continue; /* never drawn */
         if (im.image.empty() || im.width < 1 || im.height < 1 ||
             im.image.size() != size_t(im.width) * size_t(im.height) * 4)
             gfail(image_desc(c, int(i)) + ": could not be loaded");
@@ -381,6 +388,7 @@ static std::vector<int> root_nodes(Ctx &c)
 
 /* The pg_textures the materials use, one per TexKey, numbered in first-use order. */
 struct TextureTable {
+    const Ctx &c;
     const tinygltf::Model &md;
     std::map<TexKey, uint32_t> tex_of;
     std::vector<TexKey> order;
@@ -391,7 +399,15 @@ struct TextureTable {
         if (tex_index < 0) return -1;
         if (size_t(tex_index) >= md.textures.size())
             gfail(strf("%s: texture %d out of range", where.c_str(), tex_index));
-        int src = md.textures[size_t(tex_index)].source;
+        int src = md.textures[size_t(tex_index)].source; /* EXT_texture_webp's, when given */
+        if (size_t(tex_index) < c.texture_webp.size() && c.texture_webp[size_t(tex_index)] >= 0)
+            src = c.texture_webp[size_t(tex_index)];
+        const std::string *ext =
+            size_t(tex_index) < c.texture_undecoded.size() ? &c.texture_undecoded[size_t(tex_index)] : nullptr;
+        if ((src < 0 || size_t(src) >= md.images.size()) && ext && !ext->empty())
+            gfail(strf("textures[%d]: no usable source image (its image is only in %s, which passgraph does not "
+                       "decode, and it has no fallback source)",
+                       tex_index, ext->c_str()));
         if (src < 0 || size_t(src) >= md.images.size())
             gfail(strf("textures[%d]: no usable source image", tex_index));
         int smp = md.textures[size_t(tex_index)].sampler;
@@ -627,6 +643,7 @@ pg_scene *load(Ctx &c)
         read_file(c, f);  /* 1 */
         parse_json(c, f); /* 2 */
         prevalidate(c);
+        texture_sources(c);  /* EXT_texture_webp, the undecoded texture extensions */
         tinygltf_load(c, f); /* 3 */
     }
     for (const std::string &e : c.model.extensionsUsed)
@@ -653,7 +670,7 @@ pg_scene *load(Ctx &c)
 
     /* 5. materials and textures */
     std::vector<pg_material> mats;
-    TextureTable tex{md, {}, {}};
+    TextureTable tex{c, md, {}, {}};
     for (size_t i = 0; i < md.materials.size(); i++) mats.push_back(material_from_gltf(c, i, tex));
     assign_materials(md, o, mats);
 

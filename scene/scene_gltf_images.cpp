@@ -1,11 +1,14 @@
 /* scene_gltf_images.cpp - step 3 of the glTF load (scene_gltf.cpp): tinygltf's file system (confined
- * to the asset's directory) and image callback (PNG and JPEG through stb_image, sizes checked
- * before decoding); the glTF samplers and KHR_texture_transform that materials use.
+ * to the asset's directory) and image callback (PNG and JPEG through stb_image, WebP through libwebp
+ * for EXT_texture_webp, sizes checked before decoding; an image only undecoded texture extensions
+ * name is left empty: scene_gltf_texture_sources.cpp); the glTF samplers and KHR_texture_transform
+ * that materials use.
  */
 #include "scene_gltf_internal.h"
 #include "pg_file.h"
 
 #include <stb_image.h>
+#include <webp/decode.h>
 
 #include <algorithm>
 #include <cmath>
@@ -109,6 +112,33 @@ struct StbFree {
     void operator()(unsigned char *p) const { stbi_image_free(p); }
 };
 
+/* a WebP image (EXT_texture_webp) as RGBA8, its size checked before decoding */
+static bool load_webp(tinygltf::Image *image, const std::string &where, const unsigned char *bytes, int size,
+                      Ctx *c)
+{
+    int w = 0, h = 0;
+    if (!WebPGetInfo(bytes, size_t(size), &w, &h)) {
+        c->image_err = where + ": cannot decode (not a valid WebP image)";
+        return false;
+    }
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide) {
+        c->image_err = where + strf(": size %dx%d is outside 1..%d on a side", w, h, kMaxImageSide);
+        return false;
+    }
+    image->image.resize(size_t(w) * size_t(h) * 4);
+    if (!WebPDecodeRGBAInto(bytes, size_t(size), image->image.data(), image->image.size(), w * 4)) {
+        image->image.clear();
+        c->image_err = where + ": cannot decode (corrupt or truncated WebP data)";
+        return false;
+    }
+    image->width = w;
+    image->height = h;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    return true;
+}
+
 bool load_image_cb(tinygltf::Image *image, const int idx, std::string *, std::string *, int, int,
                    const unsigned char *bytes, int size, void *user)
 {
@@ -125,9 +155,16 @@ bool load_image_cb(tinygltf::Image *image, const int idx, std::string *, std::st
         static const unsigned char png_magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
         const bool png = size >= 8 && memcmp(bytes, png_magic, 8) == 0;
         const bool jpeg = size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+        const bool webp = size >= 12 && memcmp(bytes, "RIFF", 4) == 0 && memcmp(bytes + 8, "WEBP", 4) == 0;
+        if (idx >= 0 && size_t(idx) < c->image_undecoded_only.size() && c->image_undecoded_only[size_t(idx)]) {
+            image->width = image->height = 0; /* KTX2, DDS, AVIF: a fallback image is drawn instead */
+            image->image.clear();
+            return true;
+        }
+        if (webp) return load_webp(image, where, bytes, size, c);
         if (!png && !jpeg) {
-            c->image_err = where + ": cannot decode (not a PNG or JPEG image; glTF 2.0 allows "
-                                   "only image/png and image/jpeg)";
+            c->image_err = where + ": cannot decode (not a PNG, JPEG or WebP image; glTF 2.0 allows "
+                                   "image/png and image/jpeg, EXT_texture_webp image/webp)";
             return false;
         }
         long long pw = 0, ph = 0;

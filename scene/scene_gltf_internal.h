@@ -5,16 +5,19 @@
  *   scene_gltf.cpp             the load order (scene_gltf.cpp's header), the GLB container,
  *                              materials and textures, the hand-out, pg_scene_load_gltf
  *   scene_gltf_validate.cpp    JSON pre-validation, extensionsRequired and the implemented extensions
- *   scene_gltf_images.cpp      tinygltf's image callback (PNG/JPEG via stb_image) and file system,
- *                              samplers, KHR_texture_transform
+ *   scene_gltf_images.cpp      tinygltf's image callback (PNG/JPEG via stb_image, WebP via libwebp)
+ *                              and file system, samplers, KHR_texture_transform
  *   scene_gltf_compressed.cpp  EXT_meshopt_compression and KHR_draco_mesh_compression decoding
  *   scene_gltf_accessors.cpp   accessors as views (sparse, decoded data) and their elements
  *   scene_gltf_mesh.cpp        attributes (quantized types), primitives -> vertices and indices
  *   scene_gltf_anim.cpp        animations, skins, morph targets (pg_scene_anim)
  *   scene_gltf_nodes.cpp       the node hierarchy, transforms, cameras
+ *   scene_gltf_instancing.cpp  EXT_mesh_gpu_instancing: a node's instance transforms
+ *   scene_gltf_texture_sources.cpp  which image a texture draws (EXT_texture_webp; the undecoded
+ *                              KHR_texture_basisu, MSFT_texture_dds, EXT_texture_avif)
  *   scene_gltf_warnings.cpp    the warning lines (pg_scene.warnings)
  *   scene_gltf_util.cpp        what every step uses: messages, throwers, uri/path helpers,
- *                              accessor type sizes, bufferView bytes (a leaf)
+ *                              accessor type sizes, bufferView bytes, matrices (a leaf)
  */
 #ifndef PG_SCENE_GLTF_INTERNAL_H
 #define PG_SCENE_GLTF_INTERNAL_H
@@ -101,6 +104,13 @@ struct Ctx {
     unsigned joints2_prims = 0; /* drawn skinned primitives with JOINTS_2.. (ignored: 8 joints a vertex) */
     bool influences8 = false;   /* a vertex weighs a joint of JOINTS_1 */
     unsigned unskinned_prims = 0; /* drawn primitives of a node with a skin but no JOINTS_0/WEIGHTS_0 */
+    /* texture-source extensions (scene_gltf_texture_sources.cpp): per texture its EXT_texture_webp
+     * image (-1: none) and the first undecoded extension naming an image (empty: none); per image
+     * whether only undecoded extensions name it (not decoded: left empty), and how many were */
+    std::vector<int> texture_webp;
+    std::vector<std::string> texture_undecoded;
+    std::vector<char> image_undecoded_only;
+    std::vector<size_t> image_media_rewrite; /* images whose data URI tinygltf would refuse (prevalidate) */
     unsigned ignored_channels = 0;
     std::vector<std::string> ignored_pointers; /* KHR_animation_pointer targets not animated */
 };
@@ -150,6 +160,9 @@ uint64_t uint_field(const json &o, const char *key, const std::string &where, bo
                     uint64_t def = 0);
 bool is_regular_file(const std::string &p, uint64_t *size);
 void prevalidate(Ctx &c);
+
+/* scene_gltf_texture_sources.cpp: the texture-source extensions, before tinygltf parses the file */
+void texture_sources(Ctx &c);
 
 /* scene_gltf_images.cpp */
 bool fs_file_exists(const std::string &abs, void *user);

@@ -18,7 +18,8 @@ namespace pg_gltf {
 /* The glTF extensions passgraph implements: accepted in extensionsRequired, not warned in
  * extensionsUsed. */
 constexpr const char *kImplementedExtensions[] = {"EXT_mesh_gpu_instancing", "EXT_meshopt_compression",
-                                                  "KHR_draco_mesh_compression", "KHR_lights_punctual", "KHR_materials_emissive_strength",
+                                                  "EXT_texture_webp", "KHR_draco_mesh_compression",
+                                                  "KHR_lights_punctual", "KHR_materials_emissive_strength",
                                                   "KHR_materials_unlit",
                                                   "KHR_mesh_quantization", "KHR_texture_transform",
                                                   "PASSGRAPH_lights_table"};
@@ -230,6 +231,7 @@ struct Arrays {
         *images, *samplers;
     std::vector<uint64_t> buf_len; /* byteLength per buffer */
     uint64_t ext_total = 0;        /* bytes of the external buffers and images */
+    size_t image_index = 0;        /* the image check_image is checking */
 };
 
 /* fn(object, "NAME[i]", i) for each element of the array `a` (if any), each an object */
@@ -464,6 +466,13 @@ static void check_image(Ctx &c, Arrays &a, const json &o, const std::string &w)
     if (!uit->is_string()) gfail(w + ".uri: expected a string");
     std::string uri = uit->get<std::string>();
     if (uri.compare(0, 5, "data:") == 0) {
+        static const char *const texture_media[] = {"data:image/webp;base64,", "data:image/ktx2;base64,",
+                                                    "data:image/vnd-ms.dds;base64,", "data:image/avif;base64,"};
+        for (const char *m : texture_media)
+            if (uri.compare(0, strlen(m), m) == 0) {
+                c.image_media_rewrite.push_back(a.image_index); /* for tinygltf: application/octet-stream */
+                return;
+            }
         if (!tinygltf::IsDataURI(uri)) gfail(w + ".uri: unsupported data URI media type");
         return;
     }
@@ -624,7 +633,8 @@ void prevalidate(Ctx &c)
     each_object(a.accessors, "accessors", [&](const json &o, const std::string &w, size_t) {
         check_accessor(a, o, w);
     });
-    each_object(a.images, "images", [&](const json &o, const std::string &w, size_t) {
+    each_object(a.images, "images", [&](const json &o, const std::string &w, size_t ii) {
+        a.image_index = ii;
         check_image(c, a, o, w);
     });
     each_object(a.samplers, "samplers", [&](const json &, const std::string &, size_t) {});

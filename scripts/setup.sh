@@ -9,7 +9,7 @@ PKGS=(
   build-essential cmake pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   glslang-dev glslang-tools spirv-tools
-  libtinygltf-dev libmeshoptimizer-dev libdraco-dev nlohmann-json3-dev libcjson-dev libstb-dev
+  libtinygltf-dev libmeshoptimizer-dev libdraco-dev nlohmann-json3-dev libcjson-dev libstb-dev libwebp-dev
   valgrind
   libglfw3-dev libimgui-dev xvfb xauth graphviz
   libopencolorio-dev libopenexr-dev

@@ -664,7 +664,7 @@ expect_fail "--scene an OBJ file" "$gcorp/cube.obj: not a glTF 2.0 file (passgra
   render --scene "$gcorp/cube.obj" --size 32x18 --lights 4 --out "$tmp/x.png"
 expect_fail "--scene a glTF 1.0 file" "glTF 1.0 is not supported, only 2.0" \
   render --scene "$gcorp/version_1.gltf" --size 32x18 --lights 4 --out "$tmp/x.png"
-expect_fail "--scene: an unsupported required extension" "extensionsRequired: 'EXT_made_up' is not supported (passgraph implements only these glTF extensions: EXT_mesh_gpu_instancing, EXT_meshopt_compression, KHR_draco_mesh_compression, KHR_lights_punctual, KHR_materials_emissive_strength, KHR_materials_unlit, KHR_mesh_quantization, KHR_texture_transform, PASSGRAPH_lights_table)" \
+expect_fail "--scene: an unsupported required extension" "extensionsRequired: 'EXT_made_up' is not supported (passgraph implements only these glTF extensions: EXT_mesh_gpu_instancing, EXT_meshopt_compression, EXT_texture_webp, KHR_draco_mesh_compression, KHR_lights_punctual, KHR_materials_emissive_strength, KHR_materials_unlit, KHR_mesh_quantization, KHR_texture_transform, PASSGRAPH_lights_table)" \
   render --scene "$gcorp/required_made_up.gltf" --size 32x18 --lights 4 --out "$tmp/x.png"
 expect_fail "--out .bmp" "--out $tmp/x.bmp: unsupported image extension '.bmp' (accepted: .png, .jpg, .jpeg, .exr)" \
   render --size 32x18 --lights 4 --out "$tmp/x.bmp"

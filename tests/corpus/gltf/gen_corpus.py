@@ -485,7 +485,7 @@ write("jpeg_bomb.gltf",
 tga = struct.pack("<BBBHHBHHHHBB", 0, 0, 10, 0, 0, 0, 0, 0, 16384, 16384, 32, 8)
 write("tga_image.gltf",
       textured_doc({"uri": "data:image/png;base64," + base64.b64encode(tga).decode()}),
-      "PG_ERR_GLTF", "images[0] (data URI): cannot decode (not a PNG or JPEG image")
+      "PG_ERR_GLTF", "images[0] (data URI): cannot decode (not a PNG, JPEG or WebP image")
 
 # a finite position that leaves the float range under its node transform (found by fuzz_gltf)
 d, _ = base_doc()
@@ -529,7 +529,7 @@ d["extensionsUsed"] = ["EXT_x_%02d" % i for i in range(18)]
 write("ok_many_extensions.gltf", d, "PG_OK",
       warn=["extensionsUsed: 'EXT_x_%02d' ignored: not supported" % i for i in range(16)]
       + ["extensionsUsed: 2 more extensions ignored (not supported)"])
-IMPLEMENTED = ("EXT_mesh_gpu_instancing", "EXT_meshopt_compression", "KHR_draco_mesh_compression",  # may be required
+IMPLEMENTED = ("EXT_mesh_gpu_instancing", "EXT_meshopt_compression", "EXT_texture_webp", "KHR_draco_mesh_compression",  # may be required
                "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_unlit",
                "KHR_mesh_quantization", "KHR_texture_transform", "PASSGRAPH_lights_table")
 for name, exts in (("required_texture_transform.gltf", ["KHR_texture_transform", "KHR_mesh_quantization"]),
@@ -711,6 +711,34 @@ write("instancing_bad_accessor.gltf", instancing_doc({"SCALE": 7}), "PG_ERR_GLTF
       "EXT_mesh_gpu_instancing.attributes.SCALE: expected an accessor index (2 accessors)")
 write("instancing_only_custom.gltf", instancing_doc({"_ID": 0}), "PG_ERR_GLTF",
       "EXT_mesh_gpu_instancing.attributes: none of TRANSLATION, ROTATION, SCALE")
+
+# texture-source extensions (webp/gen_webp.py has the files that load): a truncated WebP image, a
+# KHR_texture_basisu texture without a fallback source, an EXT_texture_webp source out of range
+
+
+def texture_ext_doc(images, texture, used):
+    d, _ = base_doc()
+    d["extensionsUsed"] = used
+    d["images"] = images
+    d["textures"] = [texture]
+    d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    d["meshes"][0]["primitives"][0]["material"] = 0
+    return d
+
+
+TRUNCATED_WEBP = b"RIFF" + struct.pack("<I", 40) + b"WEBPVP8L" + struct.pack("<I", 28) + b"\x2f\x0f\xc0\x03"
+write("webp_truncated.gltf",
+      texture_ext_doc([{"uri": "data:image/webp;base64," + base64.b64encode(TRUNCATED_WEBP).decode()}],
+                      {"extensions": {"EXT_texture_webp": {"source": 0}}}, ["EXT_texture_webp"]),
+      "PG_ERR_GLTF", "images[0] (data URI): cannot decode (")
+write("basisu_no_fallback.gltf",
+      texture_ext_doc([{"uri": "data:image/ktx2;base64," + base64.b64encode(bytes(16)).decode()}],
+                      {"extensions": {"KHR_texture_basisu": {"source": 0}}}, ["KHR_texture_basisu"]),
+      "PG_ERR_GLTF", "textures[0]: no usable source image (its image is only in KHR_texture_basisu, which passgraph "
+      "does not decode, and it has no fallback source)")
+write("webp_source_out_of_range.gltf",
+      texture_ext_doc([], {"extensions": {"EXT_texture_webp": {"source": 2}}}, ["EXT_texture_webp"]),
+      "PG_ERR_GLTF", "textures[0].extensions.EXT_texture_webp.source: expected an image index (0 images)")
 
 # ------------------------------------------------------------------------------------------------
 # fuzz findings (tests/fuzz/README.md): the inputs are kept verbatim in fuzz/, which this script
