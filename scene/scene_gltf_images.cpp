@@ -112,6 +112,16 @@ struct StbFree {
     void operator()(unsigned char *p) const { stbi_image_free(p); }
 };
 
+/* what every decoded image is for the loader: RGBA8 of w x h */
+static void set_rgba8(tinygltf::Image *image, int w, int h)
+{
+    image->width = w;
+    image->height = h;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+}
+
 /* a WebP image (EXT_texture_webp) as RGBA8, its size checked before decoding */
 static bool load_webp(tinygltf::Image *image, const std::string &where, const unsigned char *bytes, int size,
                       Ctx *c)
@@ -131,11 +141,7 @@ static bool load_webp(tinygltf::Image *image, const std::string &where, const un
         c->image_err = where + ": cannot decode (corrupt or truncated WebP data)";
         return false;
     }
-    image->width = w;
-    image->height = h;
-    image->component = 4;
-    image->bits = 8;
-    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    set_rgba8(image, w, h);
     return true;
 }
 
@@ -198,11 +204,7 @@ bool load_image_cb(tinygltf::Image *image, const int idx, std::string *, std::st
             c->image_err = where + ": cannot decode (" + (why ? why : "unknown format") + ")";
             return false;
         }
-        image->width = w;
-        image->height = h;
-        image->component = 4;
-        image->bits = 8;
-        image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+        set_rgba8(image, w, h);
         image->image.assign(px.get(), px.get() + size_t(w) * size_t(h) * 4);
         return true;
     } catch (...) {
