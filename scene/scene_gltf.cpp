@@ -658,6 +658,9 @@ pg_scene *load(Ctx &c)
     {
         std::vector<int> roots = root_nodes(c);
         anim_prepare(c);
+        Walker plan{c, o, std::vector<char>(md.nodes.size(), 0), 0};
+        plan.count_only = true; /* PG_ERR_LIMIT before baking what memory cannot hold */
+        for (int r : roots) plan.visit(r, mat_identity(), 0);
         Walker w{c, o, std::vector<char>(md.nodes.size(), 0), 0};
         for (int r : roots) w.visit(r, mat_identity(), 0);
         for (int r : roots) camera_visit(c, r, mat_identity(), cams);

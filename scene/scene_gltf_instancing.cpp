@@ -45,14 +45,13 @@ static View instance_view(Ctx &c, const json &attrs, const char *name, int type,
     return v;
 }
 
-std::vector<Mat4> node_instances(Ctx &c, int ni, size_t *total)
+size_t node_instances(Ctx &c, int ni, size_t *total, std::vector<Mat4> *out)
 {
-    std::vector<Mat4> out;
     const json &jn = c.j["nodes"][size_t(ni)];
     const json *ex = jn.is_object() ? opt_object(jn, "extensions", strf("nodes[%d]", ni)) : nullptr;
     const std::string w = strf("nodes[%d].extensions.EXT_mesh_gpu_instancing", ni);
     const json *ext = ex ? opt_object(*ex, "EXT_mesh_gpu_instancing", strf("nodes[%d].extensions", ni)) : nullptr;
-    if (!ext) return out;
+    if (!ext) return 0;
     const tinygltf::Node &nd = c.model.nodes[size_t(ni)];
     if (nd.mesh < 0) gfail(w + ": the node has no mesh to instance");
     const json *attrs = opt_object(*ext, "attributes", w);
@@ -80,7 +79,8 @@ std::vector<Mat4> node_instances(Ctx &c, int ni, size_t *total)
     if (count > kMaxInstances - *total)
         fail(PG_ERR_LIMIT, strf("%s: more than %zu instances in the scene", w.c_str(), kMaxInstances));
     *total += count;
-    out.reserve(count);
+    if (!out) return count;
+    out->reserve(count);
     for (size_t i = 0; i < count; i++) {
         float f[4];
         double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
@@ -102,9 +102,9 @@ std::vector<Mat4> node_instances(Ctx &c, int ni, size_t *total)
             if (!std::isfinite(x)) gfail(strf("%s: instance %zu: SCALE is not finite", w.c_str(), i));
         for (double x : q)
             if (!std::isfinite(x)) gfail(strf("%s: instance %zu: ROTATION is not finite", w.c_str(), i));
-        out.push_back(mat_trs(t, q, s, strf("%s: instance %zu: ROTATION", w.c_str(), i)));
+        out->push_back(mat_trs(t, q, s, strf("%s: instance %zu: ROTATION", w.c_str(), i)));
     }
-    return out;
+    return count;
 }
 
 } // namespace pg_gltf

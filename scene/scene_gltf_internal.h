@@ -148,6 +148,8 @@ struct Walker {
     std::vector<char> on_path;
     size_t visits = 0;
     size_t instances = 0; /* EXT_mesh_gpu_instancing instances drawn so far */
+    bool count_only = false; /* the first walk: only adds up the bytes the second will bake */
+    uint64_t planned = 0;
 
     /* scene_gltf_nodes.cpp; moving: an ancestor is animated (its primitives move with it) */
     void visit(int ni, const Mat4 &parent, int depth, bool moving = false);
@@ -222,9 +224,10 @@ Mat4 mat_trs(const double t[3], const double q[4], const double s[3], const std:
 
 /* scene_gltf_nodes.cpp */
 
-/* scene_gltf_instancing.cpp: nodes[ni]'s EXT_mesh_gpu_instancing transforms (empty without the
- * extension), checked; *total counts the scene's instances (PG_ERR_LIMIT past 2^20) */
-std::vector<Mat4> node_instances(Ctx &c, int ni, size_t *total);
+/* scene_gltf_instancing.cpp: how many EXT_mesh_gpu_instancing instances nodes[ni] has (0: no
+ * extension), checked, and with out their transforms; *total counts the scene's instances
+ * (PG_ERR_LIMIT past 2^20) */
+size_t node_instances(Ctx &c, int ni, size_t *total, std::vector<Mat4> *out);
 void camera_visit(const Ctx &c, int ni, const Mat4 &parent, std::vector<pg_scene_camera> &out);
 /* one camera object of the file, checked (no node: placement left 0, gltf_node -1) */
 pg_scene_camera camera_object(const Ctx &c, int ci);

@@ -15,6 +15,10 @@ namespace pg_gltf {
 
 constexpr int kMaxNodeDepth = 1024;
 constexpr size_t kMaxNodeVisits = size_t(1) << 20;
+/* every node and instance bakes its mesh into the scene's arrays: 8 GiB of vertices and indices at
+ * most, checked before anything is baked (Walker::count_only), so that a small file drawing a large
+ * mesh at many nodes (a DAG of children) or instances is refused instead of exhausting memory */
+constexpr uint64_t kMaxBakedBytes = uint64_t(8) << 30;
 
 Mat4 node_local(const tinygltf::Node &n, int ni)
 {
@@ -31,6 +35,35 @@ Mat4 node_local(const tinygltf::Node &n, int ni)
     if (n.rotation.size() == 4)
         for (int i = 0; i < 4; i++) q[i] = n.rotation[size_t(i)];
     return mat_trs(t, q, s, strf("nodes[%d].rotation", ni));
+}
+
+/* accessor ai's element count: range-checked against its data (get_view) when it has a bufferView
+ * or sparse values, else (and for a Draco primitive, decoded later) as declared */
+static uint64_t planned_count(Ctx &c, int ai, bool draco)
+{
+    const auto &acc = c.model.accessors;
+    if (ai < 0 || size_t(ai) >= acc.size()) return 0;
+    const tinygltf::Accessor &a = acc[size_t(ai)];
+    if (draco || (a.bufferView < 0 && !a.sparse.isSparse)) return a.count;
+    return get_view(c, ai).count;
+}
+
+/* The bytes one drawing of `mesh` bakes: 48 per vertex (twice in a file that animates: the
+ * mesh-space copy), 4 per triangle-list index; points and lines none. Before anything is baked. */
+static uint64_t planned_bytes(Ctx &c, const tinygltf::Mesh &mesh)
+{
+    uint64_t bytes = 0;
+    for (const tinygltf::Primitive &p : mesh.primitives) {
+        const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+        const int *pos = find_attr(p, "POSITION");
+        if (mode < TINYGLTF_MODE_TRIANGLES || !pos) continue;
+        const bool draco = p.extensions.count("KHR_draco_mesh_compression") != 0;
+        const uint64_t n = planned_count(c, *pos, draco);
+        uint64_t ni = p.indices >= 0 ? planned_count(c, p.indices, draco) : n;
+        if (mode != TINYGLTF_MODE_TRIANGLES) ni = ni > 2 ? 3 * (ni - 2) : 0;
+        bytes += n * sizeof(pg_vertex) * (c.animated ? 2 : 1) + ni * sizeof(uint32_t);
+    }
+    return bytes;
 }
 
 void Walker::visit(int ni, const Mat4 &parent, int depth, bool moving)
@@ -52,8 +85,17 @@ void Walker::visit(int ni, const Mat4 &parent, int depth, bool moving)
     moving = moving || (c.animated && c.node_animated[size_t(ni)]);
     if (nd.mesh >= 0 && size_t(nd.mesh) >= c.model.meshes.size())
         gfail(strf("nodes[%d].mesh: %d out of range", ni, nd.mesh));
-    const std::vector<Mat4> inst = node_instances(c, ni, &instances); /* EXT_mesh_gpu_instancing */
-    if (nd.mesh >= 0) {
+    std::vector<Mat4> inst; /* EXT_mesh_gpu_instancing */
+    const size_t n_inst = node_instances(c, ni, &instances, count_only ? nullptr : &inst);
+    if (nd.mesh >= 0 && count_only) {
+        const uint64_t per = planned_bytes(c, c.model.meshes[size_t(nd.mesh)]);
+        const uint64_t times = n_inst ? n_inst : 1;
+        if (per > (kMaxBakedBytes - planned) / times)
+            fail(PG_ERR_LIMIT, strf("nodes[%d]: the meshes drawn at every node and instance would bake more than %llu "
+                                    "GiB of vertices and indices (passgraph's limit for a scene)",
+                                    ni, (unsigned long long)(kMaxBakedBytes >> 30)));
+        planned += per * times;
+    } else if (nd.mesh >= 0) {
         const tinygltf::Mesh &mesh = c.model.meshes[size_t(nd.mesh)];
         if (inst.empty())
             for (size_t p = 0; p < mesh.primitives.size(); p++)

@@ -712,6 +712,35 @@ write("instancing_bad_accessor.gltf", instancing_doc({"SCALE": 7}), "PG_ERR_GLTF
 write("instancing_only_custom.gltf", instancing_doc({"_ID": 0}), "PG_ERR_GLTF",
       "EXT_mesh_gpu_instancing.attributes: none of TRANSLATION, ROTATION, SCALE")
 
+# a small file that draws a 400-vertex mesh (1,200 indices: 24,000 baked bytes) at 2^19 leaves of a
+# DAG of children, or at 2^20 EXT_mesh_gpu_instancing instances (a sparse accessor: 12 bytes of
+# data): 12.6 and 25 GB of vertices and indices, refused before anything is baked
+BIG_POS = f32(*[c for i in range(400) for c in (i % 20 * 0.05, i // 20 * 0.05, 0.0)])
+BIG_IDX = struct.pack("<1200H", *[(i * 7) % 400 for i in range(1200)])
+
+
+def bake_limit_doc():
+    d, data = base_doc(pos=BIG_POS, idx=BIG_IDX, idx_count=1200)
+    d["accessors"][0]["count"] = 400
+    return d, data
+
+
+d, _ = bake_limit_doc()
+d["nodes"] = [{"children": [i + 1, i + 1]} for i in range(19)] + [{"mesh": 0}]
+write("bake_limit_dag.gltf", d, "PG_ERR_LIMIT",
+      "nodes[19]: the meshes drawn at every node and instance would bake more than 8 GiB of vertices and indices")
+d, data = bake_limit_doc()
+d["bufferViews"].append({"buffer": 0, "byteOffset": len(data), "byteLength": 16})
+data += struct.pack("<I3f", 5, 1.0, 2.0, 3.0)
+d["buffers"][0] = {"byteLength": len(data), "uri": b64(data)}
+d["accessors"].append({"componentType": 5126, "count": 1 << 20, "type": "VEC3",
+                       "sparse": {"count": 1, "indices": {"bufferView": 2, "componentType": 5125},
+                                  "values": {"bufferView": 2, "byteOffset": 4}}})
+d["nodes"] = [{"mesh": 0, "extensions": {"EXT_mesh_gpu_instancing": {"attributes": {"TRANSLATION": 2}}}}]
+d["extensionsUsed"] = ["EXT_mesh_gpu_instancing"]
+write("bake_limit_instances.gltf", d, "PG_ERR_LIMIT",
+      "nodes[0]: the meshes drawn at every node and instance would bake more than 8 GiB of vertices and indices")
+
 # texture-source extensions (webp/gen_webp.py has the files that load): a truncated WebP image, a
 # KHR_texture_basisu texture without a fallback source, an EXT_texture_webp source out of range
 
