@@ -1,7 +1,9 @@
 /* fuzz_hdr.c - libFuzzer target for pg_environment_load (scene/environment.c: the Radiance HDR
- * header and row checks, stb_image's decoder, the levels, the clamping, the sampling tables).
+ * header and row checks, stb_image's decoder, image/exr.c's OpenEXR reader, the levels, the
+ * clamping, the sampling tables).
  *
- * Each input is written to a private temporary directory as input.hdr and loaded from there.
+ * Each input is written to a private temporary directory as input.exr when it starts with
+ * OpenEXR's magic number (76 2f 31 01), else as input.hdr, and loaded from there.
  * Invariants checked on an environment that loads (abort = a finding): 2:1 within a texel, at least
  * 8 x 4, levels halving down to 1 texel wide or tall inside n_texels; every texel finite, >= 0 and
  * <= PG_ENV_MAX_VALUE with alpha 1; the mean radiance finite; the sampling tables (when present)
@@ -10,17 +12,20 @@
 #include "environment.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "fuzz_common.h"
 
-static char g_path[512];
+static char g_hdr[512], g_exr[512];
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    snprintf(g_path, sizeof g_path, "%s/input.hdr", fuzz_dir("hdr"));
+    const char *dir = fuzz_dir("hdr");
+    snprintf(g_hdr, sizeof g_hdr, "%s/input.hdr", dir);
+    snprintf(g_exr, sizeof g_exr, "%s/input.exr", dir);
     return 0;
 }
 
@@ -60,6 +65,9 @@ static void check_env(const pg_environment *e)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
+    static const uint8_t exr_magic[4] = {0x76, 0x2f, 0x31, 0x01};
+    const bool exr = size >= 4 && memcmp(data, exr_magic, 4) == 0;
+    const char *g_path = exr ? g_exr : g_hdr;
     fuzz_write(g_path, data, size);
     pg_environment *e = (pg_environment *)g_path; /* any non-NULL value: must be reset */
     pg_error err = {0};
@@ -68,7 +76,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if ((r == PG_OK) != (e != NULL)) fuzz_die("result %s, environment %p", pg_result_name(r), (void *)e);
     if (r != PG_OK) {
         if (!memchr(err.msg, 0, sizeof err.msg)) fuzz_die("message not terminated");
-        if (err.code != r || !err.msg[0] || !strstr(err.msg, "input.hdr"))
+        if (err.code != r || !err.msg[0] || !strstr(err.msg, exr ? "input.exr" : "input.hdr"))
             fuzz_die("returned %s, err.code %s, message '%s'", pg_result_name(r), pg_result_name(err.code), err.msg);
     } else {
         check_env(e);
