@@ -88,12 +88,33 @@ static double flip_cmax(void)
 /* ---- separable filtering ---------------------------------------------------------------------- */
 
 typedef struct flip_kernel {
-    int r;      /* taps -r..r */
-    float *k;   /* 2r+1 weights */
+    int r;         /* taps -r..r */
+    float *k;      /* 2r+1 weights */
+    int shape;     /* FLIP_KERNEL_ANY, or a feature detector (weights summing to 0), applied by
+                    * pairs of taps so that a flat region gives exactly 0 in float too (as in exact
+                    * arithmetic): FLIP_KERNEL_ODD (k_-j = -k_j): sum_j>0 k_j (s_j - s_-j);
+                    * FLIP_KERNEL_EVEN (k_-j = k_j): sum_j>0 k_j ((s_j - s_0) + (s_-j - s_0)) */
 } flip_kernel;
+enum { FLIP_KERNEL_ANY, FLIP_KERNEL_ODD, FLIP_KERNEL_EVEN };
 
-/* dst = src correlated with k along rows; pad: scratch of w + 2r floats */
-static void conv_rows(const float *src, float *dst, uint32_t w, uint32_t h, const flip_kernel *k, float *pad)
+/* d[x] (+)= weight x the zero-sum kernel k at the samples at[j][x], j = -r..r (at: r + j) */
+static void conv_paired(float *d, const float *const *at, uint32_t w, const flip_kernel *k, float weight)
+{
+    const int r = k->r;
+    const float *c = at[r];
+    for (int j = 1; j <= r; j++) {
+        const float kj = weight * k->k[r + j];
+        const float *a = at[r + j], *b = at[r - j];
+        if (k->shape == FLIP_KERNEL_ODD)
+            for (uint32_t x = 0; x < w; x++) d[x] += kj * (a[x] - b[x]);
+        else
+            for (uint32_t x = 0; x < w; x++) d[x] += kj * ((a[x] - c[x]) + (b[x] - c[x]));
+    }
+}
+
+/* dst = src correlated with k along rows; pad: scratch of w + 2r floats, at: of 2r + 1 pointers */
+static void conv_rows(const float *src, float *dst, uint32_t w, uint32_t h, const flip_kernel *k, float *pad,
+                      const float **at)
 {
     int r = k->r;
     size_t n = (size_t)w + 2 * (size_t)r;
@@ -105,6 +126,11 @@ static void conv_rows(const float *src, float *dst, uint32_t w, uint32_t h, cons
             pad[i] = s[x < 0 ? 0 : (x >= (long)w ? (long)w - 1 : x)];
         }
         for (uint32_t x = 0; x < w; x++) d[x] = 0.0f;
+        if (k->shape != FLIP_KERNEL_ANY) {
+            for (int j = 0; j <= 2 * r; j++) at[j] = pad + j;
+            conv_paired(d, at, w, k, 1.0f);
+            continue;
+        }
         for (int j = 0; j <= 2 * r; j++) {
             float kj = k->k[j];
             const float *p = pad + j;
@@ -114,9 +140,9 @@ static void conv_rows(const float *src, float *dst, uint32_t w, uint32_t h, cons
 }
 
 /* dst = src correlated with k along columns (replicated borders); acc += weight * result when
- * accumulate, else dst = result */
+ * accumulate, else dst = result; at: scratch of 2r + 1 pointers */
 static void conv_cols(const float *src, float *dst, uint32_t w, uint32_t h, const flip_kernel *k, float weight,
-                      bool accumulate)
+                      bool accumulate, const float **at)
 {
     int r = k->r;
     for (uint32_t y = 0; y < h; y++) {
@@ -126,8 +152,15 @@ static void conv_cols(const float *src, float *dst, uint32_t w, uint32_t h, cons
         for (int j = -r; j <= r; j++) {
             long yy = (long)y + j;
             yy = yy < 0 ? 0 : (yy >= (long)h ? (long)h - 1 : yy);
-            const float *s = src + (size_t)yy * w;
-            float kj = weight * k->k[j + r];
+            at[j + r] = src + (size_t)yy * w;
+        }
+        if (k->shape != FLIP_KERNEL_ANY) {
+            conv_paired(d, at, w, k, weight);
+            continue;
+        }
+        for (int j = 0; j <= 2 * r; j++) {
+            const float *s = at[j];
+            float kj = weight * k->k[j];
             for (uint32_t x = 0; x < w; x++) d[x] += kj * s[x];
         }
     }
@@ -186,6 +219,7 @@ typedef struct flip_ctx {
     float csf_w[3][2];       /* their weights in the normalised 2D kernel */
     flip_kernel fg, fd1, fd2; /* feature kernels */
     float *pad;               /* row scratch */
+    const float **at;         /* a filter's 2r + 1 source rows (conv_rows, conv_cols) */
     float *plane[2][5];       /* per image: Y, Cx, Cz planes, then edge and point strengths */
     float *tmp[3];            /* scratch planes */
     float *kbuf;
@@ -194,6 +228,7 @@ typedef struct flip_ctx {
 static void ctx_free(flip_ctx *c)
 {
     free(c->pad);
+    free(c->at);
     for (int i = 0; i < 2; i++)
         for (int p = 0; p < 5; p++) free(c->plane[i][p]);
     for (int i = 0; i < 3; i++) free(c->tmp[i]);
@@ -226,6 +261,8 @@ static void ctx_kernels(flip_ctx *c, double ppd, int rc, int rf)
         kb += 2 * rf + 1;
     }
     feature_kernels(ppd, &c->fg, &c->fd1, &c->fd2);
+    c->fd1.shape = FLIP_KERNEL_ODD;
+    c->fd2.shape = FLIP_KERNEL_EVEN;
 }
 
 static pg_result ctx_init(flip_ctx *c, uint32_t w, uint32_t h, double ppd, pg_error *err)
@@ -242,8 +279,9 @@ static pg_result ctx_init(flip_ctx *c, uint32_t w, uint32_t h, double ppd, pg_er
         return pg_fail(err, PG_ERR_INVALID_ARG, "FLIP: ppd %g gives a filter radius too large", ppd);
     size_t n = (size_t)w * h, rmax = (size_t)(rc > rf ? rc : rf);
     c->pad = malloc(((size_t)w + 2 * rmax) * sizeof(float));
+    c->at = malloc((2 * rmax + 1) * sizeof *c->at);
     c->kbuf = malloc((6 * (2 * (size_t)rc + 1) + 3 * (2 * (size_t)rf + 1)) * sizeof(float));
-    bool ok = c->pad && c->kbuf;
+    bool ok = c->pad && c->at && c->kbuf;
     for (int i = 0; i < 2; i++)
         for (int p = 0; p < 5; p++) ok = ok && (c->plane[i][p] = malloc(n * sizeof(float)));
     for (int i = 0; i < 3; i++) ok = ok && (c->tmp[i] = malloc(n * sizeof(float)));
@@ -278,14 +316,14 @@ static void features(flip_ctx *c, int i)
     size_t n = (size_t)w * h;
     float *y = c->tmp[2], *e = c->plane[i][3], *pt = c->plane[i][4], *a = c->tmp[0], *b = c->tmp[1];
     for (size_t p = 0; p < n; p++) y[p] = (c->plane[i][0][p] + 16.0f) / 116.0f; /* Y / Yn in [0, 1] */
-    conv_rows(y, a, w, h, &c->fd1, c->pad);
-    conv_cols(a, e, w, h, &c->fg, 1.0f, false); /* edge x */
-    conv_rows(y, a, w, h, &c->fd2, c->pad);
-    conv_cols(a, pt, w, h, &c->fg, 1.0f, false); /* point x */
-    conv_rows(y, a, w, h, &c->fg, c->pad);
-    conv_cols(a, b, w, h, &c->fd1, 1.0f, false); /* edge y */
+    conv_rows(y, a, w, h, &c->fd1, c->pad, c->at);
+    conv_cols(a, e, w, h, &c->fg, 1.0f, false, c->at); /* edge x */
+    conv_rows(y, a, w, h, &c->fd2, c->pad, c->at);
+    conv_cols(a, pt, w, h, &c->fg, 1.0f, false, c->at); /* point x */
+    conv_rows(y, a, w, h, &c->fg, c->pad, c->at);
+    conv_cols(a, b, w, h, &c->fd1, 1.0f, false, c->at); /* edge y */
     for (size_t p = 0; p < n; p++) e[p] = sqrtf(e[p] * e[p] + b[p] * b[p]);
-    conv_cols(a, b, w, h, &c->fd2, 1.0f, false); /* point y */
+    conv_cols(a, b, w, h, &c->fd2, 1.0f, false, c->at); /* point y */
     for (size_t p = 0; p < n; p++) pt[p] = sqrtf(pt[p] * pt[p] + b[p] * b[p]);
 }
 
@@ -299,8 +337,8 @@ static void csf_filter(flip_ctx *c, int i)
         bool any = false;
         for (int t = 0; t < 2; t++) {
             if (CSF[ch][2 * t] == 0.0) continue;
-            conv_rows(p, c->tmp[0], w, h, &c->csf[ch][t], c->pad);
-            conv_cols(c->tmp[0], out, w, h, &c->csf[ch][t], c->csf_w[ch][t], any);
+            conv_rows(p, c->tmp[0], w, h, &c->csf[ch][t], c->pad, c->at);
+            conv_cols(c->tmp[0], out, w, h, &c->csf[ch][t], c->csf_w[ch][t], any, c->at);
             any = true;
         }
         memcpy(p, out, n * sizeof(float));

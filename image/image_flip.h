@@ -21,7 +21,9 @@
  *   (pt / (pc cmax)) e, otherwise pt + (e - pc cmax) / (cmax - pc cmax) (1 - pt); clamped to <= 1.
  * - Features on the unfiltered achromatic channel Y/Yn in [0, 1]: Gaussian sigma = 0.5 * 0.082 * ppd
  *   pixels, radius ceil(3 sigma); edge kernel -x g, point kernel (x^2/sigma^2 - 1) g, each with its
- *   positive weights normalised to sum 1 and its negative weights to -1; edge (point) strength =
+ *   positive weights normalised to sum 1 and its negative weights to -1, applied by pairs of taps
+ *   (k_j (s_j - s_-j) for the edge, k_j ((s_j - s_0) + (s_-j - s_0)) for the point) so that a flat
+ *   region gives exactly 0 in float too; edge (point) strength =
  *   the length of the (x, y) responses. Feature error f = (max(|dedge|, |dpoint|) / sqrt(2))^qf, qf = 0.5.
  * - FLIP = colour_error^(1 - f), in [0, 1].
  *

@@ -57,8 +57,10 @@ import flip_oracle as fo  # noqa: E402
 # where they are near 0: d(h^0.7)/dh is unbounded at h = 0, and so is d(x^0.5)/dx, which moves
 # colour^(1-f) by -ln(colour) colour df. A fixed map tolerance is therefore either too loose
 # everywhere or too tight there (the float32 copy is off by 2e-4 at near-zero HyAB pixels of
-# edges_shift, passgraph by 5e-5; in hue_shift's flat patches passgraph's feature difference is
-# ~1.6e-8 instead of 1e-16, so f = 1e-4 and the map is 3.5e-5 higher). So each pixel gets the
+# edges_shift, passgraph by 5e-5; in hue_shift's flat patches passgraph's feature difference was
+# ~1.6e-8 instead of 1e-16, so f = 1e-4 and the map 3.5e-5 higher, until its feature detectors were
+# applied by pairs of taps, exact on flat regions: flat_colours checks that with FLAT_TOL, 1e-6,
+# measured 1.2e-8). So each pixel gets the
 # envelope the map can move when HyAB moves by DH and the feature difference by DX (both ~1.5x the
 # measured float32 maxima), plus
 # MAP_FLOOR (float32 powers and storage of a value <= 1). Means are checked with fixed, tight
@@ -74,6 +76,7 @@ DX = 1.5e-6             # absolute feature-difference error float32 can explain
 MAP_FLOOR = 2e-6        # float32 redistribution, powers and storage of a map value in [0, 1]
 MAP_MEAN_TOL = 5e-6     # mean |map diff| over a pair
 MEAN_TOL = 5e-6         # |mean diff|
+FLAT_TOL = 1e-6         # flat_colours: |passgraph - oracle| where both are the colour error alone
 EXPOSURE_TOL = 1e-5     # |start/stop diff| in stops: log2 of float32 luminances (rel. 1e-7 -> 1.5e-7)
 SSIM_TOL = 1e-8         # |SSIM diff|: measured <= 5e-10, i.e. passgraph's statistics are double, like
 #                         skimage's; float32 statistics (E[x^2] - E[x]^2 of 0..255 values cancels)
@@ -171,6 +174,15 @@ def pair_green_blue(w=64, h=48):
     return to_rgba8(g), to_rgba8(b)
 
 
+def pair_flat_colours(w=40, h=30):
+    """Two flat images of mid colours: no edge, no point, so FLIP is the colour error alone, the
+    same at every pixel (passgraph's feature detectors must give exactly 0 there, not a float32
+    residual that the 0.5 power turns into a visible shift)."""
+    a = np.ones((h, w, 3)) * np.array([0.6, 0.3, 0.2])
+    b = np.ones((h, w, 3)) * np.array([0.45, 0.35, 0.3])
+    return to_rgba8(a), to_rgba8(b)
+
+
 def pair_identical(w=64, h=48, seed=6):
     img = to_rgba8(np.random.default_rng(seed).uniform(0.0, 1.0, (h, w, 3)))
     return img, img.copy()
@@ -198,6 +210,7 @@ def ldr_pairs():
         ('hue_shift', pair_hue_shift(), None),
         ('dark_sparse', pair_dark_sparse(), None),
         ('green_blue', pair_green_blue(), None),
+        ('flat_colours', pair_flat_colours(), None),
         ('identical', pair_identical(), None),
         ('random_67x45', pair_random(), None),
         ('tiny_13x9', pair_tiny(), None),
@@ -347,6 +360,9 @@ def run_ldr(pg, rows, maps):
         or_map = fo.combine(*parts)
         env = rounding_envelope([parts])
         check_anchor(name, or_map)
+        if name == 'flat_colours' and (pg_map.max() != pg_map.min() or abs(float(pg_map[0, 0]) - or_map[0, 0]) > FLAT_TOL):
+            fail('%s: passgraph map %.9f..%.9f, oracle %.9f: a flat pair must give its colour error, the same everywhere'
+                 % (name, pg_map.min(), pg_map.max(), or_map[0, 0]))
         dmax, dmean, ratio = compare_maps(name, pg_map, pg_out['mean'], or_map, float(or_map.mean()), env)
         rows.append((name, pg_out['mean'], float(or_map.mean()), dmax, dmean, '%.2f' % ratio))
         maps.append((name, 'ldr', test, ref, ppd_v, pg_map, env))
@@ -359,6 +375,9 @@ def run_hdr(pg, rows, maps):
         or_map, st = fo.hdr_flip(test, ref, ppd_v, keep_parts=True)
         env = rounding_envelope(st['parts'])
         check_anchor(name, or_map)
+        if name == 'flat_colours' and (pg_map.max() != pg_map.min() or abs(float(pg_map[0, 0]) - or_map[0, 0]) > FLAT_TOL):
+            fail('%s: passgraph map %.9f..%.9f, oracle %.9f: a flat pair must give its colour error, the same everywhere'
+                 % (name, pg_map.min(), pg_map.max(), or_map[0, 0]))
         dmax, dmean, ratio = compare_maps(name, pg_map, pg_out['mean'], or_map, st['mean'], env)
         for key in ('start_exposure', 'stop_exposure'):
             if not abs(pg_out[key] - st[key]) <= EXPOSURE_TOL:
