@@ -110,14 +110,16 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     if (app->has_scenario && app->scenario.scene[0] && (!opt->scene || !strcmp(opt->scene, "default")))
         scene = app->scenario.scene;
     pg_strlcpy(app->scene_path, scene, sizeof app->scene_path);
-    pg_scene_load_opts lo = {.gltf_scene = opt->gltf_scene};
+    pg_scene_load_opts lo = {.gltf_scene = opt->gltf_scene, .gltf_variant = opt->variant};
     if ((r = pg_scene_load_ex(scene, &lo, &app->scene, err))) return r;
     if (app->has_scenario && pg_scenario_shading(&app->scenario) >= 0) /* what a pipeline's shading "auto" picks */
         app->scene->features.auto_shading = (uint8_t)pg_scenario_shading(&app->scenario); /* before the GPU copy */
     pg_scene_print_warnings(app->scene, "passgraph: ", stderr); /* once per loaded scene */
     if ((r = pg_app_pose_scene(app, app->scene, err))) goto fail;
-    char choice[PG_PATH_MAX + 160];
+    char choice[PG_PATH_MAX + 800];
     if (pg_scene_choice_line(app->scene, choice, sizeof choice) && !opt->quiet)
+        fprintf(stderr, "passgraph: %s\n", choice);
+    if (pg_scene_variant_line(app->scene, choice, sizeof choice) && !opt->quiet)
         fprintf(stderr, "passgraph: %s\n", choice);
     if ((r = pg_app_attach_environment(app, app->scene, err))) goto fail;
     if (with_gpu) {
@@ -201,8 +203,9 @@ void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const
 {
     if (!label) {
         fprintf(f, "explain: %s\nexplain: %s\n", app->camera_why, app->lights_why);
-        char choice[PG_PATH_MAX + 160];
+        char choice[PG_PATH_MAX + 800];
         if (pg_scene_choice_line(app->scene, choice, sizeof choice)) fprintf(f, "explain: scene: %s\n", choice);
+        if (pg_scene_variant_line(app->scene, choice, sizeof choice)) fprintf(f, "explain: scene: %s\n", choice);
         char anim[256];
         if (pg_anim_describe(app->scene, app->animation, app->opt.time, anim, sizeof anim))
             fprintf(f, "explain: animation: %s; --animation N|NAME|all|none, --time T\n", anim);

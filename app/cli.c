@@ -16,6 +16,8 @@ const char *const pg_cli_common_help =
     "  --scene FILE|default glTF 2.0 scene (.gltf/.glb) or the built-in atrium (default)\n"
     "  --gltf-scene N       the glTF scene (scenes[N]) to draw (default: the file's `scene`,\n"
     "                       else scenes[0]); a line says so when a file has several\n"
+    "  --variant N|NAME     the glTF material variant to draw (KHR_materials_variants: index or\n"
+    "                       name; default: each primitive's own material); a line lists them\n"
     "  --scenario FILE      JSON set-up: camera, light box, count, radius, intensity, motion\n"
     "                       (e.g. assets/scenarios/cis565.json); explicit options override it\n"
     "  --camera N|NAME|auto a glTF camera (index among the scene's camera nodes, camera or node\n"
@@ -280,6 +282,20 @@ static pg_result parse_plugin_or_animation(pg_cli_common *c, const char *a, cons
     return PG_OK;
 }
 
+/* --gltf-scene N, --variant N|NAME: what a glTF file draws */
+static pg_result parse_scene_choice(pg_cli_common *c, const char *a, const char *v, pg_error *err)
+{
+    if (!strcmp(a, "--variant")) {
+        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--variant: empty (an index or a variant name)");
+        c->variant = v;
+        return PG_OK;
+    }
+    uint64_t u;
+    pg_result r = parse_u64(a, v, 0, 1000000, &u, err);
+    if (!r) c->gltf_scene = (int)u;
+    return r;
+}
+
 pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, bool *used, pg_error *err)
 {
     const char *a = argv[*i];
@@ -301,10 +317,9 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
     } else if (!strcmp(a, "--scene")) {
         NEED_VALUE();
         c->scene = v;
-    } else if (!strcmp(a, "--gltf-scene")) {
+    } else if (!strcmp(a, "--gltf-scene") || !strcmp(a, "--variant")) {
         NEED_VALUE();
-        if ((r = parse_u64(a, v, 0, 1000000, &u, err))) return r;
-        c->gltf_scene = (int)u;
+        if ((r = parse_scene_choice(c, a, v, err))) return r;
     } else if (!strcmp(a, "--scenario")) {
         NEED_VALUE();
         c->scenario = v;

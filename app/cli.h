@@ -18,6 +18,7 @@ typedef struct pg_cli_common {
     const char *scenario;        /* --scenario FILE */
     const char *camera;          /* --camera N|NAME|auto (NULL: the default choice, app.h) */
     int gltf_scene;              /* --gltf-scene N (-1: the file's default scene) */
+    const char *variant;         /* --variant N|NAME (KHR_materials_variants; NULL: the defaults) */
     bool has_lights;             /* --lights N given */
     uint32_t lights;
     uint32_t width, height;      /* --size WxH */

@@ -173,6 +173,13 @@ typedef struct pg_scene {
     int gltf_scene;
     bool gltf_scene_chosen;   /* picked by pg_scene_load_opts.gltf_scene, not the file's default */
     char gltf_scene_name[PG_NAME_MAX];
+    /* KHR_materials_variants: how many the file names, which one is drawn (-1: the default
+     * materials) and its name, and the first ones as "0 'red', 1 'blue'" (for
+     * pg_scene_variant_line) */
+    uint32_t n_gltf_variants;
+    int gltf_variant;
+    char gltf_variant_name[PG_NAME_MAX];
+    char gltf_variant_list[512];
     /* The environment light (environment.h): set by the tools after loading (--environment, or the
      * neutral default sky for a glTF file without lights: pg_scene_set_environment), never by the
      * loaders; owned; NULL when there is none (features.has_environment). */
@@ -188,6 +195,9 @@ typedef struct pg_scene_load_opts {
     int gltf_scene; /* the glTF scene to draw: -1 = the file's `scene`, else scenes[0] (the
                        default); N >= 0: scenes[N] (out of range: PG_ERR_INVALID_ARG naming the
                        count; refused for the built-in atrium) */
+    const char *gltf_variant; /* KHR_materials_variants: the variant to draw, an index or a name;
+                                 NULL or "": the default materials (unknown: PG_ERR_INVALID_ARG
+                                 listing the file's variants; refused for the built-in atrium) */
 } pg_scene_load_opts;
 
 typedef struct pg_camera {
@@ -240,6 +250,10 @@ pg_result pg_scene_load_ex(const char *path_or_default, const pg_scene_load_opts
  * drawing scene 0 'day' (the file's default); --gltf-scene N draws another"), else "" (returns
  * false). */
 bool pg_scene_choice_line(const pg_scene *scene, char *buf, size_t size);
+/* One line saying which material variant is drawn when the file has KHR_materials_variants
+ * ("x.gltf has 3 material variants (0 'red', 1 'blue', 2 'green'); drawing the default materials;
+ * --variant N|NAME draws one"), else "" (returns false). */
+bool pg_scene_variant_line(const pg_scene *scene, char *buf, size_t size);
 void pg_scene_free(pg_scene *scene);
 /* Gives the scene an environment light (owned from then on; NULL removes it) and sets
  * features.has_environment; call before pg_scene_gpu_create. */

@@ -603,6 +603,11 @@ static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &
         pg_strlcpy(s->gltf_scene_name, nm.empty() ? strf("scenes[%d]", c.drawn_scene).c_str() : nm.c_str(),
                    sizeof s->gltf_scene_name);
     }
+    s->n_gltf_variants = uint32_t(c.variant_names.size());
+    s->gltf_variant = c.variant;
+    if (c.variant >= 0) pg_strlcpy(s->gltf_variant_name, c.variant_names[size_t(c.variant)].c_str(),
+                                   sizeof s->gltf_variant_name);
+    pg_strlcpy(s->gltf_variant_list, variant_list_line(c).c_str(), sizeof s->gltf_variant_list);
     s->vertices = copy_out(o.verts);
     s->n_vertices = uint32_t(o.verts.size());
     s->indices = copy_out(o.idx);
@@ -658,6 +663,7 @@ pg_scene *load(Ctx &c)
     {
         std::vector<int> roots = root_nodes(c);
         anim_prepare(c);
+        variants_prepare(c); /* KHR_materials_variants: the materials primitives draw */
         Walker plan{c, o, std::vector<char>(md.nodes.size(), 0), 0};
         plan.count_only = true; /* PG_ERR_LIMIT before baking what memory cannot hold */
         for (int r : roots) plan.visit(r, mat_identity(), 0);
@@ -705,6 +711,7 @@ extern "C" pg_result pg_scene_load_gltf_ex(const char *path, const pg_scene_load
         c.base_dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : c.path.substr(0, slash));
         c.dir_prefix = join_path(c.base_dir, "");
         if (opts) c.want_scene = opts->gltf_scene;
+        if (opts && opts->gltf_variant) c.want_variant = opts->gltf_variant;
         *out = load(c);
         return PG_OK;
     } catch (const LoadFail &f) {

@@ -15,6 +15,7 @@
  *   scene_gltf_instancing.cpp  EXT_mesh_gpu_instancing: a node's instance transforms
  *   scene_gltf_texture_sources.cpp  which image a texture draws (EXT_texture_webp; the undecoded
  *                              KHR_texture_basisu, MSFT_texture_dds, EXT_texture_avif)
+ *   scene_gltf_variants.cpp    KHR_materials_variants: the variants, each primitive's material
  *   scene_gltf_warnings.cpp    the warning lines (pg_scene.warnings)
  *   scene_gltf_util.cpp        what every step uses: messages, throwers, uri/path helpers,
  *                              accessor type sizes, bufferView bytes, matrices (a leaf)
@@ -68,6 +69,13 @@ struct Ctx {
     std::string image_err; /* set by the image callback */
     bool quantization = false; /* KHR_mesh_quantization in extensionsUsed */
     int want_scene = -1;       /* pg_scene_load_opts.gltf_scene */
+    /* KHR_materials_variants (scene_gltf_variants.cpp): pg_scene_load_opts.gltf_variant, the
+     * variant drawn (-1: the default materials), the file's variant names, and the chosen
+     * variant's material of each (mesh, primitive) that maps it */
+    std::string want_variant;
+    int variant = -1;
+    std::vector<std::string> variant_names;
+    std::map<std::pair<int, int>, int> variant_material;
     int drawn_scene = -1;      /* the scenes[] index drawn (-1: every root node) */
     unsigned skipped_prims = 0;
     unsigned color1_prims = 0;   /* drawn primitives with COLOR_1.. (ignored) */
@@ -162,6 +170,13 @@ uint64_t uint_field(const json &o, const char *key, const std::string &where, bo
                     uint64_t def = 0);
 bool is_regular_file(const std::string &p, uint64_t *size);
 void prevalidate(Ctx &c);
+
+/* scene_gltf_variants.cpp: KHR_materials_variants read and checked, the chosen variant resolved
+ * (before the node walk); the material primitive (mi, pi) draws (dflt: its own); the variants as
+ * "0 'red', 1 'blue'" */
+void variants_prepare(Ctx &c);
+int variant_material(const Ctx &c, int mi, int pi, int dflt);
+std::string variant_list_line(const Ctx &c);
 
 /* scene_gltf_texture_sources.cpp: the texture-source extensions, before tinygltf parses the file */
 void texture_sources(Ctx &c);

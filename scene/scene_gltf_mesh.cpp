@@ -400,7 +400,8 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool 
     pr.material = 0;
     o.idx.insert(o.idx.end(), ind.begin(), ind.end());
     o.prims.push_back(pr);
-    o.prim_gltf_material.push_back(prim.material >= 0 ? uint32_t(prim.material) : UINT32_MAX);
+    const int material = variant_material(c, mi, pi, prim.material); /* KHR_materials_variants */
+    o.prim_gltf_material.push_back(material >= 0 ? uint32_t(material) : UINT32_MAX);
     o.prim_has_uv1.push_back(a.uv1 != nullptr);
 }
 

@@ -20,7 +20,7 @@ namespace pg_gltf {
 constexpr const char *kImplementedExtensions[] = {"EXT_mesh_gpu_instancing", "EXT_meshopt_compression",
                                                   "EXT_texture_webp", "KHR_draco_mesh_compression",
                                                   "KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                                  "KHR_materials_unlit",
+                                                  "KHR_materials_unlit", "KHR_materials_variants",
                                                   "KHR_mesh_quantization", "KHR_texture_transform",
                                                   "PASSGRAPH_lights_table"};
 bool extension_implemented(const std::string &e)

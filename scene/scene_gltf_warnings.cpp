@@ -58,7 +58,6 @@ std::string filter_name(int f)
 std::string extension_effect(const std::string &e)
 {
     if (e == "KHR_texture_transform") return "texture offset/rotation/scale not applied";
-    if (e == "KHR_materials_variants") return "the default material of each primitive is drawn";
     if (e == "KHR_texture_basisu" || e == "MSFT_texture_dds" || e == "EXT_texture_avif")
         return "its images are not decoded; each texture's fallback source image is drawn";
     if (e.compare(0, 14, "KHR_materials_") == 0) return "the core material is drawn without it";

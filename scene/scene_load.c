@@ -19,6 +19,10 @@ pg_result pg_scene_load_ex(const char *path_or_default, const pg_scene_load_opts
             return pg_fail(err, PG_ERR_INVALID_ARG,
                            "--gltf-scene %d: the built-in atrium is not a glTF file (give --scene FILE.gltf)",
                            opts->gltf_scene);
+        if (opts && opts->gltf_variant && opts->gltf_variant[0])
+            return pg_fail(err, PG_ERR_INVALID_ARG,
+                           "--variant %s: the built-in atrium is not a glTF file (give --scene FILE.gltf)",
+                           opts->gltf_variant);
         pg_result r = pg_scene_create_default(out, err);
         if (!r) (*out)->gltf_scene = -1;
         return r;
@@ -38,5 +42,20 @@ bool pg_scene_choice_line(const pg_scene *scene, char *buf, size_t size)
     snprintf(buf, size, "%s has %u scenes; drawing scene %d '%s'%s; --gltf-scene N draws another", scene->path,
              scene->n_gltf_scenes, scene->gltf_scene, scene->gltf_scene_name,
              scene->gltf_scene_chosen ? " (--gltf-scene)" : " (the file's default)");
+    return true;
+}
+
+bool pg_scene_variant_line(const pg_scene *scene, char *buf, size_t size)
+{
+    if (size) buf[0] = 0;
+    if (!scene || scene->n_gltf_variants == 0) return false;
+    if (scene->gltf_variant >= 0)
+        snprintf(buf, size, "%s has %u material variant%s (%s); drawing variant %d '%s' (--variant)", scene->path,
+                 scene->n_gltf_variants, scene->n_gltf_variants == 1 ? "" : "s", scene->gltf_variant_list,
+                 scene->gltf_variant, scene->gltf_variant_name);
+    else
+        snprintf(buf, size, "%s has %u material variant%s (%s); drawing the default materials; --variant N|NAME "
+                 "draws one", scene->path, scene->n_gltf_variants, scene->n_gltf_variants == 1 ? "" : "s",
+                 scene->gltf_variant_list);
     return true;
 }

@@ -571,6 +571,17 @@ done
   && ok || { bad "--gltf-scene out of range"; cat "$tmp/cerr"; }
 "$PG" render --size 64x36 --gltf-scene 0 --out "$tmp/c.png" >/dev/null 2>"$tmp/cerr"
 [ $? -eq 1 ] && grep -q "the built-in atrium is not a glTF file" "$tmp/cerr" && ok || { bad "--gltf-scene on the atrium"; cat "$tmp/cerr"; }
+# KHR_materials_variants: a line lists the variants, --variant NAME draws one (explain says so), an
+# unknown name is an error listing them
+shoe="$root/tests/corpus/gltf/variants/shoe.gltf"
+"$PG" render --size 64x36 --scene "$shoe" --out "$tmp/c.png" >/dev/null 2>"$tmp/cerr" &&
+  grep -q "^passgraph: .*shoe.gltf has 3 material variants (0 'red', 1 'blue', 2 'midnight'); drawing the default materials; --variant N|NAME draws one$" "$tmp/cerr" \
+  && ok || { bad "variants line"; cat "$tmp/cerr"; }
+"$PG" render --size 64x36 --explain --scene "$shoe" --variant midnight --out "$tmp/c.png" >"$tmp/cl" 2>"$tmp/cerr" &&
+  grep -q "^explain: scene: .*drawing variant 2 'midnight' (--variant)$" "$tmp/cl" && ok || { bad "--variant midnight"; cat "$tmp/cl" "$tmp/cerr"; }
+"$PG" render --size 64x36 --scene "$shoe" --variant green --out "$tmp/c.png" >/dev/null 2>"$tmp/cerr"
+[ $? -eq 1 ] && grep -q "shoe.gltf: --variant 'green': not a variant of the file (3: 0 'red', 1 'blue', 2 'midnight')" "$tmp/cerr" \
+  && ok || { bad "--variant green"; cat "$tmp/cerr"; }
 # lights-table: N generated lights frozen into a file, as a binary table and as KHR_lights_punctual
 # JSON: the two render the same image; the output may sit in another folder (relative buffer
 # URIs rewritten); bad options exit 2
@@ -664,7 +675,7 @@ expect_fail "--scene an OBJ file" "$gcorp/cube.obj: not a glTF 2.0 file (passgra
   render --scene "$gcorp/cube.obj" --size 32x18 --lights 4 --out "$tmp/x.png"
 expect_fail "--scene a glTF 1.0 file" "glTF 1.0 is not supported, only 2.0" \
   render --scene "$gcorp/version_1.gltf" --size 32x18 --lights 4 --out "$tmp/x.png"
-expect_fail "--scene: an unsupported required extension" "extensionsRequired: 'EXT_made_up' is not supported (passgraph implements only these glTF extensions: EXT_mesh_gpu_instancing, EXT_meshopt_compression, EXT_texture_webp, KHR_draco_mesh_compression, KHR_lights_punctual, KHR_materials_emissive_strength, KHR_materials_unlit, KHR_mesh_quantization, KHR_texture_transform, PASSGRAPH_lights_table)" \
+expect_fail "--scene: an unsupported required extension" "extensionsRequired: 'EXT_made_up' is not supported (passgraph implements only these glTF extensions: EXT_mesh_gpu_instancing, EXT_meshopt_compression, EXT_texture_webp, KHR_draco_mesh_compression, KHR_lights_punctual, KHR_materials_emissive_strength, KHR_materials_unlit, KHR_materials_variants, KHR_mesh_quantization, KHR_texture_transform, PASSGRAPH_lights_table)" \
   render --scene "$gcorp/required_made_up.gltf" --size 32x18 --lights 4 --out "$tmp/x.png"
 expect_fail "--out .bmp" "--out $tmp/x.bmp: unsupported image extension '.bmp' (accepted: .png, .jpg, .jpeg, .exr)" \
   render --size 32x18 --lights 4 --out "$tmp/x.bmp"

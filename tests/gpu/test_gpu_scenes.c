@@ -33,7 +33,7 @@
 
 static pg_gpu *g_gpu;
 static pg_pass_registry g_reg;
-static const char *const k_dirs[] = {"objects", "models", "features", "emissive", "blend", "compressed", "instancing", "webp"};
+static const char *const k_dirs[] = {"objects", "models", "features", "emissive", "blend", "compressed", "instancing", "webp", "variants"};
 
 typedef struct approx {
     const char *label, *pipeline;

@@ -801,7 +801,8 @@ static void test_corpus_features(void)
                                "'EXT_made_up' is not supported (passgraph implements only these glTF extensions: "
                                "EXT_mesh_gpu_instancing, EXT_meshopt_compression, EXT_texture_webp, "
                                "KHR_draco_mesh_compression, KHR_lights_punctual, "
-                               "KHR_materials_emissive_strength, KHR_materials_unlit, KHR_mesh_quantization, KHR_texture_transform, PASSGRAPH_lights_table)"),
+                               "KHR_materials_emissive_strength, KHR_materials_unlit, KHR_materials_variants, "
+                               "KHR_mesh_quantization, KHR_texture_transform, PASSGRAPH_lights_table)"),
               "%s", err.msg);
     /* a scenario path that is a directory */
     pg_scenario sc;

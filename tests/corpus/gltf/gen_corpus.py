@@ -529,9 +529,10 @@ d["extensionsUsed"] = ["EXT_x_%02d" % i for i in range(18)]
 write("ok_many_extensions.gltf", d, "PG_OK",
       warn=["extensionsUsed: 'EXT_x_%02d' ignored: not supported" % i for i in range(16)]
       + ["extensionsUsed: 2 more extensions ignored (not supported)"])
-IMPLEMENTED = ("EXT_mesh_gpu_instancing", "EXT_meshopt_compression", "EXT_texture_webp", "KHR_draco_mesh_compression",  # may be required
-               "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_unlit",
-               "KHR_mesh_quantization", "KHR_texture_transform", "PASSGRAPH_lights_table")
+IMPLEMENTED = ("EXT_mesh_gpu_instancing", "EXT_meshopt_compression", "EXT_texture_webp",  # may be required
+               "KHR_draco_mesh_compression", "KHR_lights_punctual", "KHR_materials_emissive_strength",
+               "KHR_materials_unlit", "KHR_materials_variants", "KHR_mesh_quantization", "KHR_texture_transform",
+               "PASSGRAPH_lights_table")
 for name, exts in (("required_texture_transform.gltf", ["KHR_texture_transform", "KHR_mesh_quantization"]),
                    ("required_meshopt.gltf", ["EXT_meshopt_compression"]),
                    ("required_emissive_and_meshopt.gltf", ["KHR_materials_emissive_strength",
@@ -740,6 +741,29 @@ d["nodes"] = [{"mesh": 0, "extensions": {"EXT_mesh_gpu_instancing": {"attributes
 d["extensionsUsed"] = ["EXT_mesh_gpu_instancing"]
 write("bake_limit_instances.gltf", d, "PG_ERR_LIMIT",
       "nodes[0]: the meshes drawn at every node and instance would bake more than 8 GiB of vertices and indices")
+
+# KHR_materials_variants (variants/gen_variants.py has the file that loads): bad variants and mappings
+
+
+def variants_doc(variants, mappings):
+    d, _ = base_doc()
+    d["extensionsUsed"] = ["KHR_materials_variants"]
+    d["extensions"] = {"KHR_materials_variants": {"variants": variants}}
+    d["materials"] = [{"name": "a"}, {"name": "b"}]
+    d["meshes"][0]["primitives"][0]["extensions"] = {"KHR_materials_variants": {"mappings": mappings}}
+    return d
+
+
+write("variants_no_name.gltf", variants_doc([{"name": "x"}, {}], []), "PG_ERR_GLTF",
+      "extensions.KHR_materials_variants.variants[1].name: expected a string")
+write("variants_material_out_of_range.gltf", variants_doc([{"name": "x"}], [{"material": 2, "variants": [0]}]),
+      "PG_ERR_GLTF", "meshes[0].primitives[0].extensions.KHR_materials_variants.mappings[0].material: 2 out of range "
+      "(2 materials)")
+write("variants_index_out_of_range.gltf", variants_doc([{"name": "x"}], [{"material": 1, "variants": [1]}]),
+      "PG_ERR_GLTF", "mappings[0].variants: expected variant indices below 1")
+write("variants_mapped_twice.gltf", variants_doc([{"name": "x"}], [{"material": 1, "variants": [0]},
+                                                                   {"material": 0, "variants": [0]}]),
+      "PG_ERR_GLTF", "mappings[1].variants: variant 0 is mapped twice in this primitive")
 
 # texture-source extensions (webp/gen_webp.py has the files that load): a truncated WebP image, a
 # KHR_texture_basisu texture without a fallback source, an EXT_texture_webp source out of range

@@ -99,3 +99,31 @@ def merge(*meshes):
         nrm += n
         idx += [base + j for j in i]
     return pos, nrm, idx
+
+
+class Buffer:
+    """One glTF buffer built up view by view: add() appends a blob (4-byte aligned) as a bufferView
+    and an accessor of it, and returns the accessor's index; finish(doc) stores the accessors,
+    views and the buffer (a base64 data URI) in doc."""
+
+    def __init__(self):
+        self.data = b""
+        self.views, self.accessors = [], []
+
+    def add(self, blob, count, ctype, typ, normalized=False, minmax=None):
+        self.data = pad4(self.data)
+        self.views.append({"buffer": 0, "byteOffset": len(self.data), "byteLength": len(blob)})
+        self.data += blob
+        acc = {"bufferView": len(self.views) - 1, "componentType": ctype, "count": count, "type": typ}
+        if normalized:
+            acc["normalized"] = True
+        if minmax:
+            acc["min"], acc["max"] = minmax
+        self.accessors.append(acc)
+        return len(self.accessors) - 1
+
+    def finish(self, doc):
+        doc["accessors"] = self.accessors
+        doc["bufferViews"] = self.views
+        doc["buffers"] = [{"byteLength": len(self.data),
+                           "uri": "data:application/octet-stream;base64," + base64.b64encode(self.data).decode()}]

@@ -19,7 +19,6 @@ one primitive, material 1 (orange, metallic 0, roughness 0.6).
                      t = 0 2 4 s -> 0 90 180 deg (the instances turn with their node).
   grove_moving_twin.gltf  grove_twin.gltf with the same animation.
 """
-import base64
 import json
 import math
 import os
@@ -27,7 +26,7 @@ import struct
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from gltfgen import box, look_rotation, pad4  # noqa: E402  (tests/corpus/gltf/gltfgen.py)
+from gltfgen import Buffer, box, look_rotation, pad4  # noqa: E402  (tests/corpus/gltf/gltfgen.py)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 FLOAT, SHORT, UINT = 5126, 5122, 5125
@@ -70,21 +69,10 @@ def short_decoded(c):
 
 
 def build(instanced, moving):
-    data = b""
-    views, accessors = [], []
+    buf = Buffer()
 
     def add(blob, fmt, count, ctype, typ, normalized=False, minmax=None):
-        nonlocal data
-        data = pad4(data)
-        views.append({"buffer": 0, "byteOffset": len(data), "byteLength": len(blob)})
-        data += blob
-        acc = {"bufferView": len(views) - 1, "componentType": ctype, "count": count, "type": typ}
-        if normalized:
-            acc["normalized"] = True
-        if minmax:
-            acc["min"], acc["max"] = minmax
-        accessors.append(acc)
-        return len(accessors) - 1
+        return buf.add(blob, count, ctype, typ, normalized, minmax)
 
     def mesh_acc(pos, nrm, idx):
         mn = [min(p[k] for p in pos) for k in range(3)]
@@ -106,7 +94,7 @@ def build(instanced, moving):
         a_t = add(b"".join(struct.pack("<3f", *t) for t, _, _ in INSTANCES), None, len(INSTANCES), FLOAT, "VEC3")
         a_r = add(pad4(b"".join(struct.pack("<4h", *s) for s in shorts)), None, len(INSTANCES), SHORT, "VEC4",
                   normalized=True)
-        views[-1]["byteLength"] = 8 * len(INSTANCES)
+        buf.views[-1]["byteLength"] = 8 * len(INSTANCES)
         a_s = add(b"".join(struct.pack("<3f", *s) for _, _, s in INSTANCES), None, len(INSTANCES), FLOAT, "VEC3")
         grove["mesh"] = 1
         grove["extensions"] = {"EXT_mesh_gpu_instancing": {"attributes": {
@@ -152,10 +140,7 @@ def build(instanced, moving):
         doc["animations"] = [{"name": "turn", "samplers": [{"input": a_in, "output": a_out,
                                                             "interpolation": "LINEAR"}],
                               "channels": [{"sampler": 0, "target": {"node": 1, "path": "rotation"}}]}]
-    doc["accessors"] = accessors
-    doc["bufferViews"] = views
-    doc["buffers"] = [{"byteLength": len(data),
-                       "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}]
+    buf.finish(doc)
     return doc
 
 
