@@ -180,6 +180,8 @@ typedef struct pg_scene {
     int gltf_variant;
     char gltf_variant_name[PG_NAME_MAX];
     char gltf_variant_list[512];
+#define PG_SCENE_VARIANT_NAMES 16
+    char gltf_variant_names[PG_SCENE_VARIANT_NAMES][PG_NAME_MAX]; /* the first 16 variants' names */
     /* The environment light (environment.h): set by the tools after loading (--environment, or the
      * neutral default sky for a glTF file without lights: pg_scene_set_environment), never by the
      * loaders; owned; NULL when there is none (features.has_environment). */

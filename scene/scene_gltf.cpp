@@ -608,6 +608,8 @@ static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &
     if (c.variant >= 0) pg_strlcpy(s->gltf_variant_name, c.variant_names[size_t(c.variant)].c_str(),
                                    sizeof s->gltf_variant_name);
     pg_strlcpy(s->gltf_variant_list, variant_list_line(c).c_str(), sizeof s->gltf_variant_list);
+    for (size_t k = 0; k < c.variant_names.size() && k < PG_SCENE_VARIANT_NAMES; k++)
+        pg_strlcpy(s->gltf_variant_names[k], c.variant_names[k].c_str(), sizeof s->gltf_variant_names[k]);
     s->vertices = copy_out(o.verts);
     s->n_vertices = uint32_t(o.verts.size());
     s->indices = copy_out(o.idx);

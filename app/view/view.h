@@ -132,6 +132,10 @@ typedef struct viewer {
     int cam_follow, cam_start_gltf;
     char cam_items[VIEW_MAX_CAMS + 2][PG_NAME_MAX * 2 + 16];
     const char *cam_ptrs[VIEW_MAX_CAMS + 2];
+    /* KHR_materials_variants: the combo's items ("default materials", then "N 'name'") */
+#define VIEW_MAX_VARIANTS 32
+    char var_items[VIEW_MAX_VARIANTS + 1][PG_NAME_MAX + 16];
+    const char *var_ptrs[VIEW_MAX_VARIANTS + 1];
     view_action actions[MAX_ACTIONS];
     int n_actions;
     uint32_t growths;           /* light-list (grow buffer) enlargements seen so far */
@@ -159,6 +163,9 @@ void camera_update(viewer *v, float dt);
 
 /* view_ui.c */
 void build_ui(viewer *v);
+/* the scene reloaded with material variant `variant` (an index or a name; NULL or "": the default
+ * materials), the camera and lights kept; an error leaves the scene as it was */
+pg_result variant_choose(viewer *v, const char *variant, pg_error *err);
 
 /* view_frame.c */
 pg_result draw_frame(viewer *v, bool capture, pg_error *err);

@@ -94,19 +94,17 @@ static void memory_timeline(const pg_graph_plan *p)
     pg_ui_canvas_end();
 }
 
-/* "open glTF": the scene in the input box replaces the app's (sessions dropped and reloaded), with
- * its default view and lights; an error goes to the error line */
-static void open_scene(viewer *v)
+/* The scene at `path` (load options o) replaces the app's: posed, its environment attached, on the
+ * GPU; the sessions are dropped (reloaded at the next frame). On failure nothing changes. */
+static pg_result replace_scene(viewer *v, const char *path, const pg_scene_load_opts *o, pg_error *err)
 {
     pg_scene *sc = NULL;
     pg_scene_gpu *sg = NULL;
-    pg_error err = {0};
-    if (pg_scene_load(v->scene_input, &sc, &err) || pg_app_pose_scene(&v->app, sc, &err) ||
-        pg_app_attach_environment(&v->app, sc, &err) ||
-        pg_scene_gpu_create(v->app.gpu, sc, &sg, &err)) {
-        snprintf(v->error, sizeof v->error, "%s", err.msg);
+    pg_result r;
+    if ((r = pg_scene_load_ex(path, o, &sc, err)) || (r = pg_app_pose_scene(&v->app, sc, err)) ||
+        (r = pg_app_attach_environment(&v->app, sc, err)) || (r = pg_scene_gpu_create(v->app.gpu, sc, &sg, err))) {
         pg_scene_free(sc);
-        return;
+        return r;
     }
     pg_scene_print_warnings(sc, "passgraph view: ", stderr);
     vkDeviceWaitIdle(v->app.gpu->device);
@@ -117,7 +115,51 @@ static void open_scene(viewer *v)
     pg_scene_free(v->app.scene);
     v->app.scene = sc;
     v->app.scene_gpu = sg;
-    pg_strlcpy(v->app.scene_path, v->scene_input, sizeof v->app.scene_path);
+    if (path != v->app.scene_path) pg_strlcpy(v->app.scene_path, path, sizeof v->app.scene_path);
+    v->reload = true;
+    return PG_OK;
+}
+
+pg_result variant_choose(viewer *v, const char *variant, pg_error *err)
+{
+    const pg_scene_load_opts o = {.gltf_scene = v->app.scene ? v->app.scene->gltf_scene : -1,
+                                  .gltf_variant = variant};
+    pg_result r = replace_scene(v, v->app.scene_path, &o, err);
+    char line[PG_PATH_MAX + 800];
+    if (!r && pg_scene_variant_line(v->app.scene, line, sizeof line)) printf("view: %s\n", line);
+    return r;
+}
+
+/* "variant": the file's KHR_materials_variants (shown when it has any) */
+static void variant_ui(viewer *v)
+{
+    const pg_scene *sc = v->app.scene;
+    if (!sc || sc->n_gltf_variants == 0) return;
+    int n = 1;
+    snprintf(v->var_items[0], sizeof v->var_items[0], "default materials");
+    for (uint32_t k = 0; k < sc->n_gltf_variants && n <= VIEW_MAX_VARIANTS; k++, n++)
+        snprintf(v->var_items[n], sizeof v->var_items[0], "%u '%s'", k,
+                 k < PG_SCENE_VARIANT_NAMES ? sc->gltf_variant_names[k] : "...");
+    for (int i = 0; i < n; i++) v->var_ptrs[i] = v->var_items[i];
+    int cur = sc->gltf_variant + 1;
+    if (pg_ui_combo("variant", &cur, v->var_ptrs, n) && cur != sc->gltf_variant + 1) {
+        char idx[16];
+        snprintf(idx, sizeof idx, "%d", cur - 1);
+        pg_error err = {0};
+        if (variant_choose(v, cur > 0 ? idx : NULL, &err)) snprintf(v->error, sizeof v->error, "%s", err.msg);
+    }
+}
+
+/* "open glTF": the scene in the input box replaces the app's (sessions dropped and reloaded), with
+ * its default view and lights; an error goes to the error line */
+static void open_scene(viewer *v)
+{
+    pg_error err = {0};
+    if (replace_scene(v, v->scene_input, NULL, &err)) {
+        snprintf(v->error, sizeof v->error, "%s", err.msg);
+        return;
+    }
+    pg_scene *sc = v->app.scene;
     pg_light_setup ls;
     char cw[256], lw[256];
     pg_error verr = {0};
@@ -136,7 +178,6 @@ static void open_scene(viewer *v)
     v->radius = ls.radius;
     v->intensity = ls.intensity;
     v->ambient = ls.ambient;
-    v->reload = true;
 }
 
 /* "Scene and lights": the scene (its warnings, another glTF), the light and time settings, the
@@ -150,6 +191,7 @@ static void scene_and_lights_ui(viewer *v)
         pg_ui_text_wrapped(v->app.scene->warnings[k]);
     }
     if (pg_ui_input_text("open glTF", v->scene_input, sizeof v->scene_input) && v->scene_input[0]) open_scene(v);
+    variant_ui(v);
     pg_ui_slider_int("lights", &v->light_count, 0, 1000000, true);
     pg_ui_slider_float("radius", &v->radius, 0.01f, 100.0f, "%.3f", true);
     pg_ui_slider_float("intensity", &v->intensity, 0.001f, 100.0f, "%.3f", true);

@@ -68,6 +68,33 @@ grep -q "^view: frame 3: env_intensity 2.5" "$tmp/out3" && grep -q "^view: frame
 xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 4 --lights 4 --scene "$objs/two_cameras.gltf" \
   --at 2:env_intensity=-1 >"$tmp/out5" 2>"$tmp/err5"
 [ $? -ne 0 ] && grep -q "env_intensity=-1: expected a number >= 0" "$tmp/err5" && ok || { bad "env_intensity=-1 accepted"; cat "$tmp/err5"; }
+# KHR_materials_variants: the viewer switches variants (scripted like its "variant" combo box)
+# without losing its camera: the default shoe has no yellow lace, variant 'midnight' does (in the
+# middle of the window, between the two UI windows); an unknown
+# variant is an error naming the action
+shoe="$root/tests/corpus/gltf/variants/shoe.gltf"
+for at in "" "--at 2:variant=midnight"; do
+  xvfb-run -a -s "-screen 0 1280x720x24" "$PG" view --validation --size 960x540 --frames 4 --scene "$shoe" $at \
+    --screenshot "$tmp/shoe.png" >"$tmp/out6" 2>"$tmp/err6"
+  [ $? -eq 0 ] && ok || { bad "variant ($at): exit"; tail -5 "$tmp/err6"; }
+  grep -q "validation message" "$tmp/err6" && bad "variant ($at): validation messages" || ok
+  yellow=$(python3 - "$tmp/shoe.png" "$root/tests/cli" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[2])
+from png_read import read_png
+w, h, bpp, rows = read_png(sys.argv[1])
+print(sum(1 for r in rows for x in range(0, w * bpp, bpp) if r[x] > 120 and r[x + 1] > 100 and r[x + 2] < 50))
+PY
+)
+  if [ -z "$at" ]; then [ "$yellow" = 0 ] && ok || bad "variant: the default shoe has $yellow yellow pixels"
+  else [ "${yellow:-0}" -gt 20 ] && grep -q "^view: .*shoe.gltf has 3 material variants .* drawing variant 2 'midnight'" "$tmp/out6" \
+         && ok || { bad "variant midnight: $yellow yellow pixels"; cat "$tmp/out6"; }
+  fi
+done
+xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 3 --scene "$shoe" --at 2:variant=green \
+  >"$tmp/out7" 2>"$tmp/err7"
+[ $? -ne 0 ] && grep -q "at 2:variant: .*--variant 'green': not a variant of the file" "$tmp/err7" && ok \
+  || { bad "variant=green accepted"; cat "$tmp/err7"; }
 # a glTF with a feature the loader does not draw: the warning line once on stderr (the UI lists it
 # too); a .jpg screenshot is a JPEG
 skins="$root/tests/corpus/gltf/ok_skins.gltf"
