@@ -481,6 +481,45 @@ static void material_emissive(const tinygltf::Material &gm, const std::string &m
     }
 }
 
+/* KHR_materials_pbrSpecularGlossiness (archived; older files) on a material without
+ * pbrMetallicRoughness, whose core material would be the default white metal: approximated as
+ * metallic-roughness: diffuse (factor x texture, its texCoord and KHR_texture_transform) as the base
+ * colour, roughness = 1 - glossiness, metallic 0. The specular colour and specularGlossinessTexture
+ * are not applied (the extensionsUsed warning says so). A material that also has
+ * pbrMetallicRoughness draws that, its author's fallback. */
+static void material_spec_gloss(const Ctx &c, size_t i, const std::string &mw, TextureTable &tex, pg_material &pm)
+{
+    const json &jm = c.j.at("materials").at(i);
+    auto ex = jm.find("extensions");
+    if (jm.contains("pbrMetallicRoughness") || ex == jm.end() || !ex->is_object()) return;
+    const json *sg = opt_object(*ex, "KHR_materials_pbrSpecularGlossiness", mw + ".extensions");
+    if (!sg) return;
+    const std::string w = mw + ".extensions.KHR_materials_pbrSpecularGlossiness";
+    auto df = sg->find("diffuseFactor");
+    for (int k = 0; k < 4; k++) {
+        const json *x = df != sg->end() && df->is_array() && df->size() == 4 ? &(*df)[size_t(k)] : nullptr;
+        if (df != sg->end() && !(x && x->is_number() && std::isfinite(x->get<double>())))
+            gfail(w + ".diffuseFactor: expected 4 finite numbers");
+        pm.base_color[k] = x ? float(clamp01(x->get<double>())) : 1.0f;
+    }
+    double gloss = 1.0;
+    auto gf = sg->find("glossinessFactor");
+    if (gf != sg->end()) {
+        if (!gf->is_number() || !std::isfinite(gf->get<double>())) gfail(w + ".glossinessFactor: expected a number");
+        gloss = clamp01(gf->get<double>());
+    }
+    pm.metallic = 0.0f;
+    pm.roughness = float(1.0 - gloss);
+    pg_material_specular_from(0.0, 1.0 - gloss, &pm.specular, &pm.shininess);
+    if (const json *dt = opt_object(*sg, "diffuseTexture", w)) {
+        const std::string tw = w + ".diffuseTexture";
+        int tc = int(uint_field(*dt, "texCoord", tw, false, 0));
+        pm.base_color_tex = tex.texture_for(int(uint_field(*dt, "index", tw, true)), true, tw);
+        pm.has_uv_transform[PG_TEXSLOT_BASE] = texture_transform(*dt, tw, pm.uv_transform[PG_TEXSLOT_BASE], &tc);
+        pm.tex_coord[PG_TEXSLOT_BASE] = uint8_t(tc == 1 ? 1 : 0);
+    }
+}
+
 /* step 5: materials[i] as a pg_material; its textures numbered in `tex` */
 static pg_material material_from_gltf(const Ctx &c, size_t i, TextureTable &tex)
 {
@@ -519,6 +558,7 @@ static pg_material material_from_gltf(const Ctx &c, size_t i, TextureTable &tex)
     material_specular(pbr, pm);
     pm.double_sided = gm.doubleSided;
     material_emissive(gm, mw, pm);
+    material_spec_gloss(c, i, mw, tex, pm);
     return pm;
 }
 

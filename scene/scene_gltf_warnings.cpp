@@ -60,6 +60,10 @@ std::string extension_effect(const std::string &e)
     if (e == "KHR_texture_transform") return "texture offset/rotation/scale not applied";
     if (e == "KHR_texture_basisu" || e == "MSFT_texture_dds" || e == "EXT_texture_avif")
         return "its images are not decoded; each texture's fallback source image is drawn";
+    if (e == "KHR_materials_pbrSpecularGlossiness")
+        return "materials without pbrMetallicRoughness draw the diffuse colour as their base colour, roughness = 1 - "
+               "glossiness, metallic 0 (the specular colour and specularGlossinessTexture are not applied); the others "
+               "draw their core material";
     if (e.compare(0, 14, "KHR_materials_") == 0) return "the core material is drawn without it";
     return "not supported";
 }
@@ -98,10 +102,12 @@ void collect_warnings(Ctx &c)
     for (const std::string &e : md.extensionsUsed)
         /* KHR_animation_pointer is played in part: its channels are warned one by one (above); a file
            that requires it is refused (extensionsRequired) */
-        if (!extension_implemented(e) && e != "KHR_animation_pointer") unimpl.push_back(e);
+        if (!extension_implemented(e) && e != "KHR_animation_pointer" && e != "KHR_xmp_json_ld")
+            unimpl.push_back(e); /* KHR_xmp_json_ld: metadata, nothing to draw */
     for (size_t i = 0; i < unimpl.size() && i < kMaxExtensionLines; i++) {
         const std::string &e = unimpl[i];
-        W.push_back("extensionsUsed: '" + e.substr(0, 80) + "' ignored: " + extension_effect(e));
+        const char *how = e == "KHR_materials_pbrSpecularGlossiness" ? "' approximated: " : "' ignored: ";
+        W.push_back("extensionsUsed: '" + e.substr(0, 80) + how + extension_effect(e));
     }
     if (unimpl.size() > kMaxExtensionLines)
         W.push_back(strf("extensionsUsed: %zu more extensions ignored (not supported)",

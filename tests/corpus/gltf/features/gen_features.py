@@ -277,6 +277,29 @@ box_doc({"extensions": {"KHR_texture_transform": {"offset": [0, 0], "rotation": 
         ["KHR_texture_transform"]).write("box_xform.gltf")
 box_doc({"texCoord": 1}, True).write("box_uv1.gltf")
 
+# ---- KHR_materials_pbrSpecularGlossiness (archived): three quads. Material 0 has only the
+# extension (diffuseFactor (0.8, 0.2, 0.1, 1), glossinessFactor 0.75): approximated as base colour
+# (0.8, 0.2, 0.1, 1), roughness 0.25, metallic 0. Material 1 has only the extension with a
+# diffuseTexture (a 2x2 texture, texCoord 0, a KHR_texture_transform scale 2): the base colour
+# texture with that transform. Material 2 has pbrMetallicRoughness (green, metallic 0.5, roughness
+# 0.4) and the extension (red): the core material is drawn.
+doc = Doc()
+doc.d["extensionsUsed"] = ["KHR_materials_pbrSpecularGlossiness", "KHR_texture_transform", "KHR_xmp_json_ld"]
+doc.d["images"] = [{"uri": png_uri(2, 2, [255, 255, 255, 255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255, 255])}]
+doc.d["textures"] = [{"source": 0}]
+SG = "KHR_materials_pbrSpecularGlossiness"
+doc.d["materials"] = [
+    {"name": "sg_factor", "extensions": {SG: {"diffuseFactor": [0.8, 0.2, 0.1, 1.0], "glossinessFactor": 0.75,
+                                              "specularFactor": [0.5, 0.5, 0.5]}}},
+    {"name": "sg_texture", "extensions": {SG: {"diffuseTexture": {"index": 0, "extensions": {
+        "KHR_texture_transform": {"scale": [2.0, 2.0]}}}}}},
+    {"name": "core_and_sg", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.8, 0.1, 1.0], "metallicFactor": 0.5,
+                                                     "roughnessFactor": 0.4},
+     "extensions": {SG: {"diffuseFactor": [1.0, 0.0, 0.0, 1.0]}}}]
+for i in range(3):
+    doc.primitive(quad_attrs(doc, UV01, x0=-1 + 0.7 * i, x1=-0.4 + 0.7 * i), QUAD_IDX, i)
+doc.write("spec_gloss.gltf")
+
 # errors
 doc = Doc()
 attrs = quad_attrs(doc)
