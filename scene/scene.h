@@ -173,6 +173,9 @@ typedef struct pg_scene {
     int gltf_scene;
     bool gltf_scene_chosen;   /* picked by pg_scene_load_opts.gltf_scene, not the file's default */
     char gltf_scene_name[PG_NAME_MAX];
+#define PG_SCENE_GLTF_SCENE_NAMES 16
+    char gltf_scene_names[PG_SCENE_GLTF_SCENE_NAMES][PG_NAME_MAX]; /* the first 16 scenes' names
+                                                                    * ("scenes[i]" when unnamed) */
     /* KHR_materials_variants: how many the file names, which one is drawn (-1: the default
      * materials) and its name, and the first ones as "0 'red', 1 'blue'" (for
      * pg_scene_variant_line) */

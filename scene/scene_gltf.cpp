@@ -643,6 +643,11 @@ static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &
         pg_strlcpy(s->gltf_scene_name, nm.empty() ? strf("scenes[%d]", c.drawn_scene).c_str() : nm.c_str(),
                    sizeof s->gltf_scene_name);
     }
+    for (size_t k = 0; k < c.model.scenes.size() && k < PG_SCENE_GLTF_SCENE_NAMES; k++) {
+        const std::string &nm = c.model.scenes[k].name;
+        pg_strlcpy(s->gltf_scene_names[k], nm.empty() ? strf("scenes[%zu]", k).c_str() : nm.c_str(),
+                   sizeof s->gltf_scene_names[k]);
+    }
     s->n_gltf_variants = uint32_t(c.variant_names.size());
     s->gltf_variant = c.variant;
     if (c.variant >= 0) pg_strlcpy(s->gltf_variant_name, c.variant_names[size_t(c.variant)].c_str(),

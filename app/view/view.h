@@ -136,6 +136,10 @@ typedef struct viewer {
 #define VIEW_MAX_VARIANTS 32
     char var_items[VIEW_MAX_VARIANTS + 1][PG_NAME_MAX + 16];
     const char *var_ptrs[VIEW_MAX_VARIANTS + 1];
+    /* the file's glTF scenes (the "glTF scene" combo): "N 'name'" */
+#define VIEW_MAX_GLTF_SCENES 32
+    char gscene_items[VIEW_MAX_GLTF_SCENES][PG_NAME_MAX + 16];
+    const char *gscene_ptrs[VIEW_MAX_GLTF_SCENES];
     view_action actions[MAX_ACTIONS];
     int n_actions;
     uint32_t growths;           /* light-list (grow buffer) enlargements seen so far */
@@ -166,6 +170,9 @@ void build_ui(viewer *v);
 /* the scene reloaded with material variant `variant` (an index or a name; NULL or "": the default
  * materials), the camera and lights kept; an error leaves the scene as it was */
 pg_result variant_choose(viewer *v, const char *variant, pg_error *err);
+/* the file reloaded drawing its glTF scene `index` (scenes[index]; the variant kept), with that
+ * scene's default view and lights; an error leaves the scene as it was */
+pg_result gltf_scene_choose(viewer *v, int index, pg_error *err);
 
 /* view_frame.c */
 pg_result draw_frame(viewer *v, bool capture, pg_error *err);

@@ -77,6 +77,13 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
             camera_choose(v, (int)k + 2);
             if (v->error[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:camera=%s: %s", a->frame, a->arg, v->error);
         }
+    } else if (!strcmp(a->what, "gltf_scene")) {
+        char *end = NULL;
+        long k = strtol(a->arg, &end, 10);
+        if (!end || *end || k < 0 || k > 1000000)
+            return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:gltf_scene=%s: expected a scene index", a->frame, a->arg);
+        pg_result r = gltf_scene_choose(v, (int)k, err);
+        if (r) return pg_error_prefix(err, "--at %u:gltf_scene", a->frame);
     } else if (!strcmp(a->what, "variant")) {
         pg_result r = variant_choose(v, strcmp(a->arg, "default") ? a->arg : NULL, err);
         if (r) return pg_error_prefix(err, "--at %u:variant", a->frame);
@@ -87,7 +94,7 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
         v->want_rdoc = true;
         pg_strlcpy(v->rdoc_file, a->arg, sizeof v->rdoc_file);
     } else {
-        return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s: unknown action (resize, iconify, restore, copy, set, pipeline, display, ocioview, diff, lights, env_intensity, env_rotation, camera, variant, screenshot, capture)",
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s: unknown action (resize, iconify, restore, copy, set, pipeline, display, ocioview, diff, lights, env_intensity, env_rotation, camera, gltf_scene, variant, screenshot, capture)",
                        a->frame, a->what);
     }
     return PG_OK;

@@ -150,15 +150,9 @@ static void variant_ui(viewer *v)
     }
 }
 
-/* "open glTF": the scene in the input box replaces the app's (sessions dropped and reloaded), with
- * its default view and lights; an error goes to the error line */
-static void open_scene(viewer *v)
+/* the new scene's default view and lights (after "open glTF" or another glTF scene) */
+static void adopt_default_view(viewer *v)
 {
-    pg_error err = {0};
-    if (replace_scene(v, v->scene_input, NULL, &err)) {
-        snprintf(v->error, sizeof v->error, "%s", err.msg);
-        return;
-    }
     pg_scene *sc = v->app.scene;
     pg_light_setup ls;
     char cw[256], lw[256];
@@ -180,6 +174,48 @@ static void open_scene(viewer *v)
     v->ambient = ls.ambient;
 }
 
+/* "open glTF": the scene in the input box replaces the app's (sessions dropped and reloaded), with
+ * its default view and lights; an error goes to the error line */
+static void open_scene(viewer *v)
+{
+    pg_error err = {0};
+    if (replace_scene(v, v->scene_input, NULL, &err)) {
+        snprintf(v->error, sizeof v->error, "%s", err.msg);
+        return;
+    }
+    adopt_default_view(v);
+}
+
+pg_result gltf_scene_choose(viewer *v, int index, pg_error *err)
+{
+    char variant[16] = "";
+    if (v->app.scene && v->app.scene->gltf_variant >= 0) snprintf(variant, sizeof variant, "%d", v->app.scene->gltf_variant);
+    const pg_scene_load_opts o = {.gltf_scene = index, .gltf_variant = variant};
+    pg_result r = replace_scene(v, v->app.scene_path, &o, err);
+    if (r) return r;
+    adopt_default_view(v);
+    char line[PG_PATH_MAX + 160];
+    if (pg_scene_choice_line(v->app.scene, line, sizeof line)) printf("view: %s\n", line);
+    return PG_OK;
+}
+
+/* "glTF scene": the file's scenes (shown when it has several) */
+static void gltf_scene_ui(viewer *v)
+{
+    const pg_scene *sc = v->app.scene;
+    if (!sc || sc->n_gltf_scenes < 2 || sc->gltf_scene < 0) return;
+    int n = 0;
+    for (uint32_t k = 0; k < sc->n_gltf_scenes && n < VIEW_MAX_GLTF_SCENES; k++, n++) {
+        snprintf(v->gscene_items[n], sizeof v->gscene_items[0], "%u '%s'", k,
+                 k < PG_SCENE_GLTF_SCENE_NAMES ? sc->gltf_scene_names[k] : "...");
+        v->gscene_ptrs[n] = v->gscene_items[n];
+    }
+    int cur = sc->gltf_scene;
+    pg_error err = {0};
+    if (pg_ui_combo("glTF scene", &cur, v->gscene_ptrs, n) && cur != sc->gltf_scene && gltf_scene_choose(v, cur, &err))
+        snprintf(v->error, sizeof v->error, "%s", err.msg);
+}
+
 /* "Scene and lights": the scene (its warnings, another glTF), the light and time settings, the
  * camera, screenshot and RenderDoc buttons */
 static void scene_and_lights_ui(viewer *v)
@@ -191,6 +227,7 @@ static void scene_and_lights_ui(viewer *v)
         pg_ui_text_wrapped(v->app.scene->warnings[k]);
     }
     if (pg_ui_input_text("open glTF", v->scene_input, sizeof v->scene_input) && v->scene_input[0]) open_scene(v);
+    gltf_scene_ui(v);
     variant_ui(v);
     pg_ui_slider_int("lights", &v->light_count, 0, 1000000, true);
     pg_ui_slider_float("radius", &v->radius, 0.01f, 100.0f, "%.3f", true);

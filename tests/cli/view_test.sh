@@ -95,6 +95,17 @@ xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 3 --scene
   >"$tmp/out7" 2>"$tmp/err7"
 [ $? -ne 0 ] && grep -q "at 2:variant: .*--variant 'green': not a variant of the file" "$tmp/err7" && ok \
   || { bad "variant=green accepted"; cat "$tmp/err7"; }
+# a file with two glTF scenes: the viewer switches to the other (scripted like its "glTF scene"
+# combo box) and says so; an index past them is an error listing them
+xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --validation --size 64x36 --frames 4 --scene "$objs/two_scenes.gltf" \
+  --at 2:gltf_scene=1 >"$tmp/out8" 2>"$tmp/err8"
+[ $? -eq 0 ] && grep -q "^view: .*two_scenes.gltf has 2 scenes; drawing scene 1 'big'" "$tmp/out8" && ok \
+  || { bad "gltf_scene=1"; cat "$tmp/out8" "$tmp/err8"; }
+grep -q "validation message" "$tmp/err8" && bad "gltf_scene=1: validation messages" || ok
+xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 3 --scene "$objs/two_scenes.gltf" \
+  --at 2:gltf_scene=5 >"$tmp/out9" 2>"$tmp/err9"
+[ $? -ne 0 ] && grep -q "at 2:gltf_scene: .*--gltf-scene 5: out of range (the file has 2 scenes: 0 'small', 1 'big')" "$tmp/err9" \
+  && ok || { bad "gltf_scene=5 accepted"; cat "$tmp/err9"; }
 # a glTF with a feature the loader does not draw: the warning line once on stderr (the UI lists it
 # too); a .jpg screenshot is a JPEG
 skins="$root/tests/corpus/gltf/ok_skins.gltf"
