@@ -102,7 +102,9 @@ size_t node_instances(Ctx &c, int ni, size_t *total, std::vector<Mat4> *out)
             if (!std::isfinite(x)) gfail(strf("%s: instance %zu: SCALE is not finite", w.c_str(), i));
         for (double x : q)
             if (!std::isfinite(x)) gfail(strf("%s: instance %zu: ROTATION is not finite", w.c_str(), i));
-        out->push_back(mat_trs(t, q, s, strf("%s: instance %zu: ROTATION", w.c_str(), i)));
+        if (!(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] > 1e-24)) /* as mat_trs would refuse it */
+            gfail(strf("%s: instance %zu: ROTATION: zero-length quaternion", w.c_str(), i));
+        out->push_back(mat_trs(t, q, s, w));
     }
     return count;
 }

@@ -218,9 +218,10 @@ void view_floats(const View &v, size_t i, float *out);
 uint32_t read_index(const View &v, size_t i);
 const char *type_name(int t);
 /* meshes[mi].primitives[pi] of nodes[ni] under its world transform M; `moving`: the node or an
- * ancestor is animated; inst: an EXT_mesh_gpu_instancing instance's transform, applied before M */
+ * ancestor is animated; instances: EXT_mesh_gpu_instancing transforms, each applied before M (the
+ * primitive decoded once, placed once per instance) */
 void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni = -1, bool moving = false,
-                    const Mat4 *inst = nullptr);
+                    const std::vector<Mat4> *instances = nullptr);
 
 /* scene_gltf_anim.cpp */
 /* Before the walk: whether the file animates anything, the animated nodes, the skins' joint slots. */

@@ -330,33 +330,23 @@ static void xform_in_place(const Xform &x, pg_vertex &v)
     v.tangent[3] = float(v.tangent[3] * x.nsign);
 }
 
-/* meshes[mi].primitives[pi] under the node transform M appended to o: its mode (points and lines
- * skipped, counted), attributes, indices as a triangle list, vertices, missing normals and
- * tangents computed, the pg_primitive. A primitive that moves (Ctx.animated: on an animated node,
- * skinned or morphed) is emitted in mesh space first (normals and tangents computed there), kept in
- * o.local with its skin and morph data, then placed by M for the rest pose. An instance of
- * EXT_mesh_gpu_instancing (inst) is placed by M x *inst, and its mesh space includes *inst. */
-void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool moving, const Mat4 *inst)
-{
-    const tinygltf::Primitive &prim = c.model.meshes[size_t(mi)].primitives[size_t(pi)];
-    const std::string pw = strf("meshes[%d].primitives[%d]", mi, pi);
-    int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-    if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
-        c.skipped_prims++;
-        return;
-    }
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-        mode != TINYGLTF_MODE_TRIANGLE_FAN)
-        gfail(strf("%s.mode: %d is not a glTF primitive mode", pw.c_str(), mode));
-
-    decode_draco(c, mi, pi);
+/* A decoded primitive, placed once per node or instance (place_primitive) */
+struct Decoded {
+    const tinygltf::Primitive *prim;
+    std::string pw;
     PrimAttrs a;
-    read_attributes(c, prim, pw, a);
-    const size_t n = a.n;
-    std::vector<uint32_t> ind = read_indices(c, prim, n, pw);
-    to_triangle_list(mode, ind, pw);
-    if (ind.empty() || n == 0) return;
+    size_t n = 0;
+    std::vector<uint32_t> ind; /* a triangle list */
+};
 
+/* one placement of d under M (x *inst when instanced) appended to o */
+static void place_primitive(Ctx &c, Out &o, const Decoded &d, int mi, int pi, const Mat4 &M, int ni, bool moving,
+                            const Mat4 *inst)
+{
+    const tinygltf::Primitive &prim = *d.prim;
+    const std::string &pw = d.pw;
+    const size_t n = d.n;
+    std::vector<uint32_t> ind = d.ind;
     const bool skinned = ni >= 0 && c.model.nodes[size_t(ni)].skin >= 0 && find_attr(prim, "JOINTS_0") &&
                          find_attr(prim, "WEIGHTS_0");
     if (ni >= 0 && c.model.nodes[size_t(ni)].skin >= 0 && !skinned) c.unskinned_prims++;
@@ -371,15 +361,15 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool 
     const size_t base = o.verts.size();
     Mat4 ident{};
     ident.m[0] = ident.m[5] = ident.m[10] = ident.m[15] = 1.0;
-    emit_vertices(o, a, dyn ? node_xform(inst ? *inst : ident, pw) : x, pw);
+    emit_vertices(o, d.a, dyn ? node_xform(inst ? *inst : ident, pw) : x, pw);
     if (x.det < 0 && !skinned) /* a skinned mesh ignores its node's transform */
         for (size_t t = 0; t + 2 < ind.size(); t += 3) std::swap(ind[t + 1], ind[t + 2]);
 
     pg_vertex *V = o.verts.data() + base;
-    if (!a.nrm) pg_mesh_compute_normals(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
+    if (!d.a.nrm) pg_mesh_compute_normals(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
     bool normal_mapped = prim.material >= 0 &&
                          c.model.materials[size_t(prim.material)].normalTexture.index >= 0;
-    if (!a.tan && normal_mapped)
+    if (!d.a.tan && normal_mapped)
         pg_mesh_compute_tangents(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
     if (c.animated) {
         o.vertex_prim.resize(base + n, PG_ANIM_STATIC);
@@ -402,7 +392,42 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool 
     o.prims.push_back(pr);
     const int material = variant_material(c, mi, pi, prim.material); /* KHR_materials_variants */
     o.prim_gltf_material.push_back(material >= 0 ? uint32_t(material) : UINT32_MAX);
-    o.prim_has_uv1.push_back(a.uv1 != nullptr);
+    o.prim_has_uv1.push_back(d.a.uv1 != nullptr);
+}
+
+/* meshes[mi].primitives[pi] under the node transform M appended to o: its mode (points and lines
+ * skipped, counted), attributes, indices as a triangle list, vertices, missing normals and
+ * tangents computed, the pg_primitive. A primitive that moves (Ctx.animated: on an animated node,
+ * skinned or morphed) is emitted in mesh space first (normals and tangents computed there), kept in
+ * o.local with its skin and morph data, then placed by M for the rest pose. With EXT_mesh_gpu_instancing
+ * (instances) it is decoded once and placed once per instance, by M x the instance's transform (a
+ * moving one's mesh space includes the instance's). */
+void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool moving,
+                    const std::vector<Mat4> *instances)
+{
+    Decoded d;
+    d.prim = &c.model.meshes[size_t(mi)].primitives[size_t(pi)];
+    const tinygltf::Primitive &prim = *d.prim;
+    d.pw = strf("meshes[%d].primitives[%d]", mi, pi);
+    const size_t placements = instances ? instances->size() : 1;
+    int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
+        c.skipped_prims += unsigned(placements);
+        return;
+    }
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        gfail(strf("%s.mode: %d is not a glTF primitive mode", d.pw.c_str(), mode));
+
+    decode_draco(c, mi, pi);
+    read_attributes(c, prim, d.pw, d.a);
+    d.n = d.a.n;
+    d.ind = read_indices(c, prim, d.n, d.pw);
+    to_triangle_list(mode, d.ind, d.pw);
+    if (d.ind.empty() || d.n == 0) return;
+    if (!instances) place_primitive(c, o, d, mi, pi, M, ni, moving, nullptr);
+    else
+        for (const Mat4 &I : *instances) place_primitive(c, o, d, mi, pi, M, ni, moving, &I);
 }
 
 } // namespace pg_gltf

@@ -97,12 +97,8 @@ void Walker::visit(int ni, const Mat4 &parent, int depth, bool moving)
         planned += per * times;
     } else if (nd.mesh >= 0) {
         const tinygltf::Mesh &mesh = c.model.meshes[size_t(nd.mesh)];
-        if (inst.empty())
-            for (size_t p = 0; p < mesh.primitives.size(); p++)
-                emit_primitive(c, o, nd.mesh, int(p), world, ni, moving);
-        for (const Mat4 &I : inst)
-            for (size_t p = 0; p < mesh.primitives.size(); p++)
-                emit_primitive(c, o, nd.mesh, int(p), world, ni, moving, &I);
+        for (size_t p = 0; p < mesh.primitives.size(); p++)
+            emit_primitive(c, o, nd.mesh, int(p), world, ni, moving, n_inst ? &inst : nullptr);
     }
     for (int ch : nd.children) visit(ch, world, depth + 1, moving);
     on_path[size_t(ni)] = 0;
