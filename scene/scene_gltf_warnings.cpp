@@ -54,18 +54,21 @@ std::string filter_name(int f)
 }
 
 /* What an extension in extensionsUsed (and not in extensionsRequired, which is refused) means
- * for the image. */
+ * for the image, as the warning's words after the name ("ignored: ...", "approximated: ..."); ""
+ * for none: metadata (KHR_xmp_json_ld), and KHR_animation_pointer, whose channels are warned one by
+ * one (collect_warnings) */
 std::string extension_effect(const std::string &e)
 {
-    if (e == "KHR_texture_transform") return "texture offset/rotation/scale not applied";
+    if (e == "KHR_xmp_json_ld" || e == "KHR_animation_pointer") return "";
+    if (e == "KHR_texture_transform") return "ignored: texture offset/rotation/scale not applied";
     if (e == "KHR_texture_basisu" || e == "MSFT_texture_dds" || e == "EXT_texture_avif")
-        return "its images are not decoded; each texture's fallback source image is drawn";
+        return "ignored: its images are not decoded; each texture's fallback source image is drawn";
     if (e == "KHR_materials_pbrSpecularGlossiness")
-        return "materials without pbrMetallicRoughness draw the diffuse colour as their base colour, roughness = 1 - "
-               "glossiness, metallic 0 (the specular colour and specularGlossinessTexture are not applied); the others "
-               "draw their core material";
-    if (e.compare(0, 14, "KHR_materials_") == 0) return "the core material is drawn without it";
-    return "not supported";
+        return "approximated: materials without pbrMetallicRoughness draw the diffuse colour as their base colour, "
+               "roughness = 1 - glossiness, metallic 0 (the specular colour and specularGlossinessTexture are not "
+               "applied); the others draw their core material";
+    if (e.compare(0, 14, "KHR_materials_") == 0) return "ignored: the core material is drawn without it";
+    return "ignored: not supported";
 }
 
 /* Every feature the file uses that is not drawn as the file asks: one line each (see scene.h). */
@@ -102,12 +105,10 @@ void collect_warnings(Ctx &c)
     for (const std::string &e : md.extensionsUsed)
         /* KHR_animation_pointer is played in part: its channels are warned one by one (above); a file
            that requires it is refused (extensionsRequired) */
-        if (!extension_implemented(e) && e != "KHR_animation_pointer" && e != "KHR_xmp_json_ld")
-            unimpl.push_back(e); /* KHR_xmp_json_ld: metadata, nothing to draw */
+        if (!extension_implemented(e) && !extension_effect(e).empty()) unimpl.push_back(e);
     for (size_t i = 0; i < unimpl.size() && i < kMaxExtensionLines; i++) {
         const std::string &e = unimpl[i];
-        const char *how = e == "KHR_materials_pbrSpecularGlossiness" ? "' approximated: " : "' ignored: ";
-        W.push_back("extensionsUsed: '" + e.substr(0, 80) + how + extension_effect(e));
+        W.push_back("extensionsUsed: '" + e.substr(0, 80) + "' " + extension_effect(e));
     }
     if (unimpl.size() > kMaxExtensionLines)
         W.push_back(strf("extensionsUsed: %zu more extensions ignored (not supported)",

@@ -783,7 +783,7 @@ TRUNCATED_WEBP = b"RIFF" + struct.pack("<I", 40) + b"WEBPVP8L" + struct.pack("<I
 write("webp_truncated.gltf",
       texture_ext_doc([{"uri": "data:image/webp;base64," + base64.b64encode(TRUNCATED_WEBP).decode()}],
                       {"extensions": {"EXT_texture_webp": {"source": 0}}}, ["EXT_texture_webp"]),
-      "PG_ERR_GLTF", "images[0] (data URI): cannot decode (")
+      "PG_ERR_GLTF", "images[0] (data URI): cannot decode (not a valid WebP image)")
 write("basisu_no_fallback.gltf",
       texture_ext_doc([{"uri": "data:image/ktx2;base64," + base64.b64encode(bytes(16)).decode()}],
                       {"extensions": {"KHR_texture_basisu": {"source": 0}}}, ["KHR_texture_basisu"]),
