@@ -9,7 +9,7 @@
 // lights cooperatively, one per thread, then every thread walks the tile in order; one barrier
 // pair per tile. A dispatch covers the lights [pc.first, pc.end). The pass splits large light
 // counts over several dispatches (renderer/passes/reference_lighting.c); the running sums then wait in
-// rgba32f images (acc_diffuse, acc_specular for Blinn-Phong and pbr, acc_fresnel for pbr), fp32 like the registers they
+// rgba32f images (acc_diffuse, acc_specular for Blinn-Phong), fp32 like the registers they
 // come from, so splitting does not change a bit. pc.mode bits: 1 = start from the sums stored
 // there (else from 0), 2 = store the sums and stop (else combine and write the HDR pixel).
 // Background pixels (position.w == 0) are black with alpha 1, as forward clears them.
@@ -47,17 +47,12 @@ layout(set = 1, binding = 2) uniform sampler2D g_albedo;   // rgb albedo, a spec
 layout(set = 1, binding = 3, PG_HDR_FORMAT) uniform writeonly image2D hdr_out;
 #ifdef PG_REFERENCE_ACCUM
 layout(set = 1, binding = 4, rgba32f) uniform image2D acc_diffuse; // running diffuse sum (rgb)
-#if defined(PG_BLINN_PHONG) || defined(PG_PBR)
+#ifdef PG_BLINN_PHONG
 layout(set = 1, binding = 5, rgba32f) uniform image2D acc_specular; // running specular sum (rgb)
-#endif
-#ifdef PG_PBR
-layout(set = 1, binding = 6, rgba32f) uniform image2D acc_fresnel; // running Fresnel sum (rgb)
 #endif
 #endif
 #ifdef PG_REFERENCE_EMISSIVE
-#if defined(PG_REFERENCE_ACCUM) && defined(PG_PBR)
-#define EMISSIVE_BINDING 7
-#elif defined(PG_REFERENCE_ACCUM) && defined(PG_BLINN_PHONG)
+#if defined(PG_REFERENCE_ACCUM) && defined(PG_BLINN_PHONG)
 #define EMISSIVE_BINDING 6
 #elif defined(PG_REFERENCE_ACCUM)
 #define EMISSIVE_BINDING 5
@@ -269,16 +264,13 @@ void main()
 #ifdef PG_REFERENCE_ACCUM
     if ((pc.mode & 1u) != 0u && covered) {
         acc.diffuse = imageLoad(acc_diffuse, px).rgb;
-#if defined(PG_BLINN_PHONG) || defined(PG_PBR)
+#ifdef PG_BLINN_PHONG
         acc.specular = imageLoad(acc_specular, px).rgb;
-#endif
-#ifdef PG_PBR
-        acc.fresnel = imageLoad(acc_fresnel, px).rgb;
 #endif
     }
 #endif
     vec3 V = PG_VIEW_DIR(P);
-    PgLightMat lm = pg_light_mat(s.normal, V, s.shininess);
+    PgLightMat lm = pg_light_mat(s, V);
     vec3 cam = frame.camera_pos.xyz;
     float min_dist = frame.light_params.w;
     uint lid = gl_LocalInvocationIndex;
@@ -359,11 +351,8 @@ void main()
         // every pixel is written (0 for background), so no dispatch reads undefined contents
         if (inside) {
             imageStore(acc_diffuse, px, vec4(acc.diffuse, 0.0));
-#if defined(PG_BLINN_PHONG) || defined(PG_PBR)
+#ifdef PG_BLINN_PHONG
             imageStore(acc_specular, px, vec4(acc.specular, 0.0));
-#endif
-#ifdef PG_PBR
-            imageStore(acc_fresnel, px, vec4(acc.fresnel, 0.0));
 #endif
         }
         return;

@@ -96,7 +96,7 @@ vec3 pg_light_contribution(Surface s, uint li, vec3 cam, vec3 P, vec3 V, float i
     float R2 = L.pos_radius.w * L.pos_radius.w;
     PgShade one = pg_shade_zero();
     pg_accumulate_light_rel(L.pos_radius.xyz - cam, R2, pg_light_inv_r2(L.color.w * L.color.w), L.color.rgb,
-                            PG_SPOT_OF(li), P, s.normal, V, pg_light_mat(s.normal, V, s.shininess), inv_md2, one);
+                            PG_SPOT_OF(li), P, s.normal, V, pg_light_mat(s, V), inv_md2, one);
     return pg_shade_lights(s, one);
 }
 
@@ -200,7 +200,7 @@ vec3 pg_lc_light(Surface s, vec3 pos, float R, float Rf, vec3 color, vec4 spot, 
     float R2 = R * R;
     PgShade one = pg_shade_zero();
     pg_accumulate_light_rel(pos - cam, R2, pg_light_inv_r2(Rf * Rf), color, spot, P, s.normal, V,
-                            pg_light_mat(s.normal, V, s.shininess), inv_md2,
+                            pg_light_mat(s, V), inv_md2,
                             one);
     return pg_shade_lights(s, one);
 }
@@ -298,7 +298,7 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #endif
 #ifdef PG_HAS_LIGHTS
     float min_dist = frame.light_params.w;
-    PgLightMat lm = pg_light_mat(s.normal, V, s.shininess);
+    PgLightMat lm = pg_light_mat(s, V);
 #ifdef PG_CLUSTERED
     PG_COUNT(rec.y);
     for (uint k = 0u; k < rec.y; k++) {
@@ -401,7 +401,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
     if (lit) ci = pg_cluster_index(pg_cluster_coord(frag_xy, vec2(frame.counts.zw), view_depth, frame.clip.x,
                                                     frame.clip.y, grid), grid);
     vec3 V = lit ? PG_VIEW_DIR(P) : vec3(0.0, 0.0, 1.0);
-    PgLightMat lm = pg_light_mat(s.normal, V, s.shininess);
+    PgLightMat lm = pg_light_mat(s, V);
     bool pending = lit;
 #ifdef PG_TILE_SUBGROUPS
     uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; // a permutation of the tile

@@ -182,7 +182,7 @@ Surface pg_surface_material(SurfaceInput si, uint material)
         s.emissive = base.rgb;
         s.albedo = vec3(0.0);
 #ifdef PG_PBR
-        s.specular = 1.0; // a black metal: F0 = 0, c_diff = 0; occlusion < 0 drops the Fresnel sum too
+        s.specular = 1.0; // a black metal: F0 = 0, c_diff = 0; occlusion < 0 drops the grazing Fresnel term too (pg_pbr_lit)
         s.shininess = 1.0;
         s.occlusion = -1.0;
 #else

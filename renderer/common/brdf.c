@@ -19,8 +19,8 @@ float pg_pbr_alpha(float roughness)
     return r * r;
 }
 
-void pg_pbr_light(const float c[3], float att, const float L[3], const float N[3], const float V[3], float roughness,
-                  pg_pbr_sums *acc)
+void pg_pbr_light(const float c[3], float att, const float L[3], const float N[3], const float V[3],
+                  const float base[3], float metallic, float roughness, float acc[3])
 {
     float a = pg_pbr_alpha(roughness);
     float a2 = a * a;
@@ -42,21 +42,21 @@ void pg_pbr_light(const float c[3], float att, const float L[3], const float N[3
     float t = 1.0f - fminf(sqrtf(fmaxf(0.5f * dotf(V, h), 0.0f)), 1.0f);
     float t2 = t * t;
     float w = t2 * t2 * t;
+    float dw = ndl * att, sw = spec * w;
     for (int i = 0; i < 3; i++) {
-        acc->diffuse[i] += c[i] * (ndl * att * (1.0f - w));
-        acc->specular[i] += c[i] * (spec * (1.0f - w));
-        acc->fresnel[i] += c[i] * (spec * w);
+        float f0 = 0.04f + (base[i] - 0.04f) * metallic; /* mix(0.04, base, metallic) */
+        float kd = base[i] * (1.0f - metallic) * (1.0f - f0);
+        acc[i] += c[i] * (kd * (dw - dw * w) + f0 * (spec - sw) + sw);
     }
 }
 
-void pg_pbr_combine(const float base[3], float metallic, const pg_pbr_sums *acc, float ambient, float occlusion,
+void pg_pbr_combine(const float base[3], float metallic, const float acc[3], float ambient, float occlusion,
                     const float emissive[3], float out[3])
 {
     for (int i = 0; i < 3; i++) {
         float f0 = 0.04f + (base[i] - 0.04f) * metallic; /* mix(0.04, base, metallic) */
         float cdiff = base[i] * (1.0f - metallic);
-        out[i] = cdiff * (1.0f - f0) * acc->diffuse[i] + f0 * acc->specular[i] + acc->fresnel[i] +
-                 (cdiff + f0) * (ambient * occlusion) + emissive[i];
+        out[i] = acc[i] + (cdiff + f0) * (ambient * occlusion) + emissive[i];
     }
 }
 

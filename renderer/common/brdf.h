@@ -16,22 +16,17 @@ extern "C" {
 #define PG_PBR_MIN_ROUGHNESS 0.045f /* lighting.glsl's clamp: roughness 0 would be a mirror */
 #define PG_PBR_FAST_Q_A2 0.0625f  /* lighting.glsl's: a^2 from which q = |h|^2 - (N.h)^2 (1 - a^2) */
 
-/* The three light sums of the pbr model (PgShade): the pixel's material multiplies them once. */
-typedef struct pg_pbr_sums {
-    float diffuse[3];  /* sum c (1 - w) N.L att                 x c_diff (1 - F0) */
-    float specular[3]; /* sum c (1 - w) pi D V N.L att          x F0 */
-    float fresnel[3];  /* sum c w pi D V N.L att                x 1;  w = (1 - V.H)^5 */
-} pg_pbr_sums;
-
 /* a = clamp(roughness, PG_PBR_MIN_ROUGHNESS, 1)^2 */
 float pg_pbr_alpha(float roughness);
-/* pg_light_pbr of lighting.glsl: adds one light of colour c from unit direction L (N.L > 0) with
- * attenuation att, at a point of unit normal N seen from unit direction V. */
-void pg_pbr_light(const float c[3], float att, const float L[3], const float N[3], const float V[3], float roughness,
-                  pg_pbr_sums *acc);
-/* pg_shade_combine of lighting.glsl with PG_PBR: base colour, metallic, the sums, ambient x
+/* pg_light_pbr of lighting.glsl: adds to the light sum acc one light of colour c from unit direction
+ * L (N.L > 0) with attenuation att, at a point of unit normal N seen from unit direction V, of base
+ * colour, metallic and roughness: c (kd (1 - w) N.L att + ks (1 - w) S + w S), S = pi D V N.L att,
+ * w = (1 - V.H)^5, kd = c_diff (1 - F0), ks = F0. With base 1 and metallic 1 it adds c S. */
+void pg_pbr_light(const float c[3], float att, const float L[3], const float N[3], const float V[3],
+                  const float base[3], float metallic, float roughness, float acc[3]);
+/* pg_shade_combine of lighting.glsl with PG_PBR: base colour, metallic, the light sum, ambient x
  * occlusion, emissive -> the pixel's colour. */
-void pg_pbr_combine(const float base[3], float metallic, const pg_pbr_sums *acc, float ambient, float occlusion,
+void pg_pbr_combine(const float base[3], float metallic, const float acc[3], float ambient, float occlusion,
                     const float emissive[3], float out[3]);
 
 /* The terms in double, as the specification writes them (a = alpha = roughness^2, unclamped). */

@@ -14,9 +14,9 @@
  * at ~5e12 evaluations/s (~0.4 s a frame) and still only ~0.7 s at 2.5e10/s (what naive's
  * fragment loop reaches on an H100, docs/performance.md), under the 2 s a Windows (TDR) or X
  * watchdog allows. C never exceeds REF_MAX_LIGHTS_PER_DISPATCH (32768, below).
- * With more than one dispatch the running fp32 sums wait in rgba32f storage images: diffuse in
- * `accum_diffuse`, specular (Blinn-Phong and pbr) in `accum_specular`, the pbr model's Fresnel
- * sums in `accum_fresnel`. The first dispatch starts
+ * With more than one dispatch the running fp32 sums wait in rgba32f storage images: diffuse (the
+ * pbr model's one sum) in `accum_diffuse`, Blinn-Phong's specular in `accum_specular`. The first
+ * dispatch starts
  * from zero and writes every pixel of them, the middle ones load, add and store, the last one
  * loads, adds, combines and writes the HDR pixel; the pass places its own compute -> compute
  * barrier on them between dispatches (a read and a write of 16 B a pixel each, 2 x 33 MB at
@@ -30,12 +30,11 @@
  *        pg_shade_combine as forward adds it, so the image stays bit-identical to naive's; unused -
  *        not allocated - without emissive materials; not bound: no emission drawn, explain line)]
  *        writes [hdr (storage image, rgba16f or rgba32f, every pixel written),
- *                accum_diffuse, accum_specular, accum_fresnel (optional: needed by the pbr model
- *                over more than one dispatch) (rgba32f storage images of hdr's size, written by
+ *                accum_diffuse, accum_specular (rgba32f storage images of hdr's size, written by
  *                the first dispatch before any other reads them; declared unused - so not
  *                allocated - when one dispatch does: 0 lights, a debug view, or no more lights
  *                than one dispatch takes at the compiled output size; accum_specular also with
- *                lambert shading, accum_fresnel with every model but pbr)].
+ *                lambert and pbr shading)].
  * Options: shading, ambient, view (none, albedo, normal, depth) as forward_naive;
  *          lights_per_dispatch (0 = auto, default; else 1..32768);
  *          environment_samples (1..1024, default 256): with an environment light in the scene, the
@@ -69,7 +68,7 @@ typedef struct ref_params { /* filled once by declare, read by create/update/rec
     uint32_t lights_per_dispatch; /* 0: auto */
     pg_slot surface[3];           /* position, normal, albedo */
     pg_slot emissive;             /* PG_SLOT_NONE when not bound */
-    pg_slot hdr, accum[3];        /* accum_diffuse, accum_specular, accum_fresnel (NONE unless bound) */
+    pg_slot hdr, accum[2];        /* accum_diffuse, accum_specular */
     bool env;                     /* the scene's environment by Monte Carlo (PG_REFERENCE_ENV) */
 } ref_params;
 
@@ -77,8 +76,8 @@ typedef struct reference_lighting {
     uint32_t lights_per_dispatch; /* 0: auto */
     float ambient;                /* option "ambient" (a run-time value): push constant */
     bool has_lights, has_accum, has_emissive, has_env;
-    uint32_t n_accum;             /* sum images bound: 1 (diffuse), 2 (+ specular), 3 (+ Fresnel) */
-    pg_slot light_slot, hdr, accum[3];
+    uint32_t n_accum;             /* sum images bound: 1 (diffuse), 2 (+ specular) */
+    pg_slot light_slot, hdr, accum[2];
     VkSampler sampler;
     pg_pass_set surface, lights;
     VkPipelineLayout layout;
@@ -237,12 +236,6 @@ static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
     p->accum[1] =
         pg_decl_write(out, "accum_specular", PG_RES_IMAGE, PG_ACCESS_STORAGE_RW, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
     pg_decl_mark_initializes(out, p->accum[1]);
-    p->accum[2] = PG_SLOT_NONE;
-    if (in->desc->n_writes > 3) {
-        p->accum[2] =
-            pg_decl_write(out, "accum_fresnel", PG_RES_IMAGE, PG_ACCESS_STORAGE_RW, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
-        pg_decl_mark_initializes(out, p->accum[2]);
-    }
     const int model = pg_shading_model(in, o.shading);
     pg_decl_define_int(out, "LIGHT_TILE_X", REF_TILE_X);
     pg_decl_define_int(out, "LIGHT_TILE_Y", REF_TILE_Y);
@@ -258,14 +251,8 @@ static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
         pg_decl_define(out, "PG_REFERENCE_ACCUM");
         pg_decl_explain(out, "%u lights in %u dispatches of <= %u lights (%s), running sums kept between them", n, nd,
                         chunk, lpd ? "lights_per_dispatch" : "auto: <= 2^34 light evaluations and 32768 lights each");
-        if (model == PG_SHADING_PBR && !pg_slot_ok(p->accum[2]))
-            return pg_fail(err, PG_ERR_SCHEMA,
-                           "%s: %s.writes: shading pbr over %u dispatches keeps three running sums: bind a fourth "
-                           "image (accum_fresnel, rgba32f) after accum_specular",
-                           in->desc->file, in->desc->json_path, nd);
         if (model == PG_SHADING_LAMBERT) pg_decl_mark_unused(out, p->accum[1], "lambert: no specular sum");
-        if (model != PG_SHADING_PBR && pg_slot_ok(p->accum[2]))
-            pg_decl_mark_unused(out, p->accum[2], "no Fresnel sum: the pbr model keeps one");
+        if (model == PG_SHADING_PBR) pg_decl_mark_unused(out, p->accum[1], "pbr: one running sum (accum_diffuse)");
     } else {
         char why[160];
         if (!lit) snprintf(why, sizeof why, "%s", n == 0 ? "0 lights" : "debug view reads no lights");
@@ -273,7 +260,6 @@ static pg_result ref_declare(const pg_declare_in *in, pg_pass_decl *out, pg_erro
                       lpd ? "lights_per_dispatch" : "auto: <= 2^34 light evaluations and 32768 lights");
         pg_decl_mark_unused(out, p->accum[0], why);
         pg_decl_mark_unused(out, p->accum[1], why);
-        if (pg_slot_ok(p->accum[2])) pg_decl_mark_unused(out, p->accum[2], why);
     }
     if ((r = ref_env_declare(in, out, p, err))) return r;
     return ref_check_sizes(in, out, p, emissive, err);
@@ -292,11 +278,9 @@ static pg_result ref_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
     p->hdr = pa->hdr;
     p->accum[0] = pa->accum[0];
     p->accum[1] = pa->accum[1];
-    p->accum[2] = pa->accum[2];
     p->has_emissive = pg_slot_ok(pa->emissive) && !pg_ctx_unused(ctx, pa->emissive);
     p->has_accum = !pg_ctx_unused(ctx, pa->accum[0]);
-    p->n_accum = !p->has_accum ? 0 : pg_ctx_unused(ctx, pa->accum[1]) ? 1
-                 : pg_slot_ok(pa->accum[2]) && !pg_ctx_unused(ctx, pa->accum[2]) ? 3 : 2;
+    p->n_accum = !p->has_accum ? 0 : pg_ctx_unused(ctx, pa->accum[1]) ? 1 : 2;
     const pg_phys_resource *hdr = pg_ctx_res(ctx, pa->hdr); /* rgba16f or rgba32f (declare) */
     /* the images sized like hdr have its extent (declare) */
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
@@ -378,7 +362,7 @@ static void ref_record(void *self, const pg_pass_record_ctx *ctx)
         return;
     }
     /* this dispatch's sums -> the next one (read and written again) */
-    VkImageMemoryBarrier2 b[3];
+    VkImageMemoryBarrier2 b[2];
     uint32_t nb = p->n_accum;
     for (uint32_t k = 0; k < nb; k++)
         b[k] = pg_image_barrier(pg_ctx_res(ctx, p->accum[k])->image, VK_IMAGE_ASPECT_COLOR_BIT,

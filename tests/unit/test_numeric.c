@@ -1085,10 +1085,9 @@ static float twin_one(const double L[3], const double V[3], const double N[3], f
 {
     float Lf[3] = {(float)L[0], (float)L[1], (float)L[2]}, Vf[3] = {(float)V[0], (float)V[1], (float)V[2]};
     float Nf[3] = {(float)N[0], (float)N[1], (float)N[2]}, c[3] = {1, 1, 1}, base[3] = {b, b, b}, e[3] = {0, 0, 0};
-    pg_pbr_sums acc = {{0}, {0}, {0}};
-    pg_pbr_light(c, 1.0f, Lf, Nf, Vf, r, &acc);
-    float out[3];
-    pg_pbr_combine(base, m, &acc, 0.0f, 1.0f, e, out);
+    float acc[3] = {0, 0, 0}, out[3];
+    pg_pbr_light(c, 1.0f, Lf, Nf, Vf, base, m, r, acc);
+    pg_pbr_combine(base, m, acc, 0.0f, 1.0f, e, out);
     return out[0];
 }
 
@@ -1169,11 +1168,14 @@ static void test_brdf(void)
         /* the bound, everywhere (grazing and behind included) */
         float Lf[3] = {(float)L[0], (float)L[1], (float)L[2]}, Vf[3] = {(float)V[0], (float)V[1], (float)V[2]};
         float Nf[3] = {(float)N[0], (float)N[1], (float)N[2]}, c[3] = {1, 1, 1};
-        pg_pbr_sums acc = {{0}, {0}, {0}};
-        if (ndl > 0) pg_pbr_light(c, 1.0f, Lf, Nf, Vf, r, &acc);
+        /* base 1, metallic 1: the sum is the specular lobe alone (kd = 0, ks = 1); base 1, metallic 0:
+         * the diffuse term too */
+        float metal[3] = {0, 0, 0}, dielectric[3] = {0, 0, 0}, one[3] = {1, 1, 1};
+        if (ndl > 0) pg_pbr_light(c, 1.0f, Lf, Nf, Vf, one, 1.0f, r, metal);
+        if (ndl > 0) pg_pbr_light(c, 1.0f, Lf, Nf, Vf, one, 0.0f, r, dielectric);
         float a = pg_pbr_alpha(r);
-        double spec = (double)acc.specular[0] + acc.fresnel[0];
-        if (!isfinite(spec) || !isfinite(acc.diffuse[0])) nonfinite++;
+        double spec = metal[0];
+        if (!isfinite(spec) || !isfinite(dielectric[0])) nonfinite++;
         worst_bound = fmax(worst_bound, spec / (0.5 / ((double)a * a * a)));
         if (ndl < 0.05 || ndv < 0.05 || r < 0.05) continue;
         double want = M_PI * pg_brdf_pbr(L, V, N, b, m, r) * ndl;
