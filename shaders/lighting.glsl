@@ -69,7 +69,7 @@ PgShade pg_shade_zero()
 // and pg_shade_lights multiplies the sum by pg_pbr_lit (0 for an unlit surface). One running sum
 // instead of three whose material terms multiply once after the loop (measured on an H200 at 100,000
 // lights: the visibility pipeline's frame 5.83 -> 5.43 ms, 72 -> 64 registers in its tiled loop;
-// docs/decisions/pbr-light-loop.md).
+// docs/decisions/pbr-light-sums.md).
 // pi D = k^2 with k = a / (|N x H|^2 + (N.H)^2 a^2) (the same D; |N x H|^2 = 1 - (N.H)^2 computed
 // without its cancellation near N.H = 1). Roughness is clamped to >= PG_PBR_MIN_ROUGHNESS (a = 0
 // is a mirror: an infinite peak); N.V to >= 0 (a normal-mapped pixel may face away from the eye).

@@ -7,7 +7,7 @@
  *     glTF 2.0 specification evaluated in double on the CPU (renderer/common/brdf.c pg_brdf_pbr, the
  *     terms as the specification writes them) at the floor point under each pixel centre, plus the
  *     ambient term, within PBR_CPU_REL (2e-5) relative; the reference split over one dispatch per light
- *     (three running sums) is bit-identical to one dispatch; every deterministic pipeline is within
+ *     (one running sum) is bit-identical to one dispatch; every deterministic pipeline is within
  *     its documented per-pixel bound of the reference (accuracy_bounds.h; the lightcut its stated
  *     2%) plus the rgba16f rounding and the two unranged lights' cut-off; forward_plus is
  *     bit-identical to naive, and so is the reference written in rgba16f.
