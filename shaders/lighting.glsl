@@ -68,7 +68,7 @@ PgShade pg_shade_zero()
 //   diffuse += color (kd (1 - w) N.L att + ks (1 - w) pi D V N.L att + w pi D V N.L att)
 // and pg_shade_lights multiplies the sum by pg_pbr_lit (0 for an unlit surface). One running sum
 // instead of three whose material terms multiply once after the loop (measured on an H200 at 100,000
-// lights: the visibility pipeline's frame 5.83 -> 5.43 ms, 72 -> 64 registers in its tiled loop;
+// lights: the visibility pipeline's frame 5.82 -> 5.43 ms, 72 -> 64 registers in its tiled loop;
 // docs/decisions/pbr-light-sums.md).
 // pi D = k^2 with k = a / (|N x H|^2 + (N.H)^2 a^2) (the same D; |N x H|^2 = 1 - (N.H)^2 computed
 // without its cancellation near N.H = 1). Roughness is clamped to >= PG_PBR_MIN_ROUGHNESS (a = 0
