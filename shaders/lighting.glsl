@@ -89,6 +89,21 @@ float pg_pbr_lit(Surface s)
     return s.occlusion < 0.0 ? 0.0 : 1.0;
 }
 
+// The material's two colours (Surface.albedo the base colour, Surface.specular the metallic):
+// F0 = mix(0.04, base, metallic) and c_diff = base (1 - metallic). precise: the same rounding
+// whether the material is a constant or read (see pg_shade_combine).
+vec3 pg_pbr_f0(Surface s)
+{
+    precise vec3 f0 = mix(vec3(0.04), s.albedo, s.specular);
+    return f0;
+}
+
+vec3 pg_pbr_cdiff(Surface s)
+{
+    precise vec3 cdiff = s.albedo * (1.0 - s.specular);
+    return cdiff;
+}
+
 float pg_pbr_alpha(float roughness)
 {
     float r = clamp(roughness, PG_PBR_MIN_ROUGHNESS, 1.0);
@@ -118,11 +133,9 @@ PgPbrPixel pg_pbr_pixel(Surface s, vec3 V)
 {
     PgPbrPixel m;
     vec3 N = s.normal;
-    // precise: the same rounding whether the material is a constant or read (see pg_shade_combine)
-    precise vec3 f0 = mix(vec3(0.04), s.albedo, s.specular);
-    precise vec3 kd = s.albedo * (1.0 - s.specular) * (1.0 - f0);
+    m.ks = pg_pbr_f0(s);
+    precise vec3 kd = pg_pbr_cdiff(s) * (1.0 - m.ks);
     m.kd = kd;
-    m.ks = f0;
     m.a = pg_pbr_alpha(s.shininess);
     m.a2 = m.a * m.a;
     m.b2 = 1.0 - m.a2;
@@ -315,9 +328,9 @@ vec3 pg_shade_lights(Surface s, PgShade acc)
 vec3 pg_shade_combine(Surface s, PgShade acc, vec3 ambient)
 {
 #ifdef PG_PBR
-    vec3 f0 = mix(vec3(0.04), s.albedo, s.specular);
-    vec3 cdiff = s.albedo * (1.0 - s.specular);
-    // precise (here and in pg_shade_lights): no fused multiply-adds, so a pass where occlusion or the
+    vec3 f0 = pg_pbr_f0(s);
+    vec3 cdiff = pg_pbr_cdiff(s);
+    // precise (here and in pg_pbr_pixel): no fused multiply-adds, so a pass where occlusion or the
     // lit weight is a constant (forward without occlusion textures) rounds exactly as one that reads
     // them (the reference)
     precise vec3 c = pg_shade_lights(s, acc) + (cdiff + f0) * (ambient * max(s.occlusion, 0.0)) + s.emissive;

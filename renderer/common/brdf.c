@@ -13,6 +13,17 @@ static float clampf(float x, float lo, float hi)
     return x < lo ? lo : x > hi ? hi : x;
 }
 
+/* the material's colours of one channel: F0 = mix(0.04, base, metallic), c_diff = base (1 - metallic) */
+static float pbr_f0(float base, float metallic)
+{
+    return 0.04f + (base - 0.04f) * metallic;
+}
+
+static float pbr_cdiff(float base, float metallic)
+{
+    return base * (1.0f - metallic);
+}
+
 float pg_pbr_alpha(float roughness)
 {
     float r = clampf(roughness, PG_PBR_MIN_ROUGHNESS, 1.0f);
@@ -44,8 +55,8 @@ void pg_pbr_light(const float c[3], float att, const float L[3], const float N[3
     float w = t2 * t2 * t;
     float dw = ndl * att, sw = spec * w;
     for (int i = 0; i < 3; i++) {
-        float f0 = 0.04f + (base[i] - 0.04f) * metallic; /* mix(0.04, base, metallic) */
-        float kd = base[i] * (1.0f - metallic) * (1.0f - f0);
+        float f0 = pbr_f0(base[i], metallic);
+        float kd = pbr_cdiff(base[i], metallic) * (1.0f - f0);
         acc[i] += c[i] * (kd * (dw - dw * w) + f0 * (spec - sw) + sw);
     }
 }
@@ -54,8 +65,7 @@ void pg_pbr_combine(const float base[3], float metallic, const float acc[3], flo
                     const float emissive[3], float out[3])
 {
     for (int i = 0; i < 3; i++) {
-        float f0 = 0.04f + (base[i] - 0.04f) * metallic; /* mix(0.04, base, metallic) */
-        float cdiff = base[i] * (1.0f - metallic);
+        float f0 = pbr_f0(base[i], metallic), cdiff = pbr_cdiff(base[i], metallic);
         out[i] = acc[i] + (cdiff + f0) * (ambient * occlusion) + emissive[i];
     }
 }
