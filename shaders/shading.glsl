@@ -338,10 +338,6 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 // tol covers the rounding of both sides.
 // PG_SPOT_LIGHTS: a spot light also leaves the chunk when its cone misses the bounding sphere of the
 // cluster's part of the tile (pg_spot_reaches_sphere): it would add exactly 0 there.
-// PG_COUNT_IDLE_LANES (diagnostic, set by hand): light_evals also counts, per round, the lights an idle
-// lane (another cluster's pixel, or none) passes through while its 32-lane half of the tile shades.
-// PG_COUNT_REACHING (diagnostic, set by hand): light_evals counts only the evaluated lights that reach
-// the pixel (d < R) from in front of it (N.(light - P) > 0), the ones that add light.
 // PG_TILE_SUBGROUPS: the pipeline requires full subgroups (gpu->exact_subgroups), so subgroup
 // ballots give the order within a subgroup; otherwise a shared-memory scan.
 #ifndef PG_TILE
@@ -349,10 +345,6 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #endif
 #define PG_TILE_N (PG_TILE * PG_TILE)
 shared uint s_tl_cluster;
-#ifdef PG_COUNT_IDLE_LANES
-// diagnostic (reverted): per 32-invocation half of the workgroup, whether any lane shades this round
-shared uint s_hw[2];
-#endif
 shared uint s_tl_box[6];                     // ordered-uint min xyz, max xyz
 shared vec4 s_tl_light[2 * PG_TILE_N];       // pos_radius, color of the kept lights
 #ifdef PG_SPOT_LIGHTS
@@ -419,9 +411,6 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
     for (;;) {
         if (lid == 0u) {
             s_tl_cluster = 0xffffffffu;
-#ifdef PG_COUNT_IDLE_LANES
-            s_hw[0] = 0u; s_hw[1] = 0u;
-#endif
             s_tl_box[0] = s_tl_box[1] = s_tl_box[2] = 0xffffffffu;
             s_tl_box[3] = s_tl_box[4] = s_tl_box[5] = 0u;
 #ifdef PG_TILE_BACKFACE
@@ -436,9 +425,6 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
         uint c = s_tl_cluster;
         if (c == 0xffffffffu) break;                  // uniform: every invocation read the same
         bool mine = pending && ci == c;
-#ifdef PG_COUNT_IDLE_LANES
-        if (mine) atomicOr(s_hw[lid / 32u], 1u);
-#endif
         if (mine) {
             for (int k = 0; k < 3; k++) {
                 atomicMin(s_tl_box[k], pg_tl_order(P[k]));
@@ -525,14 +511,8 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #endif
             }
             barrier();
-#ifdef PG_COUNT_IDLE_LANES
-            // an idle lane of a 32-lane subgroup that runs the loop also pays for every light of it
-            if (!mine && s_hw[lid / 32u] != 0u) PG_COUNT(total);
-#endif
             if (mine) {
-#ifndef PG_COUNT_REACHING
                 PG_COUNT(total);
-#endif
                 for (uint j = 0u; j < total; j++) {
                     vec4 a = s_tl_light[2u * j];
                     vec4 b = s_tl_light[2u * j + 1u];
@@ -543,11 +523,6 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #endif
                     pg_accumulate_light_rel_select(a.xyz, b.w, a.w, b.rgb, sp, P, s.normal, V, lm, inv_md2,
                                                    acc);
-#ifdef PG_COUNT_REACHING
-                    vec3 rd = a.xyz - P;
-                    float rd2 = dot(rd, rd);
-                    if (rd2 < b.w && dot(s.normal, rd) > 0.0) PG_COUNT(1u);
-#endif
                 }
             }
             barrier();   // before the next chunk overwrites the shared lights and counts
