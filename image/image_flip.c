@@ -1,13 +1,19 @@
 /* image_flip.c - LDR-FLIP and HDR-FLIP on the CPU (see image_flip.h for the method and constants).
  *
  * Layout: every image is held as float planes (one per channel, row-major). The spatial filters are
- * separable: a row pass into a scratch plane, then a column pass, both with replicated borders. */
+ * separable: a row pass into a scratch plane, then a column pass, both with replicated borders.
+ * Threads: each step of the method (a colour conversion, a row pass, a column pass, the per-pixel
+ * error) runs on bands of rows in parallel (flip_run), one band a thread; a step only reads what
+ * earlier steps wrote, and every value is computed by the same operations whatever the band, so
+ * the map is the same bits for any thread count (test_image_metrics checks it). */
 #include "image_flip.h"
 
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -112,13 +118,14 @@ static void conv_paired(float *d, const float *const *at, uint32_t w, const flip
     }
 }
 
-/* dst = src correlated with k along rows; pad: scratch of w + 2r floats, at: of 2r + 1 pointers */
-static void conv_rows(const float *src, float *dst, uint32_t w, uint32_t h, const flip_kernel *k, float *pad,
-                      const float **at)
+/* rows [y0, y1) of dst = src correlated with k along rows; pad: scratch of w + 2r floats, at: of
+ * 2r + 1 pointers */
+static void conv_rows(const float *src, float *dst, uint32_t w, uint32_t y0, uint32_t y1, const flip_kernel *k,
+                      float *pad, const float **at)
 {
     int r = k->r;
     size_t n = (size_t)w + 2 * (size_t)r;
-    for (uint32_t y = 0; y < h; y++) {
+    for (uint32_t y = y0; y < y1; y++) {
         const float *s = src + (size_t)y * w;
         float *d = dst + (size_t)y * w;
         for (size_t i = 0; i < n; i++) {
@@ -139,13 +146,13 @@ static void conv_rows(const float *src, float *dst, uint32_t w, uint32_t h, cons
     }
 }
 
-/* dst = src correlated with k along columns (replicated borders); acc += weight * result when
- * accumulate, else dst = result; at: scratch of 2r + 1 pointers */
-static void conv_cols(const float *src, float *dst, uint32_t w, uint32_t h, const flip_kernel *k, float weight,
-                      bool accumulate, const float **at)
+/* rows [y0, y1) of dst = src (h rows) correlated with k along columns (replicated borders);
+ * dst += weight * result when accumulate, else dst = weight * result; at: scratch of 2r + 1 pointers */
+static void conv_cols(const float *src, float *dst, uint32_t w, uint32_t h, uint32_t y0, uint32_t y1,
+                      const flip_kernel *k, float weight, bool accumulate, const float **at)
 {
     int r = k->r;
-    for (uint32_t y = 0; y < h; y++) {
+    for (uint32_t y = y0; y < y1; y++) {
         float *d = dst + (size_t)y * w;
         if (!accumulate)
             for (uint32_t x = 0; x < w; x++) d[x] = 0.0f;
@@ -212,14 +219,24 @@ static void feature_kernels(double ppd, flip_kernel *g, flip_kernel *d1, flip_ke
 
 /* ---- the LDR-FLIP core ------------------------------------------------------------------------ */
 
+#define FLIP_MAX_THREADS 64
+#define FLIP_MIN_BAND_ROWS 16 /* fewer rows a thread are not worth one */
+
+/* a thread's rows [y0, y1) and its scratch for the filters */
+typedef struct flip_band {
+    uint32_t y0, y1;
+    float *pad;           /* row scratch (conv_rows) */
+    const float **at;     /* a filter's 2r + 1 source rows (conv_rows, conv_cols) */
+} flip_band;
+
 typedef struct flip_ctx {
     uint32_t w, h;
     double cmax;
     flip_kernel csf[3][2];   /* per channel: the two Gaussians (the second unused when a2 = 0) */
     float csf_w[3][2];       /* their weights in the normalised 2D kernel */
     flip_kernel fg, fd1, fd2; /* feature kernels */
-    float *pad;               /* row scratch */
-    const float **at;         /* a filter's 2r + 1 source rows (conv_rows, conv_cols) */
+    uint32_t bands;
+    flip_band *band;
     float *plane[2][5];       /* per image: Y, Cx, Cz planes, then edge and point strengths */
     float *tmp[3];            /* scratch planes */
     float *kbuf;
@@ -227,8 +244,11 @@ typedef struct flip_ctx {
 
 static void ctx_free(flip_ctx *c)
 {
-    free(c->pad);
-    free(c->at);
+    for (uint32_t i = 0; c->band && i < c->bands; i++) {
+        free(c->band[i].pad);
+        free(c->band[i].at);
+    }
+    free(c->band);
     for (int i = 0; i < 2; i++)
         for (int p = 0; p < 5; p++) free(c->plane[i][p]);
     for (int i = 0; i < 3; i++) free(c->tmp[i]);
@@ -265,8 +285,19 @@ static void ctx_kernels(flip_ctx *c, double ppd, int rc, int rf)
     c->fd2.shape = FLIP_KERNEL_EVEN;
 }
 
-static pg_result ctx_init(flip_ctx *c, uint32_t w, uint32_t h, double ppd, pg_error *err)
+/* how many threads: opts' count, or one per online CPU; at most one per FLIP_MIN_BAND_ROWS rows */
+static uint32_t flip_threads(const pg_flip_opts *o, uint32_t h)
 {
+    long t = o && o->threads ? (long)o->threads : sysconf(_SC_NPROCESSORS_ONLN);
+    long most = (long)(h / FLIP_MIN_BAND_ROWS);
+    if (t > most) t = most;
+    if (t > FLIP_MAX_THREADS) t = FLIP_MAX_THREADS;
+    return t < 1 ? 1 : (uint32_t)t;
+}
+
+static pg_result ctx_init(flip_ctx *c, uint32_t w, uint32_t h, const pg_flip_opts *o, pg_error *err)
+{
+    double ppd = ppd_of(o);
     memset(c, 0, sizeof *c);
     c->w = w;
     c->h = h;
@@ -278,10 +309,18 @@ static pg_result ctx_init(flip_ctx *c, uint32_t w, uint32_t h, double ppd, pg_er
     if (rc > 1 << 20 || rf > 1 << 20)
         return pg_fail(err, PG_ERR_INVALID_ARG, "FLIP: ppd %g gives a filter radius too large", ppd);
     size_t n = (size_t)w * h, rmax = (size_t)(rc > rf ? rc : rf);
-    c->pad = malloc(((size_t)w + 2 * rmax) * sizeof(float));
-    c->at = malloc((2 * rmax + 1) * sizeof *c->at);
+    c->bands = flip_threads(o, h);
+    c->band = calloc(c->bands, sizeof *c->band);
     c->kbuf = malloc((6 * (2 * (size_t)rc + 1) + 3 * (2 * (size_t)rf + 1)) * sizeof(float));
-    bool ok = c->pad && c->at && c->kbuf;
+    bool ok = c->band && c->kbuf;
+    for (uint32_t i = 0; ok && i < c->bands; i++) {
+        flip_band *b = &c->band[i];
+        b->y0 = (uint32_t)((uint64_t)h * i / c->bands);
+        b->y1 = (uint32_t)((uint64_t)h * (i + 1) / c->bands);
+        b->pad = malloc(((size_t)w + 2 * rmax) * sizeof(float));
+        b->at = malloc((2 * rmax + 1) * sizeof *b->at);
+        ok = b->pad && b->at;
+    }
     for (int i = 0; i < 2; i++)
         for (int p = 0; p < 5; p++) ok = ok && (c->plane[i][p] = malloc(n * sizeof(float)));
     for (int i = 0; i < 3; i++) ok = ok && (c->tmp[i] = malloc(n * sizeof(float)));
@@ -293,13 +332,58 @@ static pg_result ctx_init(flip_ctx *c, uint32_t w, uint32_t h, double ppd, pg_er
     return PG_OK;
 }
 
-/* linear RGB (3 floats a pixel, in [0, 1]) -> the Y, Cx, Cz planes of image i */
-static void to_ycxcz(flip_ctx *c, int i, const float *rgb)
+/* ---- steps on bands of rows ------------------------------------------------------------------- */
+
+/* what a step works on (each step reads the fields it needs) */
+typedef struct flip_step {
+    int i, ch, t;             /* image, CSF channel and Gaussian */
+    bool any;                 /* the CSF column pass adds to what an earlier Gaussian wrote */
+    const float *rgb;         /* linear RGB input (to_ycxcz) */
+    const float *src[2];      /* tone_map: the two clean images */
+    float *dst[2];            /* tone_map: their tone-mapped copies; combine, max_into: the maps */
+    double scale;             /* tone_map: 2^exposure */
+} flip_step;
+
+typedef void (*flip_step_fn)(flip_ctx *c, const flip_band *b, const flip_step *s);
+
+typedef struct flip_job {
+    flip_ctx *c;
+    const flip_band *b;
+    const flip_step *s;
+    flip_step_fn fn;
+} flip_job;
+
+static void *flip_job_run(void *p)
 {
-    size_t n = (size_t)c->w * c->h;
-    float *Y = c->plane[i][0], *Cx = c->plane[i][1], *Cz = c->plane[i][2];
-    for (size_t p = 0; p < n; p++) {
-        const float *v = rgb + 3 * p;
+    flip_job *j = p;
+    j->fn(j->c, j->b, j->s);
+    return NULL;
+}
+
+/* fn on every band, in parallel; returns when all are done (a band whose thread cannot be started
+ * runs on this one) */
+static void flip_run(flip_ctx *c, flip_step_fn fn, const flip_step *s)
+{
+    pthread_t th[FLIP_MAX_THREADS];
+    bool started[FLIP_MAX_THREADS] = {false};
+    flip_job jobs[FLIP_MAX_THREADS];
+    for (uint32_t i = 1; i < c->bands; i++) {
+        jobs[i] = (flip_job){c, &c->band[i], s, fn};
+        started[i] = pthread_create(&th[i], NULL, flip_job_run, &jobs[i]) == 0;
+    }
+    fn(c, &c->band[0], s);
+    for (uint32_t i = 1; i < c->bands; i++) {
+        if (started[i]) pthread_join(th[i], NULL);
+        else fn(c, &c->band[i], s);
+    }
+}
+
+/* linear RGB (3 floats a pixel, in [0, 1]) -> the Y, Cx, Cz planes of image i */
+static void step_ycxcz(flip_ctx *c, const flip_band *b, const flip_step *s)
+{
+    float *Y = c->plane[s->i][0], *Cx = c->plane[s->i][1], *Cz = c->plane[s->i][2];
+    for (size_t p = (size_t)b->y0 * c->w; p < (size_t)b->y1 * c->w; p++) {
+        const float *v = s->rgb + 3 * p;
         double xyz[3];
         for (int k = 0; k < 3; k++)
             xyz[k] = (RGB2XYZ[k][0] * v[0] + RGB2XYZ[k][1] * v[1] + RGB2XYZ[k][2] * v[2]) / WHITE[k];
@@ -309,48 +393,99 @@ static void to_ycxcz(flip_ctx *c, int i, const float *rgb)
     }
 }
 
+/* features: the achromatic channel Y / Yn in [0, 1] (tmp[2]) and its row pass with the edge
+ * kernel (tmp[0]) */
+static void step_feat_rows1(flip_ctx *c, const flip_band *b, const flip_step *s)
+{
+    float *y = c->tmp[2];
+    for (size_t p = (size_t)b->y0 * c->w; p < (size_t)b->y1 * c->w; p++) y[p] = (c->plane[s->i][0][p] + 16.0f) / 116.0f;
+    conv_rows(y, c->tmp[0], c->w, b->y0, b->y1, &c->fd1, b->pad, b->at);
+}
+
+static void step_feat_cols1(flip_ctx *c, const flip_band *b, const flip_step *s) /* edge x */
+{
+    conv_cols(c->tmp[0], c->plane[s->i][3], c->w, c->h, b->y0, b->y1, &c->fg, 1.0f, false, b->at);
+}
+
+static void step_feat_rows2(flip_ctx *c, const flip_band *b, const flip_step *s)
+{
+    (void)s;
+    conv_rows(c->tmp[2], c->tmp[0], c->w, b->y0, b->y1, &c->fd2, b->pad, b->at);
+}
+
+static void step_feat_cols2(flip_ctx *c, const flip_band *b, const flip_step *s) /* point x */
+{
+    conv_cols(c->tmp[0], c->plane[s->i][4], c->w, c->h, b->y0, b->y1, &c->fg, 1.0f, false, b->at);
+}
+
+static void step_feat_rows3(flip_ctx *c, const flip_band *b, const flip_step *s)
+{
+    (void)s;
+    conv_rows(c->tmp[2], c->tmp[0], c->w, b->y0, b->y1, &c->fg, b->pad, b->at);
+}
+
+/* edge y and point y, and the strengths: the length of the (x, y) responses */
+static void step_feat_cols3(flip_ctx *c, const flip_band *b, const flip_step *s)
+{
+    float *e = c->plane[s->i][3], *pt = c->plane[s->i][4], *q = c->tmp[1];
+    size_t p0 = (size_t)b->y0 * c->w, p1 = (size_t)b->y1 * c->w;
+    conv_cols(c->tmp[0], q, c->w, c->h, b->y0, b->y1, &c->fd1, 1.0f, false, b->at);
+    for (size_t p = p0; p < p1; p++) e[p] = sqrtf(e[p] * e[p] + q[p] * q[p]);
+    conv_cols(c->tmp[0], q, c->w, c->h, b->y0, b->y1, &c->fd2, 1.0f, false, b->at);
+    for (size_t p = p0; p < p1; p++) pt[p] = sqrtf(pt[p] * pt[p] + q[p] * q[p]);
+}
+
 /* edge and point strengths of image i from its (unfiltered) achromatic channel */
 static void features(flip_ctx *c, int i)
 {
-    uint32_t w = c->w, h = c->h;
-    size_t n = (size_t)w * h;
-    float *y = c->tmp[2], *e = c->plane[i][3], *pt = c->plane[i][4], *a = c->tmp[0], *b = c->tmp[1];
-    for (size_t p = 0; p < n; p++) y[p] = (c->plane[i][0][p] + 16.0f) / 116.0f; /* Y / Yn in [0, 1] */
-    conv_rows(y, a, w, h, &c->fd1, c->pad, c->at);
-    conv_cols(a, e, w, h, &c->fg, 1.0f, false, c->at); /* edge x */
-    conv_rows(y, a, w, h, &c->fd2, c->pad, c->at);
-    conv_cols(a, pt, w, h, &c->fg, 1.0f, false, c->at); /* point x */
-    conv_rows(y, a, w, h, &c->fg, c->pad, c->at);
-    conv_cols(a, b, w, h, &c->fd1, 1.0f, false, c->at); /* edge y */
-    for (size_t p = 0; p < n; p++) e[p] = sqrtf(e[p] * e[p] + b[p] * b[p]);
-    conv_cols(a, b, w, h, &c->fd2, 1.0f, false, c->at); /* point y */
-    for (size_t p = 0; p < n; p++) pt[p] = sqrtf(pt[p] * pt[p] + b[p] * b[p]);
+    flip_step s = {.i = i};
+    flip_run(c, step_feat_rows1, &s);
+    flip_run(c, step_feat_cols1, &s);
+    flip_run(c, step_feat_rows2, &s);
+    flip_run(c, step_feat_cols2, &s);
+    flip_run(c, step_feat_rows3, &s);
+    flip_run(c, step_feat_cols3, &s);
+}
+
+static void step_csf_rows(flip_ctx *c, const flip_band *b, const flip_step *s)
+{
+    conv_rows(c->plane[s->i][s->ch], c->tmp[0], c->w, b->y0, b->y1, &c->csf[s->ch][s->t], b->pad, b->at);
+}
+
+static void step_csf_cols(flip_ctx *c, const flip_band *b, const flip_step *s)
+{
+    conv_cols(c->tmp[0], c->tmp[1], c->w, c->h, b->y0, b->y1, &c->csf[s->ch][s->t], c->csf_w[s->ch][s->t], s->any,
+              b->at);
+}
+
+/* the filtered channel back into its plane (its rows are no longer read) */
+static void step_csf_store(flip_ctx *c, const flip_band *b, const flip_step *s)
+{
+    size_t p0 = (size_t)b->y0 * c->w;
+    memcpy(c->plane[s->i][s->ch] + p0, c->tmp[1] + p0, ((size_t)b->y1 * c->w - p0) * sizeof(float));
 }
 
 /* filter the Y, Cx, Cz planes of image i with the CSFs (in place) */
 static void csf_filter(flip_ctx *c, int i)
 {
-    uint32_t w = c->w, h = c->h;
-    size_t n = (size_t)w * h;
     for (int ch = 0; ch < 3; ch++) {
-        float *p = c->plane[i][ch], *out = c->tmp[1];
-        bool any = false;
+        flip_step s = {.i = i, .ch = ch};
         for (int t = 0; t < 2; t++) {
             if (CSF[ch][2 * t] == 0.0) continue;
-            conv_rows(p, c->tmp[0], w, h, &c->csf[ch][t], c->pad, c->at);
-            conv_cols(c->tmp[0], out, w, h, &c->csf[ch][t], c->csf_w[ch][t], any, c->at);
-            any = true;
+            s.t = t;
+            flip_run(c, step_csf_rows, &s);
+            flip_run(c, step_csf_cols, &s);
+            s.any = true;
         }
-        memcpy(p, out, n * sizeof(float));
+        flip_run(c, step_csf_store, &s);
     }
 }
 
 /* the filtered YCxCz planes of image i -> clamped linear RGB -> Hunt-adjusted L*a*b* (in place) */
-static void to_hunt_lab(flip_ctx *c, int i)
+static void step_hunt_lab(flip_ctx *c, const flip_band *b, const flip_step *s)
 {
-    size_t n = (size_t)c->w * c->h;
-    float *P0 = c->plane[i][0], *P1 = c->plane[i][1], *P2 = c->plane[i][2];
-    for (size_t p = 0; p < n; p++) {
+    float *P0 = c->plane[s->i][0], *P1 = c->plane[s->i][1], *P2 = c->plane[s->i][2];
+    for (size_t p = (size_t)b->y0 * c->w; p < (size_t)b->y1 * c->w; p++) {
         double yy = (P0[p] + 16.0) / 116.0;
         double xyz[3] = {(yy + P1[p] / 500.0) * WHITE[0], yy * WHITE[1], (yy - P2[p] / 200.0) * WHITE[2]};
         double rgb[3], lab[3];
@@ -372,18 +507,11 @@ static double redistribute(double e, double cmax)
     return v > 1.0 ? 1.0 : v;
 }
 
-/* LDR-FLIP of two linear RGB images (3 floats a pixel, in [0, 1]); map: w*h floats */
-static void flip_linear(flip_ctx *c, const float *test_rgb, const float *ref_rgb, float *map)
+/* the per-pixel FLIP of the two images' Lab planes and feature strengths into dst[0] */
+static void step_combine(flip_ctx *c, const flip_band *b, const flip_step *s)
 {
-    const float *src[2] = {test_rgb, ref_rgb};
-    for (int i = 0; i < 2; i++) {
-        to_ycxcz(c, i, src[i]);
-        features(c, i);
-        csf_filter(c, i);
-        to_hunt_lab(c, i);
-    }
-    size_t n = (size_t)c->w * c->h;
-    for (size_t p = 0; p < n; p++) {
+    float *map = s->dst[0];
+    for (size_t p = (size_t)b->y0 * c->w; p < (size_t)b->y1 * c->w; p++) {
         double lt[3] = {c->plane[0][0][p], c->plane[0][1][p], c->plane[0][2][p]};
         double lr[3] = {c->plane[1][0][p], c->plane[1][1][p], c->plane[1][2][p]};
         double ec = redistribute(pow(hyab(lt, lr), FLIP_QC), c->cmax);
@@ -392,6 +520,21 @@ static void flip_linear(flip_ctx *c, const float *test_rgb, const float *ref_rgb
         double ef = pow((de > dp ? de : dp) / sqrt(2.0), FLIP_QF);
         map[p] = (float)pow(ec, 1.0 - ef);
     }
+}
+
+/* LDR-FLIP of two linear RGB images (3 floats a pixel, in [0, 1]); map: w*h floats */
+static void flip_linear(flip_ctx *c, const float *test_rgb, const float *ref_rgb, float *map)
+{
+    const float *src[2] = {test_rgb, ref_rgb};
+    for (int i = 0; i < 2; i++) {
+        flip_step s = {.i = i, .rgb = src[i]};
+        flip_run(c, step_ycxcz, &s);
+        features(c, i);
+        csf_filter(c, i);
+        flip_run(c, step_hunt_lab, &s);
+    }
+    flip_step s = {.dst = {map, NULL}};
+    flip_run(c, step_combine, &s);
 }
 
 static pg_result check_args(const void *a, const void *b, uint32_t w, uint32_t h, const char *what, pg_error *err)
@@ -423,7 +566,7 @@ pg_result pg_flip_ldr(const uint8_t *test_rgba8, const uint8_t *ref_rgba8, uint3
         lut[i] = (float)(x <= 0.04045 ? x / 12.92 : pow((x + 0.055) / 1.055, 2.4));
     }
     flip_ctx c;
-    r = ctx_init(&c, w, h, ppd_of(o), err);
+    r = ctx_init(&c, w, h, o, err);
     if (r != PG_OK) return r;
     float *rgb[2] = {malloc(n * 3 * sizeof(float)), malloc(n * 3 * sizeof(float))};
     float *map = map_out ? map_out : malloc(n * sizeof(float));
@@ -534,9 +677,20 @@ static uint64_t hdr_clean(const float *src, float *dst, size_t n)
     return bad;
 }
 
-static void tone_map(const float *src, float *dst, size_t n, double scale)
+/* both clean images scaled by 2^exposure and tone mapped (3 floats a pixel) */
+static void step_tone_map(flip_ctx *c, const flip_band *b, const flip_step *s)
 {
-    for (size_t i = 0; i < 3 * n; i++) dst[i] = (float)aces(scale * src[i]);
+    for (int k = 0; k < 2; k++)
+        for (size_t i = 3 * (size_t)b->y0 * c->w; i < 3 * (size_t)b->y1 * c->w; i++)
+            s->dst[k][i] = (float)aces(s->scale * s->src[k][i]);
+}
+
+/* dst[0] = max(dst[0], dst[1]) per pixel */
+static void step_max_into(flip_ctx *c, const flip_band *b, const flip_step *s)
+{
+    float *m = s->dst[0];
+    const float *v = s->dst[1];
+    for (size_t p = (size_t)b->y0 * c->w; p < (size_t)b->y1 * c->w; p++) m[p] = v[p] > m[p] ? v[p] : m[p];
 }
 
 typedef struct hdr_bufs {
@@ -560,7 +714,7 @@ pg_result pg_flip_hdr(const float *test_rgba32f, const float *ref_rgba32f, uint3
     if (r != PG_OK) return r;
     size_t n = (size_t)w * h;
     flip_ctx c;
-    r = ctx_init(&c, w, h, ppd_of(o), err);
+    r = ctx_init(&c, w, h, o, err);
     if (r != PG_OK) return r;
     hdr_bufs b = {0};
     for (int i = 0; i < 2; i++) {
@@ -589,11 +743,12 @@ pg_result pg_flip_hdr(const float *test_rgba32f, const float *ref_rgba32f, uint3
     st.exposures = count > 2.0 ? (uint32_t)count : 2;
     double step = span / (st.exposures - 1);
     for (uint32_t e = 0; e < st.exposures; e++) {
-        double scale = exp2(st.start_exposure + e * step);
-        for (int i = 0; i < 2; i++) tone_map(b.clean[i], b.tm[i], n, scale);
+        flip_step ts = {.src = {b.clean[0], b.clean[1]}, .dst = {b.tm[0], b.tm[1]},
+                        .scale = exp2(st.start_exposure + e * step)};
+        flip_run(&c, step_tone_map, &ts);
         flip_linear(&c, b.tm[0], b.tm[1], e == 0 ? b.map : b.ldr);
-        if (e > 0)
-            for (size_t p = 0; p < n; p++) b.map[p] = b.ldr[p] > b.map[p] ? b.ldr[p] : b.map[p];
+        flip_step ms = {.dst = {b.map, b.ldr}};
+        if (e > 0) flip_run(&c, step_max_into, &ms);
     }
     st.mean = map_mean(b.map, n);
     if (stats) *stats = st;

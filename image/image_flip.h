@@ -62,6 +62,8 @@ extern "C" {
 
 typedef struct pg_flip_opts {
     double ppd; /* pixels per degree of visual angle; <= 0 (or not finite): PG_FLIP_DEFAULT_PPD */
+    uint32_t threads; /* 0: one per online CPU; at most 64, and one per 16 rows of the image. The map
+                       * is the same bits for any count (each thread computes whole rows of each step) */
 } pg_flip_opts;
 
 /* LDR-FLIP of two w*h RGBA8 sRGB-encoded display images (alpha ignored). o may be NULL (defaults).
