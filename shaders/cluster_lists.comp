@@ -34,7 +34,9 @@ layout(set = 1, binding = 1, std430) readonly buffer Records { uvec4 records[]; 
 // them into exclusive prefixes within the cluster, which the fill step starts from
 layout(set = 1, binding = 7, std430) buffer Segments { uint segments[]; };
 #ifdef PG_FILL
-layout(set = 1, binding = 2, std430) writeonly buffer Lists { uint lists[]; };
+#define PG_LISTS_SET 1
+#define PG_LISTS_WRITE
+#include "cluster_list_windows.glsl"
 #endif
 #ifndef PG_BRUTE_FORCE
 layout(set = 1, binding = 3, std430) readonly buffer TileMasks { uint tile_masks[]; };
@@ -166,7 +168,7 @@ void main()
             while (h != 0u && slot < keep) {
                 int b = findLSB(h);
                 h &= h - 1u;
-                lists[rec.x + slot] = (wl + uint(j)) * 32u + uint(b);
+                PG_LIST_WRITE(rec.x + slot, (wl + uint(j)) * 32u + uint(b));
                 slot++;
             }
         }

@@ -19,7 +19,8 @@ layout(set = 2, binding = 0, std430) readonly buffer LightTree { vec4 tree[]; };
 layout(set = 2, binding = 0, std430) readonly buffer Lights { Light lights[]; };
 #ifdef PG_CLUSTERED
 layout(set = 2, binding = 1, std430) readonly buffer ClusterRecords { uvec4 cluster_records[]; };
-layout(set = 2, binding = 2, std430) readonly buffer ClusterLights { uint cluster_lights[]; };
+#define PG_LISTS_SET 2
+#include "cluster_list_windows.glsl"
 #endif
 #endif
 
@@ -116,7 +117,7 @@ vec3 pg_ris_estimate(Surface s, uvec4 rec, vec3 P, vec3 V, vec2 frag_xy)
         vec3 f_y = vec3(0.0);
         for (int m = 0; m < PG_RIS_M; m++) {
             uint i = min(uint(pg_rand01(st) * float(n)), n - 1u);
-            vec3 f = pg_light_contribution(s, cluster_lights[rec.x + i], cam, P, V, inv_md2);
+            vec3 f = pg_light_contribution(s, PG_LIST_READ(rec.x + i), cam, P, V, inv_md2);
             float ph = pg_luminance(f);
             float w = ph * float(n);
             wsum += w;
@@ -302,7 +303,7 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #ifdef PG_CLUSTERED
     PG_COUNT(rec.y);
     for (uint k = 0u; k < rec.y; k++) {
-        uint li = cluster_lights[rec.x + k];
+        uint li = PG_LIST_READ(rec.x + k);
         pg_accumulate_light(lights[li], PG_SPOT_OF(li), cam, P, s.normal, V, lm, min_dist, acc);
     }
 #elif defined(PG_LIGHTCUT)
@@ -464,7 +465,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
             L.pos_radius = vec4(0.0);
             L.color = vec4(0.0);
             if (k < rec.y) {
-                L = lights[cluster_lights[rec.x + k]]; // whole record: one 32-byte sector anyway
+                L = lights[PG_LIST_READ(rec.x + k)]; // whole record: one 32-byte sector anyway
                 L.pos_radius.xyz -= cam;
                 keep = pg_sphere_intersects_aabb(L.pos_radius.xyz, L.pos_radius.w, bmin, bmax);
 #ifdef PG_TILE_BACKFACE
@@ -474,7 +475,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                                  < -(tb_tol + 1e-5 * (lr + length(L.pos_radius.xyz))));
 #endif
 #ifdef PG_SPOT_LIGHTS
-                if (keep) keep = pg_spot_reaches_sphere(PG_SPOT_OF(cluster_lights[rec.x + k]), L.pos_radius.xyz,
+                if (keep) keep = pg_spot_reaches_sphere(PG_SPOT_OF(PG_LIST_READ(rec.x + k)), L.pos_radius.xyz,
                                                         0.5 * (bmin + bmax), 0.5 * length(bmax - bmin));
 #endif
             }
@@ -507,7 +508,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                 s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(L.color.w * L.color.w)); // falloff's R
                 s_tl_light[2u * pos + 1u] = vec4(L.color.rgb, R2);
 #ifdef PG_SPOT_LIGHTS
-                s_tl_spot[pos] = PG_SPOT_OF(cluster_lights[rec.x + k]);
+                s_tl_spot[pos] = PG_SPOT_OF(PG_LIST_READ(rec.x + k));
 #endif
             }
             barrier();

@@ -12,16 +12,37 @@ pg_result pg_pass_set_create(pg_gpu *gpu, uint32_t n, const pg_set_binding *b, c
 pg_result pg_pass_set_create_numbered(pg_gpu *gpu, uint32_t n, const pg_set_binding *b, const uint32_t *numbers,
                                       const char *name, pg_pass_set *out, pg_error *err)
 {
+    return pg_pass_set_create_windowed(gpu, n, b, numbers, NULL, 0, name, out, err);
+}
+
+pg_result pg_pass_set_create_windowed(pg_gpu *gpu, uint32_t n, const pg_set_binding *b, const uint32_t *numbers,
+                                      const uint32_t *windows, VkDeviceSize window, const char *name,
+                                      pg_pass_set *out, pg_error *err)
+{
     memset(out, 0, sizeof *out);
     if (n > 16) return pg_fail(err, PG_ERR_LIMIT, "%s: too many bindings", name);
     VkDescriptorSetLayoutBinding lb[16];
     VkDescriptorPoolSize ps[16];
     for (uint32_t i = 0; i < n; i++) {
-        lb[i] = (VkDescriptorSetLayoutBinding){numbers ? numbers[i] : i, b[i].type, 1,
+        uint32_t count = windows && windows[i] > 1 ? windows[i] : 1;
+        if (count > PG_SET_MAX_WINDOWS)
+            return pg_fail(err, PG_ERR_LIMIT, "%s: binding %u: %u windows, at most %u", name, i, count,
+                           PG_SET_MAX_WINDOWS);
+        bool storage = b[i].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        if (storage && count == 1 && b[i].res->size > gpu->max_storage_buffer_range)
+            return pg_fail(err, PG_ERR_LIMIT,
+                           "%s: binding %u: a storage buffer of %llu bytes, more than one binding spans on %s (%llu)",
+                           name, i, (unsigned long long)b[i].res->size, gpu->props.deviceName,
+                           (unsigned long long)gpu->max_storage_buffer_range);
+        if (count > 1 && (!storage || window == 0 || window > gpu->max_storage_buffer_range ||
+                          (count - 1) * window >= b[i].res->size || count * window < b[i].res->size))
+            return pg_fail(err, PG_ERR_INVALID_ARG, "%s: binding %u: %u windows of %llu bytes do not cover %llu bytes",
+                           name, i, count, (unsigned long long)window, (unsigned long long)b[i].res->size);
+        lb[i] = (VkDescriptorSetLayoutBinding){numbers ? numbers[i] : i, b[i].type, count,
                                                VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
                                                    VK_SHADER_STAGE_COMPUTE_BIT,
                                                NULL};
-        ps[i] = (VkDescriptorPoolSize){b[i].type, 1};
+        ps[i] = (VkDescriptorPoolSize){b[i].type, count};
     }
     VkDescriptorSetLayoutCreateInfo lci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
                                            .bindingCount = n, .pBindings = lb};
@@ -36,14 +57,20 @@ pg_result pg_pass_set_create_numbered(pg_gpu *gpu, uint32_t n, const pg_set_bind
     PG_VK_TRY(err, vkAllocateDescriptorSets(gpu->device, &ai, &out->set));
     pg_gpu_name(gpu, VK_OBJECT_TYPE_DESCRIPTOR_SET, (uint64_t)out->set, "%s", name);
     VkWriteDescriptorSet w[16];
-    VkDescriptorBufferInfo bi[16];
+    VkDescriptorBufferInfo bi[16 * PG_SET_MAX_WINDOWS];
     VkDescriptorImageInfo ii[16];
+    uint32_t nbi = 0;
     for (uint32_t i = 0; i < n; i++) {
         w[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = out->set,
-                                      .dstBinding = lb[i].binding, .descriptorCount = 1, .descriptorType = b[i].type};
+                                      .dstBinding = lb[i].binding, .descriptorCount = lb[i].descriptorCount,
+                                      .descriptorType = b[i].type};
         if (b[i].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || b[i].type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER) {
-            bi[i] = (VkDescriptorBufferInfo){b[i].res->buffer, 0, VK_WHOLE_SIZE};
-            w[i].pBufferInfo = &bi[i];
+            w[i].pBufferInfo = &bi[nbi];
+            if (lb[i].descriptorCount == 1) bi[nbi++] = (VkDescriptorBufferInfo){b[i].res->buffer, 0, VK_WHOLE_SIZE};
+            for (uint32_t k = 0; lb[i].descriptorCount > 1 && k < lb[i].descriptorCount; k++) {
+                VkDeviceSize off = k * window, left = b[i].res->size - off;
+                bi[nbi++] = (VkDescriptorBufferInfo){b[i].res->buffer, off, left < window ? left : window};
+            }
         } else {
             VkImageLayout l = b[i].layout;
             if (!l)

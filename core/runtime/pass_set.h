@@ -10,6 +10,8 @@
 extern "C" {
 #endif
 
+#define PG_SET_MAX_WINDOWS 8
+
 /* One binding of a pass-private descriptor set. */
 typedef struct pg_set_binding {
     VkDescriptorType type;          /* STORAGE_BUFFER, UNIFORM_BUFFER, COMBINED_IMAGE_SAMPLER, STORAGE_IMAGE */
@@ -30,6 +32,15 @@ pg_result pg_pass_set_create(pg_gpu *gpu, uint32_t n, const pg_set_binding *bind
 /* The same with the binding numbers given (numbers[i] for bindings[i]; distinct). */
 pg_result pg_pass_set_create_numbered(pg_gpu *gpu, uint32_t n, const pg_set_binding *bindings, const uint32_t *numbers,
                                       const char *name, pg_pass_set *out, pg_error *err);
+/* The same, with storage buffer i bound as an array of windows[i] descriptors (windows NULL, or an
+ * entry 0 or 1: one descriptor): element k covers bytes [k window, (k + 1) window) of its buffer, the
+ * last up to the buffer's end (window: at most gpu->max_storage_buffer_range, a multiple of
+ * minStorageBufferOffsetAlignment; at most PG_SET_MAX_WINDOWS windows). For a buffer larger than one
+ * binding may span. Every function here refuses (PG_ERR_LIMIT) a storage buffer bound as one
+ * descriptor that is larger than gpu->max_storage_buffer_range. */
+pg_result pg_pass_set_create_windowed(pg_gpu *gpu, uint32_t n, const pg_set_binding *bindings, const uint32_t *numbers,
+                                      const uint32_t *windows, VkDeviceSize window, const char *name,
+                                      pg_pass_set *out, pg_error *err);
 void pg_pass_set_destroy(pg_gpu *gpu, pg_pass_set *s);
 
 #ifdef __cplusplus

@@ -458,7 +458,9 @@ static void query_subgroups(pg_gpu *gpu, const dev_features *df)
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_PROPERTIES};
     VkPhysicalDeviceSubgroupProperties sp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
                                              .pNext = gpu->vulkan12 ? (df->has_sgsc ? (void *)&psg : NULL) : (void *)&p13};
-    VkPhysicalDeviceProperties2 pp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &sp};
+    VkPhysicalDeviceMaintenance3Properties m3 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES,
+                                                 .pNext = &sp};
+    VkPhysicalDeviceProperties2 pp = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &m3};
     vkGetPhysicalDeviceProperties2(gpu->phys, &pp);
     if (gpu->vulkan12) {
         p13.minSubgroupSize = psg.minSubgroupSize;
@@ -472,6 +474,9 @@ static void query_subgroups(pg_gpu *gpu, const dev_features *df)
                            sp.subgroupSize >= 4 && sp.subgroupSize <= 128 &&
                            sp.subgroupSize <= gpu->props.limits.maxComputeWorkGroupSize[0];
     gpu->max_storage_buffer_range = gpu->props.limits.maxStorageBufferRange;
+    gpu->max_buffer_size = gpu->vulkan12 ? UINT64_MAX : p13.maxBufferSize;
+    gpu->max_allocation_size = m3.maxMemoryAllocationSize;
+    gpu->max_stage_storage_buffers = gpu->props.limits.maxPerStageDescriptorStorageBuffers;
 }
 
 /* The features and extensions the device is created with (a pNext chain inside the struct: it

@@ -102,6 +102,9 @@ typedef struct pg_gpu {
      * visibility pass's compute rasterizer) */
     bool int64_atomics;
     uint64_t max_storage_buffer_range; /* bytes one storage-buffer binding may span */
+    uint64_t max_buffer_size;          /* bytes one buffer may hold (maxBufferSize; Vulkan 1.2: UINT64_MAX) */
+    uint64_t max_allocation_size;      /* bytes one memory allocation may hold (maxMemoryAllocationSize) */
+    uint32_t max_stage_storage_buffers; /* storage-buffer descriptors one shader stage may access */
     uint32_t validation_messages; /* errors + warnings reported by the validation layer */
     uint32_t validation_errors;
     uint32_t sync_hazards;        /* of those, synchronization validation's (SYNC-HAZARD-*) */

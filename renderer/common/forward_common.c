@@ -18,6 +18,8 @@ pg_result pg_forward_create(void *self, const pg_pass_create_ctx *ctx, pg_error 
         .depth_format = pg_ctx_res(ctx, pa->depth)->format,
         .depth_equal = pa->prepass_equal, /* forward_plus refuses it without prepass */
     };
+    char wbuf[2][40];
+    d.n_extra_defines = pg_light_set_defines(ctx, &pa->sh, wbuf, d.extra_defines);
     if ((r = pg_scene_draw_create(ctx, &d, &p->draw, err))) return r;
     return pg_forward_update(p, pa, err);
 }

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "cluster_grid.h"
+#include "cluster_windows.h"
 
 const char *const pg_debug_views[] = {"none",     "cluster_heat", "cluster_x", "cluster_y", "cluster_z",
                                       "overflow", "albedo",       "normal",    "depth",     NULL};
@@ -110,6 +111,13 @@ void pg_shading_declare(pg_shading_params *sp, const pg_declare_in *in, pg_pass_
 
 const char *const pg_shading_runtime_options[] = {"ambient", NULL};
 
+uint32_t pg_light_set_defines(const pg_pass_create_ctx *ctx, const pg_shading_params *sp, char buf[2][40],
+                              const char **defs)
+{
+    if (!sp->has_lights || !sp->clustered) return 0;
+    return pg_list_window_defines(ctx->gpu, pg_ctx_res(ctx, sp->cluster_lists)->size, buf, defs);
+}
+
 pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, const pg_shading_params *sp, pg_pass_set *out,
                               pg_error *err)
 {
@@ -122,14 +130,15 @@ pg_result pg_light_set_create_ex(const pg_pass_create_ctx *ctx, const pg_shading
     memset(out, 0, sizeof *out);
     if (!sp->has_lights && !sp->has_env) return PG_OK;
     pg_set_binding b[5];
-    uint32_t n = 0;
+    uint32_t n = 0, windows[5] = {0};
     if (sp->has_lights) {
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->lights), VK_NULL_HANDLE, 0};
         if (sp->clustered) {
             b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->cluster_counts),
                                       VK_NULL_HANDLE, 0};
-            b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->cluster_lists),
-                                      VK_NULL_HANDLE, 0};
+            const pg_phys_resource *lists = pg_ctx_res(ctx, sp->cluster_lists);
+            windows[n] = pg_list_windows(ctx->gpu, lists->size); /* cluster_windows.h */
+            b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, lists, VK_NULL_HANDLE, 0};
         }
         if (extra) b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, extra, VK_NULL_HANDLE, 0};
     }
@@ -137,7 +146,7 @@ pg_result pg_light_set_create_ex(const pg_pass_create_ctx *ctx, const pg_shading
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pg_ctx_res(ctx, sp->environment), VK_NULL_HANDLE, 0};
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.lights", ctx->pass->name);
-    return pg_pass_set_create(ctx->gpu, n, b, name, out, err);
+    return pg_pass_set_create_windowed(ctx->gpu, n, b, NULL, windows, pg_list_window_bytes(ctx->gpu), name, out, err);
 }
 
 void pg_environment_slot_declare(const pg_declare_in *in, pg_pass_decl *out, pg_shading_params *sp, uint32_t stages,

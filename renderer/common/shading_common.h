@@ -66,6 +66,12 @@ pg_result pg_shading_grid_declare(pg_shading_params *sp, const pg_declare_in *in
  * the light slots (sp->lights, and sp->cluster_counts/lists when clustered) unused with 0 lights; sets
  * sp->has_lights. */
 void pg_shading_declare(pg_shading_params *sp, const pg_declare_in *in, pg_pass_decl *out);
+/* The shader defines the light set's list binding needs (cluster_windows.h: the lists in windows),
+ * appended to defs; returns how many (0, or 2 written into buf). Every pass that creates a light set
+ * compiles its shaders with them. */
+uint32_t pg_light_set_defines(const pg_pass_create_ctx *ctx, const pg_shading_params *sp, char buf[2][40],
+                              const char **defs);
+
 /* Set 2: lights (+ cluster counts and lists). Leaves *out zeroed when the pass has no lights. */
 pg_result pg_light_set_create(const pg_pass_create_ctx *ctx, const pg_shading_params *sp, pg_pass_set *out,
                               pg_error *err);

@@ -40,6 +40,7 @@
 #include <string.h>
 
 #include "cluster_grid.h"
+#include "cluster_windows.h"
 #include "cluster_math.h"
 #include "graph_execute.h"
 #include "pass_api.h"
@@ -142,13 +143,15 @@ static pg_result ca_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     return PG_OK;
 }
 
-static pg_result shader(pg_gpu *gpu, const pg_plan_pass *pass, const char *file, const char *extra1,
-                        const char *extra2, VkShaderModule *out, pg_error *err)
+static pg_result shader(const cluster_assign *p, pg_gpu *gpu, const pg_plan_pass *pass, const char *file,
+                        const char *extra1, const char *extra2, VkShaderModule *out, pg_error *err)
 {
-    const char *defs[PG_MAX_DEFINES + 2];
+    const char *defs[PG_MAX_DEFINES + 4];
+    char wbuf[2][40];
     uint32_t n = pg_decl_define_list(&pass->decl, defs, PG_MAX_DEFINES);
     if (extra1) defs[n++] = extra1;
     if (extra2) defs[n++] = extra2;
+    n += pg_list_window_defines(gpu, p->list_bytes, wbuf, defs + n); /* the fill step writes the lists */
     return pg_shader_module(gpu, file, VK_SHADER_STAGE_COMPUTE_BIT, defs, n, out, err);
 }
 
@@ -160,7 +163,7 @@ static pg_result make_pipe(cluster_assign *p, pg_gpu *gpu, const pg_plan_pass *p
     bool lists = which == PIPE_COUNT || which == PIPE_FILL;
     bool one_sg = lists && p->o.subgroups && gpu->exact_subgroups;
     VkShaderModule cs;
-    pg_result r = shader(gpu, pass, files[which],
+    pg_result r = shader(p, gpu, pass, files[which],
                          which == PIPE_FILL ? "PG_FILL" : which == PIPE_SEGSCAN ? "PG_SEGMENT_SCAN" : NULL,
                          one_sg ? "PG_ONE_SUBGROUP" : NULL, &cs, err);
     if (r) return r;
@@ -195,8 +198,9 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     p->light_count = (uint32_t)(lights->size / 32 / (pa->spots ? 2 : 1));
     p->record_vec4 = pa->spots ? 3 : 1;
     p->words = (p->light_count + 31) / 32;
-    /* the lists' budget, within what one storage-buffer binding can span */
-    uint64_t dev_max = gpu->max_storage_buffer_range & ~(uint64_t)255;
+    /* the lists' budget, within what the device lets them take (cluster_windows.h: windows of one
+     * buffer when they outgrow one storage-buffer binding) */
+    uint64_t dev_max = pg_list_max_bytes(gpu);
     p->budget = p->o.budget_bytes;
     if (!p->budget) p->budget = (uint64_t)(pg_gpu_device_local_bytes(gpu) * PG_AUTO_BUDGET_SHARE) & ~(uint64_t)255;
     if (!p->budget) p->budget = 1024ull << 20; /* a device without a device-local heap */
@@ -262,7 +266,10 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &sp, VK_NULL_HANDLE, 0},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &sg, VK_NULL_HANDLE, 0},
     };
-    if ((r = pg_pass_set_create(gpu, 8, b, ctx->pass->name, &p->set, err))) return r;
+    const uint32_t windows[8] = {0, 0, pg_list_windows(gpu, lists->size)}; /* the lists: cluster_windows.h */
+    if ((r = pg_pass_set_create_windowed(gpu, 8, b, NULL, windows, pg_list_window_bytes(gpu), ctx->pass->name, &p->set,
+                                         err)))
+        return r;
     VkDescriptorSetLayout sets[2] = {ctx->frame_layout, p->set.layout};
     if ((r = pg_pipeline_layout_create(gpu, 2, sets, 16, &p->layout, err))) return r;
     for (int i = 0; i < PIPE_N; i++)
@@ -322,7 +329,9 @@ static void ca_record(void *self, const pg_pass_record_ctx *ctx)
 #define STAMP(i) \
     if (p->queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, p->queries, i)
     VkDescriptorSet sets[2] = {ctx->frame_set, p->set.set};
-    uint32_t capacity = (uint32_t)(p->list_bytes / 4 > 0xffffffffu ? 0xffffffffu : p->list_bytes / 4);
+    /* the lists hold at most the budget, also in a buffer grown larger before the budget was lowered */
+    uint64_t cap_bytes = p->list_bytes < p->budget ? p->list_bytes : p->budget;
+    uint32_t capacity = (uint32_t)(cap_bytes / 4 > 0xffffffffu ? 0xffffffffu : cap_bytes / 4);
     uint32_t push[4] = {p->words, p->n_segments, SEG_WORDS, 0};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 2, sets, 0, NULL);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipe[PIPE_BIN]);
@@ -379,13 +388,14 @@ static void ca_report(void *self, pg_pass_report *out)
     pg_report_add(out, "list_bytes", p->list_bytes);
     pg_report_add(out, "mask_bytes", p->tile_masks.size + p->slice_masks.size + p->spheres.size);
     uint64_t needed = (uint64_t)s->needed * 4;
-    if (needed > p->list_bytes) {
-        pg_report_grow(out, p->lists_slot, needed, p->budget);
-        if (needed > p->budget && p->budget_clamped)
-            pg_report_note(out, "light lists need %.1f MiB, over the %.1f MiB one storage buffer can span on this "
-                           "device: %u refs dropped (use fewer lights or a coarser grid)", needed / 1048576.0,
-                           p->budget / 1048576.0, s->dropped - s->dropped_cap);
-        else if (needed > p->budget)
+    if (needed > p->list_bytes) pg_report_grow(out, p->lists_slot, needed, p->budget);
+    if (needed > p->budget) {
+        if (p->budget_clamped)
+            pg_report_note(out, "light lists need %.1f MiB, over the %.1f MiB they may take on this device (%u "
+                           "storage-buffer windows of %.4g MiB): %u refs dropped (use fewer lights or a coarser grid)",
+                           needed / 1048576.0, p->budget / 1048576.0, pg_list_windows(p->gpu, p->budget),
+                           pg_list_window_bytes(p->gpu) / 1048576.0, s->dropped - s->dropped_cap);
+        else
             pg_report_note(out, "light lists need %.1f MiB, over the %.1f MiB budget: %u refs dropped (raise "
                            "list_budget_mb; 0 = half the device-local heap)", needed / 1048576.0, p->budget / 1048576.0, s->dropped - s->dropped_cap);
     }

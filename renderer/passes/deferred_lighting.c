@@ -221,8 +221,9 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     uint32_t nd = 0;
     if (vis) nd = pg_vis_geometry_define_list(&p->vis, defs);
     else nd = pg_decl_define_list(&ctx->pass->decl, defs, PG_MAX_DEFINES);
-    char fmt_def[48];
+    char fmt_def[48], wbuf[2][40];
     defs[nd++] = pg_hdr_format_define(hdr, fmt_def, sizeof fmt_def);
+    nd += pg_light_set_defines(ctx, &pa->sh, wbuf, defs + nd);
     const bool tiled = pa->tiled;
     p->tile = pa->tile;
     /* the tiled path orders lights within a subgroup by ballots when every subgroup is full */

@@ -119,6 +119,8 @@ static pg_result ft_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
         .depth_format = pg_ctx_res(ctx, pa->depth)->format,
         .blend = true,
     };
+    char wbuf[2][40];
+    d.n_extra_defines = pg_light_set_defines(ctx, &pa->sh, wbuf, d.extra_defines);
     if ((r = pg_scene_draw_create(ctx, &d, &p->draw, err))) return r;
     p->draw.ambient = pa->sh.ambient;
     return PG_OK;
