@@ -20,8 +20,9 @@
  * it has, the pass keeps a deterministic subset this frame, counts the rest, and asks the runtime
  * (pg_report_grow) for the size it needs; the session renders the frame again with the larger
  * buffer. Growth stops at the memory budget (option budget_mb; 0, the default: PG_AUTO_BUDGET_SHARE
- * of the device's largest device-local heap; either clamped to the device's storage buffer
- * range): past it the clusters keep their first k lights for the largest k that fits and the
+ * of the device's largest device-local heap; either clamped to pg_list_max_bytes: up to 8 windows
+ * of one buffer when the lists outgrow one storage-buffer binding, cluster_windows.h; the lists
+ * hold at most the budget also in a buffer grown before it was lowered): past it the clusters keep their first k lights for the largest k that fits and the
  * dropped references are counted (counters overflow_clusters, overflow_dropped) and the frame is
  * inexact (pg_frame_stats.refs_dropped; bench status "inexact").
  *
