@@ -336,9 +336,12 @@ static pg_result ctx_init(flip_ctx *c, uint32_t w, uint32_t h, const pg_flip_opt
 
 /* what a step works on (each step reads the fields it needs) */
 typedef struct flip_step {
-    int i, ch, t;             /* image, CSF channel and Gaussian */
-    bool any;                 /* the CSF column pass adds to what an earlier Gaussian wrote */
-    const float *rgb;         /* linear RGB input (to_ycxcz) */
+    int i;                    /* image */
+    const flip_kernel *k;     /* rows, cols: the filter, its weight, and whether the column pass adds to */
+    float weight;             /* what is in out (an earlier Gaussian of the same CSF) */
+    bool add;
+    const float *in;          /* rows, cols: source plane; ycxcz: linear RGB (3 floats a pixel) */
+    float *out;               /* rows, cols: destination plane */
     const float *src[2];      /* tone_map: the two clean images */
     float *dst[2];            /* tone_map: their tone-mapped copies; combine, max_into: the maps */
     double scale;             /* tone_map: 2^exposure */
@@ -383,7 +386,7 @@ static void step_ycxcz(flip_ctx *c, const flip_band *b, const flip_step *s)
 {
     float *Y = c->plane[s->i][0], *Cx = c->plane[s->i][1], *Cz = c->plane[s->i][2];
     for (size_t p = (size_t)b->y0 * c->w; p < (size_t)b->y1 * c->w; p++) {
-        const float *v = s->rgb + 3 * p;
+        const float *v = s->in + 3 * p;
         double xyz[3];
         for (int k = 0; k < 3; k++)
             xyz[k] = (RGB2XYZ[k][0] * v[0] + RGB2XYZ[k][1] * v[1] + RGB2XYZ[k][2] * v[2]) / WHITE[k];
@@ -393,39 +396,40 @@ static void step_ycxcz(flip_ctx *c, const flip_band *b, const flip_step *s)
     }
 }
 
-/* features: the achromatic channel Y / Yn in [0, 1] (tmp[2]) and its row pass with the edge
- * kernel (tmp[0]) */
-static void step_feat_rows1(flip_ctx *c, const flip_band *b, const flip_step *s)
+/* out = in filtered by k along rows */
+static void step_rows(flip_ctx *c, const flip_band *b, const flip_step *s)
+{
+    conv_rows(s->in, s->out, c->w, b->y0, b->y1, s->k, b->pad, b->at);
+}
+
+/* out (+)= weight x in filtered by k along columns */
+static void step_cols(flip_ctx *c, const flip_band *b, const flip_step *s)
+{
+    conv_cols(s->in, s->out, c->w, c->h, b->y0, b->y1, s->k, s->weight, s->add, b->at);
+}
+
+static void run_rows(flip_ctx *c, const float *in, float *out, const flip_kernel *k)
+{
+    flip_step s = {.k = k, .in = in, .out = out};
+    flip_run(c, step_rows, &s);
+}
+
+static void run_cols(flip_ctx *c, const float *in, float *out, const flip_kernel *k, float weight, bool add)
+{
+    flip_step s = {.k = k, .weight = weight, .add = add, .in = in, .out = out};
+    flip_run(c, step_cols, &s);
+}
+
+/* the achromatic channel Y / Yn in [0, 1] of image i into tmp[2] */
+static void step_feat_y(flip_ctx *c, const flip_band *b, const flip_step *s)
 {
     float *y = c->tmp[2];
     for (size_t p = (size_t)b->y0 * c->w; p < (size_t)b->y1 * c->w; p++) y[p] = (c->plane[s->i][0][p] + 16.0f) / 116.0f;
-    conv_rows(y, c->tmp[0], c->w, b->y0, b->y1, &c->fd1, b->pad, b->at);
 }
 
-static void step_feat_cols1(flip_ctx *c, const flip_band *b, const flip_step *s) /* edge x */
-{
-    conv_cols(c->tmp[0], c->plane[s->i][3], c->w, c->h, b->y0, b->y1, &c->fg, 1.0f, false, b->at);
-}
-
-static void step_feat_rows2(flip_ctx *c, const flip_band *b, const flip_step *s)
-{
-    (void)s;
-    conv_rows(c->tmp[2], c->tmp[0], c->w, b->y0, b->y1, &c->fd2, b->pad, b->at);
-}
-
-static void step_feat_cols2(flip_ctx *c, const flip_band *b, const flip_step *s) /* point x */
-{
-    conv_cols(c->tmp[0], c->plane[s->i][4], c->w, c->h, b->y0, b->y1, &c->fg, 1.0f, false, b->at);
-}
-
-static void step_feat_rows3(flip_ctx *c, const flip_band *b, const flip_step *s)
-{
-    (void)s;
-    conv_rows(c->tmp[2], c->tmp[0], c->w, b->y0, b->y1, &c->fg, b->pad, b->at);
-}
-
-/* edge y and point y, and the strengths: the length of the (x, y) responses */
-static void step_feat_cols3(flip_ctx *c, const flip_band *b, const flip_step *s)
+/* edge y and point y from the rows filtered by g (tmp[0]), and the strengths: the length of the
+ * (x, y) responses */
+static void step_feat_strengths(flip_ctx *c, const flip_band *b, const flip_step *s)
 {
     float *e = c->plane[s->i][3], *pt = c->plane[s->i][4], *q = c->tmp[1];
     size_t p0 = (size_t)b->y0 * c->w, p1 = (size_t)b->y1 * c->w;
@@ -439,45 +443,36 @@ static void step_feat_cols3(flip_ctx *c, const flip_band *b, const flip_step *s)
 static void features(flip_ctx *c, int i)
 {
     flip_step s = {.i = i};
-    flip_run(c, step_feat_rows1, &s);
-    flip_run(c, step_feat_cols1, &s);
-    flip_run(c, step_feat_rows2, &s);
-    flip_run(c, step_feat_cols2, &s);
-    flip_run(c, step_feat_rows3, &s);
-    flip_run(c, step_feat_cols3, &s);
+    float *y = c->tmp[2], *a = c->tmp[0];
+    flip_run(c, step_feat_y, &s);
+    run_rows(c, y, a, &c->fd1);
+    run_cols(c, a, c->plane[i][3], &c->fg, 1.0f, false); /* edge x */
+    run_rows(c, y, a, &c->fd2);
+    run_cols(c, a, c->plane[i][4], &c->fg, 1.0f, false); /* point x */
+    run_rows(c, y, a, &c->fg);
+    flip_run(c, step_feat_strengths, &s);
 }
 
-static void step_csf_rows(flip_ctx *c, const flip_band *b, const flip_step *s)
-{
-    conv_rows(c->plane[s->i][s->ch], c->tmp[0], c->w, b->y0, b->y1, &c->csf[s->ch][s->t], b->pad, b->at);
-}
-
-static void step_csf_cols(flip_ctx *c, const flip_band *b, const flip_step *s)
-{
-    conv_cols(c->tmp[0], c->tmp[1], c->w, c->h, b->y0, b->y1, &c->csf[s->ch][s->t], c->csf_w[s->ch][s->t], s->any,
-              b->at);
-}
-
-/* the filtered channel back into its plane (its rows are no longer read) */
-static void step_csf_store(flip_ctx *c, const flip_band *b, const flip_step *s)
+/* the filtered channel (tmp[1]) back into its plane s->out (its rows are no longer read) */
+static void step_store(flip_ctx *c, const flip_band *b, const flip_step *s)
 {
     size_t p0 = (size_t)b->y0 * c->w;
-    memcpy(c->plane[s->i][s->ch] + p0, c->tmp[1] + p0, ((size_t)b->y1 * c->w - p0) * sizeof(float));
+    memcpy(s->out + p0, c->tmp[1] + p0, ((size_t)b->y1 * c->w - p0) * sizeof(float));
 }
 
 /* filter the Y, Cx, Cz planes of image i with the CSFs (in place) */
 static void csf_filter(flip_ctx *c, int i)
 {
     for (int ch = 0; ch < 3; ch++) {
-        flip_step s = {.i = i, .ch = ch};
+        bool any = false;
         for (int t = 0; t < 2; t++) {
             if (CSF[ch][2 * t] == 0.0) continue;
-            s.t = t;
-            flip_run(c, step_csf_rows, &s);
-            flip_run(c, step_csf_cols, &s);
-            s.any = true;
+            run_rows(c, c->plane[i][ch], c->tmp[0], &c->csf[ch][t]);
+            run_cols(c, c->tmp[0], c->tmp[1], &c->csf[ch][t], c->csf_w[ch][t], any);
+            any = true;
         }
-        flip_run(c, step_csf_store, &s);
+        flip_step s = {.out = c->plane[i][ch]};
+        flip_run(c, step_store, &s);
     }
 }
 
@@ -527,7 +522,7 @@ static void flip_linear(flip_ctx *c, const float *test_rgb, const float *ref_rgb
 {
     const float *src[2] = {test_rgb, ref_rgb};
     for (int i = 0; i < 2; i++) {
-        flip_step s = {.i = i, .rgb = src[i]};
+        flip_step s = {.i = i, .in = src[i]};
         flip_run(c, step_ycxcz, &s);
         features(c, i);
         csf_filter(c, i);

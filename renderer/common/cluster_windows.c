@@ -4,10 +4,17 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+/* the largest power of two of bytes one binding spans, at most 2^31 */
+static uint64_t binding_window(const pg_gpu *gpu)
+{
+    uint64_t w = 256;
+    while (w * 2 <= gpu->max_storage_buffer_range && w < (1ull << 31)) w *= 2;
+    return w;
+}
+
 uint64_t pg_list_window_bytes(const pg_gpu *gpu)
 {
-    uint64_t range = gpu->max_storage_buffer_range, w = 256;
-    while (w * 2 <= range && w < (1ull << 31)) w *= 2;
+    uint64_t w = binding_window(gpu);
     const char *e = getenv("PASSGRAPH_LIST_WINDOW_BYTES");
     if (e && *e) {
         char *end = NULL;
@@ -33,8 +40,8 @@ uint64_t pg_list_max_bytes(const pg_gpu *gpu)
 uint32_t pg_list_windows(const pg_gpu *gpu, uint64_t bytes)
 {
     uint64_t w = pg_list_window_bytes(gpu);
-    const char *e = getenv("PASSGRAPH_LIST_WINDOW_BYTES");
-    if (bytes <= gpu->max_storage_buffer_range && !(e && *e && w < gpu->max_storage_buffer_range)) return 1;
+    bool forced = w < binding_window(gpu); /* PASSGRAPH_LIST_WINDOW_BYTES */
+    if (bytes <= w || (!forced && bytes <= gpu->max_storage_buffer_range)) return 1;
     uint64_t k = (bytes + w - 1) / w;
     return k <= 1 ? 1 : (k > UINT32_MAX ? UINT32_MAX : (uint32_t)k);
 }

@@ -69,8 +69,8 @@ static pg_result make_set(shader_pass *s, const pg_pass_create_ctx *ctx, const s
         if (b[k].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER && b[k].res->size > ctx->gpu->max_storage_buffer_range)
             return pg_fail(err, PG_ERR_LIMIT,
                            "%s: %s: binding %u reads '%s' as one storage buffer of %.1f MiB, more than one binding "
-                           "spans on %s (%.1f MiB); built-in passes bind such a buffer in windows "
-                           "(shaders/cluster_list_windows.glsl): use fewer lights or a coarser grid",
+                           "spans on %s (%.1f MiB): make it smaller (the light lists: fewer lights or a coarser "
+                           "grid)",
                            ctx->desc->file, ctx->desc->json_path, (unsigned)numbers[k],
                            ctx->plan->resources[ctx->pass->slots[pg_plan_slot_of(ctx->pass, pa->bindings[k].slot)].resource]
                                .name,

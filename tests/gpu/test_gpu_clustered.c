@@ -34,6 +34,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "cluster_windows.h"
 #include "gpu_harness.h"
 #include "image_compare.h"
 #include "image_util.h"
@@ -394,6 +395,12 @@ static void list_windows(const pg_scene *scene, const pg_scene_gpu *sg)
 {
     const char *pipes[] = {"pipelines/forward_plus.json", "pipelines/visibility.json", "pipelines/deferred_oct16.json"};
     pg_frame_info fi = frame_for(scene, COUNT_OVER_OLD_CAP, SWEEP_TIME);
+    /* what this device lets the lists take (docs/passes.md quotes lavapipe's line) */
+    printf("windows: %s: one binding spans %.0f MiB, a window is %.0f MiB, the lists may take %.0f MiB\n",
+           g_gpu->props.deviceName, g_gpu->max_storage_buffer_range / 1048576.0,
+           pg_list_window_bytes(g_gpu) / 1048576.0, pg_list_max_bytes(g_gpu) / 1048576.0);
+    CHECK(pg_list_window_bytes(g_gpu) <= g_gpu->max_storage_buffer_range &&
+          pg_list_max_bytes(g_gpu) >= pg_list_window_bytes(g_gpu));
     for (int p = 0; p < 3; p++) {
         pg_th_frame one, win;
         bool ok1 = pg_th_render(g_gpu, &g_reg, sg, pipes[p], NULL, 0, &fi, 1, false, &one);
