@@ -20,10 +20,6 @@
 #                  1,000 / 100,000 / 1,000,000 lights (visibility, deferred_oct16; times only)
 #   tile-size      the exact tiled loop with 8x8 and 16x16 tiles at 1,000 / 100,000 / 1,000,000
 #                  lights (visibility; times only)
-#   tile-work      the tiled loop's tile_pixels (1, 2) x tile_chunk (1, 2, 4) at 100,000 and 1,000,000
-#                  lights (visibility, Lambert; two rounds), with pbr at 100,000 (visibility,
-#                  deferred_oct16), and each setting's HDR image against the default's (cmp: the
-#                  subgroup path, which lavapipe's tests do not reach)
 #   file-lights    1,000,000 cis565 lights frozen into the scene file (passgraph lights-table, a
 #                  PASSGRAPH_lights_table) against the same count generated: time and error of
 #                  visibility, deferred_oct16 and stochastic (threshold 3)
@@ -227,23 +223,6 @@ for step in "${STEPS[@]}"; do
   tile-size)
     bench tile_size "$BUNDLE" visibility --lights 1000,100000,1000000 --sweep tile_size=8,16 \
       --reference-max-lights 0 --warmup 2 --warmup-ms 500 --frames 10
-    ;;
-  tile-work)
-    for r in 1 2; do
-      bench "tile_work_$r" "$BUNDLE" visibility --lights 100000,1000000 --sweep tile_pixels=1,2 \
-        --sweep tile_chunk=1,2,4 "${TIMING[@]}" --warmup-ms 500
-    done
-    bench tile_work_pbr "$BUNDLE" visibility,deferred_oct16 --lights 100000 --sweep shading=lambert,pbr \
-      --sweep tile_pixels=1,2 --set tile_chunk=2 "${TIMING[@]}" --warmup-ms 500
-    for p in visibility deferred_oct16; do
-      for c in 1,1 1,2 2,1 2,2 2,4; do
-        run "tile_work_${p}_${c/,/_}" "$BUNDLE/passgraph" render "${COMMON[@]}" --lights 100000 --pipeline "$P/$p.json" \
-          --set tile_pixels=${c%,*} --set tile_chunk=${c#*,} --out /tmp/tw.png --hdr-out "/tmp/tw_${p}_${c/,/_}.exr"
-        [ "$DRY_RUN" = 1 ] || [ "$c" = 1,1 ] || { cmp -s "/tmp/tw_${p}_1_1.exr" "/tmp/tw_${p}_${c/,/_}.exr" &&
-          echo "tile-work: $p tile_pixels,tile_chunk=$c: HDR identical to 1,1" ||
-          echo "tile-work: $p tile_pixels,tile_chunk=$c: HDR DIFFERENT from 1,1"; }
-      done
-    done
     ;;
   knobs | knob-stochastic)
     ERR=(--warmup 1 --warmup-ms 1000 --frames 5 --no-hdr-flip --flicker-frames 4 --lights 1000000)

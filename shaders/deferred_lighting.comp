@@ -34,10 +34,7 @@ FRAME_UNIFORMS_BLOCK
 // gl_LocalInvocationIndex): with full subgroups required (PG_TILE_SUBGROUPS), Vulkan asks the
 // workgroup's X size to be a multiple of the subgroup size (VUID-...-pNext-02757: 8 is not, on a
 // GPU with 32-wide subgroups; 64 and 256 are).
-#ifndef PG_TILE_PX
-#define PG_TILE_PX 1
-#endif
-layout(local_size_x = PG_TILE * PG_TILE / PG_TILE_PX) in;
+layout(local_size_x = PG_TILE * PG_TILE) in;
 layout(set = 1, binding = 0) uniform sampler2D g_depth;
 #if defined(PG_GBUFFER_FLOAT)
 layout(set = 1, binding = 1) uniform sampler2D g_position;
@@ -86,10 +83,11 @@ void pg_count_flush()
 #endif
 }
 
-// The surface of the tile's pixel `lin` (tile-local index; px its image position): lit is false
-// for background and for pixels outside the image.
-bool pg_read_pixel(ivec2 size, ivec2 px, out Surface s, out vec3 P, out float view_depth)
+void main()
 {
+    ivec2 size = imageSize(hdr_out);
+    uint lin = gl_LocalInvocationIndex;
+    ivec2 px = ivec2(gl_WorkGroupID.xy) * PG_TILE + ivec2(int(lin % uint(PG_TILE)), int(lin / uint(PG_TILE)));
     bool inside = px.x < size.x && px.y < size.y;
 #ifdef PG_GBUFFER_VISIBILITY
     uint vis = inside ? texelFetch(g_vis, px, 0).r : PG_VIS_NONE;
@@ -98,11 +96,18 @@ bool pg_read_pixel(ivec2 size, ivec2 px, out Surface s, out vec3 P, out float vi
     float depth = inside ? texelFetch(g_depth, px, 0).r : 1.0;
     bool lit = depth < 1.0;
 #endif
+#ifndef PG_TILED
+    if (!inside) return;
+    if (!lit) {
+        imageStore(hdr_out, px, vec4(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+#endif
     vec2 frag = vec2(px) + 0.5;
     vec2 uv = frag / vec2(size);
-    s = pg_surface_default();
-    P = vec3(0.0); // camera-relative
-    view_depth = 0.0;
+    Surface s = pg_surface_default();
+    vec3 P = vec3(0.0); // camera-relative
+    float view_depth = 0.0;
     if (lit) {
 #if defined(PG_GBUFFER_FLOAT)
     pg_gbuffer_read_float(texelFetch(g_position, px, 0), texelFetch(g_normal, px, 0), texelFetch(g_albedo, px, 0), s, P,
@@ -122,46 +127,11 @@ bool pg_read_pixel(ivec2 size, ivec2 px, out Surface s, out vec3 P, out float vi
     s.emissive = texelFetch(g_emissive, px, 0).rgb;
 #endif
     }
-    return lit;
-}
-
-ivec2 pg_tile_pixel(uint lin)
-{
-    return ivec2(gl_WorkGroupID.xy) * PG_TILE + ivec2(int(lin % uint(PG_TILE)), int(lin / uint(PG_TILE)));
-}
-
-void main()
-{
-    ivec2 size = imageSize(hdr_out);
 #ifdef PG_TILED
-    // invocation i shades the tile's pixels i + p x (its invocations), p < PG_TILE_PX
-    bool lit[PG_TILE_PX];
-    Surface s[PG_TILE_PX];
-    vec3 P[PG_TILE_PX];
-    float view_depth[PG_TILE_PX];
-    vec2 frag[PG_TILE_PX];
-    vec3 c[PG_TILE_PX];
-    for (uint p = 0u; p < uint(PG_TILE_PX); p++) {
-        ivec2 px = pg_tile_pixel(gl_LocalInvocationIndex + p * gl_WorkGroupSize.x);
-        lit[p] = pg_read_pixel(size, px, s[p], P[p], view_depth[p]);
-        frag[p] = vec2(px) + 0.5;
-    }
-    pg_shade_tile(lit, s, P, view_depth, frag, c);
-    for (uint p = 0u; p < uint(PG_TILE_PX); p++) {
-        ivec2 px = pg_tile_pixel(gl_LocalInvocationIndex + p * gl_WorkGroupSize.x);
-        if (px.x < size.x && px.y < size.y) imageStore(hdr_out, px, vec4(lit[p] ? pg_hdr_sanitize(c[p]) : vec3(0.0), 1.0));
-    }
+    vec3 c = pg_shade_tile(lit, s, P, view_depth, frag);
+    if (inside) imageStore(hdr_out, px, vec4(lit ? pg_hdr_sanitize(c) : vec3(0.0), 1.0));
 #else
-    ivec2 px = pg_tile_pixel(gl_LocalInvocationIndex);
-    if (px.x >= size.x || px.y >= size.y) return;
-    Surface s;
-    vec3 P;
-    float view_depth;
-    if (!pg_read_pixel(size, px, s, P, view_depth)) {
-        imageStore(hdr_out, px, vec4(0.0, 0.0, 0.0, 1.0));
-        return;
-    }
-    vec3 c = pg_shade_point(s, P, view_depth, vec2(px) + 0.5);
+    vec3 c = pg_shade_point(s, P, view_depth, frag);
     imageStore(hdr_out, px, vec4(pg_hdr_sanitize(c), 1.0));
 #endif
     pg_count_flush();

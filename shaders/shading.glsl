@@ -345,21 +345,13 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #define PG_TILE 8
 #endif
 #define PG_TILE_N (PG_TILE * PG_TILE)
-#ifndef PG_TILE_CHUNK
-#define PG_TILE_CHUNK 1                      // list entries each invocation tests per chunk
-#endif
-#ifndef PG_TILE_PX
-#define PG_TILE_PX 1                         // pixels an invocation shades
-#endif
-#define PG_TILE_INV (PG_TILE_N / PG_TILE_PX)  // invocations a workgroup
-#define PG_TILE_CN (PG_TILE_INV * PG_TILE_CHUNK)
 shared uint s_tl_cluster;
 shared uint s_tl_box[6];                     // ordered-uint min xyz, max xyz
-shared vec4 s_tl_light[2 * PG_TILE_CN];      // pos_radius, color of the kept lights
+shared vec4 s_tl_light[2 * PG_TILE_N];       // pos_radius, color of the kept lights
 #ifdef PG_SPOT_LIGHTS
-shared vec4 s_tl_spot[PG_TILE_CN];           // their spot records
+shared vec4 s_tl_spot[PG_TILE_N];            // their spot records
 #endif
-shared uint s_tl_count[PG_TILE_INV];
+shared uint s_tl_count[PG_TILE_N];
 #ifdef PG_TILE_BACKFACE
 shared uint s_tb_first;                      // the lowest invocation of the cluster: its normal is the axis
 shared uint s_tb_e, s_tb_h;                  // E (float bits, >= 0) and H (ordered uint)
@@ -398,33 +390,22 @@ float pg_tl_unorder(uint u)
     return uintBitsToFloat((u & 0x80000000u) != 0u ? u & 0x7fffffffu : ~u);
 }
 
-// PG_TILE_PX pixels an invocation (1 or 2): the workgroup is PG_TILE_INV = PG_TILE_N / PG_TILE_PX
-// invocations and invocation i shades tile pixels i + p x PG_TILE_INV; each light read from shared
-// memory is evaluated for each of its pixels in the current cluster.
-void pg_shade_tile(bool lit[PG_TILE_PX], Surface s[PG_TILE_PX], vec3 P[PG_TILE_PX], float view_depth[PG_TILE_PX],
-                   vec2 frag_xy[PG_TILE_PX], out vec3 color[PG_TILE_PX])
+vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
 {
     uint lid = gl_LocalInvocationIndex;
     vec3 cam = frame.camera_pos.xyz;
     float min_dist = frame.light_params.w;
     float inv_md2 = 1.0 / (min_dist * min_dist);
+    PgShade acc = pg_shade_zero();
     uvec3 grid = uvec3(GRID_X, GRID_Y, GRID_Z);
-    PgShade acc[PG_TILE_PX];
-    uint ci[PG_TILE_PX];
-    vec3 V[PG_TILE_PX];
-    PgLightMat lm[PG_TILE_PX];
-    bool pending[PG_TILE_PX], mine[PG_TILE_PX];
-    for (uint p = 0u; p < uint(PG_TILE_PX); p++) {
-        acc[p] = pg_shade_zero();
-        ci[p] = 0xffffffffu;
-        if (lit[p]) ci[p] = pg_cluster_index(pg_cluster_coord(frag_xy[p], vec2(frame.counts.zw), view_depth[p],
-                                                              frame.clip.x, frame.clip.y, grid), grid);
-        V[p] = lit[p] ? PG_VIEW_DIR(P[p]) : vec3(0.0, 0.0, 1.0);
-        lm[p] = pg_light_mat(s[p], V[p]);
-        pending[p] = lit[p];
-    }
+    uint ci = 0xffffffffu;
+    if (lit) ci = pg_cluster_index(pg_cluster_coord(frag_xy, vec2(frame.counts.zw), view_depth, frame.clip.x,
+                                                    frame.clip.y, grid), grid);
+    vec3 V = lit ? PG_VIEW_DIR(P) : vec3(0.0, 0.0, 1.0);
+    PgLightMat lm = pg_light_mat(s, V);
+    bool pending = lit;
 #ifdef PG_TILE_SUBGROUPS
-    uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; // a permutation of the invocations
+    uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; // a permutation of the tile
 #else
     uint slot = lid;
 #endif
@@ -440,44 +421,35 @@ void pg_shade_tile(bool lit[PG_TILE_PX], Surface s[PG_TILE_PX], vec3 P[PG_TILE_P
 #endif
         }
         barrier();
-        for (uint p = 0u; p < uint(PG_TILE_PX); p++)
-            if (pending[p]) atomicMin(s_tl_cluster, ci[p]);
+        if (pending) atomicMin(s_tl_cluster, ci);
         barrier();
         uint c = s_tl_cluster;
         if (c == 0xffffffffu) break;                  // uniform: every invocation read the same
-        bool any_mine = false;
-        for (uint p = 0u; p < uint(PG_TILE_PX); p++) {
-            mine[p] = pending[p] && ci[p] == c;
-            any_mine = any_mine || mine[p];
-            if (mine[p]) {
-                for (int k = 0; k < 3; k++) {
-                    atomicMin(s_tl_box[k], pg_tl_order(P[p][k]));
-                    atomicMax(s_tl_box[3 + k], pg_tl_order(P[p][k]));
-                }
-#ifdef PG_TILE_BACKFACE
-                atomicMin(s_tb_first, lid + p * uint(PG_TILE_INV)); // the tile's pixel number
-#endif
+        bool mine = pending && ci == c;
+        if (mine) {
+            for (int k = 0; k < 3; k++) {
+                atomicMin(s_tl_box[k], pg_tl_order(P[k]));
+                atomicMax(s_tl_box[3 + k], pg_tl_order(P[k]));
             }
+#ifdef PG_TILE_BACKFACE
+            atomicMin(s_tb_first, lid);
+#endif
         }
         barrier();
         vec3 bmin = vec3(pg_tl_unorder(s_tl_box[0]), pg_tl_unorder(s_tl_box[1]), pg_tl_unorder(s_tl_box[2]));
         vec3 bmax = vec3(pg_tl_unorder(s_tl_box[3]), pg_tl_unorder(s_tl_box[4]), pg_tl_unorder(s_tl_box[5]));
 #ifdef PG_TILE_BACKFACE
-        for (uint p = 0u; p < uint(PG_TILE_PX); p++) {
-            if (lid + p * uint(PG_TILE_INV) == s_tb_first) {
-                s_tb_axis[0] = s[p].normal.x;
-                s_tb_axis[1] = s[p].normal.y;
-                s_tb_axis[2] = s[p].normal.z;
-            }
+        if (lid == s_tb_first) {
+            s_tb_axis[0] = s.normal.x;
+            s_tb_axis[1] = s.normal.y;
+            s_tb_axis[2] = s.normal.z;
         }
         barrier();
         vec3 tb_a = vec3(s_tb_axis[0], s_tb_axis[1], s_tb_axis[2]);
         vec3 tb_c = 0.5 * (bmin + bmax);
-        for (uint p = 0u; p < uint(PG_TILE_PX); p++) {
-            if (mine[p]) {
-                atomicMax(s_tb_e, floatBitsToUint(length(s[p].normal - tb_a)));
-                atomicMax(s_tb_h, pg_tl_order(dot(s[p].normal, tb_c - P[p])));
-            }
+        if (mine) {
+            atomicMax(s_tb_e, floatBitsToUint(length(s.normal - tb_a)));
+            atomicMax(s_tb_h, pg_tl_order(dot(s.normal, tb_c - P)));
         }
         barrier();
         float tb_e = uintBitsToFloat(s_tb_e) * (1.0 + 1e-5);
@@ -486,46 +458,33 @@ void pg_shade_tile(bool lit[PG_TILE_PX], Surface s[PG_TILE_PX], vec3 P[PG_TILE_P
         float tb_tol = 1e-5 * (4.0 + length(tb_c) + length(bmax - bmin)) + abs(tb_h) * 1e-5;
 #endif
         uvec4 rec = cluster_records[c];
-        for (uint base = 0u; base < rec.y; base += uint(PG_TILE_CN)) {
-            // invocation `slot` tests entries base + slot x PG_TILE_CHUNK + m: consecutive, so the
-            // kept lights keep the list's order with one count an invocation
-            bool keep[PG_TILE_CHUNK];
-            Light Lk[PG_TILE_CHUNK];
-            uint kept = 0u;
-            for (uint m = 0u; m < uint(PG_TILE_CHUNK); m++) {
-                uint k = base + slot * uint(PG_TILE_CHUNK) + m;
-                keep[m] = false;
-                Lk[m].pos_radius = vec4(0.0);
-                Lk[m].color = vec4(0.0);
-                if (k < rec.y) {
-                    Lk[m] = lights[PG_LIST_READ(rec.x + k)]; // whole record: one 32-byte sector anyway
-                    Lk[m].pos_radius.xyz -= cam;
-                    keep[m] = pg_sphere_intersects_aabb(Lk[m].pos_radius.xyz, Lk[m].pos_radius.w, bmin, bmax);
+        for (uint base = 0u; base < rec.y; base += uint(PG_TILE_N)) {
+            uint k = base + slot;
+            bool keep = false;
+            Light L;
+            L.pos_radius = vec4(0.0);
+            L.color = vec4(0.0);
+            if (k < rec.y) {
+                L = lights[PG_LIST_READ(rec.x + k)]; // whole record: one 32-byte sector anyway
+                L.pos_radius.xyz -= cam;
+                keep = pg_sphere_intersects_aabb(L.pos_radius.xyz, L.pos_radius.w, bmin, bmax);
 #ifdef PG_TILE_BACKFACE
-                    vec3 r = Lk[m].pos_radius.xyz - tb_c;
-                    float lr = length(r);
-                    keep[m] = keep[m] && !(dot(tb_a, r) + tb_e * lr * (1.0 + 1e-5) + tb_h
-                                           < -(tb_tol + 1e-5 * (lr + length(Lk[m].pos_radius.xyz))));
+                vec3 r = L.pos_radius.xyz - tb_c;
+                float lr = length(r);
+                keep = keep && !(dot(tb_a, r) + tb_e * lr * (1.0 + 1e-5) + tb_h
+                                 < -(tb_tol + 1e-5 * (lr + length(L.pos_radius.xyz))));
 #endif
 #ifdef PG_SPOT_LIGHTS
-                    if (keep[m])
-                        keep[m] = pg_spot_reaches_sphere(PG_SPOT_OF(PG_LIST_READ(rec.x + k)), Lk[m].pos_radius.xyz,
-                                                         0.5 * (bmin + bmax), 0.5 * length(bmax - bmin));
+                if (keep) keep = pg_spot_reaches_sphere(PG_SPOT_OF(PG_LIST_READ(rec.x + k)), L.pos_radius.xyz,
+                                                        0.5 * (bmin + bmax), 0.5 * length(bmax - bmin));
 #endif
-                }
-                kept += keep[m] ? 1u : 0u;
             }
             uint pos, total;
 #ifdef PG_TILE_SUBGROUPS
-#if PG_TILE_CHUNK == 1
-            uvec4 bal = subgroupBallot(keep[0]);
-            uint sub_pos = subgroupBallotExclusiveBitCount(bal), sub_total = subgroupBallotBitCount(bal);
-#else
-            uint sub_pos = subgroupExclusiveAdd(kept), sub_total = subgroupAdd(kept);
-#endif
-            if (subgroupElect()) s_tl_count[gl_SubgroupID] = sub_total;
+            uvec4 bal = subgroupBallot(keep);
+            if (subgroupElect()) s_tl_count[gl_SubgroupID] = subgroupBallotBitCount(bal);
             barrier();
-            pos = sub_pos;
+            pos = subgroupBallotExclusiveBitCount(bal);
             total = 0u;
             for (uint g = 0u; g < gl_NumSubgroups; g++) {
                 uint n = s_tl_count[g];
@@ -533,33 +492,28 @@ void pg_shade_tile(bool lit[PG_TILE_PX], Surface s[PG_TILE_PX], vec3 P[PG_TILE_P
                 total += n;
             }
 #else
-            s_tl_count[lid] = kept;
+            s_tl_count[lid] = keep ? 1u : 0u;
             barrier();
-            for (uint d = 1u; d < uint(PG_TILE_INV); d <<= 1u) {
+            for (uint d = 1u; d < uint(PG_TILE_N); d <<= 1u) {
                 uint add = lid >= d ? s_tl_count[lid - d] : 0u;
                 barrier();
                 s_tl_count[lid] += add;
                 barrier();
             }
-            pos = s_tl_count[lid] - kept;
-            total = s_tl_count[PG_TILE_INV - 1];
+            pos = s_tl_count[lid] - (keep ? 1u : 0u);
+            total = s_tl_count[PG_TILE_N - 1];
 #endif
-            for (uint m = 0u; m < uint(PG_TILE_CHUNK); m++) {
-                if (keep[m]) {   // what pg_accumulate_light_rel reads, computed once per tile
-                    Light L = Lk[m];
-                    float R2 = L.pos_radius.w * L.pos_radius.w;
-                    s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(L.color.w * L.color.w)); // falloff's R
-                    s_tl_light[2u * pos + 1u] = vec4(L.color.rgb, R2);
+            if (keep) {   // what pg_accumulate_light_rel reads, computed once per tile
+                float R2 = L.pos_radius.w * L.pos_radius.w;
+                s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(L.color.w * L.color.w)); // falloff's R
+                s_tl_light[2u * pos + 1u] = vec4(L.color.rgb, R2);
 #ifdef PG_SPOT_LIGHTS
-                    s_tl_spot[pos] = PG_SPOT_OF(PG_LIST_READ(rec.x + base + slot * uint(PG_TILE_CHUNK) + m));
+                s_tl_spot[pos] = PG_SPOT_OF(PG_LIST_READ(rec.x + k));
 #endif
-                    pos++;
-                }
             }
             barrier();
-            if (any_mine) {
-                for (uint p = 0u; p < uint(PG_TILE_PX); p++)
-                    if (mine[p]) PG_COUNT(total);
+            if (mine) {
+                PG_COUNT(total);
                 for (uint j = 0u; j < total; j++) {
                     vec4 a = s_tl_light[2u * j];
                     vec4 b = s_tl_light[2u * j + 1u];
@@ -568,17 +522,15 @@ void pg_shade_tile(bool lit[PG_TILE_PX], Surface s[PG_TILE_PX], vec3 P[PG_TILE_P
 #else
                     vec4 sp = vec4(0.0, 0.0, 0.0, 1.0);
 #endif
-                    for (uint p = 0u; p < uint(PG_TILE_PX); p++)
-                        if (mine[p])
-                            pg_accumulate_light_rel_select(a.xyz, b.w, a.w, b.rgb, sp, P[p], s[p].normal, V[p], lm[p],
-                                                           inv_md2, acc[p]);
+                    pg_accumulate_light_rel_select(a.xyz, b.w, a.w, b.rgb, sp, P, s.normal, V, lm, inv_md2,
+                                                   acc);
                 }
             }
             barrier();   // before the next chunk overwrites the shared lights and counts
         }
-        for (uint p = 0u; p < uint(PG_TILE_PX); p++) pending[p] = pending[p] && !mine[p];
+        pending = pending && !mine;
         barrier();       // before the next round resets the cluster and box (a cluster may have no chunk)
     }
-    for (uint p = 0u; p < uint(PG_TILE_PX); p++) color[p] = pg_shade_final(s[p], acc[p], V[p]);
+    return pg_shade_final(s, acc, V);
 }
 #endif

@@ -15,10 +15,7 @@
  * 8: the workgroup is tile_size x tile_size pixels), tile_lights (default true: each tile culls its clusters' lists against the bounding box of its pixels and shares the
  * kept lights through shared memory; bit-identical to false, with far fewer light evaluations),
  * tile_backface (default true: the tile also drops the lights behind all its pixels' surfaces;
- * bit-identical, fewer evaluations), tile_pixels (1 or 2, default 1: pixels an invocation of the
- * tiled loop shades; 2 evaluates each light read from shared memory for two pixels, a workgroup of
- * half the invocations) and tile_chunk (1, 2 or 4, default 1: list entries each invocation tests a
- * round, so a round takes tile_chunk x the invocations lights): the same image, other costs,
+ * bit-identical, fewer evaluations),
  * ris_candidates (0, the default: every light of the list, exact; M > 0: the approximation knob of
  * shaders/shading.glsl pg_ris_estimate, M candidates a sample, resampled importance sampling of
  * the list; no tiling), ris_samples (1..64, default 1: independent RIS samples averaged a pixel),
@@ -42,7 +39,6 @@ typedef struct dl_params { /* filled once by declare, read by create/update/reco
     pg_scene_draw_features draw;/* packing visibility: the material variant */
     int packing;
     uint32_t tile;              /* option tile_size: workgroup edge in pixels (8 or 16) */
-    uint32_t tile_px;           /* option tile_pixels: pixels an invocation shades (1 or 2) */
     bool tiled;                 /* PG_TILE_LIGHTS declared */
     pg_slot depth, targets[4], emissive_slot, hdr;
 } dl_params;
@@ -65,8 +61,8 @@ typedef struct deferred_lighting {
 } deferred_lighting;
 
 static const char *const k_extra[] = {"packing",        "tile_lights", "tile_size",      "tile_backface",
-                                     "tile_pixels",    "tile_chunk",  "ris_candidates", "ris_samples",
-                                     "lights",         "lightcut_error", "stochastic_threshold", NULL};
+                                     "ris_candidates", "ris_samples", "lights",         "lightcut_error",
+                                     "stochastic_threshold", NULL};
 static const char *const k_light_sources[] = {"clusters", "tree", NULL};
 
 static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
@@ -126,12 +122,6 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     pg_decl_define_int(out, "PG_TILE", tile);
     bool backface;
     if ((r = pg_opt_bool(in->desc, "tile_backface", true, &backface, err))) return r;
-    int64_t tile_px, chunk;
-    if ((r = pg_opt_int(in->desc, "tile_pixels", 1, 1, 2, &tile_px, err))) return r;
-    if ((r = pg_opt_int(in->desc, "tile_chunk", 1, 1, 4, &chunk, err))) return r;
-    if (chunk == 3)
-        return pg_fail(err, PG_ERR_SCHEMA, "%s: %s.options.tile_chunk: expected 1, 2 or 4, got 3", in->desc->file,
-                       in->desc->json_path);
     int64_t ris_m, ris_s;
     if ((r = pg_opt_int(in->desc, "ris_candidates", 0, 0, 4096, &ris_m, err))) return r;
     if ((r = pg_opt_int(in->desc, "ris_samples", 1, 1, 64, &ris_s, err))) return r;
@@ -171,9 +161,6 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     if (p->tiled) {
         pg_decl_define(out, "PG_TILE_LIGHTS");
         if (backface) pg_decl_define(out, "PG_TILE_BACKFACE");
-        pg_decl_define_int(out, "PG_TILE_PX", tile_px);
-        pg_decl_define_int(out, "PG_TILE_CHUNK", chunk);
-        p->tile_px = (uint32_t)tile_px;
     }
     return PG_OK;
 }
@@ -240,7 +227,7 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     const bool tiled = pa->tiled;
     p->tile = pa->tile;
     /* the tiled path orders lights within a subgroup by ballots when every subgroup is full */
-    uint32_t tile_n = p->tile * p->tile / (tiled ? pa->tile_px : 1u); /* the workgroup's invocations */
+    uint32_t tile_n = p->tile * p->tile;
     bool subgroups = tiled && gpu->exact_subgroups && gpu->subgroup_size <= tile_n && tile_n % gpu->subgroup_size == 0;
     if (subgroups) defs[nd++] = "PG_TILE_SUBGROUPS";
     VkShaderModule cs;
