@@ -14,9 +14,6 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
-#if defined(PG_DIAG_PAIR_LOOP) && PG_DIAG_PAIR_LOOP == 16
-#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
-#endif
 #ifdef PG_GBUFFER_VISIBILITY
 #extension GL_EXT_nonuniform_qualifier : require
 #endif

@@ -514,37 +514,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
             barrier();
             if (mine) {
                 PG_COUNT(total);
-                uint j0 = 0u;
-#if defined(PG_DIAG_PAIR_LOOP) && !defined(PG_SPOT_LIGHTS) && !defined(PG_PBR) && !defined(PG_BLINN_PHONG) && \
-    !defined(PG_STOCHASTIC_CULL)
-                // diagnostic: Lambert lights two at a time, the offset from the point in float and
-                // the rest of the term in PG_DIAG_PAIR_LOOP's type (f16vec2 or vec2), the sums in float
-#if PG_DIAG_PAIR_LOOP == 16
-#define PG_PV f16vec2
-#define PG_PS float16_t
-#else
-#define PG_PV vec2
-#define PG_PS float
-#endif
-                for (; j0 + 1u < total; j0 += 2u) {
-                    vec4 a0 = s_tl_light[2u * j0], b0 = s_tl_light[2u * j0 + 1u];
-                    vec4 a1 = s_tl_light[2u * j0 + 2u], b1 = s_tl_light[2u * j0 + 3u];
-                    PG_PV lx = PG_PV(a0.x - P.x, a1.x - P.x), ly = PG_PV(a0.y - P.y, a1.y - P.y);
-                    PG_PV lz = PG_PV(a0.z - P.z, a1.z - P.z);
-                    PG_PV d2 = lx * lx + ly * ly + lz * lz;
-                    PG_PV t = d2 * PG_PV(a0.w, a1.w);
-                    PG_PV fo = clamp(PG_PS(1.0) - t * t, PG_PS(0.0), PG_PS(1.0));
-                    PG_PV rs = inversesqrt(d2);
-                    PG_PV att = fo * min(rs * rs, PG_PV(inv_md2));
-                    PG_PV ndl = max((PG_PS(s.normal.x) * lx + PG_PS(s.normal.y) * ly + PG_PS(s.normal.z) * lz) * rs,
-                                    PG_PS(0.0));
-                    bvec2 in_r = bvec2(d2.x < PG_PS(b0.w) && d2.x > PG_PS(0.0), d2.y < PG_PS(b1.w) && d2.y > PG_PS(0.0));
-                    vec2 w = vec2(mix(PG_PV(0.0), ndl * att, in_r));
-                    acc.diffuse += b0.rgb * w.x;
-                    acc.diffuse += b1.rgb * w.y;
-                }
-#endif
-                for (uint j = j0; j < total; j++) {
+                for (uint j = 0u; j < total; j++) {
                     vec4 a = s_tl_light[2u * j];
                     vec4 b = s_tl_light[2u * j + 1u];
 #ifdef PG_SPOT_LIGHTS

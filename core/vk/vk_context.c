@@ -549,7 +549,6 @@ static void fill_enable(const pg_gpu *gpu, const pg_gpu_desc *desc, const dev_fe
         .shaderBufferInt64Atomics = f12->shaderBufferInt64Atomics,
         .shaderSampledImageArrayNonUniformIndexing = f12->shaderSampledImageArrayNonUniformIndexing,
         .runtimeDescriptorArray = f12->runtimeDescriptorArray,
-        .shaderFloat16 = f12->shaderFloat16, /* the diagnostic PG_DIAG_PAIR_LOOP 16 */
     };
     e->e2 = (VkPhysicalDeviceFeatures2){
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
