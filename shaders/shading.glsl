@@ -514,54 +514,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
             barrier();
             if (mine) {
                 PG_COUNT(total);
-                uint j = 0u;
-#if defined(PG_DIAG_UNROLL)
-                // diagnostic: PG_DIAG_UNROLL (2 or 4) lights an iteration, their shared records read first,
-                // then the same pg_accumulate_light_rel_select calls in list order
-#ifdef PG_SPOT_LIGHTS
-#define PG_DIAG_SP(u) s_tl_spot[j + uint(u)]
-#else
-#define PG_DIAG_SP(u) vec4(0.0, 0.0, 0.0, 1.0)
-#endif
-#define PG_DIAG_LOAD(u) vec4 a##u = s_tl_light[2u * (j + uint(u))], b##u = s_tl_light[2u * (j + uint(u)) + 1u], sp##u = PG_DIAG_SP(u)
-#define PG_DIAG_EVAL(u) pg_accumulate_light_rel_select(a##u.xyz, b##u.w, a##u.w, b##u.rgb, sp##u, P, s.normal, V, lm, inv_md2, acc)
-                for (; j + uint(PG_DIAG_UNROLL) <= total; j += uint(PG_DIAG_UNROLL)) {
-                    PG_DIAG_LOAD(0); PG_DIAG_LOAD(1);
-#if PG_DIAG_UNROLL == 4
-                    PG_DIAG_LOAD(2); PG_DIAG_LOAD(3);
-#endif
-                    PG_DIAG_EVAL(0); PG_DIAG_EVAL(1);
-#if PG_DIAG_UNROLL == 4
-                    PG_DIAG_EVAL(2); PG_DIAG_EVAL(3);
-#endif
-                }
-#elif defined(PG_DIAG_PAIR_EXACT) && !defined(PG_SPOT_LIGHTS) && !defined(PG_PBR) && !defined(PG_BLINN_PHONG) && \
-    !defined(PG_STOCHASTIC_CULL)
-                // diagnostic: the Lambert term of two lights at once in vec2, pg_light_term's arithmetic
-                // (a light on the point taken head-on), the sums in list order
-                for (; j + 1u < total; j += 2u) {
-                    vec4 a0 = s_tl_light[2u * j], b0 = s_tl_light[2u * j + 1u];
-                    vec4 a1 = s_tl_light[2u * j + 2u], b1 = s_tl_light[2u * j + 3u];
-                    vec2 lx = vec2(a0.x - P.x, a1.x - P.x), ly = vec2(a0.y - P.y, a1.y - P.y);
-                    vec2 lz = vec2(a0.z - P.z, a1.z - P.z);
-                    vec2 d2 = lx * lx + ly * ly + lz * lz;
-                    bvec2 inr = lessThan(d2, vec2(b0.w, b1.w));
-                    vec2 t = d2 * vec2(a0.w, a1.w);
-                    vec2 fo = clamp(1.0 - t * t, 0.0, 1.0);
-#ifdef PG_GLTF_FALLOFF
-                    fo *= fo;
-#endif
-                    vec2 rs = inversesqrt(d2);
-                    bvec2 dir = lessThanEqual(rs, vec2(3.40282347e+38));
-                    vec2 att = fo * min(rs * rs, vec2(inv_md2));
-                    vec2 ndl = mix(vec2(max(dot(s.normal, s.normal), 0.0)),
-                                   max((s.normal.x * lx + s.normal.y * ly + s.normal.z * lz) * rs, 0.0), dir);
-                    vec2 w = mix(vec2(0.0), ndl * att, inr);
-                    acc.diffuse += b0.rgb * w.x;
-                    acc.diffuse += b1.rgb * w.y;
-                }
-#endif
-                for (; j < total; j++) {
+                for (uint j = 0u; j < total; j++) {
                     vec4 a = s_tl_light[2u * j];
                     vec4 b = s_tl_light[2u * j + 1u];
 #ifdef PG_SPOT_LIGHTS
