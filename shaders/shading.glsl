@@ -514,7 +514,13 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
             barrier();
             if (mine) {
                 PG_COUNT(total);
-                for (uint j = 0u; j < total; j++) {
+                uint j = 0u;
+#if defined(PG_LAMBERT_PAIRS)
+                for (; j + 1u < total; j += 2u)   // two lights at once, in list order (lighting.glsl)
+                    pg_accumulate_lambert_pair(s_tl_light[2u * j], s_tl_light[2u * j + 1u], s_tl_light[2u * j + 2u],
+                                               s_tl_light[2u * j + 3u], P, s.normal, inv_md2, acc);
+#endif
+                for (; j < total; j++) {            // the rest one at a time
                     vec4 a = s_tl_light[2u * j];
                     vec4 b = s_tl_light[2u * j + 1u];
 #ifdef PG_SPOT_LIGHTS
