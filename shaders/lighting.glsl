@@ -300,9 +300,11 @@ void pg_accumulate_light_rel_select(vec3 rel, float R2, float inv_r2, vec3 color
 // pg_accumulate_light_rel_select's arithmetic for each light, lane by lane of a vec2 (the same
 // operations in the same order: the offset, d^2, the range test, the falloff, the clamped 1/d^2,
 // N.L from the one inversesqrt, a light on the point taken head-on), light 0 added before light 1:
-// the same sum, bit for bit (the tiled loop's tests compare it with the per-pixel loop). A light is
+// the same sum, bit for bit (the tiled loop's tests compare it with the per-pixel loop; the head-on case, a
+// light within ~1e-19 of the point, is reached by no end-to-end test, as in the one-light loop). A light is
 // (a, b) as the tiled loop stores it: a = (rel, 1/R_falloff^2), b = (colour, R^2). Measured on an
-// H100 (docs/performance.md#the-tiled-loop-two-lights-at-a-time): 3% off the lighting pass.
+// H100 (docs/performance.md#two-lights-at-a-time-in-the-tiled-loop): 2.4-2.9% off the lighting pass
+// (on lavapipe 5-10% slower: kept for the GPU).
 #if !defined(PG_SPOT_LIGHTS) && !defined(PG_PBR) && !defined(PG_BLINN_PHONG) && !defined(PG_STOCHASTIC_CULL)
 #define PG_LAMBERT_PAIRS
 void pg_accumulate_lambert_pair(vec4 a0, vec4 b0, vec4 a1, vec4 b1, vec3 P, vec3 N, float inv_md2, inout PgShade acc)
