@@ -307,31 +307,10 @@ void pg_accumulate_light_rel_select(vec3 rel, float R2, float inv_r2, vec3 color
 // (on lavapipe 5-10% slower: kept for the GPU).
 #if !defined(PG_SPOT_LIGHTS) && !defined(PG_PBR) && !defined(PG_BLINN_PHONG) && !defined(PG_STOCHASTIC_CULL)
 #define PG_LAMBERT_PAIRS
-void pg_accumulate_lambert_pair(vec4 a0, vec4 b0, vec4 a1, vec4 b1, vec3 P, vec3 N, vec3 V, PgLightMat m,
-                                float inv_md2, inout PgShade acc)
+void pg_accumulate_lambert_pair(vec4 a0, vec4 b0, vec4 a1, vec4 b1, vec3 P, vec3 N, float inv_md2, inout PgShade acc)
 {
     vec2 lx = vec2(a0.x - P.x, a1.x - P.x), ly = vec2(a0.y - P.y, a1.y - P.y), lz = vec2(a0.z - P.z, a1.z - P.z);
     vec2 d2 = lx * lx + ly * ly + lz * lz;
-#ifdef PG_DIAG_PAIR_FALLBACK
-    if (!all(greaterThanEqual(d2, vec2(1.17549435e-38)))) { // a light (nearly) on the point, or NaN: one at a time
-        pg_accumulate_light_rel_select(a0.xyz, b0.w, a0.w, b0.rgb, vec4(0.0, 0.0, 0.0, 1.0), P, N, V, m, inv_md2, acc);
-        pg_accumulate_light_rel_select(a1.xyz, b1.w, a1.w, b1.rgb, vec4(0.0, 0.0, 0.0, 1.0), P, N, V, m, inv_md2, acc);
-        return;
-    } {
-    bvec2 in_range = lessThan(d2, vec2(b0.w, b1.w));
-    vec2 t = d2 * vec2(a0.w, a1.w);
-    vec2 falloff = clamp(1.0 - t * t, 0.0, 1.0);
-#ifdef PG_GLTF_FALLOFF
-    falloff *= falloff;
-#endif
-    vec2 rs = inversesqrt(d2);
-    vec2 att = falloff * min(rs * rs, vec2(inv_md2));
-    vec2 ndl = max((N.x * lx + N.y * ly + N.z * lz) * rs, 0.0);
-    vec2 w = mix(vec2(0.0), ndl * att, in_range);
-    acc.diffuse += b0.rgb * w.x;
-    acc.diffuse += b1.rgb * w.y;
-    return; }
-#endif
     bvec2 in_range = lessThan(d2, vec2(b0.w, b1.w));
     vec2 t = d2 * vec2(a0.w, a1.w);
     vec2 falloff = clamp(1.0 - t * t, 0.0, 1.0);

@@ -518,7 +518,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #if defined(PG_LAMBERT_PAIRS)
                 for (; j + 1u < total; j += 2u)   // two lights at once, in list order (lighting.glsl)
                     pg_accumulate_lambert_pair(s_tl_light[2u * j], s_tl_light[2u * j + 1u], s_tl_light[2u * j + 2u],
-                                               s_tl_light[2u * j + 3u], P, s.normal, V, lm, inv_md2, acc);
+                                               s_tl_light[2u * j + 3u], P, s.normal, inv_md2, acc);
 #endif
                 for (; j < total; j++) {            // the rest one at a time
                     vec4 a = s_tl_light[2u * j];
