@@ -326,31 +326,6 @@ void pg_accumulate_lambert_pair(vec4 a0, vec4 b0, vec4 a1, vec4 b1, vec3 P, vec3
     acc.diffuse += b1.rgb * w.y;
 }
 #endif
-#ifdef PG_DIAG_QUADS
-// diagnostic: four lights at once in vec4, the pair's arithmetic lane by lane, the sums in list order
-void pg_accumulate_lambert_quad(vec4 a0, vec4 b0, vec4 a1, vec4 b1, vec4 a2, vec4 b2, vec4 a3, vec4 b3, vec3 P, vec3 N,
-                                float inv_md2, inout PgShade acc)
-{
-    vec4 lx = vec4(a0.x, a1.x, a2.x, a3.x) - P.x, ly = vec4(a0.y, a1.y, a2.y, a3.y) - P.y;
-    vec4 lz = vec4(a0.z, a1.z, a2.z, a3.z) - P.z;
-    vec4 d2 = lx * lx + ly * ly + lz * lz;
-    bvec4 in_range = lessThan(d2, vec4(b0.w, b1.w, b2.w, b3.w));
-    vec4 t = d2 * vec4(a0.w, a1.w, a2.w, a3.w);
-    vec4 falloff = clamp(1.0 - t * t, 0.0, 1.0);
-#ifdef PG_GLTF_FALLOFF
-    falloff *= falloff;
-#endif
-    vec4 rs = inversesqrt(d2);
-    bvec4 dir = lessThanEqual(rs, vec4(3.40282347e+38));
-    vec4 att = falloff * min(rs * rs, vec4(inv_md2));
-    vec4 ndl = mix(vec4(max(dot(N, N), 0.0)), max((N.x * lx + N.y * ly + N.z * lz) * rs, 0.0), dir);
-    vec4 w = mix(vec4(0.0), ndl * att, in_range);
-    acc.diffuse += b0.rgb * w.x;
-    acc.diffuse += b1.rgb * w.y;
-    acc.diffuse += b2.rgb * w.z;
-    acc.diffuse += b3.rgb * w.w;
-}
-#endif
 
 // P is camera-relative (world - cam); the light is moved into the same frame first.
 // spot: the light's spot record (PG_SPOT_OF)

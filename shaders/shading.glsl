@@ -515,12 +515,6 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
             if (mine) {
                 PG_COUNT(total);
                 uint j = 0u;
-#if defined(PG_LAMBERT_PAIRS) && defined(PG_DIAG_QUADS)
-                for (; j + 3u < total; j += 4u)
-                    pg_accumulate_lambert_quad(s_tl_light[2u * j], s_tl_light[2u * j + 1u], s_tl_light[2u * j + 2u],
-                                               s_tl_light[2u * j + 3u], s_tl_light[2u * j + 4u], s_tl_light[2u * j + 5u],
-                                               s_tl_light[2u * j + 6u], s_tl_light[2u * j + 7u], P, s.normal, inv_md2, acc);
-#endif
 #if defined(PG_LAMBERT_PAIRS)
                 for (; j + 1u < total; j += 2u)   // two lights at once, in list order (lighting.glsl)
                     pg_accumulate_lambert_pair(s_tl_light[2u * j], s_tl_light[2u * j + 1u], s_tl_light[2u * j + 2u],
