@@ -303,7 +303,7 @@ void pg_accumulate_light_rel_select(vec3 rel, float R2, float inv_r2, vec3 color
 // the same sum, bit for bit (the tiled loop's tests compare it with the per-pixel loop; the head-on case, a
 // light within ~1e-19 of the point, is reached by no end-to-end test, as in the one-light loop). A light is
 // (a, b) as the tiled loop stores it: a = (rel, 1/R_falloff^2), b = (colour, R^2). Measured on an
-// H100 (docs/performance.md#two-lights-at-a-time-in-the-tiled-loop): 2.4-2.9% off the lighting pass
+// H100 (docs/performance.md#two-lights-at-a-time-in-the-tiled-loop): 2.1-3.2% off the lighting pass
 // (on lavapipe 5-10% slower: kept for the GPU).
 #if !defined(PG_SPOT_LIGHTS) && !defined(PG_PBR) && !defined(PG_BLINN_PHONG) && !defined(PG_STOCHASTIC_CULL)
 #define PG_LAMBERT_PAIRS
