@@ -300,8 +300,9 @@ void pg_accumulate_light_rel_select(vec3 rel, float R2, float inv_r2, vec3 color
 // pg_accumulate_light_rel_select's arithmetic for each light, lane by lane of a vec2 (the same
 // operations in the same order: the offset, d^2, the range test, the falloff, the clamped 1/d^2,
 // N.L from the one inversesqrt, a light on the point taken head-on), light 0 added before light 1:
-// the same sum, bit for bit (the tiled loop's tests compare it with the per-pixel loop; the head-on case, a
-// light within ~1e-19 of the point, is reached by no end-to-end test, as in the one-light loop). A light is
+// the same sum, bit for bit (the tiled loop's tests compare it with the per-pixel loop; no scene puts a
+// light exactly on a shaded point, so tests/gpu/test_gpu_light_terms.c compares both on given inputs,
+// that case included, and with the model in double). A light is
 // (a, b) as the tiled loop stores it: a = (rel, 1/R_falloff^2), b = (colour, R^2). Measured on an
 // H100 (docs/performance.md#two-lights-at-a-time-in-the-tiled-loop): 2.1-3.2% off the lighting pass
 // (on lavapipe 5-10% slower: kept for the GPU).
