@@ -14,7 +14,9 @@ variant's ratio to the BASE variant. Two ways to name the variants:
 at a time: --variant shading=pbr). Each cell also names the pass that dominates the frame.
 --steps PASS: one row per other variant instead (e.g. successive versions of a change), its ratio to
 BASE in each pipeline, the light references its lists hold and PASS's median ms (of the first
-pipeline), e.g. --steps assign_lights. Used for docs/performance.md."""
+pipeline), e.g. --steps assign_lights. --time PASS[,PASS...]: the ratios of a pass instead of the
+frame: in each row the first of these passes it has (e.g. shade,lighting,lighting_oct16,lighting_packed:
+the shading pass of each pipeline), ratios to three decimals. Used for docs/performance.md."""
 import argparse
 import csv
 
@@ -29,6 +31,25 @@ def dominant(row):
     return best
 
 
+TIME_PASSES = []  # --time: the passes whose time the ratios compare (empty: the frame)
+
+
+def ms(row):
+    """The time a ratio compares: the frame, or with --time the first of its passes the row has."""
+    for p in TIME_PASSES:
+        v = row.get("pass_%s_ms_median" % p)
+        if v:
+            return float(v)
+    if TIME_PASSES:
+        raise SystemExit("cost_ratio_table.py: %s %s has none of the passes %s" % (row["pipeline"], row["lights"],
+                                                                                ",".join(TIME_PASSES)))
+    return float(row["gpu_ms_median"])
+
+
+def ratio(b, r):
+    return ("%.3fx" if TIME_PASSES else "%.2fx") % (ms(r) / ms(b))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("base", help="the variant the ratios are taken against")
@@ -36,7 +57,10 @@ def main():
     ap.add_argument("--by-variant", action="store_true", help="variants are the `variant` column of the files")
     ap.add_argument("--variant", help="keep only the rows of this `variant` (a --sweep value, e.g. shading=pbr)")
     ap.add_argument("--steps", metavar="PASS", help="one row per other variant: ratios, references, PASS ms")
+    ap.add_argument("--time", metavar="PASS[,PASS]", help="ratios of the first of these passes a row has")
     a = ap.parse_args()
+    global TIME_PASSES
+    TIME_PASSES = a.time.split(",") if a.time else []
     cells = {}  # (pipeline, lights) -> {variant: row}
     order, variants = [], []
     for lab in a.label:
@@ -74,12 +98,12 @@ def main():
             line.append("%.3f (%s %.3f)" % (float(r["gpu_ms_median"]), d[0], d[1]) if d else "%.3f" % float(r["gpu_ms_median"]))
         for v in others:
             b, r = c.get(a.base), c.get(v)
-            line.append("%.2fx" % (float(r["gpu_ms_median"]) / float(b["gpu_ms_median"])) if b and r else "-")
+            line.append(ratio(b, r) if b and r else "-")
         print("| " + " | ".join(line) + " |")
 
 
 def steps_table(cells, order, base, others, pass_name):
-    """One row per variant in `others`: its frame time over BASE's in each (pipeline, lights)."""
+    """One row per variant in `others`: its frame (or --time pass) time over BASE's in each (pipeline, lights)."""
     head = ["variant"] + ["%s %s" % k if len({k[1] for k in order}) > 1 else k[0] for k in order]
     head += ["references", "%s ms" % pass_name]
     print("| " + " | ".join(head) + " |")
@@ -88,7 +112,7 @@ def steps_table(cells, order, base, others, pass_name):
         line = [v]
         for key in order:
             b, r = cells[key].get(base), cells[key].get(v)
-            line.append("%.2fx" % (float(r["gpu_ms_median"]) / float(b["gpu_ms_median"])) if b and r else "-")
+            line.append(ratio(b, r) if b and r else "-")
         first = cells[order[0]].get(v, {})
         line.append("{:,}".format(int(first["light_refs"])) if first.get("light_refs") else "-")
         ms = first.get("pass_%s_ms_median" % pass_name)
