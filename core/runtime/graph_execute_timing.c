@@ -74,6 +74,13 @@ void pg_rt_timing_copy(const pg_runtime *rt, VkCommandBuffer cmd, uint32_t f, pg
     const pg_rt_timing *t = &rt->timing;
     VkQueryPool pool = pool_of(rt, f, q);
     if (!pool || !t->n_on_queue[q]) return;
+    /* the same bytes were written by this slot's copy frames in flight ago, in an earlier submission
+     * to this queue: the host's fence wait orders the host, not this copy (write after write; a
+     * separate compute queue, whose later batches hold no other barrier, showed it) */
+    VkBufferMemoryBarrier2 waw = pg_buffer_barrier(t->slot[f].timestamps.buffer, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                                   VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                                                   VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    pg_cmd_barriers(cmd, 0, NULL, 1, &waw);
     vkCmdCopyQueryPoolResults(cmd, pool, 0, 2 * t->n_on_queue[q], t->slot[f].timestamps.buffer,
                               (VkDeviceSize)q * t->n_queries * sizeof(uint64_t), sizeof(uint64_t),
                               VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
