@@ -115,8 +115,8 @@ def steps_table(cells, order, base, others, pass_name):
             line.append(ratio(b, r) if b and r else "-")
         first = cells[order[0]].get(v, {})
         line.append("{:,}".format(int(first["light_refs"])) if first.get("light_refs") else "-")
-        ms = first.get("pass_%s_ms_median" % pass_name)
-        line.append("%.2f" % float(ms) if ms else "-")
+        pass_ms = first.get("pass_%s_ms_median" % pass_name)
+        line.append("%.2f" % float(pass_ms) if pass_ms else "-")
         print("| " + " | ".join(line) + " |")
 
 

@@ -6,7 +6,8 @@
  * Blinn-Phong, the glTF pbr BRDF). For every case:
  *  - the early-return form equals the select form bit for bit, and so do the pairs (Lambert);
  *  - each sum (added to a prior sum, so that the order of the terms shows) is within REL |expected| +
- *    ABS x its scale + 2 ulp of the prior of the model evaluated here in double on the
+ *    ABS x its scale + 2 ulp of the prior (Blinn-Phong's specular: REL + 2n ulp for its exponent n,
+ *    1..128) of the model evaluated here in double on the
  *    same float offsets (light - P rounded as the shader rounds it), the pbr model through the C
  *    twin's BRDF (renderer/common/brdf.c pg_brdf_pbr); the scale is the light's colour x
  *    min(1/d^2, 1/dmin^2) (x the pbr lobe's bound 0.5 / a^3);
@@ -82,7 +83,7 @@ static float inv_r2(float R) /* pg_light_inv_r2(R * R) */
     return v < FLT_MAX ? v : FLT_MAX;
 }
 
-/* Light j of case c: centre at P + u d, cut-off R, falloff range Rf, colour. */
+/* Light j of case c: centre pos, cut-off R, falloff range Rf, colour. */
 static void set_light(lt_case *c, int j, const float pos[3], float R, float Rf, const float col[3])
 {
     for (int k = 0; k < 3; k++) {
@@ -117,9 +118,9 @@ static void make_case(lt_case *c, uint32_t i, float inv_md2)
     do {
         rnd_unit(T);
     } while (fabs(N[0] * T[0] + N[1] * T[1] + N[2] * T[2]) > 0.9);
-    double tn = N[0] * T[0] + N[1] * T[1] + N[2] * T[2], tl = 0;
+    double tn = N[0] * T[0] + N[1] * T[1] + N[2] * T[2];
     for (int k = 0; k < 3; k++) T[k] -= tn * N[k];
-    tl = sqrt(T[0] * T[0] + T[1] * T[1] + T[2] * T[2]);
+    double tl = sqrt(T[0] * T[0] + T[1] * T[1] + T[2] * T[2]);
     double nv = rnd_range(0.15, 1.0), tv = sqrt(1 - nv * nv);
     for (int k = 0; k < 3; k++) {
         c->N[k] = (float)N[k];
@@ -128,6 +129,7 @@ static void make_case(lt_case *c, uint32_t i, float inv_md2)
     }
     c->mat[0] = (float)rnd();               /* metallic */
     c->mat[1] = (float)rnd_range(0.1, 1.0); /* roughness */
+    c->albedo[3] = (float)rnd_range(1.0, 128.0); /* Blinn-Phong's exponent */
     c->mat[2] = i % 4 < 2 ? 0.0f : (float)rnd_range(0, 1e3); /* the diffuse sum before the two lights */
     c->mat[3] = inv_md2;
     random_light(c, 0);
@@ -183,7 +185,7 @@ static void expect(const lt_model *m, const lt_case *c, double diff[3], double s
             double hl = sqrt(H[0] * H[0] + H[1] * H[1] + H[2] * H[2]);
             double nh = fmax((N[0] * H[0] + N[1] * H[1] + N[2] * H[2]) / hl, 0);
             *scale += cmax / fmax(d2, dmin2);
-            for (int k = 0; k < 3; k++) spec[k] += c->b[j][k] * pow(nh, c->mat[1]) * att;
+            for (int k = 0; k < 3; k++) spec[k] += c->b[j][k] * pow(nh, c->albedo[3]) * att;
         }
     }
 }
@@ -318,8 +320,11 @@ static void check_model(const lt_model *m, const lt_case *cases)
         head_on += on_point;
         for (int k = 0; k < 3; k++) {
             double prior = cases[i].mat[2]; /* the sum before the lights: two more roundings of it */
-            double u = fmax(fabs(o[k] - (prior + diff[k])), fabs(o[4 + k] - spec[k])) /
-                       (REL * fmax(fabs(diff[k]), fabs(spec[k])) + ABS * scale + 0x1p-22 * (prior + diff[k]) + 1e-30);
+            /* Blinn-Phong's (N.H)^n multiplies the rounding of N.H by n: 2 ulp of it per unit of n */
+            double spec_rel = REL + (m->blinn_phong ? cases[i].albedo[3] * 0x1p-22 : 0);
+            double u = fmax(fabs(o[k] - (prior + diff[k])) /
+                                (REL * fabs(diff[k]) + ABS * scale + 0x1p-22 * (prior + diff[k]) + 1e-30),
+                            fabs(o[4 + k] - spec[k]) / (spec_rel * fabs(spec[k]) + ABS * scale + 1e-30));
             if (!(u <= 1)) {
                 if (off++ < 5)
                     fprintf(stderr, "%s case %u channel %d: diffuse %.9g specular %.9g, expected %.9g %.9g\n",

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """nvlabs_compare.py PG_METRIC_EVAL NVLABS_PYTHON_DIR - passgraph's LDR-FLIP and HDR-FLIP against
 NVlabs' own Python implementation (https://github.com/NVlabs/flip, the folder holding its numpy
-`flip_api.py`: `python/` in versions 1.0 to 1.2, which needs OpenCV, Debian's python3-opencv), on
-the image pairs of metrics_oracle.py. Not a ctest: NVlabs' code is not part of passgraph and is not
+`flip_api.py`: `python/` of versions before 1.4, from which on their Python calls their C++; it
+needs OpenCV, Debian's python3-opencv), on the image pairs of metrics_oracle.py. Not a ctest: NVlabs' code is not part of passgraph and is not
 fetched by it; run it by hand with a checkout of theirs.
 
 For every pair it prints passgraph's mean FLIP and NVlabs', the largest and mean per-pixel

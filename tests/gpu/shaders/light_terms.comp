@@ -14,8 +14,8 @@ struct Case {
     vec4 P;        // xyz: the shaded point (camera-relative)
     vec4 N;        // xyz: its unit normal
     vec4 V;        // xyz: unit direction to the eye
-    vec4 albedo;   // rgb: base colour
-    vec4 mat;      // metallic (Blinn-Phong strength), roughness (Blinn-Phong exponent), the diffuse sum
+    vec4 albedo;   // rgb: base colour, w: Blinn-Phong's exponent
+    vec4 mat;      // metallic, roughness (pbr), the diffuse sum
                    // before the two lights (the rounding of a sum depends on the order of its terms), 1 / dmin^2
     vec4 a0, b0, a1, b1;
 };
@@ -37,7 +37,11 @@ void main()
     s.alpha = 1.0;
     s.normal = c.N.xyz;
     s.specular = c.mat.x;
+#ifdef PG_BLINN_PHONG
+    s.shininess = c.albedo.w;
+#else
     s.shininess = c.mat.y;
+#endif
     s.emissive = vec3(0.0);
     s.occlusion = 1.0;
     vec3 P = c.P.xyz, N = c.N.xyz, V = c.V.xyz;
