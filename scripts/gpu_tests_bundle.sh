@@ -1,47 +1,79 @@
 #!/bin/bash
-# gpu_tests_bundle.sh BUILD OUT TEST... - GPU tests to run by hand on another machine (the lent GPU
-# machine: docs/testing.md "The GPU tests on a real GPU"). Copies the named test executables of
-# BUILD/tests, stripped, into OUT with the shared libraries they load (from this machine), the
-# Khronos validation layer's Debian package (apt-get download) and OUT/run.sh, which, run from a
-# copy of this repository's tree on the other machine (its shaders and tests/ are read there),
-# installs the layer, points the tests' compiled-in source path at that tree and runs each test
-# with validation and synchronization validation on, the Sponza left out; each test's output is
-# written to $OUT (or /tmp) as TEST.txt. Exit: non-zero when a step here fails.
+# gpu_tests_bundle.sh BUILD OUT [TEST...] - the GPU tests, to run by hand on another machine (the
+# lent GPU machine: docs/testing.md "The GPU tests on a real GPU"). Packs the named test executables
+# of BUILD/tests (none named: every test there that loads libvulkan), stripped, with the shared
+# libraries they load (from this machine) into one solid xz archive, OUT/tests.tar.xz (the tests
+# share most of their code: 38 tests of 8 MB each pack into about 12 MB); beside it the Khronos
+# validation layer's Debian package (apt-get download), the Sponza when ../shared holds it, and
+# OUT/run.sh. run.sh, run from a copy of this repository's tree on the other machine (its shaders
+# and tests/ are read there), installs the layer, points the tests' compiled-in source and shared
+# paths at that tree and the carried Sponza, and runs the tests with validation and synchronization
+# validation on, $JOBS at a time (default 4), each under a 600 s timeout; each test's output is
+# written to $OUT (or /tmp) as TEST.txt, a line per test (exit code, seconds, failed checks,
+# validation counts) to stdout. Exit: non-zero when a step here fails.
 set -euo pipefail
-[ $# -ge 3 ] || { echo "usage: $0 BUILD OUT TEST..." >&2; exit 2; }
+[ $# -ge 2 ] || { echo "usage: $0 BUILD OUT [TEST...]" >&2; exit 2; }
 build=$1 out=$2
 shift 2
-rm -rf "$out"
-mkdir -p "$out/lib"
-for t in "$@"; do
+tests=("$@")
+if [ ${#tests[@]} -eq 0 ]; then
+    for f in "$build"/tests/test_*; do
+        [ -f "$f" ] && [ -x "$f" ] && ldd "$f" 2>/dev/null | grep -q libvulkan && tests+=("$(basename "$f")")
+    done
+fi
+[ ${#tests[@]} -gt 0 ] || { echo "$0: no test in $build/tests loads libvulkan" >&2; exit 1; }
+stage=$(mktemp -d)
+trap 'rm -rf "$stage"' EXIT
+mkdir -p "$stage/lib"
+for t in "${tests[@]}"; do
     [ -x "$build/tests/$t" ] || { echo "$0: $build/tests/$t is not built" >&2; exit 1; }
-    strip -o "$out/$t" "$build/tests/$t"
+    strip -o "$stage/$t" "$build/tests/$t"
     ldd "$build/tests/$t" | awk '/=> \// {print $3}' | while read -r lib; do
         case "$(basename "$lib")" in
         libc.so.*|libm.so.*|libdl.so.*|libpthread.so.*|librt.so.*|ld-linux*) ;;
-        *) cp -Lu "$lib" "$out/lib/" ;;
+        *) cp -Lu "$lib" "$stage/lib/" ;;
         esac
     done
 done
+rm -rf "$out"
+mkdir -p "$out"
+tar -C "$stage" -cf - . | xz -T1 -9 --lzma2=preset=9,dict=256MiB > "$out/tests.tar.xz"
 (cd "$out" && apt-get download -q vulkan-validationlayers >/dev/null) ||
     cp /var/cache/apt/archives/vulkan-validationlayers_*.deb "$out/"
 src=$(cd "$(dirname "$0")/.." && pwd)
+shared=$(cd "$src/.." && pwd)/shared
+sponza=0
+if [ -r "$shared/assets/dabrovic-sponza/sponza.gltf" ]; then
+    mkdir -p "$out/assets"
+    cp -r "$shared/assets/dabrovic-sponza" "$out/assets/"
+    sponza=1
+fi
 cat > "$out/run.sh" <<EOF
 #!/bin/bash
-# Run from the root of a copy of the passgraph tree; the bundle is \$(dirname \$0).
+# Run from the root of a copy of the passgraph tree; the bundle is \$(dirname \$0). JOBS: tests at once.
 b=\$(cd "\$(dirname "\$0")" && pwd)
+t=/tmp/pg_gpu_tests_bin
+rm -rf "\$t" && mkdir -p "\$t" && xz -dc "\$b/tests.tar.xz" | tar -C "\$t" -xf - || exit 1
 for f in "\$b"/*.deb; do dpkg -x "\$f" /; done
 ldconfig
 [ -e "$src/tests" ] || { mkdir -p "$(dirname "$src")" && ln -sfn "\$PWD" "$src"; }
-export LD_LIBRARY_PATH="\$b/lib" PASSGRAPH_DATA_DIR="\$PWD" PASSGRAPH_CACHE_DIR=/tmp/pg_gpu_tests PG_TEST_NO_SPONZA=1
+export LD_LIBRARY_PATH="\$t/lib" PASSGRAPH_DATA_DIR="\$PWD" PASSGRAPH_CACHE_DIR=/tmp/pg_gpu_tests
+if [ $sponza = 1 ] && [ ! -e "$shared/assets/dabrovic-sponza" ]; then
+    mkdir -p "$shared/assets" && ln -sfn "\$b/assets/dabrovic-sponza" "$shared/assets/dabrovic-sponza"
+fi
+[ -e "$shared/assets/dabrovic-sponza/sponza.gltf" ] || export PG_TEST_NO_SPONZA=1
 export VK_LAYER_ENABLES=VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT
-o=\${OUT:-/tmp}
-for t in $*; do
+export o=\${OUT:-/tmp} t
+one() {
     s=\$SECONDS
-    timeout 600 "\$b/\$t" > "\$o/\$t.txt" 2>&1
-    echo "\$t rc=\$? \$((SECONDS - s)) s"
-    grep -E "CHECK failed|passed, .* failed|validation messages" "\$o/\$t.txt" | cut -c1-300 | head -20
-done
+    timeout 600 "\$t/\$1" > "\$o/\$1.txt" 2>&1
+    rc=\$?
+    v=\$(awk '/validation messages:/ {s += \$NF; n++} END {print n ? s : "none reported"}' "\$o/\$1.txt")
+    echo "\$1 rc=\$rc \$((SECONDS - s)) s validation messages: \$v"
+    grep -E "CHECK failed|passed, .* failed|SYNC-HAZARD|VUID" "\$o/\$1.txt" | cut -c1-300 | head -8
+}
+export -f one
+printf '%s\n' ${tests[*]} | xargs -P "\${JOBS:-4}" -I{} bash -c 'one {}'
 EOF
 chmod +x "$out/run.sh"
 du -sh "$out"

@@ -186,8 +186,16 @@ static pg_result record_batch(pg_runtime *rt, uint32_t f, uint32_t b, bool first
          * resources (persistent and transient bytes), so this frame's work on this queue starts
          * after all earlier work on it (one full barrier; submission order makes it cover
          * earlier submits). The compute queue's first batch also waits for the previous frame's
-         * graphics work (prev_frame_wait). */
-        if (rt->frames.n_in_flight > 1 && !rt->frames.test_no_frame_barrier) emit_full_barrier(cmd);
+         * graphics work (prev_frame_wait). The compute queue gets the barrier with one frame in
+         * flight too: the slot's fence is signalled by the graphics queue, whose last batch
+         * waits for the compute queue's last one, so the host's wait on it orders the previous
+         * frame's compute work through that timeline semaphore; the validation layer (Debian's
+         * 1.3.239) does not follow that chain and, on an NVIDIA H100 with its separate compute
+         * queue, reported cluster_assign's clears of its own masks and counters against the
+         * previous frame's dispatches. The barrier states the order on the queue itself, at no
+         * cost (the queue is idle there). lavapipe has one queue and emulates the second on it. */
+        const bool frame_barrier = rt->frames.n_in_flight > 1 || bt->queue == PG_QUEUE_COMPUTE;
+        if (frame_barrier && !rt->frames.test_no_frame_barrier) emit_full_barrier(cmd);
         pg_rt_timing_begin(rt, cmd, f, bt->queue);
         /* the caller's prologue (pg_runtime_set_frame_prologue), before every pass of the frame */
         if (bt->queue == PG_QUEUE_GRAPHICS && rt->cfg.prologue &&

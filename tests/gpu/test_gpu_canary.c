@@ -17,7 +17,11 @@
  *    message with the barrier on either pipeline, and on deferred_oct16.json (aliased G-buffer
  *    transients) at least one SYNC-HAZARD without it (pg_runtime_test_drop_frame_barrier). On
  *    naive.json the frame's first pass already waits for the previous frame (the light buffer's
- *    frame-wrap barrier), so nothing is required there without it. */
+ *    frame-wrap barrier), so nothing is required there without it.
+ * Every plan here is for one queue (pg_session_desc.async_off), as lavapipe runs them, also on a
+ * GPU with a separate compute queue: there the barriers cut above cross queues and become
+ * semaphore waits, and the layer's queue-submit checks (1.3.239) report layout transitions
+ * ordered by a timeline semaphore as racing. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -76,7 +80,7 @@ static bool render(const pg_scene *scene, const pg_scene_gpu *sg, const char *pi
 {
     char path[PG_PATH_MAX];
     pg_data_path(path, sizeof path, pipeline);
-    pg_session_desc sd = {.pipeline_path = path, .registry = &g_reg};
+    pg_session_desc sd = {.pipeline_path = path, .registry = &g_reg, .async_off = true};
     if (c) {
         sd.test_edit_plan = cut_barrier;
         sd.test_edit_user = c;
@@ -105,7 +109,7 @@ static bool frames_in_flight(const pg_scene *scene, const pg_scene_gpu *sg, cons
 {
     char path[PG_PATH_MAX];
     pg_data_path(path, sizeof path, pipeline);
-    pg_session_desc sd = {.pipeline_path = path, .registry = &g_reg};
+    pg_session_desc sd = {.pipeline_path = path, .registry = &g_reg, .async_off = true};
     pg_session *s = NULL;
     pg_error err = {0};
     if (pg_session_create(g_gpu, sg, &sd, &s, &err) || pg_session_set_frames_in_flight(s, 2, &err)) {
