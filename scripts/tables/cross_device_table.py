@@ -4,7 +4,9 @@ folders written by scripts/cross_device_renders.sh on two devices (same commit).
 pipeline, B against A: the largest difference of any pixel's R, G or B, the largest share of the
 per-pixel bound 1e-2 |a| + 1e-4 peak (the visibility test's bound for untextured scenes, peak = the
 largest value of A's reference image), and the RMSE over the peak; then, on each device, visibility
-against that device's reference, in the same units. Needs numpy and OpenCV with OpenEXR
+against that device's reference, in the same units; then the angle in radians between the shading
+normals (the debug view `normal`) of naive and visibility on each device and of visibility between
+the devices, over the pixels where all four show a surface. Needs numpy and OpenCV with OpenEXR
 (Debian: python3-opencv); OPENCV_IO_ENABLE_OPENEXR is set here."""
 import os
 import sys
@@ -51,7 +53,27 @@ def main(argv):
         peak = read(a, s, "reference").max()
         cols = [compare(read(f, s, "visibility"), read(f, s, "reference"), peak) for f in (a, b)]
         print("| %s | %s | %s |" % (s, cols[0], cols[1]))
+    print()
+    print("| scene | pixels | naive vs visibility normal on %s: median | p99 | max | on %s: median | p99 | max | "
+          "visibility's normal, %s vs %s: median | p99 | max |" % (na, nb, nb, na))
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for s in SCENES:
+        nrm = {(f, p): read_normal(f, s, p) for f in (a, b) for p in ("naive", "visibility")}
+        mask = np.logical_and.reduce([m for _, m in nrm.values()])
+        cols = []
+        for x, y in (((a, "naive"), (a, "visibility")), ((b, "naive"), (b, "visibility")),
+                     ((b, "visibility"), (a, "visibility"))):
+            ang = np.arccos(np.clip((nrm[x][0] * nrm[y][0]).sum(axis=2), -1, 1))[mask]
+            cols.append("%.1e | %.1e | %.1e" % (np.median(ang), np.percentile(ang, 99), ang.max()))
+        print("| %s | %d | %s |" % (s, mask.sum(), " | ".join(cols)))
     return 0
+
+
+def read_normal(folder, scene, pipe):
+    """the unit shading normal of the debug view (n/2 + 1/2) and where the view drew a surface"""
+    raw = read(folder, scene, pipe + "_normal")
+    n = raw * 2 - 1
+    return n / np.maximum(np.linalg.norm(n, axis=2, keepdims=True), 1e-9), raw.max(axis=2) > 0
 
 
 if __name__ == "__main__":
