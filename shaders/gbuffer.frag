@@ -39,18 +39,11 @@ void main()
 {
     Surface s = pg_surface(pg_surface_input());
 #if defined(PG_GBUFFER_FLOAT)
-#ifdef PG_PBR
-    float w = pg_gb_occlusion_float(s.occlusion); // > 0 where drawn; the occlusion rides along
-#else
-    float w = 1.0;
-#endif
 #ifdef PG_GBUFFER_CAMERA_POSITION
-    g_position = vec4(v_rel, w); // exactly the position forward.frag shades
+    pg_gbuffer_float(s, v_rel, g_position, g_normal, g_albedo); // exactly the position forward.frag shades
 #else
-    g_position = vec4(v_rel + frame.camera_pos.xyz, w); // world space, as the classic layout
+    pg_gbuffer_float(s, v_rel + frame.camera_pos.xyz, g_position, g_normal, g_albedo); // world space, as the classic layout
 #endif
-    g_normal = vec4(s.normal, s.shininess);
-    g_albedo = vec4(s.albedo, s.specular);
 #elif defined(PG_GBUFFER_OCT16)
 #ifdef PG_PBR
     g_normal = vec4(pg_oct_encode(s.normal) * 0.5 + 0.5, clamp(s.shininess, 0.0, 1.0), pg_gb_occlusion_unorm(s.occlusion));

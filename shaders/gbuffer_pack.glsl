@@ -1,6 +1,7 @@
 // gbuffer_pack.glsl - what the G-buffer layouts store beyond the plain channels, shared by their
 // writers (gbuffer.frag, visibility_resolve.comp) and readers (deferred_lighting.comp,
-// reference_lighting.comp): the pbr model's occlusion, and the packed layout's words. Include after
+// reference_lighting.comp): the pbr model's occlusion, the float layout's channels and the packed
+// layout's words. Include after
 // common.glsl and octahedral.glsl.
 
 // The pbr model's occlusion in the G-buffers (gbuffer.frag, visibility_resolve.comp; read by
@@ -26,6 +27,21 @@ float pg_gb_occlusion_float(float occ)
 float pg_gb_occlusion_from_float(float w)
 {
     return w > 2.5 ? -1.0 : max(w - 1.0, 0.0);
+}
+
+// The float layout (gbuffer_layout.h "float"), as gbuffer.frag and visibility_resolve.comp (packing
+// "float") write it: the position given (camera-relative, or world) with w 1 where drawn (pbr: 1 +
+// occlusion, pg_gb_occlusion_float), the normal with the shininess (pbr: roughness), the albedo with
+// the specular weight (pbr: metallic).
+void pg_gbuffer_float(Surface s, vec3 position, out vec4 g_pos, out vec4 g_nrm, out vec4 g_alb)
+{
+#ifdef PG_PBR
+    g_pos = vec4(position, pg_gb_occlusion_float(s.occlusion));
+#else
+    g_pos = vec4(position, 1.0);
+#endif
+    g_nrm = vec4(s.normal, s.shininess);
+    g_alb = vec4(s.albedo, s.specular);
 }
 
 // The packed layout (gbuffer_layout.h): oct16 normal | sRGB8 albedo + specular (pbr: metallic) in 8

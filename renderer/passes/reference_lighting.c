@@ -129,15 +129,17 @@ static pg_result ref_check_surface(const pg_declare_in *in, pg_error *err)
         for (uint32_t k = 0; k < q->n_writes && !writes; k++) writes = strcmp(q->writes[k], pos) == 0;
         if (!writes) continue;
         char packing[PG_NAME_MAX] = "", space[PG_NAME_MAX] = "";
-        if (!strcmp(q->type, "gbuffer")) {
-            if ((r = pg_opt_string(q, "packing", "float", packing, sizeof packing, err))) return r;
-            if ((r = pg_opt_string(q, "position_space", "world", space, sizeof space, err))) return r;
-        }
-        if (strcmp(q->type, "gbuffer") || strcmp(packing, "float") || strcmp(space, "camera"))
+        const bool gbuffer = !strcmp(q->type, "gbuffer"), resolve = !strcmp(q->type, "visibility_resolve");
+        if (gbuffer || resolve)
+            if ((r = pg_opt_string(q, "packing", gbuffer ? "float" : "packed", packing, sizeof packing, err))) return r;
+        if (gbuffer && (r = pg_opt_string(q, "position_space", "world", space, sizeof space, err))) return r;
+        /* visibility_resolve's float layout is camera-relative */
+        if (resolve && !strcmp(packing, "float")) continue;
+        if (!gbuffer || strcmp(packing, "float") || strcmp(space, "camera"))
             return pg_fail(err, PG_ERR_SCHEMA,
                            "%s: %s.reads[1]: reference_lighting needs camera-relative positions: '%s' must be written "
-                           "by a gbuffer pass with options packing \"float\" and position_space \"camera\", but pass "
-                           "'%s' (%s%s%s%s%s) writes it",
+                           "by a gbuffer pass with options packing \"float\" and position_space \"camera\", or by a "
+                           "visibility_resolve pass with packing \"float\", but pass '%s' (%s%s%s%s%s) writes it",
                            d->file, d->json_path, pos, q->name, q->type, packing[0] ? ", packing " : "", packing,
                            space[0] ? ", position_space " : "", space);
     }

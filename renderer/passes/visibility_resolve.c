@@ -1,12 +1,18 @@
 /* visibility_resolve.c - compute pass: rebuilds every pixel's surface from the visibility pass's
  * triangle id (visibility_common.h, shaders/visibility_surface.glsl), evaluates its material and
- * writes the packed G-buffer (gbuffer_layout.h "packed") that deferred_lighting reads with packing
- * "packed": the visibility pipeline's resolve=gbuffer path, against which the fused path
- * (deferred_lighting with packing "visibility") is measured (shaders/visibility_resolve.comp).
- * Slots: reads [vis_id (r32ui)]; writes [packed (rgba32ui storage, every pixel written: zeros where
- *        nothing is drawn), emissive (optional, rgba16f storage; unused - not allocated - without
+ * writes a G-buffer (shaders/visibility_resolve.comp):
+ *   - packing "packed" (default): the packed G-buffer (gbuffer_layout.h "packed") that
+ *     deferred_lighting reads with packing "packed": the visibility pipeline's resolve=gbuffer path,
+ *     against which the fused path (deferred_lighting with packing "visibility") is measured;
+ *   - packing "float": the float G-buffer with a camera-relative position, as gbuffer with packing
+ *     "float" and position_space "camera" writes it, which reference_lighting reads: the reference's
+ *     surface=ray path, the surface at each pixel centre from its ray instead of the rasterizer's
+ *     interpolation.
+ * Slots: reads [vis_id (r32ui)]; writes [packed (rgba32ui storage) | position, normal, albedo
+ *        (rgba32f storage each), every pixel written (zeros where nothing is drawn), then emissive
+ *        (optional; rgba16f storage, rgba32f with packing float; unused - not allocated - without
  *        emissive materials; not bound: no emission, explain line)].
- * Options: shading (the light model whose values the packed layout stores, as gbuffer's; default
+ * Options: packing; shading (the light model whose values the layout stores, as gbuffer's; default
  * auto). */
 #include <stdio.h>
 #include <string.h>
@@ -17,13 +23,19 @@
 #include "shading_common.h"
 #include "visibility_common.h"
 
+enum { VR_MAX_TARGETS = 3 };
+static const char *const k_vr_packings[] = {"packed", "float", NULL};
+static const char *const k_vr_slots[2][VR_MAX_TARGETS] = {{"packed"}, {"position", "normal", "albedo"}};
+
 typedef struct vr_params { /* filled once by declare, read by create */
     pg_scene_draw_features draw;
-    pg_slot vis_id, packed, emissive; /* emissive: PG_SLOT_NONE when not bound */
+    int packing;                         /* 0 packed, 1 float */
+    uint32_t n_targets;                  /* 1 or 3 */
+    pg_slot vis_id, targets[VR_MAX_TARGETS], emissive; /* emissive: PG_SLOT_NONE when not bound */
 } vr_params;
 
 typedef struct visibility_resolve {
-    pg_slot packed;
+    pg_slot packed; /* the first target: its size is the dispatch's */
     VkSampler sampler;
     pg_vis_geometry vis;
     pg_pass_set set;
@@ -33,34 +45,43 @@ typedef struct visibility_resolve {
 
 static pg_result vr_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
 {
-    static const char *const known[] = {"shading", NULL};
+    static const char *const known[] = {"packing", "shading", NULL};
     vr_params *p = pg_decl_params(out, sizeof *p);
     pg_result r;
     int shading;
     if ((r = pg_opt_check_known(in->desc, known, err))) return r;
+    if ((r = pg_opt_enum(in->desc, "packing", k_vr_packings, 0, &p->packing, err))) return r;
     if ((r = pg_opt_enum(in->desc, "shading", pg_shading_models, PG_SHADING_AUTO, &shading, err))) return r;
     pg_material_model_declare(in, out, shading);
     p->vis_id = pg_decl_read(out, "vis_id", PG_RES_IMAGE, PG_ACCESS_SAMPLED, PG_STAGE_COMPUTE, PG_FMTCLASS_UINT);
-    p->packed = pg_decl_write(out, "packed", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_UINT);
-    char where[32];
-    const pg_resource_desc *packed = pg_decl_slot_resource(in, p->packed, PG_RES_IMAGE, where, sizeof where);
-    if (packed && packed->format != PG_FMT_RGBA32UI)
-        return pg_fail(err, PG_ERR_FORMAT,
-                       "%s: %s.%s: pass '%s' slot packed: the packed G-buffer is rgba32ui, resource '%s' is %s",
-                       in->desc->file, in->desc->json_path, where, in->desc->name, packed->name,
-                       pg_format_get(packed->format)->name);
-    if (in->desc->n_writes > 1) {
+    p->n_targets = p->packing ? 3 : 1;
+    const pg_format want = p->packing ? PG_FMT_RGBA32F : PG_FMT_RGBA32UI;
+    for (uint32_t t = 0; t < p->n_targets; t++) {
+        p->targets[t] = pg_decl_write(out, k_vr_slots[p->packing][t], PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE,
+                                      PG_STAGE_COMPUTE, p->packing ? PG_FMTCLASS_FLOAT : PG_FMTCLASS_UINT);
+        char where[32];
+        const pg_resource_desc *rd = pg_decl_slot_resource(in, p->targets[t], PG_RES_IMAGE, where, sizeof where);
+        if (rd && rd->format != want)
+            return pg_fail(err, PG_ERR_FORMAT, "%s: %s.%s: pass '%s' slot %s: the %s G-buffer is %s, resource '%s' is %s",
+                           in->desc->file, in->desc->json_path, where, in->desc->name, k_vr_slots[p->packing][t],
+                           k_vr_packings[p->packing], pg_format_get(want)->name, rd->name, pg_format_get(rd->format)->name);
+    }
+    if (p->packing) pg_decl_define(out, "PG_RESOLVE_FLOAT");
+    if (in->desc->n_writes > p->n_targets) {
+        const pg_format em = p->packing ? PG_FMT_RGBA32F : PG_FMT_RGBA16F;
         p->emissive = pg_decl_write(out, "emissive", PG_RES_IMAGE, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, PG_FMTCLASS_FLOAT);
-        const pg_resource_desc *rd = pg_pipeline_find_resource(in->pipeline, in->desc->writes[1]);
-        if (rd && rd->kind == PG_RES_IMAGE && rd->format != PG_FMT_RGBA16F)
-            return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[1]: the emissive target must be rgba16f, resource '%s' is %s",
-                           in->desc->file, in->desc->json_path, rd->name, pg_format_get(rd->format)->name);
+        const pg_resource_desc *rd = pg_pipeline_find_resource(in->pipeline, in->desc->writes[p->n_targets]);
+        if (rd && rd->kind == PG_RES_IMAGE && rd->format != em)
+            return pg_fail(err, PG_ERR_FORMAT, "%s: %s.writes[%u]: the emissive target must be %s, resource '%s' is %s",
+                           in->desc->file, in->desc->json_path, p->n_targets, pg_format_get(em)->name, rd->name,
+                           pg_format_get(rd->format)->name);
         if (!pg_scene_features_of(in).has_emissive)
             pg_decl_mark_unused(out, p->emissive, "no emissive materials: emissive target not allocated");
         else
             pg_decl_define(out, "PG_RESOLVE_EMISSIVE");
     } else if (pg_scene_features_of(in).has_emissive) {
-        pg_decl_explain(out, "no emissive slot bound (writes[1]): emissive materials are not drawn");
+        pg_decl_explain(out, p->packing ? "no emissive slot bound (writes[3]): emissive materials are not drawn"
+                                        : "no emissive slot bound (writes[1]): emissive materials are not drawn");
     }
     pg_scene_draw_declare_features(in, out, &p->draw);
     pg_geometry_slot_declare(in, out, &p->draw, true);
@@ -73,7 +94,7 @@ static pg_result vr_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     const vr_params *pa = PG_PARAMS(ctx, vr_params);
     pg_gpu *gpu = ctx->gpu;
     pg_result r;
-    p->packed = pa->packed;
+    p->packed = pa->targets[0];
     const bool emissive = pg_slot_ok(pa->emissive) && !pg_ctx_unused(ctx, pa->emissive);
     if ((r = pg_vis_geometry_create(ctx, &pa->draw, 2, &p->vis, err))) return r;
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err)))
@@ -81,7 +102,8 @@ static pg_result vr_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     pg_set_binding b[8];
     uint32_t n = 0;
     b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pg_ctx_res(ctx, pa->vis_id), p->sampler, 0};
-    b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pg_ctx_res(ctx, pa->packed), VK_NULL_HANDLE, 0};
+    for (uint32_t t = 0; t < pa->n_targets; t++)
+        b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pg_ctx_res(ctx, pa->targets[t]), VK_NULL_HANDLE, 0};
     if (emissive)
         b[n++] = (pg_set_binding){VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pg_ctx_res(ctx, pa->emissive), VK_NULL_HANDLE, 0};
     n = pg_vis_geometry_bindings(&p->vis, PG_SCENE_OF(ctx), b, n);
@@ -123,7 +145,7 @@ static void vr_destroy(void *self, pg_gpu *gpu)
 
 const pg_pass_type pg_pass_visibility_resolve = {
     .name = "visibility_resolve",
-    .summary = "compute: rebuild every pixel's surface from its triangle id and write the packed G-buffer",
+    .summary = "compute: rebuild every pixel's surface from its triangle id and write the packed or float G-buffer",
     .instance_size = sizeof(visibility_resolve),
     .params_size = sizeof(vr_params),
     .declare = vr_declare,

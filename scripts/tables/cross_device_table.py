@@ -4,7 +4,7 @@ folders written by scripts/cross_device_renders.sh on two devices (same commit).
 pipeline, B against A: the largest difference of any pixel's R, G or B, the largest share of the
 per-pixel bound 1e-2 |a| + 1e-4 peak (the visibility test's bound for untextured scenes, peak = the
 largest value of A's reference image), and the RMSE over the peak; then, on each device, visibility
-against that device's reference, in the same units; then the angle in radians between the shading
+against that device's reference with either surface (reference_ray: surface=ray), in the same units; then the angle in radians between the shading
 normals (the debug view `normal`) of naive and visibility on each device and of visibility between
 the devices, over the pixels where all four show a surface. Needs numpy and OpenCV with OpenEXR
 (Debian: python3-opencv); OPENCV_IO_ENABLE_OPENEXR is set here."""
@@ -16,7 +16,7 @@ import cv2  # noqa: E402
 import numpy as np  # noqa: E402
 
 SCENES = ["spheres", "desk_lamp", "mug", "snowman"]
-PIPES = ["naive", "visibility", "reference"]
+PIPES = ["naive", "visibility", "reference", "reference_ray"]
 
 
 def read(folder, scene, pipe):
@@ -46,13 +46,15 @@ def main(argv):
         for p in PIPES:
             print("| %s | %s | %s |" % (s, p, compare(read(b, s, p), read(a, s, p), peak)))
     print()
-    print("| scene | visibility vs the reference on %s: max | bound usage | RMSE / peak | on %s: max | bound usage | RMSE / peak |"
-          % (na, nb))
-    print("|---|---:|---:|---:|---:|---:|---:|")
+    print("| scene | visibility vs reference on %s: max | bound usage | RMSE / peak | on %s: max | bound usage | RMSE / peak "
+          "| vs reference_ray on %s: max | bound usage | RMSE / peak | on %s: max | bound usage | RMSE / peak |"
+          % (na, nb, na, nb))
+    print("|---|" + "---:|" * 12)
     for s in SCENES:
         peak = read(a, s, "reference").max()
-        cols = [compare(read(f, s, "visibility"), read(f, s, "reference"), peak) for f in (a, b)]
-        print("| %s | %s | %s |" % (s, cols[0], cols[1]))
+        cols = [compare(read(f, s, "visibility"), read(f, s, r), peak) for r in ("reference", "reference_ray")
+                for f in (a, b)]
+        print("| %s | %s |" % (s, " | ".join(cols)))
     print()
     print("| scene | pixels | naive vs visibility normal on %s: median | p99 | max | on %s: median | p99 | max | "
           "visibility's normal, %s vs %s: median | p99 | max |" % (na, nb, nb, na))

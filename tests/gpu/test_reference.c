@@ -23,6 +23,13 @@
  * 1,000,000 lights at 32x18: finite, lit, and the same bits with two different splits (32768
  * and 20000 lights a dispatch), so no dispatch drops lights.
  *
+ * surface=ray (a visibility pass and visibility_resolve with packing float instead of the raster
+ * G-buffer): on the atrium (100 lights), the pbr spheres, a textured normal-mapped model, an
+ * emissive scene and a TEXCOORD_1 texture, within the visibility pipeline's bounds of the raster
+ * surface (accuracy_bounds.h; RMSE only where textured) and not bit-identical to it (the ray path
+ * ran); on the atrium, whose lights all have a range, the visibility pipeline in rgba32f is
+ * bit-identical to it; half the lights must differ (control).
+ *
  * Naive is not compared above 65,535 lights: llvmpipe ends every loop of a shader invocation once
  * all of them together ran 65535 iterations (gallivm LP_MAX_TGSI_LOOP_ITERATIONS), so naive's
  * fragment loop silently stops at light 65535 on lavapipe. The reference keeps each dispatch at
@@ -32,6 +39,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "accuracy_bounds.h"
+#include "default_view.h"
 #include "gpu_harness.h"
 #include "image_util.h"
 #include "pass_list.h"
@@ -248,6 +257,106 @@ static void million(const pg_scene *scene, const pg_scene_gpu *sg)
     pg_th_release(&b);
 }
 
+/* surface=ray against surface=raster: per pixel within the visibility pipeline's bound against naive
+ * (the same surface rebuilt from the pixel's ray against the same rasterizer's: accuracy_bounds.h
+ * VIS_PX_*, VIS_PBR_PX_* under pbr); a textured scene only in RMSE (its texture levels come from
+ * analytic derivatives instead of the 2x2 quads'). Returns false when a frame does not render; ray_out
+ * (or NULL) receives the surface=ray frame. */
+static bool ray_vs_raster(const char *label, const pg_scene_gpu *sg, const pg_frame_info *fi, bool pbr,
+                            pg_th_frame *ray_out)
+{
+    const pg_param_override raster = {"surface", "raster"}, ray = {"surface", "ray"};
+    pg_th_frame a, b;
+    if (!render(sg, "pipelines/reference.json", &raster, 1, fi, &a)) {
+        CHECK_MSG(0, "%s: surface=raster does not render", label);
+        return false;
+    }
+    if (!render(sg, "pipelines/reference.json", &ray, 1, fi, &b)) {
+        CHECK_MSG(0, "%s: surface=ray does not render", label);
+        pg_th_release(&a);
+        return false;
+    }
+    const bool textured = sg->features.has_textures || sg->features.has_normal_maps;
+    const double A = pbr ? VIS_PBR_PX_A : VIS_PX_A, B = pbr ? VIS_PBR_PX_B : VIS_PX_B;
+    double peak = 0, usage = 0, se = 0;
+    const size_t n = (size_t)a.w * a.h;
+    for (size_t i = 0; i < n * 4; i++)
+        if (i % 4 != 3) peak = fmax(peak, a.hdr[i]);
+    for (size_t i = 0; i < n * 4; i++) {
+        if (i % 4 == 3) continue;
+        const double d = fabs((double)b.hdr[i] - a.hdr[i]);
+        se += d * d;
+        usage = fmax(usage, d / (A * fabs(a.hdr[i]) + B * peak + 1e-12));
+    }
+    const double rmse_rel = peak > 0 ? sqrt(se / (3.0 * n)) / peak : 0;
+    const diff d = compare(&b, &a);
+    printf("  %-24s surface=ray vs raster%s%s: peak %.4g, %llu pixels differ, max |d| %.3g, px usage %.3g, rmse %.3g "
+           "of peak; gpu %.1f ms vs %.1f\n", label, textured ? " (textured)" : "", pbr ? " (pbr)" : "", peak,
+           (unsigned long long)d.pixels, d.max_abs, usage, rmse_rel, b.stats.gpu_total_ms, a.stats.gpu_total_ms);
+    CHECK_MSG(pg_count_nonfinite(b.hdr, b.w, b.h) == 0, "%s: surface=ray: non-finite pixels", label);
+    CHECK_MSG(d.pixels > 0, "%s: surface=ray is bit-identical to surface=raster: the ray path did not run", label);
+    CHECK_MSG(rmse_rel <= VIS_RMSE_REL, "%s: surface=ray: rmse %.3g of the peak > %g", label, rmse_rel, VIS_RMSE_REL);
+    if (!textured) CHECK_MSG(usage <= 1.0, "%s: surface=ray: %.3g of the per-pixel bound", label, usage);
+    pg_th_release(&a);
+    if (ray_out) *ray_out = b;
+    else pg_th_release(&b);
+    return true;
+}
+
+/* The reference with surface=ray (a visibility pass, then visibility_resolve writing the float
+ * G-buffer): near the rasterized reference (ray_vs_raster), and, where every light has a range (so
+ * the clustered lists drop only lights that add exactly 0), bit-identical to the visibility
+ * pipeline in the same HDR format: the same surface and the same light sum in the same order. */
+static void surface_ray(const pg_scene *scene, const pg_scene_gpu *sg)
+{
+    printf("surface=ray:\n");
+    pg_frame_info fi = frame_for(scene, 100, W, H);
+    pg_th_frame ray;
+    if (ray_vs_raster("default, 100 lights", sg, &fi, false, &ray)) {
+        const pg_param_override f32 = {"hdr_format", "rgba32f"};
+        pg_th_frame vis;
+        if (render(sg, "pipelines/visibility.json", &f32, 1, &fi, &vis)) {
+            diff d = compare(&vis, &ray);
+            printf("  %-24s visibility (rgba32f) vs surface=ray: %s (max |d| %g, %llu pixels differ)\n", "default",
+                   d.pixels ? "DIFFERENT" : "bit-identical", d.max_abs, (unsigned long long)d.pixels);
+            CHECK_MSG(d.pixels == 0, "visibility differs from the reference with surface=ray: max |d| %g, %llu pixels",
+                      d.max_abs, (unsigned long long)d.pixels);
+            pg_th_release(&vis);
+        } else {
+            CHECK_MSG(0, "visibility does not render");
+        }
+        pg_th_frame other;
+        pg_frame_info half = frame_for(scene, 50, W, H);
+        const pg_param_override ray_set = {"surface", "ray"};
+        if (render(sg, "pipelines/reference.json", &ray_set, 1, &half, &other)) {
+            expect_different("surface=ray, 50 lights vs 100", &other, &ray);
+            pg_th_release(&other);
+        }
+        pg_th_release(&ray);
+    }
+    /* glossy pbr spheres, a textured and normal-mapped model, emission, a texture on TEXCOORD_1 */
+    static const char *const files[] = {"pbr/spheres.gltf", "models/desk_lamp.gltf", "emissive/emissive.gltf",
+                                        "features/texcoord1.gltf"};
+    for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
+        pg_th_scene f;
+        if (!pg_th_file_open(g_gpu, files[k], 160, 90, -1, &f)) continue;
+        /* a file without lights gets 64 generated ones, placed as the tools place them (away from
+         * the surfaces: a light in a surface's plane adds exactly 0 to the rasterized plane, and
+         * noise to a point rebuilt from a ray, 1e-7 off the plane), since under the object view's
+         * ambient alone the image depends on the albedo only, the same texels on both paths */
+        if (f.fi.lights.count == 0) {
+            pg_camera cam;
+            char cw[256], lw[256];
+            pg_error err = {0};
+            CHECK_MSG(!pg_scene_default_view(f.scene, NULL, 160.0f / 90.0f, 64, 7, &cam, &f.fi.lights, cw, sizeof cw, lw,
+                                             sizeof lw, &err),
+                      "%s: default view: %s", files[k], err.msg);
+        }
+        ray_vs_raster(files[k], f.sg, &f.fi, f.scene->features.auto_shading == PG_SHADING_PBR, NULL);
+        pg_th_scene_close(g_gpu, &f);
+    }
+}
+
 static void run_scene(const char *name, const char *path, bool extras)
 {
     pg_error err = {0};
@@ -260,6 +369,7 @@ static void run_scene(const char *name, const char *path, bool extras)
     }
     exactness(name, scene, sg, extras);
     if (extras) million(scene, sg);
+    if (extras) surface_ray(scene, sg);
     pg_scene_gpu_destroy(g_gpu, sg);
     pg_scene_free(scene);
 }
