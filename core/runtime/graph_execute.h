@@ -198,6 +198,9 @@ typedef struct pg_runtime_stats {
     uint32_t report_waits;            /* waits for the frames in flight so the pass reports could be
                                        * read: after a new plan or a growth, and at least every 8th
                                        * frame (with 2 in flight the passes' counters have one copy) */
+    uint64_t frame_barriers;          /* full barriers recorded at a queue's first batch of a frame:
+                                       * every queue's with frames in flight, the compute queue's
+                                       * always (graph_execute_record.c record_batch) */
 } pg_runtime_stats;
 
 typedef struct pg_runtime pg_runtime;

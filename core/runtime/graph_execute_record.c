@@ -195,7 +195,10 @@ static pg_result record_batch(pg_runtime *rt, uint32_t f, uint32_t b, bool first
          * previous frame's dispatches. The barrier states the order on the queue itself, at no
          * cost (the queue is idle there). lavapipe has one queue and emulates the second on it. */
         const bool frame_barrier = rt->frames.n_in_flight > 1 || bt->queue == PG_QUEUE_COMPUTE;
-        if (frame_barrier && !rt->frames.test_no_frame_barrier) emit_full_barrier(cmd);
+        if (frame_barrier && !rt->frames.test_no_frame_barrier) {
+            emit_full_barrier(cmd);
+            rt->stats.frame_barriers++;
+        }
         pg_rt_timing_begin(rt, cmd, f, bt->queue);
         /* the caller's prologue (pg_runtime_set_frame_prologue), before every pass of the frame */
         if (bt->queue == PG_QUEUE_GRAPHICS && rt->cfg.prologue &&
