@@ -1,8 +1,7 @@
 // gbuffer_pack.glsl - what the G-buffer layouts store beyond the plain channels, shared by their
 // writers (gbuffer.frag, visibility_resolve.comp) and readers (deferred_lighting.comp,
 // reference_lighting.comp): the pbr model's occlusion, the float layout's channels and the packed
-// layout's words. Include after
-// common.glsl and octahedral.glsl.
+// layout's words. Include after common.glsl and octahedral.glsl.
 
 // The pbr model's occlusion in the G-buffers (gbuffer.frag, visibility_resolve.comp; read by
 // deferred_lighting.comp, reference_lighting.comp). Surface.occlusion is in [0, 1], or -1 for an unlit

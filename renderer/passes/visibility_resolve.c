@@ -35,7 +35,7 @@ typedef struct vr_params { /* filled once by declare, read by create */
 } vr_params;
 
 typedef struct visibility_resolve {
-    pg_slot packed; /* the first target: its size is the dispatch's */
+    pg_slot first; /* the first target: its size is the dispatch's */
     VkSampler sampler;
     pg_vis_geometry vis;
     pg_pass_set set;
@@ -80,8 +80,7 @@ static pg_result vr_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         else
             pg_decl_define(out, "PG_RESOLVE_EMISSIVE");
     } else if (pg_scene_features_of(in).has_emissive) {
-        pg_decl_explain(out, p->packing ? "no emissive slot bound (writes[3]): emissive materials are not drawn"
-                                        : "no emissive slot bound (writes[1]): emissive materials are not drawn");
+        pg_decl_explain(out, "no emissive slot bound (after the G-buffer targets): emissive materials are not drawn");
     }
     pg_scene_draw_declare_features(in, out, &p->draw);
     pg_geometry_slot_declare(in, out, &p->draw, true);
@@ -94,7 +93,7 @@ static pg_result vr_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     const vr_params *pa = PG_PARAMS(ctx, vr_params);
     pg_gpu *gpu = ctx->gpu;
     pg_result r;
-    p->packed = pa->targets[0];
+    p->first = pa->targets[0];
     const bool emissive = pg_slot_ok(pa->emissive) && !pg_ctx_unused(ctx, pa->emissive);
     if ((r = pg_vis_geometry_create(ctx, &pa->draw, 2, &p->vis, err))) return r;
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err)))
@@ -126,7 +125,7 @@ static pg_result vr_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
 static void vr_record(void *self, const pg_pass_record_ctx *ctx)
 {
     visibility_resolve *p = self;
-    const pg_phys_resource *out = pg_ctx_res(ctx, p->packed);
+    const pg_phys_resource *out = pg_ctx_res(ctx, p->first);
     VkDescriptorSet sets[3] = {ctx->frame_set, p->set.set, PG_SCENE_OF(ctx)->set};
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 3, sets, 0, NULL);

@@ -48,6 +48,8 @@
 
 #define W 320
 #define H 180
+#define FILE_W 160 /* the corpus files of surface_ray */
+#define FILE_H 90
 
 static pg_gpu *g_gpu;
 static pg_pass_registry g_reg;
@@ -339,7 +341,7 @@ static void surface_ray(const pg_scene *scene, const pg_scene_gpu *sg)
                                         "features/texcoord1.gltf"};
     for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
         pg_th_scene f;
-        if (!pg_th_file_open(g_gpu, files[k], 160, 90, -1, &f)) continue;
+        if (!pg_th_file_open(g_gpu, files[k], FILE_W, FILE_H, -1, &f)) continue;
         /* a file without lights gets 64 generated ones, placed as the tools place them (away from
          * the surfaces: a light in a surface's plane adds exactly 0 to the rasterized plane, and
          * noise to a point rebuilt from a ray, 1e-7 off the plane), since under the object view's
@@ -348,7 +350,7 @@ static void surface_ray(const pg_scene *scene, const pg_scene_gpu *sg)
             pg_camera cam;
             char cw[256], lw[256];
             pg_error err = {0};
-            CHECK_MSG(!pg_scene_default_view(f.scene, NULL, 160.0f / 90.0f, 64, 7, &cam, &f.fi.lights, cw, sizeof cw, lw,
+            CHECK_MSG(!pg_scene_default_view(f.scene, NULL, (float)FILE_W / FILE_H, 64, 7, &cam, &f.fi.lights, cw, sizeof cw, lw,
                                              sizeof lw, &err),
                       "%s: default view: %s", files[k], err.msg);
         }
