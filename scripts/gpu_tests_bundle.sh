@@ -11,6 +11,11 @@
 # validation on, $JOBS at a time (default 4), each under a 600 s timeout; each test's output is
 # written to $OUT (or /tmp) as TEST.txt, a line per test (exit code, seconds, failed checks,
 # validation counts) to stdout. Exit: non-zero when a step here fails.
+# LAYER_SUITE=SUITE (e.g. trixie): carry that Debian suite's validation layer instead, with the C and
+# C++ runtimes it needs (scripts/layer_debs.sh: libc6, libstdc++6, libgcc-s1); run.sh unpacks them
+# under the bundle, not /, and runs every test under that suite's dynamic loader. Newer layers
+# check more (1.4.309: layout transitions against load ops at record time); their shader-access
+# checks are turned on (VK_KHRONOS_VALIDATION_SYNCVAL_SHADER_ACCESSES_HEURISTIC, as in ctest).
 set -euo pipefail
 [ $# -ge 2 ] || { echo "usage: $0 BUILD OUT [TEST...]" >&2; exit 2; }
 build=$1 out=$2
@@ -38,8 +43,13 @@ done
 rm -rf "$out"
 mkdir -p "$out"
 tar -C "$stage" -cf - . | xz -T1 -9 --lzma2=preset=9,dict=256MiB > "$out/tests.tar.xz"
-(cd "$out" && apt-get download -q vulkan-validationlayers >/dev/null) ||
-    cp /var/cache/apt/archives/vulkan-validationlayers_*.deb "$out/"
+suite=${LAYER_SUITE:-}
+if [ -n "$suite" ]; then
+    bash "$(dirname "$0")/layer_debs.sh" "$suite" "$out/layer"
+else
+    (cd "$out" && apt-get download -q vulkan-validationlayers >/dev/null) ||
+        cp /var/cache/apt/archives/vulkan-validationlayers_*.deb "$out/"
+fi
 src=$(cd "$(dirname "$0")/.." && pwd)
 shared=$(cd "$src/.." && pwd)/shared
 sponza=0
@@ -54,8 +64,18 @@ cat > "$out/run.sh" <<EOF
 b=\$(cd "\$(dirname "\$0")" && pwd)
 t=/tmp/pg_gpu_tests_bin
 rm -rf "\$t" && mkdir -p "\$t" && xz -dc "\$b/tests.tar.xz" | tar -C "\$t" -xf - || exit 1
-for f in "\$b"/*.deb; do dpkg -x "\$f" /; done
+for f in "\$b"/*.deb; do [ -e "\$f" ] && dpkg -x "\$f" /; done
 ldconfig
+run=""
+if [ -d "\$b/layer" ]; then
+    r=/tmp/pg_gpu_tests_layer
+    rm -rf "\$r" && mkdir -p "\$r/manifest"
+    for f in "\$b"/layer/*.deb; do dpkg -x "\$f" "\$r"; done
+    sed "s#\"library_path\": *\"[^\"]*\"#\"library_path\": \"\$r/usr/lib/x86_64-linux-gnu/libVkLayer_khronos_validation.so\"#" \\
+        "\$r"/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json > "\$r/manifest/VkLayer_khronos_validation.json"
+    export VK_LAYER_PATH="\$r/manifest"
+    run="\$r/usr/lib/x86_64-linux-gnu/ld-linux-x86-64.so.2 --library-path \$r/usr/lib/x86_64-linux-gnu:\$t/lib:/usr/lib/x86_64-linux-gnu"
+fi
 [ -e "$src/tests" ] || { mkdir -p "$(dirname "$src")" && ln -sfn "\$PWD" "$src"; }
 export LD_LIBRARY_PATH="\$t/lib" PASSGRAPH_DATA_DIR="\$PWD" PASSGRAPH_CACHE_DIR=/tmp/pg_gpu_tests
 if [ $sponza = 1 ] && [ ! -e "$shared/assets/dabrovic-sponza" ]; then
@@ -63,10 +83,11 @@ if [ $sponza = 1 ] && [ ! -e "$shared/assets/dabrovic-sponza" ]; then
 fi
 [ -e "$shared/assets/dabrovic-sponza/sponza.gltf" ] || export PG_TEST_NO_SPONZA=1
 export VK_LAYER_ENABLES=VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT
-export o=\${OUT:-/tmp} t
+export VK_KHRONOS_VALIDATION_SYNCVAL_SHADER_ACCESSES_HEURISTIC=true
+export o=\${OUT:-/tmp} t run
 one() {
     s=\$SECONDS
-    timeout 600 "\$t/\$1" > "\$o/\$1.txt" 2>&1
+    timeout 600 \$run "\$t/\$1" > "\$o/\$1.txt" 2>&1
     rc=\$?
     v=\$(awk '/validation messages:/ {s += \$NF; n++} END {print n ? s : "none reported"}' "\$o/\$1.txt")
     echo "\$1 rc=\$rc \$((SECONDS - s)) s validation messages: \$v"

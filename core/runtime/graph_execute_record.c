@@ -88,9 +88,12 @@ static void emit_qfots(pg_runtime *rt, VkCommandBuffer cmd, uint32_t b, bool rel
     if (ni || nb) pg_cmd_barriers(cmd, ni, ib, nb, bb);
 }
 
-static void check_load_op(const pg_pass_record_ctx *ctx, uint32_t slot, bool clears)
+/* Whether a slot's load op suits its declaration; a full write begun with LOAD_OP_LOAD fails the
+ * frame (nothing is submitted) and returns true: the caller then records a clear, so that even the
+ * never-submitted commands stay valid (the layer checks a load against the barrier at record time). */
+static bool check_load_op(const pg_pass_record_ctx *ctx, uint32_t slot, bool clears)
 {
-    if (!ctx->record_error || ctx->record_error->msg[0] || !ctx->pass || slot >= ctx->pass->n_slots) return;
+    if (!ctx->record_error || ctx->record_error->msg[0] || !ctx->pass || slot >= ctx->pass->n_slots) return false;
     const pg_slot_decl *d = &ctx->pass->slots[slot].decl;
     const bool full = d->access == PG_ACCESS_COLOR_WRITE || d->access == PG_ACCESS_DEPTH_WRITE;
     const bool loads = d->access == PG_ACCESS_COLOR_RMW || d->access == PG_ACCESS_DEPTH_RMW ||
@@ -99,36 +102,40 @@ static void check_load_op(const pg_pass_record_ctx *ctx, uint32_t slot, bool cle
         pg_fail(ctx->record_error, PG_ERR_INVALID_ARG,
                 "pass '%s': slot '%s' is declared %s, not an attachment, but rendering begins on it", ctx->pass->name,
                 d->name, pg_access_name(d->access));
-    else if (full && !clears)
+    else if (full && !clears) {
         pg_fail(ctx->record_error, PG_ERR_INVALID_ARG,
                 "pass '%s': slot '%s' is declared %s (a full write) but rendering begins with LOAD_OP_LOAD: "
                 "clear it, or declare a read-modify-write",
                 ctx->pass->name, d->name, pg_access_name(d->access));
+        return true;
+    }
     else if (loads && clears)
         pg_fail(ctx->record_error, PG_ERR_INVALID_ARG,
                 "pass '%s': slot '%s' is declared %s (it loads the contents) but rendering begins with "
                 "LOAD_OP_CLEAR: load it, or declare a full write",
                 ctx->pass->name, d->name, pg_access_name(d->access));
+    return false;
 }
 
 void pg_pass_begin_rendering(const pg_pass_record_ctx *ctx, uint32_t n_color, const uint32_t *color_slots,
                              const VkClearColorValue *clears, int depth_slot, bool clear_depth, float depth_clear)
 {
     VkImageView views[8];
+    static const VkClearColorValue zero[8];
     uint32_t w = 0, h = 0;
     if (n_color > 8) n_color = 8;
     for (uint32_t i = 0; i < n_color; i++) {
         const pg_phys_resource *r = ctx->slots[color_slots[i]];
         views[i] = r->view;
         if (!i) w = r->width, h = r->height;
-        check_load_op(ctx, color_slots[i], clears != NULL);
+        if (check_load_op(ctx, color_slots[i], clears != NULL)) clears = zero;
     }
     VkImageView dv = VK_NULL_HANDLE;
     if (depth_slot >= 0) {
         const pg_phys_resource *r = ctx->slots[depth_slot];
         dv = r->view;
         if (!n_color) w = r->width, h = r->height;
-        check_load_op(ctx, (uint32_t)depth_slot, clear_depth);
+        if (check_load_op(ctx, (uint32_t)depth_slot, clear_depth)) clear_depth = true;
     }
     pg_cmd_begin_rendering(ctx->cmd, w, h, n_color, views, clears, dv, clear_depth, depth_clear);
 }

@@ -7,7 +7,9 @@
  *    scene at 160x90 with 64 lights render with zero validation messages; then, one case per
  *    barrier kind, ONE barrier is removed from the compiled plan (pg_session_desc.test_edit_plan,
  *    after compile, before the runtime is built) and the frame must raise at least one
- *    synchronization-validation message (SYNC-HAZARD-*) counted by the messenger.
+ *    synchronization-validation message (SYNC-HAZARD-*) counted by the messenger; a removed
+ *    layout transition at least one message of any kind (layer 1.4.309 reports the aliased
+ *    image's missing first-use transition as a layout mismatch at submit, 1.3.239 as a hazard).
  * 3. The frame-start barrier: with two frames in flight consecutive frames share the graph's
  *    resources and only the full barrier that begins each frame's commands orders them. This test
  *    turns on the layer's queue-submit synchronization validation (VK_LAYER_ENABLES +=
@@ -15,9 +17,10 @@
  *    buffers of different submits; layer 1.3.239 leaves it off by default). 6 frames with 2 in
  *    flight (no read-back, so the host does not wait for the frame it just submitted) raise no
  *    message with the barrier on either pipeline, and on deferred_oct16.json (aliased G-buffer
- *    transients) at least one SYNC-HAZARD without it (pg_runtime_test_drop_frame_barrier). On
- *    naive.json the frame's first pass already waits for the previous frame (the light buffer's
- *    frame-wrap barrier), so nothing is required there without it.
+ *    transients) at least one SYNC-HAZARD without it (pg_runtime_test_drop_frame_barrier).
+ *    naive.json needs the barrier too: its light buffer and depth image are transients that the
+ *    next frame writes (layer 1.4.309 with its shader-access checks reports both), but layer
+ *    1.3.239 reports nothing there, so the count is printed, not required.
  * Every plan here is for one queue (pg_session_desc.async_off), as lavapipe runs them, also on a
  * GPU with a separate compute queue: there the barriers cut above cross queues and become
  * semaphore waits, and the layer's queue-submit checks (1.3.239) report layout transitions
@@ -44,6 +47,7 @@ typedef struct cut {
     const char *why;      /* substring of the barrier's reason ("RAW", "alias first use") */
     int removed;          /* barriers removed (set by cut_barrier) */
     char what[200];
+    bool layout; /* the removed barrier changed a layout (set by cut_barrier) */
 } cut;
 
 static void cut_barrier(pg_graph_plan *plan, void *user)
@@ -68,6 +72,7 @@ static void cut_barrier(pg_graph_plan *plan, void *user)
             memmove(b, b + 1, (pass->n_barriers - i - 1) * sizeof *b);
             pass->n_barriers--;
             c->removed++;
+            c->layout = layout;
             return;
         }
     }
@@ -192,17 +197,17 @@ int main(void)
         cut c;
     } cases[] = {
         /* an image layout transition: colour attachment -> sampled (read after write) */
-        {"pipelines/naive.json", {"display", "hdr", 1, 1, "RAW", 0, ""}},
+        {"pipelines/naive.json", {"display", "hdr", 1, 1, "RAW", 0, "", false}},
         /* a buffer write -> read: compute storage write -> fragment storage read */
-        {"pipelines/naive.json", {"shade", "lights", 0, 0, "RAW", 0, ""}},
+        {"pipelines/naive.json", {"shade", "lights", 0, 0, "RAW", 0, "", false}},
         /* a buffer write -> read between two compute passes (cluster_lights, written by the last
          * dispatch of assign_lights; not cluster_counts: the pass's own compute -> compute
          * memory barriers between its steps already cover that one, and validation agrees) */
-        {"pipelines/deferred_oct16.json", {"lighting_oct16", "cluster_lights", 0, 0, "RAW", 0, ""}},
+        {"pipelines/deferred_oct16.json", {"lighting_oct16", "cluster_lights", 0, 0, "RAW", 0, "", false}},
         /* a depth attachment -> sampled transition */
-        {"pipelines/deferred_oct16.json", {"lighting_oct16", "depth", 1, 1, "RAW", 0, ""}},
+        {"pipelines/deferred_oct16.json", {"lighting_oct16", "depth", 1, 1, "RAW", 0, "", false}},
         /* the first use of an aliased image after the previous occupant (write after write) */
-        {"pipelines/deferred_oct16.json", {"display", "ldr", 1, -1, "alias first use", 0, ""}},
+        {"pipelines/deferred_oct16.json", {"display", "ldr", 1, -1, "alias first use", 0, "", false}},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         cut *c = &cases[i].c;
@@ -212,7 +217,9 @@ int main(void)
                c->removed ? c->what : "(no such barrier)", m, h);
         CHECK_MSG(c->removed == 1, "%s: barrier %s/%s (%s) not found in the plan", cases[i].pipeline, c->pass,
                   c->resource, c->why);
-        CHECK_MSG(!ok || h >= 1, "%s: removing the %s raised no SYNC-HAZARD message", cases[i].pipeline, c->what);
+        if (c->layout)
+            CHECK_MSG(!ok || m >= 1, "%s: removing the %s raised no validation message", cases[i].pipeline, c->what);
+        else CHECK_MSG(!ok || h >= 1, "%s: removing the %s raised no SYNC-HAZARD message", cases[i].pipeline, c->what);
     }
 
     for (size_t i = 0; i < sizeof pipelines / sizeof pipelines[0]; i++) {
@@ -223,9 +230,10 @@ int main(void)
                    "(%u of 6 calls returned with the frame in flight)\n",
                    drop ? "without" : "with", pipelines[i], m, h, ov);
             CHECK_MSG(ov >= 1, "%s: the frames never overlapped (host never ahead)", pipelines[i]);
-            if (drop && strstr(pipelines[i], "deferred"))
+            if (!drop)
+                CHECK_MSG(ok && m == 0, "%s: with the frame-start barrier: %u validation message(s)", pipelines[i], m);
+            else if (strstr(pipelines[i], "deferred"))
                 CHECK_MSG(!ok || h >= 1, "%s: without the frame-start barrier: no SYNC-HAZARD", pipelines[i]);
-            else CHECK_MSG(ok && m == 0, "%s: with the frame-start barrier: %u validation message(s)", pipelines[i], m);
         }
     }
 
