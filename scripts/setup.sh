@@ -10,7 +10,7 @@ PKGS=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   glslang-dev glslang-tools spirv-tools
   libtinygltf-dev libmeshoptimizer-dev libdraco-dev nlohmann-json3-dev libcjson-dev libstb-dev libwebp-dev
-  valgrind
+  valgrind curl xz-utils
   libglfw3-dev libimgui-dev xvfb xauth graphviz
   libopencolorio-dev libopenexr-dev
   python3-numpy python3-skimage
