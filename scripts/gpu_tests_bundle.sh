@@ -11,9 +11,9 @@
 # validation on, $JOBS at a time (default 4), each under a 600 s timeout; each test's output is
 # written to $OUT (or /tmp) as TEST.txt, a line per test (exit code, seconds, failed checks,
 # validation counts) to stdout. Exit: non-zero when a step here fails.
-# LAYER_SUITE=SUITE (e.g. trixie): carry that Debian suite's validation layer instead, with the C and
-# C++ runtimes it needs (scripts/layer_debs.sh: libc6, libstdc++6, libgcc-s1); run.sh unpacks them
-# under the bundle, not /, and runs every test under that suite's dynamic loader. Newer layers
+# LAYER_SUITE=SUITE (e.g. trixie): carry that Debian suite's validation layer instead, with its loader
+# and the C and C++ runtimes it needs (scripts/layer_debs.sh); run.sh runs every test through
+# scripts/with_layer.sh with those packages (unpacked under /tmp, not /). Newer layers
 # check more (1.4.309: layout transitions against load ops at record time); their shader-access
 # checks are turned on (VK_KHRONOS_VALIDATION_SYNCVAL_SHADER_ACCESSES_HEURISTIC, as in ctest).
 set -euo pipefail
@@ -67,14 +67,10 @@ rm -rf "\$t" && mkdir -p "\$t" && xz -dc "\$b/tests.tar.xz" | tar -C "\$t" -xf -
 for f in "\$b"/*.deb; do [ -e "\$f" ] && dpkg -x "\$f" /; done
 ldconfig
 run=""
-if [ -d "\$b/layer" ]; then
-    r=/tmp/pg_gpu_tests_layer
-    rm -rf "\$r" && mkdir -p "\$r/manifest"
-    for f in "\$b"/layer/*.deb; do dpkg -x "\$f" "\$r"; done
-    sed "s#\"library_path\": *\"[^\"]*\"#\"library_path\": \"\$r/usr/lib/x86_64-linux-gnu/libVkLayer_khronos_validation.so\"#" \\
-        "\$r"/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json > "\$r/manifest/VkLayer_khronos_validation.json"
-    export VK_LAYER_PATH="\$r/manifest"
-    run="\$r/usr/lib/x86_64-linux-gnu/ld-linux-x86-64.so.2 --library-path \$r/usr/lib/x86_64-linux-gnu:\$t/lib:/usr/lib/x86_64-linux-gnu"
+if [ -d "\$b/layer" ]; then # scripts/with_layer.sh of the tree, with the carried packages
+    rm -rf /tmp/pg_layer_$suite
+    export PG_LAYER_DEBS="\$b/layer"
+    run="\$PWD/scripts/with_layer.sh $suite"
 fi
 [ -e "$src/tests" ] || { mkdir -p "$(dirname "$src")" && ln -sfn "\$PWD" "$src"; }
 export LD_LIBRARY_PATH="\$t/lib" PASSGRAPH_DATA_DIR="\$PWD" PASSGRAPH_CACHE_DIR=/tmp/pg_gpu_tests

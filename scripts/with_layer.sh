@@ -2,7 +2,8 @@
 # with_layer.sh SUITE COMMAND [ARG...] - runs COMMAND (a passgraph binary or test) with a Debian
 # suite's validation layer instead of the installed one, e.g.
 #   scripts/with_layer.sh trixie build/tests/test_gpu_fif
-# The layer and its runtimes (scripts/layer_debs.sh) are unpacked once into /tmp/pg_layer_SUITE; the
+# The layer and its runtimes (scripts/layer_debs.sh; or, offline, the packages it fetched, in the
+# folder PG_LAYER_DEBS) are unpacked once into /tmp/pg_layer_SUITE; the
 # command runs under that suite's dynamic loader with the layer's manifest on VK_LAYER_PATH, the
 # layer's shader-access checks on, and queue-submit synchronization validation on (as in ctest).
 set -euo pipefail
@@ -13,8 +14,9 @@ r=/tmp/pg_layer_$suite
 lib=$r/usr/lib/x86_64-linux-gnu
 if [ ! -e "$r/manifest/VkLayer_khronos_validation.json" ]; then
     rm -rf "$r"
-    bash "$(dirname "$0")/layer_debs.sh" "$suite" "$r/debs"
-    for f in "$r"/debs/*.deb; do dpkg -x "$f" "$r"; done
+    debs=${PG_LAYER_DEBS:-$r/debs}
+    [ -n "${PG_LAYER_DEBS:-}" ] || bash "$(dirname "$0")/layer_debs.sh" "$suite" "$debs"
+    for f in "$debs"/*.deb; do dpkg -x "$f" "$r"; done
     mkdir -p "$r/manifest"
     sed "s#\"library_path\": *\"[^\"]*\"#\"library_path\": \"$lib/libVkLayer_khronos_validation.so\"#" \
         "$r/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json" > "$r/manifest/VkLayer_khronos_validation.json"
