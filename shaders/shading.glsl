@@ -135,8 +135,8 @@ vec3 pg_ris_estimate(Surface s, uvec4 rec, vec3 P, vec3 V, vec2 frag_xy)
 #if defined(PG_LIGHTCUT) && defined(PG_HAS_LIGHTS)
 // ---- lightcut over the light tree (approximation knob with a per-pixel bound, PG_LIGHTCUT) ----
 // A depth-first walk of the tree, nearer child first. A node's contribution lies in [0, U] per
-// channel, U = summed colour x min(1/dmin^2, 1/dmin_light^2) x falloff(dmin / Rmax) x (albedo x
-// cos_max (+ specular with Blinn-Phong)) where dmin is the distance from the point to the box of
+// channel, U = summed colour x min(1/dmin^2, 1/dmin_light^2) x falloff(dmin / Rmax) x (albedo
+// (+ specular with Blinn-Phong)) x cos_max (pbr: below) where dmin is the distance from the point to the box of
 // the node's light centres, Rmax the node's largest radius and cos_max = min(1, max over the box's
 // corners of N.(c - P) / dmin) bounds N.L; U = 0 (skipped: exact) when dmin >= Rmax (every
 // light's falloff is 0) or every light centre lies behind the surface's tangent plane (every
@@ -156,18 +156,28 @@ float pg_lc_box_d2(vec3 lo, vec3 hi, vec3 P)
     return dot(d, d);
 }
 
-// The node's bound U (rgb); dmin2_out: the (shrunk) squared box distance, to order the children.
-vec3 pg_lc_upper(uint n, Surface s, vec3 P, vec3 cam, float inv_md2, out float dmin2_out)
+// The distance dm from P to the box of node n's light centres, shrunk by float margins: never above
+// a light's true distance (the rounding of camera-relative values); scale: the size of the values.
+// The walk orders a node's children by it (dm^2) without their bounds.
+float pg_lc_dmin(uint n, vec3 P, vec3 cam, out vec3 rl, out vec3 rh, out float scale)
 {
-    vec4 lo = tree[4u * n], hi = tree[4u * n + 1u];
+    rl = tree[4u * n].xyz - cam;
+    rh = tree[4u * n + 1u].xyz - cam;
+    float d2 = pg_lc_box_d2(rl, rh, P);
+    scale = length(P) + max(length(rl), length(rh));
+    return max(sqrt(d2) * (1.0 - 1e-4) - 1e-6 * scale, 0.0);
+}
+
+// The node's bound U (rgb).
+vec3 pg_lc_upper(uint n, Surface s, vec3 P, vec3 cam, float inv_md2)
+{
+    vec4 lo = tree[4u * n];
     vec4 cw = tree[4u * n + 2u];
     vec3 c = cw.rgb;
-    vec3 rl = lo.xyz - cam, rh = hi.xyz - cam;
-    float d2 = pg_lc_box_d2(rl, rh, P);
-    // float margins: never above a light's true distance (the rounding of camera-relative values)
-    float scale = length(P) + max(length(rl), length(rh));
-    float dm = max(sqrt(d2) * (1.0 - 1e-4) - 1e-6 * scale, 0.0);
-    dmin2_out = dm * dm;
+    vec3 rl, rh;
+    float scale;
+    float dm = pg_lc_dmin(n, P, cam, rl, rh, scale);
+    float dmin2 = dm * dm;
     if (!(rh.x >= rl.x) || dm >= lo.w * (1.0 + 1e-4)) return vec3(0.0); // empty, or out of every range
     float front = -3.0e38;                                                // max over corners of N.(c - P)
     for (int k = 0; k < 8; k++) {
@@ -180,15 +190,15 @@ vec3 pg_lc_upper(uint n, Surface s, vec3 P, vec3 cam, float inv_md2, out float d
     float cos_max = dm > 0.0 ? min(1.0, (front + slack) / dm) : 1.0;
     // falloff(d / R) <= falloff(dm / Rmax): it falls with d and rises with R (the falloff's R, cw.w:
     // the largest of the node's; squared for PG_GLTF_FALLOFF it is only smaller)
-    float t = dmin2_out / (cw.w * cw.w);
+    float t = dmin2 / (cw.w * cw.w);
     float falloff = clamp(1.0 - t * t, 0.0, 1.0) * (1.0 + 1e-5) + 1e-6;
-    float att = min(dm > 0.0 ? 1.0 / dmin2_out : 3.0e38, inv_md2) * min(falloff, 1.0);
+    float att = min(dm > 0.0 ? 1.0 / dmin2 : 3.0e38, inv_md2) * min(falloff, 1.0);
 #if defined(PG_PBR)
     // (1 - F0)(1 - w) <= 1, F0 (1 - w) + w <= 1 and pi D V N.L <= 0.5 / a^3 (lighting.glsl)
     float a = pg_pbr_alpha(s.shininess);
     return c * (att * (s.albedo * (1.0 - s.specular) * cos_max + vec3(0.5 / (a * a * a))));
 #elif defined(PG_BLINN_PHONG)
-    return c * (att * (s.albedo * cos_max + vec3(s.specular)));
+    return c * (att * cos_max) * (s.albedo + vec3(s.specular)); // (N.H)^n <= 1, N.L <= cos_max
 #else
     return c * (att * cos_max) * s.albedo;
 #endif
@@ -232,25 +242,31 @@ vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
             E += pg_lc_light(s, pr.xyz, pr.w, lc.w, lc.rgb, sp, cam, P, V, inv_md2);
             continue;
         }
-        float d2;
-        vec3 U = pg_lc_upper(n, s, P, cam, inv_md2, d2);
+        vec3 U = pg_lc_upper(n, s, P, cam, inv_md2);
         if (U == vec3(0.0)) continue;
-        PG_COUNT(1);
-        vec4 nc = tree[4u * n + 2u];
-        // the representative has no cone: its estimate stays clamped to [0, U], and U bounds a cone too
-        vec3 est = clamp(pg_lc_light(s, tree[4u * n + 3u].xyz, tree[4u * n].w, nc.w, nc.rgb, vec4(0.0, 0.0, 0.0, 1.0),
-                                     cam, P, V, inv_md2),
-                         vec3(0.0), U);
-        vec3 b = max(U - est, est);
-        if (all(lessThanEqual(B + b, eps * E))) {
-            A += est;
-            B += b;
-            continue;
+        // b >= U / 2 whatever the estimate (in float too: rounding is monotonic, U / 2 exact or
+        // flushed to 0), so a node that fails B + U / 2 <= eps E fails the test below: refined
+        // without evaluating its representative (the same walk, the same image)
+        if (all(lessThanEqual(B + 0.5 * U, eps * E))) {
+            PG_COUNT(1);
+            vec4 nc = tree[4u * n + 2u];
+            // the representative has no cone: its estimate stays clamped to [0, U], and U bounds a cone too
+            vec3 est = clamp(pg_lc_light(s, tree[4u * n + 3u].xyz, tree[4u * n].w, nc.w, nc.rgb, vec4(0.0, 0.0, 0.0, 1.0),
+                                         cam, P, V, inv_md2),
+                             vec3(0.0), U);
+            vec3 b = max(U - est, est);
+            if (all(lessThanEqual(B + b, eps * E))) {
+                A += est;
+                B += b;
+                continue;
+            }
         }
         uint c0 = 2u * n, c1 = c0 + 1u;
-        float d0, d1;
-        pg_lc_upper(c0, s, P, cam, inv_md2, d0);
-        pg_lc_upper(c1, s, P, cam, inv_md2, d1);
+        vec3 rl, rh;
+        float scale;
+        float d0 = pg_lc_dmin(c0, P, cam, rl, rh, scale), d1 = pg_lc_dmin(c1, P, cam, rl, rh, scale);
+        d0 *= d0;
+        d1 *= d1;
         uint nearer = d0 <= d1 ? c0 : c1, farther = d0 <= d1 ? c1 : c0;
         stack[sp++] = farther; // depth <= log2(np) + 1 entries: never past PG_LC_STACK (np <= 2^32)
         stack[sp++] = nearer;

@@ -219,7 +219,7 @@ static void accuracy(const pg_th_scene *l)
     if (render(l, "pipelines/naive.json", &f32, 1, &naive)) {
         env_stats st;
         against_cpu("naive (split-sum) vs CPU", l, &naive, &normals, ENV_SPLIT_SUM_PX_REL, ENV_SPLIT_SUM_MEAN_REL, &st);
-        pg_th_pipelines_vs_ref(g_gpu, &g_reg, l->sg, &l->fi, &naive, "environment vs naive", 0);
+        pg_th_pipelines_vs_ref(g_gpu, &g_reg, l->sg, &l->fi, &naive, NULL, "environment vs naive", 0);
         pg_th_release(&naive);
     }
     pg_th_release(&normals);

@@ -134,7 +134,7 @@ static uint32_t ref_vs_cpu(const char *label, const loaded *l, const pg_th_frame
  * unranged lights (2 x 1e-4 x albedo) */
 static void pipelines_vs_ref(const char *label, const loaded *l, const pg_th_frame *ref)
 {
-    pg_th_pipelines_vs_ref(g_gpu, &g_reg, l->sg, &l->fi, ref, label, 2 * 1e-4 * ALBEDO);
+    pg_th_pipelines_vs_ref(g_gpu, &g_reg, l->sg, &l->fi, ref, NULL, label, 2 * 1e-4 * ALBEDO);
 }
 
 /* the tiled loop leaves out spot lights whose cone misses the tile (shading.glsl
@@ -287,14 +287,14 @@ int main(void)
     if (load("spots.gltf", &e)) { /* the cone tests of the light assignment on a hostile set */
         pg_th_frame ref;
         if (render(&e, "pipelines/reference.json", NULL, 0, &ref)) {
-            pg_th_pipelines_vs_ref(g_gpu, &g_reg, e.sg, &e.fi, &ref, "spots", 3 * 1e-4 * ALBEDO);
+            pg_th_pipelines_vs_ref(g_gpu, &g_reg, e.sg, &e.fi, &ref, NULL, "spots", 3 * 1e-4 * ALBEDO);
             tile_cone_identical("spots", &e);
             pg_th_release(&ref);
         }
         /* the same view orthographic, 14 units high: the clusters are boxes of parallel rays */
         e.fi.camera.ortho_height = 14.0f;
         if (render(&e, "pipelines/reference.json", NULL, 0, &ref)) {
-            pg_th_pipelines_vs_ref(g_gpu, &g_reg, e.sg, &e.fi, &ref, "spots orthographic", 3 * 1e-4 * ALBEDO);
+            pg_th_pipelines_vs_ref(g_gpu, &g_reg, e.sg, &e.fi, &ref, NULL, "spots orthographic", 3 * 1e-4 * ALBEDO);
             pg_th_release(&ref);
         }
     }

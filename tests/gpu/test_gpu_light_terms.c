@@ -185,7 +185,7 @@ static void expect(const lt_model *m, const lt_case *c, double diff[3], double s
             double hl = sqrt(H[0] * H[0] + H[1] * H[1] + H[2] * H[2]);
             double nh = fmax((N[0] * H[0] + N[1] * H[1] + N[2] * H[2]) / hl, 0);
             *scale += cmax / fmax(d2, dmin2);
-            for (int k = 0; k < 3; k++) spec[k] += c->b[j][k] * pow(nh, c->albedo[3]) * att;
+            for (int k = 0; k < 3; k++) spec[k] += c->b[j][k] * pow(nh, c->albedo[3]) * att * nl;
         }
     }
 }

@@ -9,7 +9,8 @@
  * (every light in a box 2% of the atrium's size); huge radii (every light reaches everything);
  * tiny radii; lights spread over the floor's height (on the surfaces); 2,000 lights. A light
  * tree of one light and of 0 lights renders too.
- * Also: the frame is deterministic (rendered twice, bit-identical); eps 0.2 approximates (its
+ * Blinn-Phong too (the default lights, the clump, lights on the floor), whose image differs from
+ * Lambert's on the atrium. Also: the frame is deterministic (rendered twice, bit-identical); eps 0.2 approximates (its
  * image differs from exact by more than rounding: the knob does something); and the checker
  * itself can fail: the eps 0.2 image against the eps 0.02 bound is outside it somewhere. */
 #include <math.h>
@@ -26,6 +27,7 @@
 
 static pg_gpu *g_gpu;
 static pg_pass_registry g_reg;
+static const char *g_shading = "lambert"; /* the light model of both pipelines */
 
 /* worst |a - exact| / (eps |exact| + 1e-4 |exact| + 1e-6 peak) over pixels and RGB (<= 1: inside) */
 static double usage(const pg_th_frame *a, const pg_th_frame *exact, double eps, double peak)
@@ -45,9 +47,9 @@ static void check_set(const char *label, const pg_th_scene *ts, const pg_light_s
 {
     pg_frame_info fi = ts->fi;
     fi.lights = *ls;
-    pg_param_override f32 = {"hdr_format", "rgba32f"};
+    pg_param_override f32[2] = {{"hdr_format", "rgba32f"}, {"shading", g_shading}};
     pg_th_frame ex;
-    if (!pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/visibility.json", &f32, 1, &fi, 1, false, &ex)) {
+    if (!pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/visibility.json", f32, 2, &fi, 1, false, &ex)) {
         CHECK_MSG(0, "%s: exact render", label);
         return;
     }
@@ -59,8 +61,8 @@ static void check_set(const char *label, const pg_th_scene *ts, const pg_light_s
     pg_th_frame lc[2];
     bool ok[2];
     for (int k = 0; k < 2; k++) {
-        pg_param_override sets[2] = {{"hdr_format", "rgba32f"}, {"lightcut_error", eps_s[k]}};
-        ok[k] = pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/lightcut.json", sets, 2, &fi, 1, false, &lc[k]);
+        pg_param_override sets[3] = {{"hdr_format", "rgba32f"}, {"lightcut_error", eps_s[k]}, {"shading", g_shading}};
+        ok[k] = pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/lightcut.json", sets, 3, &fi, 1, false, &lc[k]);
         CHECK_MSG(ok[k], "%s: lightcut render (eps %s)", label, eps_s[k]);
         if (!ok[k]) continue;
         double u = usage(&lc[k], &ex, eps[k], peak);
@@ -81,6 +83,39 @@ static void check_set(const char *label, const pg_th_scene *ts, const pg_light_s
     for (int k = 0; k < 2; k++)
         if (ok[k]) pg_th_release(&lc[k]);
     pg_th_release(&ex);
+}
+
+/* Blinn-Phong (its bound adds the specular colour to the albedo): the default lights, the clump and
+ * lights on the floor; its exact image differs from Lambert's (the atrium's materials have a
+ * specular term, so the case tests the specular bound) */
+static void blinn_phong(const pg_th_scene *ts, const pg_light_setup *base)
+{
+    pg_param_override f32[2] = {{"hdr_format", "rgba32f"}, {"shading", "lambert"}};
+    pg_th_frame lam, bp;
+    bool ok = pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/visibility.json", f32, 2, &ts->fi, 1, false, &lam);
+    f32[1].value = "blinn_phong";
+    ok = pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/visibility.json", f32, 2, &ts->fi, 1, false, &bp) && ok;
+    CHECK_MSG(ok, "blinn_phong: exact renders");
+    if (ok) {
+        uint32_t differ = pg_th_differ_pixels(&lam, &bp);
+        printf("blinn_phong: %u of %u pixels differ from lambert\n", differ, W * H);
+        CHECK_MSG(differ > W * H / 10, "blinn_phong: only %u pixels differ from lambert (no specular to bound)", differ);
+        pg_th_release(&lam);
+        pg_th_release(&bp);
+    }
+    g_shading = "blinn_phong";
+    check_set("bp default lights", ts, base);
+    pg_light_setup s = *base;
+    float ext[3], mid[3];
+    for (int a = 0; a < 3; a++) ext[a] = base->box_max[a] - base->box_min[a], mid[a] = 0.5f * (base->box_max[a] + base->box_min[a]);
+    for (int a = 0; a < 3; a++) s.box_min[a] = mid[a] - 0.01f * ext[a], s.box_max[a] = mid[a] + 0.01f * ext[a];
+    s.seed = 3;
+    check_set("bp dense clump", ts, &s);
+    s = *base;
+    s.box_max[1] = base->box_min[1] + 0.02f * ext[1];
+    s.seed = 6;
+    check_set("bp on the floor", ts, &s);
+    g_shading = "lambert";
 }
 
 static void check_deterministic(const pg_th_scene *ts)
@@ -142,6 +177,7 @@ int main(void)
     s.count = 0;
     check_set("no lights", &ts, &s);
     check_deterministic(&ts);
+    blinn_phong(&ts, &base);
     pg_th_scene_close(g_gpu, &ts);
     printf("validation messages: %u\n", g_gpu->validation_messages);
     CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);

@@ -41,10 +41,13 @@ void pg_th_bound_usage(const pg_th_frame *a, const pg_th_frame *ref, double peak
  * deferred_packed, visibility, lightcut) rendered with fi against the reference frame ref: every
  * pixel and RGB channel within its documented per-pixel bound (A |ref| + B peak: accuracy_bounds.h;
  * the lightcut's stated 2%), plus the rgba16f rounding (2e-3 |ref|) and `extra` (an absolute term:
- * the cut-off of unranged file lights); forward_plus bit-identical to naive. Prints each usage
- * ("label: PIPELINE vs reference: bound usage U") and CHECKs. */
+ * the cut-off of unranged file lights); forward_plus bit-identical to naive. ray_ref (NULL: ref):
+ * the reference with surface=ray, against which the pipelines whose surface is the pixel's ray
+ * (visibility, lightcut) are measured: on an NVIDIA GPU the rasterizer's interpolated normal moves
+ * a glossy glint by several times visibility's bound (docs/accuracy.md, one image, two devices).
+ * Prints each usage ("label: PIPELINE vs reference[ ray]: bound usage U") and CHECKs. */
 void pg_th_pipelines_vs_ref(pg_gpu *gpu, const pg_pass_registry *reg, const pg_scene_gpu *sg, const pg_frame_info *fi,
-                            const pg_th_frame *ref, const char *label, double extra);
+                            const pg_th_frame *ref, const pg_th_frame *ray_ref, const char *label, double extra);
 
 /* The ray through pixel (x, y)'s centre of fi's camera (fi->width x fi->height): a on the near plane,
  * b on the far plane (world space, double). */
