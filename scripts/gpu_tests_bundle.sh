@@ -71,6 +71,7 @@ if [ -d "\$b/layer" ]; then # scripts/with_layer.sh of the tree, with the carrie
     rm -rf /tmp/pg_layer_$suite
     export PG_LAYER_DEBS="\$b/layer"
     run="\$PWD/scripts/with_layer.sh $suite"
+    \$run /bin/true || { echo "\$0: the layer packages do not unpack" >&2; exit 1; } # once, before the tests start
 fi
 [ -e "$src/tests" ] || { mkdir -p "$(dirname "$src")" && ln -sfn "\$PWD" "$src"; }
 export LD_LIBRARY_PATH="\$t/lib" PASSGRAPH_DATA_DIR="\$PWD" PASSGRAPH_CACHE_DIR=/tmp/pg_gpu_tests

@@ -12,6 +12,9 @@ suite=$1
 shift
 r=/tmp/pg_layer_$suite
 lib=$r/usr/lib/x86_64-linux-gnu
+# one unpacking at a time (the GPU bundle's run.sh starts several tests at once): the others wait
+exec 9>"$r.lock"
+flock 9
 if [ ! -e "$r/manifest/VkLayer_khronos_validation.json" ]; then
     rm -rf "$r"
     debs=${PG_LAYER_DEBS:-$r/debs}
@@ -21,6 +24,8 @@ if [ ! -e "$r/manifest/VkLayer_khronos_validation.json" ]; then
     sed "s#\"library_path\": *\"[^\"]*\"#\"library_path\": \"$lib/libVkLayer_khronos_validation.so\"#" \
         "$r/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json" > "$r/manifest/VkLayer_khronos_validation.json"
 fi
+flock -u 9
+exec 9>&-
 export VK_LAYER_PATH=$r/manifest VK_KHRONOS_VALIDATION_SYNCVAL_SHADER_ACCESSES_HEURISTIC=true
 export VK_LAYER_ENABLES=${VK_LAYER_ENABLES:-VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT}
 exec "$lib/ld-linux-x86-64.so.2" --library-path "$lib:${LD_LIBRARY_PATH:+$LD_LIBRARY_PATH:}/usr/lib/x86_64-linux-gnu" "$@"

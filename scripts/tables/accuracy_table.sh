@@ -13,7 +13,7 @@
 # in docs/accuracy.md instead. Needs ../shared/assets/dabrovic-sponza for the Sponza rows.
 # Environment: PG_SIZE (640x360), PG_LIGHTS ("100 1000 5000"), PG_CAPS ("512 2048").
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 WRITE=0
 PART=all
 BUILD=build

@@ -10,7 +10,7 @@
 #                memory"), on the first Vulkan device (lavapipe on the CI machine)
 # Uses build/passgraph; renders each pipeline once at 1920x1080 (about a minute on lavapipe).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 BEFORE=${1:-}
 PG=build/passgraph
 OUT=$(mktemp -d)
