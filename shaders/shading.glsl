@@ -157,28 +157,32 @@ float pg_lc_box_d2(vec3 lo, vec3 hi, vec3 P)
 }
 
 // The distance dm from P to the box of node n's light centres, shrunk by float margins: never above
-// a light's true distance (the rounding of camera-relative values); scale: the size of the values.
-// The walk orders a node's children by it (dm^2) without their bounds.
-float pg_lc_dmin(uint n, vec3 P, vec3 cam, out vec3 rl, out vec3 rh, out float scale)
+// a light's true distance (the rounding of camera-relative values); scale: the size of the values;
+// reach: false when the node is empty or dm is past its largest radius (no light of it reaches P:
+// each adds exactly 0). The walk orders a node's children by dm^2 and pushes only those that reach.
+float pg_lc_dmin(uint n, vec3 P, vec3 cam, out vec3 rl, out vec3 rh, out float scale, out bool reach)
 {
-    rl = tree[4u * n].xyz - cam;
+    vec4 lo = tree[4u * n];
+    rl = lo.xyz - cam;
     rh = tree[4u * n + 1u].xyz - cam;
     float d2 = pg_lc_box_d2(rl, rh, P);
     scale = length(P) + max(length(rl), length(rh));
-    return max(sqrt(d2) * (1.0 - 1e-4) - 1e-6 * scale, 0.0);
+    float dm = max(sqrt(d2) * (1.0 - 1e-4) - 1e-6 * scale, 0.0);
+    reach = rh.x >= rl.x && dm < lo.w * (1.0 + 1e-4);
+    return dm;
 }
 
 // The node's bound U (rgb).
 vec3 pg_lc_upper(uint n, Surface s, vec3 P, vec3 cam, float inv_md2)
 {
-    vec4 lo = tree[4u * n];
     vec4 cw = tree[4u * n + 2u];
     vec3 c = cw.rgb;
     vec3 rl, rh;
     float scale;
-    float dm = pg_lc_dmin(n, P, cam, rl, rh, scale);
+    bool reach;
+    float dm = pg_lc_dmin(n, P, cam, rl, rh, scale, reach);
     float dmin2 = dm * dm;
-    if (!(rh.x >= rl.x) || dm >= lo.w * (1.0 + 1e-4)) return vec3(0.0); // empty, or out of every range
+    if (!reach) return vec3(0.0); // empty, or out of every range
     float front = -3.0e38;                                                // max over corners of N.(c - P)
     for (int k = 0; k < 8; k++) {
         vec3 corner = vec3((k & 1) != 0 ? rh.x : rl.x, (k & 2) != 0 ? rh.y : rl.y, (k & 4) != 0 ? rh.z : rl.z);
@@ -264,12 +268,15 @@ vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
         uint c0 = 2u * n, c1 = c0 + 1u;
         vec3 rl, rh;
         float scale;
-        float d0 = pg_lc_dmin(c0, P, cam, rl, rh, scale), d1 = pg_lc_dmin(c1, P, cam, rl, rh, scale);
+        bool r0, r1;
+        float d0 = pg_lc_dmin(c0, P, cam, rl, rh, scale, r0), d1 = pg_lc_dmin(c1, P, cam, rl, rh, scale, r1);
         d0 *= d0;
         d1 *= d1;
         uint nearer = d0 <= d1 ? c0 : c1, farther = d0 <= d1 ? c1 : c0;
-        stack[sp++] = farther; // depth <= log2(np) + 1 entries: never past PG_LC_STACK (np <= 2^32)
-        stack[sp++] = nearer;
+        bool rn = d0 <= d1 ? r0 : r1, rf = d0 <= d1 ? r1 : r0;
+        // depth <= log2(np) + 1 entries: never past PG_LC_STACK (np <= 2^32)
+        if (rf) stack[sp++] = farther;
+        if (rn) stack[sp++] = nearer;
     }
     return E + A;
 }
