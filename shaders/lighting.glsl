@@ -8,7 +8,7 @@
 // light lying on the surface gives a finite value. Blinn-Phong adds
 //   specular * max(dot(N, H), 0)^shininess * max(dot(N, L), 0) * the same attenuation.
 //
-// Evaluated with one transcendental per light (issue 13 item 3): (d/R)^4 = (d^2 / R^2)^2 with
+// Evaluated with one transcendental per light: (d/R)^4 = (d^2 / R^2)^2 with
 // 1/R^2 known per light, 1/max(d^2, dmin^2) = min((1/d)^2, 1/dmin^2) and L = Ld/d from one
 // inversesqrt, instead of a square root and three divisions. The same model; only the rounding
 // differs (C twin and its bounds: tests/test_numeric.c att_float). Two forms share that arithmetic

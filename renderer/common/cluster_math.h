@@ -30,7 +30,7 @@ typedef struct pg_uvec3 { uint32_t x, y, z; } pg_uvec3;
 
 /* The default cluster grid (parameters grid_x/y/z, the count of cluster_counts in
  * pipelines/fragments/clusters.json): 16x9 screen tiles x 32 exponential depth slices (32, not 24,
- * since issue 13: shorter lists for the tiled light loop; measured in docs/performance.md). */
+ * for shorter lists in the tiled light loop; measured in docs/performance.md). */
 #define PG_CLUSTER_GRID_DEFAULT_X 16
 #define PG_CLUSTER_GRID_DEFAULT_Y 9
 #define PG_CLUSTER_GRID_DEFAULT_Z 32

@@ -507,7 +507,7 @@ expect_fail "bench: sweep without values" "KEY=VALUE1" bench --sweep gbuffer --o
 expect_fail "bench: unknown option" "unknown option" bench --bogus --out "$tmp/b5"
 [ ! -e "$tmp/b5" ] && ok || bad "bench: bad options created the output folder"
 
-# ---- default framing, lights and glTF cameras (issue 11; tests/corpus/gltf/objects) ----
+# ---- default framing, lights and glTF cameras (tests/corpus/gltf/objects) ----
 objs="$root/tests/corpus/gltf/objects"
 camline() { "$PG" render --size 64x36 --lights 8 --explain --out "$tmp/c.png" "$@" 2>"$tmp/cerr" | grep -E '^explain: (camera|lights):'; }
 camline >"$tmp/cl" && grep -q "^explain: camera: interior view of the built-in atrium" "$tmp/cl" && \
@@ -657,7 +657,7 @@ done
 camline --scene "$models/desk_lamp.gltf" >"$tmp/cl" && \
   grep -q "^explain: camera: glTF camera 0 'product_shot' (node 'camera', perspective), the scene's first camera" "$tmp/cl" \
   && ok || { bad "desk_lamp.gltf: default camera line"; cat "$tmp/cl" "$tmp/cerr"; }
-# ---- new-user mistakes (issue 11): one clear line each ----
+# ---- new-user mistakes: one clear line each ----
 gcorp="$root/tests/corpus/gltf"
 mkdir -p "$tmp/adir"
 expect_fail "--scene is a directory" "scene '$tmp/adir': is a directory, not a regular file" \

@@ -48,7 +48,7 @@ grep -q "validation message" "$tmp/err2" && { bad "light sweep: validation messa
 grep -Eq '^view: 14 frames' "$tmp/out2" && ok || { bad "light sweep: did not run 14 frames"; tail -3 "$tmp/out2"; }
 grep -Eq '^view: cluster_lights grew .* at 1000000 lights' "$tmp/out2" && ok || { bad "light sweep: no growth at 1,000,000"; cat "$tmp/out2"; }
 grep -Eq '^view: light lists need .* over the 8.0 MiB budget' "$tmp/out2" && ok || { bad "light sweep: budget overflow not reported"; cat "$tmp/out2"; }
-# glTF cameras (issue 11): the viewer prints its camera / light choice, switches between the file's
+# glTF cameras: the viewer prints its camera / light choice, switches between the file's
 # cameras (the orthographic one included) and auto framing
 objs="$root/tests/corpus/gltf/objects"
 xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --validation --size 64x36 --frames 8 --lights 8 \

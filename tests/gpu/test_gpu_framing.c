@@ -1,4 +1,4 @@
-/* test_gpu_framing.c - any glTF renders framed and lit with the default options (issue 11): the
+/* test_gpu_framing.c - any glTF renders framed and lit with the default options: the
  * generated objects of tests/corpus/gltf/objects/ (cube, sphere, long rod, 1e-3 and 1e4 cubes, a
  * standing box, and the flat ones: a floor quad, three side-by-side panels, a panel and a wall
  * facing -Z / -X) are rendered on the Vulkan device (lavapipe) with the default view of the tools

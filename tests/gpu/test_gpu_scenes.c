@@ -1,5 +1,5 @@
 /* test_gpu_scenes.c - every shipped pipeline keeps its accuracy claim on every generated glTF
- * scene (issue 11): the objects, the eleven models and the feature files under
+ * scene: the objects, the eleven models and the feature files under
  * tests/corpus/gltf/<dir>/ (every .gltf / .glb of the folders listed in k_dirs that exist, but the
  * error cases: named bad_* or listed with an error code in tests/corpus/gltf/MANIFEST), each
  * with the tools' default view (pg_scene_default_view: its glTF camera or auto framing, the object

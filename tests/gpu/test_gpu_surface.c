@@ -1,4 +1,4 @@
-/* test_gpu_surface.c - glTF surface features on the GPU (issue 11): vertex colours (COLOR_0 float
+/* test_gpu_surface.c - glTF surface features on the GPU: vertex colours (COLOR_0 float
  * vec3, unorm8 vec4, unorm16 vec4 times the base colour factor), sampler wrap modes (REPEAT,
  * CLAMP_TO_EDGE, MIRRORED_REPEAT, mixed), NEAREST vs LINEAR magnification, minFilter without
  * mipmaps (level 0 only) vs with, textures read through TEXCOORD_1, and KHR_texture_transform

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Generates ten small, recognisable everyday-object glTF 2.0 models (issue 11: "for ten
+"""Generates ten small, recognisable everyday-object glTF 2.0 models (the goal: "for ten
 object-type glTF models, `passgraph render --scene MODEL --out x.png` with no other option gives a
 framed, lit, recognisable image") and one animated, skinned character (walker.gltf). Python 3
 standard library only; deterministic (no random module, no time stamps: the same bytes on every
