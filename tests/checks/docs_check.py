@@ -5,7 +5,9 @@ Fails (one line per break, exit 1) when:
   - README.md is over 12,000 bytes;
   - a tracked file's path contains "issue" (any case);
   - README.md, docs/**/*.md (CHANGELOG.md aside), pipelines/README.md,
-    assets/**/README.md or tests/**/README.md name an issue number;
+    assets/**/README.md or tests/**/README.md name an issue number, or so
+    does a tracked source, shader, script or build file (CHANGELOG.md is the
+    only file that names issues; docs/results/ holds run outputs);
   - code embedded in README.md or a docs/ page differs from the file it
     names: the line `<!-- code: PATH -->` or `<!-- code: PATH:FIRST-LAST -->`
     stands right before a ``` block whose lines must be byte-identical to PATH
@@ -42,6 +44,16 @@ def tracked_files(root):
         for name in filenames:
             files.append(os.path.relpath(os.path.join(dirpath, name), root))
     return files
+
+
+SOURCE_EXT = (".c", ".h", ".cpp", ".hpp", ".glsl", ".comp", ".frag", ".vert", ".py", ".sh", ".json",
+              ".cmake", ".txt", ".sbatch", ".in")
+
+
+def source_files(files):
+    """tracked sources, shaders, scripts and build files (docs/results/ aside)"""
+    return [f for f in files
+            if not f.startswith("docs/results/") and (f.endswith(SOURCE_EXT) or os.path.basename(f) in ("run",))]
 
 
 def doc_pages(files):
@@ -163,7 +175,7 @@ def main(argv):
         if "issue" in f.lower():
             errors.append("%s: file path names an issue" % f)
 
-    for page in doc_pages(files):
+    for page in doc_pages(files) + source_files(files):
         full = os.path.join(root, page)
         if not os.path.isfile(full):
             continue
