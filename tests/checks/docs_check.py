@@ -53,7 +53,7 @@ SOURCE_EXT = (".c", ".h", ".cpp", ".hpp", ".glsl", ".comp", ".frag", ".vert", ".
 def source_files(files):
     """tracked sources, shaders, scripts and build files (docs/results/ aside)"""
     return [f for f in files
-            if not f.startswith("docs/results/") and (f.endswith(SOURCE_EXT) or os.path.basename(f) in ("run",))]
+            if not f.startswith("docs/results/") and (f.endswith(SOURCE_EXT) or f == ".ci/run")]
 
 
 def doc_pages(files):

@@ -172,18 +172,9 @@ typedef struct vis_err {
 static double px_usage(const pg_th_frame *a, const pg_th_frame *ref, double peak, bool pbr, const uint8_t *skip,
                        uint8_t sel)
 {
-    size_t n = (size_t)a->w * a->h;
-    pg_th_frame masked = *a;
-    float *copy = NULL;
-    if (skip && (copy = malloc(n * 4 * sizeof *copy)) != NULL) {
-        for (size_t p = 0; p < n; p++) memcpy(&copy[4 * p], skip[p] == sel ? &a->hdr[4 * p] : &ref->hdr[4 * p], 4 * sizeof *copy);
-        masked.hdr = copy;
-    }
-    CHECK_MSG(!skip || copy, "out of memory");
-    if (!skip && sel) return 0;
-    double usage = 0, need_a;
-    pg_th_bound_usage(&masked, ref, peak, pbr ? VIS_PBR_PX_A : VIS_PX_A, pbr ? VIS_PBR_PX_B : VIS_PX_B, &usage, &need_a);
-    free(copy);
+    double usage, need_a;
+    pg_th_bound_usage_masked(a, ref, peak, pbr ? VIS_PBR_PX_A : VIS_PX_A, pbr ? VIS_PBR_PX_B : VIS_PX_B, skip, sel,
+                             &usage, &need_a);
     return usage;
 }
 

@@ -112,9 +112,15 @@ uint32_t pg_th_differ_pixels(const pg_th_frame *a, const pg_th_frame *b)
 void pg_th_bound_usage(const pg_th_frame *a, const pg_th_frame *ref, double peak, double A, double B, double *usage,
                        double *need_a)
 {
+    pg_th_bound_usage_masked(a, ref, peak, A, B, NULL, 0, usage, need_a);
+}
+
+void pg_th_bound_usage_masked(const pg_th_frame *a, const pg_th_frame *ref, double peak, double A, double B,
+                              const uint8_t *mask, uint8_t sel, double *usage, double *need_a)
+{
     double u = 0, na = 0;
     for (size_t i = 0; i < (size_t)a->w * a->h * 4; i++) {
-        if (i % 4 == 3) continue;
+        if (i % 4 == 3 || (mask ? mask[i / 4] : 0) != sel) continue;
         double r = fabs((double)ref->hdr[i]), d = fabs((double)a->hdr[i] - ref->hdr[i]);
         double lim = A * r + B * peak;
         double ui = d == 0 ? 0 : lim > 0 ? d / lim : INFINITY;

@@ -36,6 +36,9 @@ uint32_t pg_th_differ_pixels(const pg_th_frame *a, const pg_th_frame *b);
  * smallest A that would hold with this B. */
 void pg_th_bound_usage(const pg_th_frame *a, const pg_th_frame *ref, double peak, double A, double B, double *usage,
                        double *need_a);
+/* The same over the pixels p with (mask ? mask[p] : 0) == sel only (0 and 0 when there are none). */
+void pg_th_bound_usage_masked(const pg_th_frame *a, const pg_th_frame *ref, double peak, double A, double B,
+                              const uint8_t *mask, uint8_t sel, double *usage, double *need_a);
 
 /* Every deterministic shipped pipeline (naive, forward_plus, deferred, deferred_oct16,
  * deferred_packed, visibility, lightcut) rendered with fi against the reference frame ref: every
