@@ -134,7 +134,7 @@ vec3 pg_ris_estimate(Surface s, uvec4 rec, vec3 P, vec3 V, vec2 frag_xy)
 
 #if defined(PG_LIGHTCUT) && defined(PG_HAS_LIGHTS)
 // ---- lightcut over the light tree (approximation knob with a per-pixel bound, PG_LIGHTCUT) ----
-// A depth-first walk of the tree, nearer child first. A node's contribution lies in [0, U] per
+// A depth-first walk of the tree (shared by a subgroup's pixels: pg_lightcut), nearer child first. A node's contribution lies in [0, U] per
 // channel, U = summed colour x min(1/dmin^2, 1/dmin_light^2) x falloff(dmin / Rmax) x (albedo
 // (+ specular with Blinn-Phong)) x cos_max (pbr: below) where dmin is the distance from the point to the box of
 // the node's light centres, Rmax the node's largest radius and cos_max = min(1, max over the box's
@@ -220,6 +220,23 @@ vec3 pg_lc_light(Surface s, vec3 pos, float R, float Rf, vec3 color, vec4 spot, 
     return pg_shade_lights(s, one);
 }
 
+// True when x is true in any invocation of the subgroup that runs this call (a ballot: no vote
+// extension needed).
+bool pg_lc_any(bool x)
+{
+    return subgroupBallot(x) != uvec4(0u);
+}
+
+// The walk is shared by the subgroup's pixels (a tile's 8 x 4 block on a GPU with 32-wide
+// subgroups): every invocation pops the same node, so the nodes' loads are one broadcast and the
+// branches do not diverge. Each invocation keeps its own sums (E, A, B) and decides for itself: a
+// node it approximates (or finds out of reach) it skips with its whole subtree, marked by the stack
+// depth (skip_at: the subtree's nodes are popped while the stack holds at least skip_at - 1
+// entries). A node is refined when any invocation refines it; the children are pushed when any
+// refining invocation reaches them, nearer first for most of those invocations. Whatever the other
+// invocations do, a pixel sums each of its leaves exactly once or within a node it approximated
+// under its own test, so the stated bound holds per pixel (and with diverged invocations, which
+// then walk apart: each call below involves only invocations at the same point of the loop).
 vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
 {
     uint count = frame.counts.x;
@@ -232,51 +249,68 @@ vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
     uint stack[PG_LC_STACK];
     int sp = 0;
     stack[sp++] = 1u;
+    int skip_at = 0; // 0: taking part; else the subtree being skipped (above)
     while (sp > 0) {
         uint n = stack[--sp];
+        if (sp + 1 < skip_at) skip_at = 0; // past the skipped subtree
+        bool taking_part = skip_at == 0;
         if (n >= np) { // a leaf: one light, exactly
-            PG_COUNT(1);
-            vec4 pr = tree[4u * n];
-            vec4 lc = tree[4u * n + 2u];
+            if (taking_part) {
+                PG_COUNT(1);
+                vec4 pr = tree[4u * n];
+                vec4 lc = tree[4u * n + 2u];
 #ifdef PG_SPOT_LIGHTS
-            vec4 sp = tree[4u * n + 3u]; // a leaf keeps its light's spot record there (light_tree.comp)
+                vec4 sp4 = tree[4u * n + 3u]; // a leaf keeps its light's spot record there (light_tree.comp)
 #else
-            vec4 sp = vec4(0.0, 0.0, 0.0, 1.0);
+                vec4 sp4 = vec4(0.0, 0.0, 0.0, 1.0);
 #endif
-            E += pg_lc_light(s, pr.xyz, pr.w, lc.w, lc.rgb, sp, cam, P, V, inv_md2);
+                E += pg_lc_light(s, pr.xyz, pr.w, lc.w, lc.rgb, sp4, cam, P, V, inv_md2);
+            }
             continue;
         }
-        vec3 U = pg_lc_upper(n, s, P, cam, inv_md2);
-        if (U == vec3(0.0)) continue;
-        // b >= U / 2 whatever the estimate (in float too: rounding is monotonic, U / 2 exact or
-        // flushed to 0), so a node that fails B + U / 2 <= eps E fails the test below: refined
-        // without evaluating its representative (the same walk, the same image)
-        if (all(lessThanEqual(B + 0.5 * U, eps * E))) {
-            PG_COUNT(1);
-            vec4 nc = tree[4u * n + 2u];
-            // the representative has no cone: its estimate stays clamped to [0, U], and U bounds a cone too
-            vec3 est = clamp(pg_lc_light(s, tree[4u * n + 3u].xyz, tree[4u * n].w, nc.w, nc.rgb, vec4(0.0, 0.0, 0.0, 1.0),
-                                         cam, P, V, inv_md2),
-                             vec3(0.0), U);
-            vec3 b = max(U - est, est);
-            if (all(lessThanEqual(B + b, eps * E))) {
-                A += est;
-                B += b;
-                continue;
+        bool refine = false;
+        if (taking_part) {
+            vec3 U = pg_lc_upper(n, s, P, cam, inv_md2);
+            refine = U != vec3(0.0);
+            // b >= U / 2 whatever the estimate (in float too: rounding is monotonic, U / 2 exact or
+            // flushed to 0), so a node that fails B + U / 2 <= eps E fails the test below: refined
+            // without evaluating its representative
+            if (refine && all(lessThanEqual(B + 0.5 * U, eps * E))) {
+                PG_COUNT(1);
+                vec4 nc = tree[4u * n + 2u];
+                // the representative has no cone: its estimate stays clamped to [0, U], and U bounds a cone too
+                vec3 est = clamp(pg_lc_light(s, tree[4u * n + 3u].xyz, tree[4u * n].w, nc.w, nc.rgb,
+                                             vec4(0.0, 0.0, 0.0, 1.0), cam, P, V, inv_md2),
+                                 vec3(0.0), U);
+                vec3 b = max(U - est, est);
+                if (all(lessThanEqual(B + b, eps * E))) {
+                    A += est;
+                    B += b;
+                    refine = false;
+                }
             }
+            if (!refine) skip_at = sp + 1; // approximated or out of reach: its subtree adds nothing here
         }
+        if (!pg_lc_any(refine)) continue;
         uint c0 = 2u * n, c1 = c0 + 1u;
-        vec3 rl, rh;
-        float scale;
-        bool r0, r1;
-        float d0 = pg_lc_dmin(c0, P, cam, rl, rh, scale, r0), d1 = pg_lc_dmin(c1, P, cam, rl, rh, scale, r1);
-        d0 *= d0;
-        d1 *= d1;
-        uint nearer = d0 <= d1 ? c0 : c1, farther = d0 <= d1 ? c1 : c0;
-        bool rn = d0 <= d1 ? r0 : r1, rf = d0 <= d1 ? r1 : r0;
+        bool r0 = false, r1 = false, first0 = true;
+        if (refine) {
+            vec3 rl, rh;
+            float scale;
+            float d0 = pg_lc_dmin(c0, P, cam, rl, rh, scale, r0), d1 = pg_lc_dmin(c1, P, cam, rl, rh, scale, r1);
+            first0 = d0 <= d1;
+        }
+        uint votes0 = subgroupBallotBitCount(subgroupBallot(refine && first0));
+        uint votes1 = subgroupBallotBitCount(subgroupBallot(refine && !first0));
+        bool push0 = pg_lc_any(refine && r0), push1 = pg_lc_any(refine && r1);
         // depth <= log2(np) + 1 entries: never past PG_LC_STACK (np <= 2^32)
-        if (rf) stack[sp++] = farther;
-        if (rn) stack[sp++] = nearer;
+        if (votes0 >= votes1) { // c0 popped first
+            if (push1) stack[sp++] = c1;
+            if (push0) stack[sp++] = c0;
+        } else {
+            if (push0) stack[sp++] = c0;
+            if (push1) stack[sp++] = c1;
+        }
     }
     return E + A;
 }
