@@ -311,20 +311,7 @@ void pg_accumulate_light_rel_select(vec3 rel, float R2, float inv_r2, vec3 color
 // (on lavapipe 5-10% slower: kept for the GPU).
 #if !defined(PG_SPOT_LIGHTS) && !defined(PG_PBR) && !defined(PG_BLINN_PHONG) && !defined(PG_STOCHASTIC_CULL)
 #define PG_LAMBERT_PAIRS
-// May a light centred at c lie on a point of the box [bmin, bmax]? False only when c is more than
-// 1e-15 outside it along some axis (after the float rounding of bmin - 1e-15, at least 5e-16 or one
-// ulp of the box's coordinate): then every point of the box has |light - P| >= 5e-16 along that
-// axis, d^2 >= 2.5e-31 is a normal float and inversesqrt(d^2) finite. True for NaN.
-bool pg_light_may_touch_box(vec3 c, vec3 bmin, vec3 bmax)
-{
-    return !any(lessThan(c, bmin - 1e-15)) && !any(greaterThan(c, bmax + 1e-15));
-}
-
-// may_touch: false when neither light can lie on P (pg_light_may_touch_box false for a box holding
-// P): d > 0, so the head-on select is left out (the same sum; the tiled loop decides it a chunk of
-// lights at a time, tests/gpu/test_gpu_light_terms.c checks both forms)
-void pg_accumulate_lambert_pair(vec4 a0, vec4 b0, vec4 a1, vec4 b1, vec3 P, vec3 N, float inv_md2, bool may_touch,
-                                inout PgShade acc)
+void pg_accumulate_lambert_pair(vec4 a0, vec4 b0, vec4 a1, vec4 b1, vec3 P, vec3 N, float inv_md2, inout PgShade acc)
 {
     vec2 lx = vec2(a0.x - P.x, a1.x - P.x), ly = vec2(a0.y - P.y, a1.y - P.y), lz = vec2(a0.z - P.z, a1.z - P.z);
     vec2 d2 = lx * lx + ly * ly + lz * lz;
@@ -337,8 +324,7 @@ void pg_accumulate_lambert_pair(vec4 a0, vec4 b0, vec4 a1, vec4 b1, vec3 P, vec3
     vec2 rs = inversesqrt(d2);
     bvec2 dir = lessThanEqual(rs, vec2(3.40282347e+38));
     vec2 att = falloff * min(rs * rs, vec2(inv_md2));
-    vec2 ndl = max((N.x * lx + N.y * ly + N.z * lz) * rs, 0.0);
-    if (may_touch) ndl = mix(vec2(max(dot(N, N), 0.0)), ndl, dir);
+    vec2 ndl = mix(vec2(max(dot(N, N), 0.0)), max((N.x * lx + N.y * ly + N.z * lz) * rs, 0.0), dir);
     vec2 w = mix(vec2(0.0), ndl * att, in_range);
     acc.diffuse += b0.rgb * w.x;
     acc.diffuse += b1.rgb * w.y;

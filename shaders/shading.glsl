@@ -517,7 +517,7 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
         uvec4 rec = cluster_records[c];
         for (uint base = 0u; base < rec.y; base += uint(PG_TILE_N)) {
             uint k = base + slot;
-            bool keep = false, touch = false;
+            bool keep = false;
             Light L;
             L.pos_radius = vec4(0.0);
             L.color = vec4(0.0);
@@ -535,28 +535,21 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                 if (keep) keep = pg_spot_reaches_sphere(PG_SPOT_OF(PG_LIST_READ(rec.x + k)), L.pos_radius.xyz,
                                                         0.5 * (bmin + bmax), 0.5 * length(bmax - bmin));
 #endif
-#ifdef PG_LAMBERT_PAIRS
-                touch = keep && pg_light_may_touch_box(L.pos_radius.xyz, bmin, bmax);
-#endif
             }
-            // the kept lights' count in the low 16 bits, those that may lie on a pixel above them
-            uint pos, total, touching;
+            uint pos, total;
 #ifdef PG_TILE_SUBGROUPS
             uvec4 bal = subgroupBallot(keep);
-            bool sg_touch = subgroupBallot(touch) != uvec4(0u);
-            if (subgroupElect()) s_tl_count[gl_SubgroupID] = subgroupBallotBitCount(bal) | (sg_touch ? 0x10000u : 0u);
+            if (subgroupElect()) s_tl_count[gl_SubgroupID] = subgroupBallotBitCount(bal);
             barrier();
             pos = subgroupBallotExclusiveBitCount(bal);
             total = 0u;
-            touching = 0u;
             for (uint g = 0u; g < gl_NumSubgroups; g++) {
                 uint n = s_tl_count[g];
-                pos += g < gl_SubgroupID ? n & 0xffffu : 0u;
-                total += n & 0xffffu;
-                touching |= n >> 16u;
+                pos += g < gl_SubgroupID ? n : 0u;
+                total += n;
             }
 #else
-            s_tl_count[lid] = (keep ? 1u : 0u) | (touch ? 0x10000u : 0u);
+            s_tl_count[lid] = keep ? 1u : 0u;
             barrier();
             for (uint d = 1u; d < uint(PG_TILE_N); d <<= 1u) {
                 uint add = lid >= d ? s_tl_count[lid - d] : 0u;
@@ -564,9 +557,8 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                 s_tl_count[lid] += add;
                 barrier();
             }
-            pos = (s_tl_count[lid] & 0xffffu) - (keep ? 1u : 0u);
-            total = s_tl_count[PG_TILE_N - 1] & 0xffffu;
-            touching = s_tl_count[PG_TILE_N - 1] >> 16u;
+            pos = s_tl_count[lid] - (keep ? 1u : 0u);
+            total = s_tl_count[PG_TILE_N - 1];
 #endif
             if (keep) {   // what pg_accumulate_light_rel reads, computed once per tile
                 float R2 = L.pos_radius.w * L.pos_radius.w;
@@ -581,17 +573,9 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                 PG_COUNT(total);
                 uint j = 0u;
 #if defined(PG_LAMBERT_PAIRS)
-                // two lights at once, in list order (lighting.glsl); without the head-on select when no
-                // light of the chunk can lie on a pixel of the box (the chunk's flag: uniform)
-                if (touching != 0u) {
-                    for (; j + 1u < total; j += 2u)
-                        pg_accumulate_lambert_pair(s_tl_light[2u * j], s_tl_light[2u * j + 1u], s_tl_light[2u * j + 2u],
-                                                   s_tl_light[2u * j + 3u], P, s.normal, inv_md2, true, acc);
-                } else {
-                    for (; j + 1u < total; j += 2u)
-                        pg_accumulate_lambert_pair(s_tl_light[2u * j], s_tl_light[2u * j + 1u], s_tl_light[2u * j + 2u],
-                                                   s_tl_light[2u * j + 3u], P, s.normal, inv_md2, false, acc);
-                }
+                for (; j + 1u < total; j += 2u)   // two lights at once, in list order (lighting.glsl)
+                    pg_accumulate_lambert_pair(s_tl_light[2u * j], s_tl_light[2u * j + 1u], s_tl_light[2u * j + 2u],
+                                               s_tl_light[2u * j + 3u], P, s.normal, inv_md2, acc);
 #endif
                 for (; j < total; j++) {            // the rest one at a time
                     vec4 a = s_tl_light[2u * j];

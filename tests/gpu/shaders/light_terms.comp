@@ -21,9 +21,8 @@ struct Case {
 };
 
 layout(std430, set = 0, binding = 0) readonly buffer Cases { Case cases[]; };
-// 7 a case: the select form's diffuse and specular sums, the early-return form's, the pairs' (w of
-// the sixth: 1 where the light model has them), and the pairs' diffuse sum without the head-on
-// select (w: 1 when either light may lie on P, pg_light_may_touch_box with the box P..P)
+// 6 a case: the select form's diffuse and specular sums, the early-return form's, the pairs' (w of
+// the last: 1 where the light model has them)
 layout(std430, set = 0, binding = 1) writeonly buffer Sums { vec4 sums[]; };
 
 layout(push_constant) uniform Push { uint count; } pc;
@@ -49,25 +48,21 @@ void main()
     float inv_md2 = c.mat.w;
     PgLightMat m = pg_light_mat(s, V);
     vec4 point = vec4(0.0, 0.0, 0.0, 1.0);   // a point light's spot record
-    PgShade sel = pg_shade_zero(), br = pg_shade_zero(), pair = pg_shade_zero(), apart = pg_shade_zero();
-    sel.diffuse = br.diffuse = pair.diffuse = apart.diffuse = vec3(c.mat.z);
-    float touch = 0.0;
+    PgShade sel = pg_shade_zero(), br = pg_shade_zero(), pair = pg_shade_zero();
+    sel.diffuse = br.diffuse = pair.diffuse = vec3(c.mat.z);
     float has_pairs = 0.0;
     pg_accumulate_light_rel_select(c.a0.xyz, c.b0.w, c.a0.w, c.b0.rgb, point, P, N, V, m, inv_md2, sel);
     pg_accumulate_light_rel_select(c.a1.xyz, c.b1.w, c.a1.w, c.b1.rgb, point, P, N, V, m, inv_md2, sel);
     pg_accumulate_light_rel(c.a0.xyz, c.b0.w, c.a0.w, c.b0.rgb, point, P, N, V, m, inv_md2, br);
     pg_accumulate_light_rel(c.a1.xyz, c.b1.w, c.a1.w, c.b1.rgb, point, P, N, V, m, inv_md2, br);
 #ifdef PG_LAMBERT_PAIRS
-    pg_accumulate_lambert_pair(c.a0, c.b0, c.a1, c.b1, P, N, inv_md2, true, pair);
-    pg_accumulate_lambert_pair(c.a0, c.b0, c.a1, c.b1, P, N, inv_md2, false, apart);
-    touch = pg_light_may_touch_box(c.a0.xyz, P, P) || pg_light_may_touch_box(c.a1.xyz, P, P) ? 1.0 : 0.0;
+    pg_accumulate_lambert_pair(c.a0, c.b0, c.a1, c.b1, P, N, inv_md2, pair);
     has_pairs = 1.0;
 #endif
-    sums[7u * i + 0u] = vec4(sel.diffuse, 0.0);
-    sums[7u * i + 1u] = vec4(sel.specular, 0.0);
-    sums[7u * i + 2u] = vec4(br.diffuse, 0.0);
-    sums[7u * i + 3u] = vec4(br.specular, 0.0);
-    sums[7u * i + 4u] = vec4(pair.diffuse, 0.0);
-    sums[7u * i + 5u] = vec4(pair.specular, has_pairs);
-    sums[7u * i + 6u] = vec4(apart.diffuse, touch);
+    sums[6u * i + 0u] = vec4(sel.diffuse, 0.0);
+    sums[6u * i + 1u] = vec4(sel.specular, 0.0);
+    sums[6u * i + 2u] = vec4(br.diffuse, 0.0);
+    sums[6u * i + 3u] = vec4(br.specular, 0.0);
+    sums[6u * i + 4u] = vec4(pair.diffuse, 0.0);
+    sums[6u * i + 5u] = vec4(pair.specular, has_pairs);
 }
