@@ -134,18 +134,18 @@ vec3 pg_ris_estimate(Surface s, uvec4 rec, vec3 P, vec3 V, vec2 frag_xy)
 
 #if defined(PG_LIGHTCUT) && defined(PG_HAS_LIGHTS)
 // ---- lightcut over the light tree (approximation knob with a per-pixel bound, PG_LIGHTCUT) ----
-// A depth-first walk of the tree (shared by a subgroup's pixels: pg_lightcut), nearer child first. A node's contribution lies in [0, U] per
-// channel, U = summed colour x min(1/dmin^2, 1/dmin_light^2) x falloff(dmin / Rmax) x (albedo
-// (+ specular with Blinn-Phong)) x cos_max (pbr: below) where dmin is the distance from the point to the box of
-// the node's light centres, Rmax the node's largest radius and cos_max = min(1, max over the box's
-// corners of N.(c - P) / dmin) bounds N.L; U = 0 (skipped: exact) when dmin >= Rmax (every
-// light's falloff is 0) or every light centre lies behind the surface's tangent plane (every
-// N.L <= 0). A leaf is summed exactly (the model of
+// A depth-first walk of the tree (shared by a subgroup's pixels: pg_lightcut), nearer child first.
+// A node's contribution lies in [0, U] per channel, U = summed colour x min(1/dmin^2,
+// 1/dmin_light^2) x falloff(dmin / Rmax) x (albedo (+ specular with Blinn-Phong)) x cos_max (pbr:
+// below) where dmin is the distance from the point to the box of the node's light centres, Rmax the
+// node's largest radius and cos_max = min(1, max over the box's corners of N.(c - P) / dmin) bounds
+// N.L; U = 0 (skipped: exact) when dmin >= Rmax (every light's falloff is 0) or every light centre
+// lies behind the surface's tangent plane (every N.L <= 0). A leaf is summed exactly (the model of
 // lighting.glsl) into E; a node may instead be approximated by its representative light (summed
-// colour at the weighted centroid, largest radius) clamped to [0, U], with error bound
-// b = max(U - est, est), only while B + b <= eps E in every channel (B: the bounds spent so far).
-// E only grows and every contribution is >= 0, so the result's error is at most B <= eps E <= eps x
-// the exact sum, per channel and pixel: the stated bound (float rounding aside; tests/gpu/
+// colour at the weighted centroid, largest radius) clamped to [0, U], with error bound b = max(U -
+// est, est), only while B + b <= eps E in every channel (B: the bounds spent so far). E only grows
+// and every contribution is >= 0, so the result's error is at most B <= eps E <= eps x the exact
+// sum, per channel and pixel: the stated bound (float rounding aside; tests/gpu/
 // test_gpu_lightcut.c). PG_LC_EPS_PPM: eps in parts per million. The walk needs no random numbers.
 #ifndef PG_LC_STACK
 #define PG_LC_STACK 64
