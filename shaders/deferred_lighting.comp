@@ -29,15 +29,12 @@ FRAME_UNIFORMS_BLOCK
 #ifndef PG_TILE
 #define PG_TILE 8
 #endif
-#ifndef PG_TILE_GROUP
-#define PG_TILE_GROUP 1
-#endif
 // One-dimensional workgroup of PG_TILE x PG_TILE invocations (invocation i is pixel (i % PG_TILE,
 // i / PG_TILE) of the tile, the same numbering as a PG_TILE x PG_TILE workgroup's
 // gl_LocalInvocationIndex): with full subgroups required (PG_TILE_SUBGROUPS), Vulkan asks the
 // workgroup's X size to be a multiple of the subgroup size (VUID-...-pNext-02757: 8 is not, on a
 // GPU with 32-wide subgroups; 64 and 256 are).
-layout(local_size_x = PG_TILE_GROUP * PG_TILE * PG_TILE) in;
+layout(local_size_x = PG_TILE * PG_TILE) in;
 layout(set = 1, binding = 0) uniform sampler2D g_depth;
 #if defined(PG_GBUFFER_FLOAT)
 layout(set = 1, binding = 1) uniform sampler2D g_position;
@@ -89,10 +86,8 @@ void pg_count_flush()
 void main()
 {
     ivec2 size = imageSize(hdr_out);
-    uint lin = gl_LocalInvocationIndex % uint(PG_TILE * PG_TILE);
-    ivec2 tile = ivec2(int(gl_WorkGroupID.x) * PG_TILE_GROUP + int(gl_LocalInvocationIndex / uint(PG_TILE * PG_TILE)),
-                       int(gl_WorkGroupID.y));
-    ivec2 px = tile * PG_TILE + ivec2(int(lin % uint(PG_TILE)), int(lin / uint(PG_TILE)));
+    uint lin = gl_LocalInvocationIndex;
+    ivec2 px = ivec2(gl_WorkGroupID.xy) * PG_TILE + ivec2(int(lin % uint(PG_TILE)), int(lin / uint(PG_TILE)));
     bool inside = px.x < size.x && px.y < size.y;
 #ifdef PG_GBUFFER_VISIBILITY
     uint vis = inside ? texelFetch(g_vis, px, 0).r : PG_VIS_NONE;

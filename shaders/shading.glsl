@@ -401,23 +401,18 @@ vec3 pg_shade_point(Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #ifndef PG_TILE
 #define PG_TILE 8
 #endif
-#ifndef PG_TILE_GROUP
-#define PG_TILE_GROUP 1
-#endif
 #define PG_TILE_N (PG_TILE * PG_TILE)
-#define PG_TILE_CHUNK (PG_TILE_GROUP * PG_TILE_N)    // list entries a chunk streams: one an invocation
 shared uint s_tl_cluster;
-shared uint s_tl_box[6 * PG_TILE_GROUP];            // a tile's ordered-uint min xyz, max xyz
-shared float s_tl_cull[16 * PG_TILE_GROUP];          // a tile's culling values (pg_tl_cull_prepare)
-shared vec4 s_tl_light[2 * PG_TILE_CHUNK * PG_TILE_GROUP]; // pos_radius, color of each tile's kept lights
+shared uint s_tl_box[6];                     // ordered-uint min xyz, max xyz
+shared vec4 s_tl_light[2 * PG_TILE_N];       // pos_radius, color of the kept lights
 #ifdef PG_SPOT_LIGHTS
-shared vec4 s_tl_spot[PG_TILE_CHUNK * PG_TILE_GROUP]; // their spot records
+shared vec4 s_tl_spot[PG_TILE_N];            // their spot records
 #endif
-shared uint s_tl_count[PG_TILE_CHUNK * PG_TILE_GROUP];
+shared uint s_tl_count[PG_TILE_N];
 #ifdef PG_TILE_BACKFACE
-shared uint s_tb_first[PG_TILE_GROUP];               // a tile's lowest invocation of the cluster: its normal is the axis
-shared uint s_tb_e[PG_TILE_GROUP], s_tb_h[PG_TILE_GROUP]; // E (float bits, >= 0) and H (ordered uint)
-shared float s_tb_axis[3 * PG_TILE_GROUP];
+shared uint s_tb_first;                      // the lowest invocation of the cluster: its normal is the axis
+shared uint s_tb_e, s_tb_h;                  // E (float bits, >= 0) and H (ordered uint)
+shared float s_tb_axis[3];
 #endif
 
 #ifdef PG_SPOT_LIGHTS
@@ -452,81 +447,9 @@ float pg_tl_unorder(uint u)
     return uintBitsToFloat((u & 0x80000000u) != 0u ? u & 0x7fffffffu : ~u);
 }
 
-// After a round's boxes are complete (uniform control flow): tile t's back-face bound, then one
-// invocation of each tile writes its culling values to s_tl_cull[16 t ...]: the box's min and max
-// (0-5), the back-face test's axis a, box centre, E, H and tolerance (6-14), and 1 when the tile
-// has pixels in the round's cluster (15).
-void pg_tl_cull_prepare(uint t, bool mine, vec3 N, vec3 P)
-{
-    uint o = 6u * t;
-    vec3 bmin = vec3(pg_tl_unorder(s_tl_box[o]), pg_tl_unorder(s_tl_box[o + 1u]), pg_tl_unorder(s_tl_box[o + 2u]));
-    vec3 bmax = vec3(pg_tl_unorder(s_tl_box[o + 3u]), pg_tl_unorder(s_tl_box[o + 4u]), pg_tl_unorder(s_tl_box[o + 5u]));
-    bool any = s_tl_box[o] != 0xffffffffu;           // a lit pixel's coordinate never orders to all ones
-#ifdef PG_TILE_BACKFACE
-    if (gl_LocalInvocationIndex == s_tb_first[t]) {
-        s_tb_axis[3u * t] = N.x;
-        s_tb_axis[3u * t + 1u] = N.y;
-        s_tb_axis[3u * t + 2u] = N.z;
-    }
-    barrier();
-    vec3 tb_a = vec3(s_tb_axis[3u * t], s_tb_axis[3u * t + 1u], s_tb_axis[3u * t + 2u]);
-    vec3 tb_c = 0.5 * (bmin + bmax);
-    if (mine) {
-        atomicMax(s_tb_e[t], floatBitsToUint(length(N - tb_a)));
-        atomicMax(s_tb_h[t], pg_tl_order(dot(N, tb_c - P)));
-    }
-    barrier();
-#endif
-    if (gl_LocalInvocationIndex % uint(PG_TILE_N) == 0u) {
-        uint w = 16u * t;
-        for (uint k = 0u; k < 3u; k++) {
-            s_tl_cull[w + k] = bmin[k];
-            s_tl_cull[w + 3u + k] = bmax[k];
-#ifdef PG_TILE_BACKFACE
-            s_tl_cull[w + 6u + k] = tb_a[k];
-            s_tl_cull[w + 9u + k] = tb_c[k];
-#endif
-        }
-#ifdef PG_TILE_BACKFACE
-        float tb_h = pg_tl_unorder(s_tb_h[t]);
-        s_tl_cull[w + 12u] = uintBitsToFloat(s_tb_e[t]) * (1.0 + 1e-5);
-        s_tl_cull[w + 13u] = tb_h;
-        // rounding: the shader's dot(N, light - P) and this bound, both of magnitude <= |light| + |P|
-        s_tl_cull[w + 14u] = 1e-5 * (4.0 + length(tb_c) + length(bmax - bmin)) + abs(tb_h) * 1e-5;
-#endif
-        s_tl_cull[w + 15u] = any ? 1.0 : 0.0;
-    }
-    barrier();
-}
-
-vec3 pg_tl_min(uint u) { return vec3(s_tl_cull[16u * u], s_tl_cull[16u * u + 1u], s_tl_cull[16u * u + 2u]); }
-vec3 pg_tl_max(uint u) { return vec3(s_tl_cull[16u * u + 3u], s_tl_cull[16u * u + 4u], s_tl_cull[16u * u + 5u]); }
-vec3 pg_tl_center(uint u) { return 0.5 * (pg_tl_min(u) + pg_tl_max(u)); }
-float pg_tl_radius(uint u) { return 0.5 * length(pg_tl_max(u) - pg_tl_min(u)); }
-
-// Whether a light (camera-relative centre pos, range radius) may add light to a pixel of tile u's
-// part of the round's cluster: its sphere reaches the part's box and (PG_TILE_BACKFACE) it does not
-// lie behind every pixel of it.
-bool pg_tl_keeps(uint u, vec3 pos, float radius)
-{
-    uint w = 16u * u;
-    if (s_tl_cull[w + 15u] == 0.0) return false;
-    bool keep = pg_sphere_intersects_aabb(pos, radius, pg_tl_min(u), pg_tl_max(u));
-#ifdef PG_TILE_BACKFACE
-    vec3 tb_a = vec3(s_tl_cull[w + 6u], s_tl_cull[w + 7u], s_tl_cull[w + 8u]);
-    vec3 r = pos - vec3(s_tl_cull[w + 9u], s_tl_cull[w + 10u], s_tl_cull[w + 11u]);
-    float lr = length(r);
-    keep = keep && !(dot(tb_a, r) + s_tl_cull[w + 12u] * lr * (1.0 + 1e-5) + s_tl_cull[w + 13u]
-                     < -(s_tl_cull[w + 14u] + 1e-5 * (lr + length(pos))));
-#endif
-    return keep;
-}
-
-
 vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
 {
     uint lid = gl_LocalInvocationIndex;
-    uint t = lid / uint(PG_TILE_N);                   // this invocation's tile of the group
     vec3 cam = frame.camera_pos.xyz;
     float min_dist = frame.light_params.w;
     float inv_md2 = 1.0 / (min_dist * min_dist);
@@ -539,19 +462,19 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
     PgLightMat lm = pg_light_mat(s, V);
     bool pending = lit;
 #ifdef PG_TILE_SUBGROUPS
-    uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; // a permutation of the group
+    uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; // a permutation of the tile
 #else
     uint slot = lid;
 #endif
     for (;;) {
-        if (lid == 0u) s_tl_cluster = 0xffffffffu;
-        if (lid < uint(PG_TILE_GROUP)) {
-            s_tl_box[6u * lid] = s_tl_box[6u * lid + 1u] = s_tl_box[6u * lid + 2u] = 0xffffffffu;
-            s_tl_box[6u * lid + 3u] = s_tl_box[6u * lid + 4u] = s_tl_box[6u * lid + 5u] = 0u;
+        if (lid == 0u) {
+            s_tl_cluster = 0xffffffffu;
+            s_tl_box[0] = s_tl_box[1] = s_tl_box[2] = 0xffffffffu;
+            s_tl_box[3] = s_tl_box[4] = s_tl_box[5] = 0u;
 #ifdef PG_TILE_BACKFACE
-            s_tb_first[lid] = 0xffffffffu;
-            s_tb_e[lid] = 0u;
-            s_tb_h[lid] = 0u;
+            s_tb_first = 0xffffffffu;
+            s_tb_e = 0u;
+            s_tb_h = 0u;
 #endif
         }
         barrier();
@@ -561,104 +484,108 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
         if (c == 0xffffffffu) break;                  // uniform: every invocation read the same
         bool mine = pending && ci == c;
         if (mine) {
-            for (uint k = 0u; k < 3u; k++) {
-                atomicMin(s_tl_box[6u * t + k], pg_tl_order(P[k]));
-                atomicMax(s_tl_box[6u * t + 3u + k], pg_tl_order(P[k]));
+            for (int k = 0; k < 3; k++) {
+                atomicMin(s_tl_box[k], pg_tl_order(P[k]));
+                atomicMax(s_tl_box[3 + k], pg_tl_order(P[k]));
             }
 #ifdef PG_TILE_BACKFACE
-            atomicMin(s_tb_first[t], lid);
+            atomicMin(s_tb_first, lid);
 #endif
         }
         barrier();
-        pg_tl_cull_prepare(t, mine, s.normal, P);
+        vec3 bmin = vec3(pg_tl_unorder(s_tl_box[0]), pg_tl_unorder(s_tl_box[1]), pg_tl_unorder(s_tl_box[2]));
+        vec3 bmax = vec3(pg_tl_unorder(s_tl_box[3]), pg_tl_unorder(s_tl_box[4]), pg_tl_unorder(s_tl_box[5]));
+#ifdef PG_TILE_BACKFACE
+        if (lid == s_tb_first) {
+            s_tb_axis[0] = s.normal.x;
+            s_tb_axis[1] = s.normal.y;
+            s_tb_axis[2] = s.normal.z;
+        }
+        barrier();
+        vec3 tb_a = vec3(s_tb_axis[0], s_tb_axis[1], s_tb_axis[2]);
+        vec3 tb_c = 0.5 * (bmin + bmax);
+        if (mine) {
+            atomicMax(s_tb_e, floatBitsToUint(length(s.normal - tb_a)));
+            atomicMax(s_tb_h, pg_tl_order(dot(s.normal, tb_c - P)));
+        }
+        barrier();
+        float tb_e = uintBitsToFloat(s_tb_e) * (1.0 + 1e-5);
+        float tb_h = pg_tl_unorder(s_tb_h);
+        // rounding: the shader's dot(N, light - P) and this bound, both of magnitude <= |light| + |P|
+        float tb_tol = 1e-5 * (4.0 + length(tb_c) + length(bmax - bmin)) + abs(tb_h) * 1e-5;
+#endif
         uvec4 rec = cluster_records[c];
-        for (uint base = 0u; base < rec.y; base += uint(PG_TILE_CHUNK)) {
+        for (uint base = 0u; base < rec.y; base += uint(PG_TILE_N)) {
             uint k = base + slot;
-            bool in_list = k < rec.y;
+            bool keep = false;
             Light L;
             L.pos_radius = vec4(0.0);
             L.color = vec4(0.0);
-            if (in_list) {
+            if (k < rec.y) {
                 L = lights[PG_LIST_READ(rec.x + k)]; // whole record: one 32-byte sector anyway
                 L.pos_radius.xyz -= cam;
-            }
-#ifdef PG_SPOT_LIGHTS
-            vec4 sp = in_list ? PG_SPOT_OF(PG_LIST_READ(rec.x + k)) : vec4(0.0, 0.0, 0.0, 1.0);
+                keep = pg_sphere_intersects_aabb(L.pos_radius.xyz, L.pos_radius.w, bmin, bmax);
+#ifdef PG_TILE_BACKFACE
+                vec3 r = L.pos_radius.xyz - tb_c;
+                float lr = length(r);
+                keep = keep && !(dot(tb_a, r) + tb_e * lr * (1.0 + 1e-5) + tb_h
+                                 < -(tb_tol + 1e-5 * (lr + length(L.pos_radius.xyz))));
 #endif
-            uint keeps = 0u;                          // bit u: the light reaches tile u's part of the cluster
-            for (uint u = 0u; u < uint(PG_TILE_GROUP); u++) {
-                bool keep = in_list && pg_tl_keeps(u, L.pos_radius.xyz, L.pos_radius.w);
 #ifdef PG_SPOT_LIGHTS
-                if (keep) keep = pg_spot_reaches_sphere(sp, L.pos_radius.xyz, pg_tl_center(u), pg_tl_radius(u));
+                if (keep) keep = pg_spot_reaches_sphere(PG_SPOT_OF(PG_LIST_READ(rec.x + k)), L.pos_radius.xyz,
+                                                        0.5 * (bmin + bmax), 0.5 * length(bmax - bmin));
 #endif
-                keeps |= keep ? 1u << u : 0u;
             }
-            uint pos[PG_TILE_GROUP];
-            uint total = 0u;
+            uint pos, total;
 #ifdef PG_TILE_SUBGROUPS
-            for (uint u = 0u; u < uint(PG_TILE_GROUP); u++) {
-                uvec4 bal = subgroupBallot((keeps & (1u << u)) != 0u);
-                if (subgroupElect()) s_tl_count[u * uint(PG_TILE_CHUNK) + gl_SubgroupID] = subgroupBallotBitCount(bal);
-                pos[u] = subgroupBallotExclusiveBitCount(bal);
-            }
+            uvec4 bal = subgroupBallot(keep);
+            if (subgroupElect()) s_tl_count[gl_SubgroupID] = subgroupBallotBitCount(bal);
             barrier();
-            for (uint u = 0u; u < uint(PG_TILE_GROUP); u++) {
-                uint sum = 0u;
-                for (uint g = 0u; g < gl_NumSubgroups; g++) {
-                    uint n = s_tl_count[u * uint(PG_TILE_CHUNK) + g];
-                    pos[u] += g < gl_SubgroupID ? n : 0u;
-                    sum += n;
-                }
-                if (u == t) total = sum;
+            pos = subgroupBallotExclusiveBitCount(bal);
+            total = 0u;
+            for (uint g = 0u; g < gl_NumSubgroups; g++) {
+                uint n = s_tl_count[g];
+                pos += g < gl_SubgroupID ? n : 0u;
+                total += n;
             }
 #else
-            for (uint u = 0u; u < uint(PG_TILE_GROUP); u++)
-                s_tl_count[u * uint(PG_TILE_CHUNK) + lid] = (keeps >> u) & 1u;
+            s_tl_count[lid] = keep ? 1u : 0u;
             barrier();
-            for (uint d = 1u; d < uint(PG_TILE_CHUNK); d <<= 1u) {
-                uint add[PG_TILE_GROUP];
-                for (uint u = 0u; u < uint(PG_TILE_GROUP); u++)
-                    add[u] = lid >= d ? s_tl_count[u * uint(PG_TILE_CHUNK) + lid - d] : 0u;
+            for (uint d = 1u; d < uint(PG_TILE_N); d <<= 1u) {
+                uint add = lid >= d ? s_tl_count[lid - d] : 0u;
                 barrier();
-                for (uint u = 0u; u < uint(PG_TILE_GROUP); u++) s_tl_count[u * uint(PG_TILE_CHUNK) + lid] += add[u];
+                s_tl_count[lid] += add;
                 barrier();
             }
-            for (uint u = 0u; u < uint(PG_TILE_GROUP); u++)
-                pos[u] = s_tl_count[u * uint(PG_TILE_CHUNK) + lid] - ((keeps >> u) & 1u);
-            total = s_tl_count[t * uint(PG_TILE_CHUNK) + uint(PG_TILE_CHUNK) - 1u];
+            pos = s_tl_count[lid] - (keep ? 1u : 0u);
+            total = s_tl_count[PG_TILE_N - 1];
 #endif
-            if (keeps != 0u) {   // what pg_accumulate_light_rel reads, computed once per group
-                vec4 a = vec4(L.pos_radius.xyz, pg_light_inv_r2(L.color.w * L.color.w)); // falloff's R
-                vec4 b = vec4(L.color.rgb, L.pos_radius.w * L.pos_radius.w);
-                for (uint u = 0u; u < uint(PG_TILE_GROUP); u++) {
-                    if ((keeps & (1u << u)) == 0u) continue;
-                    uint o = u * uint(PG_TILE_CHUNK) + pos[u];
-                    s_tl_light[2u * o] = a;
-                    s_tl_light[2u * o + 1u] = b;
+            if (keep) {   // what pg_accumulate_light_rel reads, computed once per tile
+                float R2 = L.pos_radius.w * L.pos_radius.w;
+                s_tl_light[2u * pos] = vec4(L.pos_radius.xyz, pg_light_inv_r2(L.color.w * L.color.w)); // falloff's R
+                s_tl_light[2u * pos + 1u] = vec4(L.color.rgb, R2);
 #ifdef PG_SPOT_LIGHTS
-                    s_tl_spot[o] = sp;
+                s_tl_spot[pos] = PG_SPOT_OF(PG_LIST_READ(rec.x + k));
 #endif
-                }
             }
             barrier();
             if (mine) {
                 PG_COUNT(total);
-                uint j = t * uint(PG_TILE_CHUNK);
-                uint end = j + total;
+                uint j = 0u;
 #if defined(PG_LAMBERT_PAIRS)
-                for (; j + 1u < end; j += 2u)   // two lights at once, in list order (lighting.glsl)
+                for (; j + 1u < total; j += 2u)   // two lights at once, in list order (lighting.glsl)
                     pg_accumulate_lambert_pair(s_tl_light[2u * j], s_tl_light[2u * j + 1u], s_tl_light[2u * j + 2u],
                                                s_tl_light[2u * j + 3u], P, s.normal, inv_md2, acc);
 #endif
-                for (; j < end; j++) {            // the rest one at a time
+                for (; j < total; j++) {            // the rest one at a time
                     vec4 a = s_tl_light[2u * j];
                     vec4 b = s_tl_light[2u * j + 1u];
 #ifdef PG_SPOT_LIGHTS
-                    vec4 spj = s_tl_spot[j];
+                    vec4 sp = s_tl_spot[j];
 #else
-                    vec4 spj = vec4(0.0, 0.0, 0.0, 1.0);
+                    vec4 sp = vec4(0.0, 0.0, 0.0, 1.0);
 #endif
-                    pg_accumulate_light_rel_select(a.xyz, b.w, a.w, b.rgb, spj, P, s.normal, V, lm, inv_md2,
+                    pg_accumulate_light_rel_select(a.xyz, b.w, a.w, b.rgb, sp, P, s.normal, V, lm, inv_md2,
                                                    acc);
                 }
             }
