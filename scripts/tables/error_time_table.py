@@ -7,7 +7,7 @@ flicker (mean frame-to-frame change with a static scene; 0 for a deterministic p
 marks the rows on the Pareto front of FLIP against accumulated time within their scenario (no
 other row of the scenario is both faster and lower in FLIP). Used for docs/performance.md:
 
-    scripts/tables/error_time_table.py docs/results/h200-2026-12-03-3b58852/manylight/results.csv ...
+    scripts/tables/error_time_table.py docs/results/h100-2026-12-06-609de68/manylight/results.csv ...
 """
 import csv
 import os
