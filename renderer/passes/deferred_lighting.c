@@ -21,6 +21,9 @@
  * the list; no tiling), ris_samples (1..64, default 1: independent RIS samples averaged a pixel),
  * lights ("clusters", the default, or "tree": reads [light_tree, depth, ...] and shades a lightcut
  * a pixel, shaders/shading.glsl pg_lightcut), lightcut_error (0.02: its per-pixel relative bound),
+ * lightcut_bucket (a power of two, 1 to 256, default PG_LIGHTCUT_BUCKET_DEFAULT: a node the walk refines
+ * whose subtree holds at most that many leaves has them all summed exactly instead of walked; 1: the
+ * plain walk),
  * stochastic_threshold (0 = off; > 0: the lights were culled by a stochastic_lights pass with that
  * threshold, and each kept light counts 1/p times, lighting.glsl PG_STOCHASTIC_CULL). */
 #include <stdio.h>
@@ -33,6 +36,9 @@
 #include "shader.h"
 #include "shading_common.h"
 #include "visibility_common.h"
+
+/* lightcut_bucket's default (docs/performance.md, the lightcut's walk) */
+#define PG_LIGHTCUT_BUCKET_DEFAULT 16
 
 typedef struct dl_params { /* filled once by declare, read by create/update/record */
     pg_shading_params sh;       /* options, lights and cluster slots */
@@ -62,7 +68,7 @@ typedef struct deferred_lighting {
 
 static const char *const k_extra[] = {"packing",        "tile_lights", "tile_size",      "tile_backface",
                                      "ris_candidates", "ris_samples", "lights",         "lightcut_error",
-                                     "stochastic_threshold", NULL};
+                                     "lightcut_bucket", "stochastic_threshold", NULL};
 static const char *const k_light_sources[] = {"clusters", "tree", NULL};
 
 static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)
@@ -146,10 +152,16 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
                         "threshold) count 1/p times: unbiased, noisy", sc_tau);
     }
     double lc_eps;
+    int64_t lc_bucket;
     if ((r = pg_opt_float(in->desc, "lightcut_error", 0.02, 1e-6, 1.0, &lc_eps, err))) return r;
+    if ((r = pg_opt_int(in->desc, "lightcut_bucket", PG_LIGHTCUT_BUCKET_DEFAULT, 1, 256, &lc_bucket, err))) return r;
+    if ((lc_bucket & (lc_bucket - 1)) != 0)
+        return pg_fail(err, PG_ERR_SCHEMA, "%s: %s.options.lightcut_bucket: expected a power of two (1 to 256), got %lld",
+                       in->desc->file, in->desc->json_path, (long long)lc_bucket);
     if (source == 1 && pg_lights_of(in) > 0 && p->sh.o.view == 0) {
         pg_decl_define(out, "PG_LIGHTCUT");
         pg_decl_define_int(out, "PG_LC_EPS_PPM", (int64_t)(lc_eps * 1e6 + 0.5));
+        pg_decl_define_int(out, "PG_LC_BUCKET", lc_bucket);
         pg_decl_explain(out, "lights tree: a lightcut a pixel, every pixel within %g of its exact value (relative, "
                         "per channel)", lc_eps);
     }

@@ -12,7 +12,9 @@
  * Blinn-Phong too (the default lights, the clump, lights on the floor), whose image differs from
  * Lambert's on the atrium. Also: the frame is deterministic (rendered twice, bit-identical); eps 0.2 approximates (its
  * image differs from exact by more than rounding: the knob does something); and the checker
- * itself can fail: the eps 0.2 image against the eps 0.02 bound is outside it somewhere. */
+ * itself can fail: the eps 0.2 image against the eps 0.02 bound is outside it somewhere (these with
+ * lightcut_bucket 1, the plain walk). The exact buckets (lightcut_bucket 2, 16: the default, 256) on
+ * the hostile sets: within the bound, and each image differs from the plain walk's. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,6 +30,9 @@
 static pg_gpu *g_gpu;
 static pg_pass_registry g_reg;
 static const char *g_shading = "lambert"; /* the light model of both pipelines */
+/* lightcut_bucket: "1" the plain walk (every node walked down to its leaves), or larger (a refined
+ * node of at most that many leaves summed exactly) */
+static const char *g_bucket = "1";
 
 /* worst |a - exact| / (eps |exact| + 1e-4 |exact| + 1e-6 peak) over pixels and RGB (<= 1: inside) */
 static double usage(const pg_th_frame *a, const pg_th_frame *exact, double eps, double peak)
@@ -61,21 +66,22 @@ static void check_set(const char *label, const pg_th_scene *ts, const pg_light_s
     pg_th_frame lc[2];
     bool ok[2];
     for (int k = 0; k < 2; k++) {
-        pg_param_override sets[3] = {{"hdr_format", "rgba32f"}, {"lightcut_error", eps_s[k]}, {"shading", g_shading}};
-        ok[k] = pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/lightcut.json", sets, 3, &fi, 1, false, &lc[k]);
-        CHECK_MSG(ok[k], "%s: lightcut render (eps %s)", label, eps_s[k]);
+        pg_param_override sets[4] = {{"hdr_format", "rgba32f"}, {"lightcut_error", eps_s[k]}, {"shading", g_shading},
+                                     {"lightcut_bucket", g_bucket}};
+        ok[k] = pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/lightcut.json", sets, 4, &fi, 1, false, &lc[k]);
+        CHECK_MSG(ok[k], "%s: lightcut render (eps %s, bucket %s)", label, eps_s[k], g_bucket);
         if (!ok[k]) continue;
         double u = usage(&lc[k], &ex, eps[k], peak);
-        printf("%-22s lights %7u peak %9.4g  eps %-4s bound usage %.4f  differing pixels %u\n", label, ls->count, peak,
-               eps_s[k], u, pg_th_differ_pixels(&lc[k], &ex));
-        CHECK_MSG(u <= 1.0, "%s: eps %s: outside the bound (usage %.4f)", label, eps_s[k], u);
+        printf("%-22s bucket %-3s lights %7u peak %9.4g  eps %-4s bound usage %.4f  differing pixels %u\n", label,
+               g_bucket, ls->count, peak, eps_s[k], u, pg_th_differ_pixels(&lc[k], &ex));
+        CHECK_MSG(u <= 1.0, "%s: bucket %s, eps %s: outside the bound (usage %.4f)", label, g_bucket, eps_s[k], u);
         CHECK_MSG(pg_count_nonfinite(lc[k].hdr, W, H) == 0, "%s: non-finite pixels", label);
     }
     if (ok[0] && ok[1] && ls->count > 1 && peak > 0) {
         double loose = usage(&lc[1], &ex, 0.0, peak); /* eps 0.2 against rounding alone */
         printf("%-22s eps 0.2 against exact with no approximation allowed: usage %.3g; against the 0.02 bound: %.3g\n",
                label, loose, usage(&lc[1], &ex, 0.02, peak));
-        if (!strcmp(label, "default lights")) {
+        if (!strcmp(label, "default lights") && !strcmp(g_bucket, "1")) {
             CHECK_MSG(loose > 1.0, "%s: eps 0.2 approximates nothing (the knob does nothing)", label);
             CHECK_MSG(usage(&lc[1], &ex, 0.02, peak) > 1.0, "%s: the checker cannot fail", label);
         }
@@ -118,6 +124,24 @@ static void blinn_phong(const pg_th_scene *ts, const pg_light_setup *base)
     g_shading = "lambert";
 }
 
+/* lightcut_bucket B renders the default lights otherwise than the plain walk (eps 0.2: the walk
+ * approximates there; the buckets sum some of those lights exactly instead) */
+static void check_bucket_changes(const pg_th_scene *ts, const char *bucket)
+{
+    pg_param_override sets[3] = {{"hdr_format", "rgba32f"}, {"lightcut_error", "0.2"}, {"lightcut_bucket", "1"}};
+    pg_th_frame a, b;
+    bool ok = pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/lightcut.json", sets, 3, &ts->fi, 1, false, &a);
+    sets[2].value = bucket;
+    ok = pg_th_render(g_gpu, &g_reg, ts->sg, "pipelines/lightcut.json", sets, 3, &ts->fi, 1, false, &b) && ok;
+    CHECK_MSG(ok, "bucket %s: renders", bucket);
+    if (!ok) return;
+    uint32_t differ = pg_th_differ_pixels(&a, &b);
+    printf("bucket %s: %u of %u pixels differ from the plain walk (eps 0.2)\n", bucket, differ, W * H);
+    CHECK_MSG(differ > 0, "bucket %s: the image is the plain walk's (the knob does nothing)", bucket);
+    pg_th_release(&a);
+    pg_th_release(&b);
+}
+
 static void check_deterministic(const pg_th_scene *ts)
 {
     pg_param_override f32 = {"hdr_format", "rgba32f"};
@@ -127,6 +151,47 @@ static void check_deterministic(const pg_th_scene *ts)
     CHECK_MSG(ok && pg_th_hdr_identical(&a, &b), "lightcut: two renders of one frame differ");
     pg_th_release(&a);
     pg_th_release(&b);
+}
+
+/* The light sets: the scene's default lights, a dense clump, huge radii, lights in a thin layer at the
+ * floor, 2,000 lights; all: also tiny radii, one light and none. */
+static void check_sets(const pg_th_scene *ts, bool all)
+{
+    const pg_light_setup base = ts->fi.lights;
+    float ext[3], mid[3];
+    for (int a = 0; a < 3; a++) ext[a] = base.box_max[a] - base.box_min[a], mid[a] = 0.5f * (base.box_max[a] + base.box_min[a]);
+    check_set("default lights", ts, &base);
+    pg_light_setup s = base;
+    for (int a = 0; a < 3; a++) s.box_min[a] = mid[a] - 0.01f * ext[a], s.box_max[a] = mid[a] + 0.01f * ext[a];
+    s.seed = 3;
+    check_set("dense clump", ts, &s);
+    s = base;
+    s.radius = base.radius * 50;
+    s.intensity = base.intensity / 50;
+    s.seed = 4;
+    check_set("huge radii", ts, &s);
+    if (all) {
+        s = base;
+        s.radius = base.radius * 0.25f;
+        s.intensity = base.intensity * 16;
+        s.seed = 5;
+        check_set("tiny radii", ts, &s);
+    }
+    s = base;
+    s.box_max[1] = base.box_min[1] + 0.02f * ext[1]; /* a thin layer at the floor */
+    s.seed = 6;
+    check_set("on the floor", ts, &s);
+    s = base;
+    s.count = 2000;
+    s.seed = 7;
+    check_set("2000 lights", ts, &s);
+    if (all) {
+        s = base;
+        s.count = 1;
+        check_set("one light", ts, &s);
+        s.count = 0;
+        check_set("no lights", ts, &s);
+    }
 }
 
 int main(void)
@@ -145,38 +210,18 @@ int main(void)
         pg_gpu_destroy(g_gpu);
         return pg_test_finish("test_gpu_lightcut");
     }
-    const pg_light_setup base = ts.fi.lights;
-    float ext[3], mid[3];
-    for (int a = 0; a < 3; a++) ext[a] = base.box_max[a] - base.box_min[a], mid[a] = 0.5f * (base.box_max[a] + base.box_min[a]);
-    check_set("default lights", &ts, &base);
-    pg_light_setup s = base;
-    for (int a = 0; a < 3; a++) s.box_min[a] = mid[a] - 0.01f * ext[a], s.box_max[a] = mid[a] + 0.01f * ext[a];
-    s.seed = 3;
-    check_set("dense clump", &ts, &s);
-    s = base;
-    s.radius = base.radius * 50;
-    s.intensity = base.intensity / 50;
-    s.seed = 4;
-    check_set("huge radii", &ts, &s);
-    s = base;
-    s.radius = base.radius * 0.25f;
-    s.intensity = base.intensity * 16;
-    s.seed = 5;
-    check_set("tiny radii", &ts, &s);
-    s = base;
-    s.box_max[1] = base.box_min[1] + 0.02f * ext[1]; /* a thin layer at the floor */
-    s.seed = 6;
-    check_set("on the floor", &ts, &s);
-    s = base;
-    s.count = 2000;
-    s.seed = 7;
-    check_set("2000 lights", &ts, &s);
-    s = base;
-    s.count = 1;
-    check_set("one light", &ts, &s);
-    s.count = 0;
-    check_set("no lights", &ts, &s);
+    check_sets(&ts, true);
     check_deterministic(&ts);
+    /* the exact buckets (lightcut_bucket): a small one, the pipeline's default (16) and the largest, on the
+     * hostile sets; each within the bound, and each changes the image (the knob does something) */
+    const char *buckets[3] = {"2", "16", "256"};
+    for (int b = 0; b < 3; b++) {
+        g_bucket = buckets[b];
+        check_sets(&ts, false);
+        check_bucket_changes(&ts, g_bucket);
+    }
+    g_bucket = "1";
+    const pg_light_setup base = ts.fi.lights;
     blinn_phong(&ts, &base);
     pg_th_scene_close(g_gpu, &ts);
     printf("validation messages: %u\n", g_gpu->validation_messages);
