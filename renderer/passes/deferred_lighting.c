@@ -38,7 +38,7 @@
 #include "visibility_common.h"
 
 /* lightcut_bucket's default (docs/performance.md, the lightcut's walk) */
-#define PG_LIGHTCUT_BUCKET_DEFAULT 16
+#define PG_LIGHTCUT_BUCKET_DEFAULT 32
 
 typedef struct dl_params { /* filled once by declare, read by create/update/record */
     pg_shading_params sh;       /* options, lights and cluster slots */

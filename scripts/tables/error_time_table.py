@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
-"""error_time_table.py CSV... - markdown table of error against time from `passgraph bench` results
+"""error_time_table.py [NAME=]CSV... - markdown table of error against time from `passgraph bench` results
 (results.csv): per scenario (scene, size, light count) and configuration (pipeline, swept knobs,
 --accumulate) the median GPU frame, the accumulated time (frames x frame), the dominant pass, the
 light references stored, and the error against the reference: RMSE (linear HDR), LDR-FLIP, SSIM and
 flicker (mean frame-to-frame change with a static scene; 0 for a deterministic pipeline). "front"
 marks the rows on the Pareto front of FLIP against accumulated time within their scenario (no
-other row of the scenario is both faster and lower in FLIP). Used for docs/performance.md:
+other row of the scenario is both faster and lower in FLIP). NAME=CSV names the configuration of a
+file's rows in the knobs column (variants run as separate benches, e.g. two data folders). Used for
+docs/performance.md:
 
     scripts/tables/error_time_table.py docs/results/h100-2026-12-06-609de68/manylight/results.csv ...
 """
@@ -32,8 +34,14 @@ def dominant(row):
 def main(paths):
     rows = []
     for p in paths:
+        label = None
+        if "=" in p and not os.path.exists(p):  # NAME=CSV: its rows' knobs read NAME (variants run apart)
+            label, p = p.rsplit("=", 1)
         with open(p, newline="") as f:
-            rows.extend(csv.DictReader(f))
+            for r in csv.DictReader(f):
+                if label:
+                    r["variant"] = label + (";" + r["variant"] if r.get("variant") else "")
+                rows.append(r)
     key = lambda r: (os.path.basename(r["scene"]), r["width"] + "x" + r["height"], int(r["lights"]))
     groups = {}
     for r in rows:

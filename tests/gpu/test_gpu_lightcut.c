@@ -13,7 +13,7 @@
  * Lambert's on the atrium. Also: the frame is deterministic (rendered twice, bit-identical); eps 0.2 approximates (its
  * image differs from exact by more than rounding: the knob does something); and the checker
  * itself can fail: the eps 0.2 image against the eps 0.02 bound is outside it somewhere (these with
- * lightcut_bucket 1, the plain walk). The exact buckets (lightcut_bucket 2, 16: the default, 256) on
+ * lightcut_bucket 1, the plain walk). The exact buckets (lightcut_bucket 2, 32: the default, 256) on
  * the hostile sets: within the bound, and each image differs from the plain walk's. */
 #include <math.h>
 #include <stdlib.h>
@@ -212,9 +212,9 @@ int main(void)
     }
     check_sets(&ts, true);
     check_deterministic(&ts);
-    /* the exact buckets (lightcut_bucket): a small one, the pipeline's default (16) and the largest, on the
+    /* the exact buckets (lightcut_bucket): a small one, the pipeline's default (32) and the largest, on the
      * hostile sets; each within the bound, and each changes the image (the knob does something) */
-    const char *buckets[3] = {"2", "16", "256"};
+    const char *buckets[3] = {"2", "32", "256"};
     for (int b = 0; b < 3; b++) {
         g_bucket = buckets[b];
         check_sets(&ts, false);
