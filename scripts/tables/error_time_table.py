@@ -9,7 +9,7 @@ other row of the scenario is both faster and lower in FLIP). NAME=CSV names the 
 file's rows in the knobs column (variants run as separate benches, e.g. two data folders). Used for
 docs/performance.md:
 
-    scripts/tables/error_time_table.py docs/results/h100-2026-12-06-609de68/manylight/results.csv ...
+    scripts/tables/error_time_table.py docs/results/h100-2026-12-06-3f9da6e/manylight/results.csv ...
 """
 import csv
 import os

@@ -5,7 +5,7 @@ the error frame): per light count and pipeline the evaluations a pixel and a fra
 pass's median time, and the rate it achieved (evaluations per second of that pass). Used for
 docs/performance.md:
 
-    scripts/tables/evals_table.py docs/results/h100-2026-12-06-609de68/evals/results.csv
+    scripts/tables/evals_table.py docs/results/h100-2026-12-06-3f9da6e/evals/results.csv
 """
 import csv
 import sys
