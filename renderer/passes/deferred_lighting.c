@@ -163,7 +163,8 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
         pg_decl_define_int(out, "PG_LC_EPS_PPM", (int64_t)(lc_eps * 1e6 + 0.5));
         pg_decl_define_int(out, "PG_LC_BUCKET", lc_bucket);
         pg_decl_explain(out, "lights tree: a lightcut a pixel, every pixel within %g of its exact value (relative, "
-                        "per channel)", lc_eps);
+                        "per channel); a refined subtree of up to %lld lights summed exactly", lc_eps,
+                        (long long)lc_bucket);
     }
     if (p->sh.has_lights && p->sh.o.view == 0) { /* light evaluations counted (counter light_evals) */
         pg_decl_define(out, "PG_COUNT_EVALS");
