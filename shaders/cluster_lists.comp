@@ -180,14 +180,17 @@ void main()
 #endif
         // this lane's words: the kl-th .. (kl + PG_LANE_WORDS - 1)-th walked
         uint ws[PG_LANE_WORDS], m[PG_LANE_WORDS], hits[PG_LANE_WORDS];
-        for (int j = 0; j < PG_LANE_WORDS; j++) {   // every mask load of the round in flight together
-            uint k = kl + uint(j);
 #ifdef PG_WALK_MARKED
-            ws[j] = k >= k_end ? 0u : all ? w_begin + k : s_marked[k];
+        if (all) {                                   // uniform: no shared-memory load where all are walked
+            for (int j = 0; j < PG_LANE_WORDS; j++) ws[j] = w_begin + kl + uint(j);
+        } else {
+            for (int j = 0; j < PG_LANE_WORDS; j++) ws[j] = kl + uint(j) < k_end ? s_marked[kl + uint(j)] : 0u;
+        }
 #else
-            ws[j] = k;
+        for (int j = 0; j < PG_LANE_WORDS; j++) ws[j] = kl + uint(j);
 #endif
-            uint w = ws[j];
+        for (int j = 0; j < PG_LANE_WORDS; j++) {   // every mask load of the round in flight together
+            uint k = kl + uint(j), w = ws[j];
 #ifdef PG_BRUTE_FORCE
             uint n = min(count - min(count, w * 32u), 32u);
             m[j] = k >= k_end ? 0u : n >= 32u ? ~0u : ((1u << n) - 1u);
