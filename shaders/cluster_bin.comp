@@ -18,8 +18,6 @@
 //    cluster's box lies inside, since ray * depth is linear in depth.
 // The radius is grown by 1e-4 relative plus 1e-5 of the distance: 10x the test's slack and
 // float rounding. tests/test_cluster_assign.c checks the lists against the brute-force oracle.
-// Each mask buffer ends with a summary per mask (bit w % 32 of its word w / 32: mask word w is not
-// 0), so the list steps walk only the words that can hold candidates (PG_NO_MASK_SUMMARY: none).
 // Every light's sphere is also stored (spheres[]), so the list steps test candidates without
 // transforming lights again; with PG_BRUTE_FORCE only that is done. PG_SPOT_LIGHTS: a spot light's
 // sphere, the one binned, is the bound of its ball within its cone (pg_cone_bound_sphere; it reaches
@@ -133,23 +131,8 @@ void main()
     if (x0 < 0 || y0 < 0) return;
 
     uint w = i >> 5u, bit = 1u << (i & 31u);
-#ifndef PG_NO_MASK_SUMMARY
-    // the summaries after the masks (PG_MASK_SUMMARY_AT, cluster_light.glsl): the light that finds
-    // its word empty also sets the word's summary bit
-    uint sbit = 1u << (w & 31u), sw = w >> 5u;
-    for (int k = k0; k <= k1; k++)
-        if (atomicOr(slice_masks[uint(k) * pc.words + w], bit) == 0u)
-            atomicOr(slice_masks[PG_MASK_SUMMARY_AT(grid.z, uint(k), pc.words) + sw], sbit);
-    for (int y = y0; y <= y1; y++)
-        for (int x = x0; x <= x1; x++) {
-            uint t = uint(y) * grid.x + uint(x);
-            if (atomicOr(tile_masks[t * pc.words + w], bit) == 0u)
-                atomicOr(tile_masks[PG_MASK_SUMMARY_AT(grid.x * grid.y, t, pc.words) + sw], sbit);
-        }
-#else
     for (int k = k0; k <= k1; k++) atomicOr(slice_masks[uint(k) * pc.words + w], bit);
     for (int y = y0; y <= y1; y++)
         for (int x = x0; x <= x1; x++) atomicOr(tile_masks[(uint(y) * grid.x + uint(x)) * pc.words + w], bit);
-#endif
 #endif
 }

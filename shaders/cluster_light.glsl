@@ -19,11 +19,6 @@
 #define PG_LIGHT_RECORD_VEC4 1u
 #endif
 
-// The assignment's masks (cluster_bin.comp): n_masks masks of `words` 32-light words each, then one
-// summary of ceil(words / 32) words per mask: bit w % 32 of summary word w / 32 is set when mask
-// word w is not 0. The first summary word of mask `mask`:
-#define PG_MASK_SUMMARY_AT(n_masks, mask, words) ((n_masks) * (words) + (mask) * (((words) + 31u) >> 5u))
-
 // The sphere a light is tested against the cluster boxes with: centre in view space (taken
 // camera-relative first, which keeps precision far from the origin), radius padded for the float
 // error of that transform (|rel| * a few ulp). w <= 0 or NaN: the light reaches nothing (it

@@ -9,8 +9,7 @@
 //     cluster's earlier segments, as long as they are within the first record.y.
 // Both variants visit candidates in the same order and apply the same test, so the fill stores
 // exactly the lights the count counted. Words are handed to lanes in order and combined with an
-// exclusive prefix sum, so the lists come out ascending. Where the mask summaries mark less than
-// a quarter of a segment's words, only the marked words are walked (list_marked, below).
+// exclusive prefix sum, so the lists come out ascending.
 // PG_SPOT_LIGHTS: a spot light's sphere bounds its lit set (its ball within its cone), and the light
 // is also dropped from a cluster when its ball misses the box or its cone misses the bounding sphere
 // of the box (pg_cone_reaches_sphere): it adds exactly 0 to every point there.
@@ -59,14 +58,6 @@ layout(push_constant) uniform Push { uint words; uint segments; uint seg_words; 
 #ifndef PG_ONE_SUBGROUP
 shared uint s_scan[64];
 #endif
-// The mask summaries (cluster_bin.comp, PG_MASK_SUMMARY_AT): the segment's words that both
-// summaries mark, ascending, are listed first and handed to lanes in order, so rounds of empty
-// words are skipped (sparse masks: few lights a tile or slice, short stochastic ranges) and the
-// lists stay ascending. PG_NO_MASK_SUMMARY: every word of the segment is walked.
-#if !defined(PG_BRUTE_FORCE) && !defined(PG_NO_MASK_SUMMARY)
-#define PG_WALK_MARKED
-shared uint s_marked[PG_SEG_WORDS];                // PG_SEG_WORDS: SEG_WORDS of cluster_assign.c
-#endif
 
 // Exclusive prefix of v over the workgroup in lane order, and the total.
 void scan(uint v, out uint excl, out uint total)
@@ -89,48 +80,6 @@ void scan(uint v, out uint excl, out uint total)
     barrier();
 #endif
 }
-
-#ifdef PG_WALK_MARKED
-// Listing the marked words pays where few are marked: below 1 / PG_LIST_BELOW of the segment's
-// words (else the segment is walked word by word: `all`)
-#ifndef PG_LIST_BELOW
-#define PG_LIST_BELOW 4u
-#endif
-// The words of [w_begin, w_end) whose bit is set in both summaries, listed in s_marked, ascending:
-// how many; or, where at least 1 / PG_LIST_BELOW of them is marked (`all`), every word of the
-// segment, not listed. w_begin is a multiple of 32 (segments are whole summary words).
-uint list_marked(uint tile_sum, uint slice_sum, uint w_begin, uint w_end, uint lane, uint width, out bool all)
-{
-    uint sw_begin = w_begin >> 5u, sw_end = (w_end + 31u) >> 5u, n = 0u;
-    for (uint s0 = sw_begin; s0 < sw_end; s0 += width) {   // uniform: every lane runs each round
-        uint sw = s0 + lane, bits = sw < sw_end ? tile_masks[tile_sum + sw] & slice_masks[slice_sum + sw] : 0u;
-        uint excl, total;
-        scan(bitCount(bits), excl, total);
-        n += total;
-    }
-    all = n * PG_LIST_BELOW >= w_end - w_begin;
-    if (all) return w_end - w_begin;
-    n = 0u;
-    for (uint s0 = sw_begin; s0 < sw_end; s0 += width) {
-        uint sw = s0 + lane, bits = sw < sw_end ? tile_masks[tile_sum + sw] & slice_masks[slice_sum + sw] : 0u;
-        uint excl, total;
-        scan(bitCount(bits), excl, total);
-        uint at = n + excl;
-        while (bits != 0u) {
-            s_marked[at++] = sw * 32u + uint(findLSB(bits));
-            bits &= bits - 1u;
-        }
-        n += total;
-    }
-#ifdef PG_ONE_SUBGROUP
-    subgroupMemoryBarrierShared();
-    subgroupBarrier();
-#else
-    barrier();
-#endif
-    return n;
-}
-#endif
 
 void main()
 {
@@ -165,42 +114,21 @@ void main()
 #else
     uint running = 0u;
 #endif
-#ifdef PG_WALK_MARKED
-    // the k-th word walked is s_marked[k]
-    bool all;
-    uint k_end = list_marked(PG_MASK_SUMMARY_AT(grid.x * grid.y, c.y * grid.x + c.x, words),
-                             PG_MASK_SUMMARY_AT(grid.z, c.z, words), w_begin, w_end, lane, width, all);
-    for (uint k0 = 0u; k0 < k_end; k0 += width * PG_LANE_WORDS) {
-        uint kl = k0 + lane * PG_LANE_WORDS;
-#else
-    // the k-th word walked is word k
-    uint k_end = w_end;
-    for (uint k0 = w_begin; k0 < w_end; k0 += width * PG_LANE_WORDS) {
-        uint kl = k0 + lane * PG_LANE_WORDS;
-#endif
-        // this lane's words: the kl-th .. (kl + PG_LANE_WORDS - 1)-th walked
-        uint ws[PG_LANE_WORDS], m[PG_LANE_WORDS], hits[PG_LANE_WORDS];
-#ifdef PG_WALK_MARKED
-        if (all) {                                   // uniform: no shared-memory load where all are walked
-            for (int j = 0; j < PG_LANE_WORDS; j++) ws[j] = w_begin + kl + uint(j);
-        } else {
-            for (int j = 0; j < PG_LANE_WORDS; j++) ws[j] = kl + uint(j) < k_end ? s_marked[kl + uint(j)] : 0u;
-        }
-#else
-        for (int j = 0; j < PG_LANE_WORDS; j++) ws[j] = kl + uint(j);
-#endif
+    for (uint w0 = w_begin; w0 < w_end; w0 += width * PG_LANE_WORDS) {
+        uint wl = w0 + lane * PG_LANE_WORDS;        // this lane's words: wl .. wl + PG_LANE_WORDS - 1
+        uint m[PG_LANE_WORDS], hits[PG_LANE_WORDS];
         for (int j = 0; j < PG_LANE_WORDS; j++) {   // every mask load of the round in flight together
-            uint k = kl + uint(j), w = ws[j];
+            uint w = wl + uint(j);
 #ifdef PG_BRUTE_FORCE
             uint n = min(count - min(count, w * 32u), 32u);
-            m[j] = k >= k_end ? 0u : n >= 32u ? ~0u : ((1u << n) - 1u);
+            m[j] = w >= w_end ? 0u : n >= 32u ? ~0u : ((1u << n) - 1u);
 #else
-            m[j] = k < k_end ? tile_masks[tile_base + w] & slice_masks[slice_base + w] : 0u;
+            m[j] = w < w_end ? tile_masks[tile_base + w] & slice_masks[slice_base + w] : 0u;
 #endif
         }
         uint n_hits = 0u;
         for (int j = 0; j < PG_LANE_WORDS; j++) {
-            uint w = ws[j];
+            uint w = wl + uint(j);
             uint mm = m[j];
             hits[j] = 0u;
             while (mm != 0u) {   // PG_CANDIDATE_LOADS candidates at a time: their loads in flight together
@@ -240,7 +168,7 @@ void main()
             while (h != 0u && slot < keep) {
                 int b = findLSB(h);
                 h &= h - 1u;
-                PG_LIST_WRITE(rec.x + slot, ws[j] * 32u + uint(b));
+                PG_LIST_WRITE(rec.x + slot, (wl + uint(j)) * 32u + uint(b));
                 slot++;
             }
         }

@@ -52,10 +52,8 @@
 #include "vk_pipeline.h"
 
 /* words (32 lights each) one count/fill workgroup walks: 16,384 lights, so 1,000,000 lights give
- * 62 workgroups per cluster (enough in flight on a large GPU) and 4,000 lights one; a multiple of
- * 32, so a segment is whole words of the mask summaries */
+ * 62 workgroups per cluster (enough in flight on a large GPU) and 4,000 lights one */
 #define SEG_WORDS 512u
-_Static_assert(SEG_WORDS % 32 == 0, "segments are whole summary words");
 /* the automatic list budget: half the device's largest device-local heap (lists are the one
  * buffer that scales with lights x clusters; the other half is left to images, the scene and
  * other processes) */
@@ -136,7 +134,6 @@ static pg_result ca_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     pg_decl_define_int(out, "GRID_X", o.grid[0]);
     pg_decl_define_int(out, "GRID_Y", o.grid[1]);
     pg_decl_define_int(out, "GRID_Z", o.grid[2]);
-    pg_decl_define_int(out, "PG_SEG_WORDS", SEG_WORDS); /* the list steps' list of marked words */
     if (o.method == 1) {
         pg_decl_define(out, "PG_BRUTE_FORCE");
         pg_decl_explain(out, "method brute_force: every light tested against every cluster (the oracle)");
@@ -219,10 +216,8 @@ static pg_result ca_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
                               true, name, &p->stats, err)))
         return r;
     const bool binned = p->o.method == 0;
-    /* each mask, then its summary of one bit a word (PG_MASK_SUMMARY_AT in cluster_light.glsl) */
-    uint64_t mask_words = p->words + (p->words + 31) / 32;
-    uint64_t tile_bytes = (uint64_t)p->o.grid[0] * p->o.grid[1] * mask_words * 4;
-    uint64_t slice_bytes = (uint64_t)p->o.grid[2] * mask_words * 4;
+    uint64_t tile_bytes = (uint64_t)p->o.grid[0] * p->o.grid[1] * p->words * 4;
+    uint64_t slice_bytes = (uint64_t)p->o.grid[2] * p->words * 4;
     if (binned) {
         if (tile_bytes > gpu->max_storage_buffer_range)
             return pg_fail(err, PG_ERR_LIMIT,
