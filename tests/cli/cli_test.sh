@@ -742,6 +742,11 @@ if [ -f "$plugdir/libpg_tint.so" ]; then
   sed 's#"plugins": \["libpg_tint.so"\]#"plugins": ["/usr/lib/x86_64-linux-gnu/libm.so.6"]#' "$pld/tint.json" >"$pld/outside.json"
   expect_fail "pipeline plugins: outside the folders" "outside.json: plugins[0]: plug-in '/usr/lib/x86_64-linux-gnu/libm.so.6' is outside the allowed folders" \
     render --pipeline "$pld/outside.json" --size 16x16 --out "$tmp/x.png"
+  # only the top-level file may name plug-ins: an included fragment's list is refused by name
+  printf '{"plugins": ["libpg_tint.so"], "parameters": {}}\n' >"$pld/frag_plugins.json"
+  sed 's#^  "include": \[#  "include": ["frag_plugins.json", #' "$pld/tint.json" >"$pld/frag_top.json"
+  expect_fail "pipeline plugins: in an included fragment" "frag_plugins.json: (top level): unknown key 'plugins' in an included fragment" \
+    render --pipeline "$pld/frag_top.json" --size 16x16 --out "$tmp/x.png"
 else
   bad "the example plug-in was not built: $plugdir/libpg_tint.so"
 fi
