@@ -10,7 +10,11 @@ argument, one that no table follows, and one whose script needs a Python module 
 (named). Shell scripts (scripts/tables/*.sh) are not matched (they run the GPU). Before the docs,
 the check proves it can fail: a table with one cell changed must be reported.
 
-Exit 0 when every table matches, 1 otherwise (each mismatch printed with file, line and command)."""
+Exit 0 when every table matches, 1 otherwise (each mismatch printed with file, line and command).
+
+tables_check.py --write ROOT rewrites each differing table with what its command prints (as many
+rows as the docs showed, or all when it prints fewer): run it after replacing a command's CSV paths
+with a new run's, then read the prose around each rewritten table."""
 import glob
 import os
 import re
@@ -45,8 +49,9 @@ def placeholder(args):
     return len(args) < 2 or any("DIR" in a or "..." in a for a in args)
 
 
-def check_text(root, rel, text, problems, missing=None):
-    """Checks every generated table of one document; returns (checked, skipped)."""
+def check_text(root, rel, text, problems, missing=None, fixes=None):
+    """Checks every generated table of one document; returns (checked, skipped). With fixes (a
+    list), appends (old table, new table) for each table that differs."""
     checked = skipped = 0
     for m in PATTERN.finditer(text):
         cmd = " ".join(m.group(1).split())
@@ -70,6 +75,8 @@ def check_text(root, rel, text, problems, missing=None):
             problems.append("%s:%d: `%s`: table row %d differs:\n  docs:      %s\n  generated: %s"
                             % (rel, line_no, cmd, diff, doc[diff] if diff < len(doc) else "(none)",
                                out[diff] if diff < len(out) else "(none)"))
+            if fixes is not None and out:
+                fixes.append(("\n".join(doc), "\n".join(out[:len(doc)])))
     return checked, skipped
 
 
@@ -91,11 +98,28 @@ def self_test(root, docs):
     return False
 
 
+def write_fixes(root, docs):
+    """--write: each differing table replaced by its command's; returns how many were."""
+    count = 0
+    for rel, text in docs:
+        fixes = []
+        check_text(root, rel, text, [], None, fixes)
+        for old, new in fixes:
+            text = text.replace(old, new, 1)
+        if fixes:
+            with open(os.path.join(root, rel), "w", encoding="utf-8") as f:
+                f.write(text)
+            print("tables_check: %s: %d tables rewritten" % (rel, len(fixes)))
+        count += len(fixes)
+    return count
+
+
 def main():
-    if len(sys.argv) != 2:
+    write = len(sys.argv) == 3 and sys.argv[1] == "--write"
+    if len(sys.argv) != 2 and not write:
         print(__doc__.split("\n\n")[0], file=sys.stderr)
         return 2
-    root = sys.argv[1]
+    root = sys.argv[-1]
     paths = [os.path.join(root, "README.md")] + sorted(glob.glob(os.path.join(root, "docs", "**", "*.md"), recursive=True))
     docs = []
     for path in paths:
@@ -104,6 +128,9 @@ def main():
             continue
         with open(path, encoding="utf-8") as f:
             docs.append((rel, f.read()))
+    if write:
+        write_fixes(root, docs)
+        return 0
     if not self_test(root, docs):
         print("tables_check: a planted change in a generated table was not reported")
         return 1
