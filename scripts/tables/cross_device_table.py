@@ -6,14 +6,14 @@ per-pixel bound 1e-2 |a| + 1e-4 peak (the visibility test's bound for untextured
 largest value of A's reference image), and the RMSE over the peak; then, on each device, visibility
 against that device's reference with either surface (reference_ray: surface=ray), in the same units; then the angle in radians between the shading
 normals (the debug view `normal`) of naive and visibility on each device and of visibility between
-the devices, over the pixels where all four show a surface. Needs numpy and OpenCV with OpenEXR
-(Debian: python3-opencv); OPENCV_IO_ENABLE_OPENEXR is set here."""
+the devices, over the pixels where all four show a surface. Needs numpy; the images are read by
+exr_read.py beside this script."""
 import os
 import sys
 
-os.environ["OPENCV_IO_ENABLE_OPENEXR"] = "1"
-import cv2  # noqa: E402
-import numpy as np  # noqa: E402
+import numpy as np
+
+from exr_read import read_exr
 
 SCENES = ["spheres", "desk_lamp", "mug", "snowman"]
 PIPES = ["naive", "visibility", "reference", "reference_ray"]
@@ -21,9 +21,10 @@ PIPES = ["naive", "visibility", "reference", "reference_ray"]
 
 def read(folder, scene, pipe):
     path = os.path.join(folder, "%s_%s.exr" % (scene, pipe))
-    img = cv2.imread(path, cv2.IMREAD_UNCHANGED)
-    if img is None:
-        raise SystemExit("cannot read %s" % path)
+    try:
+        img = read_exr(path)
+    except (OSError, ValueError) as e:
+        raise SystemExit("cannot read %s: %s" % (path, e))
     return img[..., :3].astype(np.float64)
 
 
