@@ -49,7 +49,10 @@ def _channels(raw):
 def _unzip(block, path):
     """ZIP(S): zlib, then the predictor (each byte the running sum of deltas biased by 128), then
     the two halves (even bytes first, odd bytes second) interleaved again."""
-    t = np.frombuffer(zlib.decompress(block), dtype=np.uint8)
+    try:
+        t = np.frombuffer(zlib.decompress(block), dtype=np.uint8)
+    except zlib.error as e:
+        raise ValueError("%s: a chunk does not decompress (%s): truncated or damaged" % (path, e))
     t = np.cumsum(np.concatenate(([t[0]], t[1:].astype(np.int64) - 128))).astype(np.uint8) if t.size else t
     out = np.empty_like(t)
     half = (t.size + 1) // 2
@@ -61,6 +64,13 @@ def _unzip(block, path):
 def read_exr(path):
     with open(path, "rb") as f:
         data = f.read()
+    try:
+        return _read(data, path)
+    except (struct.error, IndexError, KeyError) as e:
+        raise ValueError("%s: truncated or damaged (%s)" % (path, e))
+
+
+def _read(data, path):
     attrs, pos = _header(data, path)
     comp = attrs["compression"][1][0]
     if comp not in _LINES:
@@ -98,7 +108,7 @@ def main(argv):
         return 2
     try:
         img = read_exr(argv[1])
-    except (OSError, ValueError, KeyError, struct.error, zlib.error) as e:
+    except (OSError, ValueError) as e:
         print("exr_read.py: %s" % e, file=sys.stderr)
         return 1
     print("%s: %dx%d, %d channels" % (argv[1], img.shape[1], img.shape[0], img.shape[2]))
