@@ -431,14 +431,6 @@ shared uint s_tb_first;                      // the lowest invocation of the clu
 shared uint s_tb_e, s_tb_h;                  // E (float bits, >= 0) and H (ordered uint)
 shared float s_tb_axis[3];
 #endif
-#ifdef PG_TILE_DEPTH_MASK
-// 2.5D culling: the cluster's pixels of the tile binned by depth along the view axis into 32 bins
-// between their nearest and farthest; a light whose depth range [z - R, z + R] (widened by a bin
-// and a rounding margin on each side) meets no occupied bin reaches none of them: |P - L| >=
-// |(P - L).f| > R, so it would add exactly 0 to each.
-shared uint s_tz_min, s_tz_max;              // ordered-uint depth range of the cluster's pixels
-shared uint s_tz_mask;                       // occupied bins
-#endif
 
 #ifdef PG_SPOT_LIGHTS
 // false when a spot light (record sp: axis x scale, offset = -cos(outer) x scale; lighting.glsl) at
@@ -486,9 +478,6 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
     vec3 V = lit ? PG_VIEW_DIR(P) : vec3(0.0, 0.0, 1.0);
     PgLightMat lm = pg_light_mat(s, V);
     bool pending = lit;
-#ifdef PG_TILE_DEPTH_MASK
-    vec3 tz_f = normalize(vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2])); // the view axis
-#endif
 #ifdef PG_TILE_SUBGROUPS
     uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; // a permutation of the tile
 #else
@@ -503,11 +492,6 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
             s_tb_first = 0xffffffffu;
             s_tb_e = 0u;
             s_tb_h = 0u;
-#endif
-#ifdef PG_TILE_DEPTH_MASK
-            s_tz_min = 0xffffffffu;
-            s_tz_max = 0u;
-            s_tz_mask = 0u;
 #endif
         }
         barrier();
@@ -524,20 +508,8 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
 #ifdef PG_TILE_BACKFACE
             atomicMin(s_tb_first, lid);
 #endif
-#ifdef PG_TILE_DEPTH_MASK
-            atomicMin(s_tz_min, pg_tl_order(dot(P, tz_f)));
-            atomicMax(s_tz_max, pg_tl_order(dot(P, tz_f)));
-#endif
         }
         barrier();
-#ifdef PG_TILE_DEPTH_MASK
-        float tz_lo = pg_tl_unorder(s_tz_min), tz_hi = pg_tl_unorder(s_tz_max);
-        float tz_scale = 32.0 / max(tz_hi - tz_lo, 1e-30);
-        if (mine) atomicOr(s_tz_mask, 1u << uint(clamp((dot(P, tz_f) - tz_lo) * tz_scale, 0.0, 31.0)));
-#ifndef PG_TILE_BACKFACE
-        barrier();
-#endif
-#endif
         vec3 bmin = vec3(pg_tl_unorder(s_tl_box[0]), pg_tl_unorder(s_tl_box[1]), pg_tl_unorder(s_tl_box[2]));
         vec3 bmax = vec3(pg_tl_unorder(s_tl_box[3]), pg_tl_unorder(s_tl_box[4]), pg_tl_unorder(s_tl_box[5]));
 #ifdef PG_TILE_BACKFACE
@@ -575,17 +547,6 @@ vec3 pg_shade_tile(bool lit, Surface s, vec3 P, float view_depth, vec2 frag_xy)
                 float lr = length(r);
                 keep = keep && !(dot(tb_a, r) + tb_e * lr * (1.0 + 1e-5) + tb_h
                                  < -(tb_tol + 1e-5 * (lr + length(L.pos_radius.xyz))));
-#endif
-#ifdef PG_TILE_DEPTH_MASK
-                if (keep) {
-                    float z = dot(L.pos_radius.xyz, tz_f), r = L.pos_radius.w;
-                    float tol = 1e-5 * (abs(z) + r + max(abs(tz_lo), abs(tz_hi)));
-                    float b0 = clamp(floor((z - r - tol - tz_lo) * tz_scale) - 1.0, -1.0, 32.0);
-                    float b1 = clamp(floor((z + r + tol - tz_lo) * tz_scale) + 1.0, -1.0, 32.0);
-                    uint lo = uint(clamp(b0, 0.0, 31.0)), hi = uint(clamp(b1, 0.0, 31.0));
-                    uint bins = b1 < 0.0 || b0 > 31.0 ? 0u : (0xffffffffu >> (31u - hi)) & (0xffffffffu << lo);
-                    keep = (bins & s_tz_mask) != 0u;
-                }
 #endif
 #ifdef PG_SPOT_LIGHTS
                 if (keep) keep = pg_spot_reaches_sphere(PG_SPOT_OF(PG_LIST_READ(rec.x + k)), L.pos_radius.xyz,
