@@ -7,13 +7,14 @@ largest value of A's reference image), and the RMSE over the peak; then, on each
 against that device's reference with either surface (reference_ray: surface=ray), in the same units; then the angle in radians between the shading
 normals (the debug view `normal`) of naive and visibility on each device and of visibility between
 the devices, over the pixels where all four show a surface. Needs numpy; the images are read by
-exr_read.py beside this script."""
+scripts/exr_read.py."""
 import os
 import sys
 
 import numpy as np
 
-from exr_read import read_exr
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from exr_read import read_exr  # noqa: E402
 
 SCENES = ["spheres", "desk_lamp", "mug", "snowman"]
 PIPES = ["naive", "visibility", "reference", "reference_ray"]
@@ -22,10 +23,9 @@ PIPES = ["naive", "visibility", "reference", "reference_ray"]
 def read(folder, scene, pipe):
     path = os.path.join(folder, "%s_%s.exr" % (scene, pipe))
     try:
-        img = read_exr(path)
+        return read_exr(path, ("R", "G", "B")).astype(np.float64)
     except (OSError, ValueError) as e:
         raise SystemExit("cannot read %s: %s" % (path, e))
-    return img[..., :3].astype(np.float64)
 
 
 def compare(x, ref, peak):

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """exr_read.py FILE.exr - reads the OpenEXR files passgraph writes (image/exr.c: one part, scan
 lines, NO or ZIPS/ZIP compression, HALF / FLOAT / UINT channels) into a numpy array (height, width,
-channels in R, G, B, A order, then any others by name), with numpy and zlib only: the table scripts
-need no OpenCV. Written from the OpenEXR file layout document (header attributes, the line offset
+channels in R, G, B, A order, then any others by name; or the channels asked for), with numpy and
+zlib only, so the scripts that read passgraph's images (lightcut_bound.py, tables/cross_device_table.py)
+need no OpenEXR or OpenCV module. Written from the OpenEXR file layout document (header attributes, the line offset
 table, ZIP's byte split and delta predictor). Run as a script it prints the size, channels and
 range of each channel.
 
@@ -22,7 +23,7 @@ _ORDER = {"R": 0, "G": 1, "B": 2, "A": 3}
 def _header(data, path):
     """The attributes as {name: (type, bytes)} and the offset just past the header."""
     if data[:4] != b"\x76\x2f\x31\x01":
-        raise ValueError("%s: not an OpenEXR file (magic %s)" % (path, data[:4].hex()))
+        raise ValueError("%s: not a single-part scanline OpenEXR file (magic %s)" % (path, data[:4].hex()))
     flags = struct.unpack_from("<I", data, 4)[0]
     if flags & ~0xFF & ~0x400:  # version 2; only the long-names bit (0x400) is understood
         raise ValueError("%s: tiled, deep or multi-part file (flags 0x%x): not read here" % (path, flags))
@@ -61,13 +62,20 @@ def _unzip(block, path):
     return out.tobytes()
 
 
-def read_exr(path):
+def read_exr(path, names=None):
+    """The image as float32 (height, width, channels): every channel (R, G, B, A first), or the ones
+    named, in that order. OSError when the file cannot be read, ValueError for anything else."""
     with open(path, "rb") as f:
         data = f.read()
     try:
-        return _read(data, path)
+        planes = _read(data, path)
     except (struct.error, IndexError, KeyError) as e:
         raise ValueError("%s: truncated or damaged (%s)" % (path, e))
+    if names is None:
+        names = sorted(planes, key=lambda c: (_ORDER.get(c, 4), c))
+    elif any(c not in planes for c in names):
+        raise ValueError("%s: no %s channels" % (path, ", ".join(names)))
+    return np.stack([planes[c].astype(np.float32) for c in names], axis=2)
 
 
 def _read(data, path):
@@ -98,8 +106,7 @@ def _read(data, path):
                 n = w * _TYPES[t].itemsize
                 planes[name][y - y0 + line] = np.frombuffer(raw, dtype=_TYPES[t], count=w, offset=at)
                 at += n
-    names = sorted(planes, key=lambda c: (_ORDER.get(c, 4), c))
-    return np.stack([planes[c].astype(np.float32) for c in names], axis=2)
+    return planes
 
 
 def main(argv):
