@@ -22,7 +22,7 @@ run_config() {
   # the scene has no lights, so it is lit by the default environment, whose filter pass took half
   # of a run that reaches it on lavapipe: naive and deferred_packed fail its calls, forward_plus and
   # the emulated compute queue render without it
-  [ "$1" = forward_plus ] || [ "$1" = deferred_packed+emulate ] && extra+=(--environment none)
+  [ "$pe" = forward_plus ] || [ "$pe" = deferred_packed+emulate ] && extra+=(--environment none)
   while :; do
     PASSGRAPH_FAULT_AT=$k timeout 60 "$PG" render --pipeline "$root/pipelines/$p.json" --scene "$scene" --size 32x18 \
       --lights 4 --frames 2 "${extra[@]}" --quiet --out "$dir/x.png" >"$dir/out" 2>"$dir/err"
