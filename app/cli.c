@@ -82,7 +82,7 @@ void pg_cli_defaults(pg_cli_common *c)
     c->frames = 1;
 }
 
-static pg_result parse_u64(const char *opt, const char *s, uint64_t min, uint64_t max, uint64_t *out, pg_error *err)
+pg_result pg_cli_parse_u64(const char *opt, const char *s, uint64_t min, uint64_t max, uint64_t *out, pg_error *err)
 {
     if (!s || !*s) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: missing value", opt);
     const char *p = s;
@@ -184,8 +184,8 @@ static pg_result parse_size(pg_cli_common *c, const char *v, pg_error *err)
     wbuf[wl] = 0;
     uint64_t w, h;
     pg_result r;
-    if ((r = parse_u64("--size width", wbuf, 1, 16384, &w, err))) return r;
-    if ((r = parse_u64("--size height", x + 1, 1, 16384, &h, err))) return r;
+    if ((r = pg_cli_parse_u64("--size width", wbuf, 1, 16384, &w, err))) return r;
+    if ((r = pg_cli_parse_u64("--size height", x + 1, 1, 16384, &h, err))) return r;
     c->width = (uint32_t)w;
     c->height = (uint32_t)h;
     return PG_OK;
@@ -209,7 +209,7 @@ static pg_result parse_device(pg_cli_common *c, const char *a, const char *v, pg
 {
     if (v[0] >= '0' && v[0] <= '9') {
         uint64_t u;
-        pg_result r = parse_u64(a, v, 0, 15, &u, err);
+        pg_result r = pg_cli_parse_u64(a, v, 0, 15, &u, err);
         if (r) return r;
         c->device_index = (int)u;
     } else {
@@ -291,7 +291,7 @@ static pg_result parse_scene_choice(pg_cli_common *c, const char *a, const char 
         return PG_OK;
     }
     uint64_t u;
-    pg_result r = parse_u64(a, v, 0, 1000000, &u, err);
+    pg_result r = pg_cli_parse_u64(a, v, 0, 1000000, &u, err);
     if (!r) c->gltf_scene = (int)u;
     return r;
 }
@@ -333,16 +333,16 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
     } else if (!strcmp(a, "--lights")) {
         NEED_VALUE();
         if (v[0] == '-') return pg_fail(err, PG_ERR_INVALID_ARG, "--lights %s: must not be negative", v);
-        if ((r = parse_u64(a, v, 0, PG_MAX_LIGHTS, &u, err))) return r;
+        if ((r = pg_cli_parse_u64(a, v, 0, PG_MAX_LIGHTS, &u, err))) return r;
         c->lights = (uint32_t)u;
         c->has_lights = true;
     } else if (!strcmp(a, "--seed")) {
         NEED_VALUE();
-        if ((r = parse_u64(a, v, 0, UINT32_MAX, &u, err))) return r;
+        if ((r = pg_cli_parse_u64(a, v, 0, UINT32_MAX, &u, err))) return r;
         c->seed = (uint32_t)u;
     } else if (!strcmp(a, "--frames")) {
         NEED_VALUE();
-        if ((r = parse_u64(a, v, 1, 100000, &u, err))) return r;
+        if ((r = pg_cli_parse_u64(a, v, 1, 100000, &u, err))) return r;
         c->frames = (uint32_t)u;
     } else if (!strcmp(a, "--plugin") || !strcmp(a, "--animation")) {
         NEED_VALUE();

@@ -58,6 +58,9 @@ typedef struct pg_cli_common {
 } pg_cli_common;
 
 void pg_cli_defaults(pg_cli_common *c);
+/* s as a whole number in [min, max] (a sign, fraction, exponent or trailing text refused) for option
+ * opt; the message names opt, s and the range. */
+pg_result pg_cli_parse_u64(const char *opt, const char *s, uint64_t min, uint64_t max, uint64_t *out, pg_error *err);
 /* Tries to consume argv[*i] (and its value). Returns PG_OK and sets *used when it was a
  * common option; PG_ERR_INVALID_ARG with a message for a bad value. The colour options are
  * checked against the OCIO config the whole command line selects (wherever --ocio-config and

@@ -14,6 +14,7 @@
 #include "exr.h"
 #include "image_util.h"
 #include "rdoc.h"
+#include "sides.h"
 
 static const char *const render_help =
     "usage: passgraph render [options] --out FILE.png|FILE.jpg|FILE.exr [--hdr-out FILE.exr]\n"
@@ -409,6 +410,16 @@ int pg_cmd_render(int argc, char **argv)
     int rc = parse_render_options(&ro, argc, argv);
     if (rc >= 0) return rc;
     if (!resolve_outputs(&ro)) return 2;
+    { /* --set and --debug-view against the pipeline's parameters: bad options, before a device is made */
+        char path[PG_PATH_MAX];
+        if (ro.opt.pipeline) pg_strlcpy(path, ro.opt.pipeline, sizeof path);
+        else pg_data_path(path, sizeof path, "pipelines/naive.json");
+        pg_error se = {0};
+        if (pg_sides_check_common(&ro.opt, path, &se)) {
+            fprintf(stderr, "passgraph render: %s\n", se.msg);
+            return 2;
+        }
+    }
     /* RenderDoc first: without it there is nothing to do, and the device need not be made */
     pg_rdoc *rdoc = NULL;
     if (ro.capture && !open_capture(ro.capture, &rdoc)) return 1;

@@ -157,3 +157,23 @@ pg_result pg_sides_check_values(const char *path, const pg_ov_list *l, const cha
     }
     return r;
 }
+
+pg_result pg_sides_check_common(const pg_cli_common *opt, const char *path, pg_error *err)
+{
+    pg_pipeline *p = NULL;
+    pg_error e = {0};
+    if (pg_pipeline_load(path, NULL, 0, &p, &e)) return PG_OK; /* reported where it is opened */
+    pg_side_sets s;
+    pg_ov_list l;
+    memset(&s, 0, sizeof s);
+    pg_result r = PG_OK;
+    if (!pg_sides_from_common(&s, opt)) {
+        r = pg_fail(err, PG_ERR_INVALID_ARG, "too many --set values");
+    } else {
+        pg_sides_pipeline(&s, NULL, NULL, 0, &l);
+        r = pg_sides_check_keys(&l, p, "pipeline", err);
+        if (!r) r = pg_sides_check_values(path, &l, "pipeline", err);
+    }
+    pg_pipeline_free(p);
+    return r;
+}

@@ -272,6 +272,7 @@ static void check_buffer(Ctx &c, Arrays &a, const json &o, const std::string &w)
     if (fallback) return;
     if (uit == o.end()) {
         if (!c.is_glb) gfail(w + ".uri: missing (required outside .glb files)");
+        if (a.buf_len.size() > 1) gfail(w + ".uri: missing (only buffers[0] may refer to the GLB BIN chunk)");
         if (!c.glb_has_bin) gfail(w + ": refers to the GLB BIN chunk, but there is none");
         if (len > c.glb_bin_size)
             gfail(strf("%s: byteLength %llu exceeds the GLB BIN chunk (%zu bytes)", w.c_str(),
@@ -482,6 +483,22 @@ static void check_image(Ctx &c, Arrays &a, const json &o, const std::string &w)
     if (fsize == 0) gfail(strf("%s: '%s' is empty", w.c_str(), uri.c_str()));
 }
 
+/* o.key: absent, or a number in [0, 1] (n 0) or n of them (the specification's ranges of the
+ * metallic-roughness factors) */
+static void check_unit_numbers(const json &o, const char *key, size_t n, const std::string &w)
+{
+    auto it = o.find(key);
+    if (it == o.end()) return;
+    bool ok = n ? it->is_array() && it->size() == n : it->is_number();
+    if (ok && n)
+        for (const auto &x : *it) ok = ok && x.is_number() && x.get<double>() >= 0 && x.get<double>() <= 1;
+    else if (ok)
+        ok = it->get<double>() >= 0 && it->get<double>() <= 1;
+    if (!ok)
+        gfail(strf("%s.%s: expected %s in [0, 1], got %s", w.c_str(), key, n ? strf("%zu numbers", n).c_str() : "a number",
+                   it->dump().substr(0, 80).c_str()));
+}
+
 static void check_material(const Arrays &a, const json &o, const std::string &w)
 {
     const size_t nt = arr_size(a.textures);
@@ -499,6 +516,12 @@ static void check_material(const Arrays &a, const json &o, const std::string &w)
     if (const json *ti = opt_object(o, "emissiveTexture", w))
         ref(*ti, "index", nt, "textures", w + ".emissiveTexture", true);
     check_emissive(o, w);
+    if (const json *pbr = opt_object(o, "pbrMetallicRoughness", w)) {
+        const std::string pw = w + ".pbrMetallicRoughness";
+        check_unit_numbers(*pbr, "baseColorFactor", 4, pw);
+        check_unit_numbers(*pbr, "metallicFactor", 0, pw);
+        check_unit_numbers(*pbr, "roughnessFactor", 0, pw);
+    }
     auto am = o.find("alphaMode");
     if (am != o.end()) {
         std::string s = am->is_string() ? am->get<std::string>() : "";
@@ -605,6 +628,66 @@ static void check_node(const Arrays &a, const json &o, const std::string &w)
 
 /* The JSON checks before tinygltf sees the file: the asset, extensionsRequired, then each array
  * kind in turn, each after the kinds it refers to (their sizes and facts are known by then). */
+/* o.key: a finite number (> 0 when positive), required or absent */
+static void check_number(const json &o, const char *key, const std::string &w, bool required, bool positive)
+{
+    auto it = o.find(key);
+    if (it == o.end()) {
+        if (required) gfail(strf("%s.%s: missing (required)", w.c_str(), key));
+        return;
+    }
+    if (!it->is_number() || !std::isfinite(it->get<double>()) || (positive && !(it->get<double>() > 0)))
+        gfail(strf("%s.%s: expected a finite number%s, got %s", w.c_str(), key, positive ? " > 0" : "",
+                   it->dump().substr(0, 80).c_str()));
+}
+
+/* o.key: one of the strings in `names` (required) */
+static std::string check_enum(const json &o, const char *key, const std::string &w,
+                              std::initializer_list<const char *> names)
+{
+    auto it = o.find(key);
+    std::string list;
+    for (const char *n : names) list += std::string(list.empty() ? "\"" : ", \"") + n + "\"";
+    if (it == o.end()) gfail(strf("%s.%s: missing (required: %s)", w.c_str(), key, list.c_str()));
+    if (it->is_string())
+        for (const char *n : names)
+            if (it->get<std::string>() == n) return n;
+    gfail(strf("%s.%s: %s is not one of %s", w.c_str(), key, it->dump().substr(0, 80).c_str(), list.c_str()));
+}
+
+/* cameras[i]: a type and its object with the specification's required numbers */
+static void check_camera(const json &o, const std::string &w)
+{
+    const std::string type = check_enum(o, "type", w, {"perspective", "orthographic"});
+    const json *k = opt_object(o, type.c_str(), w);
+    if (!k) gfail(strf("%s.%s: missing (required by type \"%s\")", w.c_str(), type.c_str(), type.c_str()));
+    const std::string kw = w + "." + type;
+    if (type == "perspective") {
+        check_number(*k, "yfov", kw, true, true);
+        check_number(*k, "znear", kw, true, true);
+        check_number(*k, "aspectRatio", kw, false, true);
+        check_number(*k, "zfar", kw, false, true);
+    } else {
+        for (const char *key : {"xmag", "ymag", "zfar", "znear"}) check_number(*k, key, kw, true, false);
+    }
+}
+
+/* extensions.KHR_lights_punctual.lights[i]: a type, and a spot light's spot object */
+static void check_punctual_lights(const json &j)
+{
+    const json *ext = opt_object(j, "extensions", "(root)");
+    const json *lp = ext ? opt_object(*ext, "KHR_lights_punctual", "extensions") : nullptr;
+    const json *lights = lp ? opt_array(*lp, "lights", "KHR_lights_punctual") : nullptr;
+    each_object(lights, "KHR_lights_punctual.lights", [&](const json &o, const std::string &w, size_t) {
+        auto t = o.find("type");
+        const std::string type = t != o.end() && t->is_string() ? t->get<std::string>() : "";
+        if (type != "point" && type != "spot" && type != "directional")
+            gfail(w + ".type: " + (t == o.end() ? std::string("missing") : "'" + (t->is_string() ? type : t->dump()) + "'") +
+                  ": expected \"point\", \"spot\" or \"directional\"");
+        if (type == "spot" && !opt_object(o, "spot", w)) gfail(w + ".spot: missing (required by type \"spot\")");
+    });
+}
+
 void prevalidate(Ctx &c)
 {
     const json &j = c.j;
@@ -651,6 +734,10 @@ void prevalidate(Ctx &c)
     each_object(a.nodes, "nodes", [&](const json &o, const std::string &w, size_t) {
         check_node(a, o, w);
     });
+    each_object(opt_array(j, "cameras", ""), "cameras", [&](const json &o, const std::string &w, size_t) {
+        check_camera(o, w);
+    });
+    check_punctual_lights(j);
     each_object(a.scenes, "scenes", [&](const json &o, const std::string &w, size_t) {
         check_node_list(a, o, "nodes", w);
     });

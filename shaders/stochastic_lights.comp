@@ -3,7 +3,7 @@
 // Culling", JCGT 5(1), 2016): every light gets a random range from one uniform number xi of its own
 // (a hash of light index, frame.noise.x = sample index and frame.noise.y = seed). With the light's
 // luminance I, its attenuation A(d) = clamp(1 - (d/R)^4, 0, 1) / max(d^2, dmin^2) (lighting.glsl) and
-// the threshold tau (PG_SC_TAU_MICRO, millionths), the light is kept at a point at distance d with
+// the threshold tau (PG_SC_TAU_MICRO, millionths as a float literal), the light is kept at a point at distance d with
 // probability p(d) = min(1, I A(d) / tau), i.e. where I A(d) >= xi tau: inside the range
 // r(xi) = sup { d in [0, R] : I A(d) >= xi tau } (A decreases with d: bisection, 40 steps, the upper
 // end kept so the range never falls short). The shading pass divides a kept light's contribution

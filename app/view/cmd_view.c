@@ -256,6 +256,14 @@ static bool initial_state(viewer *v, const pg_cli_common *opt)
     for (uint32_t i = 0; i < opt->n_sets; i++) set_override(v, opt->sets[i].key, opt->sets[i].value);
     colour_init(v);
     scan_pipelines(v, v->app.pipeline_path);
+    for (uint32_t i = 0; i < opt->n_sets; i++) /* a key no pipeline of the list knows is a typo */
+        if (!declared_by_any(v, opt->sets[i].key)) {
+            snprintf(v->error, sizeof v->error, "%s %s%s%s: no pipeline of the viewer declares a parameter '%s'",
+                     opt->sets[i].value == opt->debug_view ? "--debug-view" : "--set",
+                     opt->sets[i].value == opt->debug_view ? "" : opt->sets[i].key,
+                     opt->sets[i].value == opt->debug_view ? "" : "=", opt->sets[i].value, opt->sets[i].key);
+            return false;
+        }
     v->requested = v->current;
     reload(v);
     if (!v->session) return false;

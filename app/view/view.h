@@ -149,6 +149,12 @@ typedef struct viewer {
 /* view_pipelines.c */
 void scan_pipelines(viewer *v, const char *current_path);
 void set_override(viewer *v, const char *key, const char *value);
+/* Whether a pipeline of the viewer's list declares parameter key (one that does not load declares
+ * nothing): --set and --at N:set refuse a key no pipeline knows. */
+bool declared_by_any(const viewer *v, const char *key);
+/* The list's index of arg: a listed name (forward_plus.json) or a file (any path to a listed one, or
+ * a pipeline elsewhere, which is added to the list); else an error naming arg. */
+pg_result find_pipeline(viewer *v, const char *arg, int *index, pg_error *err);
 pg_result open_session(viewer *v, const char *path, bool with_overrides, pg_session **out, pg_error *err);
 void reload(viewer *v);
 double watch_signature(const viewer *v);

@@ -1,6 +1,8 @@
 /* view_pipelines.c - `passgraph view`: the pipeline list (pipelines/ and --pipelines DIR),
  * parameter overrides, opening and (re)loading sessions, and the signature of the files watched
  * for hot reload. */
+#include <sys/stat.h>
+
 #include "view.h"
 
 /* ---------------------------------------------------------------- pipelines and parameters */
@@ -76,6 +78,42 @@ void scan_pipelines(viewer *v, const char *current_path)
         v->current = v->n_pipelines++;
     }
     if (v->current < 0) v->current = 0;
+}
+
+bool declared_by_any(const viewer *v, const char *key)
+{
+    for (int i = 0; i < v->n_pipelines; i++) {
+        pg_pipeline *p = NULL;
+        pg_error e;
+        if (pg_pipeline_load(v->paths[i], NULL, 0, &p, &e)) continue;
+        const bool yes = pg_pipeline_find_param(p, key) != NULL;
+        pg_pipeline_free(p);
+        if (yes) return true;
+    }
+    return false;
+}
+
+pg_result find_pipeline(viewer *v, const char *arg, int *index, pg_error *err)
+{
+    char want[PG_PATH_MAX], have[PG_PATH_MAX];
+    const bool is_file = realpath(arg, want) != NULL;
+    for (int i = 0; i < v->n_pipelines; i++)
+        if (!strcmp(v->names[i], arg) || (is_file && realpath(v->paths[i], have) && !strcmp(want, have))) {
+            *index = i;
+            return PG_OK;
+        }
+    struct stat st;
+    if (!is_file || stat(want, &st) != 0 || !S_ISREG(st.st_mode))
+        return pg_fail(err, PG_ERR_IO, "%s: neither a file nor one of the viewer's %d pipelines (%s, ...)", arg,
+                       v->n_pipelines, v->n_pipelines ? v->names[0] : "none");
+    if (v->n_pipelines >= MAX_PIPELINES)
+        return pg_fail(err, PG_ERR_LIMIT, "%s: the viewer lists %d pipelines already", arg, MAX_PIPELINES);
+    pg_strlcpy(v->paths[v->n_pipelines], arg, PG_PATH_MAX); /* a file elsewhere, as scan_pipelines adds one */
+    const char *base = strrchr(arg, '/');
+    pg_strlcpy(v->names[v->n_pipelines], base ? base + 1 : arg, PG_NAME_MAX);
+    v->name_ptrs[v->n_pipelines] = v->names[v->n_pipelines];
+    *index = v->n_pipelines++;
+    return PG_OK;
 }
 
 void set_override(viewer *v, const char *key, const char *value)

@@ -40,11 +40,16 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
         char *eq = strchr(kv, '=');
         if (!eq) return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:set=%s: expected KEY=VALUE", a->frame, a->arg);
         *eq = 0;
+        if (!declared_by_any(v, kv))
+            return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:set=%s: no pipeline of the viewer declares a parameter '%s'",
+                           a->frame, a->arg, kv);
         set_override(v, kv, eq + 1);
         v->reload = true;
     } else if (!strcmp(a->what, "pipeline")) {
-        for (int i = 0; i < v->n_pipelines; i++)
-            if (!strcmp(v->names[i], a->arg)) v->requested = i;
+        int k = 0;
+        pg_result r = find_pipeline(v, a->arg, &k, err);
+        if (r) return pg_error_prefix(err, "--at %u:pipeline", a->frame);
+        v->requested = k;
         v->reload = true;
     } else if (!strcmp(a->what, "display") || !strcmp(a->what, "ocioview")) {
         pg_result r = !strcmp(a->what, "display") ? colour_choose(v, a->arg, NULL, err)
@@ -57,7 +62,12 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
         v->diff_flip = !strcmp(a->arg, "flip");
         v->flip_said = false;
     } else if (!strcmp(a->what, "lights")) {
-        v->light_count = atoi(a->arg);
+        uint64_t n = 0;
+        char opt[48];
+        snprintf(opt, sizeof opt, "--at %u:lights", a->frame);
+        pg_result r = pg_cli_parse_u64(opt, a->arg, 0, PG_MAX_LIGHTS, &n, err);
+        if (r) return r;
+        v->light_count = (int)n;
     } else if (!strcmp(a->what, "env_intensity") || !strcmp(a->what, "env_rotation")) {
         char *end = NULL;
         float x = strtof(a->arg, &end);

@@ -217,6 +217,9 @@ const pg_resource_desc *pg_decl_slot_resource(const pg_declare_in *in, pg_slot s
  * back: create reads its params, and hands the list to the shader compiler (pg_pass_defines). */
 void pg_decl_define(pg_pass_decl *d, const char *define);
 void pg_decl_define_int(pg_pass_decl *d, const char *name, int64_t value);
+/* NAME=VALUE as a GLSL float literal (17 significant digits, ".0" after an integral value): for a
+ * value past what an int literal holds. */
+void pg_decl_define_float(pg_pass_decl *d, const char *name, double value);
 /* The pass's params block (size bytes, at most PG_MAX_PASS_PARAMS; NULL when larger):
  *   my_params *p = pg_decl_params(out, sizeof *p); */
 void *pg_decl_params(pg_pass_decl *d, size_t size);

@@ -127,6 +127,19 @@ void pg_decl_define_int(pg_pass_decl *d, const char *name, int64_t value)
     pg_decl_define(d, def);
 }
 
+void pg_decl_define_float(pg_pass_decl *d, const char *name, double value)
+{
+    char def[PG_NAME_MAX];
+    int n = snprintf(def, sizeof def, "%s=%.17g", name, value);
+    if (n > 0 && n < (int)sizeof def && !strpbrk(def + strlen(name) + 1, ".eEni")) /* integral: a float literal */
+        n = snprintf(def + n, sizeof def - (size_t)n, ".0") + n;
+    if (n < 0 || n >= (int)sizeof def) {
+        if (d) d->n_defines = PG_MAX_DEFINES + 1; /* too long: the overflow marker */
+        return;
+    }
+    pg_decl_define(d, def);
+}
+
 uint32_t pg_decl_define_list(const pg_pass_decl *d, const char **out, uint32_t max)
 {
     uint32_t n = 0;

@@ -386,6 +386,10 @@ static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, cons
     }
     /* put the defines right after the #version line */
     strbuf src = {0};
+    if (!body.data || !body.data[0]) { /* an empty file (or one an editor is about to write) */
+        free(body.data);
+        return pg_fail(err, PG_ERR_SHADER, "%s%s: empty file (no #version line)", shown, name);
+    }
     char *ver = strstr(body.data, "#version");
     char *ver_end = ver ? strchr(ver, '\n') : NULL;
     if (!ver || !ver_end) {

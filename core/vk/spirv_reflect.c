@@ -31,7 +31,10 @@ enum {
     OP_VARIABLE = 59, OP_DECORATE = 71, OP_MEMBER_DECORATE = 72, OP_EXECUTION_MODE_ID = 331,
     OP_TYPE_ACCELERATION_STRUCTURE = 5341,
 };
-enum { SC_UNIFORM_CONSTANT = 0, SC_UNIFORM = 2, SC_OUTPUT = 3, SC_PUSH_CONSTANT = 9, SC_STORAGE_BUFFER = 12 };
+enum {
+    SC_UNIFORM_CONSTANT = 0, SC_UNIFORM = 2, SC_OUTPUT = 3, SC_WORKGROUP = 4, SC_PUSH_CONSTANT = 9,
+    SC_STORAGE_BUFFER = 12,
+};
 enum {
     DEC_BLOCK = 2, DEC_BUFFER_BLOCK = 3, DEC_ROW_MAJOR = 4, DEC_ARRAY_STRIDE = 6, DEC_MATRIX_STRIDE = 7,
     DEC_BUILTIN = 11, DEC_NON_WRITABLE = 24, DEC_NON_READABLE = 25, DEC_LOCATION = 30, DEC_BINDING = 33,
@@ -473,6 +476,40 @@ static pg_result struct_size(spv_ctx *c, uint32_t sid, int depth, uint32_t *size
     return PG_OK;
 }
 
+/* Bytes of a value of type tid in Workgroup storage, which has no explicit layout: the sum of its
+ * scalars (bool 4 bytes), no padding, so never more than a layout the driver picks. */
+static pg_result natural_size(spv_ctx *c, uint32_t tid, int depth, uint64_t *size)
+{
+    const uint32_t *d = def_of(c, tid, 0);
+    if (!d) return pg_fail(c->err, PG_ERR_SHADER, "SPIR-V id %u is not a type", tid);
+    if (depth > TYPE_DEPTH_MAX) return pg_fail(c->err, PG_ERR_SHADER, "SPIR-V types nested deeper than %d", TYPE_DEPTH_MAX);
+    uint64_t inner = 0;
+    uint32_t n = 0;
+    pg_result r = PG_OK;
+    switch (d[0] & 0xffffu) {
+    case OP_TYPE_BOOL: *size = 4; return PG_OK;
+    case OP_TYPE_INT: case OP_TYPE_FLOAT: *size = d[2] / 8; return PG_OK;
+    case OP_TYPE_VECTOR: case OP_TYPE_MATRIX: case OP_TYPE_ARRAY: /* d[3]: components, columns, length id */
+        n = d[3];
+        if ((d[0] & 0xffffu) == OP_TYPE_ARRAY && (r = const_u32(c, d[3], &n))) return r;
+        if ((r = natural_size(c, d[2], depth + 1, &inner))) return r;
+        *size = inner * n;
+        return PG_OK;
+    case OP_TYPE_STRUCT: {
+        uint64_t sum = 0;
+        for (uint32_t k = 0; k + 2 < words_at(c, c->ids[tid].def) && !r; k++) {
+            r = natural_size(c, d[2 + k], depth + 1, &inner);
+            sum += inner;
+        }
+        *size = sum;
+        return r;
+    }
+    default:
+        return pg_fail(c->err, PG_ERR_SHADER, "SPIR-V type %u (opcode %u) in shared memory has no size", tid,
+                       d[0] & 0xffffu);
+    }
+}
+
 /* The scalar kind and component count of a scalar, vector or matrix type (PG_SPV_OTHER, 0 else). */
 static void scalar_of(const spv_ctx *c, uint32_t tid, pg_spv_scalar *scalar, uint32_t *components)
 {
@@ -507,13 +544,14 @@ static pg_result variable_type(spv_ctx *c, const uint32_t *var, uint32_t *pointe
     return id_name(c, var[2], name);
 }
 
-/* Sampled type, dimension, arrayed, multisampled and format of the OpTypeImage img into b. */
+/* Sampled type, dimension, depth, arrayed, multisampled and format of the OpTypeImage img into b. */
 static void image_fields(const spv_ctx *c, const uint32_t *img, pg_spv_binding *b)
 {
     uint32_t components;
     scalar_of(c, img[2], &b->sampled_type, &components);
     b->dim = img[3];
     b->arrayed = img[5] != 0;
+    b->depth = img[4] == 1;
     b->multisampled = img[6] != 0;
     b->image_format = img[8];
 }
@@ -687,6 +725,19 @@ static pg_result add_output(spv_ctx *c, const uint32_t *var, pg_spv_reflection *
     return PG_OK;
 }
 
+/* A Workgroup variable (GLSL shared): its bytes into out->shared_bytes. */
+static pg_result add_workgroup(spv_ctx *c, const uint32_t *var, pg_spv_reflection *out)
+{
+    char name[NAME_BYTES];
+    uint32_t type = 0;
+    uint64_t size = 0;
+    pg_result r = variable_type(c, var, &type, name);
+    if (!r) r = natural_size(c, type, 0, &size);
+    if (r) return r;
+    out->shared_bytes = out->shared_bytes + size > UINT32_MAX ? UINT32_MAX : (uint32_t)(out->shared_bytes + size);
+    return PG_OK;
+}
+
 /* LocalSize / LocalSizeId of the entry point's execution modes (at: the OpExecutionMode(Id)). */
 static pg_result execution_mode(spv_ctx *c, uint32_t at, pg_spv_reflection *out)
 {
@@ -723,6 +774,7 @@ static pg_result read_interface(spv_ctx *c, pg_spv_reflection *out)
             case SC_UNIFORM_CONSTANT: case SC_UNIFORM: case SC_STORAGE_BUFFER: r = add_binding(c, d, out); break;
             case SC_PUSH_CONSTANT: r = add_push(c, d, out); break;
             case SC_OUTPUT: r = add_output(c, d, out); break;
+            case SC_WORKGROUP: r = add_workgroup(c, d, out); break;
             default: break;
             }
         }

@@ -2,7 +2,7 @@
  * bindings (images, samplers, uniform and storage blocks, with set, binding, image dimension and
  * format, readonly / writeonly, array size and block size), the push-constant block and its
  * members (offsets, sizes, scalar types), the fragment outputs with their locations, the
- * execution model and a compute shader's workgroup size.
+ * execution model and a compute shader's workgroup size and shared-memory bytes.
  *
  * Written from the SPIR-V specification (section 2.3 "Physical Layout of a SPIR-V Module" and
  * the instruction / enumerant tables of section 3); no Vulkan call, no glslang call. The reader
@@ -49,6 +49,7 @@ typedef struct pg_spv_binding {
     uint32_t set, binding;
     pg_spv_kind kind;
     uint32_t dim;          /* SpvDim: 0 1D, 1 2D, 2 3D, 3 Cube, 4 Rect, 5 Buffer, 6 SubpassData (images only) */
+    bool depth;            /* a depth image (Depth operand 1: GLSL's shadow samplers, sampler2DShadow) */
     bool arrayed, multisampled;
     uint32_t image_format; /* SpvImageFormat operand (0 Unknown, 1 Rgba32f, 2 Rgba16f, 3 R32f, 4 Rgba8, ...) */
     uint32_t array_size;   /* 1 for a non-array, N for [N] (the product for [N][M]), 0 for a runtime array */
@@ -85,6 +86,8 @@ typedef struct pg_spv_reflection {
     uint32_t local_size[3];     /* compute: LocalSize, or LocalSizeId resolved through OpConstant /
                                  * OpSpecConstant (its default); a WorkgroupSize built-in constant takes
                                  * precedence (SPIR-V < 1.6). 0 0 0 when the module has none. */
+    uint32_t shared_bytes;      /* compute: bytes of its Workgroup (shared) variables, each the sum of its
+                                 * scalars without padding (bool 4): a lower bound of any layout */
     uint32_t n_bindings;
     pg_spv_binding bindings[PG_SPV_MAX_BINDINGS]; /* sorted by (set, binding) */
     bool has_push;

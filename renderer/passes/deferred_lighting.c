@@ -147,7 +147,7 @@ static pg_result dl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     if ((r = pg_opt_float(in->desc, "stochastic_threshold", 0.0, 0.0, 1e6, &sc_tau, err))) return r;
     if (sc_tau > 0 && source == 0 && pg_lights_of(in) > 0) {
         pg_decl_define(out, "PG_STOCHASTIC_CULL");
-        pg_decl_define_int(out, "PG_SC_TAU_MICRO", (int64_t)(sc_tau * 1e6 + 0.5));
+        pg_decl_define_float(out, "PG_SC_TAU_MICRO", (double)(int64_t)(sc_tau * 1e6 + 0.5));
         pg_decl_explain(out, "stochastic_threshold %g: the lights (culled by a stochastic_lights pass with the same "
                         "threshold) count 1/p times: unbiased, noisy", sc_tau);
     }

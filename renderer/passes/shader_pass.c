@@ -134,6 +134,30 @@ static pg_result create_set1(shader_pass *s, const pg_pass_create_ctx *ctx, cons
     return pg_pass_set_create(ctx->gpu, n, b, name, &s->empty, err);
 }
 
+/* The compute shader's workgroup against the device's limits (the SPIR-V is valid anyway: a device
+ * may not run it). */
+static pg_result check_workgroup(const pg_pass_create_ctx *ctx, const sp_params *pa, pg_error *err)
+{
+    const VkPhysicalDeviceLimits *l = &ctx->gpu->props.limits;
+    const uint64_t n = (uint64_t)pa->local[0] * pa->local[1] * pa->local[2];
+    const char *file = ctx->desc->file, *path = ctx->desc->json_path;
+    for (int k = 0; k < 3; k++)
+        if (pa->local[k] > l->maxComputeWorkGroupSize[k])
+            return pg_fail(err, PG_ERR_LIMIT, "%s: %s: shader '%s': local_size_%c = %u is more than %s allows (%u)", file,
+                           path, pa->path, 'x' + k, pa->local[k], ctx->gpu->props.deviceName,
+                           l->maxComputeWorkGroupSize[k]);
+    if (n > l->maxComputeWorkGroupInvocations)
+        return pg_fail(err, PG_ERR_LIMIT, "%s: %s: shader '%s': a workgroup of %ux%ux%u = %llu invocations is more "
+                       "than %s allows (%u)",
+                       file, path, pa->path, pa->local[0], pa->local[1], pa->local[2], (unsigned long long)n,
+                       ctx->gpu->props.deviceName, l->maxComputeWorkGroupInvocations);
+    if (pa->shared_bytes > l->maxComputeSharedMemorySize)
+        return pg_fail(err, PG_ERR_LIMIT, "%s: %s: shader '%s': %u bytes of shared memory (at least) are more than %s "
+                       "allows (%u)",
+                       file, path, pa->path, pa->shared_bytes, ctx->gpu->props.deviceName, l->maxComputeSharedMemorySize);
+    return PG_OK;
+}
+
 static pg_result sp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *err)
 {
     shader_pass *s = self;
@@ -147,6 +171,7 @@ static pg_result sp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
                                      s->vis_surface ? PG_SCENE_OF(ctx)->set_layout : VK_NULL_HANDLE};
     if ((r = pg_pipeline_layout_create(ctx->gpu, s->vis_surface ? 4 : 3, sets, pa->push_size, &s->layout, err))) return r;
     if (pa->form == SP_FULLSCREEN) return create_fullscreen(s, ctx, pa, err);
+    if ((r = check_workgroup(ctx, pa, err))) return r;
     VkShaderModule cs;
     if ((r = user_module(ctx->gpu, pa->path, VK_SHADER_STAGE_COMPUTE_BIT, &ctx->pass->decl,
                          s->vis_surface ? &s->vis : NULL, &cs, err)))

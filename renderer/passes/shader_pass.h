@@ -38,6 +38,7 @@ typedef struct sp_params {
     bool depth_clear;         /* the depth image is in the writes and cleared (depth_write access) */
     uint32_t depth_compare;   /* VkCompareOp (draw) */
     uint32_t local[3];        /* the compute shader's local size */
+    uint32_t shared_bytes;    /* its shared memory (spirv_reflect.h: a lower bound), checked at create */
     uint32_t groups[3];       /* SP_DISPATCH_GROUPS */
     pg_slot dispatch_slot;    /* SP_DISPATCH_IMAGE / BUFFER: per pixel / element of this slot */
     uint32_t dispatch_stride; /* SP_DISPATCH_BUFFER: the buffer's element bytes */

@@ -210,6 +210,30 @@ static bool access_from_name(const char *s, pg_access *out)
     return false;
 }
 
+/* A pipeline image is one 2D single-sampled colour or depth layer, sampled without comparison:
+ * other dimensions, arrays, multisampling and shadow samplers are refused by name. */
+static pg_result check_image_shape(sp_ctx *c, const char *sub, const pg_spv_binding *b)
+{
+    static const char *const dims[] = {"1D", "2D", "3D", "cube", "rectangle", "buffer", "subpass"};
+    const char *what = NULL;
+    char buf[48];
+    if (b->dim != 1) {
+        snprintf(buf, sizeof buf, "a %s image", b->dim < 7 ? dims[b->dim] : "?");
+        what = buf;
+    } else if (b->arrayed) {
+        what = "an image array (layers)";
+    } else if (b->multisampled) {
+        what = "a multisampled image";
+    } else if (b->depth) {
+        what = "a shadow sampler (depth comparison; the pass's sampler compares nothing)";
+    }
+    if (!what) return PG_OK;
+    return pg_sp_fail(c, PG_ERR_FORMAT, sub,
+                      "shader '%s' binding '%s' (set %u, binding %u) is %s: a pipeline image is bound as one 2D "
+                      "layer (sampler2D, image2D)",
+                      c->rel, b->name, b->set, b->binding, what);
+}
+
 /* The shader's kind against the resource and the access; qualifiers and formats. */
 static pg_result check_binding_kind(sp_ctx *c, const char *sub, const pg_spv_binding *b, const pg_resource_desc *rd,
                                     pg_access a)
@@ -254,6 +278,10 @@ static pg_result check_binding_kind(sp_ctx *c, const char *sub, const pg_spv_bin
             return pg_sp_fail(c, PG_ERR_FORMAT, sub,
                            "shader '%s' binding '%s' (set %u, binding %u) is writeonly but bound %s", c->rel, b->name,
                            b->set, b->binding, pg_access_name(a));
+    }
+    if (image && (b->kind == PG_SPV_COMBINED_IMAGE_SAMPLER || b->kind == PG_SPV_STORAGE_IMAGE)) {
+        pg_result r = check_image_shape(c, sub, b);
+        if (r) return r;
     }
     const bool uint_image = pg_format_get(rd->format)->fmt_class == PG_FMTCLASS_UINT;
     const bool uint_shader = b->sampled_type == PG_SPV_UINT || b->sampled_type == PG_SPV_INT;

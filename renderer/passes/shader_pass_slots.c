@@ -325,6 +325,7 @@ pg_result pg_sp_read_dispatch(sp_ctx *c)
         return PG_OK;
     }
     for (int k = 0; k < 3; k++) c->p->local[k] = c->refl.local_size[k] ? c->refl.local_size[k] : 1;
+    c->p->shared_bytes = c->refl.shared_bytes;
     const char *name = NULL;
     bool want_image = true;
     if (!dv) { /* default: per pixel of the first image the pass writes through a binding */

@@ -27,7 +27,7 @@ static pg_result sl_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error
     sl_params *p = pg_decl_params(out, sizeof *p);
     p->lights = pg_decl_read(out, "lights", PG_RES_BUFFER, PG_ACCESS_STORAGE_READ, PG_STAGE_COMPUTE, 0);
     p->out = pg_decl_write(out, "lights_stochastic", PG_RES_BUFFER, PG_ACCESS_STORAGE_WRITE, PG_STAGE_COMPUTE, 0);
-    pg_decl_define_int(out, "PG_SC_TAU_MICRO", (int64_t)(tau * 1e6 + 0.5));
+    pg_decl_define_float(out, "PG_SC_TAU_MICRO", (double)(int64_t)(tau * 1e6 + 0.5));
     if (pg_scene_features_of(in).has_file_lights) pg_decl_define(out, "PG_GLTF_FALLOFF");
     if (pg_scene_features_of(in).has_spot_lights) pg_decl_define(out, "PG_SPOT_LIGHTS"); /* copy the records */
     pg_decl_explain(out, "threshold %g: lights are cut to random ranges below it (unbiased, noisy)", tau);

@@ -41,6 +41,16 @@ expect_fail "set without =" "KEY=VALUE" render --set foo --out "$tmp/x.png"
 expect_fail "missing pipeline" "nope.json" render --pipeline "$tmp/nope.json" --out "$tmp/x.png"
 expect_fail "missing scene" "missing.gltf" render --scene "$tmp/missing.gltf" --out "$tmp/x.png"
 expect_fail "unknown parameter" "no_such_param" render --set no_such_param=1 --size 32x18 --out "$tmp/x.png"
+# a --set key or value, or a debug view, the pipeline refuses is a bad option (exit 2, as in compare
+# and bench) naming the option that gave it, found before a device is made
+for bad_set in "--set no_such_param=1|--set no_such_param=1: the pipeline naive" \
+               "--set shading=wat|--set shading=wat: pipeline" "--debug-view cluster_heat|--debug-view cluster_heat: pipeline"; do
+  # shellcheck disable=SC2086
+  "$PG" render ${bad_set%%|*} --size 32x18 --out "$tmp/x.png" >"$tmp/out" 2>"$tmp/err"
+  rc=$?
+  [ $rc = 2 ] && grep -qF -- "${bad_set#*|}" "$tmp/err" && ! grep -q "^passgraph: device" "$tmp/err" && ok \
+    || { bad "render ${bad_set%%|*}: want exit 2 naming the option (exit $rc)"; cat "$tmp/err"; }
+done
 printf '{"name":"x","resources":[{"name":"o","type":"image","format":"rgba8"}],"passes":[{"name":"p","type":"warp_drive","writes":["o"]}],"output":"o"}' >"$tmp/unknown_type.json"
 expect_fail "unknown pass type" "passes[0].type" render --pipeline "$tmp/unknown_type.json" --size 32x18 --out "$tmp/x.png"
 expect_fail "unwritable out" "cannot write" render --size 32x18 --lights 4 --out "$tmp/no/such/dir/x.png"
@@ -94,6 +104,13 @@ assert d["hdr_flip_exposures"] >= 2 and d["hdr_flip_start_exposure"] <= d["hdr_f
 [ "$(compare_value rmse_linear)" = 0 ] && [ "$(compare_value flip)" = 0 ] && [ "$(compare_value ssim)" = 1 ] \
   && [ "$(compare_value flicker)" = 0 ] && [ "$(compare_value hdr_flip)" = 0 ] && ok \
   || { bad "forward_plus vs naive: want rmse 0, flip 0, hdr_flip 0, ssim 1, flicker 0"; grep '^compare:' "$tmp/out"; }
+# stochastic_threshold over its whole range (1e-6 .. 1e6): the threshold reaches the shaders in
+# millionths, past a GLSL int literal above 2147.48 (it failed to compile there, or wrapped)
+"$PG" dump --pipeline "$root/pipelines/stochastic.json" --set stochastic_threshold=3000 --lights 8 >"$tmp/out" 2>"$tmp/err" \
+  && [ "$(grep -c "PG_SC_TAU_MICRO=3000000000.0" "$tmp/out")" = 2 ] && ok \
+  || { bad "dump stochastic_threshold=3000: want the threshold in millionths in both passes"; grep TAU "$tmp/out"; cat "$tmp/err"; }
+"$PG" render --pipeline "$root/pipelines/stochastic.json" --set stochastic_threshold=1000000 --size 16x9 --lights 8 \
+  --out "$tmp/st.png" >"$tmp/out" 2>"$tmp/err" && ok || { bad "render stochastic_threshold=1000000 (its maximum)"; cat "$tmp/err"; }
 # ris is stochastic: its image differs from the exact one (flip > 0) and changes with the sample (flicker > 0);
 # the mean of 16 frames is closer to the reference than one frame; --flip-map is a PNG of the image's size
 "$PG" compare --pipeline "$root/pipelines/ris.json" --reference "$naive" --size 64x36 --lights 64 --quiet --validation \
@@ -792,6 +809,59 @@ expect_fail "shader pass: outside the folders" "shader '../../../etc/passwd' is 
   dump --pipeline "$up/b_outside.json"
 expect_fail "shader pass: unbound binding" "shader 'extra.frag' binding 'extra' (set 2, binding 1, a combined image sampler) is not bound" \
   render --pipeline "$up/b_unbound.json" --size 16x16 --out "$tmp/x.png"
+# a compute user pass whose SPIR-V is valid but that no pipeline image or device can run: refused
+# by name (an empty file, an image that is not one 2D layer, a shadow sampler, a workgroup or shared
+# memory past the device's limits) instead of a crash or validation messages
+cat >"$up/c.json" <<EOF
+{"name": "upc", "include": ["$root/pipelines/fragments/lights.json", "$root/pipelines/fragments/shading_params.json"],
+ "resources": [{"name": "hdr", "type": "image", "format": "rgba16f"}, {"name": "depth", "type": "image", "format": "d32f"},
+               {"name": "ldr", "type": "image", "format": "rgba8"}],
+ "passes": [{"name": "shade", "type": "forward_naive", "reads": ["lights", "environment", "geometry"], "writes": ["hdr", "depth"],
+             "options": {"shading": "\$shading", "ambient": "\$ambient"}},
+            {"name": "tm", "type": "shader", "reads": ["hdr"], "writes": ["ldr"],
+             "options": {"compute": "c.comp", "bindings": {"hdr_image": "hdr", "ldr_image": "ldr"}}}],
+ "output": "ldr", "hdr_output": "hdr"}
+EOF
+cat >"$up/c.comp" <<'EOF'
+#version 460
+layout(set = 2, binding = 0) uniform sampler2D hdr_image;
+layout(set = 2, binding = 1, rgba8) uniform writeonly image2D ldr_image;
+layout(local_size_x = 8, local_size_y = 8) in;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(ldr_image)))) return;
+    imageStore(ldr_image, p, vec4(texelFetch(hdr_image, p, 0).rgb, 1.0));
+}
+EOF
+"$PG" render --pipeline "$up/c.json" --validation --size 32x18 --lights 4 --out "$tmp/uc.png" >"$tmp/out" 2>"$tmp/err" \
+  && ! grep -q "VUID" "$tmp/err" && ok || { bad "render: the compute user pass"; cat "$tmp/err"; }
+: >"$up/c_empty.comp"
+sed 's/sampler2D hdr_image/sampler3D hdr_image/; s/texelFetch(hdr_image, p, 0)/texelFetch(hdr_image, ivec3(p, 0), 0)/' \
+  "$up/c.comp" >"$up/c_3d.comp"
+sed 's/image2D ldr_image/image2DArray ldr_image/; s/imageSize(ldr_image)/imageSize(ldr_image).xy/; s/imageStore(ldr_image, p,/imageStore(ldr_image, ivec3(p, 0),/' \
+  "$up/c.comp" >"$up/c_layers.comp"
+sed 's/sampler2D hdr_image/sampler2DShadow hdr_image/; s/texelFetch(hdr_image, p, 0).rgb/vec3(texture(hdr_image, vec3(0.5)))/' \
+  "$up/c.comp" >"$up/c_shadow.comp"
+sed 's/local_size_x = 8, local_size_y = 8/local_size_x = 1024, local_size_y = 1024/' "$up/c.comp" >"$up/c_wg.comp"
+sed 's/^void main()/shared vec4 big[16384];\nvoid main()/; s/^{/{\n    big[gl_LocalInvocationIndex] = vec4(1.0);\n    barrier();/' \
+  "$up/c.comp" >"$up/c_shared.comp"
+for v in empty 3d layers shadow wg shared; do sed "s/\"c.comp\"/\"c_$v.comp\"/" "$up/c.json" >"$up/c_$v.json"; done
+expect_fail "shader pass: empty file" "c_empty.comp: empty file (no #version line)" \
+  dump --pipeline "$up/c_empty.json"
+expect_fail "shader pass: 3D image" "binding 'hdr_image' (set 2, binding 0) is a 3D image: a pipeline image is bound as one 2D layer" \
+  dump --pipeline "$up/c_3d.json"
+expect_fail "shader pass: image array" "binding 'ldr_image' (set 2, binding 1) is an image array (layers)" \
+  dump --pipeline "$up/c_layers.json"
+expect_fail "shader pass: shadow sampler" "binding 'hdr_image' (set 2, binding 0) is a shadow sampler" \
+  dump --pipeline "$up/c_shadow.json"
+expect_fail "shader pass: workgroup past the device" "c_wg.json: passes[1]: shader" \
+  render --pipeline "$up/c_wg.json" --validation --size 32x18 --lights 4 --out "$tmp/x.png"
+grep -qE "(local_size_[xyz] = 1024|1048576 invocations) is more than .* allows" "$tmp/err" && ! grep -q "VUID" "$tmp/err" \
+  && ok || { bad "shader pass: workgroup refusal"; cat "$tmp/err"; }
+expect_fail "shader pass: shared memory past the device" "c_shared.comp': 262144 bytes of shared memory (at least) are more than" \
+  render --pipeline "$up/c_shared.json" --validation --size 32x18 --lights 4 --out "$tmp/x.png"
+! grep -q "VUID" "$tmp/err" && ok || { bad "shader pass: shared memory refusal after validation messages"; cat "$tmp/err"; }
 # a glTF animation: played at --time by the geometry_animate pass, named by --explain; an unknown
 # --animation is an error listing the file's
 acorp="$gcorp/animation"

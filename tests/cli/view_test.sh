@@ -16,7 +16,7 @@ printf '{ "name": broken' >"$tmp/broken.json"
 xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --validation --size 320x180 --frames 66 --lights 48 \
   --pipeline "$tmp/pipelines/forward_plus.json" --pipelines "$tmp/pipelines" --cycle-pipelines --cycle-every 6 \
   --at 3:resize=400x240 --at 9:set=view=cluster_heat --at 13:copy="$tmp/broken.json:$tmp/pipelines/naive.json" \
-  --at 15:pipeline=naive.json --at 20:copy="$root/pipelines/naive.json:$tmp/pipelines/naive.json" \
+  --at 15:pipeline="$tmp/pipelines/naive.json" --at 20:copy="$root/pipelines/naive.json:$tmp/pipelines/naive.json" \
   --at 25:diff=on --at 27:diff=flip --at 30:diff=off --at 33:resize=320x180 --at 35:lights=0 --at 40:lights=64 \
   --at "42:ocioview=Filmic (ACES)" --at 44:display=Rec.1886 \
   --screenshot "$tmp/shot.png" >"$tmp/out" 2>"$tmp/err"
@@ -37,6 +37,20 @@ for p in naive forward_plus deferred deferred_oct16 deferred_packed reference ri
   grep -q "switching to $p.json\|pipeline $p.json" "$tmp/out" && ok || bad "pipeline $p.json never shown"
 done
 
+# bad scripted values and unknown keys are refused by name, not read as 0 or ignored: a light count
+# that is not a whole number in range, a pipeline that is no file and none of the list, a --set or
+# --at set key no pipeline declares
+for bad_arg in "--at 2:lights=1e3|--at 2:lights 1e3: expected a whole number in [0, 16777216]" \
+               "--at 2:lights=-1|--at 2:lights -1: expected a whole number" \
+               "--at 2:pipeline=$tmp/none.json|--at 2:pipeline: $tmp/none.json: neither a file nor one of the viewer's" \
+               "--at 2:set=bogus=1|--at 2:set=bogus=1: no pipeline of the viewer declares a parameter 'bogus'" \
+               "--set bogus=1|--set bogus=1: no pipeline of the viewer declares a parameter 'bogus'"; do
+  # shellcheck disable=SC2086
+  xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 4 --lights 4 ${bad_arg%%|*} >"$tmp/out3" 2>"$tmp/err3"
+  rc=$?
+  [ $rc -ne 0 ] && [ $rc -lt 128 ] && grep -qF -- "${bad_arg#*|}" "$tmp/err3" && ok \
+    || { bad "view ${bad_arg%%|*}: want a refusal naming it (exit $rc)"; cat "$tmp/err3"; }
+done
 # the light slider from 0 to 1,000,000 and back (tiny window): the light lists grow, a small list
 # budget drops and reports references (also at 300,000 lights after the 1,000,000 frames: the lists
 # need 14.9 MiB there), and the viewer keeps running. An 8 x 4 x 8 cluster grid: the checks do not
@@ -124,7 +138,8 @@ xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --size 64x36 --frames 2 --ligh
   && ok || { bad "view: skins warning not printed once"; cat "$tmp/err4"; }
 [ "$(head -c 3 "$tmp/shot.jpg" 2>/dev/null | od -An -tx1 | tr -d ' ')" = "ffd8ff" ] && ok || bad "view --screenshot x.jpg: not a JPEG"
 # a user pass (pipelines/examples/tonemap: JSON + GLSL) hot-reloaded: the shader is broken on disk
-# (its glslang error with the file and line is shown, the last good graph keeps running), then edited
+# (its glslang error with the file and line is shown, the last good graph keeps running), emptied
+# (named, no crash), then edited
 # (the new image is shown; the reload's time is printed); the examples are in the viewer's list
 ut="$tmp/usertone"
 mkdir -p "$ut"
@@ -133,14 +148,17 @@ sed "s#\"\.\./\.\./fragments/#\"$root/pipelines/fragments/#g" "$root/pipelines/e
 sed 's/float L = /float L = no_such_thing + /' "$ut/tonemap.frag" >"$tmp/tm_broken.frag"
 sed 's/out_color = vec4(pg_srgb_encode(c \* scale), 1.0);/out_color = vec4(pg_srgb_encode(c * scale).bgr, 1.0);/' \
   "$ut/tonemap.frag" >"$tmp/tm_swapped.frag"
+: >"$tmp/tm_empty.frag" # as an editor leaves a file it is about to write: an error, no crash
 xvfb-run -a -s "-screen 0 1024x768x24" "$PG" view --validation --size 640x360 --frames 12 --lights 16 \
   --pipeline "$ut/tonemap.json" --at 3:copy="$tmp/tm_broken.frag:$ut/tonemap.frag" \
-  --at 7:copy="$tmp/tm_swapped.frag:$ut/tonemap.frag" >"$tmp/out6" 2>"$tmp/err6"
+  --at 5:copy="$tmp/tm_empty.frag:$ut/tonemap.frag" --at 7:copy="$tmp/tm_swapped.frag:$ut/tonemap.frag" >"$tmp/out6" 2>"$tmp/err6"
 rc=$?
 [ $rc -eq 0 ] && ok || { bad "user pass reload: view exit $rc"; tail -20 "$tmp/err6"; }
 grep -q "validation message" "$tmp/err6" && bad "user pass reload: validation messages" || ok
 grep -q "tonemap.frag:22: 'no_such_thing' : undeclared identifier" "$tmp/err6" \
   && ok || { bad "user pass reload: the shader error was not shown"; cat "$tmp/err6"; }
+grep -q "tonemap.frag: empty file (no #version line)" "$tmp/err6" \
+  && ok || { bad "user pass reload: an empty shader file was not reported"; cat "$tmp/err6"; }
 grep -Eq '^view: frame 1[01]: .* ready in [0-9.]+ ms' "$tmp/out6" || grep -Eq '^view: frame [7-9]: .*ready in [0-9.]+ ms' "$tmp/out6" \
   && ok || { bad "user pass reload: the edited shader was not shown"; cat "$tmp/out6"; }
 grep -Eq '^view: 12 frames' "$tmp/out6" && ok || { bad "user pass reload: did not run 12 frames"; tail -3 "$tmp/out6"; }

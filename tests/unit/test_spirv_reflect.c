@@ -570,8 +570,48 @@ static void test_random_words(const uint32_t *w, size_t n, uint32_t trials)
     free(c);
 }
 
+/* Shared memory (the sum of the Workgroup variables' scalars, bool 4 bytes, no padding) and the
+ * Depth operand of a shadow sampler. */
+static void test_shared_and_depth(void)
+{
+    static const char *const src =
+        "#version 460\n"
+        "layout(local_size_x = 64) in;\n"
+        "struct S { vec3 a; float b; bool c; mat2 m; };\n" /* 12 + 4 + 4 + 16 = 36 bytes */
+        "shared S items[4];\n"                              /* 144 */
+        "shared uint counts[10];\n"                         /* 40 */
+        "layout(set = 0, binding = 0) uniform sampler2DShadow shadow_map;\n"
+        "layout(set = 0, binding = 1) uniform sampler2D plain;\n"
+        "layout(set = 0, binding = 2, std430) buffer O { float o[]; };\n"
+        "void main() {\n"
+        "    uint i = gl_LocalInvocationIndex;\n"
+        "    items[i % 4u].a = vec3(float(i)); items[i % 4u].b = 1.0; items[i % 4u].c = i > 3u;\n"
+        "    items[i % 4u].m = mat2(float(i)); counts[i % 10u] = i;\n"
+        "    barrier();\n"
+        "    o[i] = texture(shadow_map, vec3(0.5)) + texture(plain, vec2(0.5)).x + items[1].a.y + items[2].b\n"
+        "         + (items[3].c ? 1.0 : 0.0) + items[0].m[1][1] + float(counts[9]);\n"
+        "}\n";
+    size_t n = 0;
+    uint32_t *w = compile("reflect_shared.comp", src, VK_SHADER_STAGE_COMPUTE_BIT, &n);
+    pg_spv_reflection r;
+    if (!w || !reflect_ok("shared", w, n, &r)) {
+        free(w);
+        return;
+    }
+    CHECK_MSG(r.shared_bytes == 184, "shared bytes %u, want 184", r.shared_bytes);
+    const pg_spv_binding *sh = pg_spv_find_binding(&r, 0, 0), *pl = pg_spv_find_binding(&r, 0, 1);
+    CHECK_MSG(sh && sh->depth && sh->dim == 1 && sh->kind == PG_SPV_COMBINED_IMAGE_SAMPLER, "shadow_map: not a 2D depth sampler");
+    CHECK_MSG(pl && !pl->depth, "plain: a depth image");
+    free(w);
+    /* no shared variable: 0 */
+    w = compile("reflect_test.comp", COMPUTE_SRC, VK_SHADER_STAGE_COMPUTE_BIT, &n);
+    if (w && reflect_ok("compute", w, n, &r)) CHECK_MSG(r.shared_bytes == 0, "shared bytes %u, want 0", r.shared_bytes);
+    free(w);
+}
+
 int main(void)
 {
+    test_shared_and_depth();
     test_names();
     test_compute();
     test_fragment();

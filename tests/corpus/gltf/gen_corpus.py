@@ -399,6 +399,11 @@ d2["buffers"][0]["byteLength"] = 1000
 write("glb_bytelength_exceeds_bin.glb", glb(d2, data), "PG_ERR_GLTF",
       "buffers[0]: byteLength 1000 exceeds the GLB BIN chunk (44 bytes)")
 write("glb_no_bin.glb", glb(d, None), "PG_ERR_GLTF", "there is none")
+# only buffers[0] may be the BIN chunk: a second buffer without a uri is an error, not read from it
+d3 = json.loads(json.dumps(d))
+d3["buffers"].append({"byteLength": 4})
+write("glb_second_buffer_no_uri.glb", glb(d3, data), "PG_ERR_GLTF",
+      "buffers[1].uri: missing (only buffers[0] may refer to the GLB BIN chunk)")
 write("glb_version_1.glb", b"glTF" + struct.pack("<II", 1, 20) + b"\0" * 8, "PG_ERR_PARSE",
       "GLB: container version 1")
 
@@ -558,6 +563,7 @@ d["materials"] = [{"emissiveFactor": [0.5, 0.25, 1],
 write("ok_required_emissive_strength.gltf", d, "PG_OK")
 # emissiveFactor / emissiveStrength must be finite and >= 0. JSON has no infinity: a number past the
 # double range (1e999) is refused by the JSON parser; a product past the float range by the loader.
+# The metallic-roughness factors are in [0, 1] (the specification's ranges).
 for name, mat, msg in (
         ("emissive_negative.gltf", {"emissiveFactor": [1, -0.5, 0]},
          "materials[0].emissiveFactor: expected 3 finite numbers >= 0, got [1,-0.5,0]"),
@@ -571,6 +577,12 @@ for name, mat, msg in (
         ("emissive_strength_infinite.gltf",
          {"emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": "INF"}}},
          "number overflow parsing '1e999'"),
+        ("base_color_out_of_range.gltf", {"pbrMetallicRoughness": {"baseColorFactor": [-1, 2, 0.5, 1]}},
+         "materials[0].pbrMetallicRoughness.baseColorFactor: expected 4 numbers in [0, 1], got [-1,2,0.5,1]"),
+        ("metallic_out_of_range.gltf", {"pbrMetallicRoughness": {"metallicFactor": 7}},
+         "materials[0].pbrMetallicRoughness.metallicFactor: expected a number in [0, 1], got 7"),
+        ("roughness_negative.gltf", {"pbrMetallicRoughness": {"roughnessFactor": -5}},
+         "materials[0].pbrMetallicRoughness.roughnessFactor: expected a number in [0, 1], got -5"),
         ("emissive_factor_overflow.gltf", {"emissiveFactor": [1e39, 0, 0]},
          "materials[0].emissiveFactor: 1e+39 x emissiveStrength 1 is outside the float range"),
         ("emissive_strength_overflow.gltf",
@@ -645,6 +657,35 @@ write("light_index_out_of_range.gltf", lights_doc({"type": "point"}, {"light": 3
       "nodes[1].extensions.KHR_lights_punctual.light: 3 out of range (1 lights)")
 write("light_index_missing.gltf", lights_doc({"type": "point"}, {}), "PG_ERR_GLTF",
       "nodes[1].extensions.KHR_lights_punctual.light: expected a light index")
+write("light_type_missing.gltf", lights_doc({"color": [1, 1, 1]}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].type: missing: expected \"point\", \"spot\" or \"directional\"")
+write("light_spot_missing.gltf", lights_doc({"type": "spot"}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].spot: missing (required by type \"spot\")")
+
+# cameras: their type, its object and its required numbers are checked before tinygltf reads them
+# (its own messages name no camera); aspectRatio, when given, is > 0
+
+
+def camera_doc(cam):
+    d, _ = base_doc()
+    d["cameras"] = [cam]
+    d["nodes"].append({"camera": 0, "translation": [0, 0, 3]})
+    d["scenes"][0]["nodes"] = [0, 1]
+    return d
+
+
+for name, cam, msg in (
+        ("camera_type_bad.gltf", {"type": "fisheye"},
+         "cameras[0].type: \"fisheye\" is not one of \"perspective\", \"orthographic\""),
+        ("camera_type_missing.gltf", {"perspective": {"yfov": 0.8, "znear": 0.1}},
+         "cameras[0].type: missing (required: \"perspective\", \"orthographic\")"),
+        ("camera_object_missing.gltf", {"type": "perspective"},
+         "cameras[0].perspective: missing (required by type \"perspective\")"),
+        ("camera_aspect_zero.gltf", {"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "aspectRatio": 0}},
+         "cameras[0].perspective.aspectRatio: expected a finite number > 0, got 0"),
+        ("camera_ortho_no_zfar.gltf", {"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0}},
+         "cameras[0].orthographic.zfar: missing (required)")):
+    write(name, camera_doc(cam), "PG_ERR_GLTF", msg)
 
 # PASSGRAPH_lights_table: a good table of two lights, and bad ones refused naming the field
 
