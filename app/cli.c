@@ -310,18 +310,21 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
     } while (0)
     if (!strcmp(a, "--pipeline")) {
         NEED_VALUE();
+        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--pipeline: empty path (a pipeline .json file)");
         c->pipeline = v;
     } else if (!strcmp(a, "--include-dir")) {
         NEED_VALUE();
         if ((r = add_include_dir(v, err))) return r;
     } else if (!strcmp(a, "--scene")) {
         NEED_VALUE();
+        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--scene: empty path (a .gltf or .glb file)");
         c->scene = v;
     } else if (!strcmp(a, "--gltf-scene") || !strcmp(a, "--variant")) {
         NEED_VALUE();
         if ((r = parse_scene_choice(c, a, v, err))) return r;
     } else if (!strcmp(a, "--scenario")) {
         NEED_VALUE();
+        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--scenario: empty path (a scenario .json file)");
         c->scenario = v;
     } else if (!strcmp(a, "--camera")) {
         NEED_VALUE();
@@ -329,6 +332,7 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         c->camera = v;
     } else if (!strcmp(a, "--out")) {
         NEED_VALUE();
+        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--out: empty path");
         c->out = v;
     } else if (!strcmp(a, "--lights")) {
         NEED_VALUE();

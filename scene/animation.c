@@ -187,7 +187,7 @@ double pg_anim_local_time(const pg_scene_anim *a, int animation, double time)
         end = a->animations[animation].end;
     }
     if (!(end > 0) || !isfinite(time)) return 0;
-    double t = fmod(time, end);
+    double t = fmod(time, end) + 0.0; /* + 0.0: -0 (a negative whole number of loops) becomes 0 */
     if (t < 0) t += end;
     if (time > 0 && t == 0) t = end; /* t = end plays the last key, not the first */
     return t;

@@ -95,7 +95,8 @@ uint32_t rd_u32(const unsigned char *p)
 /* Returns the JSON chunk text. */
 std::string glb_json(Ctx &c, const unsigned char *b, size_t n)
 {
-    if (n < 20) fail(PG_ERR_PARSE, strf("GLB: file too short (%zu bytes) for a header", n));
+    if (n < 12) fail(PG_ERR_PARSE, strf("GLB: file too short (%zu bytes) for the 12-byte header", n));
+    if (n < 20) fail(PG_ERR_PARSE, strf("GLB: no JSON chunk after the header (%zu bytes in all)", n));
     uint32_t version = rd_u32(b + 4), length = rd_u32(b + 8);
     if (version != 2) fail(PG_ERR_PARSE, strf("GLB: container version %u (need 2)", version));
     if (length > n)
@@ -103,7 +104,8 @@ std::string glb_json(Ctx &c, const unsigned char *b, size_t n)
                                 length, n));
     uint32_t clen = rd_u32(b + 12), ctype = rd_u32(b + 16);
     if (ctype != 0x4E4F534Au) fail(PG_ERR_PARSE, "GLB: first chunk is not JSON");
-    if (clen < 1 || 20ull + clen > length)
+    if (clen < 1) fail(PG_ERR_PARSE, "GLB: the JSON chunk is empty (length 0)");
+    if (20ull + clen > length)
         fail(PG_ERR_PARSE, strf("GLB: JSON chunk length %u exceeds the container (%u bytes)",
                                 clen, length));
     uint64_t off = 20ull + clen;

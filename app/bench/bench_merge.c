@@ -298,7 +298,7 @@ static pg_result read_shard_rows(bench *B, const shard_in *s, uint8_t *seen_cfg,
         bench_row row;
         char file[PG_PATH_MAX + 32];
         snprintf(file, sizeof file, "%s/results.json", s->dir);
-        if ((r = pg_bench_row_check(file, ++rowno, o, err))) return r;
+        if ((r = pg_bench_row_check(file, rowno++, o, err))) return r;
         if ((r = row_read(B, s->dir, o, &row, err))) return r;
         if (row.index % s->n != s->k - 1)
             return pg_fail(err, PG_ERR_INVALID_ARG, "%s: configuration %u does not belong to shard %u/%u", s->dir,

@@ -27,7 +27,9 @@ static const char *const k_expected[] = {"a number", "a string", "an object of s
 
 static void describe(const cJSON *v, char *buf, size_t n)
 {
-    if (cJSON_IsString(v)) {
+    if (!v) {
+        snprintf(buf, n, "nothing (missing)");
+    } else if (cJSON_IsString(v)) {
         size_t len = strlen(v->valuestring);
         snprintf(buf, n, "string \"%.40s%s\"", v->valuestring, len > 40 ? "..." : "");
     } else if (cJSON_IsNumber(v)) {
@@ -54,7 +56,7 @@ static pg_result bad(const char *file, uint32_t row, const char *name, const cha
 {
     char got[96];
     describe(v, got, sizeof got);
-    return pg_fail(err, PG_ERR_PARSE, "'%s' row %u field '%s': expected %s, got %s", file, row, name,
+    return pg_fail(err, PG_ERR_PARSE, "'%s' rows[%u].%s: expected %s, got %s", file, row, name,
                    expected, got);
 }
 
@@ -80,7 +82,7 @@ pg_result pg_bench_row_check(const char *file, uint32_t row, const cJSON *o, pg_
     if (!cJSON_IsObject(o)) {
         char got[96];
         describe(o, got, sizeof got);
-        return pg_fail(err, PG_ERR_PARSE, "'%s' row %u: expected an object, got %s", file, row, got);
+        return pg_fail(err, PG_ERR_PARSE, "'%s' rows[%u]: expected an object, got %s", file, row, got);
     }
     for (size_t i = 0; i < sizeof k_fields / sizeof k_fields[0]; i++) {
         const field *f = &k_fields[i];

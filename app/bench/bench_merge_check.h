@@ -1,6 +1,7 @@
 /* bench_merge_check.h - the type of every field of a results.json row, checked before bench-merge
- * reads it: "'a/results.json' row 3 field 'gpu_ms': expected an object of statistics, got string
- * \"fast\"" (rows counted from 1). */
+ * reads it: "'a/results.json' rows[2].gpu_ms: expected an object of statistics, got string
+ * \"fast\"" (row: the JSON index in "rows", from 0; a missing field that must be there is
+ * "nothing (missing)"). */
 #ifndef PG_BENCH_MERGE_CHECK_H
 #define PG_BENCH_MERGE_CHECK_H
 

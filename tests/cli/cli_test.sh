@@ -40,6 +40,9 @@ expect_fail "time NaN" "--time nan" render --time nan --out "$tmp/x.png"
 expect_fail "set without =" "KEY=VALUE" render --set foo --out "$tmp/x.png"
 expect_fail "missing pipeline" "nope.json" render --pipeline "$tmp/nope.json" --out "$tmp/x.png"
 expect_fail "missing scene" "missing.gltf" render --scene "$tmp/missing.gltf" --out "$tmp/x.png"
+for o in --scene --scenario --pipeline --out; do # named as the option, not as an internal function
+  expect_fail "empty $o" "$o: empty path" render "$o" "" --size 16x9
+done
 expect_fail "unknown parameter" "no_such_param" render --set no_such_param=1 --size 32x18 --out "$tmp/x.png"
 # a --set key or value, or a debug view, the pipeline refuses is a bad option (exit 2, as in compare
 # and bench) naming the option that gave it, found before a device is made

@@ -155,7 +155,7 @@ d["rows"][0]["gpu_ms"] = "fast"
 json.dump(d, open(p, "w"))
 PY
   expect_fail "bench-merge gpu_ms string" \
-    "bench-merge: '$tmp/s1/results.json' row 1 field 'gpu_ms': expected an object of statistics, got string \"fast\"" \
+    "bench-merge: '$tmp/s1/results.json' rows[0].gpu_ms: expected an object of statistics, got string \"fast\"" \
     bench-merge --out "$tmp/m" "$tmp/s1"
   python3 - "$tmp/s1/results.json" <<'PY'
 import json, sys
@@ -165,7 +165,17 @@ d["rows"][0]["gpu_ms"] = {"n": 1, "median": "fast"}
 json.dump(d, open(p, "w"))
 PY
   expect_fail "bench-merge gpu_ms.median string" \
-    "row 1 field 'gpu_ms.median': expected a number, got string \"fast\"" bench-merge --out "$tmp/m" "$tmp/s1"
+    "rows[0].gpu_ms.median: expected a number, got string \"fast\"" bench-merge --out "$tmp/m" "$tmp/s1"
+  python3 - "$tmp/s1/results.json" <<'PY'
+import json, sys
+p = sys.argv[1]
+d = json.load(open(p))
+d["rows"][0]["gpu_ms"] = {"n": 1, "median": 1.0}
+d["rows"][0]["passes"][0].pop("name")
+json.dump(d, open(p, "w"))
+PY
+  expect_fail "bench-merge pass without a name" \
+    "rows[0].passes[0].name: expected a string, got nothing (missing)" bench-merge --out "$tmp/m" "$tmp/s1"
 else
   bad "bench --shard 1/1 failed"; cat "$tmp/bench.log"
 fi

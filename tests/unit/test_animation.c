@@ -93,6 +93,9 @@ static void rigid(void)
     expect(s, PG_ANIM_NONE, 3, 1, 10, 0.5, 1, 0.5, "spinner v10 in the rest pose");
     char line[256];
     CHECK(pg_anim_describe(s, 0, 5, line, sizeof line) && strstr(line, "'spin'") && strstr(line, "t = 1 s"));
+    /* a whole number of loops: forward it plays the last key, backward the first (printed 0, not -0) */
+    CHECK(pg_anim_local_time(s->anim, 0, 4.0) == 4.0 && pg_anim_local_time(s->anim, 0, -3.0) == 1.0);
+    CHECK(pg_anim_describe(s, 0, -4, line, sizeof line) && strstr(line, "at t = 0 s") && !strstr(line, "-0"));
     pg_scene_free(s);
 }
 

@@ -406,6 +406,10 @@ write("glb_second_buffer_no_uri.glb", glb(d3, data), "PG_ERR_GLTF",
       "buffers[1].uri: missing (only buffers[0] may refer to the GLB BIN chunk)")
 write("glb_version_1.glb", b"glTF" + struct.pack("<II", 1, 20) + b"\0" * 8, "PG_ERR_PARSE",
       "GLB: container version 1")
+write("glb_header_only.glb", b"glTF" + struct.pack("<II", 2, 12), "PG_ERR_PARSE",
+      "GLB: no JSON chunk after the header (12 bytes in all)")
+write("glb_json_empty.glb", b"glTF" + struct.pack("<II", 2, 20) + struct.pack("<II", 0, 0x4E4F534A), "PG_ERR_PARSE",
+      "GLB: the JSON chunk is empty (length 0)")
 
 # ------------------------------------------------------------------------------------------------
 # valid files (checked in more detail by test_scene.c)
