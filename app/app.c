@@ -185,10 +185,13 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     if (app->object_lights && app->lights.count - app->lights.file_count != opt->lights) /* a scenario's count */
         app->lights.intensity =
             pg_light_setup_object(app->scene, app->lights.count - app->lights.file_count, opt->seed).intensity;
-    if (opt->has_radius || opt->has_intensity)
+    if (opt->has_radius || opt->has_intensity) { /* the values that replace the set-up's, not just their names */
+        char rv[48] = "", iv[48] = "";
+        if (opt->has_radius) snprintf(rv, sizeof rv, "radius %g (--radius)", app->lights.radius);
+        if (opt->has_intensity) snprintf(iv, sizeof iv, "intensity %g (--intensity)", app->lights.intensity);
         snprintf(app->lights_why + strlen(app->lights_why), sizeof app->lights_why - strlen(app->lights_why),
-                 "; %s%s%s from the command line", opt->has_radius ? "radius" : "",
-                 opt->has_radius && opt->has_intensity ? " and " : "", opt->has_intensity ? "intensity" : "");
+                 "; instead: %s%s%s", rv, rv[0] && iv[0] ? ", " : "", iv);
+    }
     if (opt->has_ambient || (app->has_scenario && app->scenario.has_ambient))
         snprintf(app->lights_why + strlen(app->lights_why), sizeof app->lights_why - strlen(app->lights_why),
                  "; ambient %g from %s", app->lights.ambient, opt->has_ambient ? "--ambient" : "the scenario");

@@ -262,6 +262,16 @@ int pg_cmd_lights_table(int argc, char **argv)
     memset(&app, 0, sizeof app);
     if (pg_app_open(&app, &opt, false, &err)) return fail1(err.msg);
     uint32_t n = app.lights.count - app.lights.file_count;
+    const char *refuse = n == 0 ? "no light to write (--lights 0, or a scenario's count of 0): a table holds at least one"
+                         : !(app.lights.radius > 0)
+                             ? "a radius of 0 (--radius or the scenario's): generated lights of radius 0 add no light, and "
+                               "in the file a range of 0 means none, infinite reach: give a radius > 0"
+                             : NULL;
+    if (refuse) {
+        fprintf(stderr, "passgraph lights-table: %s\n", refuse);
+        pg_app_close(&app);
+        return 2;
+    }
     float *rec = records(&app, opt.time, n);
     char *text = rec ? read_text(opt.scene, &err) : NULL;
     cJSON *root = text ? cJSON_Parse(text) : NULL;

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* OpenEXR reports errors through a callback (default: print to stderr); keep the first message
  * for our pg_error instead. */
@@ -239,6 +240,25 @@ static exr_result_t decode_chunks(exr_context_t ctx, exr_decode_pipeline_t *dec,
     return rv;
 }
 
+/* The file holds at least the chunk table its header announces (8 bytes a chunk) and each chunk's
+ * 8-byte header: a file that cannot is refused before w x h pixels are allocated (a header of a
+ * 16384 x 8192 image in a file of 377 bytes took 2 GiB). */
+static pg_result check_size(exr_context_t ctx, const char *path, const exr_msg *m, int64_t w, int64_t h, pg_error *err)
+{
+    int32_t chunks = 0;
+    exr_result_t rv = exr_get_chunk_count(ctx, 0, &chunks);
+    if (rv) return exr_fail(err, path, "cannot read the header", rv, m);
+    struct stat st;
+    if (stat(path, &st) != 0) return pg_fail(err, PG_ERR_IO, "%s: cannot stat", path);
+    const unsigned long long need = 16ull * (unsigned long long)(chunks > 0 ? chunks : 0);
+    if ((unsigned long long)st.st_size < need)
+        return pg_fail(err, PG_ERR_PARSE,
+                       "%s: truncated: its header announces %lldx%lld pixels in %d chunks, at least %llu bytes, "
+                       "and the file has %lld",
+                       path, (long long)w, (long long)h, chunks, need, (long long)st.st_size);
+    return PG_OK;
+}
+
 /* OpenEXRCore's sequence: open, header, then every chunk decoded; A is 1 where absent */
 pg_result pg_exr_read_rgba(const char *path, float **out, uint32_t *out_w, uint32_t *out_h, pg_error *err)
 {
@@ -263,6 +283,7 @@ pg_result pg_exr_read_rgba(const char *path, float **out, uint32_t *out_w, uint3
     int32_t lines = 1;
     if ((r = read_header(ctx, path, &m, &dw, &lines, err))) goto done;
     int64_t w = (int64_t)dw.max.x - dw.min.x + 1, h = (int64_t)dw.max.y - dw.min.y + 1;
+    if ((r = check_size(ctx, path, &m, w, h, err))) goto done;
     px = malloc((size_t)w * h * 4 * sizeof(float));
     if (!px) {
         r = pg_fail(err, PG_ERR_OOM, "%s: out of memory", path);

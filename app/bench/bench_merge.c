@@ -218,6 +218,13 @@ static int parse_merge_options(int argc, char **argv, const char **dirs, int *nd
                 merge_help);
         return 2;
     }
+    char want[PATH_MAX], have[PATH_MAX];
+    for (int d = 0; d < *nd && realpath(*out, want); d++) /* the merged files would replace a shard's */
+        if (realpath(dirs[d], have) && !strcmp(want, have)) {
+            fprintf(stderr, "passgraph bench-merge: --out %s is the shard folder %s: write the merge elsewhere\n", *out,
+                    dirs[d]);
+            return 2;
+        }
     return -1;
 }
 

@@ -192,6 +192,13 @@ static pg_result list_all_pipelines(bench *B, pg_error *err)
     return r;
 }
 
+static bool same_file(const char *a, const char *b)
+{
+    char ra[PATH_MAX], rb[PATH_MAX];
+    if (!realpath(a, ra) || !realpath(b, rb)) return !strcmp(a, b);
+    return !strcmp(ra, rb);
+}
+
 pg_result resolve_pipelines(bench *B, char *list, pg_error *err)
 {
     if (!list || !strcmp(list, "all")) return list_all_pipelines(B, err);
@@ -209,19 +216,18 @@ pg_result resolve_pipelines(bench *B, char *list, pg_error *err)
             size_t l = strlen(t);
             snprintf(rel, sizeof rel, "pipelines/%s%s", t, l > 5 && !strcmp(t + l - 5, ".json") ? "" : ".json");
             pg_data_path(cand, sizeof cand, rel);
-            if (is_file(cand)) pg_strlcpy(path, cand, sizeof path);
+            pg_strlcpy(path, cand, sizeof path); /* also when missing: its row's error names the file tried */
+        }
+        bool dup = false; /* the same file twice (by name and by path): run once */
+        for (uint32_t k = 0; k < B->n_pipes && !dup; k++) dup = same_file(B->pipes[k].path, path);
+        if (dup) {
+            fprintf(stderr, "passgraph bench: --pipelines: '%s' is listed twice: run once\n", t);
+            continue;
         }
         pg_result r = add_pipe(B, path, err);
         if (r) return r;
     }
     return PG_OK;
-}
-
-static bool same_file(const char *a, const char *b)
-{
-    char ra[PATH_MAX], rb[PATH_MAX];
-    if (!realpath(a, ra) || !realpath(b, rb)) return !strcmp(a, b);
-    return !strcmp(ra, rb);
 }
 
 static bool same_ov(const pg_ov_list *a, const pg_ov_list *b)

@@ -274,9 +274,9 @@ static pg_result parse_value_option(bench *B, setup_args *sa, const char *a, cha
     } else if (!strcmp(a, "--warmup-ms")) {
         r = parse_u32_opt(a, v, 600000, &B->warmup_ms, err);
     } else if (!strcmp(a, "--frames-in-flight")) {
-        r = parse_u32_opt(a, v, PG_MAX_FRAMES_IN_FLIGHT, &B->frames_in_flight, err);
-        if (!r && !B->frames_in_flight)
-            r = pg_fail(err, PG_ERR_INVALID_ARG, "--frames-in-flight: 1 or %d", PG_MAX_FRAMES_IN_FLIGHT);
+        uint64_t n = 0;
+        r = pg_cli_parse_u64(a, v, 1, PG_MAX_FRAMES_IN_FLIGHT, &n, err);
+        B->frames_in_flight = (uint32_t)n;
     } else if (!strcmp(a, "--reference-max-lights") || !strcmp(a, "--naive-max-lights")) {
         if (!strcmp(a, "--naive-max-lights") && !sa->warned_naive) {
             fprintf(stderr, "passgraph bench: warning: --naive-max-lights is deprecated; use "
@@ -352,11 +352,18 @@ static pg_result parse_scenes(bench *B, char *scenes, pg_error *err)
     char *parts[MAX_LIST];
     int n = pg_bench_split_list(scenes, ',', parts, MAX_LIST);
     if (n < 0) r = pg_fail(err, PG_ERR_INVALID_ARG, "--scene: at most %d scenes", MAX_LIST);
+    uint32_t kept = 0;
     for (int k = 0; !r && k < n; k++) {
         if (!parts[k][0]) r = pg_fail(err, PG_ERR_INVALID_ARG, "--scene: empty entry in the list");
-        B->scenes[k] = parts[k];
+        bool dup = false; /* the same file twice (by path, or both the built-in scene): run once */
+        char a[PATH_MAX], b[PATH_MAX];
+        for (uint32_t j = 0; j < kept && !dup; j++)
+            dup = !strcmp(B->scenes[j], parts[k]) ||
+                  (realpath(B->scenes[j], a) && realpath(parts[k], b) && !strcmp(a, b));
+        if (dup) fprintf(stderr, "passgraph bench: --scene: '%s' is listed twice: run once\n", parts[k]);
+        else B->scenes[kept++] = parts[k];
     }
-    if (!r) B->n_scenes = (uint32_t)n;
+    if (!r) B->n_scenes = kept;
     return r;
 }
 

@@ -95,6 +95,10 @@ for v in 0/2 3/2 a/b 2 1/0 "1/2x"; do
   expect_fail "bench --shard $v" 2 "--shard $v: expected K/N" bench "${SWEEP[@]}" --shard "$v" --out "$tmp/bad"
 done
 expect_fail "merge: missing shard" 1 "shard 2/2 missing" bench-merge --out "$tmp/m2" "$tmp/s1"
+# the merge written over one of its shards would lose that shard's rows: refused, the shard kept
+cp "$tmp/s1/results.json" "$tmp/s1.json.before"
+expect_fail "merge: --out is a shard" 2 "--out $tmp/s1/ is the shard folder $tmp/s1" bench-merge --out "$tmp/s1/" "$tmp/s1" "$tmp/s2"
+cmp -s "$tmp/s1/results.json" "$tmp/s1.json.before" && ok || bad "merge: --out a shard folder changed the shard"
 cp -r "$tmp/s1" "$tmp/s1copy"
 expect_fail "merge: shard twice" 1 "$tmp/s1copy: shard 1/2 given twice (also $tmp/s1)" \
   bench-merge --out "$tmp/m2" "$tmp/s1" "$tmp/s2" "$tmp/s1copy"

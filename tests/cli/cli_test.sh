@@ -58,6 +58,10 @@ printf '{"name":"x","resources":[{"name":"o","type":"image","format":"rgba8"}],"
 expect_fail "unknown pass type" "passes[0].type" render --pipeline "$tmp/unknown_type.json" --size 32x18 --out "$tmp/x.png"
 expect_fail "unwritable out" "cannot write" render --size 32x18 --lights 4 --out "$tmp/no/such/dir/x.png"
 
+# --explain gives the values --radius / --intensity put in place of the set-up's
+"$PG" render --size 16x9 --lights 4 --radius 100 --intensity 5 --out "$tmp/r.png" --explain >"$tmp/out" 2>"$tmp/err" \
+  && grep -q "; instead: radius 100 (--radius), intensity 5 (--intensity)" "$tmp/out" && ok \
+  || { bad "render --radius/--intensity: the explain line lacks their values"; grep "lights:" "$tmp/out"; cat "$tmp/err"; }
 "$PG" render --validation --size 160x90 --lights 32 --time 2 --out "$tmp/r.png" --explain >"$tmp/out" 2>"$tmp/err"
 rc=$?
 if [ $rc -ne 0 ]; then bad "validated render exit $rc"; cat "$tmp/err"; else ok; fi
@@ -520,6 +524,15 @@ echo '{"name": "broken", "passes": [' >"$tmp/broken.json"
 [ $? -eq 1 ] && grep -q '^default,broken,.*,error,' "$tmp/bench4/results.csv" && grep -q '^default,naive,.*,ok,' "$tmp/bench4/results.csv" \
   && ok || { bad "bench: broken pipeline not reported in its row"; cat "$tmp/err"; }
 expect_fail "bench: size 0x0" "--size width 0" bench --size 0x0 --out "$tmp/b5"
+# a pipeline or scene listed twice (by name and by path) runs once, as a repeated light count does;
+# a missing pipeline's row names the file tried
+"$PG" bench --pipelines naive,"$root/pipelines/naive.json",nosuch --scene default,default --lights 4,4 --size 16x9 \
+  --frames 1 --warmup 0 --flicker-frames 0 --out "$tmp/bdup" >"$tmp/out" 2>"$tmp/err"
+[ "$(grep -c '^default,naive,' "$tmp/bdup/results.csv")" = 1 ] && grep -q "'$root/pipelines/naive.json' is listed twice: run once" "$tmp/err" \
+  && grep -q "'default' is listed twice: run once" "$tmp/err" \
+  && grep -q "^default,nosuch,.*,error,pipeline '$root/pipelines/nosuch.json': cannot open" "$tmp/bdup/results.csv" && ok \
+  || { bad "bench: duplicates not run once, or a missing pipeline's row without its path"; cat "$tmp/err" "$tmp/bdup/results.csv"; }
+expect_fail "bench: --frames-in-flight 0" "--frames-in-flight 0: expected a whole number in [1, 2]" bench --frames-in-flight 0 --out "$tmp/b5"
 expect_fail "bench: bad light list" "--lights -5" bench --lights 100,-5 --out "$tmp/b5"
 expect_fail "bench: no --out" "--out DIR" bench --lights 4
 expect_fail "bench: sweep of an undeclared key" "no_such_key" bench --sweep no_such_key=1,2 --out "$tmp/b5"
@@ -631,6 +644,11 @@ expect_fail "lights-table of a .glb" "must be .gltf files" lights-table --scene 
   --out "$tmp/lt/x.gltf"
 expect_fail "lights-table of a missing file" "cannot open" lights-table --scene "$tmp/lt/none.gltf" --out "$tmp/lt/x.gltf"
 expect_fail "lights-table unknown option" "unknown option '--nope'" lights-table --nope
+# no light, or lights of radius 0 (no light from them; a range of 0 in the file is an infinite reach):
+# refused instead of a file that does not load, or one that lights the scene
+expect_fail "lights-table --lights 0" "no light to write" lights-table --scene "$lt" --lights 0 --out "$tmp/lt/z.gltf"
+expect_fail "lights-table --radius 0" "a radius of 0" lights-table --scene "$lt" --lights 4 --radius 0 --out "$tmp/lt/z.gltf"
+[ ! -e "$tmp/lt/z.gltf" ] && [ ! -e "$tmp/lt/z.lights.bin" ] && ok || bad "lights-table: a refused table left files"
 # the default render of a glTF with a camera is the render with that camera named
 "$PG" render --size 64x36 --lights 8 --scene "$objs/camera.gltf" --out "$tmp/cam_default.png" >/dev/null 2>&1 &&
   "$PG" render --size 64x36 --lights 8 --scene "$objs/camera.gltf" --camera 0 --out "$tmp/cam_0.png" >/dev/null 2>&1 &&

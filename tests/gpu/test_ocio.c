@@ -372,6 +372,20 @@ static void test_exr_cpu(void)
     err = (pg_error){0};
     CHECK(pg_exr_read_rgba(path, &none, &w, &h, &err) != PG_OK && !none);
     CHECK_MSG(contains(err.msg, path), "%s", err.msg);
+    { /* a file cut after its header: refused as truncated, before its pixels are allocated (the
+       * header of a 16384 x 8192 image in 377 bytes took 2 GiB) */
+        enum { TW = 16, TH = 4096 }; /* ZIP: 16 lines a chunk, 256 chunks, a table of 2 KiB */
+        float *tall = calloc((size_t)TW * TH * 4, sizeof(float));
+        tmp_path(path, sizeof path, "cut.exr");
+        CHECK_MSG(tall && pg_exr_write_rgba(path, tall, TW, TH, true, &err) == PG_OK, "%s", err.msg);
+        free(tall);
+        CHECK(truncate(path, 1024) == 0);
+        err = (pg_error){0};
+        CHECK(pg_exr_read_rgba(path, &none, &w, &h, &err) == PG_ERR_PARSE && !none);
+        CHECK_MSG(contains(err.msg, "truncated: its header announces 16x4096 pixels in 256 chunks") &&
+                      contains(err.msg, "the file has 1024"),
+                  "%s", err.msg);
+    }
     tmp_path(path, sizeof path, "no/such/dir/x.exr");
     err = (pg_error){0};
     CHECK(pg_exr_write_rgba(path, px, W, H, false, &err) != PG_OK);
