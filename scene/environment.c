@@ -280,7 +280,7 @@ static pg_result parse_resolution(const char *path, const unsigned char *line, s
     }
     if (!ok)
         return pg_fail(err, PG_ERR_PARSE, "%s: image size line '%s' is not '-Y HEIGHT +X WIDTH' (the only "
-                       "orientation read)", path, s);
+                       "orientation read; HEIGHT and WIDTH of at most 9 digits)", path, s);
     return PG_OK;
 }
 

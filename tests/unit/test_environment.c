@@ -253,6 +253,8 @@ static void test_errors(void)
                 "is not 32-bit_rle_rgbe");
     expect_fail(write_text("flip.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n+Y 4 +X 8\n"), PG_ERR_PARSE,
                 "-Y HEIGHT +X WIDTH");
+    expect_fail(write_text("huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1073741823 +X 2147483646\n"),
+                PG_ERR_PARSE, "HEIGHT and WIDTH of at most 9 digits"); /* a number too long, not an orientation */
     expect_fail(write_cut("wide.hdr", 64, 16, 64 * 16 * 4), PG_ERR_INVALID_ARG,
                 "64 x 16: an equirectangular environment is 2:1 (width = 2 x height)");
     expect_fail(write_cut("ratio.hdr", 300, 100, 300 * 100 * 4), PG_ERR_INVALID_ARG, "is 2:1");
