@@ -36,8 +36,8 @@ const char *const pg_cli_common_help =
     "  --environment-intensity X  its radiance scale, 0..1e6 (default 1; a run-time value)\n"
     "  --environment-rotation D   its rotation about +Y in degrees (default 0; a run-time value)\n"
     "  --size WxH           output size, 1..16384 each (default 640x360)\n"
-    "  --time T             animation time in seconds; fixes the frame (default 0): the glTF\n"
-    "                       file's animation (looping) and the generated lights' motion\n"
+    "  --time T             animation time in seconds, |T| <= 1e5; fixes the frame (default 0): the\n"
+    "                       glTF file's animation (looping) and the generated lights' motion\n"
     "  --animation A        the glTF animation played: N, NAME, all or none (the rest pose);\n"
     "                       default: the first\n"
     "  --seed S             light seed, 0..4294967295 (default 1)\n"
@@ -139,6 +139,7 @@ static void rebuild_settings(pg_cli_common *c)
 
 static pg_result set_debug_view(pg_cli_common *c, const char *opt, const char *v, pg_error *err)
 {
+    c->debug_view_option = opt;
     for (uint32_t k = 0; k < c->n_sets; k++) /* one 'view' override from these options */
         if (c->sets[k].key && !strcmp(c->sets[k].key, "view") && c->sets[k].value == c->debug_view) {
             c->sets[k].value = v;
@@ -296,6 +297,17 @@ static pg_result parse_scene_choice(pg_cli_common *c, const char *a, const char 
     return r;
 }
 
+/* The field of an option whose value is a path or name kept as given (an empty one is refused). */
+static const char **path_option(pg_cli_common *c, const char *a)
+{
+    return !strcmp(a, "--pipeline") ? &c->pipeline
+           : !strcmp(a, "--scene")    ? &c->scene
+           : !strcmp(a, "--scenario") ? &c->scenario
+           : !strcmp(a, "--camera")   ? &c->camera
+           : !strcmp(a, "--out")      ? &c->out
+                                      : NULL;
+}
+
 pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, bool *used, pg_error *err)
 {
     const char *a = argv[*i];
@@ -308,32 +320,17 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         if (!v) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: missing value", a);            \
         (*i)++;                                                                             \
     } while (0)
-    if (!strcmp(a, "--pipeline")) {
+    const char **path_field = path_option(c, a);
+    if (path_field) {
         NEED_VALUE();
-        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--pipeline: empty path (a pipeline .json file)");
-        c->pipeline = v;
+        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: empty %s", a, !strcmp(a, "--camera") ? "name" : "path");
+        *path_field = v;
     } else if (!strcmp(a, "--include-dir")) {
         NEED_VALUE();
         if ((r = add_include_dir(v, err))) return r;
-    } else if (!strcmp(a, "--scene")) {
-        NEED_VALUE();
-        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--scene: empty path (a .gltf or .glb file)");
-        c->scene = v;
     } else if (!strcmp(a, "--gltf-scene") || !strcmp(a, "--variant")) {
         NEED_VALUE();
         if ((r = parse_scene_choice(c, a, v, err))) return r;
-    } else if (!strcmp(a, "--scenario")) {
-        NEED_VALUE();
-        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--scenario: empty path (a scenario .json file)");
-        c->scenario = v;
-    } else if (!strcmp(a, "--camera")) {
-        NEED_VALUE();
-        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--camera: empty name (N, NAME or auto)");
-        c->camera = v;
-    } else if (!strcmp(a, "--out")) {
-        NEED_VALUE();
-        if (!v[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--out: empty path");
-        c->out = v;
     } else if (!strcmp(a, "--lights")) {
         NEED_VALUE();
         if (v[0] == '-') return pg_fail(err, PG_ERR_INVALID_ARG, "--lights %s: must not be negative", v);
@@ -353,7 +350,8 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         if ((r = parse_plugin_or_animation(c, a, v, err))) return r;
     } else if (!strcmp(a, "--time")) {
         NEED_VALUE();
-        if ((r = parse_float(a, v, -1e7, 1e7, &c->time, err))) return r;
+        /* a float of seconds: past 1e5 (27.8 hours) it holds less than a 60 Hz frame (1/128 s there) */
+        if ((r = parse_float(a, v, -PG_MAX_TIME_S, PG_MAX_TIME_S, &c->time, err))) return r;
     } else if (!strcmp(a, "--radius")) {
         NEED_VALUE();
         if ((r = parse_float(a, v, 0, 1e7, &c->radius, err))) return r;

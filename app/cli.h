@@ -22,7 +22,7 @@ typedef struct pg_cli_common {
     bool has_lights;             /* --lights N given */
     uint32_t lights;
     uint32_t width, height;      /* --size WxH */
-    float time;                  /* --time T */
+    float time;                  /* --time T, |T| <= PG_MAX_TIME_S */
     const char *animation;       /* --animation N|NAME|all|none (NULL: the first animation) */
     uint32_t n_plugins;
     const char *plugins[8];      /* --plugin FILE.so (repeatable; app/plugins.h) */
@@ -48,6 +48,7 @@ typedef struct pg_cli_common {
     const char *view;            /* --view NAME as given: an OCIO view of the display if the config
                                   * has one of that name, else the pipeline's debug view */
     const char *debug_view;      /* the pipeline parameter 'view' set by --debug-view / --view */
+    const char *debug_view_option; /* which of the two gave it ("--view": no OCIO view of that name) */
     /* colour management (application settings, not pipeline parameters) */
     const char *ocio_config;     /* --ocio-config FILE (absent: $OCIO, else the shipped config) */
     const char *display;         /* --display NAME */

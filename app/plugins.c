@@ -18,6 +18,10 @@ static pg_result load_one(pg_pass_registry *reg, const char *path, pg_plugins *o
     /* a bare name would be searched in the system's library path: make it a path */
     char full[PG_PATH_MAX + 4];
     snprintf(full, sizeof full, "%s%s", strchr(path, '/') ? "" : "./", path);
+    char real0[PATH_MAX]; /* a library is loaded once by its real path (named twice, or through a link) */
+    if (realpath(full, real0))
+        for (uint32_t k = 0; k < out->n; k++)
+            if (!strcmp(out->paths[k], real0)) return PG_OK;
     void *h = dlopen(full, RTLD_NOW | RTLD_LOCAL);
     if (!h) {
         const char *why = dlerror();
@@ -45,6 +49,15 @@ static pg_result load_one(pg_pass_registry *reg, const char *path, pg_plugins *o
     if (rr) return pg_fail(err, rr, "%s: %s", path, e.msg[0] ? e.msg : "registration failed");
     if (reg->count == before)
         return pg_fail(err, PG_ERR_INVALID_ARG, "%s: the plug-in registered no pass type", path);
+    for (uint32_t i = before; i < reg->count; i++) { /* a type the runtime cannot create or record: not taken */
+        const pg_pass_type *t = reg->types[i];
+        if (!t->create || !t->record || !t->destroy) {
+            reg->count = before;
+            return pg_fail(err, PG_ERR_INVALID_ARG, "%s: pass type '%s' has no %s function (a plug-in's pass types "
+                           "give declare, create, record and destroy)",
+                           path, t->name, !t->create ? "create" : !t->record ? "record" : "destroy");
+        }
+    }
     return PG_OK;
 }
 

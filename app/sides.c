@@ -63,7 +63,9 @@ bool pg_sides_from_common(pg_side_sets *s, const pg_cli_common *c)
         const pg_param_override *o = &c->sets[k];
         /* the one 'view' entry --view / --debug-view made (cli.c set_debug_view: same pointer) */
         bool debug_view = c->debug_view && o->value == c->debug_view && !strcmp(o->key, "view");
-        bool ok = debug_view ? pg_ov_list_put(&s->pipeline, o->key, o->value, "--debug-view")
+        /* --view NAME of no OCIO view is the debug view too: messages name the option given */
+        const bool by_view = c->debug_view_option && !strcmp(c->debug_view_option, "--view");
+        bool ok = debug_view ? pg_ov_list_put(&s->pipeline, o->key, o->value, by_view ? "--view" : "--debug-view")
                              : pg_ov_list_put(&s->set, o->key, o->value, "--set");
         if (!ok) return false;
     }
@@ -120,9 +122,10 @@ pg_result pg_sides_check_keys(const pg_ov_list *l, const pg_pipeline *p, const c
         char names[600];
         param_names(p, names, sizeof names);
         const char *o = l->from[k];
-        if (!strcmp(o, "--debug-view"))
-            return pg_fail(err, PG_ERR_INVALID_ARG, "%s %s: the %s %s (%s) declares no parameter 'view' (declared: %s)",
-                           o, l->ov[k].value, side, p->name, p->path, names);
+        if (!strcmp(o, "--debug-view") || !strcmp(o, "--view"))
+            return pg_fail(err, PG_ERR_INVALID_ARG, "%s %s: the %s %s (%s) declares no parameter 'view' (declared: %s)%s",
+                           o, l->ov[k].value, side, p->name, p->path, names,
+                           !strcmp(o, "--view") ? "; nor is it a view of the OCIO config" : "");
         return pg_fail(err, PG_ERR_INVALID_ARG, "%s %s=%s: the %s %s (%s) declares no parameter '%s' (declared: %s)", o,
                        l->ov[k].key, l->ov[k].value, side, p->name, p->path, l->ov[k].key, names);
     }
@@ -146,8 +149,9 @@ pg_result pg_sides_check_values(const char *path, const pg_ov_list *l, const cha
         snprintf(label, sizeof label, "--set %.64s=%.64s: ", l->ov[k].key, l->ov[k].value);
         const char *cause = strstr(one.msg, label);
         cause = cause ? cause + strlen(label) : one.msg;
-        if (!strcmp(l->from[k], "--debug-view"))
-            return pg_fail(err, PG_ERR_INVALID_ARG, "%s %s: %s %s: %s", l->from[k], l->ov[k].value, side, path, cause);
+        if (!strcmp(l->from[k], "--debug-view") || !strcmp(l->from[k], "--view"))
+            return pg_fail(err, PG_ERR_INVALID_ARG, "%s %s: %s %s: %s%s", l->from[k], l->ov[k].value, side, path, cause,
+                           !strcmp(l->from[k], "--view") ? " (debug views); nor is it a view of the OCIO config" : "");
         /* --set / --sweep values reach the reference because it declares the key: say how to keep them off */
         bool shared = !strcmp(side, "reference") && (!strcmp(l->from[k], "--set") || !strcmp(l->from[k], "--sweep"));
         return pg_fail(err, PG_ERR_INVALID_ARG, "%s %s=%s: %s %s: %s%s%s%s", l->from[k], l->ov[k].key, l->ov[k].value,

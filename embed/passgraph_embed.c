@@ -102,8 +102,11 @@ static pg_result open_parts(passgraph *p, const passgraph_desc *d, pg_error *err
 
 pg_result passgraph_open(const passgraph_desc *desc, passgraph **out, pg_error *err)
 {
+    if (!out) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_open: no output");
     *out = NULL;
     if (!desc) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_open: no description");
+    if (desc->n_params && !desc->params)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_open: n_params %u but no params", desc->n_params);
     passgraph *p = calloc(1, sizeof *p);
     if (!p) return pg_fail(err, PG_ERR_OOM, "out of memory");
     pg_result r = open_parts(p, desc, err);
@@ -157,7 +160,9 @@ pg_result passgraph_set_camera(passgraph *p, const float eye[3], const float tar
 pg_result passgraph_set_lights(passgraph *p, uint32_t count, uint32_t seed, float time, pg_error *err)
 {
     if (count > (1u << 24)) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_set_lights: %u lights: at most 2^24", count);
-    if (!isfinite(time)) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_set_lights: time must be finite");
+    if (!(fabsf(time) <= PG_MAX_TIME_S))
+        return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_set_lights: time %g: a finite number of seconds within +-%g "
+                       "(a float holds under a frame's precision past it)", (double)time, PG_MAX_TIME_S);
     /* as the tools: the file's own lights first, then the generated ones; around an object their
      * intensity follows their count (pg_light_setup_object) */
     p->fi.lights.file_count = p->scene->n_lights;
@@ -170,9 +175,19 @@ pg_result passgraph_set_lights(passgraph *p, uint32_t count, uint32_t seed, floa
 
 pg_result passgraph_set_param(passgraph *p, const char *key, const char *value, pg_error *err)
 {
-    if (!key || !value) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_set_param: no key or value");
+    if (!p || !key || !value) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_set_param: no session, key or value");
+    /* a refused key or value is taken back: later calls see the overrides as they were */
+    const uint32_t n0 = p->n_params;
+    uint32_t i = 0;
+    while (i < n0 && strcmp(p->keys[i], key)) i++;
+    char old[PG_NAME_MAX] = "";
+    if (i < n0) pg_strlcpy(old, p->values[i], sizeof old);
     pg_result r = add_param(p, key, value, err);
     if (!r) r = pg_session_reload(p->session, p->pipeline, p->params, p->n_params, err);
+    if (r) {
+        if (i < n0) pg_strlcpy(p->values[i], old, PG_NAME_MAX);
+        p->n_params = n0;
+    }
     /* the reference session (passgraph_error_against) is opened again with the new overrides */
     pg_session_destroy(p->reference);
     p->reference = NULL;
@@ -189,6 +204,7 @@ pg_result passgraph_render(passgraph *p, pg_error *err)
 
 static pg_result read_output(const passgraph *p, pg_session *s, int which, void *dst, size_t dst_bytes, pg_error *err)
 {
+    if (!dst) return pg_fail(err, PG_ERR_INVALID_ARG, "no destination buffer");
     if (!p->have_frame) return pg_fail(err, PG_ERR_INVALID_ARG, "no frame read back yet: call passgraph_render first");
     uint32_t w, h;
     pg_format fmt;

@@ -18,6 +18,9 @@ typedef enum pg_light_motion { PG_MOTION_NOISE = 0, PG_MOTION_STATIC = 1 } pg_li
  * intensity / PG_LIGHT_MIN_DISTANCE^2 = intensity * 1e4. */
 #define PG_LIGHT_MIN_DISTANCE 0.01f
 #define PG_MAX_LIGHTS 16777216u /* hard upper bound for --lights and scenario light counts (16M) */
+/* bound of |--time| (and passgraph_set_lights' time), seconds: time is a float, which past 1e5 s
+ * (27.8 hours) steps by more than 1/128 s, and by a whole second past 2^23 */
+#define PG_MAX_TIME_S 1e5
 
 typedef struct pg_light_setup {
     uint32_t count;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # check-install.sh BUILD_DIR - passgraph as an installed library (docs/embedding.md): installs
 # BUILD_DIR into a temporary prefix, builds examples/embed against it twice - with CMake's
-# find_package(passgraph) and with pkg-config - and runs both with the validation layer on. Each run
+# find_package(passgraph) and with pkg-config - and runs both with the validation layer on (each
+# installed header is first compiled alone as C11 and as C++17). Each run
 # must read its data from the prefix (not the source tree), render, read the frame into memory and
 # into a VkImage of its own (the two must agree), print per-pass GPU times and the error against
 # the reference pipeline. ctest runs it as install_test.
@@ -21,18 +22,28 @@ cfg=$(find "$prefix" -name passgraphConfig.cmake | head -1)
 lib=$(find "$prefix" -name 'libpassgraph.so' | head -1)
 [ -n "$pc" ] && [ -n "$cfg" ] && [ -n "$lib" ] || { echo "check-install: no pkg-config file, CMake package or library"; exit 1; }
 libdir=$(dirname "$lib")
+# every installed header alone, as C11 and as C++17 (a plug-in or host may be C++), warnings as errors
+for h in "$prefix"/include/passgraph/*.h; do
+  printf '#include "%s"\nint main(void) { return 0; }\n' "$(basename "$h")" >"$tmp/hdr.c"
+  cp "$tmp/hdr.c" "$tmp/hdr.cpp"
+  cc -std=c11 -Wall -Wextra -Werror -fsyntax-only -I"$prefix/include/passgraph" "$tmp/hdr.c" 2>"$tmp/hdr.log" &&
+    c++ -std=c++17 -Wall -Wextra -Werror -fsyntax-only -I"$prefix/include/passgraph" "$tmp/hdr.cpp" 2>>"$tmp/hdr.log" ||
+    { echo "check-install: $(basename "$h") does not compile alone as C and C++:"; cat "$tmp/hdr.log"; exit 1; }
+done
 # 1. CMake: find_package(passgraph) from the prefix
 cmake -S "$root/examples/embed" -B "$tmp/cmake-build" -DCMAKE_PREFIX_PATH="$prefix" >"$tmp/cmake.log" \
   || { cat "$tmp/cmake.log"; exit 1; }
 cmake --build "$tmp/cmake-build" >"$tmp/build.log" || { cat "$tmp/build.log"; exit 1; }
 # 2. pkg-config
 export PKG_CONFIG_PATH="$(dirname "$pc")"
+# (with the rpath docs/embedding.md gives: the prefix is not where the dynamic loader looks)
 cc -std=c11 -Wall -Wextra -Werror "$root/examples/embed/embed.c" -o "$tmp/embed-pkgconfig" \
-  $(pkg-config --cflags --libs passgraph)
+  $(pkg-config --cflags --libs passgraph) -Wl,-rpath,"$libdir"
 status=0
 for exe in "$tmp/cmake-build/embed" "$tmp/embed-pkgconfig"; do
   out="$tmp/$(basename "$exe").ppm"
-  if (cd "$tmp" && env -u PASSGRAPH_DATA_DIR LD_LIBRARY_PATH="$libdir" EMBED_VALIDATION=1 "$exe" "" "$out") >"$tmp/run.log" 2>&1 \
+  # no LD_LIBRARY_PATH: each finds the library as a user's build would (the CMake target's rpath, -Wl,-rpath)
+  if (cd "$tmp" && env -u PASSGRAPH_DATA_DIR -u LD_LIBRARY_PATH EMBED_VALIDATION=1 "$exe" "" "$out") >"$tmp/run.log" 2>&1 \
      && grep -qF "embed: data folder $prefix/" "$tmp/run.log" && grep -q "VkImage vs memory: 0 of" "$tmp/run.log" \
      && grep -q "against the reference: RMSE" "$tmp/run.log" && grep -q "validation messages: 0" "$tmp/run.log" \
      && [ -s "$out" ]; then

@@ -40,6 +40,13 @@ typedef enum pg_result {
 
 #define PG_ERROR_MSG_MAX 1024
 
+/* alignment of a member in headers a C++ program may include (C11 _Alignas is no C++ keyword) */
+#ifdef __cplusplus
+#define PG_ALIGNAS(n) alignas(n)
+#else
+#define PG_ALIGNAS(n) _Alignas(n)
+#endif
+
 typedef struct pg_error {
     pg_result code;
     char msg[PG_ERROR_MSG_MAX];

@@ -3,6 +3,7 @@
 
 #include <cjson/cJSON.h>
 #include <inttypes.h>
+#include <math.h>
 #include <string.h>
 
 /* ------------------------------------------------------------------------------------------ */
@@ -14,6 +15,16 @@ static bool add_u64(cJSON *o, const char *key, uint64_t v)
     char t[32];
     snprintf(t, sizeof t, "%" PRIu64, v);
     return cJSON_AddRawToObject(o, key, t) != NULL;
+}
+
+/* A number that reads back as the same double: an integer without an exponent, any other with
+ * 17 significant digits (cJSON's 15 digits turned 1.7976931348623157e308 into infinity on reading). */
+static cJSON *exact_number(double v, bool integer)
+{
+    char t[40];
+    if (integer && fabs(v) <= 9007199254740992.0) snprintf(t, sizeof t, "%lld", (long long)v);
+    else snprintf(t, sizeof t, "%.17g", v);
+    return cJSON_CreateRaw(t);
 }
 
 static bool add_str_or_null(cJSON *o, const char *key, const char *s)
@@ -174,7 +185,7 @@ static bool json_pipeline(cJSON *root, const pg_pipeline *pl)
         cJSON *v = NULL;
         switch (p->type) {
         case PG_PARAM_INT:
-        case PG_PARAM_FLOAT: v = cJSON_CreateNumber(p->number); break;
+        case PG_PARAM_FLOAT: v = exact_number(p->number, p->type == PG_PARAM_INT); break;
         case PG_PARAM_BOOL: v = cJSON_CreateBool(p->boolean); break;
         case PG_PARAM_ENUM: v = cJSON_CreateString(p->enum_value); break;
         }

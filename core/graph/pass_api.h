@@ -108,7 +108,7 @@ typedef struct pg_pass_decl {
     /* the type's params block (pg_pass_type.params_size bytes, zeroed before declare): the
      * options parsed once and the slot handles, filled by declare through pg_decl_params(); part
      * of the plan (pure data), handed to create/update/record as ctx->params */
-    _Alignas(16) unsigned char params[PG_MAX_PASS_PARAMS];
+    PG_ALIGNAS(16) unsigned char params[PG_MAX_PASS_PARAMS];
     /* the fields of params that hold run-time values (pg_pass_type.runtime_options): the
      * runtime's pass signature hashes the params block without them, its value signature only
      * them, so a new value reaches update() and re-creates nothing */

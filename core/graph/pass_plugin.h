@@ -25,10 +25,16 @@
 #define PG_PLUGIN_VERSION_SYMBOL "passgraph_plugin_api_version"
 #define PG_PLUGIN_REGISTER_SYMBOL "passgraph_plugin_register"
 
-#if defined(__GNUC__)
-#define PG_PLUGIN_EXPORT __attribute__((visibility("default")))
+/* exported with C linkage: a plug-in written in C++ gets the names the loader looks up */
+#ifdef __cplusplus
+#define PG_PLUGIN_LINKAGE extern "C"
 #else
-#define PG_PLUGIN_EXPORT
+#define PG_PLUGIN_LINKAGE
+#endif
+#if defined(__GNUC__)
+#define PG_PLUGIN_EXPORT PG_PLUGIN_LINKAGE __attribute__((visibility("default")))
+#else
+#define PG_PLUGIN_EXPORT PG_PLUGIN_LINKAGE
 #endif
 
 typedef uint32_t (*pg_plugin_version_fn)(void);

@@ -106,7 +106,7 @@ static bool parse_typed(const pg_param *prm, const char *text, bool check_range,
         }
         errno = 0;
         long long v = strtoll(text, NULL, 10);
-        if (errno == ERANGE || fabs((double)v) > MAX_SAFE_INT) {
+        if (errno == ERANGE || v > (1LL << 53) || v < -(1LL << 53)) { /* compared as integers: 2^53 + 1 is no double */
             snprintf(why, whyn, "%s is too large", text);
             return false;
         }

@@ -135,6 +135,10 @@ static pg_result create_pass(pg_runtime *rt, int pi, pg_error *err)
         .n_settings = rt->cfg.n_settings,
     };
     for (uint32_t s = 0; s < pass->n_slots; s++) ctx.slots[s] = &rt->mem.res[pass->slots[s].resource];
+    const pg_pass_type *t = pass->type;
+    if (!t->create || !t->record || !t->destroy) /* a type registered for the compiler alone */
+        return pg_fail(err, PG_ERR_INVALID_ARG, "pass '%s': its type '%s' has no %s function: it cannot run", pass->name,
+                       t->name, !t->create ? "create" : !t->record ? "record" : "destroy");
     rt->mem.pass_state[pi] = calloc(1, pass->type->instance_size ? pass->type->instance_size : 1);
     if (!rt->mem.pass_state[pi]) return pg_fail(err, PG_ERR_OOM, "out of memory");
     pg_result r = pass->type->create(rt->mem.pass_state[pi], &ctx, err);

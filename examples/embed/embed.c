@@ -82,6 +82,8 @@ int main(int argc, char **argv)
     uint8_t *rgba = malloc((size_t)W * H * 4);
     if (passgraph_set_camera(pg, eye, target, up, 60, 0, 0, &err)) rc = fail("camera", &err);
     else if (passgraph_set_lights(pg, 1000, 3, 1.5f, &err)) rc = fail("lights", &err);
+    else if (!passgraph_set_param(pg, "no_such_param", "1", &err)) rc = fail("an unknown parameter was taken", &err);
+    /* errors are values: the refused key is taken back, the session goes on as it was */
     else if (passgraph_set_param(pg, "grid_z", "24", &err)) rc = fail("parameter", &err); /* a new variant */
     else if (passgraph_render(pg, &err)) rc = fail("render", &err);
     else if (!rgba || passgraph_read_rgba8(pg, rgba, (size_t)W * H * 4, &err)) rc = fail("read", &err);

@@ -46,7 +46,8 @@ void passgraph_close(passgraph *p);
 pg_result passgraph_set_camera(passgraph *p, const float eye[3], const float target[3], const float up[3],
                                float fov_y_deg, float near_z, float far_z, pg_error *err);
 /* The generated lights: how many (0 .. 2^24; a scene file's own lights are added to them), their
- * random seed, and the time in seconds their animation is at (and the glTF animation's). */
+ * random seed, and the time in seconds their animation is at (and the glTF animation's), |time| at
+ * most 1e5 (a float steps by more than 1/128 s past it). */
 pg_result passgraph_set_lights(passgraph *p, uint32_t count, uint32_t seed, float time, pg_error *err);
 /* A pipeline parameter (as --set key=value); the pipeline is compiled again for the next frame
  * when it selects another variant, and nothing is rebuilt for a run-time value. */

@@ -37,6 +37,8 @@ expect_fail "size 0x0" "--size width 0" render --size 0x0 --out "$tmp/x.png"
 expect_fail "huge size" "--size width 100000" render --size 100000x100000 --out "$tmp/x.png"
 expect_fail "size garbage" "expected WxH" render --size big --out "$tmp/x.png"
 expect_fail "time NaN" "--time nan" render --time nan --out "$tmp/x.png"
+# a float of seconds: past 1e5 a fraction of a second is lost (9999999.5 played the pose of a whole second)
+expect_fail "time past 1e5" "--time 9999999.5: expected a finite number in [-100000, 100000]" render --time 9999999.5 --out "$tmp/x.png"
 expect_fail "set without =" "KEY=VALUE" render --set foo --out "$tmp/x.png"
 expect_fail "missing pipeline" "nope.json" render --pipeline "$tmp/nope.json" --out "$tmp/x.png"
 expect_fail "missing scene" "missing.gltf" render --scene "$tmp/missing.gltf" --out "$tmp/x.png"
@@ -47,11 +49,13 @@ expect_fail "unknown parameter" "no_such_param" render --set no_such_param=1 --s
 # a --set key or value, or a debug view, the pipeline refuses is a bad option (exit 2, as in compare
 # and bench) naming the option that gave it, found before a device is made
 for bad_set in "--set no_such_param=1|--set no_such_param=1: the pipeline naive" \
-               "--set shading=wat|--set shading=wat: pipeline" "--debug-view cluster_heat|--debug-view cluster_heat: pipeline"; do
+               "--set shading=wat|--set shading=wat: pipeline" "--debug-view cluster_heat|--debug-view cluster_heat: pipeline" \
+               "--view Nope|--view Nope: pipeline"; do
   # shellcheck disable=SC2086
   "$PG" render ${bad_set%%|*} --size 32x18 --out "$tmp/x.png" >"$tmp/out" 2>"$tmp/err"
   rc=$?
-  [ $rc = 2 ] && grep -qF -- "${bad_set#*|}" "$tmp/err" && ! grep -q "^passgraph: device" "$tmp/err" && ok \
+  [ $rc = 2 ] && grep -qF -- "${bad_set#*|}" "$tmp/err" && ! grep -q "^passgraph: device" "$tmp/err" \
+    && { [ "${bad_set%% *}" != --view ] || grep -qF "nor is it a view of the OCIO config" "$tmp/err"; } && ok \
     || { bad "render ${bad_set%%|*}: want exit 2 naming the option (exit $rc)"; cat "$tmp/err"; }
 done
 printf '{"name":"x","resources":[{"name":"o","type":"image","format":"rgba8"}],"passes":[{"name":"p","type":"warp_drive","writes":["o"]}],"output":"o"}' >"$tmp/unknown_type.json"
@@ -760,8 +764,16 @@ if [ -f "$plugdir/libpg_tint.so" ]; then
     render --plugin "$plugdir/libpg_tint_noentry.so" --size 16x16 --out "$tmp/x.png"
   expect_fail "--plugin: API version" "libpg_tint_badversion.so: plug-in API version 999; this passgraph has 2" \
     render --plugin "$plugdir/libpg_tint_badversion.so" --size 16x16 --out "$tmp/x.png"
-  expect_fail "--plugin twice" "libpg_tint.so: pass type 'tint' is registered twice" \
-    render --plugin "$plugdir/libpg_tint.so" --plugin "$plugdir/libpg_tint.so" --size 16x16 --out "$tmp/x.png"
+  expect_fail "--plugin: a type without create()" "libpg_tint_nocreate.so: pass type 'tint' has no create function" \
+    render --plugin "$plugdir/libpg_tint_nocreate.so" --pipeline "$tintp" --size 16x16 --out "$tmp/x.png"
+  # a library is loaded once by its real path (named twice, or through a link); a copy of it in another
+  # file registers its type twice and is refused
+  ln -sf "$plugdir/libpg_tint.so" "$tmp/tint_link.so"
+  "$PG" dump --plugin "$plugdir/libpg_tint.so" --plugin "$plugdir/libpg_tint.so" --plugin "$tmp/tint_link.so" \
+    --pipeline "$tintp" >"$tmp/out" 2>"$tmp/err" && ok || { bad "--plugin twice and through a link: not loaded once"; cat "$tmp/err"; }
+  cp "$plugdir/libpg_tint.so" "$tmp/tint_copy.so"
+  expect_fail "--plugin: a copy in another file" "tint_copy.so: pass type 'tint' is registered twice" \
+    render --plugin "$plugdir/libpg_tint.so" --plugin "$tmp/tint_copy.so" --size 16x16 --out "$tmp/x.png"
   expect_fail "a plug-in's pass type without the plug-in" "'tint'" \
     render --pipeline "$tintp" --size 16x16 --out "$tmp/x.png"
   # a pipeline file's own "plugins" list (next to the file, under the include rules): no --plugin needed

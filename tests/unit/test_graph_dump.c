@@ -852,12 +852,46 @@ static void test_shipped(void)
     if (!have_dot) printf("test_graph_dump: Graphviz 'dot' not on PATH: shipped pipelines' DOT not rendered\n");
 }
 
+/* Parameter values in the JSON dump read back exactly: the largest double (cJSON's 15 digits made it
+ * infinity) and 2^53 (it was 9.00719925474099e+15). */
+static void test_json_numbers(void)
+{
+    static const char *const graph =
+        "{\"name\": \"numbers\",\n"
+        " \"parameters\": {\"i\": {\"type\": \"int\", \"default\": 9007199254740992},\n"
+        "                \"f\": {\"type\": \"float\", \"default\": 1.7976931348623157e308},\n"
+        "                \"g\": {\"type\": \"float\", \"default\": 0.1}},\n"
+        " \"resources\": [{\"name\": \"out\", \"type\": \"image\", \"format\": \"rgba8\"}],\n"
+        " \"passes\": [{\"name\": \"gen\", \"type\": \"fake_color\", \"writes\": [\"out\"]}],\n"
+        " \"output\": \"out\"}\n";
+    pg_pipeline *pl = load(graph);
+    pg_graph_plan *plan = pl ? compile(pl, &g_reg, 100, 16, 16, false) : NULL;
+    char *json = plan ? pg_dump_json(plan, pl) : NULL;
+    cJSON *root = json ? cJSON_Parse(json) : NULL;
+    const cJSON *ps = root ? jget(jget(root, "pipeline"), "parameters") : NULL;
+    CHECK_MSG(ps != NULL, "no parameters in the JSON dump");
+    if (ps) {
+        CHECK_MSG(jget(ps, "i") && jget(ps, "i")->valuedouble == 9007199254740992.0, "i read back as %.17g",
+                  jget(ps, "i") ? jget(ps, "i")->valuedouble : 0.0);
+        CHECK_MSG(jget(ps, "f") && jget(ps, "f")->valuedouble == 1.7976931348623157e308, "f read back as %.17g",
+                  jget(ps, "f") ? jget(ps, "f")->valuedouble : 0.0);
+        CHECK_MSG(jget(ps, "g") && jget(ps, "g")->valuedouble == 0.1, "g read back as %.17g",
+                  jget(ps, "g") ? jget(ps, "g")->valuedouble : 0.0);
+        CHECK_MSG(json && strstr(json, "9007199254740992"), "2^53 not written as an integer");
+    }
+    cJSON_Delete(root);
+    free(json);
+    pg_graph_plan_free(plan);
+    pg_pipeline_free(pl);
+}
+
 int main(void)
 {
     pg_error err = {0};
     for (size_t i = 0; i < sizeof g_types / sizeof g_types[0]; i++)
         CHECK_MSG(pg_registry_add(&g_reg, &g_types[i], &err) == PG_OK, "%s", err.msg);
     test_hand_graph_json();
+    test_json_numbers();
     test_hand_graph_text_dot_svg();
     test_graphviz_errors();
     test_shipped();

@@ -357,6 +357,8 @@ static void test_params(void)
         {"i", "101", "--set i=101: int parameter 'i': 101 is out of range [-4, 100]"},
         {"i", "-5", "out of range"},
         {"i", "99999999999999999999", "too large"},
+        {"i", "9007199254740993", "9007199254740993 is too large"}, /* 2^53 + 1: no double holds it */
+        {"i", "-9007199254740993", "too large"},
         {"i", "0x10", "not an integer"},
         {"f", "nan", "'nan' is not a number"},
         {"f", "inf", "not a number"},

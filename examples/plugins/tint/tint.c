@@ -6,8 +6,9 @@
  * Slots: writes [image] (rgba16f storage image, read and written: storage_rw). Options r, g, b in
  * 0..1000 (default 1). Built by CMake as a shared object that links nothing of passgraph's: its
  * references to pg_* functions bind to the passgraph executable's exports when it is loaded with
- * `--plugin`. Built twice more for the loader's refusal tests: with PG_TINT_API_VERSION=999 (another
- * API version) and with PG_TINT_NO_ENTRY (no entry points). */
+ * `--plugin`. Built three times more for the loader's refusal tests: with PG_TINT_API_VERSION=999
+ * (another API version), with PG_TINT_NO_ENTRY (no entry points) and with PG_TINT_NO_CREATE (no create
+ * function). */
 #include <string.h>
 
 #include "graph_execute.h"
@@ -114,7 +115,9 @@ static const pg_pass_type k_tint = {
     .instance_size = sizeof(tint),
     .params_size = sizeof(tint_params),
     .declare = tint_declare,
+#ifndef PG_TINT_NO_CREATE /* defined for the loader's "a type it cannot run" test case */
     .create = tint_create,
+#endif
     .record = tint_record,
     .destroy = tint_destroy,
 };
@@ -131,4 +134,7 @@ PG_PLUGIN_EXPORT pg_result passgraph_plugin_register(pg_pass_registry *reg, pg_e
 }
 #else
 const pg_pass_type *pg_tint_type_unused = &k_tint;
+#endif
+#ifdef PG_TINT_NO_CREATE
+pg_result (*pg_tint_create_unused)(void *, const pg_pass_create_ctx *, pg_error *) = tint_create;
 #endif
