@@ -302,7 +302,8 @@ static cJSON *json_row(const bench *B, const bench_row *r)
     } else {
         cJSON_AddNullToObject(o, "overflow");
     }
-    cJSON_AddNumberToObject(o, "grow_events", r->grow_events);
+    if (ROW_RAN(r) || r->status == ROW_INTERRUPTED) cJSON_AddNumberToObject(o, "grow_events", r->grow_events);
+    else cJSON_AddNullToObject(o, "grow_events"); /* as the CSV: a row that did not run counts none */
     if (r->has_evals) cJSON_AddNumberToObject(o, "light_evals", (double)r->light_evals);
     else cJSON_AddNullToObject(o, "light_evals");
     cJSON_AddNumberToObject(o, "accumulate", B->accumulate);

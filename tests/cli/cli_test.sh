@@ -458,6 +458,9 @@ done
   --frames 1 --warmup 0 --out "$tmp/bench3" >"$tmp/out" 2>"$tmp/err" && ok || { bad "bench --reference-max-lights: exit"; cat "$tmp/err"; }
 grep -q '^default,forward_plus,,,8,.*,ok,.*,naive skipped above 4 lights (--reference-max-lights 4),' "$tmp/bench3/results.csv" \
   && grep -q '^default,naive,,,8,.*,skipped,' "$tmp/bench3/results.csv" && ok || { bad "bench: reference skip not reported"; cat "$tmp/bench3/results.csv"; }
+# a row that did not run counts no grow events in results.json either (null, as the CSV's empty cell)
+python3 -c "import json,sys; rows=json.load(open(sys.argv[1]))['rows']; sys.exit(0 if all((r['grow_events'] is None) == (r['status'] == 'skipped') for r in rows) else 1)" \
+  "$tmp/bench3/results.json" && ok || bad "bench: grow_events of a skipped row is not null in results.json"
 python3 -c 'import csv,sys; r=[x for x in csv.DictReader(open(sys.argv[1])) if x["lights"] == "4"]; assert len(r) == 2 and all(x["status"] == "ok" and x["rmse_linear"] != "" and x["error_note"] == "" for x in r), r' \
   "$tmp/bench3/results.csv" && ok || bad "bench: rows at the limit must have their error measured"
 grep -q 'deprecated' "$tmp/err" && bad "bench: a deprecation warning without --naive-max-lights" || ok
