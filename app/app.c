@@ -1,5 +1,6 @@
 #include "app.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <strings.h>
@@ -87,6 +88,25 @@ pg_result pg_app_pose_scene(pg_app *app, pg_scene *scene, pg_error *err)
     return pg_scene_pose(scene, app->animation, app->opt.time, err);
 }
 
+/* A scenario that moves the camera (position or target) without giving near and far: the planes the
+ * default view fitted to the scene at its own distance would cut the scene off, so the missing ones
+ * are fitted again around the scene's bounding sphere from the new position. */
+static void fit_scenario_planes(const pg_scene *scene, const pg_scenario *sc, pg_camera *cam)
+{
+    if (!(sc->has_cam_position || sc->has_cam_target) || (sc->has_cam_near && sc->has_cam_far)) return;
+    double r2 = 0, d2 = 0;
+    for (int k = 0; k < 3; k++) {
+        const double c = 0.5 * ((double)scene->bounds_min[k] + scene->bounds_max[k]);
+        const double h = 0.5 * ((double)scene->bounds_max[k] - scene->bounds_min[k]);
+        r2 += h * h;
+        d2 += (cam->position[k] - c) * (cam->position[k] - c);
+    }
+    const double r = sqrt(r2), d = sqrt(d2), far = 1.05 * (d + r) + 1e-3;
+    if (!sc->has_cam_far) cam->far_z = (float)far;
+    if (!sc->has_cam_near) cam->near_z = (float)fmax(d - r > 0 ? 0.95 * (d - r) : 0.0, 1e-4 * cam->far_z);
+    if (!(cam->far_z > cam->near_z)) cam->far_z = cam->near_z * 1000.0f;
+}
+
 pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, const pg_gpu_desc *window_bits,
                          pg_error *err)
 {
@@ -153,6 +173,7 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
             !app->scenario.has_ambient)
             app->lights.ambient = 0;
         pg_scenario_apply(&app->scenario, &app->lights, cam_from_scenario ? &app->camera : NULL);
+        if (cam_from_scenario) fit_scenario_planes(app->scene, &app->scenario, &app->camera);
         if (cam_from_scenario)
             snprintf(app->camera_why, sizeof app->camera_why, "camera: scenario %s (its camera fields over the default)",
                      app->scenario.path);

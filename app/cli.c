@@ -208,7 +208,7 @@ static pg_result add_set(pg_cli_common *c, char *v, pg_error *err)
 /* --device N (an index 0..15) or NAME (a part of the device name) */
 static pg_result parse_device(pg_cli_common *c, const char *a, const char *v, pg_error *err)
 {
-    if (v[0] >= '0' && v[0] <= '9') {
+    if (v[strspn(v, "0123456789")] == 0 && v[0]) { /* all digits: an index; any other text matches names */
         uint64_t u;
         pg_result r = pg_cli_parse_u64(a, v, 0, 15, &u, err);
         if (r) return r;

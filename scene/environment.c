@@ -394,7 +394,7 @@ pg_result pg_environment_load(const char *path, pg_environment **out, pg_error *
     *out = NULL;
     char *buf = NULL;
     size_t size = 0;
-    pg_result r = pg_read_file_as(path, "a Radiance .hdr file", &buf, &size, err);
+    pg_result r = pg_read_file_as(path, "a Radiance .hdr file (or an OpenEXR .exr)", &buf, &size, err);
     if (r != PG_OK) return r;
     r = decode_hdr(path, (const unsigned char *)buf, size, out, err);
     free(buf);

@@ -172,6 +172,7 @@ typedef struct pg_scene {
     uint32_t n_gltf_scenes;
     int gltf_scene;
     bool gltf_scene_chosen;   /* picked by pg_scene_load_opts.gltf_scene, not the file's default */
+    bool gltf_scene_named;    /* the file has a "scene" key (its default); else scenes[0] is drawn */
     char gltf_scene_name[PG_NAME_MAX];
 #define PG_SCENE_GLTF_SCENE_NAMES 16
     char gltf_scene_names[PG_SCENE_GLTF_SCENE_NAMES][PG_NAME_MAX]; /* the first 16 scenes' names

@@ -640,6 +640,7 @@ static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &
     s->n_gltf_scenes = uint32_t(c.model.scenes.size());
     s->gltf_scene = c.drawn_scene;
     s->gltf_scene_chosen = c.want_scene >= 0;
+    s->gltf_scene_named = c.model.defaultScene >= 0; /* the file's "scene" key */
     if (c.drawn_scene >= 0) {
         const std::string &nm = c.model.scenes[size_t(c.drawn_scene)].name;
         pg_strlcpy(s->gltf_scene_name, nm.empty() ? strf("scenes[%d]", c.drawn_scene).c_str() : nm.c_str(),

@@ -41,7 +41,9 @@ bool pg_scene_choice_line(const pg_scene *scene, char *buf, size_t size)
     if (!scene || scene->n_gltf_scenes < 2 || scene->gltf_scene < 0) return false;
     snprintf(buf, size, "%s has %u scenes; drawing scene %d '%s'%s; --gltf-scene N draws another", scene->path,
              scene->n_gltf_scenes, scene->gltf_scene, scene->gltf_scene_name,
-             scene->gltf_scene_chosen ? " (--gltf-scene)" : " (the file's default)");
+             scene->gltf_scene_chosen  ? " (--gltf-scene)"
+             : scene->gltf_scene_named ? " (the file's default)"
+                                       : " (the first: the file names no default scene)");
     return true;
 }
 

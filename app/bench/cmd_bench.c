@@ -467,6 +467,7 @@ static int fail_scene_rows(bench *B, uint32_t sc, const char *msg, pg_error *err
                     row->cpu = row->wait = row->gpu;
                     snprintf(row->message, sizeof row->message, "%s", msg);
                     B->rows_done++;
+                    B->n_failed++; /* counted, and the exit code says so, as any failed row */
                 }
     return rc;
 }
@@ -580,7 +581,9 @@ static int run_scene(bench *B, uint32_t sc, pg_error *err)
     if (pg_app_open(&app, &o, true, &ae)) {
         pg_app_close(&app);
         progress_clear(B);
-        if (ae.code == PG_ERR_NO_DEVICE || ae.code == PG_ERR_VULKAN || ae.code == PG_ERR_INVALID_ARG) {
+        /* no device stops the run; a scene's own failure (a file, or a --gltf-scene / --camera it lacks)
+         * fails its rows and the others go on */
+        if (ae.code == PG_ERR_NO_DEVICE || ae.code == PG_ERR_VULKAN) {
             fprintf(stderr, "passgraph bench: %s\n", ae.msg);
             return 1;
         }

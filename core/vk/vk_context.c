@@ -327,12 +327,18 @@ static pg_result pick_device(pg_gpu *gpu, const pg_gpu_desc *desc, pg_error *err
             best_score = s;
         }
     }
-    if (best < 0 || best_score < 0)
+    if (best < 0 || best_score < 0) {
+        char asked[PG_NAME_MAX + 48]; /* only what was asked: an index, a name, or neither */
+        if (desc->device_index >= 0)
+            snprintf(asked, sizeof asked, " device index %d of %u", desc->device_index, n);
+        else if (desc->device_match && desc->device_match[0])
+            snprintf(asked, sizeof asked, " a name containing '%s' among %u", desc->device_match, n);
+        else
+            snprintf(asked, sizeof asked, " any of %u", n);
         return pg_fail(err, PG_ERR_NO_DEVICE,
-                       "no usable Vulkan device matches (device index %d, name '%s')%s%s; run "
-                       "'passgraph devices' to list them",
-                       desc->device_index, desc->device_match ? desc->device_match : "",
+                       "no usable Vulkan device matches (%s)%s%s; run 'passgraph devices' to list them", asked + 1,
                        why[0] ? ": " : "", why);
+    }
     gpu->phys = devs[best];
     vkGetPhysicalDeviceProperties(gpu->phys, &gpu->props);
     vkGetPhysicalDeviceMemoryProperties(gpu->phys, &gpu->mem_props);

@@ -61,6 +61,12 @@ done
 printf '{"name":"x","resources":[{"name":"o","type":"image","format":"rgba8"}],"passes":[{"name":"p","type":"warp_drive","writes":["o"]}],"output":"o"}' >"$tmp/unknown_type.json"
 expect_fail "unknown pass type" "passes[0].type" render --pipeline "$tmp/unknown_type.json" --size 32x18 --out "$tmp/x.png"
 expect_fail "unwritable out" "cannot write" render --size 32x18 --lights 4 --out "$tmp/no/such/dir/x.png"
+# --device: a whole number is an index (said against the count), any other text part of a name, also
+# one that starts with a digit ("256 bits" of lavapipe's name)
+expect_fail "device index out of range" "no usable Vulkan device matches (device index 15 of " render --device 15 --size 16x9 --out "$tmp/x.png"
+expect_fail "device name" "no usable Vulkan device matches (a name containing 'no such gpu' among " render --device "no such gpu" --size 16x9 --out "$tmp/x.png"
+dev=$("$PG" devices 2>/dev/null | grep -o '[0-9][0-9]* bits' | head -1)
+[ -z "$dev" ] || { "$PG" render --device "$dev" --size 16x9 --lights 4 --out "$tmp/x.png" >/dev/null 2>"$tmp/err" && ok || { bad "--device '$dev' (a name starting with a digit)"; cat "$tmp/err"; }; }
 
 # --explain gives the values --radius / --intensity put in place of the set-up's
 "$PG" render --size 16x9 --lights 4 --radius 100 --intensity 5 --out "$tmp/r.png" --explain >"$tmp/out" 2>"$tmp/err" \
@@ -539,6 +545,14 @@ expect_fail "bench: size 0x0" "--size width 0" bench --size 0x0 --out "$tmp/b5"
   && grep -q "'default' is listed twice: run once" "$tmp/err" \
   && grep -q "^default,nosuch,.*,error,pipeline '$root/pipelines/nosuch.json': cannot open" "$tmp/bdup/results.csv" && ok \
   || { bad "bench: duplicates not run once, or a missing pipeline's row without its path"; cat "$tmp/err" "$tmp/bdup/results.csv"; }
+# a scene that does not load fails its rows, counted, exit 1 (it said "0 failed" and exited 0); the
+# other scenes still run
+"$PG" bench --pipelines naive --scene default,"$tmp/no_scene.gltf" --lights 4 --size 16x9 --frames 1 --warmup 0 \
+  --flicker-frames 0 --out "$tmp/bscene" >"$tmp/out" 2>"$tmp/err"
+rc=$?
+[ $rc = 1 ] && grep -q "2 rows (1 failed)" "$tmp/out" \
+  && grep -q "^default,naive,.*,ok," "$tmp/bscene/results.csv" && grep -q "no_scene.gltf,naive,.*,error," "$tmp/bscene/results.csv" && ok \
+  || { bad "bench: a scene that does not load: want its row failed, counted and exit 1 (exit $rc)"; cat "$tmp/out" "$tmp/err"; }
 expect_fail "bench: --frames-in-flight 0" "--frames-in-flight 0: expected a whole number in [1, 2]" bench --frames-in-flight 0 --out "$tmp/b5"
 expect_fail "bench: bad light list" "--lights -5" bench --lights 100,-5 --out "$tmp/b5"
 expect_fail "bench: no --out" "--out DIR" bench --lights 4
@@ -549,6 +563,13 @@ expect_fail "bench: unknown option" "unknown option" bench --bogus --out "$tmp/b
 
 # ---- default framing, lights and glTF cameras (tests/corpus/gltf/objects) ----
 objs="$root/tests/corpus/gltf/objects"
+# a scenario that moves the camera without near/far: the planes are fitted again from the new position
+# (the default view's, fitted at its own distance, cut the cube off: a black frame)
+printf '{"camera": {"position": [0, 0, 12], "target": [0, 0, 0]}}\n' >"$tmp/sc_far.json"
+"$PG" render --scene "$objs/cube.gltf" --scenario "$tmp/sc_far.json" --size 64x36 --environment none --ambient 0.5 \
+  --out "$tmp/sc_far.png" >"$tmp/out" 2>"$tmp/err" \
+  && python3 "$root/tests/cli/png_stats.py" "$tmp/sc_far.png" | awk '{ exit !($3 > 0.002) }' && ok \
+  || { bad "a scenario camera without near/far: the object is cut off"; cat "$tmp/err"; }
 camline() { "$PG" render --size 64x36 --lights 8 --explain --out "$tmp/c.png" "$@" 2>"$tmp/cerr" | grep -E '^explain: (camera|lights):'; }
 camline >"$tmp/cl" && grep -q "^explain: camera: interior view of the built-in atrium" "$tmp/cl" && \
   grep -q "^explain: lights: generated point lights, interior box" "$tmp/cl" && ok || { bad "atrium: camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
@@ -573,6 +594,12 @@ camline --scene "$objs/cube.gltf" --scenario "$root/assets/scenarios/cis565.json
   grep -q "^explain: scene: .*two_scenes.gltf has 2 scenes; drawing scene 0 'small' (the file's default); --gltf-scene N draws another$" "$tmp/cl" &&
   grep -q "^passgraph: .*two_scenes.gltf has 2 scenes; drawing scene 0 'small'" "$tmp/cerr" \
   && ok || { bad "two_scenes: explain shading/environment/scene lines"; cat "$tmp/cl" "$tmp/cerr"; }
+# without a "scene" key the first is drawn, and the line says the file names no default
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d.pop('scene'); json.dump(d, open(sys.argv[2], 'w'))" \
+  "$objs/two_scenes.gltf" "$tmp/no_default.gltf"
+"$PG" render --size 16x9 --lights 4 --scene "$tmp/no_default.gltf" --out "$tmp/c.png" >/dev/null 2>"$tmp/cerr" &&
+  grep -q "drawing scene 0 'small' (the first: the file names no default scene)" "$tmp/cerr" \
+  && ok || { bad "a file without a default scene: the line says it is the file's default"; cat "$tmp/cerr"; }
 # the environment light: --environment none / FILE.hdr (a flat RGBE file written here) / errors naming
 # the file and the cause, exit 1
 "$PG" render --size 64x36 --lights 8 --explain --scene "$objs/two_scenes.gltf" --environment none --out "$tmp/c.png" >"$tmp/cl" 2>"$tmp/cerr" &&

@@ -244,6 +244,7 @@ static void test_errors(void)
 {
     expect_fail(tmp_path("missing.hdr"), PG_ERR_IO, "cannot open: No such file or directory");
     expect_fail(g_dir, PG_ERR_IO, "is a directory");
+    expect_fail("/dev/null", PG_ERR_IO, "(expected a Radiance .hdr file (or an OpenEXR .exr))"); /* both are read */
     expect_fail(write_text("text.hdr", "hello, world\n"), PG_ERR_PARSE, "not a Radiance HDR file");
     expect_fail(write_cut("header_only.hdr", 64, 32, 0), PG_ERR_PARSE, "truncated");
     expect_fail(write_cut("half.hdr", 64, 32, 64 * 16 * 4), PG_ERR_PARSE, "truncated");
