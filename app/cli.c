@@ -205,12 +205,12 @@ static pg_result add_set(pg_cli_common *c, char *v, pg_error *err)
     return PG_OK;
 }
 
-/* --device N (an index 0..15) or NAME (a part of the device name) */
+/* --device N (a whole number: an index) or NAME (any other text: a part of the device name) */
 static pg_result parse_device(pg_cli_common *c, const char *a, const char *v, pg_error *err)
 {
     if (v[strspn(v, "0123456789")] == 0 && v[0]) { /* all digits: an index; any other text matches names */
         uint64_t u;
-        pg_result r = pg_cli_parse_u64(a, v, 0, 15, &u, err);
+        pg_result r = pg_cli_parse_u64(a, v, 0, 65535, &u, err); /* one not there: "index N of M", exit 1 */
         if (r) return r;
         c->device_index = (int)u;
     } else {

@@ -77,6 +77,16 @@ pg_result parse_sizes(bench *B, char *v, pg_error *err)
     return PG_OK;
 }
 
+/* Two sweep values that are the same: the same text, or two equal numbers ("1" and "1.0" would run
+ * one configuration twice). */
+static bool same_value(const char *a, const char *b)
+{
+    if (!strcmp(a, b)) return true;
+    char *ea = NULL, *eb = NULL;
+    const double x = strtod(a, &ea), y = strtod(b, &eb);
+    return ea != a && eb != b && !*ea && !*eb && isfinite(x) && x == y;
+}
+
 pg_result parse_sweep(bench *B, char *v, pg_error *err)
 {
     if (B->n_sweeps >= MAX_SWEEPS) return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep: at most %d", MAX_SWEEPS);
@@ -95,8 +105,9 @@ pg_result parse_sweep(bench *B, char *v, pg_error *err)
     for (int i = 0; i < n; i++) {
         if (!parts[i][0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: empty value in the list", v);
         for (uint32_t k = 0; k < s->n; k++)
-            if (!strcmp(s->values[k], parts[i]))
-                return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: value '%s' given twice", v, parts[i]);
+            if (same_value(s->values[k], parts[i]))
+                return pg_fail(err, PG_ERR_INVALID_ARG, "--sweep %s: value '%s' given twice (as '%s')", v, parts[i],
+                               s->values[k]);
         s->values[s->n++] = parts[i];
     }
     B->n_sweeps++;

@@ -64,6 +64,7 @@ expect_fail "unwritable out" "cannot write" render --size 32x18 --lights 4 --out
 # --device: a whole number is an index (said against the count), any other text part of a name, also
 # one that starts with a digit ("256 bits" of lavapipe's name)
 expect_fail "device index out of range" "no usable Vulkan device matches (device index 15 of " render --device 15 --size 16x9 --out "$tmp/x.png"
+"$PG" render --device 16 --size 16x9 --out "$tmp/x.png" >/dev/null 2>&1; [ $? = 1 ] && ok || bad "--device 16: want exit 1 as for 15 (no such device)"
 expect_fail "device name" "no usable Vulkan device matches (a name containing 'no such gpu' among " render --device "no such gpu" --size 16x9 --out "$tmp/x.png"
 dev=$("$PG" devices 2>/dev/null | grep -o '[0-9][0-9]* bits' | head -1)
 [ -z "$dev" ] || { "$PG" render --device "$dev" --size 16x9 --lights 4 --out "$tmp/x.png" >/dev/null 2>"$tmp/err" && ok || { bad "--device '$dev' (a name starting with a digit)"; cat "$tmp/err"; }; }
@@ -558,6 +559,9 @@ expect_fail "bench: bad light list" "--lights -5" bench --lights 100,-5 --out "$
 expect_fail "bench: no --out" "--out DIR" bench --lights 4
 expect_fail "bench: sweep of an undeclared key" "no_such_key" bench --sweep no_such_key=1,2 --out "$tmp/b5"
 expect_fail "bench: sweep without values" "KEY=VALUE1" bench --sweep gbuffer --out "$tmp/b5"
+expect_fail "bench: a swept value twice" "value 'float' given twice" bench --sweep gbuffer=float,float --out "$tmp/b5"
+expect_fail "bench: a swept number twice in two forms" "--sweep exposure: value '1.0' given twice (as '1')" \
+  bench --sweep exposure=1,1.0 --out "$tmp/b5"
 expect_fail "bench: unknown option" "unknown option" bench --bogus --out "$tmp/b5"
 [ ! -e "$tmp/b5" ] && ok || bad "bench: bad options created the output folder"
 
