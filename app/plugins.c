@@ -18,8 +18,9 @@ static pg_result load_one(pg_pass_registry *reg, const char *path, pg_plugins *o
     /* a bare name would be searched in the system's library path: make it a path */
     char full[PG_PATH_MAX + 4];
     snprintf(full, sizeof full, "%s%s", strchr(path, '/') ? "" : "./", path);
-    char real0[PATH_MAX]; /* a library is loaded once by its real path (named twice, or through a link) */
-    if (realpath(full, real0))
+    char real0[PATH_MAX] = ""; /* a library is loaded once by its real path (named twice, or through a link) */
+    if (!realpath(full, real0)) real0[0] = 0; /* unset on failure */
+    else
         for (uint32_t k = 0; k < out->n; k++)
             if (!strcmp(out->paths[k], real0)) return PG_OK;
     void *h = dlopen(full, RTLD_NOW | RTLD_LOCAL);
@@ -27,8 +28,7 @@ static pg_result load_one(pg_pass_registry *reg, const char *path, pg_plugins *o
         const char *why = dlerror();
         return pg_fail(err, PG_ERR_INVALID_ARG, "%s: cannot load plug-in: %s", path, why ? why : "dlopen failed");
     }
-    char real[PATH_MAX];
-    pg_strlcpy(out->paths[out->n], realpath(full, real) ? real : full, PG_PATH_MAX);
+    pg_strlcpy(out->paths[out->n], real0[0] ? real0 : full, PG_PATH_MAX);
     out->handles[out->n++] = h;
     pg_plugin_version_fn version;
     pg_plugin_register_fn reg_fn;

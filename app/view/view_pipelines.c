@@ -57,6 +57,17 @@ static void scan_subdirs(viewer *v, const char *dir)
     for (int i = 0; i < n; i++) scan_dir(v, subs[i]);
 }
 
+/* A pipeline file outside the scanned folders joins the list (the caller checked there is room);
+ * its index. */
+static int add_elsewhere(viewer *v, const char *path)
+{
+    pg_strlcpy(v->paths[v->n_pipelines], path, PG_PATH_MAX);
+    const char *base = strrchr(path, '/');
+    pg_strlcpy(v->names[v->n_pipelines], base ? base + 1 : path, PG_NAME_MAX);
+    v->name_ptrs[v->n_pipelines] = v->names[v->n_pipelines];
+    return v->n_pipelines++;
+}
+
 void scan_pipelines(viewer *v, const char *current_path)
 {
     v->n_pipelines = 0;
@@ -70,13 +81,7 @@ void scan_pipelines(viewer *v, const char *current_path)
     char want[PG_PATH_MAX], have[PG_PATH_MAX];
     for (int i = 0; current_path && i < v->n_pipelines; i++)
         if (realpath(current_path, want) && realpath(v->paths[i], have) && !strcmp(want, have)) v->current = i;
-    if (v->current < 0 && current_path && v->n_pipelines < MAX_PIPELINES) { /* a file elsewhere */
-        pg_strlcpy(v->paths[v->n_pipelines], current_path, PG_PATH_MAX);
-        const char *base = strrchr(current_path, '/');
-        pg_strlcpy(v->names[v->n_pipelines], base ? base + 1 : current_path, PG_NAME_MAX);
-        v->name_ptrs[v->n_pipelines] = v->names[v->n_pipelines];
-        v->current = v->n_pipelines++;
-    }
+    if (v->current < 0 && current_path && v->n_pipelines < MAX_PIPELINES) v->current = add_elsewhere(v, current_path);
     if (v->current < 0) v->current = 0;
 }
 
@@ -108,11 +113,7 @@ pg_result find_pipeline(viewer *v, const char *arg, int *index, pg_error *err)
                        v->n_pipelines, v->n_pipelines ? v->names[0] : "none");
     if (v->n_pipelines >= MAX_PIPELINES)
         return pg_fail(err, PG_ERR_LIMIT, "%s: the viewer lists %d pipelines already", arg, MAX_PIPELINES);
-    pg_strlcpy(v->paths[v->n_pipelines], arg, PG_PATH_MAX); /* a file elsewhere, as scan_pipelines adds one */
-    const char *base = strrchr(arg, '/');
-    pg_strlcpy(v->names[v->n_pipelines], base ? base + 1 : arg, PG_NAME_MAX);
-    v->name_ptrs[v->n_pipelines] = v->names[v->n_pipelines];
-    *index = v->n_pipelines++;
+    *index = add_elsewhere(v, arg);
     return PG_OK;
 }
 
