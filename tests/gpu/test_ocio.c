@@ -386,6 +386,31 @@ static void test_exr_cpu(void)
                       contains(err.msg, "the file has 1024"),
                   "%s", err.msg);
     }
+    { /* a required attribute missing (its name changed in place, so the offsets stay valid) is
+       * named: OpenEXRCore's default (ZIP, a 64 x 64 window) gave "Unable to decompress" or
+       * "truncated ... 64x64" */
+        static const char *const attrs[] = {"compression", "dataWindow", "channels"};
+        for (int a = 0; a < 3; a++) {
+            tmp_path(path, sizeof path, "renamed.exr");
+            CHECK_MSG(pg_exr_write_rgba(path, px, W, H, false, &err) == PG_OK, "%s", err.msg);
+            FILE *f = fopen(path, "r+b");
+            unsigned char buf[4096];
+            size_t n = f ? fread(buf, 1, sizeof buf, f) : 0;
+            size_t len = strlen(attrs[a]), at = 0;
+            while (at + len + 1 < n && memcmp(buf + at, attrs[a], len + 1)) at++; /* the name and its 0 */
+            CHECK_MSG(at + len + 1 < n, "no %s attribute in the written header", attrs[a]);
+            if (f && at + len + 1 < n) {
+                fseek(f, (long)(at + len - 1), SEEK_SET);
+                fputc('X', f);
+            }
+            if (f) fclose(f);
+            err = (pg_error){0};
+            CHECK(pg_exr_read_rgba(path, &none, &w, &h, &err) != PG_OK && !none);
+            char want[64];
+            snprintf(want, sizeof want, "'%s' attribute not found", attrs[a]);
+            CHECK_MSG(contains(err.msg, path) && contains(err.msg, want), "%s", err.msg);
+        }
+    }
     tmp_path(path, sizeof path, "no/such/dir/x.exr");
     err = (pg_error){0};
     CHECK(pg_exr_write_rgba(path, px, W, H, false, &err) != PG_OK);
