@@ -310,7 +310,7 @@ pg_result pg_scenario_load(const char *path, pg_scenario *out, pg_error *err)
         if (at < text || at > text + size) at = text + size;
         line_col(text, at, &line, &col);
         r = pg_fail(err, PG_ERR_PARSE, "%s:%d:%d: JSON syntax error%s", path, line, col,
-                    size == 0 ? " (empty file)" : "");
+                    size == 0 ? " (empty file)" : pg_json_depth_note(text, at < text + size ? (size_t)(at - text) + 1 : size, CJSON_NESTING_LIMIT));
         free(text);
         return r;
     }

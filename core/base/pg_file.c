@@ -188,3 +188,26 @@ pg_result pg_file_check_writable_dir(const char *path, const char *what, pg_erro
     while (n > 1 && trimmed[n - 1] == '/') trimmed[--n] = 0;
     return check_parent_dir(trimmed, path, what, err);
 }
+
+const char *pg_json_depth_note(const char *text, size_t n, int limit)
+{
+    static _Thread_local char note[96];
+    long depth = 0, deepest = 0;
+    bool in_string = false;
+    const char *at = text ? text + n : NULL;
+    for (const char *c = text; c && c < at; c++) {
+        if (in_string) {
+            if (*c == '\\') c++;
+            else if (*c == '"') in_string = false;
+        } else if (*c == '"') {
+            in_string = true;
+        } else if (*c == '[' || *c == '{') {
+            if (++depth > deepest) deepest = depth;
+        } else if (*c == ']' || *c == '}') {
+            depth--;
+        }
+    }
+    if (deepest <= limit) return "";
+    snprintf(note, sizeof note, " (nested deeper than %d levels, the most passgraph reads)", limit);
+    return note;
+}

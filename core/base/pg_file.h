@@ -60,6 +60,12 @@ pg_result pg_file_check_writable(const char *path, const char *what, pg_error *e
  * and its parent is a writable directory. */
 pg_result pg_file_check_writable_dir(const char *path, const char *what, pg_error *err);
 
+/* For a JSON parser that stopped in text at byte n - 1 (the byte it refused, included): " (nested
+ * deeper than LIMIT levels, the most passgraph reads)" when the arrays and objects open in the
+ * first n bytes (strings skipped) are more than limit deep, so the cause is named instead of a
+ * bare syntax error; "" otherwise. Reads at most n bytes. */
+const char *pg_json_depth_note(const char *text, size_t n, int limit);
+
 #ifdef __cplusplus
 }
 #endif

@@ -3,6 +3,7 @@
  * JSON paths). Part of the loader (pipeline_json_internal.h).
  */
 #include "pipeline_json_internal.h"
+#include "pg_file.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -218,6 +219,7 @@ pg_result pj_parse_text(loader *L, src_file *f, const char *text, size_t len)
             }
         }
         /* line and column only: the file may not be JSON at all, and its text is never echoed */
+        if (!extra[0]) extra = pg_json_depth_note(text, bad < text + len ? (size_t)(bad - text) + 1 : len, CJSON_NESTING_LIMIT);
         return pg_fail(L->err, PG_ERR_PARSE, "%s:%u:%u: JSON syntax error%s", f->path, line, col,
                        extra);
     }

@@ -470,6 +470,21 @@ static void test_inline_errors(void)
     /* a file that is not JSON: line and column, never its text */
     CHECK(pg_pipeline_load_string("root:x:0:0:root:/root:/bin/bash\n", "passwd", NULL, 0, &p, &err) == PG_ERR_PARSE);
     CHECK_MSG(!strcmp(err.msg, "passwd:1:1: JSON syntax error"), "%s", err.msg);
+    { /* nesting past the parser's limit is named (1,000 levels; the object counts) */
+        static char deep[2 * 1100 + 64];
+        for (int depth = 1000; depth <= 1001; depth++) {
+            int n = snprintf(deep, sizeof deep, "{\"description\": \"{{{\", \"passes\": ");
+            for (int i = 1; i < depth; i++) deep[n++] = '[';
+            for (int i = 1; i < depth; i++) deep[n++] = ']';
+            snprintf(deep + n, sizeof deep - (size_t)n, ", \"output\": \"o\"}");
+            err = (pg_error){0};
+            pg_result r = pg_pipeline_load_string(deep, "deep.json", NULL, 0, &p, &err);
+            if (r == PG_OK) pg_pipeline_free(p);
+            bool note = strstr(err.msg, "nested deeper than 1000 levels") != NULL;
+            CHECK_MSG(r != PG_OK && note == (depth > 1000) && (depth == 1000 || r == PG_ERR_PARSE), "depth %d: %s",
+                      depth, err.msg);
+        }
+    }
     /* a syntax error on the second line */
     expect_fail("{\"output\": \"o\",\n \"resources\": [1, 2,,]}", NULL, 0, PG_ERR_PARSE,
                 "inline.json:2:");

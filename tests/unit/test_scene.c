@@ -601,6 +601,23 @@ static void test_scenarios(void)
                   pg_result_name(bad[i].code), bad[i].substring);
         unlink(p);
     }
+    { /* nesting past the parser's limit is named; brackets inside a string are not nesting */
+        static char deep[2 * 1100 + 64];
+        for (int depth = 1000; depth <= 1001; depth++) {
+            int n = snprintf(deep, sizeof deep, "{\"name\": \"[[[\", \"x\": ");
+            for (int i = 1; i < depth; i++) deep[n++] = '[';
+            for (int i = 1; i < depth; i++) deep[n++] = ']';
+            snprintf(deep + n, sizeof deep - (size_t)n, "}");
+            snprintf(p, sizeof p, "%s/deep.json", g_tmpdir);
+            write_text(p, deep);
+            memset(&err, 0, sizeof err);
+            r = pg_scenario_load(p, &sc, &err);
+            bool note = strstr(err.msg, "nested deeper than 1000 levels") != NULL;
+            CHECK_MSG(r == PG_ERR_PARSE || r == PG_ERR_SCHEMA, "depth %d: %s", depth, err.msg);
+            CHECK_MSG(note == (depth > 1000), "depth %d: %s", depth, err.msg);
+            unlink(p);
+        }
+    }
     snprintf(p, sizeof p, "%s/missing.json", g_tmpdir);
     CHECK(pg_scenario_load(p, &sc, &err) == PG_ERR_IO);
     rmdir(g_tmpdir);
