@@ -264,6 +264,11 @@ static bool initial_state(viewer *v, const pg_cli_common *opt)
                      opt->sets[i].value == opt->debug_view ? "" : "=", opt->sets[i].value, opt->sets[i].key);
             return false;
         }
+    pg_error bad = {0}; /* a value a pipeline refuses, named by the option that gave it */
+    if (check_set_values(v, opt, &bad)) {
+        pg_strlcpy(v->error, bad.msg, sizeof v->error);
+        return false;
+    }
     v->requested = v->current;
     reload(v);
     if (!v->session) return false;

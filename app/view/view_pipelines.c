@@ -3,6 +3,7 @@
  * for hot reload. */
 #include <sys/stat.h>
 
+#include "sides.h"
 #include "view.h"
 
 /* ---------------------------------------------------------------- pipelines and parameters */
@@ -96,6 +97,24 @@ bool declared_by_any(const viewer *v, const char *key)
         if (yes) return true;
     }
     return false;
+}
+
+pg_result check_set_values(const viewer *v, const pg_cli_common *opt, pg_error *err)
+{
+    pg_side_sets sides;
+    memset(&sides, 0, sizeof sides);
+    if (!pg_sides_from_common(&sides, opt)) return pg_fail(err, PG_ERR_INVALID_ARG, "too many --set values");
+    for (int i = 0; i < v->n_pipelines; i++) {
+        pg_pipeline *p = NULL;
+        pg_error e;
+        if (pg_pipeline_load(v->paths[i], NULL, 0, &p, &e)) continue; /* reported where it is opened */
+        pg_ov_list l;
+        pg_sides_pipeline(&sides, p, NULL, 0, &l); /* the keys it declares */
+        pg_pipeline_free(p);
+        pg_result r = pg_sides_check_values(v->paths[i], &l, "pipeline", err);
+        if (r == PG_ERR_INVALID_ARG) return r;
+    }
+    return PG_OK;
 }
 
 pg_result find_pipeline(viewer *v, const char *arg, int *index, pg_error *err)

@@ -39,12 +39,14 @@ done
 
 # bad scripted values and unknown keys are refused by name, not read as 0 or ignored: a light count
 # that is not a whole number in range, a pipeline that is no file and none of the list, a --set or
-# --at set key no pipeline declares
+# --at set key no pipeline declares, a value a pipeline refuses (named by the option that gave it)
 for bad_arg in "--at 2:lights=1e3|--at 2:lights 1e3: expected a whole number in [0, 16777216]" \
                "--at 2:lights=-1|--at 2:lights -1: expected a whole number" \
                "--at 2:pipeline=$tmp/none.json|--at 2:pipeline: $tmp/none.json: neither a file nor one of the viewer's" \
                "--at 2:set=bogus=1|--at 2:set=bogus=1: no pipeline of the viewer declares a parameter 'bogus'" \
-               "--set bogus=1|--set bogus=1: no pipeline of the viewer declares a parameter 'bogus'"; do
+               "--set bogus=1|--set bogus=1: no pipeline of the viewer declares a parameter 'bogus'" \
+               "--set shading=bogus|--set shading=bogus: pipeline " \
+               "--debug-view bogus|--debug-view bogus: pipeline "; do
   # shellcheck disable=SC2086
   xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 4 --lights 4 ${bad_arg%%|*} >"$tmp/out3" 2>"$tmp/err3"
   rc=$?
