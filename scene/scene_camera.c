@@ -103,6 +103,54 @@ static int flat_axis(const pg_scene *scene, const double ext[3], int *side)
     return k;
 }
 
+/* A flat scene no axis is thin along (a tilted panel): nearly all of its triangle area faces one way
+ * (the area-weighted normals' sum at least PG_SHEET_ALIGN of the total area) and its vertices lie
+ * within PG_FLAT_RATIO of its narrower extent in that plane from it. n: the unit normal its front
+ * faces along. */
+#define PG_SHEET_ALIGN 0.95
+static bool tilted_sheet(const pg_scene *scene, double n[3])
+{
+    double sum[3] = {0, 0, 0}, area = 0;
+    for (uint32_t p = 0; p < scene->n_primitives; p++) {
+        const pg_primitive *pr = &scene->primitives[p];
+        for (uint32_t t = 0; t + 2 < pr->index_count; t += 3) {
+            const uint32_t *ix = &scene->indices[pr->first_index + t];
+            int64_t i0 = (int64_t)ix[0] + pr->vertex_offset, i1 = (int64_t)ix[1] + pr->vertex_offset,
+                    i2 = (int64_t)ix[2] + pr->vertex_offset;
+            if (i0 < 0 || i1 < 0 || i2 < 0 || i0 >= scene->n_vertices || i1 >= scene->n_vertices ||
+                i2 >= scene->n_vertices)
+                continue;
+            float e1[3], e2[3], c[3];
+            v3_sub(scene->vertices[i1].position, scene->vertices[i0].position, e1);
+            v3_sub(scene->vertices[i2].position, scene->vertices[i0].position, e2);
+            v3_cross(e1, e2, c);
+            for (int a = 0; a < 3; a++) sum[a] += c[a];
+            area += sqrt((double)c[0] * c[0] + (double)c[1] * c[1] + (double)c[2] * c[2]);
+        }
+    }
+    double len = sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+    if (!(area > 0) || !(len >= PG_SHEET_ALIGN * area)) return false;
+    for (int a = 0; a < 3; a++) n[a] = sum[a] / len;
+    /* two axes in the plane: u = n x (the world axis least along n), w = n x u */
+    int least = 0;
+    for (int a = 1; a < 3; a++)
+        if (fabs(n[a]) < fabs(n[least])) least = a;
+    double e[3] = {0, 0, 0}, u[3], w[3];
+    e[least] = 1;
+    u[0] = n[1] * e[2] - n[2] * e[1], u[1] = n[2] * e[0] - n[0] * e[2], u[2] = n[0] * e[1] - n[1] * e[0];
+    double ul = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (int a = 0; a < 3; a++) u[a] /= ul;
+    w[0] = n[1] * u[2] - n[2] * u[1], w[1] = n[2] * u[0] - n[0] * u[2], w[2] = n[0] * u[1] - n[1] * u[0];
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}; /* along n, u, w */
+    for (uint32_t i = 0; i < scene->n_vertices; i++) {
+        const float *q = scene->vertices[i].position;
+        double d[3] = {q[0] * n[0] + q[1] * n[1] + q[2] * n[2], q[0] * u[0] + q[1] * u[1] + q[2] * u[2],
+                       q[0] * w[0] + q[1] * w[1] + q[2] * w[2]};
+        for (int a = 0; a < 3; a++) lo[a] = fmin(lo[a], d[a]), hi[a] = fmax(hi[a], d[a]);
+    }
+    return hi[0] - lo[0] < PG_FLAT_RATIO * fmin(hi[1] - lo[1], hi[2] - lo[2]);
+}
+
 pg_camera pg_camera_frame_object(const pg_scene *scene, float aspect, float *out_radius, float *out_distance)
 {
     float mn[3] = {-1, -1, -1}, mx[3] = {1, 1, 1};
@@ -131,6 +179,11 @@ pg_camera pg_camera_frame_object(const pg_scene *scene, float aspect, float *out
         if (k == 1) { /* a floor (or ceiling): from above (below), far edge at the top */
             up[1] = 0;
             up[2] = -side;
+        }
+    } else if (has && scene->vertices && tilted_sheet(scene, dir)) { /* flat and tilted: along its normal */
+        if (fabs(dir[1]) > 0.9) { /* mostly a floor (ceiling): as above */
+            up[1] = 0;
+            up[2] = dir[1] > 0 ? -1 : 1;
         }
     } else {
         double az = 35.0 * pi / 180.0, el = 25.0 * pi / 180.0;

@@ -146,8 +146,8 @@ static pg_frame_info view_of(const pg_scene *sc, const char *spec, char *why, si
 
 static void check_objects(void)
 {
-    const char *files[] = {"cube.gltf", "sphere.gltf", "quad.gltf",  "rod.gltf",        "tiny.gltf",
-                           "huge.gltf", "tall.gltf",   "panels.gltf", "panel_back.gltf", "wall_x.gltf"};
+    const char *files[] = {"cube.gltf", "sphere.gltf", "quad.gltf",   "rod.gltf",        "tiny.gltf",  "huge.gltf",
+                           "tall.gltf", "panels.gltf", "panel_back.gltf", "wall_x.gltf", "panel_tilted.gltf"};
     enum { N_FILES = sizeof files / sizeof files[0] };
     double spans[N_FILES];
     size_t n_spans = 0;

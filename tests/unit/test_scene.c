@@ -1349,12 +1349,13 @@ static int cmp_double(const void *a, const void *b)
 
 static void test_object_framing(void)
 {
-    /* every camera-less object of the corpus; the last four are flat (seen from the front) */
-    const char *files[] = {"cube.gltf", "sphere.gltf", "rod.gltf",   "tiny.gltf",      "huge.gltf",
-                           "tall.gltf", "quad.gltf",   "panels.gltf", "panel_back.gltf", "wall_x.gltf"};
+    /* every camera-less object of the corpus; the last five are flat (seen from the front) */
+    const char *files[] = {"cube.gltf",   "sphere.gltf",     "rod.gltf",    "tiny.gltf",
+                           "huge.gltf",   "tall.gltf",       "quad.gltf",   "panels.gltf",
+                           "panel_back.gltf", "wall_x.gltf", "panel_tilted.gltf"};
     /* the camera's direction from the centre for the flat ones: quad faces +Y, panels +Z,
-     * panel_back -Z, wall_x -X */
-    const float flat_dir[4][3] = {{0, 1, 0}, {0, 0, 1}, {0, 0, -1}, {-1, 0, 0}};
+     * panel_back -Z, wall_x -X, panel_tilted (0, sin 30, -cos 30): no axis is thin along it */
+    const float flat_dir[5][3] = {{0, 1, 0}, {0, 0, 1}, {0, 0, -1}, {-1, 0, 0}, {0, 0.5f, -0.8660254f}};
     const size_t n_files = sizeof files / sizeof files[0], first_flat = 6;
     const float aspects[] = {16.0f / 9, 1.0f, 9.0f / 16, 4.0f};
     double sizes[16];

@@ -11,6 +11,8 @@ is committed. Run: `python3 tests/corpus/gltf/objects/gen_objects.py`.
                      panels, as texture sample files show them)
   panel_back.gltf    one 2 x 1 quad in the XY plane facing -Z
   wall_x.gltf        one 1 x 2 quad in the YZ plane facing -X
+  panel_tilted.gltf  panel_back's quad turned 30 degrees about X: it faces (0, 0.5, -0.866), away
+                     from the default 3/4 view (a flat object that no axis is thin along)
   tall.gltf          a standing box 0.5 x 1.8 x 0.3 on the ground (a character's proportions)
   two_scenes.gltf    the unit cube in two glTF scenes: 'small' (the default, `scene` 0) and 'big'
                      (node scaled 3x, moved to x = 10); --gltf-scene picks one
@@ -112,6 +114,18 @@ write("rod.gltf", doc(box((-5, -0.1, -0.1), (5, 0.1, 0.1))))
 write("panels.gltf", doc(merge(*[panel(x, x + 1, 0, 1, "xy", 1) for x in (-1.7, -0.5, 0.7)])))
 write("panel_back.gltf", doc(panel(-1, 1, -0.5, 0.5, "xy", -1)))
 write("wall_x.gltf", doc(panel(-0.5, 0.5, 0, 2, "yz", -1)))
+
+
+def tilted(mesh, deg):
+    """mesh turned deg degrees about the X axis (y' = y cos - z sin, z' = y sin + z cos)"""
+    c, s_ = math.cos(math.radians(deg)), math.sin(math.radians(deg))
+    def rot(v):
+        return (v[0], round(v[1] * c - v[2] * s_, 7), round(v[1] * s_ + v[2] * c, 7))
+    pos, nrm, idx = mesh
+    return [rot(p) for p in pos], [rot(n) for n in nrm], idx
+
+
+write("panel_tilted.gltf", doc(tilted(panel(-1, 1, -0.5, 0.5, "xy", -1), 30)))
 write("tall.gltf", doc(box((-0.25, 0, -0.15), (0.25, 1.8, 0.15))))
 two = doc(cube)
 two["nodes"] = [{"name": "small_cube", "mesh": 0},
