@@ -64,6 +64,24 @@ static int channel_index(const char *name)
     return -1;
 }
 
+/* OpenEXRCore 3.1.5 (Debian 12) keeps a chunk's compressed bytes when they are exactly as many as
+ * its raw bytes, and every reader takes a chunk of its raw size as raw: such a chunk read back as
+ * noise (NaN, negative alpha: a 1x256 image of 64 RIS-lit pixels had 16). Fixed upstream in 3.4;
+ * here the default compression runs, and a result no smaller than the raw data is replaced by the
+ * raw data, as the format intends. */
+static _Thread_local exr_result_t (*g_default_compress)(exr_encode_pipeline_t *);
+
+static exr_result_t compress_or_raw(exr_encode_pipeline_t *enc)
+{
+    exr_result_t rv = g_default_compress(enc);
+    if (rv == EXR_ERR_SUCCESS && enc->compressed_bytes >= enc->packed_bytes &&
+        enc->compressed_buffer != enc->packed_buffer && enc->compressed_alloc_size >= enc->packed_bytes) {
+        memcpy(enc->compressed_buffer, enc->packed_buffer, enc->packed_bytes);
+        enc->compressed_bytes = enc->packed_bytes;
+    }
+    return rv;
+}
+
 pg_result pg_exr_write_rgba(const char *path, const float *rgba, uint32_t w, uint32_t h, bool half,
                             pg_error *err)
 {
@@ -120,6 +138,10 @@ pg_result pg_exr_write_rgba(const char *path, const float *rgba, uint32_t w, uin
             rv = exr_encoding_choose_default_routines(ctx, part, &enc);
             if (rv != EXR_ERR_SUCCESS) break;
             enc_ready = true;
+            if (enc.compress_fn) {
+                g_default_compress = enc.compress_fn;
+                enc.compress_fn = compress_or_raw;
+            }
         }
         rv = exr_encoding_run(ctx, part, &enc);
     }

@@ -70,47 +70,11 @@ static bool scene_has_bounds(const pg_scene *scene)
            scene->bounds_min[1] <= scene->bounds_max[1] && scene->bounds_min[2] <= scene->bounds_max[2];
 }
 
-/* The axis a flat scene is thin along (its extent under PG_FLAT_RATIO of the middle one: a plate,
- * not a rod), -1 when it is not flat; *side = +1 / -1: the side the triangles' area-weighted normals face along it (+1 on
- * a tie). */
-#define PG_FLAT_RATIO 0.1
-static int flat_axis(const pg_scene *scene, const double ext[3], int *side)
+/* The sum of the triangles' area-weighted face normals (counter-clockwise front; twice the area
+ * times the normal, each) and of their lengths. */
+static void area_normals(const pg_scene *scene, double sum[3], double *area)
 {
-    int k = 0;
-    for (int a = 1; a < 3; a++)
-        if (ext[a] < ext[k]) k = a;
-    double mid = ext[0] + ext[1] + ext[2] - ext[k] - fmax(ext[0], fmax(ext[1], ext[2])); /* middle extent */
-    *side = 1;
-    if (!(ext[k] < PG_FLAT_RATIO * mid)) return -1; /* a rod (two thin axes) is not flat */
-    double sum = 0;
-    for (uint32_t p = 0; p < scene->n_primitives; p++) {
-        const pg_primitive *pr = &scene->primitives[p];
-        for (uint32_t t = 0; t + 2 < pr->index_count; t += 3) {
-            const uint32_t *ix = &scene->indices[pr->first_index + t];
-            int64_t i0 = (int64_t)ix[0] + pr->vertex_offset, i1 = (int64_t)ix[1] + pr->vertex_offset,
-                    i2 = (int64_t)ix[2] + pr->vertex_offset;
-            if (i0 < 0 || i1 < 0 || i2 < 0 || i0 >= scene->n_vertices || i1 >= scene->n_vertices ||
-                i2 >= scene->n_vertices)
-                continue;
-            float e1[3], e2[3], n[3];
-            v3_sub(scene->vertices[i1].position, scene->vertices[i0].position, e1);
-            v3_sub(scene->vertices[i2].position, scene->vertices[i0].position, e2);
-            v3_cross(e1, e2, n); /* twice the area times the face normal (counter-clockwise front) */
-            sum += n[k];
-        }
-    }
-    *side = sum < 0 ? -1 : 1;
-    return k;
-}
-
-/* A flat scene no axis is thin along (a tilted panel): nearly all of its triangle area faces one way
- * (the area-weighted normals' sum at least PG_SHEET_ALIGN of the total area) and its vertices lie
- * within PG_FLAT_RATIO of its narrower extent in that plane from it. n: the unit normal its front
- * faces along. */
-#define PG_SHEET_ALIGN 0.95
-static bool tilted_sheet(const pg_scene *scene, double n[3])
-{
-    double sum[3] = {0, 0, 0}, area = 0;
+    sum[0] = sum[1] = sum[2] = *area = 0;
     for (uint32_t p = 0; p < scene->n_primitives; p++) {
         const pg_primitive *pr = &scene->primitives[p];
         for (uint32_t t = 0; t + 2 < pr->index_count; t += 3) {
@@ -125,9 +89,38 @@ static bool tilted_sheet(const pg_scene *scene, double n[3])
             v3_sub(scene->vertices[i2].position, scene->vertices[i0].position, e2);
             v3_cross(e1, e2, c);
             for (int a = 0; a < 3; a++) sum[a] += c[a];
-            area += sqrt((double)c[0] * c[0] + (double)c[1] * c[1] + (double)c[2] * c[2]);
+            *area += sqrt((double)c[0] * c[0] + (double)c[1] * c[1] + (double)c[2] * c[2]);
         }
     }
+}
+
+/* The axis a flat scene is thin along (its extent under PG_FLAT_RATIO of the middle one: a plate,
+ * not a rod), -1 when it is not flat; *side = +1 / -1: the side the triangles' area-weighted normals face along it (+1 on
+ * a tie). */
+#define PG_FLAT_RATIO 0.1
+static int flat_axis(const pg_scene *scene, const double ext[3], int *side)
+{
+    int k = 0;
+    for (int a = 1; a < 3; a++)
+        if (ext[a] < ext[k]) k = a;
+    double mid = ext[0] + ext[1] + ext[2] - ext[k] - fmax(ext[0], fmax(ext[1], ext[2])); /* middle extent */
+    *side = 1;
+    if (!(ext[k] < PG_FLAT_RATIO * mid)) return -1; /* a rod (two thin axes) is not flat */
+    double sum[3], area;
+    area_normals(scene, sum, &area);
+    *side = sum[k] < 0 ? -1 : 1;
+    return k;
+}
+
+/* A flat scene no axis is thin along (a tilted panel): nearly all of its triangle area faces one way
+ * (the area-weighted normals' sum at least PG_SHEET_ALIGN of the total area) and its vertices lie
+ * within PG_FLAT_RATIO of its narrower extent in that plane from it. n: the unit normal its front
+ * faces along. */
+#define PG_SHEET_ALIGN 0.95
+static bool tilted_sheet(const pg_scene *scene, double n[3])
+{
+    double sum[3], area;
+    area_normals(scene, sum, &area);
     double len = sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
     if (!(area > 0) || !(len >= PG_SHEET_ALIGN * area)) return false;
     for (int a = 0; a < 3; a++) n[a] = sum[a] / len;
