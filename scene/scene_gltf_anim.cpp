@@ -209,7 +209,7 @@ static void skin_views(Ctx &c, const tinygltf::Primitive &prim, int set, size_t 
  * o.joints / o.weights (PG_ANIM_MAX_INFLUENCES a vertex: absolute joint slots, weights normalised
  * over all of them) */
 static void skin_attributes(Ctx &c, Out &o, const tinygltf::Primitive &prim, int skin, size_t base, size_t n,
-                            const std::string &pw)
+                            const uint32_t *src, size_t src_n, const std::string &pw)
 {
     const tinygltf::Skin &sk = c.model.skins[size_t(skin)];
     const bool set1_j = find_attr(prim, "JOINTS_1") != nullptr, set1_w = find_attr(prim, "WEIGHTS_1") != nullptr;
@@ -218,7 +218,7 @@ static void skin_attributes(Ctx &c, Out &o, const tinygltf::Primitive &prim, int
                    set1_j ? "WEIGHTS_1" : "JOINTS_1"));
     const int sets = set1_j ? 2 : 1;
     View jv[2], wv[2];
-    for (int t = 0; t < sets; t++) skin_views(c, prim, t, n, pw, jv[t], wv[t]);
+    for (int t = 0; t < sets; t++) skin_views(c, prim, t, src_n, pw, jv[t], wv[t]);
     for (const auto &at : prim.attributes)
         if ((at.first.compare(0, 7, "JOINTS_") == 0 || at.first.compare(0, 8, "WEIGHTS_") == 0) &&
             at.first != "JOINTS_0" && at.first != "JOINTS_1" && at.first != "WEIGHTS_0" && at.first != "WEIGHTS_1") {
@@ -232,16 +232,17 @@ static void skin_attributes(Ctx &c, Out &o, const tinygltf::Primitive &prim, int
     for (size_t i = 0; i < n; i++) {
         float j[PG_ANIM_MAX_INFLUENCES] = {0}, w[PG_ANIM_MAX_INFLUENCES] = {0};
         double sum = 0;
+        const size_t e = src ? src[i] : i; /* the accessors' element */
         for (int t = 0; t < sets; t++) {
-            view_floats(jv[t], i, j + 4 * t);
-            view_floats(wv[t], i, w + 4 * t);
+            view_floats(jv[t], e, j + 4 * t);
+            view_floats(wv[t], e, w + 4 * t);
             for (int k = 4 * t; k < 4 * t + 4; k++) {
                 if (!(std::isfinite(w[k]) && w[k] >= 0))
                     gfail(strf("accessors[%d]: WEIGHTS_%d element %zu: %g (expected finite weights >= 0)",
-                               wv[t].index, t, i, double(w[k])));
+                               wv[t].index, t, e, double(w[k])));
                 if (w[k] > 0 && !(j[k] < float(sk.joints.size())))
                     gfail(strf("accessors[%d]: JOINTS_%d element %zu: joint %g out of range (skins[%d] has %zu joints)",
-                               jv[t].index, t, i, double(j[k]), skin, sk.joints.size()));
+                               jv[t].index, t, e, double(j[k]), skin, sk.joints.size()));
                 sum += w[k];
             }
         }
@@ -287,19 +288,20 @@ static uint32_t node_weights(Ctx &c, Out &o, int ni, int mi, size_t targets, con
 /* one morph target attribute (VEC3) of target t into the deltas at `first` (field 0 position,
  * 1 normal, 2 tangent) */
 static void target_attribute(Ctx &c, Out &o, const std::map<std::string, int> &tg, const char *name, int field,
-                             size_t first, size_t n, const std::string &tw)
+                             size_t first, size_t n, const uint32_t *src, size_t src_n, const std::string &tw)
 {
     auto f = tg.find(name);
     if (f == tg.end()) return;
     View v = get_view(c, f->second);
-    if (v.type != TINYGLTF_TYPE_VEC3 || v.count != n)
-        gfail(strf("%s.%s: accessors[%d] must be VEC3 with %zu elements (got %s, %zu)", tw.c_str(), name, v.index, n,
-                   type_name(v.type), v.count));
+    if (v.type != TINYGLTF_TYPE_VEC3 || v.count != src_n)
+        gfail(strf("%s.%s: accessors[%d] must be VEC3 with %zu elements (got %s, %zu)", tw.c_str(), name, v.index,
+                   src_n, type_name(v.type), v.count));
     for (size_t i = 0; i < n; i++) {
         float d[3];
-        view_floats(v, i, d);
+        const size_t e = src ? src[i] : i;
+        view_floats(v, e, d);
         for (int k = 0; k < 3; k++)
-            if (!std::isfinite(d[k])) gfail(strf("%s.%s: element %zu is not finite", tw.c_str(), name, i));
+            if (!std::isfinite(d[k])) gfail(strf("%s.%s: element %zu is not finite", tw.c_str(), name, e));
         pg_anim_delta &D = o.deltas[first + i];
         float *dst = field == 0 ? D.position : field == 1 ? D.normal : D.tangent;
         memcpy(dst, d, sizeof d);
@@ -307,7 +309,7 @@ static void target_attribute(Ctx &c, Out &o, const std::map<std::string, int> &t
 }
 
 void anim_primitive(Ctx &c, Out &o, const tinygltf::Primitive &prim, int ni, size_t base, size_t n,
-                    const std::string &pw)
+                    const uint32_t *src, size_t src_n, const std::string &pw)
 {
     const tinygltf::Node &nd = c.model.nodes[size_t(ni)];
     pg_anim_prim ap;
@@ -320,7 +322,7 @@ void anim_primitive(Ctx &c, Out &o, const tinygltf::Primitive &prim, int ni, siz
         if (size_t(nd.skin) >= c.model.skins.size())
             gfail(strf("nodes[%d].skin: %d out of range (%zu skins)", ni, nd.skin, c.model.skins.size()));
         ap.skin = nd.skin;
-        skin_attributes(c, o, prim, nd.skin, base, n, pw);
+        skin_attributes(c, o, prim, nd.skin, base, n, src, src_n, pw);
     }
     if (!prim.targets.empty()) {
         const size_t nt = prim.targets.size();
@@ -335,9 +337,9 @@ void anim_primitive(Ctx &c, Out &o, const tinygltf::Primitive &prim, int ni, siz
         for (size_t t = 0; t < nt; t++) {
             const std::string tw = strf("%s.targets[%zu]", pw.c_str(), t);
             const size_t first = ap.target_base + t * n;
-            target_attribute(c, o, prim.targets[t], "POSITION", 0, first, n, tw);
-            target_attribute(c, o, prim.targets[t], "NORMAL", 1, first, n, tw);
-            target_attribute(c, o, prim.targets[t], "TANGENT", 2, first, n, tw);
+            target_attribute(c, o, prim.targets[t], "POSITION", 0, first, n, src, src_n, tw);
+            target_attribute(c, o, prim.targets[t], "NORMAL", 1, first, n, src, src_n, tw);
+            target_attribute(c, o, prim.targets[t], "TANGENT", 2, first, n, src, src_n, tw);
         }
     }
     const uint32_t index = uint32_t(o.aprims.size());

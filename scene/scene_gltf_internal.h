@@ -226,9 +226,10 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni = -1, 
 /* scene_gltf_anim.cpp */
 /* Before the walk: whether the file animates anything, the animated nodes, the skins' joint slots. */
 void anim_prepare(Ctx &c);
-/* A moving primitive's skin attributes and morph targets (its vertices at o.verts[base..base+n)). */
+/* A moving primitive's skin attributes and morph targets (its vertices at o.verts[base..base+n);
+ * vertex i reads the accessors' element src[i], or i when src is NULL; src_n: their count). */
 void anim_primitive(Ctx &c, Out &o, const tinygltf::Primitive &prim, int ni, size_t base, size_t n,
-                    const std::string &pw);
+                    const uint32_t *src, size_t src_n, const std::string &pw);
 /* After the walk: the scene's pg_scene_anim (NULL when no drawn primitive moves). */
 pg_scene_anim *anim_hand_out(Ctx &c, const Out &o);
 

@@ -275,9 +275,10 @@ static void emit_tangent(const View &tan, const Xform &x, size_t i, const std::s
 
 /* the n vertices appended to o at `base` (the optional streams exist from the first primitive
  * that has the attribute on: white / TEXCOORD_0 for the vertices of primitives without it) */
-static void emit_vertices(Out &o, const PrimAttrs &a, const Xform &x, const std::string &pw)
+static void emit_vertices(Out &o, const PrimAttrs &a, const uint32_t *src, size_t n, const Xform &x,
+                          const std::string &pw)
 {
-    const size_t n = a.n, base = o.verts.size();
+    const size_t base = o.verts.size();
     o.verts.resize(base + n);
     if (a.col || !o.colors.empty()) o.colors.resize((base + n) * 4, 1.0f);
     const bool uv1_fresh = a.uv1 && o.uv1.empty();
@@ -285,23 +286,25 @@ static void emit_vertices(Out &o, const PrimAttrs &a, const Xform &x, const std:
     pg_vertex *V = o.verts.data() + base;
     for (size_t i = 0; i < n; i++) {
         pg_vertex &vx = V[i];
-        emit_position(a, x, i, pw, vx);
-        if (a.nrm) emit_normal(*a.nrm, x, i, pw, vx);
+        const size_t e = src ? src[i] : i; /* the accessors' element */
+        emit_position(a, x, e, pw, vx);
+        if (a.nrm) emit_normal(*a.nrm, x, e, pw, vx);
         if (a.uv) {
-            read_floats(*a.uv, i, vx.uv);
-            check_finite(vx.uv, 2, *a.uv, "TEXCOORD_0", i);
+            read_floats(*a.uv, e, vx.uv);
+            check_finite(vx.uv, 2, *a.uv, "TEXCOORD_0", e);
         }
         if (a.col) {
             float q[4] = {1, 1, 1, 1}; /* VEC3: alpha 1 */
-            read_floats(*a.col, i, q);
-            check_finite(q, a.col->ncomp, *a.col, "COLOR_0", i);
+            read_floats(*a.col, e, q);
+            check_finite(q, a.col->ncomp, *a.col, "COLOR_0", e);
             memcpy(&o.colors[(base + i) * 4], q, sizeof q);
         }
         if (a.uv1) {
-            read_floats(*a.uv1, i, &o.uv1[(base + i) * 2]);
-            check_finite(&o.uv1[(base + i) * 2], 2, *a.uv1, "TEXCOORD_1", i);
+            read_floats(*a.uv1, e, &o.uv1[(base + i) * 2]);
+            check_finite(&o.uv1[(base + i) * 2], 2, *a.uv1, "TEXCOORD_1", e);
         }
-        if (a.tan) emit_tangent(*a.tan, x, i, pw, vx);
+        /* without NORMAL the given tangents are ignored (glTF 2.0 3.7.2.1): computed with the normals */
+        if (a.tan && a.nrm) emit_tangent(*a.tan, x, e, pw, vx);
     }
     /* TEXCOORD_1 of the vertices of primitives without it: a copy of their TEXCOORD_0 (what a
      * texture reading set 1 then samples, as when no primitive has TEXCOORD_1; warned) */
@@ -335,9 +338,28 @@ struct Decoded {
     const tinygltf::Primitive *prim;
     std::string pw;
     PrimAttrs a;
-    size_t n = 0;
-    std::vector<uint32_t> ind; /* a triangle list */
+    size_t n = 0;               /* the vertices placed */
+    std::vector<uint32_t> ind;  /* a triangle list of them */
+    std::vector<uint32_t> src;  /* vertex -> accessor element; empty: the same (flat normals unweld) */
 };
+
+/* Tangents for a normal map from the texture coordinates it reads (glTF 2.0 3.7.2.1): TEXCOORD_1's
+ * are swapped into the vertices' uv for pg_mesh_compute_tangents, then back. */
+static void tangents_for_normal_map(Out &o, const tinygltf::Material &mat, size_t base, pg_vertex *V, size_t n,
+                                   std::vector<uint32_t> &tri)
+{
+    int set = mat.normalTexture.texCoord;
+    auto tt = mat.normalTexture.extensions.find("KHR_texture_transform");
+    if (tt != mat.normalTexture.extensions.end() && tt->second.Has("texCoord") &&
+        tt->second.Get("texCoord").IsInt())
+        set = tt->second.Get("texCoord").GetNumberAsInt(); /* the extension's override */
+    const bool uv1 = set == 1 && o.uv1.size() >= (base + n) * 2;
+    if (uv1)
+        for (size_t i = 0; i < n; i++) std::swap_ranges(V[i].uv, V[i].uv + 2, &o.uv1[(base + i) * 2]);
+    pg_mesh_compute_tangents(V, uint32_t(n), tri.data(), uint32_t(tri.size()));
+    if (uv1)
+        for (size_t i = 0; i < n; i++) std::swap_ranges(V[i].uv, V[i].uv + 2, &o.uv1[(base + i) * 2]);
+}
 
 /* one placement of d under M (x *inst when instanced) appended to o */
 static void place_primitive(Ctx &c, Out &o, const Decoded &d, int mi, int pi, const Mat4 &M, int ni, bool moving,
@@ -361,23 +383,30 @@ static void place_primitive(Ctx &c, Out &o, const Decoded &d, int mi, int pi, co
     const size_t base = o.verts.size();
     Mat4 ident{};
     ident.m[0] = ident.m[5] = ident.m[10] = ident.m[15] = 1.0;
-    emit_vertices(o, d.a, dyn ? node_xform(inst ? *inst : ident, pw) : x, pw);
+    const Xform xe = dyn ? node_xform(inst ? *inst : ident, pw) : x; /* the space the vertices are emitted in */
+    const uint32_t *src = d.src.empty() ? nullptr : d.src.data();
+    emit_vertices(o, d.a, src, n, xe, pw);
+    pg_vertex *V = o.verts.data() + base;
+    {   /* normals and tangents with the winding the emitted vertices have (mesh space of a moving
+         * primitive: its node's mirroring applies when it is placed) */
+        std::vector<uint32_t> tri = ind;
+        if (xe.det < 0 && !skinned)
+            for (size_t t = 0; t + 2 < tri.size(); t += 3) std::swap(tri[t + 1], tri[t + 2]);
+        if (!d.a.nrm) pg_mesh_compute_normals(V, uint32_t(n), tri.data(), uint32_t(tri.size()));
+        const tinygltf::Material *mat =
+            prim.material >= 0 ? &c.model.materials[size_t(prim.material)] : nullptr;
+        if ((!d.a.tan || !d.a.nrm) && mat && mat->normalTexture.index >= 0)
+            tangents_for_normal_map(o, *mat, base, V, n, tri);
+    }
     if (x.det < 0 && !skinned) /* a skinned mesh ignores its node's transform */
         for (size_t t = 0; t + 2 < ind.size(); t += 3) std::swap(ind[t + 1], ind[t + 2]);
-
-    pg_vertex *V = o.verts.data() + base;
-    if (!d.a.nrm) pg_mesh_compute_normals(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
-    bool normal_mapped = prim.material >= 0 &&
-                         c.model.materials[size_t(prim.material)].normalTexture.index >= 0;
-    if (!d.a.tan && normal_mapped)
-        pg_mesh_compute_tangents(V, uint32_t(n), ind.data(), uint32_t(ind.size()));
     if (c.animated) {
         o.vertex_prim.resize(base + n, PG_ANIM_STATIC);
         o.local.resize(base + n);
     }
     if (dyn) {
         memcpy(o.local.data() + base, V, n * sizeof(pg_vertex));
-        anim_primitive(c, o, prim, ni, base, n, pw);
+        anim_primitive(c, o, prim, ni, base, n, src, d.a.n, pw);
         const Xform xn = inst ? node_xform(M, pw) : x;
         for (size_t i = 0; i < n; i++) xform_in_place(xn, V[i]); /* the rest pose */
     }
@@ -425,6 +454,11 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool 
     d.ind = read_indices(c, prim, d.n, d.pw);
     to_triangle_list(mode, d.ind, d.pw);
     if (d.ind.empty() || d.n == 0) return;
+    if (!d.a.nrm) { /* glTF 2.0 3.7.2.1: without normals, flat ones: each triangle its own vertices */
+        d.src = d.ind;
+        for (size_t j = 0; j < d.ind.size(); j++) d.ind[j] = uint32_t(j);
+        d.n = d.ind.size();
+    }
     if (!instances) place_primitive(c, o, d, mi, pi, M, ni, moving, nullptr);
     else
         for (const Mat4 &I : *instances) place_primitive(c, o, d, mi, pi, M, ni, moving, &I);

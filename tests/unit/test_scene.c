@@ -663,8 +663,8 @@ static void test_corpus_valid_details(void)
         CHECK(s->n_indices == 3);
         pg_scene_free(s);
     }
-    if ((s = load_corpus("ok_strip.gltf"))) {
-        CHECK(s->n_indices == 6 && s->n_vertices == 4);
+    if ((s = load_corpus("ok_strip.gltf"))) { /* no NORMAL: flat, each triangle its own vertices */
+        CHECK(s->n_indices == 6 && s->n_vertices == 6);
         geo_stats g = scene_geometry_stats(s);
         CHECK(g.wound_bad == 0 && g.wound_ok == 2);
         pg_scene_free(s);
@@ -683,6 +683,48 @@ static void test_corpus_valid_details(void)
         memcpy(copy, s->vertices, sizeof copy);
         pg_mesh_compute_tangents(copy, 3, s->indices, 3);
         CHECK(near_f(copy[0].tangent[0], v->tangent[0], 1e-5f) && copy[0].tangent[3] == v->tangent[3]);
+        pg_scene_free(s);
+    }
+    /* without NORMAL: flat normals, outward, also on a mirrored node an animation moves (they were
+     * smooth, and inward there); a normal map's tangents from the set it reads; TANGENT ignored
+     * without NORMAL (glTF 2.0 3.7.2.1) */
+    static const char *const flat_files[] = {"ok_flat_normals.gltf", "ok_flat_normals_mirrored_animated.gltf"};
+    for (int f = 0; f < 2; f++) {
+        if (!(s = load_corpus(flat_files[f]))) continue;
+        int bad = 0;
+        CHECK_MSG(s->n_indices == 36 && s->n_vertices == 36, "%s: %u vertices", flat_files[f], s->n_vertices);
+        for (uint32_t t = 0; t + 2 < s->n_indices && s->n_vertices == 36; t += 3) {
+            const pg_vertex *v0 = &s->vertices[s->indices[t]], *v1 = &s->vertices[s->indices[t + 1]],
+                            *v2 = &s->vertices[s->indices[t + 2]];
+            float e1[3], e2[3], fn[3], c[3];
+            for (int k = 0; k < 3; k++) {
+                e1[k] = v1->position[k] - v0->position[k];
+                e2[k] = v2->position[k] - v0->position[k];
+                c[k] = (v0->position[k] + v1->position[k] + v2->position[k]) / 3 -
+                       0.5f * (s->bounds_min[k] + s->bounds_max[k]);
+            }
+            fn[0] = e1[1] * e2[2] - e1[2] * e2[1], fn[1] = e1[2] * e2[0] - e1[0] * e2[2], fn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            float fl = sqrtf(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
+            for (int j = 0; j < 3; j++) {
+                const float *n = s->vertices[s->indices[t + j]].normal;
+                bool flat = true;
+                for (int k = 0; k < 3; k++) flat = flat && fabsf(n[k] - fn[k] / fl) < 1e-5f;
+                bad += !flat || n[0] * c[0] + n[1] * c[1] + n[2] * c[2] <= 0;
+            }
+        }
+        CHECK_MSG(bad == 0, "%s: %d vertices without the outward face normal", flat_files[f], bad);
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_normal_map_texcoord1.gltf"))) { /* TEXCOORD_1 = (1 - u, v): -X */
+        for (uint32_t i = 0; i < s->n_vertices; i++)
+            CHECK_MSG(near_f(s->vertices[i].tangent[0], -1, 1e-5f), "vertex %u: tangent x %g", i,
+                      s->vertices[i].tangent[0]);
+        pg_scene_free(s);
+    }
+    if ((s = load_corpus("ok_tangent_without_normals.gltf"))) { /* the file's (-1, 0, 0) ignored: +X */
+        for (uint32_t i = 0; i < s->n_vertices; i++)
+            CHECK_MSG(near_f(s->vertices[i].tangent[0], 1, 1e-5f) && near_f(s->vertices[i].normal[2], 1, 1e-5f),
+                      "vertex %u: tangent x %g, normal z %g", i, s->vertices[i].tangent[0], s->vertices[i].normal[2]);
         pg_scene_free(s);
     }
     if ((s = load_corpus("ok_trs_hierarchy.gltf"))) {

@@ -502,6 +502,65 @@ d["nodes"] = [{"scale": [1e39, 1, 1], "mesh": 0}]
 write("position_float_overflow.gltf", d, "PG_ERR_GLTF",
       "POSITION element 1 (accessors[0]) is outside the float range after the node transform")
 
+# without NORMAL the normals are flat (glTF 2.0 3.7.2.1): a cube of 8 shared corners, 12 triangles
+# wound counter-clockwise seen from outside; the loader gives each triangle its own vertices
+CUBE8 = f32(*[c for i in range(8) for c in ((i & 1) - 0.5, ((i >> 1) & 1) - 0.5, ((i >> 2) & 1) - 0.5)])
+CUBE8_IDX = u16(0, 2, 3, 0, 3, 1,  4, 5, 7, 4, 7, 6,  0, 1, 5, 0, 5, 4,
+                2, 6, 7, 2, 7, 3,  0, 4, 6, 0, 6, 2,  1, 3, 7, 1, 7, 5)
+d, data = base_doc(pos=CUBE8, idx=CUBE8_IDX, idx_count=36)
+write("ok_flat_normals.gltf", d, "PG_OK")
+# the same cube on a mirrored node that an animation moves: its normals are computed in mesh space,
+# where the winding is not yet flipped (they came out pointing inward)
+times = f32(0, 1)
+moves = f32(0.5, 0, 0, 1.5, 0, 0)
+d["nodes"][0]["scale"] = [-1, 1, 1]
+d["bufferViews"] += [{"buffer": 0, "byteOffset": len(data), "byteLength": 8},
+                     {"buffer": 0, "byteOffset": len(data) + 8, "byteLength": 24}]
+data += times + moves
+d["buffers"][0] = {"byteLength": len(data), "uri": b64(data)}
+d["accessors"] += [{"bufferView": 2, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+                   {"bufferView": 3, "componentType": 5126, "count": 2, "type": "VEC3"}]
+d["animations"] = [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+                    "samplers": [{"input": 2, "output": 3}]}]
+write("ok_flat_normals_mirrored_animated.gltf", d, "PG_OK")
+# a normal map that reads TEXCOORD_1 = (1 - u, v): tangents computed from set 1 point along -X
+# (TEXCOORD_0 would give +X); and TANGENT given without NORMAL, which must be ignored
+QUAD_POS = f32(0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0)
+QUAD_NRM = f32(*([0, 0, 1] * 4))
+QUAD_UV0 = f32(0, 1, 1, 1, 1, 0, 0, 0)
+QUAD_UV1 = f32(1, 1, 0, 1, 0, 0, 1, 0)
+QUAD_TAN = f32(*([-1, 0, 0, 1] * 4))
+QUAD_IDX = u16(0, 1, 2, 0, 2, 3)
+
+
+def quad_doc(attrs):
+    """A unit quad facing +Z with the named attributes (NORMAL, TEXCOORD_0/1, TANGENT) and a
+    normal-mapped material whose texture is a 2x2 PNG (data URI)."""
+    data, views, accessors, at = b"", [], [], {}
+    for name, blob, typ in [("POSITION", QUAD_POS, "VEC3"), ("NORMAL", QUAD_NRM, "VEC3"),
+                            ("TEXCOORD_0", QUAD_UV0, "VEC2"), ("TEXCOORD_1", QUAD_UV1, "VEC2"),
+                            ("TANGENT", QUAD_TAN, "VEC4")]:
+        if name != "POSITION" and name not in attrs:
+            continue
+        views.append({"buffer": 0, "byteOffset": len(data), "byteLength": len(blob)})
+        accessors.append({"bufferView": len(views) - 1, "componentType": 5126, "count": 4, "type": typ})
+        if name == "POSITION":
+            accessors[-1].update({"min": [0, 0, 0], "max": [1, 1, 0]})
+        at[name] = len(accessors) - 1
+        data += blob
+    views.append({"buffer": 0, "byteOffset": len(data), "byteLength": len(QUAD_IDX)})
+    accessors.append({"bufferView": len(views) - 1, "componentType": 5123, "count": 6, "type": "SCALAR"})
+    data += QUAD_IDX
+    return {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+            "meshes": [{"primitives": [{"attributes": at, "indices": len(accessors) - 1, "material": 0}]}],
+            "materials": [{"normalTexture": {"index": 0, "texCoord": attrs.get("set", 0)}}],
+            "textures": [{"source": 0}], "images": [{"uri": png_data_uri(png_rgba(2, 2, [128, 128, 255, 255] * 4))}],
+            "accessors": accessors, "bufferViews": views, "buffers": [{"byteLength": len(data), "uri": b64(data)}]}
+
+
+write("ok_normal_map_texcoord1.gltf", quad_doc({"NORMAL": 1, "TEXCOORD_0": 1, "TEXCOORD_1": 1, "set": 1}), "PG_OK")
+write("ok_tangent_without_normals.gltf", quad_doc({"TEXCOORD_0": 1, "TANGENT": 1}), "PG_OK")
+
 # ------------------------------------------------------------------------------------------------
 # features the loader does not draw: each loads, with one exact warning line per feature
 d, _ = base_doc()
