@@ -68,7 +68,7 @@ vec3 filter_lut(float nv, float rough)
         float nl = L.z, nh = H.z;
         if (nl > 0.0 && vh > 0.0) {
             float g = pg_env_smith_v(nl, nv, a) * 4.0 * vh * nl / nh;
-            float w = pow(1.0 - vh, 5.0);
+            float w = pow(clamp(1.0 - vh, 0.0, 1.0), 5.0); // vh rounds past 1: pow(< 0) is NaN
             A += (1.0 - w) * g;
             B += w * g;
         }

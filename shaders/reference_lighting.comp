@@ -157,7 +157,7 @@ vec3 ref_env_term(RefEnvSurface r, vec3 L, out float pdf)
     float a2 = r.a * r.a, q = nh * nh * (a2 - 1.0) + 1.0;
     float D = a2 / (PG_ENV_PI * q * q);
     if (nh > 0.0 && vh > 0.0) pdf += D * nh / (4.0 * vh);
-    vec3 F = r.f0 + (1.0 - r.f0) * pow(1.0 - vh, 5.0);
+    vec3 F = r.f0 + (1.0 - r.f0) * pow(clamp(1.0 - vh, 0.0, 1.0), 5.0); // vh rounds past 1: pow(< 0) is NaN
     return ((1.0 - F) * r.cdiff / PG_ENV_PI + F * (D * pg_env_smith_v(nl, r.nv, r.a))) * nl;
 #else
     return vec3(nl / PG_ENV_PI);

@@ -710,6 +710,13 @@ expect_fail "camera without value" "--camera: missing value" render --camera
 expect_fail "compare: unknown camera" "no such camera" compare --scene "$two" --camera nope --size 32x18
 expect_fail "dump: unknown camera" "no such camera" dump --scene "$two" --camera nope
 expect_fail "bench: unknown camera" "no such camera" bench --scene "$two" --camera nope --size 32x18 --frames 1 --out "$tmp/b_cam"
+# the reference under the neutral sky: no pixel black. A NaN its Monte Carlo made (pow(1 - V.H, 5)
+# with V.H rounded past 1 where the sampled light is the view direction) was turned into black by the
+# output's sanitizing: pixel (53, 10) of this render, at the default seed
+"$PG" render --scene "$root/tests/corpus/gltf/objects/cube.gltf" --pipeline "$root/pipelines/reference.json" \
+  --size 160x90 --out "$tmp/ref_sky.png" >/dev/null 2>"$tmp/ref_sky.err" \
+  && python3 "$root/tests/cli/png_stats.py" "$tmp/ref_sky.png" | awk '{ exit !($3 == 1.0000) }' && ok \
+  || { bad "reference of cube.gltf under the sky: a black pixel ($(python3 "$root/tests/cli/png_stats.py" "$tmp/ref_sky.png" 2>&1))"; cat "$tmp/ref_sky.err"; }
 # the ten object models (tests/corpus/gltf/models, gen_models.py): the committed files are what the
 # generator writes; a render with default options (but the size) exits 0 and writes a PNG, and with
 # the background left black (--set background=none: the neutral sky fills every other pixel) it is
