@@ -28,8 +28,7 @@ void pg_frame_uniforms_fill(const pg_frame_info *info, pg_frame_uniforms *u)
     u->counts[1] = info->lights.seed;
     u->counts[2] = info->width;
     u->counts[3] = info->height;
-    u->clip[0] = cam.near_z;
-    u->clip[1] = cam.far_z;
+    pg_camera_depth_planes(&cam, &u->clip[0], &u->clip[1]); /* the planes of u->proj */
     u->clip[2] = info->lights.ambient;
     u->clip[3] = cam.ortho_height > 0 ? 1.0f : 0.0f;
     u->noise[0] = info->sample;

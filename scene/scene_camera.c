@@ -284,7 +284,7 @@ pg_result pg_camera_from_scene(const pg_scene *scene, uint32_t index, float aspe
     if (sc->type == PG_CAMERA_ORTHOGRAPHIC) {
         cam.ortho_height = 2.0f * sc->ymag;
         cam.fov_y_deg = 45.0f; /* unused */
-        if (!(cam.near_z > 1e-6f * cam.far_z)) cam.near_z = 1e-6f * cam.far_z;
+        if (!(cam.near_z > PG_NEAR_FAR_MIN * cam.far_z)) cam.near_z = PG_NEAR_FAR_MIN * cam.far_z;
     }
     *out = cam;
     return PG_OK;
@@ -381,13 +381,22 @@ void pg_camera_view(const pg_camera *cam, float out[16])
     out[15] = 1;
 }
 
+void pg_camera_depth_planes(const pg_camera *cam, float *near_z, float *far_z)
+{
+    float n = cam->near_z > 0 ? cam->near_z : 0.01f;
+    float fz = cam->far_z > n ? cam->far_z : n * 1000.0f;
+    if (!(n >= PG_NEAR_FAR_MIN * fz)) n = PG_NEAR_FAR_MIN * fz;
+    *near_z = n;
+    *far_z = fz;
+}
+
 void pg_camera_proj(const pg_camera *cam, float out[16])
 {
     float fov = cam->fov_y_deg;
     if (!(fov > 0.0f && fov < 180.0f)) fov = 60.0f;
     float aspect = cam->aspect > 0 && isfinite(cam->aspect) ? cam->aspect : 1.0f;
-    float n = cam->near_z > 0 ? cam->near_z : 0.01f;
-    float fz = cam->far_z > n ? cam->far_z : n * 1000.0f;
+    float n, fz;
+    pg_camera_depth_planes(cam, &n, &fz);
     memset(out, 0, 16 * sizeof(float));
     if (cam->ortho_height > 0 && isfinite(cam->ortho_height)) {
         float hh = 0.5f * cam->ortho_height;

@@ -693,6 +693,16 @@ expect_fail "lights-table --radius 0" "a radius of 0" lights-table --scene "$lt"
   "$PG" render --size 64x36 --lights 8 --scene "$objs/camera.gltf" --camera auto --out "$tmp/cam_auto.png" >/dev/null 2>&1 &&
   cmp -s "$tmp/cam_default.png" "$tmp/cam_0.png" && ! cmp -s "$tmp/cam_default.png" "$tmp/cam_auto.png" \
   && ok || bad "camera.gltf: default render != --camera 0, or == --camera auto"
+# the same camera with znear 1e-8 (zfar 100): the near plane is raised to 1e-6 x zfar, and the cube
+# is drawn as with znear 0.1 (every depth rounded to 1 in the depth buffer: nothing was drawn)
+"$PG" render --size 64x36 --lights 8 --scene "$objs/camera_near_1e-8.gltf" --set background=none \
+    --out "$tmp/cam_near.png" >/dev/null 2>&1 &&
+  "$PG" render --size 64x36 --lights 8 --scene "$objs/camera.gltf" --set background=none \
+    --out "$tmp/cam_near_ref.png" >/dev/null 2>&1 &&
+  [ "$(python3 "$root/tests/cli/png_stats.py" "$tmp/cam_near.png" | cut -d' ' -f3)" = \
+    "$(python3 "$root/tests/cli/png_stats.py" "$tmp/cam_near_ref.png" | cut -d' ' -f3)" ] &&
+  python3 "$root/tests/cli/png_stats.py" "$tmp/cam_near.png" | awk '{ exit !($3 > 0.1) }' \
+  && ok || bad "camera_near_1e-8.gltf: not drawn like camera.gltf ($(python3 "$root/tests/cli/png_stats.py" "$tmp/cam_near.png"))"
 two="$objs/two_cameras.gltf"
 expect_fail "unknown camera lists the cameras" "available: 0 'side' (node 'side_node'), 1 'top' (node 'top_node', orthographic), or auto" \
   render --scene "$two" --camera nope --size 32x18 --out "$tmp/x.png"
