@@ -10,7 +10,11 @@ void pg_gpu_file_light_from(const pg_scene_light *L, pg_gpu_file_light *out)
 {
     /* the shading has no 1/pi in its Lambert term (albedo x colour x N.L), so a light in the
      * extension's units (candela, lux) is divided by pi once here */
-    const float k = L->intensity / 3.14159265358979f;
+    float k = L->intensity / 3.14159265358979f;
+    /* an animated colour or intensity (KHR_animation_pointer) past what the loaders take: clamped */
+    const double peak = fmax(fmax(L->color[0], L->color[1]), L->color[2]) * (double)L->intensity,
+                 most = L->type == PG_LIGHT_DIRECTIONAL ? PG_LIGHT_MAX_LUX : PG_LIGHT_MAX_CANDELA;
+    if (peak > most) k = (float)(most / peak * L->intensity / 3.14159265358979);
     pg_gpu_file_light g = {
         {L->position[0], L->position[1], L->position[2], L->range},
         {L->color[0] * k, L->color[1] * k, L->color[2] * k, (float)L->type},

@@ -27,7 +27,16 @@ static pg_result get_number(const sc_ctx *c, const cJSON *it, const char *field,
     double v = it->valuedouble;
     if ((lo_excl ? v <= lo : v < lo) || (hi_excl ? v >= hi : v > hi) || fabs(v) > 3.0e38)
         return schema(c, field, expect);
-    *out = (float)v;
+    const float f = (float)v; /* 1e-50 > 0 is 0 as a float, 179.9999999 < 180 is 180 */
+    if ((lo_excl ? f <= lo : f < lo) || (hi_excl ? f >= hi : f > hi) || (v != 0 && !isnormal(f))) {
+        char why[160];
+        if (f != 0 && !isnormal(f))
+            snprintf(why, sizeof why, "%s (%.15g is below the smallest normal 32-bit float)", expect, v);
+        else
+            snprintf(why, sizeof why, "%s (%.15g is %.9g as a 32-bit float)", expect, v, (double)f);
+        return schema(c, field, why);
+    }
+    *out = f;
     return PG_OK;
 }
 
@@ -108,8 +117,8 @@ static pg_result parse_camera(const sc_ctx *c, const cJSON *cam, pg_scenario *sc
             sc->has_cam_target = true;
         } else if (strcmp(key, "up") == 0) {
             TRY(get_vec3(c, it, "camera.up", k->up));
-            if (k->up[0] == 0 && k->up[1] == 0 && k->up[2] == 0)
-                return schema(c, "camera.up", "must not be the zero vector");
+            if (!(k->up[0] * k->up[0] + k->up[1] * k->up[1] + k->up[2] * k->up[2] >= 1e-30f)) /* in float */
+                return schema(c, "camera.up", "must not be the zero vector (a length of at least 1e-15)");
             sc->has_cam_up = true;
         } else if (strcmp(key, "fov_y") == 0) {
             TRY(get_number(c, it, "camera.fov_y", 0, 180, true, true,
@@ -132,9 +141,15 @@ static pg_result parse_camera(const sc_ctx *c, const cJSON *cam, pg_scenario *sc
     }
     if (sc->has_cam_near && sc->has_cam_far && !(k->far_z > k->near_z))
         return schema(c, "camera.far", "must be greater than camera.near");
-    if (sc->has_cam_position && sc->has_cam_target && k->position[0] == k->target[0] &&
-        k->position[1] == k->target[1] && k->position[2] == k->target[2])
-        return schema(c, "camera.target", "must differ from camera.position");
+    if (sc->has_cam_position && sc->has_cam_target) {
+        /* in float, as the view is made: (1e-30, 0, 0) apart squares to 0 */
+        float d[3] = {k->target[0] - k->position[0], k->target[1] - k->position[1], k->target[2] - k->position[2]};
+        float d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if (!(d2 >= 1e-30f) || !isfinite(d2))
+            return schema(c, "camera.target",
+                          !(d2 >= 1e-30f) ? "must differ from camera.position (by at least 1e-15)"
+                                          : "too far from camera.position (their distance squared overflows a float)");
+    }
     if (sc->has_cam_position && sc->has_cam_target && sc->has_cam_up) {
         float f[3] = {k->target[0] - k->position[0], k->target[1] - k->position[1],
                       k->target[2] - k->position[2]};
@@ -179,8 +194,8 @@ static pg_result parse_lights(const sc_ctx *c, const cJSON *li, pg_scenario *sc)
                            "expected a finite number >= 0", &L->radius));
             sc->has_radius = true;
         } else if (strcmp(key, "intensity") == 0) {
-            TRY(get_number(c, it, "lights.intensity", 0, 3.0e38f, false, false,
-                           "expected a finite number >= 0", &L->intensity));
+            TRY(get_number(c, it, "lights.intensity", 0, (float)PG_LIGHT_MAX_CANDELA, false, false,
+                           "expected a number in [0, 1e30]", &L->intensity));
             sc->has_intensity = true;
         } else if (strcmp(key, "ambient") == 0) {
             TRY(get_number(c, it, "lights.ambient", 0, 1000, false, false,

@@ -118,6 +118,13 @@ typedef struct pg_scene_camera {
  * twice). The node's scale moves and turns it but scales neither its range nor its intensity
  * (the extension's rule). */
 typedef enum pg_light_type { PG_LIGHT_POINT = 0, PG_LIGHT_SPOT = 1, PG_LIGHT_DIRECTIONAL = 2 } pg_light_type;
+/* The brightest light passgraph takes, colour x intensity in the largest channel: a point or spot
+ * light (candela), and a directional one (lux: it is stored as a point light 1e15 units away, its
+ * colour times 1e30, which must stay a float when a few of them are summed; the sun gives about
+ * 1.2e5 lux). The loaders refuse brighter lights; an animated value is clamped. Past 1.07e9 lux
+ * the sun's record overflowed, and the lightcut dropped it while RIS halved it. */
+#define PG_LIGHT_MAX_CANDELA 1e30
+#define PG_LIGHT_MAX_LUX 1e7
 typedef struct pg_scene_light {
     char name[PG_NAME_MAX];      /* lights[i].name, else "KHR_lights_punctual.lights[i]" */
     int gltf_light, gltf_node;   /* indices in the file */

@@ -191,6 +191,13 @@ pg_scene_light light_object(const Ctx &c, int li)
     if (!(std::isfinite(gl.intensity) && gl.intensity >= 0 && gl.intensity <= 1e30))
         gfail(lw + ".intensity: expected a finite number >= 0 (at most 1e30)");
     L.intensity = float(gl.intensity);
+    const double peak = std::max(std::max(double(L.color[0]), double(L.color[1])), double(L.color[2])) * gl.intensity;
+    if (L.type == PG_LIGHT_DIRECTIONAL && peak > PG_LIGHT_MAX_LUX)
+        gfail(strf("%s: colour x intensity %g lux: over the %g lux a directional light may give (the sun gives "
+                   "about 1.2e5)", lw.c_str(), peak, PG_LIGHT_MAX_LUX));
+    if (peak > PG_LIGHT_MAX_CANDELA)
+        gfail(strf("%s: colour x intensity %g candela: over the %g a light may give", lw.c_str(), peak,
+                   PG_LIGHT_MAX_CANDELA));
     if (!(std::isfinite(gl.range) && gl.range >= 0 && gl.range <= 1e30))
         gfail(lw + ".range: expected a finite number > 0 (at most 1e30), or absent");
     L.range = L.type == PG_LIGHT_DIRECTIONAL ? 0.0f : float(gl.range);
@@ -277,6 +284,10 @@ void table_lights(const Ctx &c, std::vector<pg_scene_light> &out)
                 gfail(strf("%s: light %zu: %s %g (expected finite numbers, range, colour and intensity >= 0)",
                            w.c_str(), i, k < 3 ? "position" : k == 3 ? "range" : k < 7 ? "colour" : "intensity",
                            double(f[k])));
+        const double peak = double(std::max(std::max(f[4], f[5]), f[6])) * double(f[7]);
+        if (peak > PG_LIGHT_MAX_CANDELA)
+            gfail(strf("%s: light %zu: colour x intensity %g candela: over the %g a light may give", w.c_str(), i,
+                       peak, PG_LIGHT_MAX_CANDELA));
         memcpy(L.position, f, sizeof L.position);
         L.range = f[3];
         memcpy(L.color, f + 4, sizeof L.color);

@@ -685,6 +685,11 @@ static void check_punctual_lights(const json &j)
             gfail(w + ".type: " + (t == o.end() ? std::string("missing") : "'" + (t->is_string() ? type : t->dump()) + "'") +
                   ": expected \"point\", \"spot\" or \"directional\"");
         if (type == "spot" && !opt_object(o, "spot", w)) gfail(w + ".spot: missing (required by type \"spot\")");
+        /* range: absent (infinite reach) or > 0; tinygltf reads 0 for absent, so a given 0, or one that
+         * is 0 as a float (1e-46), became infinite reach */
+        auto r = o.find("range");
+        if (r != o.end() && !(r->is_number() && r->get<double>() > 0 && std::isnormal(float(r->get<double>()))))
+            gfail(w + ".range: " + r->dump() + ": expected a number > 0 (at least 1.2e-38, a float's smallest normal), or absent for infinite reach");
     });
 }
 

@@ -113,6 +113,7 @@ static pg_result read_opts(const pg_pass_desc *desc, ca_opts *o, pg_error *err)
     double mb;
     if ((r = pg_opt_float(desc, "budget_mb", 0.0, 0.0, 1048576.0, &mb, err))) return r;
     o->budget_bytes = (uint64_t)(mb * 1048576.0) & ~(uint64_t)255;
+    if (mb > 0 && o->budget_bytes == 0) o->budget_bytes = 256; /* a budget, however small: 0 means auto */
     if ((r = pg_opt_enum(desc, "method", k_methods, 0, &o->method, err))) return r;
     if ((r = pg_opt_bool(desc, "subgroups", true, &o->subgroups, err))) return r;
     return PG_OK;

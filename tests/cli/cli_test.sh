@@ -278,6 +278,11 @@ grep -Eq 'overflow=0 clusters \(0 light refs dropped\) refs=[0-9]+ lists=[0-9.]+
 "$PG" render --pipeline "$root/pipelines/deferred.json" --lights 20000 --radius 6 --set list_budget_mb=1 --size 64x36 --out "$tmp/o.png" >"$tmp/out" 2>&1
 grep -Eq 'overflow=[1-9][0-9]* clusters \([1-9][0-9]* light refs dropped\)' "$tmp/out" && grep -q '^note: light lists need .* over the 1.0 MiB budget' "$tmp/out" \
   && ok || { bad "budget overflow not reported"; cat "$tmp/out"; }
+# a budget under 256 bytes is still a budget (it rounded to 0, which means "auto": the lists grew)
+"$PG" render --pipeline "$root/pipelines/forward_plus.json" --lights 2000 --set list_budget_mb=1e-9 --size 64x36 \
+  --out "$tmp/o.png" >"$tmp/out_tiny" 2>&1
+grep -q 'render: warning: the image is not exact: [1-9][0-9]* light references dropped' "$tmp/out_tiny" \
+  && ok || { bad "list_budget_mb=1e-9 read as auto"; cat "$tmp/out_tiny"; }
 # a frame that dropped references is not exact: a warning line (exit 0), --require-exact fails,
 # the bench row reads status=inexact (a failure with --require-exact)
 grep -q 'render: warning: the image is not exact: [1-9][0-9]* light references dropped' "$tmp/out" \

@@ -588,6 +588,15 @@ static void test_scenarios(void)
         {"[1, 2]", PG_ERR_SCHEMA, "expected a JSON object"},
         {"{\"lights\": [1]}", PG_ERR_SCHEMA, "lights: expected an object"},
         {"{\"lights\": {\"radius\": 2,}}", PG_ERR_PARSE, "JSON syntax error"},
+        /* values that pass in double and not as the float they are stored in: they were replaced
+         * silently (fov 180 -> 60, near 0 -> 0.01) or gave a black image */
+        {"{\"camera\": {\"fov_y\": 179.9999999}}", PG_ERR_SCHEMA, "camera.fov_y: expected a number of degrees in (0, 180) (179.9999999 is 180 as a 32-bit float)"},
+        {"{\"camera\": {\"fov_y\": 1e-40}}", PG_ERR_SCHEMA, "below the smallest normal 32-bit float"},
+        {"{\"camera\": {\"near\": 1e-50}}", PG_ERR_SCHEMA, "camera.near: expected a finite number > 0 (1e-50 is 0 as a 32-bit float)"},
+        {"{\"camera\": {\"position\": [0, 2, 0], \"target\": [1e-30, 2, 0]}}", PG_ERR_SCHEMA, "camera.target: must differ from camera.position (by at least 1e-15)"},
+        {"{\"camera\": {\"up\": [0, 1e-30, 0]}}", PG_ERR_SCHEMA, "camera.up: must not be the zero vector"},
+        /* 32 lights of 3e38 summed to infinity in RIS (black pixels) */
+        {"{\"lights\": {\"intensity\": 3e38}}", PG_ERR_SCHEMA, "lights.intensity: expected a number in [0, 1e30]"},
         {"{\n  \"name\": \"x\"\n  \"shading\": \"lambert\"\n}", PG_ERR_PARSE, ":3:"},
         {"", PG_ERR_PARSE, "empty file"},
     };

@@ -710,7 +710,18 @@ write("light_color_negative.gltf", lights_doc({"type": "point", "color": [1, -1,
 write("light_intensity_negative.gltf", lights_doc({"type": "point", "intensity": -2}), "PG_ERR_GLTF",
       "KHR_lights_punctual.lights[0].intensity: expected a finite number >= 0")
 write("light_range_negative.gltf", lights_doc({"type": "point", "range": -1}), "PG_ERR_GLTF",
-      "KHR_lights_punctual.lights[0].range: expected a finite number > 0")
+      "KHR_lights_punctual.lights[0].range: -1: expected a number > 0")
+# a given range of 0, or one that is 0 as a float, was read as absent: infinite reach
+write("light_range_zero.gltf", lights_doc({"type": "point", "range": 0}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].range: 0: expected a number > 0")
+write("light_range_float_zero.gltf", lights_doc({"type": "point", "range": 1e-46}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].range: 1e-46: expected a number > 0")
+# past what a float holds once stored (a directional light 1e15 units away, colour x 1e30): the
+# lightcut dropped such a sun and RIS halved it
+write("light_sun_too_bright.gltf", lights_doc({"type": "directional", "intensity": 1e10}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0]: colour x intensity 1e+10 lux: over the 1e+07 lux")
+write("light_point_too_bright.gltf", lights_doc({"type": "point", "color": [1e10, 1, 1], "intensity": 1e25}),
+      "PG_ERR_GLTF", "KHR_lights_punctual.lights[0]: colour x intensity 1e+35 candela: over the 1e+30")
 write("light_cone_inverted.gltf", lights_doc({"type": "spot", "spot": {"innerConeAngle": 0.6,
                                                                         "outerConeAngle": 0.5}}),
       "PG_ERR_GLTF", "KHR_lights_punctual.lights[0].spot.innerConeAngle: expected an angle in [0, outerConeAngle)")
