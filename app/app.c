@@ -93,7 +93,11 @@ pg_result pg_app_pose_scene(pg_app *app, pg_scene *scene, pg_error *err)
  * are fitted again around the scene's bounding sphere from the new position. */
 static void fit_scenario_planes(const pg_scene *scene, const pg_scenario *sc, pg_camera *cam)
 {
-    if (!(sc->has_cam_position || sc->has_cam_target) || (sc->has_cam_near && sc->has_cam_far)) return;
+    if (!(sc->has_cam_position || sc->has_cam_target)) return;
+    if (sc->has_cam_near && sc->has_cam_far) {
+        pg_camera_raise_near(cam, scene); /* a near plane too small for the depth buffer */
+        return;
+    }
     double r2 = 0, d2 = 0;
     for (int k = 0; k < 3; k++) {
         const double c = 0.5 * ((double)scene->bounds_min[k] + scene->bounds_max[k]);

@@ -25,8 +25,12 @@ static pg_result get_number(const sc_ctx *c, const cJSON *it, const char *field,
     if (!cJSON_IsNumber(it) || !isfinite(it->valuedouble))
         return schema(c, field, expect);
     double v = it->valuedouble;
-    if ((lo_excl ? v <= lo : v < lo) || (hi_excl ? v >= hi : v > hi) || fabs(v) > 3.0e38)
-        return schema(c, field, expect);
+    if (fabs(v) > 3.0e38) {
+        char why[160];
+        snprintf(why, sizeof why, "%s (of magnitude at most 3e38)", expect);
+        return schema(c, field, why);
+    }
+    if ((lo_excl ? v <= lo : v < lo) || (hi_excl ? v >= hi : v > hi)) return schema(c, field, expect);
     const float f = (float)v; /* 1e-50 > 0 is 0 as a float, 179.9999999 < 180 is 180 */
     if ((lo_excl ? f <= lo : f < lo) || (hi_excl ? f >= hi : f > hi) || (v != 0 && !isnormal(f))) {
         char why[160];
@@ -42,7 +46,7 @@ static pg_result get_number(const sc_ctx *c, const cJSON *it, const char *field,
 
 static pg_result get_vec3(const sc_ctx *c, const cJSON *it, const char *field, float out[3])
 {
-    const char *expect = "expected an array of 3 finite numbers";
+    const char *expect = "expected an array of 3 finite numbers (of magnitude at most 3e38)";
     if (!cJSON_IsArray(it) || cJSON_GetArraySize(it) != 3) return schema(c, field, expect);
     int k = 0;
     const cJSON *e;

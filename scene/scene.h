@@ -363,11 +363,14 @@ pg_result pg_scene_find_camera(const pg_scene *scene, const char *spec, uint32_t
 void pg_camera_view(const pg_camera *cam, float out_view[16]);
 void pg_camera_proj(const pg_camera *cam, float out_proj[16]);
 /* The depth planes pg_camera_proj uses: near (0.01 when not > 0), far (1000 x near when not above
- * it), and near raised to at least PG_NEAR_FAR_MIN x far: a float depth buffer (standard Z)
- * resolves 1 - near / z only above about 6e-8, so a glTF znear of 1e-8 with zfar 100 drew nothing.
- * The frame uniforms' clip planes are these. */
-#define PG_NEAR_FAR_MIN 1e-6f
+ * it). The frame uniforms' clip planes are these. */
 void pg_camera_depth_planes(const pg_camera *cam, float *near_z, float *far_z);
+/* A perspective camera's near plane raised to PG_NEAR_FAR_MIN x the distance of the scene's farthest
+ * point (its bounds' farthest corner, within far): a float depth (standard Z) of 1 - near / z differs
+ * from the cleared 1 only while near / z is above 2^-25 (3e-8), so a glTF znear of 1e-8 with zfar 100
+ * drew nothing; 1e-6 keeps about 16 depth steps at the farthest point. Returns true when it raised it. */
+#define PG_NEAR_FAR_MIN 1e-6
+bool pg_camera_raise_near(pg_camera *cam, const pg_scene *scene);
 void pg_mat4_mul(const float a[16], const float b[16], float out[16]);
 bool pg_mat4_invert(const float m[16], float out[16]);
 

@@ -284,8 +284,9 @@ pg_result pg_camera_from_scene(const pg_scene *scene, uint32_t index, float aspe
     if (sc->type == PG_CAMERA_ORTHOGRAPHIC) {
         cam.ortho_height = 2.0f * sc->ymag;
         cam.fov_y_deg = 45.0f; /* unused */
-        if (!(cam.near_z > PG_NEAR_FAR_MIN * cam.far_z)) cam.near_z = PG_NEAR_FAR_MIN * cam.far_z;
+        if (!(cam.near_z > 1e-6f * cam.far_z)) cam.near_z = 1e-6f * cam.far_z;
     }
+    pg_camera_raise_near(&cam, scene);
     *out = cam;
     return PG_OK;
 }
@@ -385,9 +386,31 @@ void pg_camera_depth_planes(const pg_camera *cam, float *near_z, float *far_z)
 {
     float n = cam->near_z > 0 ? cam->near_z : 0.01f;
     float fz = cam->far_z > n ? cam->far_z : n * 1000.0f;
-    if (!(n >= PG_NEAR_FAR_MIN * fz)) n = PG_NEAR_FAR_MIN * fz;
     *near_z = n;
     *far_z = fz;
+}
+
+bool pg_camera_raise_near(pg_camera *cam, const pg_scene *scene)
+{
+    if (cam->ortho_height > 0) return false; /* its own rule: pg_camera_from_scene */
+    double far = cam->far_z > 0 ? cam->far_z : 1e30;
+    if (scene_has_bounds(scene)) {
+        double m = 0;
+        for (int i = 0; i < 8; i++) {
+            double d2 = 0;
+            for (int k = 0; k < 3; k++) {
+                double v = ((i >> k) & 1) ? scene->bounds_max[k] : scene->bounds_min[k];
+                d2 += (v - cam->position[k]) * (v - cam->position[k]);
+            }
+            m = fmax(m, d2);
+        }
+        far = fmin(far, sqrt(m));
+    }
+    const float lo = (float)(PG_NEAR_FAR_MIN * far);
+    if (cam->near_z >= lo) return false;
+    cam->near_z = lo;
+    if (!(cam->far_z > lo)) cam->far_z = lo * 1000.0f;
+    return true;
 }
 
 void pg_camera_proj(const pg_camera *cam, float out[16])

@@ -80,6 +80,9 @@ struct Ctx {
     unsigned skipped_prims = 0;
     unsigned color1_prims = 0;   /* drawn primitives with COLOR_1.. (ignored) */
     unsigned texcoord2_prims = 0;/* drawn primitives with TEXCOORD_2.. (ignored) */
+    unsigned morph_other_prims = 0; /* primitives whose morph targets move other attributes than
+                                     * POSITION, NORMAL, TANGENT (TEXCOORD_n, COLOR_n: ignored) */
+    unsigned no_uv_prims = 0;    /* primitives without TEXCOORD_0 whose material reads a texture with it */
     std::vector<std::string> warnings; /* without the "PATH: " prefix */
     /* EXT_meshopt_compression: the compressed bufferViews (checked by prevalidate, decoded by
      * decode_meshopt into `decoded`, which view_bytes reads instead of the fallback buffer), and

@@ -333,6 +333,27 @@ static void xform_in_place(const Xform &x, pg_vertex &v)
     v.tangent[3] = float(v.tangent[3] * x.nsign);
 }
 
+/* What a primitive asks for that is not drawn, counted for the warnings (each primitive once):
+ * morph targets of other attributes than POSITION, NORMAL, TANGENT; a texture read through
+ * TEXCOORD_0 without TEXCOORD_0 (it samples texel (0, 0)'s neighbourhood everywhere). */
+static void count_unread(Ctx &c, const tinygltf::Primitive &prim, const PrimAttrs &a)
+{
+    bool other = false;
+    for (const auto &t : prim.targets)
+        for (const auto &at : t)
+            other = other || (at.first != "POSITION" && at.first != "NORMAL" && at.first != "TANGENT");
+    c.morph_other_prims += other;
+    if (a.uv || prim.material < 0 || size_t(prim.material) >= c.model.materials.size()) return;
+    const tinygltf::Material &m = c.model.materials[size_t(prim.material)];
+    const auto &pbr = m.pbrMetallicRoughness;
+    const bool set0 = (pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord == 0) ||
+                      (m.normalTexture.index >= 0 && m.normalTexture.texCoord == 0) ||
+                      (m.emissiveTexture.index >= 0 && m.emissiveTexture.texCoord == 0) ||
+                      (pbr.metallicRoughnessTexture.index >= 0 && pbr.metallicRoughnessTexture.texCoord == 0) ||
+                      (m.occlusionTexture.index >= 0 && m.occlusionTexture.texCoord == 0);
+    c.no_uv_prims += set0;
+}
+
 /* A decoded primitive, placed once per node or instance (place_primitive) */
 struct Decoded {
     const tinygltf::Primitive *prim;
@@ -450,6 +471,7 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool 
 
     decode_draco(c, mi, pi);
     read_attributes(c, prim, d.pw, d.a);
+    count_unread(c, prim, d.a);
     d.n = d.a.n;
     d.ind = read_indices(c, prim, d.n, d.pw);
     to_triangle_list(mode, d.ind, d.pw);

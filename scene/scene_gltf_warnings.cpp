@@ -76,6 +76,9 @@ void collect_warnings(Ctx &c)
 {
     const tinygltf::Model &md = c.model;
     auto &W = c.warnings;
+    if (md.scenes.empty() && !md.nodes.empty())
+        W.push_back("no scenes: every root node is drawn (the specification leaves such a file's display to the "
+                    "application: a library of nodes)");
     if (c.skipped_prims)
         W.push_back(strf("skipped %u point/line primitive(s) (only triangles are drawn)",
                          c.skipped_prims));
@@ -131,6 +134,13 @@ void collect_warnings(Ctx &c)
     if (c.color1_prims)
         W.push_back("COLOR_1 (and higher) in " +
                     plural(c.color1_prims, "primitive", "primitives") + " ignored: COLOR_0 is used");
+    if (c.morph_other_prims)
+        W.push_back("morph targets of TEXCOORD_n or COLOR_n in " + plural(c.morph_other_prims, "primitive", "primitives") +
+                    " ignored: POSITION, NORMAL and TANGENT targets are applied");
+    if (c.no_uv_prims)
+        W.push_back(plural(c.no_uv_prims, "primitive", "primitives") +
+                    " without TEXCOORD_0 under a material that reads a texture with it: every pixel samples the "
+                    "texture at (0, 0)");
     if (c.texcoord2_prims)
         W.push_back("TEXCOORD_2 (and higher) in " +
                     plural(c.texcoord2_prims, "primitive", "primitives") +

@@ -698,7 +698,8 @@ expect_fail "lights-table --radius 0" "a radius of 0" lights-table --scene "$lt"
   "$PG" render --size 64x36 --lights 8 --scene "$objs/camera.gltf" --camera auto --out "$tmp/cam_auto.png" >/dev/null 2>&1 &&
   cmp -s "$tmp/cam_default.png" "$tmp/cam_0.png" && ! cmp -s "$tmp/cam_default.png" "$tmp/cam_auto.png" \
   && ok || bad "camera.gltf: default render != --camera 0, or == --camera auto"
-# the same camera with znear 1e-8 (zfar 100): the near plane is raised to 1e-6 x zfar, and the cube
+# the same camera with znear 1e-8 (zfar 100): the near plane is raised to 1e-6 x the
+# distance of the scene's farthest point, and the cube
 # is drawn as with znear 0.1 (every depth rounded to 1 in the depth buffer: nothing was drawn)
 "$PG" render --size 64x36 --lights 8 --scene "$objs/camera_near_1e-8.gltf" --set background=none \
     --out "$tmp/cam_near.png" >/dev/null 2>&1 &&

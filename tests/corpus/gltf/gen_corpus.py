@@ -460,7 +460,9 @@ d = {"asset": {"version": "2.0"},
      "bufferViews": [{"buffer": 0, "byteLength": len(inter), "byteStride": 24},
                      {"buffer": 0, "byteOffset": len(inter), "byteLength": len(idx8)}],
      "buffers": [{"byteLength": len(data), "uri": b64(data)}]}
-write("ok_interleaved_u8.gltf", d, "PG_OK")
+write("ok_interleaved_u8.gltf", d, "PG_OK", warn=[
+    "no scenes: every root node is drawn (the specification leaves such a file's display to the application: "
+    "a library of nodes)"])
 # one image used as base colour AND normal map (-> 2 textures), MASK, no TANGENT (-> computed)
 d = textured_doc({"uri": "ok_2x2.png"})
 open(os.path.join(HERE, "ok_2x2.png"), "wb").write(PNG2)
@@ -586,6 +588,18 @@ d, _ = base_doc()
 d["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": 0}, {"POSITION": 0}]
 d["meshes"][0]["weights"] = [0.5, 0.25]
 write("ok_morph_targets.gltf", d, "PG_OK", warn=[])
+# morph targets of TEXCOORD_0 are not applied, and a texture read through a TEXCOORD_0 the primitive
+# does not have samples one spot: both were silent
+d = textured_doc({"uri": png_data_uri(PNG2)})
+d["meshes"][0]["primitives"][0]["targets"] = [{"TEXCOORD_0": 2}]
+d["meshes"][0]["weights"] = [0.5]
+write("ok_morph_texcoord.gltf", d, "PG_OK", warn=[
+    "morph targets of TEXCOORD_n or COLOR_n in 1 primitive ignored: POSITION, NORMAL and TANGENT targets are applied"])
+d = textured_doc({"uri": png_data_uri(PNG2)})
+del d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"]
+write("ok_texture_without_texcoord.gltf", d, "PG_OK", warn=[
+    "1 primitive without TEXCOORD_0 under a material that reads a texture with it: every pixel samples the texture "
+    "at (0, 0)"])
 d, _ = base_doc()
 d["extensionsUsed"] = ["KHR_texture_transform", "KHR_mesh_quantization", "EXT_meshopt_compression",
                        "KHR_draco_mesh_compression", "KHR_materials_clearcoat", "EXT_made_up"]

@@ -21,7 +21,8 @@ is committed. Run: `python3 tests/corpus/gltf/objects/gen_objects.py`.
   camera.gltf        the unit cube + one perspective camera 'front' (node 'front_node') at
                      (0.5, 0.8, 3) looking at the origin, yfov 0.6, znear 0.1, zfar 100
   ortho_first.gltf   the unit cube + an orthographic camera "plan" only (the default view)
-  camera_near_1e-8.gltf  camera.gltf with znear 1e-8: the near plane is raised to 1e-6 x zfar
+  camera_near_1e-8.gltf  camera.gltf with znear 1e-8: the near plane is raised to 1e-6 x
+                     the farthest point's distance
                      (a float depth buffer rounded every depth to 1: nothing was drawn)
   ties.gltf          a 4x4 grid of 0.25-unit quads (z = 0, facing +Z) and an orthographic camera
                      'front' (ymag 1, at z = 5): at 128x72 a quad is 9x9 pixels with its corners
