@@ -93,11 +93,7 @@ pg_result pg_app_pose_scene(pg_app *app, pg_scene *scene, pg_error *err)
  * are fitted again around the scene's bounding sphere from the new position. */
 static void fit_scenario_planes(const pg_scene *scene, const pg_scenario *sc, pg_camera *cam)
 {
-    if (!(sc->has_cam_position || sc->has_cam_target)) return;
-    if (sc->has_cam_near && sc->has_cam_far) {
-        pg_camera_raise_near(cam, scene); /* a near plane too small for the depth buffer */
-        return;
-    }
+    if (!(sc->has_cam_position || sc->has_cam_target) || (sc->has_cam_near && sc->has_cam_far)) return;
     double r2 = 0, d2 = 0;
     for (int k = 0; k < 3; k++) {
         const double c = 0.5 * ((double)scene->bounds_min[k] + scene->bounds_max[k]);
@@ -177,7 +173,10 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
             !app->scenario.has_ambient)
             app->lights.ambient = 0;
         pg_scenario_apply(&app->scenario, &app->lights, cam_from_scenario ? &app->camera : NULL);
-        if (cam_from_scenario) fit_scenario_planes(app->scene, &app->scenario, &app->camera);
+        if (cam_from_scenario) {
+            fit_scenario_planes(app->scene, &app->scenario, &app->camera);
+            pg_camera_raise_near(&app->camera, app->scene); /* a near plane too small for the depth buffer */
+        }
         if (cam_from_scenario)
             snprintf(app->camera_why, sizeof app->camera_why, "camera: scenario %s (its camera fields over the default)",
                      app->scenario.path);

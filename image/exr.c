@@ -290,8 +290,10 @@ pg_result pg_exr_read_rgba(const char *path, float **out, uint32_t *out_w, uint3
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = on_exr_error;
     init.user_data = &m;
-    /* every required attribute present: without it OpenEXRCore fills a missing one with a default
-     * (compression ZIP, a 64 x 64 data window) and the file fails later with a misleading message */
+    /* strict: every required attribute present (channels, compression, dataWindow, displayWindow,
+     * lineOrder, pixelAspectRatio, screenWindowCenter and Width) and a chunk table that reads back;
+     * otherwise OpenEXRCore fills a missing attribute with a default (compression ZIP, a 64 x 64 data
+     * window) and the file fails later with a misleading message, or is read in part */
     init.flags |= EXR_CONTEXT_FLAG_STRICT_HEADER;
     exr_context_t ctx = NULL;
     exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;

@@ -32,7 +32,8 @@ static pg_result get_number(const sc_ctx *c, const cJSON *it, const char *field,
     }
     if ((lo_excl ? v <= lo : v < lo) || (hi_excl ? v >= hi : v > hi)) return schema(c, field, expect);
     const float f = (float)v; /* 1e-50 > 0 is 0 as a float, 179.9999999 < 180 is 180 */
-    if ((lo_excl ? f <= lo : f < lo) || (hi_excl ? f >= hi : f > hi) || (v != 0 && !isnormal(f))) {
+    /* a number that must be > 0 must stay a normal float (a denormal fov or near draws nothing) */
+    if ((lo_excl ? f <= lo : f < lo) || (hi_excl ? f >= hi : f > hi) || (lo_excl && v != 0 && !isnormal(f))) {
         char why[160];
         if (f != 0 && !isnormal(f))
             snprintf(why, sizeof why, "%s (%.15g is below the smallest normal 32-bit float)", expect, v);

@@ -333,9 +333,10 @@ static void xform_in_place(const Xform &x, pg_vertex &v)
     v.tangent[3] = float(v.tangent[3] * x.nsign);
 }
 
-/* What a primitive asks for that is not drawn, counted for the warnings (each primitive once):
- * morph targets of other attributes than POSITION, NORMAL, TANGENT; a texture read through
- * TEXCOORD_0 without TEXCOORD_0 (it samples texel (0, 0)'s neighbourhood everywhere). */
+/* What a primitive asks for that is not drawn, counted for the warnings (once per node that draws
+ * it, as the skipped ones): morph targets of other attributes than POSITION, NORMAL, TANGENT; a
+ * texture read through TEXCOORD_0 (texCoord 0, or 2 and up, which read set 0) without TEXCOORD_0
+ * (it samples the texture at (0, 0) everywhere). KHR_texture_transform's texCoord is not looked at. */
 static void count_unread(Ctx &c, const tinygltf::Primitive &prim, const PrimAttrs &a)
 {
     bool other = false;
@@ -346,11 +347,11 @@ static void count_unread(Ctx &c, const tinygltf::Primitive &prim, const PrimAttr
     if (a.uv || prim.material < 0 || size_t(prim.material) >= c.model.materials.size()) return;
     const tinygltf::Material &m = c.model.materials[size_t(prim.material)];
     const auto &pbr = m.pbrMetallicRoughness;
-    const bool set0 = (pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord == 0) ||
-                      (m.normalTexture.index >= 0 && m.normalTexture.texCoord == 0) ||
-                      (m.emissiveTexture.index >= 0 && m.emissiveTexture.texCoord == 0) ||
-                      (pbr.metallicRoughnessTexture.index >= 0 && pbr.metallicRoughnessTexture.texCoord == 0) ||
-                      (m.occlusionTexture.index >= 0 && m.occlusionTexture.texCoord == 0);
+    const bool set0 = (pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord != 1) ||
+                      (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 1) ||
+                      (m.emissiveTexture.index >= 0 && m.emissiveTexture.texCoord != 1) ||
+                      (pbr.metallicRoughnessTexture.index >= 0 && pbr.metallicRoughnessTexture.texCoord != 1) ||
+                      (m.occlusionTexture.index >= 0 && m.occlusionTexture.texCoord != 1);
     c.no_uv_prims += set0;
 }
 

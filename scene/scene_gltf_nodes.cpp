@@ -49,7 +49,8 @@ static uint64_t planned_count(Ctx &c, int ai, bool draco)
 }
 
 /* The bytes one drawing of `mesh` bakes: 48 per vertex (twice in a file that animates: the
- * mesh-space copy), 4 per triangle-list index; points and lines none. Before anything is baked. */
+ * mesh-space copy), 4 per triangle-list index; points and lines none. A primitive without NORMAL
+ * bakes a vertex per index (flat normals). Before anything is baked. */
 static uint64_t planned_bytes(Ctx &c, const tinygltf::Mesh &mesh)
 {
     uint64_t bytes = 0;
@@ -61,7 +62,8 @@ static uint64_t planned_bytes(Ctx &c, const tinygltf::Mesh &mesh)
         const uint64_t n = planned_count(c, *pos, draco);
         uint64_t ni = p.indices >= 0 ? planned_count(c, p.indices, draco) : n;
         if (mode != TINYGLTF_MODE_TRIANGLES) ni = ni > 2 ? 3 * (ni - 2) : 0;
-        bytes += n * sizeof(pg_vertex) * (c.animated ? 2 : 1) + ni * sizeof(uint32_t);
+        const uint64_t nv = find_attr(p, "NORMAL") ? n : ni;
+        bytes += nv * sizeof(pg_vertex) * (c.animated ? 2 : 1) + ni * sizeof(uint32_t);
     }
     return bytes;
 }

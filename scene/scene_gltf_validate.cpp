@@ -688,8 +688,12 @@ static void check_punctual_lights(const json &j)
         /* range: absent (infinite reach) or > 0; tinygltf reads 0 for absent, so a given 0, or one that
          * is 0 as a float (1e-46), became infinite reach */
         auto r = o.find("range");
-        if (r != o.end() && !(r->is_number() && r->get<double>() > 0 && std::isnormal(float(r->get<double>()))))
-            gfail(w + ".range: " + r->dump() + ": expected a number > 0 (at least 1.2e-38, a float's smallest normal), or absent for infinite reach");
+        if (r != o.end()) {
+            const double v = r->is_number() ? r->get<double>() : -1.0;
+            if (!(v > 0 && v <= 1e30 && std::isnormal(float(v)))) /* v <= 1e30: the float conversion is defined */
+                gfail(w + ".range: " + r->dump() + ": expected a number in [1.2e-38, 1e30] (> 0, and not 0 as a float), " +
+                      "or absent for infinite reach");
+        }
     });
 }
 

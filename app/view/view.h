@@ -152,8 +152,8 @@ void set_override(viewer *v, const char *key, const char *value);
 /* Whether a pipeline of the viewer's list declares parameter key (one that does not load declares
  * nothing): --set and --at N:set refuse a key no pipeline knows. */
 bool declared_by_any(const viewer *v, const char *key);
-/* The --set values and the debug view against every pipeline of the list that declares their key:
- * a refused one is PG_ERR_INVALID_ARG naming the option that gave it (sides.h). */
+/* The --set values and the debug view against the pipelines of the list that declare their key: a
+ * value none of them takes is PG_ERR_INVALID_ARG naming the option that gave it (sides.h). */
 pg_result check_set_values(const viewer *v, const pg_cli_common *opt, pg_error *err);
 /* The list's index of arg: a listed name (forward_plus.json) or a file (any path to a listed one, or
  * a pipeline elsewhere, which is added to the list); else an error naming arg. */

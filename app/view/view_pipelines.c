@@ -104,15 +104,33 @@ pg_result check_set_values(const viewer *v, const pg_cli_common *opt, pg_error *
     pg_side_sets sides;
     memset(&sides, 0, sizeof sides);
     if (!pg_sides_from_common(&sides, opt)) return pg_fail(err, PG_ERR_INVALID_ARG, "too many --set values");
-    for (int i = 0; i < v->n_pipelines; i++) {
-        pg_pipeline *p = NULL;
-        pg_error e;
-        if (pg_pipeline_load(v->paths[i], NULL, 0, &p, &e)) continue; /* reported where it is opened */
-        pg_ov_list l;
-        pg_sides_pipeline(&sides, p, NULL, 0, &l); /* the keys it declares */
-        pg_pipeline_free(p);
-        pg_result r = pg_sides_check_values(v->paths[i], &l, "pipeline", err);
-        if (r == PG_ERR_INVALID_ARG) return r;
+    for (uint32_t k = 0; k < sides.set.n + sides.pipeline.n; k++) { /* each value on its own */
+        pg_side_sets one;
+        memset(&one, 0, sizeof one);
+        const bool set = k < sides.set.n;
+        const pg_ov_list *from = set ? &sides.set : &sides.pipeline;
+        const uint32_t j = set ? k : k - sides.set.n;
+        pg_ov_list_put(set ? &one.set : &one.pipeline, from->ov[j].key, from->ov[j].value, from->from[j]);
+        bool taken = false;
+        pg_error first = {0};
+        for (int i = 0; i < v->n_pipelines && !taken; i++) {
+            pg_pipeline *p = NULL;
+            pg_error e;
+            if (pg_pipeline_load(v->paths[i], NULL, 0, &p, &e)) continue; /* reported where it is opened */
+            pg_ov_list l;
+            pg_sides_pipeline(&one, p, NULL, 0, &l); /* empty when it does not declare the key */
+            pg_pipeline_free(p);
+            if (l.n == 0) continue;
+            pg_error e1 = {0};
+            if (pg_sides_check_values(v->paths[i], &l, "pipeline", &e1) != PG_ERR_INVALID_ARG) taken = true;
+            else if (!first.msg[0]) first = e1;
+        }
+        /* refused only when no pipeline that declares the key takes it (the debug views differ:
+         * naive has no cluster_heat, forward+ has) */
+        if (!taken && first.msg[0]) {
+            *err = first;
+            return PG_ERR_INVALID_ARG;
+        }
     }
     return PG_OK;
 }

@@ -197,7 +197,7 @@ const char *pg_json_depth_note(const char *text, size_t n, int limit)
     const char *at = text ? text + n : NULL;
     for (const char *c = text; c && c < at; c++) {
         if (in_string) {
-            if (*c == '\\') c++;
+            if (*c == '\\' && c + 1 < at) c++;
             else if (*c == '"') in_string = false;
         } else if (*c == '"') {
             in_string = true;

@@ -53,6 +53,10 @@ for bad_arg in "--at 2:lights=1e3|--at 2:lights 1e3: expected a whole number in 
   [ $rc -ne 0 ] && [ $rc -lt 128 ] && grep -qF -- "${bad_arg#*|}" "$tmp/err3" && ok \
     || { bad "view ${bad_arg%%|*}: want a refusal naming it (exit $rc)"; cat "$tmp/err3"; }
 done
+# a debug view only some listed pipelines have (naive has no cluster_heat, forward+ has) starts
+xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 3 --lights 4 \
+  --pipeline "$root/pipelines/forward_plus.json" --debug-view cluster_heat >"$tmp/out_dv" 2>"$tmp/err_dv" \
+  && ok || { bad "view --debug-view cluster_heat with forward_plus.json: refused"; cat "$tmp/err_dv"; }
 # the light slider from 0 to 1,000,000 and back (tiny window): the light lists grow, a small list
 # budget drops and reports references (also at 300,000 lights after the 1,000,000 frames: the lists
 # need 14.9 MiB there), and the viewer keeps running. An 8 x 4 x 8 cluster grid: the checks do not

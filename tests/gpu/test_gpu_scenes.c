@@ -151,7 +151,15 @@ static void check_scene(const char *dir, const char *file, bool control)
                   "%s/%s: non-finite pixels", dir, file);
         CHECK_MSG(ref_same, "%s/%s: reference != naive (max |d| %g of peak %g)", dir, file, d_ref, peak);
         CHECK_MSG(fp_same, "%s/%s: forward+ != naive (max |d| %g of peak %g)", dir, file, d_fp, p16);
+        float zn, zf;
+        pg_camera_depth_planes(&fi.camera, &zn, &zf);
         for (size_t v = 0; v < sizeof k_approx / sizeof k_approx[0]; v++) {
+            /* oct16 rebuilds positions from D32 depth: no bound is claimed past far/near 1e5
+             * (docs/accuracy.md; the frame prints a note), e.g. objects/camera_near_1e-8.gltf */
+            if (!strcmp(k_approx[v].label, "deferred_oct16") && zf / zn > 1e5f) {
+                printf(", deferred_oct16 not bounded (far/near %.3g > 1e5)", (double)(zf / zn));
+                continue;
+            }
             pg_th_frame f;
             if (!render(sg, k_approx[v].pipeline, NULL, 0, &fi, &f)) {
                 CHECK_MSG(0, "%s/%s: %s renders", dir, file, k_approx[v].label);
