@@ -70,6 +70,21 @@ static bool scene_has_bounds(const pg_scene *scene)
            scene->bounds_min[1] <= scene->bounds_max[1] && scene->bounds_min[2] <= scene->bounds_max[2];
 }
 
+/* The distance from p to the farthest corner of the scene's bounds. */
+static double farthest_corner(const pg_scene *scene, const float p[3])
+{
+    double m = 0;
+    for (int i = 0; i < 8; i++) {
+        double d2 = 0;
+        for (int k = 0; k < 3; k++) {
+            double v = ((i >> k) & 1) ? scene->bounds_max[k] : scene->bounds_min[k];
+            d2 += (v - p[k]) * (v - p[k]);
+        }
+        m = fmax(m, d2);
+    }
+    return sqrt(m);
+}
+
 /* The sum of the triangles' area-weighted face normals (counter-clockwise front; twice the area
  * times the normal, each) and of their lengths. */
 static void area_normals(const pg_scene *scene, double sum[3], double *area)
@@ -267,16 +282,7 @@ pg_result pg_camera_from_scene(const pg_scene *scene, uint32_t index, float aspe
     cam.near_z = sc->znear;
     float far = sc->zfar;
     if (!(far > 0)) { /* infinite: to the farthest corner of the bounds, twice */
-        double m = 0;
-        for (int i = 0; i < 8; i++) {
-            double d2 = 0;
-            for (int k = 0; k < 3; k++) {
-                double v = ((i >> k) & 1) ? scene->bounds_max[k] : scene->bounds_min[k];
-                d2 += (v - sc->position[k]) * (v - sc->position[k]);
-            }
-            if (d2 > m) m = d2;
-        }
-        far = (float)(2.0 * sqrt(m));
+        far = (float)(2.0 * farthest_corner(scene, sc->position));
         if (far < 1000.0f * sc->znear) far = 1000.0f * sc->znear;
     }
     cam.far_z = far;
@@ -394,18 +400,7 @@ bool pg_camera_raise_near(pg_camera *cam, const pg_scene *scene)
 {
     if (cam->ortho_height > 0) return false; /* its own rule: pg_camera_from_scene */
     double far = cam->far_z > 0 ? cam->far_z : 1e30;
-    if (scene_has_bounds(scene)) {
-        double m = 0;
-        for (int i = 0; i < 8; i++) {
-            double d2 = 0;
-            for (int k = 0; k < 3; k++) {
-                double v = ((i >> k) & 1) ? scene->bounds_max[k] : scene->bounds_min[k];
-                d2 += (v - cam->position[k]) * (v - cam->position[k]);
-            }
-            m = fmax(m, d2);
-        }
-        far = fmin(far, sqrt(m));
-    }
+    if (scene_has_bounds(scene)) far = fmin(far, farthest_corner(scene, cam->position));
     const float lo = (float)(PG_NEAR_FAR_MIN * far);
     if (cam->near_z >= lo) return false;
     cam->near_z = lo;
