@@ -503,6 +503,17 @@ static bool hand_out_channel(Ctx &c, const pg_scene_anim *a, size_t ai, size_t c
             if (!std::isfinite(C.values[e * comps + k]))
                 gfail(strf("%s.output: element %zu is not finite", sw.c_str(), e));
     }
+    /* rotation keys as unit quaternions (the specification's; a normalized BYTE key or a file's
+     * 0.5 x q is not one, and slerp between such keys turns by the wrong angle). A cubic spline's
+     * tangents stay as given: only its values (the middle of each key's three) are keys. */
+    if (C.path == PG_ANIM_ROTATION)
+        for (size_t e = 0; e < out.count; e++) {
+            if (C.interp == PG_INTERP_CUBICSPLINE && e % 3 != 1) continue;
+            float *q = &C.values[e * 4];
+            const double l = std::sqrt(double(q[0]) * q[0] + double(q[1]) * q[1] + double(q[2]) * q[2] + double(q[3]) * q[3]);
+            if (l > 1e-30)
+                for (int k = 0; k < 4; k++) q[k] = float(q[k] / l);
+        }
     return true;
 }
 

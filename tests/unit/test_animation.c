@@ -99,6 +99,18 @@ static void rigid(void)
     pg_scene_free(s);
 }
 
+/* nonunit.gltf: rotation keys of length 0.5 are normalised at load: slerp turns by 30 deg at t = 0.25
+ * (32.2 deg before), and the keys themselves are whole turns of the unit box */
+static void nonunit(void)
+{
+    pg_scene *s = load("nonunit.gltf");
+    if (!s) return;
+    expect(s, 0, 0.25, 1, 10, 0.6830127, 1, 0.1830127, "spinner v10 (slerp 30 deg between halved keys)");
+    expect(s, 0, 1, 1, 10, 0.5 * (cos(2.0943951) + sin(2.0943951)), 1, 0.5 * (cos(2.0943951) - sin(2.0943951)),
+           "spinner v10 (the last key, 120 deg)");
+    pg_scene_free(s);
+}
+
 /* pointer.gltf: rigid.gltf's animations with KHR_animation_pointer targets (/nodes/N/path): every
  * vertex of every moving primitive equal, bit for bit, at every time of both animations; its
  * channel on a material's KHR_materials_ior ior (not animated by passgraph) is ignored with one
@@ -450,6 +462,7 @@ static void refused(void)
 int main(void)
 {
     rigid();
+    nonunit();
     pointer();
     beacon();
     shimmer();

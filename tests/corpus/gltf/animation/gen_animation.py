@@ -198,6 +198,20 @@ def rigid():
     doc.write()
 
 
+def nonunit():
+    """rigid.gltf's spinner alone, its rotation keys halved: 0.5 q(0) and 0.5 q(120 deg) about +Y over
+    1 s (not unit quaternions, as the specification requires; slerp between them turned by the wrong
+    angle: 32.2 deg at t = 0.25 instead of 30)"""
+    doc = Doc("nonunit.gltf")
+    doc.floor()
+    cube = doc.mesh("box", *UNIT_BOX, doc.material("box_red", (0.8, 0.15, 0.1)))
+    spinner = doc.node({"name": "spinner", "mesh": cube, "translation": [0, 0.5, 0]})
+    assert spinner == 1
+    doc.animation("spin", [(spinner, "rotation", "LINEAR", [0, 1],
+                            [tuple(0.5 * c for c in quat_axis((0, 1, 0), a)) for a in (0, 120)])])
+    doc.write()
+
+
 def pointer():
     """rigid.gltf's two animations with every target a KHR_animation_pointer (/nodes/N/path), and a
     channel animating a material's KHR_materials_ior ior that passgraph ignores (and warns about)"""
@@ -790,6 +804,7 @@ def check_poses():
 
 
 rigid()
+nonunit()
 pointer()
 beacon()
 shimmer()
