@@ -456,8 +456,14 @@ static bool hand_out_channel(Ctx &c, const pg_scene_anim *a, size_t ai, size_t c
     }
     C.node = uint32_t(node);
     const bool lp = light_path(C.path) || camera_path(C.path) || material_path(C.path);
-    if (!lp && C.path != PG_ANIM_WEIGHTS && a->nodes[C.node].has_matrix) return false; /* glTF forbids: ignored */
-    if (C.path == PG_ANIM_WEIGHTS && a->nodes[C.node].n_weights == 0) return false; /* not a drawn morph */
+    if (!lp && C.path != PG_ANIM_WEIGHTS && a->nodes[C.node].has_matrix) { /* glTF forbids: ignored */
+        c.ignored_why.push_back(cw + strf(" (nodes[%d] is given by a matrix)", node));
+        return false;
+    }
+    if (C.path == PG_ANIM_WEIGHTS && a->nodes[C.node].n_weights == 0) { /* not a drawn morph */
+        c.ignored_why.push_back(cw + strf(" (weights of nodes[%d], which draws no morph targets)", node));
+        return false;
+    }
     if (ch.sampler < 0 || size_t(ch.sampler) >= an.samplers.size())
         gfail(strf("%s.sampler: %d out of range (%zu samplers)", cw.c_str(), ch.sampler, an.samplers.size()));
     const tinygltf::AnimationSampler &sm = an.samplers[size_t(ch.sampler)];
@@ -617,6 +623,12 @@ static void hand_out_animations(Ctx &c, pg_scene_anim *a)
                 continue;
             }
             A.end = std::max(A.end, C.times[C.n_keys - 1]);
+            for (uint32_t k = 0; k < A.n_channels; k++) /* glTF: each target at most once an animation */
+                if (A.channels[k].node == C.node && A.channels[k].path == C.path) {
+                    c.duplicate_targets.push_back(strf("animations[%zu].channels[%zu] (the target of an earlier channel)",
+                                                       ai, ci));
+                    break;
+                }
             A.n_channels++; /* counted (freed with the animation) before light_object may refuse the light */
             if (light_path(C.path) && C.node < a->n_lights && !a->light_animated[C.node]) {
                 a->light_animated[C.node] = 1;

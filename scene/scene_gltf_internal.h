@@ -124,6 +124,8 @@ struct Ctx {
     std::vector<size_t> image_media_rewrite; /* images whose data URI tinygltf would refuse (prevalidate) */
     unsigned ignored_channels = 0;
     std::vector<std::string> ignored_pointers; /* KHR_animation_pointer targets not animated */
+    std::vector<std::string> ignored_why;      /* other ignored channels: "animations[0].channels[1] (why)" */
+    std::vector<std::string> duplicate_targets; /* "animations[0].channels[2] (as channels[0])" */
 };
 
 /* column-major 4x4, double */

@@ -92,9 +92,11 @@ void collect_warnings(Ctx &c)
                          c.joints2_prims));
     const unsigned n_ptr = unsigned(c.ignored_pointers.size());
     if (c.ignored_channels > n_ptr)
-        W.push_back(strf("%u animation channel(s) ignored (a node given by a matrix, or weights of a mesh without "
-                         "drawn morph targets)",
-                         c.ignored_channels - n_ptr));
+        W.push_back(strf("%u animation channel(s) ignored: ", c.ignored_channels - n_ptr) + name_list(c.ignored_why));
+    if (!c.duplicate_targets.empty())
+        W.push_back(plural(c.duplicate_targets.size(), "animation channel targets", "animation channels target") +
+                    " what an earlier channel of its animation does (the specification forbids it; the later one is "
+                    "applied): " + name_list(c.duplicate_targets));
     if (n_ptr) {
         std::vector<std::string> shown;
         for (const std::string &p : c.ignored_pointers)

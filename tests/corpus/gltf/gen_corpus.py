@@ -584,6 +584,17 @@ d["accessors"] += [{"bufferView": 2, "componentType": 5126, "count": 2, "type": 
 d["animations"] = [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "rotation"}}],
                     "samplers": [{"input": 2, "output": 3}]}]
 write("ok_animation.gltf", d, "PG_OK", warn=[])
+# a channel on a node given by a matrix (glTF forbids it) is ignored and named with its reason; two
+# channels on one target (forbidden too) are named, the later one applied
+d = json.loads(json.dumps(d))
+d["nodes"][0]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
+write("ok_animation_matrix_node.gltf", d, "PG_OK", warn=[
+    "1 animation channel(s) ignored: animations[0].channels[0] (nodes[0] is given by a matrix)"])
+del d["nodes"][0]["matrix"]
+d["animations"][0]["channels"].append({"sampler": 0, "target": {"node": 0, "path": "rotation"}})
+write("ok_animation_duplicate_target.gltf", d, "PG_OK", warn=[
+    "1 animation channel targets what an earlier channel of its animation does (the specification forbids it; the "
+    "later one is applied): animations[0].channels[1] (the target of an earlier channel)"])
 d, _ = base_doc()
 d["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": 0}, {"POSITION": 0}]
 d["meshes"][0]["weights"] = [0.5, 0.25]
