@@ -103,9 +103,15 @@ vec3 pg_srgb_decode(vec3 c)
 
 const float PG_HDR_MAX = 65000.0;
 
-// Keeps HDR values finite and inside half-float range (NaN -> 0).
+// Keeps HDR values finite and inside half-float range (NaN -> 0). With PG_HDR_KEEP_NAN
+// (PASSGRAPH_KEEP_NAN=1 in the environment: core/vk/shader.c) a NaN is stored as it is, so that the
+// tools' `nonfinite` count sees what a shader computed instead of a black pixel.
 vec3 pg_hdr_sanitize(vec3 c)
 {
+#ifdef PG_HDR_KEEP_NAN
+    return mix(clamp(c, vec3(0.0), vec3(PG_HDR_MAX)), c, isnan(c));
+#else
     c = mix(c, vec3(0.0), isnan(c));
     return clamp(c, vec3(0.0), vec3(PG_HDR_MAX));
+#endif
 }

@@ -406,6 +406,13 @@ static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, cons
             snprintf(line, sizeof line, "#define %s 1\n", defines[i]);
         ok = sb_append(&src, line, strlen(line));
     }
+    /* PASSGRAPH_KEEP_NAN=1: the built-in shaders store a NaN they compute instead of 0 (common.glsl
+     * pg_hdr_sanitize), for the tools' nonfinite count; part of the source, so of the cache key */
+    const char *keep = getenv("PASSGRAPH_KEEP_NAN");
+    if (ok && !gen->user_path && keep && !strcmp(keep, "1")) {
+        static const char k_keep[] = "#define PG_HDR_KEEP_NAN 1\n";
+        ok = sb_append(&src, k_keep, sizeof k_keep - 1);
+    }
     char lineinfo[PG_PATH_MAX + 96];
     if (gen->user_path)
         snprintf(lineinfo, sizeof lineinfo, "#extension GL_GOOGLE_cpp_style_line_directive : require\n#line %d \"%s\"\n",

@@ -733,6 +733,14 @@ expect_fail "bench: unknown camera" "no such camera" bench --scene "$two" --came
   --size 160x90 --out "$tmp/ref_sky.png" >/dev/null 2>"$tmp/ref_sky.err" \
   && python3 "$root/tests/cli/png_stats.py" "$tmp/ref_sky.png" | awk '{ exit !($3 == 1.0000) }' && ok \
   || { bad "reference of cube.gltf under the sky: a black pixel ($(python3 "$root/tests/cli/png_stats.py" "$tmp/ref_sky.png" 2>&1))"; cat "$tmp/ref_sky.err"; }
+# with PASSGRAPH_KEEP_NAN=1 the shaders store the NaNs they compute (no sanitizing to 0), so
+# nonfinite counts them: none in any pipeline here (that NaN gave nonfinite=1 this way)
+for p in "$root"/pipelines/*.json; do
+  sz=96x54; [ "$(basename "$p")" = reference.json ] && sz=160x90
+  PASSGRAPH_KEEP_NAN=1 "$PG" render --scene "$root/tests/corpus/gltf/objects/cube.gltf" --pipeline "$p" --size $sz \
+    --out "$tmp/nan.png" >"$tmp/nan.out" 2>&1 && grep -q ' nonfinite=0 ' "$tmp/nan.out" && ok \
+    || { bad "PASSGRAPH_KEEP_NAN=1 $(basename "$p"): a NaN or a failure"; cat "$tmp/nan.out"; }
+done
 # the ten object models (tests/corpus/gltf/models, gen_models.py): the committed files are what the
 # generator writes; a render with default options (but the size) exits 0 and writes a PNG, and with
 # the background left black (--set background=none: the neutral sky fills every other pixel) it is
