@@ -371,6 +371,29 @@ pg_result pg_shader_module_words(struct pg_gpu *gpu, const char *name, const uin
 }
 
 /* vulkan12: target Vulkan 1.2 / SPIR-V 1.5 (the most a 1.2 device accepts) instead of 1.3 / 1.6 */
+/* "#define NAME VALUE" lines for defines (NAME or NAME=VALUE), and for a built-in shader with
+ * PASSGRAPH_KEEP_NAN=1 in the environment PG_HDR_KEEP_NAN: it stores a NaN it computes instead of 0
+ * (common.glsl pg_hdr_sanitize), for the tools' nonfinite count; part of the source, so of the key */
+static bool append_defines(strbuf *src, const char *const *defines, uint32_t n_defines, bool builtin)
+{
+    bool ok = true;
+    for (uint32_t i = 0; ok && i < n_defines; i++) {
+        char line[PG_NAME_MAX + 32];
+        const char *eq = strchr(defines[i], '=');
+        if (eq)
+            snprintf(line, sizeof line, "#define %.*s %s\n", (int)(eq - defines[i]), defines[i], eq + 1);
+        else
+            snprintf(line, sizeof line, "#define %s 1\n", defines[i]);
+        ok = sb_append(src, line, strlen(line));
+    }
+    const char *keep = getenv("PASSGRAPH_KEEP_NAN");
+    if (ok && builtin && keep && !strcmp(keep, "1")) {
+        static const char k_keep[] = "#define PG_HDR_KEEP_NAN 1\n";
+        ok = sb_append(src, k_keep, sizeof k_keep - 1);
+    }
+    return ok;
+}
+
 static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, const char *const *defines,
                              uint32_t n_defines, const gen_sources *gen, bool vulkan12, uint32_t **spirv,
                              size_t *n_words, pg_error *err)
@@ -396,23 +419,8 @@ static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, cons
         free(body.data);
         return pg_fail(err, PG_ERR_SHADER, "%s%s: no #version line", shown, name);
     }
-    bool ok = sb_append(&src, body.data, (size_t)(ver_end - body.data + 1));
-    for (uint32_t i = 0; ok && i < n_defines; i++) {
-        char line[PG_NAME_MAX + 32];
-        const char *eq = strchr(defines[i], '=');
-        if (eq)
-            snprintf(line, sizeof line, "#define %.*s %s\n", (int)(eq - defines[i]), defines[i], eq + 1);
-        else
-            snprintf(line, sizeof line, "#define %s 1\n", defines[i]);
-        ok = sb_append(&src, line, strlen(line));
-    }
-    /* PASSGRAPH_KEEP_NAN=1: the built-in shaders store a NaN they compute instead of 0 (common.glsl
-     * pg_hdr_sanitize), for the tools' nonfinite count; part of the source, so of the cache key */
-    const char *keep = getenv("PASSGRAPH_KEEP_NAN");
-    if (ok && !gen->user_path && keep && !strcmp(keep, "1")) {
-        static const char k_keep[] = "#define PG_HDR_KEEP_NAN 1\n";
-        ok = sb_append(&src, k_keep, sizeof k_keep - 1);
-    }
+    bool ok = sb_append(&src, body.data, (size_t)(ver_end - body.data + 1)) &&
+              append_defines(&src, defines, n_defines, !gen->user_path);
     char lineinfo[PG_PATH_MAX + 96];
     if (gen->user_path)
         snprintf(lineinfo, sizeof lineinfo, "#extension GL_GOOGLE_cpp_style_line_directive : require\n#line %d \"%s\"\n",
