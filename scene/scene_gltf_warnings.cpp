@@ -71,11 +71,40 @@ std::string extension_effect(const std::string &e)
     return "ignored: not supported";
 }
 
+/* The extension names of every "extensions" object in the JSON (root, materials, nodes, textures,
+ * ...) that the file's extensionsUsed does not list, in first-seen order. */
+static void undeclared_extensions(const json &j, const std::vector<std::string> &used, std::vector<std::string> &out)
+{
+    if (j.is_array()) {
+        for (const json &e : j) undeclared_extensions(e, used, out);
+        return;
+    }
+    if (!j.is_object()) return;
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        if (it.key() == "extensions" && it.value().is_object())
+            for (auto e = it.value().begin(); e != it.value().end(); ++e)
+                if (std::find(used.begin(), used.end(), e.key()) == used.end() &&
+                    std::find(out.begin(), out.end(), e.key()) == out.end())
+                    out.push_back(e.key().substr(0, 80));
+        if (it.key() != "extras") undeclared_extensions(it.value(), used, out);
+    }
+}
+
 /* Every feature the file uses that is not drawn as the file asks: one line each (see scene.h). */
 void collect_warnings(Ctx &c)
 {
     const tinygltf::Model &md = c.model;
     auto &W = c.warnings;
+    std::vector<std::string> undeclared; /* the specification: every extension used is listed */
+    undeclared_extensions(c.j, md.extensionsUsed, undeclared);
+    if (!undeclared.empty()) {
+        std::vector<std::string> drawn, ignored;
+        for (const std::string &e : undeclared) (extension_implemented(e) ? drawn : ignored).push_back(e);
+        W.push_back("extensions not listed in extensionsUsed (the specification requires it): " +
+                    (drawn.empty() ? std::string() : name_list(drawn) + " applied") +
+                    (!drawn.empty() && !ignored.empty() ? "; " : "") +
+                    (ignored.empty() ? std::string() : name_list(ignored) + " ignored"));
+    }
     if (md.scenes.empty() && !md.nodes.empty())
         W.push_back("no scenes: every root node is drawn (the specification leaves such a file's display to the "
                     "application: a library of nodes)");

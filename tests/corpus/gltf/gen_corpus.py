@@ -599,6 +599,13 @@ d, _ = base_doc()
 d["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": 0}, {"POSITION": 0}]
 d["meshes"][0]["weights"] = [0.5, 0.25]
 write("ok_morph_targets.gltf", d, "PG_OK", warn=[])
+# extension objects the file does not list in extensionsUsed (invalid): named, with what is done
+d, _ = base_doc()
+d["meshes"][0]["primitives"][0]["material"] = 0
+d["materials"] = [{"extensions": {"KHR_materials_unlit": {}, "KHR_materials_clearcoat": {"clearcoatFactor": 1}}}]
+write("ok_extensions_undeclared.gltf", d, "PG_OK", warn=[
+    "extensions not listed in extensionsUsed (the specification requires it): KHR_materials_unlit applied; "
+    "KHR_materials_clearcoat ignored"])
 # morph targets of TEXCOORD_0 are not applied, and a texture read through a TEXCOORD_0 the primitive
 # does not have samples one spot: both were silent
 d = textured_doc({"uri": png_data_uri(PNG2)})
