@@ -589,19 +589,26 @@ static void assign_materials(const tinygltf::Model &md, Out &o, std::vector<pg_m
 static void hand_out_uv1(Ctx &c, const Out &o, const std::vector<pg_material> &mats, pg_scene *s)
 {
     bool uv1_read = false;
-    unsigned uv1_missing = 0;
+    unsigned uv1_missing = 0, uv0_missing = 0;
     for (size_t p = 0; p < o.prims.size(); p++) {
         if (!o.prims[p].index_count) continue;
         const pg_material &pm = mats[o.prims[p].material];
-        bool reads = false;
-        for (int t = 0; t < PG_TEXSLOT_COUNT; t++)
+        bool reads = false, reads0 = false;
+        for (int t = 0; t < PG_TEXSLOT_COUNT; t++) {
             reads = reads || (pg_material_slot_texture(&pm, t) >= 0 && pm.tex_coord[t] == 1);
+            reads0 = reads0 || (pg_material_slot_texture(&pm, t) >= 0 && pm.tex_coord[t] == 0);
+        }
         if (reads && o.prim_has_uv1[p]) uv1_read = true;
         if (reads && !o.prim_has_uv1[p]) uv1_missing++;
+        if ((reads0 || (reads && !o.prim_has_uv1[p])) && !o.prim_has_uv0[p]) uv0_missing++;
     }
     if (uv1_missing)
         c.warnings.push_back("TEXCOORD_1 missing in " + plural(uv1_missing, "primitive", "primitives") +
                              " whose material reads it (texCoord 1): TEXCOORD_0 used");
+    if (uv0_missing) /* its uv are 0: every pixel samples one spot of each texture */
+        c.warnings.push_back(plural(uv0_missing, "primitive", "primitives") +
+                             " without TEXCOORD_0 under a material that reads a texture with it: every pixel samples "
+                             "the texture at (0, 0)");
     if (uv1_read) {
         s->uv1 = static_cast<float(*)[2]>(malloc(o.uv1.size() * sizeof(float)));
         if (!s->uv1) throw std::bad_alloc();

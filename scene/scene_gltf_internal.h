@@ -82,7 +82,6 @@ struct Ctx {
     unsigned texcoord2_prims = 0;/* drawn primitives with TEXCOORD_2.. (ignored) */
     unsigned morph_other_prims = 0; /* primitives whose morph targets move other attributes than
                                      * POSITION, NORMAL, TANGENT (TEXCOORD_n, COLOR_n: ignored) */
-    unsigned no_uv_prims = 0;    /* primitives without TEXCOORD_0 whose material reads a texture with it */
     std::vector<std::string> warnings; /* without the "PATH: " prefix */
     /* EXT_meshopt_compression: the compressed bufferViews (checked by prevalidate, decoded by
      * decode_meshopt into `decoded`, which view_bytes reads instead of the fallback buffer), and
@@ -139,6 +138,7 @@ struct Out {
     std::vector<pg_primitive> prims;
     std::vector<uint32_t> prim_gltf_material; /* -1 (UINT32_MAX) = default material */
     std::vector<char> prim_has_uv1;           /* the primitive has TEXCOORD_1 */
+    std::vector<char> prim_has_uv0;           /* the primitive has TEXCOORD_0 */
     std::vector<float> colors;                /* COLOR_0, 4 per vertex; empty when no primitive has it */
     std::vector<float> uv1;                   /* TEXCOORD_1, 2 per vertex; empty when none has it */
     /* animation (Ctx.animated only): per vertex the mesh-space vertex of a moving primitive and its

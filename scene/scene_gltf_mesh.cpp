@@ -333,26 +333,15 @@ static void xform_in_place(const Xform &x, pg_vertex &v)
     v.tangent[3] = float(v.tangent[3] * x.nsign);
 }
 
-/* What a primitive asks for that is not drawn, counted for the warnings (once per node that draws
- * it, as the skipped ones): morph targets of other attributes than POSITION, NORMAL, TANGENT; a
- * texture read through TEXCOORD_0 (texCoord 0, or 2 and up, which read set 0) without TEXCOORD_0
- * (it samples the texture at (0, 0) everywhere). KHR_texture_transform's texCoord is not looked at. */
-static void count_unread(Ctx &c, const tinygltf::Primitive &prim, const PrimAttrs &a)
+/* Morph targets of other attributes than POSITION, NORMAL, TANGENT (not applied), counted for the
+ * warnings once per node that draws the primitive, as the skipped ones. */
+static void count_unread(Ctx &c, const tinygltf::Primitive &prim)
 {
     bool other = false;
     for (const auto &t : prim.targets)
         for (const auto &at : t)
             other = other || (at.first != "POSITION" && at.first != "NORMAL" && at.first != "TANGENT");
     c.morph_other_prims += other;
-    if (a.uv || prim.material < 0 || size_t(prim.material) >= c.model.materials.size()) return;
-    const tinygltf::Material &m = c.model.materials[size_t(prim.material)];
-    const auto &pbr = m.pbrMetallicRoughness;
-    const bool set0 = (pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord != 1) ||
-                      (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 1) ||
-                      (m.emissiveTexture.index >= 0 && m.emissiveTexture.texCoord != 1) ||
-                      (pbr.metallicRoughnessTexture.index >= 0 && pbr.metallicRoughnessTexture.texCoord != 1) ||
-                      (m.occlusionTexture.index >= 0 && m.occlusionTexture.texCoord != 1);
-    c.no_uv_prims += set0;
 }
 
 /* A decoded primitive, placed once per node or instance (place_primitive) */
@@ -365,22 +354,29 @@ struct Decoded {
     std::vector<uint32_t> src;  /* vertex -> accessor element; empty: the same (flat normals unweld) */
 };
 
-/* Tangents for a normal map from the texture coordinates it reads (glTF 2.0 3.7.2.1): TEXCOORD_1's
- * are swapped into the vertices' uv for pg_mesh_compute_tangents, then back. */
-static void tangents_for_normal_map(Out &o, const tinygltf::Material &mat, size_t base, pg_vertex *V, size_t n,
-                                   std::vector<uint32_t> &tri)
+/* Tangents for materials[mi]'s normal map from the texture coordinates it is sampled with (glTF 2.0
+ * 3.7.2.1): its UV set (texCoord, or KHR_texture_transform's) under the extension's transform
+ * (texture_transform, as the material will get it), put in the vertices' uv for
+ * pg_mesh_compute_tangents, then the uv put back. */
+static void tangents_for_normal_map(const Ctx &c, Out &o, int mi, size_t base, pg_vertex *V, size_t n,
+                                   const std::vector<uint32_t> &tri)
 {
-    int set = mat.normalTexture.texCoord;
-    auto tt = mat.normalTexture.extensions.find("KHR_texture_transform");
-    if (tt != mat.normalTexture.extensions.end() && tt->second.Has("texCoord") &&
-        tt->second.Get("texCoord").IsInt())
-        set = tt->second.Get("texCoord").GetNumberAsInt(); /* the extension's override */
+    const std::string mw = strf("materials[%d]", mi);
+    const json *ti = opt_object(c.j.at("materials").at(size_t(mi)), "normalTexture", mw);
+    int set = c.model.materials[size_t(mi)].normalTexture.texCoord;
+    float m[6] = {1, 0, 0, 0, 1, 0};
+    if (ti) texture_transform(*ti, mw + ".normalTexture", m, &set);
     const bool uv1 = set == 1 && o.uv1.size() >= (base + n) * 2;
-    if (uv1)
-        for (size_t i = 0; i < n; i++) std::swap_ranges(V[i].uv, V[i].uv + 2, &o.uv1[(base + i) * 2]);
+    std::vector<float> keep(2 * n);
+    for (size_t i = 0; i < n; i++) {
+        const float *uv = uv1 ? &o.uv1[(base + i) * 2] : V[i].uv;
+        const float u = uv[0], v = uv[1];
+        keep[2 * i] = V[i].uv[0], keep[2 * i + 1] = V[i].uv[1];
+        V[i].uv[0] = m[0] * u + m[1] * v + m[2];
+        V[i].uv[1] = m[3] * u + m[4] * v + m[5];
+    }
     pg_mesh_compute_tangents(V, uint32_t(n), tri.data(), uint32_t(tri.size()));
-    if (uv1)
-        for (size_t i = 0; i < n; i++) std::swap_ranges(V[i].uv, V[i].uv + 2, &o.uv1[(base + i) * 2]);
+    for (size_t i = 0; i < n; i++) V[i].uv[0] = keep[2 * i], V[i].uv[1] = keep[2 * i + 1];
 }
 
 /* one placement of d under M (x *inst when instanced) appended to o */
@@ -415,10 +411,9 @@ static void place_primitive(Ctx &c, Out &o, const Decoded &d, int mi, int pi, co
         if (xe.det < 0 && !skinned)
             for (size_t t = 0; t + 2 < tri.size(); t += 3) std::swap(tri[t + 1], tri[t + 2]);
         if (!d.a.nrm) pg_mesh_compute_normals(V, uint32_t(n), tri.data(), uint32_t(tri.size()));
-        const tinygltf::Material *mat =
-            prim.material >= 0 ? &c.model.materials[size_t(prim.material)] : nullptr;
-        if ((!d.a.tan || !d.a.nrm) && mat && mat->normalTexture.index >= 0)
-            tangents_for_normal_map(o, *mat, base, V, n, tri);
+        if ((!d.a.tan || !d.a.nrm) && prim.material >= 0 &&
+            c.model.materials[size_t(prim.material)].normalTexture.index >= 0)
+            tangents_for_normal_map(c, o, prim.material, base, V, n, tri);
     }
     if (x.det < 0 && !skinned) /* a skinned mesh ignores its node's transform */
         for (size_t t = 0; t + 2 < ind.size(); t += 3) std::swap(ind[t + 1], ind[t + 2]);
@@ -444,6 +439,7 @@ static void place_primitive(Ctx &c, Out &o, const Decoded &d, int mi, int pi, co
     const int material = variant_material(c, mi, pi, prim.material); /* KHR_materials_variants */
     o.prim_gltf_material.push_back(material >= 0 ? uint32_t(material) : UINT32_MAX);
     o.prim_has_uv1.push_back(d.a.uv1 != nullptr);
+    o.prim_has_uv0.push_back(d.a.uv != nullptr);
 }
 
 /* meshes[mi].primitives[pi] under the node transform M appended to o: its mode (points and lines
@@ -472,7 +468,7 @@ void emit_primitive(Ctx &c, Out &o, int mi, int pi, const Mat4 &M, int ni, bool 
 
     decode_draco(c, mi, pi);
     read_attributes(c, prim, d.pw, d.a);
-    count_unread(c, prim, d.a);
+    count_unread(c, prim);
     d.n = d.a.n;
     d.ind = read_indices(c, prim, d.n, d.pw);
     to_triangle_list(mode, d.ind, d.pw);

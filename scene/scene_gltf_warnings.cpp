@@ -168,10 +168,6 @@ void collect_warnings(Ctx &c)
     if (c.morph_other_prims)
         W.push_back("morph targets of TEXCOORD_n or COLOR_n in " + plural(c.morph_other_prims, "primitive", "primitives") +
                     " ignored: POSITION, NORMAL and TANGENT targets are applied");
-    if (c.no_uv_prims)
-        W.push_back(plural(c.no_uv_prims, "primitive", "primitives") +
-                    " without TEXCOORD_0 under a material that reads a texture with it: every pixel samples the "
-                    "texture at (0, 0)");
     if (c.texcoord2_prims)
         W.push_back("TEXCOORD_2 (and higher) in " +
                     plural(c.texcoord2_prims, "primitive", "primitives") +

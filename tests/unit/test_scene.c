@@ -730,6 +730,29 @@ static void test_corpus_valid_details(void)
                       s->vertices[i].tangent[0]);
         pg_scene_free(s);
     }
+    if ((s = load_corpus("ok_normal_map_transform.gltf"))) {
+        /* tangents from the coordinates the normal map is sampled with: the material's transform of
+         * the normal slot applied to the uv, as the shaders do */
+        const pg_material *m = &s->materials[s->primitives[0].material];
+        CHECK(m->has_uv_transform[PG_TEXSLOT_NORMAL]);
+        pg_vertex t[4];
+        memcpy(t, s->vertices, sizeof t);
+        const float *x = m->uv_transform[PG_TEXSLOT_NORMAL];
+        for (int i = 0; i < 4; i++) {
+            const float u = t[i].uv[0], v = t[i].uv[1];
+            t[i].uv[0] = x[0] * u + x[1] * v + x[2];
+            t[i].uv[1] = x[3] * u + x[4] * v + x[5];
+        }
+        pg_mesh_compute_tangents(t, 4, s->indices, 6);
+        for (uint32_t i = 0; i < 4 && s->n_vertices == 4; i++) {
+            const float *g = s->vertices[i].tangent;
+            CHECK_MSG(near_f(g[0], t[i].tangent[0], 1e-5f) && near_f(g[1], t[i].tangent[1], 1e-5f) &&
+                          near_f(g[2], t[i].tangent[2], 1e-5f) && g[3] == t[i].tangent[3] && fabsf(g[0]) < 1e-5f,
+                      "vertex %u: tangent (%g, %g, %g, %g), want (%g, %g, %g, %g)", i, g[0], g[1], g[2], g[3],
+                      t[i].tangent[0], t[i].tangent[1], t[i].tangent[2], t[i].tangent[3]);
+        }
+        pg_scene_free(s);
+    }
     if ((s = load_corpus("ok_tangent_without_normals.gltf"))) { /* the file's (-1, 0, 0) ignored: +X */
         for (uint32_t i = 0; i < s->n_vertices; i++)
             CHECK_MSG(near_f(s->vertices[i].tangent[0], 1, 1e-5f) && near_f(s->vertices[i].normal[2], 1, 1e-5f),

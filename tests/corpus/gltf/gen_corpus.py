@@ -562,6 +562,12 @@ def quad_doc(attrs):
 
 write("ok_normal_map_texcoord1.gltf", quad_doc({"NORMAL": 1, "TEXCOORD_0": 1, "TEXCOORD_1": 1, "set": 1}), "PG_OK")
 write("ok_tangent_without_normals.gltf", quad_doc({"TEXCOORD_0": 1, "TANGENT": 1}), "PG_OK")
+# a normal map sampled through KHR_texture_transform (a quarter turn, u scaled 2x): its tangents
+# follow the transformed coordinates (they came from the file's: +X where the map's u runs along Y)
+d = quad_doc({"NORMAL": 1, "TEXCOORD_0": 1})
+d["materials"][0]["normalTexture"]["extensions"] = {"KHR_texture_transform": {"rotation": 1.5707963, "scale": [2, 1]}}
+d["extensionsUsed"] = ["KHR_texture_transform"]
+write("ok_normal_map_transform.gltf", d, "PG_OK")
 
 # ------------------------------------------------------------------------------------------------
 # features the loader does not draw: each loads, with one exact warning line per feature
