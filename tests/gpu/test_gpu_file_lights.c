@@ -256,9 +256,53 @@ static void sun(const loaded *l)
     pg_th_release(&ref);
 }
 
+/* An animated colour or intensity past what the loaders take (KHR_animation_pointer clamps each
+ * to its own range only) is clamped when the light's record is made: colour x intensity at most
+ * PG_LIGHT_MAX_LUX for a directional light, whose record the light pass multiplies by 1e30, and
+ * PG_LIGHT_MAX_CANDELA for the others, so a few of them still sum to a float (docs/scenes.md) */
+static void animated_clamp(void)
+{
+    const struct {
+        pg_light_type type;
+        float color, intensity;
+        double most;
+    } cases[] = {
+        {PG_LIGHT_DIRECTIONAL, 3.4e38f, 1e30f, PG_LIGHT_MAX_LUX},
+        {PG_LIGHT_DIRECTIONAL, 1.0f, 1e9f, PG_LIGHT_MAX_LUX},
+        {PG_LIGHT_POINT, 3.4e38f, 1e30f, PG_LIGHT_MAX_CANDELA},
+        {PG_LIGHT_SPOT, 1e20f, 1e20f, PG_LIGHT_MAX_CANDELA},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        pg_scene_light L;
+        memset(&L, 0, sizeof L);
+        L.type = cases[i].type;
+        L.color[0] = cases[i].color, L.color[1] = 0.5f * cases[i].color, L.color[2] = 0.0f;
+        L.intensity = cases[i].intensity;
+        L.outer_cone = 0.5f;
+        L.direction[1] = -1.0f;
+        pg_gpu_file_light g;
+        pg_gpu_file_light_from(&L, &g);
+        const double peak = g.color_type[0] * 3.14159265358979;
+        CHECK_MSG(isfinite(g.color_type[0]) && isfinite(g.color_type[1]) && peak <= cases[i].most * 1.0001 &&
+                      peak >= cases[i].most * 0.9999 && fabs(g.color_type[1] / g.color_type[0] - 0.5) < 1e-5,
+                  "case %zu: record colour (%g, %g, %g): peak x pi %g, want %g", i, g.color_type[0], g.color_type[1],
+                  g.color_type[2], peak, cases[i].most);
+    }
+    /* within the limits nothing changes */
+    pg_scene_light L;
+    memset(&L, 0, sizeof L);
+    L.type = PG_LIGHT_DIRECTIONAL;
+    L.color[0] = L.color[1] = L.color[2] = 1.0f;
+    L.intensity = 1.2e5f;
+    pg_gpu_file_light g;
+    pg_gpu_file_light_from(&L, &g);
+    CHECK(g.color_type[0] == 1.2e5f / 3.14159265358979f);
+}
+
 int main(void)
 {
     if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_file_lights", "PG_TEST_NO_GPU is set");
+    animated_clamp();
     pg_register_builtin_passes(&g_reg);
     pg_gpu_desc gd = {.validation = true, .device_index = -1, .quiet = true};
     pg_error err = {0};
