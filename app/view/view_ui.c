@@ -10,13 +10,15 @@ static void param_widget(viewer *v, const pg_param *p)
 {
     char val[PG_NAME_MAX];
     bool changed = false;
-    switch (p->type) {
-    case PG_PARAM_ENUM: {
+    char now[PG_NAME_MAX];
+    pg_param_format(p, now, sizeof now); /* an int with values: its combo's current item */
+    switch (p->n_values ? PG_PARAM_ENUM : p->type) {
+    case PG_PARAM_ENUM: {                /* and an int that takes only its listed values */
         int cur = 0;
         const char *items[PG_MAX_ENUM_VALUES];
         for (uint32_t i = 0; i < p->n_values; i++) {
             items[i] = p->values[i];
-            if (!strcmp(p->values[i], p->enum_value)) cur = (int)i;
+            if (!strcmp(p->values[i], now)) cur = (int)i;
         }
         if (pg_ui_combo(p->name, &cur, items, (int)p->n_values)) {
             snprintf(val, sizeof val, "%s", p->values[cur]);

@@ -35,7 +35,7 @@ typedef struct pg_param {
     bool boolean;                        /* BOOL value */
     char enum_value[PG_NAME_MAX];        /* ENUM value */
     double min, max;                     /* INT/FLOAT bounds (inclusive); -inf/+inf if absent */
-    uint32_t n_values;                   /* ENUM choices */
+    uint32_t n_values;                   /* ENUM choices; INT: the only values it takes (0: any) */
     char values[PG_MAX_ENUM_VALUES][PG_NAME_MAX];
     char description[160];
     bool overridden;                     /* set by --set */

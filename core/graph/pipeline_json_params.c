@@ -92,6 +92,16 @@ static bool text_is_number(const char *s)
     return *s == 0;
 }
 
+/* whether an int parameter with values lists x */
+static bool int_listed(const pg_param *prm, double x)
+{
+    char text[48];
+    snprintf(text, sizeof text, "%lld", (long long)x);
+    for (uint32_t i = 0; i < prm->n_values; i++)
+        if (strcmp(prm->values[i], text) == 0) return true;
+    return false;
+}
+
 /* Parses text as a value of prm's type into val (a copy of prm). On failure writes why. */
 static bool parse_typed(const pg_param *prm, const char *text, bool check_range, pg_param *val,
                         char *why, size_t whyn)
@@ -111,6 +121,11 @@ static bool parse_typed(const pg_param *prm, const char *text, bool check_range,
             return false;
         }
         val->number = (double)v;
+        if (prm->n_values && !int_listed(prm, val->number)) {
+            enum_values_list(prm, buf, sizeof buf);
+            snprintf(why, whyn, "%s is not one of: %s", text, buf);
+            return false;
+        }
         break;
     }
     case PG_PARAM_FLOAT: {
@@ -233,13 +248,48 @@ static pg_result decl_bounds(loader *L, const src_file *f, const cJSON *decl, co
     return PG_OK;
 }
 
-/* "values" (enum only, required there): distinct non-empty names without spaces */
+/* "values" of an int (optional): the only integers it takes, distinct, within min..max, kept as
+ * their decimal text */
+static pg_result decl_int_values(loader *L, const src_file *f, const cJSON *values, const char *path, pg_param *out)
+{
+    char fpath[FPATH_MAX], got[96];
+    if (!cJSON_IsArray(values) || !values->child)
+        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("values"), "an int's values must be a non-empty array of integers");
+    int nv = cJSON_GetArraySize(values);
+    if (nv > PG_MAX_ENUM_VALUES)
+        return pj_fail_at(L, PG_ERR_LIMIT, f, FPATH("values"), "%d values, the limit is %d", nv, PG_MAX_ENUM_VALUES);
+    const cJSON *v;
+    uint32_t i = 0;
+    cJSON_ArrayForEach(v, values) {
+        double d = 0;
+        snprintf(fpath, sizeof fpath, "%s.values[%u]", path, i);
+        if (!pj_json_integer(v, -MAX_SAFE_INT, MAX_SAFE_INT, &d) || d < out->min || d > out->max) {
+            char lo[40], hi[40];
+            pj_describe(v, got, sizeof got);
+            pj_fmt_double(out->min, lo, sizeof lo);
+            pj_fmt_double(out->max, hi, sizeof hi);
+            return pj_fail_at(L, PG_ERR_PARAM, f, fpath, "expected an integer in [%s, %s], got %s", lo, hi, got);
+        }
+        snprintf(out->values[i], PG_NAME_MAX, "%lld", (long long)d);
+        for (uint32_t j = 0; j < i; j++)
+            if (strcmp(out->values[j], out->values[i]) == 0)
+                return pj_fail_at(L, PG_ERR_PARAM, f, fpath, "%s is listed twice", out->values[i]);
+        i++;
+    }
+    out->n_values = i;
+    return PG_OK;
+}
+
+/* "values": an enum's names (required there: distinct, non-empty, without spaces) or the integers an
+ * int takes (optional) */
 static pg_result decl_values(loader *L, const src_file *f, const cJSON *decl, const char *path, pg_param *out)
 {
     char fpath[FPATH_MAX], got[96];
     const cJSON *values = cJSON_GetObjectItemCaseSensitive(decl, "values");
+    out->n_values = 0;
+    if (values && out->type == PG_PARAM_INT) return decl_int_values(L, f, values, path, out);
     if (values && out->type != PG_PARAM_ENUM)
-        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("values"), "only enum parameters have values");
+        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("values"), "only enum and int parameters have values");
     if (out->type != PG_PARAM_ENUM) return PG_OK;
     if (!cJSON_IsArray(values) || !values->child)
         return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("values"),
@@ -339,6 +389,11 @@ static pg_result decl_default(loader *L, const src_file *f, const cJSON *decl, c
         pj_fmt_double(out->max, hi, sizeof hi);
         return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "%s is out of range [%s, %s]", got, lo,
                        hi);
+    }
+    if (out->type == PG_PARAM_INT && out->n_values && !int_listed(out, out->number)) {
+        char vals[512];
+        enum_values_list(out, vals, sizeof vals);
+        return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "%s is not one of the values (%s)", got, vals);
     }
     return PG_OK;
 }

@@ -287,7 +287,8 @@ static const char *k_params =
     "   \"f\": {\"type\": \"float\", \"default\": 0.1, \"min\": 0, \"max\": 2.5},\n"
     "   \"b\": {\"type\": \"bool\", \"default\": true},\n"
     "   \"e\": {\"type\": \"enum\", \"values\": [\"a\", \"b-2\", \"c.3\"], \"default\": \"c.3\"},\n"
-    "   \"u\": {\"type\": \"float\", \"default\": -1e300}\n"
+    "   \"u\": {\"type\": \"float\", \"default\": -1e300},\n"
+    "   \"t\": {\"type\": \"int\", \"default\": 8, \"values\": [8, 16]}\n"
     " },\n"
     " \"resources\": [{\"name\": \"out\", \"type\": \"image\", \"format\": \"rgba8\", \"scale\": \"$f\"}],\n"
     " \"passes\": [{\"name\": \"p\", \"type\": \"t\", \"writes\": [\"out\"],\n"
@@ -331,8 +332,8 @@ static void test_params(void)
 
     /* good overrides */
     pg_param_override ok[] = {{"i", "-4"}, {"f", "2.5"}, {"b", "0"}, {"e", "b-2"},
-                              {"i", "+100"}, {"u", "-3e-2"}};
-    r = pg_pipeline_load_string(k_params, "params.json", ok, 6, &p, &err);
+                              {"i", "+100"}, {"u", "-3e-2"}, {"t", "16"}};
+    r = pg_pipeline_load_string(k_params, "params.json", ok, 7, &p, &err);
     CHECK_MSG(r == PG_OK, "%s", err.msg);
     if (!r) {
         CHECK(pg_pipeline_find_param(p, "i")->number == 100); /* last --set wins */
@@ -340,6 +341,7 @@ static void test_params(void)
         CHECK(!pg_pipeline_find_param(p, "b")->boolean);
         CHECK(strcmp(pg_pipeline_find_param(p, "e")->enum_value, "b-2") == 0);
         CHECK(pg_pipeline_find_param(p, "u")->number == -0.03);
+        CHECK(pg_pipeline_find_param(p, "t")->number == 16); /* an int with values: one of them */
         for (uint32_t i = 0; i < p->n_params; i++) CHECK(p->params[i].overridden);
         CHECK(pg_pipeline_find_resource(p, "out")->scale[1] == 2.5f);
         CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(p->passes[0].options, "b")));
@@ -350,7 +352,8 @@ static void test_params(void)
     struct {
         const char *key, *value, *sub;
     } bad[] = {
-        {"j", "1", "--set j=1: unknown parameter 'j' (declared: i, f, b, e, u)"},
+        {"j", "1", "--set j=1: unknown parameter 'j' (declared: i, f, b, e, u, t)"},
+        {"t", "12", "--set t=12: int parameter 't': 12 is not one of: 8, 16"},
         {"i", "1.5", "--set i=1.5: int parameter 'i': '1.5' is not an integer"},
         {"i", "abc", "'abc' is not an integer"},
         {"i", "", "'' is not an integer"},

@@ -252,8 +252,19 @@ case("param_bool_default_string.json", "PG_ERR_PARAM", "parameters.debug.default
      doc=mod(lambda d: d["parameters"]["debug"].update({"default": "false"})))
 case("param_bool_with_min.json", "PG_ERR_PARAM", "parameters.debug.min: only int and float",
      doc=mod(lambda d: d["parameters"]["debug"].update({"min": 0})))
-case("param_values_on_int.json", "PG_ERR_PARAM", "parameters.grid_x.values: only enum",
+case("param_values_on_float.json", "PG_ERR_PARAM", "parameters.exposure.values: only enum and int parameters",
+     doc=mod(lambda d: d["parameters"]["exposure"].update({"values": [1.0]})))
+case("param_int_value_string.json", "PG_ERR_PARAM",
+     "parameters.grid_x.values[0]: expected an integer in [1, 256], got \"1\"",
      doc=mod(lambda d: d["parameters"]["grid_x"].update({"values": ["1"]})))
+case("param_int_value_out_of_range.json", "PG_ERR_PARAM",
+     "parameters.grid_x.values[1]: expected an integer in [1, 256], got 512",
+     doc=mod(lambda d: d["parameters"]["grid_x"].update({"values": [16, 512]})))
+case("param_int_dup_value.json", "PG_ERR_PARAM", "parameters.grid_x.values[1]: 16 is listed twice",
+     doc=mod(lambda d: d["parameters"]["grid_x"].update({"values": [16, 16]})))
+case("param_int_default_not_in_values.json", "PG_ERR_PARAM",
+     "parameters.grid_x.default: 16 is not one of the values (8, 32)",
+     doc=mod(lambda d: d["parameters"]["grid_x"].update({"values": [8, 32]})))
 case("param_unknown_key.json", "PG_ERR_SCHEMA", "parameters.grid_x: unknown key 'deafult'",
      doc=mod(lambda d: d["parameters"]["grid_x"].update({"deafult": 3})))
 case("param_bad_name.json", "PG_ERR_PARAM", "parameters.grid-y: parameter names must match",
