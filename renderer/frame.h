@@ -5,6 +5,7 @@
 #define PG_FRAME_H
 
 #include <assert.h>
+#include <string.h>
 
 #include "pg_common.h"
 #include "scenario.h"
@@ -46,6 +47,14 @@ typedef struct pg_frame_info {
 } pg_frame_info;
 
 void pg_frame_uniforms_fill(const pg_frame_info *info, pg_frame_uniforms *u);
+
+/* The glTF animation a frame block plays (light_src.y; its time is camera_pos.w). */
+static inline int32_t pg_frame_animation(const pg_frame_uniforms *u)
+{
+    int32_t animation;
+    memcpy(&animation, &u->light_src[1], sizeof animation);
+    return animation;
+}
 
 /* The frame block a pass's record() was given (pg_pass_record_ctx.frame), seen as the built-in
  * passes' pg_frame_uniforms: the runtime does not know its layout, so a block of another size

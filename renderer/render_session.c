@@ -11,8 +11,7 @@ static bool material_prologue(void *user, VkCommandBuffer cmd, const void *frame
 {
     const pg_scene_gpu *sg = user;
     const pg_frame_uniforms *fu = frame_block;
-    int32_t animation;
-    memcpy(&animation, &fu->light_src[1], sizeof animation);
+    const int32_t animation = pg_frame_animation(fu);
     return pg_scene_gpu_anim_update_materials(sg->anim, sg->materials.buffer, animation, fu->camera_pos[3], cmd);
 }
 

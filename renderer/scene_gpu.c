@@ -408,7 +408,7 @@ static pg_result build_draws(pg_scene_gpu *sg, const pg_scene *scene, pg_error *
         bool mask = scene->n_materials && scene->materials[m].alpha_mode == PG_ALPHA_MASK;
         bool blend = scene->n_materials && scene->materials[m].alpha_mode == PG_ALPHA_BLEND;
         bool two = scene->n_materials && scene->materials[m].double_sided;
-        pg_draw d = {pr->first_index, pr->index_count, pr->vertex_offset, m, mask, blend, two, {0, 0, 0}};
+        pg_draw d = {pr->first_index, pr->index_count, pr->vertex_offset, m, mask, blend, two, {0, 0, 0}, -1};
         for (int k = 0; k < 3; k++) d.center[k] = 0.5f * (pr->bounds_min[k] + pr->bounds_max[k]);
         sg->draws[sg->n_draws++] = d;
         if (blend) sg->n_blend_draws++;
@@ -436,6 +436,10 @@ pg_result pg_scene_gpu_create(pg_gpu *gpu, const pg_scene *scene, pg_scene_gpu *
     tex_sampler = NULL;
     if ((r = build_draws(sg, scene, err))) goto fail;
     if ((r = pg_scene_gpu_anim_create(gpu, scene, &sg->anim, err))) goto fail;
+    for (uint32_t i = 0; sg->anim && i < sg->n_draws; i++) { /* the rigid moving draws: a pose may mirror them */
+        const int32_t k = pg_scene_gpu_anim_prim_at(sg->anim, sg->draws[i].vertex_offset);
+        if (k >= 0 && scene->anim->prims[k].skin < 0) sg->draws[i].anim_prim = k;
+    }
     if (sg->anim) sg->bytes += sg->anim->local.size + sg->anim->info.size + sg->anim->prims.size +
                                sg->anim->deltas.size + sg->anim->pose.size;
     *out = sg;

@@ -42,6 +42,8 @@ typedef struct pg_draw {
     bool blend;              /* alphaMode BLEND: the transparent pass draws it, no other pass */
     bool double_sided;       /* draw without back-face culling */
     float center[3];         /* centre of the primitive's world-space bounds (for sorting) */
+    int32_t anim_prim;       /* a rigid moving primitive: its pg_scene_anim.prims index, whose pose
+                                may mirror it (pg_scene_gpu_anim_flipped); -1 otherwise */
 } pg_draw;
 
 /* A file light as shaders/light_animate.comp reads it (48 bytes). */

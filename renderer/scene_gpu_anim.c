@@ -136,6 +136,7 @@ static pg_result prim_centres(const pg_scene_anim *a, pg_scene_gpu_anim *ga, pg_
     for (uint32_t p = 0; p < a->n_prims; p++) {
         const pg_anim_prim *pr = &a->prims[p];
         pg_anim_prim_centre *c = &ga->centres[p];
+        c->wound_mirrored = pr->wound_mirrored != 0;
         prim_bounds_centre(a, pr, -1, c->local);
         c->morph_base = shift_at;
         for (uint32_t t = 0; t < pr->n_targets && a->deltas; t++, shift_at++) {
@@ -177,6 +178,13 @@ int32_t pg_scene_gpu_anim_prim_at(const pg_scene_gpu_anim *ga, int32_t first_ver
     for (uint32_t p = 0; a && ga->centres && p < a->n_prims; p++)
         if ((int64_t)a->prims[p].first_vertex == first_vertex) return (int32_t)p;
     return -1;
+}
+
+bool pg_scene_gpu_anim_flipped(const pg_scene_gpu_anim *ga, int32_t prim, int animation, double time)
+{
+    if (!ga || prim < 0 || !ga->centres) return false;
+    const bool mirrored = pg_anim_prim_mirrored(ga->anim, pg_scene_gpu_anim_pose(ga, animation, time), (uint32_t)prim);
+    return mirrored != ga->centres[prim].wound_mirrored;
 }
 
 void pg_scene_gpu_anim_centre(const pg_scene_gpu_anim *ga, uint32_t prim, const pg_anim_pose *pose, float out[3])

@@ -41,6 +41,8 @@ typedef struct pg_anim_prim_centre {
     uint32_t n_joints;  /* 0: rigid */
     uint16_t slot[4];
     float weight[4];
+    bool wound_mirrored; /* the winding its uploaded indices hold (pg_anim_prim.wound_mirrored at upload:
+                          * a CPU pose before it may have rewound them) */
 } pg_anim_prim_centre;
 
 typedef struct pg_scene_gpu_anim {
@@ -85,6 +87,11 @@ const pg_anim_pose *pg_scene_gpu_anim_pose(const pg_scene_gpu_anim *ga, int anim
 /* The anim primitive whose vertices start at scene vertex `first_vertex` (a draw's vertex_offset), or
  * -1 when that primitive does not move. */
 int32_t pg_scene_gpu_anim_prim_at(const pg_scene_gpu_anim *ga, int32_t first_vertex);
+/* Whether moving primitive `prim` (a pg_draw.anim_prim; < 0: false) faces the other way at
+ * (animation, time) than its uploaded indices are wound: the pose mirrors it
+ * (pg_anim_prim_mirrored) and its indices were not wound for a mirror, or the reverse. Its draws
+ * swap their front face. */
+bool pg_scene_gpu_anim_flipped(const pg_scene_gpu_anim *ga, int32_t prim, int animation, double time);
 /* The world centre of moving primitive `prim` under `pose` (pg_anim_prim_centre). */
 void pg_scene_gpu_anim_centre(const pg_scene_gpu_anim *ga, uint32_t prim, const pg_anim_pose *pose, float out[3]);
 /* The pose at (animation, time) packed as the pose buffer holds it (ga->pose_floats floats). */

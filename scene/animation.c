@@ -502,6 +502,16 @@ void pg_anim_deform(const pg_scene_anim *a, const pg_anim_pose *pose, pg_vertex 
     }
 }
 
+bool pg_anim_prim_mirrored(const pg_scene_anim *a, const pg_anim_pose *pose, uint32_t prim)
+{
+    if (!a || prim >= a->n_prims || a->prims[prim].skin >= 0 || a->prims[prim].node >= a->n_nodes) return false;
+    const float *m = pose->node_world + (size_t)a->prims[prim].node * 16;
+    const double det = (double)m[0] * ((double)m[5] * m[10] - (double)m[9] * m[6]) -
+                       (double)m[4] * ((double)m[1] * m[10] - (double)m[9] * m[2]) +
+                       (double)m[8] * ((double)m[1] * m[6] - (double)m[5] * m[2]);
+    return det < 0;
+}
+
 /* ---- choosing, describing, posing a scene ---- */
 
 pg_result pg_anim_find(const pg_scene_anim *a, const char *spec, int *out, pg_error *err)

@@ -126,6 +126,9 @@ typedef struct pg_anim_prim {
     uint32_t n_targets;        /* morph targets: deltas[target_base + t * n_vertices + i] */
     uint32_t target_base;
     uint32_t weight_base;      /* its node's weights in the pose */
+    uint32_t wound_mirrored;   /* rigid: 1 while scene->indices hold its triangles wound for a
+                                * mirroring world matrix (det < 0): its node's at load (scene.h),
+                                * then the last pg_scene_pose's */
 } pg_anim_prim;
 
 typedef struct pg_anim_delta {
@@ -193,6 +196,13 @@ double pg_anim_local_time(const pg_scene_anim *a, int animation, double time);
 /* The deformed scene vertices under the pose (n_vertices), the CPU twin of
  * shaders/animate_geometry.comp. */
 void pg_anim_deform(const pg_scene_anim *a, const pg_anim_pose *pose, pg_vertex *out);
+/* Whether `pose` mirrors moving primitive `prim`: a rigid primitive whose node's world matrix has
+ * det < 0 (an animated scale through -1 makes it change). Where this differs from the winding its
+ * indices hold (pg_anim_prim.wound_mirrored, as uploaded), its triangles face the other way: the
+ * rasterizers swap their front face (renderer/scene_gpu_anim.h), the CPU rewinds them
+ * (pg_scene_pose). Always false for a skinned primitive: the specification leaves the winding of
+ * a skin's mirroring joints open. */
+bool pg_anim_prim_mirrored(const pg_scene_anim *a, const pg_anim_pose *pose, uint32_t prim);
 
 /* Finds --animation SPEC: "none", "all", an index or a name. Not found: PG_ERR_INVALID_ARG naming
  * what the file has. */
@@ -224,7 +234,9 @@ bool pg_anim_material_props(const pg_scene_anim *a, const pg_anim_pose *pose, in
 /* the offset in a material's properties of path p (PG_ANIM_MAT_*), -1 for another path; its width */
 int pg_anim_material_offset(pg_anim_path p, uint32_t *width);
 
-/* Poses the scene on the CPU: scene->vertices become the deformed vertices at `time`, the file
+/* Poses the scene on the CPU: scene->vertices become the deformed vertices at `time` (the
+ * triangles of a primitive rewound where the pose mirrors it otherwise than its indices are wound:
+ * pg_anim_prim_mirrored), the file
  * lights and the glTF cameras on nodes move with their nodes, bounds are recomputed (so framing
  * follows the animated geometry), with their animated colour, intensity, range and cones, and the
  * animated materials take their properties at `time`. A scene without animation is left as is. */

@@ -425,6 +425,7 @@ static void place_primitive(Ctx &c, Out &o, const Decoded &d, int mi, int pi, co
         memcpy(o.local.data() + base, V, n * sizeof(pg_vertex));
         anim_primitive(c, o, prim, ni, base, n, src, d.a.n, pw);
         const Xform xn = inst ? node_xform(M, pw) : x;
+        o.aprims.back().wound_mirrored = xn.det < 0 && !skinned; /* the winding `ind` gets below */
         for (size_t i = 0; i < n; i++) xform_in_place(xn, V[i]); /* the rest pose */
     }
 

@@ -17,6 +17,27 @@ bool pg_scene_pose_camera(pg_scene *scene, uint32_t index, const pg_anim_pose *p
     return pg_place_camera(m, C); /* singular at this time: keeps the last placement */
 }
 
+/* the triangles of each rigid moving primitive wound as the pose mirrors it (pg_anim_prim_mirrored) */
+static void flip_windings(pg_scene *scene, const pg_anim_pose *pose)
+{
+    pg_scene_anim *a = scene->anim;
+    for (uint32_t k = 0; k < a->n_prims; k++) {
+        const uint32_t want = pg_anim_prim_mirrored(a, pose, k);
+        if (a->prims[k].skin >= 0 || want == a->prims[k].wound_mirrored) continue;
+        a->prims[k].wound_mirrored = want;
+        for (uint32_t p = 0; p < scene->n_primitives; p++) {
+            const pg_primitive *pr = &scene->primitives[p];
+            if ((int64_t)pr->vertex_offset != (int64_t)a->prims[k].first_vertex) continue;
+            uint32_t *t = scene->indices + pr->first_index;
+            for (uint32_t i = 0; i + 2 < pr->index_count; i += 3) {
+                const uint32_t swap = t[i + 1];
+                t[i + 1] = t[i + 2];
+                t[i + 2] = swap;
+            }
+        }
+    }
+}
+
 pg_result pg_scene_pose(pg_scene *scene, int animation, double time, pg_error *err)
 {
     pg_scene_anim *a = scene ? scene->anim : NULL;
@@ -26,6 +47,7 @@ pg_result pg_scene_pose(pg_scene *scene, int animation, double time, pg_error *e
     if (r) return r;
     pg_anim_pose_eval(a, animation, time, &pose);
     pg_anim_deform(a, &pose, scene->vertices);
+    flip_windings(scene, &pose);
     for (uint32_t i = 0; i < scene->n_lights; i++) { /* a light on a node moves with it */
         pg_scene_light *L = &scene->lights[i];
         if (L->gltf_node < 0 || (uint32_t)L->gltf_node >= a->n_nodes) continue;

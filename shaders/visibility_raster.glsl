@@ -92,9 +92,10 @@ uint pg_raster_draw_of(uint t)
     return lo;
 }
 
-// Clip-space corners of triangle t (as scene.vert computes gl_Position), its id and whether its
-// material is double-sided and alpha-masked.
-void pg_raster_fetch(uint t, out vec4 c[3], out uint id, out bool two_sided, out bool masked)
+// Clip-space corners of triangle t (as scene.vert computes gl_Position), its id, whether its
+// material is double-sided and alpha-masked, and whether the frame's pose mirrors its draw against
+// its indices' winding (visibility_common.h, flag bit 2: clockwise is then its front).
+void pg_raster_fetch(uint t, out vec4 c[3], out uint id, out bool two_sided, out bool masked, out bool mirrored)
 {
     uint d = pg_raster_draw_of(t);
     uvec4 dr = vis_draws[d];
@@ -102,6 +103,7 @@ void pg_raster_fetch(uint t, out vec4 c[3], out uint id, out bool two_sided, out
     id = (d << rp.tri_bits) | prim;
     two_sided = (dr.w & 1u) != 0u;
     masked = (dr.w & 2u) != 0u;
+    mirrored = (dr.w & 4u) != 0u;
     for (int k = 0; k < 3; k++) {
         uint v = vis_indices[dr.x + 3u * prim + uint(k)] + dr.y;
         precise vec4 g = frame.proj * vec4(PG_REL_TO_VIEW(pg_vis_vec3(v, 0u) - frame.camera_pos.xyz), 1.0);
@@ -199,8 +201,9 @@ void pg_raster_box(inout PgRasterTri t)
     t.box = ivec4(max(a, ivec2(0)), min(b, s - 1));
 }
 
-// false: nothing to draw (degenerate, a culled back face, or outside the viewport).
-bool pg_raster_setup(vec4 a, vec4 b, vec4 c, bool cull_back, out PgRasterTri t)
+// false: nothing to draw (degenerate, a culled back face, or outside the viewport). mirrored: the
+// front face is clockwise (a draw the frame's pose mirrors).
+bool pg_raster_setup(vec4 a, vec4 b, vec4 c, bool cull_back, bool mirrored, out PgRasterTri t)
 {
     t.p0 = pg_raster_snap(a);
     t.p1 = pg_raster_snap(b);
@@ -208,9 +211,8 @@ bool pg_raster_setup(vec4 a, vec4 b, vec4 c, bool cull_back, out PgRasterTri t)
     t.z = vec3(a.z / a.w, b.z / b.w, c.z / c.w);
     t.area = pg_raster_edge(t.p0, t.p1, t.p2);
     if (t.area == 0l) return false;
-    if (t.area > 0l) { // clockwise on screen (y down): a back face
-        if (cull_back) return false;
-    } else {
+    if (cull_back && (t.area > 0l) != mirrored) return false; // clockwise on screen (y down): a back face
+    if (t.area < 0l) {
         ivec2 q = t.p1;
         t.p1 = t.p2;
         t.p2 = q;

@@ -19,15 +19,15 @@ void main()
     if (t >= rp.n_tris) return;
     vec4 c[3];
     uint id;
-    bool two_sided, masked;
-    pg_raster_fetch(t, c, id, two_sided, masked);
+    bool two_sided, masked, mirrored;
+    pg_raster_fetch(t, c, id, two_sided, masked, mirrored);
     vec4 poly[8];
     int n = 3;
     if (pg_raster_needs_clip(c)) n = pg_raster_clip(c, poly);
     else poly[0] = c[0], poly[1] = c[1], poly[2] = c[2];
     for (int k = 0; k + 2 < n; k++) { // the polygon as a fan
         PgRasterTri r;
-        if (!pg_raster_setup(poly[0], poly[k + 1], poly[k + 2], !two_sided, r)) continue;
+        if (!pg_raster_setup(poly[0], poly[k + 1], poly[k + 2], !two_sided, mirrored, r)) continue;
         uint w = uint(r.box.z - r.box.x + 1), h = uint(r.box.w - r.box.y + 1);
         if (w * h <= PG_RASTER_SMALL) {
             pg_raster_serial(r, id, masked);

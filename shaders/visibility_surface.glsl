@@ -11,7 +11,8 @@
 // the rays through the pixels of the pixel's 2x2 quad, intersected with the same plane: the
 // differences a rasterizer's fine derivatives take (surface.glsl samples with them).
 // gl_FrontFacing becomes the side of the triangle the ray arrives from, with glTF's
-// counter-clockwise winding as front, as the rasterizer decides it.
+// counter-clockwise winding as front (clockwise for a draw the frame's pose mirrors), as the
+// rasterizer decides it.
 #include "visibility_streams.glsl"
 
 // Camera-relative origin and direction of the ray through pixel position `frag` (pixels).
@@ -90,6 +91,7 @@ void pg_vis_fetch(uint id, vec2 frag, vec2 size, out SurfaceInput si, out uint m
 #ifdef PG_VERTEX_COLORS
     si.color = b.x * vis_colors[v0] + b.y * vis_colors[v1] + b.z * vis_colors[v2];
 #endif
-    // counter-clockwise as seen along the ray = its normal faces against the ray
-    si.front_facing = dot(cross(e1, e2), dir) < 0.0;
+    // counter-clockwise as seen along the ray = its normal faces against the ray; clockwise where
+    // the frame's pose mirrors the draw against its indices' winding (visibility_common.h bit 2)
+    si.front_facing = (dot(cross(e1, e2), dir) < 0.0) != ((d.w & 4u) != 0u);
 }

@@ -29,7 +29,8 @@ typedef struct pg_gfx_pipeline_desc {
     float depth_bias_constant;      /* depth bias (both 0: off): constant * r + slope * max slope */
     float depth_bias_slope;
     VkCullModeFlags cull;           /* 0 -> none */
-    bool dynamic_cull;              /* cull mode set per draw with vkCmdSetCullMode */
+    bool dynamic_cull;              /* cull mode and front face set per draw (vkCmdSetCullMode,
+                                     * vkCmdSetFrontFace) */
     const pg_vertex_input *vertex_input; /* NULL: no vertex input */
     bool blend_over;                /* every colour attachment: rgb = src.a*src + (1-src.a)*dst,
                                      * a = src.a + (1-src.a)*dst.a (non-premultiplied "over") */

@@ -102,6 +102,7 @@ PFN_vkCmdWriteTimestamp2 pg_vk_CmdWriteTimestamp2;
 PFN_vkCmdBeginRendering pg_vk_CmdBeginRendering;
 PFN_vkCmdEndRendering pg_vk_CmdEndRendering;
 PFN_vkCmdSetCullMode pg_vk_CmdSetCullMode;
+PFN_vkCmdSetFrontFace pg_vk_CmdSetFrontFace;
 
 /* PASSGRAPH_HIDE_EXTENSION=NAME[,NAME...]: device extensions treated as absent, so the refusal of
  * a 1.2 device that lacks one can be tested on any device. */
@@ -645,6 +646,7 @@ static pg_result load_commands(pg_gpu *gpu, pg_error *err)
         {(PFN_vkVoidFunction *)&pg_vk_CmdBeginRendering, "vkCmdBeginRendering", sfx2},
         {(PFN_vkVoidFunction *)&pg_vk_CmdEndRendering, "vkCmdEndRendering", sfx2},
         {(PFN_vkVoidFunction *)&pg_vk_CmdSetCullMode, "vkCmdSetCullMode", sfx_eds},
+        {(PFN_vkVoidFunction *)&pg_vk_CmdSetFrontFace, "vkCmdSetFrontFace", sfx_eds},
     };
     for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
         char name[64];

@@ -33,12 +33,14 @@ extern PFN_vkCmdWriteTimestamp2 pg_vk_CmdWriteTimestamp2;
 extern PFN_vkCmdBeginRendering pg_vk_CmdBeginRendering;
 extern PFN_vkCmdEndRendering pg_vk_CmdEndRendering;
 extern PFN_vkCmdSetCullMode pg_vk_CmdSetCullMode;
+extern PFN_vkCmdSetFrontFace pg_vk_CmdSetFrontFace;
 #define vkCmdPipelineBarrier2 pg_vk_CmdPipelineBarrier2
 #define vkQueueSubmit2 pg_vk_QueueSubmit2
 #define vkCmdWriteTimestamp2 pg_vk_CmdWriteTimestamp2
 #define vkCmdBeginRendering pg_vk_CmdBeginRendering
 #define vkCmdEndRendering pg_vk_CmdEndRendering
 #define vkCmdSetCullMode pg_vk_CmdSetCullMode
+#define vkCmdSetFrontFace pg_vk_CmdSetFrontFace
 
 typedef struct pg_gpu_desc {
     bool validation;          /* enable VK_LAYER_KHRONOS_validation + sync validation and the

@@ -6,6 +6,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "frame.h"
+#include "scene_gpu_anim.h"
 #include "shader.h"
 
 /* The scene's vertex streams (shaders/scene.vert): binding 0 pg_vertex; the optional streams of
@@ -159,20 +161,40 @@ static void push_draw(VkCommandBuffer cmd, const pg_scene_draw *sd, const pg_dra
     vkCmdPushConstants(cmd, sd->layout, PG_PUSH_STAGES, 0, sizeof push, push);
 }
 
+/* the dynamic state the last draw set (~0u, VK_FRONT_FACE_MAX_ENUM: none yet) */
+typedef struct draw_state {
+    VkCullModeFlags cull;
+    VkFrontFace front;
+} draw_state;
+
+/* Draw d's cull mode (none when double-sided) and front face: glTF's counter-clockwise, clockwise
+ * where the frame's pose mirrors a moving draw against the winding its indices have (an animated
+ * scale through -1: pg_scene_gpu_anim_flipped); drawn in the rest pose (no geometry slot), never. */
+static void set_draw_state(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, const pg_draw *d, draw_state *st)
+{
+    const VkCullModeFlags cull = d->double_sided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+    VkFrontFace front = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    if (sd->has_geometry && d->anim_prim >= 0) {
+        const pg_frame_uniforms *fu = PG_FRAME_OF(ctx);
+        if (pg_scene_gpu_anim_flipped(PG_SCENE_OF(ctx)->anim, d->anim_prim, pg_frame_animation(fu), fu->camera_pos[3]))
+            front = VK_FRONT_FACE_CLOCKWISE;
+    }
+    if (cull != st->cull) vkCmdSetCullMode(ctx->cmd, cull);
+    if (front != st->front) vkCmdSetFrontFace(ctx->cmd, front);
+    st->cull = cull;
+    st->front = front;
+}
+
 void pg_scene_draw_record_list(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx, VkDescriptorSet pass_set,
                                const uint32_t *order, uint32_t n)
 {
     const pg_scene_gpu *sc = PG_SCENE_OF(ctx);
     VkCommandBuffer cmd = ctx->cmd;
     bind_scene(sd, ctx, pass_set);
-    VkCullModeFlags cull = ~0u;
+    draw_state st = {~0u, VK_FRONT_FACE_MAX_ENUM};
     for (uint32_t k = 0; k < n; k++) {
         const pg_draw *d = &sc->draws[order[k]];
-        VkCullModeFlags want = d->double_sided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
-        if (want != cull) {
-            vkCmdSetCullMode(cmd, want);
-            cull = want;
-        }
+        set_draw_state(sd, ctx, d, &st);
         push_draw(cmd, sd, d, order[k]);
         vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, d->vertex_offset, 0);
     }
@@ -183,19 +205,15 @@ void pg_scene_draw_record(const pg_scene_draw *sd, const pg_pass_record_ctx *ctx
     const pg_scene_gpu *sc = PG_SCENE_OF(ctx);
     VkCommandBuffer cmd = ctx->cmd;
     bind_scene(sd, ctx, pass_set);
-    VkCullModeFlags cull = ~0u;
+    draw_state st = {~0u, VK_FRONT_FACE_MAX_ENUM};
     for (uint32_t i = 0; i < sc->n_draws - sc->n_blend_draws; i++) { /* BLEND: the transparent pass */
         const pg_draw *d = &sc->draws[i];
         if (i == sc->n_opaque_draws && !sd->depth_equal) { /* depth_equal: the opaque pipeline, no discard */
             if (!sd->masked) break; /* the pass declared no PG_ALPHA_MASK (e.g. depth_prepass, test less) */
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sd->masked);
-            cull = ~0u;
+            st = (draw_state){~0u, VK_FRONT_FACE_MAX_ENUM};
         }
-        VkCullModeFlags want = d->double_sided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
-        if (want != cull) {
-            vkCmdSetCullMode(cmd, want);
-            cull = want;
-        }
+        set_draw_state(sd, ctx, d, &st);
         push_draw(cmd, sd, d, i);
         vkCmdDrawIndexed(cmd, d->index_count, 1, d->first_index, d->vertex_offset, 0);
     }

@@ -6,6 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "frame.h"
+#include "scene_gpu_anim.h"
+
 pg_result pg_vis_tri_bits(const pg_scene_gpu *sc, uint32_t *tri_bits, pg_error *err)
 {
     uint32_t n = sc->n_draws - sc->n_blend_draws; /* the draws the visibility pass rasterizes */
@@ -54,19 +57,42 @@ pg_result pg_vis_geometry_create(const pg_pass_create_ctx *ctx, const pg_scene_d
     uint32_t n = sc->n_draws ? sc->n_draws : 1;
     char name[PG_NAME_MAX + 16];
     snprintf(name, sizeof name, "%s.draws", ctx->pass->name);
-    if ((r = pg_buffer_create(ctx->gpu, (VkDeviceSize)n * 4 * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                              true, name, &g->draws, err)))
+    if ((r = pg_buffer_create(ctx->gpu, (VkDeviceSize)n * 4 * sizeof(uint32_t),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, name,
+                              &g->draws, err)))
         return r;
     uint32_t *t = g->draws.mapped;
     memset(t, 0, (size_t)n * 4 * sizeof(uint32_t));
+    g->n_moving = 0;
     for (uint32_t i = 0; i < sc->n_draws; i++) {
         t[4 * i + 0] = sc->draws[i].first_index;
         memcpy(&t[4 * i + 1], &sc->draws[i].vertex_offset, sizeof(uint32_t)); /* added modulo 2^32 */
         t[4 * i + 2] = sc->draws[i].material;
-        /* flags, read by the compute rasterizer: bit 0 double-sided (no culling), bit 1 alpha mask */
+        /* flags: bit 0 double-sided (no culling), bit 1 alpha mask, bit 2 mirrored (pg_vis_geometry_record) */
         t[4 * i + 3] = (sc->draws[i].double_sided ? 1u : 0u) | (sc->draws[i].alpha_mask ? 2u : 0u);
+        g->n_moving += g->geometry && sc->draws[i].anim_prim >= 0;
     }
     return PG_OK;
+}
+
+void pg_vis_geometry_record(const pg_vis_geometry *g, const pg_pass_record_ctx *ctx)
+{
+    if (!g->n_moving) return;
+    const pg_scene_gpu *sc = PG_SCENE_OF(ctx);
+    const pg_frame_uniforms *fu = PG_FRAME_OF(ctx);
+    const VkPipelineStageFlags2 ALL = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, TR = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    VkBufferMemoryBarrier2 b = pg_buffer_barrier(g->draws.buffer, ALL, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, TR,
+                                                 VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    pg_cmd_barriers(ctx->cmd, 0, NULL, 1, &b);
+    for (uint32_t i = 0; i < sc->n_draws; i++) {
+        const pg_draw *d = &sc->draws[i];
+        if (d->anim_prim < 0) continue;
+        uint32_t flags = (d->double_sided ? 1u : 0u) | (d->alpha_mask ? 2u : 0u);
+        if (pg_scene_gpu_anim_flipped(sc->anim, d->anim_prim, pg_frame_animation(fu), fu->camera_pos[3])) flags |= 4u;
+        vkCmdUpdateBuffer(ctx->cmd, g->draws.buffer, (VkDeviceSize)i * 16 + 12, sizeof flags, &flags);
+    }
+    b = pg_buffer_barrier(g->draws.buffer, TR, VK_ACCESS_2_TRANSFER_WRITE_BIT, ALL, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    pg_cmd_barriers(ctx->cmd, 0, NULL, 1, &b);
 }
 
 uint32_t pg_vis_geometry_bindings(pg_vis_geometry *g, const pg_scene_gpu *sc, pg_set_binding *b, uint32_t n)

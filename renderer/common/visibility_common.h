@@ -10,7 +10,8 @@
  *
  * The rebuilding passes bind, after their own images, the scene's vertices and indices (storage
  * buffers of pg_scene_gpu), the pass's draw table (uvec4 per draw: first index, vertex offset,
- * material, flags with bit 0 double-sided and bit 1 alpha mask; host-visible, written once at create) and the optional
+ * material, flags with bit 0 double-sided, bit 1 alpha mask and bit 2 mirrored by the frame's pose;
+ * host-visible, written at create, bit 2 rewritten each frame by pg_vis_geometry_record) and the optional
  * COLOR_0 / TEXCOORD_1 streams (shaders/visibility_surface.glsl), and the scene's set (materials,
  * textures). */
 #ifndef PG_VISIBILITY_COMMON_H
@@ -28,6 +29,8 @@ typedef struct pg_vis_geometry {
     uint32_t tri_bits;
     bool colors, uv1;          /* the pass was compiled with PG_VERTEX_COLORS / PG_UV1 */
     pg_buffer draws;           /* the draw table */
+    uint32_t n_moving;         /* draws whose pose may mirror them (pg_draw.anim_prim >= 0), with
+                                * geometry: their flags are rewritten each frame */
     const pg_phys_resource *geometry; /* the graph's deformed vertices (an animated scene), else NULL:
                                        * stream 0 is then the static vertex buffer */
     pg_phys_resource streams[5]; /* descriptors of vertices, indices, draws, colours, uv1 (buffer
@@ -42,6 +45,11 @@ typedef struct pg_vis_geometry {
  * pass's declare chose, kept in its params). */
 pg_result pg_vis_geometry_create(const pg_pass_create_ctx *ctx, const pg_scene_draw_features *f, uint32_t scene_set,
                                  pg_vis_geometry *g, pg_error *err);
+/* Records, before the pass reads the draw table, each moving draw's flags at the frame's pose:
+ * bit 2 where the pose mirrors it against the winding of its indices (pg_scene_gpu_anim_flipped:
+ * the surface's front face and the compute rasterizer's culling swap), with the barriers around
+ * the writes. Nothing when no drawn primitive moves rigidly. Outside dynamic rendering. */
+void pg_vis_geometry_record(const pg_vis_geometry *g, const pg_pass_record_ctx *ctx);
 /* Appends the vertex-stream bindings (3 to 5) at b[n...]; returns the new count. */
 uint32_t pg_vis_geometry_bindings(pg_vis_geometry *g, const pg_scene_gpu *sc, pg_set_binding *b, uint32_t n);
 /* The defines as the const char * array pg_shader_module takes; returns their count. */

@@ -256,6 +256,7 @@ static void dl_record(void *self, const pg_pass_record_ctx *ctx)
 {
     deferred_lighting *p = self;
     const pg_phys_resource *hdr = pg_ctx_res(ctx, p->hdr);
+    pg_vis_geometry_record(&p->vis, ctx); /* packing visibility: the draws the pose mirrors */
     if (p->counted) { /* the count is the pass's own: zeroed, then written by the dispatch */
         vkCmdFillBuffer(ctx->cmd, p->evals.buffer, 0, VK_WHOLE_SIZE, 0);
         VkBufferMemoryBarrier2 bb = pg_buffer_barrier(p->evals.buffer, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,

@@ -141,8 +141,7 @@ static void sort_back_to_front(pg_transparent_pass *p, const pg_scene_gpu *sc, c
     const float *cam = fu->camera_pos;
     const pg_anim_pose *pose = NULL;
     if (p->any_moving && sc->anim) {
-        int32_t animation;
-        memcpy(&animation, &fu->light_src[1], sizeof animation);
+        const int32_t animation = pg_frame_animation(fu);
         pose = pg_scene_gpu_anim_pose(sc->anim, animation, fu->camera_pos[3]);
     }
     const uint32_t first = sc->n_draws - p->n;

@@ -121,8 +121,7 @@ static void ga_record(void *self, const pg_pass_record_ctx *ctx)
 {
     geometry_animate *p = self;
     const pg_frame_uniforms *fu = PG_FRAME_OF(ctx);
-    int32_t animation;
-    memcpy(&animation, &fu->light_src[1], sizeof animation);
+    const int32_t animation = pg_frame_animation(fu);
     pg_scene_gpu_anim_pack_pose(p->ga, animation, fu->camera_pos[3], p->pose);
     if (p->ga->pose_floats) upload_pose(p, ctx->cmd);
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);

@@ -78,8 +78,7 @@ static void la_record(void *self, const pg_pass_record_ctx *ctx)
     const pg_scene_gpu *sg = PG_SCENE_OF(ctx);
     if (sg && sg->anim && sg->anim->n_moving_lights) { /* file lights on animated nodes: placed for this frame */
         const pg_frame_uniforms *fu = PG_FRAME_OF(ctx);
-        int32_t animation;
-        memcpy(&animation, &fu->light_src[1], sizeof animation);
+        const int32_t animation = pg_frame_animation(fu);
         pg_scene_gpu_anim_update_lights(sg->anim, sg->file_lights.buffer, animation, fu->camera_pos[3], ctx->cmd);
     }
     pg_light_compute_record(&((light_animate *)self)->lc, ctx); /* one thread a light */

@@ -211,6 +211,7 @@ static void sp_record(void *self, const pg_pass_record_ctx *ctx)
 {
     shader_pass *s = self;
     const sp_params *pa = PG_PARAMS(ctx, sp_params);
+    pg_vis_geometry_record(&s->vis, ctx); /* "surface": "visibility": the draws the pose mirrors */
     if (pa->form == SP_COMPUTE) {
         bind_and_push(s, ctx, pa, VK_PIPELINE_BIND_POINT_COMPUTE);
         uint32_t g[3] = {pa->groups[0], pa->groups[1], pa->groups[2]};

@@ -147,6 +147,7 @@ void pg_vis_raster_record(const pg_vis_raster *r, const pg_pass_record_ctx *ctx)
     const VkPipelineStageFlags2 CS = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, TR = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
     const VkAccessFlags2 SRW = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
     /* every frame begins with a full barrier (graph_execute.h): the previous frame's uses are done */
+    pg_vis_geometry_record(&r->vis, ctx); /* the draws the pose mirrors: culled the other way */
     vkCmdFillBuffer(cmd, r->keys.buffer, 0, VK_WHOLE_SIZE, 0xFFFFFFFFu); /* depth NaN-max, id none */
     vkCmdFillBuffer(cmd, r->jobs.buffer, 0, 16, 0);
     const uint32_t args[4] = {0, 0, 1, 0}; /* no groups until a job is written */

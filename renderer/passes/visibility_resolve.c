@@ -126,6 +126,7 @@ static void vr_record(void *self, const pg_pass_record_ctx *ctx)
 {
     visibility_resolve *p = self;
     const pg_phys_resource *out = pg_ctx_res(ctx, p->first);
+    pg_vis_geometry_record(&p->vis, ctx);
     VkDescriptorSet sets[3] = {ctx->frame_set, p->set.set, PG_SCENE_OF(ctx)->set};
     vkCmdBindPipeline(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
     vkCmdBindDescriptorSets(ctx->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 3, sets, 0, NULL);

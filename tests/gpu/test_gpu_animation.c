@@ -20,6 +20,8 @@
  *     KHR_animation_pointer: base colour, metallic, roughness, emissive, emissive strength, a texture
  *     transform, an alpha cutoff, a normal scale, an occlusion strength): the frame prologue rewrites their records before any pass reads
  *     them, and every pipeline renders the CPU-posed materials' image.
+ *     mirror.gltf (scales through -1, against the winding the indices were loaded with), also with
+ *     visibility.json at raster=compute, and uploaded after a CPU pose that rewound its indices.
  *  2. A scene without animation: geometry_animate culled with its reason, the geometry buffer not
  *     allocated, every drawing pass on the static vertex buffer. */
 #include <math.h>
@@ -63,11 +65,14 @@ static uint32_t differing(const pg_th_frame *a, const pg_th_frame *b, double tol
     return n;
 }
 
-static void twin(const char *file, double t)
+/* compute_raster: also visibility.json with raster=compute (the compute rasterizer's culling);
+ * posed_at >= 0: the live scene is posed on the CPU at that time before its upload, as the tools
+ * do to frame the posed bounds (rewinding the indices of primitives the pose mirrors) */
+static void twin_with(const char *file, double t, bool compute_raster, double posed_at)
 {
-    char path[PG_PATH_MAX], label[PG_PATH_MAX + 32];
+    char path[PG_PATH_MAX], label[PG_PATH_MAX + 64];
     snprintf(path, sizeof path, "%s/corpus/gltf/animation/%s", PG_TEST_DIR, file);
-    snprintf(label, sizeof label, "%s t=%g", file, t);
+    snprintf(label, sizeof label, posed_at >= 0 ? "%s t=%g (uploaded posed at %g)" : "%s t=%g", file, t, posed_at);
     pg_scene *live = NULL, *still = NULL;
     pg_scene_gpu *live_g = NULL, *still_g = NULL;
     pg_error err = {0};
@@ -75,6 +80,7 @@ static void twin(const char *file, double t)
         CHECK_MSG(0, "%s: %s", label, err.msg);
         goto out;
     }
+    if (posed_at >= 0) CHECK(pg_scene_pose(live, PG_ANIM_FIRST, posed_at, &err) == PG_OK);
     /* the twin: posed on the CPU, then static */
     CHECK(pg_scene_pose(still, PG_ANIM_FIRST, t, &err) == PG_OK);
     pg_scene_anim_free(still->anim);
@@ -95,27 +101,30 @@ static void twin(const char *file, double t)
     if (live->n_lights) fi.lights.count = fi.lights.file_count = live->n_lights; /* the file's lights alone */
     static const char *const pipes[] = {"pipelines/naive.json", "pipelines/forward_plus.json",
                                         "pipelines/deferred.json", "pipelines/visibility.json",
-                                        "pipelines/reference.json"};
-    for (size_t p = 0; p < sizeof pipes / sizeof pipes[0]; p++) {
+                                        "pipelines/reference.json", "pipelines/visibility.json"};
+    static const pg_param_override compute = {"raster", "compute"};
+    const size_t n_pipes = sizeof pipes / sizeof pipes[0] - (compute_raster ? 0 : 1);
+    for (size_t p = 0; p < n_pipes; p++) {
         pg_th_frame a, b, rest;
         const uint64_t evals = live_g->anim ? live_g->anim->now->evaluations : 0;
-        bool ok_a = pg_th_render(g_gpu, &g_reg, live_g, pipes[p], NULL, 0, &fi, 1, false, &a);
+        const uint32_t n_sets = p == 5 ? 1 : 0; /* the last: raster=compute */
+        bool ok_a = pg_th_render(g_gpu, &g_reg, live_g, pipes[p], &compute, n_sets, &fi, 1, false, &a);
         if (ok_a && live_g->anim) { /* one frame at a new time: one evaluation, however many passes need it */
             const uint64_t n = live_g->anim->now->evaluations - evals;
             CHECK_MSG(n == 1, "%s %s: the pose was evaluated %llu times for one frame", label, pipes[p],
                       (unsigned long long)n);
         }
-        bool ok_b = pg_th_render(g_gpu, &g_reg, still_g, pipes[p], NULL, 0, &fi, 1, false, &b);
+        bool ok_b = pg_th_render(g_gpu, &g_reg, still_g, pipes[p], &compute, n_sets, &fi, 1, false, &b);
         pg_frame_info fr = fi;
         fr.animation = PG_ANIM_NONE;
-        bool ok_r = pg_th_render(g_gpu, &g_reg, live_g, pipes[p], NULL, 0, &fr, 1, false, &rest);
+        bool ok_r = pg_th_render(g_gpu, &g_reg, live_g, pipes[p], &compute, n_sets, &fr, 1, false, &rest);
         CHECK_MSG(ok_a && ok_b && ok_r, "%s %s: render failed", label, pipes[p]);
         if (ok_a && ok_b && ok_r) {
             double peak = 0;
             pg_th_max_abs(&a, &b, &peak);
             const uint32_t n = differing(&a, &b, 1e-3 * peak), n_rest = differing(&rest, &b, 1e-3 * peak);
-            printf("%s %s: %u of %u pixels differ from the CPU-posed twin; the rest pose: %u\n", label, pipes[p], n,
-                   W * H, n_rest);
+            printf("%s %s%s: %u of %u pixels differ from the CPU-posed twin; the rest pose: %u\n", label, pipes[p],
+                   n_sets ? " raster=compute" : "", n, W * H, n_rest);
             CHECK_MSG(n <= (uint32_t)(ANIM_EDGE_PIXELS * W * H), "%s %s: %u pixels differ", label, pipes[p], n);
             /* no moving geometry (lights, cameras, materials only): no edge to round, nothing may differ */
             CHECK_MSG(live->features.has_animation || n == 0, "%s %s: %u pixels differ with still geometry", label,
@@ -136,6 +145,8 @@ out:
     pg_scene_free(live);
     pg_scene_free(still);
 }
+
+static void twin(const char *file, double t) { twin_with(file, t, false, -1); }
 
 static void culled(void)
 {
@@ -207,6 +218,12 @@ int main(void)
     twin("glass.gltf", 1.0);   /* two BLEND boxes whose back-to-front order the animation swaps */
     twin("glass_morph.gltf", 1.0); /* likewise by a morph target: the sort key follows the weights */
     twin("../instancing/grove_moving.gltf", 1.0); /* EXT_mesh_gpu_instancing on a turning node */
+    /* scales through -1: boxes and double-sided panels mirrored against the winding of their rest
+     * pose, drawn with the front face swapped (hardware), culled the other way (raster=compute) and
+     * lit on the side the camera sees (gl_FrontFacing; visibility_surface.glsl's facing) */
+    twin_with("mirror.gltf", 1.5, true, -1);
+    twin_with("mirror.gltf", 1.5, true, 1.5); /* the indices uploaded rewound: drawn as wound */
+    twin_with("mirror.gltf", 0.5, true, 1.5); /* ... and flipped back by the GPU's pose */
     culled();
     printf("validation messages: %u\n", g_gpu->validation_messages);
     CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);

@@ -14,7 +14,9 @@
  *    animated through KHR_animation_pointer;
  *  - shimmer.gltf: materials' base colour, metallic, roughness, emissive and its strength, a texture
  *    transform, an alpha cutoff, a normal scale and an occlusion strength animated through
- *    KHR_animation_pointer (and one ignored pointer).
+ *    KHR_animation_pointer (and one ignored pointer);
+ *  - mirror.gltf: boxes and double-sided panels whose animated scale mirrors them against the
+ *    winding of their rest pose: rewound when posed.
  * Every position within 1e-5 of the hand value; the loop, the rest pose, --animation lookup, the
  * scene bounds following the pose, and files whose animation data is broken (refused naming the
  * object). */
@@ -459,6 +461,70 @@ static void refused(void)
     refused_in("skinned8.gltf", 2, skin8_cases);
 }
 
+/* triangles of the moving primitives of `s` (posed) whose winding disagrees with their vertex
+ * normals: the face normal by the right-hand rule (counter-clockwise = front) against the normal
+ * of their first corner; the box and panel meshes of mirror.gltf are flat, so every triangle must
+ * agree */
+static uint32_t wound_against_normals(const pg_scene *s)
+{
+    uint32_t bad = 0;
+    for (uint32_t k = 0; k < s->anim->n_prims; k++)
+        for (uint32_t p = 0; p < s->n_primitives; p++) {
+            const pg_primitive *pr = &s->primitives[p];
+            if ((int64_t)pr->vertex_offset != (int64_t)s->anim->prims[k].first_vertex) continue;
+            for (uint32_t i = 0; i + 2 < pr->index_count; i += 3) {
+                const pg_vertex *v[3];
+                for (int c = 0; c < 3; c++) v[c] = &s->vertices[s->indices[pr->first_index + i + c] + pr->vertex_offset];
+                double e1[3], e2[3];
+                for (int c = 0; c < 3; c++) {
+                    e1[c] = v[1]->position[c] - v[0]->position[c];
+                    e2[c] = v[2]->position[c] - v[0]->position[c];
+                }
+                const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                                     e1[0] * e2[1] - e1[1] * e2[0]};
+                bad += n[0] * v[0]->normal[0] + n[1] * v[0]->normal[1] + n[2] * v[0]->normal[2] <= 0;
+            }
+        }
+    return bad;
+}
+
+/* mirror.gltf: "turn" is scaled to (-1, 1, 1) from t = 1, "back" is mirrored at rest and unmirrored
+ * from t = 1; posed on the CPU, the triangles the pose mirrors against their loaded winding are
+ * rewound, so every triangle keeps facing along its normals (before: from t = 1 every one of them
+ * faced inward) */
+static void mirror(void)
+{
+    pg_scene *s = load("mirror.gltf");
+    if (!s) return;
+    CHECK_MSG(s->anim->n_prims == 4, "%u moving primitives", s->anim->n_prims);
+    pg_anim_pose pose;
+    pg_error err = {0};
+    if (pg_anim_pose_alloc(s->anim, &pose, &err)) {
+        CHECK_MSG(0, "%s", err.msg);
+        pg_scene_free(s);
+        return;
+    }
+    static const double times[] = {0.0, 0.5, 1.0, 1.5, 2.5, 3.2};
+    for (size_t i = 0; i < sizeof times / sizeof times[0]; i++) {
+        const double t = times[i];
+        const bool turned = pg_anim_local_time(s->anim, 0, t) >= 1.0;
+        pg_anim_pose_eval(s->anim, 0, t, &pose);
+        for (uint32_t k = 0; k < s->anim->n_prims; k++) { /* prims 0, 1: "turn" and its panel; 2, 3: "back" */
+            const bool due = k < 2 ? turned : !turned;
+            CHECK_MSG(pg_anim_prim_mirrored(s->anim, &pose, k) == due, "t=%g prim %u: mirrored %d", t, k, !due);
+        }
+        CHECK(pg_scene_pose(s, 0, t, &err) == PG_OK);
+        for (uint32_t k = 0; k < s->anim->n_prims; k++)
+            CHECK_MSG(s->anim->prims[k].wound_mirrored == (k < 2 ? turned : !turned), "t=%g prim %u: wound %u", t, k,
+                      s->anim->prims[k].wound_mirrored);
+        const uint32_t bad = wound_against_normals(s);
+        CHECK_MSG(bad == 0, "t=%g: %u triangles wound against their normals", t, bad);
+    }
+    CHECK(pg_scene_pose(s, PG_ANIM_NONE, 0, &err) == PG_OK && wound_against_normals(s) == 0);
+    pg_anim_pose_release(&pose);
+    pg_scene_free(s);
+}
+
 int main(void)
 {
     rigid();
@@ -469,6 +535,7 @@ int main(void)
     skinned();
     skinned8();
     morph();
+    mirror();
     refused();
     nodeless_target();
     return pg_test_finish("test_animation");

@@ -790,6 +790,34 @@ def glass_morph():
     doc.write()
 
 
+def mirror():
+    """two unit boxes whose animated scale mirrors them, each with a double-sided panel child facing
+    +Z: "turn" (x = -1) has scale 1 at rest and STEPs to (-1, 1, 1) at t = 1 (and slides from z = -0.1
+    to -0.9 over 2 s, so that no pose is its rest pose); "back" (x = 1) is
+    mirrored at rest (scale (-1, 1, 1), so its indices are wound for a mirror) and STEPs to 1 at
+    t = 1. From t = 1 on both face the other way than their indices were wound at load: drawn with
+    the winding of the rest pose they would show their insides, and the panels their back sides"""
+    doc = Doc("mirror.gltf")
+    doc.floor()
+    cube = doc.mesh("box", *UNIT_BOX, doc.material("box_red", (0.8, 0.15, 0.1)))
+    quad = [(-0.5, -0.5, 0), (0.5, -0.5, 0), (0.5, 0.5, 0), (-0.5, 0.5, 0)]  # counter-clockwise from +Z
+    panel_mat = doc.material("panel_green", (0.1, 0.7, 0.2))
+    doc.d["materials"][panel_mat]["doubleSided"] = True
+    panel = doc.mesh("panel", quad, [(0, 0, 1)] * 4, [0, 1, 2, 0, 2, 3], panel_mat)
+    turn = doc.node({"name": "turn", "mesh": cube, "translation": [-1, 0.5, -0.5], "children": [2]})
+    turn_panel = doc.node({"name": "turn_panel", "mesh": panel, "translation": [0.3, 0.9, 0.6],
+                           "scale": [0.6, 0.6, 0.6]}, root=False)
+    back = doc.node({"name": "back", "mesh": cube, "translation": [1, 0.5, -0.5], "scale": [-1, 1, 1],
+                     "children": [4]})
+    back_panel = doc.node({"name": "back_panel", "mesh": panel, "translation": [0.3, 0.9, 0.6],
+                           "scale": [0.6, 0.6, 0.6]}, root=False)
+    assert (turn, turn_panel, back, back_panel) == (1, 2, 3, 4)
+    doc.animation("flip", [(turn, "scale", "STEP", [0, 1, 2], [(1, 1, 1), (-1, 1, 1), (-1, 1, 1)]),
+                           (turn, "translation", "LINEAR", [0, 2], [(-1, 0.5, -0.1), (-1, 0.5, -0.9)]),
+                           (back, "scale", "STEP", [0, 1, 2], [(-1, 1, 1), (1, 1, 1), (1, 1, 1)])])
+    doc.write()
+
+
 def check_poses():
     cache = {}
     for name, node, v, anim, t, want in POSES:
@@ -815,7 +843,8 @@ lamp()
 lantern()
 glass()
 glass_morph()
-for f in ("rigid.gltf", "pointer.gltf", "beacon.gltf", "shimmer.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf", "glass.gltf", "glass_morph.gltf"):
+mirror()
+for f in ("rigid.gltf", "pointer.gltf", "beacon.gltf", "shimmer.gltf", "skinned.gltf", "skinned8.gltf", "morph.gltf", "lamp.gltf", "lantern.gltf", "glass.gltf", "glass_morph.gltf", "mirror.gltf"):
     Gltf(f).check()
 check_poses()
-print("rigid.gltf pointer.gltf beacon.gltf shimmer.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf glass.gltf glass_morph.gltf: written and checked (%d poses)" % len(POSES))
+print("rigid.gltf pointer.gltf beacon.gltf shimmer.gltf skinned.gltf skinned8.gltf morph.gltf lamp.gltf lantern.gltf glass.gltf glass_morph.gltf mirror.gltf: written and checked (%d poses)" % len(POSES))
