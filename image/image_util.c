@@ -1,6 +1,8 @@
 #include "image_util.h"
 
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -53,11 +55,42 @@ uint64_t pg_count_nonfinite(const float *rgba, uint32_t w, uint32_t h)
     return bad;
 }
 
+/* stb's encoder writes through this: the first failed fwrite's errno is kept (stbi_write_png and
+ * stbi_write_jpg ignore write and close errors, so a full disk gave a truncated file and success) */
+typedef struct image_sink {
+    FILE *f;
+    int error; /* errno of the first failed write, 0 while none */
+} image_sink;
+
+static void sink_write(void *ctx, void *data, int size)
+{
+    image_sink *s = ctx;
+    if (s->error || size <= 0) return;
+    errno = 0;
+    if (fwrite(data, 1, (size_t)size, s->f) != (size_t)size) s->error = errno ? errno : EIO;
+}
+
+/* kind: "PNG" or "JPEG" */
+static pg_result write_encoded(const char *path, const char *kind, const uint8_t *rgba, uint32_t w, uint32_t h,
+                               pg_error *err)
+{
+    if (w == 0 || h == 0 || w > 0x7fffffffu / 4 || h > 0x7fffffffu)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: cannot write a %ux%u %s", path, w, h, kind);
+    image_sink s = {fopen(path, "wb"), 0};
+    if (!s.f) return pg_fail(err, PG_ERR_IO, "%s: cannot write %s: %s", path, kind, strerror(errno));
+    const int ok = kind[0] == 'P' ? stbi_write_png_to_func(sink_write, &s, (int)w, (int)h, 4, rgba, (int)(w * 4))
+                                  : stbi_write_jpg_to_func(sink_write, &s, (int)w, (int)h, 4, rgba, 95);
+    errno = 0;
+    if (fflush(s.f) != 0 && !s.error) s.error = errno ? errno : EIO;
+    if (fclose(s.f) != 0 && !s.error) s.error = errno ? errno : EIO;
+    if (s.error) return pg_fail(err, PG_ERR_IO, "%s: cannot write %s: %s", path, kind, strerror(s.error));
+    if (!ok) return pg_fail(err, PG_ERR_IO, "%s: cannot write %s: the encoder failed (out of memory?)", path, kind);
+    return PG_OK;
+}
+
 pg_result pg_write_png(const char *path, const uint8_t *rgba, uint32_t w, uint32_t h, pg_error *err)
 {
-    if (!stbi_write_png(path, (int)w, (int)h, 4, rgba, (int)(w * 4)))
-        return pg_fail(err, PG_ERR_IO, "%s: cannot write PNG", path);
-    return PG_OK;
+    return write_encoded(path, "PNG", rgba, w, h, err);
 }
 
 pg_image_kind pg_image_kind_of(const char *path)
@@ -90,9 +123,7 @@ pg_result pg_write_image(const char *path, const uint8_t *rgba, uint32_t w, uint
     if (r) return r;
     if (pg_image_kind_of(path) == PG_IMAGE_JPEG) {
         /* JPEG has no alpha: the RGB channels, quality 95 */
-        if (!stbi_write_jpg(path, (int)w, (int)h, 4, rgba, 95))
-            return pg_fail(err, PG_ERR_IO, "%s: cannot write JPEG", path);
-        return PG_OK;
+        return write_encoded(path, "JPEG", rgba, w, h, err);
     }
     return pg_write_png(path, rgba, w, h, err);
 }

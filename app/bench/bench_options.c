@@ -367,7 +367,12 @@ static pg_result plan_variant(bench *B, pipe_entry *pe, const pg_pipeline *pl, c
     }
     pg_error ve = {0};
     pg_pipeline *vp = NULL;
-    if (pg_pipeline_load(pe->path, va->ov.ov, va->ov.n, &vp, &ve)) {
+    const pg_result lr = pg_pipeline_load(pe->path, va->ov.ov, va->ov.n, &vp, &ve);
+    /* a value the pipeline refuses (out of range, not one of its values) is an option error naming
+     * the option that gave it (--set, --pipeline-set, --sweep), as in compare: exit 2 before any run */
+    if (lr == PG_ERR_PARAM && pg_sides_check_values(pe->path, &va->ov, "pipeline", err) == PG_ERR_INVALID_ARG)
+        return PG_ERR_INVALID_ARG;
+    if (lr) {
         pg_strlcpy(va->msg, ve.msg, sizeof va->msg);
     } else {
         va->ok = true;

@@ -361,6 +361,39 @@ static pg_result merge_slot(compile_ctx *c, int i, int s)
     return PG_OK;
 }
 
+/* A pass renders into its attachments over one area: colour and depth attachments of different
+ * sizes at this output size would leave part of one outside the render area (a Vulkan error, and a
+ * crash in drivers). Refused naming both resources and their sizes. */
+static pg_result check_attachment_extents(compile_ctx *c, int i)
+{
+    const pg_plan_pass *pp = &c->plan->passes[i];
+    int first = -1;
+    uint64_t fw = 0, fh = 0;
+    for (uint32_t s = 0; s < pp->n_slots; s++) {
+        const pg_plan_slot *ps = &pp->slots[s];
+        if (ps->decl.unused || ps->decl.access > PG_ACCESS_DEPTH_READ) continue; /* not an attachment */
+        uint64_t w, h;
+        pg_resource_extent(&c->pl->resources[ps->resource], c->desc->output_width, c->desc->output_height, &w, &h);
+        if (first < 0) {
+            first = (int)s;
+            fw = w;
+            fh = h;
+            continue;
+        }
+        if (w == fw && h == fh) continue;
+        char pth[PG_JSON_PATH_MAX + 16];
+        pg_gc_pass_path(c, i, pth, sizeof pth);
+        return pg_fail(c->err, PG_ERR_FORMAT,
+                       "%s: %s: attachments '%s' (%llux%llu, %s) and '%s' (%llux%llu, %s) differ in size at "
+                       "output %ux%u; a pass renders all its attachments over one area",
+                       pg_gc_pass_file(c, i), pth, c->pl->resources[pp->slots[first].resource].name,
+                       (unsigned long long)fw, (unsigned long long)fh, pg_access_name(pp->slots[first].decl.access),
+                       c->pl->resources[ps->resource].name, (unsigned long long)w, (unsigned long long)h,
+                       pg_access_name(ps->decl.access), c->desc->output_width, c->desc->output_height);
+    }
+    return PG_OK;
+}
+
 static pg_result phase_validate(compile_ctx *c)
 {
     for (uint32_t i = 0; i < c->pl->n_passes; i++) {
@@ -375,6 +408,7 @@ static pg_result phase_validate(compile_ctx *c)
                                    &pp->decl.writes[k], true)))
                 return r;
         pp->n_slots = pd->n_reads + pd->n_writes;
+        if ((r = check_attachment_extents(c, (int)i))) return r;
         c->n_uses[i] = 0;
         for (uint32_t s = 0; s < pp->n_slots; s++)
             if (!pp->slots[s].decl.unused && (r = merge_slot(c, (int)i, (int)s))) return r;

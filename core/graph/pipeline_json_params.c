@@ -11,7 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define MAX_SAFE_INT 9007199254740992.0 /* 2^53: every integer up to it is exact in a double */
+#define MAX_SAFE_INT 9007199254740991.0 /* 2^53 - 1: the JSON text of a larger integer may round to it (2^53 + 1
+                                         * reads as 2^53), so 2^53 and past are refused */
 
 /* ------------------------------------------------------------------ parameters */
 
@@ -116,7 +117,7 @@ static bool parse_typed(const pg_param *prm, const char *text, bool check_range,
         }
         errno = 0;
         long long v = strtoll(text, NULL, 10);
-        if (errno == ERANGE || v > (1LL << 53) || v < -(1LL << 53)) { /* compared as integers: 2^53 + 1 is no double */
+        if (errno == ERANGE || v >= (1LL << 53) || v <= -(1LL << 53)) { /* as the JSON text: 2^53 + 1 is no double */
             snprintf(why, whyn, "%s is too large", text);
             return false;
         }
@@ -352,8 +353,8 @@ static pg_result decl_default(loader *L, const src_file *f, const cJSON *decl, c
     switch (out->type) {
     case PG_PARAM_INT:
         if (!pj_json_integer(def, -MAX_SAFE_INT, MAX_SAFE_INT, &out->number))
-            return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("default"), "expected an integer, got %s",
-                           got);
+            return pj_fail_at(L, PG_ERR_PARAM, f, FPATH("default"),
+                              "expected an integer of magnitude below 2^53, got %s", got);
         break;
     case PG_PARAM_FLOAT:
         if (!cJSON_IsNumber(def) || !isfinite(def->valuedouble))

@@ -68,12 +68,25 @@ static pg_result open_source(const char *name, int depth, const gen_sources *gen
         snprintf(path, path_size, "%s", gen->user_path);
         return pg_read_file(path, text, NULL, err);
     }
-    if (gen->user_dir && name[0] != '/' && !strstr(name, "..")) {
+    if (gen->user_dir) { /* include_name_ok: relative, no ".." */
         snprintf(path, path_size, "%s/%s", gen->user_dir, name);
         if (access(path, R_OK) == 0) return pg_read_file(path, text, NULL, err);
     }
     snprintf(path, path_size, "%s/shaders/%s", pg_data_dir(), name);
     return pg_read_file(path, text, NULL, err);
+}
+
+/* an #include's name stays inside the folders it is looked up in: relative, no ".." component
+ * (the library's own includes are plain names; a user's may name a subfolder) */
+static bool include_name_ok(const char *name)
+{
+    if (!name[0] || name[0] == '/') return false;
+    for (const char *p = name; *p; p++) {
+        if ((unsigned char)*p < ' ') return false;
+        const bool start = p == name || p[-1] == '/';
+        if (start && p[0] == '.' && p[1] == '.' && (p[2] == '/' || p[2] == 0)) return false;
+    }
+    return true;
 }
 
 static bool line_directive(strbuf *out, int line, const char *path)
@@ -111,8 +124,14 @@ static pg_result expand(const char *name, int depth, const gen_sources *gen, str
             if (il >= sizeof inc) il = sizeof inc - 1;
             memcpy(inc, a + 1, il);
             inc[il] = 0;
-            r = expand(inc, depth + 1, gen, out, err);
+            r = include_name_ok(inc) ? expand(inc, depth + 1, gen, out, err)
+                                     : pg_fail(err, PG_ERR_SHADER, "#include names a file outside the allowed folders "
+                                                                   "(no absolute path, no '..' component)");
             if (r) {
+                char why[sizeof err->msg];
+                snprintf(why, sizeof why, "%s", err->msg);
+                pg_fail(err, r, "%s:%d: #include \"%s\" (looked up in %s%s%s/shaders): %s", path, line, inc,
+                        gen->user_dir ? gen->user_dir : "", gen->user_dir ? " then " : "", pg_data_dir(), why);
                 free(text);
                 return r;
             }
@@ -129,6 +148,25 @@ static pg_result expand(const char *name, int depth, const gen_sources *gen, str
 oom:
     free(text);
     return pg_fail(err, PG_ERR_OOM, "out of memory expanding %s", path);
+}
+
+/* The #version a Vulkan shader can have: 150 or later, or 310 es or later (below that glslang's
+ * Vulkan built-ins do not parse, and it printed thousands of lines of them on stdout) */
+static pg_result check_version(const char *ver, const char *shown, const char *name, pg_error *err)
+{
+    const char *p = ver + 8;
+    while (*p == ' ' || *p == '\t') p++;
+    char *end = NULL;
+    const long v = strtol(p, &end, 10);
+    if (end == p)
+        return pg_fail(err, PG_ERR_SHADER, "%s%s: #version without a number", shown, name);
+    while (*end == ' ' || *end == '\t') end++;
+    const bool es = strncmp(end, "es", 2) == 0;
+    if (es ? v < 310 : v < 150)
+        return pg_fail(err, PG_ERR_SHADER,
+                       "%s%s: #version %ld%s: Vulkan GLSL needs #version 150 or later (450 recommended), or 310 es",
+                       shown, name, v, es ? " es" : "");
+    return PG_OK;
 }
 
 /* 1-based line number of position at in text */
@@ -401,8 +439,12 @@ static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, cons
     *spirv = NULL;
     *n_words = 0;
     strbuf body = {0};
-    pg_result r = expand(name, 0, gen, &body, err);
     const char *shown = gen->user_path ? "" : "shaders/"; /* messages: the user's path as given */
+    for (const char *c = gen->user_path ? name : ""; *c; c++) /* the #line directives carry the name */
+        if (*c == '"' || *c == '\\' || (unsigned char)*c < ' ')
+            return pg_fail(err, PG_ERR_SHADER, "%s: a shader file name with a '\"', '\\' or control character cannot "
+                                               "be named by GLSL's #line; rename the file", name);
+    pg_result r = expand(name, 0, gen, &body, err);
     if (r) {
         free(body.data);
         return r;
@@ -418,6 +460,10 @@ static pg_result compile_for(const char *name, VkShaderStageFlagBits stage, cons
     if (!ver || !ver_end) {
         free(body.data);
         return pg_fail(err, PG_ERR_SHADER, "%s%s: no #version line", shown, name);
+    }
+    if ((r = check_version(ver, shown, name, err))) {
+        free(body.data);
+        return r;
     }
     bool ok = sb_append(&src, body.data, (size_t)(ver_end - body.data + 1)) &&
               append_defines(&src, defines, n_defines, !gen->user_path);

@@ -510,13 +510,15 @@ static pg_result natural_size(spv_ctx *c, uint32_t tid, int depth, uint64_t *siz
     }
 }
 
-/* The scalar kind and component count of a scalar, vector or matrix type (PG_SPV_OTHER, 0 else). */
-static void scalar_of(const spv_ctx *c, uint32_t tid, pg_spv_scalar *scalar, uint32_t *components)
+/* The scalar kind, component count and width of a scalar, vector or matrix type (PG_SPV_OTHER, 0, 0
+ * else; bits may be NULL). */
+static void scalar_bits_of(const spv_ctx *c, uint32_t tid, pg_spv_scalar *scalar, uint32_t *components, uint32_t *bits)
 {
     const uint32_t *d = def_of(c, tid, 0);
     uint32_t count = 1;
     *scalar = PG_SPV_OTHER;
     *components = 0;
+    if (bits) *bits = 0;
     if (d && (d[0] & 0xffffu) == OP_TYPE_MATRIX) {
         count = d[3];
         d = def_of(c, d[2], OP_TYPE_VECTOR);
@@ -533,6 +535,13 @@ static void scalar_of(const spv_ctx *c, uint32_t tid, pg_spv_scalar *scalar, uin
     default: return;
     }
     *components = count;
+    if (bits) *bits = (d[0] & 0xffffu) == OP_TYPE_BOOL ? 32 : d[2]; /* OpTypeFloat/OpTypeInt: their width */
+}
+
+/* The scalar kind and component count of a scalar, vector or matrix type (PG_SPV_OTHER, 0 else). */
+static void scalar_of(const spv_ctx *c, uint32_t tid, pg_spv_scalar *scalar, uint32_t *components)
+{
+    scalar_bits_of(c, tid, scalar, components, NULL);
 }
 
 /* The type a variable's pointer type points to, and the variable's name. */
@@ -667,7 +676,7 @@ static pg_result push_member(spv_ctx *c, uint32_t sid, const uint32_t *d, uint32
         m->scalar = PG_SPV_OTHER; /* an array */
         m->components = 0;
     } else {
-        scalar_of(c, type, &m->scalar, &m->components);
+        scalar_bits_of(c, type, &m->scalar, &m->components, &m->bits);
     }
     return PG_OK;
 }

@@ -67,6 +67,7 @@ typedef struct pg_spv_member {
     pg_spv_scalar scalar;    /* of a scalar, vector or matrix member; PG_SPV_OTHER for structs/arrays */
     uint32_t components;     /* 1 scalar, 2..4 vector, columns*rows for a matrix; 0 for structs/arrays */
     uint32_t array_size;     /* 1 non-array, N for [N] (the product for [N][M]), 0 for a runtime array */
+    uint32_t bits;           /* push-constant members: the scalar's width (16, 32, 64; 0 for structs/arrays) */
 } pg_spv_member;
 
 #define PG_SPV_MAX_BINDINGS 32

@@ -588,6 +588,7 @@ static pg_result create_device(pg_gpu *gpu, const pg_gpu_desc *desc, const dev_f
     gpu->primitive_id_in_fragment = df->f2.features.geometryShader;
     gpu->nonuniform_sampled_arrays = df->f12.shaderSampledImageArrayNonUniformIndexing;
     gpu->int64_atomics = df->f2.features.shaderInt64 && df->f12.shaderBufferInt64Atomics;
+    gpu->shader_int64 = df->f2.features.shaderInt64;
     gpu->timeline_semaphores = df->f12.timelineSemaphore;
     if (q->cfam >= 0 && !df->f12.timelineSemaphore) {
         q->cfam = -1;

@@ -103,6 +103,7 @@ typedef struct pg_gpu {
     /* shaderInt64 and shaderBufferInt64Atomics enabled: 64-bit atomics on storage buffers (the
      * visibility pass's compute rasterizer) */
     bool int64_atomics;
+    bool shader_int64;        /* shaderInt64 enabled (64-bit integers in shaders) */
     uint64_t max_storage_buffer_range; /* bytes one storage-buffer binding may span */
     uint64_t max_buffer_size;          /* bytes one buffer may hold (maxBufferSize; Vulkan 1.2: UINT64_MAX) */
     uint64_t max_allocation_size;      /* bytes one memory allocation may hold (maxMemoryAllocationSize) */

@@ -31,9 +31,43 @@ typedef struct shader_pass {
     _Alignas(16) unsigned char push[SP_PUSH_MAX];
 } shader_pass;
 
-static pg_result user_module(pg_gpu *gpu, const char *path, VkShaderStageFlagBits stage, const pg_pass_decl *decl,
-                             const pg_vis_geometry *vis, VkShaderModule *out, pg_error *err)
+/* A SPIR-V capability of a user shader that needs a device feature passgraph does not enable (or the
+ * device lacks): refused by name here instead of a validation error, or an undefined result without
+ * the layer. NULL when every capability is fine. */
+static const char *missing_capability(const pg_gpu *gpu, const uint32_t *code, size_t words)
 {
+    static const struct {
+        uint32_t cap;
+        const char *what;
+    } off[] = {
+        {9, "Float16 (16-bit floats in shaders)"},      {10, "Float64 (64-bit floats, double)"},
+        {22, "Int16 (16-bit integers in shaders)"},     {39, "Int8 (8-bit integers in shaders)"},
+        {4433, "StorageBuffer16BitAccess"},             {4434, "UniformAndStorageBuffer16BitAccess"},
+        {4435, "StoragePushConstant16"},                {4436, "StorageInputOutput16"},
+        {4448, "StorageBuffer8BitAccess"},              {4449, "UniformAndStorageBuffer8BitAccess"},
+        {4450, "StoragePushConstant8"},
+    };
+    for (size_t w = 5; w < words;) {
+        const uint32_t n = code[w] >> 16, op = code[w] & 0xffffu;
+        if (n == 0) break;
+        if (op == 17 && w + 1 < words) { /* OpCapability */
+            const uint32_t cap = code[w + 1];
+            if (cap == 11 && !gpu->shader_int64) return "Int64 (64-bit integers; shaderInt64)";
+            if (cap == 12 && !gpu->int64_atomics) return "Int64Atomics (64-bit atomics; shaderBufferInt64Atomics)";
+            for (size_t k = 0; k < sizeof off / sizeof off[0]; k++)
+                if (off[k].cap == cap) return off[k].what;
+        } else if (op != 11 && op != 14 && op != 17) { /* past OpCapability, OpExtInstImport, OpMemoryModel */
+            if (op != 10) break;                       /* OpExtension */
+        }
+        w += n;
+    }
+    return NULL;
+}
+
+static pg_result user_module(const pg_pass_create_ctx *ctx, const char *path, VkShaderStageFlagBits stage,
+                             const pg_pass_decl *decl, const pg_vis_geometry *vis, VkShaderModule *out, pg_error *err)
+{
+    pg_gpu *gpu = ctx->gpu;
     const char *defs[PG_MAX_DEFINES + 16];
     uint32_t nd;
     if (vis) { /* the scene's defines (TEXTURE_COUNT, PG_VIS_TRI_BITS, ...) and where the streams are */
@@ -47,6 +81,13 @@ static pg_result user_module(pg_gpu *gpu, const char *path, VkShaderStageFlagBit
     size_t words;
     pg_result r = pg_shader_compile_user(path, stage, defs, nd, gpu->vulkan12, &code, &words, err);
     if (r) return r;
+    const char *cap = missing_capability(gpu, code, words);
+    if (cap) {
+        free(code);
+        return pg_fail(err, PG_ERR_NO_DEVICE,
+                       "%s: %s: shader '%s' uses the SPIR-V capability %s, which passgraph does not enable on %s",
+                       ctx->desc->file, ctx->desc->json_path, path, cap, gpu->props.deviceName);
+    }
     r = pg_shader_module_words(gpu, path, code, words, out, err);
     free(code);
     return r;
@@ -66,6 +107,16 @@ static pg_result make_set(shader_pass *s, const pg_pass_create_ctx *ctx, const s
         b[k] = (pg_set_binding){(VkDescriptorType)pa->bindings[k].type, pg_ctx_res(ctx, pa->bindings[k].slot),
                                 s->sampler, 0};
         numbers[k] = pa->bindings[k].number;
+        const bool buffer = b[k].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || b[k].type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        if (buffer && pa->bindings[k].block_size > b[k].res->size) /* its fixed part would read past the end */
+            return pg_fail(err, PG_ERR_LIMIT,
+                           "%s: %s: shader '%s' binding %u is a block of %u bytes (without a runtime array), buffer "
+                           "'%s' is %llu bytes",
+                           ctx->desc->file, ctx->desc->json_path, pa->path, (unsigned)numbers[k],
+                           pa->bindings[k].block_size,
+                           ctx->plan->resources[ctx->pass->slots[pg_plan_slot_of(ctx->pass, pa->bindings[k].slot)].resource]
+                               .name,
+                           (unsigned long long)b[k].res->size);
         if (b[k].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER && b[k].res->size > ctx->gpu->max_storage_buffer_range)
             return pg_fail(err, PG_ERR_LIMIT,
                            "%s: %s: binding %u reads '%s' as one storage buffer of %.1f MiB, more than one binding "
@@ -85,7 +136,7 @@ static pg_result create_fullscreen(shader_pass *s, const pg_pass_create_ctx *ctx
     pg_gpu *gpu = ctx->gpu;
     VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE;
     pg_result r = pg_shader_module(gpu, "fullscreen.vert", VK_SHADER_STAGE_VERTEX_BIT, NULL, 0, &vs, err);
-    if (!r) r = user_module(gpu, pa->path, VK_SHADER_STAGE_FRAGMENT_BIT, &ctx->pass->decl, NULL, &fs, err);
+    if (!r) r = user_module(ctx, pa->path, VK_SHADER_STAGE_FRAGMENT_BIT, &ctx->pass->decl, NULL, &fs, err);
     if (!r) {
         pg_gfx_pipeline_desc d = {
             .layout = s->layout,
@@ -173,7 +224,7 @@ static pg_result sp_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     if (pa->form == SP_FULLSCREEN) return create_fullscreen(s, ctx, pa, err);
     if ((r = check_workgroup(ctx, pa, err))) return r;
     VkShaderModule cs;
-    if ((r = user_module(ctx->gpu, pa->path, VK_SHADER_STAGE_COMPUTE_BIT, &ctx->pass->decl,
+    if ((r = user_module(ctx, pa->path, VK_SHADER_STAGE_COMPUTE_BIT, &ctx->pass->decl,
                          s->vis_surface ? &s->vis : NULL, &cs, err)))
         return r;
     r = pg_compute_pipeline_create(ctx->gpu, s->layout, cs, ctx->pass->name, &s->pipeline, err);

@@ -22,6 +22,8 @@ typedef struct sp_binding {
     pg_slot slot;
     uint16_t type;   /* VkDescriptorType */
     uint16_t number; /* binding number in set 2 */
+    uint32_t block_size; /* a buffer block's bytes without its runtime array (spirv_reflect.h): the
+                          * bound buffer must hold at least these */
 } sp_binding;
 
 typedef struct sp_params {

@@ -323,6 +323,9 @@ static pg_result read_binding(sp_ctx *c, const cJSON *it, uint32_t k)
     } else if (cJSON_IsObject(it)) {
         const cJSON *r = cJSON_GetObjectItemCaseSensitive(it, "resource");
         const cJSON *ac = cJSON_GetObjectItemCaseSensitive(it, "access");
+        for (const cJSON *key = it->child; key; key = key->next) /* a typo ("acess") was dropped silently */
+            if (strcmp(key->string, "resource") && strcmp(key->string, "access"))
+                return pg_sp_fail(c, PG_ERR_SCHEMA, sub, "unknown key '%s' (resource, access)", key->string);
         if (cJSON_IsString(r)) res = r->valuestring;
         if (ac && (!cJSON_IsString(ac) || !access_from_name(ac->valuestring, &a)))
             return pg_sp_fail(c, PG_ERR_SCHEMA, sub,
@@ -346,6 +349,7 @@ static pg_result read_binding(sp_ctx *c, const cJSON *it, uint32_t k)
     *use = 1 + (int)k;
     c->binding_access[k] = a;
     c->p->bindings[k].number = (uint16_t)b->binding;
+    c->p->bindings[k].block_size = b->block_size;
     c->p->bindings[k].type = (uint16_t)(b->kind == PG_SPV_COMBINED_IMAGE_SAMPLER ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
                                         : b->kind == PG_SPV_STORAGE_IMAGE     ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
                                         : b->kind == PG_SPV_UNIFORM_BUFFER    ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER

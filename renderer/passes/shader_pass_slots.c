@@ -21,10 +21,11 @@ static const char *scalar_name(pg_spv_scalar s)
     return s == PG_SPV_FLOAT ? "float" : s == PG_SPV_INT ? "int" : s == PG_SPV_UINT ? "uint" : "bool";
 }
 
-/* One number of a push member into its bytes (float, int, uint, bool as uint). */
+/* One number of a push member into its bytes (float, int, uint, bool as uint). A GLSL bool member
+ * of a push block compiles to a uint: it takes true/false too. */
 static bool put_number(const cJSON *v, pg_spv_scalar s, unsigned char *dst)
 {
-    if (s == PG_SPV_BOOL) {
+    if (s == PG_SPV_BOOL || (s == PG_SPV_UINT && cJSON_IsBool(v))) {
         if (!cJSON_IsBool(v)) return false;
         uint32_t b = cJSON_IsTrue(v);
         memcpy(dst, &b, 4);
@@ -58,6 +59,11 @@ static pg_result read_member(sp_ctx *c, const cJSON *ps, const pg_spv_member *m)
                        "shader '%s' push-constant member '%s' is not a scalar or a vector: a params value is a "
                        "number or 2-4 numbers",
                        c->rel, m->name);
+    if (m->bits != 32) /* a double, float16_t, int64_t...: 4-byte values would land in it wrongly */
+        return pg_sp_fail(c, PG_ERR_SHADER, sub,
+                          "shader '%s' push-constant member '%s' is a %u-bit %s: params values are 32-bit (float, int, "
+                          "uint, bool and their vectors)",
+                          c->rel, m->name, m->bits, scalar_name(m->scalar));
     if (!v)
         return pg_sp_fail(c, PG_ERR_SCHEMA, sub, "shader '%s' push-constant member '%s' (%s x %u) has no value", c->rel,
                        m->name, scalar_name(m->scalar), m->components);
@@ -220,8 +226,11 @@ pg_result pg_sp_read_attachments(sp_ctx *c)
     c->p->blend = (uint8_t)blend;
     c->p->clear_targets = blend == SP_BLEND_NONE;
     if (c->p->form == SP_DRAW) return read_depth(c, blend);
-    if (cJSON_GetObjectItemCaseSensitive(o, "depth"))
-        return pg_sp_fail(c, PG_ERR_SCHEMA, "depth", "a fullscreen shader has no depth attachment (sample it instead)");
+    static const char *const depth_only[] = {"depth", "depth_test", "depth_clear"};
+    for (size_t i = 0; i < sizeof depth_only / sizeof depth_only[0]; i++)
+        if (cJSON_GetObjectItemCaseSensitive(o, depth_only[i]))
+            return pg_sp_fail(c, PG_ERR_SCHEMA, depth_only[i],
+                              "a fullscreen shader has no depth attachment (sample it instead)");
     return PG_OK;
 }
 

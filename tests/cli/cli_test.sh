@@ -35,6 +35,16 @@ expect_fail "negative lights" "--lights -1" render --lights -1 --out "$tmp/x.png
 expect_fail "lights > 2^32" "--lights 4294967296" render --lights 4294967296 --out "$tmp/x.png"
 expect_fail "size 0x0" "--size width 0" render --size 0x0 --out "$tmp/x.png"
 expect_fail "huge size" "--size width 100000" render --size 100000x100000 --out "$tmp/x.png"
+# a full disk (/dev/full): the encoders' write errors reach the exit code (stb ignored them: exit 0)
+if [ -w /dev/full ]; then
+  ln -sf /dev/full "$tmp/full.png" && ln -sf /dev/full "$tmp/full.jpg"
+  expect_fail "PNG on a full disk" "full.png: cannot write PNG: No space left on device" render --size 16x9 --lights 4 \
+    --out "$tmp/full.png"
+  expect_fail "JPEG on a full disk" "full.jpg: cannot write JPEG: No space left on device" render --size 16x9 --lights 4 \
+    --out "$tmp/full.jpg"
+  expect_fail "heat map on a full disk" "full.png: cannot write PNG: No space left" compare --size 16x9 --lights 4 \
+    --frames 1 --flicker-frames 0 --heatmap "$tmp/full.png"
+fi
 expect_fail "size garbage" "expected WxH" render --size big --out "$tmp/x.png"
 expect_fail "time NaN" "--time nan" render --time nan --out "$tmp/x.png"
 # a float of seconds: past 1e5 a fraction of a second is lost (9999999.5 played the pose of a whole second)
@@ -533,6 +543,11 @@ expect_fail "bench: --pipeline-set no pipeline declares" "--pipeline-set gbuffer
   bench --pipelines forward_plus --reference "$naive" --pipeline-set gbuffer=packed --out "$tmp/b5"
 expect_fail "bench: a swept value the reference refuses" "--sweep view=cluster_heat: reference" \
   bench --pipelines forward_plus --reference "$naive" --sweep view=none,cluster_heat --out "$tmp/b5"
+# a value the pipeline refuses is an option error naming the option (it ran, failed the row and said --set)
+expect_fail "bench: a swept value the pipeline refuses" "--sweep tile_size=12: pipeline $root/pipelines/visibility.json: int parameter 'tile_size': 12 is not one of: 8, 16" \
+  bench --pipelines visibility --sweep tile_size=8,12 --out "$tmp/b5"
+"$PG" bench --pipelines visibility --pipeline-set tile_size=9 --out "$tmp/b5" >/dev/null 2>&1
+[ $? -eq 2 ] && ok || bad "bench --pipeline-set tile_size=9: not exit 2"
 expect_fail "bench: --sweep and --pipeline-set of one key" "the same key is given with --pipeline-set" \
   bench --pipelines forward_plus --sweep shading=lambert --pipeline-set shading=lambert --out "$tmp/b5"
 expect_fail "bench: bad --reference-max-lights" "--reference-max-lights x" bench --reference-max-lights x --out "$tmp/b5"
@@ -905,8 +920,34 @@ expect_fail "shader pass: push member" "passes[3].options.params.white: pass 'to
   dump --pipeline "$up/b_param.json"
 expect_fail "shader pass: outside the folders" "shader '../../../etc/passwd' is outside the allowed folders" \
   dump --pipeline "$up/b_outside.json"
+# keys that were dropped silently: a typo in a binding object, depth options of a fullscreen pass
+sed 's/"access": "sampled"/"acess": "sampled"/' "$up/ok.json" >"$up/b_typo.json"
+expect_fail "shader pass: a binding key typo" "bindings.hdr_image: pass 'tonemap': unknown key 'acess' (resource, access)" \
+  dump --pipeline "$up/b_typo.json"
+sed 's/"fullscreen": "tonemap.frag"/"fullscreen": "tonemap.frag", "depth_test": "equal"/' "$up/ok.json" >"$up/b_fsdepth.json"
+expect_fail "shader pass: depth_test on a fullscreen pass" "options.depth_test: pass 'tonemap': a fullscreen shader has no depth attachment" \
+  dump --pipeline "$up/b_fsdepth.json"
 expect_fail "shader pass: unbound binding" "shader 'extra.frag' binding 'extra' (set 2, binding 1, a combined image sampler) is not bound" \
   render --pipeline "$up/b_unbound.json" --size 16x16 --out "$tmp/x.png"
+# an #include inside the user's shader stays in its folder and the library's: '..' and absolute
+# names were joined onto shaders/ and read (a file's first line came back in glslang's message)
+for inc in ../../../../etc/hostname /etc/passwd sub/../../x.glsl; do
+  sed "s#^void main#\#include \"$inc\"\nvoid main#" "$up/tonemap.frag" >"$up/inc.frag"
+  sed 's/"tonemap.frag"/"inc.frag"/' "$up/ok.json" >"$up/b_inc.json"
+  expect_fail "shader pass: #include $inc" "inc.frag:$(grep -nF "#include \"$inc\"" "$up/inc.frag" | cut -d: -f1): #include \"$inc\" (looked up in $up then" \
+    dump --pipeline "$up/b_inc.json"
+  grep -qF "outside the allowed folders" "$tmp/err" && ok || { bad "#include $inc: not refused as outside"; cat "$tmp/err"; }
+done
+# a #version glslang's Vulkan built-ins cannot parse (it printed 4,546 lines of them on stdout)
+sed 's/^#version 460/#version 140/' "$up/tonemap.frag" >"$up/inc.frag"
+"$PG" dump --pipeline "$up/b_inc.json" >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 1 ] && [ ! -s "$tmp/out" ] && grep -qF "inc.frag: #version 140: Vulkan GLSL needs #version 150 or later" "$tmp/err" \
+  && ok || { bad "#version 140: not refused alone"; head -3 "$tmp/out" "$tmp/err"; }
+# a name GLSL's #line cannot carry
+cp "$up/tonemap.frag" "$up/q\"uote.frag" && sed 's/"tonemap.frag"/"q\\"uote.frag"/' "$up/ok.json" >"$up/b_quote.json"
+expect_fail "shader pass: a quote in the file name" "cannot be named by GLSL's #line; rename the file" dump --pipeline "$up/b_quote.json"
+sed 's#^void main#\#include "nope.glsl"\nvoid main#' "$up/tonemap.frag" >"$up/inc.frag"
+expect_fail "shader pass: missing #include" "#include \"nope.glsl\" (looked up in $up then" dump --pipeline "$up/b_inc.json"
 # a compute user pass whose SPIR-V is valid but that no pipeline image or device can run: refused
 # by name (an empty file, an image that is not one 2D layer, a shadow sampler, a workgroup or shared
 # memory past the device's limits) instead of a crash or validation messages
@@ -947,6 +988,74 @@ sed 's/^void main()/shared vec4 big[16384];\nvoid main()/; s/^{/{\n    big[gl_Lo
 for v in empty 3d layers shadow wg shared; do sed "s/\"c.comp\"/\"c_$v.comp\"/" "$up/c.json" >"$up/c_$v.json"; done
 expect_fail "shader pass: empty file" "c_empty.comp: empty file (no #version line)" \
   dump --pipeline "$up/c_empty.json"
+# a capability passgraph does not enable (Float64: a validation error, else undefined), and a fixed
+# block larger than its buffer (read past the end without a word): refused by name
+cat >"$up/cap.comp" <<'EOF'
+#version 460
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 2, binding = 0, rgba8) uniform writeonly image2D outimg;
+layout(push_constant) uniform Params { float v; } params;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(outimg)))) return;
+    double d = double(params.v) * 1.0000001lf;
+    imageStore(outimg, p, vec4(float(d)));
+}
+EOF
+printf '%s' '{"name": "cap", "resources": [{"name": "ldr", "type": "image", "format": "rgba8"}],
+ "passes": [{"name": "fill", "type": "shader", "writes": ["ldr"],
+   "options": {"compute": "cap.comp", "bindings": {"outimg": "ldr"}, "params": {"v": 0.5}}}], "output": "ldr"}' >"$up/cap.json"
+expect_fail "shader pass: Float64" "cap.json: passes[0]: shader '$up/cap.comp' uses the SPIR-V capability Float64" \
+  render --pipeline "$up/cap.json" --size 16x9 --out "$tmp/x.png"
+cat >"$up/ubo.comp" <<'EOF'
+#version 460
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 2, binding = 0, rgba8) uniform writeonly image2D outimg;
+layout(set = 2, binding = 1) uniform U { vec4 c[64]; } u;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(outimg)))) return;
+    imageStore(outimg, p, u.c[63]);
+}
+EOF
+printf '%s' '{"name": "ubo", "resources": [{"name": "ldr", "type": "image", "format": "rgba8"},
+   {"name": "small", "type": "buffer", "stride": 4, "count": [1], "lifetime": "persistent"}],
+ "passes": [{"name": "fill", "type": "shader", "reads": ["small"], "writes": ["ldr"],
+   "options": {"compute": "ubo.comp", "bindings": {"outimg": "ldr", "u": "small"}}}], "output": "ldr"}' >"$up/ubo.json"
+expect_fail "shader pass: a block larger than its buffer" "binding 1 is a block of 1024 bytes (without a runtime array), buffer 'small' is" \
+  render --pipeline "$up/ubo.json" --size 16x9 --out "$tmp/x.png"
+# push-constant members of 16 or 64 bits: a 4-byte value went into an 8-byte double (the image came
+# out black) or a 2-byte half (validation errors); a bool member (a uint in SPIR-V) takes true
+for m in "double d" "float16_t d" "bool d"; do
+  cat >"$up/pc.comp" <<EOF
+#version 460
+#extension GL_EXT_shader_explicit_arithmetic_types : enable
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 2, binding = 0, rgba8) uniform writeonly image2D outimg;
+layout(push_constant) uniform Params { float v; $m; } params;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(outimg)))) return;
+    imageStore(outimg, p, vec4(params.v + (float(params.d) > 0.5 ? 1.0 : 0.0)));
+}
+EOF
+  printf '%s' '{"name": "pc", "resources": [{"name": "ldr", "type": "image", "format": "rgba8"}],
+   "passes": [{"name": "fill", "type": "shader", "writes": ["ldr"],
+     "options": {"compute": "pc.comp", "bindings": {"outimg": "ldr"}, "params": {"v": 0.0, "d": true}}}], "output": "ldr"}' \
+    >"$up/pc.json"
+  case $m in
+  bool*)
+    "$PG" render --pipeline "$up/pc.json" --validation --size 16x9 --out "$tmp/pc.png" >"$tmp/out" 2>&1 && ! grep -q VUID "$tmp/out" \
+      && [ "$(python3 "$root/tests/cli/png_stats.py" "$tmp/pc.png")" = "16 9 1.0000 255.0" ] && ok \
+      || { bad "shader pass: a bool push member given true"; tail -3 "$tmp/out"; } ;;
+  double*) expect_fail "shader pass: a double push member" "push-constant member 'd' is a 64-bit float: params values are 32-bit" \
+      dump --pipeline "$up/pc.json" ;;
+  *) expect_fail "shader pass: a float16_t push member" "push-constant member 'd' is a 16-bit float" dump --pipeline "$up/pc.json" ;;
+  esac
+done
 expect_fail "shader pass: 3D image" "binding 'hdr_image' (set 2, binding 0) is a 3D image: a pipeline image is bound as one 2D layer" \
   dump --pipeline "$up/c_3d.json"
 expect_fail "shader pass: image array" "binding 'ldr_image' (set 2, binding 1) is an image array (layers)" \

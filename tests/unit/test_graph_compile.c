@@ -1459,11 +1459,16 @@ static pg_pipeline *random_pipeline(void)
             uint32_t n_after = 0;
             bool used[PG_MAX_RESOURCES] = {false};
             const uint32_t want_w = 1 + rnd(2);
+            float att_scale = 0; /* the attachments of a colour pass share one size (the compiler checks) */
             for (uint32_t tries = 0; tries < 8 && nw < want_w; tries++) {
                 uint32_t r = rnd(n_res);
                 const pg_resource_desc *rd = &pl->resources[r];
                 if (used[r]) continue;
                 if (mode == 1 && rd->kind == IMG && rd->format == PG_FMT_D32F) continue;
+                if (mode != 1 && rd->kind == IMG) {
+                    if (att_scale && rd->scale[0] != att_scale) continue;
+                    att_scale = rd->scale[0];
+                }
                 /* pure readers run after the LAST writer: no writer may follow a reader, or the
                  * edges would point backwards (and could close a cycle) */
                 if (has_reader[r]) continue;

@@ -853,12 +853,12 @@ static void test_shipped(void)
 }
 
 /* Parameter values in the JSON dump read back exactly: the largest double (cJSON's 15 digits made it
- * infinity) and 2^53 (it was 9.00719925474099e+15). */
+ * infinity) and 2^53 - 1 (2^53 was 9.00719925474099e+15). */
 static void test_json_numbers(void)
 {
     static const char *const graph =
         "{\"name\": \"numbers\",\n"
-        " \"parameters\": {\"i\": {\"type\": \"int\", \"default\": 9007199254740992},\n"
+        " \"parameters\": {\"i\": {\"type\": \"int\", \"default\": 9007199254740991},\n"
         "                \"f\": {\"type\": \"float\", \"default\": 1.7976931348623157e308},\n"
         "                \"g\": {\"type\": \"float\", \"default\": 0.1}},\n"
         " \"resources\": [{\"name\": \"out\", \"type\": \"image\", \"format\": \"rgba8\"}],\n"
@@ -871,13 +871,13 @@ static void test_json_numbers(void)
     const cJSON *ps = root ? jget(jget(root, "pipeline"), "parameters") : NULL;
     CHECK_MSG(ps != NULL, "no parameters in the JSON dump");
     if (ps) {
-        CHECK_MSG(jget(ps, "i") && jget(ps, "i")->valuedouble == 9007199254740992.0, "i read back as %.17g",
+        CHECK_MSG(jget(ps, "i") && jget(ps, "i")->valuedouble == 9007199254740991.0, "i read back as %.17g",
                   jget(ps, "i") ? jget(ps, "i")->valuedouble : 0.0);
         CHECK_MSG(jget(ps, "f") && jget(ps, "f")->valuedouble == 1.7976931348623157e308, "f read back as %.17g",
                   jget(ps, "f") ? jget(ps, "f")->valuedouble : 0.0);
         CHECK_MSG(jget(ps, "g") && jget(ps, "g")->valuedouble == 0.1, "g read back as %.17g",
                   jget(ps, "g") ? jget(ps, "g")->valuedouble : 0.0);
-        CHECK_MSG(json && strstr(json, "9007199254740992"), "2^53 not written as an integer");
+        CHECK_MSG(json && strstr(json, "9007199254740991"), "2^53 - 1 not written as an integer");
     }
     cJSON_Delete(root);
     free(json);

@@ -361,6 +361,7 @@ static void test_params(void)
         {"i", "-5", "out of range"},
         {"i", "99999999999999999999", "too large"},
         {"i", "9007199254740993", "9007199254740993 is too large"}, /* 2^53 + 1: no double holds it */
+        {"i", "9007199254740992", "9007199254740992 is too large"}, /* 2^53: what 2^53 + 1 in JSON reads as */
         {"i", "-9007199254740993", "too large"},
         {"i", "0x10", "not an integer"},
         {"f", "nan", "'nan' is not a number"},

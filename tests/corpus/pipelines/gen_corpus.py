@@ -246,6 +246,9 @@ case("param_missing_default.json", "PG_ERR_PARAM", "parameters.grid_x.default: m
      doc=mod(lambda d: d["parameters"]["grid_x"].pop("default")))
 case("param_min_gt_max.json", "PG_ERR_PARAM", "parameters.grid_x.max: 1 is less than min 8",
      doc=mod(lambda d: d["parameters"]["grid_x"].update({"min": 8, "max": 1})))
+case("param_int_default_2p53.json", "PG_ERR_PARAM",
+     "parameters.grid_x.default: expected an integer of magnitude below 2^53",
+     doc=mod(lambda d: d["parameters"]["grid_x"].update({"default": 9007199254740993, "min": 1, "max": 9007199254740991})))
 case("param_int_default_fraction.json", "PG_ERR_PARAM", "parameters.grid_x.default: expected an integer",
      doc=mod(lambda d: d["parameters"]["grid_x"].update({"default": 1.5})))
 case("param_bool_default_string.json", "PG_ERR_PARAM", "parameters.debug.default: expected true or false",
