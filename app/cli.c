@@ -4,6 +4,7 @@
 #include "ocio.h"
 #include "pipeline_paths.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -318,6 +319,8 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
 #define NEED_VALUE()                                                                        \
     do {                                                                                    \
         if (!v) return pg_fail(err, PG_ERR_INVALID_ARG, "%s: missing value", a);            \
+        if (v[0] == '-' && v[1] == '-' && isalpha((unsigned char)v[2])) /* "--lights --out" */ \
+            return pg_fail(err, PG_ERR_INVALID_ARG, "%s: missing value (followed by the option %s)", a, v); \
         (*i)++;                                                                             \
     } while (0)
     const char **path_field = path_option(c, a);

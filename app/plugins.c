@@ -7,13 +7,15 @@
 #include <limits.h>
 #include <stdlib.h>
 #include <stdio.h>
+#include <errno.h>
 #include <string.h>
 #include <sys/stat.h>
 
 static pg_result load_one(pg_pass_registry *reg, const char *path, pg_plugins *out, pg_error *err)
 {
     struct stat st;
-    if (stat(path, &st) != 0) return pg_fail(err, PG_ERR_IO, "%s: cannot load plug-in: no such file", path);
+    if (!path[0]) return pg_fail(err, PG_ERR_IO, "--plugin \"\": an empty path");
+    if (stat(path, &st) != 0) return pg_fail(err, PG_ERR_IO, "%s: cannot load plug-in: %s", path, strerror(errno));
     if (S_ISDIR(st.st_mode)) return pg_fail(err, PG_ERR_IO, "%s: cannot load plug-in: is a directory", path);
     /* a bare name would be searched in the system's library path: make it a path */
     char full[PG_PATH_MAX + 4];

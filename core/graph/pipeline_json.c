@@ -269,7 +269,10 @@ static pg_result read_plugins(loader *L, const src_file *f)
         if (pg_pipeline_resolve_file(f->path, f->path, c->valuestring, dst, PG_PATH_MAX, &e))
             return pj_fail_at(L, e.code, f, where, "plug-in %s", e.msg);
         if (stat(dst, &st) != 0 || !S_ISREG(st.st_mode))
-            return pj_fail_at(L, PG_ERR_IO, f, where, "plug-in '%s' (%s): no such file", c->valuestring, dst);
+            return pj_fail_at(L, PG_ERR_IO, f, where, "plug-in '%s' (%s): %s", c->valuestring, dst,
+                              stat(dst, &st) != 0  ? strerror(errno)
+                              : S_ISDIR(st.st_mode) ? "is a directory"
+                                                    : "not a regular file");
         L->p->n_plugins++;
     }
     return PG_OK;

@@ -32,6 +32,7 @@ expect_fail "unknown command" "unknown command" frobnicate
 expect_fail "unknown option" "unknown option" render --bogus --out "$tmp/x.png"
 expect_fail "missing --out" "--out" render
 expect_fail "negative lights" "--lights -1" render --lights -1 --out "$tmp/x.png"
+expect_fail "an option where a value belongs" "--lights: missing value (followed by the option --out)" render --lights --out "$tmp/x.png"
 expect_fail "lights > 2^32" "--lights 4294967296" render --lights 4294967296 --out "$tmp/x.png"
 expect_fail "size 0x0" "--size width 0" render --size 0x0 --out "$tmp/x.png"
 expect_fail "huge size" "--size width 100000" render --size 100000x100000 --out "$tmp/x.png"
@@ -836,8 +837,12 @@ if [ -f "$plugdir/libpg_tint.so" ]; then
     && python3 "$root/tests/cli/png_channels.py" "$tmp/tint.png" >"$tmp/tstat" \
     && awk '{ exit !($1 > 5 && $5 <= 1 && $6 <= 1) }' "$tmp/tstat" \
     && ok || { bad "render with the tint plug-in (R G B means, maxima: $(cat "$tmp/tstat" 2>/dev/null))"; cat "$tmp/err"; }
-  expect_fail "--plugin: missing file" "$tmp/no-such.so: cannot load plug-in: no such file" \
+  expect_fail "--plugin: missing file" "$tmp/no-such.so: cannot load plug-in: No such file or directory" \
     render --plugin "$tmp/no-such.so" --size 16x16 --out "$tmp/x.png"
+  ln -sf "$tmp/loop_b.so" "$tmp/loop_a.so" && ln -sf "$tmp/loop_a.so" "$tmp/loop_b.so"
+  expect_fail "--plugin: a link loop" "loop_a.so: cannot load plug-in: Too many levels of symbolic links" \
+    render --plugin "$tmp/loop_a.so" --size 16x16 --out "$tmp/x.png"
+  expect_fail "--plugin: an empty path" '--plugin "": an empty path' render --plugin "" --size 16x16 --out "$tmp/x.png"
   expect_fail "--plugin: not a shared object" "$tintp: cannot load plug-in: " \
     render --plugin "$tintp" --size 16x16 --out "$tmp/x.png"
   expect_fail "--plugin: no entry points" "libpg_tint_noentry.so: not a passgraph plug-in: no passgraph_plugin_api_version" \
@@ -867,8 +872,12 @@ if [ -f "$plugdir/libpg_tint.so" ]; then
   "$PG" render --pipeline "$pld/tint.json" --size 32x18 --lights 4 --out "$tmp/tint3.png" >"$tmp/out" 2>"$tmp/err" \
     && ok || { bad "render: a pipeline's plugins list"; cat "$tmp/err"; }
   sed 's#"plugins": \["libpg_tint.so"\]#"plugins": ["nope.so"]#' "$pld/tint.json" >"$pld/missing.json"
-  expect_fail "pipeline plugins: missing file" "missing.json: plugins[0]: plug-in 'nope.so'" \
+  expect_fail "pipeline plugins: missing file" "missing.json: plugins[0]: plug-in 'nope.so' ($pld/nope.so): No such file or directory" \
     render --pipeline "$pld/missing.json" --size 16x16 --out "$tmp/x.png"
+  mkdir -p "$pld/nope.so"
+  expect_fail "pipeline plugins: a directory" "missing.json: plugins[0]: plug-in 'nope.so' ($pld/nope.so): is a directory" \
+    render --pipeline "$pld/missing.json" --size 16x16 --out "$tmp/x.png"
+  rmdir "$pld/nope.so"
   sed 's#"plugins": \["libpg_tint.so"\]#"plugins": ["/usr/lib/x86_64-linux-gnu/libm.so.6"]#' "$pld/tint.json" >"$pld/outside.json"
   expect_fail "pipeline plugins: outside the folders" "outside.json: plugins[0]: plug-in '/usr/lib/x86_64-linux-gnu/libm.so.6' is outside the allowed folders" \
     render --pipeline "$pld/outside.json" --size 16x16 --out "$tmp/x.png"
