@@ -251,11 +251,14 @@ static pg_result read_plugins(loader *L, const src_file *f)
     const cJSON *pl = cJSON_GetObjectItemCaseSensitive(f->root, "plugins");
     if (!pl) return PG_OK;
     char got[96], where[32];
-    if (!cJSON_IsArray(pl) || cJSON_GetArraySize(pl) > PG_MAX_PIPELINE_PLUGINS) {
+    if (!cJSON_IsArray(pl)) {
         pj_describe(pl, got, sizeof got);
         return pj_fail_at(L, PG_ERR_SCHEMA, f, "plugins", "expected an array of at most %d shared-library paths, got %s",
                           PG_MAX_PIPELINE_PLUGINS, got);
     }
+    if (cJSON_GetArraySize(pl) > PG_MAX_PIPELINE_PLUGINS)
+        return pj_fail_at(L, PG_ERR_LIMIT, f, "plugins", "%d plug-ins, at most %d", cJSON_GetArraySize(pl),
+                          PG_MAX_PIPELINE_PLUGINS);
     uint32_t i = 0;
     for (const cJSON *c = pl->child; c; c = c->next, i++) {
         snprintf(where, sizeof where, "plugins[%u]", i);

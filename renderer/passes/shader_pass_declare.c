@@ -293,6 +293,12 @@ static pg_result check_binding_kind(sp_ctx *c, const char *sub, const pg_spv_bin
                           c->rel, b->name, b->set, b->binding, uint_shader ? "integer" : "float", rd->name,
                           pg_format_get(rd->format)->name,
                           uint_image ? "a usampler/uimage" : "a sampler/image of floats (sampler2D, image2D)");
+    if (b->kind == PG_SPV_STORAGE_IMAGE && b->image_format == 0) /* SpvImageFormatUnknown */
+        return pg_sp_fail(c, PG_ERR_FORMAT, sub,
+                          "shader '%s' binding '%s' (set %u, binding %u) is a storage image without a format "
+                          "qualifier (reading or writing one needs device features passgraph does not enable): "
+                          "declare it layout(%s)",
+                          c->rel, b->name, b->set, b->binding, pg_spv_image_format_name(spv_format_of(rd->format)));
     if (b->kind == PG_SPV_STORAGE_IMAGE && b->image_format != spv_format_of(rd->format))
         return pg_sp_fail(c, PG_ERR_FORMAT, sub,
                        "shader '%s' binding '%s' (set %u, binding %u) declares format %s but resource '%s' is %s",

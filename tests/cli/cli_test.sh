@@ -1035,6 +1035,12 @@ printf '%s' '{"name": "ubo", "resources": [{"name": "ldr", "type": "image", "for
    "options": {"compute": "ubo.comp", "bindings": {"outimg": "ldr", "u": "small"}}}], "output": "ldr"}' >"$up/ubo.json"
 expect_fail "shader pass: a block larger than its buffer" "binding 1 is a block of 1024 bytes (without a runtime array), buffer 'small' is" \
   render --pipeline "$up/ubo.json" --size 16x9 --out "$tmp/x.png"
+# a storage image without a format qualifier: said what to declare (was "declares format unknown")
+sed 's/layout(set = 2, binding = 1, rgba8) uniform writeonly image2D ldr_image;/layout(set = 2, binding = 1) uniform writeonly image2D ldr_image;/' \
+  "$up/c.comp" >"$up/c_nofmt.comp"
+sed 's/"c.comp"/"c_nofmt.comp"/' "$up/c.json" >"$up/c_nofmt.json"
+expect_fail "shader pass: a storage image without a format" "binding 'ldr_image' (set 2, binding 1) is a storage image without a format qualifier (reading or writing one needs device features passgraph does not enable): declare it layout(rgba8)" \
+  dump --pipeline "$up/c_nofmt.json"
 # push-constant members of 16 or 64 bits: a 4-byte value went into an 8-byte double (the image came
 # out black) or a 2-byte half (validation errors); a bool member (a uint in SPIR-V) takes true
 for m in "double d" "float16_t d" "bool d"; do

@@ -268,6 +268,10 @@ case("param_int_dup_value.json", "PG_ERR_PARAM", "parameters.grid_x.values[1]: 1
 case("param_int_default_not_in_values.json", "PG_ERR_PARAM",
      "parameters.grid_x.default: 16 is not one of the values (8, 32)",
      doc=mod(lambda d: d["parameters"]["grid_x"].update({"values": [8, 32]})))
+case("plugins_too_many.json", "PG_ERR_LIMIT", "plugins: 5 plug-ins, at most 4",
+     doc=mod(lambda d: d.update({"plugins": ["a.so", "b.so", "c.so", "d.so", "e.so"]})))
+case("plugins_not_array.json", "PG_ERR_SCHEMA", "plugins: expected an array of at most 4 shared-library paths, got",
+     doc=mod(lambda d: d.update({"plugins": "a.so"})))
 case("param_unknown_key.json", "PG_ERR_SCHEMA", "parameters.grid_x: unknown key 'deafult'",
      doc=mod(lambda d: d["parameters"]["grid_x"].update({"deafult": 3})))
 case("param_bad_name.json", "PG_ERR_PARAM", "parameters.grid-y: parameter names must match",
