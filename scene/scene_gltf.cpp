@@ -635,6 +635,28 @@ static void hand_out_textures(const Ctx &c, const std::vector<TexKey> &order, pg
     }
 }
 
+/* A scene far smaller than float shading resolves: a unit cube scaled by 1e-15 was lit wrong, by
+ * 1e-20 not drawn at all (squared distances underflow). Said in one line; the load goes on. */
+static void warn_tiny(const Ctx &c, pg_scene *s)
+{
+    if (!s->n_primitives) return;
+    double d2 = 0;
+    for (int k = 0; k < 3; k++) {
+        const double e = (double)s->bounds_max[k] - (double)s->bounds_min[k];
+        d2 += e * e;
+    }
+    const double diag = sqrt(d2);
+    if (!(diag < 1e-14)) return;
+    char line[320];
+    snprintf(line, sizeof line,
+             "%s: the scene is %.3g units across: 32-bit float shading loses lights and geometry below about 1e-14 "
+             "units (a unit cube scaled by 1e-20 drew nothing); scale it up, e.g. by a root node's scale",
+             c.path.c_str(), diag);
+    pg_error werr;
+    memset(&werr, 0, sizeof werr);
+    pg_scene_add_warning(s, line, &werr); /* out of memory: the line is lost, the scene still loads */
+}
+
 /* step 6: the pg_scene, owning copies of everything built; the warnings prefixed with the path */
 static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &mats,
                           const std::vector<pg_scene_camera> &cams, const std::vector<pg_scene_light> &lights,
@@ -694,6 +716,7 @@ static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &
     }
     s->anim = anim; /* owned by the scene from here (nothing below throws) */
     pg_scene_finalize(s.get());
+    warn_tiny(c, s.get());
     return s.release();
 }
 

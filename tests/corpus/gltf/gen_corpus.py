@@ -624,6 +624,12 @@ del d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"]
 write("ok_texture_without_texcoord.gltf", d, "PG_OK", warn=[
     "1 primitive without TEXCOORD_0 under a material that reads a texture with it: every pixel samples the texture "
     "at (0, 0)"])
+# a scene far below what float shading resolves (a unit cube scaled by 1e-20 drew nothing): said
+d, _ = base_doc()
+d["nodes"][0]["scale"] = [1e-20, 1e-20, 1e-20]
+write("ok_tiny_scene.gltf", d, "PG_OK", warn=[
+    "the scene is 1.41e-20 units across: 32-bit float shading loses lights and geometry below about 1e-14 units "
+    "(a unit cube scaled by 1e-20 drew nothing); scale it up, e.g. by a root node's scale"])
 d, _ = base_doc()
 d["extensionsUsed"] = ["KHR_texture_transform", "KHR_mesh_quantization", "EXT_meshopt_compression",
                        "KHR_draco_mesh_compression", "KHR_materials_clearcoat", "EXT_made_up"]
