@@ -282,9 +282,10 @@ static pg_result write_outputs(const pg_session *s, const render_opts *ro, rende
 {
     pg_format fmt;
     const uint8_t *ldr = pg_runtime_output(s->runtime, 0, &im->w, &im->h, &fmt);
-    if (!ldr || pg_format_get(fmt)->bytes_per_pixel != 4)
-        return pg_fail(err, PG_ERR_FORMAT, "%s: output '%s' must be an 8-bit RGBA image to write %s",
-                       s->pipeline->path, s->pipeline->output, ro->png_path);
+    if (!ldr || (fmt != PG_FMT_RGBA8_UNORM && fmt != PG_FMT_RGBA8_SRGB)) /* 4 bytes a pixel is not enough: d32f, r32f */
+        return pg_fail(err, PG_ERR_FORMAT, "%s: output '%s' must be an 8-bit RGBA image (rgba8 or rgba8_srgb) to write %s%s%s",
+                       s->pipeline->path, s->pipeline->output, ro->png_path, ldr ? ", not " : "",
+                       ldr ? pg_format_get(fmt)->name : "");
     pg_result r = pg_write_image(ro->png_path, ldr, im->w, im->h, err);
     if (r) return r;
     im->nonfinite = -1;

@@ -282,13 +282,14 @@ static void add_wait(pg_plan_batch *b, int batch, uint64_t stages, const char *w
 /* A compute-only queue family supports these stages and accesses: a barrier recorded there must
  * not name the graphics stages of work that ran on the other queue (the ownership transfer and
  * the semaphore ordered that work already). */
+static const uint64_t k_compute_family_stages =
+    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT |
+    VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_HOST_BIT |
+    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT | VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT;
+
 static void compute_family_masks(pg_barrier *b)
 {
-    const uint64_t st = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT |
-                        VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT |
-                        VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_HOST_BIT |
-                        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT |
-                        VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT;
+    const uint64_t st = k_compute_family_stages;
     const uint64_t ac = VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT |
                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_UNIFORM_READ_BIT |
@@ -354,6 +355,10 @@ static void add_pass_wait(const pg_graph_plan *plan, const pg_compile_desc *desc
         if (plan->passes[a].queue != pp->queue && depends(plan, desc, a, p, plan->qfot))
             st |= wait_stages(plan, a, p, why, sizeof why);
     }
+    /* a compute-queue batch waits at stages its family has: the graphics stages of the other
+     * queue's barriers are no wait stage there (color_output in a compute submit's wait) */
+    if (pp->queue == PG_QUEUE_COMPUTE) st = (st & k_compute_family_stages) ? (st & k_compute_family_stages)
+                                                                           : VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
     char w2[64];
     snprintf(w2, sizeof w2, "%s: %s", pp->name, why);
     add_wait(cur, need, st, w2);

@@ -47,7 +47,11 @@ static pg_result read_opts(const pg_pass_desc *desc, pg_shading_params *sp, pg_e
     int mode = 0;
     pg_result r = pg_opt_enum(desc, "lights", k_lights, 0, &mode, err);
     if (r) return r;
-    return pg_shading_opts_read(desc, mode == 1, k_extra, sp, err);
+    /* every debug view skips this pass (ft_declare): a cluster view is no error for "lights": "all"
+     * (stochastic.json refused five of its own views) */
+    r = pg_shading_opts_read(desc, true, k_extra, sp, err);
+    sp->clustered = mode == 1;
+    return r;
 }
 
 static pg_result ft_declare(const pg_declare_in *in, pg_pass_decl *out, pg_error *err)

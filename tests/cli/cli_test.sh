@@ -757,6 +757,23 @@ for p in "$root"/pipelines/*.json; do
     --out "$tmp/nan.png" >"$tmp/nan.out" 2>&1 && grep -q ' nonfinite=0 ' "$tmp/nan.out" && ok \
     || { bad "PASSGRAPH_KEEP_NAN=1 $(basename "$p"): a NaN or a failure"; cat "$tmp/nan.out"; }
 done
+# an output of 4 bytes a pixel that is not 8-bit RGBA (d32f) was written as a PNG of garbage, exit 0
+sed "s#\"fragments/#\"$root/pipelines/fragments/#g; s#\"output\": \"ldr\"#\"output\": \"depth\"#" "$root/pipelines/naive.json" >"$tmp/out_depth.json"
+expect_fail "render: a d32f output" "output 'depth' must be an 8-bit RGBA image (rgba8 or rgba8_srgb) to write $tmp/x.png, not d32f" \
+  render --pipeline "$tmp/out_depth.json" --size 16x9 --lights 4 --out "$tmp/x.png"
+# every shipped pipeline takes every value of its own parameters' lists (stochastic.json refused
+# five of its views: its transparent pass, skipped under any view, checked them against "lights": "all")
+for p in "$root"/pipelines/*.json; do
+  while read -r kv; do
+    "$PG" dump --pipeline "$p" --set "$kv" >/dev/null 2>"$tmp/kv.err" && ok \
+      || { bad "$(basename "$p") --set $kv: refused"; head -2 "$tmp/kv.err"; }
+  done < <(python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+for k, v in d.get("parameters", {}).items():
+    for x in v.get("values", []):
+        print("%s=%s" % (k, x))' "$p")
+done
 # the ten object models (tests/corpus/gltf/models, gen_models.py): the committed files are what the
 # generator writes; a render with default options (but the size) exits 0 and writes a PNG, and with
 # the background left black (--set background=none: the neutral sky fills every other pixel) it is

@@ -169,6 +169,16 @@ static void check_invariants(const pg_graph_plan *p, const char *what)
         CHECK_MSG(bt->last == (b + 1 == p->n_batches), "%s: last flag of batch %u", what, b);
     }
     CHECK_MSG(covered == p->n_order, "%s: batches cover %u of %u passes", what, covered, p->n_order);
+    /* a compute batch waits at stages a compute-only family has (not the color_output of a graphics
+     * writer's barrier: an invalid vkQueueSubmit2 there) */
+    const uint64_t compute_stages =
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT |
+        VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_HOST_BIT |
+        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT | VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT;
+    for (uint32_t b = 0; b < p->n_batches; b++)
+        for (uint32_t w = 0; p->batches[b].queue == PG_QUEUE_COMPUTE && w < p->batches[b].n_waits; w++)
+            CHECK_MSG(!(p->batches[b].waits[w].stages & ~compute_stages), "%s: compute batch %u waits at 0x%llx", what,
+                      b, (unsigned long long)p->batches[b].waits[w].stages);
     CHECK_MSG(p->n_batches && p->batches[p->n_batches - 1].queue == PG_QUEUE_GRAPHICS, "%s: ends on graphics", what);
     /* the last batch is after every compute batch (the frame fence covers both queues) */
     int last_c = -1, lw = -1;
@@ -519,6 +529,40 @@ static void test_shipped(void)
         }
 }
 
+/* The bloom example with its compute shader passes put on the compute queue: they read the HDR image
+ * a raster pass wrote (its barrier's source stage is color_output); their batches' semaphore waits
+ * stay within the compute family's stages (check_invariants) */
+static void test_bloom_on_compute(void)
+{
+    pg_pass_registry reg;
+    memset(&reg, 0, sizeof reg);
+    pg_register_builtin_passes(&reg);
+    char path[512];
+    snprintf(path, sizeof path, "%s/../pipelines/examples/bloom/bloom.json", PG_TEST_DIR);
+    pg_pipeline *pl = NULL;
+    pg_error err = {0};
+    CHECK_MSG(pg_pipeline_load(path, NULL, 0, &pl, &err) == PG_OK, "%s", err.msg);
+    if (!pl) return;
+    uint32_t moved = 0;
+    for (uint32_t i = 0; i < pl->n_passes; i++)
+        if (!strncmp(pl->passes[i].name, "bloom_down", 10) || !strncmp(pl->passes[i].name, "bloom_up", 8)) {
+            pl->passes[i].queue = PG_QUEUE_PREF_COMPUTE;
+            moved++;
+        }
+    CHECK(moved >= 4);
+    pg_compile_desc d = {.pipeline = pl, .registry = &reg, .output_width = 64, .output_height = 36,
+                         .queues = {.n_queues = 2, .separate_family = true}};
+    pg_scene_vars_set(&d.vars, NULL, 16, NULL);
+    pg_graph_plan *p = NULL;
+    CHECK_MSG(pg_graph_compile(&d, &p, &err) == PG_OK, "bloom on compute: %s", err.msg);
+    if (p) {
+        CHECK(p->async && pass_named(p, "bloom_down1") && pass_named(p, "bloom_down1")->queue == PG_QUEUE_COMPUTE);
+        check_invariants(p, "bloom on compute");
+    }
+    pg_graph_plan_free(p);
+    pg_pipeline_free(pl);
+}
+
 int main(void)
 {
     for (size_t i = 0; i < sizeof g_types / sizeof g_types[0]; i++) {
@@ -526,6 +570,7 @@ int main(void)
         CHECK_MSG(pg_registry_add(&g_reg, &g_types[i], &err) == PG_OK, "%s", err.msg);
     }
     test_auto_separate_families();
+    test_bloom_on_compute();
     test_same_family();
     test_explicit_queues();
     test_join_and_fallback();
