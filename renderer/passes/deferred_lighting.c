@@ -192,6 +192,13 @@ static pg_result dl_create(void *self, const pg_pass_create_ctx *ctx, pg_error *
     bool emissive = !vis && pg_slot_ok(pa->emissive_slot) && !pg_ctx_unused(ctx, pa->emissive_slot);
     if (vis && (r = pg_vis_geometry_create(ctx, &pa->draw, 3, &p->vis, err))) return r;
     const pg_phys_resource *hdr = pg_ctx_res(ctx, pa->hdr); /* rgba16f or rgba32f (declare) */
+    /* one invocation a pixel of hdr reads the G-buffer at that pixel: another size showed a
+     * magnified corner (float) or nearly black (packed) */
+    const pg_phys_resource *gsize = pg_ctx_res(ctx, pa->depth);
+    if (gsize->width != hdr->width || gsize->height != hdr->height)
+        return pg_fail(err, PG_ERR_FORMAT, "%s: %s: its output (%ux%u) and its G-buffer depth (%ux%u) differ in size: "
+                                           "the lighting pass reads the G-buffer pixel for pixel",
+                       ctx->desc->file, ctx->desc->json_path, hdr->width, hdr->height, gsize->width, gsize->height);
     if ((r = pg_sampler_create(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, &p->sampler, err))) return r;
     pg_set_binding b[12];
     uint32_t n = 0;

@@ -761,6 +761,20 @@ done
 sed "s#\"fragments/#\"$root/pipelines/fragments/#g; s#\"output\": \"ldr\"#\"output\": \"depth\"#" "$root/pipelines/naive.json" >"$tmp/out_depth.json"
 expect_fail "render: a d32f output" "output 'depth' must be an 8-bit RGBA image (rgba8 or rgba8_srgb) to write $tmp/x.png, not d32f" \
   render --pipeline "$tmp/out_depth.json" --size 16x9 --lights 4 --out "$tmp/x.png"
+# deferred lighting into an hdr of another size than its G-buffer (without the background and
+# transparent passes, whose attachment check caught it): a magnified corner or black, exit 0
+mkdir -p "$tmp/dl" && cp -r "$root/pipelines/fragments" "$tmp/dl/" && cp "$root/pipelines/deferred_packed.json" "$tmp/dl/"
+python3 -c '
+import json, sys
+p = sys.argv[1] + "/fragments/deferred_body.json"
+d = json.load(open(p))
+d["passes"] = [x for x in d["passes"] if x["name"] not in ("background", "transparent")]
+for r in d["resources"]:
+    if r["name"] == "hdr":
+        r["scale"] = 0.5
+json.dump(d, open(p, "w"))' "$tmp/dl"
+expect_fail "deferred lighting: hdr of another size" "its output (8x5) and its G-buffer depth (16x9) differ in size" \
+  render --pipeline "$tmp/dl/deferred_packed.json" --size 16x9 --lights 4 --out "$tmp/x.png"
 # every shipped pipeline takes every value of its own parameters' lists (stochastic.json refused
 # five of its views: its transparent pass, skipped under any view, checked them against "lights": "all")
 for p in "$root"/pipelines/*.json; do
