@@ -124,6 +124,12 @@ static pg_result check_inputs(compile_ctx *c)
         if (outs[k] >= 0 && pl->resources[outs[k]].kind != PG_RES_IMAGE)
             return pg_fail(c->err, PG_ERR_NO_OUTPUT, "%s: %s: '%s' is a buffer; it must be an image",
                            file, keys[k], pl->resources[outs[k]].name);
+    if (c->plan->hdr_output >= 0) { /* read back as floats by the tools (nonfinite, EXR, error metrics) */
+        const pg_format f = pl->resources[c->plan->hdr_output].format;
+        if (f != PG_FMT_RGBA16F && f != PG_FMT_RGBA32F)
+            return pg_fail(c->err, PG_ERR_FORMAT, "%s: hdr_output: '%s' is %s; the HDR output must be rgba16f or rgba32f",
+                           file, pl->hdr_output, pg_format_get(f)->name);
+    }
     return PG_OK;
 }
 
