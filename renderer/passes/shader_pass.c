@@ -56,8 +56,8 @@ static const char *missing_capability(const pg_gpu *gpu, const uint32_t *code, s
             if (cap == 12 && !gpu->int64_atomics) return "Int64Atomics (64-bit atomics; shaderBufferInt64Atomics)";
             for (size_t k = 0; k < sizeof off / sizeof off[0]; k++)
                 if (off[k].cap == cap) return off[k].what;
-        } else if (op != 11 && op != 14 && op != 17) { /* past OpCapability, OpExtInstImport, OpMemoryModel */
-            if (op != 10) break;                       /* OpExtension */
+        } else if (op != 10 && op != 11 && op != 14) { /* past OpExtension, OpExtInstImport, OpMemoryModel */
+            break;
         }
         w += n;
     }
