@@ -145,8 +145,9 @@ void pg_dump_barrier_label(const pg_graph_plan *plan, const pg_barrier *b, char 
         /* "alias first use" -> "alias after depth" */
         snprintf(why, sizeof why, "alias after %s", plan->resources[b->alias_prev].name);
     }
-    int w = b->src_access ? snprintf(buf, size, "%s%s %s\xe2\x86\x92%s", why, b->wrap ? " (prev frame)" : "", sa, da)
-                          : snprintf(buf, size, "%s%s: %s", why, b->wrap ? " (prev frame)" : "", da);
+    const char *wrap = b->wrap && !b->first_frame ? " (prev frame)" : "";
+    int w = b->src_access ? snprintf(buf, size, "%s%s %s\xe2\x86\x92%s", why, wrap, sa, da)
+                          : snprintf(buf, size, "%s%s: %s", why, wrap, da);
     if (w < 0 || (size_t)w >= size) return;
     if (b->is_image && b->old_layout != b->new_layout)
         snprintf(buf + w, size - (size_t)w, "\n%s\xe2\x86\x92%s", short_layout(b->old_layout),

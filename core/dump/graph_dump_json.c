@@ -89,7 +89,7 @@ static cJSON *json_barrier(const pg_graph_plan *plan, const pg_barrier *b)
                               b->alias_prev >= 0 && pg_dmp_res_ok(plan, b->alias_prev)
                                   ? plan->resources[b->alias_prev].name
                                   : NULL) &&
-              cJSON_AddBoolToObject(o, "wrap", b->wrap);
+              cJSON_AddBoolToObject(o, "wrap", b->wrap) && cJSON_AddBoolToObject(o, "first_frame", b->first_frame);
     if (!ok) {
         cJSON_Delete(o);
         return NULL;

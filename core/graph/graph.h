@@ -57,6 +57,9 @@ typedef struct pg_barrier {
     uint32_t old_layout, new_layout;
     int alias_prev;        /* >= 0: first use after this resource occupied the same memory */
     bool wrap;             /* persistent resource: src is the end of the previous frame */
+    bool first_frame;      /* recorded only while the resource holds nothing yet (its first
+                            * frame, or after a plan that assumed another state): a persistent
+                            * image only read, in one layout, leaves UNDEFINED for that layout */
     char why[48];          /* "RAW", "WAR", "WAW", "layout", "alias first use", "output" ... */
 } pg_barrier;
 

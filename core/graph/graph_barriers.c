@@ -218,6 +218,17 @@ static void walk_frame(compile_ctx *c, bool emit)
             *s = c->end[r];
             bool need = true;
             if (!s->w_valid && !a.writes && (!img || s->layout == a.layout)) need = false;
+            if (!need && img && pr->lifetime == PG_LIFETIME_PERSISTENT) {
+                /* nothing to wait for from frame to frame, but the image starts UNDEFINED: the
+                 * runtime records this barrier only until a frame has used it */
+                b.wrap = b.first_frame = true;
+                b.dst_stages = a.stages;
+                b.dst_access = a.access;
+                b.old_layout = VK_IMAGE_LAYOUT_UNDEFINED;
+                b.new_layout = a.layout;
+                pg_strlcpy(b.why, "first frame", sizeof b.why);
+                push_barrier(pp, &b);
+            }
             if (need) {
                 b.wrap = true;
                 b.src_stages = s->w_stages | s->r_stages;

@@ -29,6 +29,7 @@ static void emit_barriers(pg_runtime *rt, VkCommandBuffer cmd, uint32_t n, const
         const pg_phys_resource *r = &rt->mem.res[b->resource];
         uint64_t src_stages = b->src_stages, src_access = b->src_access;
         uint32_t old_layout = b->old_layout;
+        if (b->first_frame && rt->mem.persistent_initialized[b->resource]) continue;
         if (b->wrap && !rt->mem.persistent_initialized[b->resource]) {
             /* very first frame: nothing to wait for, contents undefined */
             src_stages = VK_PIPELINE_STAGE_2_NONE;

@@ -1102,6 +1102,29 @@ EOF
   *) expect_fail "shader pass: a float16_t push member" "push-constant member 'd' is a 16-bit float" dump --pipeline "$up/pc.json" ;;
   esac
 done
+# a persistent image only read, never written: its first frame left it UNDEFINED while the pass
+# sampled it (validation error); a first-frame barrier now takes it out of UNDEFINED once
+cat >"$up/hist.comp" <<'EOF'
+#version 460
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 2, binding = 0) uniform sampler2D hist;
+layout(set = 2, binding = 1, rgba8) uniform writeonly image2D outimg;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(outimg)))) return;
+    imageStore(outimg, p, vec4(0.25 + 0.0 * texelFetch(hist, ivec2(0), 0).a));
+}
+EOF
+printf '%s' '{"name": "hist", "resources": [{"name": "ldr", "type": "image", "format": "rgba8"},
+   {"name": "hist", "type": "image", "format": "rgba8", "lifetime": "persistent"}],
+ "passes": [{"name": "fill", "type": "shader", "reads": ["hist"], "writes": ["ldr"],
+   "options": {"compute": "hist.comp", "bindings": {"outimg": "ldr", "hist": {"resource": "hist", "access": "sampled"}}}}],
+ "output": "ldr"}' >"$up/hist.json"
+"$PG" render --pipeline "$up/hist.json" --validation --frames 3 --size 16x9 --out "$tmp/hist.png" >"$tmp/out" 2>&1 \
+  && ! grep -q "validation error" "$tmp/out" && [ "$(python3 "$root/tests/cli/png_stats.py" "$tmp/hist.png")" = "16 9 1.0000 64.0" ] \
+  && "$PG" dump --pipeline "$up/hist.json" 2>&1 | grep -q "undefined -> shader_read_only  (first frame)" && ok \
+  || { bad "shader pass: a persistent image only read"; tail -3 "$tmp/out"; }
 expect_fail "shader pass: 3D image" "binding 'hdr_image' (set 2, binding 0) is a 3D image: a pipeline image is bound as one 2D layer" \
   dump --pipeline "$up/c_3d.json"
 expect_fail "shader pass: image array" "binding 'ldr_image' (set 2, binding 1) is an image array (layers)" \

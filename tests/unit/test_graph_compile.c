@@ -1845,8 +1845,14 @@ static void test_barriers(void)
             if (b) CHECK(b->wrap && b->alias_prev == -1);
             CHECK_BARRIER(barrier_for(p, "Use", "hist"), S_COLOR, A_CW, S_FRAG, A_SAMPLED, L_COLOR,
                           L_SRO, "RAW+layout");
-            /* only ever sampled, one layout: no barrier at all */
-            CHECK(n_barriers_for(p, "Use", "lut") == 0);
+            /* only ever sampled, one layout: nothing to wait for from frame to frame, only the
+             * first frame's transition out of UNDEFINED (the runtime records it while the image
+             * holds nothing) */
+            CHECK(n_barriers_for(p, "Use", "lut") == 1);
+            const pg_barrier *l = barrier_for(p, "Use", "lut");
+            CHECK_BARRIER(l, 0, 0, S_FRAG, A_SAMPLED, VK_IMAGE_LAYOUT_UNDEFINED, L_SRO, "first frame");
+            if (l) CHECK(l->wrap && l->first_frame && l->alias_prev == -1);
+            if (b) CHECK(!b->first_frame);
             CHECK(res(p, "hist")->block == -1 && res(p, "lut")->block == -1);
             CHECK(res(p, "hist")->first_pass == 0 && res(p, "hist")->last_pass == 1);
             CHECK(p->transient_bytes_unaliased == 40000 + 20000);

@@ -192,6 +192,8 @@ static void check_barrier(const pg_graph_plan *plan, const pg_barrier *b, const 
     else
         CHECK_MSG(jnull(o, "after_alias_of"), "%s: after_alias_of not null", where);
     CHECK_MSG(cJSON_IsBool(jget(o, "wrap")) && (bool)cJSON_IsTrue(jget(o, "wrap")) == b->wrap, "%s: wrap", where);
+    CHECK_MSG(cJSON_IsBool(jget(o, "first_frame")) && (bool)cJSON_IsTrue(jget(o, "first_frame")) == b->first_frame,
+              "%s: first_frame", where);
 }
 
 /* Checks that a JSON dump states exactly what the plan says (any plan). */
