@@ -89,6 +89,18 @@ pg_format pg_format_from_name(const char *name)
     return PG_FMT_UNDEFINED;
 }
 
+bool pg_ident_ok(const char *s)
+{
+    if (!s || !*s) return false;
+    size_t n = 0;
+    for (; s[n]; n++) {
+        const char c = s[n];
+        const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+        if (!ok) return false;
+    }
+    return n < PG_NAME_MAX;
+}
+
 bool pg_strlcpy(char *dst, const char *src, size_t dst_size)
 {
     if (!dst_size) return false;

@@ -125,6 +125,9 @@ const pg_format_info *pg_format_get(pg_format f);
 pg_format pg_format_from_name(const char *name);
 
 /* ---- small helpers ---- */
+/* A name pipelines can write: [A-Za-z0-9_]+, at most PG_NAME_MAX - 1 characters (pass, resource
+ * and pass type names). */
+bool pg_ident_ok(const char *s);
 /* Safe string copy: always NUL-terminates, returns false if truncated. */
 bool pg_strlcpy(char *dst, const char *src, size_t dst_size);
 /* Reads a whole file into a malloc'd NUL-terminated buffer. */

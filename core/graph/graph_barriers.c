@@ -137,6 +137,49 @@ static void push_barrier(pg_plan_pass *pp, const pg_barrier *b)
     if (pp->n_barriers < PG_MAX_BARRIERS_PER_PASS) pp->barriers[pp->n_barriers++] = *b;
 }
 
+/* The first use in the frame of a persistent or imported resource (emit pass): the previous
+ * frame's end state leads into it. A resource only read all frame long, in one layout, needs
+ * nothing from frame to frame; a persistent image that is gets a first-frame barrier out of
+ * UNDEFINED. */
+static void persistent_first_use(compile_ctx *c, pg_plan_pass *pp, int r, const access_req *ap)
+{
+    const pg_plan_resource *pr = &c->plan->resources[r];
+    const bool img = pr->kind == PG_RES_IMAGE;
+    const access_req a = *ap;
+    res_state *s = &c->st[r];
+    pg_barrier b = new_barrier(r, img);
+    *s = c->end[r];
+    bool need = true;
+    if (!s->w_valid && !a.writes && (!img || s->layout == a.layout)) need = false;
+    if (!need && img && pr->lifetime == PG_LIFETIME_PERSISTENT) {
+        /* nothing to wait for from frame to frame, but the image starts UNDEFINED: the
+         * runtime records this barrier only until a frame has used it */
+        b.wrap = b.first_frame = true;
+        b.dst_stages = a.stages;
+        b.dst_access = a.access;
+        b.old_layout = VK_IMAGE_LAYOUT_UNDEFINED;
+        b.new_layout = a.layout;
+        pg_strlcpy(b.why, "first frame", sizeof b.why);
+        push_barrier(pp, &b);
+    }
+    if (need) {
+        b.wrap = true;
+        b.src_stages = s->w_stages | s->r_stages;
+        b.src_access = s->w_valid ? s->w_access : 0;
+        b.dst_stages = a.stages;
+        b.dst_access = a.access;
+        b.old_layout = img ? s->layout : VK_IMAGE_LAYOUT_UNDEFINED;
+        b.new_layout = img ? a.layout : VK_IMAGE_LAYOUT_UNDEFINED;
+        pg_strlcpy(b.why, "frame wrap", sizeof b.why);
+        push_barrier(pp, &b);
+        /* The wrap barrier waited for every access of the last frame: later barriers in
+         * this frame chain through it and need not name last frame's readers again. */
+        s->r_stages = s->r_access = 0;
+        s->n_vis = 0;
+    }
+    apply_access(s, &a, need, need && img && b.old_layout != b.new_layout);
+}
+
 /* Walks the frame. Pass 1 (emit = false) only finds each resource's end-of-frame state (after
  * the output barrier), which is the start state of persistent/imported resources in the next
  * frame. Pass 2 (emit = true) places the barriers. */
@@ -213,38 +256,7 @@ static void walk_frame(compile_ctx *c, bool emit)
                 apply_access(s, &a, placed, img);
                 continue;
             }
-            /* persistent / imported: the previous frame's end state leads into this use. A
-             * resource only read all frame long, in one layout, needs nothing. */
-            *s = c->end[r];
-            bool need = true;
-            if (!s->w_valid && !a.writes && (!img || s->layout == a.layout)) need = false;
-            if (!need && img && pr->lifetime == PG_LIFETIME_PERSISTENT) {
-                /* nothing to wait for from frame to frame, but the image starts UNDEFINED: the
-                 * runtime records this barrier only until a frame has used it */
-                b.wrap = b.first_frame = true;
-                b.dst_stages = a.stages;
-                b.dst_access = a.access;
-                b.old_layout = VK_IMAGE_LAYOUT_UNDEFINED;
-                b.new_layout = a.layout;
-                pg_strlcpy(b.why, "first frame", sizeof b.why);
-                push_barrier(pp, &b);
-            }
-            if (need) {
-                b.wrap = true;
-                b.src_stages = s->w_stages | s->r_stages;
-                b.src_access = s->w_valid ? s->w_access : 0;
-                b.dst_stages = a.stages;
-                b.dst_access = a.access;
-                b.old_layout = img ? s->layout : VK_IMAGE_LAYOUT_UNDEFINED;
-                b.new_layout = img ? a.layout : VK_IMAGE_LAYOUT_UNDEFINED;
-                pg_strlcpy(b.why, "frame wrap", sizeof b.why);
-                push_barrier(pp, &b);
-                /* The wrap barrier waited for every access of the last frame: later barriers in
-                 * this frame chain through it and need not name last frame's readers again. */
-                s->r_stages = s->r_access = 0;
-                s->n_vis = 0;
-            }
-            apply_access(s, &a, need, need && img && b.old_layout != b.new_layout);
+            persistent_first_use(c, pp, r, &a);
         }
     }
     /* after the last pass: the outputs go to the layout the caller reads them in */

@@ -88,6 +88,7 @@ typedef struct pg_slot_decl {
 #define PG_MAX_DEFINES 32
 #define PG_MAX_PASS_EXPLAIN 16 /* explanation lines of one pass (declare) */
 #define PG_MAX_PASS_PARAMS 1536 /* bytes of a pass type's params block (pg_pass_type.params_size) */
+#define PG_MAX_PASS_INSTANCE (64u << 20) /* bytes of a pass instance's state (pg_pass_type.instance_size) */
 #define PG_MAX_RUNTIME_PARAMS 4 /* run-time value fields of one params block (pg_decl_runtime_param) */
 typedef struct pg_pass_decl {
     uint32_t n_reads, n_writes;
@@ -140,7 +141,9 @@ struct pg_pass_report;
 typedef struct pg_pass_type {
     const char *name;        /* the "type" string in pipeline JSON */
     const char *summary;     /* one line for --help / dumps */
-    size_t instance_size;    /* bytes of per-instance state handed to create/record/destroy */
+    size_t instance_size;    /* bytes of per-instance state handed to create/record/destroy
+                              * (<= PG_MAX_PASS_INSTANCE: larger data belongs in Vulkan memory or
+                              * allocations of create()) */
     size_t params_size;      /* bytes of its params block (<= PG_MAX_PASS_PARAMS; 0: none) */
     pg_result (*declare)(const pg_declare_in *in, pg_pass_decl *out, pg_error *err);
     pg_result (*create)(void *self, const struct pg_pass_create_ctx *ctx, pg_error *err);

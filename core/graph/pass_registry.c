@@ -31,6 +31,11 @@ pg_result pg_registry_add(pg_pass_registry *reg, const pg_pass_type *type, pg_er
     if (!reg || !type || !type->name || !type->name[0] || !type->declare)
         return pg_fail(err, PG_ERR_INVALID_ARG,
                        "pg_registry_add: a pass type needs a name and a declare function");
+    if (!pg_ident_ok(type->name))
+        return pg_fail(err, PG_ERR_INVALID_ARG,
+                       "pass type name '%.80s%s' cannot be written in a pipeline: a type name matches "
+                       "[A-Za-z0-9_]+, at most %d characters", type->name, strlen(type->name) > 80 ? "..." : "",
+                       PG_NAME_MAX - 1);
     if (type->runtime_options && type->runtime_options[0] && !type->update)
         return pg_fail(err, PG_ERR_INVALID_ARG,
                        "pass type '%s' lists run-time options ('%s', ...) but has no update()", type->name,
@@ -38,6 +43,10 @@ pg_result pg_registry_add(pg_pass_registry *reg, const pg_pass_type *type, pg_er
     if (type->params_size > PG_MAX_PASS_PARAMS)
         return pg_fail(err, PG_ERR_LIMIT, "pass type '%s': its params block is %zu bytes, more than %d",
                        type->name, type->params_size, PG_MAX_PASS_PARAMS);
+    if (type->instance_size > PG_MAX_PASS_INSTANCE)
+        return pg_fail(err, PG_ERR_LIMIT,
+                       "pass type '%s': its instance_size is %zu bytes, more than %u (allocate large state in "
+                       "create())", type->name, type->instance_size, PG_MAX_PASS_INSTANCE);
     if (pg_registry_find(reg, type->name))
         return pg_fail(err, PG_ERR_INVALID_ARG, "pass type '%s' is registered twice", type->name);
     const uint32_t cap = (uint32_t)(sizeof reg->types / sizeof reg->types[0]);

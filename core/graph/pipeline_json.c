@@ -53,7 +53,7 @@ static pg_result name_list(loader *L, const src_file *f, const cJSON *o, const c
         return pj_fail_at(L, PG_ERR_LIMIT, f, path, "%d entries, the limit is %u", cnt, max);
     uint32_t k = 0;
     for (const cJSON *c = arr->child; c; c = c->next, k++) {
-        if (!cJSON_IsString(c) || !pj_valid_ident(c->valuestring)) {
+        if (!cJSON_IsString(c) || !pg_ident_ok(c->valuestring)) {
             pj_describe(c, got, sizeof got);
             snprintf(path, sizeof path, "%s.%s[%u]", ip, key, k);
             return pj_fail_at(L, PG_ERR_SCHEMA, f, path,
@@ -227,7 +227,7 @@ static pg_result read_output(loader *L, const char *key, bool required, char *ou
         pj_describe(v, got, sizeof got);
         return pj_fail_at(L, PG_ERR_SCHEMA, f, key, "expected an image resource name, got %s", got);
     }
-    int j = pj_valid_ident(v->valuestring) ? find_res(L, v->valuestring) : -1;
+    int j = pg_ident_ok(v->valuestring) ? find_res(L, v->valuestring) : -1;
     if (j < 0) {
         char list[600];
         resource_names(L, list, sizeof list);

@@ -16,7 +16,7 @@ pg_result pj_req_ident(loader *L, const src_file *f, const cJSON *obj, const cha
     snprintf(path, sizeof path, "%s.%s", ipath, key);
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     if (!v) return pj_fail_at(L, PG_ERR_SCHEMA, f, path, "missing (required)");
-    if (!cJSON_IsString(v) || !pj_valid_ident(v->valuestring)) {
+    if (!cJSON_IsString(v) || !pg_ident_ok(v->valuestring)) {
         char got[96];
         pj_describe(v, got, sizeof got);
         return pj_fail_at(L, PG_ERR_SCHEMA, f, path,

@@ -58,7 +58,6 @@ pg_result pj_fail_at(loader *L, pg_result code, const src_file *f, const char *p
     __attribute__((format(printf, 5, 6)))
 #endif
     ;
-bool pj_valid_ident(const char *s);
 void pj_fmt_double(double v, char *buf, size_t n);
 void pj_list_append(char *buf, size_t n, const char *item);
 bool pj_json_integer(const cJSON *v, double lo, double hi, double *out);

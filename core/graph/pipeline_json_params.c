@@ -17,7 +17,7 @@
 /* ------------------------------------------------------------------ parameters */
 
 /* A whole-string parameter reference: "$" followed by an identifier. */
-static bool is_param_ref(const char *s) { return s && s[0] == '$' && pj_valid_ident(s + 1); }
+static bool is_param_ref(const char *s) { return s && s[0] == '$' && pg_ident_ok(s + 1); }
 
 static void param_names(const pg_pipeline *p, char *buf, size_t n)
 {
@@ -410,7 +410,7 @@ static pg_result parse_param_decl(loader *L, const src_file *f, const cJSON *dec
     char got[96];
     memset(out, 0, sizeof *out);
     snprintf(path, sizeof path, "parameters.%s", name);
-    if (!pj_valid_ident(name))
+    if (!pg_ident_ok(name))
         return pj_fail_at(L, PG_ERR_PARAM, f, path,
                        "parameter names must match [A-Za-z0-9_]+ (at most %d characters)",
                        PG_NAME_MAX - 1);

@@ -24,19 +24,6 @@ pg_result pj_fail_at(loader *L, pg_result code, const src_file *f, const char *p
     return pg_fail(L->err, code, "%s: %s: %s", f ? f->path : "<pipeline>", path, cause);
 }
 
-bool pj_valid_ident(const char *s)
-{
-    if (!s || !*s) return false;
-    size_t n = 0;
-    for (; s[n]; n++) {
-        char c = s[n];
-        bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                  c == '_';
-        if (!ok) return false;
-    }
-    return n < PG_NAME_MAX;
-}
-
 /* "%.17g" trimmed to the shortest text that reads back as the same double. */
 void pj_fmt_double(double v, char *buf, size_t n)
 {

@@ -140,7 +140,9 @@ static pg_result create_pass(pg_runtime *rt, int pi, pg_error *err)
         return pg_fail(err, PG_ERR_INVALID_ARG, "pass '%s': its type '%s' has no %s function: it cannot run", pass->name,
                        t->name, !t->create ? "create" : !t->record ? "record" : "destroy");
     rt->mem.pass_state[pi] = calloc(1, pass->type->instance_size ? pass->type->instance_size : 1);
-    if (!rt->mem.pass_state[pi]) return pg_fail(err, PG_ERR_OOM, "out of memory");
+    if (!rt->mem.pass_state[pi])
+        return pg_fail(err, PG_ERR_OOM, "pass '%s' (%s): out of memory for its state of %zu bytes", pass->name,
+                       t->name, t->instance_size);
     pg_result r = pass->type->create(rt->mem.pass_state[pi], &ctx, err);
     if (r) return pg_error_prefix(err, "pass '%s' (%s)", pass->name, pass->type->name);
     return PG_OK;

@@ -880,6 +880,8 @@ if [ -f "$plugdir/libpg_tint.so" ]; then
     render --plugin "$plugdir/libpg_tint_noentry.so" --size 16x16 --out "$tmp/x.png"
   expect_fail "--plugin: API version" "libpg_tint_badversion.so: plug-in API version 999; this passgraph has 2" \
     render --plugin "$plugdir/libpg_tint_badversion.so" --size 16x16 --out "$tmp/x.png"
+  expect_fail "--plugin: a type name pipelines cannot write" "libpg_tint_badname.so: pass type name 'tint-x' cannot be written in a pipeline: a type name matches [A-Za-z0-9_]+, at most 63 characters" \
+    render --plugin "$plugdir/libpg_tint_badname.so" --size 16x16 --out "$tmp/x.png"
   expect_fail "--plugin: a type without create()" "libpg_tint_nocreate.so: pass type 'tint' has no create function" \
     render --plugin "$plugdir/libpg_tint_nocreate.so" --pipeline "$tintp" --size 16x16 --out "$tmp/x.png"
   # a library is loaded once by its real path (named twice, or through a link); a copy of it in another

@@ -558,6 +558,28 @@ static void test_registry(void)
     CHECK(pg_registry_find(&reg, "nope") == NULL);
     CHECK(pg_registry_add(&reg, &g_types[0], &err) == PG_ERR_INVALID_ARG);
     HAS(err.msg, "registered twice");
+    { /* a type name no pipeline can write is refused where it is registered (a plug-in's type
+       * 'my-pass' loaded, and every pipeline naming it failed with "expected a name") */
+        static char long_name[PG_NAME_MAX + 1];
+        memset(long_name, 'a', PG_NAME_MAX);
+        const char *bad[] = {"my-pass", "two words", "t\xc3\xa9", long_name};
+        for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+            pg_pass_type t = g_types[0];
+            t.name = bad[i];
+            CHECK(pg_registry_add(&reg, &t, &err) == PG_ERR_INVALID_ARG);
+            HAS(err.msg, "cannot be written in a pipeline: a type name matches [A-Za-z0-9_]+, at most 63 characters");
+        }
+        HAS(err.msg, "'aaaaaaaa");
+        pg_pass_type huge = g_types[0];
+        huge.name = "huge";
+        huge.instance_size = (size_t)PG_MAX_PASS_INSTANCE + 1; /* was a bare "out of memory" at create */
+        CHECK(pg_registry_add(&reg, &huge, &err) == PG_ERR_LIMIT);
+        HAS(err.msg, "pass type 'huge': its instance_size is 67108865 bytes, more than 67108864");
+        huge.instance_size = PG_MAX_PASS_INSTANCE;
+        CHECK(pg_registry_add(&reg, &huge, &err) == PG_OK);
+        reg.count--;
+        CHECK(reg.count == 1);
+    }
     static pg_pass_type many[70];
     static char names[70][16];
     for (int i = 0; i < 70; i++) {

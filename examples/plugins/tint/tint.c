@@ -6,9 +6,9 @@
  * Slots: writes [image] (rgba16f storage image, read and written: storage_rw). Options r, g, b in
  * 0..1000 (default 1). Built by CMake as a shared object that links nothing of passgraph's: its
  * references to pg_* functions bind to the passgraph executable's exports when it is loaded with
- * `--plugin`. Built three times more for the loader's refusal tests: with PG_TINT_API_VERSION=999
- * (another API version), with PG_TINT_NO_ENTRY (no entry points) and with PG_TINT_NO_CREATE (no create
- * function). */
+ * `--plugin`. Built four times more for the loader's refusal tests: with PG_TINT_API_VERSION=999
+ * (another API version), with PG_TINT_NO_ENTRY (no entry points), with PG_TINT_NO_CREATE (no create
+ * function) and with PG_TINT_NAME="tint-x" (a type name no pipeline can write). */
 #include <string.h>
 
 #include "graph_execute.h"
@@ -20,6 +20,9 @@
 
 #ifndef PG_TINT_API_VERSION
 #define PG_TINT_API_VERSION PG_PLUGIN_API_VERSION
+#endif
+#ifndef PG_TINT_NAME
+#define PG_TINT_NAME "tint"
 #endif
 
 static const char k_shader[] =
@@ -110,7 +113,7 @@ static void tint_destroy(void *self, pg_gpu *gpu)
 }
 
 static const pg_pass_type k_tint = {
-    .name = "tint",
+    .name = PG_TINT_NAME,
     .summary = "compute (plug-in example): multiply an rgba16f image by a colour, in place",
     .instance_size = sizeof(tint),
     .params_size = sizeof(tint_params),
