@@ -64,7 +64,7 @@ pg_result pg_app_attach_environment(pg_app *app, struct pg_scene *scene, pg_erro
  * file's) and the scene posed on the CPU at --time (pg_scene_pose: vertices, file lights, bounds),
  * so framing and the static upload follow the animation. Before the upload and the default view. */
 /* pg_session_create on the app's device and scene, after loading the plug-ins the pipeline file
- * lists ("plugins", app/plugins.h) into the app's registry. */
+ * lists ("plugins", renderer/plugins.h) into the app's registry. */
 pg_result pg_app_session_create(pg_app *app, const pg_session_desc *desc, pg_session **out, pg_error *err);
 pg_result pg_app_pose_scene(pg_app *app, struct pg_scene *scene, pg_error *err);
 void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const char *label, FILE *f);

@@ -25,7 +25,7 @@ typedef struct pg_cli_common {
     float time;                  /* --time T, |T| <= PG_MAX_TIME_S */
     const char *animation;       /* --animation N|NAME|all|none (NULL: the first animation) */
     uint32_t n_plugins;
-    const char *plugins[8];      /* --plugin FILE.so (repeatable; app/plugins.h) */
+    const char *plugins[8];      /* --plugin FILE.so (repeatable; renderer/plugins.h) */
     uint32_t seed;               /* --seed S */
     bool has_radius, has_intensity, has_ambient;
     float radius, intensity;     /* --radius, --intensity */

@@ -15,6 +15,7 @@
 #include "image_compare.h"
 #include "image_util.h"
 #include "pass_list.h"
+#include "plugins.h"
 #include "render_session.h"
 #include "scene_gpu.h"
 
@@ -25,6 +26,7 @@ struct passgraph {
     pg_scene *scene;
     pg_scene_gpu *sg;
     pg_pass_registry reg;
+    pg_plugins plugins;    /* the pipeline file's "plugins" */
     pg_session *session, *reference;
     char pipeline[PG_PATH_MAX], reference_path[PG_PATH_MAX];
     char keys[MAX_PARAMS][PG_NAME_MAX], values[MAX_PARAMS][PG_NAME_MAX];
@@ -77,17 +79,23 @@ static pg_result open_parts(passgraph *p, const passgraph_desc *d, pg_error *err
         if (r) return r;
     }
     if (d->pipeline) {
+        if (!d->pipeline[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_open: pipeline \"\": an empty path");
         if (!pg_strlcpy(p->pipeline, d->pipeline, sizeof p->pipeline))
-            return pg_fail(err, PG_ERR_INVALID_ARG, "pipeline path too long");
+            return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_open: pipeline path longer than %d bytes", PG_PATH_MAX - 1);
     } else {
         pg_data_path(p->pipeline, sizeof p->pipeline, "pipelines/forward_plus.json");
     }
+    if (!d->width != !d->height)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_open: size %ux%u: give both sides, or 0x0 for 1280x720",
+                       d->width, d->height);
     pg_gpu_desc gd = {.validation = d->validation, .device_index = d->device, .quiet = true};
     pg_result r = pg_gpu_create(&gd, &p->gpu, err);
     if (!r) r = pg_scene_load(d->scene ? d->scene : "default", &p->scene, err);
     if (!r) r = pg_scene_gpu_create(p->gpu, p->scene, &p->sg, err);
     if (r) return r;
     pg_register_builtin_passes(&p->reg);
+    /* the pass types the pipeline file lists (a file that does not load is reported by the session) */
+    if ((r = pg_plugins_load_listed(&p->reg, p->pipeline, &p->plugins, err))) return r;
     p->fi.width = d->width ? d->width : 1280;
     p->fi.height = d->height ? d->height : 720;
     if (p->fi.width > 16384 || p->fi.height > 16384)
@@ -97,6 +105,8 @@ static pg_result open_parts(passgraph *p, const passgraph_desc *d, pg_error *err
     if (r) return r;
     r = passgraph_set_lights(p, 256, 7, 0.0f, err);
     if (!r) r = open_session(p, p->pipeline, false, &p->session, err);
+    /* compiled now, as the header says: a pipeline the passes refuse fails here, not at the first frame */
+    if (!r) r = pg_session_compile(p->session, p->fi.lights.count, p->fi.width, p->fi.height, err);
     return r;
 }
 
@@ -126,6 +136,7 @@ void passgraph_close(passgraph *p)
     if (p->sg) pg_scene_gpu_destroy(p->gpu, p->sg);
     pg_scene_free(p->scene);
     if (p->gpu) pg_gpu_destroy(p->gpu);
+    pg_plugins_close(&p->plugins); /* after every session that used their types */
     free(p);
 }
 
@@ -137,6 +148,8 @@ static bool finite3(const float v[3])
 pg_result passgraph_set_camera(passgraph *p, const float eye[3], const float target[3], const float up[3],
                                float fov_y_deg, float near_z, float far_z, pg_error *err)
 {
+    if (!p || !eye || !target || !up)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_set_camera: no session, eye, target or up");
     if (!finite3(eye) || !finite3(target) || !finite3(up))
         return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_set_camera: eye, target and up must be finite");
     if (eye[0] == target[0] && eye[1] == target[1] && eye[2] == target[2])
@@ -159,6 +172,7 @@ pg_result passgraph_set_camera(passgraph *p, const float eye[3], const float tar
 
 pg_result passgraph_set_lights(passgraph *p, uint32_t count, uint32_t seed, float time, pg_error *err)
 {
+    if (!p) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_set_lights: no session");
     if (count > (1u << 24)) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_set_lights: %u lights: at most 2^24", count);
     if (!(fabsf(time) <= PG_MAX_TIME_S))
         return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_set_lights: time %g: a finite number of seconds within +-%g "
@@ -196,6 +210,7 @@ pg_result passgraph_set_param(passgraph *p, const char *key, const char *value, 
 
 pg_result passgraph_render(passgraph *p, pg_error *err)
 {
+    if (!p) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_render: no session");
     p->have_frame = false;
     pg_result r = pg_session_render(p->session, &p->fi, true, &p->stats, err);
     p->have_frame = r == PG_OK;
@@ -204,7 +219,8 @@ pg_result passgraph_render(passgraph *p, pg_error *err)
 
 static pg_result read_output(const passgraph *p, pg_session *s, int which, void *dst, size_t dst_bytes, pg_error *err)
 {
-    if (!dst) return pg_fail(err, PG_ERR_INVALID_ARG, "no destination buffer");
+    if (!p || !dst) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_read_%s: no session or no destination buffer",
+                                   which ? "hdr" : "rgba8");
     if (!p->have_frame) return pg_fail(err, PG_ERR_INVALID_ARG, "no frame read back yet: call passgraph_render first");
     uint32_t w, h;
     pg_format fmt;
@@ -223,16 +239,21 @@ static pg_result read_output(const passgraph *p, pg_session *s, int which, void 
 
 pg_result passgraph_read_rgba8(const passgraph *p, uint8_t *dst, size_t dst_bytes, pg_error *err)
 {
-    return read_output(p, p->session, 0, dst, dst_bytes, err);
+    return read_output(p, p ? p->session : NULL, 0, dst, dst_bytes, err);
 }
 
 pg_result passgraph_read_hdr(const passgraph *p, float *dst, size_t dst_bytes, pg_error *err)
 {
-    return read_output(p, p->session, 1, dst, dst_bytes, err);
+    return read_output(p, p ? p->session : NULL, 1, dst, dst_bytes, err);
 }
 
 void passgraph_get_vulkan(const passgraph *p, passgraph_vulkan *out)
 {
+    if (!out) return;
+    if (!p) {
+        *out = (passgraph_vulkan){0};
+        return;
+    }
     *out = (passgraph_vulkan){p->gpu->instance, p->gpu->phys, p->gpu->device, p->gpu->queue, p->gpu->queue_family};
 }
 
@@ -249,7 +270,12 @@ static void image_barrier(VkCommandBuffer cmd, VkImage img, VkImageLayout from, 
 pg_result passgraph_render_to_image(passgraph *p, VkImage dst, VkFormat format, VkImageLayout old_layout,
                                     VkImageLayout new_layout, pg_error *err)
 {
-    if (!dst) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_render_to_image: no image");
+    if (!p || !dst) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_render_to_image: no session or no image");
+    if (!pg_vk_format_blits_from_unorm(format))
+        return pg_fail(err, PG_ERR_FORMAT,
+                       "passgraph_render_to_image: VkFormat %d is an integer, depth/stencil or compressed format: a blit "
+                       "from the RGBA8 output cannot write it",
+                       (int)format);
     VkFormatProperties fp;
     vkGetPhysicalDeviceFormatProperties(p->gpu->phys, format, &fp);
     if (!(fp.linearTilingFeatures & VK_FORMAT_FEATURE_BLIT_DST_BIT) &&
@@ -284,27 +310,27 @@ pg_result passgraph_render_to_image(passgraph *p, VkImage dst, VkFormat format, 
 
 uint32_t passgraph_pass_count(const passgraph *p)
 {
-    return p->stats.n_passes;
+    return p ? p->stats.n_passes : 0;
 }
 
 const char *passgraph_pass_name(const passgraph *p, uint32_t i)
 {
-    return i < p->stats.n_passes ? p->stats.pass_names[i] : NULL;
+    return p && i < p->stats.n_passes ? p->stats.pass_names[i] : NULL;
 }
 
 double passgraph_pass_ms(const passgraph *p, uint32_t i)
 {
-    return i < p->stats.n_passes && p->stats.timestamps_valid ? p->stats.pass_ms[i] : NAN;
+    return p && i < p->stats.n_passes && p->stats.timestamps_valid ? p->stats.pass_ms[i] : NAN;
 }
 
 double passgraph_gpu_ms(const passgraph *p)
 {
-    return p->stats.timestamps_valid ? p->stats.gpu_total_ms : NAN;
+    return p && p->stats.timestamps_valid ? p->stats.gpu_total_ms : NAN;
 }
 
 uint32_t passgraph_validation_messages(const passgraph *p)
 {
-    return p->gpu->validation_messages;
+    return p ? p->gpu->validation_messages : 0;
 }
 
 const char *passgraph_data_dir(void)
@@ -314,8 +340,8 @@ const char *passgraph_data_dir(void)
 
 void passgraph_size(const passgraph *p, uint32_t *width, uint32_t *height)
 {
-    *width = p->fi.width;
-    *height = p->fi.height;
+    if (width) *width = p ? p->fi.width : 0;
+    if (height) *height = p ? p->fi.height : 0;
 }
 
 /* RGBA32F and RGBA8 copies of a session's last read-back frame (malloc'd) */
@@ -332,14 +358,18 @@ static pg_result frame_copy(passgraph *p, pg_session *s, float **hdr, uint8_t **
 
 pg_result passgraph_error_against(passgraph *p, const char *reference, passgraph_error_stats *out, pg_error *err)
 {
+    if (!p || !out) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_error_against: no session or no output");
     char path[PG_PATH_MAX];
-    if (reference) pg_strlcpy(path, reference, sizeof path);
-    else pg_data_path(path, sizeof path, "pipelines/reference.json");
+    if (reference && !reference[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_error_against: reference \"\": an empty path");
+    if (reference && !pg_strlcpy(path, reference, sizeof path))
+        return pg_fail(err, PG_ERR_INVALID_ARG, "passgraph_error_against: reference path longer than %d bytes", PG_PATH_MAX - 1);
+    if (!reference) pg_data_path(path, sizeof path, "pipelines/reference.json");
     if (!p->have_frame) return pg_fail(err, PG_ERR_INVALID_ARG, "no frame read back yet: call passgraph_render first");
     pg_result r = PG_OK;
     if (!p->reference || strcmp(path, p->reference_path)) {
         pg_session_destroy(p->reference);
         p->reference = NULL;
+        if ((r = pg_plugins_load_listed(&p->reg, path, &p->plugins, err))) return r;
         if ((r = open_session(p, path, true, &p->reference, err))) return r;
         pg_strlcpy(p->reference_path, path, sizeof p->reference_path);
     }

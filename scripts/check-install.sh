@@ -5,7 +5,9 @@
 # installed header is first compiled alone as C11 and as C++17). Each run
 # must read its data from the prefix (not the source tree), render, read the frame into memory and
 # into a VkImage of its own (the two must agree), print per-pass GPU times and the error against
-# the reference pipeline. ctest runs it as install_test.
+# the reference pipeline. Then: the library exports only pg_* and passgraph_* symbols, and a
+# program that finds it through a relative LD_LIBRARY_PATH still reads the prefix's data. ctest runs
+# it as install_test.
 set -euo pipefail
 build=$(cd "$1" && pwd)
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -55,4 +57,23 @@ for exe in "$tmp/cmake-build/embed" "$tmp/embed-pkgconfig"; do
     status=1
   fi
 done
+# the library exports the embedding and pass APIs only (cmake/libpassgraph.map): a host that links
+# its own glslang, SPIRV-Tools or tinygltf gets no clashing definitions
+others=$(nm -D --defined-only "$lib" | awk '{print $3}' | grep -vE '^(pg_|passgraph_)' || true)
+if [ -n "$others" ]; then
+  echo "check-install: libpassgraph.so exports $(echo "$others" | wc -l) symbols outside pg_* and passgraph_*:" \
+    "$(echo "$others" | head -5 | tr '\n' ' ')"
+  status=1
+fi
+# found through a relative LD_LIBRARY_PATH entry (the dynamic loader's name for it is relative):
+# still the prefix's data, not the source tree the build came from
+cc -std=c11 -Wall -Wextra -Werror "$root/examples/embed/embed.c" -o "$tmp/embed-norpath" $(pkg-config --cflags --libs passgraph)
+if (cd "$prefix" && env -u PASSGRAPH_DATA_DIR LD_LIBRARY_PATH="${libdir#"$prefix"/}" "$tmp/embed-norpath" "" "$tmp/norpath.ppm") \
+     >"$tmp/run.log" 2>&1 && grep -qF "embed: data folder $prefix/share/passgraph" "$tmp/run.log"; then
+  echo "check-install: a relative LD_LIBRARY_PATH: ok"
+else
+  echo "check-install: a relative LD_LIBRARY_PATH: FAILED (the data folder must be the prefix's)"
+  cat "$tmp/run.log"
+  status=1
+fi
 exit $status

@@ -136,7 +136,7 @@ typedef struct pg_pipeline {
     char hdr_output[PG_NAME_MAX];       /* optional scene-linear HDR image to inspect/read back */
     /* "plugins" (top-level file only): shared libraries of pass types the pipeline needs, resolved
      * against the file's folder and held to the include rules (pipeline_paths.h); loading them is
-     * the application's (app/plugins.c), before the pipeline is compiled */
+     * the application's or the library's (renderer/plugins.c), before the pipeline is compiled */
     uint32_t n_plugins;
     char plugins[PG_MAX_PIPELINE_PLUGINS][PG_PATH_MAX];
 } pg_pipeline;

@@ -203,6 +203,8 @@ pg_result pg_image_create(pg_gpu *gpu, VkFormat format, uint32_t w, uint32_t h, 
                           pg_error *err);
 void pg_image_destroy(pg_gpu *gpu, pg_image *img);
 VkImageAspectFlags pg_vk_aspect(VkFormat f);
+/* false for integer and depth/stencil formats: a blit from an RGBA8 UNORM image cannot write them */
+bool pg_vk_format_blits_from_unorm(VkFormat f);
 
 /* One-shot commands: begin returns a recording command buffer; end submits, waits, frees. */
 pg_result pg_gpu_begin_once(pg_gpu *gpu, VkCommandBuffer *out, pg_error *err);

@@ -29,15 +29,17 @@ typedef struct passgraph passgraph;
 typedef struct passgraph_desc {
     const char *pipeline;          /* a pipeline file (NULL: the data folder's pipelines/forward_plus.json) */
     const char *scene;             /* a glTF 2.0 file (NULL or "default": the built-in atrium) */
-    uint32_t width, height;        /* the output size (0: 1280 x 720) */
+    uint32_t width, height;        /* the output size (both 0: 1280 x 720; one 0 is refused) */
     const char *const *params;     /* "key=value" pipeline parameter overrides, as --set */
     uint32_t n_params;
     int device;                    /* Vulkan device index (-1: the first suitable: discrete, integrated, cpu) */
     bool validation;               /* the Khronos validation layer with synchronization validation */
 } passgraph_desc;
 
-/* Opens a session: a Vulkan device, the scene uploaded, the pipeline compiled for the output size,
- * the scene's default camera and 256 generated lights (seed 7) at time 0. */
+/* Opens a session: a Vulkan device, the scene uploaded, the pass types the pipeline file lists
+ * ("plugins") loaded, the pipeline compiled for the output size (a value a pass refuses fails
+ * here), the scene's default camera and 256 generated lights (seed 7) at time 0. Every call given a
+ * NULL session or a NULL required pointer returns PG_ERR_INVALID_ARG (getters: 0, NULL or NaN). */
 pg_result passgraph_open(const passgraph_desc *desc, passgraph **out, pg_error *err);
 void passgraph_close(passgraph *p);
 
@@ -71,7 +73,8 @@ typedef struct passgraph_vulkan {
 void passgraph_get_vulkan(const passgraph *p, passgraph_vulkan *out);
 /* Renders one frame and copies its display image into dst, a 2D colour image of the session's
  * device of the output's size or larger, created with VK_IMAGE_USAGE_TRANSFER_DST_BIT and the
- * format `format` (any format vkCmdBlitImage can write from RGBA8). dst is in old_layout before the
+ * format `format` (any format vkCmdBlitImage can write from RGBA8: not an integer or depth/stencil
+ * one, PG_ERR_FORMAT). dst is in old_layout before the
  * call (UNDEFINED: its contents are discarded) and in new_layout after it; the copy is complete
  * when the call returns (the device is idle). */
 pg_result passgraph_render_to_image(passgraph *p, VkImage dst, VkFormat format, VkImageLayout old_layout,

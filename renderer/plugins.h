@@ -1,5 +1,6 @@
-/* plugins.h - `--plugin FILE.so`: pass types from shared libraries (core/graph/pass_plugin.h,
- * docs/plugins.md), loaded into an application's registry after the built-in ones. */
+/* plugins.h - `--plugin FILE.so` and a pipeline's "plugins": pass types from shared libraries
+ * (core/graph/pass_plugin.h, docs/plugins.md), loaded into the tool's or an embedding session's
+ * registry after the built-in ones. */
 #ifndef PG_PLUGINS_H
 #define PG_PLUGINS_H
 
