@@ -37,6 +37,11 @@ struct passgraph {
     bool have_frame;       /* a frame was read back (passgraph_read_*, passgraph_error_against) */
 };
 
+uint32_t passgraph_embed_version(void)
+{
+    return PASSGRAPH_EMBED_VERSION;
+}
+
 static pg_result add_param(passgraph *p, const char *key, const char *value, pg_error *err)
 {
     uint32_t i = 0;

@@ -76,4 +76,18 @@ else
   cat "$tmp/run.log"
   status=1
 fi
+# a plug-in built from the installed headers only (docs/plugins.md), loaded by the installed tool
+cc -std=c11 -Wall -Wextra -Werror -shared -fPIC "$root/examples/plugins/tint/tint.c" $(pkg-config --cflags passgraph) \
+  -o "$tmp/libpg_tint.so"
+frag="$prefix/share/passgraph/pipelines/fragments"
+sed -e "s#\"\.\./\.\./\.\./pipelines/fragments/#\"$frag/#g" -e 's#^  "include"#  "plugins": ["libpg_tint.so"],\n  "include"#' \
+  "$root/examples/plugins/tint/tint.json" >"$tmp/tint.json"
+if (cd "$tmp" && env -u PASSGRAPH_DATA_DIR "$prefix/bin/passgraph" render --pipeline "$tmp/tint.json" --size 32x18 \
+      --lights 4 --validation --out "$tmp/tint.png") >"$tmp/run.log" 2>&1 && grep -q "tint" "$tmp/run.log"; then
+  echo "check-install: a plug-in built against the installed headers: ok"
+else
+  echo "check-install: a plug-in built against the installed headers: FAILED"
+  cat "$tmp/run.log"
+  status=1
+fi
 exit $status

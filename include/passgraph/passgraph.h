@@ -24,6 +24,10 @@ extern "C" {
 
 #define PASSGRAPH_EMBED_VERSION 1
 
+/* The PASSGRAPH_EMBED_VERSION the library was built with: a program compares it with the one it
+ * was compiled against (the structs of this header change only with it). */
+uint32_t passgraph_embed_version(void);
+
 typedef struct passgraph passgraph;
 
 typedef struct passgraph_desc {

@@ -92,6 +92,7 @@ static void test_null_arguments(void)
     CHECK(passgraph_pass_count(NULL) == 0 && passgraph_pass_name(NULL, 0) == NULL);
     CHECK(isnan(passgraph_pass_ms(NULL, 0)) && isnan(passgraph_gpu_ms(NULL)));
     CHECK(passgraph_validation_messages(NULL) == 0);
+    CHECK(passgraph_embed_version() == PASSGRAPH_EMBED_VERSION);
     uint32_t w = 1, h = 1;
     passgraph_size(NULL, &w, &h);
     CHECK(w == 0 && h == 0);
