@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cjson/cJSON.h>
 
@@ -61,7 +62,8 @@ static const char *const compare_help_own =
     "                       (HDR errors are heavy-tailed: the largest one leaves the rest black);\n"
     "                       'max' or 0: the largest error\n"
     "  --json FILE          also write the results as a JSON object (the 'compare:' keys, plus\n"
-    "                       per-pass times; non-finite numbers as the strings \"inf\", \"-inf\", \"nan\")\n"
+    "                       per-pass times; non-finite numbers as the strings \"inf\", \"-inf\", \"nan\");\n"
+    "                       '-': the JSON alone on the standard output, the report on the standard error\n"
     "  --flip-map FILE.png  write the LDR-FLIP map (per-pixel perceptual error of the display images)\n"
     "                       in the heatmap's colormap over the fixed range 0..1, so maps compare\n"
     "  --no-hdr-flip        skip HDR-FLIP (it runs LDR-FLIP at 2..14+ exposures: seconds at 1080p);\n"
@@ -227,6 +229,8 @@ typedef struct compare_job {
     bool no_hdr_flip;
     char ref_path[PG_PATH_MAX], pipe_path[PG_PATH_MAX];
     pg_ov_list pipe_ov, ref_ov;
+    int json_fd;             /* --json -: the standard output the JSON goes to (the report goes to
+                              * the standard error then); -1 otherwise */
 } compare_job;
 
 /* What compare measures besides pg_image_error (frame_metrics.h). */
@@ -313,7 +317,7 @@ static pg_result write_json(const compare_job *job, const side *a, const side *r
     char *txt = cJSON_Print(o);
     cJSON_Delete(o);
     if (!txt) return pg_fail(err, PG_ERR_OOM, "out of memory");
-    FILE *f = fopen(path, "w");
+    FILE *f = job->json_fd >= 0 ? fdopen(job->json_fd, "w") : fopen(path, "w");
     bool ok = f && fputs(txt, f) >= 0 && fputc('\n', f) != EOF;
     if (f && fclose(f)) ok = false;
     cJSON_free(txt);
@@ -440,6 +444,7 @@ static int parse_args(compare_job *job, int argc, char **argv, pg_error *err)
 {
     pg_cli_defaults(&job->opt);
     job->reference = job->heatmap = job->json = job->flip_map = NULL;
+    job->json_fd = -1;
     job->threshold = 1.0;
     job->accumulate = 1;
     job->flicker_frames = PG_FLICKER_FRAMES_DEFAULT;
@@ -476,6 +481,14 @@ static int resolve_sides(compare_job *job, pg_error *err)
         (job->json && strcmp(job->json, "-") && pg_file_check_writable(job->json, "--json", err))) {
         fprintf(stderr, "passgraph compare: %s\n", err->msg);
         return 2;
+    }
+    if (job->json && !strcmp(job->json, "-")) { /* the JSON alone on stdout, the report on stderr */
+        fflush(stdout);
+        job->json_fd = dup(STDOUT_FILENO);
+        if (job->json_fd < 0 || dup2(STDERR_FILENO, STDOUT_FILENO) < 0) {
+            fprintf(stderr, "passgraph compare: --json -: %s\n", strerror(errno));
+            return 1;
+        }
     }
     return -1;
 }
@@ -588,11 +601,12 @@ static void print_measures(const compare_job *job, const side *A, const extra_me
                m->pm.hdr.exposures, num(b2, sizeof b2, m->pm.hdr.start_exposure),
                num(b3, sizeof b3, m->pm.hdr.stop_exposure));
     printf("; %.0f ms CPU\n", m->pm.cpu_ms);
-    printf("%-10s flicker=%s (%u frames, sample 0..%u; mean |frame k - frame k-1| / reference mean RGB)"
-           " accumulate=%u (the measured image is the mean of %u frames: %.3f GPU ms)\n",
-           "temporal", num(b1, sizeof b1, m->flicker), job->flicker_frames,
-           job->flicker_frames ? job->flicker_frames - 1 : 0, job->accumulate, job->accumulate,
-           A->gpu_ms * job->accumulate);
+    char fl[96] = "not measured: --flicker-frames 0";
+    if (job->flicker_frames)
+        snprintf(fl, sizeof fl, "%u frames, sample 0..%u; mean |frame k - frame k-1| / reference mean RGB",
+                 job->flicker_frames, job->flicker_frames - 1);
+    printf("%-10s flicker=%s (%s) accumulate=%u (the measured image is the mean of %u frames: %.3f GPU ms)\n",
+           "temporal", num(b1, sizeof b1, m->flicker), fl, job->accumulate, job->accumulate, A->gpu_ms * job->accumulate);
     if (job->flip_map) printf("%-10s %s (LDR-FLIP per pixel over [0, 1])\n", "flip map", job->flip_map);
 }
 
@@ -612,6 +626,10 @@ static pg_result write_heatmap(const compare_job *job, const side *A, const side
     }
     heat_scale = pg_error_heatmap_scale(A->hdr, R->hdr, e->width, e->height, heat_scale);
     used->scale = heat_scale;
+    if (e->max_abs_linear == 0 && job->heat_scale_arg <= 0) { /* not the scale's internal floor */
+        used->scale = 0;
+        how = "no pixel differs: the map is black";
+    }
     snprintf(used->how, sizeof used->how, "%s", how);
     pg_error_heatmap(A->hdr, R->hdr, e->width, e->height, heat_scale, heat);
     pg_result r = pg_write_image(job->heatmap, heat, e->width, e->height, err);
@@ -645,7 +663,7 @@ static void print_report(const compare_job *job, const pg_app *app, const side *
     if (job->heatmap)
         printf("%-10s %s (max RGB |linear error| over [0, %s]: %s)\n", "heatmap", job->heatmap,
                num(b1, sizeof b1, heat->scale), heat->how);
-    if (job->json) printf("%-10s %s\n", "json", job->json);
+    if (job->json) printf("%-10s %s\n", "json", job->json_fd >= 0 ? "(the standard output)" : job->json);
 }
 
 /* The one-line summary for scripts: "compare: key=value ...". */

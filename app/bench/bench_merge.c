@@ -14,7 +14,7 @@
 static const char *const merge_help =
     "usage: passgraph bench-merge --out DIR SHARD_DIR...\n"
     "Joins the output folders of 'passgraph bench --shard K/N' runs of one sweep into DIR/results.csv,\n"
-    "DIR/results.json and the three charts, rows in the order an unsharded run writes them. Refuses\n"
+    "DIR/results.json and the four charts, rows in the order an unsharded run writes them. Refuses\n"
     "(exit 1, naming the folder and the cause) shards of different sweeps (any meta field apart from\n"
     "shard and elapsed_s differs, device included), a shard given twice, a missing shard or\n"
     "configuration, and interrupted shards. Run it where the pipeline files of the sweep are (it\n"

@@ -44,7 +44,7 @@ static const char *const bench_help_options =
     "                       pipelines/NAME.json of the data folder; 'all' (default): every top-level\n"
     "                       JSON file in the data folder's pipelines/ (also --pipeline FILE)\n"
     "  --lights N,N,...     light counts (default 100,1000,5000); sorted, duplicates dropped\n"
-    "  --size WxH,WxH,...   output sizes (default 640x360)\n"
+    "  --size WxH,WxH,...   output sizes (default 640x360); in the given order, duplicates dropped\n"
     "  --scene FILE,...     one or more scenes (default: the built-in atrium); --scenario applies to each\n"
     "  --warmup N           untimed frames before the timed ones (default 2)\n"
     "  --warmup-ms T        and keep warming up until T ms have passed in the row (default 0): a\n"
@@ -648,7 +648,7 @@ int pg_cmd_bench(int argc, char **argv)
     if (rc >= 0) goto out;
     if ((r = make_dirs(B->out_dir, &err)) || (r = pg_file_check_writable_dir(B->out_dir, "--out", &err))) {
         fprintf(stderr, "passgraph bench: %s\n", err.msg);
-        rc = 1;
+        rc = 2; /* an option's value, as compare's unwritable --json */
         goto out;
     }
     print_sides(B);

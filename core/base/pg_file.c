@@ -149,6 +149,17 @@ static pg_result check_parent_dir(const char *entry, const char *path, const cha
         return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(ENOTDIR));
     if (access(dir, W_OK | X_OK) != 0)
         return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(errno));
+    /* access() answers from the permission bits, which root passes even where the file system
+     * refuses new files (/proc, a read-only mount): create and remove a probe file */
+    char probe[PG_PATH_MAX + 64];
+    snprintf(probe, sizeof probe, "%s/.passgraph-probe-%ld", dir, (long)getpid());
+    const int fd = open(probe, O_WRONLY | O_CREAT | O_EXCL, 0600);
+    if (fd < 0 && errno != EEXIST)
+        return pg_fail(err, PG_ERR_IO, "%s '%s': cannot write: %s", what, path, strerror(errno));
+    if (fd >= 0) {
+        close(fd);
+        unlink(probe);
+    }
     return PG_OK;
 }
 

@@ -190,6 +190,24 @@ expect_fail "compare: unknown reference parameter" "--reference-set no_such_para
 expect_fail "compare: unwritable heatmap" "cannot write" compare --reference "$naive" --size 32x18 --lights 4 --heatmap "$tmp/no/such/dir/h.png"
 expect_fail "compare: unwritable json" "cannot write" compare --reference "$naive" --size 32x18 --lights 4 --json "$tmp/no/such/dir/c.json"
 
+# --json -: the JSON alone on stdout (it wrote a file named '-'), the report on stderr
+(cd "$tmp" && "$PG" compare --pipeline "$naive" --reference "$naive" --size 16x9 --lights 4 --heatmap "$tmp/same.png" \
+   --flicker-frames 0 --json - >"$tmp/stdout.json" 2>"$tmp/err") \
+  && python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["rmse_linear"] == 0 and d["heatmap_scale"] == 0, d' \
+     "$tmp/stdout.json" && [ ! -e "$tmp/-" ] && grep -q '^compare: ' "$tmp/err" \
+  && grep -qF "over [0, 0]: no pixel differs: the map is black" "$tmp/err" \
+  && grep -qF "flicker=nan (not measured: --flicker-frames 0)" "$tmp/err" && ok \
+  || { bad "compare --json -: JSON on stdout, report on stderr, heatmap scale 0 for identical images"; head -5 "$tmp/stdout.json" "$tmp/err"; }
+# a folder the permission bits allow but the file system refuses (/proc, as root): refused before
+# rendering, exit 2 (it rendered both sides, then failed with exit 1)
+if [ -d /proc/self ] && [ "$(id -u)" = 0 ]; then
+  "$PG" compare --reference "$naive" --size 16x9 --lights 4 --json /proc/pg.json >"$tmp/out" 2>"$tmp/err"
+  [ $? -eq 2 ] && ! grep -q '^sides:' "$tmp/out" && grep -qF -- "--json '/proc/pg.json': cannot write" "$tmp/err" && ok \
+    || { bad "compare --json /proc/pg.json: exit 2 before rendering"; cat "$tmp/out" "$tmp/err"; }
+  "$PG" bench --pipelines naive --lights 4 --size 16x9 --frames 1 --warmup 0 --quiet --out /proc/pg >"$tmp/out" 2>"$tmp/err"
+  [ $? -eq 2 ] && grep -qF -- "--out /proc/pg: cannot create /proc/pg" "$tmp/err" && ok \
+    || { bad "bench --out /proc/pg: exit 2"; cat "$tmp/err"; }
+fi
 # --set reaches the reference when it declares the key; --pipeline-set / --reference-set one side only;
 # the debug view stays the pipeline's. The 'sides:' line says what each side used.
 fplus="$root/pipelines/forward_plus.json"
