@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "app.h"
+#include "sides.h"
 #include "commands.h"
 #include "graph.h"
 #include "graph_dump.h"
@@ -191,6 +192,15 @@ int pg_cmd_dump(int argc, char **argv)
     if (!to_stdout(opt.out) && pg_file_check_writable(opt.out, "--out", &err)) {
         fprintf(stderr, "passgraph dump: %s\n", err.msg);
         return 2;
+    }
+    { /* --set and --debug-view against the pipeline's parameters: bad options (exit 2), as render's */
+        char path[PG_PATH_MAX];
+        if (opt.pipeline) pg_strlcpy(path, opt.pipeline, sizeof path);
+        else pg_data_path(path, sizeof path, "pipelines/naive.json");
+        if (pg_sides_check_common(&opt, path, &err)) {
+            fprintf(stderr, "passgraph dump: %s\n", err.msg);
+            return 2;
+        }
     }
     pg_app app;
     if (pg_app_open(&app, &opt, false /* no GPU */, &err)) {

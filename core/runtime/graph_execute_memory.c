@@ -4,6 +4,7 @@
 #include "graph_execute_internal.h"
 
 #include "alias_pack.h"
+#include "pg_file.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -75,6 +76,24 @@ static pg_result create_unbound(pg_runtime *rt, int i, pg_error *err)
         pg_gpu_name(gpu, VK_OBJECT_TYPE_BUFFER, (uint64_t)r->buffer, "%s", pr->name);
     }
     return PG_OK;
+}
+
+/* create_unbound, its failure naming the resource ("resource 'b' (buffer, 256.0 GiB): vkCreateBuffer
+ * ... failed: VK_ERROR_OUT_OF_DEVICE_MEMORY"): the device's own message names no object */
+static pg_result create_named(pg_runtime *rt, int i, pg_error *err)
+{
+    pg_result r = create_unbound(rt, i, err);
+    if (r) {
+        const pg_plan_resource *pr = &rt->cur.plan->resources[i];
+        char size[32];
+        pg_file_fmt_size(pr->size_bytes, size, sizeof size);
+        if (pr->kind == PG_RES_IMAGE)
+            pg_error_prefix(err, "resource '%s' (image %ux%u %s, about %s)", pr->name, pr->width, pr->height,
+                            pg_format_get(pr->format)->name, size);
+        else
+            pg_error_prefix(err, "resource '%s' (buffer, %s)", pr->name, size);
+    }
+    return r;
 }
 
 static VkMemoryRequirements requirements(pg_runtime *rt, int i)
@@ -258,7 +277,7 @@ pg_result pg_rt_build_memory(pg_runtime *rt, pg_error *err)
     }
     for (uint32_t i = 0; i < plan->n_resources; i++) {
         if (plan->resources[i].culled || bound[i]) continue;
-        if ((r = create_unbound(rt, (int)i, err))) return r;
+        if ((r = create_named(rt, (int)i, err))) return r;
     }
     /* shared blocks: each plan block is packed again with the real memory requirements
      * (core/graph/alias_pack.c), only among its own members, so two resources share bytes at run time
@@ -368,7 +387,7 @@ pg_result pg_rt_recreate_resources(pg_runtime *rt, const bool *changed, const bo
     for (uint32_t b = 0; b < plan->n_blocks; b++)
         if (dirty[b] && rt->mem.block_split[b]) rt->stats.blocks_fallback--;
     for (uint32_t i = 0; i < plan->n_resources; i++)
-        if (changed[i] && !plan->resources[i].culled && (r = create_unbound(rt, (int)i, err))) return r;
+        if (changed[i] && !plan->resources[i].culled && (r = create_named(rt, (int)i, err))) return r;
     bool bound[PG_MAX_RESOURCES] = {0};
     for (uint32_t b = 0; b < plan->n_blocks; b++)
         if (dirty[b] && (r = build_block(rt, b, bound, err))) return r;

@@ -68,6 +68,13 @@ for bad_set in "--set no_such_param=1|--set no_such_param=1: the pipeline naive"
   [ $rc = 2 ] && grep -qF -- "${bad_set#*|}" "$tmp/err" && ! grep -q "^passgraph: device" "$tmp/err" \
     && { [ "${bad_set%% *}" != --view ] || grep -qF "nor is it a view of the OCIO config" "$tmp/err"; } && ok \
     || { bad "render ${bad_set%%|*}: want exit 2 naming the option (exit $rc)"; cat "$tmp/err"; }
+  # dump the same (it exited 1 for a --set the pipeline refuses)
+  [ "${bad_set%% *}" = --view ] && continue
+  # shellcheck disable=SC2086
+  "$PG" dump ${bad_set%%|*} >"$tmp/out" 2>"$tmp/err"
+  rc=$?
+  [ $rc = 2 ] && grep -qF -- "${bad_set#*|}" "$tmp/err" && ok \
+    || { bad "dump ${bad_set%%|*}: want exit 2 naming the option (exit $rc)"; cat "$tmp/err"; }
 done
 printf '{"name":"x","resources":[{"name":"o","type":"image","format":"rgba8"}],"passes":[{"name":"p","type":"warp_drive","writes":["o"]}],"output":"o"}' >"$tmp/unknown_type.json"
 expect_fail "unknown pass type" "passes[0].type" render --pipeline "$tmp/unknown_type.json" --size 32x18 --out "$tmp/x.png"
@@ -1086,6 +1093,14 @@ printf '%s' '{"name": "ubo", "resources": [{"name": "ldr", "type": "image", "for
    "options": {"compute": "ubo.comp", "bindings": {"outimg": "ldr", "u": "small"}}}], "output": "ldr"}' >"$up/ubo.json"
 expect_fail "shader pass: a block larger than its buffer" "binding 1 is a block of 1024 bytes (without a runtime array), buffer 'small' is" \
   render --pipeline "$up/ubo.json" --size 16x9 --out "$tmp/x.png"
+# a buffer the device cannot create: the message names the resource and its size (it named only
+# the Vulkan call)
+sed 's/"stride": 4, "count": \[1\]/"stride": 16, "count": [1048576, 16384]/' "$up/ubo.json" >"$up/huge.json"
+sed 's/layout(set = 2, binding = 1) uniform U { vec4 c\[64\]; } u;/layout(set = 2, binding = 1) readonly buffer U { vec4 c[]; } u;/' \
+  "$up/ubo.comp" >"$up/huge.comp"
+sed -i 's/"ubo.comp"/"huge.comp"/' "$up/huge.json"
+expect_fail "shader pass: a buffer the device cannot create" "resource 'small' (buffer, 256.0 GiB): vkCreateBuffer" \
+  render --pipeline "$up/huge.json" --size 16x9 --out "$tmp/x.png"
 # a storage image without a format qualifier: said what to declare (was "declares format unknown")
 sed 's/layout(set = 2, binding = 1, rgba8) uniform writeonly image2D ldr_image;/layout(set = 2, binding = 1) uniform writeonly image2D ldr_image;/' \
   "$up/c.comp" >"$up/c_nofmt.comp"
