@@ -140,13 +140,14 @@ static pg_queue_caps queues_for(const pg_cli_common *opt)
     return q;
 }
 
-int pg_cmd_dump(int argc, char **argv)
+/* The command line into opt and format, checked before any work (the output writable, --set and
+ * --debug-view against the pipeline): -1 to go on, else the exit status. */
+static int dump_setup(int argc, char **argv, pg_cli_common *opt, dump_format *format_out, const char **gv_out)
 {
-    pg_cli_common opt;
-    pg_cli_defaults(&opt);
-    opt.width = 1920;
-    opt.height = 1080;
-    opt.quiet = true;
+    pg_cli_defaults(opt);
+    opt->width = 1920;
+    opt->height = 1080;
+    opt->quiet = true;
     dump_format format = DUMP_TEXT;
     pg_error err = {0};
     for (int i = 0; i < argc; i++) {
@@ -166,7 +167,7 @@ int pg_cmd_dump(int argc, char **argv)
             }
             continue;
         }
-        if (pg_cli_parse_common(&opt, argc, argv, &i, &used, &err)) {
+        if (pg_cli_parse_common(opt, argc, argv, &i, &used, &err)) {
             fprintf(stderr, "passgraph dump: %s\n", err.msg);
             return 2;
         }
@@ -176,32 +177,45 @@ int pg_cmd_dump(int argc, char **argv)
         }
     }
     const char *gv_format = NULL;
-    if (format == DUMP_DOT && !to_stdout(opt.out)) gv_format = pg_dump_graphviz_format_for(opt.out);
-    if (format == DUMP_TIMELINE && !to_stdout(opt.out)) {
-        const char *ext = pg_dump_graphviz_format_for(opt.out);
+    if (format == DUMP_DOT && !to_stdout(opt->out)) gv_format = pg_dump_graphviz_format_for(opt->out);
+    if (format == DUMP_TIMELINE && !to_stdout(opt->out)) {
+        const char *ext = pg_dump_graphviz_format_for(opt->out);
         if (ext && strcmp(ext, "svg")) {
             fprintf(stderr,
                     "passgraph dump: --out %s: --format timeline writes SVG; give a .svg name (convert it with "
                     "e.g. rsvg-convert)\n",
-                    opt.out);
+                    opt->out);
             return 2;
         }
     }
 
     /* the output can be written: checked before any work, with the OS reason */
-    if (!to_stdout(opt.out) && pg_file_check_writable(opt.out, "--out", &err)) {
+    if (!to_stdout(opt->out) && pg_file_check_writable(opt->out, "--out", &err)) {
         fprintf(stderr, "passgraph dump: %s\n", err.msg);
         return 2;
     }
     { /* --set and --debug-view against the pipeline's parameters: bad options (exit 2), as render's */
         char path[PG_PATH_MAX];
-        if (opt.pipeline) pg_strlcpy(path, opt.pipeline, sizeof path);
+        if (opt->pipeline) pg_strlcpy(path, opt->pipeline, sizeof path);
         else pg_data_path(path, sizeof path, "pipelines/naive.json");
-        if (pg_sides_check_common(&opt, path, &err)) {
+        if (pg_sides_check_common(opt, path, &err)) {
             fprintf(stderr, "passgraph dump: %s\n", err.msg);
             return 2;
         }
     }
+    *format_out = format;
+    *gv_out = gv_format;
+    return -1;
+}
+
+int pg_cmd_dump(int argc, char **argv)
+{
+    pg_cli_common opt;
+    dump_format format = DUMP_TEXT;
+    const char *gv_format = NULL;
+    pg_error err = {0};
+    const int setup_rc = dump_setup(argc, argv, &opt, &format, &gv_format);
+    if (setup_rc >= 0) return setup_rc;
     pg_app app;
     if (pg_app_open(&app, &opt, false /* no GPU */, &err)) {
         fprintf(stderr, "passgraph dump: %s\n", err.msg);

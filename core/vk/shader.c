@@ -567,3 +567,33 @@ pg_result pg_shader_module_ex(pg_gpu *gpu, const char *name, VkShaderStageFlagBi
     free(code);
     return r;
 }
+
+const char *pg_spirv_missing_capability(const uint32_t *code, size_t words, bool int64, bool int64_atomics)
+{
+    static const struct {
+        uint32_t cap;
+        const char *what;
+    } off[] = {
+        {9, "Float16 (16-bit floats in shaders)"},      {10, "Float64 (64-bit floats, double)"},
+        {22, "Int16 (16-bit integers in shaders)"},     {39, "Int8 (8-bit integers in shaders)"},
+        {4433, "StorageBuffer16BitAccess"},             {4434, "UniformAndStorageBuffer16BitAccess"},
+        {4435, "StoragePushConstant16"},                {4436, "StorageInputOutput16"},
+        {4448, "StorageBuffer8BitAccess"},              {4449, "UniformAndStorageBuffer8BitAccess"},
+        {4450, "StoragePushConstant8"},
+    };
+    for (size_t w = 5; w < words;) {
+        const uint32_t n = code[w] >> 16, op = code[w] & 0xffffu;
+        if (n == 0) break;
+        if (op == 17 && w + 1 < words) { /* OpCapability */
+            const uint32_t cap = code[w + 1];
+            if (cap == 11 && !int64) return "Int64 (64-bit integers; shaderInt64)";
+            if (cap == 12 && !int64_atomics) return "Int64Atomics (64-bit atomics; shaderBufferInt64Atomics)";
+            for (size_t k = 0; k < sizeof off / sizeof off[0]; k++)
+                if (off[k].cap == cap) return off[k].what;
+        } else if (op != 10 && op != 11 && op != 14) { /* past OpExtension, OpExtInstImport, OpMemoryModel */
+            break;
+        }
+        w += n;
+    }
+    return NULL;
+}

@@ -48,6 +48,11 @@ pg_result pg_shader_module_ex(struct pg_gpu *gpu, const char *name, VkShaderStag
  * ".." or a leading '/'), then from the shaders folder (passgraph's shader library). glslang's
  * messages name the user's files and lines (GL_GOOGLE_cpp_style_line_directive). vulkan12: the
  * Vulkan 1.2 / SPIR-V 1.5 target of a 1.2 device (pg_gpu.vulkan12), else 1.3 / 1.6. */
+/* A SPIR-V capability of a user shader (code, words) that needs a device feature passgraph does
+ * not enable, or the device lacks (int64: shaderInt64, int64_atomics: shaderBufferInt64Atomics),
+ * named ("Float64 (64-bit floats, double)"): the shader is refused by name instead of a validation
+ * error, or an undefined result without the layer. NULL when every capability is fine. */
+const char *pg_spirv_missing_capability(const uint32_t *code, size_t words, bool int64, bool int64_atomics);
 pg_result pg_shader_compile_user(const char *path, VkShaderStageFlagBits stage, const char *const *defines,
                                  uint32_t n_defines, bool vulkan12, uint32_t **spirv, size_t *n_words, pg_error *err);
 /* A VkShaderModule over SPIR-V words, named name. */

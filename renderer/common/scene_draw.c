@@ -48,6 +48,12 @@ static pg_result fragment_module(pg_gpu *gpu, const pg_scene_draw_desc *d, const
     pg_result r = pg_shader_compile_user(d->fragment_shader, VK_SHADER_STAGE_FRAGMENT_BIT, defs, n, gpu->vulkan12,
                                          &code, &words, err);
     if (r) return r;
+    const char *cap = pg_spirv_missing_capability(code, words, gpu->shader_int64, gpu->int64_atomics);
+    if (cap) {
+        free(code);
+        return pg_fail(err, PG_ERR_NO_DEVICE, "shader '%s' uses the SPIR-V capability %s, which passgraph does not enable on %s",
+                       d->fragment_shader, cap, gpu->props.deviceName);
+    }
     r = pg_shader_module_words(gpu, d->fragment_shader, code, words, out, err);
     free(code);
     return r;

@@ -31,39 +31,6 @@ typedef struct shader_pass {
     _Alignas(16) unsigned char push[SP_PUSH_MAX];
 } shader_pass;
 
-/* A SPIR-V capability of a user shader that needs a device feature passgraph does not enable (or the
- * device lacks): refused by name here instead of a validation error, or an undefined result without
- * the layer. NULL when every capability is fine. */
-static const char *missing_capability(const pg_gpu *gpu, const uint32_t *code, size_t words)
-{
-    static const struct {
-        uint32_t cap;
-        const char *what;
-    } off[] = {
-        {9, "Float16 (16-bit floats in shaders)"},      {10, "Float64 (64-bit floats, double)"},
-        {22, "Int16 (16-bit integers in shaders)"},     {39, "Int8 (8-bit integers in shaders)"},
-        {4433, "StorageBuffer16BitAccess"},             {4434, "UniformAndStorageBuffer16BitAccess"},
-        {4435, "StoragePushConstant16"},                {4436, "StorageInputOutput16"},
-        {4448, "StorageBuffer8BitAccess"},              {4449, "UniformAndStorageBuffer8BitAccess"},
-        {4450, "StoragePushConstant8"},
-    };
-    for (size_t w = 5; w < words;) {
-        const uint32_t n = code[w] >> 16, op = code[w] & 0xffffu;
-        if (n == 0) break;
-        if (op == 17 && w + 1 < words) { /* OpCapability */
-            const uint32_t cap = code[w + 1];
-            if (cap == 11 && !gpu->shader_int64) return "Int64 (64-bit integers; shaderInt64)";
-            if (cap == 12 && !gpu->int64_atomics) return "Int64Atomics (64-bit atomics; shaderBufferInt64Atomics)";
-            for (size_t k = 0; k < sizeof off / sizeof off[0]; k++)
-                if (off[k].cap == cap) return off[k].what;
-        } else if (op != 10 && op != 11 && op != 14) { /* past OpExtension, OpExtInstImport, OpMemoryModel */
-            break;
-        }
-        w += n;
-    }
-    return NULL;
-}
-
 static pg_result user_module(const pg_pass_create_ctx *ctx, const char *path, VkShaderStageFlagBits stage,
                              const pg_pass_decl *decl, const pg_vis_geometry *vis, VkShaderModule *out, pg_error *err)
 {
@@ -81,7 +48,7 @@ static pg_result user_module(const pg_pass_create_ctx *ctx, const char *path, Vk
     size_t words;
     pg_result r = pg_shader_compile_user(path, stage, defs, nd, gpu->vulkan12, &code, &words, err);
     if (r) return r;
-    const char *cap = missing_capability(gpu, code, words);
+    const char *cap = pg_spirv_missing_capability(code, words, gpu->shader_int64, gpu->int64_atomics);
     if (cap) {
         free(code);
         return pg_fail(err, PG_ERR_NO_DEVICE,

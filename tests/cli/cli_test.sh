@@ -1093,6 +1093,13 @@ printf '%s' '{"name": "ubo", "resources": [{"name": "ldr", "type": "image", "for
    "options": {"compute": "ubo.comp", "bindings": {"outimg": "ldr", "u": "small"}}}], "output": "ldr"}' >"$up/ubo.json"
 expect_fail "shader pass: a block larger than its buffer" "binding 1 is a block of 1024 bytes (without a runtime array), buffer 'small' is" \
   render --pipeline "$up/ubo.json" --size 16x9 --out "$tmp/x.png"
+# the draw form's fragment shader is held to the same capabilities (it reached the driver)
+sed 's#"\.\./\.\./fragments/#"'"$root"'/pipelines/fragments/#g; s#"normals.frag"#"normals64.frag"#' \
+  "$root/pipelines/examples/normals/normals.json" >"$up/normals64.json"
+sed 's#out_color = vec4(s.normal \* 0.5 + 0.5, 1.0);#double d = double(s.normal.x) * 1.0000001lf;\n    out_color = vec4(float(d) * 0.5 + 0.5, 0.0, 0.0, 1.0);#' \
+  "$root/pipelines/examples/normals/normals.frag" >"$up/normals64.frag"
+expect_fail "shader pass (draw): Float64" "shader '$up/normals64.frag' uses the SPIR-V capability Float64" \
+  render --pipeline "$up/normals64.json" --size 16x9 --out "$tmp/x.png"
 # a buffer the device cannot create: the message names the resource and its size (it named only
 # the Vulkan call)
 sed 's/"stride": 4, "count": \[1\]/"stride": 16, "count": [1048576, 16384]/' "$up/ubo.json" >"$up/huge.json"
