@@ -3,7 +3,7 @@
 # lent GPU machine: docs/testing.md "The GPU tests on a real GPU"). Packs the named test executables
 # of BUILD/tests (none named: every test there that loads libvulkan), stripped, with the shared
 # libraries they load (from this machine) into one solid xz archive, OUT/tests.tar.xz (the tests
-# share most of their code: 38 tests of 8 MB each pack into about 12 MB); beside it the Khronos
+# share most of their code: the tests of 8 MB each pack into a few MB); beside it the Khronos
 # validation layer's Debian package (apt-get download), the Sponza when ../shared holds it, and
 # OUT/run.sh. run.sh, run from a copy of this repository's tree on the other machine (its shaders
 # and tests/ are read there), installs the layer, points the tests' compiled-in source and shared

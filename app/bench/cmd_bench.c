@@ -80,7 +80,8 @@ static const char *const bench_help_options =
     "                       numbered in run order from 0) whose index % N == K-1, 1 <= K <= N; each\n"
     "                       shard renders the references its rows need; join with passgraph bench-merge\n"
     "  --quiet              no progress bar\n\n"
-    "common options (--lights, --size, --pipeline, --frames as above):\n";
+    "common options (--lights, --size, --pipeline, --frames as above; --view and --explain are\n"
+    "refused: use --debug-view, and passgraph render --explain):\n";
 
 static void on_sigint(int sig)
 {

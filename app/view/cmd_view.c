@@ -60,7 +60,7 @@ static void print_view_help(void)
 {
     printf("%s%s"
            "  --frames-in-flight N 2 (default) or 1: frames the displayed graph keeps in flight\n"
-           "  --size WxH           initial window size (default 1280x720)\n"
+           "  --size WxH           (here) the initial window size (default 1280x720)\n"
            "  --pipelines DIR      also list the pipelines in DIR\n"
            "  --screenshot FILE    write the window (scene + UI) to FILE (.png, .jpg) at the last frame\n"
            "  --cycle-pipelines    switch to the next pipeline every --cycle-every frames\n"
@@ -72,8 +72,9 @@ static void print_view_help(void)
            "                       pipeline=FILE.json, display=NAME, ocioview=NAME (OCIO),\n"
            "                       diff=on|off|flip, lights=N, screenshot=FILE.png,\n"
            "                       capture[=FILE.rdc] (RenderDoc, as the C key),\n"
-           "                       camera=auto|N|NAME (as the camera combo)\n"
-           "  (--frames N          exit after N frames; 0 or absent: run until closed)\n",
+           "                       camera=auto|N|NAME (as the camera combo), gltf_scene=N,\n"
+           "                       variant=N|NAME|default, env_intensity=X, env_rotation=DEG\n"
+           "  --frames N           (here) exit after N frames; 0 or absent: run until closed\n",
            view_help, pg_cli_common_help);
 }
 

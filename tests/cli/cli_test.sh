@@ -356,7 +356,10 @@ grep -Eq 'overflow=[1-9][0-9]* clusters \([0-9]+ light refs dropped\)' "$tmp/out
 deferred="$root/pipelines/deferred.json"
 "$PG" --help | grep -q "dump" && ok || bad "passgraph --help does not list dump"
 "$PG" dump --help >"$tmp/h" || bad "dump --help exit"
-for o in --pipeline --scene --lights --size --set --no-aliasing --immediate --view --format --out text json dot timeline graphviz; do
+for o in --pipeline --scene --lights --size --set --no-aliasing --immediate --view --format --out text json dot timeline graphviz \
+         --scenario --debug-view --gltf-scene --variant --animation --environment --include-dir --plugin --async-compute \
+         --time --seed --radius --intensity --ambient --environment-intensity --environment-rotation --frames --device \
+         --validation --explain --quiet --camera --ocio-config --display --ocio-view; do
   grep -qF -- "$o" "$tmp/h" && ok || bad "dump --help does not document $o"
 done
 for fmt in text json dot timeline; do
