@@ -107,6 +107,30 @@ static void fit_scenario_planes(const pg_scene *scene, const pg_scenario *sc, pg
     if (!(cam->far_z > cam->near_z)) cam->far_z = cam->near_z * 1000.0f;
 }
 
+/* The device (with a window's instance extensions and swapchain hooks when given) and the scene's
+ * GPU copy. */
+static pg_result open_gpu(pg_app *app, const pg_cli_common *opt, const pg_gpu_desc *window_bits, pg_error *err)
+{
+    pg_gpu_desc gd = {
+        .validation = opt->validation,
+        .device_index = opt->device_index,
+        .device_match = opt->device_match,
+        .quiet = opt->quiet,
+        .no_compute_queue = opt->async_compute == PG_ASYNC_OFF,
+        .emulate_compute_queue = opt->async_compute == PG_ASYNC_EMULATE,
+    };
+    if (window_bits) {
+        gd.instance_extensions = window_bits->instance_extensions;
+        gd.n_instance_extensions = window_bits->n_instance_extensions;
+        gd.swapchain = window_bits->swapchain;
+        gd.present_ok = window_bits->present_ok;
+        gd.present_user = window_bits->present_user;
+    }
+    pg_result r = pg_gpu_create(&gd, &app->gpu, err);
+    if (!r) r = pg_scene_gpu_create(app->gpu, app->scene, &app->scene_gpu, err);
+    return r;
+}
+
 pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, const pg_gpu_desc *window_bits,
                          pg_error *err)
 {
@@ -142,29 +166,20 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     if (pg_scene_variant_line(app->scene, choice, sizeof choice) && !opt->quiet)
         fprintf(stderr, "passgraph: %s\n", choice);
     if ((r = pg_app_attach_environment(app, app->scene, err))) goto fail;
-    if (with_gpu) {
-        pg_gpu_desc gd = {
-            .validation = opt->validation,
-            .device_index = opt->device_index,
-            .device_match = opt->device_match,
-            .quiet = opt->quiet,
-            .no_compute_queue = opt->async_compute == PG_ASYNC_OFF,
-            .emulate_compute_queue = opt->async_compute == PG_ASYNC_EMULATE,
-        };
-        if (window_bits) {
-            gd.instance_extensions = window_bits->instance_extensions;
-            gd.n_instance_extensions = window_bits->n_instance_extensions;
-            gd.swapchain = window_bits->swapchain;
-            gd.present_ok = window_bits->present_ok;
-            gd.present_user = window_bits->present_user;
-        }
-        if ((r = pg_gpu_create(&gd, &app->gpu, err))) goto fail;
-        if ((r = pg_scene_gpu_create(app->gpu, app->scene, &app->scene_gpu, err))) goto fail;
-    }
-    if ((r = pg_scene_default_view(app->scene, opt->camera, (float)opt->width / (float)opt->height, opt->lights,
-                                 opt->seed, &app->camera, &app->lights, app->camera_why, sizeof app->camera_why,
-                                 app->lights_why, sizeof app->lights_why, err)))
+    if (with_gpu && (r = open_gpu(app, opt, window_bits, err))) goto fail;
+    /* the count and seed the default set-up is made for: the command line's, else the scenario's
+     * (the object rule's intensity follows the count) */
+    const bool sc_count = app->has_scenario && app->scenario.has_light_count && !opt->has_lights;
+    const bool sc_seed = app->has_scenario && app->scenario.has_seed && !opt->has_seed;
+    const uint32_t seed = sc_seed ? app->scenario.lights.seed : opt->seed;
+    if ((r = pg_scene_default_view(app->scene, opt->camera, (float)opt->width / (float)opt->height,
+                                 sc_count ? app->scenario.lights.count : opt->lights, seed, &app->camera, &app->lights,
+                                 app->camera_why, sizeof app->camera_why, app->lights_why, sizeof app->lights_why, err)))
         goto fail;
+    if (sc_count || sc_seed)
+        snprintf(app->lights_why + strlen(app->lights_why), sizeof app->lights_why - strlen(app->lights_why),
+                 "; %s%s%s from scenario %s", sc_count ? "count" : "", sc_count && sc_seed ? " and " : "",
+                 sc_seed ? "seed" : "", app->scenario.path);
     if (app->has_scenario) {
         bool cam_from_scenario = app->scenario.has_camera && !opt->camera;
         /* a scenario that places its own lights (an interior set-up such as cis565) gets no object
@@ -189,6 +204,11 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     if (opt->has_lights || !(app->has_scenario && app->scenario.has_light_count)) app->lights.count = opt->lights;
     if (app->scene->n_lights > 0) { /* the file's own lights, first; generated ones only when asked */
         uint32_t generated = opt->has_lights || (app->has_scenario && app->scenario.has_light_count) ? app->lights.count : 0;
+        if ((uint64_t)app->scene->n_lights + generated > PG_MAX_LIGHTS) { /* each source is capped on its own */
+            r = pg_fail(err, PG_ERR_LIMIT, "%s: the file's %u lights and %u generated ones: more than %u in all",
+                        app->scene->path, app->scene->n_lights, generated, PG_MAX_LIGHTS);
+            goto fail;
+        }
         app->lights.file_count = app->scene->n_lights;
         app->lights.count = app->scene->n_lights + generated;
         describe_file_lights(app->scene, generated, app->lights_why, sizeof app->lights_why);
@@ -206,9 +226,7 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     if (opt->has_ambient) app->lights.ambient = opt->ambient;
     app->object_lights = strcmp(app->scene->path, "default") != 0 && !opt->has_intensity &&
                          !(app->has_scenario && app->scenario.has_intensity);
-    if (app->object_lights && app->lights.count - app->lights.file_count != opt->lights) /* a scenario's count */
-        app->lights.intensity =
-            pg_light_setup_object(app->scene, app->lights.count - app->lights.file_count, opt->seed).intensity;
+
     if (opt->has_radius || opt->has_intensity) { /* the values that replace the set-up's, not just their names */
         char rv[48] = "", iv[48] = "";
         if (opt->has_radius) snprintf(rv, sizeof rv, "radius %g (--radius)", app->lights.radius);
@@ -219,7 +237,7 @@ pg_result pg_app_open_ex(pg_app *app, const pg_cli_common *opt, bool with_gpu, c
     if (opt->has_ambient || (app->has_scenario && app->scenario.has_ambient))
         snprintf(app->lights_why + strlen(app->lights_why), sizeof app->lights_why - strlen(app->lights_why),
                  "; ambient %g from %s", app->lights.ambient, opt->has_ambient ? "--ambient" : "the scenario");
-    app->lights.seed = opt->seed;
+    app->lights.seed = seed;
     return PG_OK;
 fail:
     pg_app_close(app);

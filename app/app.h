@@ -30,7 +30,7 @@ typedef struct pg_app {
     char pipeline_path[PG_PATH_MAX];
     char scene_path[PG_PATH_MAX];
     char camera_why[256];         /* "camera: ..." one line: which camera was chosen and why */
-    char lights_why[256];         /* "lights: ..." one line */
+    char lights_why[768];         /* "lights: ..." one line */
     char env_why[PG_PATH_MAX + 160]; /* "environment: ..." one line */
     int animation;                /* the glTF animation played (--animation; scene/animation.h) */
     bool object_lights;           /* the intensity is pg_light_setup_object's (it depends on the

@@ -344,6 +344,7 @@ pg_result pg_cli_parse_common(pg_cli_common *c, int argc, char **argv, int *i, b
         NEED_VALUE();
         if ((r = pg_cli_parse_u64(a, v, 0, UINT32_MAX, &u, err))) return r;
         c->seed = (uint32_t)u;
+        c->has_seed = true;
     } else if (!strcmp(a, "--frames")) {
         NEED_VALUE();
         if ((r = pg_cli_parse_u64(a, v, 1, 100000, &u, err))) return r;

@@ -27,6 +27,7 @@ typedef struct pg_cli_common {
     uint32_t n_plugins;
     const char *plugins[8];      /* --plugin FILE.so (repeatable; renderer/plugins.h) */
     uint32_t seed;               /* --seed S */
+    bool has_seed;               /* --seed given (else a scenario's lights.seed wins over the default) */
     bool has_radius, has_intensity, has_ambient;
     float radius, intensity;     /* --radius, --intensity */
     float ambient;               /* --ambient (the light set-up's run-time ambient) */

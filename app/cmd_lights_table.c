@@ -5,6 +5,7 @@
  * extension. */
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,10 +14,12 @@
 
 #include "app.h"
 #include "commands.h"
+#include "pg_file.h"
 
 static const char *const lights_table_help =
     "usage: passgraph lights-table --scene IN.gltf --out OUT.gltf [--lights N] [--scenario FILE]\n"
     "                              [--seed S] [--time T] [--radius R] [--intensity I] [--json]\n"
+    "                              [--gltf-scene N]\n"
     "Writes OUT.gltf: the glTF IN.gltf (a .gltf file; its buffers and images are referenced, not\n"
     "copied) plus N point lights stored in the file: the lights passgraph would generate for the\n"
     "scene (its default light set-up, a scenario's over it, --radius / --intensity over that) at\n"
@@ -25,6 +28,9 @@ static const char *const lights_table_help =
     "A light's file colour is its generated colour without the intensity, its intensity (candela)\n"
     "pi times the generated intensity and its range the generated radius, so it is as bright as the\n"
     "generated light (the file's falloff is the extension's: the window squared).\n"
+    "With --json the lights join scene N (--gltf-scene N) or the file's default scene. Refused: an\n"
+    "input that already holds a table (without --json), an output that is the input or one of its\n"
+    "buffers, lights past a file light's limits (intensity or range over 1e30).\n"
     "Exit 0 on success, 1 on a failure (reading, writing), 2 on bad options.\n";
 
 /* the text of a file (NUL-terminated), NULL with a message on failure */
@@ -138,13 +144,19 @@ static cJSON *object_of(cJSON *root, const char *key)
 }
 
 /* the binary form: OUT.lights.bin and the extension pointing at a new bufferView */
+/* OUT.lights.bin beside OUT.gltf */
+static void lights_bin_path(const char *out_path, char *bin, size_t size)
+{
+    snprintf(bin, size, "%s", out_path);
+    char *dot = strrchr(bin, '.');
+    if (dot && !strchr(dot, '/')) *dot = 0;
+    strncat(bin, ".lights.bin", size - strlen(bin) - 1);
+}
+
 static pg_result add_table(cJSON *root, const char *out_path, const float *rec, uint32_t n, pg_error *err)
 {
     char bin[PG_PATH_MAX + 16];
-    snprintf(bin, sizeof bin, "%s", out_path);
-    char *dot = strrchr(bin, '.');
-    if (dot && !strchr(dot, '/')) *dot = 0;
-    strncat(bin, ".lights.bin", sizeof bin - strlen(bin) - 1);
+    lights_bin_path(out_path, bin, sizeof bin);
     FILE *f = fopen(bin, "wb");
     if (!f) return pg_fail(err, PG_ERR_IO, "%s: cannot write: %s", bin, strerror(errno));
     size_t bytes = (size_t)n * 32;
@@ -170,15 +182,16 @@ static pg_result add_table(cJSON *root, const char *out_path, const float *rec, 
     return PG_OK;
 }
 
-/* the JSON form: KHR_lights_punctual lights, a node each, added to the drawn scene */
-static void add_json(cJSON *root, const float *rec, uint32_t n)
+/* the JSON form: KHR_lights_punctual lights, a node each, added to the drawn scene (gltf_scene
+ * >= 0: that one, as --gltf-scene draws it; else the file's default) */
+static void add_json(cJSON *root, const float *rec, uint32_t n, int gltf_scene)
 {
     cJSON *ext = object_of(object_of(root, "extensions"), "KHR_lights_punctual");
     cJSON *lights = array_of(ext, "lights"), *nodes = array_of(root, "nodes");
     int first_light = cJSON_GetArraySize(lights), first_node = cJSON_GetArraySize(nodes);
     cJSON *scenes = cJSON_GetObjectItemCaseSensitive(root, "scenes");
     cJSON *sc = cJSON_GetObjectItemCaseSensitive(root, "scene");
-    int si = cJSON_IsNumber(sc) ? sc->valueint : 0;
+    int si = gltf_scene >= 0 ? gltf_scene : cJSON_IsNumber(sc) ? sc->valueint : 0;
     cJSON *scene = cJSON_IsArray(scenes) ? cJSON_GetArrayItem(scenes, si) : NULL;
     cJSON *scene_nodes = scene ? array_of(scene, "nodes") : NULL;
     for (uint32_t i = 0; i < n; i++) {
@@ -203,6 +216,89 @@ static int fail1(const char *msg)
 {
     fprintf(stderr, "passgraph lights-table: %s\n", msg);
     return 1;
+}
+
+static const char *records_refused(const float *rec, uint32_t n, char *why, size_t size);
+static const char *overwrites_input(const cJSON *root, const char *in_path, const char *out_path, const char *in_dir,
+                                    char *why, size_t size);
+
+/* What would make the output wrong, before anything is written: the input already holding a table
+ * (a second one would replace it: its lights were lost), an output that replaces a file of the
+ * input (writing in place left a file whose buffer no longer matched), lights a file cannot hold.
+ * 0 to go on, else the exit status (said on stderr). */
+static int check_output(const cJSON *root, const pg_cli_common *opt, bool json, const float *rec, uint32_t n,
+                        const char *in_dir)
+{
+    char why[PG_PATH_MAX + 256];
+    const cJSON *ext = cJSON_GetObjectItemCaseSensitive(root, "extensions");
+    const cJSON *table = cJSON_GetObjectItemCaseSensitive(ext, "PASSGRAPH_lights_table");
+    if (table && !json) {
+        snprintf(why, sizeof why, "%s already holds a PASSGRAPH_lights_table: a file has one table (write from a "
+                 "file without one, or add these lights as KHR_lights_punctual with --json)", opt->scene);
+        return fail1(why);
+    }
+    if (overwrites_input(root, opt->scene, opt->out, in_dir, why, sizeof why) ||
+        records_refused(rec, n, why, sizeof why)) {
+        fprintf(stderr, "passgraph lights-table: %s\n", why);
+        return 2;
+    }
+    return 0;
+}
+
+/* Why the records cannot go into a file passgraph reads back (a light's intensity, range or
+ * position past the limits of file lights), or NULL. */
+static const char *records_refused(const float *rec, uint32_t n, char *why, size_t size)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        const float *r = rec + (size_t)i * 8;
+        if (!(r[7] <= (float)PG_LIGHT_MAX_CANDELA)) {
+            snprintf(why, size, "light %u: intensity %g candela (pi x the generated intensity), over the %g a file "
+                     "light may have: lower --intensity or the scenario's lights.intensity", i, (double)r[7],
+                     PG_LIGHT_MAX_CANDELA);
+            return why;
+        }
+        if (!(r[3] <= (float)PG_LIGHT_MAX_CANDELA)) {
+            snprintf(why, size, "light %u: range %g, over the %g a file light may have", i, (double)r[3],
+                     PG_LIGHT_MAX_CANDELA);
+            return why;
+        }
+        if (!isfinite(r[0]) || !isfinite(r[1]) || !isfinite(r[2])) {
+            snprintf(why, size, "light %u: position (%g, %g, %g) is not finite", i, (double)r[0], (double)r[1], (double)r[2]);
+            return why;
+        }
+    }
+    return NULL;
+}
+
+/* The output would replace a file the input is made of (the input itself, or a buffer it
+ * references: the old .lights.bin when writing in place): the message, or NULL. */
+static const char *overwrites_input(const cJSON *root, const char *in_path, const char *out_path, const char *in_dir,
+                                    char *why, size_t size)
+{
+    char bin[PG_PATH_MAX + 16], a[PATH_MAX], b[PATH_MAX];
+    lights_bin_path(out_path, bin, sizeof bin);
+    const char *outs[2] = {out_path, bin};
+    for (int k = 0; k < 2; k++) {
+        if (!realpath(outs[k], b)) continue; /* does not exist yet */
+        if (realpath(in_path, a) && !strcmp(a, b)) {
+            snprintf(why, size, "%s is the input file: write the output to another file", outs[k]);
+            return why;
+        }
+        const cJSON *buffers = cJSON_GetObjectItemCaseSensitive(root, "buffers"), *buf;
+        cJSON_ArrayForEach(buf, buffers)
+        {
+            const cJSON *uri = cJSON_GetObjectItemCaseSensitive(buf, "uri");
+            if (!cJSON_IsString(uri) || !is_relative_file_uri(uri->valuestring)) continue;
+            char p[PATH_MAX + PG_PATH_MAX];
+            snprintf(p, sizeof p, "%s/%s", in_dir, uri->valuestring);
+            if (realpath(p, a) && !strcmp(a, b)) {
+                snprintf(why, size, "%s is a buffer of the input ('%s'): write the output to another file", outs[k],
+                         uri->valuestring);
+                return why;
+            }
+        }
+    }
+    return NULL;
 }
 
 /* the records (8 floats a light) of the app's generated lights at time t */
@@ -258,6 +354,10 @@ int pg_cmd_lights_table(int argc, char **argv)
         fprintf(stderr, "passgraph lights-table: --scene and --out must be .gltf files (a .glb is not rewritten)\n");
         return 2;
     }
+    if (pg_file_check_writable(opt.out, "--out", &err)) { /* before any file is written */
+        fprintf(stderr, "passgraph lights-table: %s\n", err.msg);
+        return 2;
+    }
     pg_app app;
     memset(&app, 0, sizeof app);
     if (pg_app_open(&app, &opt, false, &err)) return fail1(err.msg);
@@ -285,9 +385,11 @@ int pg_cmd_lights_table(int argc, char **argv)
     } else if (!dir_of(opt.scene, in_dir) || !dir_of(opt.out, out_dir)) {
         snprintf(err.msg, sizeof err.msg, "%s: the folder of the input or output does not exist", opt.out);
         rc = fail1(err.msg);
+    } else if ((rc = check_output(root, &opt, json, rec, n, in_dir)) != 0) {
+        /* said */
     } else {
         rebase_all(root, in_dir, out_dir);
-        if (json) add_json(root, rec, n);
+        if (json) add_json(root, rec, n, opt.gltf_scene);
         else if (add_table(root, opt.out, rec, n, &err)) rc = fail1(err.msg);
         char *out = rc ? NULL : cJSON_PrintUnformatted(root);
         FILE *f = out ? fopen(opt.out, "wb") : NULL;

@@ -60,6 +60,18 @@ static pg_result get_vec3(const sc_ctx *c, const cJSON *it, const char *field, f
     return PG_OK;
 }
 
+/* A corner of the light box: its coordinates within +-1e30, so that the box's extent and the
+ * generated positions stay finite floats (3e38 corners overflowed to inf positions). */
+static pg_result get_box_corner(const sc_ctx *c, const cJSON *it, const char *field, float out[3])
+{
+    const char *expect = "expected an array of 3 numbers in [-1e30, 1e30]";
+    if (!cJSON_IsArray(it) || cJSON_GetArraySize(it) != 3) return schema(c, field, expect);
+    const cJSON *e;
+    cJSON_ArrayForEach(e, it)
+    if (!cJSON_IsNumber(e) || !(fabs(e->valuedouble) <= 1e30)) return schema(c, field, expect);
+    return get_vec3(c, it, field, out);
+}
+
 static pg_result get_string(const sc_ctx *c, const cJSON *it, const char *field, char *out,
                             size_t out_size)
 {
@@ -189,14 +201,14 @@ static pg_result parse_lights(const sc_ctx *c, const cJSON *li, pg_scenario *sc)
             L->count = (uint32_t)it->valuedouble;
             sc->has_light_count = true;
         } else if (strcmp(key, "box_min") == 0) {
-            TRY(get_vec3(c, it, "lights.box_min", L->box_min));
+            TRY(get_box_corner(c, it, "lights.box_min", L->box_min));
             has_min = true;
         } else if (strcmp(key, "box_max") == 0) {
-            TRY(get_vec3(c, it, "lights.box_max", L->box_max));
+            TRY(get_box_corner(c, it, "lights.box_max", L->box_max));
             has_max = true;
         } else if (strcmp(key, "radius") == 0) {
-            TRY(get_number(c, it, "lights.radius", 0, 3.0e38f, false, false,
-                           "expected a finite number >= 0", &L->radius));
+            TRY(get_number(c, it, "lights.radius", 0, (float)PG_LIGHT_MAX_CANDELA, false, false,
+                           "expected a number in [0, 1e30]", &L->radius));
             sc->has_radius = true;
         } else if (strcmp(key, "intensity") == 0) {
             TRY(get_number(c, it, "lights.intensity", 0, (float)PG_LIGHT_MAX_CANDELA, false, false,

@@ -290,6 +290,9 @@ void table_lights(const Ctx &c, std::vector<pg_scene_light> &out)
         if (peak > PG_LIGHT_MAX_CANDELA)
             gfail(strf("%s: light %zu: colour x intensity %g candela: over the %g a light may give", w.c_str(), i,
                        peak, PG_LIGHT_MAX_CANDELA));
+        if (f[3] != 0 && !(std::isnormal(f[3]) && f[3] <= 1e30f)) /* as a KHR light's range */
+            gfail(strf("%s: light %zu: range %g: expected 0 (none: infinite reach) or a number in [1.2e-38, 1e30]",
+                       w.c_str(), i, double(f[3])));
         memcpy(L.position, f, sizeof L.position);
         L.range = f[3];
         memcpy(L.color, f + 4, sizeof L.color);

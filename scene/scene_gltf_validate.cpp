@@ -3,6 +3,7 @@
  */
 #include "scene_gltf_internal.h"
 #include "pg_file.h"
+#include "scenario.h"
 
 #include <sys/stat.h>
 
@@ -673,12 +674,66 @@ static void check_camera(const json &o, const std::string &w)
 }
 
 /* extensions.KHR_lights_punctual.lights[i]: a type, and a spot light's spot object */
-static void check_punctual_lights(const json &j)
+/* o.key, when present: n numbers (a wrongly typed value was read as the default: "red" as white) */
+static void check_numbers(const json &o, const char *key, size_t n, const std::string &w)
+{
+    auto it = o.find(key);
+    if (it == o.end()) return;
+    bool ok = it->is_array() && it->size() == n;
+    if (ok)
+        for (const auto &x : *it) ok = ok && x.is_number();
+    if (!ok) gfail(strf("%s.%s: expected %zu numbers, got %s", w.c_str(), key, n, it->dump().substr(0, 80).c_str()));
+}
+
+/* o.key, when present: a number (its range is checked where it is read) */
+static void check_is_number(const json &o, const char *key, const std::string &w)
+{
+    auto it = o.find(key);
+    if (it != o.end() && !it->is_number())
+        gfail(strf("%s.%s: expected a number, got %s", w.c_str(), key, it->dump().substr(0, 80).c_str()));
+}
+
+/* extensions.PASSGRAPH_lights_table: an object of a bufferView index and a count of 1 .. 2^24
+ * (an index or count of 2^32 and past was read modulo 2^32; an array was taken for no table) */
+static void check_lights_table(const json &j, const Arrays &a)
+{
+    const json *ext = opt_object(j, "extensions", "(root)");
+    const json *t = ext ? opt_object(*ext, "PASSGRAPH_lights_table", "extensions") : nullptr;
+    if (!t) return;
+    const std::string w = "extensions.PASSGRAPH_lights_table";
+    for (auto it = t->begin(); it != t->end(); ++it)
+        if (it.key() != "bufferView" && it.key() != "count" && it.key() != "extras" && it.key() != "extensions")
+            gfail(strf("%s.%s: unknown key (expected bufferView and count)", w.c_str(), it.key().c_str()));
+    ref(*t, "bufferView", arr_size(a.views), "bufferViews", w, true);
+    auto c = t->find("count");
+    if (c == t->end()) gfail(w + ".count: missing (required)");
+    if (!c->is_number_unsigned() || c->get<uint64_t>() < 1 || c->get<uint64_t>() > PG_MAX_LIGHTS)
+        gfail(strf("%s.count: %s: expected an integer in 1..%u", w.c_str(), c->dump().substr(0, 40).c_str(), PG_MAX_LIGHTS));
+}
+
+/* nodes[i].extensions.KHR_lights_punctual.light: an index into the lights (2^32 read as 0) */
+static void check_light_nodes(const Arrays &a, size_t n_lights)
+{
+    each_object(a.nodes, "nodes", [&](const json &o, const std::string &w, size_t) {
+        const json *ext = opt_object(o, "extensions", w);
+        const json *lp = ext ? opt_object(*ext, "KHR_lights_punctual", w + ".extensions") : nullptr;
+        if (lp) ref(*lp, "light", n_lights, "lights", w + ".extensions.KHR_lights_punctual", true);
+    });
+}
+
+static void check_punctual_lights(const json &j, const Arrays &a)
 {
     const json *ext = opt_object(j, "extensions", "(root)");
     const json *lp = ext ? opt_object(*ext, "KHR_lights_punctual", "extensions") : nullptr;
     const json *lights = lp ? opt_array(*lp, "lights", "KHR_lights_punctual") : nullptr;
+    check_light_nodes(a, arr_size(lights));
     each_object(lights, "KHR_lights_punctual.lights", [&](const json &o, const std::string &w, size_t) {
+        check_numbers(o, "color", 3, w);
+        check_is_number(o, "intensity", w);
+        if (const json *spot = opt_object(o, "spot", w)) {
+            check_is_number(*spot, "innerConeAngle", w + ".spot");
+            check_is_number(*spot, "outerConeAngle", w + ".spot");
+        }
         auto t = o.find("type");
         const std::string type = t != o.end() && t->is_string() ? t->get<std::string>() : "";
         if (type != "point" && type != "spot" && type != "directional")
@@ -746,7 +801,8 @@ void prevalidate(Ctx &c)
     each_object(opt_array(j, "cameras", ""), "cameras", [&](const json &o, const std::string &w, size_t) {
         check_camera(o, w);
     });
-    check_punctual_lights(j);
+    check_punctual_lights(j, a);
+    check_lights_table(j, a);
     each_object(a.scenes, "scenes", [&](const json &o, const std::string &w, size_t) {
         check_node_list(a, o, "nodes", w);
     });

@@ -10,6 +10,7 @@
  * SIGINT stops after the current frame and writes what was measured (exit 130). */
 #include "pg_file.h"
 #include "bench.h"
+#include "scenario.h"
 #include "size_note.h"
 
 static const char *const bench_help =
@@ -43,7 +44,8 @@ static const char *const bench_help_options =
     "  --pipelines LIST|all pipeline JSON files, comma-separated; a bare name (forward_plus) means\n"
     "                       pipelines/NAME.json of the data folder; 'all' (default): every top-level\n"
     "                       JSON file in the data folder's pipelines/ (also --pipeline FILE)\n"
-    "  --lights N,N,...     light counts (default 100,1000,5000); sorted, duplicates dropped\n"
+    "  --lights N,N,...     light counts (default: a --scenario's lights.count, else 100,1000,5000);\n"
+    "                       sorted, duplicates dropped\n"
     "  --size WxH,WxH,...   output sizes (default 640x360); in the given order, duplicates dropped\n"
     "  --scene FILE,...     one or more scenes (default: the built-in atrium); --scenario applies to each\n"
     "  --warmup N           untimed frames before the timed ones (default 2)\n"
@@ -374,8 +376,15 @@ static pg_result parse_lists(bench *B, const setup_args *sa, pg_error *err)
 {
     pg_result r = PG_OK;
     static char def_lights[] = "100,1000,5000";
-    if (!r) r = pg_bench_parse_lights(B, sa->lights ? sa->lights : def_lights, err);
-    B->lights_given = sa->lights != NULL;
+    char sc_lights[16] = "";
+    if (B->opt.scenario) { /* as in render: its lights.count and lights.seed when --lights / --seed are not given */
+        pg_scenario sc;
+        if ((r = pg_scenario_load(B->opt.scenario, &sc, err))) return r;
+        if (sc.has_light_count && !sa->lights) snprintf(sc_lights, sizeof sc_lights, "%u", sc.lights.count);
+        if (sc.has_seed && !B->opt.has_seed) B->opt.seed = sc.lights.seed;
+    }
+    if (!r) r = pg_bench_parse_lights(B, sa->lights ? sa->lights : sc_lights[0] ? sc_lights : def_lights, err);
+    B->lights_given = sa->lights != NULL || sc_lights[0];
     if (!r && sa->sizes) r = parse_sizes(B, sa->sizes, err);
     if (!r && !sa->sizes) {
         B->n_sizes = 1;

@@ -640,6 +640,26 @@ camline --scene "$objs/two_cameras.gltf" --camera side_node >"$tmp/cl" && grep -
 camline --scene "$objs/cube.gltf" --scenario "$root/assets/scenarios/cis565.json" >"$tmp/cl" && \
   grep -q "^explain: camera: scenario .*cis565.json" "$tmp/cl" && grep -q "^explain: lights: generated point lights, scenario .*cis565.json" "$tmp/cl" \
   && ok || { bad "scenario camera/lights lines"; cat "$tmp/cl" "$tmp/cerr"; }
+# a scenario's lights.count and lights.seed (without --lights/--seed): the seed was never used, and
+# --explain gave the intensity of the default count
+printf '{"lights": {"count": 20, "seed": 7}}\n' >"$tmp/sc_seed7.json"
+printf '{"lights": {"count": 20, "seed": 1}}\n' >"$tmp/sc_seed1.json"
+for s in 1 7; do
+  "$PG" render --scene "$objs/cube.gltf" --scenario "$tmp/sc_seed$s.json" --size 64x36 --explain --out "$tmp/sc$s.png" \
+    >"$tmp/sc$s.out" 2>/dev/null || bad "scenario seed $s: render"
+done
+"$PG" render --scene "$objs/cube.gltf" --lights 20 --seed 7 --environment none --size 64x36 --out "$tmp/l20s7.png" >/dev/null 2>&1
+cmp -s "$tmp/sc7.png" "$tmp/l20s7.png" && ! cmp -s "$tmp/sc1.png" "$tmp/sc7.png" && ok \
+  || bad "a scenario's lights.seed: want the image of --lights 20 --seed 7 --environment none (a scenario brings no environment), unlike seed 1's"
+"$PG" render --scene "$objs/cube.gltf" --lights 20 --seed 7 --size 64x36 --explain --out "$tmp/l20s7.png" 2>/dev/null \
+  | grep -o 'intensity [0-9.e+-]*' | head -1 >"$tmp/want_i"
+grep -q "^explain: lights: .*$(cat "$tmp/want_i"), .*; count and seed from scenario .*sc_seed7.json" "$tmp/sc7.out" && ok \
+  || { bad "a scenario's count: --explain names it with that count's intensity ($(cat "$tmp/want_i"))"; grep lights: "$tmp/sc7.out"; }
+# bench takes a scenario's count and seed as render does (its rows were 100/1000/5000 lights, seed 1)
+"$PG" bench --scene "$objs/cube.gltf" --scenario "$tmp/sc_seed7.json" --pipelines naive --size 32x18 --frames 1 \
+  --warmup 0 --quiet --out "$tmp/bsc" >/dev/null 2>"$tmp/err" \
+  && [ "$(cut -d, -f5,13 "$tmp/bsc/results.csv" | tail -n +2)" = "20,7" ] && ok \
+  || { bad "bench --scenario: its lights.count and lights.seed"; cat "$tmp/err"; cut -d, -f5,13 "$tmp/bsc/results.csv"; }
 # --explain names the shading model and the environment; a file with several glTF scenes gets a
 # line, --gltf-scene picks one, out of range is an error naming the count
 "$PG" render --size 64x36 --lights 8 --explain --scene "$objs/two_scenes.gltf" --out "$tmp/c.png" >"$tmp/cl" 2>"$tmp/cerr" &&
@@ -736,6 +756,28 @@ expect_fail "lights-table unknown option" "unknown option '--nope'" lights-table
 expect_fail "lights-table --lights 0" "no light to write" lights-table --scene "$lt" --lights 0 --out "$tmp/lt/z.gltf"
 expect_fail "lights-table --radius 0" "a radius of 0" lights-table --scene "$lt" --lights 4 --radius 0 --out "$tmp/lt/z.gltf"
 [ ! -e "$tmp/lt/z.gltf" ] && [ ! -e "$tmp/lt/z.lights.bin" ] && ok || bad "lights-table: a refused table left files"
+# a file that already holds a table (a second one replaced it: its lights were lost), the output
+# being the input (a file whose buffer no longer matched), an output folder, lights past a file
+# light's limits: refused, nothing written; --json joins the scene --gltf-scene names
+expect_fail "lights-table of a file with a table" "already holds a PASSGRAPH_lights_table: a file has one table" \
+  lights-table --scene "$tmp/lt/t.gltf" --lights 4 --out "$tmp/lt/z.gltf"
+cp "$lt" "$tmp/lt/inplace.gltf"
+expect_fail "lights-table in place" "inplace.gltf is the input file: write the output to another file" \
+  lights-table --scene "$tmp/lt/inplace.gltf" --lights 4 --out "$tmp/lt/inplace.gltf"
+cmp -s "$lt" "$tmp/lt/inplace.gltf" && [ ! -e "$tmp/lt/inplace.lights.bin" ] && ok || bad "lights-table in place: the input changed"
+mkdir -p "$tmp/lt/zdir.gltf"
+expect_fail "lights-table --out a folder" "--out '$tmp/lt/zdir.gltf': cannot write: Is a directory" \
+  lights-table --scene "$lt" --lights 4 --out "$tmp/lt/zdir.gltf"
+printf '{"lights": {"count": 4, "intensity": 1e30}}\n' >"$tmp/lt/bright.json"
+expect_fail "lights-table: an intensity a file light cannot have" "light 0: intensity 3.14159e+30 candela (pi x the generated intensity), over the 1e+30" \
+  lights-table --scene "$lt" --scenario "$tmp/lt/bright.json" --out "$tmp/lt/z.gltf"
+[ ! -e "$tmp/lt/z.gltf" ] && [ ! -e "$tmp/lt/z.lights.bin" ] && [ ! -e "$tmp/lt/zdir.lights.bin" ] && ok \
+  || bad "lights-table: a refused table left files"
+"$PG" lights-table --scene "$objs/two_scenes.gltf" --gltf-scene 1 --lights 4 --json --out "$tmp/lt/two_j.gltf" >/dev/null &&
+  "$PG" lights-table --scene "$objs/two_scenes.gltf" --gltf-scene 1 --lights 4 --out "$tmp/lt/two_t.gltf" >/dev/null &&
+  "$PG" render --scene "$tmp/lt/two_j.gltf" --gltf-scene 1 --size 32x18 --out "$tmp/lt/two_j.png" >/dev/null 2>&1 &&
+  "$PG" render --scene "$tmp/lt/two_t.gltf" --gltf-scene 1 --size 32x18 --out "$tmp/lt/two_t.png" >/dev/null 2>&1 &&
+  cmp -s "$tmp/lt/two_j.png" "$tmp/lt/two_t.png" && ok || bad "lights-table --json --gltf-scene 1: the lights join scene 1"
 # the default render of a glTF with a camera is the render with that camera named
 "$PG" render --size 64x36 --lights 8 --scene "$objs/camera.gltf" --out "$tmp/cam_default.png" >/dev/null 2>&1 &&
   "$PG" render --size 64x36 --lights 8 --scene "$objs/camera.gltf" --camera 0 --out "$tmp/cam_0.png" >/dev/null 2>&1 &&

@@ -748,7 +748,14 @@ def lights_doc(light, node_ext=None):
 write("light_bad_type.gltf", lights_doc({"type": "area"}), "PG_ERR_GLTF",
       "KHR_lights_punctual.lights[0].type: 'area': expected \"point\", \"spot\" or \"directional\"")
 write("light_color_two.gltf", lights_doc({"type": "point", "color": [1, 0.5]}), "PG_ERR_GLTF",
-      "KHR_lights_punctual.lights[0].color: 2 numbers, expected 3")
+      "KHR_lights_punctual.lights[0].color: expected 3 numbers, got [1,0.5]")
+# wrongly typed values were read as the defaults ("red" as white, "5" as 1, "0.5" as pi/4)
+write("light_color_string.gltf", lights_doc({"type": "point", "color": "red"}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].color: expected 3 numbers, got \"red\"")
+write("light_intensity_string.gltf", lights_doc({"type": "point", "intensity": "5"}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].intensity: expected a number, got \"5\"")
+write("light_cone_string.gltf", lights_doc({"type": "spot", "spot": {"outerConeAngle": "0.5"}}), "PG_ERR_GLTF",
+      "KHR_lights_punctual.lights[0].spot.outerConeAngle: expected a number, got \"0.5\"")
 write("light_color_negative.gltf", lights_doc({"type": "point", "color": [1, -1, 0]}), "PG_ERR_GLTF",
       "KHR_lights_punctual.lights[0].color: expected three finite numbers >= 0")
 write("light_intensity_negative.gltf", lights_doc({"type": "point", "intensity": -2}), "PG_ERR_GLTF",
@@ -774,9 +781,12 @@ write("light_cone_inverted.gltf", lights_doc({"type": "spot", "spot": {"innerCon
 write("light_cone_wide.gltf", lights_doc({"type": "spot", "spot": {"outerConeAngle": 2.0}}), "PG_ERR_GLTF",
       "KHR_lights_punctual.lights[0].spot.outerConeAngle: expected an angle in (0, pi/2]")
 write("light_index_out_of_range.gltf", lights_doc({"type": "point"}, {"light": 3}), "PG_ERR_GLTF",
-      "nodes[1].extensions.KHR_lights_punctual.light: 3 out of range (1 lights)")
+      "nodes[1].extensions.KHR_lights_punctual.light: lights index 3 out of range (1 lights)")
+# 2^32 was read as light 0
+write("light_index_2_32.gltf", lights_doc({"type": "point"}, {"light": 4294967296}), "PG_ERR_GLTF",
+      "nodes[1].extensions.KHR_lights_punctual.light: lights index 4294967296 out of range (1 lights)")
 write("light_index_missing.gltf", lights_doc({"type": "point"}, {}), "PG_ERR_GLTF",
-      "nodes[1].extensions.KHR_lights_punctual.light: expected a light index")
+      "nodes[1].extensions.KHR_lights_punctual.light: missing (required)")
 write("light_type_missing.gltf", lights_doc({"color": [1, 1, 1]}), "PG_ERR_GLTF",
       "KHR_lights_punctual.lights[0].type: missing: expected \"point\", \"spot\" or \"directional\"")
 write("light_spot_missing.gltf", lights_doc({"type": "spot"}), "PG_ERR_GLTF",
@@ -833,9 +843,21 @@ write("lights_table_negative.gltf", table_doc([(0, 1, 0, 2, 1, -0.5, 0, 3)], 1),
 write("lights_table_stride.gltf", table_doc(TWO, 2, stride=16), "PG_ERR_GLTF",
       "extensions.PASSGRAPH_lights_table: bufferViews[3].byteStride 16 (the records are 32 bytes")
 write("lights_table_no_count.gltf", table_doc(TWO, 2, ext={"bufferView": 3}), "PG_ERR_GLTF",
-      "extensions.PASSGRAPH_lights_table.count: expected a number")
+      "extensions.PASSGRAPH_lights_table.count: missing (required)")
 write("lights_table_bad_view.gltf", table_doc(TWO, 2, ext={"bufferView": 9, "count": 2}), "PG_ERR_GLTF",
-      "extensions.PASSGRAPH_lights_table.bufferView: 9 out of range (4 bufferViews)")
+      "extensions.PASSGRAPH_lights_table.bufferView: bufferViews index 9 out of range (4 bufferViews)")
+# a count or index of 2^32 and past was read modulo 2^32 (2^32 + 3: three lights), a count of 0 or an
+# array extension was taken for no table, an unknown key was ignored
+write("lights_table_count_2_32.gltf", table_doc(TWO, 2, ext={"bufferView": 3, "count": 4294967298}), "PG_ERR_GLTF",
+      "extensions.PASSGRAPH_lights_table.count: 4294967298: expected an integer in 1..16777216")
+write("lights_table_view_2_32.gltf", table_doc(TWO, 2, ext={"bufferView": 4294967299, "count": 2}), "PG_ERR_GLTF",
+      "extensions.PASSGRAPH_lights_table.bufferView: bufferViews index 4294967299 out of range (4 bufferViews)")
+write("lights_table_count_zero.gltf", table_doc(TWO, 0), "PG_ERR_GLTF",
+      "extensions.PASSGRAPH_lights_table.count: 0: expected an integer in 1..16777216")
+write("lights_table_array.gltf", table_doc(TWO, 2, ext=[3, 2]), "PG_ERR_GLTF",
+      "extensions.PASSGRAPH_lights_table: expected an object")
+write("lights_table_unknown_key.gltf", table_doc(TWO, 2, ext={"bufferView": 3, "count": 2, "stride": 32}),
+      "PG_ERR_GLTF", "extensions.PASSGRAPH_lights_table.stride: unknown key (expected bufferView and count)")
 
 # EXT_mesh_gpu_instancing: the triangle drawn at instances whose TRANSLATION and SCALE are the
 # triangle's own positions accessor (3 VEC3 FLOAT: (0,0,0), (1,0,0), (0,1,0)); bad ones refused
