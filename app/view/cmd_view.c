@@ -5,6 +5,7 @@
  * Frame: the graph renders offscreen (its own submit + fence); then one command buffer blits the
  * graph's display image (or the difference-to-naive heatmap) into the swapchain image, draws the
  * UI over it in a render pass, optionally copies the result for a screenshot, and presents. */
+#include "pg_file.h"
 #include "view.h"
 
 /* ---------------------------------------------------------------- command */
@@ -84,14 +85,19 @@ static bool parse_at(viewer *v, const char *spec, pg_error *err)
     view_action *a = &v->actions[v->n_actions];
     char what[64] = {0};
     int used_chars = 0;
-    if (v->n_actions >= MAX_ACTIONS || sscanf(spec, "%u:%15[a-z_]%n", &a->frame, what, &used_chars) < 2) {
+    if (v->n_actions >= MAX_ACTIONS) {
+        fprintf(stderr, "passgraph view: --at %s: more than %d --at actions\n", spec, MAX_ACTIONS);
+        return false;
+    }
+    if (sscanf(spec, "%u:%15[a-z_]%n", &a->frame, what, &used_chars) < 2) {
         fprintf(stderr, "passgraph view: --at %s: expected FRAME:ACTION[=ARG]\n", spec);
         return false;
     }
     pg_strlcpy(a->what, what, sizeof a->what);
     const char *rest = spec + used_chars;
     pg_strlcpy(a->arg, *rest == '=' ? rest + 1 : "", sizeof a->arg);
-    if (!strcmp(a->what, "screenshot") && pg_image_path_check(a->arg, false, err)) {
+    if (!strcmp(a->what, "screenshot") &&
+        (pg_image_path_check(a->arg, false, err) || pg_file_check_writable(a->arg, "screenshot", err))) {
         fprintf(stderr, "passgraph view: --at %s: %s\n", spec, err->msg);
         return false;
     }
@@ -132,6 +138,10 @@ static int parse_view_options(viewer *v, pg_cli_common *opt, int argc, char **ar
             v->screenshot_path = argv[++i];
             if (pg_image_path_check(v->screenshot_path, false, &err)) {
                 fprintf(stderr, "passgraph view: --screenshot %s\n", err.msg);
+                return 2;
+            }
+            if (pg_file_check_writable(v->screenshot_path, "--screenshot", &err)) { /* before any frame */
+                fprintf(stderr, "passgraph view: %s\n", err.msg);
                 return 2;
             }
             continue;

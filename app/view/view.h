@@ -152,6 +152,9 @@ void set_override(viewer *v, const char *key, const char *value);
 /* Whether a pipeline of the viewer's list declares parameter key (one that does not load declares
  * nothing): --set and --at N:set refuse a key no pipeline knows. */
 bool declared_by_any(const viewer *v, const char *key);
+/* PG_ERR_PARAM (the first refusal's message, naming the pipeline and the value) when every listed
+ * pipeline that declares key refuses value; PG_OK when one takes it. */
+pg_result refused_by_all(const viewer *v, const char *key, const char *value, pg_error *err);
 /* The --set values and the debug view against the pipelines of the list that declare their key: a
  * value none of them takes is PG_ERR_INVALID_ARG naming the option that gave it (sides.h). */
 pg_result check_set_values(const viewer *v, const pg_cli_common *opt, pg_error *err);

@@ -188,6 +188,10 @@ static void record_history(viewer *v)
 static pg_result blit_source(viewer *v, VkCommandBuffer cmd, bool show_diff, VkImage *src, uint32_t *sw,
                              uint32_t *sh, pg_error *err)
 {
+    if (!v->session) { /* nothing to show: blit_to_swapchain clears */
+        *src = VK_NULL_HANDLE;
+        return PG_OK;
+    }
     if (!show_diff) {
         const pg_phys_resource *out = pg_runtime_output_image(v->session->runtime, 0);
         pg_result r = present_source(v, cmd, out, src, err);
@@ -220,9 +224,17 @@ static void blit_to_swapchain(VkCommandBuffer cmd, const pg_view_window *w, uint
                               uint32_t sh)
 {
     VkImageMemoryBarrier2 to_dst = pg_image_barrier(w->images[index], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
-                                                    0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                                    VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+                                                    0, VK_PIPELINE_STAGE_2_BLIT_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                                                    VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                                                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     pg_cmd_barriers(cmd, 1, &to_dst, 0, NULL);
+    if (!src) { /* no graph to show (the pipeline did not load after a scene change): a grey frame
+                 * under the panel that says why */
+        const VkClearColorValue grey = {.float32 = {0.08f, 0.08f, 0.08f, 1.0f}};
+        const VkImageSubresourceRange all = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, w->images[index], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &grey, 1, &all);
+        return;
+    }
     VkImageBlit blit = {
         .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
         .srcOffsets = {{0, 0, 0}, {(int32_t)sw, (int32_t)sh, 1}},
@@ -311,13 +323,23 @@ pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     double t0 = pg_time_s();
     pg_frame_info fi = viewer_frame_info(v);
     pg_result r;
-    if ((r = render_graph(v, &fi, err))) return r;
+    if (v->session && (r = render_graph(v, &fi, err))) return r;
     bool show_diff = false;
-    if (v->diff) {
-        if ((r = render_diff(v, &fi, err))) return r;
-        show_diff = true;
+    if (v->diff && v->session) {
+        /* the reference failing (its file broken on disk) turns the difference view off and says
+         * why; the graph goes on */
+        if (render_diff(v, &fi, err)) {
+            snprintf(v->error, sizeof v->error, "difference view off: %s", err->msg);
+            fprintf(stderr, "passgraph view: %s\n", v->error);
+            v->diff = false;
+            pg_session_destroy(v->naive);
+            v->naive = NULL;
+            memset(err, 0, sizeof *err);
+        } else {
+            show_diff = true;
+        }
     }
-    record_history(v);
+    if (v->session) record_history(v);
 
     /* this slot's previous frame (two frames ago) must be done with its command buffer and semaphore */
     const uint32_t fs = w->slot;
@@ -364,7 +386,14 @@ pg_result draw_frame(viewer *v, bool capture, pg_error *err)
                            .pImageIndices = &index};
     vr = vkQueuePresentKHR(gpu->queue, &pi);
     if (shot) {
-        if ((r = save_screenshot(v, fs, err))) return r;
+        if ((r = save_screenshot(v, fs, err))) {
+            /* --screenshot's (the run's result) fails the run; the button's or an --at one's is
+             * shown and the viewer goes on */
+            if (v->screenshot_path && !strcmp(v->shot_file, v->screenshot_path)) return r;
+            snprintf(v->error, sizeof v->error, "screenshot not written: %s", err->msg);
+            fprintf(stderr, "passgraph view: %s\n", v->error);
+            memset(err, 0, sizeof *err);
+        }
     } else if (capture) {
         fprintf(stderr, "passgraph view: this surface cannot be read back; screenshot skipped\n");
     }

@@ -99,6 +99,27 @@ bool declared_by_any(const viewer *v, const char *key)
     return false;
 }
 
+pg_result refused_by_all(const viewer *v, const char *key, const char *value, pg_error *err)
+{
+    const pg_param_override ov = {key, value};
+    pg_result refused = PG_OK;
+    for (int i = 0; i < v->n_pipelines; i++) {
+        pg_pipeline *p = NULL;
+        pg_error e = {0};
+        if (pg_pipeline_load(v->paths[i], NULL, 0, &p, &e)) continue;
+        const bool declares = pg_pipeline_find_param(p, key) != NULL;
+        pg_pipeline_free(p);
+        p = NULL;
+        if (!declares) continue;
+        pg_result r = pg_pipeline_load(v->paths[i], &ov, 1, &p, &e);
+        pg_pipeline_free(p);
+        if (r != PG_ERR_PARAM) return PG_OK; /* one takes it (a debug view only some have) */
+        if (!refused) *err = e;
+        refused = r;
+    }
+    return refused;
+}
+
 pg_result check_set_values(const viewer *v, const pg_cli_common *opt, pg_error *err)
 {
     pg_side_sets sides;
@@ -248,6 +269,7 @@ void reload(viewer *v)
         v->cycle_tried[0] = 0;
         v->error[0] = 0;
         v->reloads++;
+        v->watch_sig = watch_signature(v); /* the new pipeline's files: their folders, as they are now */
         return;
     }
     if (open_session(v, v->paths[idx], true, &s, &err) == PG_OK) {
@@ -273,6 +295,7 @@ void reload(viewer *v)
     v->error[0] = 0;
     v->hist_n = 0;
     v->reloads++;
+    v->watch_sig = watch_signature(v);
 }
 
 /* The modification times and sizes of the regular files in dir, summed. */
@@ -299,18 +322,27 @@ static double dir_signature(const char *dir)
  * pipeline (a user pass's GLSL lives next to its pipeline file: pipelines/examples/NAME/). */
 double watch_signature(const viewer *v)
 {
-    char dirs[4 + MAX_PIPELINES][PG_PATH_MAX];
+    char dirs[4 + MAX_PIPELINES + PG_MAX_SOURCE_DIRS][PG_PATH_MAX];
     int n = 0;
     pg_data_path(dirs[n++], PG_PATH_MAX, "pipelines");
     pg_data_path(dirs[n++], PG_PATH_MAX, "pipelines/fragments");
     pg_data_path(dirs[n++], PG_PATH_MAX, "shaders");
     if (v->extra_dir[0]) pg_strlcpy(dirs[n++], v->extra_dir, PG_PATH_MAX);
-    for (int i = 0; i < v->n_pipelines; i++) {
+    for (int i = 0; i < v->n_pipelines + PG_MAX_SOURCE_DIRS; i++) {
+        /* the listed pipelines' folders, then those of every file the running pipeline was read
+         * from (a fragment included from elsewhere: its edit did not reload) */
         char dir[PG_PATH_MAX];
-        pg_strlcpy(dir, v->paths[i], sizeof dir);
-        char *slash = strrchr(dir, '/');
-        if (slash) *slash = 0;
-        else pg_strlcpy(dir, ".", sizeof dir);
+        if (i < v->n_pipelines) {
+            pg_strlcpy(dir, v->paths[i], sizeof dir);
+            char *slash = strrchr(dir, '/');
+            if (slash) *slash = 0;
+            else pg_strlcpy(dir, ".", sizeof dir);
+        } else {
+            const pg_pipeline *pl = v->session ? v->session->pipeline : NULL;
+            const uint32_t k = (uint32_t)(i - v->n_pipelines);
+            if (!pl || k >= pl->n_source_dirs) continue;
+            pg_strlcpy(dir, pl->source_dirs[k], sizeof dir);
+        }
         bool seen = false;
         for (int k = 0; k < n && !seen; k++) seen = !strcmp(dirs[k], dir);
         if (!seen) pg_strlcpy(dirs[n++], dir, PG_PATH_MAX);

@@ -8,7 +8,8 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
     printf("view: frame %u: %s %s\n", a->frame, a->what, a->arg);
     if (!strcmp(a->what, "resize")) {
         unsigned w = 0, h = 0;
-        if (sscanf(a->arg, "%ux%u", &w, &h) != 2 || !w || !h || w > 16384 || h > 16384)
+        int used = 0;
+        if (sscanf(a->arg, "%ux%u%n", &w, &h, &used) != 2 || a->arg[used] || !w || !h || w > 16384 || h > 16384)
             return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:resize=%s: expected WxH", a->frame, a->arg);
         glfwSetWindowSize(v->window, (int)w, (int)h);
     } else if (!strcmp(a->what, "iconify")) {
@@ -43,6 +44,9 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
         if (!declared_by_any(v, kv))
             return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:set=%s: no pipeline of the viewer declares a parameter '%s'",
                            a->frame, a->arg, kv);
+        /* a value no listed pipeline takes ends the run, as --set's does (it was kept, and every
+         * later reload or switch failed with it) */
+        if (refused_by_all(v, kv, eq + 1, err)) return pg_error_prefix(err, "--at %u:set=%s", a->frame, a->arg);
         set_override(v, kv, eq + 1);
         v->reload = true;
     } else if (!strcmp(a->what, "pipeline")) {
@@ -69,11 +73,14 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
         if (r) return r;
         v->light_count = (int)n;
     } else if (!strcmp(a->what, "env_intensity") || !strcmp(a->what, "env_rotation")) {
+        /* the command line's ranges (--environment-intensity, --environment-rotation): 1e38 made
+         * the picture black */
         char *end = NULL;
-        float x = strtof(a->arg, &end);
-        if (!end || *end || !isfinite(x) || (a->what[4] == 'i' && x < 0))
-            return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s=%s: expected a number%s", a->frame, a->what, a->arg,
-                           a->what[4] == 'i' ? " >= 0" : " (degrees)");
+        const bool in = a->what[4] == 'i';
+        const float x = strtof(a->arg, &end), lo = in ? 0.0f : -36000.0f, hi = in ? 1e6f : 36000.0f;
+        if (!end || end == a->arg || *end || !(x >= lo && x <= hi))
+            return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:%s=%s: expected a number in [%g, %g]%s", a->frame, a->what,
+                           a->arg, (double)lo, (double)hi, in ? "" : " (degrees)");
         if (a->what[4] == 'i') v->env_intensity = x;
         else v->env_rotation_deg = x;
     } else if (!strcmp(a->what, "camera")) {

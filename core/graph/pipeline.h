@@ -122,6 +122,7 @@ typedef struct pg_omitted {
 } pg_omitted;
 
 #define PG_MAX_PIPELINE_PLUGINS 4
+#define PG_MAX_SOURCE_DIRS 8
 
 typedef struct pg_pipeline {
     char name[PG_NAME_MAX];
@@ -139,6 +140,10 @@ typedef struct pg_pipeline {
      * the application's or the library's (renderer/plugins.c), before the pipeline is compiled */
     uint32_t n_plugins;
     char plugins[PG_MAX_PIPELINE_PLUGINS][PG_PATH_MAX];
+    /* the folders of the files it was read from (the top-level file's and its includes', real
+     * paths, each once; the first PG_MAX_SOURCE_DIRS): what an editor watches for changes */
+    uint32_t n_source_dirs;
+    char source_dirs[PG_MAX_SOURCE_DIRS][PG_PATH_MAX];
 } pg_pipeline;
 
 /* Loads path (and its includes). overrides may be NULL when n_overrides is 0. */

@@ -396,6 +396,16 @@ static pg_result load_common(const char *text, size_t len, const char *path,
     L->p = p;
     L->err = err ? err : &local;
     pg_result r = load_all(L, text, len, path, ov, n_ov);
+    for (uint32_t i = 0; !r && i < L->n_files && p->n_source_dirs < PG_MAX_SOURCE_DIRS; i++) {
+        char dir[PG_PATH_MAX];
+        pg_strlcpy(dir, L->files[i]->canon ? L->files[i]->canon : L->files[i]->path, sizeof dir);
+        char *slash = strrchr(dir, '/');
+        if (!slash) continue; /* a string's virtual path */
+        *slash = 0;
+        bool seen = false;
+        for (uint32_t k = 0; k < p->n_source_dirs && !seen; k++) seen = !strcmp(p->source_dirs[k], dir);
+        if (!seen) pg_strlcpy(p->source_dirs[p->n_source_dirs++], dir, PG_PATH_MAX);
+    }
     loader_free(L);
     if (r) {
         pg_pipeline_free(p);

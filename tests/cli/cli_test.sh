@@ -998,6 +998,12 @@ for ex in tonemap bloom ssao lighting normals vis_surface; do
   "$PG" render --pipeline "$root/pipelines/examples/$ex/$ex.json" --validation --size 64x36 --lights 16 \
     --out "$tmp/ex_$ex.png" >"$tmp/out" 2>"$tmp/err" && [ -s "$tmp/ex_$ex.png" ] && ! grep -q "VUID" "$tmp/err" \
     && ok || { bad "render: example user pass $ex"; cat "$tmp/err"; }
+  # with the other HDR format they offer (bloom's composite declared rgba16f and refused rgba32f)
+  if grep -q '"\$hdr_format"' "$root/pipelines/examples/$ex/$ex.json"; then
+    "$PG" render --pipeline "$root/pipelines/examples/$ex/$ex.json" --set hdr_format=rgba32f --validation --size 32x18 \
+      --lights 8 --out "$tmp/ex32_$ex.png" >"$tmp/out" 2>"$tmp/err" && ! grep -q "VUID" "$tmp/err" \
+      && ok || { bad "render: example user pass $ex with hdr_format=rgba32f"; cat "$tmp/err"; }
+  fi
 done
 up="$tmp/userpass"
 mkdir -p "$up"

@@ -6,7 +6,8 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 2, binding = 0) uniform sampler2D hdr_image;
 layout(set = 2, binding = 1) uniform sampler2D blur;
-layout(set = 2, binding = 2, rgba16f) uniform writeonly image2D dst;
+// HDR_FORMAT: the pipeline's hdr_format (rgba16f or rgba32f), handed over as a define
+layout(set = 2, binding = 2, HDR_FORMAT) uniform writeonly image2D dst;
 layout(push_constant) uniform Params {
     float strength;
     float levels;
