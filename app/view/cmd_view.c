@@ -110,8 +110,9 @@ static bool parse_at(viewer *v, const char *spec, pg_error *err)
 static bool parse_count(const char *option, const char *value, long lo, long hi, const char *want,
                         uint32_t *out)
 {
-    long k = strtol(value, NULL, 10);
-    if (k < lo || k > hi) {
+    char *end = NULL;
+    long k = strtol(value, &end, 10);
+    if (end == value || *end || k < lo || k > hi) { /* "2x" was 2 */
         fprintf(stderr, "passgraph view: %s %s: expected %s\n", option, value, want);
         return false;
     }

@@ -102,6 +102,9 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
         pg_result r = gltf_scene_choose(v, (int)k, err);
         if (r) return pg_error_prefix(err, "--at %u:gltf_scene", a->frame);
     } else if (!strcmp(a->what, "variant")) {
+        if (!v->app.scene || v->app.scene->n_gltf_variants == 0) /* as an index or a name would be */
+            return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:variant=%s: the scene has no material variants "
+                           "(KHR_materials_variants)", a->frame, a->arg);
         pg_result r = variant_choose(v, strcmp(a->arg, "default") ? a->arg : NULL, err);
         if (r) return pg_error_prefix(err, "--at %u:variant", a->frame);
     } else if (!strcmp(a->what, "screenshot")) {

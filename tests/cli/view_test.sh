@@ -50,7 +50,9 @@ for bad_arg in "--at 2:lights=1e3|--at 2:lights 1e3: expected a whole number in 
                "--at 2:set=grid_x=0|--at 2:set=grid_x=0: " \
                "--at 2:env_intensity=1e38|--at 2:env_intensity=1e38: expected a number in [0, 1e+06]" \
                "--at 2:env_rotation=1e30|--at 2:env_rotation=1e30: expected a number in [-36000, 36000]" \
-               "--at 2:resize=320x180junk|--at 2:resize=320x180junk: expected WxH"; do
+               "--at 2:resize=320x180junk|--at 2:resize=320x180junk: expected WxH" \
+               "--at 2:variant=default|--at 2:variant=default: the scene has no material variants" \
+               "--frames-in-flight 2x|--frames-in-flight 2x: expected 1 or 2"; do
   # shellcheck disable=SC2086
   xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 4 --lights 4 ${bad_arg%%|*} >"$tmp/out3" 2>"$tmp/err3"
   rc=$?
