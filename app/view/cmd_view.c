@@ -246,6 +246,7 @@ static bool open_window_ui(viewer *v, pg_error *err)
 static bool initial_state(viewer *v, const pg_cli_common *opt)
 {
     v->light_count = (int)v->app.lights.count;
+    v->failed_lights = -1;
     v->radius = v->app.lights.radius;
     v->intensity = v->app.lights.intensity;
     v->ambient = v->app.lights.ambient;
@@ -341,6 +342,10 @@ static bool draw_one(viewer *v, uint32_t frame, float dt, pg_error *err)
 {
     double t_load = pg_time_s();
     uint32_t loads_before = v->reloads;
+    if (!v->session && v->failed_lights >= 0 && v->light_count != v->failed_lights) { /* draw_frame dropped it */
+        v->failed_lights = -1;
+        v->reload = true;
+    }
     if (v->reload) reload(v);
     camera_update(v, dt);
     bool last_frame = v->frames_limit && frame + 1 >= v->frames_limit;

@@ -65,6 +65,8 @@ typedef struct viewer {
     bool reload;
     /* frame settings */
     int light_count;
+    int failed_lights;     /* >= 0: the light count at which the graph's frame failed and was dropped
+                            * (a buffer past a device limit): a new count loads it again */
     float radius, intensity, speed, time, ambient;
     float env_intensity, env_rotation_deg; /* the environment light's run-time knobs */
     int seed;

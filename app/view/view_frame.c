@@ -323,7 +323,20 @@ pg_result draw_frame(viewer *v, bool capture, pg_error *err)
     double t0 = pg_time_s();
     pg_frame_info fi = viewer_frame_info(v);
     pg_result r;
-    if (v->session && (r = render_graph(v, &fi, err))) return r;
+    if (v->session && (r = render_graph(v, &fi, err))) {
+        /* a device loss ends the run; a frame the graph cannot make at these settings (a light
+         * buffer past what one binding spans) drops the graph and says why: a new light count, a
+         * switch or an edit loads it again (the run ended) */
+        if (r == PG_ERR_VULKAN || r == PG_ERR_NO_DEVICE) return r;
+        snprintf(v->error, sizeof v->error, "%s", err->msg);
+        fprintf(stderr, "passgraph view: %s\n", err->msg);
+        vkDeviceWaitIdle(gpu->device);
+        pg_session_destroy(v->session);
+        pg_session_destroy(v->naive);
+        v->session = v->naive = NULL;
+        v->failed_lights = v->light_count;
+        memset(err, 0, sizeof *err);
+    }
     bool show_diff = false;
     if (v->diff && v->session) {
         /* the reference failing (its file broken on disk) turns the difference view off and says

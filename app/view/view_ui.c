@@ -273,7 +273,7 @@ static void settings_window(viewer *v)
     if (pg_ui_combo("pipeline", &v->requested, v->name_ptrs, v->n_pipelines)) v->reload = true;
     if (v->error[0]) {
         pg_ui_text_colored(0xff5050ff, v->session ? "error (the last good graph keeps running):"
-                                                  : "error (no graph for this scene until the pipeline loads):");
+                                                  : "error (no graph until the pipeline loads again):");
         pg_ui_text_wrapped(v->error);
     }
     const pg_pipeline *pl = v->session ? v->session->pipeline : NULL;

@@ -110,6 +110,18 @@ xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 12 --ligh
 rc=$?
 [ $rc -eq 0 ] && [ "$(grep -c 'change on disk' "$tmp/out6")" -ge 2 ] && grep -q "lights.json:1:.*JSON syntax error" "$tmp/err6" \
   && ok || { bad "view: an included fragment elsewhere is watched (exit $rc)"; cat "$tmp/out6" "$tmp/err6" | tail -8; }
+# a light count past what the device's storage bindings span (lavapipe: 128 MiB, 16M lights of 32
+# bytes) drops the graph with its error; a count it can draw loads it again (the run ended)
+xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --validation --size 64x36 --frames 10 --lights 0 --set grid_x=8 \
+  --set grid_y=4 --set grid_z=8 --pipeline "$root/pipelines/deferred_packed.json" --at 2:lights=16777216 --at 5:lights=16 \
+  >"$tmp/out7" 2>"$tmp/err7"
+rc=$?
+if grep -q "more than one binding spans" "$tmp/err7"; then
+  [ $rc -eq 0 ] && grep -Eq '^view: 10 frames, 2 pipeline loads' "$tmp/out7" && ok \
+    || { bad "view: a light count past the device's bindings must drop the graph, not end the run (exit $rc)"; tail -3 "$tmp/err7"; }
+else
+  [ $rc -eq 0 ] && ok || { bad "view --at lights=16777216 (exit $rc)"; tail -3 "$tmp/err7"; }
+fi
 # a debug view only some listed pipelines have (naive has no cluster_heat, forward+ has) starts
 xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 3 --lights 4 \
   --pipeline "$root/pipelines/forward_plus.json" --debug-view cluster_heat >"$tmp/out_dv" 2>"$tmp/err_dv" \
