@@ -17,7 +17,8 @@
  *                 an earlier one only if its first access fully overwrites it
  *   7. barriers   synchronization2 barriers for RAW, WAR, WAW and layout changes, including the
  *                 first use of an aliased resource (from UNDEFINED, after the previous occupant),
- *                 the frame-to-frame wrap of persistent resources, and the final transition of the
+ *                 the frame-to-frame wrap of persistent resources (a persistent image only read
+ *                 in one layout: a first-frame barrier out of UNDEFINED), and the final transition of the
  *                 outputs for readback
  *   8. queues     (core/graph/graph_queues.c; the queue of each pass is chosen between 5 and 6) each
  *                 pass's queue, submission batches (consecutive passes on one queue), the
