@@ -6,6 +6,28 @@
 #include "sides.h"
 #include "view.h"
 
+/* Entry i's name in the picker and for --at pipeline=: its file name, or, when an earlier entry
+ * has that name (a --pipelines DIR file named like a shipped one), "NAME (FOLDER)": both were
+ * shown as "naive.json" and the second could not be picked by name. */
+static void name_entry(viewer *v, int i)
+{
+    const char *path = v->paths[i], *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    bool taken = false;
+    for (int k = 0; k < i && !taken; k++) taken = !strcmp(v->names[k], base);
+    if (!taken) {
+        pg_strlcpy(v->names[i], base, PG_NAME_MAX);
+    } else {
+        char dir[PG_PATH_MAX];
+        pg_strlcpy(dir, path, sizeof dir);
+        char *slash = strrchr(dir, '/');
+        if (slash) *slash = 0;
+        const char *parent = strrchr(dir, '/');
+        snprintf(v->names[i], PG_NAME_MAX, "%s (%.*s)", base, 40, slash ? (parent ? parent + 1 : dir) : ".");
+    }
+    v->name_ptrs[i] = v->names[i];
+}
+
 /* ---------------------------------------------------------------- pipelines and parameters */
 
 static int cmp_str(const void *a, const void *b)
@@ -32,9 +54,7 @@ static void scan_dir(viewer *v, const char *dir)
         for (int k = 0; k < v->n_pipelines; k++) dup |= !strcmp(v->paths[k], found[i]);
         if (dup) continue;
         pg_strlcpy(v->paths[v->n_pipelines], found[i], PG_PATH_MAX);
-        const char *base = strrchr(found[i], '/');
-        pg_strlcpy(v->names[v->n_pipelines], base ? base + 1 : found[i], PG_NAME_MAX);
-        v->name_ptrs[v->n_pipelines] = v->names[v->n_pipelines];
+        name_entry(v, v->n_pipelines);
         v->n_pipelines++;
     }
 }
@@ -63,9 +83,7 @@ static void scan_subdirs(viewer *v, const char *dir)
 static int add_elsewhere(viewer *v, const char *path)
 {
     pg_strlcpy(v->paths[v->n_pipelines], path, PG_PATH_MAX);
-    const char *base = strrchr(path, '/');
-    pg_strlcpy(v->names[v->n_pipelines], base ? base + 1 : path, PG_NAME_MAX);
-    v->name_ptrs[v->n_pipelines] = v->names[v->n_pipelines];
+    name_entry(v, v->n_pipelines);
     return v->n_pipelines++;
 }
 

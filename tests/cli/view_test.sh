@@ -85,7 +85,7 @@ xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --validation --size 64x36 --fra
   --at 10:copy="$root/pipelines/naive.json:$tmp/pipelines/naive.json" --screenshot "$tmp/shot_scene.png" >"$tmp/out4" 2>"$tmp/err4"
 rc=$?
 [ $rc -eq 0 ] && grep -q "JSON syntax error" "$tmp/err4" && grep -Eq '^view: 16 frames' "$tmp/out4" \
-  && grep -q "frame 10: naive.json ready in" "$tmp/out4" && ! grep -q "validation message" "$tmp/err4" && ok \
+  && grep -q "frame 10: naive.json.* ready in" "$tmp/out4" && ! grep -q "validation message" "$tmp/err4" && ok \
   || { bad "view: a scene change while the pipeline file is broken (exit $rc)"; tail -5 "$tmp/err4"; }
 # the difference view's reference broken on disk: the view turns off, says why, the graph goes on
 # (the run ended); a data folder of links with its own copy of pipelines/
@@ -122,6 +122,14 @@ if grep -q "more than one binding spans" "$tmp/err7"; then
 else
   [ $rc -eq 0 ] && ok || { bad "view --at lights=16777216 (exit $rc)"; tail -3 "$tmp/err7"; }
 fi
+# a --pipelines DIR file named like a shipped one is listed as "naive.json (dup)" and can be picked
+# by that name (both were "naive.json", and the name always gave the shipped one)
+mkdir -p "$tmp/dup"
+printf '{ "name": broken' >"$tmp/dup/naive.json"
+xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 4 --lights 4 --pipelines "$tmp/dup" \
+  --at "2:pipeline=naive.json (dup)" >"$tmp/out8" 2>"$tmp/err8"
+[ $? -eq 0 ] && grep -q "dup/naive.json:1:11: JSON syntax error" "$tmp/err8" && ok \
+  || { bad "view: a --pipelines file named like a shipped one, picked as 'naive.json (dup)'"; tail -3 "$tmp/err8"; }
 # a debug view only some listed pipelines have (naive has no cluster_heat, forward+ has) starts
 xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 3 --lights 4 \
   --pipeline "$root/pipelines/forward_plus.json" --debug-view cluster_heat >"$tmp/out_dv" 2>"$tmp/err_dv" \
