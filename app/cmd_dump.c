@@ -202,14 +202,9 @@ static int dump_setup(int argc, char **argv, pg_cli_common *opt, dump_format *fo
         fprintf(stderr, "passgraph dump: %s\n", err.msg);
         return 2;
     }
-    { /* --set and --debug-view against the pipeline's parameters: bad options (exit 2), as render's */
-        char path[PG_PATH_MAX];
-        if (opt->pipeline) pg_strlcpy(path, opt->pipeline, sizeof path);
-        else pg_data_path(path, sizeof path, "pipelines/naive.json");
-        if (pg_sides_check_common(opt, path, &err)) {
-            fprintf(stderr, "passgraph dump: %s\n", err.msg);
-            return 2;
-        }
+    if (pg_sides_check_common(opt, &err)) { /* --set, --debug-view: bad options (exit 2), as render's */
+        fprintf(stderr, "passgraph dump: %s\n", err.msg);
+        return 2;
     }
     *format_out = format;
     *gv_out = gv_format;

@@ -218,33 +218,6 @@ static int fail1(const char *msg)
     return 1;
 }
 
-static const char *records_refused(const float *rec, uint32_t n, char *why, size_t size);
-static const char *overwrites_input(const cJSON *root, const char *in_path, const char *out_path, const char *in_dir,
-                                    char *why, size_t size);
-
-/* What would make the output wrong, before anything is written: the input already holding a table
- * (a second one would replace it: its lights were lost), an output that replaces a file of the
- * input (writing in place left a file whose buffer no longer matched), lights a file cannot hold.
- * 0 to go on, else the exit status (said on stderr). */
-static int check_output(const cJSON *root, const pg_cli_common *opt, bool json, const float *rec, uint32_t n,
-                        const char *in_dir)
-{
-    char why[PG_PATH_MAX + 256];
-    const cJSON *ext = cJSON_GetObjectItemCaseSensitive(root, "extensions");
-    const cJSON *table = cJSON_GetObjectItemCaseSensitive(ext, "PASSGRAPH_lights_table");
-    if (table && !json) {
-        snprintf(why, sizeof why, "%s already holds a PASSGRAPH_lights_table: a file has one table (write from a "
-                 "file without one, or add these lights as KHR_lights_punctual with --json)", opt->scene);
-        return fail1(why);
-    }
-    if (overwrites_input(root, opt->scene, opt->out, in_dir, why, sizeof why) ||
-        records_refused(rec, n, why, sizeof why)) {
-        fprintf(stderr, "passgraph lights-table: %s\n", why);
-        return 2;
-    }
-    return 0;
-}
-
 /* Why the records cannot go into a file passgraph reads back (a light's intensity, range or
  * position past the limits of file lights), or NULL. */
 static const char *records_refused(const float *rec, uint32_t n, char *why, size_t size)
@@ -299,6 +272,29 @@ static const char *overwrites_input(const cJSON *root, const char *in_path, cons
         }
     }
     return NULL;
+}
+
+/* What would make the output wrong, before anything is written: the input already holding a table
+ * (a second one would replace it: its lights were lost), an output that replaces a file of the
+ * input (writing in place left a file whose buffer no longer matched), lights a file cannot hold.
+ * 0 to go on, else the exit status (said on stderr). */
+static int check_output(const cJSON *root, const pg_cli_common *opt, bool json, const float *rec, uint32_t n,
+                        const char *in_dir)
+{
+    char why[PG_PATH_MAX + 256];
+    const cJSON *ext = cJSON_GetObjectItemCaseSensitive(root, "extensions");
+    const cJSON *table = cJSON_GetObjectItemCaseSensitive(ext, "PASSGRAPH_lights_table");
+    if (table && !json) {
+        snprintf(why, sizeof why, "%s already holds a PASSGRAPH_lights_table: a file has one table (write from a "
+                 "file without one, or add these lights as KHR_lights_punctual with --json)", opt->scene);
+        return fail1(why);
+    }
+    if (overwrites_input(root, opt->scene, opt->out, in_dir, why, sizeof why) ||
+        records_refused(rec, n, why, sizeof why)) {
+        fprintf(stderr, "passgraph lights-table: %s\n", why);
+        return 2;
+    }
+    return 0;
 }
 
 /* the records (8 floats a light) of the app's generated lights at time t */

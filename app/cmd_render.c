@@ -412,11 +412,8 @@ int pg_cmd_render(int argc, char **argv)
     if (rc >= 0) return rc;
     if (!resolve_outputs(&ro)) return 2;
     { /* --set and --debug-view against the pipeline's parameters: bad options, before a device is made */
-        char path[PG_PATH_MAX];
-        if (ro.opt.pipeline) pg_strlcpy(path, ro.opt.pipeline, sizeof path);
-        else pg_data_path(path, sizeof path, "pipelines/naive.json");
         pg_error se = {0};
-        if (pg_sides_check_common(&ro.opt, path, &se)) {
+        if (pg_sides_check_common(&ro.opt, &se)) {
             fprintf(stderr, "passgraph render: %s\n", se.msg);
             return 2;
         }

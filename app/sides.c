@@ -162,8 +162,11 @@ pg_result pg_sides_check_values(const char *path, const pg_ov_list *l, const cha
     return r;
 }
 
-pg_result pg_sides_check_common(const pg_cli_common *opt, const char *path, pg_error *err)
+pg_result pg_sides_check_common(const pg_cli_common *opt, pg_error *err)
 {
+    char path[PG_PATH_MAX];
+    if (opt->pipeline) pg_strlcpy(path, opt->pipeline, sizeof path);
+    else pg_data_path(path, sizeof path, "pipelines/naive.json"); /* pg_app_open's default */
     pg_pipeline *p = NULL;
     pg_error e = {0};
     if (pg_pipeline_load(path, NULL, 0, &p, &e)) return PG_OK; /* reported where it is opened */

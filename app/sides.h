@@ -62,10 +62,10 @@ pg_result pg_sides_check_keys(const pg_ov_list *l, const pg_pipeline *p, const c
  * Other load failures are returned as they are. */
 pg_result pg_sides_check_values(const char *path, const pg_ov_list *l, const char *side, pg_error *err);
 
-/* render and view: the common options' --set values and debug view against the pipeline at path
- * before a device is made: a key it does not declare or a value it refuses is PG_ERR_INVALID_ARG
- * naming the option that gave it (a bad option, exit 2). A file that does not load gives PG_OK: its
- * error comes where it is opened. */
-pg_result pg_sides_check_common(const pg_cli_common *opt, const char *path, pg_error *err);
+/* render and dump: the common options' --set values and debug view against opt's pipeline (or the
+ * default, pipelines/naive.json) before a device is made: a key it does not declare or a value it
+ * refuses is PG_ERR_INVALID_ARG naming the option that gave it (a bad option, exit 2). A file that
+ * does not load gives PG_OK: its error comes where it is opened. */
+pg_result pg_sides_check_common(const pg_cli_common *opt, pg_error *err);
 
 #endif

@@ -6,7 +6,8 @@
 # must read its data from the prefix (not the source tree), render, read the frame into memory and
 # into a VkImage of its own (the two must agree), print per-pass GPU times and the error against
 # the reference pipeline. Then: the library exports only pg_* and passgraph_* symbols, and a
-# program that finds it through a relative LD_LIBRARY_PATH still reads the prefix's data. ctest runs
+# program that finds it through a relative LD_LIBRARY_PATH, or sits next to another share/passgraph,
+# still reads the prefix's data. ctest runs
 # it as install_test.
 set -euo pipefail
 build=$(cd "$1" && pwd)
@@ -73,6 +74,19 @@ if (cd "$prefix" && env -u PASSGRAPH_DATA_DIR LD_LIBRARY_PATH="${libdir#"$prefix
   echo "check-install: a relative LD_LIBRARY_PATH: ok"
 else
   echo "check-install: a relative LD_LIBRARY_PATH: FAILED (the data folder must be the prefix's)"
+  cat "$tmp/run.log"
+  status=1
+fi
+# a program that sits next to another share/passgraph still gets the library's own data (the one
+# next to the program won)
+mkdir -p "$tmp/other/bin" "$tmp/other/share/passgraph/shaders"
+: >"$tmp/other/share/passgraph/shaders/common.glsl"
+cp "$tmp/embed-pkgconfig" "$tmp/other/bin/embed"
+if (cd "$tmp" && env -u PASSGRAPH_DATA_DIR -u LD_LIBRARY_PATH "$tmp/other/bin/embed" "" "$tmp/other.ppm") >"$tmp/run.log" 2>&1 \
+     && grep -qF "embed: data folder $prefix/share/passgraph" "$tmp/run.log"; then
+  echo "check-install: a share/passgraph next to the program: ok"
+else
+  echo "check-install: a share/passgraph next to the program: FAILED (the data folder must be the library's)"
   cat "$tmp/run.log"
   status=1
 fi

@@ -95,6 +95,18 @@ static const char *k_p1 =
     "  {\"name\": \"light\", \"type\": \"q_light_cs\", \"reads\": [\"clusters\", \"depth\"], \"writes\": [\"hdr\"]%s},\n"
     "  {\"name\": \"disp\", \"type\": \"q_present2\", \"reads\": [\"hdr\", \"noise\"], \"writes\": [\"ldr\"]}]}\n";
 
+/* pl compiled at 64x36 for `lights` lights on the queues caps describes */
+static pg_result compile_on(const pg_pipeline *pl, const pg_pass_registry *reg, pg_queue_caps caps, uint32_t lights,
+                            pg_graph_plan **plan, pg_error *err)
+{
+    pg_compile_desc d = {.pipeline = pl, .registry = reg, .output_width = 64, .output_height = 36, .queues = caps};
+    pg_scene_vars_set(&d.vars, NULL, lights, NULL);
+    return pg_graph_compile(&d, plan, err);
+}
+
+/* two queues of different families (NVIDIA's case: ownership transfers) */
+static const pg_queue_caps k_two_families = {.n_queues = 2, .separate_family = true};
+
 static pg_result compile_p1(const char *q_anim, const char *q_gbuf, const char *q_light, pg_queue_caps caps,
                             pg_pipeline **pl, pg_graph_plan **plan, pg_error *err)
 {
@@ -103,9 +115,7 @@ static pg_result compile_p1(const char *q_anim, const char *q_gbuf, const char *
     *plan = NULL;
     pg_result r = pg_pipeline_load_string(json, "p1.json", NULL, 0, pl, err);
     if (r) return r;
-    pg_compile_desc d = {.pipeline = *pl, .registry = &g_reg, .output_width = 64, .output_height = 36, .queues = caps};
-    pg_scene_vars_set(&d.vars, NULL, 64, NULL);
-    return pg_graph_compile(&d, plan, err);
+    return compile_on(*pl, &g_reg, caps, 64, plan, err);
 }
 
 static const pg_plan_pass *pass_named(const pg_graph_plan *p, const char *name)
@@ -253,7 +263,7 @@ static void test_auto_separate_families(void)
     pg_pipeline *pl = NULL;
     pg_graph_plan *p = NULL;
     pg_error err = {0};
-    pg_queue_caps caps = {.n_queues = 2, .separate_family = true};
+    pg_queue_caps caps = k_two_families;
     CHECK_MSG(compile_p1("", "", "", caps, &pl, &p, &err) == PG_OK, "%s", err.msg);
     if (!p) goto out;
     CHECK(p->async && p->qfot);
@@ -339,7 +349,7 @@ static void test_explicit_queues(void)
     pg_pipeline *pl = NULL;
     pg_graph_plan *p = NULL;
     pg_error err = {0};
-    pg_queue_caps caps = {.n_queues = 2, .separate_family = true};
+    pg_queue_caps caps = k_two_families;
     /* "graphics" keeps a compute pass on graphics; "compute" moves one with a raster input */
     CHECK_MSG(compile_p1(", \"queue\": \"graphics\"", "", ", \"queue\": \"compute\"", caps, &pl, &p, &err) == PG_OK,
               "%s", err.msg);
@@ -413,7 +423,7 @@ static void test_join_and_fallback(void)
     CHECK_MSG(pg_pipeline_load_string(json, "p2.json", NULL, 0, &pl, &err) == PG_OK, "%s", err.msg);
     if (!pl) return;
     pg_compile_desc d = {.pipeline = pl, .registry = &g_reg, .output_width = 64, .output_height = 36,
-                         .queues = {.n_queues = 2, .separate_family = true}};
+                         .queues = k_two_families};
     pg_scene_vars_set(&d.vars, NULL, 64, NULL);
     pg_graph_plan *p = NULL;
     CHECK_MSG(pg_graph_compile(&d, &p, &err) == PG_OK, "%s", err.msg);
@@ -550,11 +560,8 @@ static void test_bloom_on_compute(void)
             moved++;
         }
     CHECK(moved >= 4);
-    pg_compile_desc d = {.pipeline = pl, .registry = &reg, .output_width = 64, .output_height = 36,
-                         .queues = {.n_queues = 2, .separate_family = true}};
-    pg_scene_vars_set(&d.vars, NULL, 16, NULL);
     pg_graph_plan *p = NULL;
-    CHECK_MSG(pg_graph_compile(&d, &p, &err) == PG_OK, "bloom on compute: %s", err.msg);
+    CHECK_MSG(compile_on(pl, &reg, k_two_families, 16, &p, &err) == PG_OK, "bloom on compute: %s", err.msg);
     if (p) {
         CHECK(p->async && pass_named(p, "bloom_down1") && pass_named(p, "bloom_down1")->queue == PG_QUEUE_COMPUTE);
         check_invariants(p, "bloom on compute");
