@@ -312,9 +312,7 @@ static pg_result write_outputs(const pg_session *s, const render_opts *ro, rende
 /* the clustered passes' counters: overflow, light references and list bytes */
 static void print_cluster_counters(const pg_frame_stats *st)
 {
-    bool clustered = false;
-    for (uint32_t k = 0; k < st->n_counters; k++) clustered |= !strcmp(st->counters[k].name, "overflow_clusters");
-    if (!clustered) return;
+    if (!pg_frame_counter_has(st, "overflow_clusters")) return;
     printf(" overflow=%llu clusters (%llu light refs dropped)", (unsigned long long)pg_frame_counter_sum(st, "overflow_clusters"),
            (unsigned long long)pg_frame_counter_sum(st, "overflow_dropped"));
     uint64_t list_bytes = 0, refs = 0;

@@ -424,8 +424,8 @@ bool pg_anim_camera_props(const pg_scene_anim *a, const pg_anim_pose *pose, pg_s
         C->aspect_ratio = clampf_(p[1], 0.0f, 1e6f);
         C->znear = clampf_(p[4], 1e-6f, 1e30f);
     } else {
-        C->xmag = away_from_0(p[2], 1e-6f);
-        C->ymag = away_from_0(p[3], 1e-6f);
+        C->xmag = away_from_0(fabsf(p[2]), 1e-6f); /* the magnitude, as the loader takes a static one */
+        C->ymag = away_from_0(fabsf(p[3]), 1e-6f);
         C->znear = clampf_(p[4], 0.0f, 1e30f);
     }
     const bool infinite = C->type == PG_CAMERA_PERSPECTIVE && p[5] == 0;

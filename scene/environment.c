@@ -236,8 +236,27 @@ void pg_environment_free(pg_environment *env)
 
 typedef struct hdr_info {
     uint64_t w, h;
-    size_t data; /* offset of the first pixel byte */
+    size_t data;     /* offset of the first pixel byte */
+    double exposure; /* the product of the header's EXPOSURE= values (1 without): the pixels hold
+                      * radiance times it (Radiance's file format), so they are divided by it */
 } hdr_info;
+
+/* "EXPOSURE=x" (l bytes at b): x multiplied into *exposure; a value that is not a finite number > 0
+ * is refused */
+static pg_result parse_exposure(const char *path, const unsigned char *b, size_t l, double *exposure, pg_error *err)
+{
+    char v[64];
+    size_t k = l - 9 < sizeof v - 1 ? l - 9 : sizeof v - 1;
+    memcpy(v, b + 9, k);
+    v[k] = 0;
+    char *end = NULL;
+    double x = strtod(v, &end);
+    while (end && (*end == ' ' || *end == '\t' || *end == '\r')) end++;
+    if (end == v || !end || *end || !isfinite(x) || !(x > 0) || !isfinite(*exposure * x) || !(*exposure * x > 0))
+        return pg_fail(err, PG_ERR_PARSE, "%s: header line 'EXPOSURE=%s': expected a finite number > 0", path, v);
+    *exposure *= x;
+    return PG_OK;
+}
 
 /* The line at *pos (without its '\n'); false when no '\n' comes before n. */
 static bool next_line(const unsigned char *b, size_t n, size_t *pos, size_t *start, size_t *len)
@@ -296,6 +315,10 @@ static pg_result parse_header(const char *path, const unsigned char *b, size_t n
         if (l == 0) break;
         if (l == sizeof fmt - 1 && memcmp(b + s, fmt, l) == 0)
             format = true;
+        else if (l >= 9 && memcmp(b + s, "EXPOSURE=", 9) == 0) {
+            pg_result r = parse_exposure(path, b + s, l, &hi->exposure, err);
+            if (r != PG_OK) return r;
+        }
         else if (l >= 7 && memcmp(b + s, "FORMAT=", 7) == 0)
             return pg_fail(err, PG_ERR_PARSE, "%s: pixel format '%.*s' is not 32-bit_rle_rgbe", path,
                            (int)(l > 64 ? 64 : l), (const char *)b + s);
@@ -369,7 +392,7 @@ static pg_result decode_hdr(const char *path, const unsigned char *b, size_t n, 
 {
     if (n > INT_MAX) return pg_fail(err, PG_ERR_LIMIT, "%s: larger than 2 GiB", path);
     if (!stbi_is_hdr_from_memory(b, (int)n)) return pg_fail(err, PG_ERR_PARSE, "%s: not a Radiance HDR file", path);
-    hdr_info hi = {0, 0, 0};
+    hdr_info hi = {0, 0, 0, 1.0};
     pg_result r = parse_header(path, b, n, &hi, err);
     if (r == PG_OK) r = check_size(path, hi.w, hi.h, err);
     if (r == PG_OK) r = check_pixels(path, b, n, &hi, err);
@@ -383,8 +406,12 @@ static pg_result decode_hdr(const char *path, const unsigned char *b, size_t n, 
     if ((uint64_t)w != hi.w || (uint64_t)h != hi.h)
         r = pg_fail(err, PG_ERR_PARSE, "%s: decoded %d x %d, the header says %llu x %llu", path, w, h, (ull)hi.w,
                     (ull)hi.h);
-    else
+    else {
+        if (hi.exposure != 1.0) /* radiance = the stored value / EXPOSURE */
+            for (size_t i = 0; i < (size_t)w * (size_t)h * 4; i += 4)
+                for (int c = 0; c < 3; c++) px[i + c] = (float)(px[i + c] / hi.exposure);
         r = env_build(path, (uint32_t)w, (uint32_t)h, px, out, err);
+    }
     stbi_image_free(px);
     return r;
 }

@@ -288,7 +288,7 @@ pg_result pg_camera_from_scene(const pg_scene *scene, uint32_t index, float aspe
     cam.far_z = far;
     cam.aspect = aspect > 0 && isfinite(aspect) ? aspect : 1.0f;
     if (sc->type == PG_CAMERA_ORTHOGRAPHIC) {
-        cam.ortho_height = 2.0f * sc->ymag;
+        cam.ortho_height = 2.0f * fabsf(sc->ymag);
         cam.fov_y_deg = 45.0f; /* unused */
         if (!(cam.near_z > 1e-6f * cam.far_z)) cam.near_z = 1e-6f * cam.far_z;
     }

@@ -239,9 +239,10 @@ static void parse_json(Ctx &c, const RawFile &f)
     }
 }
 
-/* The animation channel targets of path "pointer" without a "node" (KHR_animation_pointer's), as
- * (animation, channel): tinygltf 2.7 drops such a channel, so the copy it reads gives each "node": 0 (unused: the
- * pointer names the target, scene_gltf_anim.cpp channel_target). */
+/* The animation channel targets without a "node" (KHR_animation_pointer's, or left to another
+ * extension), as (animation, channel): tinygltf 2.7 drops such a channel (and the later channels'
+ * indices shift), so the copy it reads gives each "node": 0 (unused: a pointer names the target, and
+ * another path is ignored with its reason, scene_gltf_anim.cpp channel_target). */
 static std::vector<std::pair<size_t, size_t>> nodeless_targets(const json &j)
 {
     std::vector<std::pair<size_t, size_t>> out;
@@ -254,8 +255,7 @@ static std::vector<std::pair<size_t, size_t>> nodeless_targets(const json &j)
         for (size_t ci = 0; ci < ch->size(); ci++) {
             const json &c = (*ch)[ci];
             const auto t = c.is_object() ? c.find("target") : c.end();
-            if (c.is_object() && t != c.end() && t->is_object() && !t->contains("node") && t->contains("path") &&
-                (*t)["path"] == "pointer") /* a nodeless target of another path stays dropped */
+            if (c.is_object() && t != c.end() && t->is_object() && !t->contains("node") && t->contains("path"))
                 out.emplace_back(ai, ci);
         }
     }
@@ -635,23 +635,39 @@ static void hand_out_textures(const Ctx &c, const std::vector<TexKey> &order, pg
     }
 }
 
-/* A scene far smaller than float shading resolves: a unit cube scaled by 1e-15 was lit wrong, by
- * 1e-20 not drawn at all (squared distances underflow). Said in one line; the load goes on. */
-static void warn_tiny(const Ctx &c, pg_scene *s)
+/* A scene 32-bit floats cannot draw: far smaller than float shading resolves (a unit cube scaled by
+ * 1e-15 was lit wrong, by 1e-20 not drawn at all: squared distances underflow), far larger (scaled
+ * by 1e20: squared distances overflow) or far from the origin for its size (a unit cube at 1e7:
+ * its corners round to one float). Said in one line; the load goes on. */
+static void warn_float_range(const Ctx &c, pg_scene *s)
 {
     if (!s->n_primitives) return;
-    double d2 = 0;
+    double d2 = 0, far = 0;
     for (int k = 0; k < 3; k++) {
         const double e = (double)s->bounds_max[k] - (double)s->bounds_min[k];
         d2 += e * e;
+        far = fmax(far, fmax(fabs((double)s->bounds_min[k]), fabs((double)s->bounds_max[k])));
     }
     const double diag = sqrt(d2);
-    if (!(diag < 1e-14)) return;
-    char line[320];
-    snprintf(line, sizeof line,
-             "%s: the scene is %.3g units across: 32-bit float shading loses lights and geometry below about 1e-14 "
-             "units (a unit cube scaled by 1e-20 drew nothing); scale it up, e.g. by a root node's scale",
-             c.path.c_str(), diag);
+    char line[400];
+    if (!(diag <= 1e18) || !(far <= 1e18))
+        snprintf(line, sizeof line,
+                 "%s: the scene reaches %.3g units: 32-bit float shading overflows past about 1e18 units (squared "
+                 "distances; a unit cube scaled by 1e20 drew nothing); scale it down, e.g. by a root node's scale",
+                 c.path.c_str(), fmax(diag, far));
+    else if (far > 1e6 * diag)
+        snprintf(line, sizeof line,
+                 "%s: the scene is %.3g units across and lies %.3g units from the origin: 32-bit positions there "
+                 "are %.3g units apart, so its shape collapses (a unit cube at 1e7 drew nothing); move it toward "
+                 "the origin, e.g. by a root node's translation",
+                 c.path.c_str(), diag, far, far * 0x1p-23);
+    else if (diag < 1e-14)
+        snprintf(line, sizeof line,
+                 "%s: the scene is %.3g units across: 32-bit float shading loses lights and geometry below about "
+                 "1e-14 units (a unit cube scaled by 1e-20 drew nothing); scale it up, e.g. by a root node's scale",
+                 c.path.c_str(), diag);
+    else
+        return;
     pg_error werr;
     memset(&werr, 0, sizeof werr);
     pg_scene_add_warning(s, line, &werr); /* out of memory: the line is lost, the scene still loads */
@@ -716,7 +732,7 @@ static pg_scene *hand_out(Ctx &c, const Out &o, const std::vector<pg_material> &
     }
     s->anim = anim; /* owned by the scene from here (nothing below throws) */
     pg_scene_finalize(s.get());
-    warn_tiny(c, s.get());
+    warn_float_range(c, s.get());
     return s.release();
 }
 
@@ -753,7 +769,10 @@ pg_scene *load(Ctx &c)
         for (int r : roots) light_visit(c, r, mat_identity(), lights);
         table_lights(c, lights);
     }
-    if (o.idx.empty()) gfail("the scene has no triangles");
+    if (o.idx.empty())
+        gfail(c.drawn_scene >= 0 ? strf("scenes[%d] has no triangles%s", c.drawn_scene,
+                                        c.model.scenes.size() > 1 ? " (--gltf-scene picks another)" : "")
+                                 : std::string("the scene has no triangles"));
     std::unique_ptr<pg_scene_anim, void (*)(pg_scene_anim *)> anim(anim_hand_out(c, o), pg_scene_anim_free);
     collect_warnings(c);
 

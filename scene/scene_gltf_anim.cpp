@@ -22,6 +22,17 @@ static pg_anim_path channel_path(const std::string &p, bool *known)
     return PG_ANIM_TRANSLATION;
 }
 
+/* Has animations[ai].channels[ci] no target.node in the file? */
+static bool channel_nodeless(const Ctx &c, size_t ai, size_t ci)
+{
+    const auto an = c.j.find("animations");
+    if (an == c.j.end() || !an->is_array() || ai >= an->size() || !(*an)[ai].is_object()) return false;
+    const auto ch = (*an)[ai].find("channels");
+    if (ch == (*an)[ai].end() || !ch->is_array() || ci >= ch->size() || !(*ch)[ci].is_object()) return false;
+    const auto t = (*ch)[ci].find("target");
+    return t != (*ch)[ci].end() && t->is_object() && !t->contains("node");
+}
+
 /* The path of a material property a pointer names after "/materials/N/" (false: one passgraph does
  * not animate, warned). */
 static bool material_property(const std::string &prop, pg_anim_path *path)
@@ -58,16 +69,17 @@ static bool material_property(const std::string &prop, pg_anim_path *path)
  * animation), "/extensions/KHR_lights_punctual/lights/N/<property>", "/cameras/N/<projection
  * property>" or "/materials/N/<property>" (material_property; *node is then the light's, camera's
  * or material's index). false: another pointer (*pointer names it, for the warning) or an unknown
- * path. A pointer that is not a string is
- * refused. */
-static bool channel_target(const tinygltf::AnimationChannel &ch, const std::string &cw, int *node, pg_anim_path *path,
-                           std::string *pointer)
+ * path (*why names the channel and the cause). A pointer that is not a string is refused. */
+static bool channel_target(const tinygltf::AnimationChannel &ch, bool nodeless, const std::string &cw, int *node,
+                           pg_anim_path *path, std::string *pointer, std::string *why)
 {
     bool known = false;
-    *node = ch.target_node;
+    *node = nodeless ? -1 : ch.target_node; /* nodeless: the copy tinygltf read says 0 (nodeless_targets) */
     pointer->clear();
     if (ch.target_path != "pointer") {
         *path = channel_path(ch.target_path, &known);
+        if (!known) *why = cw + " (unknown target.path '" + ch.target_path.substr(0, 40) + "')";
+        else if (*node < 0) *why = cw + " (no target.node: the specification leaves its target to an extension)";
         return known && *node >= 0;
     }
     const auto ext = ch.target_extensions.find("KHR_animation_pointer");
@@ -145,8 +157,8 @@ void anim_prepare(Ctx &c)
             const std::string cw = strf("animations[%zu].channels[%zu]", ai, ci);
             int node = -1;
             pg_anim_path path = PG_ANIM_TRANSLATION;
-            std::string pointer;
-            if (!channel_target(ch, cw, &node, &path, &pointer)) continue; /* counted at hand-out */
+            std::string pointer, why;
+            if (!channel_target(ch, channel_nodeless(c, ai, ci), cw, &node, &path, &pointer, &why)) continue; /* counted at hand-out */
             if (light_path(path) || camera_path(path) || material_path(path)) {
                 const char *what = light_path(path) ? "light" : camera_path(path) ? "camera" : "material";
                 const size_t have = light_path(path)    ? md.lights.size()
@@ -450,8 +462,10 @@ static bool hand_out_channel(Ctx &c, const pg_scene_anim *a, size_t ai, size_t c
     const std::string cw = strf("animations[%zu].channels[%zu]", ai, ci);
     int node = -1;
     std::string pointer;
-    if (!channel_target(ch, cw, &node, &C.path, &pointer)) {
+    std::string why;
+    if (!channel_target(ch, channel_nodeless(c, ai, ci), cw, &node, &C.path, &pointer, &why)) {
         if (!pointer.empty()) c.ignored_pointers.push_back(pointer);
+        else c.ignored_why.push_back(why);
         return false;
     }
     C.node = uint32_t(node);

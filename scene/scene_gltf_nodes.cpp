@@ -157,8 +157,8 @@ pg_scene_camera camera_object(const Ctx &c, int ci)
         if (!(std::isfinite(o.znear) && o.znear >= 0 && std::isfinite(o.zfar) && o.zfar > o.znear))
             gfail(cw + ".orthographic.znear/zfar: expected finite 0 <= znear < zfar");
         sc.type = PG_CAMERA_ORTHOGRAPHIC;
-        sc.xmag = float(o.xmag);
-        sc.ymag = float(o.ymag);
+        sc.xmag = float(std::fabs(o.xmag)); /* negative: the spec says it should not be; warned, its size used */
+        sc.ymag = float(std::fabs(o.ymag));
         sc.znear = float(o.znear);
         sc.zfar = float(o.zfar);
     } else {

@@ -500,22 +500,45 @@ static void check_unit_numbers(const json &o, const char *key, size_t n, const s
                    it->dump().substr(0, 80).c_str()));
 }
 
+/* o.key: absent, or a finite number (a normal texture's scale) */
+static void check_number(const json &o, const char *key, const std::string &w)
+{
+    auto it = o.find(key);
+    if (it != o.end() && !(it->is_number() && std::isfinite(it->get<double>())))
+        gfail(strf("%s.%s: expected a number, got %s", w.c_str(), key, it->dump().substr(0, 80).c_str()));
+}
+
+/* a material's textureInfo KEY of `o` (at `w`), if any: its index, its texCoord (a non-negative
+ * integer), a normal texture's scale, an occlusion texture's strength in [0, 1] */
+static void check_texture_info(const json &o, const char *key, size_t n_textures, const std::string &w)
+{
+    const json *ti = opt_object(o, key, w);
+    if (!ti) return;
+    const std::string tw = w + "." + key;
+    ref(*ti, "index", n_textures, "textures", tw, true);
+    uint_field(*ti, "texCoord", tw, false, 0);
+    if (!strcmp(key, "normalTexture")) check_number(*ti, "scale", tw);
+    if (!strcmp(key, "occlusionTexture")) check_unit_numbers(*ti, "strength", 0, tw);
+}
+
 static void check_material(const Arrays &a, const json &o, const std::string &w)
 {
     const size_t nt = arr_size(a.textures);
     if (const json *pbr = opt_object(o, "pbrMetallicRoughness", w)) {
-        std::string pw = w + ".pbrMetallicRoughness";
-        if (const json *ti = opt_object(*pbr, "baseColorTexture", pw))
-            ref(*ti, "index", nt, "textures", pw + ".baseColorTexture", true);
-        if (const json *ti = opt_object(*pbr, "metallicRoughnessTexture", pw))
-            ref(*ti, "index", nt, "textures", pw + ".metallicRoughnessTexture", true);
+        const std::string pw = w + ".pbrMetallicRoughness";
+        check_texture_info(*pbr, "baseColorTexture", nt, pw);
+        check_texture_info(*pbr, "metallicRoughnessTexture", nt, pw);
     }
-    if (const json *ti = opt_object(o, "normalTexture", w))
-        ref(*ti, "index", nt, "textures", w + ".normalTexture", true);
-    if (const json *ti = opt_object(o, "occlusionTexture", w))
-        ref(*ti, "index", nt, "textures", w + ".occlusionTexture", true);
-    if (const json *ti = opt_object(o, "emissiveTexture", w))
-        ref(*ti, "index", nt, "textures", w + ".emissiveTexture", true);
+    for (const char *k : {"normalTexture", "occlusionTexture", "emissiveTexture"}) check_texture_info(o, k, nt, w);
+    check_number(o, "alphaCutoff", w);
+    auto ds = o.find("doubleSided");
+    if (ds != o.end() && !ds->is_boolean())
+        gfail(strf("%s.doubleSided: expected true or false, got %s", w.c_str(), ds->dump().substr(0, 80).c_str()));
+    if (const json *ex = opt_object(o, "extensions", w)) {
+        auto u = ex->find("KHR_materials_unlit");
+        if (u != ex->end() && !u->is_object())
+            gfail(w + ".extensions.KHR_materials_unlit: expected an object (empty: {})");
+    }
     check_emissive(o, w);
     if (const json *pbr = opt_object(o, "pbrMetallicRoughness", w)) {
         const std::string pw = w + ".pbrMetallicRoughness";
@@ -591,8 +614,33 @@ static void check_mesh(Ctx &c, const Arrays &a, const json &o, const std::string
 {
     const json *prims = opt_array(o, "primitives", w);
     if (!prims) gfail(w + ".primitives: missing (required)");
+    if (const json *wt = opt_array(o, "weights", w))
+        for (size_t k = 0; k < wt->size(); k++)
+            if (!((*wt)[k].is_number() && std::isfinite((*wt)[k].get<double>())))
+                gfail(strf("%s.weights[%zu]: expected a number, got %s", w.c_str(), k,
+                           (*wt)[k].dump().substr(0, 80).c_str()));
     for (size_t p = 0; p < prims->size(); p++)
         check_primitive(c, a, (*prims)[p], strf("%s.primitives[%zu]", w.c_str(), p));
+}
+
+/* animations[i].channels (at `w`): each an object with a sampler and a target with a path (the
+ * specification requires them; tinygltf drops a channel without them, and the later channels'
+ * indices in its model no longer match the file's) */
+static void check_animation_channels(const json &o, const std::string &w)
+{
+    const json *chs = opt_array(o, "channels", w);
+    if (!chs) return;
+    for (size_t k = 0; k < chs->size(); k++) {
+        const json &ch = (*chs)[k];
+        const std::string cw = strf("%s.channels[%zu]", w.c_str(), k);
+        if (!ch.is_object()) gfail(cw + ": expected an object");
+        uint_field(ch, "sampler", cw, true);
+        const json *t = opt_object(ch, "target", cw);
+        if (!t) gfail(cw + ".target: missing (required)");
+        auto p = t->find("path");
+        if (p == t->end() || !p->is_string())
+            gfail(cw + ".target.path: missing or not a string (required)");
+    }
 }
 
 /* the array KEY of `o` (at `w`), if any, holds valid node indices */
@@ -800,6 +848,9 @@ void prevalidate(Ctx &c)
     });
     each_object(opt_array(j, "cameras", ""), "cameras", [&](const json &o, const std::string &w, size_t) {
         check_camera(o, w);
+    });
+    each_object(opt_array(j, "animations", ""), "animations", [&](const json &o, const std::string &w, size_t) {
+        check_animation_channels(o, w);
     });
     check_punctual_lights(j, a);
     check_lights_table(j, a);

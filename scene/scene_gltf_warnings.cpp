@@ -90,6 +90,43 @@ static void undeclared_extensions(const json &j, const std::vector<std::string> 
     }
 }
 
+/* The texCoord a textureInfo's texture is read with: its KHR_texture_transform's texCoord when the
+ * transform gives one (it overrides the textureInfo's, as material_tex_coords applies it) */
+static uint64_t effective_tex_coord(const json *ti, int tex_coord)
+{
+    if (ti && ti->is_object() && ti->contains("extensions") && (*ti)["extensions"].is_object()) {
+        const json &e = (*ti)["extensions"];
+        if (e.contains("KHR_texture_transform") && e["KHR_texture_transform"].is_object()) {
+            const json &tt = e["KHR_texture_transform"];
+            if (tt.contains("texCoord") && tt["texCoord"].is_number_unsigned()) return tt["texCoord"].get<uint64_t>();
+        }
+    }
+    return tex_coord < 0 ? 0 : uint64_t(tex_coord);
+}
+
+/* Does a texture of materials[i] ask for a texCoord past 1 (read with TEXCOORD_0)? */
+static bool material_texcoord_past_1(const Ctx &c, size_t i)
+{
+    const tinygltf::Material &m = c.model.materials[i];
+    const auto &pbr = m.pbrMetallicRoughness;
+    const json *jm = c.j.contains("materials") && c.j["materials"].is_array() && i < c.j["materials"].size()
+                         ? &c.j["materials"][i] : nullptr;
+    auto sub = [](const json *o, const char *k) -> const json * {
+        return o && o->is_object() && o->contains(k) ? &(*o)[k] : nullptr;
+    };
+    const json *jpbr = sub(jm, "pbrMetallicRoughness");
+    const struct { int index, tex_coord; const json *ti; } slots[] = {
+        {pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, sub(jpbr, "baseColorTexture")},
+        {m.normalTexture.index, m.normalTexture.texCoord, sub(jm, "normalTexture")},
+        {m.emissiveTexture.index, m.emissiveTexture.texCoord, sub(jm, "emissiveTexture")},
+        {pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, sub(jpbr, "metallicRoughnessTexture")},
+        {m.occlusionTexture.index, m.occlusionTexture.texCoord, sub(jm, "occlusionTexture")},
+    };
+    for (const auto &sl : slots)
+        if (sl.index >= 0 && effective_tex_coord(sl.ti, sl.tex_coord) > 1) return true;
+    return false;
+}
+
 /* Every feature the file uses that is not drawn as the file asks: one line each (see scene.h). */
 void collect_warnings(Ctx &c)
 {
@@ -108,6 +145,13 @@ void collect_warnings(Ctx &c)
     if (md.scenes.empty() && !md.nodes.empty())
         W.push_back("no scenes: every root node is drawn (the specification leaves such a file's display to the "
                     "application: a library of nodes)");
+    std::vector<std::string> neg_mag;
+    for (size_t i = 0; i < md.cameras.size(); i++)
+        if (md.cameras[i].type == "orthographic" && (md.cameras[i].orthographic.xmag < 0 || md.cameras[i].orthographic.ymag < 0))
+            neg_mag.push_back(strf("cameras[%zu]", i));
+    if (!neg_mag.empty())
+        W.push_back(plural(neg_mag.size(), "orthographic camera", "orthographic cameras") + " (" + name_list(neg_mag) +
+                    ") with a negative xmag or ymag (the specification says it should not be): drawn with its magnitude");
     if (c.skipped_prims)
         W.push_back(strf("skipped %u point/line primitive(s) (only triangles are drawn)",
                          c.skipped_prims));
@@ -149,16 +193,8 @@ void collect_warnings(Ctx &c)
                          unimpl.size() - kMaxExtensionLines));
 
     std::vector<std::string> texcoord;
-    for (size_t i = 0; i < md.materials.size(); i++) {
-        const tinygltf::Material &m = md.materials[i];
-        const auto &pbr = m.pbrMetallicRoughness;
-        if ((pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord > 1) ||
-            (m.normalTexture.index >= 0 && m.normalTexture.texCoord > 1) ||
-            (m.emissiveTexture.index >= 0 && m.emissiveTexture.texCoord > 1) ||
-            (pbr.metallicRoughnessTexture.index >= 0 && pbr.metallicRoughnessTexture.texCoord > 1) ||
-            (m.occlusionTexture.index >= 0 && m.occlusionTexture.texCoord > 1))
-            texcoord.push_back(material_desc(md, i));
-    }
+    for (size_t i = 0; i < md.materials.size(); i++)
+        if (material_texcoord_past_1(c, i)) texcoord.push_back(material_desc(md, i));
     if (!texcoord.empty())
         W.push_back("textures of " + plural(texcoord.size(), "material", "materials") + " (" +
                     name_list(texcoord) + ") ask for a texCoord other than 0 or 1: read with TEXCOORD_0");

@@ -4,7 +4,8 @@
 # of BUILD/tests (none named: every test there that loads libvulkan), stripped, with the shared
 # libraries they load (from this machine) into one solid xz archive, OUT/tests.tar.xz (the tests
 # share most of their code: the tests of 8 MB each pack into a few MB); beside it the Khronos
-# validation layer's Debian package (apt-get download), the Sponza when ../shared holds it, and
+# validation layer's Debian package (apt-get download), the Sponza when ../shared holds it, the
+# plug-ins of BUILD/plugins (put back at that path there: the tests' PG_PLUGIN_DIR), and
 # OUT/run.sh. run.sh, run from a copy of this repository's tree on the other machine (its shaders
 # and tests/ are read there), installs the layer, points the tests' compiled-in source and shared
 # paths at that tree and the carried Sponza, and runs the tests with validation and synchronization
@@ -44,6 +45,11 @@ for t in "${tests[@]}"; do
 done
 rm -rf "$out"
 mkdir -p "$out"
+# the plug-ins some tests load from the build folder (PG_PLUGIN_DIR, compiled in)
+if [ -d "$build/plugins" ]; then
+    mkdir -p "$stage/plugins"
+    for so in "$build"/plugins/*.so; do [ -e "$so" ] && strip -o "$stage/plugins/$(basename "$so")" "$so"; done
+fi
 tar -C "$stage" -cf - . | xz -T1 -9 --lzma2=preset=9,dict=256MiB > "$out/tests.tar.xz"
 suite=${LAYER_SUITE:-}
 if [ -n "$suite" ]; then
@@ -53,6 +59,7 @@ else
         cp /var/cache/apt/archives/vulkan-validationlayers_*.deb "$out/"
 fi
 src=$(cd "$(dirname "$0")/.." && pwd)
+build_abs=$(cd "$build" && pwd)
 shared=$(cd "$src/.." && pwd)/shared
 sponza=0
 if [ -r "$shared/assets/dabrovic-sponza/sponza.gltf" ]; then
@@ -76,6 +83,9 @@ if [ -d "\$b/layer" ]; then # scripts/with_layer.sh of the tree, with the carrie
     \$run /bin/true || { echo "\$0: the layer packages do not unpack" >&2; exit 1; } # once, before the tests start
 fi
 [ -e "$src/tests" ] || { mkdir -p "$(dirname "$src")" && ln -sfn "\$PWD" "$src"; }
+if [ -d "\$t/plugins" ] && [ ! -e "$build_abs/plugins" ]; then # PG_PLUGIN_DIR of the tests
+    mkdir -p "$build_abs/plugins" && cp "\$t"/plugins/*.so "$build_abs/plugins/"
+fi
 export LD_LIBRARY_PATH="\$t/lib" PASSGRAPH_DATA_DIR="\$PWD" PASSGRAPH_CACHE_DIR=/tmp/pg_gpu_tests
 if [ $sponza = 1 ] && [ ! -e "$shared/assets/dabrovic-sponza" ]; then
     mkdir -p "$shared/assets" && ln -sfn "\$b/assets/dabrovic-sponza" "$shared/assets/dabrovic-sponza"

@@ -275,8 +275,8 @@ vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
         uint n = stack[--sp];
         if (sp + 1 < skip_at) skip_at = 0; // past the skipped subtree
         bool taking_part = skip_at == 0;
-        if (n >= np) { // a leaf: one light, exactly
-            if (taking_part) E += pg_lc_leaf(n, s, cam, P, V, inv_md2);
+        if (n >= np) { // a leaf: one light, exactly (past count: an empty padding leaf)
+            if (taking_part && n - np < count) E += pg_lc_leaf(n, s, cam, P, V, inv_md2);
             continue;
         }
         bool refine = false;
@@ -305,7 +305,8 @@ vec3 pg_lightcut(Surface s, vec3 P, vec3 V)
         if (!pg_lc_any(refine)) continue;
         uint k = uint(findMSB(np) - findMSB(n)); // n's subtree: the leaves [n << k, (n + 1) << k)
         if ((1u << k) <= uint(PG_LC_BUCKET)) {    // small: its leaves summed exactly, no walk below
-            for (uint l = n << k; l < (n + 1u) << k; l++)
+            // (the padding leaves past count, up to the power of two np, hold no light: not evaluated)
+            for (uint l = n << k, end = min((n + 1u) << k, np + count); l < end; l++)
                 if (refine) E += pg_lc_leaf(l, s, cam, P, V, inv_md2);
             continue;
         }

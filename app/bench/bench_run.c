@@ -214,7 +214,7 @@ static void record_timed_frame(const bench *B, const pg_session *s, const pg_fra
         for (uint32_t p = 0; p < st->n_passes; p++)
             pg_strlcpy(row->passes[p].name, st->pass_names[p], sizeof row->passes[p].name);
     }
-    if (st->n_counters) {
+    if (pg_frame_counter_has(st, "overflow_clusters")) { /* a clustered pipeline's (lightcut counts evaluations only) */
         row->has_overflow = true;
         if (pg_frame_counter_sum(st, "overflow_clusters") > row->ov_clusters_max)
             row->ov_clusters_max = pg_frame_counter_sum(st, "overflow_clusters");
@@ -277,7 +277,7 @@ static void record_memory(const pg_session *s, bench_row *row)
 static void record_error_frame_counters(const pg_frame_stats *st, bench_row *row)
 {
     if (!st->n_counters) return;
-    row->has_overflow = true;
+    row->has_overflow |= pg_frame_counter_has(st, "overflow_clusters"); /* the list columns: clustered pipelines' */
     row->ov_clusters = pg_frame_counter_sum(st, "overflow_clusters");
     row->ov_dropped = pg_frame_counter_sum(st, "overflow_dropped");
     for (uint32_t k = 0; k < st->n_counters; k++) {

@@ -53,6 +53,13 @@ uint64_t pg_frame_counter_sum(const pg_frame_stats *st, const char *name)
     return sum;
 }
 
+bool pg_frame_counter_has(const pg_frame_stats *st, const char *name)
+{
+    for (uint32_t i = 0; st && name && i < st->n_counters; i++)
+        if (!strcmp(st->counters[i].name, name)) return true;
+    return false;
+}
+
 const char *pg_ctx_setting(const pg_pass_create_ctx *ctx, const char *key)
 {
     const char *found = NULL;

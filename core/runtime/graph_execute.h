@@ -161,6 +161,8 @@ typedef struct pg_frame_stats {
  * runtime does not know what they mean; e.g. "overflow_dropped", the light references the
  * clustered passes lost). 0 when none. */
 uint64_t pg_frame_counter_sum(const pg_frame_stats *st, const char *name);
+/* Does a pass of st report a counter of that name (even 0)? */
+bool pg_frame_counter_has(const pg_frame_stats *st, const char *name);
 /* What a pg_runtime_set_plan() re-created (pg_runtime_stats.last_rebuild). */
 typedef enum pg_rebuild_kind {
     PG_REBUILD_NONE = 0,   /* same plan signature and values: nothing */

@@ -367,6 +367,13 @@ static void ca_record(void *self, const pg_pass_record_ctx *ctx)
     p->ran = true;
 }
 
+/* digits after the point for a size in MiB in the notes: 1 from 0.1 MiB, 4 below (a budget of
+ * 0.05 MiB read "0.0 MiB") */
+static int mib_digits(double bytes)
+{
+    return bytes >= 0.1 * 1048576.0 ? 1 : 4;
+}
+
 static void ca_report(void *self, pg_pass_report *out)
 {
     cluster_assign *p = self;
@@ -393,13 +400,15 @@ static void ca_report(void *self, pg_pass_report *out)
     if (needed > p->list_bytes) pg_report_grow(out, p->lists_slot, needed, p->budget);
     if (needed > p->budget) {
         if (p->budget_clamped)
-            pg_report_note(out, "light lists need %.1f MiB, over the %.1f MiB they may take on this device (%u "
+            pg_report_note(out, "light lists need %.*f MiB, over the %.*f MiB they may take on this device (%u "
                            "storage-buffer windows of %.4g MiB): %u refs dropped (use fewer lights or a coarser grid)",
-                           needed / 1048576.0, p->budget / 1048576.0, pg_list_windows(p->gpu, p->budget),
+                           mib_digits(needed), needed / 1048576.0, mib_digits(p->budget), p->budget / 1048576.0,
+                           pg_list_windows(p->gpu, p->budget),
                            pg_list_window_bytes(p->gpu) / 1048576.0, s->dropped - s->dropped_cap);
         else
-            pg_report_note(out, "light lists need %.1f MiB, over the %.1f MiB budget: %u refs dropped (raise "
-                           "list_budget_mb; 0 = half the device-local heap)", needed / 1048576.0, p->budget / 1048576.0, s->dropped - s->dropped_cap);
+            pg_report_note(out, "light lists need %.*f MiB, over the %.*f MiB budget: %u refs dropped (raise "
+                           "list_budget_mb; 0 = half the device-local heap)", mib_digits(needed), needed / 1048576.0,
+                           mib_digits(p->budget), p->budget / 1048576.0, s->dropped - s->dropped_cap);
     }
 }
 

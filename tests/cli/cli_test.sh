@@ -61,7 +61,8 @@ expect_fail "unknown parameter" "no_such_param" render --set no_such_param=1 --s
 # and bench) naming the option that gave it, found before a device is made
 for bad_set in "--set no_such_param=1|--set no_such_param=1: the pipeline naive" \
                "--set shading=wat|--set shading=wat: pipeline" "--debug-view cluster_heat|--debug-view cluster_heat: pipeline" \
-               "--view Nope|--view Nope: pipeline"; do
+               "--view Nope|--view Nope: pipeline" \
+               "--pipeline $(dirname "$0")/../../pipelines/lightcut.json --set lightcut_bucket=3|--set lightcut_bucket=3: pipeline"; do
   # shellcheck disable=SC2086
   "$PG" render ${bad_set%%|*} --size 32x18 --out "$tmp/x.png" >"$tmp/out" 2>"$tmp/err"
   rc=$?
@@ -460,6 +461,13 @@ for x in rows:
         assert float(x["flicker"]) == 0, (x["pipeline"], x["lights"], x["flicker"])
     assert 0 <= float(x["flip"]) <= 1 and float(x["ssim"]) <= 1, x
 assert any(x["pipeline"] == "ris" for x in rows)
+# the light-list columns: empty for the pipelines without cluster lists (lightcut counts
+# evaluations only: its row read 0s), filled for the clustered ones with lights (0 lights: culled)
+lists = ("overflow_clusters", "overflow_dropped", "overflow_clusters_max", "light_refs", "list_bytes")
+for x in rows:
+    empty = x["pipeline"] in ("naive", "reference", "lightcut") or x["lights"] == "0"
+    assert all((x[c] == "") == empty for c in lists), (x["pipeline"], x["lights"], [x[c] for c in lists])
+assert any(x["pipeline"] == "lightcut" and x["light_evals"] != "" for x in rows)
 d = json.load(open(sys.argv[2]))
 for r in d["rows"]:
     e = r["error"]
@@ -495,6 +503,10 @@ e2=$(evals --pipeline "$root/pipelines/ris.json" --set ris_candidates=8 --set ri
 t1=$(evals --pipeline "$root/pipelines/visibility.json")
 t0=$(evals --pipeline "$root/pipelines/visibility.json" --set tile_lights=false)
 [ -n "$t1" ] && [ -n "$t0" ] && [ "$t1" -gt 0 ] && [ "$t1" -lt "$t0" ] && ok || bad "visibility light_evals: tiled $t1, per pixel $t0"
+# lightcut with one bucket over every light, each in reach of every pixel: every pixel evaluates
+# each of its 65 lights once (the tree's 63 padding leaves up to 128 were evaluated and counted too)
+l1=$(evals --pipeline "$root/pipelines/lightcut.json" --lights 65 --radius 100 --set lightcut_bucket=256)
+[ "$l1" = $((65 * 64 * 36)) ] && ok || bad "lightcut light_evals: $l1, want $((65 * 64 * 36))"
 "$PG" bench --pipelines all --lights 16 --size 64x36 --frames 1 --warmup 0 --sweep gbuffer=float,packed \
   --out "$tmp/bench2" >"$tmp/out" 2>"$tmp/err"
 rc=$?

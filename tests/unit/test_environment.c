@@ -240,6 +240,37 @@ static const char *write_text(const char *name, const char *text)
     return path;
 }
 
+/* write_cut's flat file of (128, 0, 0, 128) texels (0.5, 0, 0) with extra header lines */
+static const char *write_with_header(const char *name, const char *lines, uint32_t w, uint32_t h)
+{
+    char head[256];
+    int hl = snprintf(head, sizeof head, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n%s\n-Y %u +X %u\n", lines, h, w);
+    size_t pixels = (size_t)w * h * 4;
+    unsigned char *b = calloc((size_t)hl + pixels, 1);
+    memcpy(b, head, (size_t)hl);
+    for (size_t i = 0; i < pixels; i += 4) b[(size_t)hl + i + 3] = b[(size_t)hl + i] = 128;
+    const char *path = tmp_path(name);
+    CHECK(pg_test_write_bytes(path, b, (size_t)hl + pixels) == 0);
+    free(b);
+    return path;
+}
+
+/* EXPOSURE= lines: the pixels hold radiance times their product (Radiance's format; ignored, an
+ * environment saved with EXPOSURE=10 lit 10 times too bright); a bad value is refused */
+static void test_exposure(void)
+{
+    pg_environment *e = load_ok(write_with_header("exposure.hdr", "EXPOSURE=2\nEXPOSURE= 0.5e1\n", 64, 32));
+    CHECK_MSG(e && fabsf(e->rgba[0] - 0.05f) < 1e-7f && e->rgba[1] == 0.0f, "%g", e ? e->rgba[0] : -1.0);
+    pg_environment_free(e);
+    e = load_ok(write_with_header("exposure_1.hdr", "EXPOSURE=1.0\n", 64, 32));
+    CHECK(e && e->rgba[0] == 0.5f);
+    pg_environment_free(e);
+    expect_fail(write_with_header("exposure_0.hdr", "EXPOSURE=0\n", 64, 32), PG_ERR_PARSE,
+                "header line 'EXPOSURE=0': expected a finite number > 0");
+    expect_fail(write_with_header("exposure_x.hdr", "EXPOSURE=bright\n", 64, 32), PG_ERR_PARSE,
+                "header line 'EXPOSURE=bright'");
+}
+
 static void test_errors(void)
 {
     expect_fail(tmp_path("missing.hdr"), PG_ERR_IO, "cannot open: No such file or directory");
@@ -612,6 +643,7 @@ int main(void)
     test_uniform_and_ids();
     test_clamping();
     test_errors();
+    test_exposure();
     test_default_sky();
     test_directions();
     test_texel_centres();
@@ -621,7 +653,8 @@ int main(void)
     test_half_bright();
     static const char *files[] = {"exact.hdr", "rle.hdr", "uniform.hdr", "huge.hdr", "text.hdr", "header_only.hdr",
                                   "half.hdr", "nearly.hdr", "no_end.hdr", "xyze.hdr", "flip.hdr", "wide.hdr",
-                                  "ratio.hdr", "small.hdr", "too_wide.hdr", "odd.hdr", "image.hdr", "rle_cut.hdr", "centres.hdr"};
+                                  "ratio.hdr", "small.hdr", "too_wide.hdr", "odd.hdr", "image.hdr", "rle_cut.hdr", "centres.hdr",
+                                  "exposure.hdr", "exposure_1.hdr", "exposure_0.hdr", "exposure_x.hdr"};
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) unlink(tmp_path(files[i]));
     CHECK(rmdir(g_dir) == 0);
     return pg_test_finish("test_environment");

@@ -1768,6 +1768,13 @@ static void test_gltf_cameras(void)
                   "%s", err.msg);
         pg_scene_free(s);
     }
+    /* a negative xmag/ymag (the specification: should not be) drew a 45-degree perspective view */
+    if ((s = load_corpus("ok_camera_ortho_negative.gltf"))) {
+        pg_camera cam;
+        CHECK(s->n_cameras == 1 && s->cameras[0].type == PG_CAMERA_ORTHOGRAPHIC && s->cameras[0].ymag == 2.0f);
+        CHECK(pg_camera_from_scene(s, 0, 1.0f, &cam, &err) == PG_OK && cam.ortho_height == 4.0f);
+        pg_scene_free(s);
+    }
     s = load_object("cube.gltf");
     if (s) {
         uint32_t idx;

@@ -283,7 +283,7 @@ d["meshes"][0]["primitives"][0]["mode"] = 7
 write("bad_primitive_mode.gltf", d, "PG_ERR_GLTF", "meshes[0].primitives[0].mode: 7 is not a glTF primitive mode")
 d, _ = base_doc()
 d["meshes"][0]["primitives"][0]["mode"] = 0
-write("points_only.gltf", d, "PG_ERR_GLTF", "the scene has no triangles")
+write("points_only.gltf", d, "PG_ERR_GLTF", "scenes[0] has no triangles")
 
 # ------------------------------------------------------------------------------------------------
 # references and node graph
@@ -361,6 +361,47 @@ def textured_doc(image):
     return d
 
 
+# a material's values of the wrong type were read as their defaults ("doubleSided": "yes" as false,
+# "alphaCutoff": "half" as 0.5): refused naming the field; the occlusion strength in [0, 1] (clamped)
+for name, edit, msg in (
+        ("material_cutoff_string.gltf", lambda m: m.update(alphaCutoff="half"),
+         'materials[0].alphaCutoff: expected a number, got "half"'),
+        ("material_double_sided_string.gltf", lambda m: m.update(doubleSided="yes"),
+         'materials[0].doubleSided: expected true or false, got "yes"'),
+        ("material_unlit_not_object.gltf", lambda m: m.update(extensions={"KHR_materials_unlit": 5}),
+         "materials[0].extensions.KHR_materials_unlit: expected an object (empty: {})"),
+        ("material_texcoord_string.gltf",
+         lambda m: m["pbrMetallicRoughness"]["baseColorTexture"].update(texCoord="1"),
+         "materials[0].pbrMetallicRoughness.baseColorTexture.texCoord: expected a non-negative integer"),
+        ("material_texcoord_negative.gltf",
+         lambda m: m["pbrMetallicRoughness"]["baseColorTexture"].update(texCoord=-1),
+         "materials[0].pbrMetallicRoughness.baseColorTexture.texCoord: expected a non-negative integer"),
+        ("material_normal_scale_string.gltf", lambda m: m.update(normalTexture={"index": 0, "scale": "x"}),
+         'materials[0].normalTexture.scale: expected a number, got "x"'),
+        ("material_occlusion_strength_string.gltf", lambda m: m.update(occlusionTexture={"index": 0, "strength": "x"}),
+         'materials[0].occlusionTexture.strength: expected a number in [0, 1], got "x"'),
+        ("material_occlusion_strength_2.gltf", lambda m: m.update(occlusionTexture={"index": 0, "strength": 2}),
+         "materials[0].occlusionTexture.strength: expected a number in [0, 1], got 2")):
+    d = textured_doc({"uri": png_data_uri(PNG2)})
+    edit(d["materials"][0])
+    write(name, d, "PG_ERR_GLTF", msg)
+d = textured_doc({"uri": png_data_uri(PNG2)})
+d["meshes"][0]["weights"] = ["x"]
+write("mesh_weights_string.gltf", d, "PG_ERR_GLTF", 'meshes[0].weights[0]: expected a number, got "x"')
+# the texCoord a texture is read with is its KHR_texture_transform's when it gives one: the warning
+# of a texCoord past 1 read the textureInfo's (a transform's 5 unwarned, a textureInfo's 5 that the
+# transform sets to 0 warned)
+for name, tc, xf_tc, warned in (("ok_texcoord_5.gltf", 5, None, True),
+                                ("ok_texcoord_transform_5.gltf", 0, 5, True),
+                                ("ok_texcoord_transform_0.gltf", 5, 0, False)):
+    d = textured_doc({"uri": png_data_uri(PNG2)})
+    d["extensionsUsed"] = ["KHR_texture_transform"]
+    ti = d["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]
+    ti["texCoord"] = tc
+    if xf_tc is not None:
+        ti["extensions"] = {"KHR_texture_transform": {"texCoord": xf_tc}}
+    write(name, d, "PG_OK", warn=["textures of 1 material (materials[0]) ask for a texCoord other than 0 or 1: read "
+                                  "with TEXCOORD_0"] if warned else [])
 write("missing_image.gltf", textured_doc({"uri": "nope.png"}), "PG_ERR_GLTF",
       "images[0]: cannot open 'nope.png'")
 open(os.path.join(HERE, "corrupt.png"), "wb").write(b"\x89PNG\r\n\x1a\n" + bytes(range(64)))
@@ -592,6 +633,25 @@ d["animations"] = [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "r
 write("ok_animation.gltf", d, "PG_OK", warn=[])
 # a channel on a node given by a matrix (glTF forbids it) is ignored and named with its reason; two
 # channels on one target (forbidden too) are named, the later one applied
+# a channel of a path passgraph does not know, and one without target.node (left to an extension by
+# the specification): ignored and named with their cause (the line named neither)
+d_anim = json.loads(json.dumps(d))
+d_anim["animations"][0]["channels"] = [{"sampler": 0, "target": {"node": 0, "path": "colour"}},
+                                       {"sampler": 0, "target": {"path": "rotation"}}]
+write("ok_animation_unknown_targets.gltf", d_anim, "PG_OK", warn=[
+    "2 animation channel(s) ignored: animations[0].channels[0] (unknown target.path 'colour'), "
+    "animations[0].channels[1] (no target.node: the specification leaves its target to an extension)"])
+# a channel without a target, its path or its sampler (required): tinygltf dropped one without a
+# path or a sampler, and the later channels were named by the wrong index
+for name, ch, msg in (("animation_channel_no_target.gltf", {"sampler": 0},
+                       "animations[0].channels[0].target: missing (required)"),
+                      ("animation_channel_no_path.gltf", {"sampler": 0, "target": {"node": 0}},
+                       "animations[0].channels[0].target.path: missing or not a string (required)"),
+                      ("animation_channel_no_sampler.gltf", {"target": {"node": 0, "path": "rotation"}},
+                       "animations[0].channels[0].sampler: missing (required)")):
+    d_anim = json.loads(json.dumps(d))
+    d_anim["animations"][0]["channels"] = [ch, {"sampler": 0, "target": {"node": 0, "path": "rotation"}}]
+    write(name, d_anim, "PG_ERR_GLTF", msg)
 d = json.loads(json.dumps(d))
 d["nodes"][0]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
 write("ok_animation_matrix_node.gltf", d, "PG_OK", warn=[
@@ -630,6 +690,19 @@ d["nodes"][0]["scale"] = [1e-20, 1e-20, 1e-20]
 write("ok_tiny_scene.gltf", d, "PG_OK", warn=[
     "the scene is 1.41e-20 units across: 32-bit float shading loses lights and geometry below about 1e-14 units "
     "(a unit cube scaled by 1e-20 drew nothing); scale it up, e.g. by a root node's scale"])
+# a scene past what float shading holds (a unit cube scaled by 1e20 drew nothing), and one far from the
+# origin for its size (a unit cube at 1e7 drew nothing): both were silent
+d, _ = base_doc()
+d["nodes"][0]["scale"] = [1e20, 1e20, 1e20]
+write("ok_huge_scene.gltf", d, "PG_OK", warn=[
+    "the scene reaches 1.41e+20 units: 32-bit float shading overflows past about 1e18 units (squared distances; a "
+    "unit cube scaled by 1e20 drew nothing); scale it down, e.g. by a root node's scale"])
+d, _ = base_doc()
+d["nodes"][0]["translation"] = [1e7, 0, 0]
+write("ok_far_scene.gltf", d, "PG_OK", warn=[
+    "the scene is 1.41 units across and lies 1e+07 units from the origin: 32-bit positions there are 1.19 units "
+    "apart, so its shape collapses (a unit cube at 1e7 drew nothing); move it toward the origin, e.g. by a root "
+    "node's translation"])
 d, _ = base_doc()
 d["extensionsUsed"] = ["KHR_texture_transform", "KHR_mesh_quantization", "EXT_meshopt_compression",
                        "KHR_draco_mesh_compression", "KHR_materials_clearcoat", "EXT_made_up"]
@@ -816,6 +889,12 @@ for name, cam, msg in (
         ("camera_ortho_no_zfar.gltf", {"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0}},
          "cameras[0].orthographic.zfar: missing (required)")):
     write(name, camera_doc(cam), "PG_ERR_GLTF", msg)
+# a negative xmag/ymag ("should not" in the specification) drew a 45-degree perspective view while
+# --explain said orthographic: drawn with its magnitude, warned
+write("ok_camera_ortho_negative.gltf",
+      camera_doc({"type": "orthographic", "orthographic": {"xmag": -2, "ymag": -2, "znear": 0.1, "zfar": 10}}),
+      "PG_OK", warn=["1 orthographic camera (cameras[0]) with a negative xmag or ymag (the specification says it "
+                     "should not be): drawn with its magnitude"])
 
 # PASSGRAPH_lights_table: a good table of two lights, and bad ones refused naming the field
 
