@@ -391,7 +391,12 @@ static pg_result check_pixels(const char *path, const unsigned char *b, size_t n
 static pg_result decode_hdr(const char *path, const unsigned char *b, size_t n, pg_environment **out, pg_error *err)
 {
     if (n > INT_MAX) return pg_fail(err, PG_ERR_LIMIT, "%s: larger than 2 GiB", path);
-    if (!stbi_is_hdr_from_memory(b, (int)n)) return pg_fail(err, PG_ERR_PARSE, "%s: not a Radiance HDR file", path);
+    if (!stbi_is_hdr_from_memory(b, (int)n)) {
+        if ((n >= 12 && !memcmp(b, "#?RADIANCE\r\n", 12)) || (n >= 8 && !memcmp(b, "#?RGBE\r\n", 8)))
+            return pg_fail(err, PG_ERR_PARSE, "%s: a Radiance HDR header with CRLF line ends (Windows text); the "
+                           "format's lines end in LF alone", path);
+        return pg_fail(err, PG_ERR_PARSE, "%s: not a Radiance HDR file", path);
+    }
     hdr_info hi = {0, 0, 0, 1.0};
     pg_result r = parse_header(path, b, n, &hi, err);
     if (r == PG_OK) r = check_size(path, hi.w, hi.h, err);

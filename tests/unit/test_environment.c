@@ -277,6 +277,8 @@ static void test_errors(void)
     expect_fail(g_dir, PG_ERR_IO, "is a directory");
     expect_fail("/dev/null", PG_ERR_IO, "(expected a Radiance .hdr file (or an OpenEXR .exr))"); /* both are read */
     expect_fail(write_text("text.hdr", "hello, world\n"), PG_ERR_PARSE, "not a Radiance HDR file");
+    expect_fail(write_text("crlf.hdr", "#?RADIANCE\r\nFORMAT=32-bit_rle_rgbe\r\n\r\n-Y 4 +X 8\r\n"), PG_ERR_PARSE,
+                "a Radiance HDR header with CRLF line ends");
     expect_fail(write_cut("header_only.hdr", 64, 32, 0), PG_ERR_PARSE, "truncated");
     expect_fail(write_cut("half.hdr", 64, 32, 64 * 16 * 4), PG_ERR_PARSE, "truncated");
     expect_fail(write_cut("nearly.hdr", 64, 32, 64 * 32 * 4 - 1), PG_ERR_PARSE, "truncated");
@@ -654,7 +656,7 @@ int main(void)
     static const char *files[] = {"exact.hdr", "rle.hdr", "uniform.hdr", "huge.hdr", "text.hdr", "header_only.hdr",
                                   "half.hdr", "nearly.hdr", "no_end.hdr", "xyze.hdr", "flip.hdr", "wide.hdr",
                                   "ratio.hdr", "small.hdr", "too_wide.hdr", "odd.hdr", "image.hdr", "rle_cut.hdr", "centres.hdr",
-                                  "exposure.hdr", "exposure_1.hdr", "exposure_0.hdr", "exposure_x.hdr"};
+                                  "exposure.hdr", "exposure_1.hdr", "exposure_0.hdr", "exposure_x.hdr", "crlf.hdr"};
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) unlink(tmp_path(files[i]));
     CHECK(rmdir(g_dir) == 0);
     return pg_test_finish("test_environment");
