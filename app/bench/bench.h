@@ -194,6 +194,9 @@ pg_result parse_sizes(bench *B, char *v, pg_error *err);
 pg_result parse_sweep(bench *B, char *v, pg_error *err);
 pg_result parse_u32_opt(const char *opt, const char *v, uint32_t max, uint32_t *out, pg_error *err);
 pg_result resolve_pipelines(bench *B, char *list, pg_error *err);
+/* A --pipelines or --reference entry as a path: a file or a path as given, else a name of the
+ * shipped pipelines/ (NAME or NAME.json) */
+void pg_bench_pipeline_path(const char *name, char *path, size_t size);
 pg_result pg_bench_plan_variants(bench *B, pg_error *err);
 uint32_t ref_limit(const bench *B, uint32_t w, uint32_t h);
 void ref_skip_note(const bench *B, uint32_t w, uint32_t h, bool brief, char *buf, size_t size);

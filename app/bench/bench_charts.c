@@ -22,14 +22,16 @@ static bool row_timed(const bench_row *r)
     return (ROW_RAN(r) || r->status == ROW_INTERRUPTED) && r->gpu.n > 0;
 }
 
-/* Colour and marker of a pipeline/variant in every chart: up to 10 series each has its own colour
- * (and variants of one pipeline different markers); beyond that a pipeline has one colour and its
- * variants differ by marker. */
+/* Colour and marker of a pipeline/variant in every chart: series s (their order) takes colour
+ * s % 20 and marker (variant + s / 20) % 5, so no two of up to 100 series look alike (the variant
+ * in the marker: variants of one pipeline differ by it too). It was the pipeline's colour and marker
+ * (variant + pipeline / 10) beyond 10 series: pipeline 0's second variant looked like pipeline 10's
+ * first. */
 static void series_style(const bench *B, uint32_t pipe, uint32_t var, int *color, pg_plot_marker *marker)
 {
-    if (B->n_series <= PG_PLOT_PALETTE_SIZE) *color = (int)B->pipes[pipe].variants[var].series;
-    else *color = (int)(pipe % PG_PLOT_PALETTE_SIZE);
-    *marker = (pg_plot_marker)((var + pipe / PG_PLOT_PALETTE_SIZE) % PG_PLOT_FILLED_MARKERS);
+    const uint32_t s = B->pipes[pipe].variants[var].series;
+    *color = (int)(s % PG_PLOT_PALETTE_SIZE);
+    *marker = (pg_plot_marker)((var + s / PG_PLOT_PALETTE_SIZE) % PG_PLOT_FILLED_MARKERS);
 }
 
 /* Per-chart scratch: arrays the plot structs point into; freed together. */

@@ -381,6 +381,11 @@ int pg_cmd_bench_merge(int argc, char **argv)
            "passes_stacked.svg, error_vs_time.svg, flip_vs_time.svg\n",
            B->n_rows, B->n_failed, sh[0].n, B->out_dir);
     rc = 0;
+    if (B->n_failed) { /* as the sweep run whole exits (it said 0) */
+        fprintf(stderr, "passgraph bench-merge: %u configuration(s) failed (see 'status' and 'message' in results.csv)\n",
+                B->n_failed);
+        rc = 1;
+    }
     goto done;
 fail:
     fprintf(stderr, "passgraph bench-merge: %s\n", err.msg);

@@ -210,6 +210,16 @@ static bool same_file(const char *a, const char *b)
     return !strcmp(ra, rb);
 }
 
+void pg_bench_pipeline_path(const char *name, char *path, size_t size)
+{
+    pg_strlcpy(path, name, size);
+    if (is_file(name) || strchr(name, '/')) return;
+    char rel[PG_PATH_MAX];
+    size_t l = strlen(name);
+    snprintf(rel, sizeof rel, "pipelines/%s%s", name, l > 5 && !strcmp(name + l - 5, ".json") ? "" : ".json");
+    pg_data_path(path, size, rel);
+}
+
 pg_result resolve_pipelines(bench *B, char *list, pg_error *err)
 {
     if (!list || !strcmp(list, "all")) return list_all_pipelines(B, err);
@@ -221,14 +231,7 @@ pg_result resolve_pipelines(bench *B, char *list, pg_error *err)
         if (!t[0]) return pg_fail(err, PG_ERR_INVALID_ARG, "--pipelines: empty entry in the list");
         if (!strcmp(t, "all")) return pg_fail(err, PG_ERR_INVALID_ARG, "--pipelines: 'all' cannot be combined with names");
         char path[PG_PATH_MAX];
-        pg_strlcpy(path, t, sizeof path);
-        if (!is_file(t) && !strchr(t, '/')) {
-            char rel[PG_PATH_MAX], cand[PG_PATH_MAX];
-            size_t l = strlen(t);
-            snprintf(rel, sizeof rel, "pipelines/%s%s", t, l > 5 && !strcmp(t + l - 5, ".json") ? "" : ".json");
-            pg_data_path(cand, sizeof cand, rel);
-            pg_strlcpy(path, cand, sizeof path); /* also when missing: its row's error names the file tried */
-        }
+        pg_bench_pipeline_path(t, path, sizeof path); /* also when missing: its row's error names the file tried */
         bool dup = false; /* the same file twice (by name and by path): run once */
         for (uint32_t k = 0; k < B->n_pipes && !dup; k++) dup = same_file(B->pipes[k].path, path);
         if (dup) {
@@ -288,16 +291,16 @@ static pg_result check_sweep_keys(const bench *B, pg_error *err)
     return PG_OK;
 }
 
-/* The reference (*ref, NULL when it does not load): its declared parameters decide which --set
- * and swept values it takes; its name, and the sweeps it takes (ref_sweeps). */
+/* The reference: its declared parameters decide which --set and swept values it takes; its name,
+ * and the sweeps it takes (ref_sweeps). One that does not load is a bad option (PG_ERR_INVALID_ARG:
+ * it was recorded in every row's note, with exit 0 and every error column empty). */
 static pg_result load_reference(bench *B, pg_pipeline **ref, key_use *use, pg_error *err)
 {
     const pg_side_sets *ss = &B->sides;
     pg_error re = {0};
     if (pg_pipeline_load(B->ref_path, NULL, 0, ref, &re)) {
         *ref = NULL;
-        file_stem(B->ref_path, B->ref_name, sizeof B->ref_name);
-        return PG_OK;
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--reference: %s", re.msg);
     }
     pg_strlcpy(B->ref_name, (*ref)->name, sizeof B->ref_name);
     pg_result r = pg_sides_check_keys(&ss->reference, *ref, "reference", err);
@@ -438,8 +441,8 @@ static pg_result check_keys_used(const bench *B, const key_use *use, pg_error *e
 /* Loads every pipeline once (names, declared parameters), checks that each --set / --pipeline-set /
  * --sweep key is declared somewhere and each --reference-set key by the reference, builds the
  * variants with what each side gets (sides.h) and checks that each loads. Bad keys, and values
- * the reference refuses, are option errors (exit 2, returned as PG_ERR_INVALID_ARG); a pipeline
- * that does not load is recorded in its rows, a reference that does not load in every row's note. */
+ * the reference refuses, and a reference that does not load, are option errors (exit 2, returned as
+ * PG_ERR_INVALID_ARG); a pipeline that does not load is recorded in its rows. */
 pg_result pg_bench_plan_variants(bench *B, pg_error *err)
 {
     key_use use;

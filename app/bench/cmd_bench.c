@@ -63,8 +63,9 @@ static const char *const bench_help_options =
     "                       declares KEY (a key none of them declares is refused)\n"
     "  --pipeline-set KEY=VALUE  applied to every pipeline that declares KEY, never to the reference\n"
     "  --reference-set KEY=VALUE applied to the reference only; wins over --set and --sweep there\n"
-    "  --reference FILE     the exact pipeline errors are measured against (default\n"
-    "                       pipelines/reference.json: a compute pass shading every pixel with every light)\n"
+    "  --reference FILE|NAME  the exact pipeline errors are measured against (default\n"
+    "                       pipelines/reference.json: a compute pass shading every pixel with every light);\n"
+    "                       a name as --pipelines takes (naive); one that does not load: exit 2\n"
     "  --reference-max-lights N  above N lights the reference is not rendered (error columns empty,\n"
     "                       'error_note' says why) and the reference pipeline's own rows are skipped.\n"
     "                       Default: 1000000 on a GPU; on a CPU device (lavapipe) what keeps a reference\n"
@@ -424,7 +425,7 @@ int bench_setup(bench *B, int argc, char **argv)
         return 2;
     }
     B->out_dir = B->opt.out;
-    if (sa.ref_arg) pg_strlcpy(B->ref_path, sa.ref_arg, sizeof B->ref_path);
+    if (sa.ref_arg) pg_bench_pipeline_path(sa.ref_arg, B->ref_path, sizeof B->ref_path); /* a name as --pipelines takes */
     else pg_data_path(B->ref_path, sizeof B->ref_path, "pipelines/reference.json");
     char one[PG_PATH_MAX];
     char *plist = sa.pipelines;

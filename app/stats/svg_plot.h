@@ -9,7 +9,7 @@
  * labels left of and below it, and its legend in a column to the RIGHT of the plot area, so the
  * legend never covers data. Point labels (scatter) are placed beside their point where they do not
  * overlap another label or marker, and left out where no free spot exists (the legend still names
- * every series). Colours come from one fixed qualitative palette (Tableau 10) by index.
+ * every series). Colours come from one fixed qualitative palette (Tableau 10 and ten more) by index.
  *
  * Log10 axes: labelled ticks at powers of ten (every k-th over more than 8 decades), plus 2 and 5
  * times them when the range spans at most two and a half decades (unlabelled minor ticks at the
@@ -29,7 +29,7 @@
 extern "C" {
 #endif
 
-#define PG_PLOT_PALETTE_SIZE 10
+#define PG_PLOT_PALETTE_SIZE 20
 /* Palette colour i (wraps around), as "#rrggbb". A negative index gives the neutral dark grey used
  * for reference lines. */
 const char *pg_plot_color(int index);

@@ -8,10 +8,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Tableau 10: a fixed qualitative palette. */
+/* A fixed qualitative palette: Tableau 10, then ten darker or lighter colours told apart from
+ * them (a bench over every pipeline stacks 15 and more passes: with 10 colours, display and
+ * assign_lights shared one in one bar) */
 static const char *const palette[PG_PLOT_PALETTE_SIZE] = {
-    "#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
-    "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac",
+    "#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac",
+    "#1b3a5c", "#a0cbe8", "#8c2d04", "#2f6b3a", "#b6992d", "#5c3a6e", "#d37295", "#3d3d3d", "#7fc97f", "#00a0b0",
 };
 
 const char *pg_plot_color(int index)

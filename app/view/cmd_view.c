@@ -275,11 +275,13 @@ static bool initial_state(viewer *v, const pg_cli_common *opt)
                      opt->sets[i].value == opt->debug_view ? "--debug-view" : "--set",
                      opt->sets[i].value == opt->debug_view ? "" : opt->sets[i].key,
                      opt->sets[i].value == opt->debug_view ? "" : "=", opt->sets[i].value, opt->sets[i].key);
+            v->bad_option = true;
             return false;
         }
     pg_error bad = {0}; /* a value a pipeline refuses, named by the option that gave it */
     if (check_set_values(v, opt, &bad)) {
         pg_strlcpy(v->error, bad.msg, sizeof v->error);
+        v->bad_option = true;
         return false;
     }
     v->requested = v->current;
@@ -474,7 +476,7 @@ static int run_viewer(viewer *v, const pg_cli_common *opt)
     if (!open_window_ui(v, &err)) goto fail;
     if (!initial_state(v, opt)) {
         fprintf(stderr, "passgraph view: cannot start: %s\n", v->error);
-        return 1;
+        return v->bad_option ? 2 : 1; /* a --set the pipelines refuse: a bad option, as in render */
     }
     if (!frame_loop(v, &frames, &err)) goto fail;
     return report(v, frames);

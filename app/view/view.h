@@ -62,6 +62,7 @@ typedef struct viewer {
     char ov_key[MAX_OVERRIDES][PG_NAME_MAX], ov_val[MAX_OVERRIDES][PG_NAME_MAX];
     pg_session *session, *naive;
     char error[PG_ERROR_MSG_MAX];
+    bool bad_option; /* the start failed on a --set or --debug-view the pipelines refuse (exit 2) */
     bool reload;
     /* frame settings */
     int light_count;
@@ -151,6 +152,8 @@ typedef struct viewer {
 /* view_pipelines.c */
 void scan_pipelines(viewer *v, const char *current_path);
 void set_override(viewer *v, const char *key, const char *value);
+/* PG_ERR_PARAM (err filled) when pipeline k declares `key` and refuses `value`, else PG_OK */
+pg_result refused_by(const viewer *v, int k, const char *key, const char *value, pg_error *err);
 /* Whether a pipeline of the viewer's list declares parameter key (one that does not load declares
  * nothing): --set and --at N:set refuse a key no pipeline knows. */
 bool declared_by_any(const viewer *v, const char *key);

@@ -117,6 +117,23 @@ bool declared_by_any(const viewer *v, const char *key)
     return false;
 }
 
+pg_result refused_by(const viewer *v, int k, const char *key, const char *value, pg_error *err)
+{
+    const pg_param_override ov = {key, value};
+    pg_pipeline *p = NULL;
+    pg_error e = {0};
+    if (k < 0 || k >= v->n_pipelines || pg_pipeline_load(v->paths[k], NULL, 0, &p, &e)) return PG_OK;
+    const bool declares = pg_pipeline_find_param(p, key) != NULL;
+    pg_pipeline_free(p);
+    p = NULL;
+    if (!declares) return PG_OK; /* an undeclared key is not applied to it */
+    pg_result r = pg_pipeline_load(v->paths[k], &ov, 1, &p, &e);
+    pg_pipeline_free(p);
+    if (r != PG_ERR_PARAM) return PG_OK;
+    *err = e;
+    return r;
+}
+
 pg_result refused_by_all(const viewer *v, const char *key, const char *value, pg_error *err)
 {
     const pg_param_override ov = {key, value};

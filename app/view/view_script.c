@@ -2,6 +2,33 @@
  * demos. */
 #include "view.h"
 
+/* --at FRAME:set=KEY=VALUE */
+static pg_result script_set(viewer *v, const view_action *a, pg_error *err)
+{
+    char kv[PG_PATH_MAX];
+    pg_strlcpy(kv, a->arg, sizeof kv);
+    char *eq = strchr(kv, '=');
+    if (!eq) return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:set=%s: expected KEY=VALUE", a->frame, a->arg);
+    *eq = 0;
+    if (!declared_by_any(v, kv))
+        return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:set=%s: no pipeline of the viewer declares a parameter '%s'",
+                       a->frame, a->arg, kv);
+    /* a value no listed pipeline takes ends the run, as --set's does (it was kept, and every
+     * later reload or switch failed with it) */
+    if (refused_by_all(v, kv, eq + 1, err)) return pg_error_prefix(err, "--at %u:set=%s", a->frame, a->arg);
+    /* one the pipeline being shown refuses (another takes it) is said and not kept: kept, it
+     * failed every later reload, and every later set= with it */
+    pg_error e = {0};
+    if (refused_by(v, v->requested, kv, eq + 1, &e)) {
+        snprintf(v->error, sizeof v->error, "--at %u:set=%s: %s (not applied)", a->frame, a->arg, e.msg);
+        fprintf(stderr, "passgraph view: %s\n", v->error);
+        return PG_OK;
+    }
+    set_override(v, kv, eq + 1);
+    v->reload = true;
+    return PG_OK;
+}
+
 /* Scripted actions (--at FRAME:ACTION) for tests and demos. */
 pg_result run_action(viewer *v, const view_action *a, pg_error *err)
 {
@@ -36,19 +63,8 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
         free(text);
         v->last_watch = 0; /* look at the disk on this frame */
     } else if (!strcmp(a->what, "set")) {
-        char kv[PG_PATH_MAX];
-        pg_strlcpy(kv, a->arg, sizeof kv);
-        char *eq = strchr(kv, '=');
-        if (!eq) return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:set=%s: expected KEY=VALUE", a->frame, a->arg);
-        *eq = 0;
-        if (!declared_by_any(v, kv))
-            return pg_fail(err, PG_ERR_INVALID_ARG, "--at %u:set=%s: no pipeline of the viewer declares a parameter '%s'",
-                           a->frame, a->arg, kv);
-        /* a value no listed pipeline takes ends the run, as --set's does (it was kept, and every
-         * later reload or switch failed with it) */
-        if (refused_by_all(v, kv, eq + 1, err)) return pg_error_prefix(err, "--at %u:set=%s", a->frame, a->arg);
-        set_override(v, kv, eq + 1);
-        v->reload = true;
+        pg_result r = script_set(v, a, err);
+        if (r) return r;
     } else if (!strcmp(a->what, "pipeline")) {
         int k = 0;
         pg_result r = find_pipeline(v, a->arg, &k, err);

@@ -233,7 +233,10 @@ typedef struct pg_user_block {
     uint64_t generation;
 } pg_user_block;
 
-/* plan, pipeline and user.data are borrowed and must stay alive until the next set_plan/destroy. */
+/* plan, pipeline and user.data are borrowed and must stay alive until the next set_plan/destroy.
+ * On failure the runtime holds no plan (set one again before rendering), except when only the
+ * run-time values changed and a pass's update() refused one: it then keeps the plan it had, with
+ * that plan's values (pg_runtime_output_image tells which). */
 pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const pg_pipeline *pipeline,
                               pg_user_block user, uint32_t width, uint32_t height, pg_error *err);
 #define PG_MAX_FRAMES_IN_FLIGHT 2

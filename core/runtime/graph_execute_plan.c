@@ -280,6 +280,9 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
     if (rt->mem.built && msig == rt->cur.mem_sig && psig == rt->cur.pipe_sig) {
         /* same resources and pass instances: keep every object, adopt the new plan; only the
          * run-time values may differ */
+        const pg_graph_plan *old_plan = rt->cur.plan;
+        const pg_pipeline *old_pipeline = rt->cur.pipeline;
+        const pg_user_block old_user = rt->cur.user;
         rt->cur.plan = plan;
         rt->cur.pipeline = pipeline;
         rt->cur.user = user;
@@ -292,7 +295,19 @@ pg_result pg_runtime_set_plan(pg_runtime *rt, const pg_graph_plan *plan, const p
         /* a frame in flight may still read the old values only through its command buffer
          * (push constants are recorded), so no wait is needed */
         r = pg_rt_update_values(rt, err);
-        rt->cur.val_sig = r ? 0 : vsig; /* failed: the next plan updates again */
+        if (!r) {
+            rt->cur.val_sig = vsig;
+            return PG_OK;
+        }
+        /* a pass refused a value: back to the plan the runtime had (the caller frees the new one),
+         * its values given to the passes again; failing that, no plan (as the other failures) */
+        rt->cur.plan = old_plan;
+        rt->cur.pipeline = old_pipeline;
+        rt->cur.user = old_user;
+        pg_error ignored = {0};
+        if (pg_rt_update_values(rt, &ignored) == PG_OK) return r;
+        pg_rt_destroy_built(rt);
+        rt->cur.plan = NULL;
         return r;
     }
     bool changed[PG_MAX_RESOURCES], dirty[PG_MAX_RESOURCES];

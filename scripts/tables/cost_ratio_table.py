@@ -62,6 +62,7 @@ def main():
     global TIME_PASSES
     TIME_PASSES = a.time.split(",") if a.time else []
     cells = {}  # (pipeline, lights) -> {variant: row}
+    seen = {}  # path -> (scene, width, height) of its rows
     order, variants = [], []
     for lab in a.label:
         name, _, path = lab.partition("=")
@@ -71,6 +72,11 @@ def main():
                     continue
                 v = row["variant"] if a.by_variant else name
                 key = (row["pipeline"], row["lights"])
+                # one size and scene a table: a second one overwrote the first's rows without a word
+                where = (row.get("scene"), row.get("width"), row.get("height"))
+                if seen.setdefault(path, where) != where:
+                    raise SystemExit("cost_ratio_table.py: %s holds rows of more than one scene or size (%s and %s): "
+                                     "one a table" % (path, "/".join(map(str, seen[path])), "/".join(map(str, where))))
                 if key not in cells:
                     cells[key] = {}
                     order.append(key)

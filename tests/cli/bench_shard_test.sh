@@ -124,5 +124,15 @@ expect_fail "merge: configuration missing" 1 "$tmp/s1copy: configuration 2 (shar
   bench-merge --out "$tmp/m2" "$tmp/s1copy" "$tmp/s2"
 expect_fail "merge: no --out" 2 "--out DIR is required" bench-merge "$tmp/s1" "$tmp/s2"
 [ ! -e "$tmp/m2" ] && ok || bad "a refused merge wrote $tmp/m2"
+# shards whose rows failed (a pipeline file that does not load) merge, and exit 1 as the sweep run
+# whole does (the merge said "1 failed" and exited 0)
+printf '{ "name": broken' >"$tmp/broken.json"
+for k in 1 2; do
+  "$PG" bench --pipelines naive,"$tmp/broken.json" --lights 4 --size 32x18 --frames 1 --warmup 0 --quiet \
+    --shard $k/2 --out "$tmp/f$k" >/dev/null 2>&1
+done
+"$PG" bench-merge --out "$tmp/fm" "$tmp/f1" "$tmp/f2" >"$tmp/out" 2>"$tmp/err"
+[ $? = 1 ] && grep -q "2 rows (1 failed)" "$tmp/out" && [ -s "$tmp/fm/results.csv" ] && ok \
+  || { bad "merge of shards with a failed row: want its outputs and exit 1"; cat "$tmp/out" "$tmp/err"; }
 
 check_finish bench_shard_test

@@ -446,6 +446,16 @@ for f in gpu_time_vs_lights passes_stacked error_vs_time flip_vs_time; do
   [ "$(head -c 5 "$tmp/bench/$f.svg" 2>/dev/null)" = "<svg " ] && tail -1 "$tmp/bench/$f.svg" | grep -q '</svg>' \
     && ok || bad "bench did not write $f.svg"
 done
+# every pass in the stacked chart has one colour of its own (15 passes shared 10 colours: display
+# and assign_lights one red in deferred's bar)
+python3 - "$tmp/bench/passes_stacked.svg" <<'PYEOF' && ok || bad "passes_stacked.svg: passes share a colour"
+import re, sys
+m = {}
+for fill, name in re.findall(r'fill="(#[0-9a-f]{6})" stroke="#fff" stroke-width="0.5"><title>([^:<]+):', open(sys.argv[1]).read()):
+    m.setdefault(name, set()).add(fill)
+assert len(m) >= 12 and all(len(f) == 1 for f in m.values()), m
+assert len({next(iter(f)) for f in m.values()}) == len(m), m
+PYEOF
 # every row carries flip, hdr_flip, ssim, flicker, accumulate; deterministic pipelines (lightcut
 # too) flicker exactly 0, the stochastic ones (ris, stochastic) do not
 python3 - "$tmp/bench/results.csv" "$tmp/bench/results.json" <<'PYEOF' && ok || bad "bench: perceptual / temporal columns"
@@ -582,6 +592,18 @@ expect_fail "bench: --reference-set of an undeclared key" "--reference-set gbuff
   bench --pipelines forward_plus --reference "$naive" --reference-set gbuffer=packed --out "$tmp/b5"
 expect_fail "bench: --pipeline-set no pipeline declares" "--pipeline-set gbuffer=packed: no selected pipeline" \
   bench --pipelines forward_plus --reference "$naive" --pipeline-set gbuffer=packed --out "$tmp/b5"
+# a reference that does not load is an option error (every row's error was empty, exit 0); a bare
+# name is a shipped pipeline, as in --pipelines
+"$PG" bench --pipelines naive --reference "$tmp/no_such_ref.json" --lights 4 --size 64x36 --frames 1 --warmup 0 \
+  --out "$tmp/b6" >/dev/null 2>"$tmp/err"
+[ $? = 2 ] && grep -qF -- "--reference: pipeline '$tmp/no_such_ref.json': cannot open" "$tmp/err" && ok \
+  || { bad "bench: a reference that does not load: want exit 2"; cat "$tmp/err"; }
+"$PG" bench --pipelines visibility --reference naive --lights 4 --size 64x36 --frames 1 --warmup 0 --quiet \
+  --out "$tmp/b6" >/dev/null 2>"$tmp/err" && python3 -c '
+import csv, json, sys
+assert json.load(open(sys.argv[1]))["meta"]["reference_path"].endswith("pipelines/naive.json")
+assert list(csv.DictReader(open(sys.argv[2])))[0]["rmse_linear"] != ""' "$tmp/b6/results.json" "$tmp/b6/results.csv" \
+  && ok || { bad "bench --reference naive: not the shipped naive.json"; cat "$tmp/err"; }
 expect_fail "bench: a swept value the reference refuses" "--sweep view=cluster_heat: reference" \
   bench --pipelines forward_plus --reference "$naive" --sweep view=none,cluster_heat --out "$tmp/b5"
 # a value the pipeline refuses is an option error naming the option (it ran, failed the row and said --set)

@@ -58,6 +58,8 @@ for bad_arg in "--at 2:lights=1e3|--at 2:lights 1e3: expected a whole number in 
   rc=$?
   [ $rc -ne 0 ] && [ $rc -lt 128 ] && grep -qF -- "${bad_arg#*|}" "$tmp/err3" && ok \
     || { bad "view ${bad_arg%%|*}: want a refusal naming it (exit $rc)"; cat "$tmp/err3"; }
+  # the command line's --set and --debug-view: bad options, exit 2 as in render and dump (it was 1)
+  case "${bad_arg%% *}" in --set|--debug-view) [ $rc = 2 ] && ok || bad "view ${bad_arg%%|*}: exit $rc, want 2";; esac
 done
 # a screenshot that cannot be written: --screenshot refused before any frame (it ran every frame and
 # then failed); an --at one is shown and the viewer goes on (it ended the run)
@@ -134,6 +136,13 @@ xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 4 --light
 xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --size 64x36 --frames 3 --lights 4 \
   --pipeline "$root/pipelines/forward_plus.json" --debug-view cluster_heat >"$tmp/out_dv" 2>"$tmp/err_dv" \
   && ok || { bad "view --debug-view cluster_heat with forward_plus.json: refused"; cat "$tmp/err_dv"; }
+# a set= the shown pipeline refuses but another takes (naive has no cluster_heat) is said and not
+# kept: kept, every later reload failed with it and later set= values were never applied
+xvfb-run -a -s "-screen 0 640x480x24" "$PG" view --pipeline "$root/pipelines/naive.json" --size 64x36 --lights 4 \
+  --frames 8 --at 2:set=view=cluster_heat --at 4:set=exposure=4 --at 6:set=ambient=0.5 >"$tmp/out_sv" 2>"$tmp/err_sv"
+[ $? -eq 0 ] && [ "$(grep -c "set=view=cluster_heat: .*(not applied)" "$tmp/err_sv")" = 1 ] \
+  && grep -q "frame 4: naive.json ready .*rebuilt: values" "$tmp/out_sv" && grep -q "frame 6: naive.json ready .*rebuilt: values" "$tmp/out_sv" \
+  && ok || { bad "view: a set= the shown pipeline refuses blocked later changes"; cat "$tmp/err_sv"; tail -5 "$tmp/out_sv"; }
 # the light slider from 0 to 1,000,000 and back (tiny window): the light lists grow, a small list
 # budget drops and reports references (also at 300,000 lights after the 1,000,000 frames: the lists
 # need 14.9 MiB there), and the viewer keeps running. An 8 x 4 x 8 cluster grid: the checks do not

@@ -168,6 +168,61 @@ static void registry_rule(void)
               "pg_registry_add must refuse it: %s", err.msg);
 }
 
+/* A pass whose update() fails once, wrapped around the display pass's type by the session's plan
+ * hook: a values-only reload then fails, and the runtime must go back to the plan it had. It kept
+ * the new plan and pipeline, which the session frees: the next frame read freed memory (and a
+ * plug-in's update() may refuse a value). */
+static const pg_pass_type *g_orig_type;
+static pg_pass_type g_wrap_type;
+static bool g_fail_next_update;
+
+static pg_result failing_update(void *self, const void *params, pg_error *err)
+{
+    if (g_fail_next_update) {
+        g_fail_next_update = false;
+        return pg_fail(err, PG_ERR_INVALID_ARG, "refused by the test");
+    }
+    return g_orig_type->update(self, params, err);
+}
+
+static void wrap_updates(pg_graph_plan *plan, void *user)
+{
+    (void)user;
+    for (uint32_t i = 0; i < plan->n_passes; i++) {
+        const pg_pass_type *t = plan->passes[i].type;
+        if (!t || !t->update || (g_orig_type && t != g_orig_type && t != &g_wrap_type)) continue;
+        g_orig_type = t == &g_wrap_type ? g_orig_type : t;
+        g_wrap_type = *g_orig_type;
+        g_wrap_type.update = failing_update;
+        plan->passes[i].type = &g_wrap_type;
+    }
+}
+
+static void failed_update(const char *path)
+{
+    pg_session_desc sd = {.pipeline_path = path, .registry = &g_reg, .test_edit_plan = wrap_updates};
+    pg_session *s = NULL;
+    pg_error err = {0};
+    image2 a = {0}, b = {0}, c = {0};
+    if (pg_session_create(g_gpu, g_sg, &sd, &s, &err) || !render(s, W, H, LIGHTS, &a)) {
+        CHECK_MSG(0, "failing update: session: %s", err.msg);
+        pg_session_destroy(s);
+        return;
+    }
+    const pg_param_override ov[] = {{"exposure", "0.5"}};
+    g_fail_next_update = true;
+    pg_result r = pg_session_reload(s, path, ov, 1, &err);
+    printf("failing update: reload with exposure=0.5: %s\n", r ? err.msg : "(accepted)");
+    CHECK_MSG(r != PG_OK && strstr(err.msg, "refused by the test"), "the reload must fail: %s", err.msg);
+    CHECK(render(s, W, H, LIGHTS, &b) && same_image(&a, &b)); /* the old plan and values, no freed memory */
+    CHECK_MSG(!pg_session_reload(s, path, ov, 1, &err), "reload again: %s", err.msg);
+    CHECK(render(s, W, H, LIGHTS, &c) && !same_image(&a, &c)); /* now applied */
+    release(&a);
+    release(&b);
+    release(&c);
+    pg_session_destroy(s);
+}
+
 int main(void)
 {
     setvbuf(stdout, NULL, _IOLBF, 0);
@@ -303,6 +358,7 @@ int main(void)
     }
     release(&prev);
     pg_session_destroy(s);
+    failed_update(path);
     CHECK_MSG(g_gpu->validation_messages == 0, "%u validation message(s)", g_gpu->validation_messages);
     pg_scene_gpu_destroy(g_gpu, sg);
     pg_scene_free(scene);

@@ -219,6 +219,10 @@ static void test_ticks(void)
     pg_svg_escape("&&&&&&", b, 12);
     CHECK_MSG(!strcmp(b, "&amp;&amp;"), "truncation keeps whole entities: got '%s'", b);
     CHECK(strcmp(pg_plot_color(0), pg_plot_color(1)) && !strcmp(pg_plot_color(0), pg_plot_color(PG_PLOT_PALETTE_SIZE)));
+    /* the palette's colours all differ (two stacked passes of one bar shared one with 10 colours) */
+    for (int i = 0; i < PG_PLOT_PALETTE_SIZE; i++)
+        for (int j = i + 1; j < PG_PLOT_PALETTE_SIZE; j++)
+            CHECK_MSG(strcmp(pg_plot_color(i), pg_plot_color(j)), "colours %d and %d are both %s", i, j, pg_plot_color(i));
 }
 
 static void test_svg(void)
