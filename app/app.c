@@ -20,7 +20,7 @@ static pg_result load_environment_file(const char *path, pg_environment **out, p
     if (n < 4 || strcasecmp(path + n - 4, ".exr")) return pg_environment_load(path, out, err);
     float *rgba = NULL;
     uint32_t w = 0, h = 0;
-    pg_result r = pg_exr_read_rgba(path, &rgba, &w, &h, err);
+    pg_result r = pg_exr_read_rgba_within(path, PG_ENV_MAX_WIDTH, &rgba, &w, &h, err); /* before its pixels */
     if (!r) r = pg_environment_from_pixels(path, w, h, rgba, out, err);
     free(rgba);
     return r;

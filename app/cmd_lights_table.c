@@ -350,6 +350,10 @@ int pg_cmd_lights_table(int argc, char **argv)
         fprintf(stderr, "passgraph lights-table: --scene and --out must be .gltf files (a .glb is not rewritten)\n");
         return 2;
     }
+    if (ol >= PG_PATH_MAX) { /* OUT.lights.bin beside it was cut to a prefix of OUT, and written */
+        fprintf(stderr, "passgraph lights-table: --out: path longer than %d bytes\n", PG_PATH_MAX - 1);
+        return 2;
+    }
     if (pg_file_check_writable(opt.out, "--out", &err)) { /* before any file is written */
         fprintf(stderr, "passgraph lights-table: %s\n", err.msg);
         return 2;

@@ -137,7 +137,10 @@ static bool resolve_outputs(render_opts *ro)
         pg_strlcpy(ro->png_path, opt->out, sizeof ro->png_path);
         memcpy(ro->png_path + n - 4, ".png", 4);
     } else {
-        pg_strlcpy(ro->png_path, opt->out, sizeof ro->png_path);
+        if (!pg_strlcpy(ro->png_path, opt->out, sizeof ro->png_path)) { /* cut, it named another file */
+            fprintf(stderr, "passgraph render: --out %s: path too long\n", opt->out);
+            return false;
+        }
         if (ro->hdr_out && !pg_strlcpy(ro->exr_path, ro->hdr_out, sizeof ro->exr_path)) {
             fprintf(stderr, "passgraph render: --hdr-out %s: path too long\n", ro->hdr_out);
             return false;

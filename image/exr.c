@@ -284,6 +284,12 @@ static pg_result check_size(exr_context_t ctx, const char *path, const exr_msg *
 /* OpenEXRCore's sequence: open, header, then every chunk decoded; A is 1 where absent */
 pg_result pg_exr_read_rgba(const char *path, float **out, uint32_t *out_w, uint32_t *out_h, pg_error *err)
 {
+    return pg_exr_read_rgba_within(path, UINT32_MAX, out, out_w, out_h, err);
+}
+
+pg_result pg_exr_read_rgba_within(const char *path, uint32_t max_side, float **out, uint32_t *out_w, uint32_t *out_h,
+                                  pg_error *err)
+{
     *out = NULL;
     *out_w = *out_h = 0;
     exr_msg m = {{0}};
@@ -311,6 +317,11 @@ pg_result pg_exr_read_rgba(const char *path, float **out, uint32_t *out_w, uint3
     if ((r = read_header(ctx, path, &m, &dw, &lines, err))) goto done;
     int64_t w = (int64_t)dw.max.x - dw.min.x + 1, h = (int64_t)dw.max.y - dw.min.y + 1;
     if ((r = check_size(ctx, path, &m, w, h, err))) goto done;
+    if (w > (int64_t)max_side || h > (int64_t)max_side) {
+        r = pg_fail(err, PG_ERR_LIMIT, "%s: %lld x %lld: wider or taller than %u", path, (long long)w, (long long)h,
+                    max_side);
+        goto done;
+    }
     px = malloc((size_t)w * h * 4 * sizeof(float));
     if (!px) {
         r = pg_fail(err, PG_ERR_OOM, "%s: out of memory", path);

@@ -24,6 +24,10 @@ pg_result pg_exr_write_rgba(const char *path, const float *rgba, uint32_t w, uin
  * pixel type into *rgba (malloc'd, w*h*4 floats; free() it). The data window's origin becomes
  * pixel (0,0). */
 pg_result pg_exr_read_rgba(const char *path, float **rgba, uint32_t *w, uint32_t *h, pg_error *err);
+/* The same, refusing an image wider or taller than max_side (PG_ERR_LIMIT) from its header,
+ * before its pixels are allocated (a small compressed file may announce 65536 x 32768: 32 GiB) */
+pg_result pg_exr_read_rgba_within(const char *path, uint32_t max_side, float **rgba, uint32_t *w, uint32_t *h,
+                                  pg_error *err);
 
 /* IEEE half <-> float (round to nearest even; overflow to inf; NaN stays NaN). */
 uint16_t pg_float_to_half(float f);

@@ -46,7 +46,7 @@ static const char *jget_str(const cJSON *o, const char *key)
 static void jstats_read(const cJSON *o, pg_sample_stats *s)
 {
     double n = jget_num(o, "n");
-    s->n = isfinite(n) && n > 0 ? (uint32_t)n : 0;
+    s->n = isfinite(n) && n > 0 && n <= UINT32_MAX ? (uint32_t)n : 0; /* past it: the cast is undefined */
     s->median = jget_num(o, "median");
     s->mean = jget_num(o, "mean");
     s->min = jget_num(o, "min");
@@ -58,7 +58,7 @@ static uint64_t ju64(const cJSON *o, const char *key, bool *has)
 {
     double v = jget_num(o, key);
     if (has) *has = isfinite(v);
-    return isfinite(v) && v >= 0 ? (uint64_t)v : 0;
+    return isfinite(v) && v >= 0 && v < 18446744073709551616.0 ? (uint64_t)v : 0;
 }
 
 /* One results.json row back into a bench_row, checked against the configuration its index names. */
@@ -161,8 +161,10 @@ static pg_result shard_load(shard_in *s, pg_error *err)
         k = jget_num(sh, "k");
         n = jget_num(sh, "n");
     }
-    if ((sh && !cJSON_IsObject(sh)) || !(k >= 1 && n >= k))
-        return pg_fail(err, PG_ERR_INVALID_ARG, "%s/results.json: meta.shard: expected {\"k\": K, \"n\": N} with 1 <= K <= N",
+    /* whole numbers within bench's --shard range: a cast of 2^32 gave N 0, and a division by it */
+    if ((sh && !cJSON_IsObject(sh)) || !(k >= 1 && n >= k && n <= 100000) || k != floor(k) || n != floor(n))
+        return pg_fail(err, PG_ERR_INVALID_ARG,
+                       "%s/results.json: meta.shard: expected {\"k\": K, \"n\": N}, whole numbers with 1 <= K <= N <= 100000",
                        s->dir);
     s->k = (uint32_t)k;
     s->n = (uint32_t)n;

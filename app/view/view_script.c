@@ -58,9 +58,9 @@ pg_result run_action(viewer *v, const view_action *a, pg_error *err)
             free(text);
             return pg_fail(err, PG_ERR_IO, "%s: cannot write", colon + 1);
         }
-        fwrite(text, 1, len, f);
-        fclose(f);
+        const bool wrote = fwrite(text, 1, len, f) == len;
         free(text);
+        if (fclose(f) != 0 || !wrote) return pg_fail(err, PG_ERR_IO, "%s: cannot write (disk full?)", colon + 1);
         v->last_watch = 0; /* look at the disk on this frame */
     } else if (!strcmp(a->what, "set")) {
         pg_result r = script_set(v, a, err);

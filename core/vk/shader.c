@@ -69,7 +69,8 @@ static pg_result open_source(const char *name, int depth, const gen_sources *gen
         return pg_read_file(path, text, NULL, err);
     }
     if (gen->user_dir) { /* include_name_ok: relative, no ".." */
-        snprintf(path, path_size, "%s/%s", gen->user_dir, name);
+        if (snprintf(path, path_size, "%s/%s", gen->user_dir, name) >= (int)path_size)
+            return pg_fail(err, PG_ERR_SHADER, "%s/%s: path too long", gen->user_dir, name);
         if (access(path, R_OK) == 0) return pg_read_file(path, text, NULL, err);
     }
     snprintf(path, path_size, "%s/shaders/%s", pg_data_dir(), name);
@@ -121,7 +122,11 @@ static pg_result expand(const char *name, int depth, const gen_sources *gen, str
             }
             char inc[PG_NAME_MAX * 2];
             size_t il = (size_t)(b - a - 1);
-            if (il >= sizeof inc) il = sizeof inc - 1;
+            if (il >= sizeof inc) { /* cut, it named another file (which was read) */
+                free(text);
+                return pg_fail(err, PG_ERR_SHADER, "%s:%d: #include name longer than %d bytes", path, line,
+                               (int)sizeof inc - 1);
+            }
             memcpy(inc, a + 1, il);
             inc[il] = 0;
             r = include_name_ok(inc) ? expand(inc, depth + 1, gen, out, err)

@@ -159,6 +159,17 @@ bool pg_vk_fault_next(const char *call);
                            pg_vk_result_name(pg_vk_r_), __FILE__, __LINE__);                 \
     } while (0)
 
+/* PG_VK_TRY with `cleanup` run before the return (what the function made before `call`) */
+#define PG_VK_TRY_OR(err, call, cleanup)                                                     \
+    do {                                                                                     \
+        VkResult pg_vk_r_ = pg_vk_fault_next(#call) ? VK_ERROR_DEVICE_LOST : (call);         \
+        if (pg_vk_r_ != VK_SUCCESS) {                                                        \
+            cleanup;                                                                         \
+            return pg_fail((err), PG_ERR_VULKAN, "%s failed: %s (%s:%d)", #call,             \
+                           pg_vk_result_name(pg_vk_r_), __FILE__, __LINE__);                 \
+        }                                                                                    \
+    } while (0)
+
 uint32_t pg_gpu_memory_type(const pg_gpu *gpu, uint32_t type_bits, VkMemoryPropertyFlags want);
 /* Every VkDeviceMemory passgraph makes goes through these two (so long runs can prove the count
  * stays flat). */

@@ -82,8 +82,11 @@ pg_result pg_buffer_create_ex(pg_gpu *gpu, VkDeviceSize size, VkBufferUsageFlags
         return pg_fail(err, PG_ERR_VULKAN, "buffer '%s': vkAllocateMemory(%llu bytes) failed: %s",
                        name, (unsigned long long)req.size, pg_vk_result_name(r));
     }
-    PG_VK_TRY(err, vkBindBufferMemory(gpu->device, out->buffer, out->memory, 0));
-    if (host_visible) PG_VK_TRY(err, vkMapMemory(gpu->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped));
+    /* failing past the allocation: both destroyed (callers holding the buffer in a local leaked them) */
+    PG_VK_TRY_OR(err, vkBindBufferMemory(gpu->device, out->buffer, out->memory, 0), pg_buffer_destroy(gpu, out));
+    if (host_visible)
+        PG_VK_TRY_OR(err, vkMapMemory(gpu->device, out->memory, 0, VK_WHOLE_SIZE, 0, &out->mapped),
+                     pg_buffer_destroy(gpu, out));
     out->size = size;
     pg_gpu_name(gpu, VK_OBJECT_TYPE_BUFFER, (uint64_t)out->buffer, "%s", name);
     pg_gpu_name(gpu, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)out->memory, "%s.memory", name);
@@ -165,7 +168,7 @@ pg_result pg_image_create(pg_gpu *gpu, VkFormat format, uint32_t w, uint32_t h, 
         return pg_fail(err, PG_ERR_VULKAN, "image '%s' %ux%u: vkAllocateMemory failed: %s", name,
                        w, h, pg_vk_result_name(r));
     }
-    PG_VK_TRY(err, vkBindImageMemory(gpu->device, out->image, out->memory, 0));
+    PG_VK_TRY_OR(err, vkBindImageMemory(gpu->device, out->image, out->memory, 0), pg_image_destroy(gpu, out));
     VkImageViewCreateInfo vci = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
         .image = out->image,
@@ -173,7 +176,7 @@ pg_result pg_image_create(pg_gpu *gpu, VkFormat format, uint32_t w, uint32_t h, 
         .format = format,
         .subresourceRange = {pg_vk_aspect(format), 0, mips, 0, 1},
     };
-    PG_VK_TRY(err, vkCreateImageView(gpu->device, &vci, NULL, &out->view));
+    PG_VK_TRY_OR(err, vkCreateImageView(gpu->device, &vci, NULL, &out->view), pg_image_destroy(gpu, out));
     out->format = format;
     out->width = w;
     out->height = h;

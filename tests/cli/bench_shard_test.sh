@@ -123,6 +123,14 @@ EOF
 expect_fail "merge: configuration missing" 1 "$tmp/s1copy: configuration 2 (shard 1/2) missing" \
   bench-merge --out "$tmp/m2" "$tmp/s1copy" "$tmp/s2"
 expect_fail "merge: no --out" 2 "--out DIR is required" bench-merge "$tmp/s1" "$tmp/s2"
+# a shard count past 2^32 was cast to 0: no shard missing, then a division by zero (SIGFPE)
+cp -r "$tmp/s1" "$tmp/s1huge"
+python3 - "$tmp/s1huge/results.json" <<'EOF' || bad "could not edit the copy"
+import json, sys
+d = json.load(open(sys.argv[1])); d["meta"]["shard"] = {"k": 1, "n": 4294967296}
+json.dump(d, open(sys.argv[1], "w"))
+EOF
+expect_fail "merge: shard count past the range" 1 "meta.shard: expected" bench-merge --out "$tmp/m2" "$tmp/s1huge"
 [ ! -e "$tmp/m2" ] && ok || bad "a refused merge wrote $tmp/m2"
 # shards whose rows failed (a pipeline file that does not load) merge, and exit 1 as the sweep run
 # whole does (the merge said "1 failed" and exited 0)

@@ -349,6 +349,15 @@ rc=$?
 [ $rc -eq 0 ] && grep -q "^note: buffer 'cluster_lights' could not grow from .* (VK_ERROR_OUT_OF_DEVICE_MEMORY): kept" "$tmp/out" \
   && grep -Eq 'overflow=[1-9][0-9]* clusters \([1-9][0-9]* light refs dropped\)' "$tmp/out" \
   && ok || { bad "refused list growth not reported (rc $rc)"; cat "$tmp/out"; }
+# a driver error after a buffer's or image's memory was allocated (bind, map, view): the error
+# named, nothing leaked (the buffer and its memory outlived the device: the validation layer's
+# "has not been destroyed" at exit)
+for call in vkMapMemory vkBindBufferMemory vkBindImageMemory vkCreateImageView; do
+  PASSGRAPH_FAULT_CALL=$call "$PG" render --validation --size 32x18 --lights 4 --out "$tmp/o.png" >"$tmp/out" 2>&1
+  rc=$?
+  [ $rc = 1 ] && grep -q "$call(.*failed: VK_ERROR_DEVICE_LOST" "$tmp/out" && ! grep -q "has not been destroyed" "$tmp/out" \
+    && ok || { bad "a failed $call: want its error and nothing leaked (rc $rc)"; grep -m3 "failed\|destroyed" "$tmp/out"; }
+done
 # clustered summary reports overflow (all lights at one point, 2 per cluster)
 "$PG" render --pipeline "$root/pipelines/forward_plus.json" --set max_lights=2 --lights 64 --radius 100 --size 64x36 --out "$tmp/o.png" >"$tmp/out" 2>&1
 grep -Eq 'overflow=[1-9][0-9]* clusters \([0-9]+ light refs dropped\)' "$tmp/out" && ok || { bad "overflow not reported"; cat "$tmp/out"; }
@@ -863,6 +872,14 @@ for p in "$root"/pipelines/*.json; do
 done
 # an output of 4 bytes a pixel that is not 8-bit RGBA (d32f) was written as a PNG of garbage, exit 0
 sed "s#\"fragments/#\"$root/pipelines/fragments/#g; s#\"output\": \"ldr\"#\"output\": \"depth\"#" "$root/pipelines/naive.json" >"$tmp/out_depth.json"
+# an --out past the path limit was cut to a prefix (another file, written); the same for the
+# lights-table's OUT.lights.bin beside its --out
+long_dir="$tmp/$(printf 'd%.0s' $(seq 300))"
+"$PG" render --size 32x18 --out "$long_dir/$(printf 'a%.0s' $(seq 206)).png.png" >/dev/null 2>"$tmp/err"
+[ $? = 2 ] && grep -q "path too long" "$tmp/err" && ok || { bad "render: a too long --out: want exit 2"; cat "$tmp/err"; }
+"$PG" lights-table --scene "$root/tests/corpus/gltf/ok_animation.gltf" --lights 4 \
+  --out "$tmp/$(printf 'a%.0s' $(seq 530)).gltf" >/dev/null 2>"$tmp/err"
+[ $? = 2 ] && grep -q "path longer than 511 bytes" "$tmp/err" && ok || { bad "lights-table: a too long --out: want exit 2"; cat "$tmp/err"; }
 expect_fail "render: a d32f output" "output 'depth' must be an 8-bit RGBA image (rgba8 or rgba8_srgb) to write $tmp/x.png, not d32f" \
   render --pipeline "$tmp/out_depth.json" --size 16x9 --lights 4 --out "$tmp/x.png"
 # deferred lighting into an hdr of another size than its G-buffer (without the background and

@@ -386,6 +386,19 @@ static void test_exr_cpu(void)
                       contains(err.msg, "the file has 1024"),
                   "%s", err.msg);
     }
+    { /* pg_exr_read_rgba_within refuses a side past its limit from the header, before the pixels
+       * (an environment of 65536 x 32768 announced by a small file asked for 32 GiB) */
+        enum { WW = 64, WH = 2 };
+        float wide[WW * WH * 4] = {0};
+        tmp_path(path, sizeof path, "wide.exr");
+        CHECK_MSG(pg_exr_write_rgba(path, wide, WW, WH, true, &err) == PG_OK, "%s", err.msg);
+        err = (pg_error){0};
+        CHECK(pg_exr_read_rgba_within(path, 63, &none, &w, &h, &err) == PG_ERR_LIMIT && !none);
+        CHECK_MSG(contains(err.msg, "64 x 2: wider or taller than 63"), "%s", err.msg);
+        CHECK(pg_exr_read_rgba_within(path, 64, &none, &w, &h, &err) == PG_OK && none && w == WW && h == WH);
+        free(none);
+        none = NULL;
+    }
     { /* a required attribute missing (its name changed in place, so the offsets stay valid) is
        * named: OpenEXRCore's default (ZIP, a 64 x 64 window) gave "Unable to decompress" or
        * "truncated ... 64x64" */
