@@ -78,6 +78,23 @@ pg_result pg_app_session_create(pg_app *app, const pg_session_desc *desc, pg_ses
     return r;
 }
 
+void pg_app_note_unused_colour(const pg_app *app, const pg_graph_plan *plan, const char *tool)
+{
+    const pg_cli_common *o = &app->opt;
+    if (!plan || (!o->ocio_config && !o->display && !o->ocio_view)) return;
+    for (uint32_t i = 0; i < plan->n_passes; i++)
+        if (!plan->passes[i].culled && plan->passes[i].type && !strcmp(plan->passes[i].type->name, "display_ocio"))
+            return;
+    char what[3 * PG_PATH_MAX + 64] = "";
+    size_t l = 0;
+    const char *names[3] = {"--ocio-config", "--display", "--ocio-view"}, *vals[3] = {o->ocio_config, o->display, o->ocio_view};
+    for (int k = 0; k < 3; k++)
+        if (vals[k] && l < sizeof what)
+            l += (size_t)snprintf(what + l, sizeof what - l, "%s%s %s", l ? ", " : "", names[k], vals[k]);
+    fprintf(stderr, "%s: warning: %s: no effect, the pipeline runs no display_ocio pass (its display_tonemap, e.g. "
+            "tonemap=clamp, reinhard or aces, encodes sRGB itself)\n", tool, what);
+}
+
 pg_result pg_app_pose_scene(pg_app *app, pg_scene *scene, pg_error *err)
 {
     app->animation = PG_ANIM_FIRST;

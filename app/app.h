@@ -67,6 +67,9 @@ pg_result pg_app_attach_environment(pg_app *app, struct pg_scene *scene, pg_erro
  * lists ("plugins", renderer/plugins.h) into the app's registry. */
 pg_result pg_app_session_create(pg_app *app, const pg_session_desc *desc, pg_session **out, pg_error *err);
 pg_result pg_app_pose_scene(pg_app *app, struct pg_scene *scene, pg_error *err);
+/* A warning on stderr when --ocio-config, --display or --ocio-view was given and the plan runs no
+ * display_ocio pass (they changed nothing, silently) */
+void pg_app_note_unused_colour(const pg_app *app, const struct pg_graph_plan *plan, const char *tool);
 void pg_app_print_explain_lighting(const pg_app *app, const pg_session *s, const char *label, FILE *f);
 uint64_t pg_app_check_exact(const char *cmd, const char *what, const pg_frame_stats *st, bool require_exact);
 

@@ -389,6 +389,7 @@ static int render_on_app(pg_app *app, const render_opts *ro, pg_rdoc *rdoc)
         goto done;
     }
     if (render_frames(s, &fi, rdoc, ro->capture, r, &err)) goto done;
+    pg_app_note_unused_colour(app, s->plan, "passgraph render"); /* it was silent */
     if (ro->opt.explain) print_render_explain(app, s);
     if (write_outputs(s, ro, &im, &err)) goto done;
     print_summary(s, ro, &fi, r, &im);

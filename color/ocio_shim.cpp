@@ -279,6 +279,11 @@ extern "C" pg_result pg_ocio_resolve(const pg_ocio_config *cfg, const char *disp
         if (!v || !pg_ocio_has_view(cfg, d, v))
             return pg_fail(err, PG_ERR_INVALID_ARG, "%s: unknown view '%s' of display '%s' (views: %s)",
                            cfg->path.c_str(), v ? v : "", d, name_list(cfg, d).c_str());
+        /* a name that does not fit was cut, and the cut name could be another display or view of
+           the config (drawn instead): refused */
+        if ((display_out && display_size && strlen(d) >= display_size) || (view_out && view_size && strlen(v) >= view_size))
+            return pg_fail(err, PG_ERR_LIMIT, "%s: display '%.60s...' or view '%.60s...': a name longer than %zu bytes",
+                           cfg->path.c_str(), d, v, (display_size < view_size ? display_size : view_size) - 1);
         if (display_out && display_size) snprintf(display_out, display_size, "%s", d);
         if (view_out && view_size) snprintf(view_out, view_size, "%s", v);
         return PG_OK;

@@ -18,7 +18,10 @@ void main()
     ivec2 size = textureSize(hdr, 0);
     ivec2 texel = clamp(ivec2(v_uv * vec2(size)), ivec2(0), size - 1);
     vec3 c = texelFetch(hdr, texel, 0).rgb * pc.exposure;
-    c = mix(c, vec3(0.0), isnan(c));
+    // NaN to 0; negatives to 0 and +inf to the half range (a user pass may write them: Reinhard
+    // made +inf black (inf / inf) and -2 white, the ACES fit made 1e30 black and -0.5 white); the
+    // shipped shading writes [0, 65000] already (so its images are unchanged)
+    c = clamp(mix(c, vec3(0.0), isnan(c)), 0.0, 65504.0);
 #if PG_TONEMAP == 1
     c = c / (1.0 + c);
 #elif PG_TONEMAP == 2

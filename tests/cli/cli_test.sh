@@ -278,6 +278,11 @@ for v in cluster_heat cluster_x cluster_y cluster_z overflow albedo normal depth
 done
 expect_fail "cluster view on naive" "not one of" render --pipeline "$root/pipelines/naive.json" --view cluster_heat --size 64x36 --out "$tmp/v.png"
 # colour: OCIO views and displays by name (spaces and parentheses), EXR output, clear refusals
+# a display given to a pipeline without display_ocio (tonemap=clamp): said, not silently ignored
+"$PG" render --size 64x36 --lights 8 --set tonemap=clamp --display Rec.1886 --out "$tmp/c.png" >/dev/null 2>"$tmp/err" \
+  && grep -q "warning: --display Rec.1886: no effect, the pipeline runs no display_ocio pass" "$tmp/err" \
+  && "$PG" render --size 64x36 --lights 8 --display Rec.1886 --out "$tmp/c.png" >/dev/null 2>"$tmp/err" && ! grep -q "no effect" "$tmp/err" \
+  && ok || { bad "--display with tonemap=clamp: no warning"; cat "$tmp/err"; }
 "$PG" render --validation --size 64x36 --lights 8 --view "Filmic (ACES)" --display Rec.1886 --out "$tmp/c.exr" \
   >"$tmp/out" 2>"$tmp/err" && [ "$(head -c 4 "$tmp/c.exr" | od -An -tx1 | tr -d ' ')" = 762f3101 ] \
   && [ "$(head -c 4 "$tmp/c.png" | tail -c 3)" = PNG ] && ok || { bad "render --view 'Filmic (ACES)' --out x.exr"; cat "$tmp/err"; }
@@ -1117,6 +1122,44 @@ cp "$up/tonemap.frag" "$up/q\"uote.frag" && sed 's/"tonemap.frag"/"q\\"uote.frag
 expect_fail "shader pass: a quote in the file name" "cannot be named by GLSL's #line; rename the file" dump --pipeline "$up/b_quote.json"
 sed 's#^void main#\#include "nope.glsl"\nvoid main#' "$up/tonemap.frag" >"$up/inc.frag"
 expect_fail "shader pass: missing #include" "#include \"nope.glsl\" (looked up in $up then" dump --pipeline "$up/b_inc.json"
+# the simple tone mappers (display_tonemap) on values a user pass may write: NaN, +-inf, 1e30,
+# negatives, past the half range; each a column of the image. NaN and negatives black, the huge
+# ones white, 0.5 as the operator's formula says (Reinhard made +inf black, ACES 1e30 black and
+# -0.5 white)
+cat >"$up/sp.json" <<EOF
+{"name": "sp", "include": ["$root/pipelines/fragments/display.json"],
+ "resources": [{"name": "hdr", "type": "image", "format": "rgba32f"}],
+ "passes": [{"name": "gen", "type": "shader", "writes": ["hdr"], "options": {"compute": "sp.comp", "bindings": {"hdr_image": "hdr"}}}],
+ "output": "ldr", "hdr_output": "hdr"}
+EOF
+cat >"$up/sp.comp" <<'EOF'
+#version 460
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 2, binding = 0, rgba32f) uniform writeonly image2D hdr_image;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(hdr_image)))) return;
+    float zero = 0.0, v[8] = float[8](zero / zero, 1.0 / zero, -1.0 / zero, 1e30, -0.5, -2.0, 70000.0, 0.5);
+    imageStore(hdr_image, p, vec4(vec3(v[p.x % 8]), 1.0));
+}
+EOF
+for tm in clamp reinhard aces; do
+  "$PG" render --pipeline "$up/sp.json" --size 8x2 --lights 0 --set tonemap=$tm --out "$tmp/sp_$tm.png" >/dev/null 2>"$tmp/err" \
+    && python3 - "$tmp/sp_$tm.png" $tm "$root/tests/cli" <<'PYEOF' && ok || { bad "display_tonemap $tm on special values"; cat "$tmp/err"; }
+import sys
+sys.path.insert(0, sys.argv[3])
+from png_read import read_png
+w, h, bpp, rows = read_png(sys.argv[1])
+got = [rows[0][x * bpp] for x in range(8)]
+f = {"clamp": lambda x: min(x, 1.0), "reinhard": lambda x: x / (1 + x),
+     "aces": lambda x: min(max(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0), 1.0)}[sys.argv[2]]
+s = lambda c: c * 12.92 if c <= 0.0031308 else 1.055 * c ** (1 / 2.4) - 0.055
+half = round(255 * s(f(0.5)))
+want = [0, 255, 0, 255, 0, 0, 255, half]
+assert all(abs(a - b) <= 1 for a, b in zip(got, want)), (sys.argv[2], got, want)
+PYEOF
+done
 # a compute user pass whose SPIR-V is valid but that no pipeline image or device can run: refused
 # by name (an empty file, an image that is not one 2D layer, a shadow sampler, a workgroup or shared
 # memory past the device's limits) instead of a crash or validation messages

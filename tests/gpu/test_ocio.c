@@ -112,6 +112,10 @@ static void test_shipped_config(void)
           !strcmp(v, "Standard"));
     CHECK(pg_ocio_resolve(cfg, "Rec.1886", "Raw", d, sizeof d, v, sizeof v, &err) == PG_OK &&
           !strcmp(d, "Rec.1886") && !strcmp(v, "Raw"));
+    /* a name its buffer cannot hold is refused: cut, it could name another view of the config */
+    err = (pg_error){0};
+    CHECK(pg_ocio_resolve(cfg, "sRGB", "Filmic (ACES)", d, sizeof d, v, 8, &err) == PG_ERR_LIMIT);
+    CHECK_MSG(contains(err.msg, "a name longer than 7 bytes"), "%s", err.msg);
     err = (pg_error){0};
     CHECK(pg_ocio_resolve(cfg, "sRGB", "Nope", NULL, 0, NULL, 0, &err) == PG_ERR_INVALID_ARG);
     CHECK_MSG(contains(err.msg, path) && contains(err.msg, "unknown view 'Nope' of display 'sRGB'") &&
