@@ -498,6 +498,28 @@ static void ownership_transfers(pg_graph_plan *plan)
     }
 }
 
+/* One family (semaphores, no ownership transfer): a barrier with a layout transition in a batch
+ * that waits for the other queue chains to the wait only if its source stages include the stages
+ * the batch waits at. Its source stages were those of the resource's last use, on the other
+ * queue (color_output before a compute-queue batch waiting at compute_shader): the transition was
+ * not ordered after the wait, and could run while the other queue still wrote the image. The
+ * wait's stages are added (the semaphore makes the writes available and visible). */
+static void chain_transitions_to_waits(pg_graph_plan *plan)
+{
+    for (uint32_t k = 0; k < plan->n_order; k++) {
+        pg_plan_pass *pp = &plan->passes[plan->order[k]];
+        if (pp->batch < 0 || pp->batch >= (int)plan->n_batches) continue;
+        const pg_plan_batch *b = &plan->batches[pp->batch];
+        uint64_t wait = 0;
+        for (uint32_t w = 0; w < b->n_waits; w++) wait |= b->waits[w].stages;
+        if (!wait) continue;
+        for (uint32_t i = 0; i < pp->n_barriers; i++) {
+            pg_barrier *br = &pp->barriers[i];
+            if (br->old_layout != br->new_layout && br->src_stages && !(br->src_stages & wait)) br->src_stages |= wait;
+        }
+    }
+}
+
 void pg_queues_schedule(pg_graph_plan *plan, const pg_compile_desc *desc);
 /* The two-queue schedule: batches and their semaphore waits, the frame's end and the wait on the
  * previous frame, then (separate families) the ownership transfers. */
@@ -509,4 +531,5 @@ void pg_queues_schedule(pg_graph_plan *plan, const pg_compile_desc *desc)
     end_on_graphics(plan);
     wait_previous_frame(plan);
     if (plan->qfot) ownership_transfers(plan);
+    else chain_transitions_to_waits(plan);
 }

@@ -293,6 +293,13 @@ static pg_result check_binding_kind(sp_ctx *c, const char *sub, const pg_spv_bin
                           c->rel, b->name, b->set, b->binding, uint_shader ? "integer" : "float", rd->name,
                           pg_format_get(rd->format)->name,
                           uint_image ? "a usampler/uimage" : "a sampler/image of floats (sampler2D, image2D)");
+    const cJSON *fo = cJSON_GetObjectItemCaseSensitive(c->in->desc->options, "filter"); /* read after the bindings */
+    const bool linear = !cJSON_IsString(fo) || strcmp(fo->valuestring, "nearest") != 0;
+    if (b->kind == PG_SPV_COMBINED_IMAGE_SAMPLER && uint_image && linear)
+        return pg_sp_fail(c, PG_ERR_FORMAT, "filter",
+                          "resource '%s' is %s, which cannot be filtered, and shader '%s' samples it (binding '%s') "
+                          "with the pass's sampler, \"linear\" by default: set \"filter\": \"nearest\"",
+                          rd->name, pg_format_get(rd->format)->name, c->rel, b->name);
     if (b->kind == PG_SPV_STORAGE_IMAGE && b->image_format == 0) /* SpvImageFormatUnknown */
         return pg_sp_fail(c, PG_ERR_FORMAT, sub,
                           "shader '%s' binding '%s' (set %u, binding %u) is a storage image without a format "

@@ -212,6 +212,10 @@ pg_result pg_sp_read_attachments(sp_ctx *c)
                        SP_MAX_TARGETS);
     const pg_pass_desc *d = c->in->desc;
     c->p->n_targets = (uint8_t)cJSON_GetArraySize(targets);
+    if (c->p->n_targets == 0 && c->p->form != SP_DRAW) /* its viewport is its targets' size: 0 x 0 (nothing drawn) */
+        return pg_sp_fail(c, PG_ERR_SCHEMA, "targets",
+                          "a fullscreen shader needs at least one target (its size is the viewport); to write storage "
+                          "images only, use a compute shader");
     for (int t = 0; t < c->p->n_targets; t++) {
         const cJSON *v = cJSON_GetArrayItem(targets, t);
         int w = cJSON_IsString(v) ? pg_sp_find_in(d->writes, d->n_writes, v->valuestring) : -1;

@@ -1160,6 +1160,45 @@ want = [0, 255, 0, 255, 0, 0, 255, half]
 assert all(abs(a - b) <= 1 for a, b in zip(got, want)), (sys.argv[2], got, want)
 PYEOF
 done
+# a fullscreen pass without targets had a 0 x 0 viewport (nothing drawn, a validation error), and
+# an integer image sampled through the default "linear" sampler was a validation error at the
+# dispatch: both refused when the pipeline compiles, naming the option
+cat >"$up/ui.comp" <<'EOF'
+#version 460
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 2, binding = 0) uniform usampler2D cnt;
+layout(set = 2, binding = 1, rgba8) uniform writeonly image2D ldr_image;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(ldr_image)))) return;
+    imageStore(ldr_image, p, vec4(float(texelFetch(cnt, ivec2(0), 0).r), 0.0, 0.0, 1.0));
+}
+EOF
+cat >"$up/uclr.comp" <<'EOF'
+#version 460
+layout(local_size_x = 1) in;
+layout(set = 2, binding = 0, r32ui) uniform writeonly uimage2D cnt;
+void main() { imageStore(cnt, ivec2(0), uvec4(1u)); }
+EOF
+for filter in "" ', "filter": "nearest"'; do
+  cat >"$up/ui.json" <<EOF
+{"name": "ui", "resources": [{"name": "cnt", "type": "image", "format": "r32ui", "extent": [1, 1]}, {"name": "ldr", "type": "image", "format": "rgba8"}],
+ "passes": [{"name": "clr", "type": "shader", "writes": ["cnt"], "options": {"compute": "uclr.comp", "bindings": {"cnt": "cnt"}, "dispatch": {"groups": [1, 1, 1]}}},
+            {"name": "show", "type": "shader", "reads": ["cnt"], "writes": ["ldr"], "options": {"compute": "ui.comp", "bindings": {"cnt": "cnt", "ldr_image": "ldr"}$filter}}],
+ "output": "ldr"}
+EOF
+  "$PG" dump --pipeline "$up/ui.json" >/dev/null 2>"$tmp/err"
+  rc=$?
+  if [ -z "$filter" ]; then
+    [ $rc = 1 ] && grep -qF "passes[1].options.filter: pass 'show': resource 'cnt' is r32ui, which cannot be filtered" "$tmp/err" \
+      && ok || { bad "an integer image through the linear sampler: not refused (rc $rc)"; cat "$tmp/err"; }
+  else
+    [ $rc = 0 ] && ok || { bad "an integer image through a nearest sampler: refused"; cat "$tmp/err"; }
+  fi
+done
+sed 's/"targets": \["ldr"\]/"targets": []/' "$up/ok.json" >"$up/b_notargets.json"
+expect_fail "shader pass: a fullscreen pass without targets" "a fullscreen shader needs at least one target" dump --pipeline "$up/b_notargets.json"
 # a compute user pass whose SPIR-V is valid but that no pipeline image or device can run: refused
 # by name (an empty file, an image that is not one 2D layer, a shadow sampler, a workgroup or shared
 # memory past the device's limits) instead of a crash or validation messages

@@ -339,6 +339,32 @@ static void test_same_family(void)
     /* and the semaphore wait covers its source stage, so the barrier chains through it */
     CHECK(b && (p->batches[2].waits[0].stages & b->src_stages) == b->src_stages);
     check_invariants(p, "p1 one family");
+    pg_graph_plan_free(p);
+    pg_pipeline_free(pl);
+    p = NULL;
+    pl = NULL;
+    /* the lighting on the compute queue samples the depth gbuf (graphics) wrote: its transition
+     * (depth_attachment -> shader_read_only) must chain to the batch's wait. Its source stages
+     * were the depth tests alone, which the compute batch's wait (compute_shader) does not cover:
+     * the transition could run while the graphics queue still wrote the depth */
+    CHECK_MSG(compile_p1("", "", ", \"queue\": \"compute\"", caps, &pl, &p, &err) == PG_OK, "%s", err.msg);
+    if (!p) goto out;
+    const pg_plan_pass *lp = pass_named(p, "light");
+    CHECK(lp && lp->queue == PG_QUEUE_COMPUTE && p->batches[lp->batch].n_waits >= 1);
+    b = lp ? barrier_on(lp, res_named(p, "depth")) : NULL;
+    CHECK(b && b->old_layout == VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL &&
+          b->new_layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    for (uint32_t k = 0; k < p->n_order; k++) { /* every transition in a batch that waits chains to the wait */
+        const pg_plan_pass *pp = &p->passes[p->order[k]];
+        uint64_t wait = 0;
+        for (uint32_t w = 0; w < p->batches[pp->batch].n_waits; w++) wait |= p->batches[pp->batch].waits[w].stages;
+        for (uint32_t i = 0; wait && i < pp->n_barriers; i++) {
+            const pg_barrier *x = &pp->barriers[i];
+            CHECK_MSG(x->old_layout == x->new_layout || !x->src_stages || (x->src_stages & wait),
+                      "pass %s: the transition of resource %d does not chain to its batch's wait", pp->name, x->resource);
+        }
+    }
+    check_invariants(p, "p1 one family, lighting on compute");
 out:
     pg_graph_plan_free(p);
     pg_pipeline_free(pl);
