@@ -11,6 +11,37 @@
 #include <string.h>
 #include <sys/stat.h>
 
+/* The plug-in's symbols, API version and registration (the types it adds: reg->types[before..]) */
+static pg_result register_types(pg_pass_registry *reg, void *h, const char *path, uint32_t before, pg_error *err)
+{
+    pg_plugin_version_fn version;
+    pg_plugin_register_fn reg_fn;
+    void *v = dlsym(h, PG_PLUGIN_VERSION_SYMBOL), *r = dlsym(h, PG_PLUGIN_REGISTER_SYMBOL);
+    if (!v || !r)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: not a passgraph plug-in: no %s", path,
+                       !v ? PG_PLUGIN_VERSION_SYMBOL : PG_PLUGIN_REGISTER_SYMBOL);
+    memcpy(&version, &v, sizeof version); /* object pointer -> function pointer, as POSIX allows */
+    memcpy(&reg_fn, &r, sizeof reg_fn);
+    const uint32_t got = version();
+    if (got != PG_PLUGIN_API_VERSION)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: plug-in API version %u; this passgraph has %u (rebuild the "
+                                                "plug-in against this passgraph's headers)",
+                       path, got, PG_PLUGIN_API_VERSION);
+    pg_error e = {0};
+    pg_result rr = reg_fn(reg, &e);
+    if (rr) return pg_fail(err, rr, "%s: %s", path, e.msg[0] ? e.msg : "registration failed");
+    if (reg->count == before)
+        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: the plug-in registered no pass type", path);
+    for (uint32_t i = before; i < reg->count; i++) { /* a type the runtime cannot create or record: not taken */
+        const pg_pass_type *t = reg->types[i];
+        if (!t->create || !t->record || !t->destroy)
+            return pg_fail(err, PG_ERR_INVALID_ARG, "%s: pass type '%s' has no %s function (a plug-in's pass types "
+                           "give declare, create, record and destroy)",
+                           path, t->name, !t->create ? "create" : !t->record ? "record" : "destroy");
+    }
+    return PG_OK;
+}
+
 static pg_result load_one(pg_pass_registry *reg, const char *path, pg_plugins *out, pg_error *err)
 {
     struct stat st;
@@ -30,36 +61,15 @@ static pg_result load_one(pg_pass_registry *reg, const char *path, pg_plugins *o
         const char *why = dlerror();
         return pg_fail(err, PG_ERR_INVALID_ARG, "%s: cannot load plug-in: %s", path, why ? why : "dlopen failed");
     }
+    const uint32_t before = reg->count;
+    pg_result r = register_types(reg, h, path, before, err);
+    if (r) { /* not kept: recorded, a later load of the same path said PG_OK and loaded nothing */
+        reg->count = before; /* the types a failed registration added are not taken either */
+        dlclose(h);
+        return r;
+    }
     pg_strlcpy(out->paths[out->n], real0[0] ? real0 : full, PG_PATH_MAX);
     out->handles[out->n++] = h;
-    pg_plugin_version_fn version;
-    pg_plugin_register_fn reg_fn;
-    void *v = dlsym(h, PG_PLUGIN_VERSION_SYMBOL), *r = dlsym(h, PG_PLUGIN_REGISTER_SYMBOL);
-    if (!v || !r)
-        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: not a passgraph plug-in: no %s", path,
-                       !v ? PG_PLUGIN_VERSION_SYMBOL : PG_PLUGIN_REGISTER_SYMBOL);
-    memcpy(&version, &v, sizeof version); /* object pointer -> function pointer, as POSIX allows */
-    memcpy(&reg_fn, &r, sizeof reg_fn);
-    const uint32_t got = version();
-    if (got != PG_PLUGIN_API_VERSION)
-        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: plug-in API version %u; this passgraph has %u (rebuild the "
-                                                "plug-in against this passgraph's headers)",
-                       path, got, PG_PLUGIN_API_VERSION);
-    pg_error e = {0};
-    const uint32_t before = reg->count;
-    pg_result rr = reg_fn(reg, &e);
-    if (rr) return pg_fail(err, rr, "%s: %s", path, e.msg[0] ? e.msg : "registration failed");
-    if (reg->count == before)
-        return pg_fail(err, PG_ERR_INVALID_ARG, "%s: the plug-in registered no pass type", path);
-    for (uint32_t i = before; i < reg->count; i++) { /* a type the runtime cannot create or record: not taken */
-        const pg_pass_type *t = reg->types[i];
-        if (!t->create || !t->record || !t->destroy) {
-            reg->count = before;
-            return pg_fail(err, PG_ERR_INVALID_ARG, "%s: pass type '%s' has no %s function (a plug-in's pass types "
-                           "give declare, create, record and destroy)",
-                           path, t->name, !t->create ? "create" : !t->record ? "record" : "destroy");
-        }
-    }
     return PG_OK;
 }
 

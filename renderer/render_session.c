@@ -102,12 +102,29 @@ static pg_result compile_plan(pg_session *s, const pg_pipeline *pipeline, uint32
     return PG_OK;
 }
 
+/* After a failure: a runtime left without a plan (pg_runtime_set_plan's failures, a failed
+ * growth) gets the session's plan again; failing that, the session forgets it, so the next call
+ * compiles. It kept it, and since its light count and size still matched, every later render
+ * found the runtime without a plan ("no plan set"), also after going back to the old settings. */
+static void resync_plan(pg_session *s)
+{
+    if (!s->runtime || !s->plan || pg_runtime_output_image(s->runtime, 0)) return;
+    pg_error e2 = {0};
+    if (pg_runtime_set_plan(s->runtime, s->plan, s->pipeline, session_user(s), s->width, s->height, &e2)) {
+        pg_graph_plan_free(s->plan);
+        s->plan = NULL;
+    }
+}
+
 pg_result pg_session_compile(pg_session *s, uint32_t light_count, uint32_t width, uint32_t height, pg_error *err)
 {
     if (s->plan && light_count == s->light_count && width == s->width && height == s->height) return PG_OK;
     pg_graph_plan *plan = NULL;
     pg_result r = compile_plan(s, s->pipeline, light_count, width, height, &plan, err);
-    if (r) return r;
+    if (r) {
+        resync_plan(s);
+        return r;
+    }
     pg_graph_plan_free(s->plan);
     s->plan = plan;
     s->light_count = light_count;
@@ -125,13 +142,7 @@ pg_result pg_session_reload(pg_session *s, const char *pipeline_path, const pg_p
     if (r) return r;
     pg_graph_plan *plan = NULL;
     if (s->plan && (r = compile_plan(s, pl, s->light_count, s->width, s->height, &plan, err))) {
-        /* a failed set_plan leaves the runtime without a plan: set the old one again */
-        pg_error e2 = {0};
-        if (s->runtime && !pg_runtime_output_image(s->runtime, 0) &&
-            pg_runtime_set_plan(s->runtime, s->plan, s->pipeline, session_user(s), s->width, s->height, &e2)) {
-            pg_graph_plan_free(s->plan);
-            s->plan = NULL; /* the next render compiles again */
-        }
+        resync_plan(s); /* a failed set_plan leaves the runtime without a plan: set the old one again */
         pg_pipeline_free(pl);
         return r;
     }
@@ -170,7 +181,10 @@ pg_result pg_session_render(pg_session *s, const pg_frame_info *info, bool readb
         if ((r = pg_runtime_render(s->runtime, &u, readback, st, err))) return r;
         if (!pg_runtime_growth_pending(s->runtime)) break;
         /* between frames: the runtime grows the buffers and re-creates the passes bound to them */
-        if ((r = pg_runtime_apply_growth(s->runtime, st, err))) return r;
+        if ((r = pg_runtime_apply_growth(s->runtime, st, err))) {
+            resync_plan(s); /* a failed growth left the runtime without a plan */
+            return r;
+        }
         for (uint32_t i = 0; i < st->n_grown && n_grown < 4; i++) grown[n_grown++] = st->grown[i];
         if (!st->n_grown || rerenders >= 16) break;
         rerenders++;

@@ -365,7 +365,8 @@ static bool draw_one(viewer *v, uint32_t frame, float dt, pg_error *err)
     if (rdoc_now) rdoc_finish(v);
     v->want_rdoc = false;
     v->rdoc_file[0] = 0;
-    if (v->reloads != loads_before) { /* the switch as the user waits for it */
+    if (v->reloads != loads_before && v->session) { /* the switch as the user waits for it (a graph whose
+                                                     * first frame failed was dropped: no line) */
         const pg_runtime_stats st = pg_runtime_get_stats(v->session->runtime);
         printf("view: frame %u: %s ready in %.1f ms (load, compile, first frame; rebuilt: %s", frame,
                v->names[v->current], (pg_time_s() - t_load) * 1e3, pg_rebuild_kind_name(st.last_rebuild));

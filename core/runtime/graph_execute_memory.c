@@ -570,8 +570,9 @@ static pg_result grow_buffer(pg_runtime *rt, int ri, uint64_t needed, uint64_t m
         int pi = rt->cur.plan->order[o];
         if (rt->mem.pass_state[pi]) continue;
         pg_result res = create_pass(rt, pi, err);
-        if (res) {
+        if (res) { /* as a failed set_plan: no plan (it kept one whose resources were destroyed) */
             pg_rt_destroy_built(rt);
+            rt->cur.plan = NULL;
             return res;
         }
     }

@@ -339,8 +339,17 @@ pg_result pg_runtime_render(pg_runtime *rt, const void *frame_block, bool readba
     bool idle;
     pg_result r;
     if ((r = pg_rt_frame_begin(rt, frame_block, &f, &wait_ms, err))) return r;
-    if ((r = record_frame(rt, f, readback, frame_block, err))) return r;
-    if ((r = pg_rt_frame_submit(rt, f, err))) return r;
+    /* the content tags passes set while recording stand for work that is submitted: a frame that
+     * fails before its submission gets the tags it started with back (a filtered environment was
+     * tagged as written by a frame that never ran, and every later frame skipped its filter) */
+    const uint32_t n_res = rt->cur.plan->n_resources;
+    uint64_t tags[PG_MAX_RESOURCES];
+    for (uint32_t i = 0; i < n_res; i++) tags[i] = rt->mem.res[i].content_tag;
+    if (!(r = record_frame(rt, f, readback, frame_block, err))) r = pg_rt_frame_submit(rt, f, err);
+    if (r) {
+        for (uint32_t i = 0; i < n_res && rt->cur.plan; i++) rt->mem.res[i].content_tag = tags[i];
+        return r;
+    }
     if ((r = pg_rt_frame_settle(rt, f, readback, &wait_ms, &idle, err))) return r;
     pg_rt_mark_persistent_written(rt);
     if ((r = reports_readable(rt, &idle, &wait_ms, err))) return r;

@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "passgraph.h"
+#include "plugins.h"
 #include "test_util.h"
 
 #define W 48
@@ -193,6 +194,26 @@ static void test_pipeline_plugins(void)
     rmdir(dir);
 }
 
+/* A plug-in that fails to load fails again when loaded again: it was recorded before its checks,
+ * and a second load of its path said PG_OK and loaded nothing (the viewer's reload, a second
+ * open), then the compile failed with "unknown pass type" */
+static void test_failed_plugin_again(void)
+{
+    char so[PG_PATH_MAX];
+    snprintf(so, sizeof so, "%s/libpg_tint_nocreate.so", PG_PLUGIN_DIR);
+    const char *paths[1] = {so};
+    pg_pass_registry reg = {0};
+    pg_plugins pl;
+    memset(&pl, 0, sizeof pl);
+    for (int k = 0; k < 2; k++) {
+        pg_error err = {0};
+        pg_result r = pg_plugins_load(&reg, paths, 1, &pl, &err);
+        CHECK_MSG(r == PG_ERR_INVALID_ARG && strstr(err.msg, "has no create function"), "load %d: %s", k + 1, err.msg);
+        CHECK(pl.n == 0 && reg.count == 0); /* nothing kept, its type not registered */
+    }
+    pg_plugins_close(&pl);
+}
+
 int main(void)
 {
     if (getenv("PG_TEST_NO_GPU")) return pg_test_skip("test_gpu_embed", "PG_TEST_NO_GPU set");
@@ -204,6 +225,7 @@ int main(void)
         if (!p && strstr(err.msg, "no Vulkan")) return pg_test_skip("test_gpu_embed", err.msg);
         passgraph_close(p);
     }
+    test_failed_plugin_again();
     test_open_compiles();
     test_set_param_before_render();
     test_null_arguments();

@@ -288,6 +288,14 @@ static void once(const pg_th_scene *l)
     pg_frame_info fi = l->fi;
     shot a, b, c, d, e, f, g;
     const size_t n = (size_t)W * H * 4;
+    /* a first frame that fails before its submission (an injected vkQueueSubmit2 error): the
+     * filter pass tagged the environment as filtered while recording, and every later frame
+     * skipped the filter (the frame after it ran it 0 times, the environment never filtered) */
+    setenv("PASSGRAPH_FAULT_CALL", "vkQueueSubmit2(batch)", 1);
+    pg_frame_stats st0;
+    err = (pg_error){0};
+    CHECK_MSG(pg_session_render(s, &fi, true, &st0, &err) != PG_OK, "the injected submit error did not fail");
+    unsetenv("PASSGRAPH_FAULT_CALL");
     if (shoot(s, &fi, &a) && shoot(s, &fi, &b) && shoot(s, &fi, &c)) {
         printf("filter runs over frames 1-3: %llu %llu %llu\n", (unsigned long long)a.runs,
                (unsigned long long)b.runs, (unsigned long long)c.runs);

@@ -185,6 +185,20 @@ static pg_result failing_update(void *self, const void *params, pg_error *err)
     return g_orig_type->update(self, params, err);
 }
 
+/* ... and whose create() fails once: a new size then fails the compile, and the session must
+ * render at its old size again (it kept its plan while the runtime had none: "no plan set" on
+ * every later frame, at the old size too) */
+static bool g_fail_next_create;
+
+static pg_result failing_create(void *self, const struct pg_pass_create_ctx *ctx, pg_error *err)
+{
+    if (g_fail_next_create) {
+        g_fail_next_create = false;
+        return pg_fail(err, PG_ERR_VULKAN, "create refused by the test");
+    }
+    return g_orig_type->create(self, ctx, err);
+}
+
 static void wrap_updates(pg_graph_plan *plan, void *user)
 {
     (void)user;
@@ -194,6 +208,7 @@ static void wrap_updates(pg_graph_plan *plan, void *user)
         g_orig_type = t == &g_wrap_type ? g_orig_type : t;
         g_wrap_type = *g_orig_type;
         g_wrap_type.update = failing_update;
+        g_wrap_type.create = failing_create;
         plan->passes[i].type = &g_wrap_type;
     }
 }
@@ -217,6 +232,16 @@ static void failed_update(const char *path)
     CHECK(render(s, W, H, LIGHTS, &b) && same_image(&a, &b)); /* the old plan and values, no freed memory */
     CHECK_MSG(!pg_session_reload(s, path, ov, 1, &err), "reload again: %s", err.msg);
     CHECK(render(s, W, H, LIGHTS, &c) && !same_image(&a, &c)); /* now applied */
+    g_fail_next_create = true;
+    pg_frame_info big = frame_info(2 * W, 2 * H, LIGHTS);
+    pg_frame_stats st;
+    err = (pg_error){0};
+    r = pg_session_render(s, &big, true, &st, &err);
+    CHECK_MSG(r != PG_OK && strstr(err.msg, "create refused by the test"), "a size whose pass creation fails: %s",
+              r ? err.msg : "(rendered)");
+    image2 again = {0};
+    CHECK_MSG(render(s, W, H, LIGHTS, &again) && same_image(&c, &again), "the old size after a failed one");
+    release(&again);
     release(&a);
     release(&b);
     release(&c);
