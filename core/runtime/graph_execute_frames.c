@@ -293,6 +293,10 @@ pg_result pg_rt_frame_submit(pg_runtime *rt, uint32_t f, pg_error *err)
         VkResult sr = submit_or_fault(queue, &si, bt->last ? fr->slot[f].fence : VK_NULL_HANDLE);
         if (sr != VK_SUCCESS) {
             if (sem) fr->tl_value[q]--; /* never signalled: no later wait may name it */
+            /* batches 0..b-1 run: the next frame would reuse this slot's command buffers, uniform
+             * block and queries while they may still be read (the slot is not marked pending; its
+             * fence comes with the last batch), so they are waited for first */
+            if (b > 0) vkDeviceWaitIdle(gpu->device);
             return pg_fail(err, PG_ERR_VULKAN, "vkQueueSubmit2(batch %u of %u, %s queue) failed: %s", b, plan->n_batches,
                            pg_queue_name((pg_queue)q), pg_vk_result_name(sr));
         }
