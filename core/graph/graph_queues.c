@@ -213,9 +213,12 @@ pg_result pg_queues_assign(pg_graph_plan *plan, const pg_compile_desc *desc, pg_
         memcpy(pp->queue_reason, why, sizeof why);
         if (q == PG_QUEUE_COMPUTE) n_compute++;
         for (uint32_t r = 0; r < plan->n_resources; r++) {
-            if (!use_of(pp, (int)r).used) continue;
+            const use u = use_of(pp, (int)r);
+            if (!u.used) continue;
             plan->resources[r].queues |= (uint8_t)(1u << q);
-            if (q == PG_QUEUE_GRAPHICS && gfx_user[r] < 0) gfx_user[r] = p;
+            /* the pass the reason names: the last graphics pass that wrote it (the first user was
+             * named: 'base' where 'add' wrote the image last), else the first that used it */
+            if (q == PG_QUEUE_GRAPHICS && (gfx_user[r] < 0 || u.writes)) gfx_user[r] = p;
         }
     }
     plan->async = n_compute > 0;
