@@ -59,7 +59,10 @@ for bad_arg in "--at 2:lights=1e3|--at 2:lights 1e3: expected a whole number in 
   [ $rc -ne 0 ] && [ $rc -lt 128 ] && grep -qF -- "${bad_arg#*|}" "$tmp/err3" && ok \
     || { bad "view ${bad_arg%%|*}: want a refusal naming it (exit $rc)"; cat "$tmp/err3"; }
   # the command line's --set and --debug-view: bad options, exit 2 as in render and dump (it was 1)
-  case "${bad_arg%% *}" in --set|--debug-view) [ $rc = 2 ] && ok || bad "view ${bad_arg%%|*}: exit $rc, want 2";; esac
+  # (xvfb-run exits 5 when its own clean-up fails, whatever the program returned: seen once under ASan)
+  case "${bad_arg%% *}" in --set|--debug-view)
+    { [ $rc = 2 ] || { [ $rc = 5 ] && grep -q "xvfb-run: error: problem while cleaning up" "$tmp/err3"; }; } && ok \
+      || bad "view ${bad_arg%%|*}: exit $rc, want 2";; esac
 done
 # a screenshot that cannot be written: --screenshot refused before any frame (it ran every frame and
 # then failed); an --at one is shown and the viewer goes on (it ended the run)
